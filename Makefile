@@ -1,0 +1,29 @@
+# Fluence: the two commands of the README.
+#   make render   install missing Debian packages, build, render the Cornell box sample
+#   make test     install missing Debian packages, build, run the whole test suite
+BUILD_DIR ?= build
+JOBS ?= $(shell nproc)
+SPP ?= 256
+FLUENCE := $(BUILD_DIR)/apps/fluence
+
+.PHONY: all deps build render test clean
+
+all: build
+
+deps:
+	@bash scripts/install_dependencies.sh
+
+build: deps
+	cmake -S . -B $(BUILD_DIR) -G Ninja -DCMAKE_BUILD_TYPE=Release
+	cmake --build $(BUILD_DIR) -j $(JOBS)
+
+render: build
+	@mkdir -p out
+	$(FLUENCE) render usd_samples/cornell_box.usda -o out/cornell_box.exr --preview out/cornell_box.png --spp $(SPP)
+	@echo "Wrote $(CURDIR)/out/cornell_box.exr (linear Rec.709, beauty + AOVs) and $(CURDIR)/out/cornell_box.png (sRGB preview)"
+
+test: build
+	cd $(BUILD_DIR) && ctest --output-on-failure -j $(JOBS)
+
+clean:
+	rm -rf $(BUILD_DIR) out

@@ -1,0 +1,124 @@
+#include "apps/cli_options.h"
+
+#include <charconv>
+#include <cmath>
+#include <filesystem>
+
+#include "integrators/integrator.h"
+
+namespace fluence::app {
+
+namespace {
+
+template <typename T>
+T parseNumber(const std::string& flag, const std::string& text) {
+    T value{};
+    const char* end = text.data() + text.size();
+    auto [ptr, ec] = std::from_chars(text.data(), end, value);
+    if (ec != std::errc() || ptr != end) throw UsageError(flag + " expects a number, got '" + text + "'");
+    return value;
+}
+
+class ArgCursor {
+public:
+    explicit ArgCursor(const std::vector<std::string>& args) : args_(args) {}
+    bool done() const { return i_ >= args_.size(); }
+    const std::string& next() { return args_[i_++]; }
+    const std::string& value(const std::string& flag) {
+        if (done()) throw UsageError(flag + " needs a value");
+        return next();
+    }
+
+private:
+    const std::vector<std::string>& args_;
+    std::size_t i_ = 0;
+};
+
+}  // namespace
+
+RenderOptions parseRenderOptions(const std::vector<std::string>& args) {
+    RenderOptions o;
+    ArgCursor cur(args);
+    while (!cur.done()) {
+        const std::string arg = cur.next();
+        if (arg == "-o" || arg == "--output") {
+            o.output = cur.value(arg);
+        } else if (arg == "--preview") {
+            o.preview = cur.value(arg);
+        } else if (arg == "--spp") {
+            o.spp = parseNumber<int>(arg, cur.value(arg));
+            if (*o.spp < 1) throw UsageError("--spp must be at least 1");
+        } else if (arg == "-r" || arg == "--res") {
+            int w = parseNumber<int>(arg, cur.value(arg));
+            int h = parseNumber<int>(arg, cur.value(arg));
+            if (w < 1 || h < 1 || w > 65536 || h > 65536) throw UsageError(arg + " needs a width and height from 1 to 65536");
+            o.resolution = {w, h};
+        } else if (arg == "-c" || arg == "--camera") {
+            o.camera = cur.value(arg);
+            if (!o.camera.starts_with("/")) throw UsageError(arg + " needs an absolute prim path such as /World/Camera");
+        } else if (arg == "-j" || arg == "--threads") {
+            o.threads = parseNumber<int>(arg, cur.value(arg));
+            if (o.threads < 0) throw UsageError(arg + " must be 0 (all cores) or more");
+        } else if (arg == "--seed") {
+            o.seed = parseNumber<std::uint64_t>(arg, cur.value(arg));
+        } else if (arg == "--integrator") {
+            o.integrator = cur.value(arg);
+            if (!integrators::findIntegrator(o.integrator)) {
+                std::string names;
+                for (const auto& i : integrators::integratorRegistry()) names += (names.empty() ? "" : ", ") + i.name;
+                throw UsageError("unknown integrator '" + o.integrator + "' (available: " + names + ")");
+            }
+        } else if (arg == "--time-limit") {
+            o.timeLimit = parseNumber<double>(arg, cur.value(arg));
+            if (!(o.timeLimit >= 0.0) || !std::isfinite(o.timeLimit)) throw UsageError("--time-limit must be >= 0 seconds");
+        } else if (arg == "--max-depth") {
+            o.maxDepth = parseNumber<int>(arg, cur.value(arg));
+            if (o.maxDepth < 0) throw UsageError("--max-depth must be >= 0");
+        } else if (arg == "-f" || arg == "--frame") {
+            o.frame = parseNumber<double>(arg, cur.value(arg));
+        } else if (arg.starts_with("-") && arg.size() > 1) {
+            throw UsageError("unknown option '" + arg + "'");
+        } else if (o.scene.empty()) {
+            o.scene = arg;
+        } else {
+            throw UsageError("unexpected argument '" + arg + "' (the scene is already " + o.scene + ")");
+        }
+    }
+    if (o.scene.empty()) throw UsageError("no scene file given");
+    if (o.output.empty()) o.output = std::filesystem::path(o.scene).stem().string() + ".exr";
+    return o;
+}
+
+std::string usageText() {
+    std::string integratorList;
+    for (const auto& i : integrators::integratorRegistry())
+        integratorList += "                        " + i.name + "  " + i.pathClasses + "  " + i.description + "\n";
+    return "usage: fluence render SCENE.usda [options]\n"
+           "       fluence --help | --version\n"
+           "\n"
+           "Renders a USD scene to a multi-channel OpenEXR image (beauty RGBA in linear Rec.709,\n"
+           "plus albedo, N, Z and sampleCount AOVs).\n"
+           "\n"
+           "options:\n"
+           "  -o, --output FILE.exr   output image (default: SCENE's name with .exr, in the current folder)\n"
+           "      --preview FILE.png  also write an sRGB preview through the OCIO display/view transform\n"
+           "      --spp N             samples per pixel (default 64)\n"
+           "  -r, --res W H           resolution (default: the RenderSettings prim's, else 640 480)\n"
+           "  -c, --camera PATH       camera prim (default: the RenderSettings camera, else the first Camera)\n"
+           "  -f, --frame F           time code to render (default: the stage's startTimeCode, else default values)\n"
+           "  -j, --threads N         worker threads (default 0: every core)\n"
+           "      --seed S            random seed (default 0); same seed and spp give a bit-identical image\n"
+           "      --integrator NAME   solution method (default path):\n" +
+           integratorList +
+           "      --max-depth N       maximum scattering events per path (default 64)\n"
+           "      --time-limit SECS   stop starting new sample passes after SECS seconds (0: no limit)\n"
+           "\n"
+           "environment:\n"
+           "  OCIO                    an OpenColorIO config to use instead of Fluence's built-in one\n"
+           "\n"
+           "exit codes:\n"
+           "  0 image written   1 internal error   2 usage error   3 scene error (syntax or semantic)\n"
+           "  4 missing input (scene file, asset)   5 output could not be written   6 colour configuration error\n";
+}
+
+}  // namespace fluence::app

@@ -1,0 +1,46 @@
+// The `fluence` command line.
+#include <cstdio>
+#include <cstring>
+#include <exception>
+#include <string>
+#include <vector>
+
+#include "apps/cli_options.h"
+#include "apps/render_command.h"
+#include "version.h"
+
+int main(int argc, char** argv) {
+    using namespace fluence::app;
+    std::vector<std::string> args(argv + 1, argv + argc);
+    if (args.empty()) {
+        std::fputs(usageText().c_str(), stderr);
+        return kExitUsage;
+    }
+    if (args[0] == "--help" || args[0] == "-h" || args[0] == "help") {
+        std::fputs(usageText().c_str(), stdout);
+        return kExitOk;
+    }
+    if (args[0] == "--version") {
+        std::printf("fluence %s\n", fluence::kFluenceVersion);
+        return kExitOk;
+    }
+    if (args[0] != "render") {
+        std::fprintf(stderr, "fluence: error: unknown command '%s' (try 'fluence --help')\n", args[0].c_str());
+        return kExitUsage;
+    }
+    args.erase(args.begin());
+    for (const std::string& a : args)
+        if (a == "--help" || a == "-h") {
+            std::fputs(usageText().c_str(), stdout);
+            return kExitOk;
+        }
+    try {
+        return runRender(parseRenderOptions(args));
+    } catch (const UsageError& e) {
+        std::fprintf(stderr, "fluence: error: %s\n(try 'fluence --help')\n", e.what());
+        return kExitUsage;
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "fluence: internal error: %s\n", e.what());
+        return kExitInternal;
+    }
+}

@@ -1,0 +1,177 @@
+#include "apps/render_command.h"
+
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <set>
+#include <thread>
+
+#include "apps/progress_reporter.h"
+#include "color/color_management.h"
+#include "delegate/scene_delegate.h"
+#include "integrators/renderer.h"
+#include "output/atomic_file.h"
+#include "output/exr_writer.h"
+#include "output/preview_writer.h"
+#include "render/camera.h"
+#include "render/render_scene.h"
+#include "scene/stage.h"
+#include "scene/usda_parser.h"
+#include "version.h"
+
+namespace fluence::app {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double secondsSince(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
+
+void printError(const std::string& message) { std::fprintf(stderr, "fluence: error: %s\n", message.c_str()); }
+
+// Warnings are printed once per distinct (prim, message).
+class WarningLog {
+public:
+    void operator()(const std::string& primPath, const std::string& message) {
+        if (seen_.insert(primPath + '\x1f' + message).second)
+            std::fprintf(stderr, "fluence: warning: %s: %s\n", primPath.c_str(), message.c_str());
+    }
+    std::size_t count() const { return seen_.size(); }
+
+private:
+    std::set<std::string> seen_;
+};
+
+}  // namespace
+
+int runRender(const RenderOptions& opt) {
+    const auto start = Clock::now();
+
+    // Colour management first: every authored colour goes through it.
+    std::optional<color::ColorManagement> colors;
+    try {
+        colors = color::ColorManagement::load();
+    } catch (const std::exception& e) {
+        printError(e.what());
+        return kExitColorConfig;
+    }
+
+    // Parse.
+    auto t = Clock::now();
+    std::unique_ptr<usd::Stage> stage;
+    if (!std::filesystem::exists(opt.scene)) {
+        printError("scene file not found: " + opt.scene);
+        return kExitMissingInput;
+    }
+    try {
+        stage = usd::Stage::open(opt.scene);
+    } catch (const usd::FileError& e) {
+        printError(e.what());
+        return kExitMissingInput;
+    } catch (const usd::ParseError& e) {
+        printError(e.what());
+        return kExitScene;
+    }
+    const double parseSeconds = secondsSince(t);
+
+    // Build: delegate, then the render scene.
+    t = Clock::now();
+    WarningLog warnings;
+    delegate::DelegateOptions dopt;
+    dopt.cameraPath = opt.camera;
+    dopt.time = opt.frame ? *opt.frame : stage->startTimeCode().value_or(usd::kDefaultTime);
+    dopt.convertColor = [&](const RGB& c, const std::string& space) { return colors->toRenderingSpace(space, c); };
+    dopt.warn = [&](const std::string& path, const std::string& message) { warnings(path, message); };
+    std::optional<delegate::DelegateResult> populated;
+    std::unique_ptr<render::RenderScene> scene;
+    try {
+        populated = delegate::populateScene(*stage, dopt);
+        scene = std::make_unique<render::RenderScene>(populated->scene);
+    } catch (const delegate::SceneError& e) {
+        printError(e.what());
+        return kExitScene;
+    } catch (const color::ColorError& e) {
+        printError(e.what());
+        return kExitScene;
+    } catch (const std::invalid_argument& e) {
+        printError(e.what());
+        return kExitScene;
+    }
+    const double buildSeconds = secondsSince(t);
+    if (scene->lightCount() == 0) warnings(populated->cameraPath, "the scene has no lights; the image will be black");
+
+    // Render.
+    std::pair<int, int> res{kDefaultWidth, kDefaultHeight};
+    if (opt.resolution)
+        res = *opt.resolution;
+    else if (populated->renderSettings && populated->renderSettings->resolution)
+        res = *populated->renderSettings->resolution;
+    std::unique_ptr<render::Camera> camera;
+    try {
+        camera = std::make_unique<render::Camera>(*populated->scene.camera, res.first, res.second);
+    } catch (const std::invalid_argument& e) {
+        printError(e.what());
+        return kExitScene;
+    }
+    integrators::IntegratorSettings isettings;
+    isettings.maxDepth = opt.maxDepth;
+    const integrators::IntegratorInfo* info = integrators::findIntegrator(opt.integrator);
+    std::unique_ptr<integrators::Integrator> integrator = info->create(isettings);
+    integrators::RenderSettings rs;
+    rs.samplesPerPixel = opt.spp.value_or(kDefaultSpp);
+    rs.seed = opt.seed;
+    rs.threads = opt.threads;
+    rs.timeLimitSeconds = opt.timeLimit;
+    Film film(res.first, res.second, camera->farClip());
+    integrators::RenderProgress progress;
+    integrators::RenderStats stats;
+    {
+        ProgressReporter reporter(progress);
+        stats = integrators::render(*scene, *camera, *integrator, rs, film, &progress);
+    }
+
+    // Write.
+    t = Clock::now();
+    Image image = film.resolve();
+    output::ExrHeader header;
+    header.colorSpace = color::ColorManagement::kRenderingSpace;
+    header.chromaticities = color::ColorManagement::renderingChromaticities();
+    header.dataChannels = Film::dataChannelNames();
+    header.strings = {{"fluence/version", kFluenceVersion},
+                      {"fluence/scene", std::filesystem::absolute(opt.scene).string()},
+                      {"fluence/camera", populated->cameraPath},
+                      {"fluence/integrator", opt.integrator},
+                      {"fluence/ocioConfig", colors->configDescription()}};
+    header.floats = {{"fluence/samplesPerPixel", float(stats.samplesPerPixel)},
+                     {"fluence/seed", float(opt.seed)},
+                     {"fluence/renderSeconds", float(stats.seconds)}};
+    try {
+        output::writeExr(opt.output, image, header);
+        if (!opt.preview.empty()) output::writePreviewPng(opt.preview, image, *colors);
+    } catch (const output::OutputError& e) {
+        printError(e.what());
+        return kExitOutput;
+    }
+    const double writeSeconds = secondsSince(t);
+
+    // Summary.
+    const double total = secondsSince(start);
+    const double samples = double(stats.samplesPerPixel) * res.first * res.second;
+    const auto& st = scene->stats();
+    std::printf("fluence: rendered %s\n", opt.scene.c_str());
+    std::printf("  camera       %s\n", populated->cameraPath.c_str());
+    std::printf("  image        %d x %d, %d spp, integrator %s, seed %llu, %d threads\n", res.first, res.second,
+                stats.samplesPerPixel, opt.integrator.c_str(), static_cast<unsigned long long>(opt.seed),
+                opt.threads > 0 ? opt.threads : int(std::thread::hardware_concurrency()));
+    std::printf("  scene        %zu meshes, %zu triangles, %zu lights (%zu emissive triangles), %zu warnings\n",
+                st.meshes, st.triangles, st.lights, st.emissiveTriangles, warnings.count());
+    std::printf("  time         parse %.3f s, build %.3f s, render %.3f s, write %.3f s, total %.3f s\n", parseSeconds,
+                buildSeconds, stats.seconds, writeSeconds, total);
+    std::printf("  throughput   %.3f Msamples/s, %.3f Mrays/s (%llu rays: %llu camera, %llu bounce, %llu shadow)\n",
+                samples / stats.seconds * 1e-6, double(stats.rays.total()) / stats.seconds * 1e-6,
+                static_cast<unsigned long long>(stats.rays.total()), static_cast<unsigned long long>(stats.rays.camera),
+                static_cast<unsigned long long>(stats.rays.bounce), static_cast<unsigned long long>(stats.rays.shadow));
+    std::printf("  output       %s%s%s\n", opt.output.c_str(), opt.preview.empty() ? "" : ", ", opt.preview.c_str());
+    return kExitOk;
+}
+
+}  // namespace fluence::app

@@ -1,0 +1,18 @@
+# Finds the Debian 12 packages Fluence builds on. The workarounds are those recorded in
+# shared/notes/debian-build.md: each library is found the way that works with the Debian package.
+find_package(PkgConfig REQUIRED)
+find_package(Threads REQUIRED)
+
+# Embree 3.13 ships a working CMake config (target `embree`).
+find_package(embree 3 REQUIRED)
+
+# oneTBB 2021 ships a working CMake config (target TBB::tbb).
+find_package(TBB REQUIRED)
+
+# OpenImageIO 2.4's CMake config lists /usr/include/opencv4 as an include directory, which fails
+# unless OpenCV is installed: use pkg-config instead.
+pkg_check_modules(OIIO REQUIRED IMPORTED_TARGET OpenImageIO)
+
+# OpenColorIO 2.1 ships no CMake config.
+pkg_check_modules(OCIO REQUIRED IMPORTED_TARGET OpenColorIO)
+

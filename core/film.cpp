@@ -1,0 +1,54 @@
+#include "core/film.h"
+
+#include <algorithm>
+
+namespace fluence {
+
+Film::Film(int width, int height, float farDepth)
+    : width_(width), height_(height), farDepth_(farDepth), pixels_(static_cast<std::size_t>(width) * height) {}
+
+void Film::add(int x, int y, const FilmSample& s) {
+    Pixel& p = pixels_[static_cast<std::size_t>(y) * width_ + x];
+    for (int c = 0; c < 3; ++c) p.radiance[c] += s.radiance[c];
+    if (s.hit) {
+        for (int c = 0; c < 3; ++c) {
+            p.albedo[c] += s.albedo[c];
+            p.normal[c] += s.normal[c];
+        }
+        p.coverage += 1.0;
+        p.minDepth = p.anyHit ? std::min(p.minDepth, s.depth) : s.depth;
+        p.anyHit = true;
+    }
+    ++p.samples;
+}
+
+std::vector<std::string> Film::channelNames() {
+    return {"R", "G", "B", "A", "albedo.R", "albedo.G", "albedo.B", "N.X", "N.Y", "N.Z", "Z", "sampleCount"};
+}
+
+std::vector<std::string> Film::dataChannelNames() { return {"N.X", "N.Y", "N.Z", "Z", "sampleCount"}; }
+
+Image Film::resolve() const {
+    Image image(width_, height_, channelNames());
+    for (int y = 0; y < height_; ++y)
+        for (int x = 0; x < width_; ++x) {
+            const Pixel& p = pixels_[static_cast<std::size_t>(y) * width_ + x];
+            float* out = image.pixel(x, y);
+            double inv = p.samples > 0 ? 1.0 / p.samples : 0.0;
+            for (int c = 0; c < 3; ++c) out[c] = static_cast<float>(p.radiance[c] * inv);
+            out[3] = static_cast<float>(p.coverage * inv);
+            for (int c = 0; c < 3; ++c) out[4 + c] = static_cast<float>(p.albedo[c] * inv);
+            for (int c = 0; c < 3; ++c) out[7 + c] = static_cast<float>(p.normal[c] * inv);
+            out[10] = p.anyHit ? p.minDepth : farDepth_;
+            out[11] = static_cast<float>(p.samples);
+        }
+    return image;
+}
+
+std::uint64_t Film::totalSamples() const {
+    std::uint64_t n = 0;
+    for (const Pixel& p : pixels_) n += p.samples;
+    return n;
+}
+
+}  // namespace fluence

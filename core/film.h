@@ -1,0 +1,67 @@
+// The film: per-pixel sums of every output the integrators produce.
+//
+// Each pixel is owned by exactly one task at a time and accumulates its samples in index order,
+// so the sums (and the resolved image) do not depend on the thread count. Sums are kept in double
+// so thousands of samples add without visible rounding drift.
+//
+// Resolved channels (Nuke-style layer names, colour channels in the rendering space):
+//   R G B        beauty radiance, box-filtered over the pixel (the mean of its samples)
+//   A            coverage: the fraction of camera samples that hit geometry or a light
+//   albedo.R/G/B diffuse reflectance at the first surface hit (data for denoisers)
+//   N.X/Y/Z      world-space shading normal at the first hit, averaged (not renormalised)
+//   Z            camera-space depth of the nearest first hit in the pixel (a "min" filter, as
+//                compositors expect); pixels that hit nothing read the camera's far clip
+//   sampleCount  number of samples taken in the pixel
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "core/image.h"
+#include "core/rgb.h"
+
+namespace fluence {
+
+// What one camera sample contributes.
+struct FilmSample {
+    RGB radiance;
+    bool hit = false;  // the camera ray hit something
+    RGB albedo;
+    Vec3f normal;
+    float depth = 0.0f;  // camera-space depth of the first hit (valid when hit)
+};
+
+class Film {
+public:
+    Film(int width, int height, float farDepth);
+
+    int width() const { return width_; }
+    int height() const { return height_; }
+
+    void add(int x, int y, const FilmSample& s);
+
+    // The channel names resolve() produces, in order.
+    static std::vector<std::string> channelNames();
+    // Channels that are data rather than colour (for EXR headers).
+    static std::vector<std::string> dataChannelNames();
+    Image resolve() const;
+
+    // Statistics over the whole film (for summaries and tests).
+    std::uint64_t totalSamples() const;
+
+private:
+    struct Pixel {
+        double radiance[3] = {0, 0, 0};
+        double albedo[3] = {0, 0, 0};
+        double normal[3] = {0, 0, 0};
+        double coverage = 0;
+        float minDepth = 0;
+        bool anyHit = false;
+        std::uint32_t samples = 0;
+    };
+    int width_, height_;
+    float farDepth_;
+    std::vector<Pixel> pixels_;
+};
+
+}  // namespace fluence

@@ -1,0 +1,25 @@
+// An orthonormal frame (tangent, bitangent, normal): world <-> local shading space, z = normal.
+#pragma once
+
+#include <cmath>
+
+#include "core/vec.h"
+
+namespace fluence {
+
+struct Frame {
+    Vec3f s, t, n;
+
+    // Builds a frame around a unit normal without branches on the sign (Duff et al. 2017,
+    // "Building an Orthonormal Basis, Revisited").
+    static Frame fromNormal(const Vec3f& n) {
+        float sign = std::copysign(1.0f, n.z);
+        float a = -1.0f / (sign + n.z);
+        float b = n.x * n.y * a;
+        return {Vec3f(1.0f + sign * n.x * n.x * a, sign * b, -sign * n.x), Vec3f(b, sign + n.y * n.y * a, -n.y), n};
+    }
+    Vec3f toLocal(const Vec3f& v) const { return {dot(v, s), dot(v, t), dot(v, n)}; }
+    Vec3f toWorld(const Vec3f& v) const { return s * v.x + t * v.y + n * v.z; }
+};
+
+}  // namespace fluence

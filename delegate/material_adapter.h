@@ -1,0 +1,37 @@
+// UsdShade materials -> render::MaterialDesc, and material binding resolution.
+//
+// Binding: the `material:binding:full` or `material:binding` relationship on the prim, else on
+// its closest ancestor — unless an ancestor's binding carries bindMaterialAs =
+// "strongerThanDescendants", in which case the highest such ancestor wins (UsdShade rules).
+//
+// Material: the Material's `outputs:surface` is followed to a Shader whose info:id is
+// UsdPreviewSurface. This slice reads:
+// | input          | type     | fallback          | notes                                   |
+// |----------------|----------|-------------------|-----------------------------------------|
+// | diffuseColor   | color3f  | (0.18, 0.18, 0.18) | Lambertian albedo                       |
+// | emissiveColor  | color3f  | (0, 0, 0)         | emitted radiance, both sides            |
+// An input connected to a Material interface input takes that input's value; an input
+// connected to a texture or other node warns once and uses its own value or the fallback.
+#pragma once
+
+#include <functional>
+#include <string>
+
+#include "render/scene_description.h"
+#include "scene/stage.h"
+
+namespace fluence::delegate {
+
+using ColorConverter = std::function<RGB(const RGB&, const std::string&)>;
+using Warn = std::function<void(const std::string& primPath, const std::string& message)>;
+
+// Path of the material bound to `prim`, or "" when none.
+std::string boundMaterialPath(const usd::Stage& stage, const usd::PrimSpec& prim);
+
+render::MaterialDesc materialFromPath(const usd::Stage& stage, const std::string& materialPath, double time,
+                                      const ColorConverter& convertColor, const Warn& warn);
+
+// Resolves a relationship or connection target (absolute, or relative to `anchor`).
+std::string resolveTargetPath(const std::string& anchor, const std::string& target);
+
+}  // namespace fluence::delegate

@@ -1,0 +1,138 @@
+#include "delegate/mesh_adapter.h"
+
+#include <set>
+
+namespace fluence::delegate {
+
+namespace {
+
+// A primvar flattened to 3-component values, with its interpolation and optional indices.
+struct Primvar3 {
+    std::vector<double> values;  // 3 per element
+    std::vector<int> indices;    // empty when not indexed
+    std::string interpolation;
+    std::string name;
+
+    std::size_t elementCount() const { return indices.empty() ? values.size() / 3 : indices.size(); }
+    Vec3d at(std::size_t element) const {
+        std::size_t i = indices.empty() ? element : static_cast<std::size_t>(indices[element]);
+        return {values[3 * i], values[3 * i + 1], values[3 * i + 2]};
+    }
+};
+
+std::optional<Primvar3> readPrimvar3(const PrimReader& prim, const std::string& name, const std::string& defaultInterpolation) {
+    std::optional<std::vector<double>> values = prim.numbers(name, 3);
+    if (!values) return std::nullopt;
+    Primvar3 pv;
+    pv.name = name;
+    pv.values = std::move(*values);
+    pv.interpolation = prim.attributeMetadata(name, "interpolation").value_or(defaultInterpolation);
+    if (auto idx = prim.numbers(name + ":indices", 1)) {
+        for (double d : *idx) {
+            if (d < 0 || d >= static_cast<double>(pv.values.size() / 3))
+                prim.fail("'" + name + ":indices' holds " + std::to_string(static_cast<long long>(d)) + ", outside the " +
+                          std::to_string(pv.values.size() / 3) + " values of '" + name + "'");
+            pv.indices.push_back(static_cast<int>(d));
+        }
+    }
+    return pv;
+}
+
+// Which element of a primvar a triangle corner reads, by interpolation.
+struct CornerKey {
+    std::size_t face, faceVertex, point;
+};
+
+std::size_t elementFor(const Primvar3& pv, const CornerKey& k) {
+    if (pv.interpolation == "constant") return 0;
+    if (pv.interpolation == "uniform") return k.face;
+    if (pv.interpolation == "faceVarying") return k.faceVertex;
+    return k.point;  // vertex, varying
+}
+
+void checkPrimvarSize(const PrimReader& prim, const Primvar3& pv, std::size_t faces, std::size_t faceVertices,
+                      std::size_t points) {
+    std::size_t need;
+    if (pv.interpolation == "constant")
+        need = 1;
+    else if (pv.interpolation == "uniform")
+        need = faces;
+    else if (pv.interpolation == "faceVarying")
+        need = faceVertices;
+    else if (pv.interpolation == "vertex" || pv.interpolation == "varying")
+        need = points;
+    else
+        prim.fail("'" + pv.name + "' has unknown interpolation '" + pv.interpolation + "'");
+    if (pv.elementCount() < need)
+        prim.fail("'" + pv.name + "' has " + std::to_string(pv.elementCount()) + " values but " + pv.interpolation +
+                  " interpolation needs " + std::to_string(need));
+}
+
+}  // namespace
+
+render::MeshDesc meshFromPrim(const PrimReader& prim, const Matrix4& toWorld,
+                              const std::function<RGB(const RGB&, const std::string&)>& convertColor) {
+    render::MeshDesc mesh;
+    mesh.name = prim.path();
+    std::vector<double> points = prim.numbers("points", 3).value_or(std::vector<double>{});
+    std::vector<double> counts = prim.numbers("faceVertexCounts", 1).value_or(std::vector<double>{});
+    std::vector<double> indices = prim.numbers("faceVertexIndices", 1).value_or(std::vector<double>{});
+    const std::size_t pointCount = points.size() / 3;
+
+    std::size_t total = 0;
+    for (std::size_t f = 0; f < counts.size(); ++f) {
+        if (counts[f] < 0) prim.fail("faceVertexCounts[" + std::to_string(f) + "] is negative");
+        total += static_cast<std::size_t>(counts[f]);
+    }
+    if (total != indices.size())
+        prim.fail("faceVertexCounts add up to " + std::to_string(total) + " but faceVertexIndices has " +
+                  std::to_string(indices.size()) + " entries");
+    for (std::size_t i = 0; i < indices.size(); ++i)
+        if (indices[i] < 0 || indices[i] >= static_cast<double>(pointCount))
+            prim.fail("faceVertexIndices[" + std::to_string(i) + "] = " + std::to_string(static_cast<long long>(indices[i])) +
+                      " is out of range (" + std::to_string(pointCount) + " points)");
+
+    std::set<std::size_t> holes;
+    for (double h : prim.numbers("holeIndices", 1).value_or(std::vector<double>{})) holes.insert(static_cast<std::size_t>(h));
+    const bool leftHanded = prim.token({"orientation"}, "rightHanded") == "leftHanded";
+
+    std::optional<Primvar3> normals = readPrimvar3(prim, "primvars:normals", "vertex");
+    if (!normals) normals = readPrimvar3(prim, "normals", "vertex");
+    std::optional<Primvar3> colors = readPrimvar3(prim, "primvars:displayColor", "constant");
+    if (normals) checkPrimvarSize(prim, *normals, counts.size(), indices.size(), pointCount);
+    if (colors) checkPrimvarSize(prim, *colors, counts.size(), indices.size(), pointCount);
+    std::string colorSpace = colors ? prim.attributeMetadata("primvars:displayColor", "colorSpace").value_or("") : "";
+
+    mesh.positions.reserve(pointCount);
+    for (std::size_t i = 0; i < pointCount; ++i)
+        mesh.positions.emplace_back(toWorld.transformPoint({points[3 * i], points[3 * i + 1], points[3 * i + 2]}));
+
+    auto addCorner = [&](const CornerKey& k) {
+        mesh.indices.push_back(static_cast<std::uint32_t>(k.point));
+        if (normals) {
+            Vec3d n = toWorld.transformNormal(normals->at(elementFor(*normals, k)));
+            double len = length(n);
+            mesh.cornerNormals.emplace_back(len > 0.0 ? n / len : n);
+        }
+        if (colors) mesh.cornerColors.push_back(convertColor(RGB(colors->at(elementFor(*colors, k))), colorSpace));
+    };
+
+    std::size_t start = 0;
+    for (std::size_t f = 0; f < counts.size(); ++f) {
+        std::size_t n = static_cast<std::size_t>(counts[f]);
+        if (n >= 3 && !holes.contains(f)) {
+            auto key = [&](std::size_t corner) {
+                return CornerKey{f, start + corner, static_cast<std::size_t>(indices[start + corner])};
+            };
+            for (std::size_t c = 1; c + 1 < n; ++c) {
+                addCorner(key(0));
+                addCorner(key(leftHanded ? c + 1 : c));
+                addCorner(key(leftHanded ? c : c + 1));
+            }
+        }
+        start += n;
+    }
+    return mesh;
+}
+
+}  // namespace fluence::delegate

@@ -1,0 +1,56 @@
+// Typed reads of a prim's attributes at the render time, with USD fallbacks.
+//
+// The delegate's one way to read authored data: every getter takes the schema's fallback value,
+// resolves the attribute at the delegate's time code, and raises SceneError (naming the prim and
+// attribute) when an authored value has the wrong type or size.
+#pragma once
+
+#include <initializer_list>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "core/matrix.h"
+#include "core/rgb.h"
+#include "scene/layer.h"
+
+namespace fluence::delegate {
+
+// A semantic error in the scene: names the prim path (and, where known, the file location).
+class SceneError : public std::runtime_error {
+public:
+    using std::runtime_error::runtime_error;
+};
+
+class PrimReader {
+public:
+    PrimReader(const usd::PrimSpec& prim, double time) : prim_(prim), time_(time) {}
+
+    const usd::PrimSpec& prim() const { return prim_; }
+    const std::string& path() const { return prim_.path; }
+
+    // The resolved value of `name` (nullopt when unauthored or blocked).
+    std::optional<usd::Value> value(const std::string& name) const;
+    // Same, trying `name` then each alias in order (for schema renames such as "inputs:intensity"
+    // vs. the pre-2021 "intensity").
+    std::optional<usd::Value> value(std::initializer_list<const char*> names) const;
+
+    double number(std::initializer_list<const char*> names, double fallback) const;
+    bool boolean(std::initializer_list<const char*> names, bool fallback) const;
+    std::string token(std::initializer_list<const char*> names, const std::string& fallback) const;
+    Vec3d vec3(std::initializer_list<const char*> names, const Vec3d& fallback) const;
+    // Arrays: the flattened numbers, checked to have `components` per element.
+    std::optional<std::vector<double>> numbers(const std::string& name, int components) const;
+    std::optional<std::vector<std::string>> strings(const std::string& name) const;
+    // Attribute metadata (e.g. "interpolation"), as a string.
+    std::optional<std::string> attributeMetadata(const std::string& attribute, const std::string& key) const;
+
+    [[noreturn]] void fail(const std::string& message) const;
+
+private:
+    const usd::PrimSpec& prim_;
+    double time_;
+};
+
+}  // namespace fluence::delegate

@@ -1,0 +1,135 @@
+#include "integrators/path_tracer.h"
+
+#include <algorithm>
+
+#include "core/frame.h"
+#include "render/bsdf.h"
+
+namespace fluence::integrators {
+
+using render::LambertianBsdf;
+using render::LightHit;
+using render::Ray;
+using render::SurfaceHit;
+
+namespace {
+
+constexpr int kRouletteStartDepth = 3;
+constexpr float kMaxSurvival = 0.95f;
+
+// Probability that next-event estimation picks light `index` and samples direction wi towards
+// `hit` from `from`: the density the light strategy would have had for a BSDF-sampled hit.
+float lightStrategyPdf(const render::RenderScene& scene, int index, const Vec3f& from, const Vec3f& wi,
+                       const LightHit& hit) {
+    return scene.lightSelection().pmf(static_cast<std::size_t>(index)) * scene.light(index).pdf(from, wi, hit);
+}
+
+}  // namespace
+
+FilmSample PathTracer::sample(const render::RenderScene& scene, const render::Camera& camera, const Ray& cameraRay,
+                              SampleStream& rng, RayCounters& counters) const {
+    FilmSample out;
+    RGB radiance(0.0f), throughput(1.0f);
+    Ray ray = cameraRay;
+    float bsdfPdf = 0.0f;  // density of the BSDF sample that produced `ray` (0 for the camera ray)
+    Vec3f previousPoint = ray.origin;
+    const bool haveLights = !scene.lightSelection().empty();
+
+    for (int depth = 0;; ++depth) {
+        if (depth == 0)
+            ++counters.camera;
+        else
+            ++counters.bounce;
+        std::optional<SurfaceHit> hit = scene.intersect(ray);
+
+        if (!hit) {
+            for (int index : scene.lightsAtInfinity()) {
+                RGB le = scene.light(index).escaped(ray.direction);
+                if (isBlack(le)) continue;
+                float weight = depth == 0 ? 1.0f
+                                          : powerHeuristic(bsdfPdf, lightStrategyPdf(scene, index, previousPoint,
+                                                                                      ray.direction, LightHit{}));
+                radiance += throughput * le * weight;
+            }
+            break;
+        }
+
+        Vec3f wo = -ray.direction;
+        if (depth == 0) {
+            out.hit = true;
+            out.depth = camera.viewDepth(hit->point);
+            out.albedo = hit->albedo;
+            out.normal = dot(hit->shadingNormal, wo) < 0.0f ? -hit->shadingNormal : hit->shadingNormal;
+        }
+
+        // Emission reached by this ray: light shapes and emissive surfaces.
+        if (hit->light >= 0) {
+            LightHit lh{hit->point, hit->geometricNormal};
+            RGB le = hit->lightShape ? scene.light(hit->light).emitted(lh, wo) : hit->emission;
+            if (!isBlack(le)) {
+                float weight = depth == 0 ? 1.0f
+                                          : powerHeuristic(bsdfPdf, lightStrategyPdf(scene, hit->light, previousPoint,
+                                                                                      ray.direction, lh));
+                radiance += throughput * le * weight;
+            }
+        }
+        if (hit->lightShape || depth >= maxDepth_) break;
+
+        // Two-sided surface: orient the frame to the side the ray arrived from.
+        Vec3f ng = hit->geometricNormal, ns = hit->shadingNormal;
+        if (dot(ng, wo) < 0.0f) {
+            ng = -ng;
+            ns = -ns;
+        }
+        Frame frame = Frame::fromNormal(ns);
+        Vec3f woLocal = frame.toLocal(wo);
+        LambertianBsdf bsdf(hit->albedo);
+        Vec3f origin = render::offsetRayOrigin(hit->point, ng);
+
+        // Next-event estimation: one light, chosen by power.
+        if (haveLights) {
+            float uLight = rng.next();
+            Vec2f uPoint = rng.next2D();
+            std::size_t index = scene.lightSelection().sample(uLight);
+            float pick = scene.lightSelection().pmf(index);
+            std::optional<render::LightSample> ls = scene.light(index).sample(origin, uPoint);
+            if (ls && ls->pdf > 0.0f && !isBlack(ls->Li) && dot(ls->wi, ng) > 0.0f) {
+                Vec3f wiLocal = frame.toLocal(ls->wi);
+                RGB f = bsdf.f(woLocal, wiLocal) * std::abs(wiLocal.z);
+                if (!isBlack(f)) {
+                    ++counters.shadow;
+                    if (!scene.occluded(origin, ls->wi, ls->distance)) {
+                        float lightPdf = pick * ls->pdf;
+                        float weight = ls->delta ? 1.0f : powerHeuristic(lightPdf, bsdf.pdf(woLocal, wiLocal));
+                        radiance += throughput * f * ls->Li * (weight / lightPdf);
+                    }
+                }
+            }
+        } else {
+            rng.next();
+            rng.next2D();
+        }
+
+        // Continue the path by sampling the BSDF.
+        std::optional<render::BsdfSample> bs = bsdf.sample(woLocal, rng.next2D());
+        if (!bs) break;
+        Vec3f wi = frame.toWorld(bs->wi);
+        if (dot(wi, ng) <= 0.0f) break;  // shading normal sent the path below the surface
+        throughput *= bs->f * (std::abs(bs->wi.z) / bs->pdf);
+        if (isBlack(throughput)) break;
+
+        if (depth + 1 >= kRouletteStartDepth) {
+            float survive = std::min(maxComponent(throughput), kMaxSurvival);
+            if (rng.next() >= survive) break;
+            throughput /= survive;
+        }
+
+        bsdfPdf = bs->pdf;
+        previousPoint = origin;
+        ray = Ray{origin, wi, 0.0f, std::numeric_limits<float>::infinity()};
+    }
+    out.radiance = radiance;
+    return out;
+}
+
+}  // namespace fluence::integrators

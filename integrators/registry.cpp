@@ -1,0 +1,21 @@
+#include "integrators/integrator.h"
+#include "integrators/path_tracer.h"
+
+namespace fluence::integrators {
+
+const std::vector<IntegratorInfo>& integratorRegistry() {
+    static const std::vector<IntegratorInfo> registry = {
+        {"path", "L(S|D)*E",
+         "unidirectional path tracing with next-event estimation, MIS and Russian roulette",
+         [](const IntegratorSettings& s) { return std::make_unique<PathTracer>(s); }},
+    };
+    return registry;
+}
+
+const IntegratorInfo* findIntegrator(const std::string& name) {
+    for (const IntegratorInfo& info : integratorRegistry())
+        if (info.name == name) return &info;
+    return nullptr;
+}
+
+}  // namespace fluence::integrators

@@ -1,0 +1,94 @@
+#include "integrators/renderer.h"
+
+#include <tbb/blocked_range.h>
+#include <tbb/combinable.h>
+#include <tbb/global_control.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
+#include <algorithm>
+#include <chrono>
+#include <optional>
+
+namespace fluence::integrators {
+
+namespace {
+
+constexpr int kTileSize = 32;
+constexpr int kMaxPassSamples = 64;
+
+struct PassRange {
+    int first, count;
+};
+
+void renderPass(const render::RenderScene& scene, const render::Camera& camera, const Integrator& integrator,
+                const RenderSettings& settings, Film& film, PassRange pass, tbb::combinable<RayCounters>& counters,
+                RenderProgress* progress) {
+    const int width = film.width(), height = film.height();
+    const int tilesX = (width + kTileSize - 1) / kTileSize, tilesY = (height + kTileSize - 1) / kTileSize;
+    tbb::parallel_for(
+        tbb::blocked_range<int>(0, tilesX * tilesY, 1),
+        [&](const tbb::blocked_range<int>& tiles) {
+            RayCounters& local = counters.local();
+            for (int tile = tiles.begin(); tile != tiles.end(); ++tile) {
+                int x0 = (tile % tilesX) * kTileSize, y0 = (tile / tilesX) * kTileSize;
+                int x1 = std::min(x0 + kTileSize, width), y1 = std::min(y0 + kTileSize, height);
+                for (int y = y0; y < y1; ++y)
+                    for (int x = x0; x < x1; ++x) {
+                        std::uint64_t pixelIndex = std::uint64_t(y) * std::uint64_t(width) + std::uint64_t(x);
+                        for (int s = pass.first; s < pass.first + pass.count; ++s) {
+                            SampleStream rng(settings.seed, pixelIndex, std::uint64_t(s));
+                            Vec2f jitter = rng.next2D();  // box filter: uniform over the pixel
+                            render::Ray ray = camera.generateRay(float(x) + jitter.x, float(y) + jitter.y);
+                            film.add(x, y, integrator.sample(scene, camera, ray, rng, local));
+                        }
+                    }
+                if (progress)
+                    progress->pixelSamplesDone.fetch_add(std::uint64_t(x1 - x0) * std::uint64_t(y1 - y0) * pass.count,
+                                                         std::memory_order_relaxed);
+            }
+        },
+        tbb::simple_partitioner());
+}
+
+}  // namespace
+
+RenderStats render(const render::RenderScene& scene, const render::Camera& camera, const Integrator& integrator,
+                   const RenderSettings& settings, Film& film, RenderProgress* progress) {
+    using Clock = std::chrono::steady_clock;
+    const auto start = Clock::now();
+    auto elapsed = [&] { return std::chrono::duration<double>(Clock::now() - start).count(); };
+    const std::uint64_t pixels = std::uint64_t(film.width()) * std::uint64_t(film.height());
+    if (progress) progress->pixelSamplesPlanned = pixels * std::uint64_t(std::max(settings.samplesPerPixel, 0));
+
+    int concurrency = settings.threads > 0 ? settings.threads : tbb::this_task_arena::max_concurrency();
+    tbb::task_arena arena(concurrency);
+    tbb::combinable<RayCounters> counters;
+    RenderStats stats;
+
+    int done = 0, passSize = 1;
+    double secondsPerSample = 0.0;  // per sample per pixel over the whole image, measured
+    while (done < settings.samplesPerPixel) {
+        int count = std::min({passSize, kMaxPassSamples, settings.samplesPerPixel - done});
+        if (settings.timeLimitSeconds > 0.0 && stats.passes > 0) {
+            double left = settings.timeLimitSeconds - elapsed();
+            int fits = secondsPerSample > 0.0 ? static_cast<int>(left / secondsPerSample) : count;
+            count = std::min(count, fits);
+            if (count <= 0) break;
+        }
+        double passStart = elapsed();
+        arena.execute([&] { renderPass(scene, camera, integrator, settings, film, {done, count}, counters, progress); });
+        secondsPerSample = (elapsed() - passStart) / count;
+        done += count;
+        passSize *= 2;
+        ++stats.passes;
+    }
+    if (progress) progress->pixelSamplesPlanned = pixels * std::uint64_t(done);
+
+    stats.seconds = elapsed();
+    stats.samplesPerPixel = done;
+    counters.combine_each([&](const RayCounters& c) { stats.rays += c; });
+    return stats;
+}
+
+}  // namespace fluence::integrators

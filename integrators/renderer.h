@@ -1,0 +1,42 @@
+// The render loop: drives an integrator over the film, in passes of tiles on oneTBB.
+//
+// The image is rendered in passes of 1, 2, 4, ... (at most 64) samples per pixel; within a pass
+// 32x32 tiles are shaded in parallel. Sample n of pixel (x, y) always draws from the stream
+// (seed, y*width+x, n), and each pixel adds its samples in index order, so the image is
+// bit-identical for any thread count and any pass division. A time limit is honoured between
+// passes (the last pass is shrunk to fit the time left), so every pixel has the same sample
+// count.
+#pragma once
+
+#include <atomic>
+#include <cstdint>
+
+#include "core/film.h"
+#include "integrators/integrator.h"
+
+namespace fluence::integrators {
+
+struct RenderSettings {
+    int samplesPerPixel = 64;
+    std::uint64_t seed = 0;
+    int threads = 0;                // 0: every core
+    double timeLimitSeconds = 0.0;  // 0: none
+};
+
+// Read by a progress reporter on another thread while render() runs.
+struct RenderProgress {
+    std::atomic<std::uint64_t> pixelSamplesDone{0};
+    std::atomic<std::uint64_t> pixelSamplesPlanned{0};
+};
+
+struct RenderStats {
+    double seconds = 0.0;
+    int samplesPerPixel = 0;  // completed in every pixel
+    int passes = 0;
+    RayCounters rays;
+};
+
+RenderStats render(const render::RenderScene& scene, const render::Camera& camera, const Integrator& integrator,
+                   const RenderSettings& settings, Film& film, RenderProgress* progress = nullptr);
+
+}  // namespace fluence::integrators

@@ -1,0 +1,63 @@
+#include "render/camera.h"
+
+#include <cmath>
+#include <stdexcept>
+
+namespace fluence::render {
+
+namespace {
+constexpr float kOrthographicApertureUnit = 0.1f;  // GfCamera::APERTURE_UNIT
+}
+
+Camera::Camera(const CameraDesc& d, int imageWidth, int imageHeight)
+    : projection_(d.projection), toWorld_(d.transform), width_(imageWidth), height_(imageHeight),
+      near_(d.nearClip), far_(d.farClip) {
+    if (imageWidth <= 0 || imageHeight <= 0) throw std::invalid_argument("image resolution must be positive");
+    if (!(d.horizontalAperture > 0.0f) || !(d.verticalAperture > 0.0f))
+        throw std::invalid_argument("camera " + d.name + ": apertures must be positive");
+    if (projection_ == Projection::Perspective && !(d.focalLength > 0.0f))
+        throw std::invalid_argument("camera " + d.name + ": focalLength must be positive");
+
+    // expandAperture conform policy.
+    float hAperture = d.horizontalAperture, vAperture = d.verticalAperture;
+    float imageAspect = static_cast<float>(imageWidth) / static_cast<float>(imageHeight);
+    if (imageAspect > hAperture / vAperture)
+        hAperture = vAperture * imageAspect;
+    else
+        vAperture = hAperture / imageAspect;
+
+    float scale = projection_ == Projection::Perspective ? 1.0f / d.focalLength : kOrthographicApertureUnit;
+    halfWidth_ = 0.5f * hAperture * scale;
+    halfHeight_ = 0.5f * vAperture * scale;
+    centreX_ = d.horizontalApertureOffset * scale;
+    centreY_ = d.verticalApertureOffset * scale;
+
+    position_ = Vec3f(toWorld_.transformPoint({0, 0, 0}));
+    forward_ = normalize(Vec3f(toWorld_.transformVector({0, 0, -1})));
+}
+
+Ray Camera::generateRay(float x, float y) const {
+    float sx = 2.0f * x / static_cast<float>(width_) - 1.0f;   // -1 left .. 1 right
+    float sy = 1.0f - 2.0f * y / static_cast<float>(height_);  // 1 top .. -1 bottom
+    float wx = centreX_ + sx * halfWidth_, wy = centreY_ + sy * halfHeight_;
+    Ray ray;
+    if (projection_ == Projection::Perspective) {
+        Vec3d local(wx, wy, -1.0);
+        Vec3f dir = normalize(Vec3f(toWorld_.transformVector(local)));
+        float cosView = dot(dir, forward_);
+        ray.origin = position_;
+        ray.direction = dir;
+        ray.tMin = near_ / cosView;
+        ray.tMax = far_ / cosView;
+    } else {
+        ray.origin = Vec3f(toWorld_.transformPoint({wx, wy, 0.0}));
+        ray.direction = forward_;
+        ray.tMin = near_;
+        ray.tMax = far_;
+    }
+    return ray;
+}
+
+float Camera::viewDepth(const Vec3f& p) const { return dot(p - position_, forward_); }
+
+}  // namespace fluence::render

@@ -1,0 +1,42 @@
+// A camera that follows USD's camera model (UsdGeomCamera / GfCamera).
+//
+// The film back is the aperture window at distance focalLength in front of the lens (only the
+// ratios matter for a perspective camera); the image is conformed to the aperture with USD's
+// default policy, expandAperture: the aperture grows in one direction until its aspect ratio
+// matches the image's, so nothing the aperture frames is cropped. Orthographic apertures are in
+// tenths of a scene unit, as in USD. Camera rays start at the near clipping plane and end at
+// the far one (planes perpendicular to the view axis, not spheres).
+#pragma once
+
+#include "core/matrix.h"
+#include "render/ray.h"
+#include "render/scene_description.h"
+
+namespace fluence::render {
+
+class Camera {
+public:
+    Camera(const CameraDesc& desc, int imageWidth, int imageHeight);
+
+    // A ray through film position (x, y) in pixels: (0,0) is the top-left corner of the image,
+    // (width, height) the bottom-right.
+    Ray generateRay(float x, float y) const;
+
+    // Depth along the view axis of a world-space point (positive in front of the camera).
+    float viewDepth(const Vec3f& worldPoint) const;
+
+    float farClip() const { return far_; }
+    const Vec3f& position() const { return position_; }
+
+private:
+    Projection projection_;
+    Matrix4 toWorld_;
+    Vec3f position_, forward_;
+    int width_, height_;
+    // Window half-extents and centre, on the plane at unit distance (perspective) or in scene
+    // units (orthographic).
+    float halfWidth_, halfHeight_, centreX_, centreY_;
+    float near_, far_;
+};
+
+}  // namespace fluence::render

@@ -1,0 +1,275 @@
+#include "render/render_scene.h"
+
+#include <embree3/rtcore.h>
+
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+#include "render/area_lights.h"
+#include "render/infinite_lights.h"
+
+namespace fluence::render {
+
+namespace {
+
+// Shadow rays stop this fraction short of the light sample, so a sample on an emissive surface
+// is not occluded by that surface itself.
+constexpr float kShadowRayShortening = 1e-4f;
+
+void throwOnEmbreeError(RTCDevice device, const char* what) {
+    RTCError code = rtcGetDeviceError(device);
+    if (code != RTC_ERROR_NONE) throw std::runtime_error(std::string("Embree error ") + std::to_string(int(code)) + " while " + what);
+}
+
+RTCRay makeRay(const Vec3f& o, const Vec3f& d, float tNear, float tFar) {
+    RTCRay r{};
+    r.org_x = o.x;
+    r.org_y = o.y;
+    r.org_z = o.z;
+    r.dir_x = d.x;
+    r.dir_y = d.y;
+    r.dir_z = d.z;
+    r.tnear = tNear;
+    r.tfar = tFar;
+    r.mask = 0xffffffffu;
+    r.time = 0.0f;
+    r.flags = 0;
+    return r;
+}
+
+}  // namespace
+
+struct RenderScene::Mesh {
+    std::string name;
+    std::vector<Vec3f> positions;
+    std::vector<std::uint32_t> indices;
+    std::vector<Vec3f> cornerNormals;
+    std::vector<RGB> cornerColors;
+    RGB diffuse;
+    RGB emission;
+    int firstLight = -1;
+};
+
+struct RenderScene::EmbreeState {
+    RTCDevice device = nullptr;
+    RTCScene surfaces = nullptr;
+    RTCScene lightShapes = nullptr;
+    ~EmbreeState() {
+        if (surfaces) rtcReleaseScene(surfaces);
+        if (lightShapes) rtcReleaseScene(lightShapes);
+        if (device) rtcReleaseDevice(device);
+    }
+};
+
+RenderScene::RenderScene(const SceneDescription& scene) : embree_(std::make_unique<EmbreeState>()) {
+    embree_->device = rtcNewDevice(nullptr);
+    if (!embree_->device) throw std::runtime_error("cannot create the Embree device");
+    embree_->surfaces = rtcNewScene(embree_->device);
+    embree_->lightShapes = rtcNewScene(embree_->device);
+    rtcSetSceneBuildQuality(embree_->surfaces, RTC_BUILD_QUALITY_HIGH);
+
+    for (const MeshDesc& mesh : scene.meshes) addMesh(mesh, scene.materials);
+
+    // Scene bounds (for the power of lights at infinity) from surfaces and light positions.
+    Vec3f lo(std::numeric_limits<float>::max()), hi(-std::numeric_limits<float>::max());
+    for (const Mesh& m : meshes_)
+        for (const Vec3f& p : m.positions) {
+            lo = vmin(lo, p);
+            hi = vmax(hi, p);
+        }
+    for (const LightDesc& l : scene.lights) {
+        if (l.type == LightType::Dome || l.type == LightType::Distant) continue;
+        Vec3f p(l.transform.transformPoint({0, 0, 0}));
+        lo = vmin(lo, p);
+        hi = vmax(hi, p);
+    }
+    if (lo.x <= hi.x) {
+        bounds_.centre = (lo + hi) * 0.5f;
+        bounds_.radius = std::max(0.5f * length(hi - lo), 1e-3f);
+    }
+
+    for (const LightDesc& light : scene.lights) addLight(light);
+
+    rtcCommitScene(embree_->surfaces);
+    rtcCommitScene(embree_->lightShapes);
+    throwOnEmbreeError(embree_->device, "building the scene");
+
+    std::vector<double> powers;
+    for (const auto& l : lights_) powers.push_back(std::max(0.0f, l->power(bounds_)));
+    lightSelection_ = DiscreteDistribution(powers);
+    stats_.lights = lights_.size();
+}
+
+RenderScene::~RenderScene() = default;
+
+void RenderScene::addMesh(const MeshDesc& desc, const std::vector<MaterialDesc>& materials) {
+    if (desc.indices.size() % 3 != 0) throw std::invalid_argument(desc.name + ": triangle index count is not a multiple of 3");
+    for (std::uint32_t i : desc.indices)
+        if (i >= desc.positions.size()) throw std::invalid_argument(desc.name + ": triangle index out of range");
+    std::size_t triangles = desc.indices.size() / 3;
+    if (!desc.cornerNormals.empty() && desc.cornerNormals.size() != triangles * 3)
+        throw std::invalid_argument(desc.name + ": expected one normal per triangle corner");
+    if (!desc.cornerColors.empty() && desc.cornerColors.size() != triangles * 3)
+        throw std::invalid_argument(desc.name + ": expected one colour per triangle corner");
+    if (desc.material >= static_cast<int>(materials.size())) throw std::invalid_argument(desc.name + ": material index out of range");
+
+    Mesh mesh;
+    mesh.name = desc.name;
+    mesh.positions = desc.positions;
+    mesh.indices = desc.indices;
+    mesh.cornerNormals = desc.cornerNormals;
+    mesh.cornerColors = desc.cornerColors;
+    MaterialDesc material = desc.material >= 0 ? materials[desc.material] : MaterialDesc{};
+    mesh.diffuse = material.diffuse;
+    mesh.emission = material.emission;
+
+    if (!isBlack(mesh.emission)) {
+        mesh.firstLight = static_cast<int>(lights_.size());
+        for (std::size_t t = 0; t < triangles; ++t)
+            lights_.push_back(std::make_unique<TriangleLight>(desc.name, mesh.positions[mesh.indices[3 * t]],
+                                                              mesh.positions[mesh.indices[3 * t + 1]],
+                                                              mesh.positions[mesh.indices[3 * t + 2]], mesh.emission));
+        stats_.emissiveTriangles += triangles;
+    }
+
+    RTCGeometry geom = rtcNewGeometry(embree_->device, RTC_GEOMETRY_TYPE_TRIANGLE);
+    auto* vertices = static_cast<float*>(rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
+                                                                 3 * sizeof(float), mesh.positions.size()));
+    for (std::size_t i = 0; i < mesh.positions.size(); ++i) {
+        vertices[3 * i] = mesh.positions[i].x;
+        vertices[3 * i + 1] = mesh.positions[i].y;
+        vertices[3 * i + 2] = mesh.positions[i].z;
+    }
+    auto* index = static_cast<unsigned*>(rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
+                                                                 3 * sizeof(unsigned), triangles));
+    std::copy(mesh.indices.begin(), mesh.indices.end(), index);
+    rtcCommitGeometry(geom);
+    rtcAttachGeometryByID(embree_->surfaces, geom, static_cast<unsigned>(meshes_.size()));
+    rtcReleaseGeometry(geom);
+    throwOnEmbreeError(embree_->device, ("adding mesh " + desc.name).c_str());
+
+    stats_.meshes += 1;
+    stats_.triangles += triangles;
+    meshes_.push_back(std::move(mesh));
+}
+
+void RenderScene::addLight(const LightDesc& desc) {
+    int index = static_cast<int>(lights_.size());
+    RTCGeometry shape = nullptr;
+    switch (desc.type) {
+        case LightType::Rect: {
+            auto light = std::make_unique<RectLight>(desc);
+            auto corners = light->corners();
+            shape = rtcNewGeometry(embree_->device, RTC_GEOMETRY_TYPE_TRIANGLE);
+            auto* v = static_cast<float*>(
+                rtcSetNewGeometryBuffer(shape, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), 4));
+            for (int i = 0; i < 4; ++i) {
+                v[3 * i] = corners[i].x;
+                v[3 * i + 1] = corners[i].y;
+                v[3 * i + 2] = corners[i].z;
+            }
+            auto* idx = static_cast<unsigned*>(
+                rtcSetNewGeometryBuffer(shape, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(unsigned), 2));
+            const unsigned quad[6] = {0, 1, 2, 0, 2, 3};
+            std::copy(quad, quad + 6, idx);
+            lights_.push_back(std::move(light));
+            break;
+        }
+        case LightType::Sphere: {
+            auto light = std::make_unique<SphereLight>(desc);
+            shape = rtcNewGeometry(embree_->device, RTC_GEOMETRY_TYPE_SPHERE_POINT);
+            auto* v = static_cast<float*>(
+                rtcSetNewGeometryBuffer(shape, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT4, 4 * sizeof(float), 1));
+            v[0] = light->centre().x;
+            v[1] = light->centre().y;
+            v[2] = light->centre().z;
+            v[3] = light->radius();
+            lights_.push_back(std::move(light));
+            break;
+        }
+        case LightType::Distant:
+            lights_.push_back(std::make_unique<DistantLight>(desc));
+            lightsAtInfinity_.push_back(index);
+            return;
+        case LightType::Dome:
+            lights_.push_back(std::make_unique<DomeLight>(desc));
+            lightsAtInfinity_.push_back(index);
+            return;
+    }
+    rtcCommitGeometry(shape);
+    rtcAttachGeometryByID(embree_->lightShapes, shape, static_cast<unsigned>(lightShapeToLight_.size()));
+    rtcReleaseGeometry(shape);
+    lightShapeToLight_.push_back(index);
+    throwOnEmbreeError(embree_->device, ("adding light " + desc.name).c_str());
+}
+
+std::optional<SurfaceHit> RenderScene::intersect(const Ray& ray) const {
+    RTCIntersectContext context;
+    rtcInitIntersectContext(&context);
+    RTCRayHit surface{};
+    surface.ray = makeRay(ray.origin, ray.direction, ray.tMin, ray.tMax);
+    surface.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+    rtcIntersect1(embree_->surfaces, &context, &surface);
+
+    RTCRayHit shape{};
+    shape.ray = makeRay(ray.origin, ray.direction, ray.tMin, surface.ray.tfar);
+    shape.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+    rtcIntersect1(embree_->lightShapes, &context, &shape);
+
+    if (shape.hit.geomID != RTC_INVALID_GEOMETRY_ID)
+        return shadeLightShape(shape.hit.geomID, ray, shape.ray.tfar, Vec3f(shape.hit.Ng_x, shape.hit.Ng_y, shape.hit.Ng_z));
+    if (surface.hit.geomID != RTC_INVALID_GEOMETRY_ID)
+        return shadeMesh(surface.hit.geomID, surface.hit.primID, surface.hit.u, surface.hit.v, surface.ray.tfar);
+    return std::nullopt;
+}
+
+SurfaceHit RenderScene::shadeMesh(unsigned geomID, unsigned primID, float u, float v, float t) const {
+    const Mesh& mesh = meshes_[geomID];
+    std::size_t c = 3 * std::size_t(primID);
+    const Vec3f& p0 = mesh.positions[mesh.indices[c]];
+    const Vec3f& p1 = mesh.positions[mesh.indices[c + 1]];
+    const Vec3f& p2 = mesh.positions[mesh.indices[c + 2]];
+    float w = 1.0f - u - v;
+
+    SurfaceHit hit;
+    hit.t = t;
+    hit.point = p0 * w + p1 * u + p2 * v;
+    Vec3f ng = cross(p1 - p0, p2 - p0);
+    hit.geometricNormal = lengthSquared(ng) > 0.0f ? normalize(ng) : Vec3f(0, 0, 1);
+    hit.shadingNormal = hit.geometricNormal;
+    if (!mesh.cornerNormals.empty()) {
+        Vec3f n = mesh.cornerNormals[c] * w + mesh.cornerNormals[c + 1] * u + mesh.cornerNormals[c + 2] * v;
+        if (lengthSquared(n) > 0.0f) {
+            hit.shadingNormal = normalize(n);
+            if (dot(hit.shadingNormal, hit.geometricNormal) < 0.0f) hit.geometricNormal = -hit.geometricNormal;
+        }
+    }
+    hit.albedo = mesh.cornerColors.empty()
+                     ? mesh.diffuse
+                     : mesh.cornerColors[c] * w + mesh.cornerColors[c + 1] * u + mesh.cornerColors[c + 2] * v;
+    hit.emission = mesh.emission;
+    hit.light = mesh.firstLight >= 0 ? mesh.firstLight + static_cast<int>(primID) : -1;
+    return hit;
+}
+
+SurfaceHit RenderScene::shadeLightShape(unsigned geomID, const Ray& ray, float t, const Vec3f& ng) const {
+    SurfaceHit hit;
+    hit.t = t;
+    hit.point = ray.origin + ray.direction * t;
+    hit.geometricNormal = lengthSquared(ng) > 0.0f ? normalize(ng) : -ray.direction;
+    hit.shadingNormal = hit.geometricNormal;
+    hit.light = lightShapeToLight_[geomID];
+    hit.lightShape = true;
+    return hit;
+}
+
+bool RenderScene::occluded(const Vec3f& origin, const Vec3f& direction, float distance) const {
+    RTCIntersectContext context;
+    rtcInitIntersectContext(&context);
+    RTCRay r = makeRay(origin, direction, 0.0f, distance * (1.0f - kShadowRayShortening));
+    rtcOccluded1(embree_->surfaces, &context, &r);
+    return r.tfar < 0.0f;
+}
+
+}  // namespace fluence::render

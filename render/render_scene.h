@@ -1,0 +1,75 @@
+// The render scene: geometry in Embree 3, materials and lights, ready for the integrators.
+//
+// Built once from a SceneDescription (the Embree scenes are committed at the end of the
+// constructor and never edited while rendering). Two Embree scenes are kept: the surfaces
+// (meshes) and the light shapes (rect and sphere lights). Camera and BSDF rays look in both;
+// shadow rays look only at surfaces, so light shapes cast no shadows.
+#pragma once
+
+#include <memory>
+#include <optional>
+#include <vector>
+
+#include "core/sampling.h"
+#include "render/light.h"
+#include "render/ray.h"
+#include "render/scene_description.h"
+
+namespace fluence::render {
+
+// What a ray hit, with everything shading needs.
+struct SurfaceHit {
+    float t = 0.0f;
+    Vec3f point;
+    Vec3f geometricNormal;  // unit; on the same side as shadingNormal
+    Vec3f shadingNormal;    // unit
+    RGB albedo;             // diffuse reflectance (zero on light shapes)
+    RGB emission;           // emitted radiance of an emissive surface (both sides)
+    int light = -1;         // index of the light this surface belongs to, or -1
+    bool lightShape = false;  // a light's own shape (rect/sphere light): emits, does not reflect
+};
+
+struct SceneStats {
+    std::size_t meshes = 0, triangles = 0, lights = 0, emissiveTriangles = 0;
+};
+
+class RenderScene {
+public:
+    explicit RenderScene(const SceneDescription& scene);
+    ~RenderScene();
+    RenderScene(const RenderScene&) = delete;
+    RenderScene& operator=(const RenderScene&) = delete;
+
+    std::optional<SurfaceHit> intersect(const Ray& ray) const;
+    // True when a surface blocks the segment from `origin` along unit `direction` for `distance`.
+    bool occluded(const Vec3f& origin, const Vec3f& direction, float distance) const;
+
+    std::size_t lightCount() const { return lights_.size(); }
+    const Light& light(std::size_t i) const { return *lights_[i]; }
+    // Lights at infinity (dome, distant), seen by rays that leave the scene.
+    const std::vector<int>& lightsAtInfinity() const { return lightsAtInfinity_; }
+    // Chooses a light for next-event estimation, proportionally to its power.
+    const DiscreteDistribution& lightSelection() const { return lightSelection_; }
+
+    const SceneBounds& bounds() const { return bounds_; }
+    const SceneStats& stats() const { return stats_; }
+
+private:
+    struct Mesh;
+    void addMesh(const MeshDesc& mesh, const std::vector<MaterialDesc>& materials);
+    void addLight(const LightDesc& light);
+    SurfaceHit shadeMesh(unsigned geomID, unsigned primID, float u, float v, float t) const;
+    SurfaceHit shadeLightShape(unsigned geomID, const Ray& ray, float t, const Vec3f& ng) const;
+
+    struct EmbreeState;
+    std::unique_ptr<EmbreeState> embree_;
+    std::vector<Mesh> meshes_;                 // indexed by Embree geometry id in the surface scene
+    std::vector<int> lightShapeToLight_;       // Embree geometry id in the light scene -> light
+    std::vector<std::unique_ptr<Light>> lights_;
+    std::vector<int> lightsAtInfinity_;
+    DiscreteDistribution lightSelection_;
+    SceneBounds bounds_;
+    SceneStats stats_;
+};
+
+}  // namespace fluence::render

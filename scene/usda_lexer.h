@@ -1,0 +1,116 @@
+// The USDA tokenizer (internal to the scene library).
+//
+// Splits USD text into tokens, tracking 1-based line and byte column of each, and whether a line
+// break precedes it (USDA is line-sensitive in a few places: statements end at a newline or ';').
+// Tokens:
+//   Identifier  [A-Za-z_][A-Za-z0-9_]* with ':' and '::' namespace joins ("xformOp:rotateXYZ",
+//               "Some::Type"); bytes >= 0x80 count as letters so UTF-8 identifiers pass.
+//   Number      -?(digits[.digits]|.digits)([eE][+-]?digits)? and -inf; value parsed with
+//               std::from_chars. The bare words inf and nan stay identifiers (the value parser
+//               accepts them where a number is expected).
+//   String      "..." '...' """...""" '''...''' with C-style escapes decoded.
+//   Asset       @path@ or @@@path@@@ (the triple form may hold '@', and \@@@ for '@@@').
+//   Path        <...>
+//   Punct       one of ( ) [ ] { } = , : ; .
+// Comments (# and // to end of line, /* ... */) and whitespace are skipped. The header line is
+// not tokenized: the lexer starts after it.
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <string>
+#include <string_view>
+
+namespace fluence::usd::detail {
+
+enum class TokenKind { End, Identifier, Number, String, Asset, Path, Punct };
+
+struct Token {
+    TokenKind kind = TokenKind::End;
+    char punct = 0;              // the character, for Punct
+    std::string_view text;       // the token's source text
+    std::string value;           // decoded content of String, Asset and Path tokens
+    double number = 0.0;         // for Number
+    bool integral = false;       // a Number written with digits only (no '.', exponent or inf)
+    bool newlineBefore = false;  // a line break separates it from the previous token
+    int line = 0;
+    int column = 0;
+
+    bool is(char c) const { return kind == TokenKind::Punct && punct == c; }
+    bool isWord(std::string_view word) const {
+        return kind == TokenKind::Identifier && text == word;
+    }
+};
+
+// How a token is named in error messages: "'('", "'foo'", "string \"abc\"", "end of file".
+std::string describe(const Token& token);
+
+// Deepest nesting of prims, lists, tuples and dictionaries the parser accepts.
+inline constexpr int kMaxNesting = 1000;
+
+class Lexer {
+public:
+    // Tokenizes text[offset..], where offset is the start of line `line` (after the header).
+    Lexer(std::string_view text, std::string file, std::size_t offset, int line);
+
+    // The token `ahead` positions after the current one (at most kLookahead - 1).
+    const Token& peek(std::size_t ahead = 0) {
+        if (count_ <= ahead) fill(ahead);
+        return buffer_[(head_ + ahead) % kLookahead];
+    }
+    Token take();
+    void skip();  // drops the current token
+
+    const std::string& file() const { return file_; }
+    [[noreturn]] void fail(int line, int column, const std::string& message) const;
+    [[noreturn]] void fail(const Token& at, const std::string& message) const {
+        fail(at.line, at.column, message);
+    }
+
+    // Counts one more level of nesting opened at `at`; throws past kMaxNesting.
+    void enterNesting(const Token& at);
+    void leaveNesting() { --nesting_; }
+
+private:
+    static constexpr std::size_t kLookahead = 4;
+
+    void fill(std::size_t ahead);
+    void scan(Token& token);
+    bool skipSpaceAndComments();  // true when a line break was skipped
+    void scanIdentifier(Token& token);
+    void scanNumber(Token& token);
+    void scanString(Token& token);
+    void scanAsset(Token& token);
+    void scanPath(Token& token);
+    void scanEscape(std::string& out);
+    char current() const { return pos_ < text_.size() ? text_[pos_] : '\0'; }
+    char at(std::size_t offset) const {
+        return pos_ + offset < text_.size() ? text_[pos_ + offset] : '\0';
+    }
+    void newline() { ++line_, lineStart_ = pos_; }  // call with pos_ just past the '\n'
+    int column() const { return static_cast<int>(pos_ - lineStart_) + 1; }
+
+    std::string_view text_;
+    std::string file_;
+    std::size_t pos_;
+    std::size_t lineStart_;
+    int line_;
+    int nesting_ = 0;
+    std::array<Token, kLookahead> buffer_;
+    std::size_t head_ = 0;   // index of the current token in buffer_
+    std::size_t count_ = 0;  // tokens scanned ahead
+};
+
+// RAII nesting level, for recursive parsing functions.
+class NestingGuard {
+public:
+    NestingGuard(Lexer& lexer, const Token& at) : lexer_(lexer) { lexer_.enterNesting(at); }
+    ~NestingGuard() { lexer_.leaveNesting(); }
+    NestingGuard(const NestingGuard&) = delete;
+    NestingGuard& operator=(const NestingGuard&) = delete;
+
+private:
+    Lexer& lexer_;
+};
+
+}  // namespace fluence::usd::detail

@@ -1,0 +1,103 @@
+// Parses USDA values into usd::Value (internal to the scene library).
+//
+//   typed value     := 'None' | element | '[' (element (',' element)* ','?)? ']'   (for T[])
+//   element         := number | 'true' | 'false' | 'inf' | 'nan'              (scalars)
+//                    | '(' number (',' number)* ','? ')'                         (vectors)
+//                    | '(' tuple (',' tuple)* ','? ')'                           (matrices)
+//                    | string | asset                       (string, token, asset types)
+//   dictionary      := '{' (type ['[' ']'] (identifier | string) '=' value sep)* '}'
+//   generic value   := 'None' | number | identifier | string | path | reference
+//                    | '[' generic,* ']' | '(' generic,* ')' | '{' dictionary-or-map '}'
+//   map             := '{' (string ':' string | path ':' path),* '}'
+//   reference       := asset [path] [layerOffset]      (an asset alone is an Asset value)
+//   layerOffset     := '(' ('offset' '=' number | 'scale' '=' number
+//                           | 'customData' '=' dictionary) sep... ')'
+// where sep is ';' or a line break. Typed values are checked against the declared type (tuple
+// arity, integer ranges, bool literals, string versus number) and written straight into the
+// flat number/string arrays, so a large point array costs no per-element allocation.
+// Generic lists flatten to a typed array when their items agree (all numbers, all tuples of the
+// same size, all strings, all paths); otherwise they become a List value.
+#pragma once
+
+#include <string>
+#include <string_view>
+
+#include <vector>
+
+#include "scene/usda_lexer.h"
+#include "scene/usda_value_types.h"
+#include "scene/value.h"
+
+namespace fluence::usd::detail {
+
+class ValueParser {
+public:
+    explicit ValueParser(Lexer& lexer) : lexer_(lexer) {}
+
+    // A value of the declared type (baseType without "[]"), or None. Values of unknown types are
+    // parsed generically and keep the authored type name.
+    Value parseTyped(std::string_view baseType, bool isArray);
+    // An untyped value (metadata). With allowReferences, an asset followed on the same line by a
+    // path or a layer offset is read as a Reference.
+    Value parseGeneric(bool allowReferences);
+    // '{' typed entries '}': a Dictionary value.
+    Value parseDictionary();
+    // '[' "name", ... ']' (reorder statements): a String array.
+    Value parseNameList(const std::string& context);
+    // '(' offset = x; scale = y [customData = {...}] ')' after an asset path; fills
+    // reference.numbers = {offset, scale} (and reference.dictionary with customData).
+    void parseLayerOffset(Value& reference, bool allowCustomData);
+
+    // Items separated by ',' up to `close` (a trailing ',' is allowed); `open` is the opening
+    // token, already taken. `context` names the construct in error messages: a string, or a
+    // function returning one (so hot loops build no message unless they fail).
+    template <class Context, class ParseItem>
+    void parseSeparated(const Token& open, char close, Context&& context, ParseItem&& parseItem);
+
+private:
+    Value parseNumbers(const ValueType& type, const std::string& typeName, bool isArray);
+    Value parseStrings(const ValueType& type, const std::string& typeName, bool isArray);
+    void parseNumericElement(const ValueType& type, const std::string& typeName,
+                             std::vector<double>& out);
+    void parseTuple(const ValueType& type, const std::string& typeName, const char* what,
+                    std::vector<double>& out);
+    double parseNumber(const ValueType& type, const std::string& typeName);
+    Value parseGenericList(bool allowReferences);
+    Value parseGenericTuple(bool allowReferences);
+    Value parseMap();
+    Value parseAssetOrReference(bool allowReferences);
+
+    Lexer& lexer_;
+};
+
+template <class Context, class ParseItem>
+void ValueParser::parseSeparated(const Token& open, char close, Context&& context,
+                                 ParseItem&& parseItem) {
+    auto contextText = [&]() -> std::string {
+        if constexpr (std::is_invocable_v<Context>)
+            return context();
+        else
+            return context;
+    };
+    auto failAtEnd = [&](const Token& end) {
+        lexer_.fail(end, std::string("unexpected end of file, expected '") + close + "' to close " +
+                             contextText() + " opened at " + std::to_string(open.line) + ":" +
+                             std::to_string(open.column));
+    };
+    while (!lexer_.peek().is(close)) {
+        if (lexer_.peek().kind == TokenKind::End) failAtEnd(lexer_.peek());
+        parseItem();
+        const Token& next = lexer_.peek();
+        if (next.is(',')) {
+            if (next.newlineBefore) lexer_.fail(next, "unexpected line break before ','");
+            lexer_.skip();
+        } else if (!next.is(close)) {
+            if (next.kind == TokenKind::End) failAtEnd(next);
+            lexer_.fail(next, std::string("expected ',' or '") + close + "' in " + contextText() +
+                                  ", found " + describe(next));
+        }
+    }
+    lexer_.skip();
+}
+
+}  // namespace fluence::usd::detail

@@ -1,0 +1,32 @@
+#!/usr/bin/env bash
+# Installs the Debian 12 packages Fluence builds and tests with, when they are missing.
+# Idempotent: does nothing (and never runs apt-get update) when everything is installed.
+set -euo pipefail
+
+packages=(
+  cmake g++ ninja-build pkg-config ccache
+  libembree-dev libtbb-dev
+  libopenimageio-dev libopencolorio-dev
+  libgtest-dev
+)
+
+missing=()
+for p in "${packages[@]}"; do
+  status=$(dpkg-query -W -f='${Status}' "$p" 2>/dev/null || true)
+  [[ "$status" == "install ok installed" ]] || missing+=("$p")
+done
+
+if [[ ${#missing[@]} -eq 0 ]]; then
+  echo "dependencies: all ${#packages[@]} Debian packages are installed"
+  exit 0
+fi
+
+echo "dependencies: installing ${missing[*]}"
+if [[ $(id -u) -ne 0 ]]; then
+  echo "error: installing packages needs root; run as root, or install them yourself:" >&2
+  echo "  apt-get install ${missing[*]}" >&2
+  exit 1
+fi
+export DEBIAN_FRONTEND=noninteractive
+apt-get update -q
+apt-get install -y -q --no-install-recommends "${missing[@]}"

@@ -1,0 +1,241 @@
+// End-to-end tests: run the `fluence` binary on USD files and read back what it writes.
+#include <gtest/gtest.h>
+
+#include <OpenImageIO/imageio.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "tests/support/usd_scenes.h"
+
+namespace fs = std::filesystem;
+
+namespace fluence {
+namespace {
+
+struct RunResult {
+    int exitCode = -1;
+    std::string out, err;
+};
+
+class FluenceCli : public ::testing::Test {
+protected:
+    void SetUp() override {
+        dir_ = fs::temp_directory_path() /
+               ("fluence_cli_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()) + "_" +
+                std::to_string(::getpid()));
+        fs::remove_all(dir_);
+        fs::create_directories(dir_);
+    }
+    void TearDown() override { fs::remove_all(dir_); }
+
+    fs::path write(const std::string& name, const std::string& text) {
+        fs::path p = dir_ / name;
+        std::ofstream(p) << text;
+        return p;
+    }
+
+    static std::string slurp(const fs::path& p) {
+        std::ifstream in(p);
+        std::stringstream ss;
+        ss << in.rdbuf();
+        return ss.str();
+    }
+
+    RunResult run(const std::string& args) {
+        fs::path out = dir_ / "stdout.txt", err = dir_ / "stderr.txt";
+        std::string cmd = std::string(FLUENCE_BINARY) + " " + args + " > " + out.string() + " 2> " + err.string() + " < /dev/null";
+        int status = std::system(cmd.c_str());
+        RunResult r;
+        r.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+        r.out = slurp(out);
+        r.err = slurp(err);
+        return r;
+    }
+
+    fs::path dir_;
+};
+
+struct ExrImage {
+    int width = 0, height = 0;
+    std::vector<std::string> channels;
+    std::vector<float> pixels;
+    OIIO::ImageSpec spec;
+    int channel(const std::string& name) const {
+        for (std::size_t i = 0; i < channels.size(); ++i)
+            if (channels[i] == name) return int(i);
+        return -1;
+    }
+    float at(int x, int y, const std::string& name) const {
+        return pixels[(std::size_t(y) * width + x) * channels.size() + channel(name)];
+    }
+};
+
+ExrImage readExr(const fs::path& path) {
+    auto in = OIIO::ImageInput::open(path.string());
+    if (!in) throw std::runtime_error("cannot open " + path.string());
+    ExrImage img;
+    img.spec = in->spec();
+    img.width = img.spec.width;
+    img.height = img.spec.height;
+    img.channels = img.spec.channelnames;
+    img.pixels.resize(std::size_t(img.width) * img.height * img.channels.size());
+    if (!in->read_image(0, 0, 0, -1, OIIO::TypeDesc::FLOAT, img.pixels.data())) throw std::runtime_error("cannot read");
+    return img;
+}
+
+TEST_F(FluenceCli, WhiteFurnaceSphereVanishes) {
+    fs::path scene = write("furnace.usda", test::furnaceUsda(1.0));
+    RunResult r = run("render " + scene.string() + " -o " + (dir_ / "f.exr").string() + " -r 48 48 --spp 16");
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    ExrImage img = readExr(dir_ / "f.exr");
+    double sum = 0, sum2 = 0;
+    int n = 0;
+    for (int y = 0; y < img.height; ++y)
+        for (int x = 0; x < img.width; ++x)
+            for (const char* c : {"R", "G", "B"}) {
+                double v = img.at(x, y, c);
+                sum += v;
+                sum2 += v * v;
+                ++n;
+            }
+    double mean = sum / n, se = std::sqrt((sum2 / n - mean * mean) / n);
+    EXPECT_NEAR(mean, 1.0, 0.01) << "image mean";
+    EXPECT_NEAR(mean, 1.0, 5 * se + 1e-6) << "within 5 standard errors";
+}
+
+TEST_F(FluenceCli, FurnaceSphereOfAlbedoHalfAveragesHalf) {
+    fs::path scene = write("furnace.usda", test::furnaceUsda(0.5));
+    RunResult r = run("render " + scene.string() + " -o " + (dir_ / "f.exr").string() + " -r 48 48 --spp 16");
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    ExrImage img = readExr(dir_ / "f.exr");
+    double sum = 0, sum2 = 0;
+    int n = 0;
+    for (int y = 0; y < img.height; ++y)
+        for (int x = 0; x < img.width; ++x)
+            if (img.at(x, y, "A") == 1.0f) {
+                double v = img.at(x, y, "G");
+                sum += v;
+                sum2 += v * v;
+                ++n;
+            }
+    ASSERT_GT(n, 500);
+    double mean = sum / n, se = std::sqrt((sum2 / n - mean * mean) / n);
+    EXPECT_NEAR(mean, 0.5, 5 * se + 1e-6);
+    EXPECT_NEAR(mean, 0.5, 0.005);
+}
+
+TEST_F(FluenceCli, SameSeedGivesBitIdenticalImagesAtAnyThreadCount) {
+    fs::path scene = fs::path(FLUENCE_SOURCE_DIR) / "usd_samples/cornell_box.usda";
+    ASSERT_EQ(run("render " + scene.string() + " -o " + (dir_ / "one.exr").string() + " -r 40 40 --spp 4 -j 1 --seed 7").exitCode, 0);
+    ASSERT_EQ(run("render " + scene.string() + " -o " + (dir_ / "two.exr").string() + " -r 40 40 --spp 4 -j 2 --seed 7").exitCode, 0);
+    ExrImage one = readExr(dir_ / "one.exr"), two = readExr(dir_ / "two.exr");
+    ASSERT_EQ(one.pixels.size(), two.pixels.size());
+    EXPECT_EQ(0, std::memcmp(one.pixels.data(), two.pixels.data(), one.pixels.size() * sizeof(float)));
+}
+
+TEST_F(FluenceCli, CornellBoxWritesBeautyAndAovsWithColourMetadata) {
+    fs::path scene = fs::path(FLUENCE_SOURCE_DIR) / "usd_samples/cornell_box.usda";
+    RunResult r = run("render " + scene.string() + " -o " + (dir_ / "c.exr").string() + " --preview " +
+                      (dir_ / "c.png").string() + " -r 64 64 --spp 8");
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_NE(r.out.find("64 x 64, 8 spp"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("Mrays/s"), std::string::npos) << r.out;
+    ExrImage img = readExr(dir_ / "c.exr");
+    for (const char* c : {"R", "G", "B", "A", "albedo.R", "albedo.G", "albedo.B", "N.X", "N.Y", "N.Z", "Z", "sampleCount"})
+        EXPECT_GE(img.channel(c), 0) << c;
+    for (float v : img.pixels) ASSERT_TRUE(std::isfinite(v));
+    EXPECT_EQ(img.spec.get_string_attribute("colorSpace"), "lin_rec709");
+    const OIIO::ParamValue* chroma = img.spec.find_attribute("chromaticities");
+    ASSERT_NE(chroma, nullptr);
+    const float* xy = static_cast<const float*>(chroma->data());
+    EXPECT_FLOAT_EQ(xy[0], 0.64f);
+    EXPECT_FLOAT_EQ(xy[7], 0.329f);
+    EXPECT_FLOAT_EQ(img.at(32, 32, "sampleCount"), 8.0f);
+    // The light, seen directly at the top centre of the frame, reads its radiance (17, 12, 4).
+    float maxR = 0;
+    for (int x = 0; x < 64; ++x)
+        for (int y = 0; y < 16; ++y) maxR = std::max(maxR, img.at(x, y, "R"));
+    EXPECT_FLOAT_EQ(maxR, 17.0f);
+    EXPECT_TRUE(fs::exists(dir_ / "c.png"));
+}
+
+TEST_F(FluenceCli, ProgressForFarmsWhenNotATerminal) {
+    fs::path scene = fs::path(FLUENCE_SOURCE_DIR) / "usd_samples/cornell_box.usda";
+    RunResult r = run("render " + scene.string() + " -o " + (dir_ / "c.exr").string() + " -r 16 16 --spp 2");
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_NE(r.out.find("ALF_PROGRESS 100%"), std::string::npos) << r.out;
+}
+
+TEST_F(FluenceCli, MissingSceneFileExitsWithMissingInput) {
+    RunResult r = run("render " + (dir_ / "nope.usda").string() + " -o " + (dir_ / "x.exr").string());
+    EXPECT_EQ(r.exitCode, 4);
+    EXPECT_NE(r.err.find("scene file not found"), std::string::npos) << r.err;
+    EXPECT_FALSE(fs::exists(dir_ / "x.exr"));
+}
+
+TEST_F(FluenceCli, SyntaxErrorReportsFileLineAndColumn) {
+    fs::path scene = write("bad.usda", "#usda 1.0\n\ndef Xform \"World\"\n{\n    double3 xformOp:translate = (1, 2\n}\n");
+    RunResult r = run("render " + scene.string() + " -o " + (dir_ / "x.exr").string());
+    EXPECT_EQ(r.exitCode, 3);
+    EXPECT_NE(r.err.find(scene.string() + ":6:1"), std::string::npos) << r.err;
+    EXPECT_FALSE(fs::exists(dir_ / "x.exr"));
+}
+
+TEST_F(FluenceCli, MissingCameraIsASceneError) {
+    fs::path scene = fs::path(FLUENCE_SOURCE_DIR) / "usd_samples/cornell_box.usda";
+    RunResult r = run("render " + scene.string() + " -o " + (dir_ / "x.exr").string() + " -c /NoSuchCamera");
+    EXPECT_EQ(r.exitCode, 3);
+    EXPECT_NE(r.err.find("camera /NoSuchCamera does not exist"), std::string::npos) << r.err;
+    fs::path noCamera = write("nocam.usda", "#usda 1.0\ndef Xform \"World\"\n{\n}\n");
+    r = run("render " + noCamera.string() + " -o " + (dir_ / "x.exr").string());
+    EXPECT_EQ(r.exitCode, 3);
+    EXPECT_NE(r.err.find("the scene has no camera"), std::string::npos) << r.err;
+    EXPECT_FALSE(fs::exists(dir_ / "x.exr"));
+}
+
+TEST_F(FluenceCli, SemanticErrorNamesThePrim) {
+    fs::path scene = write("badmesh.usda",
+                           "#usda 1.0\ndef Mesh \"Tri\"\n{\n    int[] faceVertexCounts = [3]\n"
+                           "    int[] faceVertexIndices = [0, 1, 7]\n    point3f[] points = [(0,0,0), (1,0,0), (0,1,0)]\n}\n"
+                           "def Camera \"Cam\"\n{\n}\n");
+    RunResult r = run("render " + scene.string() + " -o " + (dir_ / "x.exr").string());
+    EXPECT_EQ(r.exitCode, 3);
+    EXPECT_NE(r.err.find("/Tri"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("faceVertexIndices[2] = 7 is out of range"), std::string::npos) << r.err;
+}
+
+TEST_F(FluenceCli, UnwritableOutputFailsAndLeavesNothing) {
+    fs::path scene = fs::path(FLUENCE_SOURCE_DIR) / "usd_samples/cornell_box.usda";
+    RunResult r = run("render " + scene.string() + " -o " + (dir_ / "no/such/dir/x.exr").string() + " -r 8 8 --spp 1");
+    EXPECT_EQ(r.exitCode, 5);
+    EXPECT_NE(r.err.find("cannot write"), std::string::npos) << r.err;
+}
+
+TEST_F(FluenceCli, UsageErrors) {
+    EXPECT_EQ(run("render").exitCode, 2);
+    RunResult r = run("render scene.usda --bogus");
+    EXPECT_EQ(r.exitCode, 2);
+    EXPECT_NE(r.err.find("unknown option '--bogus'"), std::string::npos);
+    r = run("render scene.usda --integrator nope");
+    EXPECT_EQ(r.exitCode, 2);
+    EXPECT_NE(r.err.find("available: path"), std::string::npos) << r.err;
+    EXPECT_EQ(run("render scene.usda --spp zero").exitCode, 2);
+    EXPECT_EQ(run("frobnicate").exitCode, 2);
+}
+
+TEST_F(FluenceCli, HelpAndVersion) {
+    RunResult help = run("--help");
+    EXPECT_EQ(help.exitCode, 0);
+    EXPECT_NE(help.out.find("usage: fluence render"), std::string::npos);
+    EXPECT_NE(help.out.find("exit codes"), std::string::npos);
+    RunResult version = run("--version");
+    EXPECT_EQ(version.exitCode, 0);
+    EXPECT_EQ(version.out.rfind("fluence ", 0), 0u);
+}
+
+}  // namespace
+}  // namespace fluence

@@ -1,0 +1,35 @@
+#include "core/film.h"
+
+#include <gtest/gtest.h>
+
+namespace fluence {
+namespace {
+
+TEST(Film, ResolvesMeansCoverageMinDepthAndCounts) {
+    Film film(2, 1, 1000.0f);
+    FilmSample a{RGB(1, 2, 3), true, RGB(0.5f), Vec3f(0, 0, 1), 4.0f};
+    FilmSample b{RGB(3, 2, 1), true, RGB(0.25f), Vec3f(0, 1, 0), 2.0f};
+    FilmSample miss;
+    miss.radiance = RGB(1, 1, 1);
+    film.add(0, 0, a);
+    film.add(0, 0, b);
+    film.add(0, 0, miss);
+    film.add(1, 0, miss);
+    Image image = film.resolve();
+    ASSERT_EQ(image.channels, Film::channelNames());
+    const float* p = image.pixel(0, 0);
+    EXPECT_FLOAT_EQ(p[image.channelIndex("R")], 5.0f / 3.0f);
+    EXPECT_FLOAT_EQ(p[image.channelIndex("B")], 5.0f / 3.0f);
+    EXPECT_FLOAT_EQ(p[image.channelIndex("A")], 2.0f / 3.0f);
+    EXPECT_FLOAT_EQ(p[image.channelIndex("albedo.R")], 0.25f);
+    EXPECT_FLOAT_EQ(p[image.channelIndex("N.Z")], 1.0f / 3.0f);
+    EXPECT_FLOAT_EQ(p[image.channelIndex("Z")], 2.0f);
+    EXPECT_FLOAT_EQ(p[image.channelIndex("sampleCount")], 3.0f);
+    const float* q = image.pixel(1, 0);
+    EXPECT_FLOAT_EQ(q[image.channelIndex("Z")], 1000.0f);  // nothing hit: the far clip
+    EXPECT_FLOAT_EQ(q[image.channelIndex("A")], 0.0f);
+    EXPECT_EQ(film.totalSamples(), 4u);
+}
+
+}  // namespace
+}  // namespace fluence

@@ -1,0 +1,337 @@
+#include "delegate/scene_delegate.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "delegate/xform.h"
+#include "scene/usda_parser.h"
+
+namespace fluence::delegate {
+namespace {
+
+struct Populated {
+    std::unique_ptr<usd::Stage> stage;
+    DelegateResult result;
+    std::vector<std::string> warnings;
+};
+
+Populated populate(const std::string& usda, const std::string& camera = "") {
+    Populated p;
+    p.stage = std::make_unique<usd::Stage>(
+        usd::parseUsdaString(usda.starts_with("#") ? usda : "#usda 1.0\n" + usda, "test.usda"));
+    DelegateOptions options;
+    options.cameraPath = camera;
+    options.convertColor = [](const RGB& c, const std::string&) { return c; };
+    options.warn = [&](const std::string& path, const std::string& message) { p.warnings.push_back(path + ": " + message); };
+    p.result = populateScene(*p.stage, options);
+    return p;
+}
+
+const std::string kCamera = "def Camera \"Cam\"\n{\n}\n";
+
+void expectNear(const Vec3f& a, const Vec3f& b, float eps = 1e-5f) {
+    EXPECT_NEAR(a.x, b.x, eps);
+    EXPECT_NEAR(a.y, b.y, eps);
+    EXPECT_NEAR(a.z, b.z, eps);
+}
+
+TEST(SceneDelegate, ComposesXformOpsInUsdOrder) {
+    // translate then rotate then scale in xformOpOrder: points are scaled, rotated, translated.
+    auto p = populate(kCamera + R"(
+def Xform "Parent"
+{
+    double3 xformOp:translate = (10, 0, 0)
+    uniform token[] xformOpOrder = ["xformOp:translate"]
+    def Mesh "Tri"
+    {
+        int[] faceVertexCounts = [3]
+        int[] faceVertexIndices = [0, 1, 2]
+        point3f[] points = [(1, 0, 0), (0, 1, 0), (0, 0, 1)]
+        double3 xformOp:translate = (0, 5, 0)
+        float xformOp:rotateZ = 90
+        float3 xformOp:scale = (2, 2, 2)
+        uniform token[] xformOpOrder = ["xformOp:translate", "xformOp:rotateZ", "xformOp:scale"]
+    }
+}
+)");
+    ASSERT_EQ(p.result.scene.meshes.size(), 1u);
+    const auto& pts = p.result.scene.meshes[0].positions;
+    expectNear(pts[0], Vec3f(10, 7, 0));   // (1,0,0) -> scale (2,0,0) -> rotZ (0,2,0) -> +(10,5,0)
+    expectNear(pts[1], Vec3f(8, 5, 0));    // (0,1,0) -> (0,2,0) -> (-2,0,0) -> (8,5,0)
+    expectNear(pts[2], Vec3f(10, 5, 2));
+}
+
+TEST(SceneDelegate, ResetXformStackAndInvertedOps) {
+    auto p = populate(kCamera + R"(
+def Xform "Parent"
+{
+    double3 xformOp:translate = (100, 0, 0)
+    uniform token[] xformOpOrder = ["xformOp:translate"]
+    def Mesh "Tri"
+    {
+        int[] faceVertexCounts = [3]
+        int[] faceVertexIndices = [0, 1, 2]
+        point3f[] points = [(0, 0, 0), (1, 0, 0), (0, 1, 0)]
+        double3 xformOp:translate:pivot = (1, 1, 0)
+        float xformOp:rotateZ = 180
+        uniform token[] xformOpOrder = ["!resetXformStack!", "xformOp:translate:pivot", "xformOp:rotateZ", "!invert!xformOp:translate:pivot"]
+    }
+}
+)");
+    const auto& pts = p.result.scene.meshes[0].positions;
+    expectNear(pts[0], Vec3f(2, 2, 0));  // rotated 180 degrees about the pivot (1,1)
+    expectNear(pts[1], Vec3f(1, 2, 0));
+}
+
+TEST(SceneDelegate, TriangulatesPolygonsAndReadsPrimvarsByInterpolation) {
+    auto p = populate(kCamera + R"(
+def Mesh "Quad"
+{
+    int[] faceVertexCounts = [4, 3]
+    int[] faceVertexIndices = [0, 1, 2, 3, 0, 2, 4]
+    point3f[] points = [(0, 0, 0), (1, 0, 0), (1, 1, 0), (0, 1, 0), (0.5, 2, 0)]
+    color3f[] primvars:displayColor = [(1, 0, 0), (0, 1, 0)] (
+        interpolation = "uniform"
+    )
+    normal3f[] normals = [(0, 0, 1), (0, 0, 1), (0, 0, 1), (0, 0, 1), (0, 0, 1), (0, 0, 1), (0, 0, 1)] (
+        interpolation = "faceVarying"
+    )
+}
+)");
+    const auto& m = p.result.scene.meshes[0];
+    ASSERT_EQ(m.indices.size(), 9u);  // quad -> 2 triangles, triangle -> 1
+    EXPECT_EQ(m.indices, (std::vector<std::uint32_t>{0, 1, 2, 0, 2, 3, 0, 2, 4}));
+    ASSERT_EQ(m.cornerColors.size(), 9u);
+    EXPECT_EQ(m.cornerColors[0], RGB(1, 0, 0));
+    EXPECT_EQ(m.cornerColors[8], RGB(0, 1, 0));
+    ASSERT_EQ(m.cornerNormals.size(), 9u);
+}
+
+TEST(SceneDelegate, IndexedPrimvarsAndLeftHandedOrientation) {
+    auto p = populate(kCamera + R"(
+def Mesh "Tri"
+{
+    uniform token orientation = "leftHanded"
+    int[] faceVertexCounts = [3]
+    int[] faceVertexIndices = [0, 1, 2]
+    point3f[] points = [(0, 0, 0), (1, 0, 0), (0, 1, 0)]
+    color3f[] primvars:displayColor = [(0.1, 0.2, 0.3), (0.9, 0.8, 0.7)] (
+        interpolation = "vertex"
+    )
+    int[] primvars:displayColor:indices = [1, 1, 0]
+}
+)");
+    const auto& m = p.result.scene.meshes[0];
+    EXPECT_EQ(m.indices, (std::vector<std::uint32_t>{0, 2, 1}));
+    EXPECT_NEAR(m.cornerColors[1].x, 0.1f, 1e-6f);  // corner 1 is point 2 -> index 0
+    EXPECT_NEAR(m.cornerColors[0].x, 0.9f, 1e-6f);
+}
+
+TEST(SceneDelegate, TopologyErrorsNameThePrim) {
+    const std::string bad = kCamera + R"(
+def Mesh "Broken"
+{
+    int[] faceVertexCounts = [4]
+    int[] faceVertexIndices = [0, 1, 2]
+    point3f[] points = [(0, 0, 0), (1, 0, 0), (0, 1, 0)]
+}
+)";
+    try {
+        populate(bad);
+        FAIL() << "expected SceneError";
+    } catch (const SceneError& e) {
+        EXPECT_NE(std::string(e.what()).find("/Broken"), std::string::npos) << e.what();
+        EXPECT_NE(std::string(e.what()).find("add up to 4"), std::string::npos) << e.what();
+    }
+}
+
+TEST(SceneDelegate, UsdLuxUnitsAndFallbacks) {
+    auto p = populate(kCamera + R"(
+def RectLight "Rect"
+{
+    float inputs:intensity = 2
+    float inputs:exposure = 3
+    color3f inputs:color = (1, 0.5, 0.25)
+    float inputs:width = 4
+    bool inputs:normalize = true
+}
+def DistantLight "Sun"
+{
+}
+def SphereLight "OldStyle"
+{
+    float intensity = 7
+    float radius = 2
+}
+def DomeLight "Dome"
+{
+}
+)");
+    const auto& lights = p.result.scene.lights;
+    ASSERT_EQ(lights.size(), 4u);
+    EXPECT_EQ(lights[0].radiance, RGB(16, 8, 4));  // 2 * 2^3 * colour
+    EXPECT_TRUE(lights[0].normalize);
+    EXPECT_EQ(lights[0].width, 4.0f);
+    EXPECT_EQ(lights[0].height, 1.0f);
+    EXPECT_EQ(lights[1].radiance, RGB(50000.0f));  // DistantLight's intensity fallback
+    EXPECT_FLOAT_EQ(lights[1].angleDegrees, 0.53f);
+    EXPECT_EQ(lights[2].radiance, RGB(7.0f));  // pre-21.05 attribute names
+    EXPECT_EQ(lights[2].radius, 2.0f);
+    EXPECT_EQ(lights[3].type, render::LightType::Dome);
+}
+
+TEST(SceneDelegate, MaterialBindingInheritanceAndStrength) {
+    auto p = populate(kCamera + R"(
+def Scope "Looks"
+{
+    def Material "Red"
+    {
+        token outputs:surface.connect = </Looks/Red/S.outputs:surface>
+        def Shader "S"
+        {
+            uniform token info:id = "UsdPreviewSurface"
+            color3f inputs:diffuseColor = (1, 0, 0)
+            color3f inputs:emissiveColor = (0, 0, 2)
+        }
+    }
+    def Material "Blue"
+    {
+        color3f inputs:tint = (0, 0, 1)
+        token outputs:surface.connect = </Looks/Blue/S.outputs:surface>
+        def Shader "S"
+        {
+            uniform token info:id = "UsdPreviewSurface"
+            color3f inputs:diffuseColor.connect = </Looks/Blue.inputs:tint>
+        }
+    }
+}
+def Xform "Group"
+{
+    rel material:binding = </Looks/Red>
+    def Mesh "Inherits"
+    {
+        int[] faceVertexCounts = [3]
+        int[] faceVertexIndices = [0, 1, 2]
+        point3f[] points = [(0, 0, 0), (1, 0, 0), (0, 1, 0)]
+    }
+    def Mesh "Own"
+    {
+        rel material:binding = </Looks/Blue>
+        int[] faceVertexCounts = [3]
+        int[] faceVertexIndices = [0, 1, 2]
+        point3f[] points = [(0, 0, 0), (1, 0, 0), (0, 1, 0)]
+    }
+}
+def Xform "Strong"
+{
+    rel material:binding = </Looks/Red> (
+        bindMaterialAs = "strongerThanDescendants"
+    )
+    def Mesh "Overridden"
+    {
+        rel material:binding = </Looks/Blue>
+        int[] faceVertexCounts = [3]
+        int[] faceVertexIndices = [0, 1, 2]
+        point3f[] points = [(0, 0, 0), (1, 0, 0), (0, 1, 0)]
+    }
+}
+)");
+    const auto& s = p.result.scene;
+    ASSERT_EQ(s.meshes.size(), 3u);
+    auto materialOf = [&](int mesh) { return s.materials[s.meshes[mesh].material]; };
+    EXPECT_EQ(materialOf(0).name, "/Looks/Red");
+    EXPECT_EQ(materialOf(0).diffuse, RGB(1, 0, 0));
+    EXPECT_EQ(materialOf(0).emission, RGB(0, 0, 2));
+    EXPECT_EQ(materialOf(1).name, "/Looks/Blue");
+    EXPECT_EQ(materialOf(1).diffuse, RGB(0, 0, 1)) << "connected to the material's interface input";
+    EXPECT_EQ(materialOf(2).name, "/Looks/Red") << "strongerThanDescendants wins";
+}
+
+TEST(SceneDelegate, SkipsInvisibleGuidesAndWarnsOncePerUnsupportedType) {
+    auto p = populate(kCamera + R"(
+def Sphere "A"
+{
+}
+def Sphere "B"
+{
+}
+def Mesh "Hidden"
+{
+    token visibility = "invisible"
+    int[] faceVertexCounts = [3]
+    int[] faceVertexIndices = [0, 1, 2]
+    point3f[] points = [(0, 0, 0), (1, 0, 0), (0, 1, 0)]
+}
+def Mesh "Guide"
+{
+    uniform token purpose = "guide"
+    int[] faceVertexCounts = [3]
+    int[] faceVertexIndices = [0, 1, 2]
+    point3f[] points = [(0, 0, 0), (1, 0, 0), (0, 1, 0)]
+}
+over "NotDefined"
+{
+    def Mesh "Child"
+    {
+    }
+}
+)");
+    EXPECT_TRUE(p.result.scene.meshes.empty());
+    ASSERT_EQ(p.warnings.size(), 1u);
+    EXPECT_NE(p.warnings[0].find("'Sphere' is not supported yet; skipped 2 prims"), std::string::npos) << p.warnings[0];
+}
+
+TEST(SceneDelegate, CameraSelectionAndRenderSettings) {
+    auto p = populate(R"(#usda 1.0
+(
+    renderSettingsPrimPath = "/Render/Settings"
+)
+def Camera "First"
+{
+}
+def Camera "Second"
+{
+    float focalLength = 35
+    float2 clippingRange = (0.5, 500)
+}
+def Scope "Render"
+{
+    def RenderSettings "Settings"
+    {
+        rel camera = </Second>
+        uniform int2 resolution = (320, 200)
+    }
+}
+)");
+    EXPECT_EQ(p.result.cameraPath, "/Second");
+    EXPECT_FLOAT_EQ(p.result.scene.camera->focalLength, 35.0f);
+    EXPECT_FLOAT_EQ(p.result.scene.camera->nearClip, 0.5f);
+    ASSERT_TRUE(p.result.renderSettings && p.result.renderSettings->resolution);
+    EXPECT_EQ(*p.result.renderSettings->resolution, std::make_pair(320, 200));
+    EXPECT_EQ(populate("#usda 1.0\n" + kCamera + "def Camera \"Other\"\n{\n}\n", "/Other").result.cameraPath, "/Other");
+    EXPECT_THROW(populate("#usda 1.0\n" + kCamera, "/Missing"), SceneError);
+    EXPECT_THROW(populate("#usda 1.0\ndef Xform \"X\"\n{\n}\n"), SceneError);
+}
+
+TEST(SceneDelegate, TimeSamplesAreInterpolated) {
+    auto stage = std::make_unique<usd::Stage>(usd::parseUsdaString(R"(#usda 1.0
+def Xform "X"
+{
+    double3 xformOp:translate.timeSamples = {
+        1: (0, 0, 0),
+        3: (4, 0, 0),
+    }
+    uniform token[] xformOpOrder = ["xformOp:translate"]
+}
+)",
+                                                                   "t.usda"));
+    const usd::PrimSpec* x = stage->prim("/X");
+    ASSERT_NE(x, nullptr);
+    EXPECT_NEAR(localTransform(PrimReader(*x, 2.0)).matrix.m[0][3], 2.0, 1e-12);
+    EXPECT_NEAR(localTransform(PrimReader(*x, 0.0)).matrix.m[0][3], 0.0, 1e-12);  // held before the first
+    EXPECT_NEAR(localTransform(PrimReader(*x, 9.0)).matrix.m[0][3], 4.0, 1e-12);  // and after the last
+}
+
+}  // namespace
+}  // namespace fluence::delegate

@@ -1,0 +1,136 @@
+#include "integrators/path_tracer.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstring>
+
+#include "integrators/renderer.h"
+#include "tests/support/scenes.h"
+
+namespace fluence::integrators {
+namespace {
+
+struct Rendered {
+    Image image;
+    RenderStats stats;
+};
+
+Rendered renderScene(const render::SceneDescription& desc, int size, int spp, int threads = 0, int maxDepth = 64,
+                     std::uint64_t seed = 0) {
+    render::RenderScene scene(desc);
+    render::Camera camera(*desc.camera, size, size);
+    PathTracer integrator(IntegratorSettings{maxDepth});
+    Film film(size, size, camera.farClip());
+    RenderSettings settings;
+    settings.samplesPerPixel = spp;
+    settings.threads = threads;
+    settings.seed = seed;
+    RenderStats stats = render(scene, camera, integrator, settings, film);
+    return {film.resolve(), stats};
+}
+
+// Mean of channel `c` over the pixels where `select` holds, with its standard error from the
+// spread of the pixel values (pixels are independent estimates).
+struct MeanEstimate {
+    double mean = 0, standardError = 0;
+    int pixels = 0;
+};
+MeanEstimate channelMean(const Image& image, int c, const std::function<bool(const float*)>& select) {
+    double sum = 0, sum2 = 0;
+    int n = 0;
+    for (int y = 0; y < image.height; ++y)
+        for (int x = 0; x < image.width; ++x) {
+            const float* p = image.pixel(x, y);
+            if (!select(p)) continue;
+            sum += p[c];
+            sum2 += double(p[c]) * p[c];
+            ++n;
+        }
+    MeanEstimate e;
+    e.pixels = n;
+    e.mean = sum / n;
+    e.standardError = std::sqrt(std::max(0.0, sum2 / n - e.mean * e.mean) / n);
+    return e;
+}
+
+TEST(PathTracer, WhiteFurnaceSphereVanishes) {
+    Rendered r = renderScene(test::furnaceScene(1.0f), 48, 16);
+    int a = r.image.channelIndex("A");
+    for (int c : {0, 1, 2}) {
+        MeanEstimate sphere = channelMean(r.image, c, [&](const float* p) { return p[a] == 1.0f; });
+        ASSERT_GT(sphere.pixels, 500);
+        // Unbiased: within 5 standard errors of exactly 1, and within 1% in any case.
+        EXPECT_NEAR(sphere.mean, 1.0, 5 * sphere.standardError + 1e-6) << "channel " << c;
+        EXPECT_NEAR(sphere.mean, 1.0, 0.01);
+        MeanEstimate background = channelMean(r.image, c, [&](const float* p) { return p[a] == 0.0f; });
+        EXPECT_DOUBLE_EQ(background.mean, 1.0) << "directly seen dome";
+    }
+}
+
+TEST(PathTracer, FurnaceSphereOfAlbedoHalfReadsHalf) {
+    // The sphere is convex, so each point sees only the dome: outgoing radiance = albedo.
+    Rendered r = renderScene(test::furnaceScene(0.5f), 48, 16);
+    int a = r.image.channelIndex("A");
+    MeanEstimate sphere = channelMean(r.image, 1, [&](const float* p) { return p[a] == 1.0f; });
+    EXPECT_NEAR(sphere.mean, 0.5, 5 * sphere.standardError + 1e-6);
+    EXPECT_NEAR(sphere.mean, 0.5, 0.005);
+}
+
+TEST(PathTracer, DiffusePlaneUnderADistantLightMatchesRhoEOverPi) {
+    // A plane of albedo 0.6 facing a delta distant light of irradiance 2 at 60 degrees incidence:
+    // L = rho * E * cos(60) / pi, exactly, with one sample (zero variance: one delta light, no
+    // indirect light with maxDepth 1).
+    render::SceneDescription s;
+    s.materials.push_back({"/mat", RGB(0.6f), RGB(0.0f)});
+    render::MeshDesc plane;
+    plane.name = "/plane";
+    plane.material = 0;
+    plane.positions = {{-10, -10, 0}, {10, -10, 0}, {10, 10, 0}, {-10, 10, 0}};
+    plane.indices = {0, 1, 2, 0, 2, 3};
+    s.meshes.push_back(plane);
+    render::LightDesc sun;
+    sun.name = "/sun";
+    sun.type = render::LightType::Distant;
+    sun.angleDegrees = 0.0f;
+    sun.radiance = RGB(2.0f);
+    sun.transform = Matrix4::rotateX(60);  // its +Z axis is tilted 60 degrees from the plane normal
+    s.lights.push_back(sun);
+    s.camera = test::lookAtOriginCamera(1.0f);
+    s.camera->transform = Matrix4::translate({0, 0, 3});  // looking straight down at the plane
+    Rendered r = renderScene(s, 8, 1, 0, 1);
+    for (int y = 0; y < 8; ++y)
+        for (int x = 0; x < 8; ++x) EXPECT_NEAR(r.image.pixel(x, y)[0], 0.6 * 2.0 * 0.5 / M_PI, 1e-6);
+}
+
+TEST(PathTracer, ImagesAreBitIdenticalAcrossThreadCounts) {
+    auto scene = test::furnaceScene(0.7f);
+    Rendered one = renderScene(scene, 40, 5, 1, 64, 1234);
+    Rendered two = renderScene(scene, 40, 5, 2, 64, 1234);
+    ASSERT_EQ(one.image.pixels.size(), two.image.pixels.size());
+    EXPECT_EQ(0, std::memcmp(one.image.pixels.data(), two.image.pixels.data(), one.image.pixels.size() * sizeof(float)));
+    Rendered otherSeed = renderScene(scene, 40, 5, 2, 64, 99);
+    EXPECT_NE(0, std::memcmp(one.image.pixels.data(), otherSeed.image.pixels.data(),
+                             one.image.pixels.size() * sizeof(float)));
+}
+
+TEST(PathTracer, CountsRaysAndSamples) {
+    Rendered r = renderScene(test::furnaceScene(0.5f), 16, 3);
+    EXPECT_EQ(r.stats.samplesPerPixel, 3);
+    EXPECT_EQ(r.stats.rays.camera, 16u * 16u * 3u);
+    EXPECT_GT(r.stats.rays.shadow, 0u);
+    EXPECT_EQ(r.stats.passes, 2);  // passes of 1 then 2 samples
+}
+
+TEST(PathTracer, MaxDepthZeroSeesOnlyEmitters) {
+    Rendered r = renderScene(test::furnaceScene(1.0f), 16, 2, 0, 0);
+    int a = r.image.channelIndex("A");
+    for (int y = 0; y < 16; ++y)
+        for (int x = 0; x < 16; ++x) {
+            const float* p = r.image.pixel(x, y);
+            EXPECT_FLOAT_EQ(p[0], p[a] == 1.0f ? 0.0f : (p[a] == 0.0f ? 1.0f : p[0]));
+        }
+}
+
+}  // namespace
+}  // namespace fluence::integrators

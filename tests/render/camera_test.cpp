@@ -1,0 +1,93 @@
+#include "render/camera.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+namespace fluence::render {
+namespace {
+
+constexpr double kDegrees = 180.0 / 3.14159265358979323846;
+
+CameraDesc cornellCamera() {
+    CameraDesc d;
+    d.focalLength = 35;
+    d.horizontalAperture = 25;
+    d.verticalAperture = 25;
+    d.nearClip = 10;
+    d.farClip = 100000;
+    d.transform = Matrix4::translate({278, 273, -800}) * Matrix4::rotateY(180);
+    return d;
+}
+
+TEST(Camera, CentreRayLooksDownTheCameraAxis) {
+    Camera cam(cornellCamera(), 64, 64);
+    Ray r = cam.generateRay(32, 32);
+    EXPECT_NEAR(r.direction.x, 0.0f, 1e-6f);
+    EXPECT_NEAR(r.direction.y, 0.0f, 1e-6f);
+    EXPECT_NEAR(r.direction.z, 1.0f, 1e-6f);
+    EXPECT_NEAR(r.origin.z, -800.0f, 1e-3f);
+    EXPECT_NEAR(r.tMin, 10.0f, 1e-4f);
+}
+
+TEST(Camera, FieldOfViewFollowsFocalLengthAndAperture) {
+    // Vertical FOV of the Cornell camera: 2 atan(12.5 / 35) = 39.3077 degrees.
+    Camera cam(cornellCamera(), 64, 64);
+    Ray top = cam.generateRay(32, 0);
+    double halfAngle = std::acos(double(top.direction.z)) * kDegrees;
+    EXPECT_NEAR(2.0 * halfAngle, 39.3077, 1e-3);
+    EXPECT_GT(top.direction.y, 0.0f) << "row 0 is the top of the image";
+    // Image right is -X for a camera turned to look along +Z.
+    EXPECT_LT(cam.generateRay(64, 32).direction.x, 0.0f);
+}
+
+TEST(Camera, ExpandApertureKeepsTheFramedRegion) {
+    // A wide image of a square aperture widens the horizontal field, keeping the vertical one.
+    Camera wide(cornellCamera(), 128, 64);
+    double vertical = 2.0 * std::acos(double(wide.generateRay(64, 0).direction.z)) * kDegrees;
+    double horizontal = 2.0 * std::acos(double(wide.generateRay(0, 32).direction.z)) * kDegrees;
+    EXPECT_NEAR(vertical, 39.3077, 1e-3);
+    EXPECT_NEAR(horizontal, 2.0 * std::atan(25.0 / 35.0) * kDegrees, 1e-3);
+    // A tall image widens the vertical field instead.
+    Camera tall(cornellCamera(), 64, 128);
+    EXPECT_NEAR(2.0 * std::acos(double(tall.generateRay(0, 64).direction.z)) * kDegrees, 39.3077, 1e-3);
+}
+
+TEST(Camera, ApertureOffsetShiftsTheWindow) {
+    CameraDesc d = cornellCamera();
+    d.verticalApertureOffset = 12.5;  // half the aperture: the centre ray now points up by atan(12.5/35)
+    Camera cam(d, 64, 64);
+    Ray centre = cam.generateRay(32, 32);
+    EXPECT_NEAR(std::atan2(double(centre.direction.y), double(centre.direction.z)) * kDegrees,
+                std::atan(12.5 / 35.0) * kDegrees, 1e-3);
+}
+
+TEST(Camera, ClippingPlanesArePerpendicularToTheViewAxis) {
+    Camera cam(cornellCamera(), 64, 64);
+    Ray corner = cam.generateRay(0, 0);
+    float cosView = corner.direction.z;
+    EXPECT_NEAR(corner.tMin * cosView, 10.0f, 1e-3f);
+    EXPECT_NEAR(corner.tMax * cosView, 100000.0f, 1.0f);
+    EXPECT_NEAR(cam.viewDepth(corner.origin + corner.direction * corner.tMin), 10.0f, 1e-3f);
+}
+
+TEST(Camera, OrthographicUsesTenthsOfASceneUnit) {
+    CameraDesc d;
+    d.projection = Projection::Orthographic;
+    d.horizontalAperture = 20;  // 2 scene units wide
+    d.verticalAperture = 20;
+    Camera cam(d, 10, 10);
+    Ray left = cam.generateRay(0, 5), right = cam.generateRay(10, 5);
+    EXPECT_NEAR(right.origin.x - left.origin.x, 2.0f, 1e-5f);
+    EXPECT_EQ(left.direction, Vec3f(0, 0, -1));
+}
+
+TEST(Camera, RejectsDegenerateSettings) {
+    CameraDesc d = cornellCamera();
+    d.focalLength = 0;
+    EXPECT_THROW(Camera(d, 8, 8), std::invalid_argument);
+    EXPECT_THROW(Camera(cornellCamera(), 0, 8), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace fluence::render

@@ -1,0 +1,59 @@
+// Small render-core scenes built in C++ (no USD), for integrator tests.
+#pragma once
+
+#include <cmath>
+
+#include "render/scene_description.h"
+
+namespace fluence::test {
+
+// A UV sphere with flat facets (no shading normals), so that it is an exactly convex polyhedron.
+inline render::MeshDesc sphereMesh(float radius, int segments, int rings, int material) {
+    render::MeshDesc m;
+    m.name = "/sphere";
+    m.material = material;
+    const double pi = 3.14159265358979323846;
+    for (int r = 0; r <= rings; ++r)
+        for (int s = 0; s <= segments; ++s) {
+            double theta = pi * r / rings, phi = 2 * pi * s / segments;
+            m.positions.emplace_back(float(radius * std::sin(theta) * std::cos(phi)),
+                                     float(radius * std::sin(theta) * std::sin(phi)), float(radius * std::cos(theta)));
+        }
+    auto at = [&](int r, int s) { return std::uint32_t(r * (segments + 1) + s); };
+    for (int r = 0; r < rings; ++r)
+        for (int s = 0; s < segments; ++s) {
+            if (r > 0) m.indices.insert(m.indices.end(), {at(r, s), at(r + 1, s), at(r, s + 1)});
+            if (r < rings - 1) m.indices.insert(m.indices.end(), {at(r, s + 1), at(r + 1, s), at(r + 1, s + 1)});
+        }
+    return m;
+}
+
+// A camera at distance `distance` on -Y looking at the origin, Z up, with a vertical FOV that
+// frames the unit sphere.
+inline render::CameraDesc lookAtOriginCamera(float distance) {
+    render::CameraDesc c;
+    c.focalLength = 50.0f;
+    c.horizontalAperture = 36.0f;
+    c.verticalAperture = 36.0f;
+    c.nearClip = 0.01f;
+    c.farClip = 1000.0f;
+    // Camera looks along local -Z with +Y up: rotate so -Z -> +Y and +Y -> +Z.
+    c.transform = Matrix4::translate({0, -distance, 0}) * Matrix4::rotateX(90);
+    return c;
+}
+
+// A furnace: a sphere of the given albedo inside a dome of radiance 1.
+inline render::SceneDescription furnaceScene(float albedo) {
+    render::SceneDescription s;
+    s.materials.push_back({"/mat", RGB(albedo), RGB(0.0f)});
+    s.meshes.push_back(sphereMesh(1.0f, 48, 24, 0));
+    render::LightDesc dome;
+    dome.name = "/dome";
+    dome.type = render::LightType::Dome;
+    dome.radiance = RGB(1.0f);
+    s.lights.push_back(dome);
+    s.camera = lookAtOriginCamera(4.0f);
+    return s;
+}
+
+}  // namespace fluence::test
