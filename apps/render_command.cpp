@@ -26,6 +26,11 @@ namespace {
 using Clock = std::chrono::steady_clock;
 double secondsSince(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
 
+// "1 light", "3 lights".
+std::string counted(std::size_t n, const std::string& singular, const std::string& plural = "") {
+    return std::to_string(n) + " " + (n == 1 ? singular : (plural.empty() ? singular + "s" : plural));
+}
+
 void printError(const std::string& message) { std::fprintf(stderr, "fluence: error: %s\n", message.c_str()); }
 
 // Warnings are printed once per distinct (prim, message).
@@ -162,8 +167,9 @@ int runRender(const RenderOptions& opt) {
     std::printf("  image        %d x %d, %d spp, integrator %s, seed %llu, %d threads\n", res.first, res.second,
                 stats.samplesPerPixel, opt.integrator.c_str(), static_cast<unsigned long long>(opt.seed),
                 opt.threads > 0 ? opt.threads : int(std::thread::hardware_concurrency()));
-    std::printf("  scene        %zu meshes, %zu triangles, %zu lights (%zu emissive triangles), %zu warnings\n",
-                st.meshes, st.triangles, st.lights, st.emissiveTriangles, warnings.count());
+    std::printf("  scene        %s, %s, %s (%s), %s\n", counted(st.meshes, "mesh", "meshes").c_str(),
+                counted(st.triangles, "triangle").c_str(), counted(st.lights, "light").c_str(),
+                counted(st.emissiveTriangles, "emissive triangle").c_str(), counted(warnings.count(), "warning").c_str());
     std::printf("  time         parse %.3f s, build %.3f s, render %.3f s, write %.3f s, total %.3f s\n", parseSeconds,
                 buildSeconds, stats.seconds, writeSeconds, total);
     std::printf("  throughput   %.3f Msamples/s, %.3f Mrays/s (%llu rays: %llu camera, %llu bounce, %llu shadow)\n",

@@ -5,6 +5,7 @@
 #include <set>
 
 #include "output/atomic_file.h"
+#include "output/image_file.h"
 
 namespace fluence::output {
 
@@ -61,18 +62,7 @@ void writeExr(const std::string& path, const Image& image, const ExrHeader& head
     for (const auto& [name, value] : header.floats) spec.attribute(name, value);
     if (!header.dataChannels.empty()) spec.attribute("fluence/dataChannels", join(header.dataChannels, ","));
 
-    AtomicFile file(path);
-    auto out = OIIO::ImageOutput::create("openexr");
-    if (!out) file.fail("OpenImageIO has no OpenEXR writer (" + OIIO::geterror() + ")");
-    if (!out->open(file.tempPath(), spec)) file.fail(out->geterror());
-    if (!out->write_image(OIIO::TypeDesc::FLOAT, image.pixels.data())) {
-        const std::string error = out->geterror();
-        out->close();
-        file.fail(error);
-    }
-    if (!out->close()) file.fail(out->geterror());
-    out.reset();
-    file.commit();
+    writeImageFile(path, "openexr", spec, image.pixels.data());
 }
 
 }  // namespace fluence::output

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "output/atomic_file.h"
+#include "output/image_file.h"
 
 namespace fluence::output {
 
@@ -41,18 +42,7 @@ void writePreviewPng(const std::string& path, const Image& image, const color::C
     }
 
     OIIO::ImageSpec spec(image.width, image.height, 3, OIIO::TypeDesc::UINT8);
-    AtomicFile file(path);
-    auto out = OIIO::ImageOutput::create("png");
-    if (!out) file.fail("OpenImageIO has no PNG writer (" + OIIO::geterror() + ")");
-    if (!out->open(file.tempPath(), spec)) file.fail(out->geterror());
-    if (!out->write_image(OIIO::TypeDesc::UINT8, bytes.data())) {
-        const std::string error = out->geterror();
-        out->close();
-        file.fail(error);
-    }
-    if (!out->close()) file.fail(out->geterror());
-    out.reset();
-    file.commit();
+    writeImageFile(path, "png", spec, bytes.data());
 }
 
 }  // namespace fluence::output

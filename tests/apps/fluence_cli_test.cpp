@@ -6,9 +6,11 @@
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
+#include <functional>
 #include <fstream>
 #include <sstream>
 
+#include "tests/support/temp_dir.h"
 #include "tests/support/usd_scenes.h"
 
 namespace fs = std::filesystem;
@@ -23,14 +25,8 @@ struct RunResult {
 
 class FluenceCli : public ::testing::Test {
 protected:
-    void SetUp() override {
-        dir_ = fs::temp_directory_path() /
-               ("fluence_cli_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()) + "_" +
-                std::to_string(::getpid()));
-        fs::remove_all(dir_);
-        fs::create_directories(dir_);
-    }
-    void TearDown() override { fs::remove_all(dir_); }
+    test::TempDir tmp_{"fluence_cli"};
+    const fs::path dir_ = tmp_.path();
 
     fs::path write(const std::string& name, const std::string& text) {
         fs::path p = dir_ / name;
@@ -56,7 +52,6 @@ protected:
         return r;
     }
 
-    fs::path dir_;
 };
 
 struct ExrImage {
@@ -87,24 +82,39 @@ ExrImage readExr(const fs::path& path) {
     return img;
 }
 
-TEST_F(FluenceCli, WhiteFurnaceSphereVanishes) {
-    fs::path scene = write("furnace.usda", test::furnaceUsda(1.0));
-    RunResult r = run("render " + scene.string() + " -o " + (dir_ / "f.exr").string() + " -r 48 48 --spp 16");
-    ASSERT_EQ(r.exitCode, 0) << r.err;
-    ExrImage img = readExr(dir_ / "f.exr");
+// Mean of the named channels over the pixels `select` accepts, with its standard error from the
+// spread of pixel values (pixels are independent estimates).
+struct MeanEstimate {
+    double mean = 0, standardError = 0;
+    int count = 0;
+};
+MeanEstimate channelMean(const ExrImage& img, std::initializer_list<const char*> channels,
+                         const std::function<bool(int, int)>& select) {
     double sum = 0, sum2 = 0;
     int n = 0;
     for (int y = 0; y < img.height; ++y)
         for (int x = 0; x < img.width; ++x)
-            for (const char* c : {"R", "G", "B"}) {
-                double v = img.at(x, y, c);
-                sum += v;
-                sum2 += v * v;
-                ++n;
-            }
-    double mean = sum / n, se = std::sqrt((sum2 / n - mean * mean) / n);
-    EXPECT_NEAR(mean, 1.0, 0.01) << "image mean";
-    EXPECT_NEAR(mean, 1.0, 5 * se + 1e-6) << "within 5 standard errors";
+            if (select(x, y))
+                for (const char* c : channels) {
+                    double v = img.at(x, y, c);
+                    sum += v;
+                    sum2 += v * v;
+                    ++n;
+                }
+    MeanEstimate e;
+    e.count = n;
+    e.mean = sum / n;
+    e.standardError = std::sqrt(std::max(0.0, sum2 / n - e.mean * e.mean) / n);
+    return e;
+}
+
+TEST_F(FluenceCli, WhiteFurnaceSphereVanishes) {
+    fs::path scene = write("furnace.usda", test::furnaceUsda(1.0));
+    RunResult r = run("render " + scene.string() + " -o " + (dir_ / "f.exr").string() + " -r 48 48 --spp 16");
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    MeanEstimate e = channelMean(readExr(dir_ / "f.exr"), {"R", "G", "B"}, [](int, int) { return true; });
+    EXPECT_NEAR(e.mean, 1.0, 0.01) << "image mean";
+    EXPECT_NEAR(e.mean, 1.0, 5 * e.standardError + 1e-6) << "within 5 standard errors";
 }
 
 TEST_F(FluenceCli, FurnaceSphereOfAlbedoHalfAveragesHalf) {
@@ -112,20 +122,10 @@ TEST_F(FluenceCli, FurnaceSphereOfAlbedoHalfAveragesHalf) {
     RunResult r = run("render " + scene.string() + " -o " + (dir_ / "f.exr").string() + " -r 48 48 --spp 16");
     ASSERT_EQ(r.exitCode, 0) << r.err;
     ExrImage img = readExr(dir_ / "f.exr");
-    double sum = 0, sum2 = 0;
-    int n = 0;
-    for (int y = 0; y < img.height; ++y)
-        for (int x = 0; x < img.width; ++x)
-            if (img.at(x, y, "A") == 1.0f) {
-                double v = img.at(x, y, "G");
-                sum += v;
-                sum2 += v * v;
-                ++n;
-            }
-    ASSERT_GT(n, 500);
-    double mean = sum / n, se = std::sqrt((sum2 / n - mean * mean) / n);
-    EXPECT_NEAR(mean, 0.5, 5 * se + 1e-6);
-    EXPECT_NEAR(mean, 0.5, 0.005);
+    MeanEstimate e = channelMean(img, {"G"}, [&](int x, int y) { return img.at(x, y, "A") == 1.0f; });
+    ASSERT_GT(e.count, 500);
+    EXPECT_NEAR(e.mean, 0.5, 5 * e.standardError + 1e-6);
+    EXPECT_NEAR(e.mean, 0.5, 0.005);
 }
 
 TEST_F(FluenceCli, SameSeedGivesBitIdenticalImagesAtAnyThreadCount) {
@@ -168,6 +168,22 @@ TEST_F(FluenceCli, ProgressForFarmsWhenNotATerminal) {
     RunResult r = run("render " + scene.string() + " -o " + (dir_ / "c.exr").string() + " -r 16 16 --spp 2");
     ASSERT_EQ(r.exitCode, 0) << r.err;
     EXPECT_NE(r.out.find("ALF_PROGRESS 100%"), std::string::npos) << r.out;
+}
+
+TEST_F(FluenceCli, TimeLimitStopsBetweenPassesWithEqualSamplesEverywhere) {
+    // A sample count that would take hours, cut short by a one-second limit: the render ends,
+    // and every pixel holds the same number of samples.
+    fs::path scene = fs::path(FLUENCE_SOURCE_DIR) / "usd_samples/cornell_box.usda";
+    RunResult r = run("render " + scene.string() + " -o " + (dir_ / "t.exr").string() +
+                      " -r 32 32 --spp 100000000 --time-limit 1");
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    ExrImage img = readExr(dir_ / "t.exr");
+    float count = img.at(0, 0, "sampleCount");
+    EXPECT_GE(count, 1.0f);
+    EXPECT_LT(count, 100000000.0f);
+    for (int y = 0; y < img.height; ++y)
+        for (int x = 0; x < img.width; ++x) ASSERT_EQ(img.at(x, y, "sampleCount"), count);
+    EXPECT_NE(r.out.find(std::to_string(int(count)) + " spp"), std::string::npos) << r.out;
 }
 
 TEST_F(FluenceCli, MissingSceneFileExitsWithMissingInput) {

@@ -282,6 +282,35 @@ over "NotDefined"
     EXPECT_NE(p.warnings[0].find("'Sphere' is not supported yet; skipped 2 prims"), std::string::npos) << p.warnings[0];
 }
 
+TEST(SceneDelegate, AuthoredColoursGoThroughTheColourConverterWithTheirColourSpace) {
+    auto stage = std::make_unique<usd::Stage>(usd::parseUsdaString(R"(#usda 1.0
+def Camera "Cam"
+{
+}
+def Mesh "Tri"
+{
+    int[] faceVertexCounts = [3]
+    int[] faceVertexIndices = [0, 1, 2]
+    point3f[] points = [(0, 0, 0), (1, 0, 0), (0, 1, 0)]
+    color3f[] primvars:displayColor = [(0.5, 0.5, 0.5)] (
+        colorSpace = "srgb_texture"
+    )
+}
+)",
+                                                                   "c.usda"));
+    std::vector<std::string> spaces;
+    DelegateOptions options;
+    options.convertColor = [&](const RGB& c, const std::string& space) {
+        spaces.push_back(space);
+        return c * 2.0f;
+    };
+    options.warn = [](const std::string&, const std::string&) {};
+    DelegateResult result = populateScene(*stage, options);
+    ASSERT_FALSE(spaces.empty());
+    EXPECT_EQ(spaces.front(), "srgb_texture");
+    EXPECT_EQ(result.scene.meshes[0].cornerColors[0], RGB(1.0f)) << "the converted value is what renders";
+}
+
 TEST(SceneDelegate, CameraSelectionAndRenderSettings) {
     auto p = populate(R"(#usda 1.0
 (

@@ -11,6 +11,7 @@
 #include <stdexcept>
 #include <string>
 #include <vector>
+#include "tests/support/temp_dir.h"
 
 namespace {
 
@@ -19,30 +20,7 @@ using fluence::output::OutputError;
 using fluence::output::writeAtomically;
 namespace fs = std::filesystem;
 
-class TempDir {
-public:
-    TempDir() {
-        static int counter = 0;
-        path_ = fs::temp_directory_path() /
-                ("fluence_atomic_test_" + std::to_string(::getpid()) + "_" + std::to_string(counter++));
-        fs::remove_all(path_);
-        fs::create_directories(path_);
-    }
-    ~TempDir() {
-        std::error_code ec;
-        fs::remove_all(path_, ec);
-    }
-    std::string file(const std::string& name) const { return (path_ / name).string(); }
-    std::vector<std::string> list() const {
-        std::vector<std::string> names;
-        for (const auto& entry : fs::directory_iterator(path_)) names.push_back(entry.path().filename().string());
-        std::sort(names.begin(), names.end());
-        return names;
-    }
-
-private:
-    fs::path path_;
-};
+using fluence::test::TempDir;
 
 void writeText(const std::string& path, const std::string& text) {
     std::ofstream out(path, std::ios::binary);
@@ -55,7 +33,7 @@ std::string readText(const std::string& path) {
 }
 
 TEST(AtomicFile, WritesThroughHiddenTempAndRenames) {
-    TempDir dir;
+    TempDir dir("fluence_atomic_test");
     const std::string target = dir.file("out.exr");
     AtomicFile file(target);
     EXPECT_EQ(file.finalPath(), target);
@@ -72,7 +50,7 @@ TEST(AtomicFile, WritesThroughHiddenTempAndRenames) {
 }
 
 TEST(AtomicFile, TempNamesAreUnique) {
-    TempDir dir;
+    TempDir dir("fluence_atomic_test");
     AtomicFile a(dir.file("x.png"));
     AtomicFile b(dir.file("x.png"));
     EXPECT_NE(a.tempPath(), b.tempPath());
@@ -90,14 +68,14 @@ TEST(AtomicFile, MissingDirectoryThrowsNamingPathAndLeavesNothing) {
 }
 
 TEST(AtomicFile, TargetThatIsADirectoryThrows) {
-    TempDir dir;
+    TempDir dir("fluence_atomic_test");
     fs::create_directory(dir.file("sub"));
     EXPECT_THROW(AtomicFile(dir.file("sub")), OutputError);
     EXPECT_THROW(AtomicFile(""), OutputError);
 }
 
 TEST(AtomicFile, FailureMidwayKeepsOldFileAndRemovesTemp) {
-    TempDir dir;
+    TempDir dir("fluence_atomic_test");
     const std::string target = dir.file("render.exr");
     writeText(target, "old good file");
     try {
@@ -114,7 +92,7 @@ TEST(AtomicFile, FailureMidwayKeepsOldFileAndRemovesTemp) {
 }
 
 TEST(AtomicFile, AbandonedWithoutCommitRemovesTemp) {
-    TempDir dir;
+    TempDir dir("fluence_atomic_test");
     const std::string target = dir.file("a.png");
     writeText(target, "old");
     {
@@ -126,7 +104,7 @@ TEST(AtomicFile, AbandonedWithoutCommitRemovesTemp) {
 }
 
 TEST(AtomicFile, CommitWithoutTempFileFails) {
-    TempDir dir;
+    TempDir dir("fluence_atomic_test");
     AtomicFile file(dir.file("never.exr"));
     EXPECT_THROW(file.commit(), OutputError);
     EXPECT_TRUE(dir.list().empty());
@@ -135,7 +113,7 @@ TEST(AtomicFile, CommitWithoutTempFileFails) {
 TEST(AtomicFile, RenameFailureRemovesTemp) {
     // The final name becomes a non-empty directory after the AtomicFile was created: rename(2)
     // fails (deterministically, even as root) after the data was written.
-    TempDir dir;
+    TempDir dir("fluence_atomic_test");
     const std::string target = dir.file("late.exr");
     AtomicFile file(target);
     writeText(file.tempPath(), "data");
@@ -152,7 +130,7 @@ TEST(AtomicFile, RenameFailureRemovesTemp) {
 }
 
 TEST(AtomicFile, RelativePathUsesCurrentDirectory) {
-    TempDir dir;
+    TempDir dir("fluence_atomic_test");
     const fs::path old = fs::current_path();
     fs::current_path(dir.file(""));
     try {

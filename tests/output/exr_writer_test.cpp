@@ -19,6 +19,7 @@
 #include <vector>
 
 #include "output/atomic_file.h"
+#include "tests/support/temp_dir.h"
 
 namespace {
 
@@ -28,30 +29,7 @@ using fluence::output::OutputError;
 using fluence::output::writeExr;
 namespace fs = std::filesystem;
 
-class TempDir {
-public:
-    TempDir() {
-        static int counter = 0;
-        path_ = fs::temp_directory_path() /
-                ("fluence_exr_test_" + std::to_string(::getpid()) + "_" + std::to_string(counter++));
-        fs::remove_all(path_);
-        fs::create_directories(path_);
-    }
-    ~TempDir() {
-        std::error_code ec;
-        fs::remove_all(path_, ec);
-    }
-    std::string file(const std::string& name) const { return (path_ / name).string(); }
-    std::vector<std::string> list() const {
-        std::vector<std::string> names;
-        for (const auto& entry : fs::directory_iterator(path_)) names.push_back(entry.path().filename().string());
-        std::sort(names.begin(), names.end());
-        return names;
-    }
-
-private:
-    fs::path path_;
-};
+using fluence::test::TempDir;
 
 std::string readBytes(const std::string& path) {
     std::ifstream in(path, std::ios::binary);
@@ -93,7 +71,7 @@ ExrHeader makeHeader() {
 }
 
 TEST(ExrWriter, RoundTripIsBitExactWithMetadata) {
-    TempDir dir;
+    TempDir dir("fluence_exr_test");
     const std::string path = dir.file("beauty.exr");
     const Image image = makeTestImage();
     writeExr(path, image, makeHeader());
@@ -160,7 +138,7 @@ TEST(ExrWriter, RoundTripIsBitExactWithMetadata) {
 TEST(ExrWriter, FixedDateTimeGivesIdenticalBytes) {
     // OIIO stamps EXRs with the current time ("capDate", from "DateTime") unless one is given; with
     // a fixed DateTime the same image writes the same bytes.
-    TempDir dir;
+    TempDir dir("fluence_exr_test");
     ExrHeader header = makeHeader();
     header.strings.emplace_back("DateTime", "2026:01:02 03:04:05");
     writeExr(dir.file("a.exr"), makeTestImage(), header);
@@ -174,7 +152,7 @@ TEST(ExrWriter, FixedDateTimeGivesIdenticalBytes) {
 TEST(ExrWriter, RawExrHeaderHasRealChromaticitiesAttribute) {
     // OpenEXR's own type name for the attribute is "chromaticities" (Imf::ChromaticitiesAttribute):
     // find it in the raw header bytes as <name>\0<type>\0<size = 32, little endian>.
-    TempDir dir;
+    TempDir dir("fluence_exr_test");
     const std::string path = dir.file("c.exr");
     writeExr(path, makeTestImage(), makeHeader());
     const std::string bytes = readBytes(path);
@@ -190,7 +168,7 @@ TEST(ExrWriter, RawExrHeaderHasRealChromaticitiesAttribute) {
 }
 
 TEST(ExrWriter, CustomChromaticitiesAndColorSpace) {
-    TempDir dir;
+    TempDir dir("fluence_exr_test");
     const std::string path = dir.file("ap1.exr");
     ExrHeader header;
     header.colorSpace = "acescg";
@@ -217,7 +195,7 @@ TEST(ExrWriter, MissingDirectoryThrowsAndLeavesNothing) {
 }
 
 TEST(ExrWriter, InconsistentImageIsRejectedAndOldFileSurvives) {
-    TempDir dir;
+    TempDir dir("fluence_exr_test");
     const std::string path = dir.file("frame.exr");
     writeExr(path, makeTestImage(), makeHeader());
     const std::string good = readBytes(path);
@@ -242,7 +220,7 @@ TEST(ExrWriter, InconsistentImageIsRejectedAndOldFileSurvives) {
 }
 
 TEST(ExrWriter, ReplacesExistingFileCompletely) {
-    TempDir dir;
+    TempDir dir("fluence_exr_test");
     const std::string path = dir.file("frame.exr");
     {
         std::ofstream out(path, std::ios::binary);

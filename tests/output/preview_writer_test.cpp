@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "output/atomic_file.h"
+#include "tests/support/temp_dir.h"
 
 namespace {
 
@@ -26,30 +27,7 @@ using fluence::output::OutputError;
 using fluence::output::writePreviewPng;
 namespace fs = std::filesystem;
 
-class TempDir {
-public:
-    TempDir() {
-        static int counter = 0;
-        path_ = fs::temp_directory_path() /
-                ("fluence_png_test_" + std::to_string(::getpid()) + "_" + std::to_string(counter++));
-        fs::remove_all(path_);
-        fs::create_directories(path_);
-    }
-    ~TempDir() {
-        std::error_code ec;
-        fs::remove_all(path_, ec);
-    }
-    std::string file(const std::string& name) const { return (path_ / name).string(); }
-    std::vector<std::string> list() const {
-        std::vector<std::string> names;
-        for (const auto& entry : fs::directory_iterator(path_)) names.push_back(entry.path().filename().string());
-        std::sort(names.begin(), names.end());
-        return names;
-    }
-
-private:
-    fs::path path_;
-};
+using fluence::test::TempDir;
 
 // The embedded config, whatever $OCIO the environment has.
 ColorManagement builtin() {
@@ -104,7 +82,7 @@ TEST(PreviewWriter, TwoByTwoSrgbValuesAndRowOrder) {
     const std::vector<std::uint8_t> expected = {0, 118, 255, 255, 0, 188,  //
                                                 10, 149, 0, 3, 231, 63};
 
-    TempDir dir;
+    TempDir dir("fluence_png_test");
     const std::string path = dir.file("preview.png");
     const ColorManagement cm = builtin();
     writePreviewPng(path, image, cm);
@@ -125,7 +103,7 @@ TEST(PreviewWriter, TwoByTwoSrgbValuesAndRowOrder) {
 TEST(PreviewWriter, RawViewQuantisesLinearValues) {
     Image image(1, 1, {"R", "G", "B"});
     image.pixels = {0.5f, 0.25f, 2.0f};
-    TempDir dir;
+    TempDir dir("fluence_png_test");
     writePreviewPng(dir.file("raw.png"), image, builtin(), "sRGB", "Raw");
     int w = 0, h = 0;
     const auto bytes = readPng(dir.file("raw.png"), w, h);
@@ -136,7 +114,7 @@ TEST(PreviewWriter, RawViewQuantisesLinearValues) {
 }
 
 TEST(PreviewWriter, ErrorsNamePathAndKeepOldFile) {
-    TempDir dir;
+    TempDir dir("fluence_png_test");
     const std::string path = dir.file("p.png");
     const ColorManagement cm = builtin();
     Image good(2, 1, {"R", "G", "B"});
