@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "core/frame.h"
+#include "integrators/first_hit.h"
 #include "render/bsdf.h"
 
 namespace fluence::integrators {
@@ -13,9 +14,6 @@ using render::Ray;
 using render::SurfaceHit;
 
 namespace {
-
-constexpr int kRouletteStartDepth = 3;
-constexpr float kMaxSurvival = 0.95f;
 
 // Probability that next-event estimation picks light `index` and samples direction wi towards
 // `hit` from `from`: the density the light strategy would have had for a BSDF-sampled hit.
@@ -36,10 +34,7 @@ FilmSample PathTracer::sample(const render::RenderScene& scene, const render::Ca
     const bool haveLights = !scene.lightSelection().empty();
 
     for (int depth = 0;; ++depth) {
-        if (depth == 0)
-            ++counters.camera;
-        else
-            ++counters.bounce;
+        ++(depth == 0 ? counters.camera : counters.bounce);
         std::optional<SurfaceHit> hit = scene.intersect(ray);
 
         if (!hit) {
@@ -55,12 +50,7 @@ FilmSample PathTracer::sample(const render::RenderScene& scene, const render::Ca
         }
 
         Vec3f wo = -ray.direction;
-        if (depth == 0) {
-            out.hit = true;
-            out.depth = camera.viewDepth(hit->point);
-            out.albedo = hit->albedo;
-            out.normal = dot(hit->shadingNormal, wo) < 0.0f ? -hit->shadingNormal : hit->shadingNormal;
-        }
+        if (depth == 0) recordFirstHit(out, *hit, wo, camera);
 
         // Emission reached by this ray: light shapes and emissive surfaces.
         if (hit->light >= 0) {
@@ -75,13 +65,9 @@ FilmSample PathTracer::sample(const render::RenderScene& scene, const render::Ca
         }
         if (hit->lightShape || depth >= maxDepth_) break;
 
-        // Two-sided surface: orient the frame to the side the ray arrived from.
-        Vec3f ng = hit->geometricNormal, ns = hit->shadingNormal;
-        if (dot(ng, wo) < 0.0f) {
-            ng = -ng;
-            ns = -ns;
-        }
-        Frame frame = Frame::fromNormal(ns);
+        SurfaceFrame surface = orientTowards(*hit, wo);
+        const Frame& frame = surface.frame;
+        const Vec3f& ng = surface.geometricNormal;
         Vec3f woLocal = frame.toLocal(wo);
         LambertianBsdf bsdf(hit->albedo);
         Vec3f origin = render::offsetRayOrigin(hit->point, ng);
@@ -116,13 +102,7 @@ FilmSample PathTracer::sample(const render::RenderScene& scene, const render::Ca
         Vec3f wi = frame.toWorld(bs->wi);
         if (dot(wi, ng) <= 0.0f) break;  // shading normal sent the path below the surface
         throughput *= bs->f * (std::abs(bs->wi.z) / bs->pdf);
-        if (isBlack(throughput)) break;
-
-        if (depth + 1 >= kRouletteStartDepth) {
-            float survive = std::min(maxComponent(throughput), kMaxSurvival);
-            if (rng.next() >= survive) break;
-            throughput /= survive;
-        }
+        if (!continuePath(throughput, depth, rng)) break;
 
         bsdfPdf = bs->pdf;
         previousPoint = origin;

@@ -1,4 +1,5 @@
 #include "integrators/integrator.h"
+#include "integrators/naive_path_tracer.h"
 #include "integrators/path_tracer.h"
 
 namespace fluence::integrators {
@@ -8,6 +9,9 @@ const std::vector<IntegratorInfo>& integratorRegistry() {
         {"path", "L(S|D)*E",
          "unidirectional path tracing with next-event estimation, MIS and Russian roulette",
          [](const IntegratorSettings& s) { return std::make_unique<PathTracer>(s); }},
+        {"naive", "L(S|D)*E without delta lights",
+         "reference path tracing by BSDF sampling only (no NEE, no MIS): slow; for validating `path`",
+         [](const IntegratorSettings& s) { return std::make_unique<NaivePathTracer>(s); }},
     };
     return registry;
 }

@@ -1,0 +1,45 @@
+#include "integrators/naive_path_tracer.h"
+
+#include <algorithm>
+
+#include "core/frame.h"
+#include "integrators/first_hit.h"
+#include "render/bsdf.h"
+
+namespace fluence::integrators {
+
+FilmSample NaivePathTracer::sample(const render::RenderScene& scene, const render::Camera& camera,
+                                   const render::Ray& cameraRay, SampleStream& rng, RayCounters& counters) const {
+    FilmSample out;
+    RGB radiance(0.0f), throughput(1.0f);
+    render::Ray ray = cameraRay;
+    for (int depth = 0;; ++depth) {
+        ++(depth == 0 ? counters.camera : counters.bounce);
+        std::optional<render::SurfaceHit> hit = scene.intersect(ray);
+        if (!hit) {
+            for (int index : scene.lightsAtInfinity()) radiance += throughput * scene.light(index).escaped(ray.direction);
+            break;
+        }
+        Vec3f wo = -ray.direction;
+        if (depth == 0) recordFirstHit(out, *hit, wo, camera);
+        if (hit->light >= 0)
+            radiance += throughput * (hit->lightShape ? scene.light(hit->light).emitted({hit->point, hit->geometricNormal}, wo)
+                                                      : hit->emission);
+        if (hit->lightShape || depth >= maxDepth_) break;
+
+        SurfaceFrame surface = orientTowards(*hit, wo);
+        render::LambertianBsdf bsdf(hit->albedo);
+        std::optional<render::BsdfSample> bs = bsdf.sample(surface.frame.toLocal(wo), rng.next2D());
+        if (!bs) break;
+        Vec3f wi = surface.frame.toWorld(bs->wi);
+        if (dot(wi, surface.geometricNormal) <= 0.0f) break;
+        throughput *= bs->f * (std::abs(bs->wi.z) / bs->pdf);
+        if (!continuePath(throughput, depth, rng)) break;
+        ray = render::Ray{render::offsetRayOrigin(hit->point, surface.geometricNormal), wi, 0.0f,
+                          std::numeric_limits<float>::infinity()};
+    }
+    out.radiance = radiance;
+    return out;
+}
+
+}  // namespace fluence::integrators

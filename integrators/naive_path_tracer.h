@@ -1,0 +1,26 @@
+// `naive`: the reference estimator beside `path`. Covers L(S|D)*E except paths whose light
+// vertex is a delta light (a DistantLight of angle 0), which no BSDF sample can hit.
+//
+// It continues every path by sampling the BSDF and counts emission only where a path happens to
+// hit an emitter: no next-event estimation, no multiple importance sampling. It is slow and
+// noisy, and it is deliberately simple, so that it can be trusted: the tests check that `path`
+// agrees with it within noise on scenes with every kind of light (pbrt-v4 keeps a SimplePath for
+// the same reason).
+#pragma once
+
+#include "integrators/integrator.h"
+
+namespace fluence::integrators {
+
+class NaivePathTracer final : public Integrator {
+public:
+    explicit NaivePathTracer(const IntegratorSettings& settings) : maxDepth_(settings.maxDepth) {}
+
+    FilmSample sample(const render::RenderScene& scene, const render::Camera& camera, const render::Ray& ray,
+                      SampleStream& rng, RayCounters& counters) const override;
+
+private:
+    int maxDepth_;
+};
+
+}  // namespace fluence::integrators
