@@ -67,7 +67,7 @@ RenderStats render(const render::RenderScene& scene, const render::Camera& camer
     int done = 0, passSize = 1;
     double secondsPerSample = 0.0;  // per sample per pixel over the whole image, measured
     while (done < settings.samplesPerPixel) {
-        int count = std::min({passSize, kMaxPassSamples, settings.samplesPerPixel - done});
+        int count = std::min(passSize, settings.samplesPerPixel - done);
         if (settings.timeLimitSeconds > 0.0 && stats.passes > 0) {
             double left = settings.timeLimitSeconds - elapsed();
             int fits = secondsPerSample > 0.0 ? static_cast<int>(left / secondsPerSample) : count;
@@ -78,7 +78,7 @@ RenderStats render(const render::RenderScene& scene, const render::Camera& camer
         arena.execute([&] { renderPass(scene, camera, integrator, settings, film, {done, count}, counters, progress); });
         secondsPerSample = (elapsed() - passStart) / count;
         done += count;
-        passSize *= 2;
+        passSize = std::min(2 * passSize, kMaxPassSamples);
         ++stats.passes;
     }
     if (progress) progress->pixelSamplesPlanned = pixels * std::uint64_t(done);

@@ -122,6 +122,16 @@ TEST(PathTracer, CountsRaysAndSamples) {
     EXPECT_EQ(r.stats.passes, 2);  // passes of 1 then 2 samples
 }
 
+TEST(Renderer, ThousandsOfSamplesAllArrive) {
+    // Passes grow 1, 2, 4, ..., 32 (63 samples in 6 passes), then stay at 64: the remaining 4937
+    // samples take 78 more passes.
+    Rendered r = renderScene(test::furnaceScene(0.5f), 2, 5000);
+    EXPECT_EQ(r.stats.samplesPerPixel, 5000);
+    EXPECT_EQ(r.stats.passes, 84);
+    for (int y = 0; y < 2; ++y)
+        for (int x = 0; x < 2; ++x) EXPECT_EQ(r.image.pixel(x, y)[r.image.channelIndex("sampleCount")], 5000.0f);
+}
+
 TEST(PathTracer, MaxDepthZeroSeesOnlyEmitters) {
     Rendered r = renderScene(test::furnaceScene(1.0f), 16, 2, 0, 0);
     int a = r.image.channelIndex("A");
