@@ -173,9 +173,12 @@ int runRender(const RenderOptions& opt) {
     std::printf("  time         parse %.3f s, build %.3f s, render %.3f s, write %.3f s, total %.3f s\n", parseSeconds,
                 buildSeconds, stats.seconds, writeSeconds, total);
     std::printf("  throughput   %.3f Msamples/s, %.3f Mrays/s (%llu rays: %llu camera, %llu bounce, %llu shadow)\n",
-                samples / stats.seconds * 1e-6, double(stats.rays.total()) / stats.seconds * 1e-6,
-                static_cast<unsigned long long>(stats.rays.total()), static_cast<unsigned long long>(stats.rays.camera),
-                static_cast<unsigned long long>(stats.rays.bounce), static_cast<unsigned long long>(stats.rays.shadow));
+                samples / stats.seconds * 1e-6, double(stats.counters.rays()) / stats.seconds * 1e-6,
+                static_cast<unsigned long long>(stats.counters.rays()), static_cast<unsigned long long>(stats.counters.camera),
+                static_cast<unsigned long long>(stats.counters.bounce), static_cast<unsigned long long>(stats.counters.shadow));
+    if (stats.counters.nonFiniteSamples > 0)
+        std::fprintf(stderr, "fluence: warning: %llu samples were NaN or infinite and were discarded (please report)\n",
+                     static_cast<unsigned long long>(stats.counters.nonFiniteSamples));
     std::printf("  output       %s%s%s\n", opt.output.c_str(), opt.preview.empty() ? "" : ", ", opt.preview.c_str());
     return kExitOk;
 }

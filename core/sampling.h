@@ -35,11 +35,18 @@ inline float uniformConePdf(float cosThetaMax) { return 1.0f / (2.0f * kPi * (1.
 // Uniform barycentrics (b0, b1) on a triangle (b2 = 1 - b0 - b1); pdf = 1 / area.
 Vec2f sampleUniformTriangle(Vec2f u);
 
-// Veach's power heuristic with beta = 2, for one sample from each of two strategies.
+// Veach's power heuristic with beta = 2, for one sample from each of two strategies:
+// a^2 / (a^2 + b^2), computed through the ratio of the densities so that huge densities (grazing
+// area-light samples reach 1e20 and more) do not overflow to inf / inf.
 inline float powerHeuristic(float pdfA, float pdfB) {
-    if (std::isinf(pdfA)) return 1.0f;
-    float a = pdfA * pdfA, b = pdfB * pdfB;
-    return a + b > 0.0f ? a / (a + b) : 0.0f;
+    if (std::isinf(pdfA)) return std::isinf(pdfB) ? 0.5f : 1.0f;
+    if (pdfA >= pdfB) {
+        if (pdfA == 0.0f) return 0.0f;
+        float r = pdfB / pdfA;
+        return 1.0f / (1.0f + r * r);
+    }
+    float r = pdfA / pdfB;
+    return r * r / (1.0f + r * r);
 }
 
 // A discrete distribution over n items proportional to non-negative weights.

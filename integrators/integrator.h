@@ -21,16 +21,19 @@
 
 namespace fluence::integrators {
 
-// Rays traced, per kind, for the render summary.
-struct RayCounters {
+// What a render counted, for its summary: rays traced per kind, and samples discarded because
+// their value was not finite (NaN or infinity; each one is a bug to find, so it is reported).
+struct RenderCounters {
     std::uint64_t camera = 0;
     std::uint64_t bounce = 0;  // extension rays after the camera ray
     std::uint64_t shadow = 0;
-    std::uint64_t total() const { return camera + bounce + shadow; }
-    RayCounters& operator+=(const RayCounters& o) {
+    std::uint64_t nonFiniteSamples = 0;
+    std::uint64_t rays() const { return camera + bounce + shadow; }
+    RenderCounters& operator+=(const RenderCounters& o) {
         camera += o.camera;
         bounce += o.bounce;
         shadow += o.shadow;
+        nonFiniteSamples += o.nonFiniteSamples;
         return *this;
     }
 };
@@ -43,7 +46,7 @@ class Integrator {
 public:
     virtual ~Integrator() = default;
     virtual FilmSample sample(const render::RenderScene& scene, const render::Camera& camera, const render::Ray& ray,
-                              SampleStream& rng, RayCounters& counters) const = 0;
+                              SampleStream& rng, RenderCounters& counters) const = 0;
 };
 
 struct IntegratorInfo {

@@ -9,7 +9,7 @@
 namespace fluence::integrators {
 
 FilmSample NaivePathTracer::sample(const render::RenderScene& scene, const render::Camera& camera,
-                                   const render::Ray& cameraRay, SampleStream& rng, RayCounters& counters) const {
+                                   const render::Ray& cameraRay, SampleStream& rng, RenderCounters& counters) const {
     FilmSample out;
     RGB radiance(0.0f), throughput(1.0f);
     render::Ray ray = cameraRay;

@@ -25,7 +25,7 @@ float lightStrategyPdf(const render::RenderScene& scene, int index, const Vec3f&
 }  // namespace
 
 FilmSample PathTracer::sample(const render::RenderScene& scene, const render::Camera& camera, const Ray& cameraRay,
-                              SampleStream& rng, RayCounters& counters) const {
+                              SampleStream& rng, RenderCounters& counters) const {
     FilmSample out;
     RGB radiance(0.0f), throughput(1.0f);
     Ray ray = cameraRay;

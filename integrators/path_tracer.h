@@ -18,7 +18,7 @@ public:
     explicit PathTracer(const IntegratorSettings& settings) : maxDepth_(settings.maxDepth) {}
 
     FilmSample sample(const render::RenderScene& scene, const render::Camera& camera, const render::Ray& ray,
-                      SampleStream& rng, RayCounters& counters) const override;
+                      SampleStream& rng, RenderCounters& counters) const override;
 
 private:
     int maxDepth_;

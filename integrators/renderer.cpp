@@ -20,14 +20,14 @@ struct PassRange {
 };
 
 void renderPass(const render::RenderScene& scene, const render::Camera& camera, const Integrator& integrator,
-                const RenderSettings& settings, Film& film, PassRange pass, tbb::combinable<RayCounters>& counters,
+                const RenderSettings& settings, Film& film, PassRange pass, tbb::combinable<RenderCounters>& counters,
                 RenderProgress* progress) {
     const int width = film.width(), height = film.height();
     const int tilesX = (width + kTileSize - 1) / kTileSize, tilesY = (height + kTileSize - 1) / kTileSize;
     tbb::parallel_for(
         tbb::blocked_range<int>(0, tilesX * tilesY, 1),
         [&](const tbb::blocked_range<int>& tiles) {
-            RayCounters& local = counters.local();
+            RenderCounters& local = counters.local();
             for (int tile = tiles.begin(); tile != tiles.end(); ++tile) {
                 int x0 = (tile % tilesX) * kTileSize, y0 = (tile / tilesX) * kTileSize;
                 int x1 = std::min(x0 + kTileSize, width), y1 = std::min(y0 + kTileSize, height);
@@ -38,7 +38,12 @@ void renderPass(const render::RenderScene& scene, const render::Camera& camera, 
                             SampleStream rng(settings.seed, pixelIndex, std::uint64_t(s));
                             Vec2f jitter = rng.next2D();  // box filter: uniform over the pixel
                             render::Ray ray = camera.generateRay(float(x) + jitter.x, float(y) + jitter.y);
-                            film.add(x, y, integrator.sample(scene, camera, ray, rng, local));
+                            FilmSample sample = integrator.sample(scene, camera, ray, rng, local);
+                            if (!isFinite(sample.radiance)) {
+                                sample.radiance = RGB(0.0f);
+                                ++local.nonFiniteSamples;
+                            }
+                            film.add(x, y, sample);
                         }
                     }
                 if (progress)
@@ -61,7 +66,7 @@ RenderStats render(const render::RenderScene& scene, const render::Camera& camer
 
     int concurrency = settings.threads > 0 ? settings.threads : tbb::this_task_arena::max_concurrency();
     tbb::task_arena arena(concurrency);
-    tbb::combinable<RayCounters> counters;
+    tbb::combinable<RenderCounters> counters;
     RenderStats stats;
 
     int done = 0, passSize = 1;
@@ -85,7 +90,7 @@ RenderStats render(const render::RenderScene& scene, const render::Camera& camer
 
     stats.seconds = elapsed();
     stats.samplesPerPixel = done;
-    counters.combine_each([&](const RayCounters& c) { stats.rays += c; });
+    counters.combine_each([&](const RenderCounters& c) { stats.counters += c; });
     return stats;
 }
 

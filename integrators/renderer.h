@@ -5,7 +5,8 @@
 // (seed, y*width+x, n), and each pixel adds its samples in index order, so the image is
 // bit-identical for any thread count and any pass division. A time limit is honoured between
 // passes (the last pass is shrunk to fit the time left), so every pixel has the same sample
-// count.
+// count. A sample whose radiance is not finite is counted and replaced by zero, so one bad
+// sample cannot poison a pixel.
 #pragma once
 
 #include <atomic>
@@ -33,7 +34,7 @@ struct RenderStats {
     double seconds = 0.0;
     int samplesPerPixel = 0;  // completed in every pixel
     int passes = 0;
-    RayCounters rays;
+    RenderCounters counters;
 };
 
 RenderStats render(const render::RenderScene& scene, const render::Camera& camera, const Integrator& integrator,

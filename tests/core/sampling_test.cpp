@@ -86,6 +86,11 @@ TEST(Sampling, PowerHeuristic) {
     EXPECT_FLOAT_EQ(powerHeuristic(3.0f, 1.0f), 0.9f);
     EXPECT_FLOAT_EQ(powerHeuristic(0.0f, 0.0f), 0.0f);
     EXPECT_FLOAT_EQ(powerHeuristic(std::numeric_limits<float>::infinity(), 1.0f), 1.0f);
+    EXPECT_FLOAT_EQ(powerHeuristic(1.0f, std::numeric_limits<float>::infinity()), 0.0f);
+    // Densities whose squares overflow a float (a grazing area-light sample) stay finite.
+    EXPECT_FLOAT_EQ(powerHeuristic(2.1e20f, 0.31831f), 1.0f);
+    EXPECT_NEAR(powerHeuristic(0.31831f, 2.1e20f), 0.0f, 1e-30f);
+    EXPECT_FLOAT_EQ(powerHeuristic(3e20f, 1e20f), 0.9f);
 }
 
 TEST(DiscreteDistribution, SamplesInProportionToWeights) {

@@ -117,8 +117,8 @@ TEST(PathTracer, ImagesAreBitIdenticalAcrossThreadCounts) {
 TEST(PathTracer, CountsRaysAndSamples) {
     Rendered r = renderScene(test::furnaceScene(0.5f), 16, 3);
     EXPECT_EQ(r.stats.samplesPerPixel, 3);
-    EXPECT_EQ(r.stats.rays.camera, 16u * 16u * 3u);
-    EXPECT_GT(r.stats.rays.shadow, 0u);
+    EXPECT_EQ(r.stats.counters.camera, 16u * 16u * 3u);
+    EXPECT_GT(r.stats.counters.shadow, 0u);
     EXPECT_EQ(r.stats.passes, 2);  // passes of 1 then 2 samples
 }
 
@@ -130,6 +130,34 @@ TEST(Renderer, ThousandsOfSamplesAllArrive) {
     EXPECT_EQ(r.stats.passes, 84);
     for (int y = 0; y < 2; ++y)
         for (int x = 0; x < 2; ++x) EXPECT_EQ(r.image.pixel(x, y)[r.image.channelIndex("sampleCount")], 5000.0f);
+}
+
+TEST(Renderer, DiscardsAndCountsNonFiniteSamples) {
+    // An integrator that returns NaN for every third sample: the pixel keeps the finite samples'
+    // sum (the NaN ones count as zero) and the render reports how many were discarded.
+    class EveryThirdNaN final : public Integrator {
+    public:
+        FilmSample sample(const render::RenderScene&, const render::Camera&, const render::Ray&, SampleStream& rng,
+                          RenderCounters&) const override {
+            FilmSample s;
+            s.radiance = RGB(rng.next() < 0.0f ? 0.0f : 1.0f);
+            if (++calls_ % 3 == 0) s.radiance.y = std::numeric_limits<float>::quiet_NaN();
+            return s;
+        }
+        mutable std::atomic<int> calls_{0};
+    } integrator;
+    auto desc = test::furnaceScene(0.5f);
+    render::RenderScene scene(desc);
+    render::Camera camera(*desc.camera, 3, 1);
+    Film film(3, 1, camera.farClip());
+    RenderSettings settings;
+    settings.samplesPerPixel = 4;
+    settings.threads = 1;
+    RenderStats stats = render(scene, camera, integrator, settings, film);
+    EXPECT_EQ(stats.counters.nonFiniteSamples, 4u);  // 12 samples, every third
+    Image image = film.resolve();
+    for (int x = 0; x < 3; ++x)
+        for (float v : {image.pixel(x, 0)[0], image.pixel(x, 0)[1], image.pixel(x, 0)[2]}) EXPECT_TRUE(std::isfinite(v));
 }
 
 TEST(PathTracer, MaxDepthZeroSeesOnlyEmitters) {
