@@ -6,7 +6,7 @@ set -euo pipefail
 packages=(
   cmake g++ ninja-build pkg-config ccache
   libembree-dev libtbb-dev
-  libopenimageio-dev libopencolorio-dev
+  libopenimageio-dev libopenexr-dev libopencolorio-dev
   libgtest-dev
 )
 
