@@ -24,6 +24,20 @@ render: build
 
 test: build
 	cd $(BUILD_DIR) && ctest --output-on-failure -j $(JOBS)
+	FUZZ_BUILD_DIR=$(BUILD_DIR)/fuzz bash scripts/fuzz_smoke.sh 60
+
+# Fuzzing the USDA reader for longer (fuzz/README.md): make fuzz FUZZ_SECONDS=3600. The working
+# corpus is kept in $(BUILD_DIR)/fuzz/corpus between runs.
+.PHONY: fuzz bench
+fuzz: FUZZ_SECONDS ?= 3600
+fuzz: deps
+	FUZZ_BUILD_DIR=$(BUILD_DIR)/fuzz FUZZ_CORPUS=$(BUILD_DIR)/fuzz/corpus bash scripts/fuzz_smoke.sh $(FUZZ_SECONDS)
+
+# The USDA parsing benchmark (bench/usda_parse_bench.cpp); figures go to bench/results/.
+bench: deps
+	cmake -S . -B $(BUILD_DIR) -G Ninja -DCMAKE_BUILD_TYPE=Release
+	cmake --build $(BUILD_DIR) -j $(JOBS) --target usda_parse_bench
+	$(BUILD_DIR)/bench/usda_parse_bench
 
 clean:
 	rm -rf $(BUILD_DIR) out

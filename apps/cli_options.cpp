@@ -2,7 +2,6 @@
 
 #include <charconv>
 #include <cmath>
-#include <filesystem>
 
 #include "integrators/integrator.h"
 
@@ -35,6 +34,34 @@ private:
 };
 
 }  // namespace
+
+usd::VariantSelection parseVariantSelection(const std::string& text) {
+    auto colon = text.find(':'), equals = text.find('=', colon == std::string::npos ? 0 : colon);
+    if (!text.starts_with("/") || colon == std::string::npos || equals == std::string::npos || colon + 1 == equals)
+        throw UsageError("--variant expects /Prim/Path:set=selection, got '" + text + "'");
+    return {text.substr(0, colon), text.substr(colon + 1, equals - colon - 1), text.substr(equals + 1)};
+}
+
+InfoOptions parseInfoOptions(const std::vector<std::string>& args) {
+    InfoOptions o;
+    ArgCursor cur(args);
+    while (!cur.done()) {
+        const std::string arg = cur.next();
+        if (arg == "--variant") {
+            o.variants.push_back(parseVariantSelection(cur.value(arg)));
+        } else if (arg == "-s" || arg == "--settings") {
+            o.settings = cur.value(arg);
+        } else if (arg.starts_with("-") && arg.size() > 1) {
+            throw UsageError("unknown option '" + arg + "'");
+        } else if (o.scene.empty()) {
+            o.scene = arg;
+        } else {
+            throw UsageError("unexpected argument '" + arg + "' (the scene is already " + o.scene + ")");
+        }
+    }
+    if (o.scene.empty()) throw UsageError("no scene file given");
+    return o;
+}
 
 RenderOptions parseRenderOptions(const std::vector<std::string>& args) {
     RenderOptions o;
@@ -76,6 +103,10 @@ RenderOptions parseRenderOptions(const std::vector<std::string>& args) {
             if (o.maxDepth < 0) throw UsageError("--max-depth must be >= 0");
         } else if (arg == "-f" || arg == "--frame") {
             o.frame = parseNumber<double>(arg, cur.value(arg));
+        } else if (arg == "-s" || arg == "--settings") {
+            o.settings = cur.value(arg);
+        } else if (arg == "--variant") {
+            o.variants.push_back(parseVariantSelection(cur.value(arg)));
         } else if (arg.starts_with("-") && arg.size() > 1) {
             throw UsageError("unknown option '" + arg + "'");
         } else if (o.scene.empty()) {
@@ -85,7 +116,6 @@ RenderOptions parseRenderOptions(const std::vector<std::string>& args) {
         }
     }
     if (o.scene.empty()) throw UsageError("no scene file given");
-    if (o.output.empty()) o.output = std::filesystem::path(o.scene).stem().string() + ".exr";
     return o;
 }
 
@@ -94,17 +124,22 @@ std::string usageText() {
     for (const auto& i : integrators::integratorRegistry())
         integratorList += "                        " + i.name + "  " + i.pathClasses + "  " + i.description + "\n";
     return "usage: fluence render SCENE.usda [options]\n"
+           "       fluence info SCENE.usda [--variant /Prim:set=sel]... [-s /Render/Settings]\n"
            "       fluence --help | --version\n"
            "\n"
-           "Renders a USD scene to a multi-channel OpenEXR image (beauty RGBA in linear Rec.709,\n"
-           "plus albedo, N, Z and sampleCount AOVs).\n"
+           "`render` renders a USD scene to a multi-channel OpenEXR image (beauty RGBA in linear Rec.709,\n"
+           "plus albedo, N, Z and sampleCount AOVs). `info` prints the composed prim tree, the cameras,\n"
+           "lights, materials, volumes and render settings, and every asset path with whether it resolves.\n"
            "\n"
            "options:\n"
-           "  -o, --output FILE.exr   output image (default: SCENE's name with .exr, in the current folder)\n"
+           "  -o, --output FILE.exr   output image (default: the render product's productName, else SCENE's\n"
+           "                          name with .exr, in the current folder)\n"
            "      --preview FILE.png  also write an sRGB preview through the OCIO display/view transform\n"
            "      --spp N             samples per pixel (default 64)\n"
-           "  -r, --res W H           resolution (default: the RenderSettings prim's, else 640 480)\n"
-           "  -c, --camera PATH       camera prim (default: the RenderSettings camera, else the first Camera)\n"
+           "  -r, --res W H           resolution (default: the render settings', else 640 480)\n"
+           "  -c, --camera PATH       camera prim (default: the render settings' camera, else the first Camera)\n"
+           "  -s, --settings PATH     RenderSettings prim (default: the stage's renderSettingsPrimPath)\n"
+           "      --variant P:SET=SEL select variant SEL of variant set SET on prim P (repeatable)\n"
            "  -f, --frame F           time code to render (default: the stage's startTimeCode, else default values)\n"
            "  -j, --threads N         worker threads (default 0: every core)\n"
            "      --seed S            random seed (default 0); same seed and spp give a bit-identical image\n"

@@ -8,6 +8,8 @@
 #include <string>
 #include <vector>
 
+#include "scene/stage.h"
+
 namespace fluence::app {
 
 class UsageError : public std::runtime_error {
@@ -28,6 +30,15 @@ struct RenderOptions {
     double timeLimit = 0.0;         // --time-limit SECONDS (0: none)
     int maxDepth = 64;              // --max-depth N
     std::optional<double> frame;    // -f/--frame F (default: the stage's startTimeCode, else USD's default time)
+    std::string settings;           // -s/--settings /Render/Path (default: the stage's renderSettingsPrimPath)
+    std::vector<usd::VariantSelection> variants;  // --variant /Prim/Path:set=selection (repeatable)
+};
+
+// Options of `fluence info`.
+struct InfoOptions {
+    std::string scene;
+    std::vector<usd::VariantSelection> variants;
+    std::string settings;
 };
 
 inline constexpr int kDefaultSpp = 64;
@@ -35,6 +46,9 @@ inline constexpr int kDefaultWidth = 640, kDefaultHeight = 480;
 
 // Parses the arguments after `fluence render`. Throws UsageError with a one-line reason.
 RenderOptions parseRenderOptions(const std::vector<std::string>& args);
+InfoOptions parseInfoOptions(const std::vector<std::string>& args);
+// Parses "/Prim/Path:set=selection".
+usd::VariantSelection parseVariantSelection(const std::string& text);
 
 std::string usageText();
 

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "apps/cli_options.h"
+#include "apps/info_command.h"
 #include "apps/render_command.h"
 #include "version.h"
 
@@ -24,8 +25,9 @@ int main(int argc, char** argv) {
         std::printf("fluence %s\n", fluence::kFluenceVersion);
         return kExitOk;
     }
-    if (args[0] != "render") {
-        std::fprintf(stderr, "fluence: error: unknown command '%s' (try 'fluence --help')\n", args[0].c_str());
+    const std::string command = args[0];
+    if (command != "render" && command != "info") {
+        std::fprintf(stderr, "fluence: error: unknown command '%s' (try 'fluence --help')\n", command.c_str());
         return kExitUsage;
     }
     args.erase(args.begin());
@@ -35,7 +37,7 @@ int main(int argc, char** argv) {
             return kExitOk;
         }
     try {
-        return runRender(parseRenderOptions(args));
+        return command == "info" ? runInfo(parseInfoOptions(args)) : runRender(parseRenderOptions(args));
     } catch (const UsageError& e) {
         std::fprintf(stderr, "fluence: error: %s\n(try 'fluence --help')\n", e.what());
         return kExitUsage;

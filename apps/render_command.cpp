@@ -3,7 +3,6 @@
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
-#include <set>
 #include <thread>
 
 #include "apps/progress_reporter.h"
@@ -31,21 +30,6 @@ std::string counted(std::size_t n, const std::string& singular, const std::strin
     return std::to_string(n) + " " + (n == 1 ? singular : (plural.empty() ? singular + "s" : plural));
 }
 
-void printError(const std::string& message) { std::fprintf(stderr, "fluence: error: %s\n", message.c_str()); }
-
-// Warnings are printed once per distinct (prim, message).
-class WarningLog {
-public:
-    void operator()(const std::string& primPath, const std::string& message) {
-        if (seen_.insert(primPath + '\x1f' + message).second)
-            std::fprintf(stderr, "fluence: warning: %s: %s\n", primPath.c_str(), message.c_str());
-    }
-    std::size_t count() const { return seen_.size(); }
-
-private:
-    std::set<std::string> seen_;
-};
-
 }  // namespace
 
 int runRender(const RenderOptions& opt) {
@@ -60,29 +44,18 @@ int runRender(const RenderOptions& opt) {
         return kExitColorConfig;
     }
 
-    // Parse.
+    // Parse and compose.
     auto t = Clock::now();
+    WarningLog warnings;
     std::unique_ptr<usd::Stage> stage;
-    if (!std::filesystem::exists(opt.scene)) {
-        printError("scene file not found: " + opt.scene);
-        return kExitMissingInput;
-    }
-    try {
-        stage = usd::Stage::open(opt.scene);
-    } catch (const usd::FileError& e) {
-        printError(e.what());
-        return kExitMissingInput;
-    } catch (const usd::ParseError& e) {
-        printError(e.what());
-        return kExitScene;
-    }
+    if (int code = openStage(opt.scene, opt.variants, warnings, stage); code != kExitOk) return code;
     const double parseSeconds = secondsSince(t);
 
     // Build: delegate, then the render scene.
     t = Clock::now();
-    WarningLog warnings;
     delegate::DelegateOptions dopt;
     dopt.cameraPath = opt.camera;
+    dopt.settingsPath = opt.settings;
     dopt.time = opt.frame ? *opt.frame : stage->startTimeCode().value_or(usd::kDefaultTime);
     dopt.convertColor = [&](const RGB& c, const std::string& space) { return colors->toRenderingSpace(space, c); };
     dopt.warn = [&](const std::string& path, const std::string& message) { warnings(path, message); };
@@ -105,11 +78,23 @@ int runRender(const RenderOptions& opt) {
     if (scene->lightCount() == 0) warnings(populated->cameraPath, "the scene has no lights; the image will be black");
 
     // Render.
+    // Resolution and output: the command line, else the render settings' first product, else the
+    // settings, else the defaults.
+    const auto& settings = populated->renderSettings;
+    const delegate::RenderProductDesc* product = settings && !settings->products.empty() ? &settings->products.front() : nullptr;
+    if (settings && settings->products.size() > 1)
+        warnings(settings->path, "only the first render product is written in this version; " +
+                                     std::to_string(settings->products.size() - 1) + " more ignored");
     std::pair<int, int> res{kDefaultWidth, kDefaultHeight};
     if (opt.resolution)
         res = *opt.resolution;
-    else if (populated->renderSettings && populated->renderSettings->resolution)
-        res = *populated->renderSettings->resolution;
+    else if (product)
+        res = product->resolution;
+    else if (settings)
+        res = settings->resolution;
+    std::string outputPath = opt.output;
+    if (outputPath.empty() && product && !product->productName.empty()) outputPath = product->productName;
+    if (outputPath.empty()) outputPath = std::filesystem::path(opt.scene).stem().string() + ".exr";
     std::unique_ptr<render::Camera> camera;
     try {
         camera = std::make_unique<render::Camera>(*populated->scene.camera, res.first, res.second);
@@ -150,7 +135,7 @@ int runRender(const RenderOptions& opt) {
                      {"fluence/seed", float(opt.seed)},
                      {"fluence/renderSeconds", float(stats.seconds)}};
     try {
-        output::writeExr(opt.output, image, header);
+        output::writeExr(outputPath, image, header);
         if (!opt.preview.empty()) output::writePreviewPng(opt.preview, image, *colors);
     } catch (const output::OutputError& e) {
         printError(e.what());
@@ -179,7 +164,7 @@ int runRender(const RenderOptions& opt) {
     if (stats.counters.nonFiniteSamples > 0)
         std::fprintf(stderr, "fluence: warning: %llu samples were NaN or infinite and were discarded (please report)\n",
                      static_cast<unsigned long long>(stats.counters.nonFiniteSamples));
-    std::printf("  output       %s%s%s\n", opt.output.c_str(), opt.preview.empty() ? "" : ", ", opt.preview.c_str());
+    std::printf("  output       %s%s%s\n", outputPath.c_str(), opt.preview.empty() ? "" : ", ", opt.preview.c_str());
     return kExitOk;
 }
 

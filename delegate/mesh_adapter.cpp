@@ -1,6 +1,7 @@
 #include "delegate/mesh_adapter.h"
 
 #include <set>
+#include <utility>
 
 namespace fluence::delegate {
 
@@ -70,9 +71,10 @@ void checkPrimvarSize(const PrimReader& prim, const Primvar3& pv, std::size_t fa
 
 }  // namespace
 
-render::MeshDesc meshFromPrim(const PrimReader& prim, const Matrix4& toWorld,
-                              const std::function<RGB(const RGB&, const std::string&)>& convertColor) {
-    render::MeshDesc mesh;
+TriangulatedMesh triangulatedMeshFromPrim(const PrimReader& prim, const Matrix4& toWorld,
+                                          const std::function<RGB(const RGB&, const std::string&)>& convertColor) {
+    TriangulatedMesh result;
+    render::MeshDesc& mesh = result.mesh;
     mesh.name = prim.path();
     std::vector<double> points = prim.numbers("points", 3).value_or(std::vector<double>{});
     std::vector<double> counts = prim.numbers("faceVertexCounts", 1).value_or(std::vector<double>{});
@@ -128,11 +130,18 @@ render::MeshDesc meshFromPrim(const PrimReader& prim, const Matrix4& toWorld,
                 addCorner(key(0));
                 addCorner(key(leftHanded ? c + 1 : c));
                 addCorner(key(leftHanded ? c : c + 1));
+                result.triangleFaces.push_back(f);
             }
         }
         start += n;
     }
-    return mesh;
+    result.faceCount = counts.size();
+    return result;
+}
+
+render::MeshDesc meshFromPrim(const PrimReader& prim, const Matrix4& toWorld,
+                              const std::function<RGB(const RGB&, const std::string&)>& convertColor) {
+    return std::move(triangulatedMeshFromPrim(prim, toWorld, convertColor).mesh);
 }
 
 }  // namespace fluence::delegate

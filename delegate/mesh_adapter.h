@@ -5,11 +5,13 @@
 // interpolation (constant, uniform, vertex, varying, faceVarying) and an optional ":indices"
 // array. Topology errors (counts that do not add up, indices out of range, primvars of the wrong
 // length) raise SceneError naming the prim. Subdivision (issue 5) is not applied yet: a
-// subdivision surface renders as its control cage.
+// subdivision surface renders as its control cage. Per-face materials (materialBind GeomSubsets)
+// split the result in geom_subset.h.
 #pragma once
 
 #include <functional>
 #include <string>
+#include <vector>
 
 #include "core/matrix.h"
 #include "delegate/prim_reader.h"
@@ -21,5 +23,17 @@ namespace fluence::delegate {
 // rendering space.
 render::MeshDesc meshFromPrim(const PrimReader& prim, const Matrix4& toWorld,
                               const std::function<RGB(const RGB&, const std::string&)>& convertColor);
+
+// The same mesh with its face bookkeeping, for per-face data such as GeomSubsets: the authored
+// face (index into faceVertexCounts) each triangle came from, and the number of authored faces
+// (holes and faces of fewer than 3 vertices included, as GeomSubset indices count them).
+struct TriangulatedMesh {
+    render::MeshDesc mesh;
+    std::vector<std::size_t> triangleFaces;  // one per triangle
+    std::size_t faceCount = 0;
+};
+
+TriangulatedMesh triangulatedMeshFromPrim(const PrimReader& prim, const Matrix4& toWorld,
+                                          const std::function<RGB(const RGB&, const std::string&)>& convertColor);
 
 }  // namespace fluence::delegate

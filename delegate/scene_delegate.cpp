@@ -3,12 +3,9 @@
 #include <algorithm>
 #include <map>
 #include <set>
-#include <unordered_map>
 
-#include "delegate/camera_adapter.h"
+#include "delegate/implicit_geometry.h"
 #include "delegate/light_adapter.h"
-#include "delegate/mesh_adapter.h"
-#include "delegate/xform.h"
 
 namespace fluence::delegate {
 
@@ -22,109 +19,164 @@ bool isStructuralType(const std::string& t) {
     return kTypes.contains(t);
 }
 
-std::string parentPathOf(const std::string& path) {
-    auto slash = path.rfind('/');
-    return slash == 0 || slash == std::string::npos ? "/" : path.substr(0, slash);
+bool isGeometryType(const std::string& t) { return t == "Mesh" || isImplicitType(t); }
+
+// Whether a prim's subtree is rendered at all: visibility and purpose prune it.
+bool rendered(const usd::PrimSpec& prim, double time) {
+    PrimReader reader(prim, time);
+    if (reader.token({"visibility"}, "inherited") == "invisible") return false;
+    std::string purpose = reader.token({"purpose"}, "default");
+    return purpose != "guide" && purpose != "proxy";
 }
 
-std::optional<RenderSettingsInfo> findRenderSettings(const usd::Stage& stage, double time) {
-    const usd::PrimSpec* settings = nullptr;
-    if (const usd::MetadataEntry* e = usd::findMetadata(stage.rootLayer().metadata, "renderSettingsPrimPath"))
-        settings = stage.prim(e->value.asString().value_or(""));
-    if (!settings)
-        stage.traverse([&](const usd::PrimSpec& p) {
-            if (!settings && p.typeName == "RenderSettings") settings = &p;
-            return !settings;
-        });
-    if (!settings) return std::nullopt;
-    RenderSettingsInfo info;
-    info.path = settings->path;
-    PrimReader reader(*settings, time);
-    if (auto r = reader.value("resolution")) {
-        if (!r->isNumeric() || r->numbers.size() != 2 || r->numbers[0] < 1 || r->numbers[1] < 1)
-            reader.fail("resolution must be an int2 of positive values, got " + r->toString());
-        info.resolution = std::make_pair(static_cast<int>(r->numbers[0]), static_cast<int>(r->numbers[1]));
-    }
-    if (const usd::RelationshipSpec* cam = settings->relationship("camera"); cam && !cam->targets.empty())
-        info.cameraPath = resolveTargetPath(settings->path, cam->targets.front());
-    return info;
+// Mesh attributes by the dirty bit an edit of them sets.
+std::uint32_t meshBitsFor(const std::string& name) {
+    if (name == "points") return kDirtyPoints;
+    if (name == "normals" || name.starts_with("primvars:")) return kDirtyPrimvars;
+    return kDirtyTopology;  // faceVertex*, holeIndices, orientation, radius, size, height, axis, ...
 }
 
 }  // namespace
 
-DelegateResult populateScene(const usd::Stage& stage, const DelegateOptions& options) {
-    DelegateResult result;
-    render::SceneDescription& scene = result.scene;
-    const double time = options.time;
-    result.renderSettings = findRenderSettings(stage, time);
+SceneDelegate::SceneDelegate(usd::Stage& stage, DelegateOptions options) : stage_(stage), options_(std::move(options)) {
+    renderSettings_ = renderSettingsFromStage(stage_, options_.settingsPath, options_.time);
+    populate("/");
+}
 
-    std::unordered_map<std::string, Matrix4> worldOf{{"/", Matrix4::identity()}};
-    std::map<std::string, int> materialIndex;
+void SceneDelegate::populate(const std::string& root) {
     std::map<std::string, std::pair<std::size_t, std::string>> unsupported;  // type -> (count, first prim)
-    std::vector<std::pair<std::string, Matrix4>> cameras;
-
-    auto warnFor = [&](const std::string& path) {
-        return [&options, path](const std::string& message) { options.warn(path, message); };
-    };
-
-    stage.traverse([&](const usd::PrimSpec& prim) {
-        ++result.primsVisited;
-        PrimReader reader(prim, time);
-        if (reader.token({"visibility"}, "inherited") == "invisible") return false;
-        std::string purpose = reader.token({"purpose"}, "default");
-        if (purpose == "guide" || purpose == "proxy") return false;
-
-        LocalTransform local = localTransform(reader);
-        const Matrix4 world = local.resetsXformStack ? local.matrix : worldOf.at(parentPathOf(prim.path)) * local.matrix;
-        worldOf[prim.path] = world;
-
+    stage_.traverse([&](const usd::PrimSpec& prim) {
+        if (!isAtOrBelow(prim.path, root)) return isAtOrBelow(root, prim.path) && rendered(prim, options_.time);
+        if (!rendered(prim, options_.time)) return false;
         const std::string& type = prim.typeName;
-        if (type == "Mesh") {
-            render::MeshDesc mesh = meshFromPrim(reader, world, options.convertColor);
-            std::string material = boundMaterialPath(stage, prim);
-            if (!material.empty()) {
-                auto [it, inserted] = materialIndex.try_emplace(material, static_cast<int>(scene.materials.size()));
-                if (inserted)
-                    scene.materials.push_back(materialFromPath(stage, material, time, options.convertColor, options.warn));
-                mesh.material = it->second;
-                mesh.cornerColors.clear();  // a bound material replaces displayColor
-            }
-            if (!mesh.indices.empty()) scene.meshes.push_back(std::move(mesh));
-        } else if (type == "Camera") {
-            cameras.emplace_back(prim.path, world);
-        } else if (isLightType(type)) {
-            if (auto light = lightFromPrim(reader, world, warnFor(prim.path))) scene.lights.push_back(std::move(*light));
-        } else if (!isStructuralType(type)) {
+        if (isGeometryType(type))
+            index_.insert(std::make_unique<MeshRprim>(prim.path));
+        else if (type == "Camera")
+            index_.insert(std::make_unique<CameraSprim>(prim.path));
+        else if (isLightType(type))
+            index_.insert(std::make_unique<LightSprim>(prim.path));
+        else if (!isStructuralType(type)) {
             auto& [count, first] = unsupported[type];
             if (count++ == 0) first = prim.path;
         }
         return true;
     });
-
     for (const auto& [type, entry] : unsupported)
-        options.warn(entry.second, "prim type '" + type + "' is not supported yet; skipped " + std::to_string(entry.first) +
-                                       (entry.first == 1 ? " prim" : " prims"));
+        options_.warn(entry.second, "prim type '" + type + "' is not supported yet; skipped " + std::to_string(entry.first) +
+                                        (entry.first == 1 ? " prim" : " prims"));
+}
 
-    // The camera: the one asked for, else the render settings' camera, else the first one found.
-    std::string wanted = options.cameraPath;
-    if (wanted.empty() && result.renderSettings) wanted = result.renderSettings->cameraPath;
+std::size_t SceneDelegate::sync() {
+    std::size_t synced = index_.sync(context());
+    chooseCamera();
+    return synced;
+}
+
+void SceneDelegate::chooseCamera() {
+    // The camera asked for, else the render settings' camera, else the first one in traversal order.
+    std::string wanted = options_.cameraPath;
+    if (wanted.empty() && renderSettings_) wanted = renderSettings_->cameraPath;
     if (!wanted.empty()) {
-        const usd::PrimSpec* prim = stage.prim(wanted);
+        const usd::PrimSpec* prim = stage_.prim(wanted);
         if (!prim) throw SceneError("camera " + wanted + " does not exist in the scene");
         if (prim->typeName != "Camera")
             throw SceneError("camera " + wanted + " is a " + (prim->typeName.empty() ? "typeless prim" : prim->typeName) +
                              ", not a Camera");
-        auto it = std::find_if(cameras.begin(), cameras.end(), [&](const auto& c) { return c.first == wanted; });
-        if (it == cameras.end()) throw SceneError("camera " + wanted + " is not active, defined and visible in the scene");
-        scene.camera = cameraFromPrim(PrimReader(*prim, time), it->second);
-        result.cameraPath = wanted;
-    } else if (!cameras.empty()) {
-        scene.camera = cameraFromPrim(PrimReader(*stage.prim(cameras.front().first), time), cameras.front().second);
-        result.cameraPath = cameras.front().first;
-    } else {
-        throw SceneError("the scene has no camera: add a Camera prim, or name one with -c/--camera");
+        if (!index_.find(wanted)) throw SceneError("camera " + wanted + " is not active, defined and visible in the scene");
+        cameraPath_ = wanted;
+        return;
     }
-    return result;
+    cameraPath_.clear();
+    stage_.traverse([&](const usd::PrimSpec& prim) {
+        if (cameraPath_.empty() && prim.typeName == "Camera" && index_.find(prim.path)) cameraPath_ = prim.path;
+        return cameraPath_.empty();
+    });
+    if (cameraPath_.empty()) throw SceneError("the scene has no camera: add a Camera prim, or name one with -c/--camera");
+}
+
+render::SceneDescription SceneDelegate::sceneDescription() const {
+    // In the stage's traversal order, so the description (and the render) does not depend on
+    // the order prims entered the index; materials in the order meshes first bind them.
+    render::SceneDescription scene;
+    std::map<std::string, int> materialIndex;
+    auto materialFor = [&](const std::string& path) {
+        auto [it, inserted] = materialIndex.try_emplace(path, static_cast<int>(scene.materials.size()));
+        if (inserted) scene.materials.push_back(static_cast<const MaterialSprim&>(*index_.find(path)).material());
+        return it->second;
+    };
+    stage_.traverse([&](const usd::PrimSpec& spec) {
+        const RenderPrim* prim = index_.find(spec.path);
+        if (!prim) return true;
+        switch (prim->kind()) {
+            case RenderPrim::Kind::Light:
+                if (const auto& light = static_cast<const LightSprim&>(*prim).light()) scene.lights.push_back(*light);
+                break;
+            case RenderPrim::Kind::Camera:
+                if (spec.path == cameraPath_) scene.camera = static_cast<const CameraSprim&>(*prim).camera();
+                break;
+            case RenderPrim::Kind::Mesh:
+                for (MeshRprim::Part& part : static_cast<const MeshRprim&>(*prim).worldParts()) {
+                    if (part.objectSpace.indices.empty()) continue;
+                    if (!part.materialPath.empty()) {
+                        part.objectSpace.material = materialFor(part.materialPath);
+                        part.objectSpace.cornerColors.clear();  // a bound material replaces displayColor
+                    }
+                    scene.meshes.push_back(std::move(part.objectSpace));
+                }
+                break;
+            case RenderPrim::Kind::Material:
+                break;
+        }
+        return true;
+    });
+    if (!scene.camera) throw SceneError("the scene has no camera: add a Camera prim, or name one with -c/--camera");
+    return scene;
+}
+
+void SceneDelegate::setTime(double time) {
+    options_.time = time;
+    renderSettings_ = renderSettingsFromStage(stage_, options_.settingsPath, time);
+    for (const auto& [path, prim] : index_.prims()) {
+        if (prim->transformAnimated()) prim->markDirty(kDirtyTransform);
+        if (prim->dataAnimated()) prim->markDirty(kAllDirty & ~std::uint32_t(kDirtyTransform));
+    }
+}
+
+void SceneDelegate::setAttribute(const std::string& primPath, const std::string& name, const usd::Value& value) {
+    if (!stage_.setAttribute(primPath, name, value))
+        throw SceneError("cannot set " + primPath + "." + name + ": the prim does not exist");
+    if (name == "visibility" || name == "purpose") {
+        index_.removeSubtree(primPath);
+        populate(primPath);
+        return;
+    }
+    if (name.starts_with("xformOp")) {
+        index_.markSubtreeDirty(primPath, kDirtyTransform);
+        return;
+    }
+    if (RenderPrim* prim = index_.find(primPath)) {
+        prim->markDirty(prim->kind() == RenderPrim::Kind::Mesh ? meshBitsFor(name) : kDirtyParams);
+        return;
+    }
+    // Inside a material (a shader input, an interface input), or a GeomSubset under a mesh.
+    for (std::string p = primPath; p.size() > 1; p = p.substr(0, std::max<std::size_t>(p.rfind('/'), 1)))
+        if (RenderPrim* owner = index_.find(p)) {
+            owner->markDirty(owner->kind() == RenderPrim::Kind::Mesh ? kDirtyTopology : kDirtyParams);
+            return;
+        }
+}
+
+void SceneDelegate::setVariantSelection(const std::string& primPath, const std::string& variantSet,
+                                        const std::string& selection) {
+    stage_.setVariantSelection(primPath, variantSet, selection);
+    index_.removeSubtree(primPath);
+    populate(primPath);
+}
+
+DelegateResult populateScene(usd::Stage& stage, const DelegateOptions& options) {
+    SceneDelegate delegate(stage, options);
+    delegate.sync();
+    return {delegate.sceneDescription(), delegate.cameraPath(), delegate.renderSettings()};
 }
 
 }  // namespace fluence::delegate

@@ -1,15 +1,24 @@
-// The scene delegate: reads a USD stage and produces the render core's SceneDescription.
+// The scene delegate: reads a USD stage into a render index and hands the render core its
+// SceneDescription.
 //
-// This is the only place that knows USD schema names. It walks the stage's defined, active
-// prims depth-first, composing world transforms (UsdGeomXformable), skipping invisible
-// subtrees and guide/proxy purposes, and hands each prim to the adapter for its type: Mesh,
-// Camera, the UsdLux lights, and (through material:binding) UsdShade materials. Authored
-// colours are converted into the rendering space through `convertColor`. Prim types it cannot
-// render yet are skipped with one warning per type. Semantic errors raise SceneError naming the
-// prim path.
+// This is the only place that knows USD schema names. Populating walks the stage's defined,
+// active prims depth-first, skipping invisible subtrees and guide/proxy purposes, and inserts a
+// render prim per Mesh or implicit surface (rprims), Camera and UsdLux light (sprims); syncing
+// pulls each dirty prim's data through the adapter for its schema, creating a material sprim for
+// every material a mesh binds. Authored colours are converted into the rendering space through
+// `convertColor`. Prim types it cannot render yet are skipped with one warning per type. Semantic
+// errors raise SceneError naming the prim path.
 //
-// Change tracking (dirty bits, re-sync of edited prims) arrives with the composition issue; for
-// now the delegate translates the whole stage once.
+// Change tracking. Edits go through the delegate, which applies them to the stage and marks only
+// the render prims they affect (render_index.h states the dirty-bit contract):
+//   xformOp* / xformOpOrder on P      -> kDirtyTransform on every prim at or below P
+//   points / topology / primvars of a mesh or implicit prim -> that rprim's data bits
+//   any attribute of a light or camera -> that sprim
+//   any attribute inside a Material    -> that material sprim (meshes keep their data)
+//   material:binding*                  -> kDirtyMaterial on meshes at or below P
+//   visibility / purpose / active, variant selections -> the subtree at P is removed and
+//                                        populated again (new prims, all dirty)
+//   a new render time                  -> only prims whose transform or data is animated
 #pragma once
 
 #include <functional>
@@ -18,31 +27,60 @@
 
 #include "delegate/material_adapter.h"
 #include "delegate/prim_reader.h"
+#include "delegate/render_index.h"
+#include "delegate/render_settings_adapter.h"
 #include "render/scene_description.h"
 #include "scene/stage.h"
 
 namespace fluence::delegate {
 
 struct DelegateOptions {
-    std::string cameraPath;  // "" = the render settings' camera, else the first Camera prim
+    std::string cameraPath;    // "" = the render settings' camera, else the first Camera prim
+    std::string settingsPath;  // "" = the stage's renderSettingsPrimPath
     double time = usd::kDefaultTime;
     ColorConverter convertColor;  // authored colour + colour space -> rendering space
     Warn warn;                    // (prim path, message)
 };
 
-struct RenderSettingsInfo {
-    std::string path;
-    std::optional<std::pair<int, int>> resolution;
-    std::string cameraPath;
+class SceneDelegate {
+public:
+    // Populates the render index from the whole stage (every prim dirty; call sync()).
+    SceneDelegate(usd::Stage& stage, DelegateOptions options);
+
+    // Syncs every dirty render prim; returns how many were synced.
+    std::size_t sync();
+    // The render core's input, from the synced index: world-space meshes, materials, lights and
+    // the chosen camera. Throws SceneError when the camera cannot be chosen.
+    render::SceneDescription sceneDescription() const;
+    const std::string& cameraPath() const { return cameraPath_; }
+    const std::optional<RenderSettingsDesc>& renderSettings() const { return renderSettings_; }
+    const RenderIndex& renderIndex() const { return index_; }
+
+    // Edits (see the table above). Each returns after marking; call sync() to pull the changes.
+    void setTime(double time);
+    void setAttribute(const std::string& primPath, const std::string& name, const usd::Value& value);
+    void setVariantSelection(const std::string& primPath, const std::string& variantSet, const std::string& selection);
+
+private:
+    void populate(const std::string& root);
+    void chooseCamera();
+    SyncContext context() const { return {stage_, options_.time, options_.convertColor, options_.warn}; }
+
+    usd::Stage& stage_;
+    DelegateOptions options_;
+    RenderIndex index_;
+    std::vector<std::string> cameraOrder_;  // cameras in traversal order
+    std::optional<RenderSettingsDesc> renderSettings_;
+    std::string cameraPath_;
 };
 
 struct DelegateResult {
     render::SceneDescription scene;
     std::string cameraPath;
-    std::optional<RenderSettingsInfo> renderSettings;
-    std::size_t primsVisited = 0;
+    std::optional<RenderSettingsDesc> renderSettings;
 };
 
-DelegateResult populateScene(const usd::Stage& stage, const DelegateOptions& options);
+// Populates, syncs and describes a stage in one call (what a single-frame render needs).
+DelegateResult populateScene(usd::Stage& stage, const DelegateOptions& options);
 
 }  // namespace fluence::delegate

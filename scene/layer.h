@@ -1,5 +1,5 @@
-// The specs of one USD layer, as authored: the parser's output and, until composition lands, the
-// stage's only layer.
+// The specs of one USD layer, as authored: the parser's output, and (built by scene/flatten.h) the
+// stage's composed, flattened layer.
 //
 // A Layer is plain data: layer metadata, root prim specs, and under each prim its metadata,
 // properties (attributes and relationships) in authored order, child prims and variant sets.
@@ -63,6 +63,7 @@ struct RelationshipSpec {
 };
 
 struct PrimSpec;
+struct VariantSetSpec;
 
 struct VariantSpec {
     std::string name;
@@ -70,6 +71,7 @@ struct VariantSpec {
     std::vector<AttributeSpec> attributes;
     std::vector<RelationshipSpec> relationships;
     std::vector<std::unique_ptr<PrimSpec>> children;
+    std::vector<VariantSetSpec> variantSets;  // variant sets nested inside this variant
 };
 
 struct VariantSetSpec {

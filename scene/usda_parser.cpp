@@ -35,8 +35,8 @@
 // `reorder rootPrims` on the layer; `delete`/`reorder` of relationship targets and connections
 // as "targetPaths"/"connectionPaths" on the property (other list ops set the spec's own op and
 // paths; the last such statement wins); relationship time samples as a "timeSamples" dictionary
-// keyed by the time's text. Variant sets nested inside a variant are parsed and checked but not
-// kept: VariantSpec has no place for them yet.
+// keyed by the time's text. Variant sets nested inside a variant are kept in that variant's
+// `variantSets`.
 #include "scene/usda_parser.h"
 
 #include <algorithm>
@@ -390,12 +390,11 @@ void Parser::parseVariantSet(Body& body) {
             lexer_.fail(bodyOpen, "expected '{' to open the body of " + variantWhat + ", found " +
                                       describe(bodyOpen));
         }
-        std::vector<VariantSetSpec> nestedSets;  // checked, then dropped (see the file comment)
         variantBody.metadata = &variant.metadata;
         variantBody.attributes = &variant.attributes;
         variantBody.relationships = &variant.relationships;
         variantBody.children = &variant.children;
-        variantBody.variantSets = &nestedSets;
+        variantBody.variantSets = &variant.variantSets;
         parseBody(variantBody, bodyOpen, variantWhat, locate(variantName));
         set.variants.push_back(std::move(variant));
     }

@@ -8,6 +8,7 @@ packages=(
   libembree-dev libtbb-dev
   libopenimageio-dev libopenexr-dev libopencolorio-dev
   libgtest-dev
+  clang-14 libclang-rt-14-dev llvm-14
 )
 
 missing=()

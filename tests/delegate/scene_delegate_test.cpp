@@ -250,10 +250,10 @@ def Xform "Strong"
 
 TEST(SceneDelegate, SkipsInvisibleGuidesAndWarnsOncePerUnsupportedType) {
     auto p = populate(kCamera + R"(
-def Sphere "A"
+def Points "A"
 {
 }
-def Sphere "B"
+def Points "B"
 {
 }
 def Mesh "Hidden"
@@ -279,7 +279,7 @@ over "NotDefined"
 )");
     EXPECT_TRUE(p.result.scene.meshes.empty());
     ASSERT_EQ(p.warnings.size(), 1u);
-    EXPECT_NE(p.warnings[0].find("'Sphere' is not supported yet; skipped 2 prims"), std::string::npos) << p.warnings[0];
+    EXPECT_NE(p.warnings[0].find("'Points' is not supported yet; skipped 2 prims"), std::string::npos) << p.warnings[0];
 }
 
 TEST(SceneDelegate, AuthoredColoursGoThroughTheColourConverterWithTheirColourSpace) {
@@ -336,8 +336,8 @@ def Scope "Render"
     EXPECT_EQ(p.result.cameraPath, "/Second");
     EXPECT_FLOAT_EQ(p.result.scene.camera->focalLength, 35.0f);
     EXPECT_FLOAT_EQ(p.result.scene.camera->nearClip, 0.5f);
-    ASSERT_TRUE(p.result.renderSettings && p.result.renderSettings->resolution);
-    EXPECT_EQ(*p.result.renderSettings->resolution, std::make_pair(320, 200));
+    ASSERT_TRUE(p.result.renderSettings);
+    EXPECT_EQ(p.result.renderSettings->resolution, std::make_pair(320, 200));
     EXPECT_EQ(populate("#usda 1.0\n" + kCamera + "def Camera \"Other\"\n{\n}\n", "/Other").result.cameraPath, "/Other");
     EXPECT_THROW(populate("#usda 1.0\n" + kCamera, "/Missing"), SceneError);
     EXPECT_THROW(populate("#usda 1.0\ndef Xform \"X\"\n{\n}\n"), SceneError);

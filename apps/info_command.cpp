@@ -1,0 +1,136 @@
+#include "apps/info_command.h"
+
+#include <cstdio>
+#include <functional>
+
+#include "apps/scene_loading.h"
+#include "delegate/light_adapter.h"
+#include "delegate/material_adapter.h"
+#include "delegate/prim_reader.h"
+#include "delegate/render_settings_adapter.h"
+
+namespace fluence::app {
+
+namespace {
+
+const char* specifierName(usd::Specifier s) {
+    switch (s) {
+        case usd::Specifier::Def: return "def";
+        case usd::Specifier::Over: return "over";
+        case usd::Specifier::Class: return "class";
+    }
+    return "?";
+}
+
+std::string metadataString(const usd::PrimSpec& prim, const char* key) {
+    const usd::MetadataEntry* e = usd::findMetadata(prim.metadata, key);
+    return e ? e->value.toString() : std::string();
+}
+
+void printTree(const usd::PrimSpec& prim, int depth) {
+    std::string line(2 * depth + 2, ' ');
+    line += prim.name;
+    if (!prim.typeName.empty()) line += "  " + prim.typeName;
+    if (prim.specifier != usd::Specifier::Def) line += std::string("  (") + specifierName(prim.specifier) + ")";
+    for (const char* key : {"kind", "active", "instanceable"}) {
+        std::string v = metadataString(prim, key);
+        if (!v.empty()) line += std::string("  ") + key + "=" + v;
+    }
+    std::printf("%s\n", line.c_str());
+    for (const auto& child : prim.children) printTree(*child, depth + 1);
+}
+
+void section(const char* title, std::size_t count) { std::printf("\n%s (%zu)\n", title, count); }
+
+}  // namespace
+
+int runInfo(const InfoOptions& opt) {
+    WarningLog warnings;
+    std::unique_ptr<usd::Stage> stage;
+    if (int code = openStage(opt.scene, opt.variants, warnings, stage); code != kExitOk) return code;
+    const double time = stage->startTimeCode().value_or(usd::kDefaultTime);
+
+    std::printf("scene        %s\n", opt.scene.c_str());
+    std::printf("stage        upAxis %c, metersPerUnit %g, defaultPrim %s\n", stage->upAxis(), stage->metersPerUnit(),
+                stage->defaultPrim().empty() ? "(none)" : stage->defaultPrim().c_str());
+    if (auto start = stage->startTimeCode(), end = stage->endTimeCode(); start || end)
+        std::printf("time codes   %g to %g\n", start.value_or(0.0), end.value_or(start.value_or(0.0)));
+
+    std::vector<std::string> layers = stage->layerFiles();
+    section("layers", layers.size());
+    for (const std::string& l : layers) std::printf("  %s\n", l.c_str());
+
+    const usd::Layer& composed = stage->composedLayer();
+    std::size_t primCount = 0;
+    std::function<void(const usd::PrimSpec&)> count = [&](const usd::PrimSpec& p) {
+        ++primCount;
+        for (const auto& c : p.children) count(*c);
+    };
+    for (const auto& root : composed.rootPrims) count(*root);
+    section("prims", primCount);
+    for (const auto& root : composed.rootPrims) printTree(*root, 0);
+
+    std::vector<std::string> cameras, lights, materials, volumes, settings;
+    stage->traverse([&](const usd::PrimSpec& p) {
+        delegate::PrimReader r(p, time);
+        if (p.typeName == "Camera") {
+            cameras.push_back(p.path + "  focalLength " + std::to_string(r.number({"focalLength"}, 50.0)) + ", aperture " +
+                              std::to_string(r.number({"horizontalAperture"}, 20.955)) + " x " +
+                              std::to_string(r.number({"verticalAperture"}, 15.2908)));
+        } else if (p.typeName.ends_with("Light")) {
+            lights.push_back(p.path + "  " + p.typeName + (delegate::isLightType(p.typeName) ? "" : "  (not supported yet)"));
+        } else if (p.typeName == "Material") {
+            const usd::AttributeSpec* surface = p.attribute("outputs:surface");
+            std::string shader = surface && !surface->connections.empty()
+                                     ? delegate::resolveTargetPath(p.path, surface->connections.front())
+                                     : std::string("(no outputs:surface)");
+            materials.push_back(p.path + "  surface " + shader);
+        } else if (p.typeName == "Volume") {
+            std::string fields;
+            for (const usd::RelationshipSpec& rel : p.relationships)
+                if (rel.name.starts_with("field:") && !rel.targets.empty())
+                    fields.append(" ").append(rel.name.substr(6)).append("=").append(
+                        delegate::resolveTargetPath(p.path, rel.targets.front()));
+            volumes.push_back(p.path + (fields.empty() ? "  (no fields)" : " " + fields));
+        } else if (p.typeName == "RenderSettings") {
+            settings.push_back(p.path);
+        }
+        return true;
+    });
+    auto list = [](const char* title, const std::vector<std::string>& items) {
+        section(title, items.size());
+        for (const std::string& i : items) std::printf("  %s\n", i.c_str());
+    };
+    list("cameras", cameras);
+    list("lights", lights);
+    list("materials", materials);
+    list("volumes", volumes);
+    list("render settings prims", settings);
+    try {
+        if (auto s = delegate::renderSettingsFromStage(*stage, opt.settings, time)) {
+            std::printf("  used: %s  resolution %d x %d, camera %s, %zu products\n", s->path.c_str(), s->resolution.first,
+                        s->resolution.second, s->cameraPath.empty() ? "(none)" : s->cameraPath.c_str(), s->products.size());
+            for (const auto& p : s->products) {
+                std::printf("    product %s  productName '%s'  %d x %d\n", p.path.c_str(), p.productName.c_str(),
+                            p.resolution.first, p.resolution.second);
+                for (const auto& v : p.vars)
+                    std::printf("      var %s  %s %s (%s)\n", v.path.c_str(), v.sourceType.c_str(), v.sourceName.c_str(),
+                                v.dataType.c_str());
+            }
+        }
+    } catch (const delegate::SceneError& e) {
+        warnings("render settings", e.what());
+    }
+
+    std::vector<usd::AssetReference> assets = stage->assetReferences();
+    std::size_t missing = 0;
+    for (const auto& a : assets) missing += a.exists ? 0 : 1;
+    std::printf("\nassets (%zu, %zu missing)\n", assets.size(), missing);
+    for (const auto& a : assets)
+        std::printf("  %-8s %s  (%s%s%s)\n", a.exists ? "ok" : "MISSING", a.resolved.c_str(), a.primPath.c_str(),
+                    a.property.empty() ? "" : ".", a.property.c_str());
+    std::printf("\n%zu warnings\n", warnings.count());
+    return kExitOk;
+}
+
+}  // namespace fluence::app

@@ -1,0 +1,13 @@
+// `fluence info`: what a scene holds, as Fluence composes it.
+#pragma once
+
+#include "apps/cli_options.h"
+
+namespace fluence::app {
+
+// Prints the layers, the composed prim tree with types, the cameras, lights, materials, volumes
+// and render settings, every asset path with whether it resolves, and the composition warnings.
+// Returns an exit code (0 when the scene composed, whatever the warnings).
+int runInfo(const InfoOptions& options);
+
+}  // namespace fluence::app

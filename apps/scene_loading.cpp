@@ -1,0 +1,35 @@
+#include "apps/scene_loading.h"
+
+#include <cstdio>
+#include <filesystem>
+
+#include "scene/usda_parser.h"
+
+namespace fluence::app {
+
+void printError(const std::string& message) { std::fprintf(stderr, "fluence: error: %s\n", message.c_str()); }
+
+int openStage(const std::string& path, const std::vector<usd::VariantSelection>& variants, WarningLog& warnings,
+              std::unique_ptr<usd::Stage>& stage) {
+    if (!std::filesystem::exists(path)) {
+        printError("scene file not found: " + path);
+        return kExitMissingInput;
+    }
+    try {
+        usd::StageOptions options;
+        options.variantSelections = variants;
+        stage = usd::Stage::open(path, options);
+    } catch (const usd::FileError& e) {
+        printError(e.what());
+        return kExitMissingInput;
+    } catch (const usd::ParseError& e) {
+        printError(e.what());
+        return kExitScene;
+    }
+    for (const usd::CompositionWarning& w : stage->warnings())
+        warnings(w.location.file.empty() ? w.primPath : w.location.str() + (w.primPath.empty() ? "" : ": " + w.primPath),
+                 w.message);
+    return kExitOk;
+}
+
+}  // namespace fluence::app

@@ -1,0 +1,31 @@
+// Opening a USD stage for a command, with the errors mapped to the documented exit codes.
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "apps/warning_log.h"
+#include "scene/stage.h"
+
+namespace fluence::app {
+
+// Exit codes (documented in `fluence --help` and the README).
+enum ExitCode : int {
+    kExitOk = 0,
+    kExitInternal = 1,
+    kExitUsage = 2,
+    kExitScene = 3,
+    kExitMissingInput = 4,
+    kExitOutput = 5,
+    kExitColorConfig = 6,
+};
+
+void printError(const std::string& message);
+
+// Opens and composes the stage; composition warnings go to `warnings`. On failure prints the
+// error and returns a non-zero exit code (missing file: kExitMissingInput; syntax: kExitScene).
+int openStage(const std::string& path, const std::vector<usd::VariantSelection>& variants, WarningLog& warnings,
+              std::unique_ptr<usd::Stage>& stage);
+
+}  // namespace fluence::app

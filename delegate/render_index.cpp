@@ -1,0 +1,169 @@
+#include "delegate/render_index.h"
+
+#include <set>
+
+#include "delegate/camera_adapter.h"
+#include "delegate/geom_subset.h"
+#include "delegate/implicit_geometry.h"
+#include "delegate/light_adapter.h"
+#include "delegate/xform.h"
+
+namespace fluence::delegate {
+
+namespace {
+
+bool isXformAttribute(const std::string& name) { return name.starts_with("xformOp"); }
+
+bool animated(const usd::AttributeSpec& a) { return a.timeSamples.size() > 1; }
+
+// Whether any non-transform attribute of the prim (and, when `recursive`, of its descendants)
+// has time samples that change.
+bool hasAnimatedData(const usd::PrimSpec& prim, bool recursive) {
+    for (const usd::AttributeSpec& a : prim.attributes)
+        if (!isXformAttribute(a.name) && animated(a)) return true;
+    if (recursive)
+        for (const auto& child : prim.children)
+            if (hasAnimatedData(*child, true)) return true;
+    return false;
+}
+
+struct WorldTransform {
+    Matrix4 matrix = Matrix4::identity();
+    bool animated = false;
+};
+
+// Composes local transforms from the root down to `path` (honouring !resetXformStack!).
+WorldTransform worldTransformOf(const usd::Stage& stage, const std::string& path, double time) {
+    WorldTransform result;
+    for (std::size_t slash = path.find('/', 1);; slash = path.find('/', slash + 1)) {
+        if (const usd::PrimSpec* prim = stage.prim(path.substr(0, slash))) {
+            LocalTransform local = localTransform(PrimReader(*prim, time));
+            result.matrix = local.resetsXformStack ? local.matrix : result.matrix * local.matrix;
+            if (local.resetsXformStack) result.animated = false;
+            for (const usd::AttributeSpec& a : prim->attributes)
+                if (isXformAttribute(a.name) && animated(a)) result.animated = true;
+        }
+        if (slash == std::string::npos) break;
+    }
+    return result;
+}
+
+render::MeshDesc toWorld(const render::MeshDesc& m, const Matrix4& world) {
+    render::MeshDesc out = m;
+    for (Vec3f& p : out.positions) p = Vec3f(world.transformPoint(Vec3d(p)));
+    for (Vec3f& n : out.cornerNormals) {
+        Vec3d t = world.transformNormal(Vec3d(n));
+        double len = length(t);
+        n = Vec3f(len > 0.0 ? t / len : t);
+    }
+    if (world.determinant3x3() < 0.0)  // a mirroring transform: keep triangles facing outwards
+        for (std::size_t c = 0; c + 2 < out.indices.size(); c += 3) {
+            std::swap(out.indices[c + 1], out.indices[c + 2]);
+            if (!out.cornerNormals.empty()) std::swap(out.cornerNormals[c + 1], out.cornerNormals[c + 2]);
+            if (!out.cornerColors.empty()) std::swap(out.cornerColors[c + 1], out.cornerColors[c + 2]);
+        }
+    return out;
+}
+
+}  // namespace
+
+bool isAtOrBelow(const std::string& path, const std::string& root) {
+    if (root == "/") return true;
+    return path == root || (path.size() > root.size() && path.starts_with(root) && path[root.size()] == '/');
+}
+
+void RenderPrim::sync(const SyncContext& context) {
+    if (dirty_ == kClean) return;
+    if (dirty_ & kDirtyTransform) {
+        WorldTransform w = worldTransformOf(context.stage, path_, context.time);
+        world_ = w.matrix;
+        transformAnimated_ = w.animated;
+    }
+    const usd::PrimSpec* prim = context.stage.prim(path_);
+    syncData(context, prim, dirty_);
+    dataAnimated_ = prim && hasAnimatedData(*prim, kind_ == Kind::Material);
+    dirty_ = kClean;
+    ++syncCount_;
+}
+
+void MeshRprim::syncData(const SyncContext& context, const usd::PrimSpec* spec, std::uint32_t bits) {
+    if (!spec || (bits & ~std::uint32_t(kDirtyTransform)) == 0) return;  // a moved mesh keeps its object-space data
+    const usd::PrimSpec& prim = *spec;
+    ++dataReads_;
+    auto warn = [&](const std::string& message) { context.warn(prim.path, message); };
+    parts_.clear();
+    if (prim.typeName == "Mesh") {
+        for (MeshPart& part : meshPartsFromPrim(context.stage, prim, context.time, Matrix4::identity(),
+                                                context.convertColor, warn))
+            parts_.push_back({std::move(part.mesh), std::move(part.materialPath)});
+    } else {
+        parts_.push_back({implicitMeshFromPrim(PrimReader(prim, context.time), Matrix4::identity(), context.convertColor, warn),
+                          boundMaterialPath(context.stage, prim)});
+    }
+}
+
+std::vector<MeshRprim::Part> MeshRprim::worldParts() const {
+    std::vector<Part> out;
+    out.reserve(parts_.size());
+    for (const Part& p : parts_) out.push_back({toWorld(p.objectSpace, world()), p.materialPath});
+    return out;
+}
+
+void CameraSprim::syncData(const SyncContext& context, const usd::PrimSpec* prim, std::uint32_t) {
+    if (prim) camera_ = cameraFromPrim(PrimReader(*prim, context.time), world());
+}
+
+void LightSprim::syncData(const SyncContext& context, const usd::PrimSpec* prim, std::uint32_t) {
+    if (!prim) return;
+    light_ = lightFromPrim(PrimReader(*prim, context.time), world(),
+                           [&](const std::string& message) { context.warn(prim->path, message); });
+}
+
+void MaterialSprim::syncData(const SyncContext& context, const usd::PrimSpec*, std::uint32_t) {
+    // A missing material prim is warned about by materialFromPath, which returns the default.
+    material_ = materialFromPath(context.stage, path(), context.time, context.convertColor, context.warn);
+}
+
+void RenderIndex::insert(std::unique_ptr<RenderPrim> prim) {
+    std::string path = prim->path();
+    prims_[path] = std::move(prim);
+}
+
+RenderPrim* RenderIndex::find(const std::string& path) const {
+    auto it = prims_.find(path);
+    return it == prims_.end() ? nullptr : it->second.get();
+}
+
+void RenderIndex::removeSubtree(const std::string& path) {
+    for (auto it = prims_.begin(); it != prims_.end();) it = isAtOrBelow(it->first, path) ? prims_.erase(it) : std::next(it);
+}
+
+void RenderIndex::markSubtreeDirty(const std::string& path, std::uint32_t bits, std::optional<RenderPrim::Kind> kind) {
+    for (auto& [p, prim] : prims_)
+        if (isAtOrBelow(p, path) && (!kind || prim->kind() == *kind)) prim->markDirty(bits);
+}
+
+std::size_t RenderIndex::sync(const SyncContext& context) {
+    std::size_t synced = 0;
+    std::set<std::string> materials;
+    for (auto& [path, prim] : prims_) {
+        if (prim->kind() == RenderPrim::Kind::Material) continue;
+        if (prim->dirtyBits() != kClean) {
+            prim->sync(context);
+            ++synced;
+        }
+        if (prim->kind() == RenderPrim::Kind::Mesh)
+            for (const auto& part : static_cast<const MeshRprim&>(*prim).parts())
+                if (!part.materialPath.empty()) materials.insert(part.materialPath);
+    }
+    for (const std::string& m : materials)
+        if (!find(m)) insert(std::make_unique<MaterialSprim>(m));
+    for (auto& [path, prim] : prims_)
+        if (prim->kind() == RenderPrim::Kind::Material && prim->dirtyBits() != kClean) {
+            prim->sync(context);
+            ++synced;
+        }
+    return synced;
+}
+
+}  // namespace fluence::delegate

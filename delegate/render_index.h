@@ -1,0 +1,156 @@
+// The render index: the delegate's render prims, each synced from the stage when dirty.
+//
+// As in Hydra, prims come in kinds: rprims (geometry: meshes and tessellated implicit surfaces)
+// and sprims (state: cameras, lights, materials). Volumes and bprims (VDB fields, textures) join
+// with the volume and texture issues.
+//
+// The dirty-bit contract (see also scene_delegate.h, which maps stage edits to bits):
+//   - A prim is inserted with every bit dirty and synced once before the first render.
+//   - sync() pulls from the stage only what its dirty bits name, then clears them and counts the
+//     sync (tests assert these counts: a clean prim is never asked for data).
+//   - Mesh rprims keep their geometry in object space: kDirtyTransform alone re-transforms it
+//     without re-reading or re-triangulating anything. Topology, points, primvars and material
+//     binding re-read the mesh (the GeomSubset split depends on bindings).
+//   - Sprims are small: any dirty bit re-reads the prim.
+//   - Each prim records whether what it read is animated (time samples), so that a change of
+//     render time dirties only animated prims.
+#pragma once
+
+#include <cstdint>
+#include <map>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "delegate/material_adapter.h"
+#include "delegate/prim_reader.h"
+#include "render/scene_description.h"
+#include "scene/stage.h"
+
+namespace fluence::delegate {
+
+enum DirtyBits : std::uint32_t {
+    kClean = 0,
+    kDirtyTransform = 1u << 0,  // the prim's or an ancestor's xformOps
+    kDirtyTopology = 1u << 1,   // faces, holes, subsets, implicit shape parameters
+    kDirtyPoints = 1u << 2,
+    kDirtyPrimvars = 1u << 3,   // normals, displayColor
+    kDirtyMaterial = 1u << 4,   // material binding
+    kDirtyParams = 1u << 5,     // a sprim's own attributes
+    kAllDirty = ~0u,
+};
+
+// What a sync may read.
+struct SyncContext {
+    const usd::Stage& stage;
+    double time;
+    const ColorConverter& convertColor;
+    const Warn& warn;
+};
+
+class RenderPrim {
+public:
+    enum class Kind { Mesh, Camera, Light, Material };
+
+    RenderPrim(Kind kind, std::string path) : kind_(kind), path_(std::move(path)) {}
+    virtual ~RenderPrim() = default;
+
+    Kind kind() const { return kind_; }
+    const std::string& path() const { return path_; }
+    std::uint32_t dirtyBits() const { return dirty_; }
+    void markDirty(std::uint32_t bits) { dirty_ |= bits; }
+    int syncCount() const { return syncCount_; }
+    bool transformAnimated() const { return transformAnimated_; }
+    bool dataAnimated() const { return dataAnimated_; }
+
+    // Pulls what the dirty bits name from the stage and clears them (no-op when clean).
+    void sync(const SyncContext& context);
+
+protected:
+    virtual void syncData(const SyncContext& context, const usd::PrimSpec* prim, std::uint32_t bits) = 0;
+    const Matrix4& world() const { return world_; }
+
+private:
+    Kind kind_;
+    std::string path_;
+    std::uint32_t dirty_ = kAllDirty;
+    int syncCount_ = 0;
+    Matrix4 world_ = Matrix4::identity();
+    bool transformAnimated_ = false, dataAnimated_ = false;
+};
+
+// A Mesh, or an implicit surface tessellated into one; split into one part per bound material.
+class MeshRprim final : public RenderPrim {
+public:
+    struct Part {
+        render::MeshDesc objectSpace;
+        std::string materialPath;
+    };
+    explicit MeshRprim(std::string path) : RenderPrim(Kind::Mesh, std::move(path)) {}
+    const std::vector<Part>& parts() const { return parts_; }
+    // The parts in world space.
+    std::vector<Part> worldParts() const;
+    // How many syncs read (and triangulated or tessellated) the mesh data; transform-only syncs
+    // do not.
+    int dataReads() const { return dataReads_; }
+
+private:
+    void syncData(const SyncContext& context, const usd::PrimSpec* prim, std::uint32_t bits) override;
+    std::vector<Part> parts_;
+    int dataReads_ = 0;
+};
+
+class CameraSprim final : public RenderPrim {
+public:
+    explicit CameraSprim(std::string path) : RenderPrim(Kind::Camera, std::move(path)) {}
+    const render::CameraDesc& camera() const { return camera_; }
+
+private:
+    void syncData(const SyncContext& context, const usd::PrimSpec* prim, std::uint32_t bits) override;
+    render::CameraDesc camera_;
+};
+
+class LightSprim final : public RenderPrim {
+public:
+    explicit LightSprim(std::string path) : RenderPrim(Kind::Light, std::move(path)) {}
+    const std::optional<render::LightDesc>& light() const { return light_; }  // nullopt: not renderable
+
+private:
+    void syncData(const SyncContext& context, const usd::PrimSpec* prim, std::uint32_t bits) override;
+    std::optional<render::LightDesc> light_;
+};
+
+class MaterialSprim final : public RenderPrim {
+public:
+    explicit MaterialSprim(std::string path) : RenderPrim(Kind::Material, std::move(path)) {}
+    const render::MaterialDesc& material() const { return material_; }
+
+private:
+    void syncData(const SyncContext& context, const usd::PrimSpec* prim, std::uint32_t bits) override;
+    render::MaterialDesc material_;
+};
+
+class RenderIndex {
+public:
+    void insert(std::unique_ptr<RenderPrim> prim);
+    // Removes the prim at `path` and every prim below it.
+    void removeSubtree(const std::string& path);
+    RenderPrim* find(const std::string& path) const;
+    // Marks the prim at `path` and every prim below it.
+    void markSubtreeDirty(const std::string& path, std::uint32_t bits, std::optional<RenderPrim::Kind> kind = {});
+    // Syncs every dirty prim (materials last: meshes name the materials they need, and a
+    // material sprim is created for each). Returns how many prims were synced.
+    std::size_t sync(const SyncContext& context);
+
+    // Prims in path order.
+    const std::map<std::string, std::unique_ptr<RenderPrim>>& prims() const { return prims_; }
+
+private:
+    std::map<std::string, std::unique_ptr<RenderPrim>> prims_;
+};
+
+// True when `path` is `root` or lies below it.
+bool isAtOrBelow(const std::string& path, const std::string& root);
+
+}  // namespace fluence::delegate

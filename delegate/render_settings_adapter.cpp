@@ -1,0 +1,92 @@
+#include "delegate/render_settings_adapter.h"
+
+#include "delegate/material_adapter.h"
+#include "delegate/prim_reader.h"
+
+namespace fluence::delegate {
+
+namespace {
+
+const usd::PrimSpec& targetOfType(const usd::Stage& stage, const usd::PrimSpec& from, const std::string& target,
+                                  const char* type, const char* relationship) {
+    std::string path = resolveTargetPath(from.path, target);
+    const usd::PrimSpec* prim = stage.prim(path);
+    if (!prim || prim->typeName != type)
+        throw SceneError(from.location.str() + ": " + from.path + ": " + relationship + " targets " + path + ", which is " +
+                         (prim ? "a " + (prim->typeName.empty() ? std::string("typeless prim") : prim->typeName)
+                               : std::string("missing")) +
+                         ", not a " + type);
+    return *prim;
+}
+
+std::string relationshipTarget(const usd::PrimSpec& prim, const char* name) {
+    const usd::RelationshipSpec* rel = prim.relationship(name);
+    return rel && !rel->targets.empty() ? resolveTargetPath(prim.path, rel->targets.front()) : std::string();
+}
+
+std::optional<std::pair<int, int>> resolutionOf(const PrimReader& reader) {
+    auto r = reader.value("resolution");
+    if (!r) return std::nullopt;
+    if (!r->isNumeric() || r->numbers.size() != 2 || r->numbers[0] < 1 || r->numbers[1] < 1)
+        reader.fail("resolution must be an int2 of positive values, got " + r->toString());
+    return std::make_pair(static_cast<int>(r->numbers[0]), static_cast<int>(r->numbers[1]));
+}
+
+RenderVarDesc varFromPrim(const usd::PrimSpec& prim, double time) {
+    PrimReader reader(prim, time);
+    RenderVarDesc var;
+    var.path = prim.path;
+    var.sourceName = reader.token({"sourceName"}, "");
+    var.sourceType = reader.token({"sourceType"}, "raw");
+    var.dataType = reader.token({"dataType"}, "color3f");
+    return var;
+}
+
+}  // namespace
+
+std::optional<RenderSettingsDesc> renderSettingsFromStage(const usd::Stage& stage, const std::string& settingsPath,
+                                                          double time) {
+    std::string path = settingsPath;
+    if (path.empty())
+        if (const usd::MetadataEntry* e = usd::findMetadata(stage.rootLayer().metadata, "renderSettingsPrimPath"))
+            path = e->value.asString().value_or("");
+    if (path.empty()) return std::nullopt;
+    const usd::PrimSpec* prim = stage.prim(path);
+    if (!prim) throw SceneError("render settings " + path + " do not exist in the scene");
+    if (prim->typeName != "RenderSettings")
+        throw SceneError("render settings " + path + " is a " + (prim->typeName.empty() ? "typeless prim" : prim->typeName) +
+                         ", not a RenderSettings prim");
+
+    PrimReader reader(*prim, time);
+    RenderSettingsDesc s;
+    s.path = path;
+    if (auto r = resolutionOf(reader)) {
+        s.resolution = *r;
+        s.resolutionAuthored = true;
+    }
+    s.cameraPath = relationshipTarget(*prim, "camera");
+    s.pixelAspectRatio = static_cast<float>(reader.number({"pixelAspectRatio"}, 1.0));
+    s.aspectRatioConformPolicy = reader.token({"aspectRatioConformPolicy"}, "expandAperture");
+    if (auto purposes = reader.strings("includedPurposes")) s.includedPurposes = *purposes;
+
+    if (const usd::RelationshipSpec* products = prim->relationship("products"))
+        for (const std::string& target : products->targets) {
+            const usd::PrimSpec& productPrim = targetOfType(stage, *prim, target, "RenderProduct", "products");
+            PrimReader pr(productPrim, time);
+            RenderProductDesc product;
+            product.path = productPrim.path;
+            product.productName = pr.token({"productName"}, "");
+            product.productType = pr.token({"productType"}, "raster");
+            product.resolution = resolutionOf(pr).value_or(s.resolution);
+            std::string camera = relationshipTarget(productPrim, "camera");
+            product.cameraPath = camera.empty() ? s.cameraPath : camera;
+            product.pixelAspectRatio = static_cast<float>(pr.number({"pixelAspectRatio"}, s.pixelAspectRatio));
+            if (const usd::RelationshipSpec* vars = productPrim.relationship("orderedVars"))
+                for (const std::string& v : vars->targets)
+                    product.vars.push_back(varFromPrim(targetOfType(stage, productPrim, v, "RenderVar", "orderedVars"), time));
+            s.products.push_back(std::move(product));
+        }
+    return s;
+}
+
+}  // namespace fluence::delegate

@@ -1,0 +1,59 @@
+// UsdRender -> RenderSettingsDesc: the RenderSettings prim the render uses, its RenderProducts and
+// their RenderVars, with the schema's fallbacks.
+//
+// Which settings prim: the one named on the command line (`-s/--settings`), else the root layer's
+// `renderSettingsPrimPath`, else none (a stage without render settings renders with the CLI's
+// defaults). Attributes read:
+// | prim           | attribute (fallback)                                                        |
+// |----------------|------------------------------------------------------------------------------|
+// | RenderSettings | resolution (2048, 1080), pixelAspectRatio (1), aspectRatioConformPolicy      |
+// |                | ("expandAperture"), rel camera, rel products, includedPurposes               |
+// | RenderProduct  | productName (""), productType ("raster"), and the RenderSettingsBase         |
+// |                | attributes above when authored on the product (they override the settings') |
+// | RenderVar      | sourceName (""), sourceType ("raw"), dataType ("color3f")                    |
+// In this slice the first product's productName is the default output path and its resolution and
+// camera apply; writing every product and var is issue #12.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "scene/stage.h"
+
+namespace fluence::delegate {
+
+struct RenderVarDesc {
+    std::string path;  // prim path; its name is the AOV's name
+    std::string sourceName, sourceType = "raw", dataType = "color3f";
+};
+
+struct RenderProductDesc {
+    std::string path;
+    std::string productName;  // the output file
+    std::string productType = "raster";
+    std::pair<int, int> resolution;
+    std::string cameraPath;
+    float pixelAspectRatio = 1.0f;
+    std::vector<RenderVarDesc> vars;
+};
+
+struct RenderSettingsDesc {
+    std::string path;
+    std::pair<int, int> resolution{2048, 1080};
+    bool resolutionAuthored = false;
+    std::string cameraPath;
+    float pixelAspectRatio = 1.0f;
+    std::string aspectRatioConformPolicy = "expandAperture";
+    std::vector<std::string> includedPurposes{"default", "render"};
+    std::vector<RenderProductDesc> products;
+};
+
+// `settingsPath` "" means the stage's renderSettingsPrimPath (or no settings). Throws SceneError
+// when a named prim is missing or is not a RenderSettings prim, or when a product or var
+// relationship targets a prim of the wrong type.
+std::optional<RenderSettingsDesc> renderSettingsFromStage(const usd::Stage& stage, const std::string& settingsPath,
+                                                          double time);
+
+}  // namespace fluence::delegate

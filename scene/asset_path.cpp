@@ -1,0 +1,59 @@
+#include "scene/asset_path.h"
+
+#include <algorithm>
+#include <cctype>
+#include <filesystem>
+#include <system_error>
+
+namespace fluence::usd {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+// "http://...", "omniverse://...", "anon:...": a scheme of two or more characters (one letter
+// would be a Windows drive) made of letters, digits, '+', '-' and '.', then ':'.
+bool isUri(const std::string& path) {
+    std::size_t colon = path.find(':');
+    if (colon == std::string::npos || colon < 2 || !std::isalpha(static_cast<unsigned char>(path[0]))) return false;
+    return std::all_of(path.begin(), path.begin() + static_cast<std::ptrdiff_t>(colon), [](char c) {
+        return std::isalnum(static_cast<unsigned char>(c)) || c == '+' || c == '-' || c == '.';
+    });
+}
+
+fs::path absoluteOf(const fs::path& path) {
+    std::error_code error;
+    fs::path absolute = fs::absolute(path, error);
+    return error ? path : absolute;
+}
+
+}  // namespace
+
+std::string normalizedAbsolutePath(const std::string& path) {
+    return absoluteOf(fs::path(path)).lexically_normal().generic_string();
+}
+
+std::string anchorAssetPath(const std::string& layerIdentifier, const std::string& authored) {
+    if (authored.empty() || isUri(authored)) return authored;
+    std::string path = authored;
+    std::replace(path.begin(), path.end(), '\\', '/');
+    fs::path asset(path);
+    if (asset.is_absolute()) return asset.lexically_normal().generic_string();
+    fs::path directory = absoluteOf(fs::path(layerIdentifier)).parent_path();
+    return (directory / asset).lexically_normal().generic_string();
+}
+
+bool assetExists(const std::string& resolved) {
+    if (resolved.empty()) return false;
+    std::error_code error;
+    std::size_t udim = resolved.find("<UDIM>");
+    if (udim == std::string::npos) return fs::is_regular_file(resolved, error);
+    for (int tile = 1001; tile <= 1100; ++tile) {
+        std::string candidate = resolved;
+        candidate.replace(udim, 6, std::to_string(tile));
+        if (fs::is_regular_file(candidate, error)) return true;
+    }
+    return false;
+}
+
+}  // namespace fluence::usd

@@ -1,0 +1,22 @@
+// Asset path resolution, as USD's default resolver does it for files: an asset path is anchored at
+// the directory of the layer that authored it.
+#pragma once
+
+#include <string>
+
+namespace fluence::usd {
+
+// The absolute, lexically normalized path of `authored` anchored at the directory of the layer
+// `layerIdentifier` (a file path; a relative identifier counts from the current directory).
+// Absolute paths are only normalized; empty paths and URIs ("scheme:...") are returned unchanged.
+// Backslashes read as separators. Tokens such as <UDIM> are kept as written.
+std::string anchorAssetPath(const std::string& layerIdentifier, const std::string& authored);
+
+// The absolute, lexically normalized form of a file path.
+std::string normalizedAbsolutePath(const std::string& path);
+
+// Whether a resolved asset path names an existing file; a path holding <UDIM> exists when any of
+// the tiles 1001 to 1100 does.
+bool assetExists(const std::string& resolved);
+
+}  // namespace fluence::usd

@@ -1,0 +1,65 @@
+// The plain types of the stage's composition API (options in, warnings and asset references out)
+// and the collector the composition code reports into.
+#pragma once
+
+#include <set>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "scene/layer.h"
+
+namespace fluence::usd {
+
+// A variant selection made from outside the scene (`--variant /Prim/Path:set=selection`). It
+// overrides the selections authored for that prim.
+struct VariantSelection {
+    std::string primPath;
+    std::string variantSet;
+    std::string selection;
+};
+
+struct StageOptions {
+    std::vector<VariantSelection> variantSelections;
+    bool loadPayloads = true;  // false leaves every payload arc out, as an unloaded UsdStage does
+};
+
+// Something composition could not honour; composition went on without it. `location` is where
+// the offending arc or value was authored (empty for problems with StageOptions).
+struct CompositionWarning {
+    std::string message;
+    SourceLocation location;
+    std::string primPath;
+};
+
+// One asset path used by the composed stage: an asset-valued attribute (property = its name) or
+// an arc target that could not be used (property = "subLayers", "references" or "payload").
+struct AssetReference {
+    std::string primPath;
+    std::string property;
+    std::string authored;  // as written in the layer
+    std::string resolved;  // anchored at the authoring layer's directory, lexically normalized
+    bool exists = false;
+    SourceLocation location;
+};
+
+// Collects warnings (each reported once: a repeat with the same message and location is dropped)
+// and the arc targets that could not be resolved.
+class CompositionLog {
+public:
+    void warn(std::string message, SourceLocation location, std::string primPath) {
+        if (!seen_.emplace(message, location.str()).second) return;
+        warnings_.push_back({std::move(message), std::move(location), std::move(primPath)});
+    }
+    void unresolvedArc(AssetReference reference) { unresolved_.push_back(std::move(reference)); }
+
+    const std::vector<CompositionWarning>& warnings() const { return warnings_; }
+    const std::vector<AssetReference>& unresolvedArcs() const { return unresolved_; }
+
+private:
+    std::vector<CompositionWarning> warnings_;
+    std::vector<AssetReference> unresolved_;
+    std::set<std::pair<std::string, std::string>> seen_;
+};
+
+}  // namespace fluence::usd

@@ -1,0 +1,119 @@
+#!/usr/bin/env bash
+# Builds the USDA reader's libFuzzer target (fuzz/), assembles its seed corpus and fuzzes it for
+# SECONDS (default 60). Exits non-zero on any finding (crash, sanitizer report, uncaught exception
+# other than usd::ParseError, timeout, out-of-memory, leak), printing the report and the path of
+# the reproducer. `make test` runs it for 60 s; fuzz/README.md describes longer runs.
+#
+#   scripts/fuzz_smoke.sh [SECONDS]
+#
+# Environment:
+#   FUZZ_BUILD_DIR  build folder (default build/fuzz); reproducers land in $FUZZ_BUILD_DIR/artifacts
+#   FUZZ_CORPUS     keep the working corpus in this folder (default: a temporary folder, deleted)
+#   FUZZ_SEED       libFuzzer's -seed (default 1: the same inputs in the same order each run)
+#   FUZZ_JOBS       parallel fuzzing processes (default 1: in-process, one worker; the machine
+#                   has 2 cores)
+#   FUZZ_ARGS       more libFuzzer flags, e.g. "-use_value_profile=1 -only_ascii=1"
+#   JOBS            build parallelism (default 2)
+set -euo pipefail
+cd "$(dirname "${BASH_SOURCE[0]}")/.."
+root=$(pwd)
+
+seconds=${1:-60}
+[[ "$seconds" =~ ^[0-9]+$ ]] || { echo "usage: $0 [SECONDS]" >&2; exit 2; }
+build=${FUZZ_BUILD_DIR:-build/fuzz}
+mkdir -p "$build"
+build=$(cd "$build" && pwd)
+seed=${FUZZ_SEED:-1}
+jobs=${FUZZ_JOBS:-1}
+
+# ---- Build ---------------------------------------------------------------------------------------
+generator=()
+command -v ninja >/dev/null && generator=(-G Ninja)
+clang=$(command -v clang++-14 || command -v clang++ || true)
+if [[ -z "$clang" ]]; then
+  echo "fuzz: clang++ not found (Debian: apt-get install clang-14 libclang-rt-14-dev)" >&2
+  exit 1
+fi
+if [[ ! -f "$build/CMakeCache.txt" ]]; then
+  cmake -S fuzz -B "$build" "${generator[@]}" -DCMAKE_CXX_COMPILER="$clang" >/dev/null
+fi
+cmake --build "$build" -j "${JOBS:-2}" >"$build/build.log" 2>&1 || {
+  cat "$build/build.log" >&2
+  echo "fuzz: building the fuzzer failed" >&2
+  exit 1
+}
+fuzzer="$build/usda_fuzzer"
+
+# ---- Seed corpus ---------------------------------------------------------------------------------
+# Every USD text layer of the tests, the samples and the shared real-world corpus (when present),
+# plus every committed fuzz regression, copied under content-hash names into a folder that is
+# rebuilt each run. Crate files are left out (the reader rejects them at the first byte), and so
+# are layers over 64 KiB (-max_len): big geometry arrays only slow the fuzzer down.
+max_len=65536
+seeds="$build/seeds"
+rm -rf "$seeds"
+mkdir -p "$seeds"
+sources=(tests/scene usd_samples)
+[[ -d ../shared/usd_corpus ]] && sources+=(../shared/usd_corpus)
+[[ -d /work/shared/usd_corpus && ! ../shared/usd_corpus -ef /work/shared/usd_corpus ]] &&
+  sources+=(/work/shared/usd_corpus)
+while IFS= read -r -d '' file; do
+  [[ $(head -c 8 "$file") == PXR-USDC ]] && continue
+  cp "$file" "$seeds/$(sha1sum <"$file" | cut -c1-40)"
+done < <(find "${sources[@]}" -type f \( -name '*.usda' -o -name '*.sdf' -o -name '*.usd' \) \
+           -size -$((max_len + 1))c -print0 2>/dev/null)
+if [[ -d tests/scene/fuzz_regressions ]]; then
+  while IFS= read -r -d '' file; do
+    cp "$file" "$seeds/$(sha1sum <"$file" | cut -c1-40)"
+  done < <(find tests/scene/fuzz_regressions -type f ! -name 'README*' -print0)
+fi
+echo "fuzz: $(ls "$seeds" | wc -l) seed inputs from ${sources[*]} tests/scene/fuzz_regressions"
+
+# ---- Run -----------------------------------------------------------------------------------------
+if [[ -n "${FUZZ_CORPUS:-}" ]]; then
+  corpus=$FUZZ_CORPUS
+  mkdir -p "$corpus"
+else
+  corpus=$(mktemp -d /tmp/fluence-fuzz-corpus.XXXXXX)
+  trap 'rm -rf "$corpus"' EXIT
+fi
+artifacts="$build/artifacts"
+mkdir -p "$artifacts"
+log="$build/fuzz-$(date +%Y%m%d-%H%M%S).log"
+
+symbolizer=/usr/lib/llvm-14/bin/llvm-symbolizer
+[[ -x "$symbolizer" ]] && export ASAN_SYMBOLIZER_PATH=$symbolizer
+export ASAN_OPTIONS=${ASAN_OPTIONS:-detect_stack_use_after_return=1:strict_string_checks=1:check_initialization_order=1}
+export UBSAN_OPTIONS=${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1}
+
+parallel=()
+if ((jobs > 1)); then parallel=(-jobs="$jobs" -workers="$jobs"); fi
+
+before=$(ls "$artifacts" | wc -l)
+echo "fuzz: running $fuzzer for ${seconds}s (seed $seed, log $log)"
+start=$(date +%s)
+status=0
+"$fuzzer" "$corpus" "$seeds" \
+  -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 -max_len=$max_len \
+  -dict=fuzz/usda.dict -seed="$seed" -print_final_stats=1 \
+  -artifact_prefix="$artifacts/" "${parallel[@]}" ${FUZZ_ARGS:-} >"$log" 2>&1 || status=$?
+elapsed=$(($(date +%s) - start))
+
+# Summary: the last status line (executions, coverage, features, corpus) and the final stats.
+grep -E '^#[0-9]+' "$log" | tail -1 || true
+grep -E '^stat::(number_of_executed_units|average_exec_per_sec|peak_rss_mb)' "$log" || true
+echo "fuzz: corpus grew to $(ls "$corpus" | wc -l) inputs in ${elapsed}s"
+
+new_artifacts=$(ls -t "$artifacts" | head -n $(($(ls "$artifacts" | wc -l) - before)))
+if [[ $status -ne 0 || -n "$new_artifacts" ]]; then
+  echo "fuzz: FAILED (exit $status): the report follows" >&2
+  # The report: from the first sanitizer/libFuzzer error line to the end.
+  sed -n '/==[0-9]*==ERROR\|runtime error:\|deadly signal\|ALARM: working on the last Unit\|out-of-memory\|uncaught exception\|terminate called/,$p' "$log" | head -150 >&2
+  for artifact in $new_artifacts; do
+    echo "fuzz: reproducer: $artifacts/$artifact" >&2
+  done
+  echo "fuzz: reproduce with: $fuzzer $artifacts/<file>; minimise with: $fuzzer -minimize_crash=1 -runs=100000 $artifacts/<file>" >&2
+  echo "fuzz: full log: $log" >&2
+  exit 1
+fi
+echo "fuzz: OK, no findings"

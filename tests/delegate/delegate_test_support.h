@@ -1,0 +1,66 @@
+// Shared by the delegate tests: a stage from USDA text, populated with identity colour conversion
+// and the warnings collected; and measurements of tessellated meshes.
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "delegate/scene_delegate.h"
+#include "scene/usda_parser.h"
+
+namespace fluence::delegate::testing {
+
+struct Populated {
+    std::unique_ptr<usd::Stage> stage;
+    DelegateResult result;
+    std::vector<std::string> warnings;
+
+    // The mesh named `name` (the first one), or nullptr.
+    const render::MeshDesc* mesh(const std::string& name) const {
+        for (const auto& m : result.scene.meshes)
+            if (m.name == name) return &m;
+        return nullptr;
+    }
+};
+
+inline const std::string kCamera = "def Camera \"Cam\"\n{\n}\n";
+
+inline std::unique_ptr<usd::Stage> stageFrom(const std::string& usda) {
+    return std::make_unique<usd::Stage>(
+        usd::parseUsdaString(usda.starts_with("#") ? usda : "#usda 1.0\n" + usda, "test.usda"));
+}
+
+// Populates `usda` (a Camera is added unless the text starts with "#usda").
+inline Populated populate(const std::string& usda) {
+    Populated p;
+    p.stage = stageFrom(usda.starts_with("#") ? usda : kCamera + usda);
+    DelegateOptions options;
+    options.convertColor = [](const RGB& c, const std::string&) { return c; };
+    options.warn = [&p](const std::string& path, const std::string& message) { p.warnings.push_back(path + ": " + message); };
+    p.result = populateScene(*p.stage, options);
+    return p;
+}
+
+inline Vec3d corner(const render::MeshDesc& m, std::size_t c) { return Vec3d(m.positions[m.indices[c]]); }
+
+inline Vec3d triangleCross(const render::MeshDesc& m, std::size_t t) {
+    Vec3d a = corner(m, 3 * t), b = corner(m, 3 * t + 1), c = corner(m, 3 * t + 2);
+    return cross(b - a, c - a);
+}
+
+inline double surfaceArea(const render::MeshDesc& m) {
+    double area = 0.0;
+    for (std::size_t t = 0; t < m.indices.size() / 3; ++t) area += 0.5 * length(triangleCross(m, t));
+    return area;
+}
+
+// Signed enclosed volume (divergence theorem), positive when the triangles wind outwards.
+inline double enclosedVolume(const render::MeshDesc& m) {
+    double volume = 0.0;
+    for (std::size_t t = 0; t < m.indices.size() / 3; ++t)
+        volume += dot(corner(m, 3 * t), cross(corner(m, 3 * t + 1), corner(m, 3 * t + 2))) / 6.0;
+    return volume;
+}
+
+}  // namespace fluence::delegate::testing
