@@ -29,6 +29,10 @@ int openStage(const std::string& path, const std::vector<usd::VariantSelection>&
     for (const usd::CompositionWarning& w : stage->warnings())
         warnings(w.location.file.empty() ? w.primPath : w.location.str() + (w.primPath.empty() ? "" : ": " + w.primPath),
                  w.message);
+    // Missing assets (textures, VDBs) are named; arcs that could not be followed were warned above.
+    for (const usd::AssetReference& a : stage->assetReferences())
+        if (!a.exists && a.property != "subLayers" && a.property != "references" && a.property != "payload")
+            warnings(a.primPath + "." + a.property, "asset not found: " + a.resolved + " (authored as @" + a.authored + "@)");
     return kExitOk;
 }
 

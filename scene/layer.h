@@ -97,7 +97,15 @@ struct PrimSpec {
     const PrimSpec* child(const std::string& name) const;
 };
 
+// Something the reader accepted that USD would flag: an unregistered metadata field, an unknown
+// value type. The stage reports these with its composition warnings.
+struct ParseWarning {
+    SourceLocation location;
+    std::string message;
+};
+
 struct Layer {
+    std::vector<ParseWarning> warnings;
     std::string identifier;  // the file path it was read from (or a name for in-memory text)
     std::string header;      // "#usda 1.0" (or "#sdf 1.4.32")
     Metadata metadata;       // defaultPrim, upAxis, metersPerUnit, subLayers, doc, ...

@@ -106,20 +106,24 @@ std::string unusableLayerProblem(const std::string& path) {
 
 }  // namespace
 
+const Layer& LayerRegistry::keep(std::unique_ptr<Layer> layer) {
+    for (const ParseWarning& w : layer->warnings) log_.warn(w.message, w.location, "");
+    layers_.push_back(std::move(layer));
+    return *layers_.back();
+}
+
 const LayerStack& LayerRegistry::openRoot(const std::string& path) {
     std::unique_ptr<Layer> layer = parseUsdaFile(path);
     std::string absolute = normalizedAbsolutePath(path);
     byPath_[absolute] = layer.get();
     files_.push_back(absolute);
-    layers_.push_back(std::move(layer));
-    return buildStack(*layers_.back());
+    return buildStack(keep(std::move(layer)));
 }
 
 const LayerStack& LayerRegistry::adoptRoot(std::unique_ptr<Layer> layer) {
     byPath_[normalizedAbsolutePath(layer->identifier)] = layer.get();
     files_.push_back(layer->identifier);
-    layers_.push_back(std::move(layer));
-    return buildStack(*layers_.back());
+    return buildStack(keep(std::move(layer)));
 }
 
 const LayerStack* LayerRegistry::stackFor(const std::string& resolvedPath, const ArcSite& site) {
@@ -139,9 +143,8 @@ const Layer* LayerRegistry::layerFor(const std::string& resolvedPath, const ArcS
     } else {
         problem = unusableLayerProblem(resolvedPath);
         if (problem.empty()) {
-            layers_.push_back(parseUsdaFile(resolvedPath));
             files_.push_back(resolvedPath);
-            return byPath_[resolvedPath] = layers_.back().get();
+            return byPath_[resolvedPath] = &keep(parseUsdaFile(resolvedPath));
         }
         byPath_[resolvedPath] = nullptr;
         problems_[resolvedPath] = problem;

@@ -111,6 +111,8 @@ public:
     std::size_t specCount() const { return specCount_; }
 
 private:
+    // Takes ownership of a parsed layer and reports its parse warnings.
+    const Layer& keep(std::unique_ptr<Layer> layer);
     const Layer* layerFor(const std::string& resolvedPath, const ArcSite& site);
     const LayerStack& buildStack(const Layer& root);
     void addToStack(LayerStack& stack, const Layer& layer, const LayerOffset& offset,

@@ -48,6 +48,7 @@
 #include <utility>
 
 #include "scene/usda_lexer.h"
+#include "scene/usda_metadata_fields.h"
 #include "scene/usda_names.h"
 #include "scene/usda_value_parser.h"
 
@@ -222,10 +223,13 @@ private:
         return {identifier_, token.line, token.column};
     }
 
+    void warn(const Token& at, std::string message) { warnings_.push_back({locate(at), std::move(message)}); }
+
     std::string identifier_;
     Header header_;
     Lexer lexer_;
     detail::ValueParser values_;
+    std::vector<ParseWarning> warnings_;
 };
 
 std::unique_ptr<Layer> Parser::parse() {
@@ -250,6 +254,7 @@ std::unique_ptr<Layer> Parser::parse() {
                                    describe(token));
         }
     }
+    layer->warnings = std::move(warnings_);
     return layer;
 }
 
@@ -465,6 +470,9 @@ void Parser::parseAttribute(Body& body, const Token& first, ListOpKind op, bool 
                     "'" + listOpName(op) +
                         "' can only edit connections (name.connect) and relationship targets");
     }
+    if (!detail::findValueType(type.text))
+        warn(type, "unknown value type '" + std::string(type.text) + "' for attribute '" + std::string(name.text) +
+                       "'; its value is kept untyped");
     AttributeSpec& attribute = attributeFor(body, name, typeName, custom, uniform, first);
     std::string what = "attribute '" + attribute.name + "'";
     if (field == "connect") {
@@ -751,6 +759,8 @@ void Parser::parseMetadataEntry(Metadata& out, const Anchor& anchor, bool isLaye
         lexer_.fail(key, "expected a metadata key, found " + describe(key));
     }
     std::string name(key.text);
+    if (!detail::isRegisteredMetadataField(name))
+        warn(key, "unregistered metadata field '" + name + "'; kept, but nothing reads it");
     expect('=', "metadata key '" + name + "'");
     Value value;
     const Token& next = lexer_.peek();

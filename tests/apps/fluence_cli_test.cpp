@@ -1,15 +1,13 @@
 // End-to-end tests: run the `fluence` binary on USD files and read back what it writes.
 #include <gtest/gtest.h>
 
-#include <OpenImageIO/imageio.h>
-
 #include <cmath>
-#include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <functional>
 #include <fstream>
-#include <sstream>
 
+#include "tests/support/cli.h"
 #include "tests/support/temp_dir.h"
 #include "tests/support/usd_scenes.h"
 
@@ -18,10 +16,9 @@ namespace fs = std::filesystem;
 namespace fluence {
 namespace {
 
-struct RunResult {
-    int exitCode = -1;
-    std::string out, err;
-};
+using test::ExrImage;
+using test::readExr;
+using test::RunResult;
 
 class FluenceCli : public ::testing::Test {
 protected:
@@ -33,54 +30,8 @@ protected:
         std::ofstream(p) << text;
         return p;
     }
-
-    static std::string slurp(const fs::path& p) {
-        std::ifstream in(p);
-        std::stringstream ss;
-        ss << in.rdbuf();
-        return ss.str();
-    }
-
-    RunResult run(const std::string& args) {
-        fs::path out = dir_ / "stdout.txt", err = dir_ / "stderr.txt";
-        std::string cmd = std::string(FLUENCE_BINARY) + " " + args + " > " + out.string() + " 2> " + err.string() + " < /dev/null";
-        int status = std::system(cmd.c_str());
-        RunResult r;
-        r.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-        r.out = slurp(out);
-        r.err = slurp(err);
-        return r;
-    }
-
+    RunResult run(const std::string& args) { return test::runFluence(args, dir_); }
 };
-
-struct ExrImage {
-    int width = 0, height = 0;
-    std::vector<std::string> channels;
-    std::vector<float> pixels;
-    OIIO::ImageSpec spec;
-    int channel(const std::string& name) const {
-        for (std::size_t i = 0; i < channels.size(); ++i)
-            if (channels[i] == name) return int(i);
-        return -1;
-    }
-    float at(int x, int y, const std::string& name) const {
-        return pixels[(std::size_t(y) * width + x) * channels.size() + channel(name)];
-    }
-};
-
-ExrImage readExr(const fs::path& path) {
-    auto in = OIIO::ImageInput::open(path.string());
-    if (!in) throw std::runtime_error("cannot open " + path.string());
-    ExrImage img;
-    img.spec = in->spec();
-    img.width = img.spec.width;
-    img.height = img.spec.height;
-    img.channels = img.spec.channelnames;
-    img.pixels.resize(std::size_t(img.width) * img.height * img.channels.size());
-    if (!in->read_image(0, 0, 0, -1, OIIO::TypeDesc::FLOAT, img.pixels.data())) throw std::runtime_error("cannot read");
-    return img;
-}
 
 // Mean of the named channels over the pixels `select` accepts, with its standard error from the
 // spread of pixel values (pixels are independent estimates).

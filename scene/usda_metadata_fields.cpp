@@ -1,0 +1,34 @@
+#include "scene/usda_metadata_fields.h"
+
+#include <algorithm>
+#include <array>
+
+namespace fluence::usd::detail {
+
+bool isRegisteredMetadataField(std::string_view name) {
+    // Sorted, for binary search.
+    static constexpr std::array<std::string_view, 72> kFields = {
+        "active",          "allowedTokens",        "apiSchemas",        "assetInfo",
+        "bindMaterialAs",  "clipSets",             "clips",             "colorConfiguration",
+        "colorManagementSystem", "colorSpace",     "comment",           "connectability",
+        "customData",      "customLayerData",      "default",           "defaultPrim",
+        "displayGroup",    "displayGroupOrder",    "displayName",       "displayUnit",
+        "doc",             "documentation",        "elementSize",       "endFrame",
+        "endTimeCode",     "expressionVariables",  "fallbackPrimTypes", "framePrecision",
+        "framesPerSecond", "hasOwnedSubLayers", "hidden",               "inherits",          "instanceable",
+        "interpolation",   "kind",                 "metersPerUnit",     "nameChildren",
+        "noLoadHint",      "outputName",           "owner",             "payload",
+        "payloads",        "permission",           "prefix",            "prefixSubstitutions",
+        "properties",      "references",           "relocates",         "renderSettingsPrimPath",
+        "renderType",      "sdrMetadata",          "sessionOwner",      "specializes",
+        "startFrame",      "startTimeCode",        "subLayerOffsets",   "subLayers",
+        "suffix",          "suffixSubstitutions",  "symmetricPeer",     "symmetryArguments",
+        "symmetryFunction", "targetPaths",         "timeCodesPerSecond", "timeSamples",
+        "typeName",        "unauthoredValuesIndex", "upAxis",           "variantSelection",
+        "variantSetNames", "variantSets",          "variants",
+    };
+    static_assert(std::is_sorted(kFields.begin(), kFields.end()));
+    return std::binary_search(kFields.begin(), kFields.end(), name);
+}
+
+}  // namespace fluence::usd::detail
