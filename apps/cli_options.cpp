@@ -33,6 +33,13 @@ private:
     std::size_t i_ = 0;
 };
 
+// An argument that is not an option: the scene file, given once.
+void takeScene(const std::string& arg, std::string& scene) {
+    if (arg.starts_with("-") && arg.size() > 1) throw UsageError("unknown option '" + arg + "'");
+    if (!scene.empty()) throw UsageError("unexpected argument '" + arg + "' (the scene is already " + scene + ")");
+    scene = arg;
+}
+
 }  // namespace
 
 usd::VariantSelection parseVariantSelection(const std::string& text) {
@@ -51,12 +58,8 @@ InfoOptions parseInfoOptions(const std::vector<std::string>& args) {
             o.variants.push_back(parseVariantSelection(cur.value(arg)));
         } else if (arg == "-s" || arg == "--settings") {
             o.settings = cur.value(arg);
-        } else if (arg.starts_with("-") && arg.size() > 1) {
-            throw UsageError("unknown option '" + arg + "'");
-        } else if (o.scene.empty()) {
-            o.scene = arg;
         } else {
-            throw UsageError("unexpected argument '" + arg + "' (the scene is already " + o.scene + ")");
+            takeScene(arg, o.scene);
         }
     }
     if (o.scene.empty()) throw UsageError("no scene file given");
@@ -107,12 +110,8 @@ RenderOptions parseRenderOptions(const std::vector<std::string>& args) {
             o.settings = cur.value(arg);
         } else if (arg == "--variant") {
             o.variants.push_back(parseVariantSelection(cur.value(arg)));
-        } else if (arg.starts_with("-") && arg.size() > 1) {
-            throw UsageError("unknown option '" + arg + "'");
-        } else if (o.scene.empty()) {
-            o.scene = arg;
         } else {
-            throw UsageError("unexpected argument '" + arg + "' (the scene is already " + o.scene + ")");
+            takeScene(arg, o.scene);
         }
     }
     if (o.scene.empty()) throw UsageError("no scene file given");

@@ -156,6 +156,27 @@ void touchVariant(const Layer& layer, const Variant& variant, int depth) {
     }
 }
 
+// Once the Stage composes (composedLayer, warnings, asset references), the composed result is
+// read back the same way; the `requires` tests keep this building against a Stage without them.
+template <class S>
+void touchComposition(const S& stage) {
+    if constexpr (requires { stage.composedLayer(); }) {
+        const Layer& composed = stage.composedLayer();
+        for (const auto& prim : composed.rootPrims) touchPrim(composed, *prim, 0);
+        touch(composed.metadata);
+    }
+    if constexpr (requires { stage.warnings(); }) {
+        for (const auto& warning : stage.warnings()) {
+            gSink = gSink + static_cast<double>(warning.message.size() + warning.primPath.size());
+        }
+    }
+    if constexpr (requires { stage.assetReferences(); }) {
+        for (const auto& asset : stage.assetReferences()) {
+            gSink = gSink + static_cast<double>(asset.authored.size() + asset.resolved.size());
+        }
+    }
+}
+
 }  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
@@ -185,6 +206,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     gSink = gSink + static_cast<double>(stage.defaultPrim().size()) + stage.upAxis() +
             stage.metersPerUnit() + stage.startTimeCode().value_or(0.0) +
             stage.endTimeCode().value_or(0.0);
+    touchComposition(stage);
     stage.traverse([&](const PrimSpec& prim) {
         if (stage.prim(prim.path) == nullptr && prim.path.find('{') == std::string::npos) {
             // A traversed prim must be reachable by its path.

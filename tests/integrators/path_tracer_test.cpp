@@ -83,12 +83,7 @@ TEST(PathTracer, DiffusePlaneUnderADistantLightMatchesRhoEOverPi) {
     // indirect light with maxDepth 1).
     render::SceneDescription s;
     s.materials.push_back({"/mat", RGB(0.6f), RGB(0.0f)});
-    render::MeshDesc plane;
-    plane.name = "/plane";
-    plane.material = 0;
-    plane.positions = {{-10, -10, 0}, {10, -10, 0}, {10, 10, 0}, {-10, 10, 0}};
-    plane.indices = {0, 1, 2, 0, 2, 3};
-    s.meshes.push_back(plane);
+    s.meshes.push_back(test::quadMesh("/plane", {{{-10, -10, 0}, {10, -10, 0}, {10, 10, 0}, {-10, 10, 0}}}, 0));
     render::LightDesc sun;
     sun.name = "/sun";
     sun.type = render::LightType::Distant;

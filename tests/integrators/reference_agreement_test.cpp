@@ -19,19 +19,10 @@ render::SceneDescription everyLightScene() {
     s.materials.push_back({"/grey", RGB(0.5f), RGB(0.0f)});
     s.materials.push_back({"/orange", RGB(0.8f, 0.4f, 0.1f), RGB(0.0f)});
     s.materials.push_back({"/glow", RGB(0.2f), RGB(0.5f, 2.0f, 1.0f)});
-    render::MeshDesc ground;
-    ground.name = "/ground";
-    ground.material = 0;
-    ground.positions = {{-4, -4, -1}, {4, -4, -1}, {4, 4, -1}, {-4, 4, -1}};
-    ground.indices = {0, 1, 2, 0, 2, 3};
-    s.meshes.push_back(ground);
+    s.meshes.push_back(test::quadMesh("/ground", {{{-4, -4, -1}, {4, -4, -1}, {4, 4, -1}, {-4, 4, -1}}}, 0));
     s.meshes.push_back(test::sphereMesh(0.8f, 24, 12, 1));
-    render::MeshDesc panel;  // an emissive triangle pair standing behind the sphere
-    panel.name = "/panel";
-    panel.material = 2;
-    panel.positions = {{-1.5f, 2, -1}, {1.5f, 2, -1}, {1.5f, 2.5f, 1.5f}, {-1.5f, 2.5f, 1.5f}};
-    panel.indices = {0, 1, 2, 0, 2, 3};
-    s.meshes.push_back(panel);
+    // An emissive quad standing behind the sphere.
+    s.meshes.push_back(test::quadMesh("/panel", {{{-1.5f, 2, -1}, {1.5f, 2, -1}, {1.5f, 2.5f, 1.5f}, {-1.5f, 2.5f, 1.5f}}}, 2));
 
     render::LightDesc rect;
     rect.name = "/rect";

@@ -1,7 +1,9 @@
 // Small render-core scenes built in C++ (no USD), for integrator tests.
 #pragma once
 
+#include <array>
 #include <cmath>
+#include <string>
 
 #include "render/scene_description.h"
 
@@ -25,6 +27,16 @@ inline render::MeshDesc sphereMesh(float radius, int segments, int rings, int ma
             if (r > 0) m.indices.insert(m.indices.end(), {at(r, s), at(r + 1, s), at(r, s + 1)});
             if (r < rings - 1) m.indices.insert(m.indices.end(), {at(r, s + 1), at(r + 1, s), at(r + 1, s + 1)});
         }
+    return m;
+}
+
+// A quad (two triangles) with corners in order around it.
+inline render::MeshDesc quadMesh(std::string name, const std::array<Vec3f, 4>& corners, int material) {
+    render::MeshDesc m;
+    m.name = std::move(name);
+    m.material = material;
+    m.positions.assign(corners.begin(), corners.end());
+    m.indices = {0, 1, 2, 0, 2, 3};
     return m;
 }
 
