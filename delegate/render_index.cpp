@@ -109,6 +109,28 @@ std::vector<MeshRprim::Part> MeshRprim::worldParts() const {
     return out;
 }
 
+void VolumeRprim::syncData(const SyncContext& context, const usd::PrimSpec* prim, std::uint32_t) {
+    if (!prim) return;
+    fields_.clear();
+    for (const usd::RelationshipSpec& rel : prim->relationships) {
+        if (!rel.name.starts_with("field:") || rel.targets.empty()) continue;
+        Field field;
+        field.name = rel.name.substr(6);
+        field.assetPrim = resolveTargetPath(prim->path, rel.targets.front());
+        const usd::PrimSpec* asset = context.stage.prim(field.assetPrim);
+        if (!asset || (asset->typeName != "OpenVDBAsset" && asset->typeName != "Field3DAsset")) {
+            context.warn(prim->path, "field '" + field.name + "' targets " + field.assetPrim +
+                                         (asset ? ", a " + asset->typeName + ", not an OpenVDBAsset" : ", which does not exist"));
+            continue;
+        }
+        PrimReader reader(*asset, context.time);
+        field.filePath = reader.token({"filePath"}, "");
+        field.gridName = reader.token({"fieldName"}, "");
+        field.fieldIndex = static_cast<int>(reader.number({"fieldIndex"}, -1.0));
+        fields_.push_back(std::move(field));
+    }
+}
+
 void CameraSprim::syncData(const SyncContext& context, const usd::PrimSpec* prim, std::uint32_t) {
     if (prim) camera_ = cameraFromPrim(PrimReader(*prim, context.time), world());
 }

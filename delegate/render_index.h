@@ -1,8 +1,8 @@
 // The render index: the delegate's render prims, each synced from the stage when dirty.
 //
-// As in Hydra, prims come in kinds: rprims (geometry: meshes and tessellated implicit surfaces)
-// and sprims (state: cameras, lights, materials). Volumes and bprims (VDB fields, textures) join
-// with the volume and texture issues.
+// As in Hydra, prims come in kinds: rprims (geometry: meshes and tessellated implicit surfaces;
+// UsdVol volumes, whose fields are read but not rendered until the volume issue) and sprims
+// (state: cameras, lights, materials). Bprims (textures) join with the texture issue.
 //
 // The dirty-bit contract (see also scene_delegate.h, which maps stage edits to bits):
 //   - A prim is inserted with every bit dirty and synced once before the first render.
@@ -51,7 +51,7 @@ struct SyncContext {
 
 class RenderPrim {
 public:
-    enum class Kind { Mesh, Camera, Light, Material };
+    enum class Kind { Mesh, Volume, Camera, Light, Material };
 
     RenderPrim(Kind kind, std::string path) : kind_(kind), path_(std::move(path)) {}
     virtual ~RenderPrim() = default;
@@ -99,6 +99,24 @@ private:
     void syncData(const SyncContext& context, const usd::PrimSpec* prim, std::uint32_t bits) override;
     std::vector<Part> parts_;
     int dataReads_ = 0;
+};
+
+// A UsdVol Volume: its `field:NAME` relationships to OpenVDBAsset prims, read into plain data.
+class VolumeRprim final : public RenderPrim {
+public:
+    struct Field {
+        std::string name;       // the relationship's NAME: density, temperature, ...
+        std::string assetPrim;  // the OpenVDBAsset prim
+        std::string filePath;   // resolved asset path ("" when not authored)
+        std::string gridName;   // fieldName: the grid inside the file
+        int fieldIndex = -1;    // fieldIndex, -1 when not authored
+    };
+    explicit VolumeRprim(std::string path) : RenderPrim(Kind::Volume, std::move(path)) {}
+    const std::vector<Field>& fields() const { return fields_; }
+
+private:
+    void syncData(const SyncContext& context, const usd::PrimSpec* prim, std::uint32_t bits) override;
+    std::vector<Field> fields_;
 };
 
 class CameraSprim final : public RenderPrim {

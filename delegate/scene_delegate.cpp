@@ -15,7 +15,8 @@ namespace {
 bool isStructuralType(const std::string& t) {
     static const std::set<std::string> kTypes = {"",          "Xform",          "Scope",        "Material",
                                                  "Shader",    "NodeGraph",      "GeomSubset",   "RenderSettings",
-                                                 "RenderProduct", "RenderVar",  "RenderPass",   "Camera"};
+                                                 "RenderProduct", "RenderVar",  "RenderPass",   "Camera",
+                                                 "OpenVDBAsset", "Field3DAsset"};
     return kTypes.contains(t);
 }
 
@@ -51,6 +52,8 @@ void SceneDelegate::populate(const std::string& root) {
         const std::string& type = prim.typeName;
         if (isGeometryType(type))
             index_.insert(std::make_unique<MeshRprim>(prim.path));
+        else if (type == "Volume")
+            index_.insert(std::make_unique<VolumeRprim>(prim.path));
         else if (type == "Camera")
             index_.insert(std::make_unique<CameraSprim>(prim.path));
         else if (isLightType(type))
@@ -99,6 +102,7 @@ render::SceneDescription SceneDelegate::sceneDescription() const {
     // the order prims entered the index; materials in the order meshes first bind them.
     render::SceneDescription scene;
     std::map<std::string, int> materialIndex;
+    std::size_t volumes = 0;
     auto materialFor = [&](const std::string& path) {
         auto [it, inserted] = materialIndex.try_emplace(path, static_cast<int>(scene.materials.size()));
         if (inserted) scene.materials.push_back(static_cast<const MaterialSprim&>(*index_.find(path)).material());
@@ -124,11 +128,17 @@ render::SceneDescription SceneDelegate::sceneDescription() const {
                     scene.meshes.push_back(std::move(part.objectSpace));
                 }
                 break;
+            case RenderPrim::Kind::Volume:
+                ++volumes;
+                break;
             case RenderPrim::Kind::Material:
                 break;
         }
         return true;
     });
+    if (volumes > 0)
+        options_.warn("/", std::to_string(volumes) + (volumes == 1 ? " volume is" : " volumes are") +
+                               " read but not rendered yet (volume rendering is issue #7)");
     if (!scene.camera) throw SceneError("the scene has no camera: add a Camera prim, or name one with -c/--camera");
     return scene;
 }

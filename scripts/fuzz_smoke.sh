@@ -29,10 +29,15 @@ jobs=${FUZZ_JOBS:-1}
 # ---- Build ---------------------------------------------------------------------------------------
 generator=()
 command -v ninja >/dev/null && generator=(-G Ninja)
-clang=$(command -v clang++-14 || command -v clang++ || true)
+clang=$(command -v clang++-16 || command -v clang++ || true)
 if [[ -z "$clang" ]]; then
-  echo "fuzz: clang++ not found (Debian: apt-get install clang-14 libclang-rt-14-dev)" >&2
+  echo "fuzz: clang++ not found (Debian: apt-get install clang-16 libclang-rt-16-dev)" >&2
   exit 1
+fi
+# A build folder configured with another compiler (an older clang) is configured afresh.
+if [[ -f "$build/CMakeCache.txt" ]] &&
+   ! grep -qx "CMAKE_CXX_COMPILER:[A-Z]*=$clang" "$build/CMakeCache.txt"; then
+  rm -rf "$build/CMakeCache.txt" "$build/CMakeFiles"
 fi
 if [[ ! -f "$build/CMakeCache.txt" ]]; then
   cmake -S fuzz -B "$build" "${generator[@]}" -DCMAKE_CXX_COMPILER="$clang" >/dev/null
@@ -55,8 +60,6 @@ rm -rf "$seeds"
 mkdir -p "$seeds"
 sources=(tests/scene usd_samples)
 [[ -d ../shared/usd_corpus ]] && sources+=(../shared/usd_corpus)
-[[ -d /work/shared/usd_corpus && ! ../shared/usd_corpus -ef /work/shared/usd_corpus ]] &&
-  sources+=(/work/shared/usd_corpus)
 while IFS= read -r -d '' file; do
   [[ $(head -c 8 "$file") == PXR-USDC ]] && continue
   cp "$file" "$seeds/$(sha1sum <"$file" | cut -c1-40)"
@@ -81,7 +84,7 @@ artifacts="$build/artifacts"
 mkdir -p "$artifacts"
 log="$build/fuzz-$(date +%Y%m%d-%H%M%S).log"
 
-symbolizer=/usr/lib/llvm-14/bin/llvm-symbolizer
+symbolizer=/usr/lib/llvm-16/bin/llvm-symbolizer
 [[ -x "$symbolizer" ]] && export ASAN_SYMBOLIZER_PATH=$symbolizer
 export ASAN_OPTIONS=${ASAN_OPTIONS:-detect_stack_use_after_return=1:strict_string_checks=1:check_initialization_order=1}
 export UBSAN_OPTIONS=${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1}

@@ -8,7 +8,7 @@ packages=(
   libembree-dev libtbb-dev
   libopenimageio-dev libopenexr-dev libopencolorio-dev
   libgtest-dev
-  clang-14 libclang-rt-14-dev llvm-14
+  clang-16 libclang-rt-16-dev llvm-16
 )
 
 missing=()
