@@ -202,24 +202,30 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     for (const auto& prim : layer->rootPrims) touchPrim(*layer, *prim, 0);
     touch(layer->metadata);
 
-    Stage stage(std::move(layer));
-    gSink = gSink + static_cast<double>(stage.defaultPrim().size()) + stage.upAxis() +
-            stage.metersPerUnit() + stage.startTimeCode().value_or(0.0) +
-            stage.endTimeCode().value_or(0.0);
-    touchComposition(stage);
-    stage.traverse([&](const PrimSpec& prim) {
-        if (stage.prim(prim.path) == nullptr && prim.path.find('{') == std::string::npos) {
-            // A traversed prim must be reachable by its path.
-            std::fprintf(stderr, "traversed prim %s not found by path\n", prim.path.c_str());
-            std::abort();
-        }
-        for (const AttributeSpec& attribute : prim.attributes) {
-            if (auto value = Stage::resolve(attribute, kDefaultTime)) touch(*value);
-            if (auto start = stage.startTimeCode()) {
-                if (auto value = Stage::resolve(attribute, *start)) touch(*value);
+    // Composing may read other layers (an absolute asset path can name any file), and a syntax
+    // error in one of those is a ParseError too, as Stage::open documents.
+    try {
+        Stage stage(std::move(layer));
+        gSink = gSink + static_cast<double>(stage.defaultPrim().size()) + stage.upAxis() +
+                stage.metersPerUnit() + stage.startTimeCode().value_or(0.0) +
+                stage.endTimeCode().value_or(0.0);
+        touchComposition(stage);
+        stage.traverse([&](const PrimSpec& prim) {
+            if (stage.prim(prim.path) == nullptr && prim.path.find('{') == std::string::npos) {
+                // A traversed prim must be reachable by its path.
+                std::fprintf(stderr, "traversed prim %s not found by path\n", prim.path.c_str());
+                std::abort();
             }
-        }
-        return true;
-    });
+            for (const AttributeSpec& attribute : prim.attributes) {
+                if (auto value = Stage::resolve(attribute, kDefaultTime)) touch(*value);
+                if (auto start = stage.startTimeCode()) {
+                    if (auto value = Stage::resolve(attribute, *start)) touch(*value);
+                }
+            }
+            return true;
+        });
+    } catch (const ParseError& error) {
+        gSink = gSink + static_cast<double>(std::string_view(error.what()).size());
+    }
     return 0;
 }

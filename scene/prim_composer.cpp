@@ -59,8 +59,10 @@ void anchorInPlace(Value& value, const Layer& layer, Found* found) {
 Value mergeDictionaries(const Value& weaker, const Value& stronger) {
     if (!weaker.dictionary || !stronger.dictionary) return stronger;
     auto merged = std::make_shared<Dictionary>(*weaker.dictionary);
-    for (const auto& [key, value] : *stronger.dictionary) {
-        auto it = std::find_if(merged->begin(), merged->end(), [&](const auto& e) { return e.first == key; });
+    for (const auto& entry : *stronger.dictionary) {
+        const std::string& key = entry.first;
+        const Value& value = entry.second;
+        auto it = std::find_if(merged->begin(), merged->end(), [&key](const auto& e) { return e.first == key; });
         if (it == merged->end())
             merged->emplace_back(key, value);
         else if (it->second.kind == ValueKind::Dictionary && value.kind == ValueKind::Dictionary)

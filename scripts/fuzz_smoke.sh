@@ -42,6 +42,9 @@ fi
 if [[ ! -f "$build/CMakeCache.txt" ]]; then
   cmake -S fuzz -B "$build" "${generator[@]}" -DCMAKE_CXX_COMPILER="$clang" >/dev/null
 fi
+# Let ccache reuse objects across clones and build folders (CI builds in a fresh clone): paths
+# are hashed relative to the repository, and the -g build's working directory is not hashed.
+export CCACHE_BASEDIR="$root" CCACHE_NOHASHDIR=true
 cmake --build "$build" -j "${JOBS:-2}" >"$build/build.log" 2>&1 || {
   cat "$build/build.log" >&2
   echo "fuzz: building the fuzzer failed" >&2
