@@ -4,6 +4,7 @@
 
 #include <string>
 
+#include "scene/usda_lexer.h"
 #include "scene/usda_parser.h"
 
 namespace fluence::usd {
@@ -185,15 +186,15 @@ TEST(UsdaErrors, PropertyRules) {
 
 TEST(UsdaErrors, NestingIsCapped) {
     std::string deepList = "#usda 1.0\n(\n    x = " + std::string(5000, '[') + "\n)\n";
-    expectError(deepList, 3, 9 + 1000, "nesting deeper than 1000 levels");
+    expectError(deepList, 3, 9 + detail::kMaxNesting, "nesting deeper than 256 levels");
     std::string deepDictionary = "#usda 1.0\n(\n    customData = ";
     for (int i = 0; i < 2000; ++i) deepDictionary += "{ dictionary d = ";
-    expectError(deepDictionary, 3, 18 + 17 * 1000, "nesting deeper than 1000 levels");
+    expectError(deepDictionary, 3, 18 + 17 * detail::kMaxNesting, "nesting deeper than 256 levels");
 }
 
 TEST(UsdaErrors, DeepButBoundedNestingParses) {
     std::string text = "#usda 1.0\n";
-    const int depth = 999;
+    const int depth = detail::kMaxNesting - 1;
     for (int i = 0; i < depth; ++i) text += "def \"P\" {\n";
     for (int i = 0; i < depth; ++i) text += "}\n";
     auto layer = parseUsdaString(text, "deep.usda");
