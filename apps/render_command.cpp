@@ -85,6 +85,9 @@ int runRender(const RenderOptions& opt) {
     if (settings && settings->products.size() > 1)
         warnings(settings->path, "only the first render product is written in this version; " +
                                      std::to_string(settings->products.size() - 1) + " more ignored");
+    if (float aspect = product ? product->pixelAspectRatio : (settings ? settings->pixelAspectRatio : 1.0f); aspect != 1.0f)
+        warnings(product ? product->path : settings->path,
+                 "pixelAspectRatio " + std::to_string(aspect) + " is not supported yet; rendering square pixels");
     std::pair<int, int> res{kDefaultWidth, kDefaultHeight};
     if (opt.resolution)
         res = *opt.resolution;
