@@ -265,7 +265,11 @@ std::vector<PrimIndexer::ArcItem> PrimIndexer::composeArcs(const IndexNode& node
                                                            std::initializer_list<const char*> keys) const {
     std::string owner = stripVariantSelections(node.path);
     std::vector<SpecListEdits<ArcItem>> edits;
-    for (const auto& [layer, spec] : node.specs) {
+    for (const auto& layerAndSpec : node.specs) {
+        // Named locals rather than a structured binding: clang before 16 cannot capture one in
+        // the lambda below, and the fuzzer is built with clang.
+        const auto& layer = layerAndSpec.first;
+        const auto& spec = layerAndSpec.second;
         SpecListEdits<ArcItem> specEdits;
         for (const MetadataEntry& entry : spec.metadata()) {
             if (std::find_if(keys.begin(), keys.end(), [&](const char* k) { return entry.key == k; }) == keys.end())
