@@ -8,6 +8,7 @@
 #include <fstream>
 
 #include "tests/support/cli.h"
+#include "tests/support/statistics.h"
 #include "tests/support/temp_dir.h"
 #include "tests/support/usd_scenes.h"
 
@@ -33,29 +34,15 @@ protected:
     RunResult run(const std::string& args) { return test::runFluence(args, dir_); }
 };
 
-// Mean of the named channels over the pixels `select` accepts, with its standard error from the
-// spread of pixel values (pixels are independent estimates).
-struct MeanEstimate {
-    double mean = 0, standardError = 0;
-    int count = 0;
-};
-MeanEstimate channelMean(const ExrImage& img, std::initializer_list<const char*> channels,
-                         const std::function<bool(int, int)>& select) {
-    double sum = 0, sum2 = 0;
-    int n = 0;
+// Mean of the named channels over the pixels `select` accepts, with its standard error (pixels
+// are independent estimates).
+test::MeanEstimate channelMean(const ExrImage& img, std::initializer_list<const char*> channels,
+                               const std::function<bool(int, int)>& select) {
+    test::MeanEstimate e;
     for (int y = 0; y < img.height; ++y)
         for (int x = 0; x < img.width; ++x)
             if (select(x, y))
-                for (const char* c : channels) {
-                    double v = img.at(x, y, c);
-                    sum += v;
-                    sum2 += v * v;
-                    ++n;
-                }
-    MeanEstimate e;
-    e.count = n;
-    e.mean = sum / n;
-    e.standardError = std::sqrt(std::max(0.0, sum2 / n - e.mean * e.mean) / n);
+                for (const char* c : channels) e.add(img.at(x, y, c));
     return e;
 }
 
@@ -63,9 +50,9 @@ TEST_F(FluenceCli, WhiteFurnaceSphereVanishes) {
     fs::path scene = write("furnace.usda", test::furnaceUsda(1.0));
     RunResult r = run("render " + scene.string() + " -o " + (dir_ / "f.exr").string() + " -r 48 48 --spp 16");
     ASSERT_EQ(r.exitCode, 0) << r.err;
-    MeanEstimate e = channelMean(readExr(dir_ / "f.exr"), {"R", "G", "B"}, [](int, int) { return true; });
-    EXPECT_NEAR(e.mean, 1.0, 0.01) << "image mean";
-    EXPECT_NEAR(e.mean, 1.0, 5 * e.standardError + 1e-6) << "within 5 standard errors";
+    test::MeanEstimate e = channelMean(readExr(dir_ / "f.exr"), {"R", "G", "B"}, [](int, int) { return true; });
+    EXPECT_NEAR(e.mean(), 1.0, 0.01) << "image mean";
+    EXPECT_NEAR(e.mean(), 1.0, 5 * e.standardError() + 1e-6) << "within 5 standard errors";
 }
 
 TEST_F(FluenceCli, FurnaceSphereOfAlbedoHalfAveragesHalf) {
@@ -73,10 +60,10 @@ TEST_F(FluenceCli, FurnaceSphereOfAlbedoHalfAveragesHalf) {
     RunResult r = run("render " + scene.string() + " -o " + (dir_ / "f.exr").string() + " -r 48 48 --spp 16");
     ASSERT_EQ(r.exitCode, 0) << r.err;
     ExrImage img = readExr(dir_ / "f.exr");
-    MeanEstimate e = channelMean(img, {"G"}, [&](int x, int y) { return img.at(x, y, "A") == 1.0f; });
-    ASSERT_GT(e.count, 500);
-    EXPECT_NEAR(e.mean, 0.5, 5 * e.standardError + 1e-6);
-    EXPECT_NEAR(e.mean, 0.5, 0.005);
+    test::MeanEstimate e = channelMean(img, {"G"}, [&](int x, int y) { return img.at(x, y, "A") == 1.0f; });
+    ASSERT_GT(e.count(), 500);
+    EXPECT_NEAR(e.mean(), 0.5, 5 * e.standardError() + 1e-6);
+    EXPECT_NEAR(e.mean(), 0.5, 0.005);
 }
 
 TEST_F(FluenceCli, SameSeedGivesBitIdenticalImagesAtAnyThreadCount) {

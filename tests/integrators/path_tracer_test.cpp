@@ -7,6 +7,7 @@
 
 #include "integrators/renderer.h"
 #include "tests/support/scenes.h"
+#include "tests/support/statistics.h"
 
 namespace fluence::integrators {
 namespace {
@@ -30,27 +31,13 @@ Rendered renderScene(const render::SceneDescription& desc, int size, int spp, in
     return {film.resolve(), stats};
 }
 
-// Mean of channel `c` over the pixels where `select` holds, with its standard error from the
-// spread of the pixel values (pixels are independent estimates).
-struct MeanEstimate {
-    double mean = 0, standardError = 0;
-    int pixels = 0;
-};
-MeanEstimate channelMean(const Image& image, int c, const std::function<bool(const float*)>& select) {
-    double sum = 0, sum2 = 0;
-    int n = 0;
+// Mean of channel `c` over the pixels where `select` holds, with its standard error (pixels are
+// independent estimates).
+test::MeanEstimate channelMean(const Image& image, int c, const std::function<bool(const float*)>& select) {
+    test::MeanEstimate e;
     for (int y = 0; y < image.height; ++y)
-        for (int x = 0; x < image.width; ++x) {
-            const float* p = image.pixel(x, y);
-            if (!select(p)) continue;
-            sum += p[c];
-            sum2 += double(p[c]) * p[c];
-            ++n;
-        }
-    MeanEstimate e;
-    e.pixels = n;
-    e.mean = sum / n;
-    e.standardError = std::sqrt(std::max(0.0, sum2 / n - e.mean * e.mean) / n);
+        for (int x = 0; x < image.width; ++x)
+            if (const float* p = image.pixel(x, y); select(p)) e.add(p[c]);
     return e;
 }
 
@@ -58,13 +45,13 @@ TEST(PathTracer, WhiteFurnaceSphereVanishes) {
     Rendered r = renderScene(test::furnaceScene(1.0f), 48, 16);
     int a = r.image.channelIndex("A");
     for (int c : {0, 1, 2}) {
-        MeanEstimate sphere = channelMean(r.image, c, [&](const float* p) { return p[a] == 1.0f; });
-        ASSERT_GT(sphere.pixels, 500);
+        test::MeanEstimate sphere = channelMean(r.image, c, [&](const float* p) { return p[a] == 1.0f; });
+        ASSERT_GT(sphere.count(), 500);
         // Unbiased: within 5 standard errors of exactly 1, and within 1% in any case.
-        EXPECT_NEAR(sphere.mean, 1.0, 5 * sphere.standardError + 1e-6) << "channel " << c;
-        EXPECT_NEAR(sphere.mean, 1.0, 0.01);
-        MeanEstimate background = channelMean(r.image, c, [&](const float* p) { return p[a] == 0.0f; });
-        EXPECT_DOUBLE_EQ(background.mean, 1.0) << "directly seen dome";
+        EXPECT_NEAR(sphere.mean(), 1.0, 5 * sphere.standardError() + 1e-6) << "channel " << c;
+        EXPECT_NEAR(sphere.mean(), 1.0, 0.01);
+        test::MeanEstimate background = channelMean(r.image, c, [&](const float* p) { return p[a] == 0.0f; });
+        EXPECT_DOUBLE_EQ(background.mean(), 1.0) << "directly seen dome";
     }
 }
 
@@ -72,9 +59,9 @@ TEST(PathTracer, FurnaceSphereOfAlbedoHalfReadsHalf) {
     // The sphere is convex, so each point sees only the dome: outgoing radiance = albedo.
     Rendered r = renderScene(test::furnaceScene(0.5f), 48, 16);
     int a = r.image.channelIndex("A");
-    MeanEstimate sphere = channelMean(r.image, 1, [&](const float* p) { return p[a] == 1.0f; });
-    EXPECT_NEAR(sphere.mean, 0.5, 5 * sphere.standardError + 1e-6);
-    EXPECT_NEAR(sphere.mean, 0.5, 0.005);
+    test::MeanEstimate sphere = channelMean(r.image, 1, [&](const float* p) { return p[a] == 1.0f; });
+    EXPECT_NEAR(sphere.mean(), 0.5, 5 * sphere.standardError() + 1e-6);
+    EXPECT_NEAR(sphere.mean(), 0.5, 0.005);
 }
 
 TEST(PathTracer, DiffusePlaneUnderADistantLightMatchesRhoEOverPi) {

@@ -5,6 +5,7 @@
 #include "render/area_lights.h"
 #include "render/infinite_lights.h"
 #include "tests/support/chi2.h"
+#include "tests/support/statistics.h"
 
 namespace fluence::render {
 namespace {
@@ -98,17 +99,14 @@ TEST(SphereLight, IrradianceMatchesTheClosedForm) {
     desc.transform = Matrix4::translate({0, 0, 3});
     SphereLight light(desc);
     constexpr int kN = 200000;
-    double sum = 0, sum2 = 0;
+    test::MeanEstimate irradiance;
     for (int n = 0; n < kN; ++n) {
         auto s = light.sample(Vec3f(0, 0, 0), SampleStream(11, 0, n).next2D());
         ASSERT_TRUE(s);
-        double v = double(s->Li.x) * std::max(0.0f, s->wi.z) / s->pdf;
-        sum += v;
-        sum2 += v * v;
+        irradiance.add(double(s->Li.x) * std::max(0.0f, s->wi.z) / s->pdf);
     }
-    double mean = sum / kN, se = std::sqrt((sum2 / kN - mean * mean) / kN);
     double expected = kPiD * 2.0 * (0.75 * 0.75) / (3.0 * 3.0);
-    EXPECT_NEAR(mean, expected, 5 * se + 1e-12);
+    EXPECT_NEAR(irradiance.mean(), expected, 5 * irradiance.standardError() + 1e-12);
 }
 
 TEST(SphereLight, SampledPointsLieOnTheSphere) {
