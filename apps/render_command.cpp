@@ -81,7 +81,7 @@ int runRender(const RenderOptions& opt) {
     // Resolution and output: the command line, else the render settings' first product, else the
     // settings, else the defaults.
     const auto& settings = populated->renderSettings;
-    const delegate::RenderProductDesc* product = settings && !settings->products.empty() ? &settings->products.front() : nullptr;
+    const delegate::RenderProductDesc* product = settings ? settings->renderedProduct() : nullptr;
     if (settings && settings->products.size() > 1)
         warnings(settings->path, "only the first render product is written in this version; " +
                                      std::to_string(settings->products.size() - 1) + " more ignored");

@@ -48,6 +48,11 @@ struct RenderSettingsDesc {
     std::string aspectRatioConformPolicy = "expandAperture";
     std::vector<std::string> includedPurposes{"default", "render"};
     std::vector<RenderProductDesc> products;
+
+    // The product this version renders: the first one (nullptr when there are none).
+    const RenderProductDesc* renderedProduct() const { return products.empty() ? nullptr : &products.front(); }
+    // The camera of the rendered product, which falls back to the settings' own camera.
+    const std::string& renderedCamera() const { return renderedProduct() ? renderedProduct()->cameraPath : cameraPath; }
 };
 
 // `settingsPath` "" means the stage's renderSettingsPrimPath (or no settings). Throws SceneError

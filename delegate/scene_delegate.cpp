@@ -76,9 +76,10 @@ std::size_t SceneDelegate::sync() {
 }
 
 void SceneDelegate::chooseCamera() {
-    // The camera asked for, else the render settings' camera, else the first one in traversal order.
+    // The camera asked for, else the rendered product's (or the settings') camera, else the first
+    // one in traversal order.
     std::string wanted = options_.cameraPath;
-    if (wanted.empty() && renderSettings_) wanted = renderSettings_->cameraPath;
+    if (wanted.empty() && renderSettings_) wanted = renderSettings_->renderedCamera();
     if (!wanted.empty()) {
         const usd::PrimSpec* prim = stage_.prim(wanted);
         if (!prim) throw SceneError("camera " + wanted + " does not exist in the scene");

@@ -343,6 +343,36 @@ def Scope "Render"
     EXPECT_THROW(populate("#usda 1.0\ndef Xform \"X\"\n{\n}\n"), SceneError);
 }
 
+TEST(SceneDelegate, TheRenderedProductsCameraOverridesTheSettingsCamera) {
+    auto p = populate(R"(#usda 1.0
+(
+    renderSettingsPrimPath = "/Render/Settings"
+)
+def Camera "Wide"
+{
+}
+def Camera "Close"
+{
+    float focalLength = 85
+}
+def Scope "Render"
+{
+    def RenderSettings "Settings"
+    {
+        rel camera = </Wide>
+        rel products = </Render/Product>
+    }
+    def RenderProduct "Product"
+    {
+        rel camera = </Close>
+        token productName = "close.exr"
+    }
+}
+)");
+    EXPECT_EQ(p.result.cameraPath, "/Close");
+    EXPECT_FLOAT_EQ(p.result.scene.camera->focalLength, 85.0f);
+}
+
 TEST(SceneDelegate, TimeSamplesAreInterpolated) {
     auto stage = std::make_unique<usd::Stage>(usd::parseUsdaString(R"(#usda 1.0
 def Xform "X"
