@@ -2,8 +2,10 @@
 
 #include <cstdio>
 #include <functional>
+#include <map>
 
 #include "apps/scene_loading.h"
+#include "delegate/instancing.h"
 #include "delegate/light_adapter.h"
 #include "delegate/material_adapter.h"
 #include "delegate/prim_reader.h"
@@ -70,9 +72,21 @@ int runInfo(const InfoOptions& opt) {
     section("prims", primCount);
     for (const auto& root : composed.rootPrims) printTree(*root, 0);
 
-    std::vector<std::string> cameras, lights, materials, volumes, settings;
+    std::vector<std::string> cameras, lights, materials, volumes, settings, instancing;
+    std::map<std::string, std::size_t> prototypeNumbers;  // native-instancing key -> number, in order met
     stage->traverse([&](const usd::PrimSpec& p) {
         delegate::PrimReader r(p, time);
+        if (std::string key = delegate::instancePrototypeKey(p); !key.empty()) {
+            auto [it, first] = prototypeNumbers.try_emplace(key, prototypeNumbers.size() + 1);
+            instancing.push_back(p.path + "  instance of prototype " + std::to_string(it->second) +
+                                 (first ? " (read from here)" : ""));
+        }
+        if (p.typeName == "PointInstancer") {
+            delegate::PointInstances points =
+                delegate::pointInstancesFromPrim(r, [&](const std::string& message) { warnings(p.path, message); });
+            instancing.push_back(p.path + "  PointInstancer: " + std::to_string(points.instances.size()) + " instances of " +
+                                 std::to_string(points.prototypes.size()) + " prototypes");
+        }
         if (p.typeName == "Camera") {
             cameras.push_back(p.path + "  focalLength " + std::to_string(r.number({"focalLength"}, 50.0)) + ", aperture " +
                               std::to_string(r.number({"horizontalAperture"}, 20.955)) + " x " +
@@ -101,6 +115,7 @@ int runInfo(const InfoOptions& opt) {
         section(title, items.size());
         for (const std::string& i : items) std::printf("  %s\n", i.c_str());
     };
+    list("instancing", instancing);
     list("cameras", cameras);
     list("lights", lights);
     list("materials", materials);

@@ -158,6 +158,9 @@ int runRender(const RenderOptions& opt) {
     std::printf("  scene        %s, %s, %s (%s), %s\n", counted(st.meshes, "mesh", "meshes").c_str(),
                 counted(st.triangles, "triangle").c_str(), counted(st.lights, "light").c_str(),
                 counted(st.emissiveTriangles, "emissive triangle").c_str(), counted(warnings.count(), "warning").c_str());
+    if (st.instances > 0)
+        std::printf("  instancing   %s placing %s (stored once)\n", counted(st.instances, "instance").c_str(),
+                    counted(st.instancedTriangles, "triangle").c_str());
     std::printf("  time         parse %.3f s, build %.3f s, render %.3f s, write %.3f s, total %.3f s\n", parseSeconds,
                 buildSeconds, stats.seconds, writeSeconds, total);
     std::printf("  throughput   %.3f Msamples/s, %.3f Mrays/s (%llu rays: %llu camera, %llu bounce, %llu shadow)\n",

@@ -7,6 +7,7 @@
 #include "delegate/implicit_geometry.h"
 #include "delegate/light_adapter.h"
 #include "delegate/xform.h"
+#include "render/mesh_transform.h"
 
 namespace fluence::delegate {
 
@@ -16,14 +17,14 @@ bool isXformAttribute(const std::string& name) { return name.starts_with("xformO
 
 bool animated(const usd::AttributeSpec& a) { return a.timeSamples.size() > 1; }
 
-// Whether any non-transform attribute of the prim (and, when `recursive`, of its descendants)
-// has time samples that change.
-bool hasAnimatedData(const usd::PrimSpec& prim, bool recursive) {
+// Whether any attribute of the prim (and, when `recursive`, of its descendants) has time
+// samples that change; transform attributes count only when `withTransforms`.
+bool hasAnimatedData(const usd::PrimSpec& prim, bool recursive, bool withTransforms) {
     for (const usd::AttributeSpec& a : prim.attributes)
-        if (!isXformAttribute(a.name) && animated(a)) return true;
+        if ((withTransforms || !isXformAttribute(a.name)) && animated(a)) return true;
     if (recursive)
         for (const auto& child : prim.children)
-            if (hasAnimatedData(*child, true)) return true;
+            if (hasAnimatedData(*child, true, withTransforms)) return true;
     return false;
 }
 
@@ -48,23 +49,6 @@ WorldTransform worldTransformOf(const usd::Stage& stage, const std::string& path
     return result;
 }
 
-render::MeshDesc toWorld(const render::MeshDesc& m, const Matrix4& world) {
-    render::MeshDesc out = m;
-    for (Vec3f& p : out.positions) p = Vec3f(world.transformPoint(Vec3d(p)));
-    for (Vec3f& n : out.cornerNormals) {
-        Vec3d t = world.transformNormal(Vec3d(n));
-        double len = length(t);
-        n = Vec3f(len > 0.0 ? t / len : t);
-    }
-    if (world.determinant3x3() < 0.0)  // a mirroring transform: keep triangles facing outwards
-        for (std::size_t c = 0; c + 2 < out.indices.size(); c += 3) {
-            std::swap(out.indices[c + 1], out.indices[c + 2]);
-            if (!out.cornerNormals.empty()) std::swap(out.cornerNormals[c + 1], out.cornerNormals[c + 2]);
-            if (!out.cornerColors.empty()) std::swap(out.cornerColors[c + 1], out.cornerColors[c + 2]);
-        }
-    return out;
-}
-
 }  // namespace
 
 bool isAtOrBelow(const std::string& path, const std::string& root) {
@@ -79,12 +63,14 @@ void RenderPrim::sync(const SyncContext& context) {
         world_ = w.matrix;
         transformAnimated_ = w.animated;
     }
-    const usd::PrimSpec* prim = context.stage.prim(path_);
+    const usd::PrimSpec* prim = context.stage.prim(sourcePath());
     syncData(context, prim, dirty_);
-    dataAnimated_ = prim && hasAnimatedData(*prim, kind_ == Kind::Material);
+    dataAnimated_ = prim && readsAnimatedData(*prim);
     dirty_ = kClean;
     ++syncCount_;
 }
+
+bool RenderPrim::readsAnimatedData(const usd::PrimSpec& source) const { return hasAnimatedData(source, false, false); }
 
 void MeshRprim::syncData(const SyncContext& context, const usd::PrimSpec* spec, std::uint32_t bits) {
     if (!spec || (bits & ~std::uint32_t(kDirtyTransform)) == 0) return;  // a moved mesh keeps its object-space data
@@ -105,8 +91,34 @@ void MeshRprim::syncData(const SyncContext& context, const usd::PrimSpec* spec, 
 std::vector<MeshRprim::Part> MeshRprim::worldParts() const {
     std::vector<Part> out;
     out.reserve(parts_.size());
-    for (const Part& p : parts_) out.push_back({toWorld(p.objectSpace, world()), p.materialPath});
+    for (const Part& p : parts_) out.push_back({render::transformMesh(p.objectSpace, world()), p.materialPath});
     return out;
+}
+
+void PrototypeRprim::syncData(const SyncContext& context, const usd::PrimSpec*, std::uint32_t) {
+    ++dataReads_;
+    parts_.clear();
+    for (MeshPart& part : prototypeParts(context.stage, source_, includeSourceTransform_, context.time,
+                                         context.convertColor, context.warn))
+        parts_.push_back({std::move(part.mesh), std::move(part.materialPath)});
+}
+
+bool PrototypeRprim::readsAnimatedData(const usd::PrimSpec& source) const {
+    // Transforms below the source move geometry inside the prototype; the source's own does
+    // only when it is included.
+    for (const auto& child : source.children)
+        if (hasAnimatedData(*child, true, true)) return true;
+    return hasAnimatedData(source, false, includeSourceTransform_);
+}
+
+void InstanceRprim::syncData(const SyncContext&, const usd::PrimSpec* prim, std::uint32_t) {
+    if (prim) prototypeKey_ = instancePrototypeKey(*prim);
+}
+
+void PointInstancerRprim::syncData(const SyncContext& context, const usd::PrimSpec* prim, std::uint32_t) {
+    if (!prim) return;
+    instances_ = pointInstancesFromPrim(PrimReader(*prim, context.time),
+                                        [&](const std::string& message) { context.warn(prim->path, message); });
 }
 
 void VolumeRprim::syncData(const SyncContext& context, const usd::PrimSpec* prim, std::uint32_t) {
@@ -130,6 +142,8 @@ void VolumeRprim::syncData(const SyncContext& context, const usd::PrimSpec* prim
         fields_.push_back(std::move(field));
     }
 }
+
+bool MaterialSprim::readsAnimatedData(const usd::PrimSpec& source) const { return hasAnimatedData(source, true, false); }
 
 void CameraSprim::syncData(const SyncContext& context, const usd::PrimSpec* prim, std::uint32_t) {
     if (prim) camera_ = cameraFromPrim(PrimReader(*prim, context.time), world());
@@ -174,8 +188,8 @@ std::size_t RenderIndex::sync(const SyncContext& context) {
             prim->sync(context);
             ++synced;
         }
-        if (prim->kind() == RenderPrim::Kind::Mesh)
-            for (const auto& part : static_cast<const MeshRprim&>(*prim).parts())
+        if (const auto* surface = dynamic_cast<const SurfaceRprim*>(prim.get()))
+            for (const auto& part : surface->parts())
                 if (!part.materialPath.empty()) materials.insert(part.materialPath);
     }
     for (const std::string& m : materials)

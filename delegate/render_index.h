@@ -1,8 +1,9 @@
 // The render index: the delegate's render prims, each synced from the stage when dirty.
 //
 // As in Hydra, prims come in kinds: rprims (geometry: meshes and tessellated implicit surfaces;
-// UsdVol volumes, whose fields are read but not rendered until the volume issue) and sprims
-// (state: cameras, lights, materials). Bprims (textures) join with the texture issue.
+// prototypes, native instances and point instancers (delegate/instancing.h); UsdVol volumes,
+// whose fields are read but not rendered until the volume issue) and sprims (state: cameras,
+// lights, materials). Bprims (textures) join with the texture issue.
 //
 // The dirty-bit contract (see also scene_delegate.h, which maps stage edits to bits):
 //   - A prim is inserted with every bit dirty and synced once before the first render.
@@ -11,6 +12,9 @@
 //   - Mesh rprims keep their geometry in object space: kDirtyTransform alone re-transforms it
 //     without re-reading or re-triangulating anything. Topology, points, primvars and material
 //     binding re-read the mesh (the GeomSubset split depends on bindings).
+//   - Prototypes live at synthetic paths (/__Prototype_N) and read the subtree at their source
+//     prim; any dirty bit re-reads it. Instances and point instancers hold transforms only:
+//     moving one never re-reads a prototype.
 //   - Sprims are small: any dirty bit re-reads the prim.
 //   - Each prim records whether what it read is animated (time samples), so that a change of
 //     render time dirties only animated prims.
@@ -23,6 +27,7 @@
 #include <string>
 #include <vector>
 
+#include "delegate/instancing.h"
 #include "delegate/material_adapter.h"
 #include "delegate/prim_reader.h"
 #include "render/scene_description.h"
@@ -51,7 +56,7 @@ struct SyncContext {
 
 class RenderPrim {
 public:
-    enum class Kind { Mesh, Volume, Camera, Light, Material };
+    enum class Kind { Mesh, Prototype, Instance, PointInstancer, Volume, Camera, Light, Material };
 
     RenderPrim(Kind kind, std::string path) : kind_(kind), path_(std::move(path)) {}
     virtual ~RenderPrim() = default;
@@ -67,9 +72,16 @@ public:
     // Pulls what the dirty bits name from the stage and clears them (no-op when clean).
     void sync(const SyncContext& context);
 
+    // Local-to-world transform of the prim at path() (identity for synthetic paths).
+    const Matrix4& world() const { return world_; }
+
 protected:
     virtual void syncData(const SyncContext& context, const usd::PrimSpec* prim, std::uint32_t bits) = 0;
-    const Matrix4& world() const { return world_; }
+    // The stage prim the data is read from (path() unless the render prim is synthetic).
+    virtual const std::string& sourcePath() const { return path_; }
+    // Whether what syncData read from `source` is animated (default: a non-transform attribute
+    // of the prim itself has time samples).
+    virtual bool readsAnimatedData(const usd::PrimSpec& source) const;
 
 private:
     Kind kind_;
@@ -80,25 +92,78 @@ private:
     bool transformAnimated_ = false, dataAnimated_ = false;
 };
 
-// A Mesh, or an implicit surface tessellated into one; split into one part per bound material.
-class MeshRprim final : public RenderPrim {
+// Geometry split into one part per bound material: a mesh's or a prototype's.
+class SurfaceRprim : public RenderPrim {
 public:
     struct Part {
-        render::MeshDesc objectSpace;
+        render::MeshDesc objectSpace;  // object space (a prototype's own space for a prototype)
         std::string materialPath;
     };
-    explicit MeshRprim(std::string path) : RenderPrim(Kind::Mesh, std::move(path)) {}
     const std::vector<Part>& parts() const { return parts_; }
-    // The parts in world space.
-    std::vector<Part> worldParts() const;
-    // How many syncs read (and triangulated or tessellated) the mesh data; transform-only syncs
+    // How many syncs read (and triangulated or tessellated) the geometry; transform-only syncs
     // do not.
     int dataReads() const { return dataReads_; }
 
-private:
-    void syncData(const SyncContext& context, const usd::PrimSpec* prim, std::uint32_t bits) override;
+protected:
+    using RenderPrim::RenderPrim;
     std::vector<Part> parts_;
     int dataReads_ = 0;
+};
+
+// A Mesh, or an implicit surface tessellated into one.
+class MeshRprim final : public SurfaceRprim {
+public:
+    explicit MeshRprim(std::string path) : SurfaceRprim(Kind::Mesh, std::move(path)) {}
+    // The parts in world space.
+    std::vector<Part> worldParts() const;
+
+private:
+    void syncData(const SyncContext& context, const usd::PrimSpec* prim, std::uint32_t bits) override;
+};
+
+// Geometry shared by instances: every surface below `source`, in the source's space (with the
+// source's own transform for a point-instancer prototype).
+class PrototypeRprim final : public SurfaceRprim {
+public:
+    PrototypeRprim(std::string path, std::string source, bool includeSourceTransform)
+        : SurfaceRprim(Kind::Prototype, std::move(path)), source_(std::move(source)),
+          includeSourceTransform_(includeSourceTransform) {}
+    const std::string& source() const { return source_; }
+    bool includesSourceTransform() const { return includeSourceTransform_; }
+    // Reads from another source prim from the next sync on.
+    void setSource(std::string source) {
+        source_ = std::move(source);
+        markDirty(kAllDirty);
+    }
+
+private:
+    void syncData(const SyncContext& context, const usd::PrimSpec* prim, std::uint32_t bits) override;
+    const std::string& sourcePath() const override { return source_; }
+    bool readsAnimatedData(const usd::PrimSpec& source) const override;
+    std::string source_;
+    bool includeSourceTransform_;
+};
+
+// A native instance: an instanceable prim placing the prototype its key names at world().
+class InstanceRprim final : public RenderPrim {
+public:
+    explicit InstanceRprim(std::string path) : RenderPrim(Kind::Instance, std::move(path)) {}
+    const std::string& prototypeKey() const { return prototypeKey_; }
+
+private:
+    void syncData(const SyncContext& context, const usd::PrimSpec* prim, std::uint32_t bits) override;
+    std::string prototypeKey_;
+};
+
+// A UsdGeomPointInstancer: instance transforms relative to world().
+class PointInstancerRprim final : public RenderPrim {
+public:
+    explicit PointInstancerRprim(std::string path) : RenderPrim(Kind::PointInstancer, std::move(path)) {}
+    const PointInstances& instances() const { return instances_; }
+
+private:
+    void syncData(const SyncContext& context, const usd::PrimSpec* prim, std::uint32_t bits) override;
+    PointInstances instances_;
 };
 
 // A UsdVol Volume: its `field:NAME` relationships to OpenVDBAsset prims, read into plain data.
@@ -146,6 +211,7 @@ public:
 
 private:
     void syncData(const SyncContext& context, const usd::PrimSpec* prim, std::uint32_t bits) override;
+    bool readsAnimatedData(const usd::PrimSpec& source) const override;
     render::MaterialDesc material_;
 };
 
@@ -157,8 +223,8 @@ public:
     RenderPrim* find(const std::string& path) const;
     // Marks the prim at `path` and every prim below it.
     void markSubtreeDirty(const std::string& path, std::uint32_t bits, std::optional<RenderPrim::Kind> kind = {});
-    // Syncs every dirty prim (materials last: meshes name the materials they need, and a
-    // material sprim is created for each). Returns how many prims were synced.
+    // Syncs every dirty prim (materials last: meshes and prototypes name the materials they
+    // need, and a material sprim is created for each). Returns how many prims were synced.
     std::size_t sync(const SyncContext& context);
 
     // Prims in path order.

@@ -4,8 +4,10 @@
 #include <map>
 #include <set>
 
-#include "delegate/implicit_geometry.h"
+#include "delegate/imageable.h"
+#include "delegate/instancing.h"
 #include "delegate/light_adapter.h"
+#include "render/mesh_transform.h"
 
 namespace fluence::delegate {
 
@@ -20,21 +22,26 @@ bool isStructuralType(const std::string& t) {
     return kTypes.contains(t);
 }
 
-bool isGeometryType(const std::string& t) { return t == "Mesh" || isImplicitType(t); }
-
-// Whether a prim's subtree is rendered at all: visibility and purpose prune it.
-bool rendered(const usd::PrimSpec& prim, double time) {
-    PrimReader reader(prim, time);
-    if (reader.token({"visibility"}, "inherited") == "invisible") return false;
-    std::string purpose = reader.token({"purpose"}, "default");
-    return purpose != "guide" && purpose != "proxy";
-}
-
 // Mesh attributes by the dirty bit an edit of them sets.
 std::uint32_t meshBitsFor(const std::string& name) {
     if (name == "points") return kDirtyPoints;
     if (name == "normals" || name.starts_with("primvars:")) return kDirtyPrimvars;
     return kDirtyTopology;  // faceVertex*, holeIndices, orientation, radius, size, height, axis, ...
+}
+
+// Prototype keys: one namespace for native-instancing keys, one for point-instancer roots.
+std::string nativeKey(const std::string& key) { return "instance:" + key; }
+std::string pointInstancerKey(const std::string& root) { return "root:" + root; }
+
+// A mesh part as the render core takes it: a bound material replaces displayColor.
+void appendPart(SurfaceRprim::Part part, std::vector<render::MeshDesc>& meshes,
+                const std::function<int(const std::string&)>& materialFor) {
+    if (part.objectSpace.indices.empty()) return;
+    if (!part.materialPath.empty()) {
+        part.objectSpace.material = materialFor(part.materialPath);
+        part.objectSpace.cornerColors.clear();
+    }
+    meshes.push_back(std::move(part.objectSpace));
 }
 
 }  // namespace
@@ -46,12 +53,25 @@ SceneDelegate::SceneDelegate(usd::Stage& stage, DelegateOptions options) : stage
 
 void SceneDelegate::populate(const std::string& root) {
     std::map<std::string, std::pair<std::size_t, std::string>> unsupported;  // type -> (count, first prim)
+    std::string instanceRoot;  // the instance whose proxies are being visited, "" outside instances
     stage_.traverse([&](const usd::PrimSpec& prim) {
-        if (!isAtOrBelow(prim.path, root)) return isAtOrBelow(root, prim.path) && rendered(prim, options_.time);
-        if (!rendered(prim, options_.time)) return false;
+        if (!isAtOrBelow(prim.path, root)) return isAtOrBelow(root, prim.path) && isImaged(prim, options_.time);
+        if (!isImaged(prim, options_.time)) return false;
         const std::string& type = prim.typeName;
-        if (isGeometryType(type))
+        if (!instanceRoot.empty() && !isAtOrBelow(prim.path, instanceRoot)) instanceRoot.clear();
+        if (instanceRoot.empty() && !isGeometryType(type) && !instancePrototypeKey(prim).empty()) {
+            index_.insert(std::make_unique<InstanceRprim>(prim.path));
+            instanceRoot = prim.path;  // its geometry is the prototype's; lights and cameras stay per prim
+            return true;
+        }
+        if (isGeometryType(type) || type == "PointInstancer") {
+            if (!instanceRoot.empty()) return true;
+            if (type == "PointInstancer") {
+                index_.insert(std::make_unique<PointInstancerRprim>(prim.path));
+                return false;  // what lies below renders only through the instancer
+            }
             index_.insert(std::make_unique<MeshRprim>(prim.path));
+        }
         else if (type == "Volume")
             index_.insert(std::make_unique<VolumeRprim>(prim.path));
         else if (type == "Camera")
@@ -67,6 +87,62 @@ void SceneDelegate::populate(const std::string& root) {
     for (const auto& [type, entry] : unsupported)
         options_.warn(entry.second, "prim type '" + type + "' is not supported yet; skipped " + std::to_string(entry.first) +
                                         (entry.first == 1 ? " prim" : " prims"));
+    reconcilePrototypes();
+}
+
+void SceneDelegate::reconcilePrototypes() {
+    // The prototypes the index's instances need, each read from its first source in path order.
+    std::map<std::string, std::pair<std::string, bool>> wanted;  // key -> (source prim, include its transform)
+    for (const auto& [path, prim] : index_.prims()) {
+        if (prim->kind() == RenderPrim::Kind::Instance) {
+            if (const usd::PrimSpec* spec = stage_.prim(path)) wanted.try_emplace(nativeKey(instancePrototypeKey(*spec)), path, false);
+        } else if (prim->kind() == RenderPrim::Kind::PointInstancer) {
+            if (const usd::PrimSpec* spec = stage_.prim(path))
+                for (const std::string& root : pointInstancerPrototypes(*spec))
+                    wanted.try_emplace(pointInstancerKey(root), root, true);
+        }
+    }
+    for (auto it = prototypes_.begin(); it != prototypes_.end();) {
+        if (wanted.contains(it->first)) {
+            ++it;
+            continue;
+        }
+        index_.removeSubtree(it->second);
+        it = prototypes_.erase(it);
+    }
+    for (const auto& [key, source] : wanted) {
+        auto [it, inserted] = prototypes_.try_emplace(key, "/__Prototype_" + std::to_string(nextPrototype_));
+        if (inserted) {
+            ++nextPrototype_;
+            index_.insert(std::make_unique<PrototypeRprim>(it->second, source.first, source.second));
+            continue;
+        }
+        auto& prototype = static_cast<PrototypeRprim&>(*index_.find(it->second));
+        if (prototype.source() != source.first) prototype.setSource(source.first);
+    }
+}
+
+void SceneDelegate::repopulate(const std::string& primPath) {
+    index_.removeSubtree(primPath);
+    populate(primPath);
+    markPrototypesReading(primPath);
+}
+
+bool SceneDelegate::markPrototypesReading(const std::string& primPath, const std::string& attribute) {
+    bool marked = false;
+    for (const auto& [key, path] : prototypes_) {
+        auto& prototype = static_cast<PrototypeRprim&>(*index_.find(path));
+        bool below = isAtOrBelow(primPath, prototype.source());
+        if (!below && !isAtOrBelow(prototype.source(), primPath)) continue;
+        // A native instance's own transform places it; it is not part of the prototype.
+        if (primPath == prototype.source() && attribute.starts_with("xformOp") && !prototype.includesSourceTransform())
+            continue;
+        // Above the source only a structural edit (a new variant, visibility) changes it.
+        if (!below && !attribute.empty()) continue;
+        prototype.markDirty(kAllDirty);
+        marked = true;
+    }
+    return marked;
 }
 
 std::size_t SceneDelegate::sync() {
@@ -104,9 +180,20 @@ render::SceneDescription SceneDelegate::sceneDescription() const {
     render::SceneDescription scene;
     std::map<std::string, int> materialIndex;
     std::size_t volumes = 0;
-    auto materialFor = [&](const std::string& path) {
+    std::function<int(const std::string&)> materialFor = [&](const std::string& path) {
         auto [it, inserted] = materialIndex.try_emplace(path, static_cast<int>(scene.materials.size()));
         if (inserted) scene.materials.push_back(static_cast<const MaterialSprim&>(*index_.find(path)).material());
+        return it->second;
+    };
+    std::map<std::string, int> prototypeIndex;  // key -> index into scene.prototypes
+    auto prototypeFor = [&](const std::string& key) {
+        auto [it, inserted] = prototypeIndex.try_emplace(key, static_cast<int>(scene.prototypes.size()));
+        if (inserted) {
+            const auto& prototype = static_cast<const PrototypeRprim&>(*index_.find(prototypes_.at(key)));
+            render::PrototypeDesc desc{prototype.source(), {}};
+            for (const SurfaceRprim::Part& part : prototype.parts()) appendPart(part, desc.meshes, materialFor);
+            scene.prototypes.push_back(std::move(desc));
+        }
         return it->second;
     };
     stage_.traverse([&](const usd::PrimSpec& spec) {
@@ -120,19 +207,25 @@ render::SceneDescription SceneDelegate::sceneDescription() const {
                 if (spec.path == cameraPath_) scene.camera = static_cast<const CameraSprim&>(*prim).camera();
                 break;
             case RenderPrim::Kind::Mesh:
-                for (MeshRprim::Part& part : static_cast<const MeshRprim&>(*prim).worldParts()) {
-                    if (part.objectSpace.indices.empty()) continue;
-                    if (!part.materialPath.empty()) {
-                        part.objectSpace.material = materialFor(part.materialPath);
-                        part.objectSpace.cornerColors.clear();  // a bound material replaces displayColor
-                    }
-                    scene.meshes.push_back(std::move(part.objectSpace));
-                }
+                for (MeshRprim::Part& part : static_cast<const MeshRprim&>(*prim).worldParts())
+                    appendPart(std::move(part), scene.meshes, materialFor);
                 break;
+            case RenderPrim::Kind::Instance:
+                scene.instances.push_back(
+                    {prototypeFor(nativeKey(static_cast<const InstanceRprim&>(*prim).prototypeKey())), prim->world()});
+                break;
+            case RenderPrim::Kind::PointInstancer: {
+                const PointInstances& points = static_cast<const PointInstancerRprim&>(*prim).instances();
+                for (const PointInstances::Instance& instance : points.instances)
+                    scene.instances.push_back({prototypeFor(pointInstancerKey(points.prototypes[instance.prototype])),
+                                               prim->world() * instance.transform});
+                break;
+            }
             case RenderPrim::Kind::Volume:
                 ++volumes;
                 break;
             case RenderPrim::Kind::Material:
+            case RenderPrim::Kind::Prototype:
                 break;
         }
         return true;
@@ -154,13 +247,20 @@ void SceneDelegate::setTime(double time) {
 }
 
 void SceneDelegate::setAttribute(const std::string& primPath, const std::string& name, const usd::Value& value) {
+    for (std::string p = primPath; p.size() > 1;) {
+        p = p.substr(0, std::max<std::size_t>(p.rfind('/'), 1));
+        if (const RenderPrim* owner = index_.find(p); owner && owner->kind() == RenderPrim::Kind::Instance)
+            throw SceneError("cannot set " + primPath + "." + name + ": it lies inside the instance " + p +
+                             ", and USD instance proxies are read-only (edit what the instance references, or make " +
+                             p + " non-instanceable)");
+    }
     if (!stage_.setAttribute(primPath, name, value))
         throw SceneError("cannot set " + primPath + "." + name + ": the prim does not exist");
     if (name == "visibility" || name == "purpose") {
-        index_.removeSubtree(primPath);
-        populate(primPath);
+        repopulate(primPath);
         return;
     }
+    bool prototypeMarked = markPrototypesReading(primPath, name);
     if (name.starts_with("xformOp")) {
         index_.markSubtreeDirty(primPath, kDirtyTransform);
         return;
@@ -169,6 +269,7 @@ void SceneDelegate::setAttribute(const std::string& primPath, const std::string&
         prim->markDirty(prim->kind() == RenderPrim::Kind::Mesh ? meshBitsFor(name) : kDirtyParams);
         return;
     }
+    if (prototypeMarked) return;
     // Inside a material (a shader input, an interface input), or a GeomSubset under a mesh.
     for (std::string p = primPath; p.size() > 1; p = p.substr(0, std::max<std::size_t>(p.rfind('/'), 1)))
         if (RenderPrim* owner = index_.find(p)) {
@@ -180,8 +281,7 @@ void SceneDelegate::setAttribute(const std::string& primPath, const std::string&
 void SceneDelegate::setVariantSelection(const std::string& primPath, const std::string& variantSet,
                                         const std::string& selection) {
     stage_.setVariantSelection(primPath, variantSet, selection);
-    index_.removeSubtree(primPath);
-    populate(primPath);
+    repopulate(primPath);
 }
 
 DelegateResult populateScene(usd::Stage& stage, const DelegateOptions& options) {

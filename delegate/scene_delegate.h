@@ -3,7 +3,8 @@
 //
 // This is the only place that knows USD schema names. Populating walks the stage's defined,
 // active prims depth-first, skipping invisible subtrees and guide/proxy purposes, and inserts a
-// render prim per Mesh or implicit surface (rprims), Camera and UsdLux light (sprims); syncing
+// render prim per Mesh or implicit surface, native instance, PointInstancer and shared prototype
+// (rprims; delegate/instancing.h), Camera and UsdLux light (sprims); syncing
 // pulls each dirty prim's data through the adapter for its schema, creating a material sprim for
 // every material a mesh binds. Authored colours are converted into the rendering space through
 // `convertColor`. Prim types it cannot render yet are skipped with one warning per type. Semantic
@@ -17,11 +18,16 @@
 //   any attribute inside a Material    -> that material sprim (meshes keep their data)
 //   material:binding*                  -> kDirtyMaterial on meshes at or below P
 //   visibility / purpose / active, variant selections -> the subtree at P is removed and
-//                                        populated again (new prims, all dirty)
+//                                        populated again (new prims, all dirty), and every
+//                                        prototype read from below P is dirtied
+//   any attribute at or below a prototype's source prim -> that prototype (except the
+//                                        transform of a native instance, which only moves it)
+//   any attribute inside a native instance -> refused (SceneError): instance proxies are read-only
 //   a new render time                  -> only prims whose transform or data is animated
 #pragma once
 
 #include <functional>
+#include <map>
 #include <optional>
 #include <string>
 
@@ -63,13 +69,20 @@ public:
 
 private:
     void populate(const std::string& root);
+    void repopulate(const std::string& primPath);
+    // Creates, re-sources or removes prototypes so that every instance's prototype exists.
+    void reconcilePrototypes();
+    // Dirties the prototypes an edit of `attribute` on `primPath` changes ("" = a structural
+    // edit); returns whether any was.
+    bool markPrototypesReading(const std::string& primPath, const std::string& attribute = "");
     void chooseCamera();
     SyncContext context() const { return {stage_, options_.time, options_.convertColor, options_.warn}; }
 
     usd::Stage& stage_;
     DelegateOptions options_;
     RenderIndex index_;
-    std::vector<std::string> cameraOrder_;  // cameras in traversal order
+    std::map<std::string, std::string> prototypes_;  // prototype key -> prototype render prim path
+    int nextPrototype_ = 1;
     std::optional<RenderSettingsDesc> renderSettings_;
     std::string cameraPath_;
 };

@@ -8,6 +8,7 @@
 
 #include "render/area_lights.h"
 #include "render/infinite_lights.h"
+#include "render/mesh_transform.h"
 
 namespace fluence::render {
 
@@ -38,6 +39,49 @@ RTCRay makeRay(const Vec3f& o, const Vec3f& d, float tNear, float tFar) {
     return r;
 }
 
+RTCRayHit makeRayHit(const Vec3f& o, const Vec3f& d, float tNear, float tFar) {
+    RTCRayHit h{};
+    h.ray = makeRay(o, d, tNear, tFar);
+    h.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+    h.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+    return h;
+}
+
+// A triangle geometry holding `positions` and `indices` (3 per triangle).
+RTCGeometry triangleGeometry(RTCDevice device, const std::vector<Vec3f>& positions, const std::vector<std::uint32_t>& indices) {
+    RTCGeometry geom = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
+    auto* vertices = static_cast<float*>(
+        rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), positions.size()));
+    for (std::size_t i = 0; i < positions.size(); ++i) {
+        vertices[3 * i] = positions[i].x;
+        vertices[3 * i + 1] = positions[i].y;
+        vertices[3 * i + 2] = positions[i].z;
+    }
+    auto* index = static_cast<unsigned*>(
+        rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(unsigned), indices.size() / 3));
+    std::copy(indices.begin(), indices.end(), index);
+    rtcCommitGeometry(geom);
+    return geom;
+}
+
+bool emits(const MeshDesc& mesh, const std::vector<MaterialDesc>& materials) {
+    return mesh.material >= 0 && mesh.material < static_cast<int>(materials.size()) &&
+           !isBlack(materials[mesh.material].emission);
+}
+
+// The matrix that takes a normal through `m` as m.transformNormal does, but as one linear map.
+Matrix4 normalMatrixOf(const Matrix4& m) {
+    Matrix4 n = Matrix4::identity();
+    for (int column = 0; column < 3; ++column) {
+        Vec3d e(column == 0, column == 1, column == 2);
+        Vec3d t = m.transformNormal(e);
+        n.m[0][column] = t.x;
+        n.m[1][column] = t.y;
+        n.m[2][column] = t.z;
+    }
+    return n;
+}
+
 }  // namespace
 
 struct RenderScene::Mesh {
@@ -51,11 +95,24 @@ struct RenderScene::Mesh {
     int firstLight = -1;
 };
 
+struct RenderScene::Prototype {
+    std::vector<int> meshes;           // Embree geometry id in the prototype's scene -> mesh
+    std::vector<int> emissiveMeshes;   // into SceneDescription::prototypes[i].meshes: copied per instance
+    Vec3f lo{std::numeric_limits<float>::max()}, hi{-std::numeric_limits<float>::max()};  // bounds
+};
+
+struct RenderScene::Instance {
+    int prototype = 0;
+    Matrix4 toWorld, normalToWorld;
+};
+
 struct RenderScene::EmbreeState {
     RTCDevice device = nullptr;
     RTCScene surfaces = nullptr;
     RTCScene lightShapes = nullptr;
+    std::vector<RTCScene> prototypes;
     ~EmbreeState() {
+        for (RTCScene s : prototypes) rtcReleaseScene(s);
         if (surfaces) rtcReleaseScene(surfaces);
         if (lightShapes) rtcReleaseScene(lightShapes);
         if (device) rtcReleaseDevice(device);
@@ -70,14 +127,26 @@ RenderScene::RenderScene(const SceneDescription& scene) : embree_(std::make_uniq
     rtcSetSceneBuildQuality(embree_->surfaces, RTC_BUILD_QUALITY_HIGH);
 
     for (const MeshDesc& mesh : scene.meshes) addMesh(mesh, scene.materials);
+    addPrototypes(scene);
 
-    // Scene bounds (for the power of lights at infinity) from surfaces and light positions.
+    // Scene bounds (for the power of lights at infinity) from surfaces, instances and light positions.
     Vec3f lo(std::numeric_limits<float>::max()), hi(-std::numeric_limits<float>::max());
-    for (const Mesh& m : meshes_)
-        for (const Vec3f& p : m.positions) {
+    for (int m : surfaceMeshes_)
+        if (m >= 0)
+            for (const Vec3f& p : meshes_[m].positions) {
+                lo = vmin(lo, p);
+                hi = vmax(hi, p);
+            }
+    for (const Instance& instance : instances_) {
+        const Prototype& proto = prototypes_[instance.prototype];
+        if (proto.lo.x > proto.hi.x) continue;
+        for (int corner = 0; corner < 8; ++corner) {
+            Vec3d c(corner & 1 ? proto.hi.x : proto.lo.x, corner & 2 ? proto.hi.y : proto.lo.y, corner & 4 ? proto.hi.z : proto.lo.z);
+            Vec3f p(instance.toWorld.transformPoint(c));
             lo = vmin(lo, p);
             hi = vmax(hi, p);
         }
+    }
     for (const LightDesc& l : scene.lights) {
         if (l.type == LightType::Dome || l.type == LightType::Distant) continue;
         Vec3f p(l.transform.transformPoint({0, 0, 0}));
@@ -103,7 +172,7 @@ RenderScene::RenderScene(const SceneDescription& scene) : embree_(std::make_uniq
 
 RenderScene::~RenderScene() = default;
 
-void RenderScene::addMesh(const MeshDesc& desc, const std::vector<MaterialDesc>& materials) {
+int RenderScene::storeMesh(const MeshDesc& desc, const std::vector<MaterialDesc>& materials) {
     if (desc.indices.size() % 3 != 0) throw std::invalid_argument(desc.name + ": triangle index count is not a multiple of 3");
     for (std::uint32_t i : desc.indices)
         if (i >= desc.positions.size()) throw std::invalid_argument(desc.name + ": triangle index out of range");
@@ -123,8 +192,17 @@ void RenderScene::addMesh(const MeshDesc& desc, const std::vector<MaterialDesc>&
     MaterialDesc material = desc.material >= 0 ? materials[desc.material] : MaterialDesc{};
     mesh.diffuse = material.diffuse;
     mesh.emission = material.emission;
+    stats_.meshes += 1;
+    stats_.triangles += triangles;
+    meshes_.push_back(std::move(mesh));
+    return static_cast<int>(meshes_.size()) - 1;
+}
 
+void RenderScene::addMesh(const MeshDesc& desc, const std::vector<MaterialDesc>& materials) {
+    int index = storeMesh(desc, materials);
+    Mesh& mesh = meshes_[index];
     if (!isBlack(mesh.emission)) {
+        std::size_t triangles = mesh.indices.size() / 3;
         mesh.firstLight = static_cast<int>(lights_.size());
         for (std::size_t t = 0; t < triangles; ++t)
             lights_.push_back(std::make_unique<TriangleLight>(desc.name, mesh.positions[mesh.indices[3 * t]],
@@ -132,26 +210,64 @@ void RenderScene::addMesh(const MeshDesc& desc, const std::vector<MaterialDesc>&
                                                               mesh.positions[mesh.indices[3 * t + 2]], mesh.emission));
         stats_.emissiveTriangles += triangles;
     }
-
-    RTCGeometry geom = rtcNewGeometry(embree_->device, RTC_GEOMETRY_TYPE_TRIANGLE);
-    auto* vertices = static_cast<float*>(rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
-                                                                 3 * sizeof(float), mesh.positions.size()));
-    for (std::size_t i = 0; i < mesh.positions.size(); ++i) {
-        vertices[3 * i] = mesh.positions[i].x;
-        vertices[3 * i + 1] = mesh.positions[i].y;
-        vertices[3 * i + 2] = mesh.positions[i].z;
-    }
-    auto* index = static_cast<unsigned*>(rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
-                                                                 3 * sizeof(unsigned), triangles));
-    std::copy(mesh.indices.begin(), mesh.indices.end(), index);
-    rtcCommitGeometry(geom);
-    rtcAttachGeometryByID(embree_->surfaces, geom, static_cast<unsigned>(meshes_.size()));
+    RTCGeometry geom = triangleGeometry(embree_->device, mesh.positions, mesh.indices);
+    rtcAttachGeometryByID(embree_->surfaces, geom, static_cast<unsigned>(surfaceMeshes_.size()));
     rtcReleaseGeometry(geom);
     throwOnEmbreeError(embree_->device, ("adding mesh " + desc.name).c_str());
+    surfaceMeshes_.push_back(index);
+    surfaceInstances_.push_back(-1);
+}
 
-    stats_.meshes += 1;
-    stats_.triangles += triangles;
-    meshes_.push_back(std::move(mesh));
+void RenderScene::addPrototypes(const SceneDescription& scene) {
+    for (const PrototypeDesc& desc : scene.prototypes) {
+        Prototype proto;
+        RTCScene rtcScene = rtcNewScene(embree_->device);
+        embree_->prototypes.push_back(rtcScene);
+        rtcSetSceneBuildQuality(rtcScene, RTC_BUILD_QUALITY_HIGH);
+        for (std::size_t i = 0; i < desc.meshes.size(); ++i) {
+            const MeshDesc& meshDesc = desc.meshes[i];
+            if (emits(meshDesc, scene.materials)) {
+                proto.emissiveMeshes.push_back(static_cast<int>(i));
+                continue;
+            }
+            int index = storeMesh(meshDesc, scene.materials);
+            const Mesh& mesh = meshes_[index];
+            for (const Vec3f& p : mesh.positions) {
+                proto.lo = vmin(proto.lo, p);
+                proto.hi = vmax(proto.hi, p);
+            }
+            RTCGeometry geom = triangleGeometry(embree_->device, mesh.positions, mesh.indices);
+            rtcAttachGeometryByID(rtcScene, geom, static_cast<unsigned>(proto.meshes.size()));
+            rtcReleaseGeometry(geom);
+            proto.meshes.push_back(index);
+        }
+        rtcCommitScene(rtcScene);
+        throwOnEmbreeError(embree_->device, ("building prototype " + desc.name).c_str());
+        prototypes_.push_back(std::move(proto));
+    }
+    for (const InstanceDesc& desc : scene.instances) {
+        if (desc.prototype < 0 || desc.prototype >= static_cast<int>(prototypes_.size()))
+            throw std::invalid_argument("instance of prototype " + std::to_string(desc.prototype) + ": index out of range");
+        const Prototype& proto = prototypes_[desc.prototype];
+        for (int m : proto.emissiveMeshes)
+            addMesh(transformMesh(scene.prototypes[desc.prototype].meshes[m], desc.transform), scene.materials);
+        if (proto.meshes.empty()) continue;
+        RTCGeometry geom = rtcNewGeometry(embree_->device, RTC_GEOMETRY_TYPE_INSTANCE);
+        rtcSetGeometryInstancedScene(geom, embree_->prototypes[desc.prototype]);
+        float xfm[12];
+        for (int column = 0; column < 4; ++column)
+            for (int row = 0; row < 3; ++row) xfm[3 * column + row] = static_cast<float>(desc.transform.m[row][column]);
+        rtcSetGeometryTransform(geom, 0, RTC_FORMAT_FLOAT3X4_COLUMN_MAJOR, xfm);
+        rtcCommitGeometry(geom);
+        rtcAttachGeometryByID(embree_->surfaces, geom, static_cast<unsigned>(surfaceMeshes_.size()));
+        rtcReleaseGeometry(geom);
+        throwOnEmbreeError(embree_->device, ("adding an instance of " + scene.prototypes[desc.prototype].name).c_str());
+        surfaceMeshes_.push_back(-1);
+        surfaceInstances_.push_back(static_cast<int>(instances_.size()));
+        instances_.push_back({desc.prototype, desc.transform, normalMatrixOf(desc.transform)});
+        stats_.instances += 1;
+        for (int m : proto.meshes) stats_.instancedTriangles += meshes_[m].indices.size() / 3;
+    }
 }
 
 void RenderScene::addLight(const LightDesc& desc) {
@@ -207,25 +323,33 @@ void RenderScene::addLight(const LightDesc& desc) {
 std::optional<SurfaceHit> RenderScene::intersect(const Ray& ray) const {
     RTCIntersectContext context;
     rtcInitIntersectContext(&context);
-    RTCRayHit surface{};
-    surface.ray = makeRay(ray.origin, ray.direction, ray.tMin, ray.tMax);
-    surface.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+    RTCRayHit surface = makeRayHit(ray.origin, ray.direction, ray.tMin, ray.tMax);
     rtcIntersect1(embree_->surfaces, &context, &surface);
 
-    RTCRayHit shape{};
-    shape.ray = makeRay(ray.origin, ray.direction, ray.tMin, surface.ray.tfar);
-    shape.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+    RTCRayHit shape = makeRayHit(ray.origin, ray.direction, ray.tMin, surface.ray.tfar);
     rtcIntersect1(embree_->lightShapes, &context, &shape);
 
     if (shape.hit.geomID != RTC_INVALID_GEOMETRY_ID)
         return shadeLightShape(shape.hit.geomID, ray, shape.ray.tfar, Vec3f(shape.hit.Ng_x, shape.hit.Ng_y, shape.hit.Ng_z));
-    if (surface.hit.geomID != RTC_INVALID_GEOMETRY_ID)
-        return shadeMesh(surface.hit.geomID, surface.hit.primID, surface.hit.u, surface.hit.v, surface.ray.tfar);
-    return std::nullopt;
+    if (surface.hit.geomID == RTC_INVALID_GEOMETRY_ID) return std::nullopt;
+    const float u = surface.hit.u, v = surface.hit.v, t = surface.ray.tfar;
+    if (surface.hit.instID[0] == RTC_INVALID_GEOMETRY_ID)
+        return shadeMesh(surfaceMeshes_[surface.hit.geomID], surface.hit.primID, u, v, t);
+    // Shaded in prototype space, then moved to world space.
+    const Instance& instance = instances_[surfaceInstances_[surface.hit.instID[0]]];
+    SurfaceHit hit = shadeMesh(prototypes_[instance.prototype].meshes[surface.hit.geomID], surface.hit.primID, u, v, t);
+    auto normalToWorld = [&](const Vec3f& n) {
+        Vec3f w(instance.normalToWorld.transformVector(Vec3d(n)));
+        return lengthSquared(w) > 0.0f ? normalize(w) : n;
+    };
+    hit.point = Vec3f(instance.toWorld.transformPoint(Vec3d(hit.point)));
+    hit.geometricNormal = normalToWorld(hit.geometricNormal);
+    hit.shadingNormal = normalToWorld(hit.shadingNormal);
+    return hit;
 }
 
-SurfaceHit RenderScene::shadeMesh(unsigned geomID, unsigned primID, float u, float v, float t) const {
-    const Mesh& mesh = meshes_[geomID];
+SurfaceHit RenderScene::shadeMesh(int meshIndex, unsigned primID, float u, float v, float t) const {
+    const Mesh& mesh = meshes_[meshIndex];
     std::size_t c = 3 * std::size_t(primID);
     const Vec3f& p0 = mesh.positions[mesh.indices[c]];
     const Vec3f& p1 = mesh.positions[mesh.indices[c + 1]];

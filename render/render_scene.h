@@ -1,9 +1,15 @@
 // The render scene: geometry in Embree 3, materials and lights, ready for the integrators.
 //
 // Built once from a SceneDescription (the Embree scenes are committed at the end of the
-// constructor and never edited while rendering). Two Embree scenes are kept: the surfaces
-// (meshes) and the light shapes (rect and sphere lights). Camera and BSDF rays look in both;
-// shadow rays look only at surfaces, so light shapes cast no shadows.
+// constructor and never edited while rendering). Two top-level Embree scenes are kept: the
+// surfaces (meshes and instances) and the light shapes (rect and sphere lights). Camera and BSDF
+// rays look in both; shadow rays look only at surfaces, so light shapes cast no shadows.
+//
+// Instancing: each prototype is one Embree scene, built once, and each instance an Embree
+// instance of it (one level), so N instances of a mesh cost its triangles once plus one
+// transform each. A hit inside an instance is shaded in prototype space and moved to world space.
+// Emissive prototype meshes are the exception: every emitting triangle is a light that next-event
+// estimation samples in world space, so they are copied into world space per instance.
 #pragma once
 
 #include <memory>
@@ -30,7 +36,10 @@ struct SurfaceHit {
 };
 
 struct SceneStats {
-    std::size_t meshes = 0, triangles = 0, lights = 0, emissiveTriangles = 0;
+    std::size_t meshes = 0, triangles = 0;  // stored once (world meshes and prototype meshes)
+    std::size_t instances = 0;             // Embree instances
+    std::size_t instancedTriangles = 0;    // triangles seen through instances (not stored again)
+    std::size_t lights = 0, emissiveTriangles = 0;
 };
 
 class RenderScene {
@@ -56,14 +65,23 @@ public:
 
 private:
     struct Mesh;
+    struct Prototype;
+    struct Instance;
+    // Validates `desc`, stores it and returns its index in meshes_.
+    int storeMesh(const MeshDesc& desc, const std::vector<MaterialDesc>& materials);
     void addMesh(const MeshDesc& mesh, const std::vector<MaterialDesc>& materials);
+    void addPrototypes(const SceneDescription& scene);
     void addLight(const LightDesc& light);
-    SurfaceHit shadeMesh(unsigned geomID, unsigned primID, float u, float v, float t) const;
+    SurfaceHit shadeMesh(int mesh, unsigned primID, float u, float v, float t) const;
     SurfaceHit shadeLightShape(unsigned geomID, const Ray& ray, float t, const Vec3f& ng) const;
 
     struct EmbreeState;
     std::unique_ptr<EmbreeState> embree_;
-    std::vector<Mesh> meshes_;                 // indexed by Embree geometry id in the surface scene
+    std::vector<Mesh> meshes_;
+    std::vector<int> surfaceMeshes_;     // Embree geometry id in the surface scene -> mesh, or -1
+    std::vector<int> surfaceInstances_;  // Embree geometry id in the surface scene -> instance, or -1
+    std::vector<Prototype> prototypes_;
+    std::vector<Instance> instances_;
     std::vector<int> lightShapeToLight_;       // Embree geometry id in the light scene -> light
     std::vector<std::unique_ptr<Light>> lights_;
     std::vector<int> lightsAtInfinity_;

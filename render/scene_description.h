@@ -25,7 +25,7 @@ struct MaterialDesc {
 
 struct MeshDesc {
     std::string name;                     // prim path, for messages
-    std::vector<Vec3f> positions;         // world space
+    std::vector<Vec3f> positions;         // world space (prototype space in a PrototypeDesc)
     std::vector<std::uint32_t> indices;   // 3 per triangle
     std::vector<Vec3f> cornerNormals;     // empty, or 3 per triangle (world space, shading)
     std::vector<RGB> cornerColors;        // empty, or 3 per triangle: diffuse colour (displayColor)
@@ -65,9 +65,23 @@ struct CameraDesc {
     float nearClip = 1.0f, farClip = 1000000.0f;
 };
 
+// Geometry shared by instances: its meshes in the prototype's own space, stored once.
+struct PrototypeDesc {
+    std::string name;              // the prim it was read from, for messages
+    std::vector<MeshDesc> meshes;  // prototype space
+};
+
+// One placement of a prototype.
+struct InstanceDesc {
+    int prototype = 0;                         // index into SceneDescription::prototypes
+    Matrix4 transform = Matrix4::identity();  // prototype-to-world
+};
+
 struct SceneDescription {
     std::vector<MaterialDesc> materials;
-    std::vector<MeshDesc> meshes;
+    std::vector<MeshDesc> meshes;  // world space
+    std::vector<PrototypeDesc> prototypes;
+    std::vector<InstanceDesc> instances;
     std::vector<LightDesc> lights;
     std::optional<CameraDesc> camera;
 };

@@ -158,6 +158,8 @@ void Stage::traverse(const std::function<bool(const PrimSpec&)>& visit) const {
     for (const auto& prim : composed_->rootPrims) visitPrim(*prim, visit);
 }
 
+void Stage::traverse(const PrimSpec& root, const std::function<bool(const PrimSpec&)>& visit) { visitPrim(root, visit); }
+
 std::optional<Value> Stage::resolve(const AttributeSpec& attribute, double time) {
     auto fromDefault = [&]() -> std::optional<Value> {
         if (!attribute.hasDefault || attribute.defaultValue.isBlocked()) return std::nullopt;
@@ -181,9 +183,11 @@ std::optional<Value> Stage::resolve(const AttributeSpec& attribute, double time)
         if (lo.second.isNumeric() && hi.second.isNumeric() && lo.second.numbers.size() == hi.second.numbers.size() &&
             lo.second.typeName.find("int") == std::string::npos && lo.second.typeName != "bool") {
             double a = (time - lo.first) / (hi.first - lo.first);
+            std::vector<double> mixed(lo.second.numbers.size());
+            for (std::size_t i = 0; i < mixed.size(); ++i)
+                mixed[i] = lo.second.numbers[i] + a * (hi.second.numbers[i] - lo.second.numbers[i]);
             Value r = lo.second;
-            for (std::size_t i = 0; i < r.numbers.size(); ++i)
-                r.numbers[i] = lo.second.numbers[i] + a * (hi.second.numbers[i] - lo.second.numbers[i]);
+            r.numbers = std::move(mixed);
             return r;
         }
         v = &lo.second;  // held

@@ -61,6 +61,8 @@ public:
     // Visits defined (`def`), active composed prims depth-first in composed order. The visitor
     // returns false to skip the prim's children.
     void traverse(const std::function<bool(const PrimSpec&)>& visit) const;
+    // The same, from `root` (visited first, when it is itself defined and active).
+    static void traverse(const PrimSpec& root, const std::function<bool(const PrimSpec&)>& visit);
 
     // The attribute's value at `time`: at kDefaultTime the default value; otherwise time
     // samples (linear interpolation between numeric samples of equal size, held otherwise,

@@ -66,6 +66,112 @@ TEST_F(FluenceCli, FurnaceSphereOfAlbedoHalfAveragesHalf) {
     EXPECT_NEAR(e.mean(), 0.5, 0.005);
 }
 
+// Native instances and a PointInstancer render as the same scene with every instance a copy.
+TEST_F(FluenceCli, InstancedSceneRendersAsItsFlattenedCopy) {
+    const std::string instanced = R"(#usda 1.0
+def Camera "Cam"
+{
+    double3 xformOp:translate = (0, 0.5, 6)
+    uniform token[] xformOpOrder = ["xformOp:translate"]
+}
+def DomeLight "Sky"
+{
+}
+class Xform "_Prop"
+{
+    def Sphere "Ball"
+    {
+        double radius = 0.5
+        color3f[] primvars:displayColor = [(0.9, 0.3, 0.2)]
+    }
+    def Cube "Plinth"
+    {
+        double size = 0.6
+        double3 xformOp:translate = (0, -0.7, 0)
+        uniform token[] xformOpOrder = ["xformOp:translate"]
+    }
+}
+def Xform "Left" (
+    instanceable = true
+    references = </_Prop>
+)
+{
+    double3 xformOp:translate = (-1.2, 0, 0)
+    double3 xformOp:rotateXYZ = (0, 40, 10)
+    uniform token[] xformOpOrder = ["xformOp:translate", "xformOp:rotateXYZ"]
+}
+def Xform "Right" (
+    instanceable = true
+    references = </_Prop>
+)
+{
+    double3 xformOp:translate = (1.2, 0, 0)
+    double3 xformOp:scale = (-1, 1.3, 1)
+    uniform token[] xformOpOrder = ["xformOp:translate", "xformOp:scale"]
+}
+def PointInstancer "Pebbles"
+{
+    int[] protoIndices = [0, 0, 0]
+    point3f[] positions = [(-0.6, 1.4, 0), (0, 1.5, 0.3), (0.6, 1.4, 0)]
+    quath[] orientations = [(1, 0, 0, 0), (0.92388, 0.38268, 0, 0), (0.7071, 0, 0.7071, 0)]
+    float3[] scales = [(1, 1, 1), (1.5, 0.5, 1), (0.7, 0.7, 0.7)]
+    rel prototypes = </Pebbles/Cube>
+    def Cube "Cube"
+    {
+        double size = 0.4
+    }
+}
+)";
+    // The same placements written out: the instances as plain references, the PointInstancer
+    // as three transformed cubes (position * orientation * scale).
+    std::string flattened = instanced;
+    for (std::size_t at; (at = flattened.find("    instanceable = true\n")) != std::string::npos;)
+        flattened.erase(at, std::strlen("    instanceable = true\n"));
+    flattened = flattened.substr(0, flattened.find("def PointInstancer")) + R"(
+def Cube "P0"
+{
+    double size = 0.4
+    double3 xformOp:translate = (-0.6, 1.4, 0)
+    uniform token[] xformOpOrder = ["xformOp:translate"]
+}
+def Cube "P1"
+{
+    double size = 0.4
+    double3 xformOp:translate = (0, 1.5, 0.3)
+    double3 xformOp:rotateXYZ = (45, 0, 0)
+    double3 xformOp:scale = (1.5, 0.5, 1)
+    uniform token[] xformOpOrder = ["xformOp:translate", "xformOp:rotateXYZ", "xformOp:scale"]
+}
+def Cube "P2"
+{
+    double size = 0.4
+    double3 xformOp:translate = (0.6, 1.4, 0)
+    double3 xformOp:rotateXYZ = (0, 90, 0)
+    double3 xformOp:scale = (0.7, 0.7, 0.7)
+    uniform token[] xformOpOrder = ["xformOp:translate", "xformOp:rotateXYZ", "xformOp:scale"]
+}
+)";
+    RunResult a = run("render " + write("instanced.usda", instanced).string() + " -o " + (dir_ / "a.exr").string() +
+                      " -r 64 48 --spp 16 --seed 1");
+    RunResult b = run("render " + write("flattened.usda", flattened).string() + " -o " + (dir_ / "b.exr").string() +
+                      " -r 64 48 --spp 16 --seed 2");
+    ASSERT_EQ(a.exitCode, 0) << a.err;
+    ASSERT_EQ(b.exitCode, 0) << b.err;
+    EXPECT_NE(a.out.find("instancing   5 instances"), std::string::npos) << a.out;
+    EXPECT_EQ(b.out.find("instancing"), std::string::npos) << b.out;
+
+    // Independent seeds: per-pixel differences are noise of mean zero unless the scenes differ.
+    ExrImage one = readExr(dir_ / "a.exr"), two = readExr(dir_ / "b.exr");
+    test::MeanEstimate difference, coverage;
+    for (int y = 0; y < one.height; ++y)
+        for (int x = 0; x < one.width; ++x) {
+            for (const char* c : {"R", "G", "B"}) difference.add(one.at(x, y, c) - two.at(x, y, c));
+            coverage.add(one.at(x, y, "A") - two.at(x, y, "A"));
+        }
+    EXPECT_NEAR(difference.mean(), 0.0, 5 * difference.standardError());
+    EXPECT_NEAR(coverage.mean(), 0.0, 5 * coverage.standardError()) << "silhouettes (alpha) must match";
+}
+
 TEST_F(FluenceCli, SameSeedGivesBitIdenticalImagesAtAnyThreadCount) {
     fs::path scene = fs::path(FLUENCE_SOURCE_DIR) / "usd_samples/cornell_box.usda";
     ASSERT_EQ(run("render " + scene.string() + " -o " + (dir_ / "one.exr").string() + " -r 40 40 --spp 4 -j 1 --seed 7").exitCode, 0);

@@ -1,0 +1,155 @@
+#include "delegate/instancing.h"
+
+#include <cmath>
+#include <map>
+#include <set>
+
+#include "delegate/imageable.h"
+#include "delegate/implicit_geometry.h"
+#include "delegate/xform.h"
+#include "render/mesh_transform.h"
+
+namespace fluence::delegate {
+
+namespace {
+
+std::string parentPath(const std::string& path) {
+    std::size_t slash = path.rfind('/');
+    return slash == 0 ? "/" : path.substr(0, slash);
+}
+
+// The ids an int64 list-op metadata field names, its entries applied in authored order.
+std::set<long long> listOpIds(const usd::Metadata& metadata, const std::string& key) {
+    std::set<long long> ids;
+    for (const usd::MetadataEntry& entry : metadata) {
+        if (entry.key != key || !entry.value.isNumeric()) continue;
+        if (entry.op == usd::ListOpKind::Explicit) ids.clear();
+        for (double id : entry.value.numbers) {
+            if (entry.op == usd::ListOpKind::Delete)
+                ids.erase(static_cast<long long>(id));
+            else if (entry.op != usd::ListOpKind::Reorder)
+                ids.insert(static_cast<long long>(id));
+        }
+    }
+    return ids;
+}
+
+// An optional per-instance array: its values when it has `count` elements, else nullopt (with a
+// warning when it is authored at the wrong length).
+std::optional<std::vector<double>> perInstance(const PrimReader& prim, const std::string& name, int components,
+                                               std::size_t count, const std::function<void(const std::string&)>& warn) {
+    std::optional<std::vector<double>> values = prim.numbers(name, components);
+    if (!values) return std::nullopt;
+    if (values->size() != count * components) {
+        warn("'" + name + "' has " + std::to_string(values->size() / components) + " elements for " +
+             std::to_string(count) + " instances; ignored");
+        return std::nullopt;
+    }
+    return values;
+}
+
+Matrix4 rotationOf(const double* q) {  // USD order: real part first
+    double norm = std::sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3]);
+    if (!(norm > 0.0) || !std::isfinite(norm)) return Matrix4::identity();
+    return Matrix4::fromQuaternion(q[0] / norm, q[1] / norm, q[2] / norm, q[3] / norm);
+}
+
+}  // namespace
+
+std::string instancePrototypeKey(const usd::PrimSpec& prim) {
+    const usd::MetadataEntry* entry = usd::findMetadata(prim.metadata, "fluence:instancePrototype");
+    return entry ? entry->value.asString().value_or("") : "";
+}
+
+std::vector<std::string> pointInstancerPrototypes(const usd::PrimSpec& instancer) {
+    std::vector<std::string> paths;
+    for (const usd::RelationshipSpec& rel : instancer.relationships)
+        if (rel.name == "prototypes" && !rel.blocked)
+            for (const std::string& target : rel.targets) paths.push_back(resolveTargetPath(instancer.path, target));
+    return paths;
+}
+
+PointInstances pointInstancesFromPrim(const PrimReader& prim, const std::function<void(const std::string&)>& warn) {
+    PointInstances result;
+    result.prototypes = pointInstancerPrototypes(prim.prim());
+    std::vector<double> protoIndices = prim.numbers("protoIndices", 1).value_or(std::vector<double>{});
+    const std::size_t count = protoIndices.size();
+    if (count == 0) return result;
+    std::optional<std::vector<double>> positions = perInstance(prim, "positions", 3, count, warn);
+    if (!positions) {
+        warn("'positions' must hold one point per protoIndices entry (" + std::to_string(count) + "); no instances placed");
+        return result;
+    }
+    std::optional<std::vector<double>> orientations =
+        prim.value("orientations") ? perInstance(prim, "orientations", 4, count, warn)
+                                   : perInstance(prim, "orientationsf", 4, count, warn);
+    std::optional<std::vector<double>> scales = perInstance(prim, "scales", 3, count, warn);
+    std::optional<std::vector<double>> ids = perInstance(prim, "ids", 1, count, warn);
+
+    std::set<long long> hidden = listOpIds(prim.prim().metadata, "inactiveIds");
+    for (double id : prim.numbers("invisibleIds", 1).value_or(std::vector<double>{})) hidden.insert(static_cast<long long>(id));
+
+    std::size_t outOfRange = 0;
+    for (std::size_t i = 0; i < count; ++i) {
+        long long id = ids ? static_cast<long long>((*ids)[i]) : static_cast<long long>(i);
+        if (hidden.contains(id)) continue;
+        double index = protoIndices[i];
+        if (!(index >= 0.0 && index < static_cast<double>(result.prototypes.size()))) {
+            ++outOfRange;
+            continue;
+        }
+        Matrix4 m = Matrix4::translate({(*positions)[3 * i], (*positions)[3 * i + 1], (*positions)[3 * i + 2]});
+        if (orientations) m = m * rotationOf(&(*orientations)[4 * i]);
+        if (scales) m = m * Matrix4::scale({(*scales)[3 * i], (*scales)[3 * i + 1], (*scales)[3 * i + 2]});
+        result.instances.push_back({static_cast<int>(index), m});
+    }
+    if (outOfRange > 0)
+        warn(std::to_string(outOfRange) + " instances have a protoIndices entry outside the " +
+             std::to_string(result.prototypes.size()) + " prototypes; skipped");
+    return result;
+}
+
+std::vector<MeshPart> prototypeParts(const usd::Stage& stage, const std::string& root, bool includeRootTransform,
+                                     double time, const ColorConverter& convertColor, const Warn& warn, int nesting) {
+    std::vector<MeshPart> parts;
+    const usd::PrimSpec* rootPrim = stage.prim(root);
+    if (!rootPrim) {
+        warn(root, "prototype prim does not exist");
+        return parts;
+    }
+    std::map<std::string, Matrix4> spaces;  // prim path -> prim-to-prototype-root space
+    usd::Stage::traverse(*rootPrim, [&](const usd::PrimSpec& prim) {
+        if (!isImaged(prim, time)) return false;
+        Matrix4 space = Matrix4::identity();
+        if (prim.path != root || includeRootTransform) {
+            LocalTransform local = localTransform(PrimReader(prim, time));
+            space = prim.path == root || local.resetsXformStack ? local.matrix : spaces.at(parentPath(prim.path)) * local.matrix;
+        }
+        spaces[prim.path] = space;
+        auto warnHere = [&](const std::string& message) { warn(prim.path, message); };
+        if (prim.typeName == "Mesh") {
+            for (MeshPart& part : meshPartsFromPrim(stage, prim, time, space, convertColor, warnHere))
+                parts.push_back(std::move(part));
+        } else if (isImplicitType(prim.typeName)) {
+            parts.push_back({implicitMeshFromPrim(PrimReader(prim, time), space, convertColor, warnHere),
+                             boundMaterialPath(stage, prim)});
+        } else if (prim.typeName == "PointInstancer") {
+            if (nesting + 1 >= kMaxPrototypeNesting) {
+                warnHere("point instancers nest deeper than " + std::to_string(kMaxPrototypeNesting) + " levels; cut here");
+                return false;
+            }
+            PointInstances nested = pointInstancesFromPrim(PrimReader(prim, time), warnHere);
+            std::vector<std::vector<MeshPart>> nestedParts;
+            for (const std::string& path : nested.prototypes)
+                nestedParts.push_back(prototypeParts(stage, path, true, time, convertColor, warn, nesting + 1));
+            for (const PointInstances::Instance& instance : nested.instances)
+                for (const MeshPart& part : nestedParts[instance.prototype])
+                    parts.push_back({render::transformMesh(part.mesh, space * instance.transform), part.materialPath});
+            return false;
+        }
+        return true;
+    });
+    return parts;
+}
+
+}  // namespace fluence::delegate

@@ -1,0 +1,69 @@
+// Instancing: prototypes read once, and the transforms that place them.
+//
+// USD has two mechanisms, and the delegate maps both onto render::PrototypeDesc + InstanceDesc
+// (one Embree scene per prototype, one Embree instance per placement):
+//
+//  - Native instancing. An `instanceable` prim with composition arcs is an instance; the stage
+//    marks it with `fluence:instancePrototype`, a key equal for every instance that USD would
+//    give one prototype. The prototype is the instance's descendants, read once (from the first
+//    instance in path order) in the instance prim's space; each instance places it with its own
+//    world transform. As in USD, prims inside an instance are instance proxies: read-only.
+//
+//  - UsdGeomPointInstancer. `prototypes` targets prototype root prims (ordered); instance i
+//    places prototypes[protoIndices[i]], its geometry in the root's space with the root's own
+//    transform included (USD's default IncludeProtoXform), by
+//        instancer world * translate(positions[i]) * rotate(orientations[i]) * scale(scales[i]).
+//    | attribute      | type     | notes                                                        |
+//    |----------------|----------|--------------------------------------------------------------|
+//    | protoIndices   | int[]    | required; an index outside `prototypes` skips the instance  |
+//    | positions      | point3f[]| required, one per instance                                  |
+//    | orientations   | quath[]  | optional (`orientationsf`, quatf[], when it is not authored),|
+//    |                |          | real part first, normalised                                  |
+//    | scales         | float3[] | optional                                                     |
+//    | ids            | int64[]  | optional: the ids `invisibleIds` and `inactiveIds` name     |
+//    | invisibleIds   | int64[]  | hidden instances (ids, or indices when `ids` is absent)      |
+//    | inactiveIds    | metadata | int64 list op: deactivated instances, as invisibleIds        |
+//    Arrays of the wrong length are warned about: without usable positions the instancer
+//    places nothing; a bad orientations or scales array is ignored. Everything below a
+//    PointInstancer is rendered only through it. Velocities (motion blur) are not read.
+//
+// A prototype holds meshes and implicit surfaces. A PointInstancer nested inside a prototype is
+// expanded into copies there (Embree is built with one instance level); nesting deeper than
+// kMaxPrototypeNesting is cut with a warning.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "delegate/geom_subset.h"
+#include "delegate/material_adapter.h"
+#include "delegate/prim_reader.h"
+#include "scene/stage.h"
+
+namespace fluence::delegate {
+
+inline constexpr int kMaxPrototypeNesting = 8;
+
+// The native-instancing prototype key of an instance prim, "" when the prim is not an instance.
+std::string instancePrototypeKey(const usd::PrimSpec& prim);
+
+// The prim paths a PointInstancer's `prototypes` relationship targets, in order.
+std::vector<std::string> pointInstancerPrototypes(const usd::PrimSpec& instancer);
+
+struct PointInstances {
+    struct Instance {
+        int prototype = 0;                         // index into `prototypes`
+        Matrix4 transform = Matrix4::identity();  // prototype root space -> instancer space
+    };
+    std::vector<std::string> prototypes;
+    std::vector<Instance> instances;  // visible, active instances with a valid prototype, in order
+};
+
+PointInstances pointInstancesFromPrim(const PrimReader& instancer, const std::function<void(const std::string&)>& warn);
+
+// Every mesh and implicit surface at or below `root` (defined, active and imaged), in the
+// root's space; with `includeRootTransform`, the root's own local transform applies too.
+std::vector<MeshPart> prototypeParts(const usd::Stage& stage, const std::string& root, bool includeRootTransform,
+                                     double time, const ColorConverter& convertColor, const Warn& warn, int nesting = 0);
+
+}  // namespace fluence::delegate
