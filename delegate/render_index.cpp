@@ -1,5 +1,6 @@
 #include "delegate/render_index.h"
 
+#include <filesystem>
 #include <set>
 
 #include "delegate/camera_adapter.h"
@@ -49,7 +50,20 @@ WorldTransform worldTransformOf(const usd::Stage& stage, const std::string& path
     return result;
 }
 
+// Whether a resolved asset path names an existing file; a UDIM path (with <UDIM>) when any of
+// its tiles 1001-1100 exists.
+bool assetFileExists(const std::string& path) {
+    if (path.empty()) return false;
+    std::size_t udim = path.find("<UDIM>");
+    if (udim == std::string::npos) return std::filesystem::is_regular_file(path);
+    for (int tile = 1001; tile <= 1100; ++tile)
+        if (std::filesystem::is_regular_file(std::string(path).replace(udim, 6, std::to_string(tile)))) return true;
+    return false;
+}
+
 }  // namespace
+
+bool isFieldAssetType(const std::string& typeName) { return typeName == "OpenVDBAsset" || typeName == "Field3DAsset"; }
 
 bool isAtOrBelow(const std::string& path, const std::string& root) {
     if (root == "/") return true;
@@ -126,21 +140,34 @@ void VolumeRprim::syncData(const SyncContext& context, const usd::PrimSpec* prim
     fields_.clear();
     for (const usd::RelationshipSpec& rel : prim->relationships) {
         if (!rel.name.starts_with("field:") || rel.targets.empty()) continue;
-        Field field;
-        field.name = rel.name.substr(6);
-        field.assetPrim = resolveTargetPath(prim->path, rel.targets.front());
+        Field field{rel.name.substr(6), resolveTargetPath(prim->path, rel.targets.front())};
         const usd::PrimSpec* asset = context.stage.prim(field.assetPrim);
-        if (!asset || (asset->typeName != "OpenVDBAsset" && asset->typeName != "Field3DAsset")) {
+        if (!asset || !isFieldAssetType(asset->typeName)) {
             context.warn(prim->path, "field '" + field.name + "' targets " + field.assetPrim +
                                          (asset ? ", a " + asset->typeName + ", not an OpenVDBAsset" : ", which does not exist"));
             continue;
         }
-        PrimReader reader(*asset, context.time);
-        field.filePath = reader.token({"filePath"}, "");
-        field.gridName = reader.token({"fieldName"}, "");
-        field.fieldIndex = static_cast<int>(reader.number({"fieldIndex"}, -1.0));
         fields_.push_back(std::move(field));
     }
+}
+
+void FieldBprim::syncData(const SyncContext& context, const usd::PrimSpec* prim, std::uint32_t) {
+    if (!prim) return;
+    PrimReader reader(*prim, context.time);
+    filePath_ = reader.token({"filePath"}, "");
+    gridName_ = reader.token({"fieldName"}, "");
+    fieldIndex_ = static_cast<int>(reader.number({"fieldIndex"}, -1.0));
+    fileFound_ = assetFileExists(filePath_);
+}
+
+void TextureBprim::syncData(const SyncContext& context, const usd::PrimSpec* prim, std::uint32_t) {
+    if (!prim) return;
+    PrimReader reader(*prim, context.time);
+    filePath_ = reader.token({"inputs:file"}, "");
+    sourceColorSpace_ = reader.token({"inputs:sourceColorSpace"}, "auto");
+    wrapS_ = reader.token({"inputs:wrapS"}, "useMetadata");
+    wrapT_ = reader.token({"inputs:wrapT"}, "useMetadata");
+    fileFound_ = assetFileExists(filePath_);
 }
 
 bool MaterialSprim::readsAnimatedData(const usd::PrimSpec& source) const { return hasAnimatedData(source, true, false); }
@@ -155,9 +182,16 @@ void LightSprim::syncData(const SyncContext& context, const usd::PrimSpec* prim,
                            [&](const std::string& message) { context.warn(prim->path, message); });
 }
 
-void MaterialSprim::syncData(const SyncContext& context, const usd::PrimSpec*, std::uint32_t) {
+void MaterialSprim::syncData(const SyncContext& context, const usd::PrimSpec* prim, std::uint32_t) {
     // A missing material prim is warned about by materialFromPath, which returns the default.
     material_ = materialFromPath(context.stage, path(), context.time, context.convertColor, context.warn);
+    textures_.clear();
+    if (!prim) return;
+    usd::Stage::traverse(*prim, [&](const usd::PrimSpec& p) {
+        if (p.typeName == "Shader" && PrimReader(p, context.time).token({"info:id"}, "") == "UsdUVTexture")
+            textures_.push_back(p.path);
+        return true;
+    });
 }
 
 void RenderIndex::insert(std::unique_ptr<RenderPrim> prim) {
@@ -181,24 +215,31 @@ void RenderIndex::markSubtreeDirty(const std::string& path, std::uint32_t bits, 
 
 std::size_t RenderIndex::sync(const SyncContext& context) {
     std::size_t synced = 0;
+    auto syncKind = [&](auto&& selected) {
+        for (auto& [path, prim] : prims_)
+            if (selected(prim->kind()) && prim->dirtyBits() != kClean) {
+                prim->sync(context);
+                ++synced;
+            }
+    };
+    using Kind = RenderPrim::Kind;
+    syncKind([](Kind k) { return k != Kind::Material && k != Kind::Texture; });
     std::set<std::string> materials;
     for (auto& [path, prim] : prims_) {
-        if (prim->kind() == RenderPrim::Kind::Material) continue;
-        if (prim->dirtyBits() != kClean) {
-            prim->sync(context);
-            ++synced;
-        }
         if (const auto* surface = dynamic_cast<const SurfaceRprim*>(prim.get()))
             for (const auto& part : surface->parts())
                 if (!part.materialPath.empty()) materials.insert(part.materialPath);
     }
     for (const std::string& m : materials)
         if (!find(m)) insert(std::make_unique<MaterialSprim>(m));
+    syncKind([](Kind k) { return k == Kind::Material; });
+    std::set<std::string> textures;
     for (auto& [path, prim] : prims_)
-        if (prim->kind() == RenderPrim::Kind::Material && prim->dirtyBits() != kClean) {
-            prim->sync(context);
-            ++synced;
-        }
+        if (prim->kind() == Kind::Material)
+            for (const std::string& t : static_cast<const MaterialSprim&>(*prim).textures()) textures.insert(t);
+    for (const std::string& t : textures)
+        if (!find(t)) insert(std::make_unique<TextureBprim>(t));
+    syncKind([](Kind k) { return k == Kind::Texture; });
     return synced;
 }
 

@@ -2,8 +2,9 @@
 //
 // As in Hydra, prims come in kinds: rprims (geometry: meshes and tessellated implicit surfaces;
 // prototypes, native instances and point instancers (delegate/instancing.h); UsdVol volumes,
-// whose fields are read but not rendered until the volume issue) and sprims (state: cameras,
-// lights, materials). Bprims (textures) join with the texture issue.
+// whose fields are read but not rendered until the volume issue), sprims (state: cameras,
+// lights, materials) and bprims (buffers: the OpenVDB field assets volumes name, and the
+// UsdUVTexture images materials use; the files are loaded by the volume and texture issues).
 //
 // The dirty-bit contract (see also scene_delegate.h, which maps stage edits to bits):
 //   - A prim is inserted with every bit dirty and synced once before the first render.
@@ -56,7 +57,7 @@ struct SyncContext {
 
 class RenderPrim {
 public:
-    enum class Kind { Mesh, Prototype, Instance, PointInstancer, Volume, Camera, Light, Material };
+    enum class Kind { Mesh, Prototype, Instance, PointInstancer, Volume, Camera, Light, Material, Field, Texture };
 
     RenderPrim(Kind kind, std::string path) : kind_(kind), path_(std::move(path)) {}
     virtual ~RenderPrim() = default;
@@ -166,15 +167,12 @@ private:
     PointInstances instances_;
 };
 
-// A UsdVol Volume: its `field:NAME` relationships to OpenVDBAsset prims, read into plain data.
+// A UsdVol Volume: its `field:NAME` relationships to field asset prims (FieldBprims).
 class VolumeRprim final : public RenderPrim {
 public:
     struct Field {
         std::string name;       // the relationship's NAME: density, temperature, ...
-        std::string assetPrim;  // the OpenVDBAsset prim
-        std::string filePath;   // resolved asset path ("" when not authored)
-        std::string gridName;   // fieldName: the grid inside the file
-        int fieldIndex = -1;    // fieldIndex, -1 when not authored
+        std::string assetPrim;  // the OpenVDBAsset prim: a FieldBprim in the index
     };
     explicit VolumeRprim(std::string path) : RenderPrim(Kind::Volume, std::move(path)) {}
     const std::vector<Field>& fields() const { return fields_; }
@@ -182,6 +180,42 @@ public:
 private:
     void syncData(const SyncContext& context, const usd::PrimSpec* prim, std::uint32_t bits) override;
     std::vector<Field> fields_;
+};
+
+// A UsdVol OpenVDBAsset (or Field3DAsset): one grid of one file. Editing it re-syncs only this
+// bprim; the volumes naming it keep their data.
+class FieldBprim final : public RenderPrim {
+public:
+    explicit FieldBprim(std::string path) : RenderPrim(Kind::Field, std::move(path)) {}
+    const std::string& filePath() const { return filePath_; }  // resolved; "" when not authored
+    const std::string& gridName() const { return gridName_; }  // fieldName: the grid in the file
+    int fieldIndex() const { return fieldIndex_; }             // -1 when not authored
+    bool fileFound() const { return fileFound_; }
+
+private:
+    void syncData(const SyncContext& context, const usd::PrimSpec* prim, std::uint32_t bits) override;
+    std::string filePath_, gridName_;
+    int fieldIndex_ = -1;
+    bool fileFound_ = false;
+};
+
+// A UsdUVTexture shader of a material's network: its image file and how to read it.
+class TextureBprim final : public RenderPrim {
+public:
+    explicit TextureBprim(std::string path) : RenderPrim(Kind::Texture, std::move(path)) {}
+    const std::string& filePath() const { return filePath_; }  // resolved; "" when not authored
+    // inputs:sourceColorSpace: "auto", "raw" or "sRGB".
+    const std::string& sourceColorSpace() const { return sourceColorSpace_; }
+    // inputs:wrapS / inputs:wrapT: "useMetadata", "black", "clamp", "repeat" or "mirror".
+    const std::string& wrapS() const { return wrapS_; }
+    const std::string& wrapT() const { return wrapT_; }
+    // Whether the file exists; UDIM paths (<UDIM>) count as found when any tile does.
+    bool fileFound() const { return fileFound_; }
+
+private:
+    void syncData(const SyncContext& context, const usd::PrimSpec* prim, std::uint32_t bits) override;
+    std::string filePath_, sourceColorSpace_, wrapS_, wrapT_;
+    bool fileFound_ = false;
 };
 
 class CameraSprim final : public RenderPrim {
@@ -208,11 +242,14 @@ class MaterialSprim final : public RenderPrim {
 public:
     explicit MaterialSprim(std::string path) : RenderPrim(Kind::Material, std::move(path)) {}
     const render::MaterialDesc& material() const { return material_; }
+    // The UsdUVTexture shaders inside the material (TextureBprims), in namespace order.
+    const std::vector<std::string>& textures() const { return textures_; }
 
 private:
     void syncData(const SyncContext& context, const usd::PrimSpec* prim, std::uint32_t bits) override;
     bool readsAnimatedData(const usd::PrimSpec& source) const override;
     render::MaterialDesc material_;
+    std::vector<std::string> textures_;
 };
 
 class RenderIndex {
@@ -223,8 +260,9 @@ public:
     RenderPrim* find(const std::string& path) const;
     // Marks the prim at `path` and every prim below it.
     void markSubtreeDirty(const std::string& path, std::uint32_t bits, std::optional<RenderPrim::Kind> kind = {});
-    // Syncs every dirty prim (materials last: meshes and prototypes name the materials they
-    // need, and a material sprim is created for each). Returns how many prims were synced.
+    // Syncs every dirty prim: materials after geometry (meshes and prototypes name the materials
+    // they need, and a material sprim is created for each), textures last (materials name them).
+    // Returns how many prims were synced.
     std::size_t sync(const SyncContext& context);
 
     // Prims in path order.
@@ -236,5 +274,8 @@ private:
 
 // True when `path` is `root` or lies below it.
 bool isAtOrBelow(const std::string& path, const std::string& root);
+
+// OpenVDBAsset or Field3DAsset: the field prims FieldBprims read.
+bool isFieldAssetType(const std::string& typeName);
 
 }  // namespace fluence::delegate

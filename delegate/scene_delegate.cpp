@@ -17,8 +17,7 @@ namespace {
 bool isStructuralType(const std::string& t) {
     static const std::set<std::string> kTypes = {"",          "Xform",          "Scope",        "Material",
                                                  "Shader",    "NodeGraph",      "GeomSubset",   "RenderSettings",
-                                                 "RenderProduct", "RenderVar",  "RenderPass",   "Camera",
-                                                 "OpenVDBAsset", "Field3DAsset"};
+                                                 "RenderProduct", "RenderVar",  "RenderPass",   "Camera"};
     return kTypes.contains(t);
 }
 
@@ -74,6 +73,8 @@ void SceneDelegate::populate(const std::string& root) {
         }
         else if (type == "Volume")
             index_.insert(std::make_unique<VolumeRprim>(prim.path));
+        else if (isFieldAssetType(type))
+            index_.insert(std::make_unique<FieldBprim>(prim.path));
         else if (type == "Camera")
             index_.insert(std::make_unique<CameraSprim>(prim.path));
         else if (isLightType(type))
@@ -226,6 +227,8 @@ render::SceneDescription SceneDelegate::sceneDescription() const {
                 break;
             case RenderPrim::Kind::Material:
             case RenderPrim::Kind::Prototype:
+            case RenderPrim::Kind::Field:
+            case RenderPrim::Kind::Texture:
                 break;
         }
         return true;

@@ -4,9 +4,10 @@
 // This is the only place that knows USD schema names. Populating walks the stage's defined,
 // active prims depth-first, skipping invisible subtrees and guide/proxy purposes, and inserts a
 // render prim per Mesh or implicit surface, native instance, PointInstancer and shared prototype
-// (rprims; delegate/instancing.h), Camera and UsdLux light (sprims); syncing
+// (rprims; delegate/instancing.h), Volume (rprim), OpenVDBAsset (bprim), Camera and UsdLux light
+// (sprims); syncing
 // pulls each dirty prim's data through the adapter for its schema, creating a material sprim for
-// every material a mesh binds. Authored colours are converted into the rendering space through
+// every material a mesh binds and a texture bprim for every UsdUVTexture a material holds. Authored colours are converted into the rendering space through
 // `convertColor`. Prim types it cannot render yet are skipped with one warning per type. Semantic
 // errors raise SceneError naming the prim path.
 //
@@ -15,6 +16,8 @@
 //   xformOp* / xformOpOrder on P      -> kDirtyTransform on every prim at or below P
 //   points / topology / primvars of a mesh or implicit prim -> that rprim's data bits
 //   any attribute of a light or camera -> that sprim
+//   any attribute of an OpenVDBAsset or UsdUVTexture shader -> that bprim (volumes and
+//                                        materials keep their data)
 //   any attribute inside a Material    -> that material sprim (meshes keep their data)
 //   material:binding*                  -> kDirtyMaterial on meshes at or below P
 //   visibility / purpose / active, variant selections -> the subtree at P is removed and
