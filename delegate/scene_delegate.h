@@ -3,13 +3,13 @@
 //
 // This is the only place that knows USD schema names. Populating walks the stage's defined,
 // active prims depth-first, skipping invisible subtrees and guide/proxy purposes, and inserts a
-// render prim per Mesh or implicit surface, native instance, PointInstancer and shared prototype
-// (rprims; delegate/instancing.h), Volume (rprim), OpenVDBAsset (bprim), Camera and UsdLux light
-// (sprims); syncing
-// pulls each dirty prim's data through the adapter for its schema, creating a material sprim for
-// every material a mesh binds and a texture bprim for every UsdUVTexture a material holds. Authored colours are converted into the rendering space through
-// `convertColor`. Prim types it cannot render yet are skipped with one warning per type. Semantic
-// errors raise SceneError naming the prim path.
+// render prim per Mesh or implicit surface, native instance, PointInstancer, shared prototype
+// (delegate/instancing.h) and Volume (rprims), OpenVDBAsset (bprims), Camera and UsdLux light
+// (sprims); syncing pulls each dirty prim's data through the adapter for its schema, creating a
+// material sprim for every material a mesh binds and a texture bprim for every UsdUVTexture a
+// material holds. Authored colours are converted into the rendering space through
+// `convertColor`. Prim types it cannot render yet are skipped with one warning per type.
+// Semantic errors raise SceneError naming the prim path.
 //
 // Change tracking. Edits go through the delegate, which applies them to the stage and marks only
 // the render prims they affect (render_index.h states the dirty-bit contract):
