@@ -85,9 +85,6 @@ int runRender(const RenderOptions& opt) {
     if (settings && settings->products.size() > 1)
         warnings(settings->path, "only the first render product is written in this version; " +
                                      std::to_string(settings->products.size() - 1) + " more ignored");
-    if (float aspect = product ? product->pixelAspectRatio : (settings ? settings->pixelAspectRatio : 1.0f); aspect != 1.0f)
-        warnings(product ? product->path : settings->path,
-                 "pixelAspectRatio " + std::to_string(aspect) + " is not supported yet; rendering square pixels");
     std::pair<int, int> res{kDefaultWidth, kDefaultHeight};
     if (opt.resolution)
         res = *opt.resolution;
@@ -100,7 +97,8 @@ int runRender(const RenderOptions& opt) {
     if (outputPath.empty()) outputPath = std::filesystem::path(opt.scene).stem().string() + ".exr";
     std::unique_ptr<render::Camera> camera;
     try {
-        camera = std::make_unique<render::Camera>(*populated->scene.camera, res.first, res.second);
+        camera = std::make_unique<render::Camera>(*populated->scene.camera, res.first, res.second,
+                                                  settings ? settings->renderedFraming() : render::ImageFraming{});
     } catch (const std::invalid_argument& e) {
         printError(e.what());
         return kExitScene;
@@ -128,6 +126,7 @@ int runRender(const RenderOptions& opt) {
     output::ExrHeader header;
     header.colorSpace = color::ColorManagement::kRenderingSpace;
     header.chromaticities = color::ColorManagement::renderingChromaticities();
+    header.pixelAspectRatio = camera->pixelAspectRatio();
     header.dataChannels = Film::dataChannelNames();
     header.strings = {{"fluence/version", kFluenceVersion},
                       {"fluence/scene", std::filesystem::absolute(opt.scene).string()},

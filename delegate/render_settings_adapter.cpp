@@ -1,5 +1,7 @@
 #include "delegate/render_settings_adapter.h"
 
+#include <cmath>
+
 #include "delegate/material_adapter.h"
 #include "delegate/prim_reader.h"
 
@@ -42,6 +44,31 @@ RenderVarDesc varFromPrim(const usd::PrimSpec& prim, double time) {
     return var;
 }
 
+// pixelAspectRatio and aspectRatioConformPolicy, each falling back to `inherited`'s.
+render::ImageFraming framingOf(const PrimReader& reader, const render::ImageFraming& inherited) {
+    using render::ApertureConform;
+    static const std::pair<const char*, ApertureConform> kPolicies[] = {
+        {"expandAperture", ApertureConform::ExpandAperture},
+        {"cropAperture", ApertureConform::CropAperture},
+        {"adjustApertureWidth", ApertureConform::AdjustApertureWidth},
+        {"adjustApertureHeight", ApertureConform::AdjustApertureHeight},
+        {"adjustPixelAspectRatio", ApertureConform::AdjustPixelAspectRatio}};
+    render::ImageFraming framing = inherited;
+    framing.pixelAspectRatio = static_cast<float>(reader.number({"pixelAspectRatio"}, inherited.pixelAspectRatio));
+    if (!(framing.pixelAspectRatio > 0.0f) || !std::isfinite(framing.pixelAspectRatio))
+        reader.fail("pixelAspectRatio must be positive, got " + std::to_string(framing.pixelAspectRatio));
+    if (!reader.value("aspectRatioConformPolicy")) return framing;
+    std::string policy = reader.token({"aspectRatioConformPolicy"}, "");
+    for (const auto& [token, conform] : kPolicies)
+        if (policy == token) {
+            framing.conform = conform;
+            return framing;
+        }
+    reader.fail("aspectRatioConformPolicy '" + policy +
+                "' is not one of expandAperture, cropAperture, adjustApertureWidth, adjustApertureHeight, "
+                "adjustPixelAspectRatio");
+}
+
 }  // namespace
 
 std::optional<RenderSettingsDesc> renderSettingsFromStage(const usd::Stage& stage, const std::string& settingsPath,
@@ -65,8 +92,7 @@ std::optional<RenderSettingsDesc> renderSettingsFromStage(const usd::Stage& stag
         s.resolutionAuthored = true;
     }
     s.cameraPath = relationshipTarget(*prim, "camera");
-    s.pixelAspectRatio = static_cast<float>(reader.number({"pixelAspectRatio"}, 1.0));
-    s.aspectRatioConformPolicy = reader.token({"aspectRatioConformPolicy"}, "expandAperture");
+    s.framing = framingOf(reader, s.framing);
     if (auto purposes = reader.strings("includedPurposes")) s.includedPurposes = *purposes;
 
     if (const usd::RelationshipSpec* products = prim->relationship("products"))
@@ -80,7 +106,7 @@ std::optional<RenderSettingsDesc> renderSettingsFromStage(const usd::Stage& stag
             product.resolution = resolutionOf(pr).value_or(s.resolution);
             std::string camera = relationshipTarget(productPrim, "camera");
             product.cameraPath = camera.empty() ? s.cameraPath : camera;
-            product.pixelAspectRatio = static_cast<float>(pr.number({"pixelAspectRatio"}, s.pixelAspectRatio));
+            product.framing = framingOf(pr, s.framing);
             if (const usd::RelationshipSpec* vars = productPrim.relationship("orderedVars"))
                 for (const std::string& v : vars->targets)
                     product.vars.push_back(varFromPrim(targetOfType(stage, productPrim, v, "RenderVar", "orderedVars"), time));

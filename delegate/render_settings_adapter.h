@@ -10,9 +10,12 @@
 // |                | ("expandAperture"), rel camera, rel products, includedPurposes               |
 // | RenderProduct  | productName (""), productType ("raster"), and the RenderSettingsBase         |
 // |                | attributes above when authored on the product (they override the settings') |
+// |                | — resolution, camera, pixelAspectRatio, aspectRatioConformPolicy           |
 // | RenderVar      | sourceName (""), sourceType ("raw"), dataType ("color3f")                    |
-// In this slice the first product's productName is the default output path and its resolution and
-// camera apply; writing every product and var is issue #12.
+// In this slice the first product's productName is the default output path and its resolution,
+// camera and framing (pixelAspectRatio, aspectRatioConformPolicy) apply; writing every product
+// and var is issue #12. A policy outside USD's five tokens, or a pixelAspectRatio that is not
+// positive, raises SceneError naming the prim.
 #pragma once
 
 #include <optional>
@@ -20,6 +23,7 @@
 #include <utility>
 #include <vector>
 
+#include "render/camera.h"
 #include "scene/stage.h"
 
 namespace fluence::delegate {
@@ -35,7 +39,7 @@ struct RenderProductDesc {
     std::string productType = "raster";
     std::pair<int, int> resolution;
     std::string cameraPath;
-    float pixelAspectRatio = 1.0f;
+    render::ImageFraming framing;
     std::vector<RenderVarDesc> vars;
 };
 
@@ -44,8 +48,7 @@ struct RenderSettingsDesc {
     std::pair<int, int> resolution{2048, 1080};
     bool resolutionAuthored = false;
     std::string cameraPath;
-    float pixelAspectRatio = 1.0f;
-    std::string aspectRatioConformPolicy = "expandAperture";
+    render::ImageFraming framing;
     std::vector<std::string> includedPurposes{"default", "render"};
     std::vector<RenderProductDesc> products;
 
@@ -53,6 +56,8 @@ struct RenderSettingsDesc {
     const RenderProductDesc* renderedProduct() const { return products.empty() ? nullptr : &products.front(); }
     // The camera of the rendered product, which falls back to the settings' own camera.
     const std::string& renderedCamera() const { return renderedProduct() ? renderedProduct()->cameraPath : cameraPath; }
+    // The framing of the rendered product, which falls back to the settings' own.
+    const render::ImageFraming& renderedFraming() const { return renderedProduct() ? renderedProduct()->framing : framing; }
 };
 
 // `settingsPath` "" means the stage's renderSettingsPrimPath (or no settings). Throws SceneError

@@ -54,6 +54,7 @@ void writeExr(const std::string& path, const Image& image, const ExrHeader& head
     spec.attribute("openexr:lineOrder", "increasingY");
     // float[8] named "chromaticities" is written by OIIO as the standard EXR Imf::Chromaticities.
     spec.attribute("chromaticities", OIIO::TypeDesc(OIIO::TypeDesc::FLOAT, 8), header.chromaticities.data());
+    spec.attribute("PixelAspectRatio", header.pixelAspectRatio);  // OIIO's name for EXR's pixelAspectRatio
     if (!header.colorSpace.empty()) {
         spec.attribute("colorSpace", header.colorSpace);
         spec.attribute("oiio:ColorSpace", header.colorSpace);

@@ -17,6 +17,8 @@ struct ExrHeader {
     std::string colorSpace = color::ColorManagement::kRenderingSpace;
     // {Rx, Ry, Gx, Gy, Bx, By, Wx, Wy}: written as the standard EXR 'chromaticities' attribute.
     std::array<float, 8> chromaticities = color::ColorManagement::renderingChromaticities();
+    // Width / height of one pixel: the standard EXR 'pixelAspectRatio' attribute.
+    float pixelAspectRatio = 1.0f;
     // Extra attributes, e.g. {"fluence/version", "0.1.0"}, {"fluence/scene", path}, {"fluence/renderTime", 12.5}.
     std::vector<std::pair<std::string, std::string>> strings;
     std::vector<std::pair<std::string, float>> floats;

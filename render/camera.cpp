@@ -9,22 +9,40 @@ namespace {
 constexpr float kOrthographicApertureUnit = 0.1f;  // GfCamera::APERTURE_UNIT
 }
 
-Camera::Camera(const CameraDesc& d, int imageWidth, int imageHeight)
+Camera::Camera(const CameraDesc& d, int imageWidth, int imageHeight, const ImageFraming& framing)
     : projection_(d.projection), toWorld_(d.transform), width_(imageWidth), height_(imageHeight),
-      near_(d.nearClip), far_(d.farClip) {
+      near_(d.nearClip), far_(d.farClip), pixelAspectRatio_(framing.pixelAspectRatio) {
     if (imageWidth <= 0 || imageHeight <= 0) throw std::invalid_argument("image resolution must be positive");
     if (!(d.horizontalAperture > 0.0f) || !(d.verticalAperture > 0.0f))
         throw std::invalid_argument("camera " + d.name + ": apertures must be positive");
     if (projection_ == Projection::Perspective && !(d.focalLength > 0.0f))
         throw std::invalid_argument("camera " + d.name + ": focalLength must be positive");
+    if (!(framing.pixelAspectRatio > 0.0f) || !std::isfinite(framing.pixelAspectRatio))
+        throw std::invalid_argument("pixelAspectRatio must be positive");
 
-    // expandAperture conform policy.
     float hAperture = d.horizontalAperture, vAperture = d.verticalAperture;
-    float imageAspect = static_cast<float>(imageWidth) / static_cast<float>(imageHeight);
-    if (imageAspect > hAperture / vAperture)
-        hAperture = vAperture * imageAspect;
-    else
-        vAperture = hAperture / imageAspect;
+    const float apertureAspect = hAperture / vAperture;
+    const float pixels = static_cast<float>(imageWidth) / static_cast<float>(imageHeight);
+    const float imageAspect = pixels * framing.pixelAspectRatio;
+    switch (framing.conform) {
+        case ApertureConform::ExpandAperture:
+        case ApertureConform::CropAperture:
+            // Expanding widens a too-narrow aperture; cropping shortens it instead.
+            if ((imageAspect > apertureAspect) == (framing.conform == ApertureConform::ExpandAperture))
+                hAperture = vAperture * imageAspect;
+            else
+                vAperture = hAperture / imageAspect;
+            break;
+        case ApertureConform::AdjustApertureWidth:
+            hAperture = vAperture * imageAspect;
+            break;
+        case ApertureConform::AdjustApertureHeight:
+            vAperture = hAperture / imageAspect;
+            break;
+        case ApertureConform::AdjustPixelAspectRatio:
+            pixelAspectRatio_ = apertureAspect / pixels;
+            break;
+    }
 
     float scale = projection_ == Projection::Perspective ? 1.0f / d.focalLength : kOrthographicApertureUnit;
     halfWidth_ = 0.5f * hAperture * scale;

@@ -1,9 +1,10 @@
 // A camera that follows USD's camera model (UsdGeomCamera / GfCamera).
 //
 // The film back is the aperture window at distance focalLength in front of the lens (only the
-// ratios matter for a perspective camera); the image is conformed to the aperture with USD's
-// default policy, expandAperture: the aperture grows in one direction until its aspect ratio
-// matches the image's, so nothing the aperture frames is cropped. Orthographic apertures are in
+// ratios matter for a perspective camera). The image's aspect ratio is width * pixelAspectRatio
+// / height, and the aperture is conformed to it by UsdRenderSettingsBase's
+// aspectRatioConformPolicy (ImageFraming): by default expandAperture, where the aperture grows in
+// one direction until its aspect ratio matches the image's, so nothing it frames is cropped. Orthographic apertures are in
 // tenths of a scene unit, as in USD. Camera rays start at the near clipping plane and end at
 // the far one (planes perpendicular to the view axis, not spheres).
 #pragma once
@@ -14,9 +15,27 @@
 
 namespace fluence::render {
 
+// UsdRenderSettingsBase aspectRatioConformPolicy: what gives when the aperture's aspect ratio
+// differs from the image's.
+enum class ApertureConform {
+    ExpandAperture,         // grow the aperture in one direction (frames at least the aperture)
+    CropAperture,           // shrink it in one direction (frames at most the aperture)
+    AdjustApertureWidth,    // keep the aperture's height
+    AdjustApertureHeight,   // keep the aperture's width
+    AdjustPixelAspectRatio  // keep the aperture; the pixels stretch to fit
+};
+
+struct ImageFraming {
+    float pixelAspectRatio = 1.0f;  // width / height of one pixel
+    ApertureConform conform = ApertureConform::ExpandAperture;
+};
+
 class Camera {
 public:
-    Camera(const CameraDesc& desc, int imageWidth, int imageHeight);
+    Camera(const CameraDesc& desc, int imageWidth, int imageHeight, const ImageFraming& framing = {});
+
+    // The pixel aspect ratio of the image (as asked, or as adjustPixelAspectRatio computed it).
+    float pixelAspectRatio() const { return pixelAspectRatio_; }
 
     // A ray through film position (x, y) in pixels: (0,0) is the top-left corner of the image,
     // (width, height) the bottom-right.
@@ -37,6 +56,7 @@ private:
     // units (orthographic).
     float halfWidth_, halfHeight_, centreX_, centreY_;
     float near_, far_;
+    float pixelAspectRatio_;
 };
 
 }  // namespace fluence::render

@@ -31,11 +31,13 @@ inline std::unique_ptr<usd::Stage> stageFrom(const std::string& usda) {
         usd::parseUsdaString(usda.starts_with("#") ? usda : "#usda 1.0\n" + usda, "test.usda"));
 }
 
-// Populates `usda` (a Camera is added unless the text starts with "#usda").
-inline Populated populate(const std::string& usda) {
+// Populates `usda` (a Camera is added unless the text starts with "#usda"), rendering through
+// `cameraPath` when given.
+inline Populated populate(const std::string& usda, const std::string& cameraPath = "") {
     Populated p;
     p.stage = stageFrom(usda.starts_with("#") ? usda : kCamera + usda);
     DelegateOptions options;
+    options.cameraPath = cameraPath;
     options.convertColor = [](const RGB& c, const std::string&) { return c; };
     options.warn = [&p](const std::string& path, const std::string& message) { p.warnings.push_back(path + ": " + message); };
     p.result = populateScene(*p.stage, options);

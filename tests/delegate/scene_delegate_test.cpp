@@ -3,32 +3,17 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <regex>
 
 #include "delegate/xform.h"
 #include "scene/usda_parser.h"
+#include "tests/delegate/delegate_test_support.h"
 
 namespace fluence::delegate {
 namespace {
 
-struct Populated {
-    std::unique_ptr<usd::Stage> stage;
-    DelegateResult result;
-    std::vector<std::string> warnings;
-};
-
-Populated populate(const std::string& usda, const std::string& camera = "") {
-    Populated p;
-    p.stage = std::make_unique<usd::Stage>(
-        usd::parseUsdaString(usda.starts_with("#") ? usda : "#usda 1.0\n" + usda, "test.usda"));
-    DelegateOptions options;
-    options.cameraPath = camera;
-    options.convertColor = [](const RGB& c, const std::string&) { return c; };
-    options.warn = [&](const std::string& path, const std::string& message) { p.warnings.push_back(path + ": " + message); };
-    p.result = populateScene(*p.stage, options);
-    return p;
-}
-
-const std::string kCamera = "def Camera \"Cam\"\n{\n}\n";
+using testing::kCamera;
+using testing::populate;
 
 void expectNear(const Vec3f& a, const Vec3f& b, float eps = 1e-5f) {
     EXPECT_NEAR(a.x, b.x, eps);
@@ -38,7 +23,7 @@ void expectNear(const Vec3f& a, const Vec3f& b, float eps = 1e-5f) {
 
 TEST(SceneDelegate, ComposesXformOpsInUsdOrder) {
     // translate then rotate then scale in xformOpOrder: points are scaled, rotated, translated.
-    auto p = populate(kCamera + R"(
+    auto p = populate(R"(
 def Xform "Parent"
 {
     double3 xformOp:translate = (10, 0, 0)
@@ -63,7 +48,7 @@ def Xform "Parent"
 }
 
 TEST(SceneDelegate, ResetXformStackAndInvertedOps) {
-    auto p = populate(kCamera + R"(
+    auto p = populate(R"(
 def Xform "Parent"
 {
     double3 xformOp:translate = (100, 0, 0)
@@ -85,7 +70,7 @@ def Xform "Parent"
 }
 
 TEST(SceneDelegate, TriangulatesPolygonsAndReadsPrimvarsByInterpolation) {
-    auto p = populate(kCamera + R"(
+    auto p = populate(R"(
 def Mesh "Quad"
 {
     int[] faceVertexCounts = [4, 3]
@@ -109,7 +94,7 @@ def Mesh "Quad"
 }
 
 TEST(SceneDelegate, IndexedPrimvarsAndLeftHandedOrientation) {
-    auto p = populate(kCamera + R"(
+    auto p = populate(R"(
 def Mesh "Tri"
 {
     uniform token orientation = "leftHanded"
@@ -129,7 +114,7 @@ def Mesh "Tri"
 }
 
 TEST(SceneDelegate, TopologyErrorsNameThePrim) {
-    const std::string bad = kCamera + R"(
+    const std::string bad = R"(
 def Mesh "Broken"
 {
     int[] faceVertexCounts = [4]
@@ -147,7 +132,7 @@ def Mesh "Broken"
 }
 
 TEST(SceneDelegate, UsdLuxUnitsAndFallbacks) {
-    auto p = populate(kCamera + R"(
+    auto p = populate(R"(
 def RectLight "Rect"
 {
     float inputs:intensity = 2
@@ -182,7 +167,7 @@ def DomeLight "Dome"
 }
 
 TEST(SceneDelegate, MaterialBindingInheritanceAndStrength) {
-    auto p = populate(kCamera + R"(
+    auto p = populate(R"(
 def Scope "Looks"
 {
     def Material "Red"
@@ -249,7 +234,7 @@ def Xform "Strong"
 }
 
 TEST(SceneDelegate, SkipsInvisibleGuidesAndWarnsOncePerUnsupportedType) {
-    auto p = populate(kCamera + R"(
+    auto p = populate(R"(
 def Points "A"
 {
 }
@@ -371,6 +356,44 @@ def Scope "Render"
 )");
     EXPECT_EQ(p.result.cameraPath, "/Close");
     EXPECT_FLOAT_EQ(p.result.scene.camera->focalLength, 85.0f);
+}
+
+TEST(SceneDelegate, RenderSettingsFramingAndItsProductOverride) {
+    const std::string scene = R"(#usda 1.0
+(
+    renderSettingsPrimPath = "/Render/Settings"
+)
+def Camera "Cam"
+{
+}
+def Scope "Render"
+{
+    def RenderSettings "Settings"
+    {
+        float pixelAspectRatio = 2
+        token aspectRatioConformPolicy = "cropAperture"
+        rel products = </Render/Product>
+    }
+    def RenderProduct "Product"
+    {
+        token aspectRatioConformPolicy = "POLICY"
+    }
+}
+)";
+    auto p = populate(std::regex_replace(scene, std::regex("POLICY"), "adjustPixelAspectRatio"));
+    const render::ImageFraming& settings = p.result.renderSettings->framing;
+    EXPECT_FLOAT_EQ(settings.pixelAspectRatio, 2.0f);
+    EXPECT_EQ(settings.conform, render::ApertureConform::CropAperture);
+    const render::ImageFraming& product = p.result.renderSettings->renderedFraming();
+    EXPECT_FLOAT_EQ(product.pixelAspectRatio, 2.0f) << "inherited from the settings";
+    EXPECT_EQ(product.conform, render::ApertureConform::AdjustPixelAspectRatio);
+    try {
+        populate(std::regex_replace(scene, std::regex("POLICY"), "squash"));
+        FAIL() << "an unknown policy was accepted";
+    } catch (const SceneError& e) {
+        EXPECT_NE(std::string(e.what()).find("/Render/Product"), std::string::npos) << e.what();
+        EXPECT_NE(std::string(e.what()).find("'squash' is not one of"), std::string::npos) << e.what();
+    }
 }
 
 TEST(SceneDelegate, TimeSamplesAreInterpolated) {

@@ -184,6 +184,22 @@ TEST(ExrWriter, CustomChromaticitiesAndColorSpace) {
     EXPECT_EQ(in->spec().find_attribute("fluence/dataChannels"), nullptr);
 }
 
+TEST(ExrWriter, PixelAspectRatioIsTheStandardAttribute) {
+    // OpenEXR's pixelAspectRatio is a float attribute: <name>\0float\0<size = 4><value>.
+    TempDir dir("fluence_exr_test");
+    const std::string path = dir.file("par.exr");
+    ExrHeader header;
+    header.pixelAspectRatio = 2.0f;
+    writeExr(path, Image(2, 2, {"R", "G", "B"}), header);
+    const std::string bytes = readBytes(path);
+    const std::string needle = std::string("pixelAspectRatio\0float\0\x04\0\0\0", 27);
+    const auto at = bytes.find(needle);
+    ASSERT_NE(at, std::string::npos);
+    float value = 0.0f;
+    std::memcpy(&value, bytes.data() + at + needle.size(), sizeof value);
+    EXPECT_EQ(value, 2.0f);
+}
+
 TEST(ExrWriter, MissingDirectoryThrowsAndLeavesNothing) {
     try {
         writeExr("/no/such/dir/x.exr", makeTestImage(), makeHeader());

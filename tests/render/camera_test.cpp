@@ -82,6 +82,35 @@ TEST(Camera, OrthographicUsesTenthsOfASceneUnit) {
     EXPECT_EQ(left.direction, Vec3f(0, 0, -1));
 }
 
+// Every aspectRatioConformPolicy, on a square orthographic aperture 2 units wide and a 20x10 image.
+TEST(Camera, ConformPoliciesAndPixelAspectRatioFrameTheApertureAsUsdSays) {
+    CameraDesc d;
+    d.projection = Projection::Orthographic;
+    d.horizontalAperture = d.verticalAperture = 20;
+    struct Case {
+        ImageFraming framing;
+        float width, height, pixelAspectRatio;
+    };
+    const Case cases[] = {
+        {{1.0f, ApertureConform::ExpandAperture}, 4, 2, 1},
+        {{1.0f, ApertureConform::CropAperture}, 2, 1, 1},
+        {{1.0f, ApertureConform::AdjustApertureWidth}, 4, 2, 1},
+        {{1.0f, ApertureConform::AdjustApertureHeight}, 2, 1, 1},
+        {{1.0f, ApertureConform::AdjustPixelAspectRatio}, 2, 2, 0.5f},
+        {{0.5f, ApertureConform::ExpandAperture}, 2, 2, 0.5f},  // 20 half-width pixels: a square image
+        {{4.0f, ApertureConform::CropAperture}, 2, 0.25f, 4},
+    };
+    for (const Case& c : cases) {
+        Camera cam(d, 20, 10, c.framing);
+        EXPECT_NEAR(cam.generateRay(20, 5).origin.x - cam.generateRay(0, 5).origin.x, c.width, 1e-5f)
+            << int(c.framing.conform) << " PAR " << c.framing.pixelAspectRatio;
+        EXPECT_NEAR(cam.generateRay(10, 0).origin.y - cam.generateRay(10, 10).origin.y, c.height, 1e-5f)
+            << int(c.framing.conform) << " PAR " << c.framing.pixelAspectRatio;
+        EXPECT_FLOAT_EQ(cam.pixelAspectRatio(), c.pixelAspectRatio);
+    }
+    EXPECT_THROW(Camera(d, 20, 10, {0.0f, ApertureConform::ExpandAperture}), std::invalid_argument);
+}
+
 TEST(Camera, RejectsDegenerateSettings) {
     CameraDesc d = cornellCamera();
     d.focalLength = 0;
