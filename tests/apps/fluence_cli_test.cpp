@@ -172,6 +172,19 @@ def Cube "P2"
     EXPECT_NEAR(coverage.mean(), 0.0, 5 * coverage.standardError()) << "silhouettes (alpha) must match";
 }
 
+// The sample scenes a user renders first: each renders a finite, non-black image without a warning.
+TEST_F(FluenceCli, EverySampleSceneRendersCleanly) {
+    for (const char* sample : {"cornell_box.usda", "layered_room/shot.usda", "instancing/garden.usda"}) {
+        fs::path scene = fs::path(FLUENCE_SOURCE_DIR) / "usd_samples" / sample;
+        fs::path out = dir_ / "sample.exr";
+        RunResult r = run("render " + scene.string() + " -o " + out.string() + " -r 48 32 --spp 4");
+        ASSERT_EQ(r.exitCode, 0) << sample << "\n" << r.err;
+        EXPECT_EQ(r.err.find("warning"), std::string::npos) << sample << "\n" << r.err;
+        test::MeanEstimate e = channelMean(readExr(out), {"R", "G", "B"}, [](int, int) { return true; });
+        EXPECT_TRUE(std::isfinite(e.mean()) && e.mean() > 0.0) << sample;
+    }
+}
+
 TEST_F(FluenceCli, SameSeedGivesBitIdenticalImagesAtAnyThreadCount) {
     fs::path scene = fs::path(FLUENCE_SOURCE_DIR) / "usd_samples/cornell_box.usda";
     ASSERT_EQ(run("render " + scene.string() + " -o " + (dir_ / "one.exr").string() + " -r 40 40 --spp 4 -j 1 --seed 7").exitCode, 0);
