@@ -1,5 +1,6 @@
 #include "render/camera.h"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
@@ -50,6 +51,9 @@ Camera::Camera(const CameraDesc& d, int imageWidth, int imageHeight, const Image
     centreX_ = d.horizontalApertureOffset * scale;
     centreY_ = d.verticalApertureOffset * scale;
 
+    std::optional<Matrix4> toCamera = toWorld_.inverse();
+    if (!toCamera) throw std::invalid_argument("camera " + d.name + ": its transform is singular");
+    toCamera_ = *toCamera;
     position_ = Vec3f(toWorld_.transformPoint({0, 0, 0}));
     forward_ = normalize(Vec3f(toWorld_.transformVector({0, 0, -1})));
 }
@@ -77,5 +81,23 @@ Ray Camera::generateRay(float x, float y) const {
 }
 
 float Camera::viewDepth(const Vec3f& p) const { return dot(p - position_, forward_); }
+
+float Camera::pixelsPerUnitAt(const Vec3f& p) const {
+    float pixelsPerWindowUnit = static_cast<float>(width_) / (2.0f * halfWidth_);
+    if (projection_ == Projection::Orthographic) return pixelsPerWindowUnit;
+    return pixelsPerWindowUnit / std::max(length(p - position_), std::max(near_, 1e-6f));
+}
+
+bool Camera::sees(const Vec3f& p, float margin) const {
+    Vec3d local = toCamera_.transformPoint(Vec3d(p));
+    double wx = local.x, wy = local.y;
+    if (projection_ == Projection::Perspective) {
+        if (local.z >= 0.0) return false;  // the camera looks along -Z
+        wx /= -local.z;
+        wy /= -local.z;
+    }
+    return std::abs(wx - centreX_) <= halfWidth_ * (1.0 + 2.0 * margin) &&
+           std::abs(wy - centreY_) <= halfHeight_ * (1.0 + 2.0 * margin);
+}
 
 }  // namespace fluence::render

@@ -44,12 +44,20 @@ public:
     // Depth along the view axis of a world-space point (positive in front of the camera).
     float viewDepth(const Vec3f& worldPoint) const;
 
+    // How many pixels one scene unit spans at `worldPoint`, seen face-on: for a perspective
+    // camera, at its distance from the eye (clamped to the near plane, so points beside or behind
+    // the camera count as close); for an orthographic one, everywhere the same.
+    float pixelsPerUnitAt(const Vec3f& worldPoint) const;
+    // Whether `worldPoint` projects into the image grown by `margin` (a fraction of its size on
+    // every side), in front of the camera.
+    bool sees(const Vec3f& worldPoint, float margin) const;
+
     float farClip() const { return far_; }
     const Vec3f& position() const { return position_; }
 
 private:
     Projection projection_;
-    Matrix4 toWorld_;
+    Matrix4 toWorld_, toCamera_;
     Vec3f position_, forward_;
     int width_, height_;
     // Window half-extents and centre, on the plane at unit distance (perspective) or in scene

@@ -111,6 +111,22 @@ TEST(Camera, ConformPoliciesAndPixelAspectRatioFrameTheApertureAsUsdSays) {
     EXPECT_THROW(Camera(d, 20, 10, {0.0f, ApertureConform::ExpandAperture}), std::invalid_argument);
 }
 
+TEST(Camera, PixelsPerUnitAndVisibilityForDicing) {
+    // cornellCamera: 64 pixels across a 25/35 half-width window at unit distance.
+    Camera cam(cornellCamera(), 64, 64);
+    const Vec3f eye = cam.position();
+    const float pixelsPerUnitAtOne = 64.0f / (2.0f * 12.5f / 35.0f);
+    EXPECT_NEAR(cam.pixelsPerUnitAt(eye + Vec3f(0, 0, 10)), pixelsPerUnitAtOne / 10.0f, 1e-3f);
+    EXPECT_NEAR(cam.pixelsPerUnitAt(eye + Vec3f(0, 0, -10)), pixelsPerUnitAtOne / 10.0f, 1e-3f) << "behind: by distance";
+    EXPECT_NEAR(cam.pixelsPerUnitAt(eye), pixelsPerUnitAtOne / 10.0f, 1e-3f) << "clamped at the near plane (10)";
+    EXPECT_TRUE(cam.sees(eye + Vec3f(0, 0, 100), 0.0f));
+    EXPECT_FALSE(cam.sees(eye + Vec3f(0, 0, -100), 0.5f)) << "behind the camera";
+    // 40 units to the side at depth 100 is outside the 12.5/35 * 100 = 35.7 half-width ...
+    EXPECT_FALSE(cam.sees(eye + Vec3f(40, 0, 100), 0.0f));
+    // ... and inside once the image grows by 10% on each side (42.9).
+    EXPECT_TRUE(cam.sees(eye + Vec3f(40, 0, 100), 0.1f));
+}
+
 TEST(Camera, RejectsDegenerateSettings) {
     CameraDesc d = cornellCamera();
     d.focalLength = 0;
