@@ -33,11 +33,12 @@ fuzz: FUZZ_SECONDS ?= 3600
 fuzz: deps
 	FUZZ_BUILD_DIR=$(BUILD_DIR)/fuzz FUZZ_CORPUS=$(BUILD_DIR)/fuzz/corpus bash scripts/fuzz_smoke.sh $(FUZZ_SECONDS)
 
-# The USDA parsing benchmark (bench/usda_parse_bench.cpp); figures go to bench/results/.
+# The benchmarks (bench/*.cpp: USDA parsing, instancing); figures go to bench/results/.
 bench: deps
 	cmake -S . -B $(BUILD_DIR) -G Ninja -DCMAKE_BUILD_TYPE=Release
-	cmake --build $(BUILD_DIR) -j $(JOBS) --target usda_parse_bench
+	cmake --build $(BUILD_DIR) -j $(JOBS) --target usda_parse_bench instancing_bench
 	$(BUILD_DIR)/bench/usda_parse_bench
+	$(BUILD_DIR)/bench/instancing_bench
 
 clean:
 	rm -rf $(BUILD_DIR) out
