@@ -104,6 +104,13 @@ RenderOptions parseRenderOptions(const std::vector<std::string>& args) {
         } else if (arg == "--max-depth") {
             o.maxDepth = parseNumber<int>(arg, cur.value(arg));
             if (o.maxDepth < 0) throw UsageError("--max-depth must be >= 0");
+        } else if (arg == "--dicing-rate") {
+            o.dicingRate = parseNumber<double>(arg, cur.value(arg));
+            if (!(o.dicingRate > 0.0) || !std::isfinite(o.dicingRate)) throw UsageError("--dicing-rate must be > 0 pixels");
+        } else if (arg == "--subdiv-level") {
+            o.subdivLevel = parseNumber<int>(arg, cur.value(arg));
+            if (*o.subdivLevel < 0 || *o.subdivLevel > kMaxSubdivLevel)
+                throw UsageError("--subdiv-level must be between 0 and " + std::to_string(kMaxSubdivLevel));
         } else if (arg == "-f" || arg == "--frame") {
             o.frame = parseNumber<double>(arg, cur.value(arg));
         } else if (arg == "-s" || arg == "--settings") {
@@ -145,6 +152,9 @@ std::string usageText() {
            "      --integrator NAME   solution method (default path):\n" +
            integratorList +
            "      --max-depth N       maximum scattering events per path (default 64)\n"
+           "      --dicing-rate PX    subdivision surfaces: target micro-edge length in pixels (default 1)\n"
+           "      --subdiv-level N    subdivision surfaces: uniform refinement, 4^N triangle pairs per quad,\n"
+           "                          instead of camera-driven dicing (for comparisons)\n"
            "      --time-limit SECS   stop starting new sample passes after SECS seconds (0: no limit)\n"
            "\n"
            "environment:\n"

@@ -29,6 +29,8 @@ struct RenderOptions {
     std::string integrator = "path";  // --integrator NAME
     double timeLimit = 0.0;         // --time-limit SECONDS (0: none)
     int maxDepth = 64;              // --max-depth N
+    double dicingRate = 1.0;        // --dicing-rate PIXELS: micro-edge length of subdivision surfaces
+    std::optional<int> subdivLevel; // --subdiv-level N: uniform refinement instead of dicing
     std::optional<double> frame;    // -f/--frame F (default: the stage's startTimeCode, else USD's default time)
     std::string settings;           // -s/--settings /Render/Path (default: the stage's renderSettingsPrimPath)
     std::vector<usd::VariantSelection> variants;  // --variant /Prim/Path:set=selection (repeatable)
@@ -42,6 +44,7 @@ struct InfoOptions {
 };
 
 inline constexpr int kDefaultSpp = 64;
+inline constexpr int kMaxSubdivLevel = 8;
 inline constexpr int kDefaultWidth = 640, kDefaultHeight = 480;
 
 // Parses the arguments after `fluence render`. Throws UsageError with a one-line reason.

@@ -56,6 +56,10 @@ int runRender(const RenderOptions& opt) {
     delegate::DelegateOptions dopt;
     dopt.cameraPath = opt.camera;
     dopt.settingsPath = opt.settings;
+    dopt.resolution = opt.resolution;
+    dopt.defaultResolution = {kDefaultWidth, kDefaultHeight};
+    dopt.dicing.rate = static_cast<float>(opt.dicingRate);
+    dopt.dicing.uniformLevel = opt.subdivLevel.value_or(-1);
     dopt.time = opt.frame ? *opt.frame : stage->startTimeCode().value_or(usd::kDefaultTime);
     dopt.convertColor = [&](const RGB& c, const std::string& space) { return colors->toRenderingSpace(space, c); };
     dopt.warn = [&](const std::string& path, const std::string& message) { warnings(path, message); };
@@ -85,20 +89,13 @@ int runRender(const RenderOptions& opt) {
     if (settings && settings->products.size() > 1)
         warnings(settings->path, "only the first render product is written in this version; " +
                                      std::to_string(settings->products.size() - 1) + " more ignored");
-    std::pair<int, int> res{kDefaultWidth, kDefaultHeight};
-    if (opt.resolution)
-        res = *opt.resolution;
-    else if (product)
-        res = product->resolution;
-    else if (settings)
-        res = settings->resolution;
+    const std::pair<int, int> res = populated->resolution;
     std::string outputPath = opt.output;
     if (outputPath.empty() && product && !product->productName.empty()) outputPath = product->productName;
     if (outputPath.empty()) outputPath = std::filesystem::path(opt.scene).stem().string() + ".exr";
     std::unique_ptr<render::Camera> camera;
     try {
-        camera = std::make_unique<render::Camera>(*populated->scene.camera, res.first, res.second,
-                                                  settings ? settings->renderedFraming() : render::ImageFraming{});
+        camera = std::make_unique<render::Camera>(*populated->scene.camera, res.first, res.second, populated->framing);
     } catch (const std::invalid_argument& e) {
         printError(e.what());
         return kExitScene;

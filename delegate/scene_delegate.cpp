@@ -287,10 +287,24 @@ void SceneDelegate::setVariantSelection(const std::string& primPath, const std::
     repopulate(primPath);
 }
 
+std::pair<int, int> SceneDelegate::resolution() const {
+    if (options_.resolution) return *options_.resolution;
+    if (renderSettings_) {
+        if (const RenderProductDesc* product = renderSettings_->renderedProduct()) return product->resolution;
+        return renderSettings_->resolution;
+    }
+    return options_.defaultResolution;
+}
+
+render::ImageFraming SceneDelegate::framing() const {
+    return renderSettings_ ? renderSettings_->renderedFraming() : render::ImageFraming{};
+}
+
 DelegateResult populateScene(usd::Stage& stage, const DelegateOptions& options) {
     SceneDelegate delegate(stage, options);
     delegate.sync();
-    return {delegate.sceneDescription(), delegate.cameraPath(), delegate.renderSettings()};
+    return {delegate.sceneDescription(), delegate.cameraPath(), delegate.renderSettings(), delegate.resolution(),
+            delegate.framing()};
 }
 
 }  // namespace fluence::delegate

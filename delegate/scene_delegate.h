@@ -34,6 +34,7 @@
 #include <optional>
 #include <string>
 
+#include "delegate/dicing.h"
 #include "delegate/material_adapter.h"
 #include "delegate/prim_reader.h"
 #include "delegate/render_index.h"
@@ -46,6 +47,11 @@ namespace fluence::delegate {
 struct DelegateOptions {
     std::string cameraPath;    // "" = the render settings' camera, else the first Camera prim
     std::string settingsPath;  // "" = the stage's renderSettingsPrimPath
+    // The image size: this when set (the command line), else the rendered product's, else the
+    // render settings', else `defaultResolution`.
+    std::optional<std::pair<int, int>> resolution;
+    std::pair<int, int> defaultResolution{640, 480};
+    DicingSettings dicing;     // how subdivision surfaces are tessellated for the camera
     double time = usd::kDefaultTime;
     ColorConverter convertColor;  // authored colour + colour space -> rendering space
     Warn warn;                    // (prim path, message)
@@ -63,6 +69,9 @@ public:
     render::SceneDescription sceneDescription() const;
     const std::string& cameraPath() const { return cameraPath_; }
     const std::optional<RenderSettingsDesc>& renderSettings() const { return renderSettings_; }
+    // The image size and framing the render uses (see DelegateOptions::resolution).
+    std::pair<int, int> resolution() const;
+    render::ImageFraming framing() const;
     const RenderIndex& renderIndex() const { return index_; }
 
     // Edits (see the table above). Each returns after marking; call sync() to pull the changes.
@@ -94,6 +103,8 @@ struct DelegateResult {
     render::SceneDescription scene;
     std::string cameraPath;
     std::optional<RenderSettingsDesc> renderSettings;
+    std::pair<int, int> resolution;
+    render::ImageFraming framing;
 };
 
 // Populates, syncs and describes a stage in one call (what a single-frame render needs).
