@@ -1,24 +1,20 @@
 #include "scene/usda_lexer.h"
 
-#include <charconv>
 #include <limits>
-#include <system_error>
 #include <utility>
 
+#include "scene/unicode_xid.h"
+#include "scene/usda_chars.h"
+#include "scene/usda_number.h"
 #include "scene/usda_parser.h"
+#include "scene/utf8.h"
 
 namespace fluence::usd::detail {
 
 namespace {
 
-bool isIdentifierStart(char c) {
-    return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || c == '_' ||
-           static_cast<unsigned char>(c) >= 0x80;
-}
-bool isDigit(char c) { return c >= '0' && c <= '9'; }
-bool isIdentifierChar(char c) { return isIdentifierStart(c) || isDigit(c); }
-
-bool isPunct(char c) { return std::string_view("()[]{}=,:;.").find(c) != std::string_view::npos; }
+bool isDigit(char c) { return isIn(c, kDigit); }
+bool isAscii(char c) { return static_cast<unsigned char>(c) < 0x80; }
 
 int hexDigit(char c) {
     if (isDigit(c)) return c - '0';
@@ -90,16 +86,23 @@ void Lexer::skip() {
     --count_;
 }
 
+bool Lexer::skipBlanks() {
+    bool sawNewline = false;
+    while (pos_ < text_.size() && isIn(text_[pos_], kBlank | kNewline)) {
+        if (text_[pos_++] == '\n') {
+            newline();
+            sawNewline = true;
+        }
+    }
+    return sawNewline;
+}
+
 bool Lexer::skipSpaceAndComments() {
     bool sawNewline = false;
     while (pos_ < text_.size()) {
         char c = text_[pos_];
-        if (c == '\n') {
-            ++pos_;
-            newline();
-            sawNewline = true;
-        } else if (c == ' ' || c == '\t' || c == '\r' || c == '\f' || c == '\v') {
-            ++pos_;
+        if (isIn(c, kBlank | kNewline)) {
+            sawNewline = skipBlanks() || sawNewline;
         } else if (c == '#' || (c == '/' && at(1) == '/')) {
             while (pos_ < text_.size() && text_[pos_] != '\n') ++pos_;
         } else if (c == '/' && at(1) == '*') {
@@ -134,7 +137,7 @@ void Lexer::scan(Token& token) {
     char c = current();
     if (pos_ >= text_.size()) {
         // End of input: the kind stays End.
-    } else if (isIdentifierStart(c)) {
+    } else if (identifierCharAt(pos_, true)) {
         scanIdentifier(token);
     } else if (isDigit(c) || (c == '.' && isDigit(at(1))) ||
                (c == '-' && (isDigit(at(1)) || (at(1) == '.' && isDigit(at(2))) ||
@@ -146,28 +149,63 @@ void Lexer::scan(Token& token) {
         scanAsset(token);
     } else if (c == '<') {
         scanPath(token);
-    } else if (isPunct(c)) {
+    } else if (isIn(c, kPunct)) {
         token.kind = TokenKind::Punct;
         token.punct = c;
         ++pos_;
     } else {
-        unsigned char byte = static_cast<unsigned char>(c);
-        if (byte >= 0x20 && byte < 0x7f) fail(token, std::string("invalid character '") + c + "'");
-        static const char* hex = "0123456789abcdef";
-        fail(token, std::string("invalid character 0x") + hex[byte >> 4] + hex[byte & 15]);
+        failInvalidCharacter(token);
     }
     token.text = text_.substr(start, pos_ - start);
 }
 
+void Lexer::failInvalidCharacter(const Token& at) const {
+    char c = current();
+    unsigned char byte = static_cast<unsigned char>(c);
+    if (byte >= 0x20 && byte < 0x7f) fail(at, std::string("invalid character '") + c + "'");
+    if (isAscii(c)) {
+        static const char* hex = "0123456789abcdef";
+        fail(at, std::string("invalid character 0x") + hex[byte >> 4] + hex[byte & 15]);
+    }
+    char32_t codePoint = decodeUtf8(text_, pos_).codePoint;  // well-formed: identifierCharAt said
+    fail(at, "invalid character " + describeCodePoint(codePoint) +
+                 (isXidContinue(codePoint) ? " (a name cannot start with it)" : ""));
+}
+
+std::size_t Lexer::identifierCharAt(std::size_t pos, bool start) const {
+    if (pos >= text_.size()) return 0;
+    char c = text_[pos];
+    if (isAscii(c)) return isIn(c, start ? kLetter : kLetter | kDigit) ? 1 : 0;
+    Utf8Char decoded = decodeUtf8(text_, pos);
+    if (!decoded.length) {
+        fail(line_, static_cast<int>(pos - lineStart_) + 1, describeMalformedUtf8(text_, pos));
+    }
+    bool accepted = start ? isXidStart(decoded.codePoint) : isXidContinue(decoded.codePoint);
+    return accepted ? decoded.length : 0;
+}
+
+void Lexer::skipIdentifierChars() {
+    while (std::size_t length = identifierCharAt(pos_, false)) pos_ += length;
+}
+
 void Lexer::scanIdentifier(Token& token) {
     token.kind = TokenKind::Identifier;
-    while (isIdentifierChar(current())) ++pos_;
+    std::size_t start = pos_;
+    skipIdentifierChars();
     // Namespace joins: "a:b" and "a::b", each followed by more identifier characters.
     while (current() == ':') {
         std::size_t colons = at(1) == ':' ? 2 : 1;
-        if (!isIdentifierChar(at(colons))) break;
+        if (!identifierCharAt(pos_ + colons, false)) break;
         pos_ += colons;
-        while (isIdentifierChar(current())) ++pos_;
+        skipIdentifierChars();
+    }
+    // A non-ASCII character right after a name could only be part of it, and is not allowed there.
+    if (!isAscii(current())) {
+        char32_t codePoint = decodeUtf8(text_, pos_).codePoint;
+        fail(line_, column(),
+             "invalid character " + describeCodePoint(codePoint) + " in the name '" +
+                 std::string(text_.substr(start, pos_ - start)) +
+                 "' (names are letters, digits and '_': Unicode XID_Continue)");
     }
 }
 
@@ -178,34 +216,22 @@ void Lexer::scanNumber(Token& token) {
         pos_ += 4;
         token.number = -std::numeric_limits<double>::infinity();
     } else {
-        token.integral = true;
-        if (current() == '-') ++pos_;
-        while (isDigit(current())) ++pos_;
-        if (current() == '.') {
-            token.integral = false;
-            ++pos_;
-            while (isDigit(current())) ++pos_;
-        }
-        if ((current() == 'e' || current() == 'E') &&
-            (isDigit(at(1)) || ((at(1) == '+' || at(1) == '-') && isDigit(at(2))))) {
-            token.integral = false;
-            pos_ += 2;
-            while (isDigit(current())) ++pos_;
-        }
         const char* first = text_.data() + start;
-        const char* last = text_.data() + pos_;
-        auto [end, error] = std::from_chars(first, last, token.number);
-        if (error == std::errc::result_out_of_range) {
-            fail(token, "number " + std::string(first, last) + " is out of range");
-        }
-        if (error != std::errc() || end != last) {
-            fail(token, "malformed number '" + std::string(first, last) + "'");
+        ParsedNumber number = parseNumber(first, text_.data() + text_.size());
+        token.integral = number.integral;
+        token.number = number.value;
+        pos_ += static_cast<std::size_t>(number.end - first);
+        if (!number.inRange) {
+            fail(token, "number " + std::string(first, number.end) + " is out of range");
         }
     }
     // A number runs into the next token only when it is malformed: "1.2.3", "12abc", "1e".
-    if (isIdentifierChar(current()) || (current() == '.' && isDigit(at(1)))) {
+    if (identifierCharAt(pos_, false) || (current() == '.' && isDigit(at(1)))) {
         std::size_t end = pos_;
-        while (end < text_.size() && (isIdentifierChar(text_[end]) || text_[end] == '.')) ++end;
+        while (end < text_.size() &&
+               (isIn(text_[end], kLetter | kDigit) || !isAscii(text_[end]) || text_[end] == '.')) {
+            ++end;
+        }
         fail(token, "malformed number '" + std::string(text_.substr(start, end - start)) + "'");
     }
 }

@@ -3,11 +3,13 @@
 // Splits USD text into tokens, tracking 1-based line and byte column of each, and whether a line
 // break precedes it (USDA is line-sensitive in a few places: statements end at a newline or ';').
 // Tokens:
-//   Identifier  [A-Za-z_][A-Za-z0-9_]* with ':' and '::' namespace joins ("xformOp:rotateXYZ",
-//               "Some::Type"); bytes >= 0x80 count as letters so UTF-8 identifiers pass.
-//   Number      -?(digits[.digits]|.digits)([eE][+-]?digits)? and -inf; value parsed with
-//               std::from_chars. The bare words inf and nan stay identifiers (the value parser
-//               accepts them where a number is expected).
+//   Identifier  (XID_Start | '_') XID_Continue* with ':' and '::' namespace joins
+//               ("xformOp:rotateXYZ", "Some::Type", "utf8_情報"): in ASCII [A-Za-z_][A-Za-z0-9_]*,
+//               beyond it UTF-8 decoded and classed by unicode_xid.h. Malformed UTF-8 outside
+//               strings, asset paths, paths and comments is an error.
+//   Number      -?(digits[.digits]|.digits)([eE][+-]?digits)? and -inf; the value is the double
+//               std::from_chars gives (scene/usda_number.h). The bare words inf and nan stay
+//               identifiers (the value parser accepts them where a number is expected).
 //   String      "..." '...' """...""" '''...''' with C-style escapes decoded.
 //   Asset       @path@ or @@@path@@@ (the triple form may hold '@', and \@@@ for '@@@').
 //   Path        <...>
@@ -20,6 +22,7 @@
 #include <cstddef>
 #include <string>
 #include <string_view>
+#include <vector>
 
 namespace fluence::usd::detail {
 
@@ -51,6 +54,13 @@ std::string describe(const Token& token);
 // layers nest a few tens of levels.
 inline constexpr int kMaxNesting = 256;
 
+// The elements Lexer::scanNumericRun reads.
+struct NumericShape {
+    int tupleSize = 0;      // numbers in each '(' ... ')' element; 0 for bare numbers
+    bool integers = false;  // only integral numbers (digits) within [min, max]
+    double min = 0, max = 0;
+};
+
 class Lexer {
 public:
     // Tokenizes text[offset..], where offset is the start of line `line` (after the header).
@@ -70,6 +80,16 @@ public:
         fail(at.line, at.column, message);
     }
 
+    // The bulk path for numeric lists (most of a geometry layer's text): with no token looked
+    // ahead, reads elements of `shape` straight from the text, each followed by ',' or by `close`,
+    // and appends their numbers to `out`; it consumes `close` and returns true at the end of the
+    // list. It stops and returns false before the first element that is not plain — a comment, a
+    // line break before ',', inf or nan, a number the shape does not take, a malformed number, a
+    // wrong count — leaving the lexer at that element: the token path reads it and reports any
+    // error exactly. Numbers are read as the token path reads them (scene/usda_number.h).
+    // (usda_lexer_numeric_run.cpp)
+    bool scanNumericRun(const NumericShape& shape, char close, std::vector<double>& out);
+
     // Counts one more level of nesting opened at `at`; throws past kMaxNesting.
     void enterNesting(const Token& at);
     void leaveNesting() { --nesting_; }
@@ -79,8 +99,17 @@ private:
 
     void fill(std::size_t ahead);
     void scan(Token& token);
+    bool skipBlanks();            // spaces and line breaks; true when a line break was skipped
     bool skipSpaceAndComments();  // true when a line break was skipped
+    // The length in bytes of the identifier character (start: one that may begin a name) at
+    // text_[pos]; 0 when there is none. Throws at malformed UTF-8.
+    std::size_t identifierCharAt(std::size_t pos, bool start) const;
+    void skipIdentifierChars();
+    [[noreturn]] void failInvalidCharacter(const Token& at) const;
     void scanIdentifier(Token& token);
+    bool scanPlainElement(const NumericShape& shape, std::vector<double>& out);
+    bool scanPlainNumber(const NumericShape& shape, std::vector<double>& out);
+    void reserveForRun(const NumericShape& shape, char close, std::vector<double>& out) const;
     void scanNumber(Token& token);
     void scanString(Token& token);
     void scanAsset(Token& token);

@@ -31,4 +31,24 @@ bool isRegisteredMetadataField(std::string_view name) {
     return std::binary_search(kFields.begin(), kFields.end(), name);
 }
 
+namespace {
+
+constexpr std::array<std::string_view, 12> kDisplayUnits = {
+    "mm", "cm", "dm", "m", "km", "in", "ft", "yd", "mi", "deg", "rad", "default",
+};
+
+}  // namespace
+
+bool isDisplayUnit(std::string_view name) {
+    return std::find(kDisplayUnits.begin(), kDisplayUnits.end(), name) != kDisplayUnits.end();
+}
+
+std::string displayUnitNames() {
+    std::string names;
+    for (std::string_view unit : kDisplayUnits) {
+        names.append(names.empty() ? "" : ", ").append(unit);
+    }
+    return names;
+}
+
 }  // namespace fluence::usd::detail

@@ -1,37 +1,50 @@
 #include "scene/usda_names.h"
 
+#include "scene/unicode_xid.h"
+#include "scene/utf8.h"
+
 namespace fluence::usd::detail {
 
 namespace {
 
-bool isLetter(char c) {
-    return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || c == '_' ||
-           static_cast<unsigned char>(c) >= 0x80;
+// Calls visit(codePoint, offset) for each character of `text` while it returns an empty string;
+// returns the first non-empty answer, or what is malformed.
+template <class Visit>
+std::string firstProblem(std::string_view text, Visit&& visit) {
+    for (std::size_t pos = 0; pos < text.size();) {
+        Utf8Char c = decodeUtf8(text, pos);
+        if (!c.length) return describeMalformedUtf8(text, pos);
+        if (std::string problem = visit(c.codePoint, pos); !problem.empty()) return problem;
+        pos += c.length;
+    }
+    return "";
 }
-bool isDigit(char c) { return c >= '0' && c <= '9'; }
 
-bool isPathCharacter(char c) {
-    return isLetter(c) || isDigit(c) ||
-           std::string_view("/.:[]{}=|-").find(c) != std::string_view::npos;
+bool isPathSyntax(char32_t c) {
+    return c < 0x80 && std::string_view("/.:[]{}=|-").find(static_cast<char>(c)) !=
+                           std::string_view::npos;
 }
 
 }  // namespace
 
-bool isIdentifier(std::string_view name) {
-    if (name.empty() || !isLetter(name.front())) return false;
-    for (char c : name) {
-        if (!isLetter(c) && !isDigit(c)) return false;
-    }
-    return true;
+std::string identifierProblem(std::string_view name) {
+    if (name.empty()) return "a name cannot be empty";
+    return firstProblem(name, [](char32_t c, std::size_t offset) -> std::string {
+        if (offset == 0 && c != '_' && !isXidStart(c)) {
+            return describeCodePoint(c) + " cannot start a name";
+        }
+        if (!isXidContinue(c)) return describeCodePoint(c) + " cannot be part of a name";
+        return "";
+    });
 }
 
 bool isVariantName(std::string_view name) {
     if (!name.empty() && name.front() == '.') name.remove_prefix(1);
     if (name.empty()) return false;
-    for (char c : name) {
-        if (!isLetter(c) && !isDigit(c) && c != '|' && c != '-') return false;
-    }
-    return true;
+    auto problem = [](char32_t c, std::size_t) -> std::string {
+        return isXidContinue(c) || c == '|' || c == '-' ? "" : describeCodePoint(c);
+    };
+    return firstProblem(name, problem).empty();
 }
 
 bool isVariantSelection(std::string_view selection) {
@@ -41,10 +54,14 @@ bool isVariantSelection(std::string_view selection) {
 std::string pathProblem(std::string_view path, const PathRules& rules, int anchorDepth) {
     std::string quoted = std::string("<").append(path).append(">");
     if (path.empty()) return rules.allowEmpty ? "" : "empty path <>";
-    for (char c : path) {
-        if (!isPathCharacter(c))
-            return "invalid character '" + std::string(1, c) + "' in path " + quoted;
-    }
+    std::string characters = firstProblem(path, [](char32_t c, std::size_t) -> std::string {
+        if (isPathSyntax(c) || isXidContinue(c)) return "";
+        if (c >= 0x20 && c < 0x7f) {
+            return "invalid character '" + std::string(1, static_cast<char>(c)) + "'";
+        }
+        return "invalid character " + describeCodePoint(c);
+    });
+    if (!characters.empty()) return characters + " in path " + quoted;
     if (!rules.allowVariantSelection && path.find('{') != std::string_view::npos) {
         return "variant selections are not allowed in path " + quoted;
     }

@@ -1,11 +1,12 @@
 // Validity rules for the names and paths a USDA layer authors (internal to the scene library).
 //
-// Identifiers: a letter, '_' or UTF-8 byte, then letters, digits, '_' or UTF-8 bytes.
-// Variant names: identifier characters plus '|' and '-', any of them first, after an optional
-// leading '.'. Variant selections may also be empty (no selection) or a `...` expression.
-// Paths: Sdf path syntax characters only; the rules say where empty paths, variant selections
-// and property paths are allowed, and relative paths may not climb above the root from the
-// prim they are anchored at.
+// Identifiers (prim names, property and type names): UTF-8, an XID_Start character or '_', then
+// XID_Continue characters (unicode_xid.h), as OpenUSD's SdfPath rules. Variant names:
+// XID_Continue characters plus '|' and '-', any of them first, after an optional leading '.'.
+// Variant selections may also be empty (no selection) or a `...` expression. Paths: Sdf path
+// syntax characters and XID_Continue characters only; the rules say where empty paths, variant
+// selections and property paths are allowed, and relative paths may not climb above the root
+// from the prim they are anchored at. Malformed UTF-8 is never valid.
 #pragma once
 
 #include <string>
@@ -13,7 +14,9 @@
 
 namespace fluence::usd::detail {
 
-bool isIdentifier(std::string_view name);
+// Empty when `name` is an identifier; otherwise what is wrong with it ("U+222B '∫' cannot be
+// part of a name").
+std::string identifierProblem(std::string_view name);
 bool isVariantName(std::string_view name);
 bool isVariantSelection(std::string_view selection);
 

@@ -28,8 +28,9 @@
 // for keys with a fixed shape: references/payload (references with layer offsets),
 // inherits/specializes (prim paths), subLayers (assets with layer offsets), relocates (a path
 // map), variants (string selections), the dictionaries (customData, customLayerData, assetInfo,
-// sdrMetadata), bools (active, hidden, instanceable, noLoadHint), kind (a string) and
-// permission (public or private). Other keys take a list op only with a [...] list value.
+// sdrMetadata), bools (active, hidden, instanceable, noLoadHint), kind (a string), permission
+// (public or private) and displayUnit (a unit name of Sdf's registry). Other keys take a list op
+// only with a [...] list value.
 //
 // Where the Layer structs have no field, statements are kept as metadata entries:
 // `reorder rootPrims` on the layer; `delete`/`reorder` of relationship targets and connections
@@ -277,10 +278,10 @@ void Parser::parsePrim(Body& parent) {
         lexer_.fail(name, "expected a prim name (a quoted string) after '" + written + "', found " +
                               describe(name));
     }
-    if (!detail::isIdentifier(name.value)) {
-        lexer_.fail(name, "invalid prim name \"" + name.value +
-                              "\" (a prim name is a letter or '_' followed by letters, digits "
-                              "or '_')");
+    if (std::string problem = detail::identifierProblem(name.value); !problem.empty()) {
+        lexer_.fail(name, "invalid prim name \"" + name.value + "\": " + problem +
+                              " (a name is a letter or '_', then letters, digits or '_': Unicode "
+                              "XID_Start, then XID_Continue)");
     }
     auto [previous, unique] = parent.childNames.emplace(name.value, locate(name));
     if (!unique) {
@@ -813,6 +814,14 @@ Value Parser::parseMetadataValue(const std::string& key, ListOpKind op, const An
     }
     if (key == "colorConfiguration" && start.kind != TokenKind::Asset) {
         failExpecting("an asset path @...@");
+    }
+    if (key == "displayUnit") {
+        if (start.kind != TokenKind::Identifier) failExpecting("a unit name");
+        if (!detail::isDisplayUnit(start.text)) {
+            lexer_.fail(start, "'" + std::string(start.text) +
+                                   "' is not a valid display unit (one of " +
+                                   detail::displayUnitNames() + ")");
+        }
     }
     Value value = values_.parseGeneric(true);
     if (key == "variantSets" && value.kind != ValueKind::String &&

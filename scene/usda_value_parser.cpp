@@ -3,6 +3,7 @@
 #include <cmath>
 #include <limits>
 #include <memory>
+#include <optional>
 #include <unordered_map>
 #include <utility>
 
@@ -30,6 +31,18 @@ ValueKind stringKindOf(ElementKind element) {
         case ElementKind::Asset: return ValueKind::Asset;
         default: return ValueKind::String;
     }
+}
+
+// The elements of `type` that the lexer's bulk path reads: numbers and tuples of numbers
+// (matrices and bools take the token path).
+std::optional<NumericShape> plainShape(const ValueType& type) {
+    if (type.rank > 1 || type.element == ElementKind::Bool) return std::nullopt;
+    NumericShape shape;
+    shape.tupleSize = type.rank == 1 ? type.size : 0;
+    shape.integers = type.element == ElementKind::Integer;
+    shape.min = type.min;
+    shape.max = type.max;
+    return shape;
 }
 
 // One Value from the items of a generic '[...]' list: a flat typed array when the items agree.
@@ -106,9 +119,11 @@ Value ValueParser::parseNumbers(const ValueType& type, const std::string& typeNa
             lexer_.fail(
                 open, "expected '[' to start a '" + typeName + "' array, found " + describe(open));
         }
+        std::optional<NumericShape> shape = plainShape(type);
         parseSeparated(
             open, ']', [&] { return "the '" + typeName + "' array"; },
-            [&] { parseNumericElement(type, typeName, numbers); });
+            [&] { parseNumericElement(type, typeName, numbers); },
+            [&] { return shape && lexer_.scanNumericRun(*shape, ']', numbers); });
     }
     return Value::numeric(typeName, std::move(numbers), type.components(), isArray);
 }

@@ -50,9 +50,16 @@ public:
 
     // Items separated by ',' up to `close` (a trailing ',' is allowed); `open` is the opening
     // token, already taken. `context` names the construct in error messages: a string, or a
-    // function returning one (so hot loops build no message unless they fail).
+    // function returning one (so hot loops build no message unless they fail). Before each item,
+    // parseRun may read a run of items and the close at once (Lexer::scanNumericRun), returning
+    // true when it did.
+    template <class Context, class ParseItem, class ParseRun>
+    void parseSeparated(const Token& open, char close, Context&& context, ParseItem&& parseItem,
+                        ParseRun&& parseRun);
     template <class Context, class ParseItem>
-    void parseSeparated(const Token& open, char close, Context&& context, ParseItem&& parseItem);
+    void parseSeparated(const Token& open, char close, Context&& context, ParseItem&& parseItem) {
+        parseSeparated(open, close, context, parseItem, [] { return false; });
+    }
 
 private:
     Value parseNumbers(const ValueType& type, const std::string& typeName, bool isArray);
@@ -70,9 +77,9 @@ private:
     Lexer& lexer_;
 };
 
-template <class Context, class ParseItem>
+template <class Context, class ParseItem, class ParseRun>
 void ValueParser::parseSeparated(const Token& open, char close, Context&& context,
-                                 ParseItem&& parseItem) {
+                                 ParseItem&& parseItem, ParseRun&& parseRun) {
     auto contextText = [&]() -> std::string {
         if constexpr (std::is_invocable_v<Context>)
             return context();
@@ -84,7 +91,9 @@ void ValueParser::parseSeparated(const Token& open, char close, Context&& contex
                              contextText() + " opened at " + std::to_string(open.line) + ":" +
                              std::to_string(open.column));
     };
-    while (!lexer_.peek().is(close)) {
+    while (true) {
+        if (parseRun()) return;
+        if (lexer_.peek().is(close)) break;
         if (lexer_.peek().kind == TokenKind::End) failAtEnd(lexer_.peek());
         parseItem();
         const Token& next = lexer_.peek();

@@ -6,6 +6,7 @@
 //   - Numeric: every scalar, vector, quaternion, matrix, bool and integer type, element-major,
 //     `components` doubles per element (float3 -> 3, matrix4d -> 16, quatf -> 4 in USD's text
 //     order (real, i, j, k), bool -> 1 as 0/1). float/half values are stored exactly as doubles.
+//     The numbers are a NumberArray: copies of a value share them (scene/number_array.h).
 //   - String / Token / Asset / Path: one std::string per element (asset paths without the @s,
 //     paths without the <>).
 //   - Reference: a composition-arc target, strings = {assetPath, primPath} (either may be empty);
@@ -22,6 +23,8 @@
 #include <utility>
 #include <vector>
 
+#include "scene/number_array.h"
+
 namespace fluence::usd {
 
 enum class ValueKind { Blocked, Numeric, String, Token, Asset, Path, Reference, List, Dictionary };
@@ -34,7 +37,7 @@ struct Value {
     ValueKind kind = ValueKind::Blocked;
     bool isArray = false;  // authored with [] (an array type or a bracketed metadata list)
     int components = 1;    // doubles per element, for Numeric
-    std::vector<double> numbers;
+    NumberArray numbers;
     std::vector<std::string> strings;
     std::vector<Value> items;
     std::shared_ptr<const Dictionary> dictionary;

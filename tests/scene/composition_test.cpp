@@ -613,5 +613,37 @@ def "Copy" (
     EXPECT_EQ(stage.layerFiles(), (std::vector<std::string>{"inline.usda"}));
 }
 
+// Composition copies values without copying their numbers: every instance of a referenced mesh,
+// the mesh itself and the root layer as parsed hold one array of points.
+TEST(CompositionInMemory, ComposedValuesShareTheAuthoredNumbers) {
+    Stage stage(parseUsdaString(R"(#usda 1.0
+def Mesh "Asset"
+{
+    point3f[] points = [(0, 0, 0), (1, 0, 0), (1, 1, 0)]
+}
+
+def "A" (
+    references = </Asset>
+)
+{
+}
+
+def "B" (
+    references = </Asset>
+)
+{
+}
+)",
+                                "shared.usda"));
+    const NumberArray& authored =
+        stage.rootLayer().primAtPath("/Asset")->attribute("points")->defaultValue.numbers;
+    ASSERT_EQ(authored.size(), 9u);
+    for (const char* path : {"/Asset", "/A", "/B"}) {
+        const AttributeSpec& points = attribute(at(stage, path), "points");
+        EXPECT_EQ(points.defaultValue.numbers.data(), authored.data()) << path;
+        EXPECT_EQ(Stage::resolve(points, kDefaultTime)->numbers.data(), authored.data()) << path;
+    }
+}
+
 }  // namespace
 }  // namespace fluence::usd

@@ -469,6 +469,26 @@ def "P" (noSuchField = "testing"; permission = private; symmetryFunction = )
     EXPECT_EQ(d.items.size(), 2u);
 }
 
+TEST(UsdaParser, DisplayUnitsNameSdfUnits) {
+    auto layer = parseUsdaString(R"(#usda 1.0
+def "P"
+{
+    double a = 1 (displayUnit = mm)
+    double b = 1 (displayUnit = deg)
+    double c = 1 (displayUnit = default)
+    double d = 1 (displayUnit = in)
+}
+)",
+                                 "a.usda");
+    const PrimSpec* prim = layer->primAtPath("/P");
+    for (auto [name, unit] : {std::pair{"a", "mm"}, {"b", "deg"}, {"c", "default"}, {"d", "in"}}) {
+        const MetadataEntry* entry = findMetadata(prim->attribute(name)->metadata, "displayUnit");
+        ASSERT_NE(entry, nullptr) << name;
+        EXPECT_EQ(entry->value.kind, ValueKind::Token);
+        EXPECT_EQ(entry->value.asString(), unit);
+    }
+}
+
 TEST(UsdaParser, StringEscapesAndQuotes) {
     auto layer = parseUsdaString(R"(#usda 1.0
 def "P"

@@ -48,6 +48,30 @@ TEST(Value, ToStringIsCloseToUsdaSyntax) {
     EXPECT_EQ(Value::string("", ValueKind::Path, {"/A", "/B"}, true).toString(), "[</A>, </B>]");
 }
 
+TEST(Value, CopiesShareTheirNumbers) {
+    Value points = Value::numeric("point3f[]", {0, 1, 2, 3, 4, 5}, 3, true);
+    Value copy = points;
+    EXPECT_EQ(copy.numbers.data(), points.numbers.data());
+    EXPECT_EQ(copy.numbers, points.numbers);
+    copy.numbers = std::vector<double>{7, 8, 9};  // a new array; the original keeps its own
+    EXPECT_EQ(points.numbers, (std::vector<double>{0, 1, 2, 3, 4, 5}));
+    EXPECT_EQ(copy.numbers, (std::vector<double>{7, 8, 9}));
+    const std::vector<double>& asVector = points.numbers;
+    EXPECT_EQ(asVector.data(), points.numbers.data());
+    double sum = 0;
+    for (double x : points.numbers) sum += x;
+    EXPECT_EQ(sum, 15.0);
+    EXPECT_EQ(points.numbers.front(), 0.0);
+    EXPECT_EQ(points.numbers.back(), 5.0);
+
+    NumberArray empty;
+    EXPECT_TRUE(empty.empty());
+    EXPECT_EQ(empty.data(), nullptr);
+    EXPECT_EQ(empty.begin(), empty.end());
+    EXPECT_TRUE(empty.vector().empty());
+    EXPECT_EQ(NumberArray(std::vector<double>{}).data(), nullptr);  // no storage for nothing
+}
+
 TEST(Value, ParsedValuesPrint) {
     auto layer = parseUsdaString(R"(#usda 1.0
 def "P" (
