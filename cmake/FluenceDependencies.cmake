@@ -16,3 +16,11 @@ pkg_check_modules(OIIO REQUIRED IMPORTED_TARGET OpenImageIO)
 # OpenColorIO 2.1 ships no CMake config.
 pkg_check_modules(OCIO REQUIRED IMPORTED_TARGET OpenColorIO)
 
+# OpenSubdiv 3.5 (subdivision surfaces, delegate/subdivision*): Debian's OpenSubdivConfig.cmake
+# names a libosdCPU.a the package does not ship (shared/notes/debian-build.md), so the library and
+# the headers (under opensubdiv/) are found directly.
+find_library(OPENSUBDIV_CPU_LIBRARY NAMES osdCPU REQUIRED)
+find_path(OPENSUBDIV_INCLUDE_DIR NAMES opensubdiv/version.h REQUIRED)
+add_library(OpenSubdiv::osdCPU UNKNOWN IMPORTED)
+set_target_properties(OpenSubdiv::osdCPU PROPERTIES IMPORTED_LOCATION "${OPENSUBDIV_CPU_LIBRARY}"
+                                                    INTERFACE_INCLUDE_DIRECTORIES "${OPENSUBDIV_INCLUDE_DIR}")

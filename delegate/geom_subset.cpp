@@ -14,12 +14,6 @@ namespace fluence::delegate {
 
 namespace {
 
-struct MaterialSubset {
-    std::string path;
-    std::string materialPath;
-    std::vector<std::size_t> faces;
-};
-
 bool isActive(const usd::PrimSpec& prim) {
     const usd::MetadataEntry* e = usd::findMetadata(prim.metadata, "active");
     if (!e) return true;
@@ -33,9 +27,9 @@ bool hasBinding(const usd::PrimSpec& prim) {
     return false;
 }
 
-std::vector<MaterialSubset> materialBindSubsets(const usd::Stage& stage, const usd::PrimSpec& mesh, double time,
+std::vector<MaterialAssignment::Subset> materialBindSubsets(const usd::Stage& stage, const usd::PrimSpec& mesh, double time,
                                                 std::size_t faceCount, const std::function<void(const std::string&)>& warn) {
-    std::vector<MaterialSubset> subsets;
+    std::vector<MaterialAssignment::Subset> subsets;
     for (const auto& child : mesh.children) {
         if (child->typeName != "GeomSubset" || child->specifier != usd::Specifier::Def || !isActive(*child)) continue;
         PrimReader subset(*child, time);
@@ -52,7 +46,7 @@ std::vector<MaterialSubset> materialBindSubsets(const usd::Stage& stage, const u
                  "'; only face subsets carry materials, so it is ignored");
             continue;
         }
-        MaterialSubset s;
+        MaterialAssignment::Subset s;
         s.path = child->path;
         s.materialPath = boundMaterialPath(stage, *child);
         std::vector<double> indices = subset.numbers("indices", 1).value_or(std::vector<double>{});
@@ -69,25 +63,42 @@ std::vector<MaterialSubset> materialBindSubsets(const usd::Stage& stage, const u
     return subsets;
 }
 
-std::vector<MeshPart> splitByMaterial(TriangulatedMesh&& whole, const std::string& meshMaterial,
-                                      const std::vector<MaterialSubset>& subsets,
-                                      const std::function<void(const std::string&)>& warn) {
-    constexpr int kNoSubset = -1;
-    std::vector<int> subsetOfFace(whole.faceCount, kNoSubset);
-    for (std::size_t s = 0; s < subsets.size(); ++s) {
+}  // namespace
+
+MaterialAssignment readMaterialAssignment(const usd::Stage& stage, const usd::PrimSpec& mesh, double time,
+                                          std::size_t faceCount, const std::function<void(const std::string&)>& warn) {
+    MaterialAssignment a;
+    a.meshMaterial = boundMaterialPath(stage, mesh);
+    a.subsets = materialBindSubsets(stage, mesh, time, faceCount, warn);
+    if (a.subsets.empty()) return a;
+    a.subsetOfFace.assign(faceCount, MaterialAssignment::kNoSubset);
+    for (std::size_t s = 0; s < a.subsets.size(); ++s) {
         std::size_t overlaps = 0, firstOverlap = 0;
-        for (std::size_t f : subsets[s].faces) {
-            int& owner = subsetOfFace[f];
-            if (owner == kNoSubset)
+        for (std::size_t f : a.subsets[s].faces) {
+            int& owner = a.subsetOfFace[f];
+            if (owner == MaterialAssignment::kNoSubset)
                 owner = static_cast<int>(s);
             else if (owner != static_cast<int>(s) && overlaps++ == 0)
                 firstOverlap = f;
         }
         if (overlaps > 0)
-            warn("GeomSubset " + subsets[s].path + " lists " + std::to_string(overlaps) + (overlaps == 1 ? " face" : " faces") +
+            warn("GeomSubset " + a.subsets[s].path + " lists " + std::to_string(overlaps) + (overlaps == 1 ? " face" : " faces") +
                  " (first: face " + std::to_string(firstOverlap) + ") already in an earlier materialBind subset (" +
-                 subsets[static_cast<std::size_t>(subsetOfFace[firstOverlap])].path + "), which keeps them");
+                 a.subsets[static_cast<std::size_t>(a.subsetOfFace[firstOverlap])].path + "), which keeps them");
     }
+    return a;
+}
+
+std::vector<MeshPart> splitByMaterial(TriangulatedMesh&& whole, const MaterialAssignment& assignment) {
+    if (assignment.subsets.empty()) {
+        std::vector<MeshPart> parts;
+        parts.push_back({std::move(whole.mesh), assignment.meshMaterial});
+        return parts;
+    }
+    const std::string& meshMaterial = assignment.meshMaterial;
+    const auto& subsets = assignment.subsets;
+    const auto& subsetOfFace = assignment.subsetOfFace;
+    constexpr int kNoSubset = MaterialAssignment::kNoSubset;
 
     // Parts by material: the mesh's own first, then in the order subsets bring new ones.
     const render::MeshDesc& mesh = whole.mesh;
@@ -96,7 +107,7 @@ std::vector<MeshPart> splitByMaterial(TriangulatedMesh&& whole, const std::strin
     parts[0].materialPath = meshMaterial;
     std::map<std::string, std::size_t> partOfMaterial{{meshMaterial, 0}};
     std::vector<std::size_t> partOfSubset;
-    for (const MaterialSubset& s : subsets) {
+    for (const MaterialAssignment::Subset& s : subsets) {
         auto [it, inserted] = partOfMaterial.try_emplace(s.materialPath, parts.size());
         if (inserted) {
             parts.emplace_back();
@@ -131,21 +142,13 @@ std::vector<MeshPart> splitByMaterial(TriangulatedMesh&& whole, const std::strin
     return parts;
 }
 
-}  // namespace
-
 std::vector<MeshPart> meshPartsFromPrim(const usd::Stage& stage, const usd::PrimSpec& prim, double time,
                                         const Matrix4& toWorld,
                                         const std::function<RGB(const RGB&, const std::string&)>& convertColor,
                                         const std::function<void(const std::string&)>& warn) {
     TriangulatedMesh whole = triangulatedMeshFromPrim(PrimReader(prim, time), toWorld, convertColor);
-    std::string material = boundMaterialPath(stage, prim);
-    std::vector<MaterialSubset> subsets = materialBindSubsets(stage, prim, time, whole.faceCount, warn);
-    std::vector<MeshPart> parts;
-    if (subsets.empty())
-        parts.push_back({std::move(whole.mesh), std::move(material)});
-    else
-        parts = splitByMaterial(std::move(whole), material, subsets, warn);
-    return parts;
+    MaterialAssignment assignment = readMaterialAssignment(stage, prim, time, whole.faceCount, warn);
+    return splitByMaterial(std::move(whole), assignment);
 }
 
 }  // namespace fluence::delegate

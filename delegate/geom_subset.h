@@ -36,6 +36,28 @@ struct MeshPart {
     std::string materialPath;  // the bound material, "" for none
 };
 
+// Which material each face of a mesh gets: the mesh's own binding and its materialBind subsets.
+struct MaterialAssignment {
+    struct Subset {
+        std::string path;
+        std::string materialPath;
+        std::vector<std::size_t> faces;
+    };
+    static constexpr int kNoSubset = -1;
+    std::string meshMaterial;
+    std::vector<Subset> subsets;
+    std::vector<int> subsetOfFace;  // per authored face, when there are subsets: a subset or kNoSubset
+};
+
+// Reads the assignment of a mesh with `faceCount` authored faces; warns about subsets that
+// overlap (the earlier keeps the face) or carry no material.
+MaterialAssignment readMaterialAssignment(const usd::Stage& stage, const usd::PrimSpec& mesh, double time,
+                                          std::size_t faceCount, const std::function<void(const std::string&)>& warn);
+
+// Splits a triangulated mesh into its parts by the assignment (see the top of this file).
+struct TriangulatedMesh;
+std::vector<MeshPart> splitByMaterial(TriangulatedMesh&& whole, const MaterialAssignment& assignment);
+
 // `convertColor` maps an authored colour (with the attribute's colorSpace, "" if none) into the
 // rendering space; `warn` reports a problem that does not stop the render.
 std::vector<MeshPart> meshPartsFromPrim(const usd::Stage& stage, const usd::PrimSpec& mesh, double time,

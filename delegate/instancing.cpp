@@ -109,13 +109,14 @@ PointInstances pointInstancesFromPrim(const PrimReader& prim, const std::functio
     return result;
 }
 
-std::vector<MeshPart> prototypeParts(const usd::Stage& stage, const std::string& root, bool includeRootTransform,
-                                     double time, const ColorConverter& convertColor, const Warn& warn, int nesting) {
-    std::vector<MeshPart> parts;
+PrototypeContents prototypeContents(const usd::Stage& stage, const std::string& root, bool includeRootTransform,
+                                    double time, const ColorConverter& convertColor, const Warn& warn, int nesting) {
+    PrototypeContents contents;
+    std::vector<MeshPart>& parts = contents.parts;
     const usd::PrimSpec* rootPrim = stage.prim(root);
     if (!rootPrim) {
         warn(root, "prototype prim does not exist");
-        return parts;
+        return contents;
     }
     std::map<std::string, Matrix4> spaces;  // prim path -> prim-to-prototype-root space
     usd::Stage::traverse(*rootPrim, [&](const usd::PrimSpec& prim) {
@@ -127,7 +128,10 @@ std::vector<MeshPart> prototypeParts(const usd::Stage& stage, const std::string&
         }
         spaces[prim.path] = space;
         auto warnHere = [&](const std::string& message) { warn(prim.path, message); };
-        if (prim.typeName == "Mesh") {
+        if (prim.typeName == "Mesh" && SubdivisionMesh::isSubdivided(prim, time)) {
+            contents.subdivided.push_back(
+                {std::make_shared<const SubdivisionMesh>(stage, prim, time, convertColor, warnHere), space});
+        } else if (prim.typeName == "Mesh") {
             for (MeshPart& part : meshPartsFromPrim(stage, prim, time, space, convertColor, warnHere))
                 parts.push_back(std::move(part));
         } else if (isImplicitType(prim.typeName)) {
@@ -139,17 +143,22 @@ std::vector<MeshPart> prototypeParts(const usd::Stage& stage, const std::string&
                 return false;
             }
             PointInstances nested = pointInstancesFromPrim(PrimReader(prim, time), warnHere);
-            std::vector<std::vector<MeshPart>> nestedParts;
+            std::vector<PrototypeContents> nestedContents;
             for (const std::string& path : nested.prototypes)
-                nestedParts.push_back(prototypeParts(stage, path, true, time, convertColor, warn, nesting + 1));
-            for (const PointInstances::Instance& instance : nested.instances)
-                for (const MeshPart& part : nestedParts[instance.prototype])
-                    parts.push_back({render::transformMesh(part.mesh, space * instance.transform), part.materialPath});
+                nestedContents.push_back(prototypeContents(stage, path, true, time, convertColor, warn, nesting + 1));
+            for (const PointInstances::Instance& instance : nested.instances) {
+                const PrototypeContents& inner = nestedContents[instance.prototype];
+                Matrix4 placement = space * instance.transform;
+                for (const MeshPart& part : inner.parts)
+                    parts.push_back({render::transformMesh(part.mesh, placement), part.materialPath});
+                for (const PrototypeContents::Subdivided& sub : inner.subdivided)
+                    contents.subdivided.push_back({sub.mesh, placement * sub.placement});
+            }
             return false;
         }
         return true;
     });
-    return parts;
+    return contents;
 }
 
 }  // namespace fluence::delegate

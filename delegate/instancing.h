@@ -27,17 +27,19 @@
 //    places nothing; a bad orientations or scales array is ignored. Everything below a
 //    PointInstancer is rendered only through it. Velocities (motion blur) are not read.
 //
-// A prototype holds meshes and implicit surfaces. A PointInstancer nested inside a prototype is
+// A prototype holds meshes (subdivision surfaces among them) and implicit surfaces. A PointInstancer nested inside a prototype is
 // expanded into copies there (Embree is built with one instance level); nesting deeper than
 // kMaxPrototypeNesting is cut with a warning.
 #pragma once
 
+#include <memory>
 #include <string>
 #include <vector>
 
 #include "delegate/geom_subset.h"
 #include "delegate/material_adapter.h"
 #include "delegate/prim_reader.h"
+#include "delegate/subdivision_mesh.h"
 #include "scene/stage.h"
 
 namespace fluence::delegate {
@@ -63,7 +65,17 @@ PointInstances pointInstancesFromPrim(const PrimReader& instancer, const std::fu
 
 // Every mesh and implicit surface at or below `root` (defined, active and imaged), in the
 // root's space; with `includeRootTransform`, the root's own local transform applies too.
-std::vector<MeshPart> prototypeParts(const usd::Stage& stage, const std::string& root, bool includeRootTransform,
-                                     double time, const ColorConverter& convertColor, const Warn& warn, int nesting = 0);
+// Subdivision meshes are kept unTessellated, with their placement in the root's space: they are
+// diced for the camera when the scene is described.
+struct PrototypeContents {
+    struct Subdivided {
+        std::shared_ptr<const SubdivisionMesh> mesh;
+        Matrix4 placement;  // mesh object space -> prototype root space
+    };
+    std::vector<MeshPart> parts;
+    std::vector<Subdivided> subdivided;
+};
+PrototypeContents prototypeContents(const usd::Stage& stage, const std::string& root, bool includeRootTransform,
+                                    double time, const ColorConverter& convertColor, const Warn& warn, int nesting = 0);
 
 }  // namespace fluence::delegate

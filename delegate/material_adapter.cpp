@@ -74,36 +74,47 @@ public:
 
     // The value of a colour input on `shader`, following connections to interface inputs.
     std::optional<std::pair<RGB, std::string>> colorInput(const usd::PrimSpec& shader, const std::string& input) const {
+        auto source = valueSource(shader, input);
+        if (!source || !PrimReader(*source->first, time_).value(source->second)) return std::nullopt;
+        PrimReader reader(*source->first, time_);
+        Vec3d v = reader.vec3({source->second.c_str()}, {0, 0, 0});
+        return std::make_pair(RGB(v), reader.attributeMetadata(source->second, "colorSpace").value_or(""));
+    }
+
+    // The value of a float input on `shader`, following connections to interface inputs.
+    std::optional<double> floatInput(const usd::PrimSpec& shader, const std::string& input) const {
+        auto source = valueSource(shader, input);
+        if (!source || !PrimReader(*source->first, time_).value(source->second)) return std::nullopt;
+        return PrimReader(*source->first, time_).number({source->second.c_str()}, 0.0);
+    }
+
+private:
+    // The attribute whose value `input` takes: its own, or that of the Material or NodeGraph
+    // interface input it connects to (nullopt when not authored anywhere along the way).
+    std::optional<std::pair<const usd::PrimSpec*, std::string>> valueSource(const usd::PrimSpec& shader,
+                                                                            const std::string& input) const {
         const usd::PrimSpec* prim = &shader;
         std::string name = input;
         for (int hop = 0; hop < 16; ++hop) {
             const usd::AttributeSpec* a = prim->attribute(name);
             if (!a) return std::nullopt;
-            if (a->connections.empty()) return valueOf(*prim, name);
+            if (a->connections.empty()) return std::make_pair(prim, name);
             auto [sourcePrim, sourceProp] = splitPropertyPath(resolveTargetPath(prim->path, a->connections.front()));
             const usd::PrimSpec* source = stage_.prim(sourcePrim);
             if (!source) {
                 warn_(shader.path, "input '" + name + "' connects to missing prim " + sourcePrim + "; using its value");
-                return valueOf(*prim, name);
+                return std::make_pair(prim, name);
             }
             if (source->typeName != "Material" && source->typeName != "NodeGraph") {
                 warn_(shader.path, "input '" + name + "' is connected to " + source->path + " (" + source->typeName +
                                        "); shading networks and textures are not supported yet, using the input's value");
-                return valueOf(*prim, name);
+                return std::make_pair(prim, name);
             }
             prim = source;
             name = sourceProp;
         }
         warn_(shader.path, "input '" + input + "': connection chain too long; ignored");
         return std::nullopt;
-    }
-
-private:
-    std::optional<std::pair<RGB, std::string>> valueOf(const usd::PrimSpec& prim, const std::string& name) const {
-        PrimReader reader(prim, time_);
-        if (!reader.value(name)) return std::nullopt;
-        Vec3d v = reader.vec3({name.c_str()}, {0, 0, 0});
-        return std::make_pair(RGB(v), reader.attributeMetadata(name, "colorSpace").value_or(""));
     }
 
     const usd::Stage& stage_;
@@ -142,6 +153,7 @@ render::MaterialDesc materialFromPath(const usd::Stage& stage, const std::string
     PreviewSurfaceReader reader(stage, time, warn);
     if (auto c = reader.colorInput(*shader, "inputs:diffuseColor")) desc.diffuse = convertColor(c->first, c->second);
     if (auto c = reader.colorInput(*shader, "inputs:emissiveColor")) desc.emission = convertColor(c->first, c->second);
+    if (auto d = reader.floatInput(*shader, "inputs:displacement")) desc.displacement = static_cast<float>(*d);
     return desc;
 }
 

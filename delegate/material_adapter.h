@@ -10,6 +10,8 @@
 // |----------------|----------|-------------------|-----------------------------------------|
 // | diffuseColor   | color3f  | (0.18, 0.18, 0.18) | Lambertian albedo                       |
 // | emissiveColor  | color3f  | (0, 0, 0)         | emitted radiance, both sides            |
+// | displacement   | float    | 0                 | along the limit normal, object units;   |
+// |                |          |                   | applied to subdivision surfaces only    |
 // An input connected to a Material interface input takes that input's value; an input
 // connected to a texture or other node warns once and uses its own value or the fallback.
 #pragma once

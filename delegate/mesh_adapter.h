@@ -1,12 +1,12 @@
-// UsdGeomMesh -> render::MeshDesc: polygons fan-triangulated, in world space.
+// UsdGeomMesh with subdivisionScheme "none" -> render::MeshDesc: polygons fan-triangulated.
 //
 // Reads points, faceVertexCounts, faceVertexIndices, holeIndices, orientation, normals (or
 // primvars:normals, which wins, as in USD) and primvars:displayColor, each primvar honouring its
 // interpolation (constant, uniform, vertex, varying, faceVarying) and an optional ":indices"
 // array. Topology errors (counts that do not add up, indices out of range, primvars of the wrong
-// length) raise SceneError naming the prim. Subdivision (issue 5) is not applied yet: a
-// subdivision surface renders as its control cage. Per-face materials (materialBind GeomSubsets)
-// split the result in geom_subset.h.
+// length) raise SceneError naming the prim. Subdivision surfaces (every other scheme) go through
+// delegate/subdivision_mesh.h instead. Per-face materials (materialBind GeomSubsets) split the
+// result in geom_subset.h.
 #pragma once
 
 #include <functional>

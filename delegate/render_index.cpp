@@ -91,8 +91,17 @@ void MeshRprim::syncData(const SyncContext& context, const usd::PrimSpec* spec, 
     const usd::PrimSpec& prim = *spec;
     ++dataReads_;
     auto warn = [&](const std::string& message) { context.warn(prim.path, message); };
+    if ((bits & ~std::uint32_t(kDirtyTransform | kDirtyPoints)) == 0 && subdivided_.size() == 1) {
+        // Only the points moved: the subdivision topology stays.
+        subdivided_[0].mesh = subdivided_[0].mesh->withPoints(prim, context.time);
+        return;
+    }
     parts_.clear();
-    if (prim.typeName == "Mesh") {
+    subdivided_.clear();
+    if (prim.typeName == "Mesh" && SubdivisionMesh::isSubdivided(prim, context.time)) {
+        subdivided_.push_back({std::make_shared<const SubdivisionMesh>(context.stage, prim, context.time, context.convertColor, warn),
+                               Matrix4::identity()});
+    } else if (prim.typeName == "Mesh") {
         for (MeshPart& part : meshPartsFromPrim(context.stage, prim, context.time, Matrix4::identity(),
                                                 context.convertColor, warn))
             parts_.push_back({std::move(part.mesh), std::move(part.materialPath)});
@@ -102,19 +111,33 @@ void MeshRprim::syncData(const SyncContext& context, const usd::PrimSpec* spec, 
     }
 }
 
-std::vector<MeshRprim::Part> MeshRprim::worldParts() const {
+std::vector<std::string> SurfaceRprim::materialPaths() const {
+    std::set<std::string> paths;
+    for (const Part& p : parts_) paths.insert(p.materialPath);
+    for (const Subdivided& s : subdivided_)
+        for (const std::string& m : s.mesh->materialPaths()) paths.insert(m);
+    paths.erase("");
+    return {paths.begin(), paths.end()};
+}
+
+std::vector<MeshRprim::Part> MeshRprim::worldParts(const DicingContext& dicing) const {
     std::vector<Part> out;
     out.reserve(parts_.size());
     for (const Part& p : parts_) out.push_back({render::transformMesh(p.objectSpace, world()), p.materialPath});
+    for (const Subdivided& s : subdivided_)
+        for (MeshPart& part : s.mesh->tessellate({world() * s.placement}, dicing))
+            out.push_back({render::transformMesh(part.mesh, world() * s.placement), std::move(part.materialPath)});
     return out;
 }
 
 void PrototypeRprim::syncData(const SyncContext& context, const usd::PrimSpec*, std::uint32_t) {
     ++dataReads_;
     parts_.clear();
-    for (MeshPart& part : prototypeParts(context.stage, source_, includeSourceTransform_, context.time,
-                                         context.convertColor, context.warn))
-        parts_.push_back({std::move(part.mesh), std::move(part.materialPath)});
+    subdivided_.clear();
+    PrototypeContents contents =
+        prototypeContents(context.stage, source_, includeSourceTransform_, context.time, context.convertColor, context.warn);
+    for (MeshPart& part : contents.parts) parts_.push_back({std::move(part.mesh), std::move(part.materialPath)});
+    for (PrototypeContents::Subdivided& s : contents.subdivided) subdivided_.push_back({std::move(s.mesh), s.placement});
 }
 
 bool PrototypeRprim::readsAnimatedData(const usd::PrimSpec& source) const {
@@ -227,8 +250,7 @@ std::size_t RenderIndex::sync(const SyncContext& context) {
     std::set<std::string> materials;
     for (auto& [path, prim] : prims_) {
         if (const auto* surface = dynamic_cast<const SurfaceRprim*>(prim.get()))
-            for (const auto& part : surface->parts())
-                if (!part.materialPath.empty()) materials.insert(part.materialPath);
+            for (const std::string& m : surface->materialPaths()) materials.insert(m);
     }
     for (const std::string& m : materials)
         if (!find(m)) insert(std::make_unique<MaterialSprim>(m));

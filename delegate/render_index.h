@@ -12,7 +12,8 @@
 //     sync (tests assert these counts: a clean prim is never asked for data).
 //   - Mesh rprims keep their geometry in object space: kDirtyTransform alone re-transforms it
 //     without re-reading or re-triangulating anything. Topology, points, primvars and material
-//     binding re-read the mesh (the GeomSubset split depends on bindings).
+//     binding re-read the mesh (the GeomSubset split depends on bindings), except that new points
+//     alone on a subdivision surface keep its OpenSubdiv topology.
 //   - Prototypes live at synthetic paths (/__Prototype_N) and read the subtree at their source
 //     prim; any dirty bit re-reads it. Instances and point instancers hold transforms only:
 //     moving one never re-reads a prototype.
@@ -31,6 +32,7 @@
 #include "delegate/instancing.h"
 #include "delegate/material_adapter.h"
 #include "delegate/prim_reader.h"
+#include "delegate/subdivision_mesh.h"
 #include "render/scene_description.h"
 #include "scene/stage.h"
 
@@ -93,14 +95,23 @@ private:
     bool transformAnimated_ = false, dataAnimated_ = false;
 };
 
-// Geometry split into one part per bound material: a mesh's or a prototype's.
+// Geometry split into one part per bound material: a mesh's or a prototype's. Polygon meshes
+// and implicit surfaces are triangulated at sync; subdivision surfaces are read at sync and
+// diced for the camera when the scene is described (delegate/subdivision_mesh.h).
 class SurfaceRprim : public RenderPrim {
 public:
     struct Part {
         render::MeshDesc objectSpace;  // object space (a prototype's own space for a prototype)
         std::string materialPath;
     };
+    struct Subdivided {
+        std::shared_ptr<const SubdivisionMesh> mesh;
+        Matrix4 placement;  // the subdivision mesh's object space -> this prim's object space
+    };
     const std::vector<Part>& parts() const { return parts_; }
+    const std::vector<Subdivided>& subdivided() const { return subdivided_; }
+    // The materials the geometry binds (parts' and subdivision meshes').
+    std::vector<std::string> materialPaths() const;
     // How many syncs read (and triangulated or tessellated) the geometry; transform-only syncs
     // do not.
     int dataReads() const { return dataReads_; }
@@ -108,15 +119,16 @@ public:
 protected:
     using RenderPrim::RenderPrim;
     std::vector<Part> parts_;
+    std::vector<Subdivided> subdivided_;
     int dataReads_ = 0;
 };
 
-// A Mesh, or an implicit surface tessellated into one.
+// A Mesh (polygons or a subdivision surface), or an implicit surface tessellated into one.
 class MeshRprim final : public SurfaceRprim {
 public:
     explicit MeshRprim(std::string path) : SurfaceRprim(Kind::Mesh, std::move(path)) {}
-    // The parts in world space.
-    std::vector<Part> worldParts() const;
+    // The parts in world space (a subdivision surface diced for the camera).
+    std::vector<Part> worldParts(const DicingContext& dicing) const;
 
 private:
     void syncData(const SyncContext& context, const usd::PrimSpec* prim, std::uint32_t bits) override;

@@ -1,6 +1,7 @@
 #include "delegate/scene_delegate.h"
 
 #include <algorithm>
+#include <cmath>
 #include <map>
 #include <set>
 
@@ -176,25 +177,70 @@ void SceneDelegate::chooseCamera() {
 }
 
 render::SceneDescription SceneDelegate::sceneDescription() const {
+    const auto* cameraPrim = cameraPath_.empty() ? nullptr : dynamic_cast<const CameraSprim*>(index_.find(cameraPath_));
+    if (!cameraPrim) throw SceneError("the scene has no camera: add a Camera prim, or name one with -c/--camera");
+    auto [width, height] = resolution();
+    std::unique_ptr<render::Camera> camera;
+    try {
+        camera = std::make_unique<render::Camera>(cameraPrim->camera(), width, height, framing());
+    } catch (const std::invalid_argument& e) {
+        throw SceneError(e.what());
+    }
+    std::size_t subdivisionTriangles = 0;
+    render::SceneDescription scene = describe(*camera, 1.0f, subdivisionTriangles);
+    // Over the scene budget: every rate scaled down until the subdivision surfaces fit (rates are
+    // clamped and rounded, so the first guess can miss).
+    const std::size_t budget = options_.dicing.sceneTriangleBudget, wanted = subdivisionTriangles;
+    float scale = 1.0f;
+    for (int attempt = 0; subdivisionTriangles > budget && attempt < 8; ++attempt) {
+        scale *= 0.95f * std::sqrt(static_cast<float>(budget) / static_cast<float>(subdivisionTriangles));
+        scene = describe(*camera, scale, subdivisionTriangles);
+    }
+    if (wanted > budget)
+        options_.warn("/", "subdivision surfaces would take " + std::to_string(wanted) +
+                               " triangles, over the scene budget of " + std::to_string(budget) + "; diced coarser, to " +
+                               std::to_string(subdivisionTriangles));
+    std::size_t volumes = 0;
+    for (const auto& [path, prim] : index_.prims()) volumes += prim->kind() == RenderPrim::Kind::Volume;
+    if (volumes > 0)
+        options_.warn("/", std::to_string(volumes) + (volumes == 1 ? " volume is" : " volumes are") +
+                               " read but not rendered yet (volume rendering is issue #7)");
+    return scene;
+}
+
+render::SceneDescription SceneDelegate::describe(const render::Camera& camera, float scale,
+                                                 std::size_t& subdivisionTriangles) const {
     // In the stage's traversal order, so the description (and the render) does not depend on
     // the order prims entered the index; materials in the order meshes first bind them.
     render::SceneDescription scene;
+    subdivisionTriangles = 0;
     std::map<std::string, int> materialIndex;
-    std::size_t volumes = 0;
     std::function<int(const std::string&)> materialFor = [&](const std::string& path) {
         auto [it, inserted] = materialIndex.try_emplace(path, static_cast<int>(scene.materials.size()));
         if (inserted) scene.materials.push_back(static_cast<const MaterialSprim&>(*index_.find(path)).material());
         return it->second;
     };
+    DicingContext dicing{camera, options_.dicing,
+                         [&](const std::string& material) {
+                             const auto* sprim = dynamic_cast<const MaterialSprim*>(index_.find(material));
+                             return sprim ? sprim->material().displacement : 0.0f;
+                         },
+                         options_.warn, scale};
+    auto countSubdivided = [&](const std::vector<render::MeshDesc>& meshes, std::size_t from) {
+        for (std::size_t i = from; i < meshes.size(); ++i) subdivisionTriangles += meshes[i].indices.size() / 3;
+    };
+
+    // Prototypes get an index when their first instance is met, and their geometry once every
+    // placement is known (subdivision surfaces are diced for the nearest instances).
     std::map<std::string, int> prototypeIndex;  // key -> index into scene.prototypes
-    auto prototypeFor = [&](const std::string& key) {
+    std::vector<std::vector<Matrix4>> placements;
+    auto prototypeFor = [&](const std::string& key, const Matrix4& placement) {
         auto [it, inserted] = prototypeIndex.try_emplace(key, static_cast<int>(scene.prototypes.size()));
         if (inserted) {
-            const auto& prototype = static_cast<const PrototypeRprim&>(*index_.find(prototypes_.at(key)));
-            render::PrototypeDesc desc{prototype.source(), {}};
-            for (const SurfaceRprim::Part& part : prototype.parts()) appendPart(part, desc.meshes, materialFor);
-            scene.prototypes.push_back(std::move(desc));
+            scene.prototypes.push_back({static_cast<const PrototypeRprim&>(*index_.find(prototypes_.at(key))).source(), {}});
+            placements.emplace_back();
         }
+        placements[static_cast<std::size_t>(it->second)].push_back(placement);
         return it->second;
     };
     stage_.traverse([&](const usd::PrimSpec& spec) {
@@ -207,24 +253,28 @@ render::SceneDescription SceneDelegate::sceneDescription() const {
             case RenderPrim::Kind::Camera:
                 if (spec.path == cameraPath_) scene.camera = static_cast<const CameraSprim&>(*prim).camera();
                 break;
-            case RenderPrim::Kind::Mesh:
-                for (MeshRprim::Part& part : static_cast<const MeshRprim&>(*prim).worldParts())
-                    appendPart(std::move(part), scene.meshes, materialFor);
+            case RenderPrim::Kind::Mesh: {
+                const auto& mesh = static_cast<const MeshRprim&>(*prim);
+                std::size_t first = scene.meshes.size();
+                for (MeshRprim::Part& part : mesh.worldParts(dicing)) appendPart(std::move(part), scene.meshes, materialFor);
+                if (!mesh.subdivided().empty()) countSubdivided(scene.meshes, first);
                 break;
+            }
             case RenderPrim::Kind::Instance:
                 scene.instances.push_back(
-                    {prototypeFor(nativeKey(static_cast<const InstanceRprim&>(*prim).prototypeKey())), prim->world()});
+                    {prototypeFor(nativeKey(static_cast<const InstanceRprim&>(*prim).prototypeKey()), prim->world()),
+                     prim->world()});
                 break;
             case RenderPrim::Kind::PointInstancer: {
                 const PointInstances& points = static_cast<const PointInstancerRprim&>(*prim).instances();
-                for (const PointInstances::Instance& instance : points.instances)
-                    scene.instances.push_back({prototypeFor(pointInstancerKey(points.prototypes[instance.prototype])),
-                                               prim->world() * instance.transform});
+                for (const PointInstances::Instance& instance : points.instances) {
+                    Matrix4 placement = prim->world() * instance.transform;
+                    scene.instances.push_back(
+                        {prototypeFor(pointInstancerKey(points.prototypes[instance.prototype]), placement), placement});
+                }
                 break;
             }
             case RenderPrim::Kind::Volume:
-                ++volumes;
-                break;
             case RenderPrim::Kind::Material:
             case RenderPrim::Kind::Prototype:
             case RenderPrim::Kind::Field:
@@ -233,9 +283,19 @@ render::SceneDescription SceneDelegate::sceneDescription() const {
         }
         return true;
     });
-    if (volumes > 0)
-        options_.warn("/", std::to_string(volumes) + (volumes == 1 ? " volume is" : " volumes are") +
-                               " read but not rendered yet (volume rendering is issue #7)");
+    for (const auto& [key, index] : prototypeIndex) {
+        const auto& prototype = static_cast<const PrototypeRprim&>(*index_.find(prototypes_.at(key)));
+        std::vector<render::MeshDesc>& meshes = scene.prototypes[static_cast<std::size_t>(index)].meshes;
+        for (const SurfaceRprim::Part& part : prototype.parts()) appendPart(part, meshes, materialFor);
+        for (const SurfaceRprim::Subdivided& sub : prototype.subdivided()) {
+            std::vector<Matrix4> where;
+            for (const Matrix4& instance : placements[static_cast<std::size_t>(index)]) where.push_back(instance * sub.placement);
+            std::size_t first = meshes.size();
+            for (MeshPart& part : sub.mesh->tessellate(where, dicing))
+                appendPart({render::transformMesh(part.mesh, sub.placement), std::move(part.materialPath)}, meshes, materialFor);
+            countSubdivided(meshes, first);
+        }
+    }
     if (!scene.camera) throw SceneError("the scene has no camera: add a Camera prim, or name one with -c/--camera");
     return scene;
 }

@@ -88,6 +88,9 @@ private:
     // edit); returns whether any was.
     bool markPrototypesReading(const std::string& primPath, const std::string& attribute = "");
     void chooseCamera();
+    // The description with subdivision surfaces diced for `camera`, every rate scaled by `scale`;
+    // counts the triangles they took.
+    render::SceneDescription describe(const render::Camera& camera, float scale, std::size_t& subdivisionTriangles) const;
     SyncContext context() const { return {stage_, options_.time, options_.convertColor, options_.warn}; }
 
     usd::Stage& stage_;

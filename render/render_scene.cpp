@@ -125,6 +125,9 @@ RenderScene::RenderScene(const SceneDescription& scene) : embree_(std::make_uniq
     embree_->surfaces = rtcNewScene(embree_->device);
     embree_->lightShapes = rtcNewScene(embree_->device);
     rtcSetSceneBuildQuality(embree_->surfaces, RTC_BUILD_QUALITY_HIGH);
+    // Robust intersection: watertight along shared edges and vertices (a diced subdivision
+    // surface must not let rays through its seams), at some cost in speed.
+    rtcSetSceneFlags(embree_->surfaces, RTC_SCENE_FLAG_ROBUST);
 
     for (const MeshDesc& mesh : scene.meshes) addMesh(mesh, scene.materials);
     addPrototypes(scene);
@@ -224,6 +227,7 @@ void RenderScene::addPrototypes(const SceneDescription& scene) {
         RTCScene rtcScene = rtcNewScene(embree_->device);
         embree_->prototypes.push_back(rtcScene);
         rtcSetSceneBuildQuality(rtcScene, RTC_BUILD_QUALITY_HIGH);
+        rtcSetSceneFlags(rtcScene, RTC_SCENE_FLAG_ROBUST);
         for (std::size_t i = 0; i < desc.meshes.size(); ++i) {
             const MeshDesc& meshDesc = desc.meshes[i];
             if (emits(meshDesc, scene.materials)) {

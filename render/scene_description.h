@@ -21,6 +21,9 @@ struct MaterialDesc {
     std::string name;  // prim path, for messages
     RGB diffuse{0.18f};
     RGB emission{0.0f};  // emitted radiance, both sides
+    // UsdPreviewSurface displacement along the normal, in object units. Geometry, not shading:
+    // the delegate applies it when it tessellates a subdivision surface; the render core ignores it.
+    float displacement = 0.0f;
 };
 
 struct MeshDesc {

@@ -7,6 +7,7 @@ packages=(
   cmake g++ ninja-build pkg-config ccache
   libembree-dev libtbb-dev
   libopenimageio-dev libopenexr-dev libopencolorio-dev
+  libosd-dev
   libgtest-dev
   clang-16 libclang-rt-16-dev llvm-16
 )

@@ -52,6 +52,7 @@ std::string cube(const std::string& binding, const std::string& children) {
     return R"(
 def Mesh "Box"
 {
+    uniform token subdivisionScheme = "none"
     int[] faceVertexCounts = [4, 4, 4, 4, 4, 4]
     int[] faceVertexIndices = [0, 1, 3, 2, 2, 3, 5, 4, 4, 5, 7, 6, 6, 7, 1, 0, 1, 7, 5, 3, 6, 0, 2, 4]
     point3f[] points = [(-1, -1, 1), (1, -1, 1), (-1, 1, 1), (1, 1, 1), (-1, 1, -1), (1, 1, -1), (-1, -1, -1), (1, -1, -1)]
@@ -197,6 +198,7 @@ TEST(GeomSubset, FaceIndicesCountHolesAndSmallFaces) {
     auto p = populate(kLooks + R"(
 def Mesh "Strip"
 {
+    uniform token subdivisionScheme = "none"
     int[] faceVertexCounts = [3, 3, 2, 3]
     int[] faceVertexIndices = [0, 1, 2, 1, 3, 2, 0, 1, 2, 3, 4]
     int[] holeIndices = [1]
@@ -235,6 +237,7 @@ TEST(GeomSubset, SubsetsOfInvisibleMeshesAreNotRead) {
     auto p = populate(kLooks + R"(
 def Mesh "Hidden"
 {
+    uniform token subdivisionScheme = "none"
     token visibility = "invisible"
     int[] faceVertexCounts = [3]
     int[] faceVertexIndices = [0, 1, 2]

@@ -193,6 +193,7 @@ def Xform "World"
                 uniform token[] xformOpOrder = ["xformOp:translate"]
                 def Mesh "Tri"
                 {
+                    uniform token subdivisionScheme = "none"
                     int[] faceVertexCounts = [3]
                     int[] faceVertexIndices = [0, 1, 2]
                     point3f[] points = [(0, 0, 0), (1, 0, 0), (0, 1, 0)]

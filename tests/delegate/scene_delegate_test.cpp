@@ -30,6 +30,7 @@ def Xform "Parent"
     uniform token[] xformOpOrder = ["xformOp:translate"]
     def Mesh "Tri"
     {
+        uniform token subdivisionScheme = "none"
         int[] faceVertexCounts = [3]
         int[] faceVertexIndices = [0, 1, 2]
         point3f[] points = [(1, 0, 0), (0, 1, 0), (0, 0, 1)]
@@ -55,6 +56,7 @@ def Xform "Parent"
     uniform token[] xformOpOrder = ["xformOp:translate"]
     def Mesh "Tri"
     {
+        uniform token subdivisionScheme = "none"
         int[] faceVertexCounts = [3]
         int[] faceVertexIndices = [0, 1, 2]
         point3f[] points = [(0, 0, 0), (1, 0, 0), (0, 1, 0)]
@@ -73,6 +75,7 @@ TEST(SceneDelegate, TriangulatesPolygonsAndReadsPrimvarsByInterpolation) {
     auto p = populate(R"(
 def Mesh "Quad"
 {
+    uniform token subdivisionScheme = "none"
     int[] faceVertexCounts = [4, 3]
     int[] faceVertexIndices = [0, 1, 2, 3, 0, 2, 4]
     point3f[] points = [(0, 0, 0), (1, 0, 0), (1, 1, 0), (0, 1, 0), (0.5, 2, 0)]
@@ -97,6 +100,7 @@ TEST(SceneDelegate, IndexedPrimvarsAndLeftHandedOrientation) {
     auto p = populate(R"(
 def Mesh "Tri"
 {
+    uniform token subdivisionScheme = "none"
     uniform token orientation = "leftHanded"
     int[] faceVertexCounts = [3]
     int[] faceVertexIndices = [0, 1, 2]
@@ -117,6 +121,7 @@ TEST(SceneDelegate, TopologyErrorsNameThePrim) {
     const std::string bad = R"(
 def Mesh "Broken"
 {
+    uniform token subdivisionScheme = "none"
     int[] faceVertexCounts = [4]
     int[] faceVertexIndices = [0, 1, 2]
     point3f[] points = [(0, 0, 0), (1, 0, 0), (0, 1, 0)]
@@ -196,12 +201,14 @@ def Xform "Group"
     rel material:binding = </Looks/Red>
     def Mesh "Inherits"
     {
+        uniform token subdivisionScheme = "none"
         int[] faceVertexCounts = [3]
         int[] faceVertexIndices = [0, 1, 2]
         point3f[] points = [(0, 0, 0), (1, 0, 0), (0, 1, 0)]
     }
     def Mesh "Own"
     {
+        uniform token subdivisionScheme = "none"
         rel material:binding = </Looks/Blue>
         int[] faceVertexCounts = [3]
         int[] faceVertexIndices = [0, 1, 2]
@@ -215,6 +222,7 @@ def Xform "Strong"
     )
     def Mesh "Overridden"
     {
+        uniform token subdivisionScheme = "none"
         rel material:binding = </Looks/Blue>
         int[] faceVertexCounts = [3]
         int[] faceVertexIndices = [0, 1, 2]
@@ -243,6 +251,7 @@ def Points "B"
 }
 def Mesh "Hidden"
 {
+    uniform token subdivisionScheme = "none"
     token visibility = "invisible"
     int[] faceVertexCounts = [3]
     int[] faceVertexIndices = [0, 1, 2]
@@ -250,6 +259,7 @@ def Mesh "Hidden"
 }
 def Mesh "Guide"
 {
+    uniform token subdivisionScheme = "none"
     uniform token purpose = "guide"
     int[] faceVertexCounts = [3]
     int[] faceVertexIndices = [0, 1, 2]
@@ -259,6 +269,7 @@ over "NotDefined"
 {
     def Mesh "Child"
     {
+        uniform token subdivisionScheme = "none"
     }
 }
 )");
@@ -274,6 +285,7 @@ def Camera "Cam"
 }
 def Mesh "Tri"
 {
+    uniform token subdivisionScheme = "none"
     int[] faceVertexCounts = [3]
     int[] faceVertexIndices = [0, 1, 2]
     point3f[] points = [(0, 0, 0), (1, 0, 0), (0, 1, 0)]

@@ -1,0 +1,235 @@
+#include "delegate/subdivision_mesh.h"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+#include "delegate/mesh_adapter.h"
+#include "delegate/primvar.h"
+#include "render/mesh_transform.h"
+
+namespace fluence::delegate {
+
+namespace {
+
+constexpr std::size_t kNearestPlacements = 16;
+
+std::vector<int> integers(const PrimReader& prim, const std::string& name) {
+    std::vector<int> out;
+    for (double d : prim.numbers(name, 1).value_or(std::vector<double>{})) out.push_back(static_cast<int>(d));
+    return out;
+}
+
+std::vector<float> floats(const PrimReader& prim, const std::string& name) {
+    std::vector<float> out;
+    for (double d : prim.numbers(name, 1).value_or(std::vector<double>{})) out.push_back(static_cast<float>(d));
+    return out;
+}
+
+SubdivisionTopology::Scheme schemeOf(const PrimReader& prim, const std::string& token) {
+    if (token == "catmullClark") return SubdivisionTopology::Scheme::CatmullClark;
+    if (token == "loop") return SubdivisionTopology::Scheme::Loop;
+    if (token == "bilinear") return SubdivisionTopology::Scheme::Bilinear;
+    prim.fail("subdivisionScheme '" + token + "' is not one of catmullClark, loop, bilinear, none");
+}
+
+// Reverses each face's winding (keeping its first point), for leftHanded meshes.
+void reverseFaces(const std::vector<int>& counts, std::vector<int>& perFaceVertex) {
+    std::size_t start = 0;
+    for (int n : counts) {
+        if (n > 2 && start + static_cast<std::size_t>(n) <= perFaceVertex.size())
+            std::reverse(perFaceVertex.begin() + static_cast<std::ptrdiff_t>(start) + 1,
+                         perFaceVertex.begin() + static_cast<std::ptrdiff_t>(start + static_cast<std::size_t>(n)));
+        start += static_cast<std::size_t>(std::max(n, 0));
+    }
+}
+
+}  // namespace
+
+bool SubdivisionMesh::isSubdivided(const usd::PrimSpec& mesh, double time) {
+    return PrimReader(mesh, time).token({"subdivisionScheme"}, "catmullClark") != "none";
+}
+
+SubdivisionMesh::SubdivisionMesh(const usd::Stage& stage, const usd::PrimSpec& mesh, double time,
+                                 const ColorConverter& convertColor, const std::function<void(const std::string&)>& warn)
+    : path_(mesh.path) {
+    PrimReader prim(mesh, time);
+    SubdivisionTopology topology;
+    topology.scheme = schemeOf(prim, prim.token({"subdivisionScheme"}, "catmullClark"));
+    topology.interpolateBoundary = prim.token({"interpolateBoundary"}, "edgeAndCorner");
+    topology.faceVaryingLinearInterpolation = prim.token({"faceVaryingLinearInterpolation"}, "cornersPlus1");
+    topology.triangleSubdivisionRule = prim.token({"triangleSubdivisionRule"}, "catmullClark");
+    std::vector<double> points = prim.numbers("points", 3).value_or(std::vector<double>{});
+    topology.pointCount = static_cast<int>(points.size() / 3);
+    for (std::size_t i = 0; i + 2 < points.size(); i += 3) points_.emplace_back(points[i], points[i + 1], points[i + 2]);
+    topology.faceVertexCounts = integers(prim, "faceVertexCounts");
+    topology.faceVertexIndices = integers(prim, "faceVertexIndices");
+    topology.creaseIndices = integers(prim, "creaseIndices");
+    topology.creaseLengths = integers(prim, "creaseLengths");
+    topology.creaseSharpnesses = floats(prim, "creaseSharpnesses");
+    topology.cornerIndices = integers(prim, "cornerIndices");
+    topology.cornerSharpnesses = floats(prim, "cornerSharpnesses");
+    topology.holeIndices = integers(prim, "holeIndices");
+    const bool leftHanded = prim.token({"orientation"}, "rightHanded") == "leftHanded";
+    if (leftHanded) reverseFaces(topology.faceVertexCounts, topology.faceVertexIndices);
+    dicingRate_ = static_cast<float>(prim.number({"primvars:fluence:dicingRate"}, 0.0));
+    if (dicingRate_ < 0.0f || !std::isfinite(dicingRate_)) prim.fail("primvars:fluence:dicingRate must be > 0 pixels");
+
+    std::vector<FaceVaryingData> faceVarying;
+    std::optional<Primvar3> colors = readPrimvar3(prim, "primvars:displayColor", "constant");
+    if (colors) {
+        checkPrimvarSize(prim, *colors, topology.faceVertexCounts.size(), topology.faceVertexIndices.size(),
+                         points_.size());
+        std::string space = prim.attributeMetadata("primvars:displayColor", "colorSpace").value_or("");
+        auto color = [&](std::size_t element) { return convertColor(RGB(colors->at(element)), space); };
+        if (colors->interpolation == "constant") {
+            constantOrUniformColors_ = {color(0)};
+        } else if (colors->interpolation == "uniform") {
+            for (std::size_t f = 0; f < topology.faceVertexCounts.size(); ++f) constantOrUniformColors_.push_back(color(f));
+        } else if (colors->interpolation == "faceVarying") {
+            FaceVaryingData data{3, {}, {}};
+            for (std::size_t e = 0; e < colors->elementCount(); ++e) {
+                RGB c = color(e);
+                data.values.insert(data.values.end(), {c.x, c.y, c.z});
+            }
+            if (leftHanded) {  // values follow their face-vertices
+                std::vector<int> order(colors->elementCount());
+                for (std::size_t i = 0; i < order.size(); ++i) order[i] = static_cast<int>(i);
+                reverseFaces(topology.faceVertexCounts, order);
+                data.indices = order;
+            }
+            faceVarying.push_back(std::move(data));
+            faceVaryingColors_ = true;
+        } else {  // vertex, varying
+            VertexData data{3, {}, colors->interpolation == "varying"};
+            for (std::size_t p = 0; p < points_.size(); ++p) {
+                RGB c = color(p);
+                data.values.insert(data.values.end(), {c.x, c.y, c.z});
+            }
+            vertexColors_.push_back(std::move(data));
+        }
+    }
+    std::size_t faceCount = topology.faceVertexCounts.size();
+    try {
+        surface_ = std::make_shared<const SubdivisionSurface>(std::move(topology), std::move(faceVarying));
+    } catch (const std::invalid_argument& e) {
+        prim.fail(e.what());
+    }
+    materials_ = readMaterialAssignment(stage, mesh, time, faceCount, warn);
+}
+
+std::shared_ptr<const SubdivisionMesh> SubdivisionMesh::withPoints(const usd::PrimSpec& mesh, double time) const {
+    PrimReader prim(mesh, time);
+    std::vector<double> points = prim.numbers("points", 3).value_or(std::vector<double>{});
+    if (points.size() != 3 * points_.size())
+        prim.fail("points has " + std::to_string(points.size() / 3) + " points, but the topology uses " +
+                  std::to_string(points_.size()));
+    auto copy = std::make_shared<SubdivisionMesh>(*this);
+    for (std::size_t i = 0; i < points_.size(); ++i) copy->points_[i] = Vec3f(points[3 * i], points[3 * i + 1], points[3 * i + 2]);
+    return copy;
+}
+
+std::vector<std::string> SubdivisionMesh::materialPaths() const {
+    std::vector<std::string> paths = {materials_.meshMaterial};
+    for (const MaterialAssignment::Subset& s : materials_.subsets) paths.push_back(s.materialPath);
+    return paths;
+}
+
+std::vector<int> SubdivisionMesh::segmentsFor(const std::vector<Matrix4>& placements, const DicingContext& context,
+                                              float scale) const {
+    const auto& edges = surface_->edges();
+    std::vector<int> segments(edges.size(), 1);
+    // The placements nearest the camera need the finest rates.
+    std::vector<const Matrix4*> nearest;
+    for (const Matrix4& m : placements) nearest.push_back(&m);
+    auto distance = [&](const Matrix4* m) { return length(Vec3f(m->transformPoint({0, 0, 0})) - context.camera.position()); };
+    if (nearest.size() > kNearestPlacements) {
+        std::partial_sort(nearest.begin(), nearest.begin() + kNearestPlacements, nearest.end(),
+                          [&](const Matrix4* a, const Matrix4* b) { return distance(a) < distance(b); });
+        nearest.resize(kNearestPlacements);
+    }
+    const float rate = dicingRate_ > 0.0f ? dicingRate_ : context.settings.rate;
+    std::vector<std::pair<Vec3f, Vec3f>> world(edges.size());
+    for (const Matrix4* m : nearest) {
+        for (std::size_t e = 0; e < edges.size(); ++e)
+            world[e] = {Vec3f(m->transformPoint(Vec3d(points_[edges[e].first]))),
+                        Vec3f(m->transformPoint(Vec3d(points_[edges[e].second])))};
+        std::vector<int> counts = edgeSegments(context.camera, context.settings, rate, world, scale);
+        for (std::size_t e = 0; e < edges.size(); ++e) segments[e] = std::max(segments[e], counts[e]);
+    }
+    return segments;
+}
+
+std::vector<MeshPart> SubdivisionMesh::tessellate(const std::vector<Matrix4>& placements, const DicingContext& context) const {
+    const DicingSettings& settings = context.settings;
+    auto dice = [&](float scale, int level) {
+        return level >= 0 ? surface_->tessellateUniform(points_, level, vertexColors_)
+                          : surface_->tessellate(points_, segmentsFor(placements, context, scale), vertexColors_);
+    };
+    int level = settings.uniformLevel;
+    float scale = context.scale;
+    SubdivisionSurface::Result result = dice(scale, level);
+    // Over the per-mesh budget: coarser rates (a lower level) until it fits.
+    std::size_t wanted = result.indices.size() / 3;
+    for (int attempt = 0; result.indices.size() / 3 > settings.meshTriangleBudget && attempt < 8; ++attempt) {
+        if (level > 0)
+            --level;
+        else if (level < 0)
+            scale *= 0.9f * std::sqrt(static_cast<float>(settings.meshTriangleBudget) / static_cast<float>(result.indices.size() / 3));
+        else
+            break;
+        result = dice(scale, level);
+    }
+    if (result.indices.size() / 3 < wanted)
+        context.warn(path_, "tessellation of " + std::to_string(wanted) + " triangles exceeds the per-mesh budget of " +
+                                std::to_string(settings.meshTriangleBudget) + "; diced coarser, to " +
+                                std::to_string(result.indices.size() / 3) + " triangles");
+
+    TriangulatedMesh whole;
+    whole.mesh = meshFrom(result, context);
+    whole.triangleFaces.assign(result.triangleFaces.begin(), result.triangleFaces.end());
+    whole.faceCount = static_cast<std::size_t>(surface_->faceCount());
+    return splitByMaterial(std::move(whole), materials_);
+}
+
+render::MeshDesc SubdivisionMesh::meshFrom(const SubdivisionSurface::Result& result, const DicingContext& context) const {
+    render::MeshDesc mesh;
+    mesh.name = path_;
+    mesh.positions = result.positions;
+    mesh.indices = result.indices;
+    mesh.cornerNormals = result.cornerNormals;
+    // Displacement along the limit normal, by the material of the face that evaluated the point.
+    auto materialOf = [&](std::uint32_t face) -> const std::string& {
+        if (materials_.subsetOfFace.empty()) return materials_.meshMaterial;
+        int subset = materials_.subsetOfFace[face];
+        return subset == MaterialAssignment::kNoSubset ? materials_.meshMaterial
+                                                       : materials_.subsets[static_cast<std::size_t>(subset)].materialPath;
+    };
+    for (std::size_t v = 0; v < mesh.positions.size(); ++v) {
+        const std::string& material = materialOf(result.surfaceCoords[v].face);
+        if (float d = material.empty() ? 0.0f : context.displacement(material); d != 0.0f)
+            mesh.positions[v] = mesh.positions[v] + result.normals[v] * d;
+    }
+    const std::size_t corners = mesh.indices.size();
+    if (!constantOrUniformColors_.empty()) {
+        for (std::size_t c = 0; c < corners; ++c)
+            mesh.cornerColors.push_back(constantOrUniformColors_.size() == 1
+                                            ? constantOrUniformColors_[0]
+                                            : constantOrUniformColors_[result.triangleFaces[c / 3]]);
+    } else if (!vertexColors_.empty()) {
+        const std::vector<float>& values = result.vertexData.at(0);
+        for (std::size_t c = 0; c < corners; ++c) {
+            std::size_t v = mesh.indices[c];
+            mesh.cornerColors.emplace_back(values[3 * v], values[3 * v + 1], values[3 * v + 2]);
+        }
+    } else if (faceVaryingColors_) {
+        const FaceVaryingData& fv = result.faceVarying.at(0);
+        for (std::size_t c = 0; c < corners; ++c) {
+            std::size_t i = static_cast<std::size_t>(fv.indices[c]);
+            mesh.cornerColors.emplace_back(fv.values[3 * i], fv.values[3 * i + 1], fv.values[3 * i + 2]);
+        }
+    }
+    return mesh;
+}
+
+}  // namespace fluence::delegate

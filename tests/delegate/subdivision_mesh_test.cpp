@@ -1,0 +1,262 @@
+// Subdivision surfaces through the delegate: USD meshes subdivide unless they say "none", are
+// diced for the camera, honour --subdiv-level, budgets, displacement and orientation.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <regex>
+#include <set>
+#include <tuple>
+
+#include "delegate/scene_delegate.h"
+#include "tests/delegate/delegate_test_support.h"
+
+namespace fluence::delegate {
+namespace {
+
+using testing::enclosedVolume;
+using testing::stageFrom;
+
+// A unit cube cage (a Catmull-Clark mesh by USD's fallback) at the origin, seen by a camera at
+// DISTANCE along +Z through a 512x512 image.
+std::string cubeScene(double distance, const std::string& meshExtras = "", const std::string& sceneExtras = "") {
+    return R"(#usda 1.0
+def Camera "Cam"
+{
+    double3 xformOp:translate = (0, 0, )" +
+           std::to_string(distance) + R"()
+    uniform token[] xformOpOrder = ["xformOp:translate"]
+}
+def Mesh "Cube"
+{
+    int[] faceVertexCounts = [4, 4, 4, 4, 4, 4]
+    int[] faceVertexIndices = [0, 1, 3, 2, 2, 3, 5, 4, 4, 5, 7, 6, 6, 7, 1, 0, 1, 7, 5, 3, 6, 0, 2, 4]
+    point3f[] points = [(-0.5, -0.5, 0.5), (0.5, -0.5, 0.5), (-0.5, 0.5, 0.5), (0.5, 0.5, 0.5), (-0.5, 0.5, -0.5), (0.5, 0.5, -0.5), (-0.5, -0.5, -0.5), (0.5, -0.5, -0.5)]
+)" + meshExtras +
+           R"(
+}
+)" + sceneExtras;
+}
+
+struct Described {
+    std::unique_ptr<usd::Stage> stage;
+    render::SceneDescription scene;
+    std::vector<std::string> warnings;
+};
+
+Described describe(const std::string& usda, DicingSettings dicing = {}) {
+    Described d;
+    d.stage = stageFrom(usda);
+    DelegateOptions options;
+    options.resolution = std::make_pair(512, 512);
+    options.dicing = dicing;
+    options.convertColor = [](const RGB& c, const std::string&) { return c; };
+    options.warn = [&d](const std::string& path, const std::string& message) { d.warnings.push_back(path + ": " + message); };
+    d.scene = populateScene(*d.stage, options).scene;
+    return d;
+}
+
+std::size_t triangles(const render::SceneDescription& scene) {
+    std::size_t n = 0;
+    for (const auto& m : scene.meshes) n += m.indices.size() / 3;
+    return n;
+}
+
+float maxRadius(const render::MeshDesc& mesh) {
+    float r = 0.0f;
+    for (const Vec3f& p : mesh.positions) r = std::max(r, length(p));
+    return r;
+}
+
+TEST(SubdivisionMesh, AMeshWithoutASchemeIsACatmullClarkLimitSurface) {
+    Described cage = describe(cubeScene(4, R"(    uniform token subdivisionScheme = "none")"));
+    Described limit = describe(cubeScene(4));
+    ASSERT_EQ(limit.scene.meshes.size(), 1u);
+    EXPECT_EQ(triangles(cage.scene), 12u);
+    EXPECT_GT(triangles(limit.scene), 1000u);
+    // The limit surface of a cube cage lies inside it, with its corners rounded off.
+    const render::MeshDesc& mesh = limit.scene.meshes[0];
+    for (const Vec3f& p : mesh.positions) {
+        EXPECT_LE(std::abs(p.x), 0.5f + 1e-6f);
+        EXPECT_LE(std::abs(p.y), 0.5f + 1e-6f);
+        EXPECT_LE(std::abs(p.z), 0.5f + 1e-6f);
+    }
+    EXPECT_LT(maxRadius(mesh), 0.5f) << "the cage's corners are at radius 0.866";
+    EXPECT_GT(enclosedVolume(mesh), 0.0) << "triangles wind outwards";
+    ASSERT_EQ(mesh.cornerNormals.size(), mesh.indices.size()) << "limit normals shade";
+    EXPECT_TRUE(limit.warnings.empty());
+}
+
+TEST(SubdivisionMesh, TrianglesFallAsTheCameraMovesAway) {
+    std::size_t previous = std::numeric_limits<std::size_t>::max();
+    for (double distance : {2.0, 8.0, 32.0, 128.0}) {
+        std::size_t n = triangles(describe(cubeScene(distance)).scene);
+        EXPECT_LT(n, previous) << "at distance " << distance;
+        previous = n;
+    }
+    // 128 units away, a unit edge spans 512 / (2 * 10.4775 / 50) / 128 = 9.5 pixels: 10 segments,
+    // so at most 6 faces * 10 * 10 quads * 2 triangles.
+    EXPECT_LE(previous, 1200u);
+}
+
+TEST(SubdivisionMesh, DicingRateAndPerPrimOverride) {
+    std::size_t fine = triangles(describe(cubeScene(8)).scene);
+    DicingSettings coarse;
+    coarse.rate = 4.0f;
+    std::size_t coarser = triangles(describe(cubeScene(8), coarse).scene);
+    EXPECT_LT(coarser * 8, fine) << "4x the micro-edge length: about 16x fewer triangles";
+    std::size_t overridden = triangles(describe(cubeScene(8, "    float primvars:fluence:dicingRate = 4")).scene);
+    EXPECT_EQ(overridden, coarser);
+}
+
+TEST(SubdivisionMesh, UniformLevelIgnoresTheCamera) {
+    DicingSettings uniform;
+    uniform.uniformLevel = 3;
+    EXPECT_EQ(triangles(describe(cubeScene(2), uniform).scene), 6u * 2u * 64u);
+    EXPECT_EQ(triangles(describe(cubeScene(100), uniform).scene), 6u * 2u * 64u);
+}
+
+TEST(SubdivisionMesh, PerMeshBudgetBitesWithAWarning) {
+    DicingSettings tight;
+    tight.meshTriangleBudget = 2000;
+    Described d = describe(cubeScene(2), tight);
+    EXPECT_LE(triangles(d.scene), 2000u);
+    EXPECT_GT(triangles(d.scene), 500u) << "coarser, not collapsed";
+    ASSERT_EQ(d.warnings.size(), 1u);
+    EXPECT_NE(d.warnings[0].find("exceeds the per-mesh budget of 2000"), std::string::npos) << d.warnings[0];
+}
+
+TEST(SubdivisionMesh, SceneBudgetScalesEveryMesh) {
+    DicingSettings tight;
+    tight.sceneTriangleBudget = 3000;
+    Described d = describe(cubeScene(2), tight);
+    EXPECT_LE(triangles(d.scene), 3000u);
+    ASSERT_FALSE(d.warnings.empty());
+    EXPECT_NE(d.warnings.back().find("over the scene budget of 3000"), std::string::npos) << d.warnings.back();
+}
+
+TEST(SubdivisionMesh, LeftHandedMeshesStillFaceOutwards) {
+    Described d = describe(cubeScene(4, R"(    uniform token orientation = "leftHanded")"));
+    // The same cage read left-handed winds inwards, so its limit surface faces inwards too.
+    EXPECT_LT(enclosedVolume(d.scene.meshes.at(0)), 0.0);
+}
+
+TEST(SubdivisionMesh, DisplacementMovesTheLimitSurfaceAlongItsNormal) {
+    const std::string material = R"(
+def Material "Puffy"
+{
+    token outputs:surface.connect = </Puffy/Surface.outputs:surface>
+    def Shader "Surface"
+    {
+        uniform token info:id = "UsdPreviewSurface"
+        float inputs:displacement = 0.25
+        token outputs:surface
+    }
+}
+)";
+    DicingSettings uniform;
+    uniform.uniformLevel = 3;
+    float plain = maxRadius(describe(cubeScene(4), uniform).scene.meshes.at(0));
+    Described displaced =
+        describe(cubeScene(4, "    rel material:binding = </Puffy>", material), uniform);
+    // Outward along the unit normal by 0.25 everywhere, so the farthest point moves out by 0.25
+    // (the corners, where the normal points away from the centre).
+    EXPECT_NEAR(maxRadius(displaced.scene.meshes.at(0)), plain + 0.25f, 1e-4f);
+}
+
+TEST(SubdivisionMesh, DisplayColorIsRefinedWithTheSurface) {
+    // Vertex colours: red on the +z points, blue on the -z ones; the limit blends them.
+    const std::string colors =
+        R"(    color3f[] primvars:displayColor = [(1, 0, 0), (1, 0, 0), (1, 0, 0), (1, 0, 0), (0, 0, 1), (0, 0, 1), (0, 0, 1), (0, 0, 1)] (
+        interpolation = "vertex"
+    ))";
+    DicingSettings uniform;
+    uniform.uniformLevel = 2;
+    Described blended = describe(cubeScene(4, colors), uniform);
+    const render::MeshDesc& mesh = blended.scene.meshes.at(0);
+    ASSERT_EQ(mesh.cornerColors.size(), mesh.indices.size());
+    for (std::size_t c = 0; c < mesh.indices.size(); ++c) {
+        const Vec3f& p = mesh.positions[mesh.indices[c]];
+        const RGB& color = mesh.cornerColors[c];
+        EXPECT_NEAR(color.x + color.z, 1.0f, 1e-5f) << "a blend of the two";
+        if (p.z > 0.3f) {
+            EXPECT_GT(color.x, color.z);
+        } else if (p.z < -0.3f) {
+            EXPECT_LT(color.x, color.z);
+        }
+    }
+    // Uniform colours: one per face, constant over it.
+    const std::string uniformColors = R"(    color3f[] primvars:displayColor = [(1, 0, 0), (0, 1, 0), (0, 0, 1), (1, 1, 0), (0, 1, 1), (1, 0, 1)] (
+        interpolation = "uniform"
+    ))";
+    Described perFace = describe(cubeScene(4, uniformColors), uniform);
+    const render::MeshDesc& faces = perFace.scene.meshes.at(0);
+    std::set<std::tuple<float, float, float>> distinct;
+    for (const RGB& c : faces.cornerColors) distinct.insert({c.x, c.y, c.z});
+    EXPECT_EQ(distinct.size(), 6u);
+}
+
+TEST(SubdivisionMesh, EditingPointsKeepsTheTopologyAndMovingKeepsEverything) {
+    auto stage = stageFrom(cubeScene(4));
+    DelegateOptions options;
+    options.resolution = std::make_pair(64, 64);
+    options.convertColor = [](const RGB& c, const std::string&) { return c; };
+    options.warn = [](const std::string&, const std::string&) {};
+    SceneDelegate delegate(*stage, options);
+    delegate.sync();
+    const auto& cube = static_cast<const MeshRprim&>(*delegate.renderIndex().find("/Cube"));
+    const SubdivisionSurface* topology = &cube.subdivided().at(0).mesh->surface();
+    const float radius = maxRadius(delegate.sceneDescription().meshes.at(0));
+
+    std::vector<double> bigger;
+    for (double c : {-1, -1, 1, 1, -1, 1, -1, 1, 1, 1, 1, 1, -1, 1, -1, 1, 1, -1, -1, -1, -1, 1, -1, -1}) bigger.push_back(c);
+    delegate.setAttribute("/Cube", "points", usd::Value::numeric("point3f[]", bigger, 3, true));
+    delegate.sync();
+    EXPECT_EQ(&cube.subdivided().at(0).mesh->surface(), topology) << "points alone do not rebuild the topology";
+    EXPECT_NEAR(maxRadius(delegate.sceneDescription().meshes.at(0)), 2.0f * radius, 1e-3f) << "the cage doubled";
+
+    delegate.setAttribute("/Cube", "faceVertexCounts", usd::Value::numeric("int[]", {4, 4, 4, 4, 4, 4}, 1, true));
+    delegate.sync();
+    EXPECT_NE(&cube.subdivided().at(0).mesh->surface(), topology) << "a topology edit rebuilds it";
+}
+
+TEST(SubdivisionMesh, BadTopologyNamesThePrim) {
+    try {
+        describe(std::regex_replace(cubeScene(4), std::regex("0, 1, 3, 2, 2"), "0, 1, 3, 9, 2"));
+        FAIL() << "a point index out of range was accepted";
+    } catch (const SceneError& e) {
+        EXPECT_NE(std::string(e.what()).find("/Cube"), std::string::npos) << e.what();
+        EXPECT_NE(std::string(e.what()).find("faceVertexIndices[3] = 9"), std::string::npos) << e.what();
+    }
+}
+
+TEST(SubdivisionMesh, InstancedSubdivisionSurfacesAreDicedForTheNearestInstance) {
+    const std::string scene = cubeScene(3, "", R"(
+def PointInstancer "Many"
+{
+    int[] protoIndices = [0, 0]
+    point3f[] positions = [(0, 0, -100), (0, 0, POSITION)]
+    rel prototypes = </Many/Protos/Cube>
+    def Scope "Protos"
+    {
+        def Mesh "Cube"
+        {
+            int[] faceVertexCounts = [4, 4, 4, 4, 4, 4]
+            int[] faceVertexIndices = [0, 1, 3, 2, 2, 3, 5, 4, 4, 5, 7, 6, 6, 7, 1, 0, 1, 7, 5, 3, 6, 0, 2, 4]
+            point3f[] points = [(-0.5, -0.5, 0.5), (0.5, -0.5, 0.5), (-0.5, 0.5, 0.5), (0.5, 0.5, 0.5), (-0.5, 0.5, -0.5), (0.5, 0.5, -0.5), (-0.5, -0.5, -0.5), (0.5, -0.5, -0.5)]
+        }
+    }
+}
+)");
+    // The standalone cube is 3 units from the camera. With the second instance also at 3 units
+    // (position 0), the prototype is diced as finely as the standalone cube; with both instances
+    // far away, much coarser.
+    Described near = describe(std::regex_replace(scene, std::regex("POSITION"), "0"));
+    Described far = describe(std::regex_replace(scene, std::regex("POSITION"), "-100"));
+    ASSERT_EQ(near.scene.prototypes.size(), 1u);
+    std::size_t standalone = near.scene.meshes.at(0).indices.size();
+    EXPECT_EQ(near.scene.prototypes[0].meshes.at(0).indices.size(), standalone);
+    EXPECT_LT(far.scene.prototypes[0].meshes.at(0).indices.size() * 20, standalone);
+}
+
+}  // namespace
+}  // namespace fluence::delegate
