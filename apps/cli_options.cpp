@@ -1,5 +1,6 @@
 #include "apps/cli_options.h"
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 
@@ -33,6 +34,46 @@ private:
     std::size_t i_ = 0;
 };
 
+// --load P, --unload P and --no-payloads, as USD load rules. Whatever the order given, the rule of
+// the nearest prim wins: --no-payloads is the stage-wide rule, and deeper prims' rules apply last.
+class LoadRuleArgs {
+public:
+    // Takes `arg` (and its value) when it is one of these options.
+    bool take(const std::string& arg, ArgCursor& cur) {
+        if (arg == "--no-payloads") {
+            none_ = true;
+        } else if (arg == "--load" || arg == "--unload") {
+            const std::string& path = cur.value(arg);
+            if (!path.starts_with("/")) throw UsageError(arg + " needs an absolute prim path such as /World/Asset");
+            rules_.emplace_back(path, arg == "--load");
+        } else {
+            return false;
+        }
+        return true;
+    }
+
+    usd::LoadRules rules() const {
+        usd::LoadRules out = none_ ? usd::LoadRules::loadNone() : usd::LoadRules::loadAll();
+        auto depth = [](const std::string& path) {
+            return path == "/" ? 0 : std::count(path.begin(), path.end(), '/');
+        };
+        std::vector<std::pair<std::string, bool>> byDepth = rules_;
+        std::stable_sort(byDepth.begin(), byDepth.end(),
+                         [&](const auto& a, const auto& b) { return depth(a.first) < depth(b.first); });
+        for (const auto& [path, load] : byDepth) {
+            if (load)
+                out.load(path);
+            else
+                out.unload(path);
+        }
+        return out;
+    }
+
+private:
+    bool none_ = false;
+    std::vector<std::pair<std::string, bool>> rules_;  // (prim path, load), as given
+};
+
 // An argument that is not an option: the scene file, given once.
 void takeScene(const std::string& arg, std::string& scene) {
     if (arg.starts_with("-") && arg.size() > 1) throw UsageError("unknown option '" + arg + "'");
@@ -52,8 +93,10 @@ usd::VariantSelection parseVariantSelection(const std::string& text) {
 InfoOptions parseInfoOptions(const std::vector<std::string>& args) {
     InfoOptions o;
     ArgCursor cur(args);
+    LoadRuleArgs load;
     while (!cur.done()) {
         const std::string arg = cur.next();
+        if (load.take(arg, cur)) continue;
         if (arg == "--variant") {
             o.variants.push_back(parseVariantSelection(cur.value(arg)));
         } else if (arg == "-s" || arg == "--settings") {
@@ -63,14 +106,17 @@ InfoOptions parseInfoOptions(const std::vector<std::string>& args) {
         }
     }
     if (o.scene.empty()) throw UsageError("no scene file given");
+    o.loadRules = load.rules();
     return o;
 }
 
 RenderOptions parseRenderOptions(const std::vector<std::string>& args) {
     RenderOptions o;
     ArgCursor cur(args);
+    LoadRuleArgs load;
     while (!cur.done()) {
         const std::string arg = cur.next();
+        if (load.take(arg, cur)) continue;
         if (arg == "-o" || arg == "--output") {
             o.output = cur.value(arg);
         } else if (arg == "--preview") {
@@ -122,6 +168,7 @@ RenderOptions parseRenderOptions(const std::vector<std::string>& args) {
         }
     }
     if (o.scene.empty()) throw UsageError("no scene file given");
+    o.loadRules = load.rules();
     return o;
 }
 
@@ -131,6 +178,7 @@ std::string usageText() {
         integratorList += "                        " + i.name + "  " + i.pathClasses + "  " + i.description + "\n";
     return "usage: fluence render SCENE.usda [options]\n"
            "       fluence info SCENE.usda [--variant /Prim:set=sel]... [-s /Render/Settings]\n"
+           "                               [--load /Prim]... [--unload /Prim]... [--no-payloads]\n"
            "       fluence --help | --version\n"
            "\n"
            "`render` renders a USD scene to a multi-channel OpenEXR image (beauty RGBA in linear Rec.709,\n"
@@ -146,6 +194,10 @@ std::string usageText() {
            "  -c, --camera PATH       camera prim (default: the render settings' camera, else the first Camera)\n"
            "  -s, --settings PATH     RenderSettings prim (default: the stage's renderSettingsPrimPath)\n"
            "      --variant P:SET=SEL select variant SEL of variant set SET on prim P (repeatable)\n"
+           "      --load PATH         load the payloads of prim PATH and its descendants (repeatable)\n"
+           "      --unload PATH       leave out the payloads of prim PATH and its descendants (repeatable);\n"
+           "                          the nearest prim's --load/--unload wins\n"
+           "      --no-payloads       load no payloads but those --load names (and the prims above them)\n"
            "  -f, --frame F           time code to render (default: the stage's startTimeCode, else default values)\n"
            "  -j, --threads N         worker threads (default 0: every core)\n"
            "      --seed S            random seed (default 0); same seed and spp give a bit-identical image\n"

@@ -34,6 +34,7 @@ struct RenderOptions {
     std::optional<double> frame;    // -f/--frame F (default: the stage's startTimeCode, else USD's default time)
     std::string settings;           // -s/--settings /Render/Path (default: the stage's renderSettingsPrimPath)
     std::vector<usd::VariantSelection> variants;  // --variant /Prim/Path:set=selection (repeatable)
+    usd::LoadRules loadRules;       // --load P, --unload P (repeatable), --no-payloads
 };
 
 // Options of `fluence info`.
@@ -41,6 +42,7 @@ struct InfoOptions {
     std::string scene;
     std::vector<usd::VariantSelection> variants;
     std::string settings;
+    usd::LoadRules loadRules;
 };
 
 inline constexpr int kDefaultSpp = 64;

@@ -38,6 +38,7 @@ void printTree(const usd::PrimSpec& prim, int depth) {
         std::string v = metadataString(prim, key);
         if (!v.empty()) line += std::string("  ") + key + "=" + v;
     }
+    if (usd::findMetadata(prim.metadata, "fluence:unloadedPayload")) line += "  (payload not loaded)";
     std::printf("%s\n", line.c_str());
     for (const auto& child : prim.children) printTree(*child, depth + 1);
 }
@@ -49,7 +50,7 @@ void section(const char* title, std::size_t count) { std::printf("\n%s (%zu)\n",
 int runInfo(const InfoOptions& opt) {
     WarningLog warnings;
     std::unique_ptr<usd::Stage> stage;
-    if (int code = openStage(opt.scene, opt.variants, warnings, stage); code != kExitOk) return code;
+    if (int code = openStage(opt.scene, {opt.variants, opt.loadRules}, warnings, stage); code != kExitOk) return code;
     const double time = stage->startTimeCode().value_or(usd::kDefaultTime);
 
     std::printf("scene        %s\n", opt.scene.c_str());

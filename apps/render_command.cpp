@@ -48,7 +48,7 @@ int runRender(const RenderOptions& opt) {
     auto t = Clock::now();
     WarningLog warnings;
     std::unique_ptr<usd::Stage> stage;
-    if (int code = openStage(opt.scene, opt.variants, warnings, stage); code != kExitOk) return code;
+    if (int code = openStage(opt.scene, {opt.variants, opt.loadRules}, warnings, stage); code != kExitOk) return code;
     const double parseSeconds = secondsSince(t);
 
     // Build: delegate, then the render scene.

@@ -23,9 +23,10 @@ enum ExitCode : int {
 
 void printError(const std::string& message);
 
-// Opens and composes the stage; composition warnings go to `warnings`. On failure prints the
-// error and returns a non-zero exit code (missing file: kExitMissingInput; syntax: kExitScene).
-int openStage(const std::string& path, const std::vector<usd::VariantSelection>& variants, WarningLog& warnings,
+// Opens and composes the stage (variant selections and payload load rules in `options`);
+// composition warnings go to `warnings`. On failure prints the error and returns a non-zero exit
+// code (missing file: kExitMissingInput; syntax: kExitScene).
+int openStage(const std::string& path, const usd::StageOptions& options, WarningLog& warnings,
               std::unique_ptr<usd::Stage>& stage);
 
 }  // namespace fluence::app

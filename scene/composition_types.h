@@ -1,5 +1,6 @@
-// The plain types of the stage's composition API (options in, warnings and asset references out)
-// and the collector the composition code reports into.
+// The plain types of the stage's composition API (options in: variant selections and payload
+// load rules; warnings and asset references out) and the collector the composition code reports
+// into.
 #pragma once
 
 #include <set>
@@ -8,6 +9,7 @@
 #include <vector>
 
 #include "scene/layer.h"
+#include "scene/load_rules.h"
 
 namespace fluence::usd {
 
@@ -21,7 +23,7 @@ struct VariantSelection {
 
 struct StageOptions {
     std::vector<VariantSelection> variantSelections;
-    bool loadPayloads = true;  // false leaves every payload arc out, as an unloaded UsdStage does
+    LoadRules loadRules;  // which payloads are included (all by default)
 };
 
 // Something composition could not honour; composition went on without it. `location` is where
@@ -33,7 +35,8 @@ struct CompositionWarning {
 };
 
 // One asset path used by the composed stage: an asset-valued attribute (property = its name) or
-// an arc target that could not be used (property = "subLayers", "references" or "payload").
+// an arc target or value clip that could not be used (property = "subLayers", "references",
+// "payload" or "clips").
 struct AssetReference {
     std::string primPath;
     std::string property;

@@ -38,13 +38,13 @@ public:
         layer->identifier = rootLayer.identifier;
         layer->header = rootLayer.header;
         for (const MetadataEntry& entry : rootLayer.metadata) {
-            if (entry.key == "subLayers" || entry.key == "rootPrims") continue;
+            if (entry.key == "subLayers" || entry.key == "rootPrims" || entry.key == "relocates") continue;
             layer->metadata.push_back(entry);
             layer->metadata.back().value = anchorAssets(entry.value, rootLayer);
         }
         for (const std::string& name : composeRootPrimNames(root)) {
             if (stopped_) break;
-            compose(indexer_.root(root, childPrimPath("/", name)), layer->rootPrims, false);
+            compose(indexer_.root(root, childPrimPath("/", name)), layer->rootPrims, false, {});
         }
         checkDefaultPrim(root, *layer);
         for (const VariantSelection& option : options_.variantSelections)
@@ -56,32 +56,37 @@ public:
     }
 
     FlattenedPrim subtree(const LayerStack& root, const std::string& path) {
-        std::vector<std::string> names;
-        for (std::size_t start = 1; start < path.size();) {
-            std::size_t slash = std::min(path.find('/', start), path.size());
-            names.push_back(path.substr(start, slash - start));
-            start = slash + 1;
-        }
+        std::vector<std::string> names = primNames(path);
         if (names.empty()) return {};
         // The ancestors' indices, each one's instanceable flag read off its composed spec.
         PrimIndex index = indexer_.root(root, childPrimPath("/", names.front()));
         bool belowInstance = false;
+        ClipSets clips;
         for (std::size_t i = 1; i < names.size(); ++i) {
             std::vector<Opinion> opinions = opinionsOf(index);
             if (opinions.empty()) return {};
             std::unique_ptr<PrimSpec> ancestor = composer_.compose(index, opinions);
             if (!flag(*ancestor, "active", true)) return {};
             belowInstance = belowInstance || (flag(*ancestor, "instanceable", false) && index.hasArcs());
+            clips = withOwnClips(index, clips);
             index = indexer_.child(index, names[i], belowInstance);
         }
         assets_.clear();
         std::vector<std::unique_ptr<PrimSpec>> prims;
-        compose(index, prims, belowInstance);
+        compose(index, prims, belowInstance, clips);
         return {prims.empty() ? nullptr : std::move(prims.front()), std::move(assets_)};
     }
 
 private:
-    void compose(const PrimIndex& index, std::vector<std::unique_ptr<PrimSpec>>& siblings, bool belowInstance) {
+    // The clip sets for the prim of `index`: its own, then its ancestors' (`inherited`).
+    ClipSets withOwnClips(const PrimIndex& index, const ClipSets& inherited) {
+        ClipSets clips = clipSetsOf(index, registry_, log_);
+        clips.insert(clips.end(), inherited.begin(), inherited.end());
+        return clips;
+    }
+
+    void compose(const PrimIndex& index, std::vector<std::unique_ptr<PrimSpec>>& siblings, bool belowInstance,
+                 const ClipSets& inheritedClips) {
         std::size_t budget = kFreePrims + kPrimsPerSpec * registry_.specCount();
         if (++prims_ > budget || indexer_.nodesMade() > kNodesPerPrim * budget) {
             if (!stopped_)
@@ -94,18 +99,22 @@ private:
         }
         std::vector<Opinion> opinions = opinionsOf(index);
         if (opinions.empty()) return;
-        std::unique_ptr<PrimSpec> prim = composer_.compose(index, opinions);
+        ClipSets clips = withOwnClips(index, inheritedClips);
+        std::unique_ptr<PrimSpec> prim = composer_.compose(index, opinions, clips);
         if (!options_.variantSelections.empty()) composedPaths_.insert(prim->path);
         bool instance = flag(*prim, "instanceable", false) && index.hasArcs();
         if (instance)
             prim->metadata.push_back({"fluence:instancePrototype", ListOpKind::Explicit,
                                       Value::string("string", ValueKind::String, {index.instanceKey()}, false),
                                       prim->location});
+        if (index.hasUnloadedPayload())
+            prim->metadata.push_back({"fluence:unloadedPayload", ListOpKind::Explicit,
+                                      Value::numeric("bool", {1}, 1, false), prim->location});
         if (flag(*prim, "active", true)) {
-            for (const std::string& name : composeChildNames(opinions)) {
+            for (const std::string& name : composeChildNames(index)) {
                 if (stopped_) break;
                 compose(indexer_.child(index, name, belowInstance || instance), prim->children,
-                        belowInstance || instance);
+                        belowInstance || instance, clips);
             }
         }
         siblings.push_back(std::move(prim));

@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "scene/time_samples.h"
 #include "scene/value.h"
 
 namespace fluence::usd {
@@ -45,7 +46,7 @@ struct AttributeSpec {
     bool uniform = false;  // `uniform` variability
     bool hasDefault = false;
     Value defaultValue;                               // valid when hasDefault
-    std::vector<std::pair<double, Value>> timeSamples;  // sorted by time, from `name.timeSamples`
+    TimeSamples timeSamples;                          // sorted by time, from `name.timeSamples`
     std::vector<std::string> connections;             // from `name.connect`, prim/property paths
     ListOpKind connectionOp = ListOpKind::Explicit;
     Metadata metadata;                                // interpolation, elementSize, colorSpace, ...

@@ -2,8 +2,10 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <optional>
 
 #include "scene/asset_path.h"
 #include "scene/namespace_remap.h"
@@ -16,6 +18,15 @@ namespace fs = std::filesystem;
 LayerOffset LayerOffset::of(const Value& arc) {
     if (arc.kind != ValueKind::Reference || arc.numbers.size() < 2) return {};
     return {arc.numbers[0], arc.numbers[1]};
+}
+
+double timeCodesPerSecond(const Layer& layer) {
+    for (const char* key : {"timeCodesPerSecond", "framesPerSecond"}) {
+        const MetadataEntry* entry = findMetadata(layer.metadata, key);
+        std::optional<double> rate = entry ? entry->value.asDouble() : std::nullopt;
+        if (rate && std::isfinite(*rate) && *rate > 0.0) return *rate;
+    }
+    return 24.0;
 }
 
 // ---- SpecIndex ---------------------------------------------------------------------------------
@@ -172,6 +183,9 @@ const LayerStack& LayerRegistry::buildStack(const Layer& root) {
     stack->identifier = root.identifier;
     std::vector<std::string> chain = {normalizedAbsolutePath(root.identifier)};
     addToStack(*stack, root, {}, chain);
+    std::vector<const Layer*> layers;
+    for (const LayerStack::Entry& entry : stack->layers) layers.push_back(entry.layer);
+    stack->relocates = Relocates::gather(layers, log_);
     return *stack;
 }
 
@@ -199,7 +213,8 @@ void LayerRegistry::addToStack(LayerStack& stack, const Layer& layer, const Laye
         const Layer* sub = layerFor(resolved, {"sublayer", "subLayers", authored, subLayers->location, ""});
         if (!sub) continue;
         chain.push_back(resolved);
-        addToStack(stack, *sub, offset.after(LayerOffset::of(item)), chain);
+        LayerOffset rate = LayerOffset::between(timeCodesPerSecond(layer), timeCodesPerSecond(*sub));
+        addToStack(stack, *sub, offset.after(LayerOffset::of(item).after(rate)), chain);
         chain.pop_back();
     }
 }

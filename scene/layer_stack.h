@@ -6,6 +6,16 @@
 // layer: a sublayer's (offset, scale) composed through every level above it. Composition arcs
 // target whole layer stacks: a reference to @chair.usda@ sees chair.usda and its sublayers.
 //
+// Time codes per second (USD's SdfLayer::GetTimeCodesPerSecond and Pcp's layer-offset scaling):
+// a layer's rate is its `timeCodesPerSecond`, else its `framesPerSecond`, else 24. A sublayer
+// whose rate differs from the layer that names it is scaled by (that layer's rate / the
+// sublayer's rate) before its authored offset applies, so one second stays one second; arcs to
+// another layer stack do the same with the authoring layer's rate and the target stack's root
+// layer's rate (LayerOffset::between).
+//
+// Relocates (scene/relocates.h) belong to the whole stack: each stack carries the validated
+// relocations its layers author.
+//
 // The LayerRegistry reads each layer file once (cached by absolute path) and builds each layer
 // stack once (cached by root layer). Files that cannot serve as layers when an arc points at
 // them (missing, binary crate, another file format) are reported and skipped; syntax errors throw.
@@ -19,6 +29,7 @@
 
 #include "scene/composition_types.h"
 #include "scene/layer.h"
+#include "scene/relocates.h"
 
 namespace fluence::usd::detail {
 
@@ -35,7 +46,14 @@ struct LayerOffset {
     bool isIdentity() const { return offset == 0.0 && scale == 1.0; }
     // The offset authored on a sublayer, reference or payload (identity when none was written).
     static LayerOffset of(const Value& arc);
+    // The scale that maps time codes of a layer at `innerRate` time codes per second to one at
+    // `outerRate`.
+    static LayerOffset between(double outerRate, double innerRate) { return {0.0, outerRate / innerRate}; }
 };
+
+// The layer's time codes per second: `timeCodesPerSecond`, else `framesPerSecond`, else 24
+// (values that are not positive and finite are passed over).
+double timeCodesPerSecond(const Layer& layer);
 
 // What a layer holds at one path: a prim spec, or a variant of a variant set on a prim.
 struct SpecRef {
@@ -74,8 +92,11 @@ struct LayerStack {
     };
     std::string identifier;      // the root layer's identifier
     std::vector<Entry> layers;   // strongest first; layers[0] is the root layer
+    Relocates relocates;         // the relocations the stack's layers author
 
     const Layer& rootLayer() const { return *layers.front().layer; }
+    // The stack's rate: its root layer's (USD's PcpLayerStack::GetTimeCodesPerSecond).
+    double timeCodesPerSecond() const { return usd::detail::timeCodesPerSecond(rootLayer()); }
     // The stack's default prim as an absolute path ("" when the root layer names none).
     std::string defaultPrimPath() const;
     // True when some layer of the stack has a spec at `path`.
@@ -84,8 +105,8 @@ struct LayerStack {
 
 // Where an arc that needs a layer file was authored, for warnings.
 struct ArcSite {
-    const char* arc;  // "sublayer", "reference", "payload"
-    const char* property;  // the metadata field: "subLayers", "references", "payload"
+    const char* arc;  // "sublayer", "reference", "payload", "clip", "clip manifest"
+    const char* property;  // the metadata field: "subLayers", "references", "payload", "clips"
     std::string authored;  // the asset path as written
     SourceLocation location;
     std::string primPath;
@@ -110,14 +131,17 @@ public:
     // The number of prim and variant specs in every layer read so far.
     std::size_t specCount() const { return specCount_; }
 
+    // The layer file `resolvedPath` alone (value clips read single layers), or nullptr (after a
+    // warning) when it cannot be used as a layer; and the index of a layer's specs.
+    const Layer* layerFor(const std::string& resolvedPath, const ArcSite& site);
+    const SpecIndex& specIndexOf(const Layer& layer);
+
 private:
     // Takes ownership of a parsed layer and reports its parse warnings.
     const Layer& keep(std::unique_ptr<Layer> layer);
-    const Layer* layerFor(const std::string& resolvedPath, const ArcSite& site);
     const LayerStack& buildStack(const Layer& root);
     void addToStack(LayerStack& stack, const Layer& layer, const LayerOffset& offset,
                     std::vector<std::string>& chain);
-    const SpecIndex& specIndexOf(const Layer& layer);
 
     CompositionLog& log_;
     std::vector<std::unique_ptr<Layer>> layers_;

@@ -1,5 +1,7 @@
 #include "scene/namespace_remap.h"
 
+#include <algorithm>
+
 namespace fluence::usd::detail {
 
 namespace {
@@ -76,6 +78,16 @@ int pathDepth(std::string_view path) {
     for (std::size_t i = 0; i < prim.size(); ++i)
         if (prim[i] == '/' && i + 1 < prim.size()) ++depth;
     return depth;
+}
+
+std::vector<std::string> primNames(std::string_view path) {
+    std::vector<std::string> names;
+    for (std::size_t start = 1; start < path.size();) {
+        std::size_t slash = std::min(path.find('/', start), path.size());
+        names.emplace_back(path.substr(start, slash - start));
+        start = slash + 1;
+    }
+    return names;
 }
 
 MapFunction::MapFunction(std::string source, std::string target)

@@ -8,6 +8,7 @@
 
 #include <string>
 #include <string_view>
+#include <vector>
 
 namespace fluence::usd::detail {
 
@@ -28,6 +29,9 @@ std::string absolutePath(std::string_view anchor, std::string_view path);
 
 // The number of prim names in an absolute prim path ("/" -> 0, "/A{v=x}B" -> 2).
 int pathDepth(std::string_view path);
+
+// The prim names of an absolute prim path without variant selections ("/A/B" -> {"A", "B"}).
+std::vector<std::string> primNames(std::string_view path);
 
 // Maps paths from the namespace at one end of a composition arc to the other: an arc from the
 // prim `source` (in the arc's target layer stack) to `target` (where it is composed) maps

@@ -2,6 +2,9 @@
 
 #include <algorithm>
 #include <functional>
+#include <optional>
+#include <set>
+#include <tuple>
 #include <unordered_map>
 #include <unordered_set>
 
@@ -15,10 +18,11 @@ namespace {
 
 using Found = std::vector<std::pair<std::string, std::string>>;
 
-// Prim metadata that composition consumes (arcs, variant selections, reorder statements).
+// Prim metadata that composition consumes (arcs, variant selections, reorder statements, value
+// clips).
 const std::unordered_set<std::string> kCompositionFields = {
-    "references", "payload", "payloads", "inherits", "specializes", "variantSets",
-    "variants",   "nameChildren", "properties", "relocates"};
+    "references", "payload",      "payloads",   "inherits",  "specializes", "variantSets",
+    "variants",   "nameChildren", "properties", "relocates", "clips",       "clipSets"};
 
 bool holdsAsset(const Value& value) {
     switch (value.kind) {
@@ -53,26 +57,6 @@ void anchorInPlace(Value& value, const Layer& layer, Found* found) {
             break;
         default: break;
     }
-}
-
-// `stronger`'s entries over `weaker`'s, nested dictionaries merged the same way.
-Value mergeDictionaries(const Value& weaker, const Value& stronger) {
-    if (!weaker.dictionary || !stronger.dictionary) return stronger;
-    auto merged = std::make_shared<Dictionary>(*weaker.dictionary);
-    for (const auto& entry : *stronger.dictionary) {
-        const std::string& key = entry.first;
-        const Value& value = entry.second;
-        auto it = std::find_if(merged->begin(), merged->end(), [&key](const auto& e) { return e.first == key; });
-        if (it == merged->end())
-            merged->emplace_back(key, value);
-        else if (it->second.kind == ValueKind::Dictionary && value.kind == ValueKind::Dictionary)
-            it->second = mergeDictionaries(it->second, value);
-        else
-            it->second = value;
-    }
-    Value out = stronger;
-    out.dictionary = std::move(merged);
-    return out;
 }
 
 struct MetadataOpinion {
@@ -151,13 +135,34 @@ Value anchorAssets(const Value& value, const Layer& layer, Found* found) {
     return out;
 }
 
+Value mergeDictionaries(const Value& weaker, const Value& stronger) {
+    if (!weaker.dictionary || !stronger.dictionary) return stronger;
+    auto merged = std::make_shared<Dictionary>(*weaker.dictionary);
+    for (const auto& entry : *stronger.dictionary) {
+        const std::string& key = entry.first;
+        const Value& value = entry.second;
+        auto it = std::find_if(merged->begin(), merged->end(), [&key](const auto& e) { return e.first == key; });
+        if (it == merged->end())
+            merged->emplace_back(key, value);
+        else if (it->second.kind == ValueKind::Dictionary && value.kind == ValueKind::Dictionary)
+            it->second = mergeDictionaries(it->second, value);
+        else
+            it->second = value;
+    }
+    Value out = stronger;
+    out.dictionary = std::move(merged);
+    return out;
+}
+
 std::vector<Opinion> opinionsOf(const PrimIndex& index) {
     std::vector<Opinion> opinions;
-    for (int n : index.strengthOrder()) {
-        const IndexNode& node = index.nodes()[n];
+    std::vector<int> order = index.strengthOrder();
+    for (std::size_t rank = 0; rank < order.size(); ++rank) {
+        const IndexNode& node = index.nodes()[order[rank]];
         for (const auto& [layer, spec] : node.specs) {
             const LayerStack::Entry& entry = node.stack->layers[static_cast<std::size_t>(layer)];
-            opinions.push_back({spec, entry.layer, n, node.offset.after(entry.offset)});
+            opinions.push_back({spec, entry.layer, order[rank], static_cast<int>(rank), layer,
+                                node.offset.after(entry.offset)});
         }
     }
     return opinions;
@@ -177,17 +182,27 @@ void appendNames(std::vector<std::string>& names, std::unordered_set<std::string
 
 }  // namespace
 
-std::vector<std::string> composeChildNames(const std::vector<Opinion>& opinions) {
+std::vector<std::string> composeChildNames(const PrimIndex& index) {
     std::vector<std::string> names;
     std::unordered_set<std::string> seen;
-    for (auto it = opinions.rbegin(); it != opinions.rend(); ++it)
-        appendNames(names, seen, it->spec.children(), it->spec.metadata(), "nameChildren");
+    std::set<std::string> prohibited;
+    std::vector<int> order = index.strengthOrder();
+    for (auto it = order.rbegin(); it != order.rend(); ++it) {
+        const IndexNode& node = index.nodes()[*it];
+        if (node.inert) continue;
+        if (node.stack->relocates.editChildNames(node.path, names, prohibited)) seen = {names.begin(), names.end()};
+        for (auto spec = node.specs.rbegin(); spec != node.specs.rend(); ++spec)
+            appendNames(names, seen, spec->second.children(), spec->second.metadata(), "nameChildren");
+    }
+    std::erase_if(names, [&](const std::string& name) { return prohibited.contains(name); });
     return names;
 }
 
 std::vector<std::string> composeRootPrimNames(const LayerStack& stack) {
     std::vector<std::string> names;
-    std::unordered_set<std::string> seen;
+    std::set<std::string> prohibited;  // root prims are never relocation sources
+    stack.relocates.editChildNames("/", names, prohibited);
+    std::unordered_set<std::string> seen(names.begin(), names.end());
     for (auto it = stack.layers.rbegin(); it != stack.layers.rend(); ++it)
         appendNames(names, seen, it->layer->rootPrims, it->layer->metadata, "rootPrims");
     return names;
@@ -199,6 +214,19 @@ struct PrimComposer::PropertyOpinion {
     const AttributeSpec* attribute = nullptr;
     const RelationshipSpec* relationship = nullptr;
     const Opinion* opinion = nullptr;
+};
+
+// A clip set where it applies: at a node of its anchoring layer stack, just after its anchoring
+// layer.
+struct PrimComposer::ClipSource {
+    const ClipSet* set = nullptr;
+    std::string primPath;  // the node's prim path, without variant selections
+    int rank = 0;
+    int layerIndex = 0;
+
+    bool strongerThan(const Opinion& o) const {
+        return rank < o.rank || (rank == o.rank && layerIndex < o.layerIndex);
+    }
 };
 
 namespace {
@@ -215,7 +243,8 @@ std::vector<std::string> pathsInStage(const PrimIndex& index, const Opinion& opi
 
 }  // namespace
 
-std::unique_ptr<PrimSpec> PrimComposer::compose(const PrimIndex& index, const std::vector<Opinion>& opinions) {
+std::unique_ptr<PrimSpec> PrimComposer::compose(const PrimIndex& index, const std::vector<Opinion>& opinions,
+                                                const ClipSets& clipSets) {
     auto prim = std::make_unique<PrimSpec>();
     prim->path = index.path();
     prim->name = lastName(prim->path);
@@ -254,15 +283,36 @@ std::unique_ptr<PrimSpec> PrimComposer::compose(const PrimIndex& index, const st
         for (const RelationshipSpec& r : opinion.spec.relationships())
             relationships[r.name].push_back({nullptr, &r, &opinion});
     }
+    std::vector<ClipSource> clips = clipSources(index, clipSets);
     prim->attributes.reserve(attributeNames.size());
-    for (const std::string& name : attributeNames) prim->attributes.push_back(composeAttribute(index, attributes[name]));
+    for (const std::string& name : attributeNames)
+        prim->attributes.push_back(composeAttribute(index, attributes[name], clips));
     prim->relationships.reserve(relationshipNames.size());
     for (const std::string& name : relationshipNames)
         prim->relationships.push_back(composeRelationship(index, relationships[name]));
     return prim;
 }
 
-AttributeSpec PrimComposer::composeAttribute(const PrimIndex& index, const std::vector<PropertyOpinion>& opinions) {
+std::vector<PrimComposer::ClipSource> PrimComposer::clipSources(const PrimIndex& index, const ClipSets& clipSets) {
+    std::vector<ClipSource> clips;
+    std::vector<int> order = clipSets.empty() ? std::vector<int>{} : index.strengthOrder();
+    for (const auto& set : clipSets) {
+        for (std::size_t rank = 0; rank < order.size(); ++rank) {
+            const IndexNode& node = index.nodes()[order[rank]];
+            std::string path = stripVariantSelections(node.path);
+            if (!node.inert && node.stack == set->stack && hasPathPrefix(path, set->sourcePrim))
+                clips.push_back({set.get(), std::move(path), static_cast<int>(rank), set->anchorLayer});
+        }
+    }
+    // Strongest first; at one place, the nearer prim's sets first (clipSets keeps that order).
+    std::stable_sort(clips.begin(), clips.end(), [](const ClipSource& a, const ClipSource& b) {
+        return std::tie(a.rank, a.layerIndex) < std::tie(b.rank, b.layerIndex);
+    });
+    return clips;
+}
+
+AttributeSpec PrimComposer::composeAttribute(const PrimIndex& index, const std::vector<PropertyOpinion>& opinions,
+                                             const std::vector<ClipSource>& clips) {
     const AttributeSpec& strongest = *opinions.front().attribute;
     AttributeSpec out;
     out.name = strongest.name;
@@ -282,7 +332,14 @@ AttributeSpec PrimComposer::composeAttribute(const PrimIndex& index, const std::
         out.hasDefault = true;
         out.defaultValue = anchorAssets(defaultSource->attribute->defaultValue, *defaultSource->opinion->layer, &found);
     }
-    if (valueSource && !valueSource->attribute->timeSamples.empty()) {
+    std::optional<TimeSamples> fromClips;
+    for (const ClipSource& clip : clips) {
+        if (valueSource && !clip.strongerThan(*valueSource->opinion)) break;
+        if ((fromClips = clip.set->samples(clip.primPath, out.name, &found))) break;
+    }
+    if (fromClips) {
+        out.timeSamples = std::move(*fromClips);
+    } else if (valueSource && !valueSource->attribute->timeSamples.empty()) {
         const LayerOffset& time = valueSource->opinion->time;
         out.timeSamples.reserve(valueSource->attribute->timeSamples.size());
         for (const auto& [t, value] : valueSource->attribute->timeSamples)

@@ -13,13 +13,12 @@ namespace fluence::usd::detail {
 
 namespace {
 
-constexpr std::size_t kMaxNodesPerPrim = 1000;
-
 const char* arcName(ArcType arc) {
     switch (arc) {
         case ArcType::Root: return "root";
         case ArcType::Inherit: return "inherit";
         case ArcType::Variant: return "variant";
+        case ArcType::Relocate: return "relocate";
         case ArcType::Reference: return "reference";
         case ArcType::Payload: return "payload";
         default: return "specialize";
@@ -90,9 +89,14 @@ std::vector<int> PrimIndex::strengthOrder() const {
 }
 
 std::string PrimIndex::mapToRoot(int node, std::string path) const {
-    for (int n = node; n > 0; n = nodes_[n].parent)
-        if (nodes_[n].mapToParent) path = nodes_[n].mapToParent->map(path);
+    for (int n = node; n > 0; n = nodes_[n].parent) path = mapToParent(n, std::move(path));
     return path;
+}
+
+std::string PrimIndex::mapToParent(int node, std::string path) const {
+    const IndexNode& from = nodes_[node];
+    if (!from.mapToParent) return path;
+    return nodes_[from.parent].stack->relocates.apply(from.mapToParent->map(path));
 }
 
 std::string PrimIndex::instanceKey() const {
@@ -182,7 +186,8 @@ PrimIndex PrimIndexer::child(const PrimIndex& parent, const std::string& name, b
         node.siblingNumber = from.siblingNumber;
         node.impliedRank = from.impliedRank;
         node.origin = from.origin;
-        if (from.parent >= 0 || !belowInstance) node.specs = specsAt(*node.stack, node.path);
+        node.inert = from.inert;
+        if (!from.inert && (from.parent >= 0 || !belowInstance)) node.specs = specsAt(*node.stack, node.path);
         work.add(static_cast<int>(index.nodes_.size() - 1));
     }
     nodesMade_ += index.nodes_.size();
@@ -208,7 +213,10 @@ void PrimIndexer::expand(PrimIndex& index, Work& work) {
         if (work.variantsDue == 0) return;
         // The strongest node still waiting for its variant sets.
         const std::vector<int>& order = orderOf(index);
-        auto next = std::find_if(order.begin(), order.end(), [&](int n) { return work.variants[n] != 0; });
+        // (Nodes grafted by relocation arcs were expanded in their own index.)
+        auto next = std::find_if(order.begin(), order.end(), [&](int n) {
+            return static_cast<std::size_t>(n) < work.variants.size() && work.variants[n] != 0;
+        });
         int n = *next;
         work.variants[n] = 0;
         --work.variantsDue;
@@ -216,17 +224,20 @@ void PrimIndexer::expand(PrimIndex& index, Work& work) {
     }
 }
 
+bool PrimIndexer::overflows(const PrimIndex& index, std::size_t adding, const SourceLocation& where, Work& work) {
+    if (index.nodes_.size() + adding <= kMaxNodesPerPrim) return false;
+    if (!work.overflowReported)
+        log_.warn("more than " + std::to_string(kMaxNodesPerPrim) +
+                      " composition arcs contribute to this prim; the weaker ones are left out",
+                  where, index.path_);
+    work.overflowReported = true;
+    return true;
+}
+
 int PrimIndexer::addNode(PrimIndex& index, IndexNode node, bool checkCycle, const SourceLocation& where,
                          Work& work) {
     auto& nodes = index.nodes_;
-    if (nodes.size() >= kMaxNodesPerPrim) {
-        if (!work.overflowReported)
-            log_.warn("more than " + std::to_string(kMaxNodesPerPrim) +
-                          " composition arcs contribute to this prim; the weaker ones are left out",
-                      where, index.path_);
-        work.overflowReported = true;
-        return -1;
-    }
+    if (overflows(index, 1, where, work)) return -1;
     for (int sibling : nodes[node.parent].children)
         if (sameSite(nodes[sibling], node.stack, node.path) && nodes[sibling].arc == node.arc) return -1;
     if (checkCycle) {
@@ -250,15 +261,19 @@ int PrimIndexer::addNode(PrimIndex& index, IndexNode node, bool checkCycle, cons
     }
     node.specs = specsAt(*node.stack, node.path);
     int id = static_cast<int>(nodes.size());
-    int parent = node.parent;
     nodes.push_back(std::move(node));
     ++nodesMade_;
-    auto& siblings = nodes[parent].children;
+    insertChild(index, id);
+    work.add(id);
+    return id;
+}
+
+void PrimIndexer::insertChild(PrimIndex& index, int id) {
+    auto& nodes = index.nodes_;
+    auto& siblings = nodes[nodes[id].parent].children;
     auto at = std::find_if(siblings.begin(), siblings.end(),
                            [&](int s) { return strongerSibling(nodes[id], nodes[s]); });
     siblings.insert(at, id);
-    work.add(id);
-    return id;
 }
 
 std::vector<PrimIndexer::ArcItem> PrimIndexer::composeArcs(const IndexNode& node,
@@ -304,6 +319,8 @@ std::vector<PrimIndexer::ArcItem> PrimIndexer::composeArcs(const IndexNode& node
 }
 
 void PrimIndexer::addArcs(PrimIndex& index, int n, Work& work) {
+    if (index.nodes_[n].inert) return;
+    if (!index.nodes_[n].stack->relocates.empty()) addRelocation(index, n, work);
     if (index.nodes_[n].specs.empty()) return;
     const IndexNode& node = index.nodes_[n];
     std::vector<ArcItem> inherits = composeArcs(node, {"inherits"});
@@ -314,9 +331,12 @@ void PrimIndexer::addArcs(PrimIndex& index, int n, Work& work) {
         addClass(index, n, ArcType::Inherit, inherits[i], static_cast<int>(i), work);
     for (std::size_t i = 0; i < references.size(); ++i)
         addReference(index, n, ArcType::Reference, references[i], static_cast<int>(i), work);
-    if (options_.loadPayloads)
-        for (std::size_t i = 0; i < payloads.size(); ++i)
-            addReference(index, n, ArcType::Payload, payloads[i], static_cast<int>(i), work);
+    if (!payloads.empty() && !options_.loadRules.isLoaded(index.path_)) {
+        index.unloadedPayload_ = true;
+        payloads.clear();
+    }
+    for (std::size_t i = 0; i < payloads.size(); ++i)
+        addReference(index, n, ArcType::Payload, payloads[i], static_cast<int>(i), work);
     for (std::size_t i = 0; i < specializes.size(); ++i)
         addClass(index, n, ArcType::Specialize, specializes[i], static_cast<int>(i), work);
 }
@@ -352,7 +372,11 @@ void PrimIndexer::addReference(PrimIndex& index, int n, ArcType arc, const ArcIt
     child.arc = arc;
     child.parent = n;
     child.mapToParent = std::make_shared<MapFunction>(target, stripVariantSelections(node.path));
-    child.offset = node.offset.after(authoring.offset).after(item.offset);
+    // An external arc also converts the target stack's time codes to the authoring layer's rate.
+    LayerOffset rate = item.asset.empty()
+                           ? LayerOffset{}
+                           : LayerOffset::between(timeCodesPerSecond(*authoring.layer), stack->timeCodesPerSecond());
+    child.offset = node.offset.after(authoring.offset).after(item.offset).after(rate);
     child.namespaceDepth = pathDepth(node.path);
     child.siblingNumber = sibling;
     addNode(index, std::move(child), true, item.location, work);
@@ -379,7 +403,7 @@ void PrimIndexer::implyClass(PrimIndex& index, int classNode, Work& work) {
     int origin = classNode;
     for (int from = nodes[classNode].parent; from > 0;) {
         int to = nodes[from].parent;
-        if (nodes[from].mapToParent) path = nodes[from].mapToParent->map(path);
+        path = index.mapToParent(from, path);
         const LayerStack* stack = nodes[to].stack;
         bool exists = std::any_of(nodes.begin(), nodes.end(), [&](const IndexNode& x) { return sameSite(x, stack, path); });
         if (!exists) {

@@ -4,12 +4,13 @@
 // An index is a tree of nodes. Each node is a site — a layer stack and a path in that stack's
 // namespace — reached from its parent node by one composition arc: the root node is the prim's
 // path in the stage's root layer stack (Local opinions); below it hang the arcs authored on the
-// specs at each node: Inherits, Variants, References, Payloads and Specializes. Arcs found in a
-// referenced site are added below that site's node, so composition applies recursively.
+// specs at each node: Inherits, Variants, References, Payloads and Specializes, and the
+// relocation arcs of the node's layer stack. Arcs found in a referenced site are added below that
+// site's node, so composition applies recursively.
 //
 // Strength order is the tree walked depth first, each node before its children, children in
-// LIVRPS order: by arc type (inherit, variant, reference, payload, specialize), then the arc
-// introduced at the deeper namespace level first (an arc authored on /World/Chair/Geom is
+// LIVRPS order: by arc type (inherit, variant, relocate, reference, payload, specialize), then
+// the arc introduced at the deeper namespace level first (an arc authored on /World/Chair/Geom is
 // stronger than one inherited from an arc on /World/Chair), then authored arcs before implied
 // ones, then in the order of the composed arc list. Specializes subtrees are moved after
 // everything else, so they are the weakest opinions of the whole prim, and an implied specialize
@@ -31,9 +32,22 @@
 // site, including sites brought in by references. A selected variant is a node whose path holds
 // the selection ("/Asset{look=red}"); sets nested in a variant hang below it.
 //
+// Payloads (USD's UsdStageLoadRules): a payload arc is added only when StageOptions::loadRules
+// load the prim being indexed; otherwise the index remembers that it has an unloaded payload.
+//
+// Relocates (scene/relocates.h; Pcp's relocation arcs, scene/relocation_arcs.cpp): when a node's
+// site is the target of a relocation in its layer stack, the node's ancestral arcs other than
+// variants are superseded (made inert), and a relocate node for the source site is added below it,
+// holding the source's whole prim index (its ancestral arcs) but none of the opinions authored at
+// the source itself: relocate nodes are inert (no specs, no arcs of their own, and so in every
+// child index too). Nodes inside that subtree that are relocation sources of their own stack are
+// made inert as well, so no opinion lands on two prims. Paths crossing an arc into a layer stack
+// are moved by that stack's relocations (mapToRoot).
+//
 // Cycles: an arc whose site is the site of one of its ancestors in the tree, or an ancestor or a
 // descendant prim of it in the same layer stack, would compose forever; it is reported and left
-// out. Nodes without any spec (and without such nodes below) are culled.
+// out, as is a relocation whose source index needs the relocation itself. Nodes without any spec
+// (and without such nodes below) are culled.
 #pragma once
 
 #include <initializer_list>
@@ -51,7 +65,7 @@
 
 namespace fluence::usd::detail {
 
-enum class ArcType { Root, Inherit, Variant, Reference, Payload, Specialize };  // strongest first
+enum class ArcType { Root, Inherit, Variant, Relocate, Reference, Payload, Specialize };  // strongest first
 
 struct IndexNode {
     const LayerStack* stack = nullptr;
@@ -65,6 +79,7 @@ struct IndexNode {
     int siblingNumber = 0;    // position in the composed arc list
     int impliedRank = 0;      // 0 for arcs authored at the parent; else the order of implication
     int origin = -1;          // implied arcs: the node they were implied from
+    bool inert = false;       // contributes no opinions and no arcs (relocation sources)
     std::vector<std::pair<int, SpecRef>> specs;  // (layer in the stack, spec), strongest first
 };
 
@@ -76,16 +91,21 @@ public:
     std::vector<int> strengthOrder() const;
     // A path in `node`'s namespace, as the stage sees it.
     std::string mapToRoot(int node, std::string path) const;
+    // A path in `node`'s namespace, as its parent node sees it.
+    std::string mapToParent(int node, std::string path) const;
     // True when some arc other than local opinions contributes (what makes instancing matter).
     bool hasArcs() const { return nodes_.size() > 1; }
     // Equal for prims whose arcs (sites, variant selections, layer offsets) are all the same: the
     // prims that USD would let share one instance prototype.
     std::string instanceKey() const;
+    // True when some site authors a payload that the load rules left out.
+    bool hasUnloadedPayload() const { return unloadedPayload_; }
 
 private:
     friend class PrimIndexer;
     std::string path_;
     std::vector<IndexNode> nodes_;
+    bool unloadedPayload_ = false;
     int impliedCount_ = 0;
     std::map<std::string, std::set<std::string>> variantSets_;  // set -> variants, as found
 };
@@ -107,14 +127,25 @@ private:
     struct Work;
     struct ArcItem;
 
+    static constexpr std::size_t kMaxNodesPerPrim = 1000;
+
     void expand(PrimIndex& index, Work& work);
     void finish(PrimIndex& index, Work& work);
     int addNode(PrimIndex& index, IndexNode node, bool checkCycle, const SourceLocation& where, Work& work);
+    // Inserts node `id` among its parent's children at its strength.
+    static void insertChild(PrimIndex& index, int id);
+    // True (after one warning per index) when `adding` more nodes would pass kMaxNodesPerPrim.
+    bool overflows(const PrimIndex& index, std::size_t adding, const SourceLocation& where, Work& work);
     void addArcs(PrimIndex& index, int node, Work& work);
     void addVariants(PrimIndex& index, int node, Work& work);
     void addReference(PrimIndex& index, int node, ArcType arc, const ArcItem& item, int sibling, Work& work);
     void addClass(PrimIndex& index, int node, ArcType arc, const ArcItem& item, int sibling, Work& work);
     void implyClass(PrimIndex& index, int classNode, Work& work);
+    // Relocation arcs (scene/relocation_arcs.cpp).
+    void addRelocation(PrimIndex& index, int node, Work& work);
+    PrimIndex indexAt(const LayerStack& stack, const std::string& path);
+    int graft(PrimIndex& index, int parent, const PrimIndex& source);
+    void elideRelocationSources(PrimIndex& index, int node) const;
     std::vector<ArcItem> composeArcs(const IndexNode& node, std::initializer_list<const char*> keys) const;
     const std::vector<int>& orderOf(const PrimIndex& index);
     std::optional<std::string> selectionFor(const PrimIndex& index, const std::string& set);
@@ -129,6 +160,7 @@ private:
     std::vector<int> order_;  // strength order of the index being expanded (orderOf)
     const PrimIndex* orderFor_ = nullptr;
     std::size_t orderSize_ = 0;
+    std::vector<std::pair<const LayerStack*, std::string>> relocating_;  // sources being indexed
 };
 
 }  // namespace fluence::usd::detail

@@ -7,6 +7,7 @@
 #include "scene/flatten.h"
 #include "scene/layer_stack.h"
 #include "scene/namespace_remap.h"
+#include "scene/time_samples.h"
 
 namespace fluence::usd {
 
@@ -161,39 +162,11 @@ void Stage::traverse(const std::function<bool(const PrimSpec&)>& visit) const {
 void Stage::traverse(const PrimSpec& root, const std::function<bool(const PrimSpec&)>& visit) { visitPrim(root, visit); }
 
 std::optional<Value> Stage::resolve(const AttributeSpec& attribute, double time) {
-    auto fromDefault = [&]() -> std::optional<Value> {
-        if (!attribute.hasDefault || attribute.defaultValue.isBlocked()) return std::nullopt;
-        return attribute.defaultValue;
-    };
-    const auto& samples = attribute.timeSamples;
-    if (std::isnan(time) || samples.empty()) return fromDefault();
-
-    auto after = std::lower_bound(samples.begin(), samples.end(), time,
-                                  [](const std::pair<double, Value>& s, double t) { return s.first < t; });
-    const Value* v = nullptr;
-    if (after == samples.begin())
-        v = &after->second;
-    else if (after == samples.end())
-        v = &samples.back().second;
-    else if (after->first == time)
-        v = &after->second;
-    else {
-        const auto& lo = *(after - 1);
-        const auto& hi = *after;
-        if (lo.second.isNumeric() && hi.second.isNumeric() && lo.second.numbers.size() == hi.second.numbers.size() &&
-            lo.second.typeName.find("int") == std::string::npos && lo.second.typeName != "bool") {
-            double a = (time - lo.first) / (hi.first - lo.first);
-            std::vector<double> mixed(lo.second.numbers.size());
-            for (std::size_t i = 0; i < mixed.size(); ++i)
-                mixed[i] = lo.second.numbers[i] + a * (hi.second.numbers[i] - lo.second.numbers[i]);
-            Value r = lo.second;
-            r.numbers = std::move(mixed);
-            return r;
-        }
-        v = &lo.second;  // held
-    }
-    if (v->isBlocked()) return std::nullopt;
-    return *v;
+    bool fromDefault = std::isnan(time) || attribute.timeSamples.empty();
+    if (fromDefault && !attribute.hasDefault) return std::nullopt;
+    Value value = fromDefault ? attribute.defaultValue : valueAtTime(attribute.timeSamples, time);
+    if (value.isBlocked()) return std::nullopt;
+    return value;
 }
 
 }  // namespace fluence::usd

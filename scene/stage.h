@@ -1,12 +1,15 @@
 // The stage: the composed scene graph the delegate reads.
 //
-// Stage::open reads the root layer, its sublayers and every layer that references and payloads
-// reach, and composes them (scene/flatten.h) into one flattened Layer whose prim specs hold the
-// composed result; prim(), traverse() and the layer-metadata queries read that layer. What the
-// stage adds on top is USD's value resolution at a time code — layer-metadata fallbacks (upAxis
-// "Y", metersPerUnit 0.01), attribute values at a time code (the default value, or time samples
-// held or linearly interpolated) — and the traversal rules (only defined, active prims;
-// `over`-only and `class` subtrees are not rendered).
+// Stage::open reads the root layer, its sublayers and every layer that references, loaded payloads
+// and value clips reach, and composes them (scene/flatten.h: sublayers, inherits, variants,
+// relocates, references, payloads, specializes; layer offsets and time-code rates; value clips)
+// into one flattened Layer whose prim specs hold the composed result; prim(), traverse() and the
+// layer-metadata queries read that layer. What the stage adds on top is USD's value resolution at
+// a time code — layer-metadata fallbacks (upAxis "Y", metersPerUnit 0.01), attribute values at a
+// time code (the default value, or time samples held or linearly interpolated; scene/time_samples.h)
+// — and the traversal rules (only defined, active prims; `over`-only and `class` subtrees are not
+// rendered). Time codes are the root layer's: startTimeCode and endTimeCode are read from it as
+// authored, and every composed time sample is mapped into it.
 #pragma once
 
 #include <cmath>
@@ -48,7 +51,7 @@ public:
     const Layer& rootLayer() const;                            // the root layer as parsed
     const Layer& composedLayer() const { return *composed_; }  // the flattened result
 
-    // Layer metadata, from the root layer.
+    // Layer metadata, from the root layer (relocates and sublayers are consumed by composition).
     std::string defaultPrim() const;
     char upAxis() const;             // 'Y' or 'Z'; USD's fallback is 'Y'
     double metersPerUnit() const;    // USD's fallback is 0.01 (centimetres)

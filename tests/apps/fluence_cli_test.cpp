@@ -311,5 +311,78 @@ TEST_F(FluenceCli, HelpAndVersion) {
     EXPECT_EQ(version.out.rfind("fluence ", 0), 0u);
 }
 
+// Payload load rules from the command line: --no-payloads, --load and --unload decide which
+// payloads `info` composes (marking the prims left unloaded) and `render` draws.
+TEST_F(FluenceCli, PayloadLoadRules) {
+    write("ball.usda", "#usda 1.0\n(\n    defaultPrim = \"Ball\"\n)\n\ndef Xform \"Ball\"\n{\n"
+                       "    def Sphere \"Geom\"\n    {\n        double radius = 0.8\n    }\n}\n");
+    fs::path scene = write("payloads.usda", R"(#usda 1.0
+def Camera "Cam"
+{
+    double3 xformOp:translate = (0, 0, 10)
+    uniform token[] xformOpOrder = ["xformOp:translate"]
+}
+def DomeLight "Sky"
+{
+}
+def Xform "World"
+{
+    def "Left" (
+        payload = @./ball.usda@
+    )
+    {
+        double3 xformOp:translate = (-1.2, 0, 0)
+        uniform token[] xformOpOrder = ["xformOp:translate"]
+    }
+    def "Right" (
+        payload = @./ball.usda@
+    )
+    {
+        double3 xformOp:translate = (1.2, 0, 0)
+        uniform token[] xformOpOrder = ["xformOp:translate"]
+    }
+}
+)");
+    auto info = [&](const std::string& flags) {
+        RunResult r = run("info " + scene.string() + flags);
+        EXPECT_EQ(r.exitCode, 0) << flags << "\n" << r.err;
+        return r.out;
+    };
+    const std::string unloaded = "  (payload not loaded)";
+    std::string all = info("");
+    EXPECT_NE(all.find("Left  Xform\n"), std::string::npos) << all;
+    EXPECT_NE(all.find("Geom  Sphere"), std::string::npos) << all;
+    EXPECT_EQ(all.find(unloaded), std::string::npos) << all;
+    std::string none = info(" --no-payloads");
+    EXPECT_NE(none.find("Left" + unloaded + "\n"), std::string::npos) << none;
+    EXPECT_NE(none.find("Right" + unloaded + "\n"), std::string::npos) << none;
+    EXPECT_EQ(none.find("ball.usda"), std::string::npos) << none;  // not even read
+    std::string one = info(" --load /World/Right --no-payloads");  // the nearest rule wins, in any order
+    EXPECT_NE(one.find("Left" + unloaded + "\n"), std::string::npos) << one;
+    EXPECT_NE(one.find("Right  Xform\n"), std::string::npos) << one;
+    std::string left = info(" --unload /World/Left");
+    EXPECT_NE(left.find("Left" + unloaded + "\n"), std::string::npos) << left;
+    EXPECT_NE(left.find("Right  Xform\n"), std::string::npos) << left;
+
+    // Rendered: with Left unloaded, nothing covers the left half of the frame.
+    auto coverage = [&](const std::string& flags, bool leftHalf) {
+        fs::path out = dir_ / "payloads.exr";
+        RunResult r = run("render " + scene.string() + " -o " + out.string() + " -r 64 48 --spp 2" + flags);
+        EXPECT_EQ(r.exitCode, 0) << flags << "\n" << r.err;
+        ExrImage img = readExr(out);
+        return channelMean(img, {"A"}, [&](int x, int) { return (x < img.width / 2) == leftHalf; }).mean();
+    };
+    EXPECT_GT(coverage("", true), 0.05);
+    EXPECT_EQ(coverage(" --unload /World/Left", true), 0.0);
+    EXPECT_GT(coverage(" --unload /World/Left", false), 0.05);
+
+    RunResult bad = run("render " + scene.string() + " --load World");
+    EXPECT_EQ(bad.exitCode, 2);
+    EXPECT_NE(bad.err.find("--load needs an absolute prim path"), std::string::npos) << bad.err;
+    RunResult help = run("--help");
+    for (const char* flag : {"--load PATH", "--unload PATH", "--no-payloads"})
+        EXPECT_NE(help.out.find(flag), std::string::npos) << flag;
+}
+
 }  // namespace
 }  // namespace fluence

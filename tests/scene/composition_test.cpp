@@ -5,114 +5,18 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
-#include <filesystem>
-#include <fstream>
-#include <sstream>
-#include <stdexcept>
 #include <string>
 #include <utility>
 #include <vector>
 
 #include "scene/stage.h"
 #include "scene/usda_parser.h"
+#include "tests/scene/composition_helpers.h"
 
 namespace fluence::usd {
 namespace {
 
-namespace fs = std::filesystem;
-
-const fs::path kLayers = fs::path(FLUENCE_SOURCE_DIR "/tests/scene/composition").lexically_normal();
-
-std::string layer(const std::string& relative) { return (kLayers / relative).generic_string(); }
-
-std::unique_ptr<Stage> open(const std::string& relative, const StageOptions& options = {}) {
-    return Stage::open(layer(relative), options);
-}
-
-const PrimSpec& at(const Stage& stage, const std::string& path) {
-    const PrimSpec* prim = stage.prim(path);
-    if (!prim) throw std::runtime_error("no composed prim at " + path);
-    return *prim;
-}
-
-const AttributeSpec& attribute(const PrimSpec& prim, const std::string& name) {
-    const AttributeSpec* a = prim.attribute(name);
-    if (!a) throw std::runtime_error("no attribute " + name + " on " + prim.path);
-    return *a;
-}
-
-double number(const PrimSpec& prim, const std::string& name) {
-    auto value = Stage::resolve(attribute(prim, name), kDefaultTime);
-    if (!value || !value->asDouble()) throw std::runtime_error(name + " on " + prim.path + " has no number");
-    return *value->asDouble();
-}
-
-std::vector<double> numbers(const PrimSpec& prim, const std::string& name) {
-    auto value = Stage::resolve(attribute(prim, name), kDefaultTime);
-    if (!value) throw std::runtime_error(name + " on " + prim.path + " has no value");
-    return value->numbers;
-}
-
-std::string text(const PrimSpec& prim, const std::string& name) {
-    auto value = Stage::resolve(attribute(prim, name), kDefaultTime);
-    if (!value || !value->asString()) throw std::runtime_error(name + " on " + prim.path + " has no string");
-    return *value->asString();
-}
-
-// (time, value) of a scalar attribute's time samples.
-std::vector<std::pair<double, double>> samples(const PrimSpec& prim, const std::string& name) {
-    std::vector<std::pair<double, double>> out;
-    for (const auto& [time, value] : attribute(prim, name).timeSamples) out.emplace_back(time, *value.asDouble());
-    return out;
-}
-
-std::vector<std::string> childNames(const PrimSpec& prim) {
-    std::vector<std::string> names;
-    for (const auto& child : prim.children) names.push_back(child->name);
-    return names;
-}
-
-std::vector<std::string> metadataStrings(const PrimSpec& prim, const std::string& key) {
-    const MetadataEntry* entry = findMetadata(prim.metadata, key);
-    return entry ? entry->value.strings : std::vector<std::string>{};
-}
-
-// Where `needle` starts in a layer file, as "file:line:column".
-std::string locate(const std::string& relative, const std::string& needle) {
-    std::ifstream file(layer(relative));
-    std::stringstream contents;
-    contents << file.rdbuf();
-    std::string all = contents.str();
-    std::size_t at = all.find(needle);
-    if (at == std::string::npos) throw std::runtime_error("'" + needle + "' not in " + relative);
-    int line = 1 + static_cast<int>(std::count(all.begin(), all.begin() + static_cast<std::ptrdiff_t>(at), '\n'));
-    std::size_t lineStart = all.rfind('\n', at);
-    int column = static_cast<int>(at - (lineStart == std::string::npos ? 0 : lineStart + 1)) + 1;
-    return SourceLocation{layer(relative), line, column}.str();
-}
-
-// The warnings whose message contains `part`.
-std::vector<CompositionWarning> warningsWith(const Stage& stage, const std::string& part) {
-    std::vector<CompositionWarning> found;
-    for (const CompositionWarning& w : stage.warnings())
-        if (w.message.find(part) != std::string::npos) found.push_back(w);
-    return found;
-}
-
-std::string allWarnings(const Stage& stage) {
-    std::string all;
-    for (const CompositionWarning& w : stage.warnings()) all += w.location.str() + " " + w.primPath + ": " + w.message + "\n";
-    return all;
-}
-
-std::vector<std::string> traversed(const Stage& stage) {
-    std::vector<std::string> paths;
-    stage.traverse([&](const PrimSpec& prim) {
-        paths.push_back(prim.path);
-        return true;
-    });
-    return paths;
-}
+using namespace test;
 
 // ---- Layer stack: sublayers ---------------------------------------------------------------------
 
@@ -263,7 +167,7 @@ TEST(CompositionPayloads, LoadedByDefault) {
 
 TEST(CompositionPayloads, LeftOutWhenNotLoaded) {
     StageOptions options;
-    options.loadPayloads = false;
+    options.loadRules = LoadRules::loadNone();
     auto stage = open("payloads/root.usda", options);
     const PrimSpec& loaded = at(*stage, "/World/Loaded");
     EXPECT_EQ(number(loaded, "local"), 1.0);

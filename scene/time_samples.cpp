@@ -1,0 +1,33 @@
+#include "scene/time_samples.h"
+
+#include <algorithm>
+
+namespace fluence::usd {
+
+namespace {
+
+bool interpolates(const Value& a, const Value& b) {
+    return a.isNumeric() && b.isNumeric() && a.numbers.size() == b.numbers.size() &&
+           a.typeName.find("int") == std::string::npos && a.typeName != "bool";
+}
+
+}  // namespace
+
+Value valueAtTime(const TimeSamples& samples, double time) {
+    auto after = std::lower_bound(samples.begin(), samples.end(), time,
+                                  [](const std::pair<double, Value>& s, double t) { return s.first < t; });
+    if (after == samples.begin()) return after->second;
+    if (after == samples.end()) return samples.back().second;
+    if (after->first == time) return after->second;
+    const auto& [loTime, lo] = *(after - 1);
+    const auto& [hiTime, hi] = *after;
+    if (!interpolates(lo, hi)) return lo;  // held
+    double a = (time - loTime) / (hiTime - loTime);
+    std::vector<double> mixed(lo.numbers.size());
+    for (std::size_t i = 0; i < mixed.size(); ++i) mixed[i] = lo.numbers[i] + a * (hi.numbers[i] - lo.numbers[i]);
+    Value out = lo;
+    out.numbers = std::move(mixed);
+    return out;
+}
+
+}  // namespace fluence::usd
