@@ -1,15 +1,93 @@
 #include "delegate/light_adapter.h"
 
+#include <algorithm>
 #include <cmath>
+
+#include "core/blackbody.h"
+#include "texture/image_loader.h"
 
 namespace fluence::delegate {
 
-bool isLightType(const std::string& t) {
-    return t == "RectLight" || t == "SphereLight" || t == "DistantLight" || t == "DomeLight";
+namespace {
+
+using Warn = std::function<void(const std::string&)>;
+
+bool appliesSchema(const usd::PrimSpec& prim, const std::string& schema) {
+    const usd::MetadataEntry* e = usd::findMetadata(prim.metadata, "apiSchemas");
+    return e && e->op != usd::ListOpKind::Delete &&
+           std::find(e->value.strings.begin(), e->value.strings.end(), schema) != e->value.strings.end();
 }
 
-std::optional<render::LightDesc> lightFromPrim(const PrimReader& prim, const Matrix4& toWorld,
-                                               const std::function<void(const std::string&)>& warn) {
+bool authorsShaping(const usd::PrimSpec& prim) {
+    return std::any_of(prim.attributes.begin(), prim.attributes.end(), [](const usd::AttributeSpec& a) {
+        return a.name.starts_with("inputs:shaping:") || a.name.starts_with("shaping:");
+    });
+}
+
+render::LightShapingDesc shapingOf(const PrimReader& prim) {
+    render::LightShapingDesc s;
+    s.coneAngleDegrees = static_cast<float>(prim.number({"inputs:shaping:cone:angle", "shaping:cone:angle"}, 90.0));
+    s.coneSoftness = static_cast<float>(prim.number({"inputs:shaping:cone:softness", "shaping:cone:softness"}, 0.0));
+    s.focus = static_cast<float>(prim.number({"inputs:shaping:focus", "shaping:focus"}, 0.0));
+    s.focusTint = RGB(prim.vec3({"inputs:shaping:focusTint", "shaping:focusTint"}, {0.0, 0.0, 0.0}));
+    return s;
+}
+
+// The image at `path` as rendering-space RGB, or null (with a warning) when it cannot be read.
+std::shared_ptr<const render::RgbImage> loadTexture(const std::string& path, const std::string& fallback, const Warn& warn) {
+    texture::Image image;
+    try {
+        image = texture::loadImage(path);
+    } catch (const texture::ImageLoadError& e) {
+        warn(std::string(e.what()) + "; " + fallback);
+        return nullptr;
+    }
+    auto rgb = std::make_shared<render::RgbImage>();
+    rgb->width = image.width;
+    rgb->height = image.height;
+    rgb->texels.resize(std::size_t(image.width) * image.height);
+    bool grey = image.channels < 3;
+    for (int y = 0; y < image.height; ++y)
+        for (int x = 0; x < image.width; ++x)
+            rgb->texels[std::size_t(y) * image.width + x] =
+                grey ? RGB(image.at(x, y, 0)) : RGB(image.at(x, y, 0), image.at(x, y, 1), image.at(x, y, 2));
+    return rgb;
+}
+
+// The dome's lat-long texture, or null (after a warning) when it has none that can be used.
+std::shared_ptr<const render::RgbImage> domeTexture(const PrimReader& prim, const Warn& warn) {
+    std::string file = prim.token({"inputs:texture:file", "texture:file"}, "");
+    if (file.empty()) return nullptr;
+    std::string format = prim.token({"inputs:texture:format", "texture:format"}, "automatic");
+    if (format != "automatic" && format != "latlong") {
+        warn("texture:format '" + format + "' is not supported (only latlong); rendered with its constant colour");
+        return nullptr;
+    }
+    auto texture = loadTexture(file, "rendered with its constant colour", warn);
+    if (texture && format == "automatic" && texture->width != 2 * texture->height)
+        warn("texture '" + file + "' is " + std::to_string(texture->width) + "x" + std::to_string(texture->height) +
+             ", not 2:1; read as a lat-long map");
+    return texture;
+}
+
+// DomeLight_1's pole axis, as a rotation of the dome applied before its transform.
+Matrix4 poleRotation(const PrimReader& prim, char stageUpAxis, const Warn& warn) {
+    std::string pole = prim.token({"poleAxis"}, "scene");
+    if (pole == "scene") pole = std::string(1, stageUpAxis);
+    if (pole == "Z") return Matrix4::rotateX(90.0);  // +Y -> +Z, +Z -> -Y
+    if (pole != "Y") warn("poleAxis '" + pole + "' is not one of scene, Y, Z; Y is used");
+    return Matrix4::identity();
+}
+
+}  // namespace
+
+bool isLightType(const std::string& t) {
+    return t == "RectLight" || t == "DiskLight" || t == "SphereLight" || t == "CylinderLight" || t == "DistantLight" ||
+           t == "DomeLight" || t == "DomeLight_1";
+}
+
+std::optional<render::LightDesc> lightFromPrim(const PrimReader& prim, const Matrix4& toWorld, char stageUpAxis,
+                                               const Warn& warn) {
     const std::string& type = prim.prim().typeName;
     render::LightDesc light;
     light.name = prim.path();
@@ -20,31 +98,66 @@ std::optional<render::LightDesc> lightFromPrim(const PrimReader& prim, const Mat
     Vec3d color = prim.vec3({"inputs:color", "color"}, {1.0, 1.0, 1.0});
     light.radiance = RGB(color * (intensity * std::exp2(exposure)));
     light.normalize = prim.boolean({"inputs:normalize", "normalize"}, false);
-    if (prim.boolean({"inputs:enableColorTemperature", "enableColorTemperature"}, false))
-        warn("colour temperature is not supported yet; ignored");
+    if (prim.boolean({"inputs:enableColorTemperature", "enableColorTemperature"}, false)) {
+        double kelvin = prim.number({"inputs:colorTemperature", "colorTemperature"}, 6500.0);
+        if (!(kelvin >= 1000.0 && kelvin <= 10000.0)) {
+            warn("colorTemperature " + std::to_string(kelvin) + " K is outside UsdLux's 1000-10000 K; clamped");
+            kelvin = std::clamp(std::isnan(kelvin) ? 6500.0 : kelvin, 1000.0, 10000.0);
+        }
+        light.radiance *= blackbodyRgb(kelvin);
+    }
+    bool shaped = appliesSchema(prim.prim(), "ShapingAPI") || authorsShaping(prim.prim());
+    if (prim.value({"inputs:shaping:ies:file", "shaping:ies:file"})) warn("IES profiles are not supported yet; ignored");
 
     if (type == "RectLight") {
         light.type = render::LightType::Rect;
         light.width = static_cast<float>(prim.number({"inputs:width", "width"}, 1.0));
         light.height = static_cast<float>(prim.number({"inputs:height", "height"}, 1.0));
-        if (prim.value({"inputs:texture:file", "texture:file"})) warn("rect light textures are not supported yet; ignored");
+        std::string file = prim.token({"inputs:texture:file", "texture:file"}, "");
+        if (!file.empty()) light.texture = loadTexture(file, "rendered with its constant colour", warn);
+    } else if (type == "DiskLight") {
+        light.type = render::LightType::Disk;
+        light.radius = static_cast<float>(prim.number({"inputs:radius", "radius"}, 0.5));
     } else if (type == "SphereLight") {
         light.type = render::LightType::Sphere;
         light.radius = static_cast<float>(prim.number({"inputs:radius", "radius"}, 0.5));
-        if (!(light.radius > 0.0f)) {
-            warn("a sphere light of radius 0 (a point light) is not supported yet; skipped");
+        light.treatAsPoint = prim.boolean({"treatAsPoint"}, false) || light.radius == 0.0f;
+    } else if (type == "CylinderLight") {
+        light.type = render::LightType::Cylinder;
+        light.length = static_cast<float>(prim.number({"inputs:length", "length"}, 1.0));
+        light.radius = static_cast<float>(prim.number({"inputs:radius", "radius"}, 0.5));
+        light.treatAsLine = prim.boolean({"treatAsLine"}, false) || light.radius == 0.0f;
+        if (!(light.length > 0.0f)) {
+            warn("a cylinder light of length " + std::to_string(light.length) + " emits nothing; skipped");
             return std::nullopt;
         }
-        if (prim.boolean({"treatAsPoint"}, false)) warn("treatAsPoint is not supported yet; the light keeps its radius");
     } else if (type == "DistantLight") {
         light.type = render::LightType::Distant;
         light.angleDegrees = static_cast<float>(prim.number({"inputs:angle", "angle"}, 0.53));
-    } else if (type == "DomeLight") {
+    } else if (type == "DomeLight" || type == "DomeLight_1") {
         light.type = render::LightType::Dome;
-        if (prim.value({"inputs:texture:file", "texture:file"}))
-            warn("dome light textures are not supported yet; rendered with its constant colour");
+        light.texture = domeTexture(prim, warn);
+        if (type == "DomeLight_1") light.transform = toWorld * poleRotation(prim, stageUpAxis, warn);
     } else {
         return std::nullopt;
+    }
+
+    if (light.type == render::LightType::Disk || light.type == render::LightType::Sphere ||
+        light.type == render::LightType::Cylinder) {
+        if (light.radius < 0.0f || (light.radius == 0.0f && light.type == render::LightType::Disk)) {
+            warn("a " + type + " of radius " + std::to_string(light.radius) + " emits nothing; skipped");
+            return std::nullopt;
+        }
+        if (light.radius == 0.0f && !light.normalize) {
+            warn("a " + type + " of radius 0 emits nothing unless inputs:normalize is on; skipped");
+            return std::nullopt;
+        }
+    }
+    if (shaped) {
+        if (light.type == render::LightType::Distant || light.type == render::LightType::Dome)
+            warn("shaping is not applied to " + type + "s; ignored");
+        else
+            light.shaping = shapingOf(prim);
     }
     return light;
 }

@@ -1,19 +1,43 @@
-// UsdLux lights -> render::LightDesc.
+// UsdLux lights -> render::LightDesc (the sync phase of a LightSprim).
 //
 // Units follow UsdLux: the emitted radiance is intensity * 2^exposure * color (so a directly
-// seen light of intensity 1, exposure 0, colour white reads 1.0), divided by the light's
-// world-space area when inputs:normalize is on (done by the render core, which knows the area).
-// Attribute names are read with the "inputs:" prefix and, for files written before USD 21.05,
-// without it.
+// seen light of intensity 1, exposure 0, colour white reads 1.0), times the colour temperature's
+// tint when enabled, divided by the light's world-space area when inputs:normalize is on (done
+// by the render core, which knows the area). Attribute names are read with the "inputs:" prefix
+// and, for files written before USD 21.05, without it (treatAsPoint, treatAsLine and poleAxis
+// have no prefix in either).
 //
-// | type         | attributes read (fallback)                                                 |
-// |--------------|-----------------------------------------------------------------------------|
-// | all          | intensity (1; DistantLight 50000), exposure (0), color (1,1,1), normalize (false) |
-// | RectLight    | width (1), height (1)                                                        |
-// | SphereLight  | radius (0.5)                                                                  |
-// | DistantLight | angle (0.53 degrees)                                                          |
-// | DomeLight    | constant colour only (texture:file warns and is ignored in this slice)        |
-// enableColorTemperature, light textures and shaping are not supported yet: they warn once.
+// | type          | attributes read (fallback)                                                  |
+// |---------------|-----------------------------------------------------------------------------|
+// | all           | intensity (1; DistantLight 50000), exposure (0), color (1,1,1),              |
+// |               | normalize (false), enableColorTemperature (false), colorTemperature (6500)   |
+// | RectLight     | width (1), height (1), texture:file (none)                                   |
+// | DiskLight     | radius (0.5)                                                                 |
+// | SphereLight   | radius (0.5), treatAsPoint (false)                                           |
+// | CylinderLight | length (1), radius (0.5), treatAsLine (false)                                |
+// | DistantLight  | angle (0.53 degrees)                                                         |
+// | DomeLight     | texture:file (none), texture:format (automatic)                              |
+// | DomeLight_1   | as DomeLight, and poleAxis (scene)                                           |
+// | ShapingAPI    | shaping:cone:angle (90), shaping:cone:softness (0), shaping:focus (0),        |
+// |               | shaping:focusTint (0,0,0): read on rect, disk, sphere and cylinder lights     |
+// |               | that apply ShapingAPI or author any of them (render/light_shaping.h)          |
+//
+// - Colour temperature: color is multiplied by core/blackbody.h's blackbodyRgb (luminance 1, as
+//   UsdLuxBlackbodyTemperatureAsRgb), clamped with a warning to UsdLux's valid 1000-10000 K.
+// - Textures are read by texture::loadImage (linear; sRGB files decoded; the alpha channel and any
+//   channel past the third are dropped, one channel is grey). A file that cannot be read warns,
+//   naming it, and the light keeps its constant colour.
+// - DomeLight texture:format: "latlong", and "automatic" (which warns when the image is not 2:1),
+//   read the image as a lat-long map; "mirroredBall", "angular" and "cubeMapVerticalCross" warn
+//   and fall back to the constant colour.
+// - DomeLight_1 poleAxis: "Y" keeps the OpenEXR lat-long orientation (top +Y, longitude 0 along
+//   +Z); "Z" turns the dome +90 degrees about X so its top is +Z and longitude 0 looks along -Y,
+//   as UsdLux says; "scene" follows the stage's upAxis. DomeLight always has its pole on +Y.
+// - treatAsPoint / treatAsLine render the point and line lights of render/sphere_light.h and
+//   render/cylinder_light.h. A normalized sphere of radius 0 is a point light, a normalized
+//   cylinder of radius 0 a line light; unnormalized, they emit nothing and are skipped with a
+//   warning.
+// - Not supported, with one warning each: shaping:ies:*, shaping on dome and distant lights.
 #pragma once
 
 #include <functional>
@@ -28,7 +52,8 @@ namespace fluence::delegate {
 
 bool isLightType(const std::string& typeName);
 
-std::optional<render::LightDesc> lightFromPrim(const PrimReader& prim, const Matrix4& toWorld,
+// `stageUpAxis` ('Y' or 'Z') orients a DomeLight_1 whose poleAxis is "scene".
+std::optional<render::LightDesc> lightFromPrim(const PrimReader& prim, const Matrix4& toWorld, char stageUpAxis,
                                                const std::function<void(const std::string&)>& warn);
 
 }  // namespace fluence::delegate

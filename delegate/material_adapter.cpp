@@ -1,6 +1,8 @@
 #include "delegate/material_adapter.h"
 
 #include "delegate/prim_reader.h"
+#include "delegate/shader_inputs.h"
+#include "delegate/surface_shaders.h"
 
 namespace fluence::delegate {
 
@@ -22,7 +24,8 @@ bool strongerThanDescendants(const usd::RelationshipSpec& rel) {
     return e && e->value.asString().value_or("") == "strongerThanDescendants";
 }
 
-// Splits "/Prim/Path.property:name" into prim path and property name.
+}  // namespace
+
 std::pair<std::string, std::string> splitPropertyPath(const std::string& path) {
     auto slash = path.rfind('/');
     auto dot = path.find('.', slash == std::string::npos ? 0 : slash);
@@ -30,7 +33,6 @@ std::pair<std::string, std::string> splitPropertyPath(const std::string& path) {
     return {path.substr(0, dot), path.substr(dot + 1)};
 }
 
-}  // namespace
 
 std::string resolveTargetPath(const std::string& anchor, const std::string& target) {
     if (target.starts_with("/")) return target;
@@ -67,60 +69,39 @@ std::string boundMaterialPath(const usd::Stage& stage, const usd::PrimSpec& prim
 
 namespace {
 
-class PreviewSurfaceReader {
-public:
-    PreviewSurfaceReader(const usd::Stage& stage, double time, const Warn& warn)
-        : stage_(stage), time_(time), warn_(warn) {}
-
-    // The value of a colour input on `shader`, following connections to interface inputs.
-    std::optional<std::pair<RGB, std::string>> colorInput(const usd::PrimSpec& shader, const std::string& input) const {
-        auto source = valueSource(shader, input);
-        if (!source || !PrimReader(*source->first, time_).value(source->second)) return std::nullopt;
-        PrimReader reader(*source->first, time_);
-        Vec3d v = reader.vec3({source->second.c_str()}, {0, 0, 0});
-        return std::make_pair(RGB(v), reader.attributeMetadata(source->second, "colorSpace").value_or(""));
+// The Shader a material output leads to, through NodeGraph outputs (nullptr when none).
+const usd::PrimSpec* shaderBehind(const usd::Stage& stage, const usd::PrimSpec& material, const std::string& output) {
+    const usd::PrimSpec* prim = &material;
+    std::string property = output;
+    for (int hop = 0; hop < 16; ++hop) {
+        const usd::AttributeSpec* a = prim->attribute(property);
+        if (!a || a->connections.empty()) return nullptr;
+        auto [path, next] = splitPropertyPath(resolveTargetPath(prim->path, a->connections.front()));
+        prim = stage.prim(path);
+        if (!prim) return nullptr;
+        if (prim->typeName != "NodeGraph") return prim;
+        property = next;
     }
+    return nullptr;
+}
 
-    // The value of a float input on `shader`, following connections to interface inputs.
-    std::optional<double> floatInput(const usd::PrimSpec& shader, const std::string& input) const {
-        auto source = valueSource(shader, input);
-        if (!source || !PrimReader(*source->first, time_).value(source->second)) return std::nullopt;
-        return PrimReader(*source->first, time_).number({source->second.c_str()}, 0.0);
-    }
-
-private:
-    // The attribute whose value `input` takes: its own, or that of the Material or NodeGraph
-    // interface input it connects to (nullopt when not authored anywhere along the way).
-    std::optional<std::pair<const usd::PrimSpec*, std::string>> valueSource(const usd::PrimSpec& shader,
-                                                                            const std::string& input) const {
-        const usd::PrimSpec* prim = &shader;
-        std::string name = input;
-        for (int hop = 0; hop < 16; ++hop) {
-            const usd::AttributeSpec* a = prim->attribute(name);
-            if (!a) return std::nullopt;
-            if (a->connections.empty()) return std::make_pair(prim, name);
-            auto [sourcePrim, sourceProp] = splitPropertyPath(resolveTargetPath(prim->path, a->connections.front()));
-            const usd::PrimSpec* source = stage_.prim(sourcePrim);
-            if (!source) {
-                warn_(shader.path, "input '" + name + "' connects to missing prim " + sourcePrim + "; using its value");
-                return std::make_pair(prim, name);
-            }
-            if (source->typeName != "Material" && source->typeName != "NodeGraph") {
-                warn_(shader.path, "input '" + name + "' is connected to " + source->path + " (" + source->typeName +
-                                       "); shading networks and textures are not supported yet, using the input's value");
-                return std::make_pair(prim, name);
-            }
-            prim = source;
-            name = sourceProp;
-        }
-        warn_(shader.path, "input '" + input + "': connection chain too long; ignored");
-        return std::nullopt;
-    }
-
-    const usd::Stage& stage_;
-    double time_;
-    const Warn& warn_;
-};
+// The render core shades diffuse and emission only until the BSDFs of issue #6 are wired in:
+// say which authored lobes are read but not rendered.
+void warnAboutUnrenderedLobes(const render::MaterialDesc& m, const Warn& warn) {
+    std::string lobes;
+    auto note = [&](bool used, const char* name) {
+        if (used) lobes += (lobes.empty() ? "" : ", ") + std::string(name);
+    };
+    note(m.metallic > 0.0f, "metallic");
+    note(m.specularWorkflow && !isBlack(m.specularColor), "a specular colour");
+    note(m.transmission > 0.0f, "transmission");
+    note(m.coat > 0.0f, "clear coat");
+    note(m.sheen > 0.0f, "sheen");
+    note(m.opacity < 1.0f, "opacity");
+    note(m.subsurface > 0.0f, "subsurface");
+    if (!lobes.empty())
+        warn(m.name, "material uses " + lobes + ", read but not rendered yet (this version shades diffuse and emission only)");
+}
 
 }  // namespace
 
@@ -133,27 +114,26 @@ render::MaterialDesc materialFromPath(const usd::Stage& stage, const std::string
         warn(materialPath, "bound material does not exist; using the default material");
         return desc;
     }
-    const usd::AttributeSpec* surface = material->attribute("outputs:surface");
-    if (!surface || surface->connections.empty()) {
-        warn(materialPath, "material has no outputs:surface connection (render-context outputs such as "
-                           "outputs:mtlx:surface are not supported yet); using the default material");
-        return desc;
+    // The MaterialX render context first (Standard Surface), then the universal one.
+    std::string unsupported;
+    for (const char* output : {"outputs:mtlx:surface", "outputs:surface"}) {
+        const usd::PrimSpec* shader = shaderBehind(stage, *material, output);
+        if (!shader) continue;
+        std::string id = PrimReader(*shader, time).token({"info:id"}, "");
+        ShaderInputs inputs(stage, *shader, time, convertColor, warn);
+        if (id == "UsdPreviewSurface" || id == kStandardSurfaceId) {
+            desc = id == kStandardSurfaceId ? standardSurface(inputs, materialPath) : previewSurface(inputs, materialPath);
+            warnAboutUnrenderedLobes(desc, warn);
+            return desc;
+        }
+        if (unsupported.empty()) unsupported = shader->path + " ('" + id + "')";
     }
-    auto [shaderPath, output] = splitPropertyPath(resolveTargetPath(materialPath, surface->connections.front()));
-    const usd::PrimSpec* shader = stage.prim(shaderPath);
-    if (!shader) {
-        warn(materialPath, "outputs:surface connects to missing prim " + shaderPath + "; using the default material");
-        return desc;
-    }
-    std::string id = PrimReader(*shader, time).token({"info:id"}, "");
-    if (id != "UsdPreviewSurface") {
-        warn(shaderPath, "surface shader '" + id + "' is not supported yet (only UsdPreviewSurface); using the default material");
-        return desc;
-    }
-    PreviewSurfaceReader reader(stage, time, warn);
-    if (auto c = reader.colorInput(*shader, "inputs:diffuseColor")) desc.diffuse = convertColor(c->first, c->second);
-    if (auto c = reader.colorInput(*shader, "inputs:emissiveColor")) desc.emission = convertColor(c->first, c->second);
-    if (auto d = reader.floatInput(*shader, "inputs:displacement")) desc.displacement = static_cast<float>(*d);
+    warn(materialPath, unsupported.empty()
+                           ? "material has no outputs:surface or outputs:mtlx:surface connected to a shader; using the "
+                             "default material"
+                           : "surface shader " + unsupported +
+                                 " is not supported (UsdPreviewSurface and ND_standard_surface_surfaceshader are); "
+                                 "using the default material");
     return desc;
 }
 

@@ -18,6 +18,7 @@
 
 #include <functional>
 #include <string>
+#include <utility>
 
 #include "render/scene_description.h"
 #include "scene/stage.h"
@@ -35,5 +36,8 @@ render::MaterialDesc materialFromPath(const usd::Stage& stage, const std::string
 
 // Resolves a relationship or connection target (absolute, or relative to `anchor`).
 std::string resolveTargetPath(const std::string& anchor, const std::string& target);
+
+// Splits "/Prim/Path.property:name" into the prim path and the property name.
+std::pair<std::string, std::string> splitPropertyPath(const std::string& path);
 
 }  // namespace fluence::delegate

@@ -201,7 +201,7 @@ void CameraSprim::syncData(const SyncContext& context, const usd::PrimSpec* prim
 
 void LightSprim::syncData(const SyncContext& context, const usd::PrimSpec* prim, std::uint32_t) {
     if (!prim) return;
-    light_ = lightFromPrim(PrimReader(*prim, context.time), world(),
+    light_ = lightFromPrim(PrimReader(*prim, context.time), world(), context.stage.upAxis(),
                            [&](const std::string& message) { context.warn(prim->path, message); });
 }
 

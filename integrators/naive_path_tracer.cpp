@@ -4,7 +4,7 @@
 
 #include "core/frame.h"
 #include "integrators/first_hit.h"
-#include "render/bsdf.h"
+#include "render/bsdfs/lambertian.h"
 
 namespace fluence::integrators {
 
@@ -29,7 +29,8 @@ FilmSample NaivePathTracer::sample(const render::RenderScene& scene, const rende
 
         SurfaceFrame surface = orientTowards(*hit, wo);
         render::LambertianBsdf bsdf(hit->albedo);
-        std::optional<render::BsdfSample> bs = bsdf.sample(surface.frame.toLocal(wo), rng.next2D());
+        // uLobe = 0: the Lambertian has a single lobe (no random number drawn, as before).
+        std::optional<render::BsdfSample> bs = bsdf.sample(surface.frame.toLocal(wo), 0.0f, rng.next2D());
         if (!bs) break;
         Vec3f wi = surface.frame.toWorld(bs->wi);
         if (dot(wi, surface.geometricNormal) <= 0.0f) break;

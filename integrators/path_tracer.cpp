@@ -4,7 +4,7 @@
 
 #include "core/frame.h"
 #include "integrators/first_hit.h"
-#include "render/bsdf.h"
+#include "render/bsdfs/lambertian.h"
 
 namespace fluence::integrators {
 
@@ -97,7 +97,8 @@ FilmSample PathTracer::sample(const render::RenderScene& scene, const render::Ca
         }
 
         // Continue the path by sampling the BSDF.
-        std::optional<render::BsdfSample> bs = bsdf.sample(woLocal, rng.next2D());
+        // uLobe = 0: the Lambertian has a single lobe (no random number drawn, as before).
+        std::optional<render::BsdfSample> bs = bsdf.sample(woLocal, 0.0f, rng.next2D());
         if (!bs) break;
         Vec3f wi = frame.toWorld(bs->wi);
         if (dot(wi, ng) <= 0.0f) break;  // shading normal sent the path below the surface

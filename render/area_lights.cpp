@@ -1,22 +1,23 @@
 #include "render/area_lights.h"
 
+#include <algorithm>
 #include <cmath>
 
-#include "core/frame.h"
 #include "core/sampling.h"
 
 namespace fluence::render {
 
 namespace {
 
-// Solid-angle density of a uniformly area-sampled point seen from distance^2 at cosine cosLight.
+// Solid-angle density of a point sampled with density `areaPdf` per unit area, seen from
+// distance^2 `distanceSquared` at cosine `cosLight` to the light's normal (0 when it faces away).
 float areaToSolidAngle(float areaPdf, float distanceSquared, float cosLight) {
     return cosLight > 0.0f ? areaPdf * distanceSquared / cosLight : 0.0f;
 }
 
 }  // namespace
 
-RectLight::RectLight(const LightDesc& d) : name_(d.name), radiance_(d.radiance) {
+RectLight::RectLight(const LightDesc& d) : name_(d.name), radiance_(d.radiance), texture_(d.texture) {
     const Matrix4& t = d.transform;
     corner_ = Vec3f(t.transformPoint({-0.5 * d.width, -0.5 * d.height, 0.0}));
     edgeU_ = Vec3f(t.transformVector({double(d.width), 0.0, 0.0}));
@@ -24,10 +25,31 @@ RectLight::RectLight(const LightDesc& d) : name_(d.name), radiance_(d.radiance) 
     normal_ = normalize(Vec3f(t.transformNormal({0.0, 0.0, -1.0})));
     area_ = length(cross(edgeU_, edgeV_));
     if (d.normalize && area_ > 0.0f) radiance_ /= area_;
+    if (texture_ && texture_->texels.empty()) texture_.reset();
+    if (texture_) {
+        Vec3d sum(0.0);
+        for (const RGB& texel : texture_->texels) sum += Vec3d(texel);
+        meanTexel_ = RGB(sum / double(texture_->texels.size()));
+    }
+    if (d.shaping) shaping_ = LightShaping(*d.shaping, normal_);
 }
 
 std::array<Vec3f, 4> RectLight::corners() const {
     return {corner_, corner_ + edgeU_, corner_ + edgeU_ + edgeV_, corner_ + edgeV_};
+}
+
+RGB RectLight::radianceAt(const Vec3f& point, const Vec3f& wo) const {
+    RGB radiance = radiance_ * shaping_.factor(wo);
+    if (!texture_) return radiance;
+    // Solve point - corner = a edgeU + b edgeV (the edges need not be orthogonal under a shear).
+    Vec3f q = point - corner_;
+    float uu = dot(edgeU_, edgeU_), uv = dot(edgeU_, edgeV_), vv = dot(edgeV_, edgeV_);
+    float qu = dot(q, edgeU_), qv = dot(q, edgeV_), det = uu * vv - uv * uv;
+    float a = (qu * vv - qv * uv) / det, b = (qv * uu - qu * uv) / det;
+    // Texel (0, 0) sits at local (+X, +Y): a = 1, b = 1.
+    int x = std::clamp(static_cast<int>((1.0f - a) * texture_->width), 0, texture_->width - 1);
+    int y = std::clamp(static_cast<int>((1.0f - b) * texture_->height), 0, texture_->height - 1);
+    return radiance * texture_->at(x, y);
 }
 
 std::optional<LightSample> RectLight::sample(const Vec3f& p, Vec2f u) const {
@@ -39,66 +61,95 @@ std::optional<LightSample> RectLight::sample(const Vec3f& p, Vec2f u) const {
     Vec3f wi = d / dist;
     float cosLight = -dot(normal_, wi);
     if (cosLight <= 0.0f) return std::nullopt;
-    return LightSample{radiance_, wi, dist, areaToSolidAngle(1.0f / area_, dist2, cosLight), false};
+    return LightSample{radianceAt(q, -wi), wi, dist, areaToSolidAngle(1.0f / area_, dist2, cosLight), false};
 }
 
 float RectLight::pdf(const Vec3f& p, const Vec3f& wi, const LightHit& hit) const {
     return area_ > 0.0f ? areaToSolidAngle(1.0f / area_, lengthSquared(hit.point - p), -dot(normal_, wi)) : 0.0f;
 }
 
-RGB RectLight::emitted(const LightHit&, const Vec3f& wo) const {
-    return dot(normal_, wo) > 0.0f ? radiance_ : RGB(0.0f);
+RGB RectLight::emitted(const LightHit& hit, const Vec3f& wo) const {
+    return dot(normal_, wo) > 0.0f ? radianceAt(hit.point, wo) : RGB(0.0f);
 }
 
-float RectLight::power(const SceneBounds&) const { return luminance(radiance_) * area_ * kPi; }
-
-SphereLight::SphereLight(const LightDesc& d) : name_(d.name), radiance_(d.radiance) {
-    centre_ = Vec3f(d.transform.transformPoint({0, 0, 0}));
-    radius_ = d.radius * static_cast<float>(std::cbrt(std::abs(d.transform.determinant3x3())));
-    float area = 4.0f * kPi * radius_ * radius_;
-    if (d.normalize && area > 0.0f) radiance_ /= area;
+float RectLight::power(const SceneBounds&) const {
+    return luminance(radiance_ * meanTexel_) * area_ * kPi * shaping_.powerFraction(true);
 }
 
-namespace {
-
-// 1 - cos(theta_max) of the cone a sphere of radius r subtends at distance^2 d2, computed without
-// cancellation for small cones.
-double coneOneMinusCos(double r, double d2) {
-    double sin2 = r * r / d2;
-    return sin2 / (1.0 + std::sqrt(std::max(0.0, 1.0 - sin2)));
+std::optional<LightBounds> RectLight::bounds() const {
+    LightBounds b;
+    b.lo = b.hi = corner_;
+    for (const Vec3f& c : corners()) {
+        b.lo = vmin(b.lo, c);
+        b.hi = vmax(b.hi, c);
+    }
+    b.phi = luminance(radiance_ * meanTexel_) * area_ * kPi;
+    b.axis = normal_;
+    b.cosThetaO = 1.0f;
+    return shaping_.narrow(b, true);
 }
 
-}  // namespace
-
-std::optional<LightSample> SphereLight::sample(const Vec3f& p, Vec2f u) const {
-    Vec3f toCentre = centre_ - p;
-    double d2 = lengthSquared(Vec3d(toCentre));
-    if (d2 <= double(radius_) * radius_) return std::nullopt;  // inside: the sphere emits outwards
-    double oneMinusCosMax = coneOneMinusCos(radius_, d2);
-    double cosTheta = 1.0 - u.x * oneMinusCosMax;
-    double sinTheta = std::sqrt(std::max(0.0, (1.0 - cosTheta) * (1.0 + cosTheta)));
-    double phi = 2.0 * M_PI * u.y;
-    double dist = std::sqrt(d2);
-    Frame frame = Frame::fromNormal(Vec3f(Vec3d(toCentre) / dist));
-    Vec3f wi = normalize(frame.toWorld(
-        Vec3f(float(sinTheta * std::cos(phi)), float(sinTheta * std::sin(phi)), float(cosTheta))));
-    // Distance to the near intersection of the ray with the sphere.
-    double b = dot(Vec3d(toCentre), Vec3d(wi));
-    double disc = double(radius_) * radius_ - (d2 - b * b);
-    float t = static_cast<float>(b - std::sqrt(std::max(0.0, disc)));
-    return LightSample{radiance_, wi, t, static_cast<float>(1.0 / (2.0 * M_PI * oneMinusCosMax)), false};
+DiskLight::DiskLight(const LightDesc& d) : name_(d.name), radiance_(d.radiance) {
+    const Matrix4& t = d.transform;
+    centre_ = Vec3f(t.transformPoint({0.0, 0.0, 0.0}));
+    frame_ = Frame::fromNormal(normalize(Vec3f(t.transformNormal({0.0, 0.0, -1.0}))));
+    double areaScale = length(cross(t.transformVector({1.0, 0.0, 0.0}), t.transformVector({0.0, 1.0, 0.0})));
+    radius_ = static_cast<float>(d.radius * std::sqrt(areaScale));
+    area_ = kPi * radius_ * radius_;
+    if (d.normalize && area_ > 0.0f) radiance_ /= area_;
+    if (d.shaping) shaping_ = LightShaping(*d.shaping, frame_.n);
 }
 
-float SphereLight::pdf(const Vec3f& p, const Vec3f&, const LightHit&) const {
-    double d2 = lengthSquared(Vec3d(centre_ - p));
-    if (d2 <= double(radius_) * radius_) return 0.0f;
-    return static_cast<float>(1.0 / (2.0 * M_PI * coneOneMinusCos(radius_, d2)));
+std::optional<LightSample> DiskLight::sample(const Vec3f& p, Vec2f u) const {
+    if (area_ == 0.0f) return std::nullopt;
+    Vec2f s = sampleUniformDisk(u);
+    Vec3f q = centre_ + (frame_.s * s.x + frame_.t * s.y) * radius_;
+    Vec3f d = q - p;
+    float dist2 = lengthSquared(d);
+    if (dist2 == 0.0f) return std::nullopt;
+    float dist = std::sqrt(dist2);
+    Vec3f wi = d / dist;
+    float cosLight = -dot(frame_.n, wi);
+    if (cosLight <= 0.0f) return std::nullopt;
+    return LightSample{radiance_ * shaping_.factor(-wi), wi, dist, areaToSolidAngle(1.0f / area_, dist2, cosLight), false};
 }
 
-RGB SphereLight::emitted(const LightHit&, const Vec3f&) const { return radiance_; }
+float DiskLight::pdf(const Vec3f& p, const Vec3f& wi, const LightHit& hit) const {
+    return area_ > 0.0f ? areaToSolidAngle(1.0f / area_, lengthSquared(hit.point - p), -dot(frame_.n, wi)) : 0.0f;
+}
 
-float SphereLight::power(const SceneBounds&) const {
-    return luminance(radiance_) * 4.0f * kPi * radius_ * radius_ * kPi;
+RGB DiskLight::emitted(const LightHit&, const Vec3f& wo) const {
+    return dot(frame_.n, wo) > 0.0f ? radiance_ * shaping_.factor(wo) : RGB(0.0f);
+}
+
+float DiskLight::power(const SceneBounds&) const {
+    return luminance(radiance_) * area_ * kPi * shaping_.powerFraction(true);
+}
+
+void DiskLight::shapeBounds(Vec3f& lo, Vec3f& hi) const {
+    // A disk reaches r * sqrt(1 - n_i^2) from its centre along axis i.
+    const Vec3f& n = frame_.n;
+    Vec3f extent = Vec3f(std::sqrt(std::max(0.0f, 1.0f - n.x * n.x)), std::sqrt(std::max(0.0f, 1.0f - n.y * n.y)),
+                         std::sqrt(std::max(0.0f, 1.0f - n.z * n.z))) * radius_;
+    lo = centre_ - extent;
+    hi = centre_ + extent;
+}
+
+std::optional<LightBounds> DiskLight::bounds() const {
+    LightBounds b;
+    shapeBounds(b.lo, b.hi);
+    b.phi = luminance(radiance_) * area_ * kPi;
+    b.axis = frame_.n;
+    b.cosThetaO = 1.0f;
+    return shaping_.narrow(b, true);
+}
+
+std::optional<ShapeHit> DiskLight::intersect(const Vec3f& o, const Vec3f& d, float tMin, float tMax) const {
+    float denom = dot(d, frame_.n);
+    if (denom == 0.0f) return std::nullopt;
+    float t = dot(centre_ - o, frame_.n) / denom;
+    if (!(t > tMin && t < tMax) || lengthSquared(o + d * t - centre_) > radius_ * radius_) return std::nullopt;
+    return ShapeHit{t, frame_.n};
 }
 
 TriangleLight::TriangleLight(std::string meshName, const Vec3f& p0, const Vec3f& p1, const Vec3f& p2,
@@ -129,5 +180,16 @@ float TriangleLight::pdf(const Vec3f& p, const Vec3f& wi, const LightHit& hit) c
 }
 
 float TriangleLight::power(const SceneBounds&) const { return luminance(radiance_) * area_ * 2.0f * kPi; }
+
+std::optional<LightBounds> TriangleLight::bounds() const {
+    LightBounds b;
+    b.lo = vmin(p0_, vmin(p1_, p2_));
+    b.hi = vmax(p0_, vmax(p1_, p2_));
+    b.phi = power({});
+    b.axis = normal_;
+    b.cosThetaO = 1.0f;
+    b.twoSided = true;
+    return b;
+}
 
 }  // namespace fluence::render

@@ -1,18 +1,32 @@
-// Lights with a surface in the scene: UsdLux RectLight and SphereLight, and the triangles of
+// Flat lights with a surface in the scene: UsdLux RectLight and DiskLight, and the triangles of
 // emissive meshes. Their surfaces are also put in the ray-tracing scene, so camera and BSDF rays
-// see them; shadow rays do not (lights cast no shadows on each other).
+// see them; shadow rays do not (lights cast no shadows on each other). Sphere and cylinder lights
+// are in sphere_light.h and cylinder_light.h.
+//
+// | UsdLux input        | RectLight                               | DiskLight                   |
+// |---------------------|-----------------------------------------|-----------------------------|
+// | width, height       | local X, Y extent (1, 1)                | —                           |
+// | radius              | —                                       | 0.5                         |
+// | texture:file        | multiplies the radiance; texel (0, 0)   | —                           |
+// |                     | at local (+X, +Y), the last at (-X, -Y) |                             |
+// | normalize           | radiance / world-space area             | radiance / world-space area |
+// | shaping:*           | light_shaping.h                         | light_shaping.h             |
+// Both emit from their front (local -Z) side only and are sampled uniformly by area. A disk under
+// a non-uniform scale stays a disk, of the same world-space area as the ellipse it would be.
 #pragma once
 
 #include <array>
+#include <memory>
 
+#include "core/frame.h"
 #include "core/matrix.h"
 #include "render/light.h"
+#include "render/light_shape.h"
+#include "render/light_shaping.h"
 #include "render/scene_description.h"
 
 namespace fluence::render {
 
-// UsdLux RectLight: a width x height rectangle in the local XY plane, emitting from its front
-// (local -Z) side only. Sampled uniformly by area.
 class RectLight final : public Light {
 public:
     explicit RectLight(const LightDesc& desc);
@@ -21,6 +35,7 @@ public:
     float pdf(const Vec3f& p, const Vec3f& wi, const LightHit& hit) const override;
     RGB emitted(const LightHit& hit, const Vec3f& wo) const override;
     float power(const SceneBounds& bounds) const override;
+    std::optional<LightBounds> bounds() const override;
     std::string name() const override { return name_; }
 
     // The four world-space corners, counter-clockwise seen from the emitting side.
@@ -28,33 +43,43 @@ public:
     float area() const { return area_; }
 
 private:
+    // Radiance leaving `point` (on the rect) in direction `wo`, facing or not.
+    RGB radianceAt(const Vec3f& point, const Vec3f& wo) const;
+
     std::string name_;
     Vec3f corner_, edgeU_, edgeV_, normal_;  // normal_: emitting direction
     float area_;
     RGB radiance_;
+    std::shared_ptr<const RgbImage> texture_;
+    RGB meanTexel_{1.0f};
+    LightShaping shaping_;
 };
 
-// UsdLux SphereLight: a sphere emitting outwards everywhere. Sampled uniformly within the cone
-// it subtends (exact solid-angle sampling of the visible cap). Non-uniform scale is reduced to
-// the cube root of the transform's determinant.
-class SphereLight final : public Light {
+class DiskLight final : public Light, public AnalyticLightShape {
 public:
-    explicit SphereLight(const LightDesc& desc);
+    explicit DiskLight(const LightDesc& desc);
 
     std::optional<LightSample> sample(const Vec3f& p, Vec2f u) const override;
     float pdf(const Vec3f& p, const Vec3f& wi, const LightHit& hit) const override;
     RGB emitted(const LightHit& hit, const Vec3f& wo) const override;
     float power(const SceneBounds& bounds) const override;
+    std::optional<LightBounds> bounds() const override;
     std::string name() const override { return name_; }
 
+    void shapeBounds(Vec3f& lo, Vec3f& hi) const override;
+    std::optional<ShapeHit> intersect(const Vec3f& o, const Vec3f& d, float tMin, float tMax) const override;
+
     const Vec3f& centre() const { return centre_; }
+    const Vec3f& normal() const { return frame_.n; }  // the emitting direction
     float radius() const { return radius_; }
 
 private:
     std::string name_;
     Vec3f centre_;
-    float radius_;
+    Frame frame_;  // n: emitting direction
+    float radius_, area_;
     RGB radiance_;
+    LightShaping shaping_;
 };
 
 // One triangle of an emissive mesh: emits `radiance` from both sides, as emissive
@@ -67,6 +92,7 @@ public:
     float pdf(const Vec3f& p, const Vec3f& wi, const LightHit& hit) const override;
     RGB emitted(const LightHit& hit, const Vec3f& wo) const override { return radiance_; }
     float power(const SceneBounds& bounds) const override;
+    std::optional<LightBounds> bounds() const override;
     std::string name() const override { return name_; }
 
 private:

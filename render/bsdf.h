@@ -1,56 +1,98 @@
-// BSDFs: the interface convention every scattering model in Fluence follows.
+// BSDFs: the interface every scattering model in Fluence implements, and its conventions.
 //
-// All directions are unit vectors in the local shading frame (z = shading normal) and point
-// away from the surface: `wo` towards the viewer (or previous vertex), `wi` towards the light
-// (or next vertex).
-//   f(wo, wi)        the BSDF value, WITHOUT the cosine factor |cos theta_i|.
-//   sample(wo, u)    draws wi with density pdf(wo, wi) (solid angle); returns f and pdf
-//                    separately (never pre-divided); std::nullopt when no direction is produced.
-//   pdf(wo, wi)      the density sample() draws wi with.
-// A test checks, for every model, that sample() agrees with f() and pdf(), and a chi-square
-// test checks the distribution of sample() against pdf() (tests/render/bsdf_test.cpp).
+// FRAME. All directions are unit vectors in the local shading frame (z = shading normal) and
+// point away from the surface: `wo` towards the viewer (the previous path vertex), `wi` towards
+// the light (the next path vertex).
 //
-// Surfaces are two-sided: a BSDF evaluated with wo below the shading hemisphere mirrors both
-// directions to the upper side, so a single-sided wall reflects the same from either side.
+// THE TRIPLE.
+//   f(wo, wi)        the BSDF value, WITHOUT the cosine factor |cos theta_i| = |wi.z|: the
+//                    reflected radiance is the integral of f(wo, wi) L(wi) |wi.z| dwi.
+//   pdf(wo, wi)      the solid-angle density with which sample() returns wi, counting only the
+//                    non-delta part (0 where a delta lobe is the only way to reach wi). It may
+//                    integrate to less than 1: sample() can fail, and delta lobes carry the rest.
+//   sample(wo, uLobe, u)  draws wi. `uLobe` in [0,1) picks a lobe (or reflection against
+//                    refraction); `u` in [0,1)^2 draws the direction within it. Returns nullopt
+//                    when no direction is produced (for instance below the horizon).
+//   flags()          which kinds of lobes the BSDF has (BsdfFlags), constant per instance.
+//
+// THE SAMPLE RECORD. f and pdf are returned separately, never pre-divided: the path weight is
+// f * |wi.z| / pdf.
+//   - For a non-delta sample (specular == false), f == f(wo, wi) and pdf == pdf(wo, wi) (the
+//     whole BSDF's value and density, summed over its lobes; tests/render/bsdf_properties_test.cpp
+//     checks this for every model).
+//   - For a delta sample (specular == true), f and pdf are the coefficients of the two Dirac
+//     deltas: f = (reflectance or transmittance) / |wi.z| and pdf = the probability of having
+//     chosen that lobe, so f * |wi.z| / pdf is the correct weight. f() and pdf() never return
+//     a delta: for them the delta lobes are zero (they cannot be hit by another strategy, so
+//     an integrator must not apply MIS to a specular sample).
+//   - eta is the relative index of refraction crossed: (IOR on wi's side) / (IOR on wo's side)
+//     for a transmitted sample, 1 for a reflected one.
+//
+// SIDES.
+//   - Reflection-only BSDFs are two-sided: with wo below the shading hemisphere (wo.z < 0) both
+//     directions are mirrored to the upper side, so a single-sided wall reflects the same from
+//     either side; f and pdf are zero when wo and wi are on different sides.
+//   - Transmissive BSDFs are one-sided: wo.z > 0 is outside (the side the normal points to,
+//     IOR 1 relative to the interior's eta), wo.z < 0 inside. The integrator must therefore not
+//     flip the shading frame towards wo for a transmissive surface.
+//   - wo.z == 0 (grazing) scatters nothing: f = 0, pdf = 0, sample() = nullopt.
+//
+// RADIANCE, NOT IMPORTANCE. Every f here is the BSDF for radiance transport (paths traced from
+// the camera, as `path` and `naive` do). Refraction compresses solid angle, so radiance is
+// scaled by eta^-2 across the interface: the transmitted part of f carries 1 / eta^2 (eta as in
+// the sample record), and f obeys the generalised reciprocity
+//     f(wo, wi) / n(wo)^2 == f(wi, wo) / n(wi)^2
+// (n = IOR on that direction's side) instead of plain symmetry. Energy (flux) is conserved as
+// the integral of f(wo, wi) * (n(wi)/n(wo))^2 * |wi.z| dwi <= 1. A tracer of importance (light
+// paths, as BDPT or photon mapping would need) must use the adjoint f*(wo, wi) = f(wi, wo),
+// that is multiply the transmitted part by eta^2; no such tracer exists yet, so there is no
+// transport-mode argument.
+//
+// LABELS. For the path classes integrators declare (Heckbert's L(S|D)*E), a delta lobe is S and
+// every other lobe, diffuse or glossy, counts as D: what the class decides is whether a vertex
+// can be connected to a light or another vertex (next-event estimation), which any non-delta
+// lobe can.
+//
+// The models live in render/bsdfs/, one per file. An integrator creates the BSDF of a hit in a
+// BsdfArena (render/bsdf_arena.h) without a heap allocation.
 #pragma once
 
 #include <optional>
 
 #include "core/rgb.h"
-#include "core/sampling.h"
+#include "core/vec.h"
 
 namespace fluence::render {
 
-struct BsdfSample {
-    RGB f;
-    Vec3f wi;
-    float pdf = 0.0f;
+// What kinds of lobes a BSDF has (bitwise OR): at least one of reflection or transmission, and
+// one or more of diffuse, glossy or specular (none for a black surface).
+enum BsdfFlags : unsigned {
+    kBsdfReflection = 1u << 0,
+    kBsdfTransmission = 1u << 1,
+    kBsdfDiffuse = 1u << 2,
+    kBsdfGlossy = 1u << 3,
+    kBsdfSpecular = 1u << 4,  // a Dirac delta lobe (perfect mirror or perfect refraction)
 };
 
-// Lambertian diffuse reflection: f = albedo / pi on the side wo is on.
-class LambertianBsdf {
+struct BsdfSample {
+    RGB f;                  // BSDF value (non-delta) or delta coefficient (specular), no cosine
+    Vec3f wi;               // sampled direction, unit, local shading frame
+    float pdf = 0.0f;       // solid-angle density (non-delta) or lobe probability (specular)
+    bool specular = false;  // sampled from a delta lobe
+    float eta = 1.0f;       // relative IOR crossed: n(wi side) / n(wo side); 1 for reflection
+};
+
+class Bsdf {
 public:
-    explicit LambertianBsdf(const RGB& albedo) : albedo_(albedo) {}
+    virtual RGB f(const Vec3f& wo, const Vec3f& wi) const = 0;
+    virtual float pdf(const Vec3f& wo, const Vec3f& wi) const = 0;
+    virtual std::optional<BsdfSample> sample(const Vec3f& wo, float uLobe, Vec2f u) const = 0;
+    virtual unsigned flags() const = 0;
 
-    const RGB& albedo() const { return albedo_; }
-
-    RGB f(const Vec3f& wo, const Vec3f& wi) const {
-        return sameHemisphere(wo, wi) ? albedo_ * kInvPi : RGB(0.0f);
-    }
-    float pdf(const Vec3f& wo, const Vec3f& wi) const {
-        return sameHemisphere(wo, wi) ? cosineHemispherePdf(std::abs(wi.z)) : 0.0f;
-    }
-    std::optional<BsdfSample> sample(const Vec3f& wo, Vec2f u) const {
-        Vec3f wi = sampleCosineHemisphere(u);
-        if (wo.z < 0.0f) wi.z = -wi.z;
-        float p = cosineHemispherePdf(std::abs(wi.z));
-        if (p == 0.0f) return std::nullopt;
-        return BsdfSample{albedo_ * kInvPi, wi, p};
-    }
-
-private:
-    static bool sameHemisphere(const Vec3f& a, const Vec3f& b) { return a.z * b.z > 0.0f; }
-    RGB albedo_;
+protected:
+    // BSDFs live in a BsdfArena and are never deleted through this interface; a protected,
+    // trivial destructor keeps every model trivially destructible (the arena relies on it).
+    ~Bsdf() = default;
 };
 
 }  // namespace fluence::render

@@ -1,7 +1,36 @@
-// Lights at infinity: UsdLux DistantLight and DomeLight (constant colour in this slice).
+// Lights at infinity: UsdLux DistantLight and DomeLight (and DomeLight_1, whose pole axis the
+// delegate folds into the transform).
+//
+// | UsdLux input   | DistantLight                             | DomeLight                          |
+// |----------------|------------------------------------------|------------------------------------|
+// | angle          | angular diameter (0.53 degrees)          | —                                  |
+// | normalize      | the value is the irradiance of the disk  | no effect                          |
+// | texture:file   | —                                        | lat-long image (below)             |
+// | shaping:*      | ignored (the delegate warns)             | ignored (the delegate warns)       |
+// Only the rotation of a light's transform matters (a dome's is orthonormalised; its scale and
+// translation are ignored).
+//
+// The dome's image follows OpenEXR's lat-long convention, which UsdLux's DomeLight adopts: the
+// top row is latitude +pi/2 (the dome's +Y), the bottom row -pi/2; the left column is longitude
+// +pi and the right one -pi; latitude 0, longitude 0 is +Z and longitude +pi/2 is +X. So image
+// coordinates (u, v) in [0,1]^2 (u from the left edge, v from the top) map to longitude
+// phi = pi - 2 pi u and polar angle theta = pi v from +Y, the direction
+// (sin theta sin phi, cos theta, sin theta cos phi). Each texel is a cell of that grid (texel x
+// spans u in [x/W, (x+1)/W]); OpenEXR puts the first and last columns' centres on exactly +-pi,
+// half a texel away, which we accept so that every texel is one cell of the sampling grid.
+// Radiance is the texel's (nearest texel, no filtering) times the light's radiance.
+//
+// A textured dome is importance-sampled: a piecewise-constant distribution over the texels with
+// weights luminance x sin(theta) at each row's centre (the sin(theta) is the area a texel row
+// covers on the sphere), so the density in solid angle is p(u, v) / (2 pi^2 sin theta). Without a
+// texture the dome is sampled uniformly over the sphere.
 #pragma once
 
+#include <memory>
+
+#include "core/frame.h"
 #include "render/light.h"
+#include "render/light_image_distribution.h"
 #include "render/scene_description.h"
 
 namespace fluence::render {
@@ -19,6 +48,7 @@ public:
     bool atInfinity() const override { return true; }
     RGB escaped(const Vec3f& direction) const override;
     float power(const SceneBounds& bounds) const override;
+    std::optional<LightBounds> bounds() const override { return std::nullopt; }
     std::string name() const override { return name_; }
 
     bool isDelta() const { return oneMinusCosMax_ == 0.0; }
@@ -30,22 +60,31 @@ private:
     RGB value_;              // radiance of the disk, or irradiance for a delta light
 };
 
-// UsdLux DomeLight with a constant colour: radiance L from every direction. Sampled uniformly
-// over the sphere.
 class DomeLight final : public Light {
 public:
-    explicit DomeLight(const LightDesc& desc) : name_(desc.name), radiance_(desc.radiance) {}
+    explicit DomeLight(const LightDesc& desc);
 
     std::optional<LightSample> sample(const Vec3f& p, Vec2f u) const override;
     float pdf(const Vec3f& p, const Vec3f& wi, const LightHit& hit) const override;
     bool atInfinity() const override { return true; }
-    RGB escaped(const Vec3f&) const override { return radiance_; }
+    RGB escaped(const Vec3f& direction) const override;
     float power(const SceneBounds& bounds) const override;
+    std::optional<LightBounds> bounds() const override { return std::nullopt; }
     std::string name() const override { return name_; }
 
+    // World direction of lat-long image coordinates (u, v), and back (see the top of this file).
+    Vec3f direction(Vec2f uv) const;
+    Vec2f imageCoordinates(const Vec3f& direction) const;
+
 private:
+    RGB radianceAt(Vec2f uv) const;
+
     std::string name_;
     RGB radiance_;
+    Frame frame_;  // the world images of the dome's X (s), Y (t) and Z (n) axes
+    std::shared_ptr<const RgbImage> texture_;
+    ImageDistribution distribution_;
+    RGB meanRadiance_;  // over solid angle
 };
 
 }  // namespace fluence::render

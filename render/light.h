@@ -4,16 +4,21 @@
 //   sample(p, u)       picks a direction wi from reference point p towards the light; returns
 //                      the radiance Li arriving at p along -wi (before visibility), the distance
 //                      to the light (infinity for lights at infinity) and the density of wi in
-//                      solid angle. Delta lights (a distant light with angle 0) set `delta` and
-//                      pdf = 1; their Li is then irradiance.
+//                      solid angle. Delta lights, which no ray can hit, set `delta` and pdf = 1,
+//                      and Li is then irradiance on a surface facing wi: exactly for a distant
+//                      light of angle 0 and a point light (SphereLight treatAsPoint), and as a
+//                      one-sample estimate over the line for a line light (treatAsLine).
 //   pdf(p, wi, hit)    the solid-angle density sample() picks wi with, for a ray from p that
-//                      reached the light at `hit` (hit.point/normal ignored by lights at infinity).
+//                      reached the light at `hit` (hit.point/normal ignored by lights at infinity);
+//                      0 for delta lights.
 //   emitted(hit, wo)   radiance leaving the light's surface at `hit` towards wo.
 //   escaped(dir)       radiance from a light at infinity along a ray that left the scene in dir.
 //   power(bounds)      approximate emitted power (luminance-weighted), used to choose which
 //                      light to sample.
+//   bounds()           where and in which directions a light not at infinity emits, for the
+//                      light tree (render/light_tree.h); nullopt for lights at infinity.
 // Every light's sample/pdf pair is checked by the chi-square and consistency tests in
-// tests/render/light_test.cpp.
+// tests/render/light*_test.cpp.
 #pragma once
 
 #include <limits>
@@ -42,6 +47,19 @@ struct SceneBounds {
     float radius = 1.0f;
 };
 
+// A conservative bound on a light's emission (Conty Estevez & Kulla 2018): every emitting point
+// lies in the box [lo, hi]; every emitting surface normal lies within theta_o of `axis`, and
+// light leaves at most theta_e away from its normal. Light that leaves in a cone of directions
+// (a shaped point light) has theta_o = the cone and theta_e = 0. Each angle is kept as its cosine.
+struct LightBounds {
+    Vec3f lo, hi;
+    float phi = 0.0f;             // power, as power() returns it
+    Vec3f axis{0.0f, 0.0f, 1.0f};
+    float cosThetaO = -1.0f;      // -1: normals in every direction
+    float cosThetaE = 0.0f;       // 0: up to 90 degrees from the normal (a cosine emitter)
+    bool twoSided = false;        // also emits from the back of each normal (emissive triangles)
+};
+
 class Light {
 public:
     virtual ~Light() = default;
@@ -52,6 +70,7 @@ public:
     virtual bool atInfinity() const { return false; }
     virtual RGB escaped(const Vec3f& direction) const { return RGB(0.0f); }
     virtual float power(const SceneBounds& bounds) const = 0;
+    virtual std::optional<LightBounds> bounds() const = 0;
     virtual std::string name() const = 0;
 };
 

@@ -7,8 +7,10 @@
 #include <string>
 
 #include "render/area_lights.h"
+#include "render/cylinder_light.h"
 #include "render/infinite_lights.h"
 #include "render/mesh_transform.h"
+#include "render/sphere_light.h"
 
 namespace fluence::render {
 
@@ -60,6 +62,41 @@ RTCGeometry triangleGeometry(RTCDevice device, const std::vector<Vec3f>& positio
     auto* index = static_cast<unsigned*>(
         rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(unsigned), indices.size() / 3));
     std::copy(indices.begin(), indices.end(), index);
+    rtcCommitGeometry(geom);
+    return geom;
+}
+
+// Embree callbacks of a disk or cylinder light's user geometry; the user pointer is the light's
+// AnalyticLightShape.
+void analyticShapeBounds(const RTCBoundsFunctionArguments* args) {
+    Vec3f lo, hi;
+    static_cast<const AnalyticLightShape*>(args->geometryUserPtr)->shapeBounds(lo, hi);
+    *args->bounds_o = RTCBounds{lo.x, lo.y, lo.z, 0.0f, hi.x, hi.y, hi.z, 0.0f};
+}
+
+void analyticShapeIntersect(const RTCIntersectFunctionNArguments* args) {
+    if (args->N != 1 || !args->valid[0]) return;  // the scene is only traced with rtcIntersect1
+    auto* rayHit = reinterpret_cast<RTCRayHit*>(args->rayhit);
+    RTCRay& r = rayHit->ray;
+    std::optional<ShapeHit> hit = static_cast<const AnalyticLightShape*>(args->geometryUserPtr)
+                                      ->intersect({r.org_x, r.org_y, r.org_z}, {r.dir_x, r.dir_y, r.dir_z}, r.tnear, r.tfar);
+    if (!hit) return;
+    r.tfar = hit->t;
+    rayHit->hit.Ng_x = hit->normal.x;
+    rayHit->hit.Ng_y = hit->normal.y;
+    rayHit->hit.Ng_z = hit->normal.z;
+    rayHit->hit.u = rayHit->hit.v = 0.0f;
+    rayHit->hit.primID = args->primID;
+    rayHit->hit.geomID = args->geomID;
+    rayHit->hit.instID[0] = args->context->instID[0];
+}
+
+RTCGeometry analyticGeometry(RTCDevice device, const AnalyticLightShape& shape) {
+    RTCGeometry geom = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_USER);
+    rtcSetGeometryUserPrimitiveCount(geom, 1);
+    rtcSetGeometryUserData(geom, const_cast<AnalyticLightShape*>(&shape));
+    rtcSetGeometryBoundsFunction(geom, analyticShapeBounds, nullptr);
+    rtcSetGeometryIntersectFunction(geom, analyticShapeIntersect);
     rtcCommitGeometry(geom);
     return geom;
 }
@@ -131,8 +168,9 @@ RenderScene::RenderScene(const SceneDescription& scene) : embree_(std::make_uniq
 
     for (const MeshDesc& mesh : scene.meshes) addMesh(mesh, scene.materials);
     addPrototypes(scene);
+    for (const LightDesc& light : scene.lights) addLight(light);
 
-    // Scene bounds (for the power of lights at infinity) from surfaces, instances and light positions.
+    // Scene bounds (for the power of lights at infinity) from surfaces, instances and lights.
     Vec3f lo(std::numeric_limits<float>::max()), hi(-std::numeric_limits<float>::max());
     for (int m : surfaceMeshes_)
         if (m >= 0)
@@ -150,18 +188,15 @@ RenderScene::RenderScene(const SceneDescription& scene) : embree_(std::make_uniq
             hi = vmax(hi, p);
         }
     }
-    for (const LightDesc& l : scene.lights) {
-        if (l.type == LightType::Dome || l.type == LightType::Distant) continue;
-        Vec3f p(l.transform.transformPoint({0, 0, 0}));
-        lo = vmin(lo, p);
-        hi = vmax(hi, p);
-    }
+    for (const auto& light : lights_)
+        if (std::optional<LightBounds> b = light->bounds()) {
+            lo = vmin(lo, b->lo);
+            hi = vmax(hi, b->hi);
+        }
     if (lo.x <= hi.x) {
         bounds_.centre = (lo + hi) * 0.5f;
         bounds_.radius = std::max(0.5f * length(hi - lo), 1e-3f);
     }
-
-    for (const LightDesc& light : scene.lights) addLight(light);
 
     rtcCommitScene(embree_->surfaces);
     rtcCommitScene(embree_->lightShapes);
@@ -170,6 +205,7 @@ RenderScene::RenderScene(const SceneDescription& scene) : embree_(std::make_uniq
     std::vector<double> powers;
     for (const auto& l : lights_) powers.push_back(std::max(0.0f, l->power(bounds_)));
     lightSelection_ = DiscreteDistribution(powers);
+    lightTree_ = LightTree(lights_, bounds_);
     stats_.lights = lights_.size();
 }
 
@@ -276,27 +312,26 @@ void RenderScene::addPrototypes(const SceneDescription& scene) {
 
 void RenderScene::addLight(const LightDesc& desc) {
     int index = static_cast<int>(lights_.size());
-    RTCGeometry shape = nullptr;
+    RTCGeometry shape = nullptr;  // the light's surface for camera and BSDF rays, committed
     switch (desc.type) {
         case LightType::Rect: {
             auto light = std::make_unique<RectLight>(desc);
-            auto corners = light->corners();
-            shape = rtcNewGeometry(embree_->device, RTC_GEOMETRY_TYPE_TRIANGLE);
-            auto* v = static_cast<float*>(
-                rtcSetNewGeometryBuffer(shape, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), 4));
-            for (int i = 0; i < 4; ++i) {
-                v[3 * i] = corners[i].x;
-                v[3 * i + 1] = corners[i].y;
-                v[3 * i + 2] = corners[i].z;
-            }
-            auto* idx = static_cast<unsigned*>(
-                rtcSetNewGeometryBuffer(shape, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(unsigned), 2));
-            const unsigned quad[6] = {0, 1, 2, 0, 2, 3};
-            std::copy(quad, quad + 6, idx);
+            auto c = light->corners();
+            shape = triangleGeometry(embree_->device, {c[0], c[1], c[2], c[3]}, {0, 1, 2, 0, 2, 3});
+            lights_.push_back(std::move(light));
+            break;
+        }
+        case LightType::Disk: {
+            auto light = std::make_unique<DiskLight>(desc);
+            shape = analyticGeometry(embree_->device, *light);
             lights_.push_back(std::move(light));
             break;
         }
         case LightType::Sphere: {
+            if (desc.treatAsPoint) {
+                lights_.push_back(std::make_unique<PointLight>(desc));
+                return;
+            }
             auto light = std::make_unique<SphereLight>(desc);
             shape = rtcNewGeometry(embree_->device, RTC_GEOMETRY_TYPE_SPHERE_POINT);
             auto* v = static_cast<float*>(
@@ -305,6 +340,17 @@ void RenderScene::addLight(const LightDesc& desc) {
             v[1] = light->centre().y;
             v[2] = light->centre().z;
             v[3] = light->radius();
+            rtcCommitGeometry(shape);
+            lights_.push_back(std::move(light));
+            break;
+        }
+        case LightType::Cylinder: {
+            if (desc.treatAsLine) {
+                lights_.push_back(std::make_unique<LineLight>(desc));
+                return;
+            }
+            auto light = std::make_unique<CylinderLight>(desc);
+            shape = analyticGeometry(embree_->device, *light);
             lights_.push_back(std::move(light));
             break;
         }
@@ -317,7 +363,6 @@ void RenderScene::addLight(const LightDesc& desc) {
             lightsAtInfinity_.push_back(index);
             return;
     }
-    rtcCommitGeometry(shape);
     rtcAttachGeometryByID(embree_->lightShapes, shape, static_cast<unsigned>(lightShapeToLight_.size()));
     rtcReleaseGeometry(shape);
     lightShapeToLight_.push_back(index);

@@ -2,8 +2,16 @@
 //
 // Built once from a SceneDescription (the Embree scenes are committed at the end of the
 // constructor and never edited while rendering). Two top-level Embree scenes are kept: the
-// surfaces (meshes and instances) and the light shapes (rect and sphere lights). Camera and BSDF
-// rays look in both; shadow rays look only at surfaces, so light shapes cast no shadows.
+// surfaces (meshes and instances) and the light shapes (rect lights as two triangles, sphere
+// lights as an Embree sphere, disk and cylinder lights as user geometry intersected exactly;
+// point, line and infinite lights have no shape). Camera and BSDF rays look in both; shadow rays
+// look only at surfaces, so light shapes cast no shadows.
+//
+// Light selection for next-event estimation: chooseLight(p, n, u) walks the light tree
+// (render/light_tree.h), which favours the lights that can give the point p with normal n the
+// most light, in O(log N) per choice; lightProbability(p, n, light) is the probability of that
+// same choice, for the MIS weight of emission reached by BSDF sampling. lightSelection(), the
+// older choice proportional to power alone, stays until the integrators use chooseLight.
 //
 // Instancing: each prototype is one Embree scene, built once, and each instance an Embree
 // instance of it (one level), so N instances of a mesh cost its triangles once plus one
@@ -18,6 +26,7 @@
 
 #include "core/sampling.h"
 #include "render/light.h"
+#include "render/light_tree.h"
 #include "render/ray.h"
 #include "render/scene_description.h"
 
@@ -32,7 +41,7 @@ struct SurfaceHit {
     RGB albedo;             // diffuse reflectance (zero on light shapes)
     RGB emission;           // emitted radiance of an emissive surface (both sides)
     int light = -1;         // index of the light this surface belongs to, or -1
-    bool lightShape = false;  // a light's own shape (rect/sphere light): emits, does not reflect
+    bool lightShape = false;  // a light's own shape (rect, disk, sphere, cylinder): emits, does not reflect
 };
 
 struct SceneStats {
@@ -57,7 +66,13 @@ public:
     const Light& light(std::size_t i) const { return *lights_[i]; }
     // Lights at infinity (dome, distant), seen by rays that leave the scene.
     const std::vector<int>& lightsAtInfinity() const { return lightsAtInfinity_; }
-    // Chooses a light for next-event estimation, proportionally to its power.
+    // Chooses a light for next-event estimation at point p with normal n (the geometric normal on
+    // the side the light is gathered from; a zero vector where there is no surface) from u in
+    // [0, 1). light = -1 when no light can reach p.
+    LightChoice chooseLight(const Vec3f& p, const Vec3f& n, float u) const { return lightTree_.choose(p, n, u); }
+    // The probability chooseLight(p, n, .) returns `light` with.
+    float lightProbability(const Vec3f& p, const Vec3f& n, int light) const { return lightTree_.probability(p, n, light); }
+    // Chooses a light for next-event estimation proportionally to its power, wherever p is.
     const DiscreteDistribution& lightSelection() const { return lightSelection_; }
 
     const SceneBounds& bounds() const { return bounds_; }
@@ -86,6 +101,7 @@ private:
     std::vector<std::unique_ptr<Light>> lights_;
     std::vector<int> lightsAtInfinity_;
     DiscreteDistribution lightSelection_;
+    LightTree lightTree_;
     SceneBounds bounds_;
     SceneStats stats_;
 };

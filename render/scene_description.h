@@ -3,10 +3,12 @@
 // The delegate fills one from a USD stage; a unit test can fill one in ten lines. Units are the
 // scene's own (whatever metersPerUnit says); colours are already in the rendering space
 // (linear Rec.709); light quantities are already in radiance (UsdLux intensity, exposure,
-// colour and normalize folded in).
+// colour and colour temperature folded in; normalize is applied by the render core, which knows
+// the lights' world-space areas).
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -16,11 +18,44 @@
 
 namespace fluence::render {
 
-// A UsdPreviewSurface reduced to what this slice renders: Lambertian diffuse plus emission.
+// A surface material as the render core takes it: one layered "principled" parameter set that
+// both UsdPreviewSurface and MaterialX Standard Surface map onto (delegate/material_adapter.h
+// gives the mapping). From the bottom up: a diffuse base (weight 1 - metallic - transmission), a
+// dielectric specular lobe over it (Fresnel from `ior`, tinted by `specularColor`, weighted by
+// `specular`) or, with `specularWorkflow`, a specular lobe whose normal-incidence reflectance is
+// `specularColor` itself; a metal (weight `metallic`, normal-incidence reflectance `diffuse`,
+// edge tint `specularColor`); a rough dielectric transmission (weight `transmission`); a sheen;
+// a clear coat on top; emission. Colours are linear, in the rendering space; roughness values are
+// perceptual (alpha = roughness^2).
 struct MaterialDesc {
     std::string name;  // prim path, for messages
     RGB diffuse{0.18f};
+    float diffuseRoughness = 0.0f;  // Oren-Nayar sigma-like roughness, 0 = Lambertian
+    float specular = 1.0f;          // weight of the dielectric specular lobe
+    RGB specularColor{1.0f};
+    bool specularWorkflow = false;  // UsdPreviewSurface useSpecularWorkflow: specularColor is F0
+    float roughness = 0.5f;
+    float anisotropy = 0.0f;
+    float ior = 1.5f;
+    float metallic = 0.0f;
+    float transmission = 0.0f;
+    RGB transmissionColor{1.0f};
+    float sheen = 0.0f;
+    RGB sheenColor{1.0f};
+    float sheenRoughness = 0.3f;
+    float coat = 0.0f;
+    RGB coatColor{1.0f};
+    float coatRoughness = 0.01f;
+    float coatIor = 1.5f;
     RGB emission{0.0f};  // emitted radiance, both sides
+    float opacity = 1.0f;           // < 1: partly transparent (light passes straight through)
+    float opacityThreshold = 0.0f;  // > 0: a cut-out mask (opacity below it is fully transparent)
+    bool thinWalled = false;
+    // Subsurface scattering parameters (Standard Surface), read for the subsurface issue.
+    float subsurface = 0.0f;
+    RGB subsurfaceColor{1.0f};
+    RGB subsurfaceRadius{1.0f};
+    float subsurfaceScale = 1.0f;
     // UsdPreviewSurface displacement along the normal, in object units. Geometry, not shading:
     // the delegate applies it when it tessellates a subdivision surface; the render core ignores it.
     float displacement = 0.0f;
@@ -35,20 +70,44 @@ struct MeshDesc {
     int material = -1;                    // index into SceneDescription::materials, -1 = default
 };
 
-enum class LightType { Rect, Sphere, Distant, Dome };
+enum class LightType { Rect, Disk, Sphere, Cylinder, Distant, Dome };
+
+// An RGB image in the rendering space, row-major, top row first (as image files store rows).
+struct RgbImage {
+    int width = 0, height = 0;
+    std::vector<RGB> texels;
+
+    const RGB& at(int x, int y) const { return texels[std::size_t(y) * width + x]; }
+};
+
+// UsdLuxShapingAPI: the emission narrowed around the light's local -Z axis (render/light_shaping.h).
+struct LightShapingDesc {
+    float coneAngleDegrees = 90.0f;  // no light leaves further than this from the axis
+    float coneSoftness = 0.0f;       // 0: hard edge; 1: fades from the axis to the cone's edge
+    float focus = 0.0f;              // off-axis cosine power
+    RGB focusTint{0.0f};             // what the focus fades towards off the axis
+};
 
 struct LightDesc {
     std::string name;          // prim path
     LightType type = LightType::Rect;
     Matrix4 transform = Matrix4::identity();  // light-to-world; lights emit along local -Z
-    // intensity * 2^exposure * colour. Rect and Sphere: emitted radiance, divided by the light's
-    // world-space area when `normalize`. Distant: radiance of the sun disk, or, when normalized
-    // or angleDegrees == 0, the irradiance on a surface facing the light. Dome: radiance.
+    // intensity * 2^exposure * colour (* the colour temperature's tint). Rect, Disk, Sphere and
+    // Cylinder: emitted radiance, divided by the light's world-space area when `normalize`.
+    // Distant: radiance of the sun disk, or, when normalized or angleDegrees == 0, the irradiance
+    // on a surface facing the light. Dome: radiance (multiplying the texture, when there is one).
     RGB radiance{1.0f};
     bool normalize = false;
     float width = 1.0f, height = 1.0f;  // Rect, local units (before transform)
-    float radius = 0.5f;                // Sphere, local units
+    float radius = 0.5f;                // Disk, Sphere, Cylinder, local units
+    float length = 1.0f;                // Cylinder, along local X
     float angleDegrees = 0.0f;          // Distant: angular diameter
+    bool treatAsPoint = false;          // Sphere: render as a point light of the same power
+    bool treatAsLine = false;           // Cylinder: render as a line light of the same power
+    // Rect: emission texture (its top-left texel at local (+X, +Y)); Dome: lat-long environment.
+    // Null: the constant radiance.
+    std::shared_ptr<const RgbImage> texture;
+    std::optional<LightShapingDesc> shaping;  // Rect, Disk, Sphere, Cylinder
 };
 
 enum class Projection { Perspective, Orthographic };

@@ -69,7 +69,7 @@ TEST(PathTracer, DiffusePlaneUnderADistantLightMatchesRhoEOverPi) {
     // L = rho * E * cos(60) / pi, exactly, with one sample (zero variance: one delta light, no
     // indirect light with maxDepth 1).
     render::SceneDescription s;
-    s.materials.push_back({"/mat", RGB(0.6f), RGB(0.0f)});
+    s.materials.push_back(test::diffuseMaterial("/mat", RGB(0.6f), RGB(0.0f)));
     s.meshes.push_back(test::quadMesh("/plane", {{{-10, -10, 0}, {10, -10, 0}, {10, 10, 0}, {-10, 10, 0}}}, 0));
     render::LightDesc sun;
     sun.name = "/sun";

@@ -16,9 +16,9 @@ namespace {
 
 render::SceneDescription everyLightScene() {
     render::SceneDescription s;
-    s.materials.push_back({"/grey", RGB(0.5f), RGB(0.0f)});
-    s.materials.push_back({"/orange", RGB(0.8f, 0.4f, 0.1f), RGB(0.0f)});
-    s.materials.push_back({"/glow", RGB(0.2f), RGB(0.5f, 2.0f, 1.0f)});
+    s.materials.push_back(test::diffuseMaterial("/grey", RGB(0.5f), RGB(0.0f)));
+    s.materials.push_back(test::diffuseMaterial("/orange", RGB(0.8f, 0.4f, 0.1f), RGB(0.0f)));
+    s.materials.push_back(test::diffuseMaterial("/glow", RGB(0.2f), RGB(0.5f, 2.0f, 1.0f)));
     s.meshes.push_back(test::quadMesh("/ground", {{{-4, -4, -1}, {4, -4, -1}, {4, 4, -1}, {-4, 4, -1}}}, 0));
     s.meshes.push_back(test::sphereMesh(0.8f, 24, 12, 1));
     // An emissive quad standing behind the sphere.
@@ -121,7 +121,7 @@ TEST(ReferenceAgreement, PathTracerMatchesNaivePathTracerOnEveryLightType) {
 TEST(ReferenceAgreement, NaiveMissesDeltaLightsAsItsPathClassSays) {
     // A delta distant light is invisible to BSDF sampling: `naive` renders it black, `path` not.
     render::SceneDescription s;
-    s.materials.push_back({"/grey", RGB(0.5f), RGB(0.0f)});
+    s.materials.push_back(test::diffuseMaterial("/grey", RGB(0.5f), RGB(0.0f)));
     s.meshes.push_back(test::sphereMesh(1.0f, 16, 8, 0));
     render::LightDesc sun;
     sun.type = render::LightType::Distant;

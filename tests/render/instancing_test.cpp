@@ -24,7 +24,7 @@ std::pair<SceneDescription, SceneDescription> instancedAndCopied(int material) {
     MeshDesc ball = test::sphereMesh(0.75f, 24, 12, material);
     ball.cornerColors.assign(ball.indices.size(), RGB(0.2f, 0.4f, 0.6f));
     SceneDescription instanced, copied;
-    MaterialDesc glow{"glow", RGB(0.5f), RGB(material >= 0 ? 2.0f : 0.0f)};
+    MaterialDesc glow = test::diffuseMaterial("glow", RGB(0.5f), RGB(material >= 0 ? 2.0f : 0.0f));
     instanced.materials = copied.materials = {glow};
     instanced.prototypes.push_back({"/proto", {ball}});
     for (const Matrix4& m : placements()) {

@@ -4,20 +4,16 @@
 
 #include "render/area_lights.h"
 #include "render/infinite_lights.h"
+#include "render/sphere_light.h"
+#include "tests/render/light_test_support.h"
 #include "tests/support/chi2.h"
-#include "tests/support/statistics.h"
 
 namespace fluence::render {
 namespace {
 
-constexpr double kPiD = 3.14159265358979323846;
+using test::directionsOf;
 
-std::function<std::optional<Vec3f>(Vec2f)> directionsOf(const Light& light, const Vec3f& p) {
-    return [&light, p](Vec2f u) -> std::optional<Vec3f> {
-        auto s = light.sample(p, u);
-        return s ? std::optional(s->wi) : std::nullopt;
-    };
-}
+constexpr double kPiD = 3.14159265358979323846;
 
 LightDesc rectDesc() {
     LightDesc d;

@@ -9,6 +9,15 @@
 
 namespace fluence::test {
 
+// A Lambertian material, optionally emissive.
+inline render::MaterialDesc diffuseMaterial(std::string name, const RGB& albedo, const RGB& emission = RGB(0.0f)) {
+    render::MaterialDesc m;
+    m.name = std::move(name);
+    m.diffuse = albedo;
+    m.emission = emission;
+    return m;
+}
+
 // A UV sphere with flat facets (no shading normals), so that it is an exactly convex polyhedron.
 inline render::MeshDesc sphereMesh(float radius, int segments, int rings, int material) {
     render::MeshDesc m;
@@ -57,7 +66,7 @@ inline render::CameraDesc lookAtOriginCamera(float distance) {
 // A furnace: a sphere of the given albedo inside a dome of radiance 1.
 inline render::SceneDescription furnaceScene(float albedo) {
     render::SceneDescription s;
-    s.materials.push_back({"/mat", RGB(albedo), RGB(0.0f)});
+    s.materials.push_back(diffuseMaterial("/mat", RGB(albedo)));
     s.meshes.push_back(sphereMesh(1.0f, 48, 24, 0));
     render::LightDesc dome;
     dome.name = "/dome";

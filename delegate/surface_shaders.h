@@ -1,0 +1,45 @@
+// Surface shaders -> render::MaterialDesc (the render core's layered parameter set).
+//
+// UsdPreviewSurface (info:id "UsdPreviewSurface"), with the specification's fallbacks:
+// | input              | fallback        | MaterialDesc                                              |
+// |--------------------|-----------------|-----------------------------------------------------------|
+// | diffuseColor       | (0.18, 0.18, 0.18) | diffuse; also a metal's reflectance                    |
+// | emissiveColor      | (0, 0, 0)       | emission                                                  |
+// | useSpecularWorkflow| 0               | specularWorkflow                                          |
+// | specularColor      | (0, 0, 0)       | specularColor (specular workflow: the F0 colour; the      |
+// |                    |                 | metallic workflow leaves it white and takes F0 from ior)  |
+// | metallic           | 0               | metallic (metallic workflow only)                         |
+// | roughness          | 0.5             | roughness                                                 |
+// | clearcoat          | 0               | coat                                                      |
+// | clearcoatRoughness | 0.01            | coatRoughness                                             |
+// | opacity            | 1               | opacity: straight transparency (no refraction)            |
+// | opacityThreshold   | 0               | opacityThreshold: > 0 makes opacity a cut-out mask        |
+// | ior                | 1.5             | ior (of the specular lobe's Fresnel)                      |
+// | displacement       | 0               | displacement (subdivision surfaces)                       |
+// | normal, occlusion  | —               | not used: normal maps need textures; occlusion is ignored |
+// |                    |                 | by path tracers, as the specification allows             |
+//
+// MaterialX Standard Surface (info:id "ND_standard_surface_surfaceshader"), with MaterialX's
+// fallbacks: diffuse = base (0.8) * base_color (1); diffuse_roughness (0); metallic = metalness
+// (0); specular (1), specular_color (1), roughness = specular_roughness (0.2), ior = specular_IOR
+// (1.5), anisotropy = specular_anisotropy (0); transmission (0), transmission_color (1); sheen (0),
+// sheen_color (1), sheen_roughness (0.3); coat (0), coat_color (1), coat_roughness (0.1), coatIor
+// = coat_IOR (1.5); emission = emission (0) * emission_color (1); opacity = the mean of opacity
+// (1, 1, 1); thin_walled (false); subsurface (0), subsurface_color (1), subsurface_radius (1),
+// subsurface_scale (1). Inputs not listed (specular_rotation, transmission_depth/scatter/
+// dispersion, thin_film_*, coat_anisotropy/affect_*, normal, tangent) are not read.
+#pragma once
+
+#include <string>
+
+#include "delegate/shader_inputs.h"
+#include "render/scene_description.h"
+
+namespace fluence::delegate {
+
+inline constexpr const char* kStandardSurfaceId = "ND_standard_surface_surfaceshader";
+
+render::MaterialDesc previewSurface(const ShaderInputs& inputs, const std::string& materialPath);
+render::MaterialDesc standardSurface(const ShaderInputs& inputs, const std::string& materialPath);
+
+}  // namespace fluence::delegate

@@ -1,0 +1,39 @@
+// Fresnel reflectance of a smooth interface: the exact equations for dielectrics, and Schlick's
+// approximation for artist-specified conductors.
+//
+// The seeds name the Fresnel term F of Torrance-Sparrow and Cook-Torrance ("which portion of the
+// incoming light gets reflected", 000); the equations are Fresnel's for unpolarised light, as in
+// Cook & Torrance (1982) and every optics text (e.g. Born & Wolf, Principles of Optics, 1.5.2).
+#pragma once
+
+#include "core/rgb.h"
+
+namespace fluence::render {
+
+// Reflectances |r_s|^2 and |r_p|^2 for light polarised perpendicular (s) and parallel (p) to
+// the plane of incidence.
+struct FresnelPolarized {
+    float s = 1.0f;
+    float p = 1.0f;
+};
+
+// Exact Fresnel reflectances of a dielectric interface. cosThetaI in [0, 1] is the cosine of
+// the angle of incidence, on the incident side; eta = n(transmitted side) / n(incident side).
+// Beyond the critical angle (eta < 1) there is total internal reflection: s = p = 1.
+FresnelPolarized fresnelDielectricPolarized(float cosThetaI, float eta);
+
+// Unpolarised reflectance: the mean of the s and p reflectances.
+inline float fresnelDielectric(float cosThetaI, float eta) {
+    FresnelPolarized r = fresnelDielectricPolarized(cosThetaI, eta);
+    return 0.5f * (r.s + r.p);
+}
+
+// Schlick's approximation F0 + (1 - F0)(1 - cos)^5 (Schlick 1994), per channel: the reflectance
+// at normal incidence F0 is the artist's "specular colour" of a metal. F0 = 1 gives F = 1.
+inline RGB fresnelSchlick(const RGB& f0, float cosTheta) {
+    float m = 1.0f - cosTheta;
+    float m5 = (m * m) * (m * m) * m;
+    return f0 + (RGB(1.0f) - f0) * m5;
+}
+
+}  // namespace fluence::render

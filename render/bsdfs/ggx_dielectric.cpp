@@ -1,0 +1,96 @@
+#include "render/bsdfs/ggx_dielectric.h"
+
+#include <cmath>
+
+#include "render/bsdfs/fresnel.h"
+#include "render/bsdfs/local_geometry.h"
+
+namespace fluence::render {
+
+std::optional<GgxDielectricBsdf::Configuration> GgxDielectricBsdf::configuration(const Vec3f& wo,
+                                                                                  const Vec3f& wi) const {
+    if (wo.z == 0.0f || wi.z == 0.0f || isSmooth()) return std::nullopt;
+    Configuration c;
+    c.eta = relativeEta(wo);
+    c.wo = wo.z > 0.0f ? wo : mirrorZ(wo);
+    c.wi = wo.z > 0.0f ? wi : mirrorZ(wi);
+    c.reflected = c.wi.z > 0.0f;
+    Vec3f h = c.reflected ? c.wo + c.wi : c.wo + c.wi * c.eta;
+    if (lengthSquared(h) == 0.0f) return std::nullopt;
+    c.h = normalize(h);
+    if (c.h.z < 0.0f) c.h = -c.h;
+    // The microfacet must face wo, and face wi from the same side (reflection) or the other
+    // side (refraction).
+    float cosO = dot(c.wo, c.h), cosI = dot(c.wi, c.h);
+    if (cosO <= 0.0f || (c.reflected ? cosI <= 0.0f : cosI >= 0.0f)) return std::nullopt;
+    c.fresnel = fresnelDielectric(cosO, c.eta);
+    return c;
+}
+
+float GgxDielectricBsdf::value(const Configuration& c) const {
+    if (c.reflected) return c.fresnel * distribution_.reflectionTerm(c.wo, c.wi, c.h);
+    float cosO = dot(c.wo, c.h), cosI = dot(c.wi, c.h);
+    float denom = cosO + c.eta * cosI;
+    return (1.0f - c.fresnel) * distribution_.D(c.h) * distribution_.G2(c.wo, c.wi) * std::abs(cosI) * cosO /
+           (c.wo.z * std::abs(c.wi.z) * denom * denom);
+}
+
+float GgxDielectricBsdf::density(const Configuration& c) const {
+    if (c.reflected) return c.fresnel * distribution_.reflectionPdf(c.wo, c.h);
+    // dh/dwi for refraction: eta'^2 |wi.h| / (wo.h + eta' wi.h)^2 (Walter et al. 2007, eq. 17).
+    float cosI = dot(c.wi, c.h);
+    float denom = dot(c.wo, c.h) + c.eta * cosI;
+    return (1.0f - c.fresnel) * distribution_.visibleNormalPdf(c.wo, c.h) * c.eta * c.eta * std::abs(cosI) /
+           (denom * denom);
+}
+
+RGB GgxDielectricBsdf::f(const Vec3f& wo, const Vec3f& wi) const {
+    std::optional<Configuration> c = configuration(wo, wi);
+    return RGB(c ? value(*c) : 0.0f);
+}
+
+float GgxDielectricBsdf::pdf(const Vec3f& wo, const Vec3f& wi) const {
+    std::optional<Configuration> c = configuration(wo, wi);
+    return c ? density(*c) : 0.0f;
+}
+
+std::optional<BsdfSample> GgxDielectricBsdf::sampleSmooth(const Vec3f& wo, float uLobe) const {
+    float eta = relativeEta(wo);
+    float cosO = std::abs(wo.z);
+    float F = fresnelDielectric(cosO, eta);
+    if (uLobe < F) {
+        Vec3f wi = mirrorZ(-wo);
+        return BsdfSample{RGB(F / cosO), wi, F, true};
+    }
+    // F < 1 here, so there is no total internal reflection.
+    Vec3f n(0.0f, 0.0f, wo.z > 0.0f ? 1.0f : -1.0f);
+    Vec3f wi = *refract(wo, n, eta);
+    return BsdfSample{RGB((1.0f - F) / (eta * eta * std::abs(wi.z))), wi, 1.0f - F, true, eta};
+}
+
+std::optional<BsdfSample> GgxDielectricBsdf::sample(const Vec3f& wo, float uLobe, Vec2f u) const {
+    if (wo.z == 0.0f) return std::nullopt;
+    if (isSmooth()) return sampleSmooth(wo, uLobe);
+    Configuration c;
+    c.eta = relativeEta(wo);
+    c.wo = wo.z > 0.0f ? wo : mirrorZ(wo);
+    c.h = distribution_.sampleVisibleNormal(c.wo, u);
+    float cosO = dot(c.wo, c.h);
+    if (cosO <= 0.0f) return std::nullopt;
+    c.fresnel = fresnelDielectric(cosO, c.eta);
+    c.reflected = uLobe < c.fresnel;
+    if (c.reflected) {
+        c.wi = reflect(c.wo, c.h);
+        if (c.wi.z <= 0.0f) return std::nullopt;
+    } else {
+        std::optional<Vec3f> t = refract(c.wo, c.h, c.eta);
+        if (!t || t->z >= 0.0f) return std::nullopt;
+        c.wi = *t;
+    }
+    float p = density(c);
+    if (!(p > 0.0f)) return std::nullopt;
+    Vec3f wi = wo.z > 0.0f ? c.wi : mirrorZ(c.wi);
+    return BsdfSample{RGB(value(c)), wi, p, false, c.reflected ? 1.0f : c.eta};
+}
+
+}  // namespace fluence::render

@@ -1,0 +1,90 @@
+// UsdLux CylinderLight, and the line light it becomes with treatAsLine.
+//
+// | UsdLux input  | type  | default | notes                                                       |
+// |---------------|-------|---------|-------------------------------------------------------------|
+// | length        | float | 1       | along local X, scaled by the transform's X axis              |
+// | radius        | float | 0.5     | scaled to keep the area of the cross-section the transform  |
+// |               |       |         | gives (sqrt of its YZ area scale)                           |
+// | normalize     | bool  | false   | radiance / world-space side area (2 pi r length)             |
+// | treatAsLine   | bool  | false   | a line light of the same power (below)                       |
+// | shaping:*     |       |         | light_shaping.h, about the light's local -Z                  |
+//
+// The cylinder emits radiance L outwards from its side; its flat end caps emit nothing (UsdLux)
+// and are not part of its surface. The sampler works in the plane across the axis, where a point
+// p at distance h > r from the axis sees the cross-section's circle under +-asin(r/h): it picks
+// a direction uniformly in that angle (landing on the arc that faces p, so no sample is wasted
+// on the back) and a position along the axis uniformly. Its density in solid angle is
+// d^3 / (2 asin(r/h) length rho^2), with d the distance to the point and rho that distance
+// across the axis: bounded, unlike area sampling's, which grows as 1/cos at the silhouette.
+//
+// UsdLux calls treatAsLine "a hint that this light can be treated as a line light (effectively, a
+// zero-radius cylinder)" without saying how bright the line is. Fluence keeps the cylinder's power
+// and far field: each unit of length emits intensity 2 r L sin(theta) at angle theta to the axis
+// (the cylinder's projected width is 2 r sin(theta)), so the line's power is pi^2 (2 r L) length,
+// the cylinder's 2 pi^2 r L length. Normalized, 2 r L / (2 pi r length) = L / (pi length).
+// The line is a delta light: its sampler picks a point uniformly in the angle the line subtends
+// at p and returns that sample's estimate of the irradiance with pdf 1.
+#pragma once
+
+#include "core/frame.h"
+#include "render/light.h"
+#include "render/light_shape.h"
+#include "render/light_shaping.h"
+#include "render/scene_description.h"
+
+namespace fluence::render {
+
+class CylinderLight final : public Light, public AnalyticLightShape {
+public:
+    explicit CylinderLight(const LightDesc& desc);
+
+    std::optional<LightSample> sample(const Vec3f& p, Vec2f u) const override;
+    float pdf(const Vec3f& p, const Vec3f& wi, const LightHit& hit) const override;
+    RGB emitted(const LightHit& hit, const Vec3f& wo) const override;
+    float power(const SceneBounds& bounds) const override;
+    std::optional<LightBounds> bounds() const override;
+    std::string name() const override { return name_; }
+
+    void shapeBounds(Vec3f& lo, Vec3f& hi) const override;
+    std::optional<ShapeHit> intersect(const Vec3f& o, const Vec3f& d, float tMin, float tMax) const override;
+
+    const Vec3f& centre() const { return centre_; }
+    const Vec3f& axis() const { return frame_.n; }
+    float radius() const { return radius_; }
+    float length() const { return length_; }
+
+private:
+    // Half the angle the cross-section subtends at p, across the axis (0 when p is within the
+    // radius of the axis: only the open ends are in view).
+    float halfAngleAcross(const Vec3f& p) const;
+
+    std::string name_;
+    Vec3f centre_;
+    Frame frame_;  // n: the cylinder's axis (local +X)
+    float radius_, length_;
+    RGB radiance_;
+    LightShaping shaping_;
+};
+
+class LineLight final : public Light {
+public:
+    explicit LineLight(const LightDesc& desc);
+
+    std::optional<LightSample> sample(const Vec3f& p, Vec2f u) const override;
+    float pdf(const Vec3f&, const Vec3f&, const LightHit&) const override { return 0.0f; }
+    float power(const SceneBounds& bounds) const override;
+    std::optional<LightBounds> bounds() const override;
+    std::string name() const override { return name_; }
+
+    // Radiant intensity per unit length towards a direction at right angles to the line.
+    const RGB& linearIntensity() const { return linearIntensity_; }
+
+private:
+    std::string name_;
+    Vec3f start_, axis_;  // the line runs from start_ along unit axis_ for length_
+    float length_;
+    RGB linearIntensity_;
+    LightShaping shaping_;
+};
+
+}  // namespace fluence::render

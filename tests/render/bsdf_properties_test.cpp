@@ -1,0 +1,263 @@
+// The properties every BSDF must have, checked for every model at several parameters and
+// incident directions (render/bsdf.h states the conventions):
+//   - sample() draws directions with the density pdf() (chi-square over the whole sphere);
+//   - the f and pdf sample() returns are f(wo, wi) and pdf(wo, wi); delta samples only from
+//     BSDFs that have a delta lobe, transmitted ones only from transmissive BSDFs;
+//   - pdf integrates to the fraction of samples that are not delta (so to at most 1);
+//   - reciprocity (generalised with n^2 across a refracting interface);
+//   - the albedo (flux) is at most 1 for the models that conserve energy, and mirrored
+//     directions give the same values on a two-sided reflector.
+// Tolerances are statistical (Sidak-corrected over each family of tests) or, where a quantity is
+// recomputed in float, a stated rounding bound.
+#include <gtest/gtest.h>
+
+#include <functional>
+#include <ostream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "render/bsdf_arena.h"
+#include "render/bsdfs/blinn_phong.h"
+#include "render/bsdfs/coated.h"
+#include "render/bsdfs/cook_torrance.h"
+#include "render/bsdfs/ggx_conductor.h"
+#include "render/bsdfs/ggx_dielectric.h"
+#include "render/bsdfs/lambertian.h"
+#include "render/bsdfs/modified_phong.h"
+#include "render/bsdfs/phong.h"
+#include "tests/support/chi2.h"
+#include "tests/support/statistics.h"
+
+namespace fluence::render {
+namespace {
+
+struct BsdfCase {
+    std::string name;
+    std::function<const Bsdf&(BsdfArena&)> make;
+    bool conservesEnergy = true;
+};
+
+void PrintTo(const BsdfCase& c, std::ostream* os) { *os << c.name; }
+
+std::vector<BsdfCase> allCases() {
+    const RGB colour(0.8f, 0.5f, 0.2f);
+    std::vector<BsdfCase> cases = {
+        {"Lambertian", [=](BsdfArena& a) -> const Bsdf& { return a.make<LambertianBsdf>(colour); }},
+        {"PhongOriginal_n1", [](BsdfArena& a) -> const Bsdf& { return a.make<PhongBsdf>(RGB(0.1f), RGB(0.5f), 1.0f); },
+         false},
+        {"PhongOriginal_n20", [](BsdfArena& a) -> const Bsdf& { return a.make<PhongBsdf>(RGB(0.0f), RGB(1.0f), 20.0f); },
+         false},
+    };
+    for (float n : {1.0f, 30.0f, 300.0f}) {
+        cases.push_back({"ModifiedPhong_n" + std::to_string(int(n)), [=](BsdfArena& a) -> const Bsdf& {
+                             return a.make<PhongBsdf>(modifiedPhong(RGB(0.3f), RGB(0.7f), n));
+                         }});
+        cases.push_back({"BlinnPhong_n" + std::to_string(int(n)), [=](BsdfArena& a) -> const Bsdf& {
+                             return a.make<BlinnPhongBsdf>(modifiedBlinnPhong(RGB(0.3f), RGB(0.7f), n));
+                         }});
+    }
+    for (float m : {0.1f, 0.3f, 0.7f})
+        cases.push_back({"CookTorrance_m" + std::to_string(int(m * 100)), [=](BsdfArena& a) -> const Bsdf& {
+                             return a.make<CookTorranceBsdf>(RGB(1.0f), 1.5f, m);
+                         }});
+    for (float alpha : {0.0f, 0.05f, 0.2f, 0.6f})
+        cases.push_back({"GgxConductor_a" + std::to_string(int(alpha * 100)), [=](BsdfArena& a) -> const Bsdf& {
+                             return a.make<GgxConductorBsdf>(colour, alpha);
+                         }});
+    for (float alpha : {0.0f, 0.05f, 0.2f, 0.5f})
+        cases.push_back({"GgxDielectric_a" + std::to_string(int(alpha * 100)), [=](BsdfArena& a) -> const Bsdf& {
+                             return a.make<GgxDielectricBsdf>(1.5f, alpha);
+                         }});
+    cases.push_back({"GgxDielectricInverted_a30", [](BsdfArena& a) -> const Bsdf& {
+                         return a.make<GgxDielectricBsdf>(1.0f / 1.33f, 0.3f);
+                     }});
+    for (float alpha : {0.0f, 0.1f, 0.4f})
+        cases.push_back({"CoatedLambertian_a" + std::to_string(int(alpha * 100)), [=](BsdfArena& a) -> const Bsdf& {
+                             return a.make<CoatedBsdf>(a.make<LambertianBsdf>(colour), 1.5f, alpha);
+                         }});
+    cases.push_back({"CoatedConductor_a20", [=](BsdfArena& a) -> const Bsdf& {
+                         return a.make<CoatedBsdf>(a.make<GgxConductorBsdf>(colour, 0.3f), 1.5f, 0.2f);
+                     }});
+    return cases;
+}
+
+// Incident directions: near normal, oblique, grazing, and below the surface (the mirrored side
+// of a reflector, the inside of a dielectric).
+std::vector<Vec3f> incidentDirections() {
+    std::vector<Vec3f> dirs;
+    for (float degrees : {5.0f, 45.0f, 80.0f, 130.0f}) {
+        float t = degrees * kPi / 180.0f, phi = 0.7f;
+        dirs.push_back(Vec3f(std::sin(t) * std::cos(phi), std::sin(t) * std::sin(phi), std::cos(t)));
+    }
+    return dirs;
+}
+
+// The size of each family of statistical tests: one per case and incident direction.
+double familySize() { return double(allCases().size() * incidentDirections().size()); }
+
+// Relative float rounding bound for a value recomputed from (wo, wi) instead of the sampled
+// half vector, or evaluated with wo and wi exchanged: a few hundred ulps of the exponents and
+// Fresnel factors involved (float epsilon is 1.2e-7).
+constexpr double kRecomputeTolerance = 1e-4;
+
+
+std::string describe(const Vec3f& w) {
+    std::ostringstream os;
+    os << "(" << w.x << ", " << w.y << ", " << w.z << ")";
+    return os.str();
+}
+
+bool isTransmitted(const Vec3f& wo, const Vec3f& wi) { return wo.z * wi.z < 0.0f; }
+
+class BsdfProperties : public testing::TestWithParam<BsdfCase> {
+protected:
+    const Bsdf& bsdf() { return GetParam().make(arena_); }
+
+private:
+    BsdfArena arena_;
+};
+
+TEST_P(BsdfProperties, SamplingMatchesPdfChiSquare) {
+    const Bsdf& b = bsdf();
+    if (!(b.flags() & (kBsdfDiffuse | kBsdfGlossy))) GTEST_SKIP() << "only delta lobes: nothing to histogram";
+    for (const Vec3f& wo : incidentDirections()) {
+        auto r = test::chi2SphereTest(
+            [&](SampleStream& rng) -> std::optional<Vec3f> {
+                float uLobe = rng.next();
+                auto s = b.sample(wo, uLobe, rng.next2D());
+                return s && !s->specular ? std::optional(s->wi) : std::nullopt;
+            },
+            [&](const Vec3f& wi) { return double(b.pdf(wo, wi)); }, test::Chi2Options{400'000});
+        EXPECT_GT(r.pValue, test::sidakAlpha(familySize())) << "wo " << describe(wo) << ": " << r.report;
+    }
+}
+
+TEST_P(BsdfProperties, SampleAgreesWithEvalAndPdf) {
+    const Bsdf& b = bsdf();
+    const unsigned flags = b.flags();
+    for (const Vec3f& wo : incidentDirections())
+        for (int n = 0; n < 2000; ++n) {
+            SampleStream rng(1, 0, n);
+            float uLobe = rng.next();
+            auto s = b.sample(wo, uLobe, rng.next2D());
+            if (!s) continue;
+            SCOPED_TRACE("wo " + describe(wo) + " wi " + describe(s->wi));
+            ASSERT_NEAR(length(s->wi), 1.0f, 1e-5f);
+            ASSERT_GT(s->pdf, 0.0f);
+            ASSERT_TRUE(isFinite(s->f));
+            ASSERT_GE(std::min({s->f.x, s->f.y, s->f.z}), 0.0f);
+            if (isTransmitted(wo, s->wi)) {
+                EXPECT_TRUE(flags & kBsdfTransmission);
+                EXPECT_NE(s->eta, 1.0f);
+            } else {
+                EXPECT_TRUE(flags & kBsdfReflection);
+                EXPECT_EQ(s->eta, 1.0f);
+            }
+            if (s->specular) {
+                EXPECT_TRUE(flags & kBsdfSpecular);
+                EXPECT_LE(s->pdf, 1.0f) << "a delta sample's pdf is a lobe probability";
+                continue;
+            }
+            EXPECT_TRUE(flags & (kBsdfDiffuse | kBsdfGlossy));
+            EXPECT_NEAR(s->pdf, b.pdf(wo, s->wi), kRecomputeTolerance * s->pdf);
+            RGB f = b.f(wo, s->wi);
+            for (int c = 0; c < 3; ++c) EXPECT_NEAR(s->f[c], f[c], kRecomputeTolerance * s->f[c]) << "channel " << c;
+        }
+}
+
+TEST_P(BsdfProperties, PdfIntegratesToTheFractionOfNonDeltaSamples) {
+    const Bsdf& b = bsdf();
+    constexpr int kSamples = 200'000;
+    const double z = test::normalQuantile(0.5 * test::sidakAlpha(familySize()));
+    for (const Vec3f& wo : incidentDirections()) {
+        // Quadrature to a relative 3e-4 per cell, well below the binomial standard error (1e-3).
+        test::SphereIntegral integral =
+            test::integrateOverSphere([&](const Vec3f& wi) { return double(b.pdf(wo, wi)); }, 3e-4);
+        int accepted = 0;
+        for (int n = 0; n < kSamples; ++n) {
+            SampleStream rng(2, 0, n);
+            float uLobe = rng.next();
+            auto s = b.sample(wo, uLobe, rng.next2D());
+            accepted += s && !s->specular;
+        }
+        double p = double(accepted) / kSamples, se = std::sqrt(p * (1.0 - p) / kSamples);
+        const double numerical = integral.error + test::kFloatDensityRounding * integral.value;
+        EXPECT_LE(integral.value, 1.0 + numerical) << "wo " << describe(wo);
+        EXPECT_NEAR(integral.value, p, z * se + numerical)
+            << "wo " << describe(wo) << ": integral " << integral.value << " +- " << integral.error << ", " << accepted
+            << " of " << kSamples << " samples non-delta";
+    }
+}
+
+TEST_P(BsdfProperties, IsReciprocal) {
+    // f(wo, wi) / n(wo)^2 == f(wi, wo) / n(wi)^2; n is 1 outside (and for reflectors) and the
+    // relative eta of a transmitted sample inside.
+    const Bsdf& b = bsdf();
+    int checked = 0;
+    for (const Vec3f& wo : incidentDirections())
+        for (int n = 0; n < 500; ++n) {
+            SampleStream rng(3, 0, n);
+            float uLobe = rng.next();
+            auto s = b.sample(wo, uLobe, rng.next2D());
+            if (!s || s->specular) continue;
+            RGB forward = b.f(wo, s->wi) * (s->eta * s->eta), backward = b.f(s->wi, wo);
+            for (int c = 0; c < 3; ++c)
+                EXPECT_NEAR(forward[c], backward[c], kRecomputeTolerance * forward[c])
+                    << "wo " << describe(wo) << " wi " << describe(s->wi) << " channel " << c;
+            ++checked;
+        }
+    if (b.flags() & (kBsdfDiffuse | kBsdfGlossy)) {
+        EXPECT_GT(checked, 1000);
+    }
+}
+
+TEST_P(BsdfProperties, ReflectorsAreTwoSidedTransmittersAreNot) {
+    const Bsdf& b = bsdf();
+    const bool transmits = b.flags() & kBsdfTransmission;
+    Vec3f wo = normalize(Vec3f(0.3f, -0.2f, 0.8f)), wi = normalize(Vec3f(-0.4f, 0.1f, 0.6f));
+    RGB above = b.f(wo, wi), below = b.f(mirrorZ(wo), mirrorZ(wi));
+    if (b.flags() & kBsdfSpecular && !(b.flags() & (kBsdfDiffuse | kBsdfGlossy))) {
+        EXPECT_EQ(above, RGB(0.0f)) << "f() has no delta";
+        EXPECT_EQ(b.pdf(wo, wi), 0.0f);
+    } else if (transmits) {
+        EXPECT_NE(above, below) << "the inside of a dielectric is not the outside";
+    } else {
+        EXPECT_EQ(above, below);
+        EXPECT_EQ(b.pdf(wo, wi), b.pdf(mirrorZ(wo), mirrorZ(wi)));
+        EXPECT_EQ(b.f(wo, mirrorZ(wi)), RGB(0.0f)) << "a reflector does not transmit";
+        EXPECT_EQ(b.pdf(wo, mirrorZ(wi)), 0.0f);
+    }
+    EXPECT_FALSE(b.sample(Vec3f(1, 0, 0), 0.5f, Vec2f{0.5f, 0.5f})) << "grazing wo scatters nothing";
+    EXPECT_EQ(b.f(Vec3f(1, 0, 0), wi), RGB(0.0f));
+}
+
+TEST_P(BsdfProperties, ReflectsAtMostAllTheLight) {
+    // The flux albedo: the mean of f |cos| / pdf, with eta^2 for transmitted samples (render/bsdf.h,
+    // "RADIANCE, NOT IMPORTANCE"), over every sample including delta ones and failures (which
+    // count 0). It must not exceed 1 by more than z standard errors in any channel.
+    if (!GetParam().conservesEnergy) GTEST_SKIP() << "does not conserve energy (see bsdf_phong_test.cpp)";
+    const Bsdf& b = bsdf();
+    constexpr int kSamples = 200'000;
+    const double z = test::normalQuantile(test::sidakAlpha(familySize()));
+    for (const Vec3f& wo : incidentDirections()) {
+        test::MeanEstimate albedo[3];
+        for (int n = 0; n < kSamples; ++n) {
+            SampleStream rng(4, 0, n);
+            float uLobe = rng.next();
+            auto s = b.sample(wo, uLobe, rng.next2D());
+            RGB w = s ? s->f * (std::abs(s->wi.z) * s->eta * s->eta / s->pdf) : RGB(0.0f);
+            for (int c = 0; c < 3; ++c) albedo[c].add(w[c]);
+        }
+        for (int c = 0; c < 3; ++c)
+            EXPECT_LE(albedo[c].mean(), 1.0 + z * albedo[c].standardError() + kRecomputeTolerance)
+                << "wo " << describe(wo) << " channel " << c << ": albedo " << albedo[c].mean() << " +- "
+                << albedo[c].standardError();
+    }
+}
+
+INSTANTIATE_TEST_SUITE_P(Models, BsdfProperties, testing::ValuesIn(allCases()),
+                         [](const testing::TestParamInfo<BsdfCase>& info) { return info.param.name; });
+
+}  // namespace
+}  // namespace fluence::render

@@ -1,0 +1,126 @@
+// Irradiance from each light shape, estimated from the light's own samples, against its closed
+// form (or, for the cylinder, a fine quadrature over its surface). Tolerances are five standard
+// errors of the estimate (plus the reference's own error where it has one).
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "render/area_lights.h"
+#include "render/cylinder_light.h"
+#include "render/sphere_light.h"
+#include "tests/render/light_test_support.h"
+
+namespace fluence::render {
+namespace {
+
+constexpr double kPiD = 3.14159265358979323846;
+constexpr int kSamples = 200000;
+
+void expectIrradiance(const Light& light, const Vec3f& p, const Vec3f& n, double expected, double referenceError = 0.0) {
+    test::MeanEstimate e = test::irradianceEstimate(light, p, n, kSamples);
+    EXPECT_NEAR(e.mean(), expected, 5.0 * e.standardError() + referenceError + 1e-12) << "expected " << expected;
+}
+
+// Lambert's formula for a polygon of uniform radiance L above p's tangent plane:
+// E = L / 2 * |sum_i angle(R_i, R_i+1) * n . normalize(R_i x R_i+1)|, R_i = vertex_i - p.
+double polygonIrradiance(const std::array<Vec3f, 4>& corners, const Vec3f& p, const Vec3f& n, double radiance) {
+    double sum = 0.0;
+    for (int i = 0; i < 4; ++i) {
+        Vec3d a = normalize(Vec3d(corners[i] - p)), b = normalize(Vec3d(corners[(i + 1) % 4] - p));
+        sum += std::acos(std::clamp(dot(a, b), -1.0, 1.0)) * dot(Vec3d(n), normalize(cross(a, b)));
+    }
+    return 0.5 * radiance * std::abs(sum);
+}
+
+TEST(LightIrradiance, RectMatchesLambertsPolygonFormula) {
+    LightDesc d;
+    d.type = LightType::Rect;
+    d.width = 2.0f;
+    d.height = 1.0f;
+    d.radiance = RGB(3.0f);
+    d.transform = Matrix4::translate({0.3, 2.0, -0.2}) * Matrix4::rotateZ(10) * Matrix4::rotateX(-90);
+    RectLight light(d);
+    Vec3f p(0.1f, 0.0f, 0.2f), n = normalize(Vec3f(0.2f, 1.0f, -0.1f));
+    expectIrradiance(light, p, n, polygonIrradiance(light.corners(), p, n, 3.0));
+}
+
+TEST(LightIrradiance, DiskOnItsAxisIsPiLr2OverR2PlusD2) {
+    LightDesc d;
+    d.type = LightType::Disk;
+    d.radius = 0.8f;
+    d.radiance = RGB(2.5f);
+    d.transform = Matrix4::translate({0, 0, 1.5}) * Matrix4::rotateZ(40);  // emits along -Z
+    DiskLight light(d);
+    expectIrradiance(light, Vec3f(0, 0, 0), Vec3f(0, 0, 1), 2.5 * kPiD * 0.64 / (0.64 + 2.25));
+}
+
+TEST(LightIrradiance, PointLightGivesTheSpheresIrradiance) {
+    // E = pi L (r/d)^2 facing a sphere of radius r at distance d, and I / d^2 from the point
+    // light standing for it: exact with one sample.
+    LightDesc d;
+    d.type = LightType::Sphere;
+    d.radius = 0.3f;
+    d.radiance = RGB(2.0f);
+    d.transform = Matrix4::translate({0, 0, 3});
+    d.treatAsPoint = true;
+    auto s = PointLight(d).sample(Vec3f(0, 0, 0), Vec2f{0.5f, 0.5f});
+    ASSERT_TRUE(s);
+    EXPECT_NEAR(s->Li.x * s->wi.z / s->pdf, kPiD * 2.0 * 0.09 / 9.0, 1e-7);
+    d.treatAsPoint = false;
+    expectIrradiance(SphereLight(d), Vec3f(0, 0, 0), Vec3f(0, 0, 1), kPiD * 2.0 * 0.09 / 9.0);
+}
+
+TEST(LightIrradiance, LineMatchesItsClosedForm) {
+    // Linear intensity I = 2 r L towards the line's normal plane. At distance h on the
+    // perpendicular bisector of a line of half-length a, facing it:
+    // E = I h^2 int ds / (h^2 + s^2)^2 = I (a / (h^2 + a^2) + atan(a / h) / h).
+    LightDesc d;
+    d.type = LightType::Cylinder;
+    d.length = 2.0f;
+    d.radius = 0.1f;
+    d.radiance = RGB(3.0f);
+    d.treatAsLine = true;
+    d.transform = Matrix4::translate({0.5, -0.2, 1.0}) * Matrix4::rotateZ(35);
+    LineLight light(d);
+    Vec3f centre(0.5f, -0.2f, 1.0f), across = normalize(Vec3f(Matrix4::rotateZ(35).transformVector({0, 1, 0})));
+    const double h = 0.7, a = 1.0, intensity = 2.0 * 0.1 * 3.0;
+    expectIrradiance(light, centre + across * float(h), -across, intensity * (a / (h * h + a * a) + std::atan(a / h) / h));
+}
+
+// The cylinder's irradiance by the midpoint rule over its side, 2000 x 1000 points:
+// E = int L cos(surface) cos(p) / d^2 dA over the points that face p.
+double cylinderIrradiance(const CylinderLight& light, const Vec3f& p, const Vec3f& n, double radiance) {
+    Frame frame = Frame::fromNormal(light.axis());
+    const int kAround = 2000, kAlong = 1000;
+    double sum = 0.0;
+    for (int i = 0; i < kAround; ++i) {
+        double phi = 2.0 * kPiD * (i + 0.5) / kAround;
+        Vec3d normal = Vec3d(frame.s) * std::cos(phi) + Vec3d(frame.t) * std::sin(phi);
+        for (int j = 0; j < kAlong; ++j) {
+            double along = light.length() * ((j + 0.5) / kAlong - 0.5);
+            Vec3d x = Vec3d(light.centre()) + Vec3d(light.axis()) * along + normal * double(light.radius());
+            Vec3d toP = Vec3d(p) - x;
+            double d2 = dot(toP, toP), d = std::sqrt(d2);
+            sum += std::max(0.0, dot(normal, toP) / d) * std::max(0.0, -dot(Vec3d(n), toP) / d) / d2;
+        }
+    }
+    return radiance * sum * (2.0 * kPiD * light.radius() / kAround) * (light.length() / kAlong);
+}
+
+TEST(LightIrradiance, CylinderMatchesAQuadratureOverItsSide) {
+    LightDesc d;
+    d.type = LightType::Cylinder;
+    d.length = 1.6f;
+    d.radius = 0.35f;
+    d.radiance = RGB(2.0f);
+    d.transform = Matrix4::translate({0.0, 1.2, 0.3}) * Matrix4::rotateY(25);
+    CylinderLight light(d);
+    for (const auto& [p, n] : {std::pair{Vec3f(0.2f, 0.0f, 0.0f), normalize(Vec3f(0.1f, 1.0f, 0.2f))},
+                               std::pair{Vec3f(1.4f, 1.0f, 0.9f), normalize(Vec3f(-1.0f, 0.3f, -0.2f))}}) {
+        double reference = cylinderIrradiance(light, p, n, 2.0);
+        expectIrradiance(light, p, n, reference, 1e-4 * reference);
+    }
+}
+
+}  // namespace
+}  // namespace fluence::render

@@ -1,0 +1,67 @@
+// Shared by the light tests: directions a light samples, the consistency of sample() with pdf(),
+// and irradiance estimated from a light's own samples.
+#pragma once
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <functional>
+#include <optional>
+
+#include "core/random.h"
+#include "render/light.h"
+#include "tests/support/statistics.h"
+
+namespace fluence::test {
+
+using render::Light;
+using render::LightHit;
+
+// Where a ray from p along wi meets the light's surface (for pdf()), if it does.
+using HitFunction = std::function<std::optional<LightHit>(const Vec3f& p, const Vec3f& wi)>;
+
+inline std::function<std::optional<Vec3f>(Vec2f)> directionsOf(const Light& light, const Vec3f& p) {
+    return [&light, p](Vec2f u) -> std::optional<Vec3f> {
+        auto s = light.sample(p, u);
+        return s ? std::optional(s->wi) : std::nullopt;
+    };
+}
+
+// The density pdf() gives the direction wi from p (0 where the ray misses the light).
+inline std::function<double(const Vec3f&)> pdfOf(const Light& light, const Vec3f& p, const HitFunction& hit) {
+    return [&light, p, hit](const Vec3f& wi) {
+        auto h = hit(p, wi);
+        return h ? double(light.pdf(p, wi, *h)) : 0.0;
+    };
+}
+
+// Every sample's pdf matches pdf() at the point it reached, which lies at the sample's distance.
+// The density goes as 1/cos at the light, so at grazing samples float rounding in the normal of
+// the hit (about 1e-6) moves it by 1e-6 / cos relative: the tolerance allows for that.
+inline void expectSamplesMatchPdf(const Light& light, const Vec3f& p, const HitFunction& hit, int count = 2000) {
+    int accepted = 0;
+    for (int n = 0; n < count; ++n) {
+        auto s = light.sample(p, SampleStream(21, 0, n).next2D());
+        if (!s) continue;
+        ++accepted;
+        auto h = hit(p, s->wi);
+        ASSERT_TRUE(h) << "sample " << n << " points away from the light";
+        EXPECT_NEAR(length(h->point - p), s->distance, 1e-3f * s->distance) << "sample " << n;
+        float cosLight = std::abs(dot(h->normal, s->wi));
+        EXPECT_NEAR(light.pdf(p, s->wi, *h), s->pdf, s->pdf * (2e-3f + 1e-5f / std::max(cosLight, 1e-6f))) << "sample " << n;
+    }
+    EXPECT_GT(accepted, count / 2);
+}
+
+// Irradiance at p on a surface with unit normal n, estimated from `count` light samples.
+inline MeanEstimate irradianceEstimate(const Light& light, const Vec3f& p, const Vec3f& n, int count,
+                                                      std::uint64_t seed = 11) {
+    MeanEstimate e;
+    for (int i = 0; i < count; ++i) {
+        auto s = light.sample(p, SampleStream(seed, 0, i).next2D());
+        e.add(s ? double(s->Li.x) * std::max(0.0f, dot(n, s->wi)) / s->pdf : 0.0);
+    }
+    return e;
+}
+
+}  // namespace fluence::test

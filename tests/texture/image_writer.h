@@ -1,0 +1,25 @@
+// Writes small test images through OpenImageIO (the texture and light-adapter tests read them
+// back): colour as given, never un-premultiplied by alpha.
+#pragma once
+
+#include <gtest/gtest.h>
+
+#include <OpenImageIO/imageio.h>
+
+#include <string>
+#include <vector>
+
+namespace fluence::test {
+
+template <typename T>
+void writeImage(const std::string& path, int width, int height, int channels, OIIO::TypeDesc type, const std::vector<T>& pixels) {
+    auto out = OIIO::ImageOutput::create(path);
+    ASSERT_TRUE(out) << OIIO::geterror();
+    OIIO::ImageSpec spec(width, height, channels, type);
+    spec.attribute("oiio:UnassociatedAlpha", 1);
+    ASSERT_TRUE(out->open(path, spec)) << out->geterror();
+    ASSERT_TRUE(out->write_image(type, pixels.data())) << out->geterror();
+    out->close();
+}
+
+}  // namespace fluence::test
