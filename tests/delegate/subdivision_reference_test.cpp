@@ -13,6 +13,7 @@
 // most sqrt(3) 2^-25), and the (u, v) rounding tilts it by a similar amount divided by the sine of
 // the angle between the derivatives: 2^-21 / sine leaves a margin of about 4.
 #include "delegate/subdivision.h"
+#include "tests/delegate/subdivision_test_cage.h"
 
 #include <gtest/gtest.h>
 
@@ -194,9 +195,7 @@ Case lumpyCube() {
     Case c{"lumpy cube", {}, {}};
     c.points = {{-1.0f, -1.0f, -1.0f}, {1.1f, -0.9f, -1.0f}, {1.0f, 1.2f, -0.8f}, {-0.9f, 1.0f, -1.1f},
                 {-1.0f, -1.1f, 0.9f},  {0.8f, -1.0f, 1.0f},  {1.2f, 1.0f, 1.1f},  {-1.0f, 0.9f, 1.0f}};
-    c.topology.pointCount = 8;
-    c.topology.faceVertexCounts = {4, 4, 4, 4, 4, 4};
-    c.topology.faceVertexIndices = {0, 3, 2, 1, 4, 5, 6, 7, 0, 1, 5, 4, 1, 2, 6, 5, 2, 3, 7, 6, 3, 0, 4, 7};
+    c.topology = testing::cubeTopology();
     return c;
 }
 

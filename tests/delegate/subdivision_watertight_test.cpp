@@ -3,6 +3,7 @@
 // tessellation converges to the limit surface (the area of a Catmull-Clark cube, second order in
 // the segment length).
 #include "delegate/subdivision.h"
+#include "tests/delegate/subdivision_test_cage.h"
 
 #include <gtest/gtest.h>
 
@@ -32,9 +33,7 @@ Cage cube() {
     Cage c;
     c.name = "cube";
     c.points = {{-1, -1, -1}, {1, -1, -1}, {1, 1, -1}, {-1, 1, -1}, {-1, -1, 1}, {1, -1, 1}, {1, 1, 1}, {-1, 1, 1}};
-    c.topology.pointCount = 8;
-    c.topology.faceVertexCounts = {4, 4, 4, 4, 4, 4};
-    c.topology.faceVertexIndices = {0, 3, 2, 1, 4, 5, 6, 7, 0, 1, 5, 4, 1, 2, 6, 5, 2, 3, 7, 6, 3, 0, 4, 7};
+    c.topology = testing::cubeTopology();
     return c;
 }
 
