@@ -85,22 +85,18 @@ const usd::PrimSpec* shaderBehind(const usd::Stage& stage, const usd::PrimSpec& 
     return nullptr;
 }
 
-// The render core shades diffuse and emission only until the BSDFs of issue #6 are wired in:
-// say which authored lobes are read but not rendered.
+// Say which authored lobes the render core reads but does not render yet (render/material_bsdf.h).
 void warnAboutUnrenderedLobes(const render::MaterialDesc& m, const Warn& warn) {
     std::string lobes;
     auto note = [&](bool used, const char* name) {
         if (used) lobes += (lobes.empty() ? "" : ", ") + std::string(name);
     };
-    note(m.metallic > 0.0f, "metallic");
-    note(m.specularWorkflow && !isBlack(m.specularColor), "a specular colour");
     note(m.transmission > 0.0f, "transmission");
-    note(m.coat > 0.0f, "clear coat");
     note(m.sheen > 0.0f, "sheen");
     note(m.opacity < 1.0f, "opacity");
     note(m.subsurface > 0.0f, "subsurface");
     if (!lobes.empty())
-        warn(m.name, "material uses " + lobes + ", read but not rendered yet (this version shades diffuse and emission only)");
+        warn(m.name, "material uses " + lobes + ", read but not rendered yet");
 }
 
 }  // namespace

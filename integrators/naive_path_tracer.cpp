@@ -4,7 +4,9 @@
 
 #include "core/frame.h"
 #include "integrators/first_hit.h"
+#include "render/bsdf_arena.h"
 #include "render/bsdfs/lambertian.h"
+#include "render/material_bsdf.h"
 
 namespace fluence::integrators {
 
@@ -13,6 +15,7 @@ FilmSample NaivePathTracer::sample(const render::RenderScene& scene, const rende
     FilmSample out;
     RGB radiance(0.0f), throughput(1.0f);
     render::Ray ray = cameraRay;
+    render::BsdfArena arena;
     for (int depth = 0;; ++depth) {
         ++(depth == 0 ? counters.camera : counters.bounce);
         std::optional<render::SurfaceHit> hit = scene.intersect(ray);
@@ -28,9 +31,12 @@ FilmSample NaivePathTracer::sample(const render::RenderScene& scene, const rende
         if (hit->lightShape || depth >= maxDepth_) break;
 
         SurfaceFrame surface = orientTowards(*hit, wo);
-        render::LambertianBsdf bsdf(hit->albedo);
-        // uLobe = 0: the Lambertian has a single lobe (no random number drawn, as before).
-        std::optional<render::BsdfSample> bs = bsdf.sample(surface.frame.toLocal(wo), 0.0f, rng.next2D());
+        arena.reset();
+        const render::Bsdf& bsdf = hit->material ? render::materialBsdf(*hit->material, hit->albedo, arena)
+                                                 : arena.make<render::LambertianBsdf>(hit->albedo);
+        // A plain Lambertian has one lobe: no lobe number drawn.
+        const float uLobe = bsdf.flags() == (render::kBsdfReflection | render::kBsdfDiffuse) ? 0.0f : rng.next();
+        std::optional<render::BsdfSample> bs = bsdf.sample(surface.frame.toLocal(wo), uLobe, rng.next2D());
         if (!bs) break;
         Vec3f wi = surface.frame.toWorld(bs->wi);
         if (dot(wi, surface.geometricNormal) <= 0.0f) break;

@@ -4,11 +4,12 @@
 
 #include "core/frame.h"
 #include "integrators/first_hit.h"
+#include "render/bsdf_arena.h"
 #include "render/bsdfs/lambertian.h"
+#include "render/material_bsdf.h"
 
 namespace fluence::integrators {
 
-using render::LambertianBsdf;
 using render::LightHit;
 using render::Ray;
 using render::SurfaceHit;
@@ -30,6 +31,8 @@ FilmSample PathTracer::sample(const render::RenderScene& scene, const render::Ca
     RGB radiance(0.0f), throughput(1.0f);
     Ray ray = cameraRay;
     float bsdfPdf = 0.0f;  // density of the BSDF sample that produced `ray` (0 for the camera ray)
+    bool specularBounce = false;  // `ray` left a delta lobe: no light strategy could have found it
+    render::BsdfArena arena;
     Vec3f previousPoint = ray.origin;
     const bool haveLights = !scene.lightSelection().empty();
 
@@ -41,9 +44,10 @@ FilmSample PathTracer::sample(const render::RenderScene& scene, const render::Ca
             for (int index : scene.lightsAtInfinity()) {
                 RGB le = scene.light(index).escaped(ray.direction);
                 if (isBlack(le)) continue;
-                float weight = depth == 0 ? 1.0f
-                                          : powerHeuristic(bsdfPdf, lightStrategyPdf(scene, index, previousPoint,
-                                                                                      ray.direction, LightHit{}));
+                float weight = depth == 0 || specularBounce
+                                   ? 1.0f
+                                   : powerHeuristic(bsdfPdf, lightStrategyPdf(scene, index, previousPoint, ray.direction,
+                                                                              LightHit{}));
                 radiance += throughput * le * weight;
             }
             break;
@@ -57,9 +61,10 @@ FilmSample PathTracer::sample(const render::RenderScene& scene, const render::Ca
             LightHit lh{hit->point, hit->geometricNormal};
             RGB le = hit->lightShape ? scene.light(hit->light).emitted(lh, wo) : hit->emission;
             if (!isBlack(le)) {
-                float weight = depth == 0 ? 1.0f
-                                          : powerHeuristic(bsdfPdf, lightStrategyPdf(scene, hit->light, previousPoint,
-                                                                                      ray.direction, lh));
+                float weight = depth == 0 || specularBounce
+                                   ? 1.0f
+                                   : powerHeuristic(bsdfPdf, lightStrategyPdf(scene, hit->light, previousPoint,
+                                                                              ray.direction, lh));
                 radiance += throughput * le * weight;
             }
         }
@@ -69,11 +74,14 @@ FilmSample PathTracer::sample(const render::RenderScene& scene, const render::Ca
         const Frame& frame = surface.frame;
         const Vec3f& ng = surface.geometricNormal;
         Vec3f woLocal = frame.toLocal(wo);
-        LambertianBsdf bsdf(hit->albedo);
+        arena.reset();
+        const render::Bsdf& bsdf = hit->material ? render::materialBsdf(*hit->material, hit->albedo, arena)
+                                                 : arena.make<render::LambertianBsdf>(hit->albedo);
+        const bool connectable = (bsdf.flags() & (render::kBsdfDiffuse | render::kBsdfGlossy)) != 0;
         Vec3f origin = render::offsetRayOrigin(hit->point, ng);
 
         // Next-event estimation: one light, chosen by power.
-        if (haveLights) {
+        if (haveLights && connectable) {
             float uLight = rng.next();
             Vec2f uPoint = rng.next2D();
             std::size_t index = scene.lightSelection().sample(uLight);
@@ -96,9 +104,9 @@ FilmSample PathTracer::sample(const render::RenderScene& scene, const render::Ca
             rng.next2D();
         }
 
-        // Continue the path by sampling the BSDF.
-        // uLobe = 0: the Lambertian has a single lobe (no random number drawn, as before).
-        std::optional<render::BsdfSample> bs = bsdf.sample(woLocal, 0.0f, rng.next2D());
+        // Continue the path by sampling the BSDF (a plain Lambertian has one lobe: no lobe number drawn).
+        const float uLobe = bsdf.flags() == (render::kBsdfReflection | render::kBsdfDiffuse) ? 0.0f : rng.next();
+        std::optional<render::BsdfSample> bs = bsdf.sample(woLocal, uLobe, rng.next2D());
         if (!bs) break;
         Vec3f wi = frame.toWorld(bs->wi);
         if (dot(wi, ng) <= 0.0f) break;  // shading normal sent the path below the surface
@@ -106,6 +114,7 @@ FilmSample PathTracer::sample(const render::RenderScene& scene, const render::Ca
         if (!continuePath(throughput, depth, rng)) break;
 
         bsdfPdf = bs->pdf;
+        specularBounce = bs->specular;
         previousPoint = origin;
         ray = Ray{origin, wi, 0.0f, std::numeric_limits<float>::infinity()};
     }

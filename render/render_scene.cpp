@@ -129,6 +129,7 @@ struct RenderScene::Mesh {
     std::vector<RGB> cornerColors;
     RGB diffuse;
     RGB emission;
+    int material = -1;  // into materials_, -1 = the default (Lambertian) material
     int firstLight = -1;
 };
 
@@ -156,7 +157,8 @@ struct RenderScene::EmbreeState {
     }
 };
 
-RenderScene::RenderScene(const SceneDescription& scene) : embree_(std::make_unique<EmbreeState>()) {
+RenderScene::RenderScene(const SceneDescription& scene)
+    : embree_(std::make_unique<EmbreeState>()), materials_(scene.materials) {
     embree_->device = rtcNewDevice(nullptr);
     if (!embree_->device) throw std::runtime_error("cannot create the Embree device");
     embree_->surfaces = rtcNewScene(embree_->device);
@@ -229,6 +231,7 @@ int RenderScene::storeMesh(const MeshDesc& desc, const std::vector<MaterialDesc>
     mesh.cornerNormals = desc.cornerNormals;
     mesh.cornerColors = desc.cornerColors;
     MaterialDesc material = desc.material >= 0 ? materials[desc.material] : MaterialDesc{};
+    mesh.material = desc.material;
     mesh.diffuse = material.diffuse;
     mesh.emission = material.emission;
     stats_.meshes += 1;
@@ -422,6 +425,7 @@ SurfaceHit RenderScene::shadeMesh(int meshIndex, unsigned primID, float u, float
                      ? mesh.diffuse
                      : mesh.cornerColors[c] * w + mesh.cornerColors[c + 1] * u + mesh.cornerColors[c + 2] * v;
     hit.emission = mesh.emission;
+    hit.material = mesh.material >= 0 ? &materials_[static_cast<std::size_t>(mesh.material)] : nullptr;
     hit.light = mesh.firstLight >= 0 ? mesh.firstLight + static_cast<int>(primID) : -1;
     return hit;
 }

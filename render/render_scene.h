@@ -40,6 +40,7 @@ struct SurfaceHit {
     Vec3f shadingNormal;    // unit
     RGB albedo;             // diffuse reflectance (zero on light shapes)
     RGB emission;           // emitted radiance of an emissive surface (both sides)
+    const MaterialDesc* material = nullptr;  // the surface's material (nullptr: Lambertian `albedo`)
     int light = -1;         // index of the light this surface belongs to, or -1
     bool lightShape = false;  // a light's own shape (rect, disk, sphere, cylinder): emits, does not reflect
 };
@@ -93,6 +94,7 @@ private:
     struct EmbreeState;
     std::unique_ptr<EmbreeState> embree_;
     std::vector<Mesh> meshes_;
+    std::vector<MaterialDesc> materials_;  // SurfaceHit::material points in here
     std::vector<int> surfaceMeshes_;     // Embree geometry id in the surface scene -> mesh, or -1
     std::vector<int> surfaceInstances_;  // Embree geometry id in the surface scene -> instance, or -1
     std::vector<Prototype> prototypes_;

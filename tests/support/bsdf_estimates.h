@@ -5,6 +5,7 @@
 #include <cstdint>
 
 #include "core/random.h"
+#include "core/sampling.h"
 #include "render/bsdf.h"
 #include "tests/support/statistics.h"
 

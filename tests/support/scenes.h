@@ -9,10 +9,11 @@
 
 namespace fluence::test {
 
-// A Lambertian material, optionally emissive.
+// A Lambertian material (no specular lobe), optionally emissive.
 inline render::MaterialDesc diffuseMaterial(std::string name, const RGB& albedo, const RGB& emission = RGB(0.0f)) {
     render::MaterialDesc m;
     m.name = std::move(name);
+    m.specular = 0.0f;
     m.diffuse = albedo;
     m.emission = emission;
     return m;

@@ -30,7 +30,8 @@ inline std::string usdSphereMesh(int segments = 48, int rings = 24) {
            "]\n        point3f[] points = [" + points.str() + "]\n";
 }
 
-// The white furnace: a diffuse sphere of the given albedo, a DomeLight of radiance 1, Z up.
+// The white furnace: a diffuse sphere of the given albedo (a UsdPreviewSurface in the specular
+// workflow with a black specularColor: exactly Lambertian), a DomeLight of radiance 1, Z up.
 inline std::string furnaceUsda(double albedo) {
     std::ostringstream s;
     s << "#usda 1.0\n(\n    upAxis = \"Z\"\n    metersPerUnit = 1\n)\n\n"
@@ -43,6 +44,8 @@ inline std::string furnaceUsda(double albedo) {
       << "            def Shader \"Surface\"\n            {\n"
       << "                uniform token info:id = \"UsdPreviewSurface\"\n"
       << "                color3f inputs:diffuseColor = (" << albedo << ", " << albedo << ", " << albedo << ")\n"
+      << "                int inputs:useSpecularWorkflow = 1\n"
+      << "                color3f inputs:specularColor = (0, 0, 0)\n"
       << "                token outputs:surface\n            }\n        }\n    }\n"
       << "    def DomeLight \"Dome\"\n    {\n        float inputs:intensity = 1\n    }\n"
       << "    def Camera \"Camera\"\n    {\n        float focalLength = 50\n"
