@@ -18,9 +18,9 @@ namespace {
 
 // Probability that next-event estimation picks light `index` and samples direction wi towards
 // `hit` from `from`: the density the light strategy would have had for a BSDF-sampled hit.
-float lightStrategyPdf(const render::RenderScene& scene, int index, const Vec3f& from, const Vec3f& wi,
-                       const LightHit& hit) {
-    return scene.lightSelection().pmf(static_cast<std::size_t>(index)) * scene.light(index).pdf(from, wi, hit);
+float lightStrategyPdf(const render::RenderScene& scene, int index, const Vec3f& from, const Vec3f& fromNormal,
+                       const Vec3f& wi, const LightHit& hit) {
+    return scene.lightProbability(from, fromNormal, index) * scene.light(index).pdf(from, wi, hit);
 }
 
 }  // namespace
@@ -33,7 +33,7 @@ FilmSample PathTracer::sample(const render::RenderScene& scene, const render::Ca
     float bsdfPdf = 0.0f;  // density of the BSDF sample that produced `ray` (0 for the camera ray)
     bool specularBounce = false;  // `ray` left a delta lobe: no light strategy could have found it
     render::BsdfArena arena;
-    Vec3f previousPoint = ray.origin;
+    Vec3f previousPoint = ray.origin, previousNormal(0.0f);
     const bool haveLights = !scene.lightSelection().empty();
 
     for (int depth = 0;; ++depth) {
@@ -46,8 +46,8 @@ FilmSample PathTracer::sample(const render::RenderScene& scene, const render::Ca
                 if (isBlack(le)) continue;
                 float weight = depth == 0 || specularBounce
                                    ? 1.0f
-                                   : powerHeuristic(bsdfPdf, lightStrategyPdf(scene, index, previousPoint, ray.direction,
-                                                                              LightHit{}));
+                                   : powerHeuristic(bsdfPdf, lightStrategyPdf(scene, index, previousPoint, previousNormal,
+                                                                              ray.direction, LightHit{}));
                 radiance += throughput * le * weight;
             }
             break;
@@ -63,7 +63,7 @@ FilmSample PathTracer::sample(const render::RenderScene& scene, const render::Ca
             if (!isBlack(le)) {
                 float weight = depth == 0 || specularBounce
                                    ? 1.0f
-                                   : powerHeuristic(bsdfPdf, lightStrategyPdf(scene, hit->light, previousPoint,
+                                   : powerHeuristic(bsdfPdf, lightStrategyPdf(scene, hit->light, previousPoint, previousNormal,
                                                                               ray.direction, lh));
                 radiance += throughput * le * weight;
             }
@@ -80,13 +80,15 @@ FilmSample PathTracer::sample(const render::RenderScene& scene, const render::Ca
         const bool connectable = (bsdf.flags() & (render::kBsdfDiffuse | render::kBsdfGlossy)) != 0;
         Vec3f origin = render::offsetRayOrigin(hit->point, ng);
 
-        // Next-event estimation: one light, chosen by power.
+        // Next-event estimation: one light, chosen by the light tree for this point and normal.
         if (haveLights && connectable) {
             float uLight = rng.next();
             Vec2f uPoint = rng.next2D();
-            std::size_t index = scene.lightSelection().sample(uLight);
-            float pick = scene.lightSelection().pmf(index);
-            std::optional<render::LightSample> ls = scene.light(index).sample(origin, uPoint);
+            render::LightChoice choice = scene.chooseLight(origin, ng, uLight);
+            const int index = choice.light;
+            const float pick = choice.probability;
+            std::optional<render::LightSample> ls;
+            if (index >= 0 && pick > 0.0f) ls = scene.light(index).sample(origin, uPoint);
             if (ls && ls->pdf > 0.0f && !isBlack(ls->Li) && dot(ls->wi, ng) > 0.0f) {
                 Vec3f wiLocal = frame.toLocal(ls->wi);
                 RGB f = bsdf.f(woLocal, wiLocal) * std::abs(wiLocal.z);
@@ -116,6 +118,7 @@ FilmSample PathTracer::sample(const render::RenderScene& scene, const render::Ca
         bsdfPdf = bs->pdf;
         specularBounce = bs->specular;
         previousPoint = origin;
+        previousNormal = ng;
         ray = Ray{origin, wi, 0.0f, std::numeric_limits<float>::infinity()};
     }
     out.radiance = radiance;

@@ -1,9 +1,11 @@
-// `path`: the unidirectional path tracer. Covers L(S|D)*E (in this slice every surface is
-// diffuse, so L D* E).
+// `path`: the unidirectional path tracer. Covers L(S|D)*E: glossy and diffuse vertices (D) are
+// connected to lights, delta lobes (S) are followed by BSDF sampling alone.
 //
-// At each surface vertex it samples one light (chosen proportionally to power) for next-event
-// estimation and one BSDF direction to continue the path, and combines the two strategies for
-// hitting emitters with multiple importance sampling (Veach's power heuristic). Paths end when
+// At each non-delta surface vertex it samples one light (chosen by the light tree for that point
+// and normal, render/light_tree.h) for next-event estimation and one BSDF direction
+// (render/material_bsdf.h) to continue the path, and combines the two strategies for hitting
+// emitters with multiple importance sampling (Veach's power heuristic; emission reached through a
+// delta lobe takes full weight). Paths end when
 // they leave the scene, reach maxDepth scattering events, or are stopped by Russian roulette
 // (after three bounces, with survival probability equal to the throughput's largest component,
 // capped at 0.95) — roulette keeps the estimator unbiased.
