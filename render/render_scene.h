@@ -10,8 +10,9 @@
 // Light selection for next-event estimation: chooseLight(p, n, u) walks the light tree
 // (render/light_tree.h), which favours the lights that can give the point p with normal n the
 // most light, in O(log N) per choice; lightProbability(p, n, light) is the probability of that
-// same choice, for the MIS weight of emission reached by BSDF sampling. lightSelection(), the
-// older choice proportional to power alone, stays until the integrators use chooseLight.
+// same choice, for the MIS weight of emission reached by BSDF sampling. The path tracer uses these;
+// lightSelection(), the older choice proportional to power alone, remains as the baseline the
+// many-lights benchmark compares the tree against.
 //
 // Instancing: each prototype is one Embree scene, built once, and each instance an Embree
 // instance of it (one level), so N instances of a mesh cost its triangles once plus one
