@@ -18,12 +18,12 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
-#include <fstream>
 #include <map>
 #include <sstream>
 #include <string>
 #include <vector>
 
+#include "bench/process_status.h"
 #include "core/random.h"
 #include "render/mesh_transform.h"
 #include "render/render_scene.h"
@@ -32,13 +32,6 @@ namespace {
 
 using namespace fluence;
 
-long statusKiB(const char* field) {
-    std::ifstream status("/proc/self/status");
-    std::string line, prefix = std::string(field) + ":";
-    while (std::getline(status, line))
-        if (line.rfind(prefix, 0) == 0) return std::strtol(line.c_str() + prefix.size(), nullptr, 10);
-    return -1;
-}
 
 // An icosphere of unit radius: an icosahedron whose triangles are split in four `subdivisions`
 // times, new vertices pushed onto the sphere.
@@ -84,7 +77,7 @@ std::vector<Matrix4> placements(int count) {
 
 // The measured child: prints "key value" lines.
 int child(bool instanced, int count, int subdivisions, long rays) {
-    long rss0 = statusKiB("VmRSS");
+    long rss0 = bench::statusKiB("VmRSS");
     auto start = std::chrono::steady_clock::now();
     render::SceneDescription scene;
     render::MeshDesc rock = icosphere(subdivisions);
@@ -97,7 +90,7 @@ int child(bool instanced, int count, int subdivisions, long rays) {
     }
     render::RenderScene built(scene);
     double buildSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    long hwm = statusKiB("VmHWM");
+    long hwm = bench::statusKiB("VmHWM");
 
     int side = static_cast<int>(std::ceil(std::sqrt(double(count))));
     float extent = side * 1.5f;

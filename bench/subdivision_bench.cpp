@@ -16,11 +16,11 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
-#include <fstream>
 #include <functional>
 #include <string>
 #include <vector>
 
+#include "bench/process_status.h"
 #include "core/film.h"
 #include "delegate/scene_delegate.h"
 #include "integrators/integrator.h"
@@ -35,13 +35,6 @@ using Clock = std::chrono::steady_clock;
 
 double secondsSince(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
 
-long statusKiB(const char* field) {
-    std::ifstream status("/proc/self/status");
-    std::string line, prefix = std::string(field) + ":";
-    while (std::getline(status, line))
-        if (line.rfind(prefix, 0) == 0) return std::strtol(line.c_str() + prefix.size(), nullptr, 10);
-    return -1;
-}
 
 delegate::DelegateOptions optionsFor(std::pair<int, int> resolution, const delegate::DicingSettings& dicing) {
     delegate::DelegateOptions o;
@@ -185,6 +178,6 @@ int main(int argc, char** argv) {
         std::fprintf(stderr, "subdivision_bench: %s\n", e.what());
         return 1;
     }
-    std::printf("\npeak resident memory (VmHWM): %.1f MiB\n", statusKiB("VmHWM") / 1024.0);
+    std::printf("\npeak resident memory (VmHWM): %.1f MiB\n", bench::statusKiB("VmHWM") / 1024.0);
     return 0;
 }

@@ -43,6 +43,7 @@
 #include <unordered_set>
 #include <vector>
 
+#include "bench/process_status.h"
 #include "scene/stage.h"
 #include "scene/usda_parser.h"
 
@@ -362,16 +363,6 @@ LayerStats statsOf(const Layer& layer, const LayerStats* counted = nullptr) {
     return s;
 }
 
-// A field of /proc/self/status in KiB ("VmHWM", "VmRSS").
-long statusKiB(const char* field) {
-    std::ifstream status("/proc/self/status");
-    std::string line;
-    std::string prefix = std::string(field) + ":";
-    while (std::getline(status, line)) {
-        if (line.rfind(prefix, 0) == 0) return std::strtol(line.c_str() + prefix.size(), nullptr, 10);
-    }
-    return -1;
-}
 
 std::string readFile(const std::string& path) {
     std::ifstream file(path, std::ios::binary);
@@ -392,17 +383,17 @@ std::size_t composedPayload(const Stage& stage, const LayerStats& root) {
 // The child process of the memory measurement: prints "key value" lines on stdout.
 int memoryChild(const std::string& mode, const std::string& path) {
     if (mode == "open") {
-        long rss0 = statusKiB("VmRSS"), hwm0 = statusKiB("VmHWM");
+        long rss0 = fluence::bench::statusKiB("VmRSS"), hwm0 = fluence::bench::statusKiB("VmHWM");
         auto stage = Stage::open(path);
-        long rss1 = statusKiB("VmRSS"), hwm1 = statusKiB("VmHWM");
+        long rss1 = fluence::bench::statusKiB("VmRSS"), hwm1 = fluence::bench::statusKiB("VmHWM");
         LayerStats s = statsOf(stage->rootLayer());
         std::printf("rss0 %ld\nhwm0 %ld\nrss1 %ld\nhwm1 %ld\npayload %zu\ncomposed %zu\n", rss0, hwm0,
                     rss1, hwm1, s.payloadBytes(), composedPayload(*stage, s));
     } else {  // "parse": the text is read first; only the parse is measured
         std::string text = readFile(path);
-        long rss0 = statusKiB("VmRSS"), hwm0 = statusKiB("VmHWM");
+        long rss0 = fluence::bench::statusKiB("VmRSS"), hwm0 = fluence::bench::statusKiB("VmHWM");
         auto layer = parseUsdaString(text, path);
-        long rss1 = statusKiB("VmRSS"), hwm1 = statusKiB("VmHWM");
+        long rss1 = fluence::bench::statusKiB("VmRSS"), hwm1 = fluence::bench::statusKiB("VmHWM");
         LayerStats s = statsOf(*layer);
         std::printf("rss0 %ld\nhwm0 %ld\nrss1 %ld\nhwm1 %ld\npayload %zu\n", rss0, hwm0, rss1, hwm1,
                     s.payloadBytes());

@@ -13,11 +13,6 @@ namespace fluence::delegate {
 
 namespace {
 
-std::string parentPath(const std::string& path) {
-    std::size_t slash = path.rfind('/');
-    return slash == 0 ? "/" : path.substr(0, slash);
-}
-
 // The ids an int64 list-op metadata field names, its entries applied in authored order.
 std::set<long long> listOpIds(const usd::Metadata& metadata, const std::string& key) {
     std::set<long long> ids;

@@ -8,11 +8,6 @@ namespace fluence::delegate {
 
 namespace {
 
-std::string parentPath(const std::string& path) {
-    auto slash = path.rfind('/');
-    return slash == 0 || slash == std::string::npos ? "/" : path.substr(0, slash);
-}
-
 const usd::RelationshipSpec* bindingOf(const usd::PrimSpec& prim) {
     const usd::RelationshipSpec* r = prim.relationship("material:binding:full");
     if (!r || r->targets.empty()) r = prim.relationship("material:binding");
@@ -33,6 +28,11 @@ std::pair<std::string, std::string> splitPropertyPath(const std::string& path) {
     return {path.substr(0, dot), path.substr(dot + 1)};
 }
 
+
+std::string parentPath(const std::string& path) {
+    auto slash = path.rfind('/');
+    return slash == 0 || slash == std::string::npos ? "/" : path.substr(0, slash);
+}
 
 std::string resolveTargetPath(const std::string& anchor, const std::string& target) {
     if (target.starts_with("/")) return target;

@@ -34,6 +34,9 @@ std::string boundMaterialPath(const usd::Stage& stage, const usd::PrimSpec& prim
 render::MaterialDesc materialFromPath(const usd::Stage& stage, const std::string& materialPath, double time,
                                       const ColorConverter& convertColor, const Warn& warn);
 
+// The parent of a prim path ("/" for a root prim).
+std::string parentPath(const std::string& path);
+
 // Resolves a relationship or connection target (absolute, or relative to `anchor`).
 std::string resolveTargetPath(const std::string& anchor, const std::string& target);
 

@@ -311,7 +311,7 @@ void SceneDelegate::setTime(double time) {
 
 void SceneDelegate::setAttribute(const std::string& primPath, const std::string& name, const usd::Value& value) {
     for (std::string p = primPath; p.size() > 1;) {
-        p = p.substr(0, std::max<std::size_t>(p.rfind('/'), 1));
+        p = parentPath(p);
         if (const RenderPrim* owner = index_.find(p); owner && owner->kind() == RenderPrim::Kind::Instance)
             throw SceneError("cannot set " + primPath + "." + name + ": it lies inside the instance " + p +
                              ", and USD instance proxies are read-only (edit what the instance references, or make " +
@@ -334,7 +334,7 @@ void SceneDelegate::setAttribute(const std::string& primPath, const std::string&
     }
     if (prototypeMarked) return;
     // Inside a material (a shader input, an interface input), or a GeomSubset under a mesh.
-    for (std::string p = primPath; p.size() > 1; p = p.substr(0, std::max<std::size_t>(p.rfind('/'), 1)))
+    for (std::string p = primPath; p.size() > 1; p = parentPath(p))
         if (RenderPrim* owner = index_.find(p)) {
             owner->markDirty(owner->kind() == RenderPrim::Kind::Mesh ? kDirtyTopology : kDirtyParams);
             return;
