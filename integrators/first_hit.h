@@ -16,7 +16,7 @@ namespace fluence::integrators {
 inline void recordFirstHit(FilmSample& out, const render::SurfaceHit& hit, const Vec3f& wo, const render::Camera& camera) {
     out.hit = true;
     out.depth = camera.viewDepth(hit.point);
-    out.albedo = hit.albedo;
+    out.albedo = hit.material.diffuse;
     out.normal = dot(hit.shadingNormal, wo) < 0.0f ? -hit.shadingNormal : hit.shadingNormal;
 }
 

@@ -5,7 +5,6 @@
 #include "core/frame.h"
 #include "integrators/first_hit.h"
 #include "render/bsdf_arena.h"
-#include "render/bsdfs/lambertian.h"
 #include "render/material_bsdf.h"
 
 namespace fluence::integrators {
@@ -32,8 +31,7 @@ FilmSample NaivePathTracer::sample(const render::RenderScene& scene, const rende
 
         SurfaceFrame surface = orientTowards(*hit, wo);
         arena.reset();
-        const render::Bsdf& bsdf = hit->material ? render::materialBsdf(*hit->material, hit->albedo, arena)
-                                                 : arena.make<render::LambertianBsdf>(hit->albedo);
+        const render::Bsdf& bsdf = render::materialBsdf(hit->material, arena);
         // A plain Lambertian has one lobe: no lobe number drawn.
         const float uLobe = bsdf.flags() == (render::kBsdfReflection | render::kBsdfDiffuse) ? 0.0f : rng.next();
         std::optional<render::BsdfSample> bs = bsdf.sample(surface.frame.toLocal(wo), uLobe, rng.next2D());

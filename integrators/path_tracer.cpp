@@ -5,7 +5,6 @@
 #include "core/frame.h"
 #include "integrators/first_hit.h"
 #include "render/bsdf_arena.h"
-#include "render/bsdfs/lambertian.h"
 #include "render/material_bsdf.h"
 
 namespace fluence::integrators {
@@ -75,8 +74,7 @@ FilmSample PathTracer::sample(const render::RenderScene& scene, const render::Ca
         const Vec3f& ng = surface.geometricNormal;
         Vec3f woLocal = frame.toLocal(wo);
         arena.reset();
-        const render::Bsdf& bsdf = hit->material ? render::materialBsdf(*hit->material, hit->albedo, arena)
-                                                 : arena.make<render::LambertianBsdf>(hit->albedo);
+        const render::Bsdf& bsdf = render::materialBsdf(hit->material, arena);
         const bool connectable = (bsdf.flags() & (render::kBsdfDiffuse | render::kBsdfGlossy)) != 0;
         Vec3f origin = render::offsetRayOrigin(hit->point, ng);
 

@@ -22,7 +22,8 @@ float alphaOf(float roughness) { return std::clamp(roughness, 0.0f, 1.0f) * std:
 
 }  // namespace
 
-const Bsdf& materialBsdf(const MaterialDesc& m, const RGB& albedo, BsdfArena& arena) {
+const Bsdf& materialBsdf(const MaterialParams& m, BsdfArena& arena) {
+    const RGB& albedo = m.diffuse;
     const Bsdf* bsdf = &arena.make<LambertianBsdf>(albedo);
     const float alpha = alphaOf(m.roughness);
     const bool dielectricSpecular = m.specularWorkflow ? !isBlack(m.specularColor) : m.specular > 0.0f;

@@ -1,7 +1,7 @@
 // The BSDF of a surface point from its MaterialDesc: the layers of render/scene_description.h
 // built out of render/bsdfs/ in a BsdfArena.
 //
-//   base      Lambertian(albedo)                                   albedo = diffuse or displayColor
+//   base      Lambertian(diffuse)
 //   specular  CoatedBsdf(base, eta, roughness^2)                   when the dielectric specular lobe
 //             is on: `specular` > 0, or in the specular workflow a non-black specularColor
 //             (eta from its luminance as F0); a plastic-like glossy layer over the diffuse
@@ -19,6 +19,6 @@
 
 namespace fluence::render {
 
-const Bsdf& materialBsdf(const MaterialDesc& material, const RGB& albedo, BsdfArena& arena);
+const Bsdf& materialBsdf(const MaterialParams& material, BsdfArena& arena);
 
 }  // namespace fluence::render

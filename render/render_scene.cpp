@@ -421,11 +421,10 @@ SurfaceHit RenderScene::shadeMesh(int meshIndex, unsigned primID, float u, float
             if (dot(hit.shadingNormal, hit.geometricNormal) < 0.0f) hit.geometricNormal = -hit.geometricNormal;
         }
     }
-    hit.albedo = mesh.cornerColors.empty()
-                     ? mesh.diffuse
-                     : mesh.cornerColors[c] * w + mesh.cornerColors[c + 1] * u + mesh.cornerColors[c + 2] * v;
+    hit.material = mesh.material >= 0 ? static_cast<const MaterialParams&>(materials_[static_cast<std::size_t>(mesh.material)]) : lambertianParams(mesh.diffuse);
+    if (!mesh.cornerColors.empty())
+        hit.material.diffuse = mesh.cornerColors[c] * w + mesh.cornerColors[c + 1] * u + mesh.cornerColors[c + 2] * v;
     hit.emission = mesh.emission;
-    hit.material = mesh.material >= 0 ? &materials_[static_cast<std::size_t>(mesh.material)] : nullptr;
     hit.light = mesh.firstLight >= 0 ? mesh.firstLight + static_cast<int>(primID) : -1;
     return hit;
 }

@@ -39,9 +39,10 @@ struct SurfaceHit {
     Vec3f point;
     Vec3f geometricNormal;  // unit; on the same side as shadingNormal
     Vec3f shadingNormal;    // unit
-    RGB albedo;             // diffuse reflectance (zero on light shapes)
+    // The material's parameters at this point (a mesh without a material: Lambertian, its
+    // displayColor or 18% grey; light shapes: black). material.diffuse is the albedo AOV.
+    MaterialParams material = lambertianParams(RGB(0.0f));
     RGB emission;           // emitted radiance of an emissive surface (both sides)
-    const MaterialDesc* material = nullptr;  // the surface's material (nullptr: Lambertian `albedo`)
     int light = -1;         // index of the light this surface belongs to, or -1
     bool lightShape = false;  // a light's own shape (rect, disk, sphere, cylinder): emits, does not reflect
 };

@@ -18,17 +18,16 @@
 
 namespace fluence::render {
 
-// A surface material as the render core takes it: one layered "principled" parameter set that
-// both UsdPreviewSurface and MaterialX Standard Surface map onto (delegate/material_adapter.h
+// A surface material's parameters at one surface point: one layered "principled" parameter set
+// that both UsdPreviewSurface and MaterialX Standard Surface map onto (delegate/surface_shaders.h
 // gives the mapping). From the bottom up: a diffuse base (weight 1 - metallic - transmission), a
 // dielectric specular lobe over it (Fresnel from `ior`, tinted by `specularColor`, weighted by
 // `specular`) or, with `specularWorkflow`, a specular lobe whose normal-incidence reflectance is
 // `specularColor` itself; a metal (weight `metallic`, normal-incidence reflectance `diffuse`,
 // edge tint `specularColor`); a rough dielectric transmission (weight `transmission`); a sheen;
 // a clear coat on top; emission. Colours are linear, in the rendering space; roughness values are
-// perceptual (alpha = roughness^2).
-struct MaterialDesc {
-    std::string name;  // prim path, for messages
+// perceptual (alpha = roughness^2). render/material_bsdf.h turns them into a BSDF.
+struct MaterialParams {
     RGB diffuse{0.18f};
     float diffuseRoughness = 0.0f;  // Oren-Nayar sigma-like roughness, 0 = Lambertian
     float specular = 1.0f;          // weight of the dielectric specular lobe
@@ -59,6 +58,20 @@ struct MaterialDesc {
     // UsdPreviewSurface displacement along the normal, in object units. Geometry, not shading:
     // the delegate applies it when it tessellates a subdivision surface; the render core ignores it.
     float displacement = 0.0f;
+};
+
+// The parameters of a plain Lambertian surface (every other lobe off): the material of a mesh
+// that has none.
+inline MaterialParams lambertianParams(const RGB& albedo) {
+    MaterialParams p;
+    p.diffuse = albedo;
+    p.specular = 0.0f;
+    return p;
+}
+
+// A surface material as the render core takes it: constant parameters, the name for messages.
+struct MaterialDesc : MaterialParams {
+    std::string name;  // prim path, for messages
 };
 
 struct MeshDesc {

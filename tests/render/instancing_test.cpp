@@ -57,7 +57,7 @@ TEST(Instancing, InstancesAreHitAndShadedAsWorldCopies) {
         EXPECT_LT(length(a->point - b->point), 1e-4f * (1 + length(b->point)));
         EXPECT_GT(dot(a->geometricNormal, b->geometricNormal), 0.9999f) << "ray " << i;
         EXPECT_GT(dot(a->shadingNormal, b->shadingNormal), 0.9999f) << "ray " << i;
-        EXPECT_NEAR(a->albedo.y, b->albedo.y, 1e-6f);
+        EXPECT_NEAR(a->material.diffuse.y, b->material.diffuse.y, 1e-6f);
         Vec3f away = a->geometricNormal;
         EXPECT_EQ(instanced.occluded(offsetRayOrigin(a->point, away), away, 100.0f),
                   copied.occluded(offsetRayOrigin(b->point, away), away, 100.0f));

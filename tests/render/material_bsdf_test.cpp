@@ -1,4 +1,4 @@
-// The BSDF a MaterialDesc builds: which layers it has, and that the blend stays a valid BSDF.
+// The BSDF a MaterialParams builds: which layers it has, and that the blend stays a valid BSDF.
 #include "render/material_bsdf.h"
 
 #include <gtest/gtest.h>
@@ -14,41 +14,43 @@ constexpr int kSamples = 200'000;
 // 6 statistical checks, each at z standard errors, for a family-wide false-failure rate of 1%.
 const double kZ = test::normalQuantile(0.5 * test::sidakAlpha(6));
 
-MaterialDesc lambertOnly() {
-    MaterialDesc m;
-    m.specular = 0.0f;
-    return m;
+MaterialParams lambertOnly() { return lambertianParams(RGB(0.18f)); }
+
+// The BSDF of `m` with `albedo` as its diffuse colour.
+const Bsdf& bsdfOf(MaterialParams m, const RGB& albedo, BsdfArena& arena) {
+    m.diffuse = albedo;
+    return materialBsdf(m, arena);
 }
 
 TEST(MaterialBsdf, LayersFollowTheMaterial) {
     BsdfArena arena;
     const unsigned diffuse = kBsdfReflection | kBsdfDiffuse;
-    EXPECT_EQ(materialBsdf(lambertOnly(), RGB(0.5f), arena).flags(), diffuse) << "every lobe off: exactly Lambertian";
-    MaterialDesc blackSpecular;
+    EXPECT_EQ(bsdfOf(lambertOnly(), RGB(0.5f), arena).flags(), diffuse) << "every lobe off: exactly Lambertian";
+    MaterialParams blackSpecular;
     blackSpecular.specularWorkflow = true;
     blackSpecular.specularColor = RGB(0.0f);
     arena.reset();
-    EXPECT_EQ(materialBsdf(blackSpecular, RGB(0.5f), arena).flags(), diffuse);
-    MaterialDesc plastic;  // UsdPreviewSurface's metallic workflow: a dielectric lobe over diffuse
+    EXPECT_EQ(bsdfOf(blackSpecular, RGB(0.5f), arena).flags(), diffuse);
+    MaterialParams plastic;  // UsdPreviewSurface's metallic workflow: a dielectric lobe over diffuse
     arena.reset();
-    EXPECT_NE(materialBsdf(plastic, RGB(0.5f), arena).flags() & kBsdfGlossy, 0u);
-    MaterialDesc mirror = lambertOnly();
+    EXPECT_NE(bsdfOf(plastic, RGB(0.5f), arena).flags() & kBsdfGlossy, 0u);
+    MaterialParams mirror = lambertOnly();
     mirror.metallic = 1.0f;
     mirror.roughness = 0.0f;
     arena.reset();
-    EXPECT_EQ(materialBsdf(mirror, RGB(0.9f), arena).flags() & kBsdfDiffuse, 0u) << "a pure metal has no diffuse lobe";
+    EXPECT_EQ(bsdfOf(mirror, RGB(0.9f), arena).flags() & kBsdfDiffuse, 0u) << "a pure metal has no diffuse lobe";
 }
 
 TEST(MaterialBsdf, AHalfMetalReflectsTheMeanOfItsParts) {
     BsdfArena arena;
-    MaterialDesc half = lambertOnly();
+    MaterialParams half = lambertOnly();
     half.metallic = 0.5f;
     half.roughness = 0.4f;
-    MaterialDesc metal = half;
+    MaterialParams metal = half;
     metal.metallic = 1.0f;
-    const Bsdf& mixed = materialBsdf(half, RGB(0.8f), arena);
-    const Bsdf& pure = materialBsdf(metal, RGB(0.8f), arena);
-    const Bsdf& matte = materialBsdf(lambertOnly(), RGB(0.8f), arena);
+    const Bsdf& mixed = bsdfOf(half, RGB(0.8f), arena);
+    const Bsdf& pure = bsdfOf(metal, RGB(0.8f), arena);
+    const Bsdf& matte = bsdfOf(lambertOnly(), RGB(0.8f), arena);
     for (float theta : {10.0f, 60.0f}) {
         Vec3f wo = test::incidentDirection(theta);
         test::MeanEstimate m = test::albedoEstimate(mixed, wo, kSamples, 3);
@@ -63,12 +65,12 @@ TEST(MaterialBsdf, AHalfMetalReflectsTheMeanOfItsParts) {
 
 TEST(MaterialBsdf, MixedSamplesMatchTheBlendsFAndPdf) {
     BsdfArena arena;
-    MaterialDesc coated = lambertOnly();
+    MaterialParams coated = lambertOnly();
     coated.metallic = 0.3f;
     coated.roughness = 0.5f;
     coated.coat = 0.6f;
     coated.coatRoughness = 0.3f;
-    const Bsdf& bsdf = materialBsdf(coated, RGB(0.7f, 0.5f, 0.3f), arena);
+    const Bsdf& bsdf = bsdfOf(coated, RGB(0.7f, 0.5f, 0.3f), arena);
     Vec3f wo = test::incidentDirection(35.0f);
     int checked = 0;
     for (int n = 0; n < 2000; ++n) {
@@ -86,10 +88,10 @@ TEST(MaterialBsdf, MixedSamplesMatchTheBlendsFAndPdf) {
 
 TEST(MaterialBsdf, MixSamplesMatchItsPdf) {
     BsdfArena arena;
-    MaterialDesc half = lambertOnly();
+    MaterialParams half = lambertOnly();
     half.metallic = 0.5f;
     half.roughness = 0.5f;
-    const Bsdf& bsdf = materialBsdf(half, RGB(0.6f), arena);
+    const Bsdf& bsdf = bsdfOf(half, RGB(0.6f), arena);
     Vec3f wo = test::incidentDirection(40.0f);
     auto r = test::chi2SphereTest(
         [&](SampleStream& rng) -> std::optional<Vec3f> {
