@@ -39,6 +39,10 @@ struct SurfaceHit {
     Vec3f point;
     Vec3f geometricNormal;  // unit; on the same side as shadingNormal
     Vec3f shadingNormal;    // unit
+    // Unit, perpendicular to shadingNormal, along the direction in which the texture coordinate s
+    // (the first UV primvar a material reads) grows; zero where the surface has no UVs. Anisotropic
+    // lobes align their x axis with it.
+    Vec3f tangent{0.0f};
     // The material's parameters at this point (a mesh without a material: Lambertian, its
     // displayColor or 18% grey; light shapes: black). material.diffuse is the albedo AOV.
     MaterialParams material = lambertianParams(RGB(0.0f));
