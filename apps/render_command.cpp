@@ -67,7 +67,8 @@ int runRender(const RenderOptions& opt) {
     std::unique_ptr<render::RenderScene> scene;
     try {
         populated = delegate::populateScene(*stage, dopt);
-        scene = std::make_unique<render::RenderScene>(populated->scene);
+        scene = std::make_unique<render::RenderScene>(populated->scene, std::make_shared<texture::TextureSystem>(*colors));
+        for (const render::Warning& w : scene->warnings()) warnings(w.where, w.message);
     } catch (const delegate::SceneError& e) {
         printError(e.what());
         return kExitScene;
@@ -96,6 +97,7 @@ int runRender(const RenderOptions& opt) {
     std::unique_ptr<render::Camera> camera;
     try {
         camera = std::make_unique<render::Camera>(*populated->scene.camera, res.first, res.second, populated->framing);
+        scene->setTextureFilterCamera(*camera);
     } catch (const std::invalid_argument& e) {
         printError(e.what());
         return kExitScene;

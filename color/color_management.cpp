@@ -184,6 +184,27 @@ RGB ColorManagement::toRenderingSpace(const std::string& fromSpace, RGB c) const
     return {v[0], v[1], v[2]};
 }
 
+struct ColorConversion::Processor {
+    OCIO::ConstCPUProcessorRcPtr cpu;
+};
+
+RGB ColorConversion::apply(RGB c) const {
+    if (!processor_) return c;
+    float v[3] = {c.x, c.y, c.z};
+    processor_->cpu->applyRGB(v);
+    return {v[0], v[1], v[2]};
+}
+
+ColorConversion ColorManagement::conversionToRenderingSpace(const std::string& fromSpace) const {
+    OCIO::ConstCPUProcessorRcPtr processor;
+    {
+        std::lock_guard<std::mutex> lock(impl_->mutex);
+        processor = impl_->toRendering(fromSpace);
+    }
+    if (!processor) return ColorConversion();
+    return ColorConversion(std::make_shared<const ColorConversion::Processor>(ColorConversion::Processor{processor}));
+}
+
 void ColorManagement::applyDisplayView(const std::string& display, const std::string& view, float* rgb,
                                        std::size_t count) const {
     OCIO::ConstCPUProcessorRcPtr processor;

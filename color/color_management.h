@@ -16,6 +16,7 @@
 #include <memory>
 #include <stdexcept>
 #include <string>
+#include <utility>
 
 #include "core/rgb.h"
 
@@ -25,6 +26,21 @@ namespace fluence::color {
 class ColorError : public std::runtime_error {
 public:
     using std::runtime_error::runtime_error;
+};
+
+// A conversion into the rendering space, resolved once (ColorManagement::conversionToRenderingSpace):
+// applying it takes no lock, for use per texture lookup. Default-constructed: the identity.
+class ColorConversion {
+public:
+    ColorConversion() = default;
+    bool isIdentity() const { return !processor_; }
+    RGB apply(RGB c) const;
+
+private:
+    friend class ColorManagement;
+    struct Processor;
+    explicit ColorConversion(std::shared_ptr<const Processor> processor) : processor_(std::move(processor)) {}
+    std::shared_ptr<const Processor> processor_;
 };
 
 class ColorManagement {
@@ -49,6 +65,8 @@ public:
     // space. Throws ColorError naming the space if it is unknown.
     void toRenderingSpace(const std::string& fromSpace, float* rgb, std::size_t count) const;
     RGB toRenderingSpace(const std::string& fromSpace, RGB c) const;
+    // The same conversion, resolved once. Throws ColorError naming the space if it is unknown.
+    ColorConversion conversionToRenderingSpace(const std::string& fromSpace) const;
 
     // Applies the display/view transform to `count` rendering-space RGB triples in place. The
     // result is display-encoded and clamped to [0, 1] (NaN becomes 0). "" means the config's

@@ -116,6 +116,8 @@ std::vector<MeshPart> splitByMaterial(TriangulatedMesh&& whole, const MaterialAs
         }
         partOfSubset.push_back(it->second);
     }
+    for (MeshPart& part : parts)
+        for (const render::CornerPrimvar& pv : mesh.primvars) part.mesh.primvars.push_back({pv.name, pv.components, {}});
 
     // Copy each triangle into its part, renumbering the points each part uses.
     constexpr std::uint32_t kUnused = std::numeric_limits<std::uint32_t>::max();
@@ -136,6 +138,11 @@ std::vector<MeshPart> splitByMaterial(TriangulatedMesh&& whole, const MaterialAs
             part.indices.push_back(i);
             if (!mesh.cornerNormals.empty()) part.cornerNormals.push_back(mesh.cornerNormals[c]);
             if (!mesh.cornerColors.empty()) part.cornerColors.push_back(mesh.cornerColors[c]);
+            for (std::size_t i = 0; i < mesh.primvars.size(); ++i) {
+                const std::size_t k = static_cast<std::size_t>(mesh.primvars[i].components);
+                const float* v = &mesh.primvars[i].values[c * k];
+                part.primvars[i].values.insert(part.primvars[i].values.end(), v, v + k);
+            }
         }
     }
     std::erase_if(parts, [](const MeshPart& part) { return part.mesh.indices.empty(); });

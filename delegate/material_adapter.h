@@ -4,16 +4,12 @@
 // its closest ancestor — unless an ancestor's binding carries bindMaterialAs =
 // "strongerThanDescendants", in which case the highest such ancestor wins (UsdShade rules).
 //
-// Material: the Material's `outputs:surface` is followed to a Shader whose info:id is
-// UsdPreviewSurface. This slice reads:
-// | input          | type     | fallback          | notes                                   |
-// |----------------|----------|-------------------|-----------------------------------------|
-// | diffuseColor   | color3f  | (0.18, 0.18, 0.18) | Lambertian albedo                       |
-// | emissiveColor  | color3f  | (0, 0, 0)         | emitted radiance, both sides            |
-// | displacement   | float    | 0                 | along the limit normal, object units;   |
-// |                |          |                   | applied to subdivision surfaces only    |
-// An input connected to a Material interface input takes that input's value; an input
-// connected to a texture or other node warns once and uses its own value or the fallback.
+// Material: the Material's `outputs:mtlx:surface` (then `outputs:surface`) is followed, through
+// NodeGraph outputs, to a Shader whose info:id is UsdPreviewSurface or
+// ND_standard_surface_surfaceshader; delegate/surface_shaders.h maps its inputs onto
+// render::MaterialParams, and delegate/shading_network.h reads the texture and primvar-reader
+// nodes that drive inputs per point. An input connected to a Material interface input takes that
+// input's value. Any other surface shader warns and the default material is used.
 #pragma once
 
 #include <functional>

@@ -14,7 +14,7 @@ struct CornerKey {
     std::size_t face, faceVertex, point;
 };
 
-std::size_t elementFor(const Primvar3& pv, const CornerKey& k) {
+std::size_t elementFor(const Primvar& pv, const CornerKey& k) {
     if (pv.interpolation == "constant") return 0;
     if (pv.interpolation == "uniform") return k.face;
     if (pv.interpolation == "faceVarying") return k.faceVertex;
@@ -50,12 +50,17 @@ TriangulatedMesh triangulatedMeshFromPrim(const PrimReader& prim, const Matrix4&
     for (double h : prim.numbers("holeIndices", 1).value_or(std::vector<double>{})) holes.insert(static_cast<std::size_t>(h));
     const bool leftHanded = prim.token({"orientation"}, "rightHanded") == "leftHanded";
 
-    std::optional<Primvar3> normals = readPrimvar3(prim, "primvars:normals", "vertex");
-    if (!normals) normals = readPrimvar3(prim, "normals", "vertex");
-    std::optional<Primvar3> colors = readPrimvar3(prim, "primvars:displayColor", "constant");
+    std::optional<Primvar> normals = readPrimvar(prim, "primvars:normals", "vertex");
+    if (!normals) normals = readPrimvar(prim, "normals", "vertex");
+    std::optional<Primvar> colors = readPrimvar(prim, "primvars:displayColor", "constant");
     if (normals) checkPrimvarSize(prim, *normals, counts.size(), indices.size(), pointCount);
     if (colors) checkPrimvarSize(prim, *colors, counts.size(), indices.size(), pointCount);
     std::string colorSpace = colors ? prim.attributeMetadata("primvars:displayColor", "colorSpace").value_or("") : "";
+    std::vector<Primvar> shading = readShadingPrimvars(prim);
+    for (const Primvar& pv : shading) {
+        checkPrimvarSize(prim, pv, counts.size(), indices.size(), pointCount);
+        mesh.primvars.push_back({pv.name, pv.components, {}});
+    }
 
     mesh.positions.reserve(pointCount);
     for (std::size_t i = 0; i < pointCount; ++i)
@@ -69,6 +74,10 @@ TriangulatedMesh triangulatedMeshFromPrim(const PrimReader& prim, const Matrix4&
             mesh.cornerNormals.emplace_back(len > 0.0 ? n / len : n);
         }
         if (colors) mesh.cornerColors.push_back(convertColor(RGB(colors->at(elementFor(*colors, k))), colorSpace));
+        for (std::size_t i = 0; i < shading.size(); ++i) {
+            const double* v = shading[i].element(elementFor(shading[i], k));
+            for (int c = 0; c < shading[i].components; ++c) mesh.primvars[i].values.push_back(static_cast<float>(v[c]));
+        }
     };
 
     std::size_t start = 0;

@@ -50,8 +50,8 @@ WorldTransform worldTransformOf(const usd::Stage& stage, const std::string& path
     return result;
 }
 
-// Whether a resolved asset path names an existing file; a UDIM path (with <UDIM>) when any of
-// its tiles 1001-1100 exists.
+}  // namespace
+
 bool assetFileExists(const std::string& path) {
     if (path.empty()) return false;
     std::size_t udim = path.find("<UDIM>");
@@ -60,8 +60,6 @@ bool assetFileExists(const std::string& path) {
         if (std::filesystem::is_regular_file(std::string(path).replace(udim, 6, std::to_string(tile)))) return true;
     return false;
 }
-
-}  // namespace
 
 bool isFieldAssetType(const std::string& typeName) { return typeName == "OpenVDBAsset" || typeName == "Field3DAsset"; }
 

@@ -290,4 +290,8 @@ bool isAtOrBelow(const std::string& path, const std::string& root);
 // OpenVDBAsset or Field3DAsset: the field prims FieldBprims read.
 bool isFieldAssetType(const std::string& typeName);
 
+// Whether a resolved asset path names an existing file; a UDIM path (with <UDIM>) when any of
+// its tiles 1001-1100 exists.
+bool assetFileExists(const std::string& path);
+
 }  // namespace fluence::delegate

@@ -33,15 +33,24 @@ std::uint32_t meshBitsFor(const std::string& name) {
 std::string nativeKey(const std::string& key) { return "instance:" + key; }
 std::string pointInstancerKey(const std::string& root) { return "root:" + root; }
 
-// A mesh part as the render core takes it: a bound material replaces displayColor.
+// A mesh part as the render core takes it: a bound material replaces displayColor, and the
+// part keeps only the primvars its material's nodes read.
 void appendPart(SurfaceRprim::Part part, std::vector<render::MeshDesc>& meshes,
-                const std::function<int(const std::string&)>& materialFor) {
-    if (part.objectSpace.indices.empty()) return;
+                const std::function<int(const std::string&)>& materialFor, const std::vector<render::MaterialDesc>& materials) {
+    render::MeshDesc& mesh = part.objectSpace;
+    if (mesh.indices.empty()) return;
+    const render::MaterialDesc* material = nullptr;
     if (!part.materialPath.empty()) {
-        part.objectSpace.material = materialFor(part.materialPath);
-        part.objectSpace.cornerColors.clear();
+        mesh.material = materialFor(part.materialPath);
+        mesh.cornerColors.clear();
+        material = &materials[static_cast<std::size_t>(mesh.material)];
     }
-    meshes.push_back(std::move(part.objectSpace));
+    std::erase_if(mesh.primvars, [&](const render::CornerPrimvar& pv) {
+        return !material || std::none_of(material->bindings.begin(), material->bindings.end(), [&](const render::InputBinding& b) {
+            return (b.texture ? b.texture->uvPrimvar : b.primvar) == pv.name;
+        });
+    });
+    meshes.push_back(std::move(mesh));
 }
 
 }  // namespace
@@ -256,7 +265,7 @@ render::SceneDescription SceneDelegate::describe(const render::Camera& camera, f
             case RenderPrim::Kind::Mesh: {
                 const auto& mesh = static_cast<const MeshRprim&>(*prim);
                 std::size_t first = scene.meshes.size();
-                for (MeshRprim::Part& part : mesh.worldParts(dicing)) appendPart(std::move(part), scene.meshes, materialFor);
+                for (MeshRprim::Part& part : mesh.worldParts(dicing)) appendPart(std::move(part), scene.meshes, materialFor, scene.materials);
                 if (!mesh.subdivided().empty()) countSubdivided(scene.meshes, first);
                 break;
             }
@@ -286,13 +295,14 @@ render::SceneDescription SceneDelegate::describe(const render::Camera& camera, f
     for (const auto& [key, index] : prototypeIndex) {
         const auto& prototype = static_cast<const PrototypeRprim&>(*index_.find(prototypes_.at(key)));
         std::vector<render::MeshDesc>& meshes = scene.prototypes[static_cast<std::size_t>(index)].meshes;
-        for (const SurfaceRprim::Part& part : prototype.parts()) appendPart(part, meshes, materialFor);
+        for (const SurfaceRprim::Part& part : prototype.parts()) appendPart(part, meshes, materialFor, scene.materials);
         for (const SurfaceRprim::Subdivided& sub : prototype.subdivided()) {
             std::vector<Matrix4> where;
             for (const Matrix4& instance : placements[static_cast<std::size_t>(index)]) where.push_back(instance * sub.placement);
             std::size_t first = meshes.size();
             for (MeshPart& part : sub.mesh->tessellate(where, dicing))
-                appendPart({render::transformMesh(part.mesh, sub.placement), std::move(part.materialPath)}, meshes, materialFor);
+                appendPart({render::transformMesh(part.mesh, sub.placement), std::move(part.materialPath)}, meshes, materialFor,
+                           scene.materials);
             countSubdivided(meshes, first);
         }
     }

@@ -4,33 +4,42 @@
 
 namespace fluence::delegate {
 
-std::optional<std::pair<const usd::PrimSpec*, std::string>> ShaderInputs::valueSource(const std::string& input) const {
+std::optional<ShaderInputs::Source> ShaderInputs::source(const std::string& input) const {
     const usd::PrimSpec* prim = &shader_;
     std::string name = "inputs:" + input;
     for (int hop = 0; hop < 16; ++hop) {
         const usd::AttributeSpec* a = prim->attribute(name);
         if (!a) return std::nullopt;
-        auto own = [&]() -> std::optional<std::pair<const usd::PrimSpec*, std::string>> {
-            if (!PrimReader(*prim, time_).value(name)) return std::nullopt;
-            return std::make_pair(prim, name);
-        };
-        if (a->connections.empty()) return own();
+        if (a->connections.empty()) return Source{prim, name, false};
         auto [sourcePrim, sourceProp] = splitPropertyPath(resolveTargetPath(prim->path, a->connections.front()));
-        const usd::PrimSpec* source = stage_.prim(sourcePrim);
-        if (!source) {
+        const usd::PrimSpec* next = stage_.prim(sourcePrim);
+        if (!next) {
             warn_(shader_.path, "input '" + name + "' connects to missing prim " + sourcePrim + "; using its own value");
-            return own();
+            return Source{prim, name, false};
         }
-        if (source->typeName != "Material" && source->typeName != "NodeGraph") {
-            warn_(shader_.path, "input '" + name + "' is connected to " + source->path + " (" + source->typeName +
-                                    "); shading networks and textures are not supported yet, using the input's own value");
-            return own();
-        }
-        prim = source;
+        if (next->typeName != "Material" && next->typeName != "NodeGraph") return Source{next, sourceProp, true};
+        prim = next;
         name = sourceProp;
     }
     warn_(shader_.path, "input 'inputs:" + input + "': connection chain too long; ignored");
     return std::nullopt;
+}
+
+std::optional<std::pair<const usd::PrimSpec*, std::string>> ShaderInputs::valueSource(const std::string& input) const {
+    std::optional<Source> s = source(input);
+    if (s && s->nodeOutput) {
+        // The node drives the input per point; its own value (if any) stands where nothing does.
+        if (PrimReader(shader_, time_).value("inputs:" + input)) return std::make_pair(&shader_, "inputs:" + input);
+        return std::nullopt;
+    }
+    if (!s || !PrimReader(*s->prim, time_).value(s->property)) return std::nullopt;
+    return std::make_pair(s->prim, s->property);
+}
+
+std::optional<NodeOutput> ShaderInputs::connectedNode(const std::string& name) const {
+    std::optional<Source> s = source(name);
+    if (!s || !s->nodeOutput) return std::nullopt;
+    return NodeOutput{s->prim, s->property};
 }
 
 RGB ShaderInputs::color(const std::string& name, const RGB& fallback) const {
@@ -50,5 +59,21 @@ float ShaderInputs::number(const std::string& name, float fallback) const {
 }
 
 bool ShaderInputs::flag(const std::string& name, bool fallback) const { return number(name, fallback ? 1.0f : 0.0f) != 0.0f; }
+
+std::string ShaderInputs::text(const std::string& name, const std::string& fallback) const {
+    auto source = valueSource(name);
+    if (!source) return fallback;
+    return PrimReader(*source->first, time_).token({source->second.c_str()}, fallback);
+}
+
+std::vector<float> ShaderInputs::tuple(const std::string& name, const std::vector<float>& fallback) const {
+    auto source = valueSource(name);
+    if (!source) return fallback;
+    std::optional<usd::Value> v = PrimReader(*source->first, time_).value(source->second);
+    if (!v || !v->isNumeric() || v->numbers.size() != fallback.size()) return fallback;
+    std::vector<float> out;
+    for (double x : v->numbers) out.push_back(static_cast<float>(x));
+    return out;
+}
 
 }  // namespace fluence::delegate

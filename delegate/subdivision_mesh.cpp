@@ -76,38 +76,24 @@ SubdivisionMesh::SubdivisionMesh(const usd::Stage& stage, const usd::PrimSpec& m
     if (dicingRate_ < 0.0f || !std::isfinite(dicingRate_)) prim.fail("primvars:fluence:dicingRate must be > 0 pixels");
 
     std::vector<FaceVaryingData> faceVarying;
-    std::optional<Primvar3> colors = readPrimvar3(prim, "primvars:displayColor", "constant");
-    if (colors) {
-        checkPrimvarSize(prim, *colors, topology.faceVertexCounts.size(), topology.faceVertexIndices.size(),
-                         points_.size());
+    auto checked = [&](const Primvar& pv) {
+        checkPrimvarSize(prim, pv, topology.faceVertexCounts.size(), topology.faceVertexIndices.size(), points_.size());
+    };
+    if (std::optional<Primvar> colors = readPrimvar(prim, "primvars:displayColor", "constant")) {
+        checked(*colors);
         std::string space = prim.attributeMetadata("primvars:displayColor", "colorSpace").value_or("");
-        auto color = [&](std::size_t element) { return convertColor(RGB(colors->at(element)), space); };
-        if (colors->interpolation == "constant") {
-            constantOrUniformColors_ = {color(0)};
-        } else if (colors->interpolation == "uniform") {
-            for (std::size_t f = 0; f < topology.faceVertexCounts.size(); ++f) constantOrUniformColors_.push_back(color(f));
-        } else if (colors->interpolation == "faceVarying") {
-            FaceVaryingData data{3, {}, {}};
-            for (std::size_t e = 0; e < colors->elementCount(); ++e) {
-                RGB c = color(e);
-                data.values.insert(data.values.end(), {c.x, c.y, c.z});
-            }
-            if (leftHanded) {  // values follow their face-vertices
-                std::vector<int> order(colors->elementCount());
-                for (std::size_t i = 0; i < order.size(); ++i) order[i] = static_cast<int>(i);
-                reverseFaces(topology.faceVertexCounts, order);
-                data.indices = order;
-            }
-            faceVarying.push_back(std::move(data));
-            faceVaryingColors_ = true;
-        } else {  // vertex, varying
-            VertexData data{3, {}, colors->interpolation == "varying"};
-            for (std::size_t p = 0; p < points_.size(); ++p) {
-                RGB c = color(p);
-                data.values.insert(data.values.end(), {c.x, c.y, c.z});
-            }
-            vertexColors_.push_back(std::move(data));
+        std::vector<float> values;  // converted, indexed like the authored values
+        for (std::size_t i = 0; i < colors->values.size() / 3; ++i) {
+            RGB c = convertColor(RGB(Vec3d(colors->values[3 * i], colors->values[3 * i + 1], colors->values[3 * i + 2])), space);
+            values.insert(values.end(), {c.x, c.y, c.z});
         }
+        displayColor_ = static_cast<int>(primvars_.size());
+        addPrimvar(*colors, std::move(values), topology, leftHanded, faceVarying);
+    }
+    for (const Primvar& pv : readShadingPrimvars(prim)) {
+        checked(pv);
+        addPrimvar(pv, std::vector<float>(pv.values.begin(), pv.values.end()), topology, leftHanded, faceVarying);
+        primvars_.back().name = pv.name;
     }
     std::size_t faceCount = topology.faceVertexCounts.size();
     try {
@@ -116,6 +102,56 @@ SubdivisionMesh::SubdivisionMesh(const usd::Stage& stage, const usd::PrimSpec& m
         prim.fail(e.what());
     }
     materials_ = readMaterialAssignment(stage, mesh, time, faceCount, warn);
+}
+
+void SubdivisionMesh::addPrimvar(const Primvar& pv, std::vector<float> values, const SubdivisionTopology& topology,
+                                 bool leftHanded, std::vector<FaceVaryingData>& faceVarying) {
+    RefinedPrimvar out;
+    out.name = pv.name;
+    out.components = pv.components;
+    const std::size_t k = static_cast<std::size_t>(pv.components);
+    auto element = [&](std::size_t e) {
+        std::size_t i = pv.indices.empty() ? e : static_cast<std::size_t>(pv.indices[e]);
+        return values.begin() + static_cast<std::ptrdiff_t>(i * k);
+    };
+    if (pv.interpolation == "constant" || pv.interpolation == "uniform") {
+        out.source = pv.interpolation == "constant" ? RefinedPrimvar::Source::Constant : RefinedPrimvar::Source::Uniform;
+        std::size_t n = pv.interpolation == "constant" ? 1 : topology.faceVertexCounts.size();
+        for (std::size_t e = 0; e < n; ++e) out.values.insert(out.values.end(), element(e), element(e) + static_cast<std::ptrdiff_t>(k));
+    } else if (pv.interpolation == "faceVarying") {
+        out.source = RefinedPrimvar::Source::FaceVarying;
+        out.channel = static_cast<int>(faceVarying.size());
+        FaceVaryingData data{pv.components, std::move(values), pv.indices};
+        if (leftHanded) {  // values follow their face-vertices
+            std::vector<int> order(pv.elementCount());
+            for (std::size_t i = 0; i < order.size(); ++i) order[i] = pv.indices.empty() ? static_cast<int>(i) : pv.indices[i];
+            reverseFaces(topology.faceVertexCounts, order);
+            data.indices = order;
+        }
+        faceVarying.push_back(std::move(data));
+    } else {  // vertex, varying
+        out.source = RefinedPrimvar::Source::Vertex;
+        out.channel = static_cast<int>(vertexData_.size());
+        VertexData data{pv.components, {}, pv.interpolation == "varying"};
+        for (std::size_t p = 0; p < points_.size(); ++p) data.values.insert(data.values.end(), element(p), element(p) + static_cast<std::ptrdiff_t>(k));
+        vertexData_.push_back(std::move(data));
+    }
+    primvars_.push_back(std::move(out));
+}
+
+const float* SubdivisionMesh::cornerValues(const RefinedPrimvar& pv, const SubdivisionSurface::Result& result,
+                                           const render::MeshDesc& mesh, std::size_t c) const {
+    const std::size_t k = static_cast<std::size_t>(pv.components);
+    switch (pv.source) {
+        case RefinedPrimvar::Source::Constant: return pv.values.data();
+        case RefinedPrimvar::Source::Uniform: return &pv.values[result.triangleFaces[c / 3] * k];
+        case RefinedPrimvar::Source::Vertex: return &result.vertexData.at(static_cast<std::size_t>(pv.channel))[mesh.indices[c] * k];
+        case RefinedPrimvar::Source::FaceVarying: {
+            const FaceVaryingData& fv = result.faceVarying.at(static_cast<std::size_t>(pv.channel));
+            return &fv.values[static_cast<std::size_t>(fv.indices[c]) * k];
+        }
+    }
+    return pv.values.data();
 }
 
 std::shared_ptr<const SubdivisionMesh> SubdivisionMesh::withPoints(const usd::PrimSpec& mesh, double time) const {
@@ -163,8 +199,8 @@ std::vector<int> SubdivisionMesh::segmentsFor(const std::vector<Matrix4>& placem
 std::vector<MeshPart> SubdivisionMesh::tessellate(const std::vector<Matrix4>& placements, const DicingContext& context) const {
     const DicingSettings& settings = context.settings;
     auto dice = [&](float scale, int level) {
-        return level >= 0 ? surface_->tessellateUniform(points_, level, vertexColors_)
-                          : surface_->tessellate(points_, segmentsFor(placements, context, scale), vertexColors_);
+        return level >= 0 ? surface_->tessellateUniform(points_, level, vertexData_)
+                          : surface_->tessellate(points_, segmentsFor(placements, context, scale), vertexData_);
     };
     int level = settings.uniformLevel;
     float scale = context.scale;
@@ -211,22 +247,21 @@ render::MeshDesc SubdivisionMesh::meshFrom(const SubdivisionSurface::Result& res
             mesh.positions[v] = mesh.positions[v] + result.normals[v] * d;
     }
     const std::size_t corners = mesh.indices.size();
-    if (!constantOrUniformColors_.empty()) {
-        for (std::size_t c = 0; c < corners; ++c)
-            mesh.cornerColors.push_back(constantOrUniformColors_.size() == 1
-                                            ? constantOrUniformColors_[0]
-                                            : constantOrUniformColors_[result.triangleFaces[c / 3]]);
-    } else if (!vertexColors_.empty()) {
-        const std::vector<float>& values = result.vertexData.at(0);
-        for (std::size_t c = 0; c < corners; ++c) {
-            std::size_t v = mesh.indices[c];
-            mesh.cornerColors.emplace_back(values[3 * v], values[3 * v + 1], values[3 * v + 2]);
+    for (std::size_t i = 0; i < primvars_.size(); ++i) {
+        const RefinedPrimvar& pv = primvars_[i];
+        const auto k = static_cast<std::ptrdiff_t>(pv.components);
+        if (static_cast<int>(i) == displayColor_) {
+            for (std::size_t c = 0; c < corners; ++c) {
+                const float* v = cornerValues(pv, result, mesh, c);
+                mesh.cornerColors.emplace_back(v[0], v[1], v[2]);
+            }
+            continue;
         }
-    } else if (faceVaryingColors_) {
-        const FaceVaryingData& fv = result.faceVarying.at(0);
+        render::CornerPrimvar& out = mesh.primvars.emplace_back(render::CornerPrimvar{pv.name, pv.components, {}});
+        out.values.reserve(corners * static_cast<std::size_t>(k));
         for (std::size_t c = 0; c < corners; ++c) {
-            std::size_t i = static_cast<std::size_t>(fv.indices[c]);
-            mesh.cornerColors.emplace_back(fv.values[3 * i], fv.values[3 * i + 1], fv.values[3 * i + 2]);
+            const float* v = cornerValues(pv, result, mesh, c);
+            out.values.insert(out.values.end(), v, v + k);
         }
     }
     return mesh;

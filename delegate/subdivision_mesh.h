@@ -37,6 +37,7 @@
 #include "delegate/dicing.h"
 #include "delegate/geom_subset.h"
 #include "delegate/material_adapter.h"
+#include "delegate/primvar.h"
 #include "delegate/subdivision.h"
 
 namespace fluence::delegate {
@@ -77,10 +78,22 @@ private:
     std::shared_ptr<const SubdivisionSurface> surface_;
     std::vector<Vec3f> points_;  // object space
     float dicingRate_ = 0.0f;    // primvars:fluence:dicingRate, 0 when not authored
-    // displayColor: one of these, by its interpolation.
-    std::vector<RGB> constantOrUniformColors_;  // constant: 1; uniform: per face
-    std::vector<VertexData> vertexColors_;      // vertex or varying: one channel
-    bool faceVaryingColors_ = false;            // faceVarying: the surface's channel 0
+    // A primvar carried through refinement (displayColor, st, ...), by its interpolation.
+    struct RefinedPrimvar {
+        std::string name;
+        int components = 3;
+        enum class Source { Constant, Uniform, FaceVarying, Vertex } source = Source::Constant;
+        int channel = 0;            // FaceVarying: the surface's faceVarying channel; Vertex: into vertexData_
+        std::vector<float> values;  // Constant: one element; Uniform: one per face
+    };
+    void addPrimvar(const Primvar& pv, std::vector<float> values, const SubdivisionTopology& topology, bool leftHanded,
+                    std::vector<FaceVaryingData>& faceVarying);
+    // The values of `pv` at triangle corner c of a tessellation.
+    const float* cornerValues(const RefinedPrimvar& pv, const SubdivisionSurface::Result& result,
+                              const render::MeshDesc& mesh, std::size_t c) const;
+    std::vector<RefinedPrimvar> primvars_;
+    std::vector<VertexData> vertexData_;
+    int displayColor_ = -1;  // into primvars_: displayColor, already in the rendering space
     MaterialAssignment materials_;
 };
 

@@ -1,6 +1,20 @@
 #include "delegate/surface_shaders.h"
 
+#include "delegate/shading_network.h"
+
 namespace fluence::delegate {
+
+namespace {
+
+// Emission is a light only as a constant: an emissive mesh's triangles are sampled as lights with
+// one radiance each, so a node driving emission is dropped, with a warning.
+void dropDrivenEmission(const ShaderInputs& in, render::MaterialDesc& m) {
+    auto driven = [](const render::InputBinding& b) { return b.input == render::MaterialInput::Emission; };
+    if (std::erase_if(m.bindings, driven) > 0)
+        in.warn()(in.shader().path, "emission driven by a texture or primvar is not rendered yet; using its constant value");
+}
+
+}  // namespace
 
 render::MaterialDesc previewSurface(const ShaderInputs& in, const std::string& materialPath) {
     render::MaterialDesc m;
@@ -19,6 +33,24 @@ render::MaterialDesc previewSurface(const ShaderInputs& in, const std::string& m
     m.opacityThreshold = in.number("opacityThreshold", 0.0f);
     m.ior = in.number("ior", 1.5f);
     m.displacement = in.number("displacement", 0.0f);
+    using render::MaterialInput;
+    readBindings(in,
+                 {{"diffuseColor", MaterialInput::Diffuse, 3},
+                  {"emissiveColor", MaterialInput::Emission, 3},
+                  {"specularColor", MaterialInput::SpecularColor, 3},
+                  {"metallic", MaterialInput::Metallic, 1},
+                  {"roughness", MaterialInput::Roughness, 1},
+                  {"clearcoat", MaterialInput::Coat, 1},
+                  {"clearcoatRoughness", MaterialInput::CoatRoughness, 1},
+                  {"opacity", MaterialInput::Opacity, 1},
+                  {"ior", MaterialInput::Ior, 1},
+                  {"normal", MaterialInput::Normal, 3}},
+                 m.bindings);
+    if (!m.specularWorkflow)
+        std::erase_if(m.bindings, [](const render::InputBinding& b) { return b.input == render::MaterialInput::SpecularColor; });
+    else
+        std::erase_if(m.bindings, [](const render::InputBinding& b) { return b.input == render::MaterialInput::Metallic; });
+    dropDrivenEmission(in, m);
     return m;
 }
 
@@ -50,6 +82,29 @@ render::MaterialDesc standardSurface(const ShaderInputs& in, const std::string& 
     m.subsurfaceColor = in.color("subsurface_color", RGB(1.0f));
     m.subsurfaceRadius = in.color("subsurface_radius", RGB(1.0f));
     m.subsurfaceScale = in.number("subsurface_scale", 1.0f);
+    using render::MaterialInput;
+    // Standard Surface's base weight multiplies base_color: a node drives the colour, and the
+    // binding keeps the weight as its factor.
+    readBindings(in,
+                 {{"base_color", MaterialInput::Diffuse, 3},
+                  {"metalness", MaterialInput::Metallic, 1},
+                  {"specular", MaterialInput::Specular, 1},
+                  {"specular_color", MaterialInput::SpecularColor, 3},
+                  {"specular_roughness", MaterialInput::Roughness, 1},
+                  {"specular_IOR", MaterialInput::Ior, 1},
+                  {"transmission", MaterialInput::Transmission, 1},
+                  {"transmission_color", MaterialInput::TransmissionColor, 3},
+                  {"sheen", MaterialInput::Sheen, 1},
+                  {"sheen_color", MaterialInput::SheenColor, 3},
+                  {"coat", MaterialInput::Coat, 1},
+                  {"coat_color", MaterialInput::CoatColor, 3},
+                  {"coat_roughness", MaterialInput::CoatRoughness, 1},
+                  {"emission_color", MaterialInput::Emission, 3},
+                  {"opacity", MaterialInput::Opacity, 1}},
+                 m.bindings);
+    for (render::InputBinding& b : m.bindings)
+        if (b.input == MaterialInput::Diffuse) b.factor = in.number("base", 0.8f);
+    dropDrivenEmission(in, m);
     return m;
 }
 

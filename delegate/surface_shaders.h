@@ -16,8 +16,10 @@
 // | opacityThreshold   | 0               | opacityThreshold: > 0 makes opacity a cut-out mask        |
 // | ior                | 1.5             | ior (of the specular lobe's Fresnel)                      |
 // | displacement       | 0               | displacement (subdivision surfaces)                       |
-// | normal, occlusion  | —               | not used: normal maps need textures; occlusion is ignored |
-// |                    |                 | by path tracers, as the specification allows             |
+// | normal             | —               | only through a texture: a tangent-space normal map        |
+// | occlusion          | —               | ignored, as the specification allows path tracers         |
+// Any input above but emissiveColor may be connected to a UsdUVTexture or primvar reader
+// (delegate/shading_network.h): the node then drives it per surface point.
 //
 // MaterialX Standard Surface (info:id "ND_standard_surface_surfaceshader"), with MaterialX's
 // fallbacks: diffuse = base (0.8) * base_color (1); diffuse_roughness (0); metallic = metalness
@@ -27,7 +29,11 @@
 // = coat_IOR (1.5); emission = emission (0) * emission_color (1); opacity = the mean of opacity
 // (1, 1, 1); thin_walled (false); subsurface (0), subsurface_color (1), subsurface_radius (1),
 // subsurface_scale (1). Inputs not listed (specular_rotation, transmission_depth/scatter/
-// dispersion, thin_film_*, coat_anisotropy/affect_*, normal, tangent) are not read.
+// dispersion, thin_film_*, coat_anisotropy/affect_*, normal, tangent) are not read. The colour,
+// weight and roughness inputs may be driven by UsdUVTexture / primvar-reader nodes (base_color
+// keeps base as its factor); MaterialX's own texture nodes are not read. Emission stays constant
+// in both shaders: a node driving it is dropped with a warning (emissive triangles are lights of
+// one radiance each).
 #pragma once
 
 #include <string>

@@ -2,10 +2,12 @@
 
 #include <embree3/rtcore.h>
 
+#include <bit>
 #include <cmath>
 #include <stdexcept>
 #include <string>
 
+#include "core/random.h"
 #include "render/area_lights.h"
 #include "render/cylinder_light.h"
 #include "render/infinite_lights.h"
@@ -127,11 +129,53 @@ struct RenderScene::Mesh {
     std::vector<std::uint32_t> indices;
     std::vector<Vec3f> cornerNormals;
     std::vector<RGB> cornerColors;
+    std::vector<CornerPrimvar> primvars;
+    // For each primvar slot of the material's shader, the mesh's primvar (nullptr: none). Points
+    // into `primvars`' buffer, which moving a Mesh does not move.
+    std::vector<const CornerPrimvar*> slots;
     RGB diffuse;
     RGB emission;
     int material = -1;  // into materials_, -1 = the default (Lambertian) material
     int firstLight = -1;
 };
+
+// What a presence filter needs to know of its mesh (the user data of its Embree geometry).
+struct MeshPresence {
+    const MaterialShader* shader;
+    const CornerPrimvar* const* slots;
+};
+
+namespace {
+
+// A uniform number in [0, 1) that is a pure function of the ray and the triangle it meets.
+float hashOfHit(const float (&ray)[6], unsigned geomID, unsigned primID, unsigned instID) {
+    std::uint64_t h = mix64((std::uint64_t(geomID) << 32) ^ primID ^ (std::uint64_t(instID) << 48));
+    for (float f : ray) h = mix64(h ^ std::bit_cast<std::uint32_t>(f));
+    return toUnitFloat(h);
+}
+
+// Embree filter function of a mesh whose material may have holes: rejects the candidate hit
+// where the surface is absent (see render_scene.h).
+void presenceFilter(const RTCFilterFunctionNArguments* args) {
+    if (args->N != 1 || !args->valid[0]) return;  // the scenes are only traced one ray at a time
+    const auto* test = static_cast<const MeshPresence*>(args->geometryUserPtr);
+    ShadingPatch patch;
+    unsigned primID = RTCHitN_primID(args->hit, 1, 0);
+    float u = RTCHitN_u(args->hit, 1, 0), v = RTCHitN_v(args->hit, 1, 0);
+    patch.corner = 3 * std::size_t(primID);
+    patch.b0 = 1.0f - u - v;
+    patch.b1 = u;
+    patch.b2 = v;
+    float presence = test->shader->presence(patch, test->slots);
+    if (presence >= 1.0f) return;
+    float ray[6] = {RTCRayN_org_x(args->ray, 1, 0), RTCRayN_org_y(args->ray, 1, 0), RTCRayN_org_z(args->ray, 1, 0),
+                    RTCRayN_dir_x(args->ray, 1, 0), RTCRayN_dir_y(args->ray, 1, 0), RTCRayN_dir_z(args->ray, 1, 0)};
+    if (presence <= 0.0f ||
+        hashOfHit(ray, RTCHitN_geomID(args->hit, 1, 0), primID, RTCHitN_instID(args->hit, 1, 0, 0)) >= presence)
+        args->valid[0] = 0;
+}
+
+}  // namespace
 
 struct RenderScene::Prototype {
     std::vector<int> meshes;           // Embree geometry id in the prototype's scene -> mesh
@@ -157,8 +201,9 @@ struct RenderScene::EmbreeState {
     }
 };
 
-RenderScene::RenderScene(const SceneDescription& scene)
-    : embree_(std::make_unique<EmbreeState>()), materials_(scene.materials) {
+RenderScene::RenderScene(const SceneDescription& scene, std::shared_ptr<texture::TextureSystem> textures)
+    : embree_(std::make_unique<EmbreeState>()), materials_(scene.materials), textures_(std::move(textures)) {
+    addMaterialShaders();
     embree_->device = rtcNewDevice(nullptr);
     if (!embree_->device) throw std::runtime_error("cannot create the Embree device");
     embree_->surfaces = rtcNewScene(embree_->device);
@@ -213,6 +258,25 @@ RenderScene::RenderScene(const SceneDescription& scene)
 
 RenderScene::~RenderScene() = default;
 
+void RenderScene::addMaterialShaders() {
+    bool textured = std::any_of(materials_.begin(), materials_.end(), [](const MaterialDesc& m) {
+        return std::any_of(m.bindings.begin(), m.bindings.end(), [](const InputBinding& b) { return b.texture.has_value(); });
+    });
+    if (textured && !textures_) textures_ = std::make_shared<texture::TextureSystem>(color::ColorManagement::load());
+    shaders_.reserve(materials_.size());
+    for (const MaterialDesc& m : materials_) shaders_.emplace_back(m, textures_.get(), warnings_);
+}
+
+void RenderScene::addPresenceFilter(RTCGeometryTy* geometry, int meshIndex) {
+    const Mesh& mesh = meshes_[meshIndex];
+    if (mesh.material < 0 || !shaders_[mesh.material].mayBeTransparent()) return;
+    presenceTests_.push_back(std::make_unique<MeshPresence>(MeshPresence{&shaders_[mesh.material], mesh.slots.data()}));
+    rtcSetGeometryUserData(geometry, presenceTests_.back().get());
+    rtcSetGeometryIntersectFilterFunction(geometry, presenceFilter);
+    rtcSetGeometryOccludedFilterFunction(geometry, presenceFilter);
+    rtcCommitGeometry(geometry);
+}
+
 int RenderScene::storeMesh(const MeshDesc& desc, const std::vector<MaterialDesc>& materials) {
     if (desc.indices.size() % 3 != 0) throw std::invalid_argument(desc.name + ": triangle index count is not a multiple of 3");
     for (std::uint32_t i : desc.indices)
@@ -223,6 +287,9 @@ int RenderScene::storeMesh(const MeshDesc& desc, const std::vector<MaterialDesc>
     if (!desc.cornerColors.empty() && desc.cornerColors.size() != triangles * 3)
         throw std::invalid_argument(desc.name + ": expected one colour per triangle corner");
     if (desc.material >= static_cast<int>(materials.size())) throw std::invalid_argument(desc.name + ": material index out of range");
+    for (const CornerPrimvar& p : desc.primvars)
+        if (p.components < 1 || p.components > 4 || p.values.size() != triangles * 3 * std::size_t(p.components))
+            throw std::invalid_argument(desc.name + ": primvar " + p.name + " needs 1 to 4 values per triangle corner");
 
     Mesh mesh;
     mesh.name = desc.name;
@@ -230,6 +297,13 @@ int RenderScene::storeMesh(const MeshDesc& desc, const std::vector<MaterialDesc>
     mesh.indices = desc.indices;
     mesh.cornerNormals = desc.cornerNormals;
     mesh.cornerColors = desc.cornerColors;
+    mesh.primvars = desc.primvars;
+    if (desc.material >= 0)
+        for (const std::string& name : shaders_[desc.material].primvarSlots()) {
+            auto found = std::find_if(mesh.primvars.begin(), mesh.primvars.end(),
+                                      [&](const CornerPrimvar& p) { return !name.empty() && p.name == name; });
+            mesh.slots.push_back(found == mesh.primvars.end() ? nullptr : &*found);
+        }
     MaterialDesc material = desc.material >= 0 ? materials[desc.material] : MaterialDesc{};
     mesh.material = desc.material;
     mesh.diffuse = material.diffuse;
@@ -253,6 +327,7 @@ void RenderScene::addMesh(const MeshDesc& desc, const std::vector<MaterialDesc>&
         stats_.emissiveTriangles += triangles;
     }
     RTCGeometry geom = triangleGeometry(embree_->device, mesh.positions, mesh.indices);
+    addPresenceFilter(geom, index);
     rtcAttachGeometryByID(embree_->surfaces, geom, static_cast<unsigned>(surfaceMeshes_.size()));
     rtcReleaseGeometry(geom);
     throwOnEmbreeError(embree_->device, ("adding mesh " + desc.name).c_str());
@@ -280,6 +355,7 @@ void RenderScene::addPrototypes(const SceneDescription& scene) {
                 proto.hi = vmax(proto.hi, p);
             }
             RTCGeometry geom = triangleGeometry(embree_->device, mesh.positions, mesh.indices);
+            addPresenceFilter(geom, index);
             rtcAttachGeometryByID(rtcScene, geom, static_cast<unsigned>(proto.meshes.size()));
             rtcReleaseGeometry(geom);
             proto.meshes.push_back(index);
@@ -386,21 +462,12 @@ std::optional<SurfaceHit> RenderScene::intersect(const Ray& ray) const {
     if (surface.hit.geomID == RTC_INVALID_GEOMETRY_ID) return std::nullopt;
     const float u = surface.hit.u, v = surface.hit.v, t = surface.ray.tfar;
     if (surface.hit.instID[0] == RTC_INVALID_GEOMETRY_ID)
-        return shadeMesh(surfaceMeshes_[surface.hit.geomID], surface.hit.primID, u, v, t);
-    // Shaded in prototype space, then moved to world space.
+        return shadeMesh(surfaceMeshes_[surface.hit.geomID], surface.hit.primID, u, v, t, nullptr);
     const Instance& instance = instances_[surfaceInstances_[surface.hit.instID[0]]];
-    SurfaceHit hit = shadeMesh(prototypes_[instance.prototype].meshes[surface.hit.geomID], surface.hit.primID, u, v, t);
-    auto normalToWorld = [&](const Vec3f& n) {
-        Vec3f w(instance.normalToWorld.transformVector(Vec3d(n)));
-        return lengthSquared(w) > 0.0f ? normalize(w) : n;
-    };
-    hit.point = Vec3f(instance.toWorld.transformPoint(Vec3d(hit.point)));
-    hit.geometricNormal = normalToWorld(hit.geometricNormal);
-    hit.shadingNormal = normalToWorld(hit.shadingNormal);
-    return hit;
+    return shadeMesh(prototypes_[instance.prototype].meshes[surface.hit.geomID], surface.hit.primID, u, v, t, &instance);
 }
 
-SurfaceHit RenderScene::shadeMesh(int meshIndex, unsigned primID, float u, float v, float t) const {
+SurfaceHit RenderScene::shadeMesh(int meshIndex, unsigned primID, float u, float v, float t, const Instance* instance) const {
     const Mesh& mesh = meshes_[meshIndex];
     std::size_t c = 3 * std::size_t(primID);
     const Vec3f& p0 = mesh.positions[mesh.indices[c]];
@@ -411,19 +478,41 @@ SurfaceHit RenderScene::shadeMesh(int meshIndex, unsigned primID, float u, float
     SurfaceHit hit;
     hit.t = t;
     hit.point = p0 * w + p1 * u + p2 * v;
-    Vec3f ng = cross(p1 - p0, p2 - p0);
+    Vec3f e1 = p1 - p0, e2 = p2 - p0;
+    Vec3f ng = cross(e1, e2);
     hit.geometricNormal = lengthSquared(ng) > 0.0f ? normalize(ng) : Vec3f(0, 0, 1);
     hit.shadingNormal = hit.geometricNormal;
     if (!mesh.cornerNormals.empty()) {
         Vec3f n = mesh.cornerNormals[c] * w + mesh.cornerNormals[c + 1] * u + mesh.cornerNormals[c + 2] * v;
-        if (lengthSquared(n) > 0.0f) {
-            hit.shadingNormal = normalize(n);
-            if (dot(hit.shadingNormal, hit.geometricNormal) < 0.0f) hit.geometricNormal = -hit.geometricNormal;
-        }
+        if (lengthSquared(n) > 0.0f) hit.shadingNormal = normalize(n);
     }
-    hit.material = mesh.material >= 0 ? static_cast<const MaterialParams&>(materials_[static_cast<std::size_t>(mesh.material)]) : lambertianParams(mesh.diffuse);
+    if (instance) {  // shaded in prototype space, moved to world space
+        auto normalToWorld = [&](const Vec3f& n) {
+            Vec3f world(instance->normalToWorld.transformVector(Vec3d(n)));
+            return lengthSquared(world) > 0.0f ? normalize(world) : n;
+        };
+        hit.point = Vec3f(instance->toWorld.transformPoint(Vec3d(hit.point)));
+        hit.geometricNormal = normalToWorld(hit.geometricNormal);
+        hit.shadingNormal = normalToWorld(hit.shadingNormal);
+        e1 = Vec3f(instance->toWorld.transformVector(Vec3d(e1)));
+        e2 = Vec3f(instance->toWorld.transformVector(Vec3d(e2)));
+    }
+
+    hit.material = mesh.material >= 0 ? static_cast<const MaterialParams&>(materials_[static_cast<std::size_t>(mesh.material)])
+                                      : lambertianParams(mesh.diffuse);
     if (!mesh.cornerColors.empty())
         hit.material.diffuse = mesh.cornerColors[c] * w + mesh.cornerColors[c + 1] * u + mesh.cornerColors[c + 2] * v;
+    if (mesh.material >= 0 && shaders_[mesh.material].hasBindings()) {
+        ShadingPatch patch{c, w, u, v, e1, e2, {}};
+        if (filterCamera_)
+            patch.footprint = pixelFootprint(hit.point, hit.geometricNormal, filterCamera_->position(),
+                                             filterCamera_->pixelsPerUnitAt(hit.point));
+        Vec3f mapped = hit.shadingNormal;
+        shaders_[mesh.material].evaluate(patch, mesh.slots.data(), hit.material, mapped, hit.tangent);
+        // A normal map may not tip the shading normal across the surface.
+        if (dot(mapped, hit.geometricNormal) * dot(hit.shadingNormal, hit.geometricNormal) > 0.0f) hit.shadingNormal = mapped;
+    }
+    if (dot(hit.shadingNormal, hit.geometricNormal) < 0.0f) hit.geometricNormal = -hit.geometricNormal;
     hit.emission = mesh.emission;
     hit.light = mesh.firstLight >= 0 ? mesh.firstLight + static_cast<int>(primID) : -1;
     return hit;

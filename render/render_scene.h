@@ -19,19 +19,35 @@
 // transform each. A hit inside an instance is shaded in prototype space and moved to world space.
 // Emissive prototype meshes are the exception: every emitting triangle is a light that next-event
 // estimation samples in world space, so they are copied into world space per instance.
+//
+// Materials: each is a MaterialShader (render/material_shader.h) evaluated at every surface hit,
+// textures looked up through one texture::TextureSystem with the pixel footprint of the camera
+// given to setTextureFilterCamera() (without one, textures are point-sampled at full resolution).
+// Opacity: a mesh whose material may be less than opaque gets Embree filter functions, so every
+// ray (camera, BSDF and shadow) passes through its holes. A cut-out (opacityThreshold > 0) is a
+// hole or not; partial opacity lets a ray through with probability 1 - opacity, decided by a hash
+// of the ray and the triangle (deterministic, whatever the thread count, and unbiased over rays).
 #pragma once
 
 #include <memory>
 #include <optional>
+#include <string>
 #include <vector>
 
 #include "core/sampling.h"
+#include "render/camera.h"
 #include "render/light.h"
 #include "render/light_tree.h"
+#include "render/material_shader.h"
 #include "render/ray.h"
 #include "render/scene_description.h"
+#include "texture/texture_system.h"
+
+struct RTCGeometryTy;  // Embree's geometry handle (embree3/rtcore_geometry.h)
 
 namespace fluence::render {
+
+struct MeshPresence;  // what the presence filter of a mesh with holes reads (render_scene.cpp)
 
 // What a ray hit, with everything shading needs.
 struct SurfaceHit {
@@ -60,7 +76,9 @@ struct SceneStats {
 
 class RenderScene {
 public:
-    explicit RenderScene(const SceneDescription& scene);
+    // `textures` may be null: one is made (with the default colour management) when a material
+    // has texture bindings.
+    explicit RenderScene(const SceneDescription& scene, std::shared_ptr<texture::TextureSystem> textures = nullptr);
     ~RenderScene();
     RenderScene(const RenderScene&) = delete;
     RenderScene& operator=(const RenderScene&) = delete;
@@ -84,6 +102,11 @@ public:
 
     const SceneBounds& bounds() const { return bounds_; }
     const SceneStats& stats() const { return stats_; }
+    // What went wrong while building that did not stop it (unreadable textures).
+    const std::vector<Warning>& warnings() const { return warnings_; }
+
+    // The camera whose pixel footprint sets the texture filter width (call before rendering).
+    void setTextureFilterCamera(const Camera& camera) { filterCamera_ = camera; }
 
 private:
     struct Mesh;
@@ -94,13 +117,22 @@ private:
     void addMesh(const MeshDesc& mesh, const std::vector<MaterialDesc>& materials);
     void addPrototypes(const SceneDescription& scene);
     void addLight(const LightDesc& light);
-    SurfaceHit shadeMesh(int mesh, unsigned primID, float u, float v, float t) const;
+    void addMaterialShaders();
+    void addPresenceFilter(RTCGeometryTy* geometry, int mesh);
+    // The hit on triangle primID of mesh `mesh` at barycentrics (u, v), in world space
+    // (`instance` places a prototype mesh).
+    SurfaceHit shadeMesh(int mesh, unsigned primID, float u, float v, float t, const Instance* instance) const;
     SurfaceHit shadeLightShape(unsigned geomID, const Ray& ray, float t, const Vec3f& ng) const;
 
     struct EmbreeState;
     std::unique_ptr<EmbreeState> embree_;
     std::vector<Mesh> meshes_;
-    std::vector<MaterialDesc> materials_;  // SurfaceHit::material points in here
+    std::vector<MaterialDesc> materials_;
+    std::shared_ptr<texture::TextureSystem> textures_;
+    std::vector<MaterialShader> shaders_;  // one per material
+    std::vector<std::unique_ptr<MeshPresence>> presenceTests_;  // user data of the filter functions
+    std::optional<Camera> filterCamera_;
+    std::vector<Warning> warnings_;
     std::vector<int> surfaceMeshes_;     // Embree geometry id in the surface scene -> mesh, or -1
     std::vector<int> surfaceInstances_;  // Embree geometry id in the surface scene -> instance, or -1
     std::vector<Prototype> prototypes_;

@@ -15,6 +15,7 @@
 
 #include "core/matrix.h"
 #include "core/rgb.h"
+#include "texture/texture_types.h"
 
 namespace fluence::render {
 
@@ -69,9 +70,61 @@ inline MaterialParams lambertianParams(const RGB& albedo) {
     return p;
 }
 
-// A surface material as the render core takes it: constant parameters, the name for messages.
+// The parameters a shading network can drive per surface point.
+enum class MaterialInput {
+    Diffuse, Emission, SpecularColor, Specular, Metallic, Roughness, Ior, Coat, CoatColor, CoatRoughness,
+    Transmission, TransmissionColor, Sheen, SheenColor, Opacity,
+    Normal,  // a tangent-space normal in [-1, 1]^3 (after the texture's scale and bias): perturbs the shading normal
+};
+
+// UsdTransform2d: st' = rotate(st * scale) + translation, rotation counter-clockwise in degrees.
+struct UvTransform {
+    float scale[2] = {1.0f, 1.0f};
+    float rotationDegrees = 0.0f;
+    float translation[2] = {0.0f, 0.0f};
+};
+
+// A UsdUVTexture node and the texture coordinates it reads (a UsdPrimvarReader_float2, through
+// an optional UsdTransform2d). Its value at a point is texel * scale + bias, per RGBA channel;
+// `fallback` where the file cannot be read.
+struct TextureDesc {
+    std::string file;  // resolved path; may hold the UDIM tag <UDIM>
+    texture::Wrap wrapS = texture::Wrap::Repeat, wrapT = texture::Wrap::Repeat;
+    float fallback[4] = {0.0f, 0.0f, 0.0f, 1.0f};
+    float scale[4] = {1.0f, 1.0f, 1.0f, 1.0f};
+    float bias[4] = {0.0f, 0.0f, 0.0f, 0.0f};
+    texture::SourceColorSpace colorSpace = texture::SourceColorSpace::Auto;
+    std::string uvPrimvar = "st";     // the reader's varname; "" = no reader (uvFallback everywhere)
+    float uvFallback[2] = {0.0f, 0.0f};  // where the mesh has no such primvar
+    UvTransform uvTransform;
+};
+
+// One material input driven by a node: a texture's output, or a primvar read directly
+// (UsdPrimvarReader_float / _float3). Channels [firstChannel, firstChannel + channels) of the
+// source feed the input; one channel feeding a colour is replicated.
+struct InputBinding {
+    MaterialInput input = MaterialInput::Diffuse;
+    int firstChannel = 0;  // r 0, g 1, b 2, a 3, rgb 0
+    int channels = 3;      // 1 or 3
+    std::optional<TextureDesc> texture;
+    float factor = 1.0f;  // the value is multiplied by it (Standard Surface: base for base_color)
+    std::string primvar;                            // when there is no texture
+    float primvarFallback[3] = {0.0f, 0.0f, 0.0f};  // where the mesh has no such primvar
+};
+
+// A surface material as the render core takes it: its parameters where nothing drives them, the
+// inputs that textures or primvars drive, and the name for messages.
 struct MaterialDesc : MaterialParams {
     std::string name;  // prim path, for messages
+    std::vector<InputBinding> bindings;
+};
+
+// A mesh primvar the render core interpolates for a material: `components` floats per triangle
+// corner (3 corners per triangle), whatever the primvar's USD interpolation was.
+struct CornerPrimvar {
+    std::string name;
+    int components = 2;
+    std::vector<float> values;  // triangles * 3 * components
 };
 
 struct MeshDesc {
@@ -81,6 +134,7 @@ struct MeshDesc {
     std::vector<Vec3f> cornerNormals;     // empty, or 3 per triangle (world space, shading)
     std::vector<RGB> cornerColors;        // empty, or 3 per triangle: diffuse colour (displayColor)
     int material = -1;                    // index into SceneDescription::materials, -1 = default
+    std::vector<CornerPrimvar> primvars;  // those the mesh's material reads (st, ...)
 };
 
 enum class LightType { Rect, Disk, Sphere, Cylinder, Distant, Dome };

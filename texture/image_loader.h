@@ -22,9 +22,9 @@
 #include <string>
 #include <vector>
 
-namespace fluence::texture {
+#include "texture/texture_types.h"
 
-enum class SourceColorSpace { Auto, Raw, SRGB };
+namespace fluence::texture {
 
 struct Image {
     int width = 0, height = 0, channels = 0;

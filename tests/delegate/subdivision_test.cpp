@@ -398,7 +398,7 @@ TEST(Subdivision, HoleFacesProduceNoTrianglesAndRaysPassThroughThem) {
     EXPECT_EQ(std::count(result.triangleFaces.begin(), result.triangleFaces.end(), std::uint32_t(hole)), 0);
 
     render::SceneDescription desc;
-    desc.meshes.push_back({"grid", result.positions, result.indices, {}, {}, -1});
+    desc.meshes.push_back({"grid", result.positions, result.indices, {}, {}, -1, {}});
     render::RenderScene scene(desc);
     auto down = [&](float x, float y) {
         render::Ray ray{{x, y, 1.0f}, {0.0f, 0.0f, -1.0f}};

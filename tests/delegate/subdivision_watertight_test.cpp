@@ -208,7 +208,7 @@ struct MeshScene {
     static render::SceneDescription describe(const std::string& name, const std::vector<Vec3f>& positions,
                                              const std::vector<std::uint32_t>& indices) {
         render::SceneDescription desc;
-        desc.meshes.push_back({name, positions, indices, {}, {}, -1});
+        desc.meshes.push_back({name, positions, indices, {}, {}, -1, {}});
         return desc;
     }
     bool hits(const render::Ray& ray) const { return scene.intersect(ray).has_value(); }

@@ -1,0 +1,81 @@
+// A material's shading network evaluated at a surface point: MaterialDesc bindings (UsdUVTexture
+// lookups, primvar reads) written over its constant parameters.
+//
+// Built once per material when the RenderScene is built: each texture is opened in the
+// texture::TextureSystem (a file that cannot be read is reported once in `warnings` and its
+// binding uses the texture's fallback value). Per hit, evaluate() interpolates each binding's
+// primvar on the hit triangle, applies the UsdTransform2d, looks the texture up with the pixel
+// footprint mapped into st (render/surface_differentials.h), applies scale and bias, and writes
+// the channels into the parameter. A Normal binding perturbs the shading normal in the tangent
+// frame of its st (tangent along dp/ds, bitangent along dp/dt, Gram-Schmidt against the
+// interpolated normal).
+//
+// Primvars are looked up by name once per mesh: primvarSlots() lists the names, in binding
+// order, and a mesh hands evaluate() the matching CornerPrimvar pointers (nullptr where it lacks
+// one: the binding's fallback st or value is used).
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "render/scene_description.h"
+#include "render/surface_differentials.h"
+#include "texture/texture_system.h"
+
+namespace fluence::render {
+
+// Something that went wrong building, that did not stop it: where (a prim path) and what.
+struct Warning {
+    std::string where, message;
+};
+
+// A point on a triangle, with what the network needs there.
+struct ShadingPatch {
+    std::size_t corner = 0;       // 3 * triangle index: the first corner's index in CornerPrimvar values
+    float b0 = 1.0f, b1 = 0.0f, b2 = 0.0f;  // barycentric weights of the corners
+    Vec3f e1{0.0f}, e2{0.0f};     // the triangle's edges, in the space of the footprint
+    PixelFootprint footprint;     // invalid: point sampling at the finest level
+};
+
+class MaterialShader {
+public:
+    MaterialShader(const MaterialDesc& material, texture::TextureSystem* textures, std::vector<Warning>& warnings);
+
+    const MaterialDesc& material() const { return *material_; }
+    bool hasBindings() const { return !material_->bindings.empty(); }
+    // Whether some point of the surface may be less than fully present (opacity < 1, or a cut-out).
+    bool mayBeTransparent() const;
+    // The primvar each binding reads (a texture's st or a primvar reader's), "" for none.
+    const std::vector<std::string>& primvarSlots() const { return slots_; }
+    // The primvar whose st the tangent frame follows (the first texture's), as an index into
+    // primvarSlots(), or -1.
+    int tangentSlot() const { return tangentSlot_; }
+
+    // The parameters at `patch`; `primvars[i]` is the mesh's primvar for slot i (or nullptr).
+    // shadingNormal (unit, in the space of patch.e1/e2) is perturbed by a Normal binding;
+    // `tangent` is set to the unit dp/ds of the tangent slot's st made perpendicular to the
+    // final shading normal (zero without one).
+    void evaluate(const ShadingPatch& patch, const CornerPrimvar* const* primvars, MaterialParams& out,
+                  Vec3f& shadingNormal, Vec3f& tangent) const;
+    // The surface's presence at `patch` (1 = opaque, 0 = a hole): opacity, or with a cut-out
+    // threshold 0 or 1. Point-sampled.
+    float presence(const ShadingPatch& patch, const CornerPrimvar* const* primvars) const;
+
+private:
+    // The binding's value (4 channels) at the patch.
+    void bindingValue(std::size_t binding, const ShadingPatch& patch, const CornerPrimvar* primvar, float value[4]) const;
+
+    const MaterialDesc* material_;
+    texture::TextureSystem* textures_;
+    std::vector<const texture::TextureSystem::Texture*> opened_;  // per binding; nullptr: fallback or primvar
+    std::vector<std::string> slots_;
+    int tangentSlot_ = -1;
+};
+
+// Interpolates `components` floats of a corner primvar at the patch.
+void interpolateCorners(const CornerPrimvar& primvar, const ShadingPatch& patch, float* out);
+
+// The st parameterisation of the patch's triangle in `primvar` (a 2-component primvar).
+TriangleParameterisation stParameterisation(const CornerPrimvar& primvar, const ShadingPatch& patch);
+
+}  // namespace fluence::render

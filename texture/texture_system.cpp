@@ -1,0 +1,136 @@
+#include "texture/texture_system.h"
+
+#include <OpenImageIO/texture.h>
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <mutex>
+#include <vector>
+
+namespace fluence::texture {
+
+namespace OIIO = OIIO_NAMESPACE;
+
+struct TextureSystem::Texture {
+    OIIO::TextureSystem::TextureHandle* handle = nullptr;
+    bool udim = false;
+    int channels = 0;
+    bool greyAlpha = false;  // two channels: grey and alpha
+    color::ColorConversion toRendering;
+};
+
+struct TextureSystem::Impl {
+    explicit Impl(color::ColorManagement c) : colors(std::move(c)) {}
+    color::ColorManagement colors;
+    OIIO::TextureSystem* system = nullptr;
+    std::mutex mutex;  // guards `opened`
+    std::map<std::pair<std::string, SourceColorSpace>, Texture> opened;
+};
+
+TextureSystem::TextureSystem(color::ColorManagement colors) : impl_(std::make_unique<Impl>(std::move(colors))) {
+    impl_->system = OIIO::TextureSystem::create(false);
+    impl_->system->attribute("automip", 1);
+    impl_->system->attribute("autotile", 64);
+    impl_->system->attribute("max_memory_MB", 2048.0f);
+}
+
+TextureSystem::~TextureSystem() { OIIO::TextureSystem::destroy(impl_->system); }
+
+namespace {
+
+// The colour space the values of a file with `spec` are in, by UsdUVTexture's rules.
+std::string sourceSpace(const OIIO::ImageSpec& spec, SourceColorSpace colorSpace, const color::ColorManagement& colors) {
+    if (colorSpace == SourceColorSpace::Raw) return "raw";
+    if (colorSpace == SourceColorSpace::SRGB) return "sRGB";
+    std::string stated = spec.get_string_attribute("oiio:ColorSpace");
+    if (!stated.empty() && colors.hasColorSpace(stated)) return stated;
+    return spec.format.is_floating_point() ? "" : "sRGB";
+}
+
+OIIO::TextureOpt::Wrap oiioWrap(Wrap wrap) {
+    switch (wrap) {
+        case Wrap::Black: return OIIO::TextureOpt::WrapBlack;
+        case Wrap::Clamp: return OIIO::TextureOpt::WrapClamp;
+        case Wrap::Repeat: return OIIO::TextureOpt::WrapPeriodic;
+        case Wrap::Mirror: return OIIO::TextureOpt::WrapMirror;
+    }
+    return OIIO::TextureOpt::WrapBlack;
+}
+
+}  // namespace
+
+const TextureSystem::Texture* TextureSystem::open(const std::string& path, SourceColorSpace colorSpace, std::string& error) {
+    std::lock_guard<std::mutex> lock(impl_->mutex);
+    auto key = std::make_pair(path, colorSpace);
+    if (auto it = impl_->opened.find(key); it != impl_->opened.end()) return &it->second;
+
+    OIIO::TextureSystem& ts = *impl_->system;
+    OIIO::ustring name(path);
+    Texture texture;
+    texture.handle = ts.get_texture_handle(name);
+    texture.udim = texture.handle && ts.is_udim(texture.handle);
+    // The file whose header says what the texture holds: itself, or a UDIM set's first tile.
+    OIIO::ustring first = name;
+    if (texture.udim) {
+        std::vector<OIIO::ustring> tiles;
+        int nu = 0, nv = 0;
+        ts.inventory_udim(name, tiles, nu, nv);
+        auto found = std::find_if(tiles.begin(), tiles.end(), [](const OIIO::ustring& t) { return !t.empty(); });
+        if (found == tiles.end()) {
+            error = "no tile of the UDIM set " + path + " exists";
+            return nullptr;
+        }
+        first = *found;
+    }
+    const OIIO::ImageSpec* spec = ts.imagespec(first);
+    if (!texture.handle || !spec) {
+        std::string reason = ts.geterror();
+        error = "cannot read texture " + path + (reason.empty() ? "" : ": " + reason);
+        return nullptr;
+    }
+    texture.channels = spec->nchannels;
+    texture.greyAlpha = spec->nchannels == 2;
+    std::string space = sourceSpace(*spec, colorSpace, impl_->colors);
+    try {
+        texture.toRendering = impl_->colors.conversionToRenderingSpace(space);
+    } catch (const color::ColorError& e) {
+        error = "texture " + path + ": " + e.what();
+        return nullptr;
+    }
+    return &impl_->opened.emplace(key, std::move(texture)).first->second;
+}
+
+bool TextureSystem::lookup(const Texture& texture, float s, float t, const Footprint& f, Wrap wrapS, Wrap wrapT,
+                           std::array<float, 4>& rgba) const {
+    OIIO::TextureOpt options;
+    options.swrap = oiioWrap(wrapS);
+    options.twrap = oiioWrap(wrapT);
+    options.interpmode = OIIO::TextureOpt::InterpBilinear;  // within a level: exact at texel centres, no blur
+    // OIIO's t runs down the image; USD's up. Within a UDIM tile the flip is per tile.
+    float oiioT;
+    if (texture.udim) {
+        float tile = std::floor(t);
+        oiioT = tile + std::min(1.0f - (t - tile), 0.99999994f);
+    } else {
+        oiioT = 1.0f - t;
+    }
+    float result[4] = {0.0f, 0.0f, 0.0f, 1.0f};
+    const int channels = std::min(texture.channels, 4);
+    OIIO::TextureSystem::Perthread* thread = impl_->system->get_perthread_info();
+    bool ok = impl_->system->texture(texture.handle, thread, options, s, oiioT, f.dsdx, -f.dtdx, f.dsdy, -f.dtdy, channels,
+                                     result);
+    if (!ok) return false;
+    if (channels == 1 || texture.greyAlpha) {
+        float alpha = texture.greyAlpha ? result[1] : 1.0f;
+        result[1] = result[2] = result[0];
+        result[3] = alpha;
+    } else if (channels == 3) {
+        result[3] = 1.0f;
+    }
+    RGB c = texture.toRendering.apply(RGB(result[0], result[1], result[2]));
+    rgba = {c.x, c.y, c.z, result[3]};
+    return true;
+}
+
+}  // namespace fluence::texture
