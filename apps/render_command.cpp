@@ -149,7 +149,7 @@ int runRender(const RenderOptions& opt) {
     const double samples = double(stats.samplesPerPixel) * res.first * res.second;
     const auto& st = scene->stats();
     std::printf("fluence: rendered %s\n", opt.scene.c_str());
-    std::printf("  camera       %s\n", populated->cameraPath.c_str());
+    std::printf("  camera       %s\n", populated->cameraPath.empty() ? "(default: framing the scene)" : populated->cameraPath.c_str());
     std::printf("  image        %d x %d, %d spp, integrator %s, seed %llu, %d threads\n", res.first, res.second,
                 stats.samplesPerPixel, opt.integrator.c_str(), static_cast<unsigned long long>(opt.seed),
                 opt.threads > 0 ? opt.threads : int(std::thread::hardware_concurrency()));

@@ -1,5 +1,10 @@
 #include "delegate/camera_adapter.h"
 
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <vector>
+
 namespace fluence::delegate {
 
 render::CameraDesc cameraFromPrim(const PrimReader& prim, const Matrix4& toWorld) {
@@ -25,6 +30,52 @@ render::CameraDesc cameraFromPrim(const PrimReader& prim, const Matrix4& toWorld
     if (!(c.horizontalAperture > 0.0f) || !(c.verticalAperture > 0.0f)) prim.fail("apertures must be positive");
     if (!(c.nearClip >= 0.0f) || !(c.farClip > c.nearClip)) prim.fail("clippingRange must satisfy 0 <= near < far");
     return c;
+}
+
+namespace {
+
+struct Bounds {
+    Vec3d lo{std::numeric_limits<double>::max()}, hi{-std::numeric_limits<double>::max()};
+    void add(const Vec3d& p) {
+        lo = Vec3d(std::min(lo.x, p.x), std::min(lo.y, p.y), std::min(lo.z, p.z));
+        hi = Vec3d(std::max(hi.x, p.x), std::max(hi.y, p.y), std::max(hi.z, p.z));
+    }
+    bool empty() const { return lo.x > hi.x; }
+};
+
+}  // namespace
+
+render::CameraDesc framingCamera(const render::SceneDescription& scene, char upAxis) {
+    Bounds world;
+    for (const render::MeshDesc& m : scene.meshes)
+        for (const Vec3f& p : m.positions) world.add(Vec3d(p));
+    std::vector<Bounds> prototypes(scene.prototypes.size());
+    for (std::size_t i = 0; i < scene.prototypes.size(); ++i)
+        for (const render::MeshDesc& m : scene.prototypes[i].meshes)
+            for (const Vec3f& p : m.positions) prototypes[i].add(Vec3d(p));
+    for (const render::InstanceDesc& instance : scene.instances) {
+        const Bounds& b = prototypes.at(static_cast<std::size_t>(instance.prototype));
+        if (b.empty()) continue;
+        for (int corner = 0; corner < 8; ++corner)
+            world.add(instance.transform.transformPoint(
+                Vec3d(corner & 1 ? b.hi.x : b.lo.x, corner & 2 ? b.hi.y : b.lo.y, corner & 4 ? b.hi.z : b.lo.z)));
+    }
+    Vec3d centre(0.0), extent(1.0);
+    if (!world.empty()) {
+        centre = (world.lo + world.hi) * 0.5;
+        extent = (world.hi - world.lo) * 0.5;
+    }
+    const double radius = std::max(length(extent), 1e-6);
+    render::CameraDesc camera;  // UsdGeomCamera's fallback lens
+    const double halfAngle = std::atan(0.5 * std::min(camera.horizontalAperture, camera.verticalAperture) / camera.focalLength);
+    const double distance = radius / std::sin(halfAngle);
+    Matrix4 orient = upAxis == 'Z' ? Matrix4::rotateX(90.0) : Matrix4::identity();  // local -Z -> +Y, +Y -> +Z
+    Vec3d back = upAxis == 'Z' ? Vec3d(0.0, -1.0, 0.0) : Vec3d(0.0, 0.0, 1.0);
+    camera.name = "(default camera)";
+    camera.transform = Matrix4::translate(centre + back * distance) * orient;
+    camera.nearClip = static_cast<float>(std::max(1e-4 * distance, 0.5 * (distance - radius)));
+    camera.farClip = static_cast<float>(2.0 * (distance + radius));
+    return camera;
 }
 
 }  // namespace fluence::delegate

@@ -1,5 +1,6 @@
 // UsdGeomCamera -> render::CameraDesc (projection, focalLength, horizontal/verticalAperture and
-// their offsets, clippingRange, with the schema's fallbacks; the world transform of the prim).
+// their offsets, clippingRange, with the schema's fallbacks; the world transform of the prim), and
+// the default camera of a stage that has none.
 #pragma once
 
 #include "core/matrix.h"
@@ -9,5 +10,12 @@
 namespace fluence::delegate {
 
 render::CameraDesc cameraFromPrim(const PrimReader& prim, const Matrix4& toWorld);
+
+// A camera with UsdGeomCamera's fallback lens that frames everything `scene` holds (meshes,
+// instances, light shapes excluded) as usdview's and usdrecord's free camera does: looking along
+// -Z with +Y up on a Y-up stage, along +Y with +Z up on a Z-up stage, far enough back that the
+// bounding sphere fits the narrower field of view. An empty scene is framed as a unit sphere at
+// the origin.
+render::CameraDesc framingCamera(const render::SceneDescription& scene, char upAxis);
 
 }  // namespace fluence::delegate

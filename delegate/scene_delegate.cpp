@@ -5,6 +5,7 @@
 #include <map>
 #include <set>
 
+#include "delegate/camera_adapter.h"
 #include "delegate/imageable.h"
 #include "delegate/instancing.h"
 #include "delegate/light_adapter.h"
@@ -182,20 +183,28 @@ void SceneDelegate::chooseCamera() {
         if (cameraPath_.empty() && prim.typeName == "Camera" && index_.find(prim.path)) cameraPath_ = prim.path;
         return cameraPath_.empty();
     });
-    if (cameraPath_.empty()) throw SceneError("the scene has no camera: add a Camera prim, or name one with -c/--camera");
+    if (cameraPath_.empty())
+        options_.warn("/", "the stage has no camera; framing the whole scene with a default camera, as usdrecord does");
 }
 
 render::SceneDescription SceneDelegate::sceneDescription() const {
     const auto* cameraPrim = cameraPath_.empty() ? nullptr : dynamic_cast<const CameraSprim*>(index_.find(cameraPath_));
-    if (!cameraPrim) throw SceneError("the scene has no camera: add a Camera prim, or name one with -c/--camera");
+    if (!cameraPath_.empty() && !cameraPrim) throw SceneError("camera " + cameraPath_ + " is not in the render index");
     auto [width, height] = resolution();
+    std::size_t subdivisionTriangles = 0;
+    render::CameraDesc cameraDesc;
+    if (cameraPrim) {
+        cameraDesc = cameraPrim->camera();
+    } else {  // framed on the scene as a provisional camera dices it
+        render::Camera provisional(framingCamera({}, stage_.upAxis()), width, height, framing());
+        cameraDesc = framingCamera(describe(provisional, 1.0f, subdivisionTriangles), stage_.upAxis());
+    }
     std::unique_ptr<render::Camera> camera;
     try {
-        camera = std::make_unique<render::Camera>(cameraPrim->camera(), width, height, framing());
+        camera = std::make_unique<render::Camera>(cameraDesc, width, height, framing());
     } catch (const std::invalid_argument& e) {
         throw SceneError(e.what());
     }
-    std::size_t subdivisionTriangles = 0;
     render::SceneDescription scene = describe(*camera, 1.0f, subdivisionTriangles);
     // Over the scene budget: every rate scaled down until the subdivision surfaces fit (rates are
     // clamped and rounded, so the first guess can miss).
@@ -209,6 +218,7 @@ render::SceneDescription SceneDelegate::sceneDescription() const {
         options_.warn("/", "subdivision surfaces would take " + std::to_string(wanted) +
                                " triangles, over the scene budget of " + std::to_string(budget) + "; diced coarser, to " +
                                std::to_string(subdivisionTriangles));
+    scene.camera = cameraDesc;
     std::size_t volumes = 0;
     for (const auto& [path, prim] : index_.prims()) volumes += prim->kind() == RenderPrim::Kind::Volume;
     if (volumes > 0)
@@ -259,8 +269,7 @@ render::SceneDescription SceneDelegate::describe(const render::Camera& camera, f
             case RenderPrim::Kind::Light:
                 if (const auto& light = static_cast<const LightSprim&>(*prim).light()) scene.lights.push_back(*light);
                 break;
-            case RenderPrim::Kind::Camera:
-                if (spec.path == cameraPath_) scene.camera = static_cast<const CameraSprim&>(*prim).camera();
+            case RenderPrim::Kind::Camera:  // the chosen one is sceneDescription()'s
                 break;
             case RenderPrim::Kind::Mesh: {
                 const auto& mesh = static_cast<const MeshRprim&>(*prim);
@@ -306,7 +315,6 @@ render::SceneDescription SceneDelegate::describe(const render::Camera& camera, f
             countSubdivided(meshes, first);
         }
     }
-    if (!scene.camera) throw SceneError("the scene has no camera: add a Camera prim, or name one with -c/--camera");
     return scene;
 }
 

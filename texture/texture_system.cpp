@@ -31,7 +31,6 @@ struct TextureSystem::Impl {
 TextureSystem::TextureSystem(color::ColorManagement colors) : impl_(std::make_unique<Impl>(std::move(colors))) {
     impl_->system = OIIO::TextureSystem::create(false);
     impl_->system->attribute("automip", 1);
-    impl_->system->attribute("autotile", 64);
     impl_->system->attribute("max_memory_MB", 2048.0f);
 }
 

@@ -1,7 +1,8 @@
 // `fluence info` and `fluence render` on the real-world corpus in shared/usd_corpus (skipped when
 // it is absent): every valid layer opens, every invalid one is rejected with file:line:column,
-// crate files get a clear error, and two production assets render to a finite EXR with their
-// missing assets reported as warnings.
+// crate files get a clear error, production assets render to a finite EXR with their missing
+// assets reported as warnings, and two render as intended: usdrecord's SmallObjectTest (no camera,
+// a DomeLight with an HDR file) and the Teapot's Fancy variant (UsdUVTexture maps).
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -112,6 +113,57 @@ TEST_F(CorpusCli, StandardShaderBallRendersWithItsMissingAssetsNamed) {
     EXPECT_NE(r.err.find("plastic_openpbr.mtlx@ ignored"), std::string::npos) << r.err;
     EXPECT_NE(r.err.find("asset not found:"), std::string::npos) << r.err;
     EXPECT_NE(r.err.find("wall_back.ACEScg.exr"), std::string::npos) << r.err;
+}
+
+TEST_F(CorpusCli, SmallObjectTestIsFramedAndLitByItsDome) {
+    SKIP_WITHOUT_CORPUS();
+    fs::path scene = kCorpus / "OpenUSD/pxr/usdImaging/bin/usdrecord/testenv/SmallObjectTest/test.usda";
+    fs::path out = tmp_.path() / "small.exr";
+    test::RunResult r = run("render '" + scene.string() + "' -o '" + out.string() + "' -r 48 32 --spp 4");
+    expectFiniteRender(r, out);
+    EXPECT_NE(r.err.find("the stage has no camera; framing the whole scene"), std::string::npos) << r.err;
+    EXPECT_EQ(r.err.find("not found"), std::string::npos) << "the HDR is found: " << r.err;
+    test::ExrImage img = test::readExr(out);
+    EXPECT_EQ(img.at(24, 16, "A"), 1.0f) << "the object sits in the middle of the frame";
+    EXPECT_EQ(img.at(0, 0, "A"), 0.0f) << "with the environment around it";
+    // The blue displayColor object, lit: blue dominates its pixel; the dome is bright around it.
+    EXPECT_GT(img.at(24, 16, "B"), img.at(24, 16, "R"));
+    EXPECT_GT(img.at(0, 31, "R") + img.at(0, 31, "G") + img.at(0, 31, "B"), 0.1f);
+}
+
+TEST_F(CorpusCli, FancyTeapotRendersWithItsTextures) {
+    SKIP_WITHOUT_CORPUS();
+    const fs::path teapot = kCorpus / "usd-wg-assets/full_assets/Teapot/Teapot.usd";
+    const fs::path hdr = kCorpus / "OpenUSD/pxr/usdImaging/bin/usdrecord/testenv/SmallObjectTest/StinsonBeach.hdr";
+    fs::path scene = tmp_.path() / "teapot.usda";
+    std::ofstream(scene) << "#usda 1.0\n(\n    upAxis = \"Y\"\n    metersPerUnit = 1\n)\n"
+                            "def \"Teapot\" (\n    references = @" << teapot.string() << "@\n"
+                            "    variants = {\n        string modelVariant = \"Fancy\"\n    }\n)\n{\n}\n"
+                            "def Camera \"Cam\"\n{\n    float2 clippingRange = (0.01, 100)\n"
+                            "    float horizontalAperture = 36\n    float verticalAperture = 24\n"
+                            "    double3 xformOp:translate = (0, 0.12, 0.9)\n"
+                            "    uniform token[] xformOpOrder = [\"xformOp:translate\"]\n}\n"
+                            "def DomeLight \"Sky\"\n{\n    asset inputs:texture:file = @" << hdr.string() << "@\n}\n";
+    fs::path out = tmp_.path() / "teapot.exr";
+    test::RunResult r = run("render '" + scene.string() + "' -o '" + out.string() + "' -r 48 32 --spp 2 --dicing-rate 4");
+    expectFiniteRender(r, out);
+    EXPECT_EQ(r.err.find(".jpg"), std::string::npos) << "both maps are read, without a warning: " << r.err;
+    // The albedo AOV is the diffuse map (a constant colour, the displayColor fallback, or grey
+    // would not vary) where the teapot covers the middle of the frame.
+    test::ExrImage img = test::readExr(out);
+    double sum = 0.0, sumSquares = 0.0;
+    int n = 0;
+    for (int y = 10; y < 20; ++y)
+        for (int x = 19; x < 29; ++x) {
+            ASSERT_EQ(img.at(x, y, "A"), 1.0f) << x << ", " << y;
+            double g = img.at(x, y, "albedo.G");
+            sum += g;
+            sumSquares += g * g;
+            ++n;
+        }
+    double mean = sum / n, deviation = std::sqrt(std::max(0.0, sumSquares / n - mean * mean));
+    EXPECT_GT(mean, 0.3) << "porcelain is light";
+    EXPECT_GT(deviation, 0.01) << "the flowers and trims of the map";
 }
 
 }  // namespace

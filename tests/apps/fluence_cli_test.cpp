@@ -264,11 +264,15 @@ TEST_F(FluenceCli, MissingCameraIsASceneError) {
     RunResult r = run("render " + scene.string() + " -o " + (dir_ / "x.exr").string() + " -c /NoSuchCamera");
     EXPECT_EQ(r.exitCode, 3);
     EXPECT_NE(r.err.find("camera /NoSuchCamera does not exist"), std::string::npos) << r.err;
-    fs::path noCamera = write("nocam.usda", "#usda 1.0\ndef Xform \"World\"\n{\n}\n");
-    r = run("render " + noCamera.string() + " -o " + (dir_ / "x.exr").string());
-    EXPECT_EQ(r.exitCode, 3);
-    EXPECT_NE(r.err.find("the scene has no camera"), std::string::npos) << r.err;
     EXPECT_FALSE(fs::exists(dir_ / "x.exr"));
+}
+
+TEST_F(FluenceCli, AStageWithoutACameraIsFramedByADefaultOne) {
+    fs::path noCamera = write("nocam.usda", "#usda 1.0\ndef Xform \"World\"\n{\n}\n");
+    RunResult r = run("render " + noCamera.string() + " -o " + (dir_ / "x.exr").string() + " --spp 1 -r 8 8");
+    EXPECT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_NE(r.err.find("the stage has no camera; framing the whole scene"), std::string::npos) << r.err;
+    EXPECT_TRUE(fs::exists(dir_ / "x.exr"));
 }
 
 TEST_F(FluenceCli, SemanticErrorNamesThePrim) {
