@@ -26,6 +26,28 @@ struct Populated {
 
 inline const std::string kCamera = "def Camera \"Cam\"\n{\n}\n";
 
+// A unit quad /Quad bound to /Looks/M, whose body is `material`; `meshLines` adds to the mesh.
+inline std::string quadBoundTo(const std::string& material, const std::string& meshLines = "") {
+    return R"(
+def Mesh "Quad"
+{
+    uniform token subdivisionScheme = "none"
+    int[] faceVertexCounts = [4]
+    int[] faceVertexIndices = [0, 1, 2, 3]
+    point3f[] points = [(0, 0, 0), (1, 0, 0), (1, 1, 0), (0, 1, 0)]
+    rel material:binding = </Looks/M>
+)" + meshLines + R"(
+}
+def Scope "Looks"
+{
+    def Material "M"
+    {
+)" + material + R"(
+    }
+}
+)";
+}
+
 inline std::unique_ptr<usd::Stage> stageFrom(const std::string& usda) {
     return std::make_unique<usd::Stage>(
         usd::parseUsdaString(usda.starts_with("#") ? usda : "#usda 1.0\n" + usda, "test.usda"));

@@ -12,29 +12,12 @@ namespace {
 
 using testing::populate;
 
-// A quad with a faceVarying st, bound to /Looks/M, whose network is `material`; `mesh` adds to
-// the mesh.
+// The quad of testing::quadBoundTo with a faceVarying st (and a primvar nothing reads) bound to
+// /Looks/M, whose network is `material`; `mesh` adds to the mesh.
 std::string quadWith(const std::string& material, const std::string& mesh = "") {
-    return R"(
-def Mesh "Quad"
-{
-    uniform token subdivisionScheme = "none"
-    int[] faceVertexCounts = [4]
-    int[] faceVertexIndices = [0, 1, 2, 3]
-    point3f[] points = [(0, 0, 0), (1, 0, 0), (1, 1, 0), (0, 1, 0)]
-    texCoord2f[] primvars:st = [(0, 0), (1, 0), (1, 1), (0, 1)] (interpolation = "faceVarying")
+    return testing::quadBoundTo(material, R"(    texCoord2f[] primvars:st = [(0, 0), (1, 0), (1, 1), (0, 1)] (interpolation = "faceVarying")
     float[] primvars:unused = [1, 2, 3, 4] (interpolation = "vertex")
-    rel material:binding = </Looks/M>
-)" + mesh + R"(
-}
-def Scope "Looks"
-{
-    def Material "M"
-    {
-)" + material + R"(
-    }
-}
-)";
+)" + mesh);
 }
 
 const std::string kTexturedPreview = R"(

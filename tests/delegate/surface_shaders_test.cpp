@@ -9,34 +9,13 @@ namespace {
 
 using testing::populate;
 
-// A quad bound to /Looks/M, whose network is `material`.
-std::string boundTo(const std::string& material) {
-    return R"(
-def Mesh "Quad"
-{
-    uniform token subdivisionScheme = "none"
-    int[] faceVertexCounts = [4]
-    int[] faceVertexIndices = [0, 1, 2, 3]
-    point3f[] points = [(0, 0, 0), (1, 0, 0), (1, 1, 0), (0, 1, 0)]
-    rel material:binding = </Looks/M>
-}
-def Scope "Looks"
-{
-    def Material "M"
-    {
-)" + material + R"(
-    }
-}
-)";
-}
-
 const render::MaterialDesc& theMaterial(const testing::Populated& p) {
     EXPECT_EQ(p.result.scene.materials.size(), 1u);
     return p.result.scene.materials.at(0);
 }
 
 TEST(SurfaceShaders, PreviewSurfaceFallbacksAndMetallicWorkflow) {
-    auto p = populate(boundTo(R"(
+    auto p = populate(testing::quadBoundTo(R"(
         token outputs:surface.connect = </Looks/M/S.outputs:surface>
         def Shader "S"
         {
@@ -68,7 +47,7 @@ TEST(SurfaceShaders, PreviewSurfaceFallbacksAndMetallicWorkflow) {
 }
 
 TEST(SurfaceShaders, PreviewSurfaceSpecularWorkflow) {
-    auto p = populate(boundTo(R"(
+    auto p = populate(testing::quadBoundTo(R"(
         token outputs:surface.connect = </Looks/M/S.outputs:surface>
         def Shader "S"
         {
@@ -120,7 +99,7 @@ const char* kStandardSurface = R"(
 )";
 
 TEST(SurfaceShaders, StandardSurfaceThroughTheMaterialXContext) {
-    auto p = populate(boundTo(kStandardSurface));
+    auto p = populate(testing::quadBoundTo(kStandardSurface));
     const render::MaterialDesc& m = theMaterial(p);
     EXPECT_EQ(m.diffuse, RGB(0.5f, 0.25f, 0.125f)) << "base * base_color";
     EXPECT_FLOAT_EQ(m.metallic, 0.2f);
@@ -140,7 +119,7 @@ TEST(SurfaceShaders, StandardSurfaceThroughTheMaterialXContext) {
 }
 
 TEST(SurfaceShaders, UnsupportedShadersFallBackToTheUniversalOutputThenWarn) {
-    auto p = populate(boundTo(R"(
+    auto p = populate(testing::quadBoundTo(R"(
         token outputs:mtlx:surface.connect = </Looks/M/Odd.outputs:out>
         token outputs:surface.connect = </Looks/M/Preview.outputs:surface>
         def Shader "Odd"
@@ -154,7 +133,7 @@ TEST(SurfaceShaders, UnsupportedShadersFallBackToTheUniversalOutputThenWarn) {
         }
 )"));
     EXPECT_EQ(theMaterial(p).diffuse, RGB(0.0f, 0.0f, 1.0f));
-    auto q = populate(boundTo(R"(
+    auto q = populate(testing::quadBoundTo(R"(
         token outputs:surface.connect = </Looks/M/Odd.outputs:out>
         def Shader "Odd"
         {

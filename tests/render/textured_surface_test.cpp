@@ -194,11 +194,8 @@ TEST_F(TexturedSurface, TheCamerasPixelFootprintFiltersDistantTextures) {
     // A 256x256 one-texel checkerboard seen from far away covers a few pixels: each pixel spans
     // dozens of texels, so the filtered value is their mean; without a camera, one texel.
     const int n = 256;
-    std::vector<float> pixels(n * n);
-    for (int y = 0; y < n; ++y)
-        for (int x = 0; x < n; ++x) pixels[y * n + x] = float((x + y) % 2);
     std::string path = dir.file("checker.exr");
-    test::writeImage<float>(path, n, n, 1, OIIO::TypeDesc::FLOAT, pixels);
+    test::writeTexelChecker(path, n);
     MaterialDesc m = test::diffuseMaterial("/m", RGB(0.5f));
     m.bindings.push_back(textureBinding(MaterialInput::Diffuse, path));
     RenderScene scene(withMaterial(m));

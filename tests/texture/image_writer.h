@@ -22,4 +22,12 @@ void writeImage(const std::string& path, int width, int height, int channels, OI
     out->close();
 }
 
+// An n x n one-channel float image of one-texel squares, 0 where x + y is even, 1 where odd.
+inline void writeTexelChecker(const std::string& path, int n) {
+    std::vector<float> pixels(std::size_t(n) * n);
+    for (int y = 0; y < n; ++y)
+        for (int x = 0; x < n; ++x) pixels[std::size_t(y) * n + x] = float((x + y) % 2);
+    writeImage<float>(path, n, n, 1, OIIO::TypeDesc::FLOAT, pixels);
+}
+
 }  // namespace fluence::test

@@ -108,11 +108,8 @@ TEST_F(TextureSystemTest, WideFootprintsAverageTheTexels) {
     // A 256x256 checkerboard of 1-texel squares: a point lookup sees 0 or 1, a footprint of many
     // texels (a coarser mip level, made on first use) sees their mean.
     const int n = 256;
-    std::vector<float> pixels(n * n);
-    for (int y = 0; y < n; ++y)
-        for (int x = 0; x < n; ++x) pixels[y * n + x] = float((x + y) % 2);
     std::string path = dir.file("checker.exr");
-    test::writeImage<float>(path, n, n, 1, OIIO::TypeDesc::FLOAT, pixels);
+    test::writeTexelChecker(path, n);
     const auto& t = open(path);
     float point = at(t, (10 + 0.5f) / n, 1.0f - (20 + 0.5f) / n)[0];
     EXPECT_EQ(point, 0.0f) << "texel (10, 20)";
