@@ -170,6 +170,7 @@ void VolumeRprim::syncData(const SyncContext& context, const usd::PrimSpec* prim
         }
         fields_.push_back(std::move(field));
     }
+    material_ = volumeMaterialOf(context.stage, *prim, context.time, context.convertColor, context.warn);
 }
 
 void FieldBprim::syncData(const SyncContext& context, const usd::PrimSpec* prim, std::uint32_t) {

@@ -31,6 +31,7 @@
 
 #include "delegate/instancing.h"
 #include "delegate/material_adapter.h"
+#include "delegate/volume_adapter.h"
 #include "delegate/prim_reader.h"
 #include "delegate/subdivision_mesh.h"
 #include "render/scene_description.h"
@@ -188,10 +189,13 @@ public:
     };
     explicit VolumeRprim(std::string path) : RenderPrim(Kind::Volume, std::move(path)) {}
     const std::vector<Field>& fields() const { return fields_; }
+    // Its volume material, read when the volume syncs (delegate/volume_adapter.h).
+    const VolumeMaterial& material() const { return material_; }
 
 private:
     void syncData(const SyncContext& context, const usd::PrimSpec* prim, std::uint32_t bits) override;
     std::vector<Field> fields_;
+    VolumeMaterial material_;
 };
 
 // A UsdVol OpenVDBAsset (or Field3DAsset): one grid of one file. Editing it re-syncs only this

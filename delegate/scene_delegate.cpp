@@ -227,6 +227,33 @@ render::SceneDescription SceneDelegate::sceneDescription() const {
     return scene;
 }
 
+std::optional<render::VolumeDesc> SceneDelegate::volumeDesc(const VolumeRprim& volume) const {
+    const VolumeMaterial& material = volume.material();
+    render::VolumeDesc desc = material.params;
+    desc.name = volume.path();
+    desc.transform = volume.world();
+    auto field = [&](const std::string& name) -> std::optional<render::VolumeFieldDesc> {
+        for (const VolumeRprim::Field& f : volume.fields()) {
+            if (f.name != name) continue;
+            const auto* asset = dynamic_cast<const FieldBprim*>(index_.find(f.assetPrim));
+            if (!asset) return std::nullopt;
+            if (!asset->fileFound())
+                throw SceneError(volume.path() + ": field '" + name + "': OpenVDB file " +
+                                 (asset->filePath().empty() ? "(not authored)" : asset->filePath()) + " not found");
+            return render::VolumeFieldDesc{asset->filePath(), asset->gridName(), asset->fieldIndex()};
+        }
+        return std::nullopt;
+    };
+    desc.density = field(material.densityField);
+    desc.temperature = field(material.temperatureField);
+    desc.color = field(material.colorField);
+    if (!desc.density) {
+        options_.warn(volume.path(), "no field:" + material.densityField + " relationship to an OpenVDBAsset; the volume is not rendered");
+        return std::nullopt;
+    }
+    return desc;
+}
+
 render::SceneDescription SceneDelegate::describe(const render::Camera& camera, float scale,
                                                  std::size_t& subdivisionTriangles) const {
     // In the stage's traversal order, so the description (and the render) does not depend on
@@ -293,6 +320,9 @@ render::SceneDescription SceneDelegate::describe(const render::Camera& camera, f
                 break;
             }
             case RenderPrim::Kind::Volume:
+                if (std::optional<render::VolumeDesc> volume = volumeDesc(static_cast<const VolumeRprim&>(*prim)))
+                    scene.volumes.push_back(std::move(*volume));
+                break;
             case RenderPrim::Kind::Material:
             case RenderPrim::Kind::Prototype:
             case RenderPrim::Kind::Field:

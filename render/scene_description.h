@@ -177,6 +177,32 @@ struct LightDesc {
     std::optional<LightShapingDesc> shaping;  // Rect, Disk, Sphere, Cylinder
 };
 
+// One grid of an OpenVDB file (a UsdVol OpenVDBAsset).
+struct VolumeFieldDesc {
+    std::string file;      // resolved path
+    std::string gridName;  // fieldName
+    int gridIndex = -1;    // fieldIndex among grids of that name, -1 = the first
+};
+
+// A UsdVol Volume as the render core takes it: its grids and the parameters of its volume
+// material (delegate/volume_adapter.h gives the mapping and the fallbacks). Extinction is
+// density * densityScale per scene unit; of it, the fraction `albedo` (times the colour grid,
+// when there is one) scatters, with Henyey-Greenstein anisotropy; emission is emissionColor *
+// emissionScale (times the density) plus, when blackbodyIntensity > 0, the blackbody radiance of
+// temperature * temperatureScale + temperatureOffset kelvin times blackbodyIntensity.
+struct VolumeDesc {
+    std::string name;                         // prim path
+    Matrix4 transform = Matrix4::identity();  // volume-to-world (the grids' own transforms apply first)
+    std::optional<VolumeFieldDesc> density, temperature, color;
+    float densityScale = 1.0f;
+    RGB albedo{0.8f};
+    float anisotropy = 0.0f;
+    RGB emissionColor{0.0f};
+    float emissionScale = 0.0f;
+    float temperatureScale = 1.0f, temperatureOffset = 0.0f;
+    float blackbodyIntensity = 0.0f;
+};
+
 enum class Projection { Perspective, Orthographic };
 
 // USD camera semantics: focal length and apertures in the same unit (tenths of a scene unit by
@@ -212,6 +238,7 @@ struct SceneDescription {
     std::vector<PrototypeDesc> prototypes;
     std::vector<InstanceDesc> instances;
     std::vector<LightDesc> lights;
+    std::vector<VolumeDesc> volumes;
     std::optional<CameraDesc> camera;
 };
 

@@ -64,9 +64,13 @@ TEST(Bprims, VolumeFieldsAreFieldBprims) {
     EXPECT_FALSE(field.fileFound());
     ASSERT_EQ(index.warnings.size(), 1u);
     EXPECT_NE(index.warnings[0].find("field 'temperature' targets /Smoke/Missing, which does not exist"), std::string::npos);
-    index.delegate->sceneDescription();
-    ASSERT_EQ(index.warnings.size(), 2u);
-    EXPECT_NE(index.warnings[1].find("1 volume is read but not rendered yet"), std::string::npos) << index.warnings[1];
+    try {
+        index.delegate->sceneDescription();
+        ADD_FAILURE() << "a missing OpenVDB file must fail the render";
+    } catch (const SceneError& e) {
+        EXPECT_NE(std::string(e.what()).find("/Smoke: field 'density': OpenVDB file /data/smoke.vdb not found"), std::string::npos)
+            << e.what();
+    }
 }
 
 TEST(Bprims, EditingAFieldAssetResyncsOnlyThatField) {

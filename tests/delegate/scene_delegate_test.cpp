@@ -337,7 +337,9 @@ def Scope "Render"
     EXPECT_EQ(p.result.renderSettings->resolution, std::make_pair(320, 200));
     EXPECT_EQ(populate("#usda 1.0\n" + kCamera + "def Camera \"Other\"\n{\n}\n", "/Other").result.cameraPath, "/Other");
     EXPECT_THROW(populate("#usda 1.0\n" + kCamera, "/Missing"), SceneError);
-    EXPECT_THROW(populate("#usda 1.0\ndef Xform \"X\"\n{\n}\n"), SceneError);
+    auto framed = populate("#usda 1.0\ndef Xform \"X\"\n{\n}\n");
+    EXPECT_EQ(framed.result.cameraPath, "") << "no camera: a default one frames the scene";
+    EXPECT_TRUE(framed.result.scene.camera);
 }
 
 TEST(SceneDelegate, TheRenderedProductsCameraOverridesTheSettingsCamera) {
