@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numeric>
 
 #include "core/sampling.h"
 
@@ -26,10 +27,14 @@ RectLight::RectLight(const LightDesc& d) : name_(d.name), radiance_(d.radiance),
     area_ = length(cross(edgeU_, edgeV_));
     if (d.normalize && area_ > 0.0f) radiance_ /= area_;
     if (texture_ && texture_->texels.empty()) texture_.reset();
+    meanLuminance_ = luminance(radiance_);
     if (texture_) {
-        Vec3d sum(0.0);
-        for (const RGB& texel : texture_->texels) sum += Vec3d(texel);
-        meanTexel_ = RGB(sum / double(texture_->texels.size()));
+        // The sampling weights, whose mean is the power's too (so a texel the sampler never picks,
+        // a non-finite one, adds no infinite power).
+        std::vector<float> weights = luminanceWeights(*texture_, radiance_);
+        meanLuminance_ = static_cast<float>(std::accumulate(weights.begin(), weights.end(), 0.0) / weights.size());
+        if (std::any_of(weights.begin(), weights.end(), [&](float w) { return w != weights[0]; }))
+            distribution_.emplace(texture_->width, texture_->height, std::move(weights));
     }
     if (d.shaping) shaping_ = LightShaping(*d.shaping, normal_);
 }
@@ -38,42 +43,58 @@ std::array<Vec3f, 4> RectLight::corners() const {
     return {corner_, corner_ + edgeU_, corner_ + edgeU_ + edgeV_, corner_ + edgeV_};
 }
 
-RGB RectLight::radianceAt(const Vec3f& point, const Vec3f& wo) const {
-    RGB radiance = radiance_ * shaping_.factor(wo);
-    if (!texture_) return radiance;
+Vec2f RectLight::textureCoordinates(const Vec3f& point) const {
     // Solve point - corner = a edgeU + b edgeV (the edges need not be orthogonal under a shear).
     Vec3f q = point - corner_;
     float uu = dot(edgeU_, edgeU_), uv = dot(edgeU_, edgeV_), vv = dot(edgeV_, edgeV_);
     float qu = dot(q, edgeU_), qv = dot(q, edgeV_), det = uu * vv - uv * uv;
     float a = (qu * vv - qv * uv) / det, b = (qv * uu - qu * uv) / det;
-    // Texel (0, 0) sits at local (+X, +Y): a = 1, b = 1.
-    int x = std::clamp(static_cast<int>((1.0f - a) * texture_->width), 0, texture_->width - 1);
-    int y = std::clamp(static_cast<int>((1.0f - b) * texture_->height), 0, texture_->height - 1);
+    // The texture's top-left corner, uv = (0, 0), sits at local (+X, +Y): a = 1, b = 1.
+    return {1.0f - a, 1.0f - b};
+}
+
+RGB RectLight::radianceAt(Vec2f uv, const Vec3f& wo) const {
+    RGB radiance = radiance_ * shaping_.factor(wo);
+    if (!texture_) return radiance;
+    int x = std::clamp(static_cast<int>(uv.x * texture_->width), 0, texture_->width - 1);
+    int y = std::clamp(static_cast<int>(uv.y * texture_->height), 0, texture_->height - 1);
     return radiance * texture_->at(x, y);
 }
 
 std::optional<LightSample> RectLight::sample(const Vec3f& p, Vec2f u) const {
-    Vec3f q = corner_ + edgeU_ * u.x + edgeV_ * u.y;
-    Vec3f d = q - p;
+    if (area_ == 0.0f) return std::nullopt;
+    // The point's texture coordinates: by the texture's luminance, or uniform (u measured from
+    // the corner at local (-X, -Y), the texture's bottom-right) without a texture or when its
+    // luminance is the same everywhere (black included).
+    Vec2f uv{1.0f - u.x, 1.0f - u.y};
+    float areaPdf = 1.0f / area_;
+    if (distribution_) {
+        ImageDistribution::Sample s = distribution_->sample(u);
+        uv = s.uv;
+        areaPdf = s.pdf / area_;
+    }
+    Vec3f d = pointAt(uv) - p;
     float dist2 = lengthSquared(d);
-    if (dist2 == 0.0f || area_ == 0.0f) return std::nullopt;
+    if (dist2 == 0.0f) return std::nullopt;
     float dist = std::sqrt(dist2);
     Vec3f wi = d / dist;
     float cosLight = -dot(normal_, wi);
     if (cosLight <= 0.0f) return std::nullopt;
-    return LightSample{radianceAt(q, -wi), wi, dist, areaToSolidAngle(1.0f / area_, dist2, cosLight), false};
+    return LightSample{radianceAt(uv, -wi), wi, dist, areaToSolidAngle(areaPdf, dist2, cosLight), false};
 }
 
 float RectLight::pdf(const Vec3f& p, const Vec3f& wi, const LightHit& hit) const {
-    return area_ > 0.0f ? areaToSolidAngle(1.0f / area_, lengthSquared(hit.point - p), -dot(normal_, wi)) : 0.0f;
+    if (area_ == 0.0f) return 0.0f;
+    float areaPdf = (distribution_ ? distribution_->pdf(textureCoordinates(hit.point)) : 1.0f) / area_;
+    return areaToSolidAngle(areaPdf, lengthSquared(hit.point - p), -dot(normal_, wi));
 }
 
 RGB RectLight::emitted(const LightHit& hit, const Vec3f& wo) const {
-    return dot(normal_, wo) > 0.0f ? radianceAt(hit.point, wo) : RGB(0.0f);
+    return dot(normal_, wo) > 0.0f ? radianceAt(textureCoordinates(hit.point), wo) : RGB(0.0f);
 }
 
 float RectLight::power(const SceneBounds&) const {
-    return luminance(radiance_ * meanTexel_) * area_ * kPi * shaping_.powerFraction(true);
+    return meanLuminance_ * area_ * kPi * shaping_.powerFraction(true);
 }
 
 std::optional<LightBounds> RectLight::bounds() const {
@@ -83,7 +104,7 @@ std::optional<LightBounds> RectLight::bounds() const {
         b.lo = vmin(b.lo, c);
         b.hi = vmax(b.hi, c);
     }
-    b.phi = luminance(radiance_ * meanTexel_) * area_ * kPi;
+    b.phi = meanLuminance_ * area_ * kPi;
     b.axis = normal_;
     b.cosThetaO = 1.0f;
     return shaping_.narrow(b, true);

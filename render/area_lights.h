@@ -11,16 +11,22 @@
 // |                     | at local (+X, +Y), the last at (-X, -Y) |                             |
 // | normalize           | radiance / world-space area             | radiance / world-space area |
 // | shaping:*           | light_shaping.h                         | light_shaping.h             |
-// Both emit from their front (local -Z) side only and are sampled uniformly by area. A disk under
-// a non-uniform scale stays a disk, of the same world-space area as the ellipse it would be.
+// Both emit from their front (local -Z) side only. A disk, and a rect without a texture, are
+// sampled uniformly by area; a textured rect by its texels' luminance (times the light's colour),
+// with a piecewise-constant density over the texels (light_image_distribution.h), so that a small
+// bright window in a dark frame gets the samples it deserves. A texture of one luminance
+// everywhere (a black one included) is sampled uniformly. A disk under a non-uniform scale stays
+// a disk, of the same world-space area as the ellipse it would be.
 #pragma once
 
 #include <array>
 #include <memory>
+#include <optional>
 
 #include "core/frame.h"
 #include "core/matrix.h"
 #include "render/light.h"
+#include "render/light_image_distribution.h"
 #include "render/light_shape.h"
 #include "render/light_shaping.h"
 #include "render/scene_description.h"
@@ -38,20 +44,26 @@ public:
     std::optional<LightBounds> bounds() const override;
     std::string name() const override { return name_; }
 
-    // The four world-space corners, counter-clockwise seen from the emitting side.
+    // The four world-space corners, from local (-X, -Y) through (+X, -Y), (+X, +Y), (-X, +Y):
+    // counter-clockwise seen from behind, so (c1 - c0) x (c3 - c0) points away from the emitting side.
     std::array<Vec3f, 4> corners() const;
     float area() const { return area_; }
 
 private:
-    // Radiance leaving `point` (on the rect) in direction `wo`, facing or not.
-    RGB radianceAt(const Vec3f& point, const Vec3f& wo) const;
+    // Texture coordinates (u from the texture's left edge, v from its top, both in [0, 1]) of a
+    // point on the rect, and the point at texture coordinates uv.
+    Vec2f textureCoordinates(const Vec3f& point) const;
+    Vec3f pointAt(Vec2f uv) const { return corner_ + edgeU_ * (1.0f - uv.x) + edgeV_ * (1.0f - uv.y); }
+    // Radiance leaving the rect at texture coordinates uv in direction `wo`, facing or not.
+    RGB radianceAt(Vec2f uv, const Vec3f& wo) const;
 
     std::string name_;
-    Vec3f corner_, edgeU_, edgeV_, normal_;  // normal_: emitting direction
+    Vec3f corner_, edgeU_, edgeV_, normal_;  // corner_: local (-X, -Y); normal_: emitting direction
     float area_;
     RGB radiance_;
     std::shared_ptr<const RgbImage> texture_;
-    RGB meanTexel_{1.0f};
+    std::optional<ImageDistribution> distribution_;  // over texture coordinates, when the texture's luminance varies
+    float meanLuminance_;  // of the radiance over the rect's area, before shaping
     LightShaping shaping_;
 };
 

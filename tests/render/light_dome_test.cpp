@@ -4,7 +4,6 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <functional>
 
 #include "core/sampling.h"
 #include "render/infinite_lights.h"
@@ -14,16 +13,9 @@
 namespace fluence::render {
 namespace {
 
-constexpr double kPiD = 3.14159265358979323846;
+using test::image;
 
-std::shared_ptr<RgbImage> image(int width, int height, const std::function<RGB(int x, int y)>& texel) {
-    auto img = std::make_shared<RgbImage>();
-    img->width = width;
-    img->height = height;
-    for (int y = 0; y < height; ++y)
-        for (int x = 0; x < width; ++x) img->texels.push_back(texel(x, y));
-    return img;
-}
+constexpr double kPiD = 3.14159265358979323846;
 
 LightDesc domeDesc(std::shared_ptr<RgbImage> texture, const Matrix4& transform = Matrix4::identity()) {
     LightDesc d;

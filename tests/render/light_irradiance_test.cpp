@@ -44,6 +44,33 @@ TEST(LightIrradiance, RectMatchesLambertsPolygonFormula) {
     expectIrradiance(light, p, n, polygonIrradiance(light.corners(), p, n, 3.0));
 }
 
+// A textured rect is a grid of uniform rects, one per texel, so the sum of Lambert's formula over
+// them is its exact irradiance. The window texture's 1500:1 contrast puts most of it in a few
+// texels, which the importance sampler must find: under the window and off to its side.
+TEST(LightIrradiance, TexturedRectMatchesLambertsFormulaPerTexel) {
+    LightDesc d;
+    d.type = LightType::Rect;
+    d.width = 2.0f;
+    d.height = 1.0f;
+    d.radiance = RGB(3.0f);
+    d.transform = Matrix4::translate({0.3, 2.0, -0.2}) * Matrix4::rotateZ(10) * Matrix4::rotateX(-90);
+    d.texture = test::windowTexture();
+    RectLight light(d);
+    const render::RgbImage& texture = *d.texture;
+    auto c = light.corners();  // c[2] at the texture's top-left, c[3] top-right, c[1] bottom-left
+    Vec3f across = (c[3] - c[2]) / float(texture.width), down = (c[1] - c[2]) / float(texture.height);
+    for (const auto& [p, n] : {std::pair{Vec3f(-0.2f, 0.0f, 0.0f), Vec3f(0.0f, 1.0f, 0.0f)},
+                               std::pair{Vec3f(2.5f, 0.5f, 1.0f), normalize(Vec3f(-1.0f, 1.0f, -0.3f))}}) {
+        double expected = 0.0;
+        for (int y = 0; y < texture.height; ++y)
+            for (int x = 0; x < texture.width; ++x) {
+                Vec3f o = c[2] + across * float(x) + down * float(y);
+                expected += polygonIrradiance({o, o + across, o + across + down, o + down}, p, n, 3.0 * texture.at(x, y).x);
+            }
+        expectIrradiance(light, p, n, expected, 1e-5 * expected);
+    }
+}
+
 TEST(LightIrradiance, DiskOnItsAxisIsPiLr2OverR2PlusD2) {
     LightDesc d;
     d.type = LightType::Disk;

@@ -12,6 +12,7 @@ namespace fluence::render {
 namespace {
 
 using test::directionsOf;
+using test::hitRect;
 
 constexpr double kPiD = 3.14159265358979323846;
 
@@ -25,21 +26,6 @@ LightDesc rectDesc() {
     // Emits downwards (-Y) from y = 2, tilted a little.
     d.transform = Matrix4::translate({0.3, 2.0, -0.2}) * Matrix4::rotateZ(10) * Matrix4::rotateX(-90);
     return d;
-}
-
-// Where the ray p + t wi meets the rect light (for the pdf callback), if it does.
-std::optional<LightHit> hitRect(const RectLight& light, const Vec3f& p, const Vec3f& wi) {
-    auto c = light.corners();
-    Vec3f e1 = c[1] - c[0], e2 = c[3] - c[0];
-    Vec3f n = normalize(cross(e1, e2));
-    float denom = dot(wi, n);
-    if (std::abs(denom) < 1e-8f) return std::nullopt;
-    float t = dot(c[0] - p, n) / denom;
-    if (t <= 0.0f) return std::nullopt;
-    Vec3f q = p + wi * t;
-    float a = dot(q - c[0], e1) / dot(e1, e1), b = dot(q - c[0], e2) / dot(e2, e2);
-    if (a < 0 || a > 1 || b < 0 || b > 1) return std::nullopt;
-    return LightHit{q, n};
 }
 
 TEST(RectLight, SamplingMatchesPdf) {

@@ -1,14 +1,17 @@
-// Shared by the light tests: directions a light samples, the consistency of sample() with pdf(),
-// and irradiance estimated from a light's own samples.
+// Shared by the light tests: light textures, where a ray meets a rect light, directions a light
+// samples, the consistency of sample() with pdf(), and irradiance estimated from a light's own
+// samples.
 #pragma once
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <functional>
+#include <memory>
 #include <optional>
 
 #include "core/random.h"
+#include "render/area_lights.h"
 #include "render/light.h"
 #include "tests/support/statistics.h"
 
@@ -16,6 +19,39 @@ namespace fluence::test {
 
 using render::Light;
 using render::LightHit;
+
+// A width x height image with texel(x, y) at column x, row y (row 0 at the top).
+inline std::shared_ptr<render::RgbImage> image(int width, int height, const std::function<RGB(int x, int y)>& texel) {
+    auto img = std::make_shared<render::RgbImage>();
+    img->width = width;
+    img->height = height;
+    for (int y = 0; y < height; ++y)
+        for (int x = 0; x < width; ++x) img->texels.push_back(texel(x, y));
+    return img;
+}
+
+// A high-contrast rect light texture: a dark grey frame (0.02) around a small warm window
+// (40, 30, 20) of 4 x 3 texels, up and to the right of the centre of a 32 x 16 image.
+inline std::shared_ptr<render::RgbImage> windowTexture() {
+    return image(32, 16, [](int x, int y) {
+        return x >= 20 && x < 24 && y >= 3 && y < 6 ? RGB(40.0f, 30.0f, 20.0f) : RGB(0.02f);
+    });
+}
+
+// Where the ray p + t wi meets the rect light, if it does: the point and the rect's normal.
+inline std::optional<LightHit> hitRect(const render::RectLight& light, const Vec3f& p, const Vec3f& wi) {
+    auto c = light.corners();
+    Vec3f e1 = c[1] - c[0], e2 = c[3] - c[0];
+    Vec3f n = normalize(cross(e1, e2));
+    float denom = dot(wi, n);
+    if (std::abs(denom) < 1e-8f) return std::nullopt;
+    float t = dot(c[0] - p, n) / denom;
+    if (t <= 0.0f) return std::nullopt;
+    Vec3f q = p + wi * t;
+    float a = dot(q - c[0], e1) / dot(e1, e1), b = dot(q - c[0], e2) / dot(e2, e2);
+    if (a < 0 || a > 1 || b < 0 || b > 1) return std::nullopt;
+    return LightHit{q, n};
+}
 
 // Where a ray from p along wi meets the light's surface (for pdf()), if it does.
 using HitFunction = std::function<std::optional<LightHit>(const Vec3f& p, const Vec3f& wi)>;
