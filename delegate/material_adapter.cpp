@@ -85,14 +85,13 @@ const usd::PrimSpec* shaderBehind(const usd::Stage& stage, const usd::PrimSpec& 
     return nullptr;
 }
 
-// Say which authored lobes the render core reads but does not render yet (render/material_bsdf.h).
+// Say which authored lobes the render core reads but does not render yet (render/material_bsdf.h
+// renders diffuse, specular, metal, transmission, sheen and coat).
 void warnAboutUnrenderedLobes(const render::MaterialDesc& m, const Warn& warn) {
     std::string lobes;
     auto note = [&](bool used, const char* name) {
         if (used) lobes += (lobes.empty() ? "" : ", ") + std::string(name);
     };
-    note(m.transmission > 0.0f, "transmission");
-    note(m.sheen > 0.0f, "sheen");
     note(m.opacity < 1.0f, "opacity");
     note(m.subsurface > 0.0f, "subsurface");
     if (!lobes.empty())

@@ -15,6 +15,7 @@ FilmSample NaivePathTracer::sample(const render::RenderScene& scene, const rende
     RGB radiance(0.0f), throughput(1.0f);
     render::Ray ray = cameraRay;
     render::BsdfArena arena;
+    float etaScale = 1.0f;  // product of eta^2 over the refractions so far (Russian roulette)
     for (int depth = 0;; ++depth) {
         ++(depth == 0 ? counters.camera : counters.bounce);
         std::optional<render::SurfaceHit> hit = scene.intersect(ray);
@@ -29,18 +30,20 @@ FilmSample NaivePathTracer::sample(const render::RenderScene& scene, const rende
                                                       : hit->emission);
         if (hit->lightShape || depth >= maxDepth_) break;
 
-        SurfaceFrame surface = orientTowards(*hit, wo);
         arena.reset();
         const render::Bsdf& bsdf = render::materialBsdf(hit->material, arena);
+        const SurfaceFrame surface = shadingFrame(*hit, wo, (bsdf.flags() & render::kBsdfTransmission) != 0);
+        const Vec3f woLocal = surface.frame.toLocal(wo);
         // A plain Lambertian has one lobe: no lobe number drawn.
         const float uLobe = bsdf.flags() == (render::kBsdfReflection | render::kBsdfDiffuse) ? 0.0f : rng.next();
-        std::optional<render::BsdfSample> bs = bsdf.sample(surface.frame.toLocal(wo), uLobe, rng.next2D());
+        std::optional<render::BsdfSample> bs = bsdf.sample(woLocal, uLobe, rng.next2D());
         if (!bs) break;
         Vec3f wi = surface.frame.toWorld(bs->wi);
-        if (dot(wi, surface.geometricNormal) <= 0.0f) break;
+        if (!sidesAgree(wo, wi, surface.geometricNormal, woLocal.z, bs->wi.z)) break;
         throughput *= bs->f * (std::abs(bs->wi.z) / bs->pdf);
-        if (!continuePath(throughput, depth, rng)) break;
-        ray = render::Ray{render::offsetRayOrigin(hit->point, surface.geometricNormal), wi, 0.0f,
+        etaScale *= bs->eta * bs->eta;
+        if (!continuePath(throughput, etaScale, depth, rng)) break;
+        ray = render::Ray{spawnOrigin(hit->point, surface.geometricNormal, wi), wi, 0.0f,
                           std::numeric_limits<float>::infinity()};
     }
     out.radiance = radiance;

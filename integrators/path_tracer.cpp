@@ -31,6 +31,7 @@ FilmSample PathTracer::sample(const render::RenderScene& scene, const render::Ca
     Ray ray = cameraRay;
     float bsdfPdf = 0.0f;  // density of the BSDF sample that produced `ray` (0 for the camera ray)
     bool specularBounce = false;  // `ray` left a delta lobe: no light strategy could have found it
+    float etaScale = 1.0f;        // product of eta^2 over the refractions so far (Russian roulette)
     render::BsdfArena arena;
     Vec3f previousPoint = ray.origin, previousNormal(0.0f);
     const bool haveLights = !scene.lightSelection().empty();
@@ -69,30 +70,39 @@ FilmSample PathTracer::sample(const render::RenderScene& scene, const render::Ca
         }
         if (hit->lightShape || depth >= maxDepth_) break;
 
-        SurfaceFrame surface = orientTowards(*hit, wo);
-        const Frame& frame = surface.frame;
-        const Vec3f& ng = surface.geometricNormal;
-        Vec3f woLocal = frame.toLocal(wo);
         arena.reset();
         const render::Bsdf& bsdf = render::materialBsdf(hit->material, arena);
+        const bool transmissive = (bsdf.flags() & render::kBsdfTransmission) != 0;
         const bool connectable = (bsdf.flags() & (render::kBsdfDiffuse | render::kBsdfGlossy)) != 0;
-        Vec3f origin = render::offsetRayOrigin(hit->point, ng);
+        const SurfaceFrame surface = shadingFrame(*hit, wo, transmissive);
+        const Frame& frame = surface.frame;
+        const Vec3f& ng = surface.geometricNormal;
+        const Vec3f woLocal = frame.toLocal(wo);
+        // Where lights are chosen and sampled from, with the normal the light tree weighs them by:
+        // a two-sided surface gathers from wo's side, just off the surface; a transmissive one
+        // from both sides, so from the point itself and with no normal (the tree then counts
+        // lights on either side). BSDF-sampled hits on emitters use the same point and normal for
+        // their MIS weight.
+        const Vec3f lightFrom = transmissive ? hit->point : render::offsetRayOrigin(hit->point, ng);
+        const Vec3f lightNormal = transmissive ? Vec3f(0.0f) : ng;
 
         // Next-event estimation: one light, chosen by the light tree for this point and normal.
         if (haveLights && connectable) {
             float uLight = rng.next();
             Vec2f uPoint = rng.next2D();
-            render::LightChoice choice = scene.chooseLight(origin, ng, uLight);
+            render::LightChoice choice = scene.chooseLight(lightFrom, lightNormal, uLight);
             const int index = choice.light;
             const float pick = choice.probability;
             std::optional<render::LightSample> ls;
-            if (index >= 0 && pick > 0.0f) ls = scene.light(index).sample(origin, uPoint);
-            if (ls && ls->pdf > 0.0f && !isBlack(ls->Li) && dot(ls->wi, ng) > 0.0f) {
+            if (index >= 0 && pick > 0.0f) ls = scene.light(index).sample(lightFrom, uPoint);
+            if (ls && ls->pdf > 0.0f && !isBlack(ls->Li)) {
                 Vec3f wiLocal = frame.toLocal(ls->wi);
-                RGB f = bsdf.f(woLocal, wiLocal) * std::abs(wiLocal.z);
+                RGB f = sidesAgree(wo, ls->wi, ng, woLocal.z, wiLocal.z) ? bsdf.f(woLocal, wiLocal) * std::abs(wiLocal.z)
+                                                                         : RGB(0.0f);
                 if (!isBlack(f)) {
                     ++counters.shadow;
-                    if (!scene.occluded(origin, ls->wi, ls->distance)) {
+                    const Vec3f shadowFrom = transmissive ? spawnOrigin(hit->point, ng, ls->wi) : lightFrom;
+                    if (!scene.occluded(shadowFrom, ls->wi, ls->distance)) {
                         float lightPdf = pick * ls->pdf;
                         float weight = ls->delta ? 1.0f : powerHeuristic(lightPdf, bsdf.pdf(woLocal, wiLocal));
                         radiance += throughput * f * ls->Li * (weight / lightPdf);
@@ -109,15 +119,16 @@ FilmSample PathTracer::sample(const render::RenderScene& scene, const render::Ca
         std::optional<render::BsdfSample> bs = bsdf.sample(woLocal, uLobe, rng.next2D());
         if (!bs) break;
         Vec3f wi = frame.toWorld(bs->wi);
-        if (dot(wi, ng) <= 0.0f) break;  // shading normal sent the path below the surface
+        if (!sidesAgree(wo, wi, ng, woLocal.z, bs->wi.z)) break;  // the shading frame disagrees with the surface
         throughput *= bs->f * (std::abs(bs->wi.z) / bs->pdf);
-        if (!continuePath(throughput, depth, rng)) break;
+        etaScale *= bs->eta * bs->eta;
+        if (!continuePath(throughput, etaScale, depth, rng)) break;
 
         bsdfPdf = bs->pdf;
         specularBounce = bs->specular;
-        previousPoint = origin;
-        previousNormal = ng;
-        ray = Ray{origin, wi, 0.0f, std::numeric_limits<float>::infinity()};
+        previousPoint = lightFrom;
+        previousNormal = lightNormal;
+        ray = Ray{spawnOrigin(hit->point, ng, wi), wi, 0.0f, std::numeric_limits<float>::infinity()};
     }
     out.radiance = radiance;
     return out;

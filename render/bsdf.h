@@ -1,8 +1,9 @@
 // BSDFs: the interface every scattering model in Fluence implements, and its conventions.
 //
-// FRAME. All directions are unit vectors in the local shading frame (z = shading normal) and
-// point away from the surface: `wo` towards the viewer (the previous path vertex), `wi` towards
-// the light (the next path vertex).
+// FRAME. All directions are unit vectors in the local shading frame (z = shading normal, x = the
+// surface's tangent where it has one, which anisotropic lobes stretch along) and point away from
+// the surface: `wo` towards the viewer (the previous path vertex), `wi` towards the light (the
+// next path vertex).
 //
 // THE TRIPLE.
 //   f(wo, wi)        the BSDF value, WITHOUT the cosine factor |cos theta_i| = |wi.z|: the
@@ -26,7 +27,7 @@
 //     a delta: for them the delta lobes are zero (they cannot be hit by another strategy, so
 //     an integrator must not apply MIS to a specular sample).
 //   - eta is the relative index of refraction crossed: (IOR on wi's side) / (IOR on wo's side)
-//     for a transmitted sample, 1 for a reflected one.
+//     for a transmitted sample (1 through a thin sheet), 1 for a reflected one.
 //
 // SIDES.
 //   - Reflection-only BSDFs are two-sided: with wo below the shading hemisphere (wo.z < 0) both
@@ -34,7 +35,11 @@
 //     either side; f and pdf are zero when wo and wi are on different sides.
 //   - Transmissive BSDFs are one-sided: wo.z > 0 is outside (the side the normal points to,
 //     IOR 1 relative to the interior's eta), wo.z < 0 inside. The integrator must therefore not
-//     flip the shading frame towards wo for a transmissive surface.
+//     flip the shading frame towards wo for a transmissive surface (kBsdfTransmission); it
+//     continues a path on the side the sampled wi leaves by (the ray's origin offset to that
+//     side) and gathers light from both sides. A BSDF may still treat its two sides alike: a
+//     thin dielectric sheet (same medium on both sides, straight-through transmission, eta 1)
+//     mirrors wo below to above as a reflector does.
 //   - wo.z == 0 (grazing) scatters nothing: f = 0, pdf = 0, sample() = nullopt.
 //
 // RADIANCE, NOT IMPORTANCE. Every f here is the BSDF for radiance transport (paths traced from

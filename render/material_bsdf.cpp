@@ -4,40 +4,68 @@
 #include <cmath>
 
 #include "render/bsdfs/coated.h"
+#include "render/bsdfs/fresnel.h"
 #include "render/bsdfs/ggx_conductor.h"
+#include "render/bsdfs/ggx_dielectric.h"
 #include "render/bsdfs/lambertian.h"
+#include "render/bsdfs/layered.h"
 #include "render/bsdfs/mix.h"
+#include "render/bsdfs/sheen.h"
+#include "render/bsdfs/thin_dielectric.h"
 
 namespace fluence::render {
 
 namespace {
 
-// The relative IOR whose normal-incidence Fresnel reflectance is f0 (clamped away from 1).
-float etaFromF0(float f0) {
-    float s = std::sqrt(std::clamp(f0, 0.0f, 0.99f));
-    return (1.0f + s) / (1.0f - s);
+// Below this index difference an interface reflects nothing worth a layer (F0 < 2e-9).
+constexpr float kMinIndexContrast = 1e-4f;
+
+RGB clamp01(const RGB& c) {
+    return {std::clamp(c.x, 0.0f, 1.0f), std::clamp(c.y, 0.0f, 1.0f), std::clamp(c.z, 0.0f, 1.0f)};
+}
+RGB sqrtOf(const RGB& c) { return {std::sqrt(c.x), std::sqrt(c.y), std::sqrt(c.z)}; }
+
+// `weight` of `b` blended over `a`: a alone at 0, b alone at 1.
+const Bsdf& blend(const Bsdf& a, const Bsdf& b, float weight, BsdfArena& arena) {
+    return weight >= 1.0f ? b : arena.make<MixBsdf>(a, b, weight);
 }
 
-float alphaOf(float roughness) { return std::clamp(roughness, 0.0f, 1.0f) * std::clamp(roughness, 0.0f, 1.0f); }
+// The dielectric specular lobe: its index per channel and the tint on its reflection.
+struct SpecularLobe {
+    RGB eta;
+    RGB tint;
+    bool reflects() const { return maxComponent(eta) > 1.0f + kMinIndexContrast && !isBlack(tint); }
+};
+SpecularLobe specularLobe(const MaterialParams& m) {
+    if (m.specularWorkflow)  // specularColor is F0: one index per channel, no further tint
+        return {RGB(etaFromF0(m.specularColor.x), etaFromF0(m.specularColor.y), etaFromF0(m.specularColor.z)), RGB(1.0f)};
+    return {RGB(m.ior), clamp01(m.specularColor * m.specular)};
+}
+
+// The transmissive dielectric that replaces the opaque base by `transmission`: a solid interface
+// of index ior (the transmission colour split over its two crossings), or a thin sheet.
+const Bsdf& transmissionBsdf(const MaterialParams& m, const GgxDistribution& ggx, BsdfArena& arena) {
+    const RGB colour = clamp01(m.transmissionColor);
+    const RGB reflection = m.specularWorkflow ? RGB(1.0f) : clamp01(m.specularColor * m.specular);
+    if (m.thinWalled) return arena.make<ThinDielectricBsdf>(m.ior, ggx, DielectricTints{reflection, colour});
+    return arena.make<GgxDielectricBsdf>(m.ior, ggx, DielectricTints{reflection, sqrtOf(colour)});
+}
 
 }  // namespace
 
 const Bsdf& materialBsdf(const MaterialParams& m, BsdfArena& arena) {
-    const RGB& albedo = m.diffuse;
-    const Bsdf* bsdf = &arena.make<LambertianBsdf>(albedo);
-    const float alpha = alphaOf(m.roughness);
-    const bool dielectricSpecular = m.specularWorkflow ? !isBlack(m.specularColor) : m.specular > 0.0f;
-    if (dielectricSpecular) {
-        float eta = m.specularWorkflow ? etaFromF0(luminance(m.specularColor)) : m.ior;
-        if (eta > 1.0f + 1e-4f) bsdf = &arena.make<CoatedBsdf>(*bsdf, eta, alpha);
-    }
-    if (m.metallic > 0.0f) {
-        const Bsdf& metal = arena.make<GgxConductorBsdf>(albedo, alpha);
-        bsdf = m.metallic >= 1.0f ? &metal : &arena.make<MixBsdf>(*bsdf, metal, m.metallic);
-    }
-    if (m.coat > 0.0f && m.coatIor > 1.0f + 1e-4f) {
-        const Bsdf& coated = arena.make<CoatedBsdf>(*bsdf, m.coatIor, alphaOf(m.coatRoughness));
-        bsdf = m.coat >= 1.0f ? &coated : &arena.make<MixBsdf>(*bsdf, coated, m.coat);
+    const GgxDistribution specularGgx = GgxDistribution::fromRoughness(m.roughness, m.anisotropy);
+    const Bsdf* bsdf = &arena.make<LambertianBsdf>(m.diffuse);
+    const RGB sheen = clamp01(m.sheenColor * m.sheen);
+    if (!isBlack(sheen)) bsdf = &arena.make<LayeredBsdf<CharlieSheenBsdf>>(CharlieSheenBsdf(sheen, m.sheenRoughness), *bsdf);
+    if (const SpecularLobe specular = specularLobe(m); specular.reflects())
+        bsdf = &arena.make<CoatedBsdf>(*bsdf, specular.eta, specularGgx, specular.tint);
+    if (m.transmission > 0.0f) bsdf = &blend(*bsdf, transmissionBsdf(m, specularGgx, arena), m.transmission, arena);
+    if (m.metallic > 0.0f) bsdf = &blend(*bsdf, arena.make<GgxConductorBsdf>(m.diffuse, specularGgx), m.metallic, arena);
+    if (m.coat > 0.0f && m.coatIor > 1.0f + kMinIndexContrast) {
+        const Bsdf& coated = arena.make<CoatedBsdf>(*bsdf, RGB(m.coatIor), GgxDistribution::fromRoughness(m.coatRoughness),
+                                                    RGB(1.0f), clamp01(m.coatColor));
+        bsdf = &blend(*bsdf, coated, m.coat, arena);
     }
     return *bsdf;
 }

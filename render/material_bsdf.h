@@ -1,16 +1,47 @@
-// The BSDF of a surface point from its MaterialDesc: the layers of render/scene_description.h
-// built out of render/bsdfs/ in a BsdfArena.
+// The BSDF of a surface point from its MaterialParams: the layers of render/scene_description.h,
+// stacked as Autodesk Standard Surface (and MaterialX's standard_surface graph) stacks them, out
+// of render/bsdfs/ in a BsdfArena. From the bottom up, with ggx = GgxDistribution::fromRoughness(
+// roughness, anisotropy) (alpha = roughness^2, stretched along the surface tangent by MaterialX's
+// mapping, render/bsdfs/ggx.h):
 //
-//   base      Lambertian(diffuse)
-//   specular  CoatedBsdf(base, eta, roughness^2)                   when the dielectric specular lobe
-//             is on: `specular` > 0, or in the specular workflow a non-black specularColor
-//             (eta from its luminance as F0); a plastic-like glossy layer over the diffuse
-//   metal     MixBsdf(that, GgxConductor(F0 = albedo, roughness^2), metallic)
-//   coat      MixBsdf(that, CoatedBsdf(that, coatIor, coatRoughness^2), coat)
+//   diffuse   Lambertian(diffuse)
+//   sheen     LayeredBsdf(CharlieSheen(sheen x sheenColor, sheenRoughness), diffuse)   sheen > 0
+//             the base loses the sheen's directional albedo (render/bsdfs/sheen.h, layered.h)
+//   specular  CoatedBsdf(that, eta, ggx, tint)                  when the dielectric lobe reflects:
+//             metallic workflow: eta = ior, tint = specular x specularColor;
+//             specular workflow: specularColor is F0 itself, one eta per channel (etaFromF0), tint 1;
+//             the base loses tint x F(cos) on each side, exactly what the lobe reflects when smooth
+//   glass     MixBsdf(that, glass, transmission)                 transmission > 0; the glass is
+//             GgxDielectric(ior, ggx, reflection tint, sqrt(transmissionColor)) for a solid, or
+//             ThinDielectric(ior, ggx, reflection tint, transmissionColor) when thinWalled
+//   metal     MixBsdf(that, GgxConductor(F0 = diffuse, ggx), metallic)
+//   coat      MixBsdf(that, CoatedBsdf(that, coatIor, coatRoughness^2, filter = coatColor), coat)
 //
-// Not rendered yet (the delegate warns): transmission, sheen, opacity, subsurface. Simplified:
-// the specular weight and tint only switch the dielectric lobe on or off, and coatColor and
-// anisotropy are not applied. A material whose lobes are all off is exactly Lambertian.
+// Weights: diffuse (1 - transmission)(1 - metallic), glass transmission (1 - metallic), metal
+// metallic, as in Standard Surface; every mix and layer conserves energy, so the material does
+// (tests/integrators/material_furnace_test.cpp renders the white furnaces). Colours and weights
+// are clamped to [0, 1] per channel.
+//
+// Transmission. Standard Surface's transmission lobe replaces the diffuse by weight, with the
+// specular lobe (and its tint) over both: here the glass is a whole dielectric interface carrying
+// its own Fresnel reflection, with the same ior, widths and reflection tint as the specular layer
+// over the opaque part, so the specular layer covers both halves alike. transmissionColor tints
+// the refracted light (Standard Surface's transmission_depth = 0, a tint at the surface): a
+// solid's interface multiplies each crossing by sqrt(transmissionColor), so light that enters and
+// leaves a closed object is filtered by transmissionColor exactly once (and the BSDF stays
+// reciprocal); a thin wall is crossed once and filters by transmissionColor. A thin wall
+// (thinWalled) is a dielectric sheet with the same medium on both sides: it reflects, and lets
+// light through straight, without bending it (render/bsdfs/thin_dielectric.h). In the specular
+// workflow (UsdPreviewSurface, which has no transmission input) the glass reflects untinted.
+//
+// coatColor tints what passes through the coat: the light the layers below return through it is
+// multiplied by coatColor once (sqrt(coatColor) per crossing: Standard Surface's coat_color as a
+// filter, not a path-length absorption); the coat's own reflection is white. The coat is
+// isotropic (coat_anisotropy is not read).
+//
+// Not rendered (the delegate warns): opacity, subsurface. Not modelled: diffuseRoughness (the
+// base is Lambertian), the metal's edge tint (specularColor in the metallic workflow tints only
+// the dielectric lobe), thin-film. A material whose lobes are all off is exactly Lambertian.
 #pragma once
 
 #include "render/bsdf.h"

@@ -6,6 +6,9 @@
 // Cook & Torrance (1982) and every optics text (e.g. Born & Wolf, Principles of Optics, 1.5.2).
 #pragma once
 
+#include <algorithm>
+#include <cmath>
+
 #include "core/rgb.h"
 
 namespace fluence::render {
@@ -26,6 +29,20 @@ FresnelPolarized fresnelDielectricPolarized(float cosThetaI, float eta);
 inline float fresnelDielectric(float cosThetaI, float eta) {
     FresnelPolarized r = fresnelDielectricPolarized(cosThetaI, eta);
     return 0.5f * (r.s + r.p);
+}
+
+// Per channel, for an interface whose index differs by channel (a coloured normal-incidence
+// reflectance, see etaFromF0); evaluated once when the three indices are equal.
+inline RGB fresnelDielectric(float cosThetaI, const RGB& eta) {
+    if (eta.x == eta.y && eta.y == eta.z) return RGB(fresnelDielectric(cosThetaI, eta.x));
+    return {fresnelDielectric(cosThetaI, eta.x), fresnelDielectric(cosThetaI, eta.y), fresnelDielectric(cosThetaI, eta.z)};
+}
+
+// The relative index eta > 1 whose reflectance at normal incidence, ((eta - 1) / (eta + 1))^2, is
+// f0; f0 is clamped to [0, 0.99] (an index of 399), so the result is finite.
+inline float etaFromF0(float f0) {
+    float s = std::sqrt(std::clamp(f0, 0.0f, 0.99f));
+    return (1.0f + s) / (1.0f - s);
 }
 
 // Schlick's approximation F0 + (1 - F0)(1 - cos)^5 (Schlick 1994), per channel: the reflectance

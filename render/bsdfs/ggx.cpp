@@ -8,25 +8,34 @@
 
 namespace fluence::render {
 
+GgxDistribution GgxDistribution::fromRoughness(float roughness, float anisotropy) {
+    float r = std::clamp(roughness, 0.0f, 1.0f);
+    float alpha = r * r;
+    if (!(anisotropy > 0.0f)) return GgxDistribution(alpha);
+    float aspect = std::sqrt(1.0f - std::min(anisotropy, 0.98f));
+    return GgxDistribution(std::min(alpha / aspect, 1.0f), alpha * aspect);
+}
+
 float GgxDistribution::D(const Vec3f& h) const {
     if (h.z <= 0.0f) return 0.0f;
-    // (alpha^2 - 1) cos^2 + 1 written as alpha^2 cos^2 + sin^2, with sin^2 from the tangential
-    // components: no cancellation near the normal, where the lobe is peaked.
-    float a2 = alpha_ * alpha_;
-    float t = a2 * h.z * h.z + (h.x * h.x + h.y * h.y);
-    return a2 / (kPi * t * t);
+    // hx^2 / ax^2 + hy^2 / ay^2 + hz^2, multiplied through by ax ay so that the tangential terms
+    // carry no cancellation near the normal, where the lobe is peaked:
+    // D = ax ay / (pi (ay/ax hx^2 + ax/ay hy^2 + ax ay hz^2)^2). Isotropic: alpha^2 / (pi (alpha^2
+    // cos^2 + sin^2)^2).
+    float t = (alphaY_ / alphaX_) * h.x * h.x + (alphaX_ / alphaY_) * h.y * h.y + alphaX_ * alphaY_ * h.z * h.z;
+    return alphaX_ * alphaY_ / (kPi * t * t);
 }
 
 float GgxDistribution::lambda(const Vec3f& w) const {
     float cos2 = w.z * w.z;
     if (cos2 == 0.0f) return std::numeric_limits<float>::infinity();
-    float tan2 = (w.x * w.x + w.y * w.y) / cos2;
-    return 0.5f * (std::sqrt(1.0f + alpha_ * alpha_ * tan2) - 1.0f);
+    float ax = alphaX_ * w.x, ay = alphaY_ * w.y;
+    return 0.5f * (std::sqrt(1.0f + (ax * ax + ay * ay) / cos2) - 1.0f);
 }
 
 Vec3f GgxDistribution::sampleVisibleNormal(const Vec3f& wo, Vec2f u) const {
-    // Stretch wo to the configuration where the microsurface is a hemisphere of alpha = 1.
-    Vec3f v = normalize(Vec3f(alpha_ * wo.x, alpha_ * wo.y, wo.z));
+    // Stretch wo to the configuration where the microsurface is a hemisphere of width 1.
+    Vec3f v = normalize(Vec3f(alphaX_ * wo.x, alphaY_ * wo.y, wo.z));
     // An orthonormal basis around v (t1 horizontal).
     float lensq = v.x * v.x + v.y * v.y;
     Vec3f t1 = lensq > 0.0f ? Vec3f(-v.y, v.x, 0.0f) / std::sqrt(lensq) : Vec3f(1.0f, 0.0f, 0.0f);
@@ -41,7 +50,7 @@ Vec3f GgxDistribution::sampleVisibleNormal(const Vec3f& wo, Vec2f u) const {
     p2 = (1.0f - s) * std::sqrt(std::max(0.0f, 1.0f - p1 * p1)) + s * p2;
     // Lift onto the hemisphere and unstretch.
     Vec3f nh = t1 * p1 + t2 * p2 + v * std::sqrt(std::max(0.0f, 1.0f - p1 * p1 - p2 * p2));
-    return normalize(Vec3f(alpha_ * nh.x, alpha_ * nh.y, std::max(0.0f, nh.z)));
+    return normalize(Vec3f(alphaX_ * nh.x, alphaY_ * nh.y, std::max(0.0f, nh.z)));
 }
 
 float GgxDistribution::visibleNormalPdf(const Vec3f& wo, const Vec3f& h) const {

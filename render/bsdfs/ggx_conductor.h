@@ -7,7 +7,8 @@
 // | parameter | meaning                                                                    |
 // |-----------|----------------------------------------------------------------------------|
 // | f0        | reflectance at normal incidence, per channel (the metal's "specular colour")|
-// | alpha     | GGX width; below kGgxSmoothAlpha (1e-3) the surface is a perfect mirror     |
+// | ggx       | GGX widths (x along the tangent; anisotropic for a brushed metal); below    |
+// |           | kGgxSmoothAlpha (1e-3) the surface is a perfect mirror                      |
 //
 // The microfacet model of the seeds' Torrance-Sparrow / Cook-Torrance (000), with the GGX
 // distribution (Walter et al. 2007) in place of Beckmann's for its longer highlight tails.
@@ -15,39 +16,29 @@
 // material descriptions (UsdPreviewSurface's specularColor, metalness workflows) provide; it
 // lacks the dip of real metals near grazing angles.
 //
-// Rough: sampled by visible normals (Heitz 2018), so f cos / pdf = F G2 / G1(wo) <= 1. Single
+// f, sample and pdf are those of GgxReflectionBsdf (render/bsdfs/ggx_reflection.h). Rough:
+// sampled by visible normals (Heitz 2018), so f cos / pdf = F G2 / G1(wo) <= 1. Single
 // scattering: light that would bounce between microfacets more than once is lost, a deficit that
 // grows with alpha (Kulla & Conty 2017); with F0 = 1 the albedo is 1 at alpha -> 0 and below 1
-// otherwise. Smooth: a delta mirror, f = F(cos theta_o) / cos theta_i, chosen with probability 1.
+// otherwise (tests/render/bsdf_microfacet_test.cpp and tests/integrators/furnace_test.cpp measure
+// it). Smooth: a delta mirror, f = F(cos theta_o) / cos theta_i, chosen with probability 1.
 //
 // Reciprocal; two-sided. Flags: reflection and glossy (rough) or specular (smooth).
 // Path-class label: D (glossy) when rough, S when smooth.
 #pragma once
 
-#include <optional>
-
-#include "render/bsdfs/ggx.h"
-#include "render/bsdfs/two_sided.h"
+#include "render/bsdfs/fresnel.h"
+#include "render/bsdfs/ggx_reflection.h"
 
 namespace fluence::render {
 
-class GgxConductorBsdf final : public TwoSidedReflection<GgxConductorBsdf> {
-public:
-    GgxConductorBsdf(const RGB& f0, float alpha) : f0_(f0), distribution_(alpha) {}
-
-    unsigned flags() const override {
-        return kBsdfReflection | (distribution_.isSmooth() ? kBsdfSpecular : kBsdfGlossy);
-    }
-
-private:
-    friend class TwoSidedReflection<GgxConductorBsdf>;
-
-    RGB fUpper(const Vec3f& wo, const Vec3f& wi) const;
-    float pdfUpper(const Vec3f& wo, const Vec3f& wi) const;
-    std::optional<BsdfSample> sampleUpper(const Vec3f& wo, float uLobe, Vec2f u) const;
-
-    RGB f0_;
-    GgxDistribution distribution_;
+// Schlick's reflectance of a metal of normal-incidence reflectance f0.
+struct SchlickFresnel {
+    SchlickFresnel(const RGB& f0) : f0(f0) {}  // implicit: GgxConductorBsdf(f0, ggx) reads as a metal of F0 f0
+    RGB operator()(float cosTheta) const { return fresnelSchlick(f0, cosTheta); }
+    RGB f0;
 };
+
+using GgxConductorBsdf = GgxReflectionBsdf<SchlickFresnel>;
 
 }  // namespace fluence::render

@@ -27,26 +27,27 @@ std::optional<GgxDielectricBsdf::Configuration> GgxDielectricBsdf::configuration
     return c;
 }
 
-float GgxDielectricBsdf::value(const Configuration& c) const {
-    if (c.reflected) return c.fresnel * distribution_.reflectionTerm(c.wo, c.wi, c.h);
+RGB GgxDielectricBsdf::value(const Configuration& c) const {
+    if (c.reflected) return tints_.reflected(c.fresnel) * distribution_.reflectionTerm(c.wo, c.wi, c.h);
     float cosO = dot(c.wo, c.h), cosI = dot(c.wi, c.h);
     float denom = cosO + c.eta * cosI;
-    return (1.0f - c.fresnel) * distribution_.D(c.h) * distribution_.G2(c.wo, c.wi) * std::abs(cosI) * cosO /
-           (c.wo.z * std::abs(c.wi.z) * denom * denom);
+    return tints_.transmitted(c.fresnel) * (distribution_.D(c.h) * distribution_.G2(c.wo, c.wi) * std::abs(cosI) *
+                                            cosO / (c.wo.z * std::abs(c.wi.z) * denom * denom));
 }
 
 float GgxDielectricBsdf::density(const Configuration& c) const {
-    if (c.reflected) return c.fresnel * distribution_.reflectionPdf(c.wo, c.h);
+    float pReflect = tints_.reflectProbability(c.fresnel);
+    if (c.reflected) return pReflect * distribution_.reflectionPdf(c.wo, c.h);
     // dh/dwi for refraction: eta'^2 |wi.h| / (wo.h + eta' wi.h)^2 (Walter et al. 2007, eq. 17).
     float cosI = dot(c.wi, c.h);
     float denom = dot(c.wo, c.h) + c.eta * cosI;
-    return (1.0f - c.fresnel) * distribution_.visibleNormalPdf(c.wo, c.h) * c.eta * c.eta * std::abs(cosI) /
+    return (1.0f - pReflect) * distribution_.visibleNormalPdf(c.wo, c.h) * c.eta * c.eta * std::abs(cosI) /
            (denom * denom);
 }
 
 RGB GgxDielectricBsdf::f(const Vec3f& wo, const Vec3f& wi) const {
     std::optional<Configuration> c = configuration(wo, wi);
-    return RGB(c ? value(*c) : 0.0f);
+    return c ? value(*c) : RGB(0.0f);
 }
 
 float GgxDielectricBsdf::pdf(const Vec3f& wo, const Vec3f& wi) const {
@@ -58,14 +59,17 @@ std::optional<BsdfSample> GgxDielectricBsdf::sampleSmooth(const Vec3f& wo, float
     float eta = relativeEta(wo);
     float cosO = std::abs(wo.z);
     float F = fresnelDielectric(cosO, eta);
-    if (uLobe < F) {
+    float pReflect = tints_.reflectProbability(F);
+    if (uLobe < pReflect) {
         Vec3f wi = mirrorZ(-wo);
-        return BsdfSample{RGB(F / cosO), wi, F, true};
+        return BsdfSample{tints_.reflected(F) / cosO, wi, pReflect, true};
     }
-    // F < 1 here, so there is no total internal reflection.
+    // Total internal reflection (F = 1) leaves nothing to refract: the share a reflection tint
+    // withheld is lost (render/bsdfs/dielectric_tints.h).
     Vec3f n(0.0f, 0.0f, wo.z > 0.0f ? 1.0f : -1.0f);
-    Vec3f wi = *refract(wo, n, eta);
-    return BsdfSample{RGB((1.0f - F) / (eta * eta * std::abs(wi.z))), wi, 1.0f - F, true, eta};
+    std::optional<Vec3f> wi = refract(wo, n, eta);
+    if (!wi) return std::nullopt;
+    return BsdfSample{tints_.transmitted(F) / (eta * eta * std::abs(wi->z)), *wi, 1.0f - pReflect, true, eta};
 }
 
 std::optional<BsdfSample> GgxDielectricBsdf::sample(const Vec3f& wo, float uLobe, Vec2f u) const {
@@ -78,7 +82,7 @@ std::optional<BsdfSample> GgxDielectricBsdf::sample(const Vec3f& wo, float uLobe
     float cosO = dot(c.wo, c.h);
     if (cosO <= 0.0f) return std::nullopt;
     c.fresnel = fresnelDielectric(cosO, c.eta);
-    c.reflected = uLobe < c.fresnel;
+    c.reflected = uLobe < tints_.reflectProbability(c.fresnel);
     if (c.reflected) {
         c.wi = reflect(c.wo, c.h);
         if (c.wi.z <= 0.0f) return std::nullopt;
@@ -90,7 +94,7 @@ std::optional<BsdfSample> GgxDielectricBsdf::sample(const Vec3f& wo, float uLobe
     float p = density(c);
     if (!(p > 0.0f)) return std::nullopt;
     Vec3f wi = wo.z > 0.0f ? c.wi : mirrorZ(c.wi);
-    return BsdfSample{RGB(value(c)), wi, p, false, c.reflected ? 1.0f : c.eta};
+    return BsdfSample{value(c), wi, p, false, c.reflected ? 1.0f : c.eta};
 }
 
 }  // namespace fluence::render

@@ -2,9 +2,11 @@
 //
 // f and pdf blend linearly; sample() picks b with probability w (uLobe rescaled and handed on),
 // then reports the blend's f and pdf for a non-delta direction, or the chosen delta lobe's
-// coefficients scaled by its pick probability (so f |cos| / pdf keeps the lobe's weight). Both
-// parts must agree on the sidedness convention (two reflectors, or two transmitters). Flags: the
-// union of both. Path-class label: those of its parts.
+// coefficients scaled by its pick probability (so f |cos| / pdf keeps the lobe's weight). Each
+// part keeps its own sidedness (render/bsdf.h, "SIDES"): a reflector blended with a transmitter
+// (Standard Surface's opaque base and its glass, by `transmission`) is handed wo on either side,
+// as the transmitter requires, and mirrors it itself, so from inside the glass the opaque part
+// reflects back inside. Flags: the union of both. Path-class label: those of its parts.
 #pragma once
 
 #include <optional>

@@ -8,7 +8,9 @@
 //     std::optional<BsdfSample> sampleUpper(wo, uLobe, u)   a sample with wi.z > 0, or nullopt
 // The wrapper implements the Bsdf interface from them: f and pdf are zero unless wo and wi are
 // strictly on the same side, wo below the surface mirrors both directions (render/bsdf.h,
-// "SIDES"), and a grazing wo (wo.z == 0) scatters nothing.
+// "SIDES"), and a grazing wo (wo.z == 0) scatters nothing. A model that also transmits fits the
+// wrapper when its two sides are alike and its transmission is a delta (which f and pdf never
+// report): the thin dielectric sheet, whose straight-through sample -wo mirrors back to -wo.
 #pragma once
 
 #include <optional>

@@ -6,39 +6,18 @@
 #include <cstring>
 
 #include "integrators/renderer.h"
+#include "tests/integrators/render_support.h"
 #include "tests/support/scenes.h"
-#include "tests/support/statistics.h"
 
 namespace fluence::integrators {
 namespace {
 
-struct Rendered {
-    Image image;
-    RenderStats stats;
-};
+using test_support::channelMean;
+using test_support::Rendered;
 
 Rendered renderScene(const render::SceneDescription& desc, int size, int spp, int threads = 0, int maxDepth = 64,
                      std::uint64_t seed = 0) {
-    render::RenderScene scene(desc);
-    render::Camera camera(*desc.camera, size, size);
-    PathTracer integrator(IntegratorSettings{maxDepth});
-    Film film(size, size, camera.farClip());
-    RenderSettings settings;
-    settings.samplesPerPixel = spp;
-    settings.threads = threads;
-    settings.seed = seed;
-    RenderStats stats = render(scene, camera, integrator, settings, film);
-    return {film.resolve(), stats};
-}
-
-// Mean of channel `c` over the pixels where `select` holds, with its standard error (pixels are
-// independent estimates).
-test::MeanEstimate channelMean(const Image& image, int c, const std::function<bool(const float*)>& select) {
-    test::MeanEstimate e;
-    for (int y = 0; y < image.height; ++y)
-        for (int x = 0; x < image.width; ++x)
-            if (const float* p = image.pixel(x, y); select(p)) e.add(p[c]);
-    return e;
+    return test_support::renderWith(PathTracer(IntegratorSettings{maxDepth}), desc, size, spp, threads, seed);
 }
 
 TEST(PathTracer, WhiteFurnaceSphereVanishes) {
