@@ -1,0 +1,40 @@
+// Free-flight sampling by delta tracking (Woodcock et al. 1965, "Techniques used in the GEM code
+// for Monte Carlo neutronics calculations"), with the spectral MIS of Miller et al. 2019: the
+// derivation, and the exact way a path tracer uses the result with next-event estimation and
+// MIS, are in media/tracking.h (THE ESTIMATORS, SPECTRAL MIS, HOW A PATH TRACER USES THEM).
+//
+// Tentative collisions are drawn at the hero's majorant sigmaMaj_h; at each, one number from the
+// stream chooses absorption, scattering or a null collision with probabilities sigmaA_h, sigmaS_h
+// and sigmaN_h over sigmaMaj_h. (Should a broken majorant fall below sigmaT, the three are
+// renormalised by sigmaT, which keeps the weights finite but not unbiased: media/majorant_check.h
+// catches such media in their tests.) The flight ends at the first absorption or scattering, or
+// escapes at ray.tMax. Through a gray medium whose majorant is exact (a homogeneous one), every
+// weight is exactly 1. Randomness: one number per exponential step and one per tentative
+// collision, from the stream passed in.
+#pragma once
+
+#include "core/random.h"
+#include "core/rgb.h"
+#include "media/medium.h"
+#include "media/tracking.h"
+
+namespace fluence::media {
+
+enum class FlightEvent { Escaped, Absorbed, Scattered };
+
+struct FreeFlight {
+    FlightEvent event = FlightEvent::Escaped;
+    float t = 0.0f;               // the real collision's distance, or ray.tMax on escape
+    Vec3f p;                      // ray.at(t) at a real collision
+    MediumProperties properties;  // the coefficients there (emission for Absorbed, g for Scattered)
+    RGB throughput{1.0f};         // f_c / p_h: Tmaj sigmaN per null point, then Tmaj sigmaA (Absorbed;
+                                  // the caller multiplies by Le), Tmaj sigmaS (Scattered; the caller
+                                  // multiplies by the phase function) or Tmaj to tMax (Escaped)
+    RGB pdfRatio{1.0f};           // p_c / p_h: delta tracking's density had channel c been the hero
+    RGB lightPdfRatio{1.0f};      // Escaped only: ratio tracking's density of the same null points and
+                                  // escape (the shadow-ray strategy) in channel c, over p_h
+};
+
+FreeFlight sampleFreeFlight(const Medium& medium, const MediumRay& ray, int hero, SampleStream& stream);
+
+}  // namespace fluence::media

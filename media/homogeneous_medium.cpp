@@ -1,0 +1,13 @@
+#include "media/homogeneous_medium.h"
+
+namespace fluence::media {
+
+HomogeneousMedium::HomogeneousMedium(const MediumProperties& properties) : properties_(properties) {}
+
+void HomogeneousMedium::majorants(const Vec3f&, const Vec3f&, float tMin, float tMax,
+                                  FunctionRef<bool(const MajorantSegment&)> visit) const {
+    const RGB sigmaT = properties_.sigmaA + properties_.sigmaS;
+    if (tMin < tMax) visit(MajorantSegment{tMin, tMax, sigmaT, sigmaT});
+}
+
+}  // namespace fluence::media

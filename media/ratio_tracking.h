@@ -1,0 +1,36 @@
+// Transmittance by (residual) ratio tracking (Novak, Selle & Jarosz 2014, "Residual ratio tracking
+// for estimating attenuation in participating media", the minorant as the control extinction),
+// with the spectral MIS of Miller et al. 2019: the derivation, and how an integrator combines the
+// result with next-event estimation, are in media/tracking.h (THE ESTIMATORS, SPECTRAL MIS).
+//
+// Tentative collisions are drawn at the hero's residual rate sigmaMaj - sigmaMin; each multiplies
+// channel c's weight by Tmaj_c sigmaN_c over the hero's density Tres_h (sigmaMaj_h - sigmaMin_h),
+// and the last stretch by Tmaj_c / Tres_h. Through a homogeneous medium (sigmaMin = sigmaMaj =
+// sigmaT) no collision is drawn and the estimate is exactly exp(-sigmaT t). The walk stops early
+// once every channel's weight is 0. tMax must be finite unless the residual rate vanishes beyond
+// some distance (otherwise the walk runs on until the weights underflow).
+#pragma once
+
+#include "core/random.h"
+#include "core/rgb.h"
+#include "media/medium.h"
+#include "media/tracking.h"
+
+namespace fluence::media {
+
+struct TransmittanceEstimate {
+    RGB throughput{1.0f};  // f_c / p_h: the null points' Tmaj sigmaN and the last stretch's Tmaj, over
+                           // the hero's density. It is also delta tracking's density of the same
+                           // null points over p_h (delta tracking's pdf of a null point equals its f).
+    RGB pdfRatio{1.0f};    // p_c / p_h: ratio tracking's density had channel c been the hero
+
+    // The transmittance in each channel, unbiased when the hero was drawn uniformly for this
+    // estimate alone (within a path, combine throughput and pdfRatio as media/tracking.h says).
+    RGB estimate() const { return throughput / channelAverage(pdfRatio); }
+};
+
+// The transmittance of ray.origin -> ray.at(ray.tMax) through `medium`, drawn with hero channel `hero`.
+TransmittanceEstimate ratioTrackingTransmittance(const Medium& medium, const MediumRay& ray, int hero,
+                                                 SampleStream& stream);
+
+}  // namespace fluence::media

@@ -1,0 +1,179 @@
+// Free-flight sampling by delta tracking (media/free_flight.h): real-collision distances follow
+// the exponential in a homogeneous medium and 1 - exp(-(a t + b t^2 / 2)) in a linear ramp
+// (chi-square), with exact and loose majorants; absorption and scattering in proportion to
+// sigmaA and sigmaS; the escape probability of a slab is exp(-sigmaT d) (binomial error); and in
+// chromatic media the spectral MIS estimates of transmittance and of emission are unbiased per
+// channel.
+#include "media/free_flight.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "media/homogeneous_medium.h"
+#include "tests/media/test_media.h"
+#include "tests/support/chi2.h"
+#include "tests/support/statistics.h"
+
+namespace fluence::media {
+namespace {
+
+// Normal-theory checks in this file: 2 absorption fractions + 2 escape probabilities + 3 x 4
+// chromatic channels, each at z standard errors, for a family-wide false-failure rate of 1%.
+const double kZ = test::normalQuantile(0.5 * test::sidakAlpha(16));
+// Chi-square tests: 3, at the level that keeps the same family-wide rate.
+const double kChi2Level = test::sidakAlpha(3);
+constexpr double kRounding = 1e-6;
+
+// Pearson's chi-square of flights' outcomes against a distribution over [0, length) given by its
+// CDF, in kBins equal-probability bins, plus one bin for escapes (probability 1 - cdf(length)).
+// Returns the p-value.
+double chi2OfFlights(const Medium& medium, const MediumRay& ray, const std::function<double(double)>& cdf,
+                     std::uint64_t seed, const std::string& what) {
+    constexpr int kBins = 31, kFlights = 100'000;
+    const double total = std::isinf(ray.tMax) ? 1.0 : cdf(ray.tMax);
+    std::vector<double> observed(kBins + 1, 0.0);
+    for (int n = 0; n < kFlights; ++n) {
+        SampleStream rng(seed, 0, n);
+        FreeFlight flight = sampleFreeFlight(medium, ray, 0, rng);
+        if (flight.event == FlightEvent::Escaped) {
+            observed[kBins] += 1.0;
+            continue;
+        }
+        // Gray media: every weight is 1 (the hero's choice is every channel's).
+        EXPECT_EQ(flight.throughput, RGB(1.0f));
+        observed[std::min(kBins - 1, int(cdf(flight.t) / total * kBins))] += 1.0;
+    }
+    double statistic = 0.0;
+    int cells = 0;
+    for (int i = 0; i <= kBins; ++i) {
+        double expected = kFlights * (i < kBins ? total / kBins : 1.0 - total);
+        if (expected < 5.0) continue;  // an unbounded ray never escapes
+        statistic += (observed[i] - expected) * (observed[i] - expected) / expected;
+        ++cells;
+    }
+    double p = test::upperIncompleteGammaQ(0.5 * (cells - 1), 0.5 * statistic);
+    std::printf("[ measured ] %s: chi2 %.1f over %d cells, p = %.3f\n", what.c_str(), statistic, cells, p);
+    return p;
+}
+
+TEST(FreeFlight, CollisionDistancesAreExponentialInAHomogeneousMedium) {
+    const float sigmaT = 1.3f;
+    HomogeneousMedium exact({RGB(0.4f * sigmaT), RGB(0.6f * sigmaT)});
+    test::RescaledBoundsMedium loose(exact, 2.5f, 0.0f);  // 60% of tentative collisions null
+    const MediumRay ray{Vec3f(0.0f), normalize(Vec3f(-1.0f, 2.0f, 0.5f))};
+    auto cdf = [&](double t) { return 1.0 - std::exp(-sigmaT * t); };
+    EXPECT_GT(chi2OfFlights(exact, ray, cdf, 51, "homogeneous, exact majorant"), kChi2Level);
+    EXPECT_GT(chi2OfFlights(loose, ray, cdf, 52, "homogeneous, majorant 2.5 sigmaT"), kChi2Level);
+}
+
+TEST(FreeFlight, CollisionDistancesFollowALinearRamp) {
+    // sigmaT(x) = 0.2 + 0.8 x over 0 <= x < 3, five segments bounded at their larger end.
+    test::RampMedium ramp(RGB(0.2f), RGB(0.8f), 3.0f, 5, true, RGB(0.5f));
+    auto cdf = [](double t) { return 1.0 - std::exp(-(0.2 * t + 0.4 * t * t)); };
+    EXPECT_GT(chi2OfFlights(ramp, {Vec3f(0.0f), Vec3f(1.0f, 0.0f, 0.0f), 2.5f}, cdf, 53, "linear ramp"), kChi2Level);
+}
+
+TEST(FreeFlight, AbsorbsAndScattersInProportion) {
+    // Albedo 0.6: the fraction of real collisions that scatter is 0.6, binomial error.
+    constexpr int kFlights = 100'000;
+    const float sigmaT = 1.3f;
+    HomogeneousMedium exact({RGB(0.4f * sigmaT), RGB(0.6f * sigmaT)});
+    test::RescaledBoundsMedium loose(exact, 2.5f, 0.0f);
+    for (const Medium* medium : {static_cast<const Medium*>(&exact), static_cast<const Medium*>(&loose)}) {
+        test::MeanEstimate scattered;
+        for (int n = 0; n < kFlights; ++n) {
+            SampleStream rng(54, 0, n);
+            FreeFlight flight = sampleFreeFlight(*medium, {Vec3f(0.0f), Vec3f(0.0f, 1.0f, 0.0f)}, 1, rng);
+            ASSERT_NE(flight.event, FlightEvent::Escaped);  // an unbounded medium
+            scattered.add(flight.event == FlightEvent::Scattered ? 1.0 : 0.0);
+        }
+        const double sd = std::sqrt(0.6 * 0.4 / kFlights);
+        std::printf("[ measured ] scattered fraction %.5f +- %.5f (exact 0.6)\n", scattered.mean(), sd);
+        EXPECT_NEAR(scattered.mean(), 0.6, kZ * sd);
+    }
+}
+
+TEST(FreeFlight, EscapesASlabWithProbabilityExpMinusSigmaTD) {
+    constexpr int kFlights = 100'000;
+    const float sigmaT = 0.8f, d = 1.5f;
+    const double exact = std::exp(-double(sigmaT) * d), sd = std::sqrt(exact * (1.0 - exact) / kFlights);
+    HomogeneousMedium slab({RGB(0.5f * sigmaT), RGB(0.5f * sigmaT)});
+    test::RescaledBoundsMedium loose(slab, 3.0f, 0.0f);
+    for (const Medium* medium : {static_cast<const Medium*>(&slab), static_cast<const Medium*>(&loose)}) {
+        test::MeanEstimate escaped;
+        for (int n = 0; n < kFlights; ++n) {
+            SampleStream rng(55, 0, n);
+            FreeFlight flight = sampleFreeFlight(*medium, {Vec3f(0.0f), Vec3f(0.0f, 0.0f, 1.0f), d}, 2, rng);
+            if (flight.event == FlightEvent::Escaped) {
+                ASSERT_EQ(flight.t, d);
+                ASSERT_EQ(flight.throughput, RGB(1.0f));
+            }
+            escaped.add(flight.event == FlightEvent::Escaped ? 1.0 : 0.0);
+        }
+        std::printf("[ measured ] slab escape %.5f +- %.5f (exact %.5f)\n", escaped.mean(), sd, exact);
+        EXPECT_NEAR(escaped.mean(), exact, kZ * sd);
+    }
+}
+
+// Per channel, the mean of a score of sampleFreeFlight()'s result over flights with a uniform hero.
+void expectChromaticMeans(const Medium& medium, const MediumRay& ray, const std::function<RGB(const FreeFlight&)>& score,
+                          const RGB& expected, std::uint64_t seed, const std::string& what) {
+    constexpr int kFlights = 40'000;
+    test::MeanEstimate means[3];
+    for (int n = 0; n < kFlights; ++n) {
+        SampleStream rng(seed, 0, n);
+        const int hero = sampleHeroChannel(rng.next());
+        const RGB s = score(sampleFreeFlight(medium, ray, hero, rng));
+        for (int c = 0; c < 3; ++c) means[c].add(s[c]);
+    }
+    for (int c = 0; c < 3; ++c) {
+        std::printf("[ measured ] %s, channel %d: %.5f +- %.5f (exact %.5f)\n", what.c_str(), c, means[c].mean(),
+                    means[c].standardError(), expected[c]);
+        EXPECT_NEAR(means[c].mean(), expected[c], kZ * means[c].standardError() + kRounding) << what << ", channel " << c;
+    }
+}
+
+// The spectral MIS estimate of transmittance from one flight: its weight if it escaped, else 0.
+RGB escapeScore(const FreeFlight& f) {
+    return f.event == FlightEvent::Escaped ? f.throughput / channelAverage(f.pdfRatio) : RGB(0.0f);
+}
+
+TEST(FreeFlight, TransmittanceIsUnbiasedPerChannelInChromaticMedia) {
+    // A chromatic ramp (null collisions, sigmaT from 0.1 to 6 across channels) and a chromatic
+    // homogeneous slab whose red channel is empty (the red hero draws no collision at all).
+    const float d = 2.0f;
+    test::RampMedium ramp(RGB(0.1f, 1.0f, 2.0f), RGB(1.5f, 0.0f, -0.6f), 3.0f, 4, false, RGB(0.3f, 0.9f, 0.5f));
+    expectChromaticMeans(ramp, {Vec3f(0.0f), Vec3f(1.0f, 0.0f, 0.0f), d}, escapeScore,
+                         RGB(std::exp(-(0.1f * d + 0.75f * d * d)), std::exp(-1.0f * d), std::exp(-(2.0f * d - 0.3f * d * d))),
+                         56, "chromatic ramp transmittance");
+    HomogeneousMedium slab({RGB(0.0f, 0.2f, 1.0f), RGB(0.0f, 0.6f, 0.5f)});
+    expectChromaticMeans(slab, {Vec3f(0.0f), Vec3f(0.0f, -1.0f, 0.0f), d}, escapeScore,
+                         RGB(1.0f, std::exp(-0.8f * d), std::exp(-1.5f * d)), 57, "slab with an empty channel");
+}
+
+TEST(FreeFlight, EmissionIsUnbiasedPerChannelInChromaticMedia) {
+    // A purely absorbing, emitting slab of optical depth tau glows with Le (1 - e^-tau) (media/medium.h);
+    // scored where a flight is absorbed: throughput Le / average(pdfRatio). Exact and loose bounds.
+    const RGB sigmaA(0.5f, 1.5f, 3.0f), le(1.0f, 2.0f, 0.5f);
+    const float d = 1.0f;
+    HomogeneousMedium slab({sigmaA, RGB(0.0f), le});
+    test::RescaledBoundsMedium loose(slab, 1.5f, 0.0f);
+    RGB expected;
+    for (int c = 0; c < 3; ++c) expected[c] = le[c] * (1.0f - std::exp(-sigmaA[c] * d));
+    auto emissionScore = [](const FreeFlight& f) {
+        return f.event == FlightEvent::Absorbed ? f.throughput * f.properties.emission / channelAverage(f.pdfRatio)
+                                                : RGB(0.0f);
+    };
+    const MediumRay ray{Vec3f(0.0f), Vec3f(1.0f, 0.0f, 0.0f), d};
+    expectChromaticMeans(slab, ray, emissionScore, expected, 58, "emitting slab");
+    expectChromaticMeans(loose, ray, emissionScore, expected, 59, "emitting slab, loose bounds");
+}
+
+}  // namespace
+}  // namespace fluence::media

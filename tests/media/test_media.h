@@ -1,0 +1,82 @@
+// Test-only media with closed forms, shared by the media tests: a linear ramp of extinction along
+// x, and a wrapper that loosens (or breaks) another medium's majorants and minorants.
+#pragma once
+
+#include <algorithm>
+#include <cmath>
+
+#include "media/medium.h"
+
+namespace fluence::test {
+
+using media::MajorantSegment;
+using media::Medium;
+using media::MediumProperties;
+
+// sigmaT(x) = a + b x for 0 <= x < length, vacuum elsewhere; sigmaS = albedo sigmaT, sigmaA the
+// rest. Along a ray that starts at x = 0 and runs along +x, T(d) = exp(-(a d + b d^2 / 2)) for
+// d <= length. Its majorants cut the slab's stretch of a ray into `segments` equal pieces, each
+// bounded by sigmaT at its ends (a linear function's extremes), the minorant too if asked.
+class RampMedium final : public Medium {
+public:
+    RampMedium(RGB a, RGB b, float length, int segments, bool minorants, RGB albedo = RGB(0.0f), float g = 0.0f)
+        : a_(a), b_(b), length_(length), segments_(segments), minorants_(minorants), albedo_(albedo), g_(g) {}
+
+    RGB sigmaT(float x) const { return x >= 0.0f && x < length_ ? a_ + b_ * x : RGB(0.0f); }
+
+    MediumProperties at(const Vec3f& p) const override {
+        const RGB s = sigmaT(p.x);
+        return {s * (RGB(1.0f) - albedo_), s * albedo_, RGB(0.0f), g_};
+    }
+
+    void majorants(const Vec3f& origin, const Vec3f& direction, float tMin, float tMax,
+                   FunctionRef<bool(const MajorantSegment&)> visit) const override {
+        // The stretch of the ray inside 0 <= x < length.
+        float t0 = tMin, t1 = tMax;
+        if (direction.x != 0.0f) {
+            float ta = (0.0f - origin.x) / direction.x, tb = (length_ - origin.x) / direction.x;
+            t0 = std::max(t0, std::min(ta, tb));
+            t1 = std::min(t1, std::max(ta, tb));
+        } else if (!(origin.x >= 0.0f && origin.x < length_)) {
+            return;
+        }
+        if (!(t0 < t1)) return;
+        for (int i = 0; i < segments_; ++i) {
+            float s0 = t0 + (t1 - t0) * i / segments_, s1 = i + 1 == segments_ ? t1 : t0 + (t1 - t0) * (i + 1) / segments_;
+            RGB e0 = a_ + b_ * (origin.x + s0 * direction.x), e1 = a_ + b_ * (origin.x + s1 * direction.x);
+            if (!visit(MajorantSegment{s0, s1, vmax(e0, e1), minorants_ ? vmin(e0, e1) : RGB(0.0f)})) return;
+        }
+    }
+
+private:
+    RGB a_, b_;
+    float length_;
+    int segments_;
+    bool minorants_;
+    RGB albedo_;
+    float g_;
+};
+
+// Another medium with its majorants scaled by `majorantScale` and its minorants by
+// `minorantScale`: (2, 0) loosens the bounds (null collisions, plain ratio tracking), a
+// majorant scale below 1 or a minorant scale above 1 breaks them.
+class RescaledBoundsMedium final : public Medium {
+public:
+    RescaledBoundsMedium(const Medium& inner, float majorantScale, float minorantScale)
+        : inner_(inner), majorantScale_(majorantScale), minorantScale_(minorantScale) {}
+
+    MediumProperties at(const Vec3f& p) const override { return inner_.at(p); }
+
+    void majorants(const Vec3f& origin, const Vec3f& direction, float tMin, float tMax,
+                   FunctionRef<bool(const MajorantSegment&)> visit) const override {
+        inner_.majorants(origin, direction, tMin, tMax, [&](const MajorantSegment& s) {
+            return visit(MajorantSegment{s.tMin, s.tMax, s.sigmaMaj * majorantScale_, s.sigmaMin * minorantScale_});
+        });
+    }
+
+private:
+    const Medium& inner_;
+    float majorantScale_, minorantScale_;
+};
+
+}  // namespace fluence::test
