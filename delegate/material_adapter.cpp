@@ -85,17 +85,10 @@ const usd::PrimSpec* shaderBehind(const usd::Stage& stage, const usd::PrimSpec& 
     return nullptr;
 }
 
-// Say which authored lobes the render core reads but does not render yet (render/material_bsdf.h
-// renders diffuse, specular, metal, transmission, sheen and coat).
+// Say that subsurface scattering is read but not rendered yet (render/material_bsdf.h renders
+// every other lobe; render/render_scene.h handles opacity).
 void warnAboutUnrenderedLobes(const render::MaterialDesc& m, const Warn& warn) {
-    std::string lobes;
-    auto note = [&](bool used, const char* name) {
-        if (used) lobes += (lobes.empty() ? "" : ", ") + std::string(name);
-    };
-    note(m.opacity < 1.0f, "opacity");
-    note(m.subsurface > 0.0f, "subsurface");
-    if (!lobes.empty())
-        warn(m.name, "material uses " + lobes + ", read but not rendered yet");
+    if (m.subsurface > 0.0f) warn(m.name, "material uses subsurface, read but not rendered yet");
 }
 
 }  // namespace

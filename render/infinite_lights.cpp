@@ -66,15 +66,17 @@ DomeLight::DomeLight(const LightDesc& d)
     if (texture_ && texture_->texels.empty()) texture_.reset();
     if (!texture_) return;
     const int w = texture_->width, h = texture_->height;
-    std::vector<float> weights(std::size_t(w) * h);
+    // Luminance weights (negative and non-finite texels weigh nothing), times the solid angle of
+    // each row's texels.
+    std::vector<float> weights = luminanceWeights(*texture_, radiance_);
     Vec3d sum(0.0);
     double sinSum = 0.0;
     for (int y = 0; y < h; ++y) {
         float sinTheta = std::sin(kPi * (y + 0.5f) / h);
         for (int x = 0; x < w; ++x) {
-            RGB radiance = vmax(radiance_ * texture_->at(x, y), RGB(0.0f));
-            weights[std::size_t(y) * w + x] = luminance(radiance) * sinTheta;
-            sum += Vec3d(radiance) * double(sinTheta);
+            float& weight = weights[std::size_t(y) * w + x];
+            if (weight > 0.0f) sum += Vec3d(vmax(radiance_ * texture_->at(x, y), RGB(0.0f))) * double(sinTheta);
+            weight *= sinTheta;
         }
         sinSum += double(sinTheta) * w;
     }

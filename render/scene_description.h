@@ -21,12 +21,12 @@ namespace fluence::render {
 
 // A surface material's parameters at one surface point: one layered "principled" parameter set
 // that both UsdPreviewSurface and MaterialX Standard Surface map onto (delegate/surface_shaders.h
-// gives the mapping). From the bottom up: a diffuse base (weight 1 - metallic - transmission), a
-// dielectric specular lobe over it (Fresnel from `ior`, tinted by `specularColor`, weighted by
-// `specular`) or, with `specularWorkflow`, a specular lobe whose normal-incidence reflectance is
-// `specularColor` itself; a metal (weight `metallic`, normal-incidence reflectance `diffuse`,
-// edge tint `specularColor`); a rough dielectric transmission (weight `transmission`); a sheen;
-// a clear coat on top; emission. Colours are linear, in the rendering space; roughness values are
+// gives the mapping). From the bottom up (render/material_bsdf.h has the exact stack): a diffuse
+// base; a sheen over it; a dielectric specular lobe over that (Fresnel from `ior`, tinted by
+// `specularColor`, weighted by `specular`) or, with `specularWorkflow`, a specular lobe whose
+// normal-incidence reflectance is `specularColor` itself; glass in place of the diffuse by weight
+// `transmission`; a metal (weight `metallic`, normal-incidence reflectance `diffuse`); a clear
+// coat on top; emission. Colours are linear, in the rendering space; roughness values are
 // perceptual (alpha = roughness^2). render/material_bsdf.h turns them into a BSDF.
 struct MaterialParams {
     RGB diffuse{0.18f};

@@ -174,11 +174,28 @@ def Cube "P2"
 
 // The sample scenes a user renders first: each renders a finite, non-black image without a warning.
 TEST_F(FluenceCli, EverySampleSceneRendersCleanly) {
-    for (const char* sample : {"cornell_box.usda", "layered_room/shot.usda", "instancing/garden.usda",
-                               "subdivision/creased_cubes.usda"}) {
+    const std::vector<std::pair<std::string, std::string>> samples = {
+        {"cornell_box.usda", ""},
+        {"layered_room/shot.usda", ""},
+        {"instancing/garden.usda", ""},
+        {"subdivision/creased_cubes.usda", ""},
+        {"material_ball/material_ball.usda", ""},
+        {"material_ball/material_ball.usda", " --variant /World:shading=standardSurface"},
+        {"lights/rect_texture.usda", ""},
+        {"lights/disk.usda", ""},
+        {"lights/sphere.usda", ""},
+        {"lights/sphere_point.usda", ""},
+        {"lights/cylinder.usda", ""},
+        {"lights/distant.usda", ""},
+        {"lights/dome.usda", ""},
+        {"lights/emissive_mesh.usda", ""},
+        {"lights/spotlight.usda", ""},
+        {"lights/color_temperature.usda", ""},
+    };
+    for (const auto& [sample, options] : samples) {
         fs::path scene = fs::path(FLUENCE_SOURCE_DIR) / "usd_samples" / sample;
         fs::path out = dir_ / "sample.exr";
-        RunResult r = run("render " + scene.string() + " -o " + out.string() + " -r 48 32 --spp 4");
+        RunResult r = run("render " + scene.string() + " -o " + out.string() + " -r 48 32 --spp 4" + options);
         ASSERT_EQ(r.exitCode, 0) << sample << "\n" << r.err;
         EXPECT_EQ(r.err.find("warning"), std::string::npos) << sample << "\n" << r.err;
         test::MeanEstimate e = channelMean(readExr(out), {"R", "G", "B"}, [](int, int) { return true; });

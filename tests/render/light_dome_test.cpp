@@ -4,6 +4,9 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
+
+#include <cmath>
 
 #include "core/sampling.h"
 #include "render/infinite_lights.h"
@@ -58,6 +61,26 @@ TEST(DomeLight, ConstantTextureGivesTheConstantDome) {
         EXPECT_EQ(light->escaped(n), RGB(0.7f));
     }
     EXPECT_NEAR(textured.power({Vec3f(0.0f), 2.0f}), constant.power({Vec3f(0.0f), 2.0f}), 1e-3f * constant.power({Vec3f(0.0f), 2.0f}));
+}
+
+TEST(DomeLight, NonFiniteAndNegativeTexelsWeighNothing) {
+    // One infinite and one negative texel in a grey sky: the dome still builds, samples only
+    // the grey texels, and has the grey sky's power.
+    DomeLight grey(domeDesc(image(32, 16, [](int, int) { return RGB(0.5f); })));
+    DomeLight broken(domeDesc(image(32, 16, [](int x, int y) {
+        if (x == 10 && y == 5) return RGB(std::numeric_limits<float>::infinity());
+        if (x == 20 && y == 8) return RGB(-3.0f);
+        return RGB(0.5f);
+    })));
+    const SceneBounds bounds{Vec3f(0.0f), 2.0f};
+    EXPECT_TRUE(std::isfinite(broken.power(bounds)));
+    EXPECT_NEAR(broken.power(bounds), grey.power(bounds), 0.01f * grey.power(bounds));
+    for (int i = 0; i < 1000; ++i) {
+        SampleStream rng(5, 0, std::uint64_t(i));
+        std::optional<LightSample> s = broken.sample(Vec3f(0.0f), rng.next2D());
+        ASSERT_TRUE(s);
+        EXPECT_TRUE(std::isfinite(s->Li.x) && s->Li.x >= 0.0f);
+    }
 }
 
 // OpenEXR (and UsdLux): top row latitude +pi/2 = +Y; left column longitude +pi; longitude 0 is
