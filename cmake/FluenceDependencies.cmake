@@ -24,3 +24,11 @@ find_path(OPENSUBDIV_INCLUDE_DIR NAMES opensubdiv/version.h REQUIRED)
 add_library(OpenSubdiv::osdCPU UNKNOWN IMPORTED)
 set_target_properties(OpenSubdiv::osdCPU PROPERTIES IMPORTED_LOCATION "${OPENSUBDIV_CPU_LIBRARY}"
                                                     INTERFACE_INCLUDE_DIRECTORIES "${OPENSUBDIV_INCLUDE_DIR}")
+
+# OpenVDB 10 (volumes/, tools/): Debian ships FindOpenVDB.cmake outside CMake's module path, and
+# the module fails without libboost-iostreams-dev (shared/notes/debian-build.md). The folder is on
+# the module path only for this call, so its other Find*.cmake files shadow nothing else.
+set(FLUENCE_SAVED_MODULE_PATH ${CMAKE_MODULE_PATH})
+list(APPEND CMAKE_MODULE_PATH /usr/lib/${CMAKE_LIBRARY_ARCHITECTURE}/cmake/OpenVDB)
+find_package(OpenVDB REQUIRED)
+set(CMAKE_MODULE_PATH ${FLUENCE_SAVED_MODULE_PATH})

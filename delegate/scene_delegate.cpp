@@ -219,11 +219,6 @@ render::SceneDescription SceneDelegate::sceneDescription() const {
                                " triangles, over the scene budget of " + std::to_string(budget) + "; diced coarser, to " +
                                std::to_string(subdivisionTriangles));
     scene.camera = cameraDesc;
-    std::size_t volumes = 0;
-    for (const auto& [path, prim] : index_.prims()) volumes += prim->kind() == RenderPrim::Kind::Volume;
-    if (volumes > 0)
-        options_.warn("/", std::to_string(volumes) + (volumes == 1 ? " volume is" : " volumes are") +
-                               " read but not rendered yet (volume rendering is issue #7)");
     return scene;
 }
 

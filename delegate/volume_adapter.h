@@ -12,7 +12,7 @@
 // | densityScale       | float                | 1                     | densityScale              |
 // | albedo             | color3f or float     | 0.8                   | albedo                    |
 // | anisotropy         | float                | 0                     | anisotropy (HG g)         |
-// | emissionColor      | color3f              | (0, 0, 0)             | emissionColor             |
+// | emissionColor      | color3f              | (1, 1, 1)             | emissionColor             |
 // | emissionScale      | float                | 0                     | emissionScale             |
 // | temperature / heat | float (field reader) | the field "temperature" | temperature grid        |
 // | temperatureScale / heatScale | float      | 1                     | temperatureScale          |

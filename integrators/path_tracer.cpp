@@ -4,6 +4,9 @@
 
 #include "core/frame.h"
 #include "integrators/first_hit.h"
+#include "media/free_flight.h"
+#include "media/phase.h"
+#include "media/ratio_tracking.h"
 #include "render/bsdf_arena.h"
 #include "render/material_bsdf.h"
 
@@ -22,6 +25,34 @@ float lightStrategyPdf(const render::RenderScene& scene, int index, const Vec3f&
     return scene.lightProbability(from, fromNormal, index) * scene.light(index).pdf(from, wi, hit);
 }
 
+// The multiple-importance weights of a path, in the two forms the path tracer uses: Veach's power
+// heuristic on scalar densities where the scene has no medium, and, with one, the balance
+// heuristic in the spectral-MIS form of media/tracking.h (rU, rL: the path's densities under its
+// own sampling and under light sampling of its last segment, over the hero channel's density).
+struct MisState {
+    const bool spectral;
+    RGB rU{1.0f}, rL{1.0f};
+    float bsdfPdf = 0.0f;  // scalar form: the density of the direction that produced the ray
+
+    // The weight of emission Le reached by the ray, whose light strategy had density lightPdf;
+    // `unique`: no light strategy could have produced it (camera ray, delta lobe).
+    float emitter(float lightPdf, bool unique) const {
+        if (!spectral) return unique ? 1.0f : powerHeuristic(bsdfPdf, lightPdf);
+        return 1.0f / media::channelAverage(unique ? rU : rU + rL * lightPdf);
+    }
+    // The weight of a light sample of density lightPdf whose direction the BSDF or phase function
+    // would have drawn with scatterPdf (0 for a delta light), through transmittance `tr`.
+    RGB lightSample(float lightPdf, float scatterPdf, const media::TransmittanceEstimate& tr) const {
+        if (!spectral) return RGB(scatterPdf > 0.0f ? powerHeuristic(lightPdf, scatterPdf) / lightPdf : 1.0f / lightPdf);
+        return tr.throughput / media::channelAverage(rU * (tr.pdfRatio * lightPdf + tr.throughput * scatterPdf));
+    }
+    // The ray continues in a direction drawn with density pdf (a delta lobe's: its lobe probability).
+    void scattered(float pdf) {
+        bsdfPdf = pdf;
+        rL = rU / pdf;
+    }
+};
+
 }  // namespace
 
 FilmSample PathTracer::sample(const render::RenderScene& scene, const render::Camera& camera, const Ray& cameraRay,
@@ -29,25 +60,83 @@ FilmSample PathTracer::sample(const render::RenderScene& scene, const render::Ca
     FilmSample out;
     RGB radiance(0.0f), throughput(1.0f);
     Ray ray = cameraRay;
-    float bsdfPdf = 0.0f;  // density of the BSDF sample that produced `ray` (0 for the camera ray)
+    const media::Medium* medium = scene.medium();
+    MisState mis{medium != nullptr};
+    const int hero = medium ? media::sampleHeroChannel(rng.next()) : 0;
     bool specularBounce = false;  // `ray` left a delta lobe: no light strategy could have found it
     float etaScale = 1.0f;        // product of eta^2 over the refractions so far (Russian roulette)
     render::BsdfArena arena;
     Vec3f previousPoint = ray.origin, previousNormal(0.0f);
     const bool haveLights = !scene.lightSelection().empty();
 
+    // Next-event estimation from `from` (with `fromNormal` for the light tree): one light, its
+    // shadow ray (from shadowFrom(wi)) through the surfaces and the medium, weighted against the
+    // scattering strategy; scatter(wi) gives the BSDF or phase value (cosine included) and its density.
+    auto sampleLight = [&](const Vec3f& from, const Vec3f& fromNormal, auto&& shadowFrom, auto&& scatter) {
+        float uLight = rng.next();
+        Vec2f uPoint = rng.next2D();
+        render::LightChoice choice = scene.chooseLight(from, fromNormal, uLight);
+        if (choice.light < 0 || choice.probability <= 0.0f) return;
+        std::optional<render::LightSample> ls = scene.light(choice.light).sample(from, uPoint);
+        if (!ls || ls->pdf <= 0.0f || isBlack(ls->Li)) return;
+        auto [f, scatterPdf] = scatter(ls->wi);
+        if (isBlack(f)) return;
+        ++counters.shadow;
+        const Vec3f shadowOrigin = shadowFrom(ls->wi);
+        if (scene.occluded(shadowOrigin, ls->wi, ls->distance)) return;
+        media::TransmittanceEstimate tr;
+        if (medium) tr = media::ratioTrackingTransmittance(*medium, {shadowOrigin, ls->wi, ls->distance}, hero, rng);
+        radiance += throughput * f * ls->Li * mis.lightSample(choice.probability * ls->pdf, ls->delta ? 0.0f : scatterPdf, tr);
+    };
+
     for (int depth = 0;; ++depth) {
         ++(depth == 0 ? counters.camera : counters.bounce);
         std::optional<SurfaceHit> hit = scene.intersect(ray);
+
+        if (medium) {  // the stretch of medium up to the surface (or out of the scene)
+            media::FreeFlight flight = media::sampleFreeFlight(
+                *medium, {ray.origin, ray.direction, hit ? hit->t : std::numeric_limits<float>::infinity()}, hero, rng);
+            throughput *= flight.throughput;
+            mis.rU *= flight.pdfRatio;
+            mis.rL *= flight.lightPdfRatio;
+            if (flight.event == media::FlightEvent::Absorbed) {
+                radiance += throughput * flight.properties.emission / media::channelAverage(mis.rU);
+                break;
+            }
+            if (flight.event == media::FlightEvent::Scattered) {
+                if (depth >= maxDepth_) break;
+                const Vec3f wo = -ray.direction;
+                const media::HenyeyGreenstein phase(flight.properties.g);
+                if (haveLights)
+                    sampleLight(flight.p, Vec3f(0.0f), [&](const Vec3f&) { return flight.p; }, [&](const Vec3f& wi) {
+                        float p = phase.p(wo, wi);
+                        return std::pair(RGB(p), p);
+                    });
+                else {
+                    rng.next();
+                    rng.next2D();
+                }
+                media::PhaseSample ps = phase.sample(wo, rng.next2D());
+                if (ps.pdf <= 0.0f) break;
+                throughput *= ps.p / ps.pdf;
+                if (!continuePath(throughput, etaScale, depth, rng)) break;
+                mis.scattered(ps.pdf);
+                specularBounce = false;
+                previousPoint = flight.p;
+                previousNormal = Vec3f(0.0f);
+                ray = Ray{flight.p, ps.wi, 0.0f, std::numeric_limits<float>::infinity()};
+                continue;
+            }
+        }
 
         if (!hit) {
             for (int index : scene.lightsAtInfinity()) {
                 RGB le = scene.light(index).escaped(ray.direction);
                 if (isBlack(le)) continue;
-                float weight = depth == 0 || specularBounce
-                                   ? 1.0f
-                                   : powerHeuristic(bsdfPdf, lightStrategyPdf(scene, index, previousPoint, previousNormal,
-                                                                              ray.direction, LightHit{}));
+                const bool unique = depth == 0 || specularBounce;
+                float weight = mis.emitter(
+                    unique ? 0.0f : lightStrategyPdf(scene, index, previousPoint, previousNormal, ray.direction, LightHit{}),
+                    unique);
                 radiance += throughput * le * weight;
             }
             break;
@@ -61,10 +150,10 @@ FilmSample PathTracer::sample(const render::RenderScene& scene, const render::Ca
             LightHit lh{hit->point, hit->geometricNormal};
             RGB le = hit->lightShape ? scene.light(hit->light).emitted(lh, wo) : hit->emission;
             if (!isBlack(le)) {
-                float weight = depth == 0 || specularBounce
-                                   ? 1.0f
-                                   : powerHeuristic(bsdfPdf, lightStrategyPdf(scene, hit->light, previousPoint, previousNormal,
-                                                                              ray.direction, lh));
+                const bool unique = depth == 0 || specularBounce;
+                float weight = mis.emitter(
+                    unique ? 0.0f : lightStrategyPdf(scene, hit->light, previousPoint, previousNormal, ray.direction, lh),
+                    unique);
                 radiance += throughput * le * weight;
             }
         }
@@ -88,27 +177,14 @@ FilmSample PathTracer::sample(const render::RenderScene& scene, const render::Ca
 
         // Next-event estimation: one light, chosen by the light tree for this point and normal.
         if (haveLights && connectable) {
-            float uLight = rng.next();
-            Vec2f uPoint = rng.next2D();
-            render::LightChoice choice = scene.chooseLight(lightFrom, lightNormal, uLight);
-            const int index = choice.light;
-            const float pick = choice.probability;
-            std::optional<render::LightSample> ls;
-            if (index >= 0 && pick > 0.0f) ls = scene.light(index).sample(lightFrom, uPoint);
-            if (ls && ls->pdf > 0.0f && !isBlack(ls->Li)) {
-                Vec3f wiLocal = frame.toLocal(ls->wi);
-                RGB f = sidesAgree(wo, ls->wi, ng, woLocal.z, wiLocal.z) ? bsdf.f(woLocal, wiLocal) * std::abs(wiLocal.z)
-                                                                         : RGB(0.0f);
-                if (!isBlack(f)) {
-                    ++counters.shadow;
-                    const Vec3f shadowFrom = transmissive ? spawnOrigin(hit->point, ng, ls->wi) : lightFrom;
-                    if (!scene.occluded(shadowFrom, ls->wi, ls->distance)) {
-                        float lightPdf = pick * ls->pdf;
-                        float weight = ls->delta ? 1.0f : powerHeuristic(lightPdf, bsdf.pdf(woLocal, wiLocal));
-                        radiance += throughput * f * ls->Li * (weight / lightPdf);
-                    }
-                }
-            }
+            // The shadow ray leaves a transmissive surface on the light's side.
+            auto shadowFrom = [&](const Vec3f& wi) { return transmissive ? spawnOrigin(hit->point, ng, wi) : lightFrom; };
+            sampleLight(lightFrom, lightNormal, shadowFrom, [&](const Vec3f& wi) {
+                Vec3f wiLocal = frame.toLocal(wi);
+                bool agree = sidesAgree(wo, wi, ng, woLocal.z, wiLocal.z);
+                return std::pair(agree ? bsdf.f(woLocal, wiLocal) * std::abs(wiLocal.z) : RGB(0.0f),
+                                 agree ? bsdf.pdf(woLocal, wiLocal) : 0.0f);
+            });
         } else {
             rng.next();
             rng.next2D();
@@ -124,7 +200,7 @@ FilmSample PathTracer::sample(const render::RenderScene& scene, const render::Ca
         etaScale *= bs->eta * bs->eta;
         if (!continuePath(throughput, etaScale, depth, rng)) break;
 
-        bsdfPdf = bs->pdf;
+        mis.scattered(bs->pdf);
         specularBounce = bs->specular;
         previousPoint = lightFrom;
         previousNormal = lightNormal;

@@ -8,11 +8,13 @@
 #include <string>
 
 #include "core/random.h"
+#include "media/medium_union.h"
 #include "render/area_lights.h"
 #include "render/cylinder_light.h"
 #include "render/infinite_lights.h"
 #include "render/mesh_transform.h"
 #include "render/sphere_light.h"
+#include "volumes/grid_medium.h"
 
 namespace fluence::render {
 
@@ -216,6 +218,7 @@ RenderScene::RenderScene(const SceneDescription& scene, std::shared_ptr<texture:
     for (const MeshDesc& mesh : scene.meshes) addMesh(mesh, scene.materials);
     addPrototypes(scene);
     for (const LightDesc& light : scene.lights) addLight(light);
+    addVolumes(scene.volumes);
 
     // Scene bounds (for the power of lights at infinity) from surfaces, instances and lights.
     Vec3f lo(std::numeric_limits<float>::max()), hi(-std::numeric_limits<float>::max());
@@ -265,6 +268,33 @@ void RenderScene::addMaterialShaders() {
     if (textured && !textures_) textures_ = std::make_shared<texture::TextureSystem>(color::ColorManagement::load());
     shaders_.reserve(materials_.size());
     for (const MaterialDesc& m : materials_) shaders_.emplace_back(m, textures_.get(), warnings_);
+}
+
+void RenderScene::addVolumes(const std::vector<VolumeDesc>& volumes) {
+    std::vector<std::unique_ptr<media::Medium>> media;
+    for (const VolumeDesc& v : volumes) {
+        if (!v.density) continue;
+        try {
+            volumes::FloatVdbGrid density(v.density->file, v.density->gridName, v.density->gridIndex, v.transform);
+            std::optional<volumes::FloatVdbGrid> temperature;
+            if (v.temperature) temperature.emplace(v.temperature->file, v.temperature->gridName, v.temperature->gridIndex, v.transform);
+            std::optional<volumes::Vec3VdbGrid> color;
+            if (v.color) color.emplace(v.color->file, v.color->gridName, v.color->gridIndex, v.transform);
+            volumes::GridMediumParams params;
+            params.densityScale = v.densityScale;
+            params.albedo = v.albedo;
+            params.anisotropy = v.anisotropy;
+            params.emissionScale = v.emissionScale;
+            params.emissionColor = v.emissionColor;
+            params.blackbodyIntensity = v.blackbodyIntensity;
+            params.temperatureScale = v.temperatureScale;
+            params.temperatureOffset = v.temperatureOffset;
+            media.push_back(std::make_unique<volumes::GridMedium>(std::move(density), params, std::move(temperature), std::move(color)));
+        } catch (const std::exception& e) {
+            throw std::invalid_argument(v.name + ": " + e.what());
+        }
+    }
+    if (!media.empty()) medium_ = std::make_unique<media::MediumUnion>(std::move(media));
 }
 
 void RenderScene::addPresenceFilter(RTCGeometryTy* geometry, int meshIndex) {

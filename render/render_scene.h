@@ -23,6 +23,10 @@
 // Materials: each is a MaterialShader (render/material_shader.h) evaluated at every surface hit,
 // textures looked up through one texture::TextureSystem with the pixel footprint of the camera
 // given to setTextureFilterCamera() (without one, textures are point-sampled at full resolution).
+// Volumes: each VolumeDesc becomes a volumes::GridMedium (its OpenVDB grids, read once per file);
+// together they are one media::MediumUnion, which rays cross between surfaces. A grid that
+// cannot be read raises std::invalid_argument naming the volume, the file and the grid.
+//
 // Opacity: a mesh whose material may be less than opaque gets Embree filter functions, so every
 // ray (camera, BSDF and shadow) passes through its holes. A cut-out (opacityThreshold > 0) is a
 // hole or not; partial opacity lets a ray through with probability 1 - opacity, decided by a hash
@@ -40,6 +44,7 @@
 #include "render/light_tree.h"
 #include "render/material_shader.h"
 #include "render/ray.h"
+#include "media/medium.h"
 #include "render/scene_description.h"
 #include "texture/texture_system.h"
 
@@ -102,6 +107,10 @@ public:
 
     const SceneBounds& bounds() const { return bounds_; }
     const SceneStats& stats() const { return stats_; }
+    // The scene's volumes as one participating medium (media/medium_union.h), or nullptr when it
+    // has none. Rays travel through it between surfaces; surfaces do not bound it.
+    const media::Medium* medium() const { return medium_.get(); }
+
     // What went wrong while building that did not stop it (unreadable textures).
     const std::vector<Warning>& warnings() const { return warnings_; }
 
@@ -117,6 +126,7 @@ private:
     void addMesh(const MeshDesc& mesh, const std::vector<MaterialDesc>& materials);
     void addPrototypes(const SceneDescription& scene);
     void addLight(const LightDesc& light);
+    void addVolumes(const std::vector<VolumeDesc>& volumes);
     void addMaterialShaders();
     void addPresenceFilter(RTCGeometryTy* geometry, int mesh);
     // The hit on triangle primID of mesh `mesh` at barycentrics (u, v), in world space
@@ -132,6 +142,7 @@ private:
     std::vector<MaterialShader> shaders_;  // one per material
     std::vector<std::unique_ptr<MeshPresence>> presenceTests_;  // user data of the filter functions
     std::optional<Camera> filterCamera_;
+    std::unique_ptr<media::Medium> medium_;
     std::vector<Warning> warnings_;
     std::vector<int> surfaceMeshes_;     // Embree geometry id in the surface scene -> mesh, or -1
     std::vector<int> surfaceInstances_;  // Embree geometry id in the surface scene -> instance, or -1

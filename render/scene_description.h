@@ -197,7 +197,7 @@ struct VolumeDesc {
     float densityScale = 1.0f;
     RGB albedo{0.8f};
     float anisotropy = 0.0f;
-    RGB emissionColor{0.0f};
+    RGB emissionColor{1.0f};
     float emissionScale = 0.0f;
     float temperatureScale = 1.0f, temperatureOffset = 0.0f;
     float blackbodyIntensity = 0.0f;

@@ -8,6 +8,7 @@ packages=(
   libembree-dev libtbb-dev
   libopenimageio-dev libopenexr-dev libopencolorio-dev
   libosd-dev
+  libopenvdb-dev libboost-iostreams-dev
   libgtest-dev
   clang-16 libclang-rt-16-dev llvm-16
 )

@@ -191,6 +191,7 @@ TEST_F(FluenceCli, EverySampleSceneRendersCleanly) {
         {"lights/emissive_mesh.usda", ""},
         {"lights/spotlight.usda", ""},
         {"lights/color_temperature.usda", ""},
+        {"smoke/smoke.usda", ""},
     };
     for (const auto& [sample, options] : samples) {
         fs::path scene = fs::path(FLUENCE_SOURCE_DIR) / "usd_samples" / sample;

@@ -1,0 +1,34 @@
+// Several media filling space together (a scene's volumes, which may overlap): their coefficients
+// add, and so do their majorants and minorants, segment by segment.
+//
+// at(p): sigmaA and sigmaS are the sums; the emission is the sigmaA-weighted mean of the media's
+// Le (so that sigmaA Le adds up); the Henyey-Greenstein g is the sigmaS-weighted mean of theirs —
+// exact where one medium scatters alone, an approximation where two scatter at one point (a
+// mixture of two HG lobes is not an HG lobe).
+// majorants(): with one medium, its own segments; with several, each medium's segments over the
+// range are gathered and cut at every segment end, and each piece carries the sum of the bounds
+// of the segments covering it (pieces that no segment covers are left out, as gaps).
+#pragma once
+
+#include <memory>
+#include <vector>
+
+#include "media/medium.h"
+
+namespace fluence::media {
+
+class MediumUnion final : public Medium {
+public:
+    explicit MediumUnion(std::vector<std::unique_ptr<Medium>> media);
+
+    MediumProperties at(const Vec3f& p) const override;
+    void majorants(const Vec3f& origin, const Vec3f& direction, float tMin, float tMax,
+                   FunctionRef<bool(const MajorantSegment&)> visit) const override;
+
+    std::size_t size() const { return media_.size(); }
+
+private:
+    std::vector<std::unique_ptr<Medium>> media_;
+};
+
+}  // namespace fluence::media

@@ -1,0 +1,106 @@
+#include "volumes/majorant_grid.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace fluence::volumes {
+
+namespace {
+
+// How far beyond its trilinear support a stored value is counted, and the grid's box beyond the
+// grid's support, in voxels (see MODEL).
+constexpr double kMargin = 1e-3;
+
+}  // namespace
+
+MajorantGrid::MajorantGrid(const FloatVdbGrid& grid, const MajorantGridOptions& options) {
+    if (!grid.activeVoxels()) return;
+    const IndexBox& active = *grid.activeVoxels();
+    Vec3d lo, cellSize;  // of the support grown by the margin (see MODEL)
+    for (int axis = 0; axis < 3; ++axis) {
+        double extent = active.hi[axis] - active.lo[axis] + 2.0;
+        resolution_[axis] = std::clamp(int(std::ceil(extent / options.voxelsPerCell)), 1, std::max(options.maxCellsPerAxis, 1));
+        lo[axis] = active.lo[axis] - 1.0 - kMargin;
+        cellSize[axis] = (extent + 2.0 * kMargin) / resolution_[axis];
+    }
+    worldToCell_ = Matrix4::scale(Vec3d(1.0) / cellSize) * Matrix4::translate(-lo) * grid.worldToIndex();
+
+    const float base = std::max(grid.background(), 0.0f);
+    cells_.assign(std::size_t(resolution_.x) * std::size_t(resolution_.y) * std::size_t(resolution_.z), base);
+    grid.forEachValue([&](const IndexBox& box, const float& value) {
+        if (!(value > base)) return;
+        Vec3i first, last;  // the cells the value reaches
+        for (int axis = 0; axis < 3; ++axis) {
+            double from = (box.lo[axis] - 1.0 - kMargin - lo[axis]) / cellSize[axis];
+            double to = (box.hi[axis] + 1.0 + kMargin - lo[axis]) / cellSize[axis];
+            if (to < 0.0 || from > resolution_[axis]) return;  // entirely outside the support
+            first[axis] = int(std::clamp(std::floor(from), 0.0, resolution_[axis] - 1.0));
+            last[axis] = int(std::clamp(std::floor(to), 0.0, resolution_[axis] - 1.0));
+        }
+        for (int z = first.z; z <= last.z; ++z)
+            for (int y = first.y; y <= last.y; ++y)
+                for (int x = first.x; x <= last.x; ++x) {
+                    float& c = cells_[index({x, y, z})];
+                    c = std::max(c, value);
+                }
+    });
+}
+
+MajorantDda::MajorantDda(const MajorantGrid& grid, const Vec3f& origin, const Vec3f& direction, float tMin,
+                         float tMax, const RGB& scale)
+    : grid_(&grid), scale_(scale) {
+    if (grid.empty() || !(tMax > tMin)) return;
+    origin_ = grid.worldToCell().transformPoint(Vec3d(origin));
+    Vec3d d = grid.worldToCell().transformVector(Vec3d(direction));
+    const Vec3i& n = grid.resolution();
+    double t0 = tMin, t1 = tMax;  // the overlap of [tMin, tMax] with the grid's box [0, n]
+    for (int axis = 0; axis < 3; ++axis) {
+        if (d[axis] == 0.0) {
+            if (origin_[axis] < 0.0 || origin_[axis] > n[axis]) return;
+            continue;
+        }
+        step_[axis] = d[axis] > 0.0 ? 1 : -1;
+        invDirection_[axis] = 1.0 / d[axis];
+        double ta = -origin_[axis] * invDirection_[axis], tb = (n[axis] - origin_[axis]) * invDirection_[axis];
+        t0 = std::max(t0, std::min(ta, tb));
+        t1 = std::min(t1, std::max(ta, tb));
+    }
+    if (!(t0 < t1)) return;
+    t_ = t0;
+    tEnd_ = t1;
+    for (int axis = 0; axis < 3; ++axis)
+        cell_[axis] = int(std::clamp(std::floor(origin_[axis] + d[axis] * t0), 0.0, n[axis] - 1.0));
+    done_ = false;
+}
+
+std::optional<media::MajorantSegment> MajorantDda::next() {
+    const Vec3i& n = grid_->resolution();
+    while (!done_) {
+        ++cellsVisited_;
+        double exit = tEnd_;
+        int exitAxis = -1;
+        for (int axis = 0; axis < 3; ++axis) {
+            if (step_[axis] == 0) continue;
+            double plane = cell_[axis] + (step_[axis] > 0 ? 1.0 : 0.0);
+            double t = (plane - origin_[axis]) * invDirection_[axis];
+            if (t < exit) {
+                exit = t;
+                exitAxis = axis;
+            }
+        }
+        exit = std::max(exit, t_);
+        float value = grid_->cell(cell_);
+        media::MajorantSegment segment{float(t_), float(exit), scale_ * value};
+        t_ = exit;
+        if (exitAxis < 0) {
+            done_ = true;
+        } else {
+            cell_[exitAxis] += step_[exitAxis];
+            done_ = cell_[exitAxis] < 0 || cell_[exitAxis] >= n[exitAxis];
+        }
+        if (value > 0.0f && segment.tMax > segment.tMin && !isBlack(segment.sigmaMaj)) return segment;
+    }
+    return std::nullopt;
+}
+
+}  // namespace fluence::volumes
