@@ -187,9 +187,10 @@ struct VolumeFieldDesc {
 // A UsdVol Volume as the render core takes it: its grids and the parameters of its volume
 // material (delegate/volume_adapter.h gives the mapping and the fallbacks). Extinction is
 // density * densityScale per scene unit; of it, the fraction `albedo` (times the colour grid,
-// when there is one) scatters, with Henyey-Greenstein anisotropy; emission is emissionColor *
-// emissionScale (times the density) plus, when blackbodyIntensity > 0, the blackbody radiance of
-// temperature * temperatureScale + temperatureOffset kelvin times blackbodyIntensity.
+// when there is one) scatters, with Henyey-Greenstein anisotropy, and the rest absorbs. The
+// emitted radiance Le (per unit of absorption, as media/medium.h defines it) is emissionColor *
+// emissionScale plus, when blackbodyIntensity > 0, the blackbody radiance of temperature *
+// temperatureScale + temperatureOffset kelvin times blackbodyIntensity (volumes/grid_medium.h).
 struct VolumeDesc {
     std::string name;                         // prim path
     Matrix4 transform = Matrix4::identity();  // volume-to-world (the grids' own transforms apply first)
