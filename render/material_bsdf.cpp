@@ -8,6 +8,7 @@
 #include "render/bsdfs/ggx_conductor.h"
 #include "render/bsdfs/ggx_dielectric.h"
 #include "render/bsdfs/lambertian.h"
+#include "render/bsdfs/oren_nayar.h"
 #include "render/bsdfs/layered.h"
 #include "render/bsdfs/mix.h"
 #include "render/bsdfs/sheen.h"
@@ -55,7 +56,8 @@ const Bsdf& transmissionBsdf(const MaterialParams& m, const GgxDistribution& ggx
 
 const Bsdf& materialBsdf(const MaterialParams& m, BsdfArena& arena) {
     const GgxDistribution specularGgx = GgxDistribution::fromRoughness(m.roughness, m.anisotropy);
-    const Bsdf* bsdf = &arena.make<LambertianBsdf>(m.diffuse);
+    const Bsdf* bsdf = m.diffuseRoughness > 0.0f ? static_cast<const Bsdf*>(&arena.make<OrenNayarBsdf>(m.diffuse, m.diffuseRoughness))
+                                                 : &arena.make<LambertianBsdf>(m.diffuse);
     const RGB sheen = clamp01(m.sheenColor * m.sheen);
     if (!isBlack(sheen)) bsdf = &arena.make<LayeredBsdf<CharlieSheenBsdf>>(CharlieSheenBsdf(sheen, m.sheenRoughness), *bsdf);
     if (const SpecularLobe specular = specularLobe(m); specular.reflects())

@@ -4,7 +4,7 @@
 // roughness, anisotropy) (alpha = roughness^2, stretched along the surface tangent by MaterialX's
 // mapping, render/bsdfs/ggx.h):
 //
-//   diffuse   Lambertian(diffuse)
+//   diffuse   Lambertian(diffuse), or OrenNayar(diffuse, sigma = diffuseRoughness) when it is > 0
 //   sheen     LayeredBsdf(CharlieSheen(sheen x sheenColor, sheenRoughness), diffuse)   sheen > 0
 //             the base loses the sheen's directional albedo (render/bsdfs/sheen.h, layered.h)
 //   specular  CoatedBsdf(that, eta, ggx, tint)                  when the dielectric lobe reflects:

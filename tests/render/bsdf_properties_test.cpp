@@ -25,6 +25,7 @@
 #include "render/bsdfs/ggx_conductor.h"
 #include "render/bsdfs/ggx_dielectric.h"
 #include "render/bsdfs/lambertian.h"
+#include "render/bsdfs/oren_nayar.h"
 #include "render/bsdfs/layered.h"
 #include "render/bsdfs/modified_phong.h"
 #include "render/bsdfs/phong.h"
@@ -49,6 +50,8 @@ std::vector<BsdfCase> allCases() {
     const RGB colour(0.8f, 0.5f, 0.2f);
     std::vector<BsdfCase> cases = {
         {"Lambertian", [=](BsdfArena& a) -> const Bsdf& { return a.make<LambertianBsdf>(colour); }},
+        {"OrenNayar_s30", [=](BsdfArena& a) -> const Bsdf& { return a.make<OrenNayarBsdf>(colour, 0.3f); }},
+        {"OrenNayar_s100", [=](BsdfArena& a) -> const Bsdf& { return a.make<OrenNayarBsdf>(colour, 1.0f); }},
         {"PhongOriginal_n1", [](BsdfArena& a) -> const Bsdf& { return a.make<PhongBsdf>(RGB(0.1f), RGB(0.5f), 1.0f); },
          false},
         {"PhongOriginal_n20", [](BsdfArena& a) -> const Bsdf& { return a.make<PhongBsdf>(RGB(0.0f), RGB(1.0f), 20.0f); },

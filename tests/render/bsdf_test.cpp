@@ -9,6 +9,7 @@
 #include "render/bsdf_arena.h"
 #include "render/bsdfs/coated.h"
 #include "render/bsdfs/lambertian.h"
+#include "render/bsdfs/oren_nayar.h"
 
 namespace fluence::render {
 namespace {
@@ -48,6 +49,26 @@ TEST(LambertianBsdf, EverySampleWeighsExactlyTheAlbedo) {
             EXPECT_NEAR(weight.y, 0.5f, 1e-6f);
             EXPECT_NEAR(weight.z, 0.25f, 1e-6f);
         }
+}
+
+}  // namespace
+}  // namespace fluence::render
+
+namespace fluence::render {
+namespace {
+
+TEST(OrenNayar, ZeroSigmaIsLambertianAndRoughnessBackScatters) {
+    const RGB albedo(0.6f);
+    OrenNayarBsdf smooth(albedo, 0.0f), rough(albedo, 0.5f);
+    LambertianBsdf lambert(albedo);
+    const Vec3f wo = normalize(Vec3f(0.6f, 0.0f, 0.8f));
+    for (const Vec3f& wi : {normalize(Vec3f(0.5f, 0.2f, 0.7f)), normalize(Vec3f(-0.7f, 0.1f, 0.3f)), Vec3f(0, 0, 1)})
+        EXPECT_FLOAT_EQ(smooth.f(wo, wi).x, lambert.f(wo, wi).x);
+    // A rough surface sends more light back towards the light (wi == wo) than on to the mirror
+    // direction; a Lambertian one sends the same.
+    const Vec3f mirror(-wo.x, -wo.y, wo.z);
+    EXPECT_GT(rough.f(wo, wo).x, 1.1f * rough.f(wo, mirror).x);
+    EXPECT_FLOAT_EQ(smooth.f(wo, wo).x, smooth.f(wo, mirror).x);
 }
 
 }  // namespace
