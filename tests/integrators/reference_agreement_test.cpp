@@ -17,6 +17,15 @@
 namespace fluence::integrators {
 namespace {
 
+// A constant dark-blue sky.
+render::LightDesc blueSkyDome() {
+    render::LightDesc dome;
+    dome.name = "/dome";
+    dome.type = render::LightType::Dome;
+    dome.radiance = RGB(0.1f, 0.15f, 0.3f);
+    return dome;
+}
+
 render::SceneDescription everyLightScene() {
     render::SceneDescription s;
     s.materials.push_back(test::diffuseMaterial("/grey", RGB(0.5f), RGB(0.0f)));
@@ -50,11 +59,7 @@ render::SceneDescription everyLightScene() {
     sun.normalize = true;
     sun.transform = Matrix4::rotateX(35) * Matrix4::rotateY(-20);
     s.lights.push_back(sun);
-    render::LightDesc dome;
-    dome.name = "/dome";
-    dome.type = render::LightType::Dome;
-    dome.radiance = RGB(0.1f, 0.15f, 0.3f);
-    s.lights.push_back(dome);
+    s.lights.push_back(blueSkyDome());
 
     s.camera = test::lookAtOriginCamera(5.0f);
     return s;
@@ -197,11 +202,7 @@ render::SceneDescription transmissiveScene() {
     bulb.radiance = RGB(8.0f);
     bulb.transform = Matrix4::translate({0.4, -2.2, 2.4});
     s.lights.push_back(bulb);
-    render::LightDesc dome;
-    dome.name = "/dome";
-    dome.type = render::LightType::Dome;
-    dome.radiance = RGB(0.1f, 0.15f, 0.3f);
-    s.lights.push_back(dome);
+    s.lights.push_back(blueSkyDome());
     s.camera = test::lookAtOriginCamera(5.0f);
     return s;
 }
