@@ -4,6 +4,8 @@
 
 #include "core/frame.h"
 #include "integrators/first_hit.h"
+#include "media/free_flight.h"
+#include "media/phase.h"
 #include "render/bsdf_arena.h"
 #include "render/material_bsdf.h"
 
@@ -16,18 +18,44 @@ FilmSample NaivePathTracer::sample(const render::RenderScene& scene, const rende
     render::Ray ray = cameraRay;
     render::BsdfArena arena;
     float etaScale = 1.0f;  // product of eta^2 over the refractions so far (Russian roulette)
+    // Through volumes: delta tracking alone, weighted as media/tracking.h's spectral MIS says
+    // (with no light strategy, the weight of a contribution is 1 / channelAverage(rU)).
+    const media::Medium* medium = scene.medium();
+    const int hero = medium ? media::sampleHeroChannel(rng.next()) : 0;
+    RGB rU(1.0f);
+    auto weighted = [&](const RGB& le) { return medium ? le / media::channelAverage(rU) : le; };
     for (int depth = 0;; ++depth) {
         ++(depth == 0 ? counters.camera : counters.bounce);
         std::optional<render::SurfaceHit> hit = scene.intersect(ray);
+        if (medium) {
+            media::FreeFlight flight = media::sampleFreeFlight(
+                *medium, {ray.origin, ray.direction, hit ? hit->t : std::numeric_limits<float>::infinity()}, hero, rng);
+            throughput *= flight.throughput;
+            rU *= flight.pdfRatio;
+            if (flight.event == media::FlightEvent::Absorbed) {
+                radiance += throughput * weighted(flight.properties.emission);
+                break;
+            }
+            if (flight.event == media::FlightEvent::Scattered) {
+                if (depth >= maxDepth_) break;
+                media::PhaseSample ps = media::HenyeyGreenstein(flight.properties.g).sample(-ray.direction, rng.next2D());
+                if (ps.pdf <= 0.0f) break;
+                throughput *= ps.p / ps.pdf;
+                if (!continuePath(throughput, etaScale, depth, rng)) break;
+                ray = render::Ray{flight.p, ps.wi, 0.0f, std::numeric_limits<float>::infinity()};
+                continue;
+            }
+        }
         if (!hit) {
-            for (int index : scene.lightsAtInfinity()) radiance += throughput * scene.light(index).escaped(ray.direction);
+            for (int index : scene.lightsAtInfinity())
+                radiance += throughput * weighted(scene.light(index).escaped(ray.direction));
             break;
         }
         Vec3f wo = -ray.direction;
         if (depth == 0) recordFirstHit(out, *hit, wo, camera);
         if (hit->light >= 0)
-            radiance += throughput * (hit->lightShape ? scene.light(hit->light).emitted({hit->point, hit->geometricNormal}, wo)
-                                                      : hit->emission);
+            radiance += throughput * weighted(hit->lightShape ? scene.light(hit->light).emitted({hit->point, hit->geometricNormal}, wo)
+                                                               : hit->emission);
         if (hit->lightShape || depth >= maxDepth_) break;
 
         arena.reset();

@@ -1,8 +1,9 @@
 // `naive`: the reference estimator beside `path`. Covers L(S|D)*E except paths whose light
 // vertex is a delta light (a DistantLight of angle 0), which no BSDF sample can hit.
 //
-// It continues every path by sampling the BSDF and counts emission only where a path happens to
-// hit an emitter: no next-event estimation, no multiple importance sampling. It is slow and
+// It continues every path by sampling the BSDF (and, in volumes, by delta-tracked free flights and
+// phase-function sampling) and counts emission only where a path happens to hit an emitter or is
+// absorbed by an emitting medium: no next-event estimation, no multiple importance sampling. It is slow and
 // noisy, and it is deliberately simple, so that it can be trusted: the tests check that `path`
 // agrees with it within noise on scenes with every kind of light (pbrt-v4 keeps a SimplePath for
 // the same reason).
