@@ -22,6 +22,17 @@ inline void recordFirstHit(FilmSample& out, const render::SurfaceHit& hit, const
     out.normal = dot(hit.shadingNormal, wo) < 0.0f ? -hit.shadingNormal : hit.shadingNormal;
 }
 
+// Fills the AOVs of a camera sample whose first event is a real collision in a volume at p: it
+// counts as covered (so a pixel's alpha estimates the volume's opacity along it, 1 - T), with the
+// medium's single-scattering albedo and no normal.
+inline void recordFirstVolumeEvent(FilmSample& out, const Vec3f& p, const RGB& sigmaS, const RGB& sigmaT,
+                                   const render::Camera& camera) {
+    out.hit = true;
+    out.depth = camera.viewDepth(p);
+    for (int c = 0; c < 3; ++c) out.albedo[c] = sigmaT[c] > 0.0f ? sigmaS[c] / sigmaT[c] : 0.0f;
+    out.normal = Vec3f(0.0f);
+}
+
 // The local shading frame of a hit, z along the shading normal and x along the surface's tangent
 // where it has one (so anisotropic lobes follow the surface), with the geometric normal on the
 // same side. Following render/bsdf.h ("SIDES"): for a reflection-only BSDF (two-sided) both are

@@ -32,6 +32,9 @@ FilmSample NaivePathTracer::sample(const render::RenderScene& scene, const rende
                 *medium, {ray.origin, ray.direction, hit ? hit->t : std::numeric_limits<float>::infinity()}, hero, rng);
             throughput *= flight.throughput;
             rU *= flight.pdfRatio;
+            if (depth == 0 && flight.event != media::FlightEvent::Escaped)
+                recordFirstVolumeEvent(out, flight.p, flight.properties.sigmaS,
+                                       flight.properties.sigmaA + flight.properties.sigmaS, camera);
             if (flight.event == media::FlightEvent::Absorbed) {
                 radiance += throughput * weighted(flight.properties.emission);
                 break;

@@ -99,6 +99,9 @@ FilmSample PathTracer::sample(const render::RenderScene& scene, const render::Ca
             throughput *= flight.throughput;
             mis.rU *= flight.pdfRatio;
             mis.rL *= flight.lightPdfRatio;
+            if (depth == 0 && flight.event != media::FlightEvent::Escaped)
+                recordFirstVolumeEvent(out, flight.p, flight.properties.sigmaS,
+                                       flight.properties.sigmaA + flight.properties.sigmaS, camera);
             if (flight.event == media::FlightEvent::Absorbed) {
                 radiance += throughput * flight.properties.emission / media::channelAverage(mis.rU);
                 break;

@@ -53,16 +53,17 @@ render::SceneDescription smokeUnderAWhiteSky(const std::string& file, float dens
     return desc;
 }
 
-// The mean radiance of `n` paths along `ray` (`path` unless another integrator is given).
+// The mean radiance (or, with `alpha`, coverage) of `n` paths along `ray` (`path` unless another
+// integrator is given).
 test::MeanEstimate radianceAlong(const render::RenderScene& scene, const render::Ray& ray, int n,
-                                 const Integrator& tracer = PathTracer(IntegratorSettings{})) {
+                                 const Integrator& tracer = PathTracer(IntegratorSettings{}), bool alpha = false) {
     render::Camera camera(render::CameraDesc{}, 8, 8);
     RenderCounters counters;
     test::MeanEstimate e;
     for (int i = 0; i < n; ++i) {
         SampleStream rng(11, 0, std::uint64_t(i));
         FilmSample s = tracer.sample(scene, camera, ray, rng, counters);
-        e.add((s.radiance.x + s.radiance.y + s.radiance.z) / 3.0f);
+        e.add(alpha ? (s.hit ? 1.0f : 0.0f) : (s.radiance.x + s.radiance.y + s.radiance.z) / 3.0f);
     }
     return e;
 }
@@ -75,6 +76,11 @@ TEST(VolumePath, PureAbsorberTransmitsBeerLambert) {
     const float centre = 20 * kVoxel;
     test::MeanEstimate e = radianceAlong(scene, render::Ray{{-5.0f, centre, centre}, {1.0f, 0.0f, 0.0f}}, 20000);
     EXPECT_NEAR(e.mean(), std::exp(-1.0), 4.0 * e.standardError() + 1e-4) << e.mean() << " +- " << e.standardError();
+    // A camera sample counts as covered where its first event is in the volume: alpha estimates
+    // the opacity 1 - T.
+    test::MeanEstimate alpha = radianceAlong(scene, render::Ray{{-5.0f, centre, centre}, {1.0f, 0.0f, 0.0f}}, 20000,
+                                             PathTracer(IntegratorSettings{}), true);
+    EXPECT_NEAR(alpha.mean(), 1.0 - std::exp(-1.0), 4.0 * alpha.standardError());
 }
 
 TEST(VolumePath, AlbedoOneSmokeInAWhiteFurnaceVanishes) {
