@@ -33,17 +33,18 @@ fuzz: FUZZ_SECONDS ?= 3600
 fuzz: deps
 	FUZZ_BUILD_DIR=$(BUILD_DIR)/fuzz FUZZ_CORPUS=$(BUILD_DIR)/fuzz/corpus bash scripts/fuzz_smoke.sh $(FUZZ_SECONDS)
 
-# The benchmarks (bench/*.cpp: USDA parsing, instancing, subdivision, lights, rect textures, majorant grid); figures go to bench/results/.
+# The benchmarks (bench/*.cpp: USDA parsing, instancing, subdivision, lights, rect textures, majorant grid, volume tracking); figures go to bench/results/.
 bench: deps
 	cmake -S . -B $(BUILD_DIR) -G Ninja -DCMAKE_BUILD_TYPE=Release
 	cmake --build $(BUILD_DIR) -j $(JOBS) --target usda_parse_bench instancing_bench subdivision_bench many_lights_bench \
-		rect_texture_bench majorant_grid_bench
+		rect_texture_bench majorant_grid_bench volume_tracking_bench
 	$(BUILD_DIR)/bench/usda_parse_bench
 	$(BUILD_DIR)/bench/instancing_bench
 	$(BUILD_DIR)/bench/subdivision_bench
 	$(BUILD_DIR)/bench/many_lights_bench
 	$(BUILD_DIR)/bench/rect_texture_bench
 	$(BUILD_DIR)/bench/majorant_grid_bench
+	$(BUILD_DIR)/bench/volume_tracking_bench
 
 clean:
 	rm -rf $(BUILD_DIR) out

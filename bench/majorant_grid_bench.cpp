@@ -26,6 +26,7 @@
 #include <string>
 #include <vector>
 
+#include "bench/camera_rays.h"
 #include "core/matrix.h"
 #include "core/random.h"
 #include "volumes/majorant_grid.h"
@@ -39,24 +40,8 @@ using Clock = std::chrono::steady_clock;
 
 volatile float gSink;  // where timed loops leave a result, so that they are not optimised away
 
-struct Ray {
-    Vec3f origin, direction;
-};
-
-// A pinhole camera at `eye` looking at `target` with `up`, tan of the half fields of view, and one ray
-// through every `stride`-th pixel centre of a width x height image.
-std::vector<Ray> cameraRays(const Vec3f& eye, const Vec3f& target, const Vec3f& up, float tanHalfWidth,
-                            float tanHalfHeight, int width, int height, int stride) {
-    Vec3f forward = normalize(target - eye), right = normalize(cross(forward, up)), upward = cross(right, forward);
-    std::vector<Ray> rays;
-    for (int y = stride / 2; y < height; y += stride)
-        for (int x = stride / 2; x < width; x += stride) {
-            float u = (2.0f * (x + 0.5f) / width - 1.0f) * tanHalfWidth;
-            float v = (1.0f - 2.0f * (y + 0.5f) / height) * tanHalfHeight;
-            rays.push_back({eye, normalize(forward + right * u + upward * v)});
-        }
-    return rays;
-}
+using Ray = fluence::bench::CameraRay;
+using fluence::bench::cameraRays;
 
 struct Config {
     const char* name;
