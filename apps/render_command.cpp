@@ -69,6 +69,9 @@ int runRender(const RenderOptions& opt) {
         populated = delegate::populateScene(*stage, dopt);
         scene = std::make_unique<render::RenderScene>(populated->scene, std::make_shared<texture::TextureSystem>(*colors));
         for (const render::Warning& w : scene->warnings()) warnings(w.where, w.message);
+    } catch (const delegate::MissingAssetError& e) {
+        printError(e.what());
+        return kExitMissingInput;
     } catch (const delegate::SceneError& e) {
         printError(e.what());
         return kExitScene;

@@ -23,6 +23,13 @@ public:
     using std::runtime_error::runtime_error;
 };
 
+// A file the scene needs to render and cannot do without (an OpenVDB grid file) is missing: names
+// the prim and the file. The CLI exits with its missing-input code.
+class MissingAssetError : public SceneError {
+public:
+    using SceneError::SceneError;
+};
+
 class PrimReader {
 public:
     PrimReader(const usd::PrimSpec& prim, double time) : prim_(prim), time_(time) {}

@@ -233,7 +233,7 @@ std::optional<render::VolumeDesc> SceneDelegate::volumeDesc(const VolumeRprim& v
             const auto* asset = dynamic_cast<const FieldBprim*>(index_.find(f.assetPrim));
             if (!asset) return std::nullopt;
             if (!asset->fileFound())
-                throw SceneError(volume.path() + ": field '" + name + "': OpenVDB file " +
+                throw MissingAssetError(volume.path() + ": field '" + name + "': OpenVDB file " +
                                  (asset->filePath().empty() ? "(not authored)" : asset->filePath()) + " not found");
             return render::VolumeFieldDesc{asset->filePath(), asset->gridName(), asset->fieldIndex()};
         }

@@ -92,7 +92,8 @@ private:
     // counts the triangles they took.
     render::SceneDescription describe(const render::Camera& camera, float scale, std::size_t& subdivisionTriangles) const;
     // The render core's description of a Volume: its material's parameters and its grids (nullopt,
-    // with a warning, when it has no density field). Raises SceneError when a grid file is missing.
+    // with a warning, when it has no density field). Raises MissingAssetError when a grid file is
+    // missing.
     std::optional<render::VolumeDesc> volumeDesc(const VolumeRprim& volume) const;
     SyncContext context() const { return {stage_, options_.time, options_.convertColor, options_.warn}; }
 

@@ -285,6 +285,18 @@ TEST_F(FluenceCli, MissingCameraIsASceneError) {
     EXPECT_FALSE(fs::exists(dir_ / "x.exr"));
 }
 
+TEST_F(FluenceCli, AMissingVdbFileIsAMissingInputNamingThePrimAndFile) {
+    fs::path scene = write("smoke.usda", "#usda 1.0\ndef Camera \"Cam\"\n{\n}\ndef Volume \"Smoke\"\n{\n"
+                                         "    rel field:density = </Smoke/Density>\n"
+                                         "    def OpenVDBAsset \"Density\"\n    {\n"
+                                         "        asset filePath = @./nowhere.vdb@\n        token fieldName = \"density\"\n    }\n}\n");
+    RunResult r = run("render " + scene.string() + " -o " + (dir_ / "x.exr").string() + " --spp 1 -r 8 8");
+    EXPECT_EQ(r.exitCode, 4) << r.err;
+    EXPECT_NE(r.err.find("/Smoke: field 'density': OpenVDB file"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("nowhere.vdb"), std::string::npos) << r.err;
+    EXPECT_FALSE(fs::exists(dir_ / "x.exr"));
+}
+
 TEST_F(FluenceCli, AStageWithoutACameraIsFramedByADefaultOne) {
     fs::path noCamera = write("nocam.usda", "#usda 1.0\ndef Xform \"World\"\n{\n}\n");
     RunResult r = run("render " + noCamera.string() + " -o " + (dir_ / "x.exr").string() + " --spp 1 -r 8 8");
