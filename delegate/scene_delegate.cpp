@@ -224,7 +224,8 @@ render::SceneDescription SceneDelegate::sceneDescription() const {
 
 std::optional<render::VolumeDesc> SceneDelegate::volumeDesc(const VolumeRprim& volume) const {
     const VolumeMaterial& material = volume.material();
-    render::VolumeDesc desc = material.params;
+    render::VolumeDesc desc;
+    desc.params = material.params;
     desc.name = volume.path();
     desc.transform = volume.world();
     auto field = [&](const std::string& name) -> std::optional<render::VolumeFieldDesc> {

@@ -1,5 +1,7 @@
 #include "delegate/volume_adapter.h"
 
+#include <algorithm>
+
 #include "delegate/prim_reader.h"
 #include "delegate/shader_inputs.h"
 
@@ -96,7 +98,7 @@ VolumeMaterial volumeMaterialOf(const usd::Stage& stage, const usd::PrimSpec& vo
     }
     ShaderInputs inputs(stage, *shader, time, convertColor, warn);
     VolumeShaderReader in(inputs, volume, time);
-    render::VolumeDesc& p = m.params;
+    volumes::GridMediumParams& p = m.params;
     m.densityField = in.field("density", m.densityField);
     const bool heat = shader->attribute("inputs:heat") != nullptr;  // the preview shaders' name
     m.temperatureField = in.field(heat ? "heat" : "temperature", heat ? "heat" : m.temperatureField);

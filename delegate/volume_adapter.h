@@ -1,12 +1,12 @@
-// A UsdVol Volume's volume material -> the parameters of render::VolumeDesc and the fields that
-// feed them.
+// A UsdVol Volume's volume material -> render::VolumeDesc::params (volumes::GridMediumParams) and
+// the fields that feed them.
 //
 // The material: the one bound to the Volume (material:binding:full, material:binding, else
 // material:binding:preview — volume files are often authored for preview renderers only), its
 // `outputs:volume` followed (through NodeGraph outputs) to a Shader. The shader is read by input
 // name, whatever its info:id (Fluence's "FluenceVolume", or a preview shader with the same
 // names, such as the glslfx shaders of OpenUSD's UsdVol tests):
-// | input              | type                 | fallback              | VolumeDesc                |
+// | input              | type                 | fallback              | GridMediumParams          |
 // |--------------------|----------------------|-----------------------|---------------------------|
 // | density            | float (field reader) | the field "density"   | density grid              |
 // | densityScale       | float                | 1                     | densityScale              |
@@ -30,13 +30,13 @@
 #include <string>
 
 #include "delegate/material_adapter.h"
-#include "render/scene_description.h"
+#include "volumes/grid_medium_params.h"
 
 namespace fluence::delegate {
 
 struct VolumeMaterial {
     std::string densityField = "density", temperatureField = "temperature", colorField = "Cd";
-    render::VolumeDesc params;  // the numeric parameters (fields, name and transform unset)
+    volumes::GridMediumParams params;
 };
 
 VolumeMaterial volumeMaterialOf(const usd::Stage& stage, const usd::PrimSpec& volume, double time,

@@ -280,16 +280,8 @@ void RenderScene::addVolumes(const std::vector<VolumeDesc>& volumes) {
             if (v.temperature) temperature.emplace(v.temperature->file, v.temperature->gridName, v.temperature->gridIndex, v.transform);
             std::optional<volumes::Vec3VdbGrid> color;
             if (v.color) color.emplace(v.color->file, v.color->gridName, v.color->gridIndex, v.transform);
-            volumes::GridMediumParams params;
-            params.densityScale = v.densityScale;
-            params.albedo = v.albedo;
-            params.anisotropy = v.anisotropy;
-            params.emissionScale = v.emissionScale;
-            params.emissionColor = v.emissionColor;
-            params.blackbodyIntensity = v.blackbodyIntensity;
-            params.temperatureScale = v.temperatureScale;
-            params.temperatureOffset = v.temperatureOffset;
-            media.push_back(std::make_unique<volumes::GridMedium>(std::move(density), params, std::move(temperature), std::move(color)));
+            media.push_back(
+                std::make_unique<volumes::GridMedium>(std::move(density), v.params, std::move(temperature), std::move(color)));
         } catch (const std::exception& e) {
             throw std::invalid_argument(v.name + ": " + e.what());
         }

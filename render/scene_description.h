@@ -16,6 +16,7 @@
 #include "core/matrix.h"
 #include "core/rgb.h"
 #include "texture/texture_types.h"
+#include "volumes/grid_medium_params.h"
 
 namespace fluence::render {
 
@@ -195,13 +196,7 @@ struct VolumeDesc {
     std::string name;                         // prim path
     Matrix4 transform = Matrix4::identity();  // volume-to-world (the grids' own transforms apply first)
     std::optional<VolumeFieldDesc> density, temperature, color;
-    float densityScale = 1.0f;
-    RGB albedo{0.8f};
-    float anisotropy = 0.0f;
-    RGB emissionColor{1.0f};
-    float emissionScale = 0.0f;
-    float temperatureScale = 1.0f, temperatureOffset = 0.0f;
-    float blackbodyIntensity = 0.0f;
+    volumes::GridMediumParams params;  // the material's parameters
 };
 
 enum class Projection { Perspective, Orthographic };

@@ -29,8 +29,8 @@
 // | temperatureScale   | float | 1       | K per grid unit| temperature grid to kelvin               |
 // | temperatureOffset  | float | 0       | K              | added after the scale                    |
 //
-// The defaults and names are render::VolumeDesc's (render/scene_description.h), which the delegate
-// fills from a UsdVol Volume's material; bad values throw std::invalid_argument naming the
+// The parameters are GridMediumParams (volumes/grid_medium_params.h), which render::VolumeDesc
+// holds and the delegate fills from a UsdVol Volume's material; bad values throw std::invalid_argument naming the
 // parameter. The grids may have different transforms and resolutions; each is sampled at the
 // world point. The medium is confined to the density grid's support (volumes/vdb_grid.h).
 //
@@ -42,21 +42,11 @@
 #include <optional>
 
 #include "media/medium.h"
+#include "volumes/grid_medium_params.h"
 #include "volumes/majorant_grid.h"
 #include "volumes/vdb_grid.h"
 
 namespace fluence::volumes {
-
-struct GridMediumParams {
-    float densityScale = 1.0f;
-    RGB albedo{0.8f};
-    RGB absorptionColor{0.0f};
-    float anisotropy = 0.0f;
-    float emissionScale = 0.0f;
-    RGB emissionColor{1.0f};
-    float blackbodyIntensity = 0.0f;
-    float temperatureScale = 1.0f, temperatureOffset = 0.0f;
-};
 
 class GridMedium final : public media::Medium {
 public:

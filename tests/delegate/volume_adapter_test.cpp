@@ -46,9 +46,9 @@ TEST(VolumeAdapter, TwoFieldsAndAPreviewMaterialReadThroughPrimvarReaders) {
     ASSERT_TRUE(v.temperature) << "the preview shader's heat field";
     EXPECT_EQ(v.temperature->gridName, "heat");
     EXPECT_FALSE(v.color);
-    EXPECT_FLOAT_EQ(v.densityScale, 3.0f) << "primvars:densityScale through a UsdPrimvarReader_float";
-    EXPECT_EQ(v.albedo, RGB(0.8f));
-    EXPECT_FLOAT_EQ(v.temperatureScale, 10.0f);
+    EXPECT_FLOAT_EQ(v.params.densityScale, 3.0f) << "primvars:densityScale through a UsdPrimvarReader_float";
+    EXPECT_EQ(v.params.albedo, RGB(0.8f));
+    EXPECT_FLOAT_EQ(v.params.temperatureScale, 10.0f);
     // translate (0, -3, 0), then rotateX -90: the volume's +Z points along world +Y.
     Vec3d up = v.transform.transformVector(Vec3d(0, 0, 1));
     EXPECT_NEAR(up.y, 1.0, 1e-9);
@@ -62,9 +62,9 @@ TEST(VolumeAdapter, UnboundVolumesUseTheFallbackAndFileSequencesFollowTheFrame) 
         ASSERT_EQ(o.result.scene.volumes.size(), 1u);
         const render::VolumeDesc& v = o.result.scene.volumes[0];
         EXPECT_EQ(fs::path(v.density->file).filename(), "smoke_00000" + std::to_string(frame) + ".vdb");
-        EXPECT_FLOAT_EQ(v.densityScale, 1.0f);
-        EXPECT_EQ(v.albedo, RGB(0.8f));
-        EXPECT_FLOAT_EQ(v.blackbodyIntensity, 0.0f);
+        EXPECT_FLOAT_EQ(v.params.densityScale, 1.0f);
+        EXPECT_EQ(v.params.albedo, RGB(0.8f));
+        EXPECT_FLOAT_EQ(v.params.blackbodyIntensity, 0.0f);
     }
 }
 
@@ -127,12 +127,12 @@ def Scope "Looks"
     ASSERT_EQ(p.result.scene.volumes.size(), 1u);
     const render::VolumeDesc& v = p.result.scene.volumes[0];
     EXPECT_EQ(v.temperature->gridIndex, 1);
-    EXPECT_FLOAT_EQ(v.densityScale, 4.0f);
-    EXPECT_EQ(v.albedo, RGB(0.9f, 0.7f, 0.5f));
-    EXPECT_FLOAT_EQ(v.anisotropy, 0.4f);
-    EXPECT_FLOAT_EQ(v.temperatureScale, 1000.0f);
-    EXPECT_FLOAT_EQ(v.temperatureOffset, 300.0f);
-    EXPECT_FLOAT_EQ(v.blackbodyIntensity, 2.0f);
+    EXPECT_FLOAT_EQ(v.params.densityScale, 4.0f);
+    EXPECT_EQ(v.params.albedo, RGB(0.9f, 0.7f, 0.5f));
+    EXPECT_FLOAT_EQ(v.params.anisotropy, 0.4f);
+    EXPECT_FLOAT_EQ(v.params.temperatureScale, 1000.0f);
+    EXPECT_FLOAT_EQ(v.params.temperatureOffset, 300.0f);
+    EXPECT_FLOAT_EQ(v.params.blackbodyIntensity, 2.0f);
 }
 
 }  // namespace

@@ -46,8 +46,8 @@ render::SceneDescription smokeUnderAWhiteSky(const std::string& file, float dens
     render::VolumeDesc v;
     v.name = "/Smoke";
     v.density = render::VolumeFieldDesc{file, "density", -1};
-    v.densityScale = densityScale;
-    v.albedo = albedo;
+    v.params.densityScale = densityScale;
+    v.params.albedo = albedo;
     desc.volumes.push_back(v);
     desc.camera = render::CameraDesc{};
     return desc;
