@@ -72,9 +72,11 @@ FilmSample PathTracer::sample(const render::RenderScene& scene, const render::Ca
     // Next-event estimation from `from` (with `fromNormal` for the light tree): one light, its
     // shadow ray (from shadowFrom(wi)) through the surfaces and the medium, weighted against the
     // scattering strategy; scatter(wi) gives the BSDF or phase value (cosine included) and its density.
-    auto sampleLight = [&](const Vec3f& from, const Vec3f& fromNormal, auto&& shadowFrom, auto&& scatter) {
+    // Its random numbers are drawn even when it is not `enabled`, so that every vertex uses as many.
+    auto sampleLight = [&](bool enabled, const Vec3f& from, const Vec3f& fromNormal, auto&& shadowFrom, auto&& scatter) {
         float uLight = rng.next();
         Vec2f uPoint = rng.next2D();
+        if (!enabled) return;
         render::LightChoice choice = scene.chooseLight(from, fromNormal, uLight);
         if (choice.light < 0 || choice.probability <= 0.0f) return;
         std::optional<render::LightSample> ls = scene.light(choice.light).sample(from, uPoint);
@@ -87,6 +89,14 @@ FilmSample PathTracer::sample(const render::RenderScene& scene, const render::Ca
         media::TransmittanceEstimate tr;
         if (medium) tr = media::ratioTrackingTransmittance(*medium, {shadowOrigin, ls->wi, ls->distance}, hero, rng);
         radiance += throughput * f * ls->Li * mis.lightSample(choice.probability * ls->pdf, ls->delta ? 0.0f : scatterPdf, tr);
+    };
+    // Emission `le` of light `index` reached by the ray (at `lh` on its shape, if it has one),
+    // weighted against the light strategy unless only this path could have found it.
+    auto addEmitted = [&](const RGB& le, int index, const LightHit& lh, int depth) {
+        const bool unique = depth == 0 || specularBounce;
+        float weight = mis.emitter(
+            unique ? 0.0f : lightStrategyPdf(scene, index, previousPoint, previousNormal, ray.direction, lh), unique);
+        radiance += throughput * le * weight;
     };
 
     for (int depth = 0;; ++depth) {
@@ -110,15 +120,10 @@ FilmSample PathTracer::sample(const render::RenderScene& scene, const render::Ca
                 if (depth >= maxDepth_) break;
                 const Vec3f wo = -ray.direction;
                 const media::HenyeyGreenstein phase(flight.properties.g);
-                if (haveLights)
-                    sampleLight(flight.p, Vec3f(0.0f), [&](const Vec3f&) { return flight.p; }, [&](const Vec3f& wi) {
-                        float p = phase.p(wo, wi);
-                        return std::pair(RGB(p), p);
-                    });
-                else {
-                    rng.next();
-                    rng.next2D();
-                }
+                sampleLight(haveLights, flight.p, Vec3f(0.0f), [&](const Vec3f&) { return flight.p; }, [&](const Vec3f& wi) {
+                    float p = phase.p(wo, wi);
+                    return std::pair(RGB(p), p);
+                });
                 media::PhaseSample ps = phase.sample(wo, rng.next2D());
                 if (ps.pdf <= 0.0f) break;
                 throughput *= ps.p / ps.pdf;
@@ -135,12 +140,7 @@ FilmSample PathTracer::sample(const render::RenderScene& scene, const render::Ca
         if (!hit) {
             for (int index : scene.lightsAtInfinity()) {
                 RGB le = scene.light(index).escaped(ray.direction);
-                if (isBlack(le)) continue;
-                const bool unique = depth == 0 || specularBounce;
-                float weight = mis.emitter(
-                    unique ? 0.0f : lightStrategyPdf(scene, index, previousPoint, previousNormal, ray.direction, LightHit{}),
-                    unique);
-                radiance += throughput * le * weight;
+                if (!isBlack(le)) addEmitted(le, index, LightHit{}, depth);
             }
             break;
         }
@@ -152,13 +152,7 @@ FilmSample PathTracer::sample(const render::RenderScene& scene, const render::Ca
         if (hit->light >= 0) {
             LightHit lh{hit->point, hit->geometricNormal};
             RGB le = hit->lightShape ? scene.light(hit->light).emitted(lh, wo) : hit->emission;
-            if (!isBlack(le)) {
-                const bool unique = depth == 0 || specularBounce;
-                float weight = mis.emitter(
-                    unique ? 0.0f : lightStrategyPdf(scene, hit->light, previousPoint, previousNormal, ray.direction, lh),
-                    unique);
-                radiance += throughput * le * weight;
-            }
+            if (!isBlack(le)) addEmitted(le, hit->light, lh, depth);
         }
         if (hit->lightShape || depth >= maxDepth_) break;
 
@@ -178,20 +172,15 @@ FilmSample PathTracer::sample(const render::RenderScene& scene, const render::Ca
         const Vec3f lightFrom = transmissive ? hit->point : render::offsetRayOrigin(hit->point, ng);
         const Vec3f lightNormal = transmissive ? Vec3f(0.0f) : ng;
 
-        // Next-event estimation: one light, chosen by the light tree for this point and normal.
-        if (haveLights && connectable) {
-            // The shadow ray leaves a transmissive surface on the light's side.
-            auto shadowFrom = [&](const Vec3f& wi) { return transmissive ? spawnOrigin(hit->point, ng, wi) : lightFrom; };
-            sampleLight(lightFrom, lightNormal, shadowFrom, [&](const Vec3f& wi) {
-                Vec3f wiLocal = frame.toLocal(wi);
-                bool agree = sidesAgree(wo, wi, ng, woLocal.z, wiLocal.z);
-                return std::pair(agree ? bsdf.f(woLocal, wiLocal) * std::abs(wiLocal.z) : RGB(0.0f),
-                                 agree ? bsdf.pdf(woLocal, wiLocal) : 0.0f);
-            });
-        } else {
-            rng.next();
-            rng.next2D();
-        }
+        // Next-event estimation: one light, chosen by the light tree for this point and normal; the
+        // shadow ray leaves a transmissive surface on the light's side.
+        auto shadowFrom = [&](const Vec3f& wi) { return transmissive ? spawnOrigin(hit->point, ng, wi) : lightFrom; };
+        sampleLight(haveLights && connectable, lightFrom, lightNormal, shadowFrom, [&](const Vec3f& wi) {
+            Vec3f wiLocal = frame.toLocal(wi);
+            bool agree = sidesAgree(wo, wi, ng, woLocal.z, wiLocal.z);
+            return std::pair(agree ? bsdf.f(woLocal, wiLocal) * std::abs(wiLocal.z) : RGB(0.0f),
+                             agree ? bsdf.pdf(woLocal, wiLocal) : 0.0f);
+        });
 
         // Continue the path by sampling the BSDF (a plain Lambertian has one lobe: no lobe number drawn).
         const float uLobe = bsdf.flags() == (render::kBsdfReflection | render::kBsdfDiffuse) ? 0.0f : rng.next();
