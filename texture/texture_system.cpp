@@ -16,7 +16,6 @@ struct TextureSystem::Texture {
     OIIO::TextureSystem::TextureHandle* handle = nullptr;
     bool udim = false;
     int channels = 0;
-    bool greyAlpha = false;  // two channels: grey and alpha
     color::ColorConversion toRendering;
 };
 
@@ -89,7 +88,6 @@ const TextureSystem::Texture* TextureSystem::open(const std::string& path, Sourc
         return nullptr;
     }
     texture.channels = spec->nchannels;
-    texture.greyAlpha = spec->nchannels == 2;
     std::string space = sourceSpace(*spec, colorSpace, impl_->colors);
     try {
         texture.toRendering = impl_->colors.conversionToRenderingSpace(space);
@@ -120,8 +118,8 @@ bool TextureSystem::lookup(const Texture& texture, float s, float t, const Footp
     bool ok = impl_->system->texture(texture.handle, thread, options, s, oiioT, f.dsdx, -f.dtdx, f.dsdy, -f.dtdy, channels,
                                      result);
     if (!ok) return false;
-    if (channels == 1 || texture.greyAlpha) {
-        float alpha = texture.greyAlpha ? result[1] : 1.0f;
+    if (channels <= 2) {  // grey, or grey and alpha
+        float alpha = channels == 2 ? result[1] : 1.0f;
         result[1] = result[2] = result[0];
         result[3] = alpha;
     } else if (channels == 3) {
