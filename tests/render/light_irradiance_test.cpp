@@ -32,19 +32,8 @@ double polygonIrradiance(const std::array<Vec3f, 4>& corners, const Vec3f& p, co
     return 0.5 * radiance * std::abs(sum);
 }
 
-// A 2 x 1 rect of radiance 3, tilted, facing down onto the origin.
-LightDesc tiltedRect() {
-    LightDesc d;
-    d.type = LightType::Rect;
-    d.width = 2.0f;
-    d.height = 1.0f;
-    d.radiance = RGB(3.0f);
-    d.transform = Matrix4::translate({0.3, 2.0, -0.2}) * Matrix4::rotateZ(10) * Matrix4::rotateX(-90);
-    return d;
-}
-
 TEST(LightIrradiance, RectMatchesLambertsPolygonFormula) {
-    RectLight light(tiltedRect());
+    RectLight light(test::tiltedRectDesc());
     Vec3f p(0.1f, 0.0f, 0.2f), n = normalize(Vec3f(0.2f, 1.0f, -0.1f));
     expectIrradiance(light, p, n, polygonIrradiance(light.corners(), p, n, 3.0));
 }
@@ -53,7 +42,7 @@ TEST(LightIrradiance, RectMatchesLambertsPolygonFormula) {
 // them is its exact irradiance. The window texture's 1500:1 contrast puts most of it in a few
 // texels, which the importance sampler must find: under the window and off to its side.
 TEST(LightIrradiance, TexturedRectMatchesLambertsFormulaPerTexel) {
-    LightDesc d = tiltedRect();
+    LightDesc d = test::tiltedRectDesc();
     d.texture = test::windowTexture();
     RectLight light(d);
     const render::RgbImage& texture = *d.texture;

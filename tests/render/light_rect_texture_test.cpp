@@ -17,15 +17,10 @@
 namespace fluence::render {
 namespace {
 
-// A 2 x 1 rect emitting downwards (-Y) from y = 2, tilted a little.
+// The tilted rect of the light tests with `texture`.
 LightDesc tiltedRect(std::shared_ptr<const RgbImage> texture) {
-    LightDesc d;
+    LightDesc d = test::tiltedRectDesc();
     d.name = "/window";
-    d.type = LightType::Rect;
-    d.width = 2.0f;
-    d.height = 1.0f;
-    d.radiance = RGB(3.0f);
-    d.transform = Matrix4::translate({0.3, 2.0, -0.2}) * Matrix4::rotateZ(10) * Matrix4::rotateX(-90);
     d.texture = std::move(texture);
     return d;
 }

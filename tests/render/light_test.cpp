@@ -16,20 +16,8 @@ using test::hitRect;
 
 constexpr double kPiD = 3.14159265358979323846;
 
-LightDesc rectDesc() {
-    LightDesc d;
-    d.name = "/rect";
-    d.type = LightType::Rect;
-    d.width = 2.0f;
-    d.height = 1.0f;
-    d.radiance = RGB(3.0f);
-    // Emits downwards (-Y) from y = 2, tilted a little.
-    d.transform = Matrix4::translate({0.3, 2.0, -0.2}) * Matrix4::rotateZ(10) * Matrix4::rotateX(-90);
-    return d;
-}
-
 TEST(RectLight, SamplingMatchesPdf) {
-    RectLight light(rectDesc());
+    RectLight light(test::tiltedRectDesc());
     Vec3f p(0.1f, 0.0f, 0.2f);
     auto r = test::chi2SphereTest(directionsOf(light, p), [&](const Vec3f& wi) {
         auto h = hitRect(light, p, wi);
@@ -39,13 +27,13 @@ TEST(RectLight, SamplingMatchesPdf) {
 }
 
 TEST(RectLight, EmitsFromItsFrontOnlyAndNormalizeDividesByArea) {
-    RectLight light(rectDesc());
+    RectLight light(test::tiltedRectDesc());
     EXPECT_NEAR(light.area(), 2.0f, 1e-5f);
     LightHit h{Vec3f(0.3f, 2.0f, -0.2f), Vec3f(0, -1, 0)};
     EXPECT_EQ(light.emitted(h, Vec3f(0, -1, 0)), RGB(3.0f));
     EXPECT_EQ(light.emitted(h, Vec3f(0, 1, 0)), RGB(0.0f));
     EXPECT_FALSE(light.sample(Vec3f(0, 3, 0), Vec2f{0.5f, 0.5f})) << "no light reaches the back side";
-    LightDesc d = rectDesc();
+    LightDesc d = test::tiltedRectDesc();
     d.normalize = true;
     d.transform = d.transform * Matrix4::scale({2, 2, 1});  // world area 8
     RectLight normalized(d);

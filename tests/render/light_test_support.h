@@ -20,6 +20,18 @@ namespace fluence::test {
 using render::Light;
 using render::LightHit;
 
+// A 2 x 1 rect of radiance 3 emitting downwards (-Y) from y = 2, tilted a little.
+inline render::LightDesc tiltedRectDesc() {
+    render::LightDesc d;
+    d.name = "/rect";
+    d.type = render::LightType::Rect;
+    d.width = 2.0f;
+    d.height = 1.0f;
+    d.radiance = RGB(3.0f);
+    d.transform = Matrix4::translate({0.3, 2.0, -0.2}) * Matrix4::rotateZ(10) * Matrix4::rotateX(-90);
+    return d;
+}
+
 // A width x height image with texel(x, y) at column x, row y (row 0 at the top).
 inline std::shared_ptr<render::RgbImage> image(int width, int height, const std::function<RGB(int x, int y)>& texel) {
     auto img = std::make_shared<render::RgbImage>();
