@@ -2,6 +2,9 @@
 
 #include "delegate/shading_network.h"
 
+#include <algorithm>
+#include <cmath>
+
 namespace fluence::delegate {
 
 namespace {
@@ -15,6 +18,18 @@ void dropDrivenEmission(const ShaderInputs& in, render::MaterialDesc& m) {
 }
 
 }  // namespace
+
+media::MediumProperties transmissionMedium(const RGB& color, const RGB& scatter, float anisotropy, float depth) {
+    media::MediumProperties m;
+    RGB sigmaT;
+    for (int c = 0; c < 3; ++c) sigmaT[c] = -std::log(std::clamp(color[c], kMinTransmissionColor, 1.0f)) / depth;
+    m.sigmaS = vmax(scatter, RGB(0.0f)) / depth;
+    m.sigmaA = sigmaT - m.sigmaS;
+    const float lowest = std::min({m.sigmaA.x, m.sigmaA.y, m.sigmaA.z});
+    if (lowest < 0.0f) m.sigmaA -= RGB(lowest);
+    m.g = std::clamp(anisotropy, -kMaxInteriorAnisotropy, kMaxInteriorAnisotropy);
+    return m;
+}
 
 render::MaterialDesc previewSurface(const ShaderInputs& in, const std::string& materialPath) {
     render::MaterialDesc m;
@@ -82,6 +97,12 @@ render::MaterialDesc standardSurface(const ShaderInputs& in, const std::string& 
     m.subsurfaceColor = in.color("subsurface_color", RGB(1.0f));
     m.subsurfaceRadius = in.color("subsurface_radius", RGB(1.0f));
     m.subsurfaceScale = in.number("subsurface_scale", 1.0f);
+    const float depth = in.number("transmission_depth", 0.0f);
+    if (depth > 0.0f && !m.thinWalled) {  // transmission_color is reached at that depth inside
+        m.interior = transmissionMedium(m.transmissionColor, in.color("transmission_scatter", RGB(0.0f)),
+                                        in.number("transmission_scatter_anisotropy", 0.0f), depth);
+        m.transmissionColor = RGB(1.0f);
+    }
     using render::MaterialInput;
     // Standard Surface's base weight multiplies base_color: a node drives the colour, and the
     // binding keeps the weight as its factor.
@@ -104,6 +125,8 @@ render::MaterialDesc standardSurface(const ShaderInputs& in, const std::string& 
                  m.bindings);
     for (render::InputBinding& b : m.bindings)
         if (b.input == MaterialInput::Diffuse) b.factor = in.number("base", 0.8f);
+    if (m.interior && std::erase_if(m.bindings, [](const render::InputBinding& b) { return b.input == MaterialInput::TransmissionColor; }) > 0)
+        in.warn()(in.shader().path, "transmission_color driven by a node with transmission_depth > 0: the interior medium uses its constant value");
     dropDrivenEmission(in, m);
     return m;
 }

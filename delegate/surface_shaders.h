@@ -28,8 +28,13 @@
 // sheen_color (1), sheen_roughness (0.3); coat (0), coat_color (1), coat_roughness (0.1), coatIor
 // = coat_IOR (1.5); emission = emission (0) * emission_color (1); opacity = the mean of opacity
 // (1, 1, 1); thin_walled (false); subsurface (0), subsurface_color (1), subsurface_radius (1),
-// subsurface_scale (1). Inputs not listed (specular_rotation, transmission_depth/scatter/
-// dispersion, thin_film_*, coat_anisotropy/affect_*, normal, tangent) are not read. The colour,
+// subsurface_scale (1). transmission_depth (0), transmission_scatter (0) and
+// transmission_scatter_anisotropy (0): with a depth > 0 on a solid (not thin-walled), the
+// transmission colour is no longer a tint at the surface but the colour white light takes after
+// travelling `depth` scene units inside, and the material's interior becomes a homogeneous medium
+// (transmissionMedium() below, the mapping of Standard Surface and OpenPBR's translucent base).
+// Inputs not listed (specular_rotation, transmission_dispersion/extra_roughness, thin_film_*,
+// coat_anisotropy/affect_*, normal, tangent) are not read. The colour,
 // weight and roughness inputs may be driven by UsdUVTexture / primvar-reader nodes (base_color
 // keeps base as its factor); MaterialX's own texture nodes are not read. Emission stays constant
 // in both shaders: a node driving it is dropped with a warning (emissive triangles are lights of
@@ -44,6 +49,16 @@
 namespace fluence::delegate {
 
 inline constexpr const char* kStandardSurfaceId = "ND_standard_surface_surfaceshader";
+
+// The interior of a Standard Surface solid with transmission_depth `depth` > 0, per channel:
+// extinction sigmaT = -ln(color) / depth (so that exp(-sigmaT depth) = color; color is clamped to
+// [kMinTransmissionColor, 1]), scattering sigmaS = scatter / depth, absorption sigmaA = sigmaT -
+// sigmaS, all three channels raised together where that is negative (a scatter brighter than
+// the colour allows: extinction grows rather than scattering shrink), and the Henyey-Greenstein g
+// = anisotropy, clamped to +-kMaxInteriorAnisotropy.
+inline constexpr float kMinTransmissionColor = 1e-4f;
+inline constexpr float kMaxInteriorAnisotropy = 0.99f;
+media::MediumProperties transmissionMedium(const RGB& color, const RGB& scatter, float anisotropy, float depth);
 
 render::MaterialDesc previewSurface(const ShaderInputs& inputs, const std::string& materialPath);
 render::MaterialDesc standardSurface(const ShaderInputs& inputs, const std::string& materialPath);

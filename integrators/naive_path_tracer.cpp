@@ -4,6 +4,7 @@
 
 #include "core/frame.h"
 #include "integrators/first_hit.h"
+#include "integrators/medium_stack.h"
 #include "media/free_flight.h"
 #include "media/phase.h"
 #include "render/bsdf_arena.h"
@@ -20,14 +21,15 @@ FilmSample NaivePathTracer::sample(const render::RenderScene& scene, const rende
     float etaScale = 1.0f;  // product of eta^2 over the refractions so far (Russian roulette)
     // Through volumes: delta tracking alone, weighted as media/tracking.h's spectral MIS says
     // (with no light strategy, the weight of a contribution is 1 / channelAverage(rU)).
-    const media::Medium* medium = scene.medium();
-    const int hero = medium ? media::sampleHeroChannel(rng.next()) : 0;
+    MediumStack inside(scene);  // the media the path is in
+    const bool spectral = scene.hasMedia();
+    const int hero = spectral ? media::sampleHeroChannel(rng.next()) : 0;
     RGB rU(1.0f);
-    auto weighted = [&](const RGB& le) { return medium ? le / media::channelAverage(rU) : le; };
+    auto weighted = [&](const RGB& le) { return spectral ? le / media::channelAverage(rU) : le; };
     for (int depth = 0;; ++depth) {
         ++(depth == 0 ? counters.camera : counters.bounce);
         std::optional<render::SurfaceHit> hit = scene.intersect(ray);
-        if (medium) {
+        if (const media::Medium* medium = inside.medium()) {
             media::FreeFlight flight = media::sampleFreeFlight(
                 *medium, {ray.origin, ray.direction, hit ? hit->t : std::numeric_limits<float>::infinity()}, hero, rng);
             throughput *= flight.throughput;
@@ -74,6 +76,7 @@ FilmSample NaivePathTracer::sample(const render::RenderScene& scene, const rende
         throughput *= bs->f * (std::abs(bs->wi.z) / bs->pdf);
         etaScale *= bs->eta * bs->eta;
         if (!continuePath(throughput, etaScale, depth, rng)) break;
+        inside = inside.after(*hit, wo, wi);
         ray = render::Ray{spawnOrigin(hit->point, surface.geometricNormal, wi), wi, 0.0f,
                           std::numeric_limits<float>::infinity()};
     }

@@ -4,6 +4,7 @@
 
 #include "core/frame.h"
 #include "integrators/first_hit.h"
+#include "integrators/medium_stack.h"
 #include "media/free_flight.h"
 #include "media/phase.h"
 #include "media/ratio_tracking.h"
@@ -60,9 +61,9 @@ FilmSample PathTracer::sample(const render::RenderScene& scene, const render::Ca
     FilmSample out;
     RGB radiance(0.0f), throughput(1.0f);
     Ray ray = cameraRay;
-    const media::Medium* medium = scene.medium();
-    MisState mis{medium != nullptr};
-    const int hero = medium ? media::sampleHeroChannel(rng.next()) : 0;
+    MediumStack inside(scene);  // the media the path is in
+    MisState mis{scene.hasMedia()};
+    const int hero = scene.hasMedia() ? media::sampleHeroChannel(rng.next()) : 0;
     bool specularBounce = false;  // `ray` left a delta lobe: no light strategy could have found it
     float etaScale = 1.0f;        // product of eta^2 over the refractions so far (Russian roulette)
     render::BsdfArena arena;
@@ -70,7 +71,8 @@ FilmSample PathTracer::sample(const render::RenderScene& scene, const render::Ca
     const bool haveLights = !scene.lightSelection().empty();
 
     // Next-event estimation from `from` (with `fromNormal` for the light tree): one light, its
-    // shadow ray (from shadowFrom(wi)) through the surfaces and the medium, weighted against the
+    // shadow ray (from shadowFrom(wi), a point and the medium the ray starts in) through the
+    // surfaces and the medium, weighted against the
     // scattering strategy; scatter(wi) gives the BSDF or phase value (cosine included) and its density.
     // Its random numbers are drawn even when it is not `enabled`, so that every vertex uses as many.
     auto sampleLight = [&](bool enabled, const Vec3f& from, const Vec3f& fromNormal, auto&& shadowFrom, auto&& scatter) {
@@ -84,10 +86,10 @@ FilmSample PathTracer::sample(const render::RenderScene& scene, const render::Ca
         auto [f, scatterPdf] = scatter(ls->wi);
         if (isBlack(f)) return;
         ++counters.shadow;
-        const Vec3f shadowOrigin = shadowFrom(ls->wi);
+        const auto [shadowOrigin, shadowMedium] = shadowFrom(ls->wi);
         if (scene.occluded(shadowOrigin, ls->wi, ls->distance)) return;
         media::TransmittanceEstimate tr;
-        if (medium) tr = media::ratioTrackingTransmittance(*medium, {shadowOrigin, ls->wi, ls->distance}, hero, rng);
+        if (shadowMedium) tr = media::ratioTrackingTransmittance(*shadowMedium, {shadowOrigin, ls->wi, ls->distance}, hero, rng);
         radiance += throughput * f * ls->Li * mis.lightSample(choice.probability * ls->pdf, ls->delta ? 0.0f : scatterPdf, tr);
     };
     // Emission `le` of light `index` reached by the ray (at `lh` on its shape, if it has one),
@@ -103,7 +105,7 @@ FilmSample PathTracer::sample(const render::RenderScene& scene, const render::Ca
         ++(depth == 0 ? counters.camera : counters.bounce);
         std::optional<SurfaceHit> hit = scene.intersect(ray);
 
-        if (medium) {  // the stretch of medium up to the surface (or out of the scene)
+        if (const media::Medium* medium = inside.medium()) {  // the stretch of medium up to the surface (or out of the scene)
             media::FreeFlight flight = media::sampleFreeFlight(
                 *medium, {ray.origin, ray.direction, hit ? hit->t : std::numeric_limits<float>::infinity()}, hero, rng);
             throughput *= flight.throughput;
@@ -120,7 +122,8 @@ FilmSample PathTracer::sample(const render::RenderScene& scene, const render::Ca
                 if (depth >= maxDepth_) break;
                 const Vec3f wo = -ray.direction;
                 const media::HenyeyGreenstein phase(flight.properties.g);
-                sampleLight(haveLights, flight.p, Vec3f(0.0f), [&](const Vec3f&) { return flight.p; }, [&](const Vec3f& wi) {
+                sampleLight(haveLights, flight.p, Vec3f(0.0f), [&](const Vec3f&) { return std::pair(flight.p, medium); },
+                            [&](const Vec3f& wi) {
                     float p = phase.p(wo, wi);
                     return std::pair(RGB(p), p);
                 });
@@ -173,8 +176,10 @@ FilmSample PathTracer::sample(const render::RenderScene& scene, const render::Ca
         const Vec3f lightNormal = transmissive ? Vec3f(0.0f) : ng;
 
         // Next-event estimation: one light, chosen by the light tree for this point and normal; the
-        // shadow ray leaves a transmissive surface on the light's side.
-        auto shadowFrom = [&](const Vec3f& wi) { return transmissive ? spawnOrigin(hit->point, ng, wi) : lightFrom; };
+        // shadow ray leaves a transmissive surface on the light's side, in the medium on that side.
+        auto shadowFrom = [&](const Vec3f& wi) {
+            return std::pair(transmissive ? spawnOrigin(hit->point, ng, wi) : lightFrom, inside.after(*hit, wo, wi).medium());
+        };
         sampleLight(haveLights && connectable, lightFrom, lightNormal, shadowFrom, [&](const Vec3f& wi) {
             Vec3f wiLocal = frame.toLocal(wi);
             bool agree = sidesAgree(wo, wi, ng, woLocal.z, wiLocal.z);
@@ -193,6 +198,7 @@ FilmSample PathTracer::sample(const render::RenderScene& scene, const render::Ca
         if (!continuePath(throughput, etaScale, depth, rng)) break;
 
         mis.scattered(bs->pdf);
+        inside = inside.after(*hit, wo, wi);
         specularBounce = bs->specular;
         previousPoint = lightFrom;
         previousNormal = lightNormal;

@@ -4,13 +4,17 @@
 
 namespace fluence::media {
 
-MediumUnion::MediumUnion(std::vector<std::unique_ptr<Medium>> media) : media_(std::move(media)) {}
+MediumUnion::MediumUnion(std::vector<std::unique_ptr<Medium>> media) : owned_(std::move(media)) {
+    for (const auto& medium : owned_) media_.push_back(medium.get());
+}
+
+MediumUnion::MediumUnion(std::vector<const Medium*> borrowed) : media_(std::move(borrowed)) {}
 
 MediumProperties MediumUnion::at(const Vec3f& p) const {
     MediumProperties sum;
     RGB emitted(0.0f);
     float gWeighted = 0.0f, scattering = 0.0f;
-    for (const auto& medium : media_) {
+    for (const Medium* medium : media_) {
         MediumProperties m = medium->at(p);
         sum.sigmaA += m.sigmaA;
         sum.sigmaS += m.sigmaS;
@@ -32,7 +36,7 @@ void MediumUnion::majorants(const Vec3f& origin, const Vec3f& direction, float t
     }
     std::vector<MajorantSegment> segments;
     std::vector<float> cuts;
-    for (const auto& medium : media_)
+    for (const Medium* medium : media_)
         medium->majorants(origin, direction, tMin, tMax, [&](const MajorantSegment& s) {
             segments.push_back(s);
             cuts.push_back(s.tMin);

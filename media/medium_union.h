@@ -8,6 +8,8 @@
 // majorants(): with one medium, its own segments; with several, each medium's segments over the
 // range are gathered and cut at every segment end, and each piece carries the sum of the bounds
 // of the segments covering it (pieces that no segment covers are left out, as gaps).
+// A union either owns its media (a scene's volumes) or borrows them (the interior of a closed
+// surface together with those volumes, render/render_scene.h): borrowed media must outlive it.
 #pragma once
 
 #include <memory>
@@ -20,6 +22,7 @@ namespace fluence::media {
 class MediumUnion final : public Medium {
 public:
     explicit MediumUnion(std::vector<std::unique_ptr<Medium>> media);
+    explicit MediumUnion(std::vector<const Medium*> borrowed);
 
     MediumProperties at(const Vec3f& p) const override;
     void majorants(const Vec3f& origin, const Vec3f& direction, float tMin, float tMax,
@@ -28,7 +31,8 @@ public:
     std::size_t size() const { return media_.size(); }
 
 private:
-    std::vector<std::unique_ptr<Medium>> media_;
+    std::vector<std::unique_ptr<Medium>> owned_;
+    std::vector<const Medium*> media_;  // owned_'s, or borrowed
 };
 
 }  // namespace fluence::media

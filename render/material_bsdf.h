@@ -39,9 +39,11 @@
 // filter, not a path-length absorption); the coat's own reflection is white. The coat is
 // isotropic (coat_anisotropy is not read).
 //
-// Not rendered (the delegate warns): opacity, subsurface. Not modelled: diffuseRoughness (the
-// base is Lambertian), the metal's edge tint (specularColor in the metallic workflow tints only
-// the dielectric lobe), thin-film. A material whose lobes are all off is exactly Lambertian.
+// Not here: opacity (the render core's presence filters let rays through, render/render_scene.h),
+// transmission_depth (the interior medium the integrators track, MaterialDesc::interior),
+// subsurface (the delegate warns). Not modelled: the metal's edge tint (specularColor in the
+// metallic workflow tints only the dielectric lobe), thin-film. A material whose lobes are all
+// off is exactly Lambertian.
 #pragma once
 
 #include "render/bsdf.h"

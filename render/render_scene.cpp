@@ -8,6 +8,7 @@
 #include <string>
 
 #include "core/random.h"
+#include "media/homogeneous_medium.h"
 #include "media/medium_union.h"
 #include "render/area_lights.h"
 #include "render/cylinder_light.h"
@@ -219,6 +220,7 @@ RenderScene::RenderScene(const SceneDescription& scene, std::shared_ptr<texture:
     addPrototypes(scene);
     for (const LightDesc& light : scene.lights) addLight(light);
     addVolumes(scene.volumes);
+    addInteriors();
 
     // Scene bounds (for the power of lights at infinity) from surfaces, instances and lights.
     Vec3f lo(std::numeric_limits<float>::max()), hi(-std::numeric_limits<float>::max());
@@ -287,6 +289,25 @@ void RenderScene::addVolumes(const std::vector<VolumeDesc>& volumes) {
         }
     }
     if (!media.empty()) medium_ = std::make_unique<media::MediumUnion>(std::move(media));
+}
+
+void RenderScene::addInteriors() {
+    materialInterior_.assign(materials_.size(), -1);
+    for (std::size_t m = 0; m < materials_.size(); ++m) {
+        const std::optional<media::MediumProperties>& interior = materials_[m].interior;
+        if (!interior) continue;
+        bool valid = isFinite(interior->sigmaA + interior->sigmaS) && std::abs(interior->g) < 1.0f;
+        for (int c = 0; c < 3; ++c) valid = valid && interior->sigmaA[c] >= 0.0f && interior->sigmaS[c] >= 0.0f;
+        if (!valid)
+            throw std::invalid_argument(materials_[m].name + ": interior medium coefficients must be finite and >= 0, with |g| < 1");
+        materialInterior_[m] = static_cast<int>(interiors_.size());
+        interiorMedia_.push_back(std::make_unique<media::HomogeneousMedium>(*interior));
+        if (medium_)
+            interiors_.push_back(std::make_unique<media::MediumUnion>(
+                std::vector<const media::Medium*>{interiorMedia_.back().get(), medium_.get()}));
+        else
+            interiors_.push_back(std::make_unique<media::HomogeneousMedium>(*interior));
+    }
 }
 
 void RenderScene::addPresenceFilter(RTCGeometryTy* geometry, int meshIndex) {
@@ -536,6 +557,7 @@ SurfaceHit RenderScene::shadeMesh(int meshIndex, unsigned primID, float u, float
     }
     if (dot(hit.shadingNormal, hit.geometricNormal) < 0.0f) hit.geometricNormal = -hit.geometricNormal;
     hit.emission = mesh.emission;
+    hit.interior = mesh.material >= 0 ? materialInterior_[static_cast<std::size_t>(mesh.material)] : -1;
     hit.light = mesh.firstLight >= 0 ? mesh.firstLight + static_cast<int>(primID) : -1;
     return hit;
 }

@@ -25,7 +25,9 @@
 // given to setTextureFilterCamera() (without one, textures are point-sampled at full resolution).
 // Volumes: each VolumeDesc becomes a volumes::GridMedium (its OpenVDB grids, read once per file);
 // together they are one media::MediumUnion, which rays cross between surfaces. A grid that
-// cannot be read raises std::invalid_argument naming the volume, the file and the grid.
+// cannot be read raises std::invalid_argument naming the volume, the file and the grid. A
+// material with an interior (MaterialDesc::interior) fills its closed meshes with a
+// media::HomogeneousMedium; inside one, rays cross it and the volumes together (mediumInside).
 //
 // Opacity: a mesh whose material may be less than opaque gets Embree filter functions, so every
 // ray (camera, BSDF and shadow) passes through its holes. A cut-out (opacityThreshold > 0) is a
@@ -70,6 +72,9 @@ struct SurfaceHit {
     RGB emission;           // emitted radiance of an emissive surface (both sides)
     int light = -1;         // index of the light this surface belongs to, or -1
     bool lightShape = false;  // a light's own shape (rect, disk, sphere, cylinder): emits, does not reflect
+    // The interior medium of the surface's material (RenderScene::mediumInside), or -1: the
+    // surface bounds no medium.
+    int interior = -1;
 };
 
 struct SceneStats {
@@ -110,6 +115,11 @@ public:
     // The scene's volumes as one participating medium (media/medium_union.h), or nullptr when it
     // has none. Rays travel through it between surfaces; surfaces do not bound it.
     const media::Medium* medium() const { return medium_.get(); }
+    // The medium inside a closed surface whose hits carry SurfaceHit::interior == `interior`: the
+    // material's homogeneous interior together with the scene's volumes.
+    const media::Medium* mediumInside(int interior) const { return interiors_[static_cast<std::size_t>(interior)].get(); }
+    // Whether any ray can travel through a medium: volumes or material interiors.
+    bool hasMedia() const { return medium_ || !interiors_.empty(); }
 
     // What went wrong while building that did not stop it (unreadable textures).
     const std::vector<Warning>& warnings() const { return warnings_; }
@@ -128,6 +138,7 @@ private:
     void addLight(const LightDesc& light);
     void addVolumes(const std::vector<VolumeDesc>& volumes);
     void addMaterialShaders();
+    void addInteriors();
     void addPresenceFilter(RTCGeometryTy* geometry, int mesh);
     // The hit on triangle primID of mesh `mesh` at barycentrics (u, v), in world space
     // (`instance` places a prototype mesh).
@@ -143,6 +154,9 @@ private:
     std::vector<std::unique_ptr<MeshPresence>> presenceTests_;  // user data of the filter functions
     std::optional<Camera> filterCamera_;
     std::unique_ptr<media::Medium> medium_;
+    std::vector<std::unique_ptr<media::Medium>> interiorMedia_;  // the materials' homogeneous interiors
+    std::vector<std::unique_ptr<media::Medium>> interiors_;      // each with the volumes (mediumInside)
+    std::vector<int> materialInterior_;                          // material -> interior, or -1
     std::vector<Warning> warnings_;
     std::vector<int> surfaceMeshes_;     // Embree geometry id in the surface scene -> mesh, or -1
     std::vector<int> surfaceInstances_;  // Embree geometry id in the surface scene -> instance, or -1

@@ -15,6 +15,7 @@
 
 #include "core/matrix.h"
 #include "core/rgb.h"
+#include "media/medium.h"
 #include "texture/texture_types.h"
 #include "volumes/grid_medium_params.h"
 
@@ -115,9 +116,14 @@ struct InputBinding {
 
 // A surface material as the render core takes it: its parameters where nothing drives them, the
 // inputs that textures or primvars drive, and the name for messages.
+// `interior`: the homogeneous medium that fills a closed mesh with this material (glass tinted
+// through its depth, a murky liquid; media/medium.h units, per scene unit of length). Rays that
+// cross the surface against its geometric normal enter it, and leave it crossing back
+// (integrators/medium_stack.h); only surfaces that let light through (transmission) are crossed.
 struct MaterialDesc : MaterialParams {
     std::string name;  // prim path, for messages
     std::vector<InputBinding> bindings;
+    std::optional<media::MediumProperties> interior;
 };
 
 // A mesh primvar the render core interpolates for a material: `components` floats per triangle

@@ -1,6 +1,8 @@
 // UsdPreviewSurface and MaterialX Standard Surface read into the render core's parameter set.
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include "delegate/scene_delegate.h"
 #include "tests/delegate/delegate_test_support.h"
 
@@ -114,6 +116,45 @@ TEST(SurfaceShaders, StandardSurfaceThroughTheMaterialXContext) {
     EXPECT_FLOAT_EQ(m.specular, 1.0f);
     EXPECT_FLOAT_EQ(m.sheenRoughness, 0.3f);
     ASSERT_EQ(p.warnings.size(), 1u) << "only the unrendered lobes";
+}
+
+TEST(SurfaceShaders, StandardSurfaceTransmissionDepthFillsTheInteriorWithAMedium) {
+    auto p = populate(testing::quadBoundTo(R"(
+        token outputs:mtlx:surface.connect = </Looks/M/S.outputs:out>
+        def Shader "S"
+        {
+            uniform token info:id = "ND_standard_surface_surfaceshader"
+            float inputs:transmission = 1
+            color3f inputs:transmission_color = (0.5, 0.25, 1)
+            float inputs:transmission_depth = 2
+            color3f inputs:transmission_scatter = (0.5, 0, 0.2)
+            float inputs:transmission_scatter_anisotropy = 0.3
+        }
+)"));
+    const render::MaterialDesc& m = theMaterial(p);
+    ASSERT_TRUE(m.interior.has_value());
+    EXPECT_EQ(m.transmissionColor, RGB(1.0f)) << "the colour is the medium's now, not a tint at the surface";
+    // sigmaT = -ln(colour) / depth; sigmaS = scatter / depth; sigmaA = sigmaT - sigmaS, and where
+    // that is negative (blue: sigmaT 0, sigmaS 0.1) every channel's absorption rises by as much.
+    const RGB sigmaT(std::log(2.0f) / 2.0f, std::log(4.0f) / 2.0f, 0.0f), sigmaS(0.25f, 0.0f, 0.1f);
+    const RGB sigmaA = sigmaT - sigmaS + RGB(0.1f);
+    for (int c = 0; c < 3; ++c) {
+        EXPECT_NEAR(m.interior->sigmaS[c], sigmaS[c], 1e-6f) << c;
+        EXPECT_NEAR(m.interior->sigmaA[c], sigmaA[c], 1e-6f) << c;
+    }
+    EXPECT_FLOAT_EQ(m.interior->g, 0.3f);
+
+    auto thin = populate(testing::quadBoundTo(R"(
+        token outputs:mtlx:surface.connect = </Looks/M/S.outputs:out>
+        def Shader "S"
+        {
+            uniform token info:id = "ND_standard_surface_surfaceshader"
+            float inputs:transmission = 1
+            float inputs:transmission_depth = 2
+            bool inputs:thin_walled = 1
+        }
+)"));
+    EXPECT_FALSE(theMaterial(thin).interior.has_value()) << "a thin wall encloses nothing";
 }
 
 TEST(SurfaceShaders, UnsupportedShadersFallBackToTheUniversalOutputThenWarn) {

@@ -1,0 +1,61 @@
+// The media a path is in: the scene's volumes everywhere, and inside closed surfaces the interior
+// media of their materials (render::MaterialDesc::interior).
+//
+// A path starts outside every closed surface (a camera inside glass or liquid is not detected).
+// When it crosses a surface whose hit has an interior (SurfaceHit::interior >= 0), that is, when
+// the direction it leaves by is on the other side of the geometric normal from the one it came
+// from, it enters the interior if it leaves against the normal (closed meshes face outwards) and
+// leaves it otherwise. Interiors nest, as a stack (an ice cube in a drink): the innermost one,
+// together with the volumes, fills the space the path is in. Leaving removes the innermost entry
+// of that interior wherever it is in the stack, so surfaces that intersect (a liquid whose surface
+// pokes through its glass) still come out right when the path leaves both. Crossings of surfaces
+// without interiors, and holes cut by opacity, change nothing. Beyond kDepth nested interiors a
+// further entry is ignored.
+#pragma once
+
+#include <array>
+
+#include "core/vec.h"
+#include "media/medium.h"
+#include "render/render_scene.h"
+
+namespace fluence::integrators {
+
+class MediumStack {
+public:
+    static constexpr int kDepth = 4;
+
+    explicit MediumStack(const render::RenderScene& scene) : scene_(&scene) {}
+
+    // The medium the path's next ray travels through, or nullptr when it crosses empty space.
+    const media::Medium* medium() const {
+        return size_ > 0 ? scene_->mediumInside(interiors_[size_ - 1]) : scene_->medium();
+    }
+
+    // The stack of the ray leaving `hit` along wi, for the path that arrived along -wo.
+    MediumStack after(const render::SurfaceHit& hit, const Vec3f& wo, const Vec3f& wi) const {
+        MediumStack next = *this;
+        const float in = dot(wo, hit.geometricNormal), out = dot(wi, hit.geometricNormal);
+        if (hit.interior < 0 || in * out >= 0.0f) return next;  // a reflection: still on the same side
+        if (out < 0.0f) {
+            if (next.size_ < kDepth) next.interiors_[next.size_++] = hit.interior;
+            return next;
+        }
+        for (int i = next.size_ - 1; i >= 0; --i)
+            if (next.interiors_[i] == hit.interior) {
+                for (int j = i; j + 1 < next.size_; ++j) next.interiors_[j] = next.interiors_[j + 1];
+                --next.size_;
+                break;
+            }
+        return next;
+    }
+
+    int depth() const { return size_; }
+
+private:
+    const render::RenderScene* scene_;
+    std::array<int, kDepth> interiors_{};
+    int size_ = 0;
+};
+
+}  // namespace fluence::integrators
