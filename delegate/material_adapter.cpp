@@ -85,12 +85,6 @@ const usd::PrimSpec* shaderBehind(const usd::Stage& stage, const usd::PrimSpec& 
     return nullptr;
 }
 
-// Say that subsurface scattering is read but not rendered yet (render/material_bsdf.h renders
-// every other lobe; render/render_scene.h handles opacity).
-void warnAboutUnrenderedLobes(const render::MaterialDesc& m, const Warn& warn) {
-    if (m.subsurface > 0.0f) warn(m.name, "material uses subsurface, read but not rendered yet");
-}
-
 }  // namespace
 
 render::MaterialDesc materialFromPath(const usd::Stage& stage, const std::string& materialPath, double time,
@@ -109,11 +103,8 @@ render::MaterialDesc materialFromPath(const usd::Stage& stage, const std::string
         if (!shader) continue;
         std::string id = PrimReader(*shader, time).token({"info:id"}, "");
         ShaderInputs inputs(stage, *shader, time, convertColor, warn);
-        if (id == "UsdPreviewSurface" || id == kStandardSurfaceId) {
-            desc = id == kStandardSurfaceId ? standardSurface(inputs, materialPath) : previewSurface(inputs, materialPath);
-            warnAboutUnrenderedLobes(desc, warn);
-            return desc;
-        }
+        if (id == "UsdPreviewSurface" || id == kStandardSurfaceId)
+            return id == kStandardSurfaceId ? standardSurface(inputs, materialPath) : previewSurface(inputs, materialPath);
         if (unsupported.empty()) unsupported = shader->path + " ('" + id + "')";
     }
     warn(materialPath, unsupported.empty()

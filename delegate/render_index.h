@@ -1,10 +1,9 @@
 // The render index: the delegate's render prims, each synced from the stage when dirty.
 //
 // As in Hydra, prims come in kinds: rprims (geometry: meshes and tessellated implicit surfaces;
-// prototypes, native instances and point instancers (delegate/instancing.h); UsdVol volumes,
-// whose fields are read but not rendered until the volume issue), sprims (state: cameras,
-// lights, materials) and bprims (buffers: the OpenVDB field assets volumes name, and the
-// UsdUVTexture images materials use; the files are loaded by the volume and texture issues).
+// prototypes, native instances and point instancers (delegate/instancing.h); UsdVol volumes),
+// sprims (state: cameras, lights, materials) and bprims (buffers: the OpenVDB field assets
+// volumes name, and the UsdUVTexture images materials use; the render core loads the files).
 //
 // The dirty-bit contract (see also scene_delegate.h, which maps stage edits to bits):
 //   - A prim is inserted with every bit dirty and synced once before the first render.

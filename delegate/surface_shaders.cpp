@@ -1,6 +1,7 @@
 #include "delegate/surface_shaders.h"
 
 #include "delegate/shading_network.h"
+#include "media/subsurface_medium.h"
 
 #include <algorithm>
 #include <cmath>
@@ -103,6 +104,9 @@ render::MaterialDesc standardSurface(const ShaderInputs& in, const std::string& 
                                         in.number("transmission_scatter_anisotropy", 0.0f), depth);
         m.transmissionColor = RGB(1.0f);
     }
+    if (m.subsurface > 0.0f && !m.thinWalled && !m.interior)  // the random walk's medium
+        m.interior = media::subsurfaceMedium(m.subsurfaceColor, m.subsurfaceRadius * m.subsurfaceScale,
+                                             in.number("subsurface_anisotropy", 0.0f));
     using render::MaterialInput;
     // Standard Surface's base weight multiplies base_color: a node drives the colour, and the
     // binding keeps the weight as its factor.

@@ -33,6 +33,11 @@
 // transmission colour is no longer a tint at the surface but the colour white light takes after
 // travelling `depth` scene units inside, and the material's interior becomes a homogeneous medium
 // (transmissionMedium() below, the mapping of Standard Surface and OpenPBR's translucent base).
+// subsurface > 0 on a solid makes its interior (unless transmission_depth made one) the random-walk
+// medium of media/subsurface_medium.h: mean free path subsurface_radius x subsurface_scale per
+// channel, single-scattering albedo inverted from subsurface_color, Henyey-Greenstein g =
+// subsurface_anisotropy (0); light enters and leaves it diffusely (render/material_bsdf.h). On a
+// thin wall, subsurface is diffuse transmission tinted by subsurface_color.
 // Inputs not listed (specular_rotation, transmission_dispersion/extra_roughness, thin_film_*,
 // coat_anisotropy/affect_*, normal, tangent) are not read. The colour,
 // weight and roughness inputs may be driven by UsdUVTexture / primvar-reader nodes (base_color

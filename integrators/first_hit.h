@@ -1,6 +1,7 @@
 // Pieces every surface integrator shares: the first-hit AOVs, the shading frame of a hit (two-
 // sided surfaces oriented towards the incoming ray, transmissive ones kept as they are), the check
-// that a direction leaves on the side the shading frame says, and Russian roulette.
+// that a direction leaves on the side the shading frame says, Russian roulette, and the budget of
+// scatterings inside material interiors.
 #pragma once
 
 #include <algorithm>
@@ -79,6 +80,19 @@ inline bool continuePath(RGB& throughput, float etaScale, int depth, SampleStrea
     if (rng.next() >= survive) return false;
     throughput /= survive;
     return true;
+}
+
+// Scatterings inside a material's interior (MediumStack::depth() > 0: a subsurface walk, a murky
+// liquid) are not bounces: a walk takes hundreds of steps. They count against their own budget of
+// kMaxInteriorScatterings per path instead of maxDepth (a walk that reaches it ends, losing its
+// light: measured in tests/integrators/subsurface_test.cpp), and play no Russian roulette: delta
+// tracking already ends walks by absorption, and continuePath's survival, capped at 0.95 per step,
+// would end long walks and weigh the few survivors heavily.
+inline constexpr int kMaxInteriorScatterings = 1024;
+
+// Russian roulette after a scattering in a medium, inside an interior (`walking`) or not.
+inline bool continueInMedium(RGB& throughput, float etaScale, int depth, bool walking, SampleStream& rng) {
+    return walking ? !isBlack(throughput) : continuePath(throughput, etaScale, depth, rng);
 }
 
 }  // namespace fluence::integrators

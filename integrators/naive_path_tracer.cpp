@@ -26,6 +26,7 @@ FilmSample NaivePathTracer::sample(const render::RenderScene& scene, const rende
     const int hero = spectral ? media::sampleHeroChannel(rng.next()) : 0;
     RGB rU(1.0f);
     auto weighted = [&](const RGB& le) { return spectral ? le / media::channelAverage(rU) : le; };
+    int interiorScatterings = 0;
     for (int depth = 0;; ++depth) {
         ++(depth == 0 ? counters.camera : counters.bounce);
         std::optional<render::SurfaceHit> hit = scene.intersect(ray);
@@ -42,12 +43,14 @@ FilmSample NaivePathTracer::sample(const render::RenderScene& scene, const rende
                 break;
             }
             if (flight.event == media::FlightEvent::Scattered) {
-                if (depth >= maxDepth_) break;
+                const bool walking = inside.depth() > 0;  // inside a material's interior (first_hit.h)
+                if (walking ? ++interiorScatterings > kMaxInteriorScatterings : depth >= maxDepth_) break;
                 media::PhaseSample ps = media::HenyeyGreenstein(flight.properties.g).sample(-ray.direction, rng.next2D());
                 if (ps.pdf <= 0.0f) break;
                 throughput *= ps.p / ps.pdf;
-                if (!continuePath(throughput, etaScale, depth, rng)) break;
+                if (!continueInMedium(throughput, etaScale, depth, walking, rng)) break;
                 ray = render::Ray{flight.p, ps.wi, 0.0f, std::numeric_limits<float>::infinity()};
+                depth -= walking;  // not a bounce
                 continue;
             }
         }

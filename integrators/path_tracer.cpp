@@ -101,6 +101,7 @@ FilmSample PathTracer::sample(const render::RenderScene& scene, const render::Ca
         radiance += throughput * le * weight;
     };
 
+    int interiorScatterings = 0;
     for (int depth = 0;; ++depth) {
         ++(depth == 0 ? counters.camera : counters.bounce);
         std::optional<SurfaceHit> hit = scene.intersect(ray);
@@ -119,7 +120,8 @@ FilmSample PathTracer::sample(const render::RenderScene& scene, const render::Ca
                 break;
             }
             if (flight.event == media::FlightEvent::Scattered) {
-                if (depth >= maxDepth_) break;
+                const bool walking = inside.depth() > 0;  // inside a material's interior (first_hit.h)
+                if (walking ? ++interiorScatterings > kMaxInteriorScatterings : depth >= maxDepth_) break;
                 const Vec3f wo = -ray.direction;
                 const media::HenyeyGreenstein phase(flight.properties.g);
                 sampleLight(haveLights, flight.p, Vec3f(0.0f), [&](const Vec3f&) { return std::pair(flight.p, medium); },
@@ -130,12 +132,13 @@ FilmSample PathTracer::sample(const render::RenderScene& scene, const render::Ca
                 media::PhaseSample ps = phase.sample(wo, rng.next2D());
                 if (ps.pdf <= 0.0f) break;
                 throughput *= ps.p / ps.pdf;
-                if (!continuePath(throughput, etaScale, depth, rng)) break;
+                if (!continueInMedium(throughput, etaScale, depth, walking, rng)) break;
                 mis.scattered(ps.pdf);
                 specularBounce = false;
                 previousPoint = flight.p;
                 previousNormal = Vec3f(0.0f);
                 ray = Ray{flight.p, ps.wi, 0.0f, std::numeric_limits<float>::infinity()};
+                depth -= walking;  // not a bounce
                 continue;
             }
         }

@@ -8,6 +8,7 @@
 #include "render/bsdfs/ggx_conductor.h"
 #include "render/bsdfs/ggx_dielectric.h"
 #include "render/bsdfs/lambertian.h"
+#include "render/bsdfs/lambertian_transmission.h"
 #include "render/bsdfs/oren_nayar.h"
 #include "render/bsdfs/layered.h"
 #include "render/bsdfs/mix.h"
@@ -58,6 +59,10 @@ const Bsdf& materialBsdf(const MaterialParams& m, BsdfArena& arena) {
     const GgxDistribution specularGgx = GgxDistribution::fromRoughness(m.roughness, m.anisotropy);
     const Bsdf* bsdf = m.diffuseRoughness > 0.0f ? static_cast<const Bsdf*>(&arena.make<OrenNayarBsdf>(m.diffuse, m.diffuseRoughness))
                                                  : &arena.make<LambertianBsdf>(m.diffuse);
+    if (m.subsurface > 0.0f) {  // a solid's walk inside gives the colour; a thin wall is tinted once
+        const RGB transmittance = m.thinWalled ? clamp01(m.subsurfaceColor) : RGB(1.0f);
+        bsdf = &blend(*bsdf, arena.make<LambertianTransmissionBsdf>(transmittance), std::min(m.subsurface, 1.0f), arena);
+    }
     const RGB sheen = clamp01(m.sheenColor * m.sheen);
     if (!isBlack(sheen)) bsdf = &arena.make<LayeredBsdf<CharlieSheenBsdf>>(CharlieSheenBsdf(sheen, m.sheenRoughness), *bsdf);
     if (const SpecularLobe specular = specularLobe(m); specular.reflects())

@@ -5,6 +5,10 @@
 // mapping, render/bsdfs/ggx.h):
 //
 //   diffuse   Lambertian(diffuse), or OrenNayar(diffuse, sigma = diffuseRoughness) when it is > 0
+//   subsurface MixBsdf(that, LambertianTransmission(1), subsurface)     subsurface > 0: light
+//             enters and leaves diffusely; the walk inside the material's interior medium
+//             (MaterialDesc::interior, from subsurface_color and subsurface_radius) colours it;
+//             a thin wall transmits diffusely, tinted by subsurfaceColor, with no walk
 //   sheen     LayeredBsdf(CharlieSheen(sheen x sheenColor, sheenRoughness), diffuse)   sheen > 0
 //             the base loses the sheen's directional albedo (render/bsdfs/sheen.h, layered.h)
 //   specular  CoatedBsdf(that, eta, ggx, tint)                  when the dielectric lobe reflects:
@@ -40,10 +44,10 @@
 // isotropic (coat_anisotropy is not read).
 //
 // Not here: opacity (the render core's presence filters let rays through, render/render_scene.h),
-// transmission_depth (the interior medium the integrators track, MaterialDesc::interior),
-// subsurface (the delegate warns). Not modelled: the metal's edge tint (specularColor in the
-// metallic workflow tints only the dielectric lobe), thin-film. A material whose lobes are all
-// off is exactly Lambertian.
+// transmission_depth and subsurface's walk (the interior medium the integrators track,
+// MaterialDesc::interior). Not modelled: the metal's edge tint (specularColor in the metallic
+// workflow tints only the dielectric lobe), thin-film. A material whose lobes are all off is
+// exactly Lambertian.
 #pragma once
 
 #include "render/bsdf.h"

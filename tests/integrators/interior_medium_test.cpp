@@ -23,25 +23,6 @@ namespace {
 // 2 integrators x 3 channels (cube) + 3 channels (furnace) checks, family-wide 1%.
 const double kZ = test::normalQuantile(0.5 * test::sidakAlpha(9));
 
-// The cube [-h, h]^3 as 12 triangles wound counter-clockwise seen from outside.
-render::MeshDesc cubeMesh(float h, int material) {
-    render::MeshDesc m;
-    m.name = "/Cube";
-    m.material = material;
-    for (int axis = 0; axis < 3; ++axis)
-        for (float side : {-1.0f, 1.0f}) {
-            Vec3f n(0.0f), u(0.0f), v(0.0f);
-            n[axis] = side;
-            u[(axis + 1) % 3] = 1.0f;
-            v[(axis + 2) % 3] = side;  // u x v = n
-            auto base = static_cast<std::uint32_t>(m.positions.size());
-            for (auto [a, b] : {std::pair(-1.0f, -1.0f), std::pair(1.0f, -1.0f), std::pair(1.0f, 1.0f), std::pair(-1.0f, 1.0f)})
-                m.positions.push_back((n + u * a + v * b) * h);
-            for (std::uint32_t i : {0u, 1u, 2u, 0u, 2u, 3u}) m.indices.push_back(base + i);
-        }
-    return m;
-}
-
 render::MaterialDesc glassWithInterior(const media::MediumProperties& interior) {
     render::MaterialDesc m;
     m.name = "/Glass";
@@ -67,7 +48,7 @@ render::SceneDescription inAWhiteSky(render::MeshDesc mesh, render::MaterialDesc
 }
 
 TEST(MediumStack, EntersAgainstTheNormalLeavesAlongItAndNests) {
-    render::SceneDescription desc = inAWhiteSky(cubeMesh(1.0f, 0), glassWithInterior({RGB(1.0f), RGB(0.0f)}));
+    render::SceneDescription desc = inAWhiteSky(test::boxMesh(Vec3f(1.0f), 0), glassWithInterior({RGB(1.0f), RGB(0.0f)}));
     desc.materials.push_back(glassWithInterior({RGB(2.0f), RGB(0.0f)}));
     render::RenderScene scene(desc);
     ASSERT_TRUE(scene.hasMedia());
@@ -115,7 +96,7 @@ TEST(InteriorMedium, AbsorbingGlassCubeMatchesItsInternalReflections) {
     // Chromatic sigmaA puts the three channels' distances on one hero's draws (spectral MIS).
     const RGB sigmaA(0.2f, 0.5f, 1.0f);
     const float side = 2.0f, F = 0.04f;
-    render::RenderScene scene(inAWhiteSky(cubeMesh(side / 2.0f, 0), glassWithInterior({sigmaA, RGB(0.0f)})));
+    render::RenderScene scene(inAWhiteSky(test::boxMesh(Vec3f(side / 2.0f), 0), glassWithInterior({sigmaA, RGB(0.0f)})));
     const render::Ray ray{{0.1f, -5.0f, 0.2f}, {0.0f, 1.0f, 0.0f}};
     const PathTracer path{IntegratorSettings{}};
     const NaivePathTracer naive{IntegratorSettings{}};

@@ -14,6 +14,7 @@
 #include "media/free_flight.h"
 #include "media/homogeneous_medium.h"
 #include "media/phase.h"
+#include "tests/media/test_media.h"
 #include "tests/support/chi2.h"
 #include "tests/support/statistics.h"
 
@@ -30,34 +31,11 @@ float distanceToSphere(const Vec3f& p, const Vec3f& w, float radius) {
     return -b + std::sqrt(std::max(0.0f, b * b - c));
 }
 
-// A path's state: its hero, throughput beta = f / p_h and pdf ratios rU = p_c / p_h.
-struct Walk {
-    Vec3f p{0.0f}, w{0.0f, 0.0f, 1.0f};
-    int hero = 0;
-    RGB beta{1.0f}, rU{1.0f};
-    int scatterings = 0;
-
-    // One flight to distance tMax; at a scattering, the next direction from the phase function.
-    FreeFlight step(const Medium& medium, float tMax, SampleStream& rng) {
-        FreeFlight flight = sampleFreeFlight(medium, {p, w, tMax}, hero, rng);
-        beta *= flight.throughput;
-        rU *= flight.pdfRatio;
-        if (flight.event == FlightEvent::Scattered) {
-            PhaseSample s = HenyeyGreenstein(flight.properties.g).sample(-w, rng.next2D());
-            beta *= s.p / s.pdf;
-            p = flight.p;
-            w = s.wi;
-            ++scatterings;
-        }
-        return flight;
-    }
-};
-
 TEST(RandomWalk, FurnaceKeepsEveryWeightExactlyOneInAnInfiniteMedium) {
     HomogeneousMedium fog({RGB(0.0f), RGB(1.0f), RGB(0.0f), 0.5f});
     for (int n = 0; n < 1000; ++n) {
         SampleStream rng(61, 0, n);
-        Walk walk;
+        test::Walk walk;
         walk.hero = sampleHeroChannel(rng.next());
         for (int i = 0; i < 100; ++i) {
             FreeFlight flight = walk.step(fog, std::numeric_limits<float>::infinity(), rng);
@@ -75,7 +53,7 @@ TEST(RandomWalk, FurnaceSphereLetsEveryPathOutWithWeightOne) {
     test::MeanEstimate scatterings;
     for (int n = 0; n < 2000; ++n) {
         SampleStream rng(62, 0, n);
-        Walk walk;
+        test::Walk walk;
         walk.hero = sampleHeroChannel(rng.next());
         while (walk.step(fog, distanceToSphere(walk.p, walk.w, radius), rng).event != FlightEvent::Escaped)
             ASSERT_LT(walk.scatterings, kMaxScatterings);
@@ -95,7 +73,7 @@ void expectWalkMeans(const Medium& medium, float radius, const Score& score, con
     test::MeanEstimate means[3], scatterings;
     for (int n = 0; n < kWalks; ++n) {
         SampleStream rng(seed, 0, n);
-        Walk walk;
+        test::Walk walk;
         walk.hero = sampleHeroChannel(rng.next());
         walk.w = sampleUniformSphere(rng.next2D());
         FreeFlight flight;

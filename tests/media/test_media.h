@@ -1,11 +1,15 @@
 // Test-only media with closed forms, shared by the media tests: a linear ramp of extinction along
-// x, and a wrapper that loosens (or breaks) another medium's majorants and minorants.
+// x, and a wrapper that loosens (or breaks) another medium's majorants and minorants; and the
+// state of a random walk through a medium, as a volume path tracer takes it.
 #pragma once
 
 #include <algorithm>
 #include <cmath>
 
+#include "core/random.h"
+#include "media/free_flight.h"
 #include "media/medium.h"
+#include "media/phase.h"
 
 namespace fluence::test {
 
@@ -77,6 +81,29 @@ public:
 private:
     const Medium& inner_;
     float majorantScale_, minorantScale_;
+};
+
+// A path's state: its hero, throughput beta = f / p_h and pdf ratios rU = p_c / p_h.
+struct Walk {
+    Vec3f p{0.0f}, w{0.0f, 0.0f, 1.0f};
+    int hero = 0;
+    RGB beta{1.0f}, rU{1.0f};
+    int scatterings = 0;
+
+    // One flight to distance tMax; at a scattering, the next direction from the phase function.
+    media::FreeFlight step(const Medium& medium, float tMax, SampleStream& rng) {
+        media::FreeFlight flight = media::sampleFreeFlight(medium, {p, w, tMax}, hero, rng);
+        beta *= flight.throughput;
+        rU *= flight.pdfRatio;
+        if (flight.event == media::FlightEvent::Scattered) {
+            media::PhaseSample s = media::HenyeyGreenstein(flight.properties.g).sample(-w, rng.next2D());
+            beta *= s.p / s.pdf;
+            p = flight.p;
+            w = s.wi;
+            ++scatterings;
+        }
+        return flight;
+    }
 };
 
 }  // namespace fluence::test

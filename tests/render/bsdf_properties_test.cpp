@@ -25,8 +25,10 @@
 #include "render/bsdfs/ggx_conductor.h"
 #include "render/bsdfs/ggx_dielectric.h"
 #include "render/bsdfs/lambertian.h"
+#include "render/bsdfs/lambertian_transmission.h"
 #include "render/bsdfs/oren_nayar.h"
 #include "render/bsdfs/layered.h"
+#include "render/bsdfs/mix.h"
 #include "render/bsdfs/modified_phong.h"
 #include "render/bsdfs/phong.h"
 #include "render/bsdfs/sheen.h"
@@ -42,6 +44,7 @@ struct BsdfCase {
     std::function<const Bsdf&(BsdfArena&)> make;
     bool conservesEnergy = true;
     bool sidesAlike = false;  // transmits, yet both sides are alike (a thin sheet: straight through, eta 1)
+    bool crossesIndex = true;  // its transmission refracts (eta != 1); false for diffuse transmission
 };
 
 void PrintTo(const BsdfCase& c, std::ostream* os) { *os << c.name; }
@@ -119,6 +122,12 @@ std::vector<BsdfCase> allCases() {
     cases.push_back({"CoatedGlass", [](BsdfArena& a) -> const Bsdf& {
                          return a.make<CoatedBsdf>(a.make<GgxDielectricBsdf>(1.5f, GgxDistribution(0.3f)), 1.5f, 0.2f);
                      }});
+    cases.push_back({"LambertianTransmission", [=](BsdfArena& a) -> const Bsdf& { return a.make<LambertianTransmissionBsdf>(colour); },
+                     true, true});
+    cases.push_back({"CoatedSubsurfaceBoundary", [=](BsdfArena& a) -> const Bsdf& {  // Standard Surface subsurface = 0.6
+                         const Bsdf& base = a.make<MixBsdf>(a.make<LambertianBsdf>(colour), a.make<LambertianTransmissionBsdf>(RGB(1.0f)), 0.6f);
+                         return a.make<CoatedBsdf>(base, 1.4f, 0.35f * 0.35f);
+                     }, true, false, false});
     return cases;
 }
 
@@ -189,8 +198,8 @@ TEST_P(BsdfProperties, SampleAgreesWithEvalAndPdf) {
             ASSERT_GE(std::min({s->f.x, s->f.y, s->f.z}), 0.0f);
             if (isTransmitted(wo, s->wi)) {
                 EXPECT_TRUE(flags & kBsdfTransmission);
-                if (GetParam().sidesAlike)
-                    EXPECT_EQ(s->eta, 1.0f) << "straight through: the same medium on both sides";
+                if (GetParam().sidesAlike || !GetParam().crossesIndex)
+                    EXPECT_EQ(s->eta, 1.0f) << "no index crossed: the same medium on both sides";
                 else
                     EXPECT_NE(s->eta, 1.0f);
             } else {
@@ -270,8 +279,13 @@ TEST_P(BsdfProperties, ReflectorsAreTwoSidedTransmittersAreNot) {
     } else {
         EXPECT_EQ(above, below);
         EXPECT_EQ(b.pdf(wo, wi), b.pdf(mirrorZ(wo), mirrorZ(wi)));
-        EXPECT_EQ(b.f(wo, mirrorZ(wi)), RGB(0.0f)) << "a reflector does not transmit (a thin sheet only as a delta)";
-        EXPECT_EQ(b.pdf(wo, mirrorZ(wi)), 0.0f);
+        if (transmits) {
+            EXPECT_EQ(b.f(wo, mirrorZ(wi)), b.f(mirrorZ(wo), wi)) << "both sides transmit alike";
+            EXPECT_EQ(b.pdf(wo, mirrorZ(wi)), b.pdf(mirrorZ(wo), wi));
+        } else {
+            EXPECT_EQ(b.f(wo, mirrorZ(wi)), RGB(0.0f)) << "a reflector does not transmit";
+            EXPECT_EQ(b.pdf(wo, mirrorZ(wi)), 0.0f);
+        }
     }
     EXPECT_FALSE(b.sample(Vec3f(1, 0, 0), 0.5f, Vec2f{0.5f, 0.5f})) << "grazing wo scatters nothing";
     EXPECT_EQ(b.f(Vec3f(1, 0, 0), wi), RGB(0.0f));

@@ -50,6 +50,26 @@ inline render::MeshDesc quadMesh(std::string name, const std::array<Vec3f, 4>& c
     return m;
 }
 
+// The box [-halfSize, halfSize] (per axis) as 12 triangles wound counter-clockwise seen from
+// outside, so its geometric normals face out.
+inline render::MeshDesc boxMesh(const Vec3f& halfSize, int material) {
+    render::MeshDesc m;
+    m.name = "/Box";
+    m.material = material;
+    for (int axis = 0; axis < 3; ++axis)
+        for (float side : {-1.0f, 1.0f}) {
+            Vec3f n(0.0f), u(0.0f), v(0.0f);
+            n[axis] = side;
+            u[(axis + 1) % 3] = 1.0f;
+            v[(axis + 2) % 3] = side;  // u x v = n
+            auto base = static_cast<std::uint32_t>(m.positions.size());
+            for (auto [a, b] : {std::pair(-1.0f, -1.0f), std::pair(1.0f, -1.0f), std::pair(1.0f, 1.0f), std::pair(-1.0f, 1.0f)})
+                m.positions.push_back((n + u * a + v * b) * halfSize);
+            for (std::uint32_t i : {0u, 1u, 2u, 0u, 2u, 3u}) m.indices.push_back(base + i);
+        }
+    return m;
+}
+
 // A camera at distance `distance` on -Y looking at the origin, Z up, with a vertical FOV that
 // frames the unit sphere.
 inline render::CameraDesc lookAtOriginCamera(float distance) {
