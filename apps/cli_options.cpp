@@ -157,6 +157,10 @@ RenderOptions parseRenderOptions(const std::vector<std::string>& args) {
             o.subdivLevel = parseNumber<int>(arg, cur.value(arg));
             if (*o.subdivLevel < 0 || *o.subdivLevel > kMaxSubdivLevel)
                 throw UsageError("--subdiv-level must be between 0 and " + std::to_string(kMaxSubdivLevel));
+        } else if (arg == "--subsurface") {
+            o.subsurface = cur.value(arg);
+            if (o.subsurface != "randomwalk" && o.subsurface != "diffusion")
+                throw UsageError("--subsurface must be randomwalk or diffusion");
         } else if (arg == "-f" || arg == "--frame") {
             o.frame = parseNumber<double>(arg, cur.value(arg));
         } else if (arg == "-s" || arg == "--settings") {
@@ -207,6 +211,8 @@ std::string usageText() {
            "      --dicing-rate PX    subdivision surfaces: target micro-edge length in pixels (default 1)\n"
            "      --subdiv-level N    subdivision surfaces: uniform refinement, 4^N triangle pairs per quad,\n"
            "                          instead of camera-driven dicing (for comparisons)\n"
+           "      --subsurface METHOD subsurface scattering of every material: randomwalk or diffusion\n"
+           "                          (default: each material's subsurface_type, else randomwalk)\n"
            "      --time-limit SECS   stop starting new sample passes after SECS seconds (0: no limit)\n"
            "\n"
            "environment:\n"

@@ -31,6 +31,7 @@ struct RenderOptions {
     int maxDepth = 64;              // --max-depth N
     double dicingRate = 1.0;        // --dicing-rate PIXELS: micro-edge length of subdivision surfaces
     std::optional<int> subdivLevel; // --subdiv-level N: uniform refinement instead of dicing
+    std::string subsurface;         // --subsurface randomwalk|diffusion: every material's method ("" keeps theirs)
     std::optional<double> frame;    // -f/--frame F (default: the stage's startTimeCode, else USD's default time)
     std::string settings;           // -s/--settings /Render/Path (default: the stage's renderSettingsPrimPath)
     std::vector<usd::VariantSelection> variants;  // --variant /Prim/Path:set=selection (repeatable)

@@ -67,6 +67,9 @@ int runRender(const RenderOptions& opt) {
     std::unique_ptr<render::RenderScene> scene;
     try {
         populated = delegate::populateScene(*stage, dopt);
+        if (!opt.subsurface.empty())
+            for (render::MaterialDesc& m : populated->scene.materials)
+                m.subsurfaceMethod = opt.subsurface == "diffusion" ? render::SubsurfaceMethod::Diffusion : render::SubsurfaceMethod::RandomWalk;
         scene = std::make_unique<render::RenderScene>(populated->scene, std::make_shared<texture::TextureSystem>(*colors));
         for (const render::Warning& w : scene->warnings()) warnings(w.where, w.message);
     } catch (const delegate::MissingAssetError& e) {

@@ -104,7 +104,12 @@ render::MaterialDesc standardSurface(const ShaderInputs& in, const std::string& 
                                         in.number("transmission_scatter_anisotropy", 0.0f), depth);
         m.transmissionColor = RGB(1.0f);
     }
-    if (m.subsurface > 0.0f && !m.thinWalled && !m.interior)  // the random walk's medium
+    const std::string method = in.text("subsurface_type", "randomwalk");
+    if (method == "diffusion")
+        m.subsurfaceMethod = render::SubsurfaceMethod::Diffusion;
+    else if (method != "randomwalk" && method != "randomwalk_v2")
+        in.warn()(in.shader().path, "subsurface_type '" + method + "' is not diffusion or randomwalk; using randomwalk");
+    if (m.subsurface > 0.0f && !m.thinWalled && !m.interior)  // the random walk's medium (diffusion: the probes' material)
         m.interior = media::subsurfaceMedium(m.subsurfaceColor, m.subsurfaceRadius * m.subsurfaceScale,
                                              in.number("subsurface_anisotropy", 0.0f));
     using render::MaterialInput;

@@ -37,7 +37,10 @@
 // medium of media/subsurface_medium.h: mean free path subsurface_radius x subsurface_scale per
 // channel, single-scattering albedo inverted from subsurface_color, Henyey-Greenstein g =
 // subsurface_anisotropy (0); light enters and leaves it diffusely (render/material_bsdf.h). On a
-// thin wall, subsurface is diffuse transmission tinted by subsurface_color.
+// thin wall, subsurface is diffuse transmission tinted by subsurface_color. The method is chosen
+// per material by the token input subsurface_type, as Arnold's standard_surface names it:
+// "randomwalk" (the fallback; "randomwalk_v2" is read as the same) or "diffusion" (the
+// Christensen-Burley profile, integrators/diffusion_probe.h); another value warns and walks.
 // Inputs not listed (specular_rotation, transmission_dispersion/extra_roughness, thin_film_*,
 // coat_anisotropy/affect_*, normal, tangent) are not read. The colour,
 // weight and roughness inputs may be driven by UsdUVTexture / primvar-reader nodes (base_color

@@ -1,8 +1,10 @@
 #include "integrators/naive_path_tracer.h"
 
 #include <algorithm>
+#include <utility>
 
 #include "core/frame.h"
+#include "integrators/diffusion_probe.h"
 #include "integrators/first_hit.h"
 #include "integrators/medium_stack.h"
 #include "media/free_flight.h"
@@ -27,10 +29,15 @@ FilmSample NaivePathTracer::sample(const render::RenderScene& scene, const rende
     RGB rU(1.0f);
     auto weighted = [&](const RGB& le) { return spectral ? le / media::channelAverage(rU) : le; };
     int interiorScatterings = 0;
+    std::optional<render::SurfaceHit> diffusionExit;  // as in path_tracer.cpp
     for (int depth = 0;; ++depth) {
-        ++(depth == 0 ? counters.camera : counters.bounce);
-        std::optional<render::SurfaceHit> hit = scene.intersect(ray);
-        if (const media::Medium* medium = inside.medium()) {
+        const bool exiting = diffusionExit.has_value();
+        std::optional<render::SurfaceHit> hit = std::exchange(diffusionExit, std::nullopt);
+        if (!exiting) {
+            ++(depth == 0 ? counters.camera : counters.bounce);
+            hit = scene.intersect(ray);
+        }
+        if (const media::Medium* medium = exiting ? nullptr : inside.medium()) {
             media::FreeFlight flight = media::sampleFreeFlight(
                 *medium, {ray.origin, ray.direction, hit ? hit->t : std::numeric_limits<float>::infinity()}, hero, rng);
             throughput *= flight.throughput;
@@ -59,15 +66,16 @@ FilmSample NaivePathTracer::sample(const render::RenderScene& scene, const rende
                 radiance += throughput * weighted(scene.light(index).escaped(ray.direction));
             break;
         }
-        Vec3f wo = -ray.direction;
+        const Vec3f wo = exiting ? -hit->shadingNormal : -ray.direction;
         if (depth == 0) recordFirstHit(out, *hit, wo, camera);
-        if (hit->light >= 0)
+        if (!exiting && hit->light >= 0)
             radiance += throughput * weighted(hit->lightShape ? scene.light(hit->light).emitted({hit->point, hit->geometricNormal}, wo)
                                                                : hit->emission);
         if (hit->lightShape || depth >= maxDepth_) break;
 
         arena.reset();
-        const render::Bsdf& bsdf = render::materialBsdf(hit->material, arena);
+        const render::Bsdf& bsdf =
+            exiting ? render::subsurfaceExitBsdf(hit->material, arena) : render::materialBsdf(hit->material, arena);
         const SurfaceFrame surface = shadingFrame(*hit, wo, (bsdf.flags() & render::kBsdfTransmission) != 0);
         const Vec3f woLocal = surface.frame.toLocal(wo);
         // A plain Lambertian has one lobe: no lobe number drawn.
@@ -79,6 +87,13 @@ FilmSample NaivePathTracer::sample(const render::RenderScene& scene, const rende
         throughput *= bs->f * (std::abs(bs->wi.z) / bs->pdf);
         etaScale *= bs->eta * bs->eta;
         if (!continuePath(throughput, etaScale, depth, rng)) break;
+        if (entersDiffusion(*hit, wo, wi)) {
+            std::optional<DiffusionExit> exit = sampleDiffusionExit(scene, *hit, rng, counters);
+            if (!exit) break;
+            throughput *= exit->weight;
+            diffusionExit = exit->hit;
+            continue;
+        }
         inside = inside.after(*hit, wo, wi);
         ray = render::Ray{spawnOrigin(hit->point, surface.geometricNormal, wi), wi, 0.0f,
                           std::numeric_limits<float>::infinity()};

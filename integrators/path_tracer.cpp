@@ -1,8 +1,10 @@
 #include "integrators/path_tracer.h"
 
 #include <algorithm>
+#include <utility>
 
 #include "core/frame.h"
+#include "integrators/diffusion_probe.h"
 #include "integrators/first_hit.h"
 #include "integrators/medium_stack.h"
 #include "media/free_flight.h"
@@ -102,11 +104,17 @@ FilmSample PathTracer::sample(const render::RenderScene& scene, const render::Ca
     };
 
     int interiorScatterings = 0;
+    std::optional<SurfaceHit> diffusionExit;  // where diffusion subsurface scattering brings the path out
     for (int depth = 0;; ++depth) {
-        ++(depth == 0 ? counters.camera : counters.bounce);
-        std::optional<SurfaceHit> hit = scene.intersect(ray);
+        // The next vertex: where the ray hits, or, after a diffusion entry, its exit (no ray traced).
+        const bool exiting = diffusionExit.has_value();
+        std::optional<SurfaceHit> hit = std::exchange(diffusionExit, std::nullopt);
+        if (!exiting) {
+            ++(depth == 0 ? counters.camera : counters.bounce);
+            hit = scene.intersect(ray);
+        }
 
-        if (const media::Medium* medium = inside.medium()) {  // the stretch of medium up to the surface (or out of the scene)
+        if (const media::Medium* medium = exiting ? nullptr : inside.medium()) {  // the stretch of medium up to the surface (or out of the scene)
             media::FreeFlight flight = media::sampleFreeFlight(
                 *medium, {ray.origin, ray.direction, hit ? hit->t : std::numeric_limits<float>::infinity()}, hero, rng);
             throughput *= flight.throughput;
@@ -151,11 +159,11 @@ FilmSample PathTracer::sample(const render::RenderScene& scene, const render::Ca
             break;
         }
 
-        Vec3f wo = -ray.direction;
+        const Vec3f wo = exiting ? -hit->shadingNormal : -ray.direction;  // an exit is seen from inside
         if (depth == 0) recordFirstHit(out, *hit, wo, camera);
 
         // Emission reached by this ray: light shapes and emissive surfaces.
-        if (hit->light >= 0) {
+        if (!exiting && hit->light >= 0) {
             LightHit lh{hit->point, hit->geometricNormal};
             RGB le = hit->lightShape ? scene.light(hit->light).emitted(lh, wo) : hit->emission;
             if (!isBlack(le)) addEmitted(le, hit->light, lh, depth);
@@ -163,7 +171,8 @@ FilmSample PathTracer::sample(const render::RenderScene& scene, const render::Ca
         if (hit->lightShape || depth >= maxDepth_) break;
 
         arena.reset();
-        const render::Bsdf& bsdf = render::materialBsdf(hit->material, arena);
+        const render::Bsdf& bsdf =
+            exiting ? render::subsurfaceExitBsdf(hit->material, arena) : render::materialBsdf(hit->material, arena);
         const bool transmissive = (bsdf.flags() & render::kBsdfTransmission) != 0;
         const bool connectable = (bsdf.flags() & (render::kBsdfDiffuse | render::kBsdfGlossy)) != 0;
         const SurfaceFrame surface = shadingFrame(*hit, wo, transmissive);
@@ -201,6 +210,13 @@ FilmSample PathTracer::sample(const render::RenderScene& scene, const render::Ca
         if (!continuePath(throughput, etaScale, depth, rng)) break;
 
         mis.scattered(bs->pdf);
+        if (entersDiffusion(*hit, wo, wi)) {
+            std::optional<DiffusionExit> exit = sampleDiffusionExit(scene, *hit, rng, counters);
+            if (!exit) break;
+            throughput *= exit->weight;
+            diffusionExit = exit->hit;
+            continue;
+        }
         inside = inside.after(*hit, wo, wi);
         specularBounce = bs->specular;
         previousPoint = lightFrom;

@@ -53,6 +53,24 @@ const Bsdf& transmissionBsdf(const MaterialParams& m, const GgxDistribution& ggx
     return arena.make<GgxDielectricBsdf>(m.ior, ggx, DielectricTints{reflection, sqrtOf(colour)});
 }
 
+// The layers over the base, as far as the specular coating: the sheen, then the dielectric lobe.
+const Bsdf& sheenAndSpecular(const Bsdf& base, const MaterialParams& m, const GgxDistribution& ggx, BsdfArena& arena) {
+    const Bsdf* bsdf = &base;
+    const RGB sheen = clamp01(m.sheenColor * m.sheen);
+    if (!isBlack(sheen)) bsdf = &arena.make<LayeredBsdf<CharlieSheenBsdf>>(CharlieSheenBsdf(sheen, m.sheenRoughness), *bsdf);
+    if (const SpecularLobe specular = specularLobe(m); specular.reflects())
+        bsdf = &arena.make<CoatedBsdf>(*bsdf, specular.eta, ggx, specular.tint);
+    return *bsdf;
+}
+
+// The clear coat over everything, by weight `coat`.
+const Bsdf& clearCoat(const Bsdf& under, const MaterialParams& m, BsdfArena& arena) {
+    if (!(m.coat > 0.0f && m.coatIor > 1.0f + kMinIndexContrast)) return under;
+    const Bsdf& coated = arena.make<CoatedBsdf>(under, RGB(m.coatIor), GgxDistribution::fromRoughness(m.coatRoughness),
+                                                RGB(1.0f), clamp01(m.coatColor));
+    return blend(under, coated, m.coat, arena);
+}
+
 }  // namespace
 
 const Bsdf& materialBsdf(const MaterialParams& m, BsdfArena& arena) {
@@ -63,18 +81,16 @@ const Bsdf& materialBsdf(const MaterialParams& m, BsdfArena& arena) {
         const RGB transmittance = m.thinWalled ? clamp01(m.subsurfaceColor) : RGB(1.0f);
         bsdf = &blend(*bsdf, arena.make<LambertianTransmissionBsdf>(transmittance), std::min(m.subsurface, 1.0f), arena);
     }
-    const RGB sheen = clamp01(m.sheenColor * m.sheen);
-    if (!isBlack(sheen)) bsdf = &arena.make<LayeredBsdf<CharlieSheenBsdf>>(CharlieSheenBsdf(sheen, m.sheenRoughness), *bsdf);
-    if (const SpecularLobe specular = specularLobe(m); specular.reflects())
-        bsdf = &arena.make<CoatedBsdf>(*bsdf, specular.eta, specularGgx, specular.tint);
+    bsdf = &sheenAndSpecular(*bsdf, m, specularGgx, arena);
     if (m.transmission > 0.0f) bsdf = &blend(*bsdf, transmissionBsdf(m, specularGgx, arena), m.transmission, arena);
     if (m.metallic > 0.0f) bsdf = &blend(*bsdf, arena.make<GgxConductorBsdf>(m.diffuse, specularGgx), m.metallic, arena);
-    if (m.coat > 0.0f && m.coatIor > 1.0f + kMinIndexContrast) {
-        const Bsdf& coated = arena.make<CoatedBsdf>(*bsdf, RGB(m.coatIor), GgxDistribution::fromRoughness(m.coatRoughness),
-                                                    RGB(1.0f), clamp01(m.coatColor));
-        bsdf = &blend(*bsdf, coated, m.coat, arena);
-    }
-    return *bsdf;
+    return clearCoat(*bsdf, m, arena);
+}
+
+const Bsdf& subsurfaceExitBsdf(const MaterialParams& m, BsdfArena& arena) {
+    const GgxDistribution specularGgx = GgxDistribution::fromRoughness(m.roughness, m.anisotropy);
+    const Bsdf& boundary = arena.make<LambertianTransmissionBsdf>(RGB(1.0f));
+    return clearCoat(sheenAndSpecular(boundary, m, specularGgx, arena), m, arena);
 }
 
 }  // namespace fluence::render

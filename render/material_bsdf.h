@@ -58,4 +58,11 @@ namespace fluence::render {
 
 const Bsdf& materialBsdf(const MaterialParams& material, BsdfArena& arena);
 
+// Where diffusion subsurface scattering brings light back out (integrators/diffusion_probe.h):
+// the subsurface lobe's boundary, LambertianTransmission(1), under the same sheen, specular lobe
+// and clear coat as materialBsdf() lays over the base, seen from inside (wo.z < 0). For a material
+// with subsurface = 1, no transmission and no metal it is materialBsdf() itself, so that a random
+// walk reaching the surface from inside leaves it the same way.
+const Bsdf& subsurfaceExitBsdf(const MaterialParams& material, BsdfArena& arena);
+
 }  // namespace fluence::render

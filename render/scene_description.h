@@ -21,6 +21,12 @@
 
 namespace fluence::render {
 
+// How light that enters a subsurface material finds where it leaves: by a random walk in the
+// object's interior medium (unbiased; MaterialDesc::interior), or by the normalized diffusion
+// profile of a flat, semi-infinite medium, sampled with probe rays (fast, approximate:
+// integrators/diffusion_probe.h).
+enum class SubsurfaceMethod { RandomWalk, Diffusion };
+
 // A surface material's parameters at one surface point: one layered "principled" parameter set
 // that both UsdPreviewSurface and MaterialX Standard Surface map onto (delegate/surface_shaders.h
 // gives the mapping). From the bottom up (render/material_bsdf.h has the exact stack): a diffuse
@@ -53,11 +59,13 @@ struct MaterialParams {
     float opacity = 1.0f;           // < 1: partly transparent (light passes straight through)
     float opacityThreshold = 0.0f;  // > 0: a cut-out mask (opacity below it is fully transparent)
     bool thinWalled = false;
-    // Subsurface scattering parameters (Standard Surface), read for the subsurface issue.
+    // Subsurface scattering (Standard Surface): the weight of the subsurface lobe, the colour it
+    // shows, its mean free path (radius x scale), and how light travels under the surface.
     float subsurface = 0.0f;
     RGB subsurfaceColor{1.0f};
     RGB subsurfaceRadius{1.0f};
     float subsurfaceScale = 1.0f;
+    SubsurfaceMethod subsurfaceMethod = SubsurfaceMethod::RandomWalk;
     // UsdPreviewSurface displacement along the normal, in object units. Geometry, not shading:
     // the delegate applies it when it tessellates a subdivision surface; the render core ignores it.
     float displacement = 0.0f;

@@ -158,6 +158,35 @@ TEST(SurfaceShaders, StandardSurfaceTransmissionDepthFillsTheInteriorWithAMedium
     EXPECT_FALSE(theMaterial(thin).interior.has_value()) << "a thin wall encloses nothing";
 }
 
+TEST(SurfaceShaders, SubsurfaceMakesARandomWalkInteriorOrDiffusionByItsType) {
+    auto shader = [](const std::string& extra) {
+        return populate(testing::quadBoundTo(R"(
+        token outputs:mtlx:surface.connect = </Looks/M/S.outputs:out>
+        def Shader "S"
+        {
+            uniform token info:id = "ND_standard_surface_surfaceshader"
+            float inputs:subsurface = 1
+            color3f inputs:subsurface_color = (0.8, 0.5, 0.2)
+            color3f inputs:subsurface_radius = (1, 0.5, 0.25)
+            float inputs:subsurface_scale = 0.2
+            )" + extra + R"(
+        }
+)"));
+    };
+    auto walk = shader("");
+    const render::MaterialDesc& m = theMaterial(walk);
+    EXPECT_EQ(m.subsurfaceMethod, render::SubsurfaceMethod::RandomWalk) << "the fallback";
+    ASSERT_TRUE(m.interior.has_value());
+    EXPECT_NEAR(m.interior->sigmaA.y + m.interior->sigmaS.y, 1.0f / (0.5f * 0.2f), 1e-3f) << "1 / (radius x scale)";
+    EXPECT_TRUE(walk.warnings.empty());
+
+    auto diffusion = shader(R"(uniform token inputs:subsurface_type = "diffusion")");
+    EXPECT_EQ(theMaterial(diffusion).subsurfaceMethod, render::SubsurfaceMethod::Diffusion);
+    auto unknown = shader(R"(uniform token inputs:subsurface_type = "dipole")");
+    EXPECT_EQ(theMaterial(unknown).subsurfaceMethod, render::SubsurfaceMethod::RandomWalk);
+    ASSERT_EQ(unknown.warnings.size(), 1u);
+}
+
 TEST(SurfaceShaders, UnsupportedShadersFallBackToTheUniversalOutputThenWarn) {
     auto p = populate(testing::quadBoundTo(R"(
         token outputs:mtlx:surface.connect = </Looks/M/Odd.outputs:out>
