@@ -1,10 +1,11 @@
 #!/usr/bin/python3
 """Error-vs-time charts for bench/results: one log-log line per method, PNG and SVG, slopes printed.
 
-  bench/chart.py CSV --x COLUMN --y COLUMN --group COLUMN --out BASE [--title T] [--xlabel L] [--ylabel L]
+  bench/chart.py CSV --x COLUMN --y COLUMN --group COLUMN --out BASE [--where COLUMN=VALUE]
+                 [--title T] [--xlabel L] [--ylabel L]
 
 Reads CSV (a header row), draws COLUMN y against COLUMN x for each value of the group column, and
-writes BASE.png and BASE.svg. For each group it prints the least-squares slope of log y against
+writes BASE.png and BASE.svg; --where keeps only the rows whose COLUMN is VALUE. For each group it prints the least-squares slope of log y against
 log x (about -0.5 for an unbiased Monte Carlo estimator whose error is all variance; flattening
 towards 0 where a method's bias dominates). Needs Debian's python3-matplotlib (run with
 /usr/bin/python3).
@@ -35,14 +36,18 @@ def main():
     p.add_argument("--y", required=True)
     p.add_argument("--group", required=True)
     p.add_argument("--out", required=True)
+    p.add_argument("--where", default=None)
     p.add_argument("--title", default="")
     p.add_argument("--xlabel", default=None)
     p.add_argument("--ylabel", default=None)
     a = p.parse_args()
 
+    column, _, value = (a.where or "").partition("=")
     groups = {}
     with open(a.csv) as f:
         for row in csv.DictReader(f):
+            if a.where and row.get(column) != value:
+                continue
             x, y = float(row[a.x]), float(row[a.y])
             if x > 0 and y > 0:
                 groups.setdefault(row[a.group], []).append((x, y))

@@ -132,7 +132,10 @@ FilmSample PathTracer::sample(const render::RenderScene& scene, const render::Ca
                 if (walking ? ++interiorScatterings > kMaxInteriorScatterings : depth >= maxDepth_) break;
                 const Vec3f wo = -ray.direction;
                 const media::HenyeyGreenstein phase(flight.properties.g);
-                sampleLight(haveLights, flight.p, Vec3f(0.0f), [&](const Vec3f&) { return std::pair(flight.p, medium); },
+                // Inside a material's interior no light is sampled: the closed surface around the
+                // point blocks every shadow ray but those to lights inside it, which phase sampling
+                // still finds, then weighted as the only strategy (as after a delta lobe).
+                sampleLight(haveLights && !walking, flight.p, Vec3f(0.0f), [&](const Vec3f&) { return std::pair(flight.p, medium); },
                             [&](const Vec3f& wi) {
                     float p = phase.p(wo, wi);
                     return std::pair(RGB(p), p);
@@ -142,7 +145,7 @@ FilmSample PathTracer::sample(const render::RenderScene& scene, const render::Ca
                 throughput *= ps.p / ps.pdf;
                 if (!continueInMedium(throughput, etaScale, depth, walking, rng)) break;
                 mis.scattered(ps.pdf);
-                specularBounce = false;
+                specularBounce = walking;  // no light strategy at this vertex
                 previousPoint = flight.p;
                 previousNormal = Vec3f(0.0f);
                 ray = Ray{flight.p, ps.wi, 0.0f, std::numeric_limits<float>::infinity()};

@@ -20,8 +20,9 @@
 namespace fluence::integrators {
 namespace {
 
-// 2 integrators x 3 channels (cube) + 3 channels (furnace) checks, family-wide 1%.
-const double kZ = test::normalQuantile(0.5 * test::sidakAlpha(9));
+// 2 integrators x 3 channels (cube) + 3 channels (furnace) + 3 channels (light inside) checks,
+// family-wide 1%.
+const double kZ = test::normalQuantile(0.5 * test::sidakAlpha(12));
 
 render::MaterialDesc glassWithInterior(const media::MediumProperties& interior) {
     render::MaterialDesc m;
@@ -127,6 +128,37 @@ TEST(InteriorMedium, AlbedoOneInteriorFurnaceNeitherLosesNorGainsLight) {
                     reading.count());
         ASSERT_GT(reading.count(), 100);
         EXPECT_NEAR(reading.mean(), 1.0, kZ * reading.standardError()) << "channel " << c;
+    }
+}
+
+TEST(InteriorMedium, LightInsideAScatteringInteriorAgreesWithTheNaiveReference) {
+    // A sphere light inside a glass ball full of a chromatic, absorbing, scattering medium: `path`
+    // samples no light at scatterings inside (the ball's surface would block the shadow rays of
+    // every light outside) and counts the light hit by phase sampling at full weight, while it
+    // still samples the light from the glass surface. `naive` only ever hits it. Both estimate
+    // the same radiance along a ray through the ball.
+    render::SceneDescription desc = inAWhiteSky(test::sphereMesh(1.0f, 48, 24, 0),
+                                                glassWithInterior({RGB(0.1f, 0.2f, 0.4f), RGB(1.5f, 1.0f, 0.5f), RGB(0.0f), 0.3f}));
+    render::MeshDesc& ball = desc.meshes[0];
+    for (std::uint32_t i : ball.indices) ball.cornerNormals.push_back(normalize(ball.positions[i]));
+    desc.lights[0].radiance = RGB(0.0f);  // the sky stays dark; only the light inside shines
+    render::LightDesc bulb;
+    bulb.name = "/Bulb";
+    bulb.type = render::LightType::Sphere;
+    bulb.radius = 0.2f;
+    bulb.radiance = RGB(10.0f);
+    desc.lights.push_back(bulb);
+    render::RenderScene scene(desc);
+    const render::Ray ray{{0.3f, -5.0f, 0.1f}, {0.0f, 1.0f, 0.0f}};
+    std::array<test::MeanEstimate, 3> path = radianceAlong(PathTracer(IntegratorSettings{}), scene, ray, 40000);
+    std::array<test::MeanEstimate, 3> naive = radianceAlong(NaivePathTracer(IntegratorSettings{}), scene, ray, 40000);
+    for (int c = 0; c < 3; ++c) {
+        const double difference = path[c].mean() - naive[c].mean();
+        const double error = std::hypot(path[c].standardError(), naive[c].standardError());
+        std::printf("[ measured ] channel %d: path %.5f +- %.5f, naive %.5f +- %.5f\n", c, path[c].mean(), path[c].standardError(),
+                    naive[c].mean(), naive[c].standardError());
+        EXPECT_GT(path[c].mean(), 0.0) << "the light inside shines through";
+        EXPECT_NEAR(difference, 0.0, kZ * error) << "channel " << c;
     }
 }
 

@@ -16,8 +16,8 @@
 namespace fluence::integrators {
 namespace {
 
-// 2 methods x 3 channels (slab) + 2 objects x 3 channels (furnaces), family-wide 1%.
-const double kZ = test::normalQuantile(0.5 * test::sidakAlpha(12));
+// 2 methods x 3 channels (slab) + 3 objects x 3 channels (furnaces), family-wide 1%.
+const double kZ = test::normalQuantile(0.5 * test::sidakAlpha(15));
 
 // Standard Surface subsurface = 1 with no specular layer: the boundary is index-matched and
 // lossless, as in the slab the albedo inversion was fitted to.
@@ -101,8 +101,9 @@ TEST(Subsurface, ThinTileShowsDiffusionsErrorWhereTheWalkIsExact) {
 
 TEST(Subsurface, WhiteObjectsBehindALosslessBoundaryNeitherLoseNorGainLight) {
     // Albedo 1 inside, nothing lost at the boundary: every walk leaves, whatever the shape. A
-    // sphere (round shading normals) a few mean free paths across, and a thin tile (a tenth of a
-    // mean free path thick, where walks cross it in a step or two and leave by either face).
+    // sphere (round shading normals) a few mean free paths across; a thin tile (a tenth of a mean
+    // free path thick, where walks cross it in a step or two and leave by either face); and a
+    // torus, whose concave inside sends light that leaves back into it.
     render::MeshDesc sphere = test::sphereMesh(1.0f, 48, 24, 0);
     for (std::uint32_t i : sphere.indices) sphere.cornerNormals.push_back(normalize(sphere.positions[i]));
     struct Case {
@@ -111,7 +112,8 @@ TEST(Subsurface, WhiteObjectsBehindALosslessBoundaryNeitherLoseNorGainLight) {
         RGB meanFreePath;
     };
     for (const Case& object : {Case{"sphere", sphere, RGB(0.1f, 0.3f, 1.0f)},
-                               Case{"thin tile", test::boxMesh(Vec3f(1.0f, 0.02f, 1.0f), 0), RGB(0.4f)}}) {
+                               Case{"thin tile", test::boxMesh(Vec3f(1.0f, 0.02f, 1.0f), 0), RGB(0.4f)},
+                               Case{"torus", test::torusMesh(0.8f, 0.3f, 128, 64, 0), RGB(0.05f, 0.2f, 0.6f)}}) {
         render::SceneDescription scene =
             underAWhiteSky(object.mesh, subsurfaceMaterial(RGB(1.0f), object.meanFreePath), Vec3f(0.0f, -4.0f, 0.0f));
         std::array<test::MeanEstimate, 3> means = objectMeans(scene, 48, 128);

@@ -4,7 +4,9 @@
 #include <array>
 #include <cmath>
 #include <string>
+#include <vector>
 
+#include "core/sampling.h"
 #include "render/scene_description.h"
 
 namespace fluence::test {
@@ -67,6 +69,30 @@ inline render::MeshDesc boxMesh(const Vec3f& halfSize, int material) {
                 m.positions.push_back((n + u * a + v * b) * halfSize);
             for (std::uint32_t i : {0u, 1u, 2u, 0u, 2u, 3u}) m.indices.push_back(base + i);
         }
+    return m;
+}
+
+// A torus about the Z axis (ring radius `ring`, tube radius `tube`), closed and wound outwards,
+// with round shading normals: a shape with a concave inside.
+inline render::MeshDesc torusMesh(float ring, float tube, int segments, int sides, int material) {
+    render::MeshDesc m;
+    m.name = "/Torus";
+    m.material = material;
+    std::vector<Vec3f> normals;
+    for (int i = 0; i < segments; ++i)
+        for (int j = 0; j < sides; ++j) {
+            const float u = 2.0f * kPi * i / segments, v = 2.0f * kPi * j / sides;
+            const Vec3f n(std::cos(v) * std::cos(u), std::cos(v) * std::sin(u), std::sin(v));
+            m.positions.push_back(Vec3f(ring * std::cos(u), ring * std::sin(u), 0.0f) + n * tube);
+            normals.push_back(n);
+        }
+    auto index = [&](int i, int j) { return static_cast<std::uint32_t>((i % segments) * sides + j % sides); };
+    for (int i = 0; i < segments; ++i)
+        for (int j = 0; j < sides; ++j)
+            for (std::uint32_t k : {index(i, j), index(i + 1, j), index(i + 1, j + 1), index(i, j), index(i + 1, j + 1), index(i, j + 1)}) {
+                m.indices.push_back(k);
+                m.cornerNormals.push_back(normals[k]);
+            }
     return m;
 }
 

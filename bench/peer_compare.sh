@@ -1,8 +1,10 @@
 #!/usr/bin/env bash
-# Fluence beside Cycles on the Cycles peer's smoke scene (shared/peers/cycles, scene b), with the
-# same VDB, lights, camera and 256 x 256 box-filtered pixels (bench/peer_scenes/cycles_smoke.usda).
+# Fluence beside Cycles on one of the Cycles peer's scenes (shared/peers/cycles): `smoke` (scene b:
+# the same VDB, lights, camera and 256 x 256 box-filtered pixels) or `sss` (scene c: the same cage
+# at subdivision level 4, light, floor and camera; bench/peer_scenes/cycles_SCENE.usda says how
+# close each is).
 #
-#   bench/peer_smoke_compare.sh FLUENCE PEER_DIR OUT_DIR [REF_SPP] [SPP...]
+#   bench/peer_compare.sh SCENE FLUENCE PEER_DIR OUT_DIR [REF_SPP] [SPP...]
 #
 # FLUENCE is the fluence binary; PEER_DIR a writable copy of shared/peers/cycles (scenes.py,
 # compare.py); OUT_DIR receives the images and `series.csv`. Each renderer first renders its own
@@ -13,19 +15,24 @@
 # Times: Fluence's is its own "render" time (after the scene is built); Cycles' is the
 # render_time it writes into the EXR header (after its scene sync); both on 2 threads.
 set -euo pipefail
-FLUENCE=$(realpath "$1"); PEER=$(realpath "$2"); OUT=$3; REF_SPP=${4:-2048}; shift $(( $# < 4 ? $# : 4 ))
+NAME=$1; FLUENCE=$(realpath "$2"); PEER=$(realpath "$3"); OUT=$4; REF_SPP=${5:-2048}; shift $(( $# < 5 ? $# : 5 ))
 SPPS=("$@"); [ ${#SPPS[@]} -gt 0 ] || SPPS=(4 16 64 256)
-SCENE=$(realpath "$(dirname "$0")/peer_scenes/cycles_smoke.usda")
+SCENE=$(realpath "$(dirname "$0")/peer_scenes/cycles_$NAME.usda")
+case "$NAME" in
+    smoke) EXTRA=() ;;
+    sss) EXTRA=(--subdiv-level 4) ;;  # Cycles' render level
+    *) echo "unknown peer scene '$NAME' (smoke or sss)" >&2; exit 2 ;;
+esac
 PY=/usr/bin/python3
 mkdir -p "$OUT"; OUT=$(realpath "$OUT")
 
 cycles() {  # cycles SPP SEED OUT.exr -> prints render seconds
-    (cd "$PEER" && blender -b --factory-startup -P scenes.py -- --scene smoke --spp "$1" --seed "$2" --out "$3" \
+    (cd "$PEER" && blender -b --factory-startup -P scenes.py -- --scene "$NAME" --spp "$1" --seed "$2" --out "$3" \
         --res 256 256 --threads 2 > "${3%.exr}.log" 2>&1)
     "$PY" "$PEER/compare.py" stats --json "$3" | "$PY" -c "import json,sys; print('%.3f' % json.load(sys.stdin)['times']['render_time'])"
 }
 fluence() {  # fluence SPP SEED OUT.exr -> prints render seconds
-    "$FLUENCE" render "$SCENE" --spp "$1" --seed "$2" -j 2 -o "$3" > "${3%.exr}.log" 2>&1
+    "$FLUENCE" render "$SCENE" "${EXTRA[@]}" --spp "$1" --seed "$2" -j 2 -o "$3" > "${3%.exr}.log" 2>&1
     sed -n 's/.*render \([0-9.]*\) s.*/\1/p' "${3%.exr}.log"
 }
 rmse() { "$PY" "$PEER/compare.py" diff --json "$1" "$2" | "$PY" -c "import json,sys; print('%.6g' % json.load(sys.stdin)['rmse'])"; }
