@@ -84,8 +84,9 @@ inline bool continuePath(RGB& throughput, float etaScale, int depth, SampleStrea
 
 // Scatterings inside a material's interior (MediumStack::depth() > 0: a subsurface walk, a murky
 // liquid) are not bounces: a walk takes hundreds of steps. They count against their own budget of
-// kMaxInteriorScatterings per path instead of maxDepth (a walk that reaches it ends, losing its
-// light: measured in tests/integrators/subsurface_test.cpp), and play no Russian roulette: delta
+// kMaxInteriorScatterings per path instead of maxDepth (a walk that reaches it ends and loses its
+// light; the white furnaces of tests/integrators/subsurface_test.cpp, which would read below 1,
+// show no such loss), and play no Russian roulette: delta
 // tracking already ends walks by absorption, and continuePath's survival, capped at 0.95 per step,
 // would end long walks and weigh the few survivors heavily.
 inline constexpr int kMaxInteriorScatterings = 1024;
