@@ -16,6 +16,7 @@
 
 #include "core/film.h"
 #include "core/random.h"
+#include "integrators/path_classes.h"
 #include "render/camera.h"
 #include "render/render_scene.h"
 
@@ -42,9 +43,19 @@ struct IntegratorSettings {
     int maxDepth = 64;  // maximum number of scattering events along a path
 };
 
+// The render loop (integrators/renderer.h) calls, on one thread: prepare() once, then for each
+// pass beginSamples() and sample() for every pixel sample of the pass, in parallel. The two hooks
+// are for methods that need scene-wide work shared by every pixel: a radiosity solution, or the
+// photon maps of photon mapping (one per sample index, so that a sample's value still depends
+// only on (seed, pixel, sample index), whatever the passes and threads). What they compute is
+// kept in the integrator (mutable: written only by the hooks, between passes, and only read by
+// sample()). Methods that need neither leave them empty.
 class Integrator {
 public:
     virtual ~Integrator() = default;
+    virtual void prepare(const render::RenderScene& /*scene*/, const render::Camera& /*camera*/, std::uint64_t /*seed*/) const {}
+    virtual void beginSamples(const render::RenderScene& /*scene*/, const render::Camera& /*camera*/, std::uint64_t /*seed*/,
+                              int /*firstSample*/, int /*count*/) const {}
     virtual FilmSample sample(const render::RenderScene& scene, const render::Camera& camera, const render::Ray& ray,
                               SampleStream& rng, RenderCounters& counters) const = 0;
 };
@@ -52,6 +63,7 @@ public:
 struct IntegratorInfo {
     std::string name;
     std::string pathClasses;  // Heckbert notation
+    unsigned covers = 0;      // the PathClass bits it accounts for (integrators/path_classes.h)
     std::string description;
     std::function<std::unique_ptr<Integrator>(const IntegratorSettings&)> create;
 };

@@ -6,10 +6,10 @@ namespace fluence::integrators {
 
 const std::vector<IntegratorInfo>& integratorRegistry() {
     static const std::vector<IntegratorInfo> registry = {
-        {"path", "L(S|D)*E",
+        {"path", "L(S|D)*E", kAllPathClasses & ~kDeltaLightCaustics,
          "unidirectional path tracing with next-event estimation, MIS and Russian roulette",
          [](const IntegratorSettings& s) { return std::make_unique<PathTracer>(s); }},
-        {"naive", "L(S|D)*E without delta lights",
+        {"naive", "L(S|D)*E without delta lights", kAllPathClasses & ~(kDeltaLights | kDeltaLightCaustics),
          "reference path tracing by BSDF sampling only (no NEE, no MIS): slow; for validating `path`",
          [](const IntegratorSettings& s) { return std::make_unique<NaivePathTracer>(s); }},
     };
