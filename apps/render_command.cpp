@@ -174,6 +174,7 @@ int runRender(const RenderOptions& opt) {
     if (stats.counters.nonFiniteSamples > 0)
         std::fprintf(stderr, "fluence: warning: %llu samples were NaN or infinite and were discarded (please report)\n",
                      static_cast<unsigned long long>(stats.counters.nonFiniteSamples));
+    if (const std::string note = integrator->summary(); !note.empty()) std::printf("  method       %s\n", note.c_str());
     std::printf("  output       %s%s%s\n", outputPath.c_str(), opt.preview.empty() ? "" : ", ", opt.preview.c_str());
     return kExitOk;
 }

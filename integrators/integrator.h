@@ -56,6 +56,9 @@ public:
     virtual void prepare(const render::RenderScene& /*scene*/, const render::Camera& /*camera*/, std::uint64_t /*seed*/) const {}
     virtual void beginSamples(const render::RenderScene& /*scene*/, const render::Camera& /*camera*/, std::uint64_t /*seed*/,
                               int /*firstSample*/, int /*count*/) const {}
+    // What the method has to say about its solution for the render summary (a radiosity
+    // solution's residual, a photon count), one line, after render(); "" for nothing.
+    virtual std::string summary() const { return ""; }
     virtual FilmSample sample(const render::RenderScene& scene, const render::Camera& camera, const render::Ray& ray,
                               SampleStream& rng, RenderCounters& counters) const = 0;
 };
