@@ -71,4 +71,15 @@ std::optional<DiffusionExit> sampleDiffusionExit(const render::RenderScene& scen
     return DiffusionExit{exit, profile.profile(fluence::length(d)) / pdf};
 }
 
+DiffusionStep stepThroughDiffusion(const render::RenderScene& scene, const render::SurfaceHit& hit, const Vec3f& wo,
+                                   const Vec3f& wi, RGB& throughput, std::optional<render::SurfaceHit>& exit,
+                                   SampleStream& rng, RenderCounters& counters) {
+    if (!entersDiffusion(hit, wo, wi)) return DiffusionStep::NotEntered;
+    std::optional<DiffusionExit> sampled = sampleDiffusionExit(scene, hit, rng, counters);
+    if (!sampled) return DiffusionStep::Lost;
+    throughput *= sampled->weight;
+    exit = sampled->hit;
+    return DiffusionStep::Exited;
+}
+
 }  // namespace fluence::integrators

@@ -48,4 +48,14 @@ bool entersDiffusion(const render::SurfaceHit& hit, const Vec3f& wo, const Vec3f
 std::optional<DiffusionExit> sampleDiffusionExit(const render::RenderScene& scene, const render::SurfaceHit& entry,
                                                  SampleStream& rng, RenderCounters& counters);
 
+// What a path does after its BSDF sample at `hit` (arrived along -wo, leaving along wi), for the
+// integrators that follow subsurface light: it did not enter a diffusion material (NotEntered:
+// go on as usual); it did, and `throughput` now carries the exit's weight and `exit` holds the
+// exit point, the next vertex, reached without tracing a ray (Exited); or no exit was found and
+// the path ends (Lost).
+enum class DiffusionStep { NotEntered, Exited, Lost };
+DiffusionStep stepThroughDiffusion(const render::RenderScene& scene, const render::SurfaceHit& hit, const Vec3f& wo,
+                                   const Vec3f& wi, RGB& throughput, std::optional<render::SurfaceHit>& exit,
+                                   SampleStream& rng, RenderCounters& counters);
+
 }  // namespace fluence::integrators

@@ -87,13 +87,9 @@ FilmSample NaivePathTracer::sample(const render::RenderScene& scene, const rende
         throughput *= bs->f * (std::abs(bs->wi.z) / bs->pdf);
         etaScale *= bs->eta * bs->eta;
         if (!continuePath(throughput, etaScale, depth, rng)) break;
-        if (entersDiffusion(*hit, wo, wi)) {
-            std::optional<DiffusionExit> exit = sampleDiffusionExit(scene, *hit, rng, counters);
-            if (!exit) break;
-            throughput *= exit->weight;
-            diffusionExit = exit->hit;
-            continue;
-        }
+        const DiffusionStep step = stepThroughDiffusion(scene, *hit, wo, wi, throughput, diffusionExit, rng, counters);
+        if (step == DiffusionStep::Lost) break;
+        if (step == DiffusionStep::Exited) continue;
         inside = inside.after(*hit, wo, wi);
         ray = render::Ray{spawnOrigin(hit->point, surface.geometricNormal, wi), wi, 0.0f,
                           std::numeric_limits<float>::infinity()};

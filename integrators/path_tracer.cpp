@@ -213,13 +213,9 @@ FilmSample PathTracer::sample(const render::RenderScene& scene, const render::Ca
         if (!continuePath(throughput, etaScale, depth, rng)) break;
 
         mis.scattered(bs->pdf);
-        if (entersDiffusion(*hit, wo, wi)) {
-            std::optional<DiffusionExit> exit = sampleDiffusionExit(scene, *hit, rng, counters);
-            if (!exit) break;
-            throughput *= exit->weight;
-            diffusionExit = exit->hit;
-            continue;
-        }
+        const DiffusionStep step = stepThroughDiffusion(scene, *hit, wo, wi, throughput, diffusionExit, rng, counters);
+        if (step == DiffusionStep::Lost) break;
+        if (step == DiffusionStep::Exited) continue;
         inside = inside.after(*hit, wo, wi);
         specularBounce = bs->specular;
         previousPoint = lightFrom;
