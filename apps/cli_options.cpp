@@ -139,11 +139,8 @@ RenderOptions parseRenderOptions(const std::vector<std::string>& args) {
             o.seed = parseNumber<std::uint64_t>(arg, cur.value(arg));
         } else if (arg == "--integrator") {
             o.integrator = cur.value(arg);
-            if (!integrators::findIntegrator(o.integrator)) {
-                std::string names;
-                for (const auto& i : integrators::integratorRegistry()) names += (names.empty() ? "" : ", ") + i.name;
-                throw UsageError("unknown integrator '" + o.integrator + "' (available: " + names + ")");
-            }
+            if (!integrators::findIntegrator(o.integrator))
+                throw UsageError("unknown integrator '" + o.integrator + "' (available: " + integratorNames() + ")");
         } else if (arg == "--time-limit") {
             o.timeLimit = parseNumber<double>(arg, cur.value(arg));
             if (!(o.timeLimit >= 0.0) || !std::isfinite(o.timeLimit)) throw UsageError("--time-limit must be >= 0 seconds");
@@ -176,6 +173,12 @@ RenderOptions parseRenderOptions(const std::vector<std::string>& args) {
     return o;
 }
 
+std::string integratorNames() {
+    std::string names;
+    for (const auto& i : integrators::integratorRegistry()) names += (names.empty() ? "" : ", ") + i.name;
+    return names;
+}
+
 std::string usageText() {
     std::string integratorList;
     for (const auto& i : integrators::integratorRegistry())
@@ -187,7 +190,8 @@ std::string usageText() {
            "\n"
            "`render` renders a USD scene to a multi-channel OpenEXR image (beauty RGBA in linear Rec.709,\n"
            "plus albedo, N, Z and sampleCount AOVs). `info` prints the composed prim tree, the cameras,\n"
-           "lights, materials, volumes and render settings, and every asset path with whether it resolves.\n"
+           "lights, materials, volumes and render settings, the classes of light paths the scene can\n"
+           "produce and those each integrator misses, and every asset path with whether it resolves.\n"
            "\n"
            "options:\n"
            "  -o, --output FILE.exr   output image (default: the render product's productName, else SCENE's\n"
@@ -205,7 +209,8 @@ std::string usageText() {
            "  -f, --frame F           time code to render (default: the stage's startTimeCode, else default values)\n"
            "  -j, --threads N         worker threads (default 0: every core)\n"
            "      --seed S            random seed (default 0); same seed and spp give a bit-identical image\n"
-           "      --integrator NAME   solution method (default path):\n" +
+           "      --integrator NAME   solution method (default: the render settings' fluence:integrator, else\n"
+           "                          " + std::string(kDefaultIntegrator) + "):\n" +
            integratorList +
            "      --max-depth N       maximum scattering events per path (default 64)\n"
            "      --dicing-rate PX    subdivision surfaces: target micro-edge length in pixels (default 1)\n"

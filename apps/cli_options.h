@@ -26,7 +26,7 @@ struct RenderOptions {
     std::string camera;             // -c/--camera /Prim/Path
     int threads = 0;                // -j/--threads N (0: all cores)
     std::uint64_t seed = 0;         // --seed S
-    std::string integrator = "path";  // --integrator NAME
+    std::string integrator;         // --integrator NAME ("": the render settings' fluence:integrator, else path)
     double timeLimit = 0.0;         // --time-limit SECONDS (0: none)
     int maxDepth = 64;              // --max-depth N
     double dicingRate = 1.0;        // --dicing-rate PIXELS: micro-edge length of subdivision surfaces
@@ -49,12 +49,16 @@ struct InfoOptions {
 inline constexpr int kDefaultSpp = 64;
 inline constexpr int kMaxSubdivLevel = 8;
 inline constexpr int kDefaultWidth = 640, kDefaultHeight = 480;
+inline constexpr const char* kDefaultIntegrator = "path";
 
 // Parses the arguments after `fluence render`. Throws UsageError with a one-line reason.
 RenderOptions parseRenderOptions(const std::vector<std::string>& args);
 InfoOptions parseInfoOptions(const std::vector<std::string>& args);
 // Parses "/Prim/Path:set=selection".
 usd::VariantSelection parseVariantSelection(const std::string& text);
+
+// The registered integrators' names, "path, naive, ...", for messages.
+std::string integratorNames();
 
 std::string usageText();
 

@@ -1,15 +1,20 @@
 #include "apps/info_command.h"
 
+#include <algorithm>
 #include <cstdio>
 #include <functional>
 #include <map>
 
 #include "apps/scene_loading.h"
+#include "color/color_management.h"
 #include "delegate/instancing.h"
 #include "delegate/light_adapter.h"
 #include "delegate/material_adapter.h"
 #include "delegate/prim_reader.h"
 #include "delegate/render_settings_adapter.h"
+#include "delegate/scene_delegate.h"
+#include "integrators/integrator.h"
+#include "integrators/scene_path_classes.h"
 
 namespace fluence::app {
 
@@ -44,6 +49,40 @@ void printTree(const usd::PrimSpec& prim, int depth) {
 }
 
 void section(const char* title, std::size_t count) { std::printf("\n%s (%zu)\n", title, count); }
+
+// The scene as `fluence render` would describe it to the render core (nullopt, with a warning,
+// when it cannot be).
+std::optional<render::SceneDescription> describeScene(usd::Stage& stage, const InfoOptions& opt, double time,
+                                                      WarningLog& warnings) {
+    try {
+        const color::ColorManagement colors = color::ColorManagement::load();
+        delegate::DelegateOptions dopt;
+        dopt.settingsPath = opt.settings;
+        dopt.time = time;
+        dopt.convertColor = [&](const RGB& c, const std::string& space) { return colors.toRenderingSpace(space, c); };
+        dopt.warn = [&](const std::string& path, const std::string& message) { warnings(path, message); };
+        return delegate::populateScene(stage, dopt).scene;
+    } catch (const delegate::SceneError& e) {
+        warnings("path classes", e.what());
+    } catch (const color::ColorError& e) {
+        warnings("path classes", e.what());
+    }
+    return std::nullopt;
+}
+
+// The classes of light paths the scene can produce, and which of them each integrator misses.
+void printPathClasses(const render::SceneDescription& scene) {
+    const unsigned classes = integrators::scenePathClasses(scene);
+    std::printf("\npath classes  %s\n", integrators::describePathClasses(classes).c_str());
+    const auto& registry = integrators::integratorRegistry();
+    int width = 0;
+    for (const integrators::IntegratorInfo& i : registry) width = std::max(width, int(i.name.size()));
+    for (const integrators::IntegratorInfo& i : registry) {
+        const unsigned missed = classes & ~i.covers;
+        std::printf("  %-*s  %s\n", width, i.name.c_str(),
+                    missed ? ("misses " + integrators::describePathClasses(missed)).c_str() : "covers them all");
+    }
+}
 
 }  // namespace
 
@@ -124,8 +163,9 @@ int runInfo(const InfoOptions& opt) {
     list("render settings prims", settings);
     try {
         if (auto s = delegate::renderSettingsFromStage(*stage, opt.settings, time)) {
-            std::printf("  used: %s  resolution %d x %d, camera %s, %zu products\n", s->path.c_str(), s->resolution.first,
-                        s->resolution.second, s->cameraPath.empty() ? "(none)" : s->cameraPath.c_str(), s->products.size());
+            std::printf("  used: %s  resolution %d x %d, camera %s, %zu products%s\n", s->path.c_str(), s->resolution.first,
+                        s->resolution.second, s->cameraPath.empty() ? "(none)" : s->cameraPath.c_str(), s->products.size(),
+                        s->integrator.empty() ? "" : (", integrator " + s->integrator).c_str());
             for (const auto& p : s->products) {
                 std::printf("    product %s  productName '%s'  %d x %d\n", p.path.c_str(), p.productName.c_str(),
                             p.resolution.first, p.resolution.second);
@@ -137,6 +177,8 @@ int runInfo(const InfoOptions& opt) {
     } catch (const delegate::SceneError& e) {
         warnings("render settings", e.what());
     }
+
+    if (auto scene = describeScene(*stage, opt, time, warnings)) printPathClasses(*scene);
 
     std::vector<usd::AssetReference> assets = stage->assetReferences();
     std::size_t missing = 0;

@@ -6,7 +6,8 @@
 namespace fluence::app {
 
 // Prints the layers, the composed prim tree with types, the cameras, lights, materials, volumes
-// and render settings, every asset path with whether it resolves, and the composition warnings.
+// and render settings, the classes of light paths the scene can produce and which of them each
+// integrator misses, every asset path with whether it resolves, and the composition warnings.
 // Returns an exit code (0 when the scene composed, whatever the warnings).
 int runInfo(const InfoOptions& options);
 

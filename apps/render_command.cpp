@@ -9,6 +9,7 @@
 #include "color/color_management.h"
 #include "delegate/scene_delegate.h"
 #include "integrators/renderer.h"
+#include "integrators/scene_path_classes.h"
 #include "output/atomic_file.h"
 #include "output/exr_writer.h"
 #include "output/preview_writer.h"
@@ -28,6 +29,17 @@ double secondsSince(Clock::time_point t) { return std::chrono::duration<double>(
 // "1 light", "3 lights".
 std::string counted(std::size_t n, const std::string& singular, const std::string& plural = "") {
     return std::to_string(n) + " " + (n == 1 ? singular : (plural.empty() ? singular + "s" : plural));
+}
+
+// The integrator the render uses: --integrator, else the render settings' fluence:integrator,
+// else the default. Throws SceneError when the settings name none that Fluence has.
+const integrators::IntegratorInfo& chosenIntegrator(const RenderOptions& opt,
+                                                    const std::optional<delegate::RenderSettingsDesc>& settings) {
+    if (!opt.integrator.empty()) return *integrators::findIntegrator(opt.integrator);  // checked when parsed
+    if (!settings || settings->integrator.empty()) return *integrators::findIntegrator(kDefaultIntegrator);
+    if (const integrators::IntegratorInfo* info = integrators::findIntegrator(settings->integrator)) return *info;
+    throw delegate::SceneError("render settings " + settings->path + ": fluence:integrator '" + settings->integrator +
+                               "' is not an integrator (available: " + integratorNames() + ")");
 }
 
 }  // namespace
@@ -65,8 +77,10 @@ int runRender(const RenderOptions& opt) {
     dopt.warn = [&](const std::string& path, const std::string& message) { warnings(path, message); };
     std::optional<delegate::DelegateResult> populated;
     std::unique_ptr<render::RenderScene> scene;
+    const integrators::IntegratorInfo* integratorInfo = nullptr;
     try {
         populated = delegate::populateScene(*stage, dopt);
+        integratorInfo = &chosenIntegrator(opt, populated->renderSettings);
         if (!opt.subsurface.empty())
             for (render::MaterialDesc& m : populated->scene.materials)
                 m.subsurfaceMethod = opt.subsurface == "diffusion" ? render::SubsurfaceMethod::Diffusion : render::SubsurfaceMethod::RandomWalk;
@@ -87,6 +101,9 @@ int runRender(const RenderOptions& opt) {
     }
     const double buildSeconds = secondsSince(t);
     if (scene->lightCount() == 0) warnings(populated->cameraPath, "the scene has no lights; the image will be black");
+    if (const unsigned missed = integrators::scenePathClasses(populated->scene) & ~integratorInfo->covers)
+        warnings(opt.scene, "integrator '" + integratorInfo->name + "' misses: " + integrators::describePathClasses(missed) +
+                                " (light that this scene has)");
 
     // Render.
     // Resolution and output: the command line, else the render settings' first product, else the
@@ -110,8 +127,7 @@ int runRender(const RenderOptions& opt) {
     }
     integrators::IntegratorSettings isettings;
     isettings.maxDepth = opt.maxDepth;
-    const integrators::IntegratorInfo* info = integrators::findIntegrator(opt.integrator);
-    std::unique_ptr<integrators::Integrator> integrator = info->create(isettings);
+    std::unique_ptr<integrators::Integrator> integrator = integratorInfo->create(isettings);
     integrators::RenderSettings rs;
     rs.samplesPerPixel = opt.spp.value_or(kDefaultSpp);
     rs.seed = opt.seed;
@@ -120,9 +136,12 @@ int runRender(const RenderOptions& opt) {
     Film film(res.first, res.second, camera->farClip());
     integrators::RenderProgress progress;
     integrators::RenderStats stats;
-    {
+    try {
         ProgressReporter reporter(progress);
         stats = integrators::render(*scene, *camera, *integrator, rs, film, &progress);
+    } catch (const std::invalid_argument& e) {  // the method cannot render this scene (bdpt with media)
+        printError(e.what());
+        return kExitScene;
     }
 
     // Write.
@@ -136,7 +155,7 @@ int runRender(const RenderOptions& opt) {
     header.strings = {{"fluence/version", kFluenceVersion},
                       {"fluence/scene", std::filesystem::absolute(opt.scene).string()},
                       {"fluence/camera", populated->cameraPath},
-                      {"fluence/integrator", opt.integrator},
+                      {"fluence/integrator", integratorInfo->name},
                       {"fluence/ocioConfig", colors->configDescription()}};
     header.floats = {{"fluence/samplesPerPixel", float(stats.samplesPerPixel)},
                      {"fluence/seed", float(opt.seed)},
@@ -157,7 +176,7 @@ int runRender(const RenderOptions& opt) {
     std::printf("fluence: rendered %s\n", opt.scene.c_str());
     std::printf("  camera       %s\n", populated->cameraPath.empty() ? "(default: framing the scene)" : populated->cameraPath.c_str());
     std::printf("  image        %d x %d, %d spp, integrator %s, seed %llu, %d threads\n", res.first, res.second,
-                stats.samplesPerPixel, opt.integrator.c_str(), static_cast<unsigned long long>(opt.seed),
+                stats.samplesPerPixel, integratorInfo->name.c_str(), static_cast<unsigned long long>(opt.seed),
                 opt.threads > 0 ? opt.threads : int(std::thread::hardware_concurrency()));
     std::printf("  scene        %s, %s, %s (%s), %s\n", counted(st.meshes, "mesh", "meshes").c_str(),
                 counted(st.triangles, "triangle").c_str(), counted(st.lights, "light").c_str(),

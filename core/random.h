@@ -28,7 +28,8 @@ constexpr float toUnitFloat(std::uint64_t bits) { return static_cast<float>(bits
 class SampleStream {
 public:
     constexpr SampleStream(std::uint64_t seed, std::uint64_t pixelIndex, std::uint64_t sampleIndex)
-        : key_(mix64(mix64(seed ^ 0x5851f42d4c957f2dull) ^ pixelIndex) ^ mix64(sampleIndex + 0x14057b7ef767814full)) {}
+        : key_(mix64(mix64(seed ^ 0x5851f42d4c957f2dull) ^ pixelIndex) ^ mix64(sampleIndex + 0x14057b7ef767814full)),
+          sampleIndex_(sampleIndex) {}
 
     constexpr float next() { return toUnitFloat(mix64(key_ + 0x632be59bd9b4e019ull * ++dimension_)); }
     constexpr Vec2f next2D() {
@@ -36,9 +37,13 @@ public:
         return {a, next()};
     }
     constexpr std::uint32_t dimension() const { return dimension_; }
+    // The sample index the stream was made for: methods that keep per-sample-index state (the
+    // photon map of each sample index, integrators/sppm.h) look theirs up by it.
+    constexpr std::uint64_t sampleIndex() const { return sampleIndex_; }
 
 private:
     std::uint64_t key_;
+    std::uint64_t sampleIndex_;
     std::uint32_t dimension_ = 0;
 };
 

@@ -94,6 +94,7 @@ std::optional<RenderSettingsDesc> renderSettingsFromStage(const usd::Stage& stag
     s.cameraPath = relationshipTarget(*prim, "camera");
     s.framing = framingOf(reader, s.framing);
     if (auto purposes = reader.strings("includedPurposes")) s.includedPurposes = *purposes;
+    s.integrator = reader.token({"fluence:integrator"}, "");
 
     if (const usd::RelationshipSpec* products = prim->relationship("products"))
         for (const std::string& target : products->targets) {

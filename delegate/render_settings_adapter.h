@@ -7,7 +7,8 @@
 // | prim           | attribute (fallback)                                                        |
 // |----------------|------------------------------------------------------------------------------|
 // | RenderSettings | resolution (2048, 1080), pixelAspectRatio (1), aspectRatioConformPolicy      |
-// |                | ("expandAperture"), rel camera, rel products, includedPurposes               |
+// |                | ("expandAperture"), rel camera, rel products, includedPurposes,              |
+// |                | uniform token fluence:integrator ("": --integrator, else path)               |
 // | RenderProduct  | productName (""), productType ("raster"), and the RenderSettingsBase         |
 // |                | attributes above when authored on the product (they override the settings') |
 // |                | — resolution, camera, pixelAspectRatio, aspectRatioConformPolicy           |
@@ -15,7 +16,9 @@
 // In this slice the first product's productName is the default output path and its resolution,
 // camera and framing (pixelAspectRatio, aspectRatioConformPolicy) apply; writing every product
 // and var is issue #12. A policy outside USD's five tokens, or a pixelAspectRatio that is not
-// positive, raises SceneError naming the prim.
+// positive, raises SceneError naming the prim. `fluence:integrator` names the solution method
+// (integrators/registry.cpp) when `fluence render` is not given `--integrator`; the delegate does
+// not know the integrators, so the render command rejects a name that is none of them.
 #pragma once
 
 #include <optional>
@@ -50,6 +53,7 @@ struct RenderSettingsDesc {
     std::string cameraPath;
     render::ImageFraming framing;
     std::vector<std::string> includedPurposes{"default", "render"};
+    std::string integrator;  // fluence:integrator, "" when not authored
     std::vector<RenderProductDesc> products;
 
     // The product this version renders: the first one (nullptr when there are none).

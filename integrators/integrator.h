@@ -43,8 +43,9 @@ struct IntegratorSettings {
     int maxDepth = 64;  // maximum number of scattering events along a path
 };
 
-// The render loop (integrators/renderer.h) calls, on one thread: prepare() once, then for each
-// pass beginSamples() and sample() for every pixel sample of the pass, in parallel. The two hooks
+// The render loop (integrators/renderer.h) calls prepare() once, then for each pass
+// beginSamples() and sample() for every pixel sample of the pass, in parallel. The hooks are
+// called one at a time (never during sample()), and may run parallel loops of their own. The two hooks
 // are for methods that need scene-wide work shared by every pixel: a radiosity solution, or the
 // photon maps of photon mapping (one per sample index, so that a sample's value still depends
 // only on (seed, pixel, sample index), whatever the passes and threads). What they compute is

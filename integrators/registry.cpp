@@ -1,6 +1,11 @@
+#include "integrators/bdpt.h"
+#include "integrators/direct_lighting.h"
 #include "integrators/integrator.h"
 #include "integrators/naive_path_tracer.h"
 #include "integrators/path_tracer.h"
+#include "integrators/radiosity.h"
+#include "integrators/sppm.h"
+#include "integrators/whitted.h"
 
 namespace fluence::integrators {
 
@@ -12,6 +17,24 @@ const std::vector<IntegratorInfo>& integratorRegistry() {
         {"naive", "L(S|D)*E without delta lights", kAllPathClasses & ~(kDeltaLights | kDeltaLightCaustics),
          "reference path tracing by BSDF sampling only (no NEE, no MIS): slow; for validating `path`",
          [](const IntegratorSettings& s) { return std::make_unique<NaivePathTracer>(s); }},
+        {"bdpt", "L(S|D)*E; from delta lights LD(S|D)*E and L(S|D)*DD(S|D)*E (no LS+DS*E); no media",
+         kEmitterSeen | kDirect | kSpecularSeen | kIndirect | kCaustics | kDeltaLights,
+         "bidirectional path tracing, MIS (power heuristic) over every light/camera prefix pair with t >= 2; "
+         "point-light caustics once lit onward (LS+DDE), not seen directly",
+         [](const IntegratorSettings& s) { return std::make_unique<Bdpt>(s); }},
+        {"direct", "L(D|S)?E", kEmitterSeen | kDirect | kDeltaLights,
+         "local illumination with shadows: emitters seen, direct lighting of the first hit (NEE + MIS); no indirect light",
+         [](const IntegratorSettings& s) { return std::make_unique<DirectLighting>(s); }},
+        {"whitted", "LD?S*E", kEmitterSeen | kDirect | kSpecularSeen | kDeltaLights,
+         "Whitted ray tracing: direct lighting (as `direct`) seen through mirrors and smooth glass; no caustics",
+         [](const IntegratorSettings& s) { return std::make_unique<Whitted>(s); }},
+        {"radiosity", "LD*E", kEmitterSeen | kDirect | kIndirect | kDeltaLights,
+         "finite-element radiosity: patches, ray-cast form factors, Gauss-Seidel; every surface diffuse",
+         [](const IntegratorSettings&) { return std::make_unique<Radiosity>(); }},
+        {"sppm", "L(S|D)*DS*E, LS*E",
+         kEmitterSeen | kDirect | kSpecularSeen | kIndirect | kCaustics | kDeltaLightCaustics | kDeltaLights,
+         "probabilistic progressive photon mapping: caustics, also from point lights; no media or subsurface",
+         [](const IntegratorSettings& s) { return std::make_unique<Sppm>(s); }},
     };
     return registry;
 }

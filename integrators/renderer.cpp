@@ -69,7 +69,7 @@ RenderStats render(const render::RenderScene& scene, const render::Camera& camer
     tbb::combinable<RenderCounters> counters;
     RenderStats stats;
 
-    integrator.prepare(scene, camera, settings.seed);
+    arena.execute([&] { integrator.prepare(scene, camera, settings.seed); });  // within the thread limit
     int done = 0, passSize = 1;
     double secondsPerSample = 0.0;  // per sample per pixel over the whole image, measured
     while (done < settings.samplesPerPixel) {
@@ -81,8 +81,10 @@ RenderStats render(const render::RenderScene& scene, const render::Camera& camer
             if (count <= 0) break;
         }
         double passStart = elapsed();
-        integrator.beginSamples(scene, camera, settings.seed, done, count);
-        arena.execute([&] { renderPass(scene, camera, integrator, settings, film, {done, count}, counters, progress); });
+        arena.execute([&] {
+            integrator.beginSamples(scene, camera, settings.seed, done, count);
+            renderPass(scene, camera, integrator, settings, film, {done, count}, counters, progress);
+        });
         secondsPerSample = (elapsed() - passStart) / count;
         done += count;
         passSize = std::min(2 * passSize, kMaxPassSamples);

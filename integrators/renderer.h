@@ -7,8 +7,8 @@
 // passes (the last pass is shrunk to fit the time left), so every pixel has the same sample
 // count. A sample whose radiance is not finite is counted and replaced by zero, so one bad
 // sample cannot poison a pixel. The integrator's prepare() runs before the first pass and its
-// beginSamples() before each (integrators/integrator.h), on the calling thread; the time they take
-// counts towards the time limit.
+// beginSamples() before each (integrators/integrator.h), within the render's thread limit (their
+// own parallel loops use its arena); the time they take counts towards the time limit.
 #pragma once
 
 #include <atomic>

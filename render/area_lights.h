@@ -43,6 +43,9 @@ public:
     float power(const SceneBounds& bounds) const override;
     std::optional<LightBounds> bounds() const override;
     std::string name() const override { return name_; }
+    bool hasEmissionSampling() const override { return true; }
+    std::optional<EmissionSample> sampleEmission(Vec2f uPosition, Vec2f uDirection, const SceneBounds& scene) const override;
+    EmissionDensity emissionDensity(const Vec3f& point, const Vec3f& direction, const SceneBounds& scene) const override;
 
     // The four world-space corners, from local (-X, -Y) through (+X, -Y), (+X, +Y), (-X, +Y):
     // counter-clockwise seen from behind, so (c1 - c0) x (c3 - c0) points away from the emitting side.
@@ -77,6 +80,9 @@ public:
     float power(const SceneBounds& bounds) const override;
     std::optional<LightBounds> bounds() const override;
     std::string name() const override { return name_; }
+    bool hasEmissionSampling() const override { return true; }
+    std::optional<EmissionSample> sampleEmission(Vec2f uPosition, Vec2f uDirection, const SceneBounds& scene) const override;
+    EmissionDensity emissionDensity(const Vec3f& point, const Vec3f& direction, const SceneBounds& scene) const override;
 
     void shapeBounds(Vec3f& lo, Vec3f& hi) const override;
     std::optional<ShapeHit> intersect(const Vec3f& o, const Vec3f& d, float tMin, float tMax) const override;
@@ -106,6 +112,9 @@ public:
     float power(const SceneBounds& bounds) const override;
     std::optional<LightBounds> bounds() const override;
     std::string name() const override { return name_; }
+    bool hasEmissionSampling() const override { return true; }
+    std::optional<EmissionSample> sampleEmission(Vec2f uPosition, Vec2f uDirection, const SceneBounds& scene) const override;
+    EmissionDensity emissionDensity(const Vec3f& point, const Vec3f& direction, const SceneBounds& scene) const override;
 
 private:
     std::string name_;

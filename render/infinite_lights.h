@@ -50,6 +50,9 @@ public:
     float power(const SceneBounds& bounds) const override;
     std::optional<LightBounds> bounds() const override { return std::nullopt; }
     std::string name() const override { return name_; }
+    bool hasEmissionSampling() const override { return true; }
+    std::optional<EmissionSample> sampleEmission(Vec2f uPosition, Vec2f uDirection, const SceneBounds& scene) const override;
+    EmissionDensity emissionDensity(const Vec3f& point, const Vec3f& direction, const SceneBounds& scene) const override;
 
     bool isDelta() const { return oneMinusCosMax_ == 0.0; }
 
@@ -71,6 +74,9 @@ public:
     float power(const SceneBounds& bounds) const override;
     std::optional<LightBounds> bounds() const override { return std::nullopt; }
     std::string name() const override { return name_; }
+    bool hasEmissionSampling() const override { return true; }
+    std::optional<EmissionSample> sampleEmission(Vec2f uPosition, Vec2f uDirection, const SceneBounds& scene) const override;
+    EmissionDensity emissionDensity(const Vec3f& point, const Vec3f& direction, const SceneBounds& scene) const override;
 
     // World direction of lat-long image coordinates (u, v), and back (see the top of this file).
     Vec3f direction(Vec2f uv) const;

@@ -17,6 +17,11 @@
 //                      light to sample.
 //   bounds()           where and in which directions a light not at infinity emits, for the
 //                      light tree (render/light_tree.h); nullopt for lights at infinity.
+//   sampleEmission(uPosition, uDirection, scene)  emission sampling, for light subpaths (bdpt):
+//                      a point on the light and a direction light leaves it in, with the
+//                      radiance carried (EmissionSample); emissionDensity(point, direction, scene)
+//                      the densities it draws them with. hasEmissionSampling() says whether a
+//                      light offers them (defaults: no; implemented in render/light_emission.cpp).
 // Every light's sample/pdf pair is checked by the chi-square and consistency tests in
 // tests/render/light*_test.cpp.
 #pragma once
@@ -60,6 +65,29 @@ struct LightBounds {
     bool twoSided = false;        // also emits from the back of each normal (emissive triangles)
 };
 
+// Densities of Light::sampleEmission: of the point, per unit area (per unit area of the disk for
+// a light at infinity; 1 for a point light, a delta), and of the direction, per unit solid
+// angle (1 for a delta distant light); and `cosine`, |cos| between the light's normal at the point
+// and the direction (1 for lights without a surface).
+struct EmissionDensity {
+    float position = 0.0f;
+    float direction = 0.0f;
+    float cosine = 1.0f;
+};
+
+// A point and direction drawn by Light::sampleEmission. For a light at infinity the point lies on
+// a disk of the scene's bounding radius, outside the scene and facing `direction`, and `Le` is
+// the radiance along it (the irradiance for a delta distant light); for a point light `Le` is the
+// intensity towards `direction`.
+struct EmissionSample {
+    Vec3f point;
+    Vec3f direction;        // unit, the way light leaves
+    Vec3f normal;           // of the light's surface at `point` (for lights without one, `direction`)
+    RGB Le;
+    EmissionDensity density;  // with the cosine at the light
+    bool delta = false;       // a point light or an angle-0 distant light, which no ray can hit
+};
+
 class Light {
 public:
     virtual ~Light() = default;
@@ -72,6 +100,15 @@ public:
     virtual float power(const SceneBounds& bounds) const = 0;
     virtual std::optional<LightBounds> bounds() const = 0;
     virtual std::string name() const = 0;
+    virtual bool hasEmissionSampling() const { return false; }
+    virtual std::optional<EmissionSample> sampleEmission(Vec2f /*uPosition*/, Vec2f /*uDirection*/,
+                                                         const SceneBounds& /*scene*/) const {
+        return std::nullopt;
+    }
+    virtual EmissionDensity emissionDensity(const Vec3f& /*point*/, const Vec3f& /*direction*/,
+                                            const SceneBounds& /*scene*/) const {
+        return {};
+    }
 };
 
 }  // namespace fluence::render

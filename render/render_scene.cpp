@@ -263,6 +263,25 @@ RenderScene::RenderScene(const SceneDescription& scene, std::shared_ptr<texture:
 
 RenderScene::~RenderScene() = default;
 
+std::vector<RenderScene::SurfaceTriangle> RenderScene::surfaceTriangles() const {
+    std::vector<SurfaceTriangle> out;
+    auto addMesh = [&](const Mesh& mesh, const Instance* instance) {
+        auto world = [&](std::uint32_t i) {
+            return instance ? Vec3f(instance->toWorld.transformPoint(Vec3d(mesh.positions[i]))) : mesh.positions[i];
+        };
+        for (std::size_t c = 0; c + 2 < mesh.indices.size(); c += 3) {
+            RGB albedo = mesh.cornerColors.empty() ? mesh.diffuse
+                                                   : (mesh.cornerColors[c] + mesh.cornerColors[c + 1] + mesh.cornerColors[c + 2]) / 3.0f;
+            out.push_back({world(mesh.indices[c]), world(mesh.indices[c + 1]), world(mesh.indices[c + 2]), albedo, mesh.emission});
+        }
+    };
+    for (int m : surfaceMeshes_)
+        if (m >= 0) addMesh(meshes_[m], nullptr);
+    for (const Instance& instance : instances_)
+        for (int m : prototypes_[instance.prototype].meshes) addMesh(meshes_[m], &instance);
+    return out;
+}
+
 void RenderScene::addMaterialShaders() {
     bool textured = std::any_of(materials_.begin(), materials_.end(), [](const MaterialDesc& m) {
         return std::any_of(m.bindings.begin(), m.bindings.end(), [](const InputBinding& b) { return b.texture.has_value(); });

@@ -112,6 +112,16 @@ public:
 
     const SceneBounds& bounds() const { return bounds_; }
     const SceneStats& stats() const { return stats_; }
+    // A surface triangle in world space, its material reduced to what finite-element methods
+    // (integrators/radiosity.h) need: the diffuse albedo (the mean of the triangle's corner
+    // colours where the mesh has them, else the material's diffuse; textures are not evaluated)
+    // and the emitted radiance.
+    struct SurfaceTriangle {
+        Vec3f p0, p1, p2;
+        RGB albedo, emission;
+    };
+    // Every surface triangle (instanced ones once per instance; light shapes are not surfaces).
+    std::vector<SurfaceTriangle> surfaceTriangles() const;
     // The scene's volumes as one participating medium (media/medium_union.h), or nullptr when it
     // has none. Rays travel through it between surfaces; surfaces do not bound it.
     const media::Medium* medium() const { return medium_.get(); }

@@ -34,6 +34,9 @@ public:
     float power(const SceneBounds& bounds) const override;
     std::optional<LightBounds> bounds() const override;
     std::string name() const override { return name_; }
+    bool hasEmissionSampling() const override { return true; }
+    std::optional<EmissionSample> sampleEmission(Vec2f uPosition, Vec2f uDirection, const SceneBounds& scene) const override;
+    EmissionDensity emissionDensity(const Vec3f& point, const Vec3f& direction, const SceneBounds& scene) const override;
 
     const Vec3f& centre() const { return centre_; }
     float radius() const { return radius_; }
@@ -56,6 +59,9 @@ public:
     float power(const SceneBounds& bounds) const override;
     std::optional<LightBounds> bounds() const override;
     std::string name() const override { return name_; }
+    bool hasEmissionSampling() const override { return true; }
+    std::optional<EmissionSample> sampleEmission(Vec2f uPosition, Vec2f uDirection, const SceneBounds& scene) const override;
+    EmissionDensity emissionDensity(const Vec3f& point, const Vec3f& direction, const SceneBounds& scene) const override;
 
     const RGB& intensity() const { return intensity_; }
 

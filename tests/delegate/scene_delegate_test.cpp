@@ -342,6 +342,29 @@ def Scope "Render"
     EXPECT_TRUE(framed.result.scene.camera);
 }
 
+TEST(SceneDelegate, RenderSettingsNameTheIntegrator) {
+    const std::string settings = R"(#usda 1.0
+(
+    renderSettingsPrimPath = "/Render/Settings"
+)
+def Scope "Render"
+{
+    def RenderSettings "Settings"
+    {
+        INTEGRATOR
+    }
+}
+)";
+    auto withIntegrator = [&](const std::string& attribute) {
+        std::string text = settings;
+        text.replace(text.find("INTEGRATOR"), 10, attribute);
+        return populate(text).result.renderSettings->integrator;
+    };
+    EXPECT_EQ(withIntegrator("uniform token fluence:integrator = \"bdpt\""), "bdpt");
+    EXPECT_EQ(withIntegrator(""), "") << "not authored: the command line's choice";
+    EXPECT_THROW(withIntegrator("uniform int fluence:integrator = 3"), SceneError);
+}
+
 TEST(SceneDelegate, TheRenderedProductsCameraOverridesTheSettingsCamera) {
     auto p = populate(R"(#usda 1.0
 (

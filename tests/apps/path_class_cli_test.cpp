@@ -1,0 +1,97 @@
+// End-to-end: the classes of light paths a scene can produce, as `fluence info` lists them and
+// `fluence render` warns of those its integrator misses; and the integrator a scene's
+// RenderSettings choose (fluence:integrator).
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include "tests/support/cli.h"
+#include "tests/support/temp_dir.h"
+#include "tests/support/usd_scenes.h"
+
+namespace fs = std::filesystem;
+
+namespace fluence {
+namespace {
+
+using test::RunResult;
+
+const std::string kCornellBox = (fs::path(FLUENCE_SOURCE_DIR) / "usd_samples/cornell_box.usda").string();
+const std::string kPointLight = (fs::path(FLUENCE_SOURCE_DIR) / "usd_samples/lights/sphere_point.usda").string();
+
+// The line of `text` that begins with `start` ("" when there is none).
+std::string lineStarting(const std::string& text, const std::string& start) {
+    const std::size_t at = text.starts_with(start) ? 0 : text.find("\n" + start);
+    if (at == std::string::npos) return "";
+    const std::size_t begin = at == 0 ? 0 : at + 1;
+    return text.substr(begin, text.find('\n', begin) - begin);
+}
+
+class PathClassCli : public ::testing::Test {
+protected:
+    test::TempDir tmp_{"fluence_path_class_cli"};
+
+    RunResult run(const std::string& args) { return test::runFluence(args, tmp_.path()); }
+    // A tiny render of `scene` into the temporary directory, with `extra` options.
+    RunResult render(const std::string& scene, const std::string& extra = "") {
+        return run("render " + scene + " -o " + tmp_.file("out.exr") + " -r 8 8 --spp 1 " + extra);
+    }
+    // The furnace scene with a RenderSettings prim /Render/Settings holding `attributes`.
+    std::string sceneWithSettings(const std::string& attributes) {
+        const std::string path = tmp_.file("settings.usda");
+        std::ofstream(path) << test::furnaceUsda(0.5) << "def Scope \"Render\"\n{\n    def RenderSettings \"Settings\"\n    {\n        "
+                            << attributes << "\n    }\n}\n";
+        return path + " -s /Render/Settings";
+    }
+};
+
+TEST_F(PathClassCli, InfoListsTheScenesClassesAndWhatEachIntegratorMisses) {
+    RunResult r = run("info " + kCornellBox);
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_EQ(lineStarting(r.out, "path classes"), "path classes  LE, LDE, LD(D|S)*DE") << r.out;
+    EXPECT_TRUE(lineStarting(r.out, "  path ").ends_with(" covers them all")) << r.out;
+    EXPECT_TRUE(lineStarting(r.out, "  naive ").ends_with(" covers them all")) << r.out;
+
+    r = run("info " + kPointLight);
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_EQ(lineStarting(r.out, "path classes"), "path classes  LE, LDE, LD(D|S)*DE, delta lights") << r.out;
+    EXPECT_TRUE(lineStarting(r.out, "  path ").ends_with(" covers them all")) << r.out;
+    EXPECT_TRUE(lineStarting(r.out, "  naive ").ends_with(" misses delta lights")) << r.out;
+}
+
+TEST_F(PathClassCli, RenderWarnsOfTheClassesItsIntegratorMisses) {
+    RunResult r = render(kPointLight, "--integrator naive");
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_NE(r.err.find("integrator 'naive' misses: delta lights (light that this scene has)"), std::string::npos) << r.err;
+
+    r = render(kCornellBox, "--integrator path");
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_EQ(r.err.find("misses"), std::string::npos) << r.err;
+}
+
+TEST_F(PathClassCli, RenderSettingsChooseTheIntegratorUnlessTheCommandLineDoes) {
+    const std::string scene = sceneWithSettings("uniform token fluence:integrator = \"naive\"");
+    RunResult r = render(scene);
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_NE(r.out.find("integrator naive,"), std::string::npos) << r.out;
+
+    r = render(scene, "--integrator path");
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_NE(r.out.find("integrator path,"), std::string::npos) << r.out;
+
+    r = render(sceneWithSettings(""));
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_NE(r.out.find("integrator path,"), std::string::npos) << "the default: " << r.out;
+}
+
+TEST_F(PathClassCli, AnUnknownIntegratorInRenderSettingsIsASceneError) {
+    RunResult r = render(sceneWithSettings("uniform token fluence:integrator = \"nope\""));
+    EXPECT_EQ(r.exitCode, 3);
+    EXPECT_NE(r.err.find("/Render/Settings"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("'nope'"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("available: path"), std::string::npos) << r.err;
+}
+
+}  // namespace
+}  // namespace fluence

@@ -1,0 +1,165 @@
+// `radiosity` (integrators/radiosity.h): the solver on a closed emissive box, whose exact solution
+// is known whatever the form factors' noise; the first gather from a delta light, exact; the whole
+// method against `path` on a diffuse Cornell-like box, where its discretisation error must fall as
+// the mesh is refined; and determinism from the seed.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+
+#include "integrators/path_tracer.h"
+#include "integrators/radiosity.h"
+#include "tests/integrators/render_support.h"
+#include "tests/support/chi2.h"
+#include "tests/support/scenes.h"
+
+namespace fluence::integrators {
+namespace {
+
+// A closed box of albedo a emitting E from every wall: every inner element's radiance is
+// E / (1 - a), since each of its form-factor rows sums to 1 (every ray hits a wall).
+TEST(Radiosity, ClosedEmissiveBoxIsSolvedExactly) {
+    constexpr float kAlbedo = 0.5f, kEmission = 1.0f;
+    render::SceneDescription desc;
+    desc.materials.push_back(test::diffuseMaterial("/wall", RGB(kAlbedo), RGB(kEmission)));
+    desc.meshes.push_back(test::boxMesh(Vec3f(1.0f), 0));
+    desc.camera = test::lookAtOriginCamera(0.5f);  // inside the box
+    RadiositySettings settings;
+    settings.patchEdge = 0.5f;
+    settings.formFactorRays = 64;
+    settings.tolerance = 1e-6f;
+    Radiosity radiosity(settings);
+    test_support::Rendered image = test_support::renderWith(radiosity, desc, 16, 1);
+
+    EXPECT_LE(radiosity.residual(), settings.tolerance);
+    // The error bound from the residual: rows of F sum to at most 1, so the largest error is at most
+    // the largest residual / (1 - a); the residual reported is an area-weighted L1 norm relative to
+    // the source's (sum over elements of area x E), so the largest residual is at most
+    // residual x source / smallest area.
+    double source = 0.0, smallest = 1e30;
+    for (const Patch& p : radiosity.patches()) {
+        source += 2.0 * p.area * kEmission;
+        smallest = std::min(smallest, double(p.area));
+    }
+    const double bound = radiosity.residual() * source / (smallest * (1.0 - kAlbedo)) + 1e-5;
+    const double exact = kEmission / (1.0 - kAlbedo);
+    for (std::size_t p = 0; p < radiosity.patches().size(); ++p)
+        ASSERT_NEAR(radiosity.radiance()[2 * p + 1].x, exact, bound) << "patch " << p;  // side 1: the inside
+    for (int y = 0; y < image.image.height; ++y)
+        for (int x = 0; x < image.image.width; ++x) ASSERT_NEAR(image.image.pixel(x, y)[0], exact, bound);
+}
+
+// A delta light's sample is its exact irradiance, so a lone quad under an angle-0 distant light
+// (nothing to interreflect with) has radiance albedo x E cos(theta) / pi on its lit side, exactly,
+// and none on the other.
+TEST(Radiosity, DeltaLightIsGatheredExactly) {
+    constexpr float kAlbedo = 0.5f, kIrradiance = 2.0f, kTiltDegrees = 30.0f;
+    render::SceneDescription desc;
+    desc.materials.push_back(test::diffuseMaterial("/ground", RGB(kAlbedo)));
+    desc.meshes.push_back(test::quadMesh("/ground", {{{-1, -1, 0}, {1, -1, 0}, {1, 1, 0}, {-1, 1, 0}}}, 0));  // normal +Z
+    render::LightDesc sun;
+    sun.name = "/sun";
+    sun.type = render::LightType::Distant;  // emits along its local -Z: from above, tilted
+    sun.radiance = RGB(kIrradiance);
+    sun.transform = Matrix4::rotateX(kTiltDegrees);
+    desc.lights.push_back(sun);
+    desc.camera = test::lookAtOriginCamera(4.0f);
+    render::RenderScene scene(desc);
+    Radiosity radiosity(RadiositySettings{.patchEdge = 0.5f});
+    radiosity.prepare(scene, render::Camera(*desc.camera, 8, 8), 0);
+
+    const double exact = kAlbedo * kIrradiance * std::cos(kTiltDegrees * kPi / 180.0f) / kPi;
+    ASSERT_FALSE(radiosity.patches().empty());
+    for (std::size_t p = 0; p < radiosity.patches().size(); ++p) {
+        ASSERT_NEAR(radiosity.radiance()[2 * p].y, exact, 1e-5 * exact) << "patch " << p;
+        ASSERT_EQ(radiosity.radiance()[2 * p + 1].y, 0.0f) << "patch " << p;
+    }
+}
+
+// A Cornell-like room [-1, 1]^3 (Z up), closed, with red and green side walls, a block, and a rect
+// light under the ceiling; the camera stands inside, looking along +Y.
+render::SceneDescription cornellRoom() {
+    render::SceneDescription s;
+    s.materials.push_back(test::diffuseMaterial("/white", RGB(0.725f, 0.71f, 0.68f)));
+    s.materials.push_back(test::diffuseMaterial("/red", RGB(0.63f, 0.065f, 0.05f)));
+    s.materials.push_back(test::diffuseMaterial("/green", RGB(0.14f, 0.45f, 0.091f)));
+    using Quad = std::array<Vec3f, 4>;
+    s.meshes.push_back(test::quadMesh("/floor", Quad{{{-1, -1, -1}, {1, -1, -1}, {1, 1, -1}, {-1, 1, -1}}}, 0));
+    s.meshes.push_back(test::quadMesh("/ceiling", Quad{{{-1, -1, 1}, {1, -1, 1}, {1, 1, 1}, {-1, 1, 1}}}, 0));
+    s.meshes.push_back(test::quadMesh("/back", Quad{{{-1, 1, -1}, {1, 1, -1}, {1, 1, 1}, {-1, 1, 1}}}, 0));
+    s.meshes.push_back(test::quadMesh("/front", Quad{{{-1, -1, -1}, {1, -1, -1}, {1, -1, 1}, {-1, -1, 1}}}, 0));
+    s.meshes.push_back(test::quadMesh("/left", Quad{{{-1, -1, -1}, {-1, 1, -1}, {-1, 1, 1}, {-1, -1, 1}}}, 1));
+    s.meshes.push_back(test::quadMesh("/right", Quad{{{1, -1, -1}, {1, 1, -1}, {1, 1, 1}, {1, -1, 1}}}, 2));
+    render::MeshDesc block = test::boxMesh(Vec3f(0.3f, 0.3f, 0.45f), 0);
+    for (Vec3f& p : block.positions) p += Vec3f(0.35f, 0.3f, -0.55f);
+    s.meshes.push_back(block);
+    render::LightDesc light;
+    light.name = "/light";
+    light.type = render::LightType::Rect;  // emits along local -Z: down
+    light.width = light.height = 0.5f;
+    light.radiance = RGB(12.0f);
+    light.transform = Matrix4::translate({0, 0, 0.99});
+    s.lights.push_back(light);
+    s.camera = test::lookAtOriginCamera(0.95f);
+    return s;
+}
+
+// The image means of radiosity at three mesh sizes against `path`'s. Each radiosity mean is the
+// average over kSeeds solutions (independent form factors and light samples), so its own sampling
+// error is measured, not assumed; the finest must agree with `path` within the two estimates'
+// combined standard error, and be closer than the coarsest.
+TEST(Radiosity, ApproachesPathTracerAsMeshIsRefined) {
+    constexpr int kSize = 48, kPathSpp = 256, kSeeds = 4;
+    const render::SceneDescription room = cornellRoom();
+    const test_support::Rendered reference = test_support::renderWith(PathTracer(IntegratorSettings{}), room, kSize, kPathSpp);
+    const auto everyPixel = [](const float*) { return true; };
+
+    const float edges[] = {1.0f, 0.4f, 0.15f};  // coarse, medium, fine
+    double error[3][3];                          // [level][channel]: radiosity mean - path mean
+    const double z = test::normalQuantile(test::sidakAlpha(3) / 2.0);  // two-sided, three channels
+    for (int level = 0; level < 3; ++level) {
+        test::MeanEstimate means[3];  // per channel, over seeds
+        for (int seed = 0; seed < kSeeds; ++seed) {
+            RadiositySettings settings;
+            settings.patchEdge = edges[level];
+            Radiosity radiosity(settings);
+            const test_support::Rendered image = test_support::renderWith(radiosity, room, kSize, 1, 0, seed);
+            EXPECT_LE(radiosity.residual(), settings.tolerance) << radiosity.summary();
+            if (seed == 0) std::printf("edge %.2f: %s\n", edges[level], radiosity.summary().c_str());
+            for (int c = 0; c < 3; ++c) means[c].add(test_support::channelMean(image.image, c, everyPixel).mean());
+        }
+        for (int c = 0; c < 3; ++c) {
+            const test::MeanEstimate path = test_support::channelMean(reference.image, c, everyPixel);
+            error[level][c] = means[c].mean() - path.mean();
+            const double band = z * std::hypot(path.standardError(), means[c].standardError());
+            std::printf("  channel %d: radiosity %.5f +- %.5f, path %.5f +- %.5f, difference %+.5f (band %.5f)\n", c, means[c].mean(),
+                        means[c].standardError(), path.mean(), path.standardError(), error[level][c], band);
+            if (level == 2) {
+                EXPECT_LE(std::abs(error[level][c]), band) << "channel " << c;
+            }
+        }
+    }
+    for (int c = 0; c < 3; ++c) EXPECT_LT(std::abs(error[2][c]), std::abs(error[0][c])) << "channel " << c;
+}
+
+// The solution depends on the seed alone: the same image at one thread and at two; another seed
+// draws other form-factor rays.
+TEST(Radiosity, IsDeterministicFromTheSeed) {
+    const render::SceneDescription room = cornellRoom();
+    auto imageAt = [&](int threads, std::uint64_t seed) {
+        Radiosity radiosity(RadiositySettings{.patchEdge = 0.5f});
+        return test_support::renderWith(radiosity, room, 16, 1, threads, seed).image;
+    };
+    const Image one = imageAt(1, 7), two = imageAt(2, 7), other = imageAt(2, 8);
+    bool otherDiffers = false;
+    for (int y = 0; y < one.height; ++y)
+        for (int x = 0; x < one.width; ++x)
+            for (int c = 0; c < 3; ++c) {
+                ASSERT_EQ(one.pixel(x, y)[c], two.pixel(x, y)[c]) << x << ", " << y;
+                otherDiffers = otherDiffers || one.pixel(x, y)[c] != other.pixel(x, y)[c];
+            }
+    EXPECT_TRUE(otherDiffers);
+}
+
+}  // namespace
+}  // namespace fluence::integrators
