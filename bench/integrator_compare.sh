@@ -3,7 +3,7 @@
 #
 #   bench/integrator_compare.sh FLUENCE SCENE OUT_DIR REF_INTEGRATOR REF_SPP "INTEGRATORS" [SPP...]
 #
-# Renders SCENE (a .usda, at its own resolution, 2 threads) once with REF_INTEGRATOR at REF_SPP
+# Renders SCENE (a .usda, at its own resolution or at RES="W H" from the environment, 2 threads) once with REF_INTEGRATOR at REF_SPP
 # (seed 1; kept if present) as the reference, then every integrator in the space-separated list
 # at each SPP (default 4 16 64 256, seed 0), the integrators taking turns at each sample count so
 # that the machine's load falls on all alike; appends scene,integrator,spp,render_s,rmse to
@@ -18,7 +18,7 @@ mkdir -p "$OUT"; OUT=$(realpath "$OUT")
 NAME=$(basename "$SCENE" .usda)
 
 render() {  # render INTEGRATOR SPP SEED OUT.exr -> prints render seconds
-    "$FLUENCE" render "$SCENE" --integrator "$1" --spp "$2" --seed "$3" -j 2 -o "$4" > "${4%.exr}.log" 2>&1
+    "$FLUENCE" render "$SCENE" ${RES:+-r $RES} --integrator "$1" --spp "$2" --seed "$3" -j 2 -o "$4" > "${4%.exr}.log" 2>&1
     sed -n 's/.*render \([0-9.]*\) s.*/\1/p' "${4%.exr}.log"
 }
 rmse() { oiiotool "$1" --ch R,G,B "$2" --ch R,G,B --diff 2>&1 | sed -n 's/.*RMS error = \([0-9.e+-]*\).*/\1/p'; }

@@ -16,6 +16,7 @@
 #include <cstring>
 #include <set>
 
+#include "integrators/bdpt.h"
 #include "integrators/path_tracer.h"
 #include "tests/integrators/render_support.h"
 #include "tests/support/scenes.h"
@@ -183,11 +184,13 @@ TEST(Sppm, FindsThePointLightCausticThatPathCannot) {
     EXPECT_GT(sppm.mean(), 5.0 * path.mean() + 4.0 * sppm.standardError());
 }
 
-TEST(Sppm, AreaLightCausticConvergesToPaths) {
+TEST(Sppm, AreaLightCausticConvergesToPathsAndBdpts) {
     // A sphere light of radius 0.8 in place of the point: path finds the caustic only by BSDF
     // sampling through the glass, which hits a light this large often enough for its error to be
-    // small within the test's time. The region lies in the ball's shadow: with a diffuse ball in
-    // place of the glass it reads 0.0024 (against 0.08), so its light is the caustic's.
+    // small within the test's time; so does bdpt, whose other strategies cannot join through the
+    // glass. The region lies in the ball's shadow: with a diffuse ball in place of the glass it
+    // reads 0.0024 (against 0.08), so its light is the caustic's. The three methods converge to
+    // the same brightness there.
     render::SceneDescription desc = floorScene(true, 0.8f);
     desc.camera->focalLength = 150.0f;  // zoomed in on the caustic, so that most pixels see it
     desc.camera->transform = Matrix4::translate({0.0, causticCentre().y - 3.0, 3.0}) * Matrix4::rotateX(45);
@@ -199,6 +202,9 @@ TEST(Sppm, AreaLightCausticConvergesToPaths) {
     std::printf("area-light caustic region (%d pixels): path %.5f +- %.5f, sppm %.5f +- %.5f\n", path.count(), path.mean(),
                 path.standardError(), sppm.mean(), sppm.standardError());
     EXPECT_NEAR(sppm.mean(), path.mean(), 4 * sigma);
+    test::MeanEstimate bdpt = regionEstimate(test_support::renderWith(Bdpt(IntegratorSettings{}), desc, kSize, 1024).image, region);
+    std::printf("area-light caustic region: bdpt %.5f +- %.5f\n", bdpt.mean(), bdpt.standardError());
+    EXPECT_NEAR(sppm.mean(), bdpt.mean(), 4 * std::hypot(bdpt.standardError(), sppm.standardError()));
 }
 
 TEST(Sppm, ImagesAreBitIdenticalAcrossThreadCounts) {
