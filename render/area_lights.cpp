@@ -61,18 +61,18 @@ RGB RectLight::radianceAt(Vec2f uv, const Vec3f& wo) const {
     return radiance * texture_->at(x, y);
 }
 
-std::optional<LightSample> RectLight::sample(const Vec3f& p, Vec2f u) const {
-    if (area_ == 0.0f) return std::nullopt;
+RectLight::PointSample RectLight::samplePoint(Vec2f u) const {
     // The point's texture coordinates: by the texture's luminance, or uniform (u measured from
     // the corner at local (-X, -Y), the texture's bottom-right) without a texture or when its
     // luminance is the same everywhere (black included).
-    Vec2f uv{1.0f - u.x, 1.0f - u.y};
-    float areaPdf = 1.0f / area_;
-    if (distribution_) {
-        ImageDistribution::Sample s = distribution_->sample(u);
-        uv = s.uv;
-        areaPdf = s.pdf / area_;
-    }
+    if (!distribution_) return {{1.0f - u.x, 1.0f - u.y}, 1.0f / area_};
+    ImageDistribution::Sample s = distribution_->sample(u);
+    return {s.uv, s.pdf / area_};
+}
+
+std::optional<LightSample> RectLight::sample(const Vec3f& p, Vec2f u) const {
+    if (area_ == 0.0f) return std::nullopt;
+    const auto [uv, areaPdf] = samplePoint(u);
     Vec3f d = pointAt(uv) - p;
     float dist2 = lengthSquared(d);
     if (dist2 == 0.0f) return std::nullopt;

@@ -57,6 +57,13 @@ private:
     // point on the rect, and the point at texture coordinates uv.
     Vec2f textureCoordinates(const Vec3f& point) const;
     Vec3f pointAt(Vec2f uv) const { return corner_ + edgeU_ * (1.0f - uv.x) + edgeV_ * (1.0f - uv.y); }
+    // A point on the rectangle drawn from u: its texture coordinates and density per unit area
+    // (by the texture's luminance, else uniform).
+    struct PointSample {
+        Vec2f uv;
+        float areaPdf;
+    };
+    PointSample samplePoint(Vec2f u) const;
     // Radiance leaving the rect at texture coordinates uv in direction `wo`, facing or not.
     RGB radianceAt(Vec2f uv, const Vec3f& wo) const;
 

@@ -54,13 +54,7 @@ EmissionSample fromInfinity(const Vec3f& direction, float directionPdf, const RG
 
 std::optional<EmissionSample> RectLight::sampleEmission(Vec2f uPosition, Vec2f uDirection, const SceneBounds&) const {
     if (area_ == 0.0f) return std::nullopt;
-    Vec2f uv{1.0f - uPosition.x, 1.0f - uPosition.y};
-    float areaPdf = 1.0f / area_;
-    if (distribution_) {
-        ImageDistribution::Sample s = distribution_->sample(uPosition);
-        uv = s.uv;
-        areaPdf = s.pdf / area_;
-    }
+    const auto [uv, areaPdf] = samplePoint(uPosition);
     EmissionSample e = fromSurface(pointAt(uv), normal_, areaPdf, uDirection);
     e.Le = radianceAt(uv, e.direction);
     return e;
