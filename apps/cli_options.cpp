@@ -144,6 +144,12 @@ RenderOptions parseRenderOptions(const std::vector<std::string>& args) {
         } else if (arg == "--time-limit") {
             o.timeLimit = parseNumber<double>(arg, cur.value(arg));
             if (!(o.timeLimit >= 0.0) || !std::isfinite(o.timeLimit)) throw UsageError("--time-limit must be >= 0 seconds");
+        } else if (arg == "--target-error") {
+            o.targetError = parseNumber<double>(arg, cur.value(arg));
+            if (!(o.targetError >= 0.0) || !std::isfinite(o.targetError)) throw UsageError("--target-error must be >= 0");
+        } else if (arg == "--min-spp") {
+            o.minSpp = parseNumber<int>(arg, cur.value(arg));
+            if (o.minSpp < 2) throw UsageError("--min-spp must be at least 2");
         } else if (arg == "--max-depth") {
             o.maxDepth = parseNumber<int>(arg, cur.value(arg));
             if (o.maxDepth < 0) throw UsageError("--max-depth must be >= 0");
@@ -219,6 +225,9 @@ std::string usageText() {
            "      --subsurface METHOD subsurface scattering of every material: randomwalk or diffusion\n"
            "                          (default: each material's subsurface_type, else randomwalk)\n"
            "      --time-limit SECS   stop starting new sample passes after SECS seconds (0: no limit)\n"
+           "      --target-error E    adaptive sampling: each pixel stops once the relative standard error of\n"
+           "                          its mean is at most E (e.g. 0.01), after --min-spp and at most --spp samples\n"
+           "      --min-spp N         samples every pixel takes before adaptive sampling may stop it (default 16)\n"
            "\n"
            "environment:\n"
            "  OCIO                    an OpenColorIO config to use instead of Fluence's built-in one\n"

@@ -28,6 +28,8 @@ struct RenderOptions {
     std::uint64_t seed = 0;         // --seed S
     std::string integrator;         // --integrator NAME ("": the render settings' fluence:integrator, else path)
     double timeLimit = 0.0;         // --time-limit SECONDS (0: none)
+    double targetError = 0.0;       // --target-error E: adaptive sampling's relative error per pixel (0: off)
+    int minSpp = 16;                // --min-spp N: samples every pixel takes before it may stop
     int maxDepth = 64;              // --max-depth N
     double dicingRate = 1.0;        // --dicing-rate PIXELS: micro-edge length of subdivision surfaces
     std::optional<int> subdivLevel; // --subdiv-level N: uniform refinement instead of dicing

@@ -133,6 +133,8 @@ int runRender(const RenderOptions& opt) {
     rs.seed = opt.seed;
     rs.threads = opt.threads;
     rs.timeLimitSeconds = opt.timeLimit;
+    rs.targetError = opt.targetError;
+    rs.minSamples = opt.minSpp;
     Film film(res.first, res.second, camera->farClip());
     integrators::RenderProgress progress;
     integrators::RenderStats stats;
@@ -171,7 +173,7 @@ int runRender(const RenderOptions& opt) {
 
     // Summary.
     const double total = secondsSince(start);
-    const double samples = double(stats.samplesPerPixel) * res.first * res.second;
+    const double samples = double(stats.samples);
     const auto& st = scene->stats();
     std::printf("fluence: rendered %s\n", opt.scene.c_str());
     std::printf("  camera       %s\n", populated->cameraPath.empty() ? "(default: framing the scene)" : populated->cameraPath.c_str());
@@ -181,6 +183,10 @@ int runRender(const RenderOptions& opt) {
     std::printf("  scene        %s, %s, %s (%s), %s\n", counted(st.meshes, "mesh", "meshes").c_str(),
                 counted(st.triangles, "triangle").c_str(), counted(st.lights, "light").c_str(),
                 counted(st.emissiveTriangles, "emissive triangle").c_str(), counted(warnings.count(), "warning").c_str());
+    if (rs.targetError > 0.0)
+        std::printf("  adaptive     target error %g: %.1f spp on average (%d to %d per pixel)\n", rs.targetError,
+                    samples / (double(res.first) * res.second), std::min(rs.minSamples, stats.samplesPerPixel),
+                    stats.samplesPerPixel);
     if (st.instances > 0)
         std::printf("  instancing   %s placing %s (stored once)\n", counted(st.instances, "instance").c_str(),
                     counted(st.instancedTriangles, "triangle").c_str());

@@ -1,6 +1,8 @@
 #include "core/film.h"
 
 #include <algorithm>
+#include <cmath>
+#include <limits>
 
 namespace fluence {
 
@@ -10,6 +12,9 @@ Film::Film(int width, int height, float farDepth)
 void Film::add(int x, int y, const FilmSample& s) {
     Pixel& p = pixels_[static_cast<std::size_t>(y) * width_ + x];
     for (int c = 0; c < 3; ++c) p.radiance[c] += s.radiance[c];
+    const double brightness = luminance(s.radiance);
+    p.luminance += brightness;
+    p.luminanceSquared += brightness * brightness;
     if (s.hit) {
         for (int c = 0; c < 3; ++c) {
             p.albedo[c] += s.albedo[c];
@@ -43,6 +48,14 @@ Image Film::resolve() const {
             out[11] = static_cast<float>(p.samples);
         }
     return image;
+}
+
+double Film::relativeError(int x, int y) const {
+    const Pixel& p = pixel(x, y);
+    if (p.samples < 2) return std::numeric_limits<double>::infinity();
+    const double n = p.samples, mean = p.luminance / n;
+    const double variance = std::max(0.0, (p.luminanceSquared - n * mean * mean) / (n - 1.0));
+    return std::sqrt(variance / n) / (std::abs(mean) + kRelativeErrorFloor);
 }
 
 std::uint64_t Film::totalSamples() const {

@@ -49,9 +49,19 @@ public:
     // Statistics over the whole film (for summaries and tests).
     std::uint64_t totalSamples() const;
 
+    // The samples taken in pixel (x, y) so far.
+    std::uint32_t samples(int x, int y) const { return pixel(x, y).samples; }
+    // The relative standard error of the pixel's mean luminance: sqrt(variance / n) / (mean +
+    // kRelativeErrorFloor), from its samples' luminance sums (infinite below two samples). The floor
+    // keeps dark pixels, whose relative error means little, from sampling forever; it is in the
+    // units of radiance (a black pixel converges once its absolute error is below target x 0.01).
+    static constexpr double kRelativeErrorFloor = 0.01;
+    double relativeError(int x, int y) const;
+
 private:
     struct Pixel {
         double radiance[3] = {0, 0, 0};
+        double luminance = 0, luminanceSquared = 0;  // sums over the samples (adaptive sampling)
         double albedo[3] = {0, 0, 0};
         double normal[3] = {0, 0, 0};
         double coverage = 0;
@@ -59,6 +69,8 @@ private:
         bool anyHit = false;
         std::uint32_t samples = 0;
     };
+    const Pixel& pixel(int x, int y) const { return pixels_[static_cast<std::size_t>(y) * width_ + x]; }
+
     int width_, height_;
     float farDepth_;
     std::vector<Pixel> pixels_;

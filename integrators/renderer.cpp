@@ -19,6 +19,21 @@ struct PassRange {
     int first, count;
 };
 
+// Whether pixel (x, y) has stopped by adaptive sampling (see renderer.h).
+bool converged(const Film& film, int x, int y, const RenderSettings& settings) {
+    return settings.targetError > 0.0 && film.samples(x, y) >= std::uint32_t(std::max(settings.minSamples, 2)) &&
+           film.relativeError(x, y) <= settings.targetError;
+}
+
+// Whether every pixel has stopped (then no further pass is needed).
+bool allConverged(const Film& film, const RenderSettings& settings) {
+    if (settings.targetError <= 0.0) return false;
+    for (int y = 0; y < film.height(); ++y)
+        for (int x = 0; x < film.width(); ++x)
+            if (!converged(film, x, y, settings)) return false;
+    return true;
+}
+
 void renderPass(const render::RenderScene& scene, const render::Camera& camera, const Integrator& integrator,
                 const RenderSettings& settings, Film& film, PassRange pass, tbb::combinable<RenderCounters>& counters,
                 RenderProgress* progress) {
@@ -31,10 +46,13 @@ void renderPass(const render::RenderScene& scene, const render::Camera& camera, 
             for (int tile = tiles.begin(); tile != tiles.end(); ++tile) {
                 int x0 = (tile % tilesX) * kTileSize, y0 = (tile / tilesX) * kTileSize;
                 int x1 = std::min(x0 + kTileSize, width), y1 = std::min(y0 + kTileSize, height);
+                std::uint64_t taken = 0;
                 for (int y = y0; y < y1; ++y)
                     for (int x = x0; x < x1; ++x) {
                         std::uint64_t pixelIndex = std::uint64_t(y) * std::uint64_t(width) + std::uint64_t(x);
                         for (int s = pass.first; s < pass.first + pass.count; ++s) {
+                            if (film.samples(x, y) != std::uint32_t(s) || converged(film, x, y, settings)) break;
+                            ++taken;
                             SampleStream rng(settings.seed, pixelIndex, std::uint64_t(s));
                             Vec2f jitter = rng.next2D();  // box filter: uniform over the pixel
                             render::Ray ray = camera.generateRay(float(x) + jitter.x, float(y) + jitter.y);
@@ -46,9 +64,7 @@ void renderPass(const render::RenderScene& scene, const render::Camera& camera, 
                             film.add(x, y, sample);
                         }
                     }
-                if (progress)
-                    progress->pixelSamplesDone.fetch_add(std::uint64_t(x1 - x0) * std::uint64_t(y1 - y0) * pass.count,
-                                                         std::memory_order_relaxed);
+                if (progress) progress->pixelSamplesDone.fetch_add(taken, std::memory_order_relaxed);
             }
         },
         tbb::simple_partitioner());
@@ -89,11 +105,15 @@ RenderStats render(const render::RenderScene& scene, const render::Camera& camer
         done += count;
         passSize = std::min(2 * passSize, kMaxPassSamples);
         ++stats.passes;
+        if (allConverged(film, settings)) break;
     }
-    if (progress) progress->pixelSamplesPlanned = pixels * std::uint64_t(done);
+    stats.samples = film.totalSamples();
+    if (progress) progress->pixelSamplesPlanned = stats.samples;
 
     stats.seconds = elapsed();
-    stats.samplesPerPixel = done;
+    stats.samplesPerPixel = 0;
+    for (int y = 0; y < film.height(); ++y)
+        for (int x = 0; x < film.width(); ++x) stats.samplesPerPixel = std::max<int>(stats.samplesPerPixel, film.samples(x, y));
     counters.combine_each([&](const RenderCounters& c) { stats.counters += c; });
     return stats;
 }

@@ -6,7 +6,14 @@
 // bit-identical for any thread count and any pass division. A time limit is honoured between
 // passes (the last pass is shrunk to fit the time left), so every pixel has the same sample
 // count. A sample whose radiance is not finite is counted and replaced by zero, so one bad
-// sample cannot poison a pixel. The integrator's prepare() runs before the first pass and its
+// sample cannot poison a pixel.
+//
+// Adaptive sampling (RenderSettings::targetError): before each sample index past minSamples, a
+// pixel whose relative error has reached the target stops, for good; the decision reads only the
+// pixel's own samples, so it too is the same for any thread count and pass division. A pixel that
+// stopped is skipped by later passes, and the render ends when every pixel has. Stopping on an
+// estimate of the error biases the pixel slightly (the estimate and the mean are correlated), as in
+// every adaptive sampler; minSamples keeps the estimate meaningful. The integrator's prepare() runs before the first pass and its
 // beginSamples() before each (integrators/integrator.h), within the render's thread limit (their
 // own parallel loops use its arena); the time they take counts towards the time limit.
 #pragma once
@@ -20,7 +27,12 @@
 namespace fluence::integrators {
 
 struct RenderSettings {
-    int samplesPerPixel = 64;
+    int samplesPerPixel = 64;  // the most any pixel takes
+    // Adaptive sampling: > 0 stops each pixel once it has minSamples and the relative standard
+    // error of its mean luminance (Film::relativeError) is at most targetError; 0 takes
+    // samplesPerPixel everywhere.
+    double targetError = 0.0;
+    int minSamples = 16;
     std::uint64_t seed = 0;
     int threads = 0;                // 0: every core
     double timeLimitSeconds = 0.0;  // 0: none
@@ -34,7 +46,8 @@ struct RenderProgress {
 
 struct RenderStats {
     double seconds = 0.0;
-    int samplesPerPixel = 0;  // completed in every pixel
+    int samplesPerPixel = 0;  // the most taken in any pixel (in every pixel without adaptive sampling)
+    std::uint64_t samples = 0;  // taken over the whole image
     int passes = 0;
     RenderCounters counters;
 };

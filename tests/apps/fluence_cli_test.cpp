@@ -337,10 +337,24 @@ TEST_F(FluenceCli, UsageErrors) {
     EXPECT_EQ(r.exitCode, 2);
     EXPECT_NE(r.err.find("available: path"), std::string::npos) << r.err;
     EXPECT_EQ(run("render scene.usda --spp zero").exitCode, 2);
+    EXPECT_EQ(run("render scene.usda --target-error -0.1").exitCode, 2);
+    EXPECT_EQ(run("render scene.usda --min-spp 1").exitCode, 2);
     r = run("render scene.usda --subsurface dipole");
     EXPECT_EQ(r.exitCode, 2);
     EXPECT_NE(r.err.find("randomwalk or diffusion"), std::string::npos) << r.err;
     EXPECT_EQ(run("frobnicate").exitCode, 2);
+}
+
+TEST_F(FluenceCli, TargetErrorSamplesAdaptivelyAndSaysSo) {
+    fs::path scene = fs::path(FLUENCE_SOURCE_DIR) / "usd_samples/cornell_box.usda";
+    RunResult r = run("render " + scene.string() + " -o " + (dir_ / "adaptive.exr").string() +
+                      " -r 24 24 --spp 64 --min-spp 4 --target-error 0.05");
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_NE(r.out.find("adaptive     target error 0.05"), std::string::npos) << r.out;
+    ExrImage image = readExr(dir_ / "adaptive.exr");
+    test::MeanEstimate counts = channelMean(image, {"sampleCount"}, [](int, int) { return true; });
+    EXPECT_GE(counts.mean(), 4.0);
+    EXPECT_LT(counts.mean(), 64.0) << "the light's pixels, noiseless, stop at the minimum";
 }
 
 TEST_F(FluenceCli, AMethodThatCannotRenderTheSceneIsASceneError) {

@@ -1,0 +1,86 @@
+// Adaptive sampling (RenderSettings::targetError, integrators/renderer.h): pixels that converge
+// early stop early and the noisy ones go on; every pixel that stopped before the maximum has reached
+// the target; the image is still the same for any thread count; and without a target every pixel
+// takes every sample.
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <cstring>
+
+#include "integrators/path_tracer.h"
+#include "integrators/renderer.h"
+#include "render/camera.h"
+#include "render/render_scene.h"
+#include "tests/support/scenes.h"
+
+namespace fluence::integrators {
+namespace {
+
+constexpr int kSize = 24, kMaxSpp = 256, kMinSpp = 8;
+constexpr double kTarget = 0.03;
+
+// A diffuse sphere lit by a small sphere light under a uniform sky: the sky seen directly has no
+// noise at all, the sphere's lit and shadowed sides have plenty.
+render::SceneDescription litSphereUnderASky() {
+    render::SceneDescription s = test::furnaceScene(0.6f);
+    s.lights[0].radiance = RGB(0.2f);
+    render::LightDesc bulb;
+    bulb.name = "/bulb";
+    bulb.type = render::LightType::Sphere;
+    bulb.radius = 0.1f;
+    bulb.radiance = RGB(400.0f);
+    bulb.transform = Matrix4::translate({2.0, -2.0, 2.0});
+    s.lights.push_back(bulb);
+    return s;
+}
+
+Film renderAdaptively(double targetError, int threads, RenderStats* stats = nullptr) {
+    const render::SceneDescription desc = litSphereUnderASky();
+    render::RenderScene scene(desc);
+    render::Camera camera(*desc.camera, kSize, kSize);
+    Film film(kSize, kSize, camera.farClip());
+    RenderSettings settings;
+    settings.samplesPerPixel = kMaxSpp;
+    settings.targetError = targetError;
+    settings.minSamples = kMinSpp;
+    settings.threads = threads;
+    RenderStats s = render(scene, camera, PathTracer(IntegratorSettings{}), settings, film);
+    if (stats) *stats = s;
+    return film;
+}
+
+TEST(AdaptiveSampling, EasyPixelsStopEarlyAndEveryStoppedPixelReachedTheTarget) {
+    RenderStats stats;
+    const Film film = renderAdaptively(kTarget, 0, &stats);
+    int atMinimum = 0, atMaximum = 0;
+    for (int y = 0; y < kSize; ++y)
+        for (int x = 0; x < kSize; ++x) {
+            const std::uint32_t n = film.samples(x, y);
+            ASSERT_GE(n, std::uint32_t(kMinSpp));
+            ASSERT_LE(n, std::uint32_t(kMaxSpp));
+            atMinimum += n == kMinSpp;
+            atMaximum += n == kMaxSpp;
+            if (n < kMaxSpp) EXPECT_LE(film.relativeError(x, y), kTarget) << x << ", " << y;
+        }
+    const double mean = double(film.totalSamples()) / (kSize * kSize);
+    std::printf("[ measured ] %d pixels stopped at %d spp, %d ran to %d; %.1f spp on average\n", atMinimum, kMinSpp,
+                atMaximum, kMaxSpp, mean);
+    EXPECT_GT(atMinimum, 0) << "the sky seen directly has no noise";
+    EXPECT_GT(mean, 2.0 * kMinSpp) << "the lit sphere needs more";
+    EXPECT_LT(mean, kMaxSpp);
+    EXPECT_EQ(stats.samples, film.totalSamples());
+}
+
+TEST(AdaptiveSampling, IsTheSameForAnyThreadCount) {
+    const Image one = renderAdaptively(kTarget, 1).resolve(), two = renderAdaptively(kTarget, 2).resolve();
+    ASSERT_EQ(one.pixels.size(), two.pixels.size());
+    EXPECT_EQ(0, std::memcmp(one.pixels.data(), two.pixels.data(), one.pixels.size() * sizeof(float)));
+}
+
+TEST(AdaptiveSampling, WithoutATargetEveryPixelTakesEverySample) {
+    const Film film = renderAdaptively(0.0, 0);
+    EXPECT_EQ(film.totalSamples(), std::uint64_t(kSize) * kSize * kMaxSpp);
+}
+
+}  // namespace
+}  // namespace fluence::integrators
