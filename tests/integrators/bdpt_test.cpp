@@ -72,12 +72,7 @@ TEST(BdptMis, TwoStrategiesTakeThePowerHeuristic) {
 // direction, and only points and directions that carry light.
 TEST(BdptEmission, SampledDensitiesMatchEmissionDensity) {
     auto desc = [](render::LightType type) {
-        render::LightDesc d;
-        d.name = "/light";
-        d.type = type;
-        d.radiance = RGB(2.0f);
-        d.transform = Matrix4::translate({0.5, -0.2, 1.0}) * Matrix4::rotateX(30);
-        return d;
+        return test::lightDesc("/light", type, RGB(2.0f), Matrix4::translate({0.5, -0.2, 1.0}) * Matrix4::rotateX(30));
     };
     render::LightDesc spot = desc(render::LightType::Sphere);
     spot.treatAsPoint = true;
@@ -201,13 +196,8 @@ render::SceneDescription cornellBox() {
     s.meshes.push_back(test::quadMesh("/left", {{{-1, -1, -1}, {-1, 1, -1}, {-1, 1, 1}, {-1, -1, 1}}}, 1));
     s.meshes.push_back(test::quadMesh("/right", {{{1, -1, -1}, {1, -1, 1}, {1, 1, 1}, {1, 1, -1}}}, 2));
     s.meshes.push_back(test::boxMesh({0.3f, 0.3f, 0.5f}, 0));
-    render::LightDesc rect;
-    rect.name = "/light";
-    rect.type = render::LightType::Rect;
-    rect.width = rect.height = 0.6f;
-    rect.radiance = RGB(12.0f);
-    rect.transform = Matrix4::translate({0.0, 0.0, 0.98});  // emits along -Z, downwards
-    s.lights.push_back(rect);
+    // Emits along -Z, downwards.
+    s.lights.push_back(test::rectLight("/light", 0.6f, 0.6f, RGB(12.0f), Matrix4::translate({0.0, 0.0, 0.98})));
     s.camera = test::lookAtOriginCamera(3.5f);
     return s;
 }
@@ -238,25 +228,10 @@ render::SceneDescription glossyScene() {
     render::MeshDesc torus = test::torusMesh(0.5f, 0.2f, 24, 12, 2);
     for (Vec3f& p : torus.positions) p += Vec3f(0.8f, -0.2f, -0.5f);
     s.meshes.push_back(torus);
-    render::LightDesc bulb;
-    bulb.name = "/bulb";
-    bulb.type = render::LightType::Sphere;
-    bulb.radius = 0.3f;
-    bulb.radiance = RGB(10.0f);
-    bulb.transform = Matrix4::translate({1.2, -1.0, 1.5});
-    s.lights.push_back(bulb);
-    render::LightDesc disk;
-    disk.name = "/disk";
-    disk.type = render::LightType::Disk;
-    disk.radius = 0.5f;
-    disk.radiance = RGB(4.0f, 3.0f, 2.0f);
-    disk.transform = Matrix4::translate({-1.5, 0.5, 2.0}) * Matrix4::rotateY(-20);
-    s.lights.push_back(disk);
-    render::LightDesc dome;
-    dome.name = "/dome";
-    dome.type = render::LightType::Dome;
-    dome.radiance = RGB(0.1f, 0.15f, 0.3f);
-    s.lights.push_back(dome);
+    s.lights.push_back(test::sphereLight("/bulb", 0.3f, RGB(10.0f), {1.2, -1.0, 1.5}));
+    s.lights.push_back(
+        test::diskLight("/disk", 0.5f, RGB(4.0f, 3.0f, 2.0f), Matrix4::translate({-1.5, 0.5, 2.0}) * Matrix4::rotateY(-20)));
+    s.lights.push_back(test::domeLight("/dome", RGB(0.1f, 0.15f, 0.3f)));
     s.camera = test::lookAtOriginCamera(5.0f);
     return s;
 }
@@ -288,29 +263,14 @@ render::SceneDescription glassScene() {
     s.materials.push_back(sheet);
     s.meshes.push_back(test::quadMesh("/floor", {{{-3, -3, -1}, {3, -3, -1}, {3, 3, -1}, {-3, 3, -1}}}, 0));
     s.meshes.push_back(test::quadMesh("/wall", {{{-3, 1.5f, -1}, {3, 1.5f, -1}, {3, 1.5f, 3}, {-3, 1.5f, 3}}}, 0));
-    for (auto [material, centre] : {std::pair(1, Vec3f(-0.8f, 0.0f, -0.4f)), std::pair(2, Vec3f(0.8f, -0.2f, -0.4f))}) {
-        render::MeshDesc ball = test::sphereMesh(0.6f, 24, 12, material);
-        for (std::uint32_t i : ball.indices) ball.cornerNormals.push_back(normalize(ball.positions[i]));
-        for (Vec3f& p : ball.positions) p += centre;
-        s.meshes.push_back(ball);
-    }
+    for (auto [material, centre] : {std::pair(1, Vec3f(-0.8f, 0.0f, -0.4f)), std::pair(2, Vec3f(0.8f, -0.2f, -0.4f))})
+        s.meshes.push_back(test::roundSphereMesh(0.6f, 24, 12, material, centre));
     s.meshes.push_back(test::quadMesh("/sheet", {{{0.2f, 1.0f, -1}, {2.0f, 1.0f, -1}, {2.0f, 1.0f, 1.2f}, {0.2f, 1.0f, 1.2f}}}, 3));
-    render::LightDesc rect;
-    rect.name = "/rect";
-    rect.type = render::LightType::Rect;
-    rect.width = 1.5f;
-    rect.height = 1.0f;
-    rect.radiance = RGB(8.0f);
-    // Before the rough sphere, shining through it at the wall: a rough caustic in full view.
-    rect.transform = Matrix4::translate({-0.8, -1.2, -0.3}) * Matrix4::rotateX(90);  // emits towards +Y
-    s.lights.push_back(rect);
-    render::LightDesc bulb;
-    bulb.name = "/bulb";
-    bulb.type = render::LightType::Sphere;
-    bulb.radius = 0.2f;
-    bulb.radiance = RGB(15.0f);
-    bulb.transform = Matrix4::translate({1.2, 1.3, 0.2});  // behind the sheet
-    s.lights.push_back(bulb);
+    // Before the rough sphere, shining through it at the wall (emitting towards +Y): a rough
+    // caustic in full view.
+    s.lights.push_back(
+        test::rectLight("/rect", 1.5f, 1.0f, RGB(8.0f), Matrix4::translate({-0.8, -1.2, -0.3}) * Matrix4::rotateX(90)));
+    s.lights.push_back(test::sphereLight("/bulb", 0.2f, RGB(15.0f), {1.2, 1.3, 0.2}));  // behind the sheet
     s.camera = test::lookAtOriginCamera(5.0f);
     return s;
 }
@@ -331,29 +291,14 @@ render::SceneDescription deltaLightScene() {
     s.meshes.push_back(test::quadMesh("/ceiling", {{{-3, -3, 2.2f}, {-3, 3, 2.2f}, {3, 3, 2.2f}, {3, -3, 2.2f}}}, 0));
     s.meshes.push_back(test::boxMesh({0.4f, 0.4f, 0.6f}, 0));
     s.meshes.push_back(test::quadMesh("/panel", {{{-1.8f, 0.5f, -1}, {-1.2f, 1.2f, -1}, {-1.2f, 1.2f, 0.2f}, {-1.8f, 0.5f, 0.2f}}}, 1));
-    render::LightDesc spot;
-    spot.name = "/spot";
-    spot.type = render::LightType::Sphere;
+    render::LightDesc spot = test::pointLight("/spot", RGB(600.0f), {0.8, -0.5, 1.8});  // emits along -Z, downwards
     spot.radius = 0.1f;
-    spot.treatAsPoint = true;
-    spot.radiance = RGB(600.0f);
     spot.shaping = render::LightShapingDesc{50.0f, 0.3f};
-    spot.transform = Matrix4::translate({0.8, -0.5, 1.8});  // emits along -Z, downwards
     s.lights.push_back(spot);
-    render::LightDesc sun;
-    sun.name = "/sun";
-    sun.type = render::LightType::Distant;
-    sun.angleDegrees = 0.0f;
-    sun.radiance = RGB(1.2f, 1.1f, 0.9f);
-    sun.transform = Matrix4::rotateX(40) * Matrix4::rotateY(-30);
-    s.lights.push_back(sun);
-    render::LightDesc tube;
-    tube.name = "/tube";
-    tube.type = render::LightType::Cylinder;
+    s.lights.push_back(test::distantLight("/sun", 0.0f, RGB(1.2f, 1.1f, 0.9f), Matrix4::rotateX(40) * Matrix4::rotateY(-30)));
+    render::LightDesc tube = test::lightDesc("/tube", render::LightType::Cylinder, RGB(8.0f), Matrix4::translate({1.2, 0.8, 0.8}));
     tube.radius = 0.05f;
     tube.length = 1.0f;
-    tube.radiance = RGB(8.0f);
-    tube.transform = Matrix4::translate({1.2, 0.8, 0.8});
     s.lights.push_back(tube);
     s.camera = test::lookAtOriginCamera(5.0f);
     return s;
@@ -410,13 +355,7 @@ render::SceneDescription glassedPointLight() {
     render::MeshDesc ball = test::sphereMesh(0.4f, 32, 16, 1);
     for (Vec3f& p : ball.positions) p += Vec3f(0.0f, 0.0f, 0.0f);
     s.meshes.push_back(ball);
-    render::LightDesc point;
-    point.name = "/point";
-    point.type = render::LightType::Sphere;
-    point.radius = 0.05f;
-    point.treatAsPoint = true;
-    point.radiance = RGB(2000.0f);
-    s.lights.push_back(point);
+    s.lights.push_back(test::pointLight("/point", RGB(2000.0f)));
     s.camera = test::lookAtOriginCamera(4.0f);
     return s;
 }

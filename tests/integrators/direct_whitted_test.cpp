@@ -41,24 +41,8 @@ test::MeanEstimate meanDifference(const Image& a, const Image& b, int c, const s
 }
 bool everyPixel(int, int) { return true; }
 
-render::LightDesc pointLight(const Vec3d& at, const RGB& radiance) {
-    render::LightDesc l;
-    l.name = "/point";
-    l.type = render::LightType::Sphere;
-    l.radius = 0.05f;
-    l.treatAsPoint = true;
-    l.radiance = radiance;
-    l.transform = Matrix4::translate(at);
-    return l;
-}
-
 // A sphere of radius r at c with smooth shading normals.
-render::MeshDesc roundSphere(float r, const Vec3f& c, int material) {
-    render::MeshDesc m = test::sphereMesh(r, 32, 16, material);
-    for (std::uint32_t i : m.indices) m.cornerNormals.push_back(normalize(m.positions[i]));
-    for (Vec3f& p : m.positions) p = p + c;
-    return m;
-}
+render::MeshDesc roundSphere(float r, const Vec3f& c, int material) { return test::roundSphereMesh(r, 32, 16, material, c); }
 
 render::MaterialDesc smoothGlass() {
     render::MaterialDesc m;
@@ -95,40 +79,15 @@ render::SceneDescription everyLightScene() {
     s.meshes.push_back(
         test::quadMesh("/panel", {{{-1.5f, 2, -1}, {1.5f, 2, -1}, {1.5f, 2.5f, 1.5f}, {-1.5f, 2.5f, 1.5f}}}, 4));
 
-    render::LightDesc rect;
-    rect.name = "/rect";
-    rect.type = render::LightType::Rect;
-    rect.width = 1.5f;
-    rect.height = 1.0f;
-    rect.radiance = RGB(6.0f, 5.0f, 4.0f);
-    rect.transform = Matrix4::translate({1.5, -0.5, 2.5}) * Matrix4::rotateY(30);
-    s.lights.push_back(rect);
-    render::LightDesc bulb;
-    bulb.name = "/bulb";
-    bulb.type = render::LightType::Sphere;
-    bulb.radius = 0.3f;
-    bulb.radiance = RGB(8.0f);
-    bulb.transform = Matrix4::translate({-1.8, -0.8, 0.5});
-    s.lights.push_back(bulb);
-    s.lights.push_back(pointLight({0.5, -1.5, 0.8}, RGB(40.0f, 30.0f, 20.0f)));
-    render::LightDesc sun;
-    sun.name = "/sun";
-    sun.type = render::LightType::Distant;
-    sun.angleDegrees = 0.0f;
-    sun.radiance = RGB(0.8f);
-    sun.transform = Matrix4::rotateX(35) * Matrix4::rotateY(-20);
-    s.lights.push_back(sun);
-    render::LightDesc wideSun = sun;
-    wideSun.name = "/wideSun";
-    wideSun.angleDegrees = 20.0f;
+    s.lights.push_back(
+        test::rectLight("/rect", 1.5f, 1.0f, RGB(6.0f, 5.0f, 4.0f), Matrix4::translate({1.5, -0.5, 2.5}) * Matrix4::rotateY(30)));
+    s.lights.push_back(test::sphereLight("/bulb", 0.3f, RGB(8.0f), {-1.8, -0.8, 0.5}));
+    s.lights.push_back(test::pointLight("/point", RGB(40.0f, 30.0f, 20.0f), {0.5, -1.5, 0.8}));
+    s.lights.push_back(test::distantLight("/sun", 0.0f, RGB(0.8f), Matrix4::rotateX(35) * Matrix4::rotateY(-20)));
+    render::LightDesc wideSun = test::distantLight("/wideSun", 20.0f, RGB(0.8f), Matrix4::rotateX(-25) * Matrix4::rotateY(40));
     wideSun.normalize = true;
-    wideSun.transform = Matrix4::rotateX(-25) * Matrix4::rotateY(40);
     s.lights.push_back(wideSun);
-    render::LightDesc dome;
-    dome.name = "/dome";
-    dome.type = render::LightType::Dome;
-    dome.radiance = RGB(0.1f, 0.15f, 0.3f);
-    s.lights.push_back(dome);
+    s.lights.push_back(test::domeLight("/dome", RGB(0.1f, 0.15f, 0.3f)));
     s.camera = test::lookAtOriginCamera(5.0f);
     return s;
 }
@@ -168,14 +127,7 @@ render::SceneDescription closedBox() {
     render::SceneDescription s;
     s.materials.push_back(test::diffuseMaterial("/white", RGB(0.7f, 0.7f, 0.5f)));
     s.meshes.push_back(test::boxMesh(Vec3f(1.0f), 0));
-    render::LightDesc rect;
-    rect.name = "/ceilingLight";
-    rect.type = render::LightType::Rect;
-    rect.width = 0.6f;
-    rect.height = 0.6f;
-    rect.radiance = RGB(10.0f);
-    rect.transform = Matrix4::translate({0, 0, 0.99});  // emits down (-Z)
-    s.lights.push_back(rect);
+    s.lights.push_back(test::rectLight("/ceilingLight", 0.6f, 0.6f, RGB(10.0f), Matrix4::translate({0, 0, 0.99})));  // emits down (-Z)
     s.camera = test::lookAtOriginCamera(0.95f);
     return s;
 }
@@ -233,7 +185,7 @@ TEST(Whitted, MirrorShowsTheCeilingLitDirectlyTimesItsReflectance) {
         const float z = mirror ? ceiling : -ceiling;
         s.meshes.push_back(test::quadMesh("/ceiling", {{{-5, -5, z}, {5, -5, z}, {5, 5, z}, {-5, 5, z}}}, 0));
         if (mirror) s.meshes.push_back(test::quadMesh("/mirror", {{{-5, -5, 0}, {5, -5, 0}, {5, 5, 0}, {-5, 5, 0}}}, 1));
-        s.lights.push_back(pointLight({0.3, -0.2, mirror ? lightHeight : -lightHeight}, RGB(50.0f)));
+        s.lights.push_back(test::pointLight("/point", RGB(50.0f), {0.3, -0.2, mirror ? lightHeight : -lightHeight}));
         s.camera = lookingDown(1.5f);
         return s;
     };
@@ -296,13 +248,7 @@ TEST(Whitted, MissesTheCausticUnderAGlassSphere) {
     s.materials.push_back(smoothGlass());
     s.meshes.push_back(test::quadMesh("/floor", {{{-5, -5, 0}, {5, -5, 0}, {5, 5, 0}, {-5, 5, 0}}}, 0));
     s.meshes.push_back(roundSphere(0.5f, {0.0f, 0.0f, 0.5f}, 1));
-    render::LightDesc bulb;
-    bulb.name = "/bulb";
-    bulb.type = render::LightType::Sphere;
-    bulb.radius = 1.0f;
-    bulb.radiance = RGB(20.0f);
-    bulb.transform = Matrix4::translate({0, 0, 4});
-    s.lights.push_back(bulb);
+    s.lights.push_back(test::sphereLight("/bulb", 1.0f, RGB(20.0f), {0, 0, 4}));
     s.camera = test::lookAtOriginCamera(1.0f);
     s.camera->transform = Matrix4::translate({0, -2.6f, 1.5f}) * Matrix4::rotateX(60);  // 30 degrees down
     const Image whitted = renderWith(Whitted(IntegratorSettings{}), s, 48, 16, 0, 1).image;
@@ -379,7 +325,7 @@ TEST(Whitted, ShadowRaysInsideAnAbsorbingInteriorAreAttenuated) {
         s.meshes.push_back(test::boxMesh(Vec3f(1.0f), 0));
         const float h = -0.5f;
         s.meshes.push_back(test::quadMesh("/plate", {{{-0.8f, -0.8f, h}, {0.8f, -0.8f, h}, {0.8f, 0.8f, h}, {-0.8f, 0.8f, h}}}, 1));
-        s.lights.push_back(pointLight({0.0, 0.0, 0.0}, RGB(20.0f)));
+        s.lights.push_back(test::pointLight("/point", RGB(20.0f), {0.0, 0.0, 0.0}));
         s.camera = lookingDown(5.0f);
         const render::RenderScene scene(s);
         const render::Camera camera(*s.camera, 1, 1);

@@ -39,11 +39,7 @@ render::SceneDescription inAWhiteSky(render::MeshDesc mesh, render::MaterialDesc
     render::SceneDescription s;
     s.materials.push_back(std::move(material));
     s.meshes.push_back(std::move(mesh));
-    render::LightDesc dome;
-    dome.name = "/Sky";
-    dome.type = render::LightType::Dome;
-    dome.radiance = RGB(1.0f);
-    s.lights.push_back(dome);
+    s.lights.push_back(test::domeLight("/Sky", RGB(1.0f)));
     s.camera = test::lookAtOriginCamera(5.0f);
     return s;
 }
@@ -118,8 +114,7 @@ TEST(InteriorMedium, AlbedoOneInteriorFurnaceNeitherLosesNorGainsLight) {
     // every path leaves with its weight, so every channel reads 1.
     render::SceneDescription desc = test::furnaceScene(1.0f);
     desc.materials[0] = glassWithInterior({RGB(0.0f), RGB(3.0f, 1.0f, 0.3f), RGB(0.0f), 0.6f});
-    render::MeshDesc& sphere = desc.meshes[0];
-    for (std::uint32_t i : sphere.indices) sphere.cornerNormals.push_back(normalize(sphere.positions[i]));
+    test::addRoundNormals(desc.meshes[0]);
     test_support::Rendered r = test_support::renderWith(PathTracer(IntegratorSettings{}), desc, 48, 128);
     const int alpha = r.image.channelIndex("A");
     for (int c = 0; c < 3; ++c) {
@@ -137,17 +132,10 @@ TEST(InteriorMedium, LightInsideAScatteringInteriorAgreesWithTheNaiveReference) 
     // every light outside) and counts the light hit by phase sampling at full weight, while it
     // still samples the light from the glass surface. `naive` only ever hits it. Both estimate
     // the same radiance along a ray through the ball.
-    render::SceneDescription desc = inAWhiteSky(test::sphereMesh(1.0f, 48, 24, 0),
+    render::SceneDescription desc = inAWhiteSky(test::roundSphereMesh(1.0f, 48, 24, 0),
                                                 glassWithInterior({RGB(0.1f, 0.2f, 0.4f), RGB(1.5f, 1.0f, 0.5f), RGB(0.0f), 0.3f}));
-    render::MeshDesc& ball = desc.meshes[0];
-    for (std::uint32_t i : ball.indices) ball.cornerNormals.push_back(normalize(ball.positions[i]));
     desc.lights[0].radiance = RGB(0.0f);  // the sky stays dark; only the light inside shines
-    render::LightDesc bulb;
-    bulb.name = "/Bulb";
-    bulb.type = render::LightType::Sphere;
-    bulb.radius = 0.2f;
-    bulb.radiance = RGB(10.0f);
-    desc.lights.push_back(bulb);
+    desc.lights.push_back(test::sphereLight("/Bulb", 0.2f, RGB(10.0f)));
     render::RenderScene scene(desc);
     const render::Ray ray{{0.3f, -5.0f, 0.1f}, {0.0f, 1.0f, 0.0f}};
     std::array<test::MeanEstimate, 3> path = radianceAlong(PathTracer(IntegratorSettings{}), scene, ray, 40000);

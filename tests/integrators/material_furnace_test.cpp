@@ -31,8 +31,7 @@ const double kZ = test::normalQuantile(0.5 * test::sidakAlpha(kChecks));
 test::MeanEstimate furnaceReading(const std::string& name, const render::MaterialParams& material) {
     render::SceneDescription scene = test::furnaceScene(1.0f);
     static_cast<render::MaterialParams&>(scene.materials[0]) = material;
-    render::MeshDesc& sphere = scene.meshes[0];
-    for (std::uint32_t i : sphere.indices) sphere.cornerNormals.push_back(normalize(sphere.positions[i]));
+    test::addRoundNormals(scene.meshes[0]);
     test_support::Rendered r = test_support::renderWith(PathTracer(IntegratorSettings{}), scene, 48, 64);
     const int a = r.image.channelIndex("A");
     test::MeanEstimate reading = test_support::channelMean(r.image, 1, [&](const float* p) { return p[a] == 1.0f; });

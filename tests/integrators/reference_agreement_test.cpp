@@ -18,13 +18,7 @@ namespace fluence::integrators {
 namespace {
 
 // A constant dark-blue sky.
-render::LightDesc blueSkyDome() {
-    render::LightDesc dome;
-    dome.name = "/dome";
-    dome.type = render::LightType::Dome;
-    dome.radiance = RGB(0.1f, 0.15f, 0.3f);
-    return dome;
-}
+render::LightDesc blueSkyDome() { return test::domeLight("/dome", RGB(0.1f, 0.15f, 0.3f)); }
 
 render::SceneDescription everyLightScene() {
     render::SceneDescription s;
@@ -36,28 +30,12 @@ render::SceneDescription everyLightScene() {
     // An emissive quad standing behind the sphere.
     s.meshes.push_back(test::quadMesh("/panel", {{{-1.5f, 2, -1}, {1.5f, 2, -1}, {1.5f, 2.5f, 1.5f}, {-1.5f, 2.5f, 1.5f}}}, 2));
 
-    render::LightDesc rect;
-    rect.name = "/rect";
-    rect.type = render::LightType::Rect;
-    rect.width = 1.5f;
-    rect.height = 1.0f;
-    rect.radiance = RGB(6.0f, 5.0f, 4.0f);
-    rect.transform = Matrix4::translate({1.5, -0.5, 2.5}) * Matrix4::rotateY(30);  // emits downwards-ish
-    s.lights.push_back(rect);
-    render::LightDesc sphere;
-    sphere.name = "/bulb";
-    sphere.type = render::LightType::Sphere;
-    sphere.radius = 0.3f;
-    sphere.radiance = RGB(8.0f);
-    sphere.transform = Matrix4::translate({-1.8, -0.8, 0.5});
-    s.lights.push_back(sphere);
-    render::LightDesc sun;
-    sun.name = "/sun";
-    sun.type = render::LightType::Distant;
-    sun.angleDegrees = 20.0f;
-    sun.radiance = RGB(1.5f);
+    // The rect light emits downwards-ish.
+    s.lights.push_back(
+        test::rectLight("/rect", 1.5f, 1.0f, RGB(6.0f, 5.0f, 4.0f), Matrix4::translate({1.5, -0.5, 2.5}) * Matrix4::rotateY(30)));
+    s.lights.push_back(test::sphereLight("/bulb", 0.3f, RGB(8.0f), {-1.8, -0.8, 0.5}));
+    render::LightDesc sun = test::distantLight("/sun", 20.0f, RGB(1.5f), Matrix4::rotateX(35) * Matrix4::rotateY(-20));
     sun.normalize = true;
-    sun.transform = Matrix4::rotateX(35) * Matrix4::rotateY(-20);
     s.lights.push_back(sun);
     s.lights.push_back(blueSkyDome());
 
@@ -131,14 +109,6 @@ TEST(ReferenceAgreement, PathTracerMatchesNaivePathTracerOnEveryLightType) {
     expectAgreement(everyLightScene(), 128, 1024);
 }
 
-// A sphere of radius r at c with smooth shading normals (round, to its BSDF).
-render::MeshDesc roundSphere(float r, const Vec3f& c, int material) {
-    render::MeshDesc m = test::sphereMesh(r, 24, 12, material);
-    for (std::uint32_t i : m.indices) m.cornerNormals.push_back(normalize(m.positions[i]));
-    for (Vec3f& p : m.positions) p += c;
-    return m;
-}
-
 // Rough glass, a layered material with every lobe (glass, metal, sheen, coat, anisotropy), and a
 // rough thin-walled sheet, on a diffuse ground; a rect light behind the sheet shines through it at
 // the camera, a sphere light behind the glass sphere lights it through its far side, another
@@ -176,32 +146,16 @@ render::SceneDescription transmissiveScene() {
     sheet.transmissionColor = RGB(0.9f, 0.7f, 0.5f);
     s.materials.push_back(sheet);
     s.meshes.push_back(test::quadMesh("/ground", {{{-4, -4, -1}, {4, -4, -1}, {4, 4, -1}, {-4, 4, -1}}}, 0));
-    s.meshes.push_back(roundSphere(0.7f, {-0.9f, 0.0f, -0.3f}, 1));
-    s.meshes.push_back(roundSphere(0.6f, {0.9f, 0.0f, -0.4f}, 2));
+    s.meshes.push_back(test::roundSphereMesh(0.7f, 24, 12, 1, {-0.9f, 0.0f, -0.3f}));
+    s.meshes.push_back(test::roundSphereMesh(0.6f, 24, 12, 2, {0.9f, 0.0f, -0.4f}));
     s.meshes.push_back(test::quadMesh("/sheet", {{{0, 1.2f, -1}, {2.5f, 1.2f, -1}, {2.5f, 1.2f, 1.8f}, {0, 1.2f, 1.8f}}}, 3));
 
-    render::LightDesc behindSheet;
-    behindSheet.name = "/behindSheet";
-    behindSheet.type = render::LightType::Rect;
-    behindSheet.width = 2.0f;
-    behindSheet.height = 1.5f;
-    behindSheet.radiance = RGB(3.0f);
-    behindSheet.transform = Matrix4::translate({1.2, 2.2, 0.4}) * Matrix4::rotateX(-90);  // emits towards -Y
-    s.lights.push_back(behindSheet);
-    render::LightDesc backlight;  // behind the glass: reached through it from inside
-    backlight.name = "/backlight";
-    backlight.type = render::LightType::Sphere;
-    backlight.radius = 0.25f;
-    backlight.radiance = RGB(12.0f);
-    backlight.transform = Matrix4::translate({-1.1, 1.3, 0.1});
-    s.lights.push_back(backlight);
-    render::LightDesc bulb;
-    bulb.name = "/bulb";
-    bulb.type = render::LightType::Sphere;
-    bulb.radius = 0.3f;
-    bulb.radiance = RGB(8.0f);
-    bulb.transform = Matrix4::translate({0.4, -2.2, 2.4});
-    s.lights.push_back(bulb);
+    // Emits towards -Y.
+    s.lights.push_back(
+        test::rectLight("/behindSheet", 2.0f, 1.5f, RGB(3.0f), Matrix4::translate({1.2, 2.2, 0.4}) * Matrix4::rotateX(-90)));
+    // Behind the glass: reached through it from inside.
+    s.lights.push_back(test::sphereLight("/backlight", 0.25f, RGB(12.0f), {-1.1, 1.3, 0.1}));
+    s.lights.push_back(test::sphereLight("/bulb", 0.3f, RGB(8.0f), {0.4, -2.2, 2.4}));
     s.lights.push_back(blueSkyDome());
     s.camera = test::lookAtOriginCamera(5.0f);
     return s;

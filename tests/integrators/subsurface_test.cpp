@@ -104,8 +104,7 @@ TEST(Subsurface, WhiteObjectsBehindALosslessBoundaryNeitherLoseNorGainLight) {
     // sphere (round shading normals) a few mean free paths across; a thin tile (a tenth of a mean
     // free path thick, where walks cross it in a step or two and leave by either face); and a
     // torus, whose concave inside sends light that leaves back into it.
-    render::MeshDesc sphere = test::sphereMesh(1.0f, 48, 24, 0);
-    for (std::uint32_t i : sphere.indices) sphere.cornerNormals.push_back(normalize(sphere.positions[i]));
+    const render::MeshDesc sphere = test::roundSphereMesh(1.0f, 48, 24, 0);
     struct Case {
         const char* name;
         render::MeshDesc mesh;

@@ -3,7 +3,9 @@
 
 #include <array>
 #include <cmath>
+#include <cstdint>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "core/sampling.h"
@@ -39,6 +41,27 @@ inline render::MeshDesc sphereMesh(float radius, int segments, int rings, int ma
             if (r > 0) m.indices.insert(m.indices.end(), {at(r, s), at(r + 1, s), at(r, s + 1)});
             if (r < rings - 1) m.indices.insert(m.indices.end(), {at(r, s + 1), at(r + 1, s), at(r + 1, s + 1)});
         }
+    return m;
+}
+
+// Round shading normals for a mesh whose points lie on a sphere about the origin (sphereMesh's):
+// each corner's normal is the direction of its point from the origin, so that to its BSDFs the
+// mesh is a round sphere. Give them before moving the mesh.
+inline void addRoundNormals(render::MeshDesc& m) {
+    for (std::uint32_t i : m.indices) m.cornerNormals.push_back(normalize(m.positions[i]));
+}
+
+// A UV sphere (sphereMesh) with round shading normals (addRoundNormals).
+inline render::MeshDesc roundSphereMesh(float radius, int segments, int rings, int material) {
+    render::MeshDesc m = sphereMesh(radius, segments, rings, material);
+    addRoundNormals(m);
+    return m;
+}
+
+// The same, centred at `centre`.
+inline render::MeshDesc roundSphereMesh(float radius, int segments, int rings, int material, const Vec3f& centre) {
+    render::MeshDesc m = roundSphereMesh(radius, segments, rings, material);
+    for (Vec3f& p : m.positions) p += centre;
     return m;
 }
 
@@ -110,16 +133,70 @@ inline render::CameraDesc lookAtOriginCamera(float distance) {
     return c;
 }
 
+// ---- Lights. Each builder sets a light's name, kind, radiance and placement (lights emit along
+// their local -Z) and what its kind needs; every other field keeps LightDesc's default
+// (render/scene_description.h), for a test to set on the result.
+
+// A light of kind `type` placed by `transform`.
+inline render::LightDesc lightDesc(std::string name, render::LightType type, const RGB& radiance,
+                                   const Matrix4& transform = Matrix4::identity()) {
+    render::LightDesc l;
+    l.name = std::move(name);
+    l.type = type;
+    l.radiance = radiance;
+    l.transform = transform;
+    return l;
+}
+
+// A sphere light of the given radius centred at `position`.
+inline render::LightDesc sphereLight(std::string name, float radius, const RGB& radiance, const Vec3d& position = Vec3d(0.0)) {
+    render::LightDesc l = lightDesc(std::move(name), render::LightType::Sphere, radiance, Matrix4::translate(position));
+    l.radius = radius;
+    return l;
+}
+
+// A point light at `position`: a sphere light of radius 0.05 rendered as a point of the same
+// power (treatAsPoint).
+inline render::LightDesc pointLight(std::string name, const RGB& radiance, const Vec3d& position = Vec3d(0.0)) {
+    render::LightDesc l = sphereLight(std::move(name), 0.05f, radiance, position);
+    l.treatAsPoint = true;
+    return l;
+}
+
+// A width x height rect light placed by `transform`.
+inline render::LightDesc rectLight(std::string name, float width, float height, const RGB& radiance, const Matrix4& transform) {
+    render::LightDesc l = lightDesc(std::move(name), render::LightType::Rect, radiance, transform);
+    l.width = width;
+    l.height = height;
+    return l;
+}
+
+// A disk light of the given radius placed by `transform`.
+inline render::LightDesc diskLight(std::string name, float radius, const RGB& radiance, const Matrix4& transform) {
+    render::LightDesc l = lightDesc(std::move(name), render::LightType::Disk, radiance, transform);
+    l.radius = radius;
+    return l;
+}
+
+// A distant light (a sun) of angular diameter `angleDegrees` (0: a delta light), shining along
+// the local -Z of `transform`.
+inline render::LightDesc distantLight(std::string name, float angleDegrees, const RGB& radiance, const Matrix4& transform) {
+    render::LightDesc l = lightDesc(std::move(name), render::LightType::Distant, radiance, transform);
+    l.angleDegrees = angleDegrees;
+    return l;
+}
+
+// A dome light of constant radiance (no texture).
+inline render::LightDesc domeLight(std::string name, const RGB& radiance) {
+    return lightDesc(std::move(name), render::LightType::Dome, radiance);
+}
+
 // A furnace: a sphere of the given albedo inside a dome of radiance 1.
 inline render::SceneDescription furnaceScene(float albedo) {
     render::SceneDescription s;
     s.materials.push_back(diffuseMaterial("/mat", RGB(albedo)));
     s.meshes.push_back(sphereMesh(1.0f, 48, 24, 0));
-    render::LightDesc dome;
-    dome.name = "/dome";
-    dome.type = render::LightType::Dome;
-    dome.radiance = RGB(1.0f);
-    s.lights.push_back(dome);
+    s.lights.push_back(domeLight("/dome", RGB(1.0f)));
     s.camera = lookAtOriginCamera(4.0f);
     return s;
 }
