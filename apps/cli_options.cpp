@@ -4,6 +4,7 @@
 #include <charconv>
 #include <cmath>
 
+#include "integrators/automatic_choice.h"
 #include "integrators/integrator.h"
 
 namespace fluence::app {
@@ -139,7 +140,7 @@ RenderOptions parseRenderOptions(const std::vector<std::string>& args) {
             o.seed = parseNumber<std::uint64_t>(arg, cur.value(arg));
         } else if (arg == "--integrator") {
             o.integrator = cur.value(arg);
-            if (!integrators::findIntegrator(o.integrator))
+            if (o.integrator != integrators::kAutomaticIntegrator && !integrators::findIntegrator(o.integrator))
                 throw UsageError("unknown integrator '" + o.integrator + "' (available: " + integratorNames() + ")");
         } else if (arg == "--time-limit") {
             o.timeLimit = parseNumber<double>(arg, cur.value(arg));
@@ -182,7 +183,7 @@ RenderOptions parseRenderOptions(const std::vector<std::string>& args) {
 std::string integratorNames() {
     std::string names;
     for (const auto& i : integrators::integratorRegistry()) names += (names.empty() ? "" : ", ") + i.name;
-    return names;
+    return names + ", " + integrators::kAutomaticIntegrator;
 }
 
 std::string usageText() {
@@ -218,6 +219,8 @@ std::string usageText() {
            "      --integrator NAME   solution method (default: the render settings' fluence:integrator, else\n"
            "                          " + std::string(kDefaultIntegrator) + "):\n" +
            integratorList +
+           "                        auto  the cheapest of direct, whitted, path, sppm that covers the scene's path\n"
+           "                              classes (fluence info lists them); the render log says which and why\n"
            "      --max-depth N       maximum scattering events per path (default 64)\n"
            "      --dicing-rate PX    subdivision surfaces: target micro-edge length in pixels (default 1)\n"
            "      --subdiv-level N    subdivision surfaces: uniform refinement, 4^N triangle pairs per quad,\n"

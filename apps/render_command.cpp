@@ -8,6 +8,7 @@
 #include "apps/progress_reporter.h"
 #include "color/color_management.h"
 #include "delegate/scene_delegate.h"
+#include "integrators/automatic_choice.h"
 #include "integrators/renderer.h"
 #include "integrators/scene_path_classes.h"
 #include "output/atomic_file.h"
@@ -33,11 +34,17 @@ std::string counted(std::size_t n, const std::string& singular, const std::strin
 
 // The integrator the render uses: --integrator, else the render settings' fluence:integrator,
 // else the default. Throws SceneError when the settings name none that Fluence has.
-const integrators::IntegratorInfo& chosenIntegrator(const RenderOptions& opt,
-                                                    const std::optional<delegate::RenderSettingsDesc>& settings) {
-    if (!opt.integrator.empty()) return *integrators::findIntegrator(opt.integrator);  // checked when parsed
-    if (!settings || settings->integrator.empty()) return *integrators::findIntegrator(kDefaultIntegrator);
-    if (const integrators::IntegratorInfo* info = integrators::findIntegrator(settings->integrator)) return *info;
+const integrators::IntegratorInfo& chosenIntegrator(const RenderOptions& opt, const delegate::DelegateResult& populated) {
+    const auto& settings = populated.renderSettings;
+    std::string name = !opt.integrator.empty() ? opt.integrator  // checked when parsed
+                       : settings && !settings->integrator.empty() ? settings->integrator
+                                                                   : kDefaultIntegrator;
+    if (name == integrators::kAutomaticIntegrator) {
+        const integrators::AutomaticChoice choice = integrators::chooseIntegrator(integrators::scenePathClasses(populated.scene));
+        std::printf("fluence: integrator auto: %s, %s\n", choice.integrator->name.c_str(), choice.reason.c_str());
+        return *choice.integrator;
+    }
+    if (const integrators::IntegratorInfo* info = integrators::findIntegrator(name)) return *info;
     throw delegate::SceneError("render settings " + settings->path + ": fluence:integrator '" + settings->integrator +
                                "' is not an integrator (available: " + integratorNames() + ")");
 }
@@ -80,7 +87,7 @@ int runRender(const RenderOptions& opt) {
     const integrators::IntegratorInfo* integratorInfo = nullptr;
     try {
         populated = delegate::populateScene(*stage, dopt);
-        integratorInfo = &chosenIntegrator(opt, populated->renderSettings);
+        integratorInfo = &chosenIntegrator(opt, *populated);
         if (!opt.subsurface.empty())
             for (render::MaterialDesc& m : populated->scene.materials)
                 m.subsurfaceMethod = opt.subsurface == "diffusion" ? render::SubsurfaceMethod::Diffusion : render::SubsurfaceMethod::RandomWalk;

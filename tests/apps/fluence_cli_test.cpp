@@ -345,6 +345,14 @@ TEST_F(FluenceCli, UsageErrors) {
     EXPECT_EQ(run("frobnicate").exitCode, 2);
 }
 
+TEST_F(FluenceCli, AutomaticIntegratorSaysWhichAndWhy) {
+    fs::path scene = fs::path(FLUENCE_SOURCE_DIR) / "usd_samples/cornell_box.usda";
+    RunResult r = run("render " + scene.string() + " -o " + (dir_ / "auto.exr").string() + " -r 16 16 --spp 1 --integrator auto");
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_NE(r.out.find("integrator auto: path, the cheapest method that covers"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("integrator path"), std::string::npos) << r.out;
+}
+
 TEST_F(FluenceCli, TargetErrorSamplesAdaptivelyAndSaysSo) {
     fs::path scene = fs::path(FLUENCE_SOURCE_DIR) / "usd_samples/cornell_box.usda";
     RunResult r = run("render " + scene.string() + " -o " + (dir_ / "adaptive.exr").string() +
