@@ -9,8 +9,7 @@
 
 #include "integrators/path_tracer.h"
 #include "integrators/renderer.h"
-#include "render/camera.h"
-#include "render/render_scene.h"
+#include "tests/integrators/render_support.h"
 #include "tests/support/scenes.h"
 
 namespace fluence::integrators {
@@ -34,24 +33,17 @@ render::SceneDescription litSphereUnderASky() {
     return s;
 }
 
-Film renderAdaptively(double targetError, int threads, RenderStats* stats = nullptr) {
-    const render::SceneDescription desc = litSphereUnderASky();
-    render::RenderScene scene(desc);
-    render::Camera camera(*desc.camera, kSize, kSize);
-    Film film(kSize, kSize, camera.farClip());
+test_support::RenderedFilm renderAdaptively(double targetError, int threads) {
     RenderSettings settings;
     settings.samplesPerPixel = kMaxSpp;
     settings.targetError = targetError;
     settings.minSamples = kMinSpp;
     settings.threads = threads;
-    RenderStats s = render(scene, camera, PathTracer(IntegratorSettings{}), settings, film);
-    if (stats) *stats = s;
-    return film;
+    return test_support::renderFilm(PathTracer(IntegratorSettings{}), litSphereUnderASky(), kSize, settings);
 }
 
 TEST(AdaptiveSampling, EasyPixelsStopEarlyAndEveryStoppedPixelReachedTheTarget) {
-    RenderStats stats;
-    const Film film = renderAdaptively(kTarget, 0, &stats);
+    const auto [film, stats] = renderAdaptively(kTarget, 0);
     int atMinimum = 0, atMaximum = 0;
     for (int y = 0; y < kSize; ++y)
         for (int x = 0; x < kSize; ++x) {
@@ -72,13 +64,13 @@ TEST(AdaptiveSampling, EasyPixelsStopEarlyAndEveryStoppedPixelReachedTheTarget) 
 }
 
 TEST(AdaptiveSampling, IsTheSameForAnyThreadCount) {
-    const Image one = renderAdaptively(kTarget, 1).resolve(), two = renderAdaptively(kTarget, 2).resolve();
+    const Image one = renderAdaptively(kTarget, 1).film.resolve(), two = renderAdaptively(kTarget, 2).film.resolve();
     ASSERT_EQ(one.pixels.size(), two.pixels.size());
     EXPECT_EQ(0, std::memcmp(one.pixels.data(), two.pixels.data(), one.pixels.size() * sizeof(float)));
 }
 
 TEST(AdaptiveSampling, WithoutATargetEveryPixelTakesEverySample) {
-    const Film film = renderAdaptively(0.0, 0);
+    const Film film = renderAdaptively(0.0, 0).film;
     EXPECT_EQ(film.totalSamples(), std::uint64_t(kSize) * kSize * kMaxSpp);
 }
 

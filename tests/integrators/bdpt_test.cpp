@@ -209,12 +209,7 @@ TEST(Bdpt, AgreesWithPathOnADiffuseBoxLitByAnAreaLight) { expectAgreement(cornel
 render::SceneDescription glossyScene() {
     render::SceneDescription s;
     s.materials.push_back(test::diffuseMaterial("/grey", RGB(0.5f)));
-    render::MaterialDesc metal;
-    metal.name = "/metal";
-    metal.diffuse = RGB(0.9f, 0.7f, 0.4f);
-    metal.metallic = 1.0f;
-    metal.roughness = 0.3f;
-    s.materials.push_back(metal);
+    s.materials.push_back(test::metalMaterial("/metal", RGB(0.9f, 0.7f, 0.4f), 0.3f));
     render::MaterialDesc plastic;
     plastic.name = "/plastic";
     plastic.diffuse = RGB(0.2f, 0.3f, 0.7f);
@@ -245,22 +240,9 @@ TEST(Bdpt, AgreesWithPathOnGlossyAndMetalSurfaces) { expectAgreement(glossyScene
 render::SceneDescription glassScene() {
     render::SceneDescription s;
     s.materials.push_back(test::diffuseMaterial("/grey", RGB(0.6f)));
-    render::MaterialDesc rough;
-    rough.name = "/rough";
-    rough.transmission = 1.0f;
-    rough.roughness = 0.4f;
-    s.materials.push_back(rough);
-    render::MaterialDesc smooth = rough;
-    smooth.name = "/smooth";
-    smooth.roughness = 0.0f;
-    s.materials.push_back(smooth);
-    render::MaterialDesc sheet;
-    sheet.name = "/sheet";
-    sheet.diffuse = RGB(0.4f, 0.6f, 0.3f);
-    sheet.transmission = 0.8f;
-    sheet.thinWalled = true;
-    sheet.roughness = 0.3f;
-    s.materials.push_back(sheet);
+    s.materials.push_back(test::glassMaterial("/rough", 0.4f));
+    s.materials.push_back(test::glassMaterial("/smooth", 0.0f));
+    s.materials.push_back(test::thinSheetMaterial("/sheet", RGB(0.4f, 0.6f, 0.3f), 0.8f, 0.3f));
     s.meshes.push_back(test::quadMesh("/floor", {{{-3, -3, -1}, {3, -3, -1}, {3, 3, -1}, {-3, 3, -1}}}, 0));
     s.meshes.push_back(test::quadMesh("/wall", {{{-3, 1.5f, -1}, {3, 1.5f, -1}, {3, 1.5f, 3}, {-3, 1.5f, 3}}}, 0));
     for (auto [material, centre] : {std::pair(1, Vec3f(-0.8f, 0.0f, -0.4f)), std::pair(2, Vec3f(0.8f, -0.2f, -0.4f))})

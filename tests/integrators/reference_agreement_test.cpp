@@ -137,12 +137,7 @@ render::SceneDescription transmissiveScene() {
     layered.coatColor = RGB(1.0f, 0.9f, 0.7f);
     layered.coatRoughness = 0.2f;
     s.materials.push_back(layered);
-    render::MaterialDesc sheet;
-    sheet.name = "/sheet";
-    sheet.diffuse = RGB(0.4f, 0.6f, 0.3f);
-    sheet.transmission = 0.8f;
-    sheet.thinWalled = true;
-    sheet.roughness = 0.3f;
+    render::MaterialDesc sheet = test::thinSheetMaterial("/sheet", RGB(0.4f, 0.6f, 0.3f), 0.8f, 0.3f);
     sheet.transmissionColor = RGB(0.9f, 0.7f, 0.5f);
     s.materials.push_back(sheet);
     s.meshes.push_back(test::quadMesh("/ground", {{{-4, -4, -1}, {4, -4, -1}, {4, 4, -1}, {-4, 4, -1}}}, 0));

@@ -4,6 +4,7 @@
 
 #include <cstdint>
 #include <functional>
+#include <utility>
 
 #include "integrators/integrator.h"
 #include "integrators/renderer.h"
@@ -18,18 +19,31 @@ struct Rendered {
     RenderStats stats;
 };
 
-// A size x size render of `desc` through its camera, `spp` samples per pixel.
-inline Rendered renderWith(const Integrator& integrator, const render::SceneDescription& desc, int size, int spp,
-                           int threads = 0, std::uint64_t seed = 0) {
+struct RenderedFilm {
+    Film film;
+    RenderStats stats;
+};
+
+// A size x size render of `desc` through its camera with `settings`, as the film itself (for its
+// per-pixel statistics).
+inline RenderedFilm renderFilm(const Integrator& integrator, const render::SceneDescription& desc, int size,
+                               const RenderSettings& settings) {
     render::RenderScene scene(desc);
     render::Camera camera(*desc.camera, size, size);
     Film film(size, size, camera.farClip());
+    RenderStats stats = render(scene, camera, integrator, settings, film);
+    return {std::move(film), stats};
+}
+
+// A size x size render of `desc` through its camera, `spp` samples per pixel.
+inline Rendered renderWith(const Integrator& integrator, const render::SceneDescription& desc, int size, int spp,
+                           int threads = 0, std::uint64_t seed = 0) {
     RenderSettings settings;
     settings.samplesPerPixel = spp;
     settings.threads = threads;
     settings.seed = seed;
-    RenderStats stats = render(scene, camera, integrator, settings, film);
-    return {film.resolve(), stats};
+    RenderedFilm r = renderFilm(integrator, desc, size, settings);
+    return {r.film.resolve(), r.stats};
 }
 
 // Mean of channel `c` over the pixels where `select` holds, with its standard error (pixels are

@@ -65,6 +65,36 @@ inline render::MeshDesc roundSphereMesh(float radius, int segments, int rings, i
     return m;
 }
 
+// A metal (MaterialParams::metallic = 1) of reflectance `colour` at normal incidence.
+inline render::MaterialDesc metalMaterial(std::string name, const RGB& colour, float roughness) {
+    render::MaterialDesc m;
+    m.name = std::move(name);
+    m.diffuse = colour;
+    m.metallic = 1.0f;
+    m.roughness = roughness;
+    return m;
+}
+
+// Clear glass (a solid of ior 1.5, transmission 1).
+inline render::MaterialDesc glassMaterial(std::string name, float roughness) {
+    render::MaterialDesc m;
+    m.name = std::move(name);
+    m.transmission = 1.0f;
+    m.roughness = roughness;
+    return m;
+}
+
+// A thin-walled sheet, partly transmissive, over a diffuse `colour`.
+inline render::MaterialDesc thinSheetMaterial(std::string name, const RGB& colour, float transmission, float roughness) {
+    render::MaterialDesc m;
+    m.name = std::move(name);
+    m.diffuse = colour;
+    m.transmission = transmission;
+    m.thinWalled = true;
+    m.roughness = roughness;
+    return m;
+}
+
 // A quad (two triangles) with corners in order around it.
 inline render::MeshDesc quadMesh(std::string name, const std::array<Vec3f, 4>& corners, int material) {
     render::MeshDesc m;
