@@ -9,32 +9,34 @@
 
 namespace fluence::integrators {
 
+// In the order `fluence --help` lists them: the default first, then by the light paths they cover,
+// the reference estimator last.
 const std::vector<IntegratorInfo>& integratorRegistry() {
     static const std::vector<IntegratorInfo> registry = {
         {"path", "L(S|D)*E", kAllPathClasses & ~kDeltaLightCaustics,
          "unidirectional path tracing with next-event estimation, MIS and Russian roulette",
          [](const IntegratorSettings& s) { return std::make_unique<PathTracer>(s); }},
-        {"naive", "L(S|D)*E without delta lights", kAllPathClasses & ~(kDeltaLights | kDeltaLightCaustics),
-         "reference path tracing by BSDF sampling only (no NEE, no MIS): slow; for validating `path`",
-         [](const IntegratorSettings& s) { return std::make_unique<NaivePathTracer>(s); }},
-        {"bdpt", "L(S|D)*E; from delta lights LD(S|D)*E and L(S|D)*DD(S|D)*E (no LS+DS*E); no media",
-         kEmitterSeen | kDirect | kSpecularSeen | kIndirect | kCaustics | kDeltaLights,
-         "bidirectional path tracing, MIS (power heuristic) over every light/camera prefix pair with t >= 2; "
-         "point-light caustics once lit onward (LS+DDE), not seen directly",
-         [](const IntegratorSettings& s) { return std::make_unique<Bdpt>(s); }},
         {"direct", "L(D|S)?E", kEmitterSeen | kDirect | kDeltaLights,
          "local illumination with shadows: emitters seen, direct lighting of the first hit (NEE + MIS); no indirect light",
          [](const IntegratorSettings& s) { return std::make_unique<DirectLighting>(s); }},
         {"whitted", "LD?S*E", kEmitterSeen | kDirect | kSpecularSeen | kDeltaLights,
          "Whitted ray tracing: direct lighting (as `direct`) seen through mirrors and smooth glass; no caustics",
          [](const IntegratorSettings& s) { return std::make_unique<Whitted>(s); }},
-        {"radiosity", "LD*E", kEmitterSeen | kDirect | kIndirect | kDeltaLights,
-         "finite-element radiosity: patches, ray-cast form factors, Gauss-Seidel; every surface diffuse",
-         [](const IntegratorSettings&) { return std::make_unique<Radiosity>(); }},
+        {"bdpt", "L(S|D)*E; from delta lights LD(S|D)*E and L(S|D)*DD(S|D)*E (no LS+DS*E); no media",
+         kEmitterSeen | kDirect | kSpecularSeen | kIndirect | kCaustics | kDeltaLights,
+         "bidirectional path tracing, MIS (power heuristic) over every light/camera prefix pair with t >= 2; "
+         "point-light caustics once lit onward (LS+DDE), not seen directly",
+         [](const IntegratorSettings& s) { return std::make_unique<Bdpt>(s); }},
         {"sppm", "L(S|D)*DS*E, LS*E",
          kEmitterSeen | kDirect | kSpecularSeen | kIndirect | kCaustics | kDeltaLightCaustics | kDeltaLights,
          "probabilistic progressive photon mapping: caustics, also from point lights; no media or subsurface",
          [](const IntegratorSettings& s) { return std::make_unique<Sppm>(s); }},
+        {"radiosity", "LD*E", kEmitterSeen | kDirect | kIndirect | kDeltaLights,
+         "finite-element radiosity: patches, ray-cast form factors, Gauss-Seidel; every surface diffuse",
+         [](const IntegratorSettings&) { return std::make_unique<Radiosity>(); }},
+        {"naive", "L(S|D)*E without delta lights", kAllPathClasses & ~(kDeltaLights | kDeltaLightCaustics),
+         "reference path tracing by BSDF sampling only (no NEE, no MIS): slow; for validating `path`",
+         [](const IntegratorSettings& s) { return std::make_unique<NaivePathTracer>(s); }},
     };
     return registry;
 }
