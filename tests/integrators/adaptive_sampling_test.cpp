@@ -52,7 +52,9 @@ TEST(AdaptiveSampling, EasyPixelsStopEarlyAndEveryStoppedPixelReachedTheTarget) 
             ASSERT_LE(n, std::uint32_t(kMaxSpp));
             atMinimum += n == kMinSpp;
             atMaximum += n == kMaxSpp;
-            if (n < kMaxSpp) EXPECT_LE(film.relativeError(x, y), kTarget) << x << ", " << y;
+            if (n < kMaxSpp) {
+                EXPECT_LE(film.relativeError(x, y), kTarget) << x << ", " << y;
+            }
         }
     const double mean = double(film.totalSamples()) / (kSize * kSize);
     std::printf("[ measured ] %d pixels stopped at %d spp, %d ran to %d; %.1f spp on average\n", atMinimum, kMinSpp,
