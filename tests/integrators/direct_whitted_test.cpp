@@ -282,9 +282,8 @@ TEST(Whitted, MissesTheCausticUnderAGlassSphere) {
 TEST(Whitted, AbsorbingGlassCubeMatchesItsInternalReflections) {
     // Seen head-on, a smooth glass cube of side L (F = ((n - 1) / (n + 1))^2 at normal incidence)
     // whose interior absorbs sigmaA, in a sky of radiance 1: with a = exp(-sigmaA L), the ray's
-    // chains between the front and back faces give
-    //     R + T = F + (1 - F)^2 F a^2 / (1 - F^2 a^2) + (1 - F)^2 a / (1 - F^2 a^2),
-    // all of it L S+ E, with every segment inside attenuated by ratio tracking.
+    // chains between the front and back faces give test_support::glassSlabSeenHeadOn(F, a), all of
+    // it L S+ E, with every segment inside attenuated by ratio tracking.
     const RGB sigmaA(0.2f, 0.5f, 1.0f);
     const float side = 2.0f, F = 0.04f;
     render::SceneDescription s = test::furnaceScene(1.0f);
@@ -292,19 +291,10 @@ TEST(Whitted, AbsorbingGlassCubeMatchesItsInternalReflections) {
     s.materials[0].interior = media::MediumProperties{sigmaA, RGB(0.0f)};
     s.meshes[0] = test::boxMesh(Vec3f(side / 2.0f), 0);
     const render::RenderScene scene(s);
-    const render::Camera camera(*s.camera, 1, 1);
-    const Whitted whitted{IntegratorSettings{}};
     const render::Ray ray{{0.1f, -5.0f, 0.2f}, {0.0f, 1.0f, 0.0f}};
-    std::array<test::MeanEstimate, 3> e;
-    RenderCounters counters;
-    for (int n = 0; n < 50000; ++n) {
-        SampleStream rng(11, 0, std::uint64_t(n));
-        const RGB L = whitted.sample(scene, camera, ray, rng, counters).radiance;
-        for (int c = 0; c < 3; ++c) e[c].add(L[c]);
-    }
+    const std::array<test::MeanEstimate, 3> e = test_support::radianceAlong(Whitted{IntegratorSettings{}}, scene, ray, 50000, 11);
     for (int c = 0; c < 3; ++c) {
-        const double a = std::exp(-sigmaA[c] * side), loop = 1.0 - F * F * a * a;
-        const double expected = F + (1 - F) * (1 - F) * F * a * a / loop + (1 - F) * (1 - F) * a / loop;
+        const double expected = test_support::glassSlabSeenHeadOn(F, std::exp(-sigmaA[c] * side));
         std::printf("[ measured ] channel %d: %.5f +- %.5f (expected %.5f)\n", c, e[c].mean(), e[c].standardError(), expected);
         EXPECT_NEAR(e[c].mean(), expected, kTwoSidedZ * e[c].standardError()) << "channel " << c;
     }
@@ -328,17 +318,8 @@ TEST(Whitted, ShadowRaysInsideAnAbsorbingInteriorAreAttenuated) {
         s.lights.push_back(test::pointLight("/point", RGB(20.0f), {0.0, 0.0, 0.0}));
         s.camera = lookingDown(5.0f);
         const render::RenderScene scene(s);
-        const render::Camera camera(*s.camera, 1, 1);
-        const Whitted whitted{IntegratorSettings{}};
         const render::Ray ray{{0.0f, 0.0f, 5.0f}, {0.0f, 0.0f, -1.0f}};
-        std::array<test::MeanEstimate, 3> e;
-        RenderCounters counters;
-        for (int n = 0; n < 20000; ++n) {
-            SampleStream rng(13, 0, std::uint64_t(n));
-            const RGB L = whitted.sample(scene, camera, ray, rng, counters).radiance;
-            for (int c = 0; c < 3; ++c) e[c].add(L[c]);
-        }
-        return e;
+        return test_support::radianceAlong(Whitted{IntegratorSettings{}}, scene, ray, 20000, 13);
     };
     const std::array<test::MeanEstimate, 3> clear = radiance(RGB(0.0f)), absorbing = radiance(sigmaA);
     for (int c = 0; c < 3; ++c) {

@@ -71,25 +71,11 @@ TEST(MediumStack, EntersAgainstTheNormalLeavesAlongItAndNests) {
     EXPECT_EQ(inGlass.after(opaque, up, down).depth(), 1) << "surfaces without interiors change nothing";
 }
 
-// Per channel, the mean radiance of n paths along `ray`.
-std::array<test::MeanEstimate, 3> radianceAlong(const Integrator& tracer, const render::RenderScene& scene,
-                                                const render::Ray& ray, int n) {
-    render::Camera camera(render::CameraDesc{}, 8, 8);
-    RenderCounters counters;
-    std::array<test::MeanEstimate, 3> e;
-    for (int i = 0; i < n; ++i) {
-        SampleStream rng(5, 0, std::uint64_t(i));
-        FilmSample s = tracer.sample(scene, camera, ray, rng, counters);
-        for (int c = 0; c < 3; ++c) e[c].add(s.radiance[c]);
-    }
-    return e;
-}
-
 TEST(InteriorMedium, AbsorbingGlassCubeMatchesItsInternalReflections) {
     // Seen head-on, a glass cube of side L whose interior absorbs sigmaA: at normal incidence the
     // ray bounces between the front and back faces only, each reflecting F = ((n - 1) / (n + 1))^2,
-    // and with a = exp(-sigmaA L) the sky of radiance 1 is seen with the geometric series
-    //     R = F + (1 - F)^2 F a^2 / (1 - F^2 a^2),   T = (1 - F)^2 a / (1 - F^2 a^2).
+    // and with a = exp(-sigmaA L) the sky of radiance 1 is seen with the geometric series of
+    // test_support::glassSlabSeenHeadOn.
     // Chromatic sigmaA puts the three channels' distances on one hero's draws (spectral MIS).
     const RGB sigmaA(0.2f, 0.5f, 1.0f);
     const float side = 2.0f, F = 0.04f;
@@ -98,10 +84,9 @@ TEST(InteriorMedium, AbsorbingGlassCubeMatchesItsInternalReflections) {
     const PathTracer path{IntegratorSettings{}};
     const NaivePathTracer naive{IntegratorSettings{}};
     for (const Integrator* tracer : {static_cast<const Integrator*>(&path), static_cast<const Integrator*>(&naive)}) {
-        std::array<test::MeanEstimate, 3> e = radianceAlong(*tracer, scene, ray, 100000);
+        std::array<test::MeanEstimate, 3> e = test_support::radianceAlong(*tracer, scene, ray, 100000, 5);
         for (int c = 0; c < 3; ++c) {
-            const double a = std::exp(-sigmaA[c] * side), loop = 1.0 - F * F * a * a;
-            const double expected = F + (1 - F) * (1 - F) * F * a * a / loop + (1 - F) * (1 - F) * a / loop;
+            const double expected = test_support::glassSlabSeenHeadOn(F, std::exp(-sigmaA[c] * side));
             std::printf("[ measured ] channel %d: %.5f +- %.5f (expected %.5f)\n", c, e[c].mean(), e[c].standardError(), expected);
             EXPECT_NEAR(e[c].mean(), expected, kZ * e[c].standardError() + 1e-5) << "channel " << c;
         }
@@ -138,8 +123,8 @@ TEST(InteriorMedium, LightInsideAScatteringInteriorAgreesWithTheNaiveReference) 
     desc.lights.push_back(test::sphereLight("/Bulb", 0.2f, RGB(10.0f)));
     render::RenderScene scene(desc);
     const render::Ray ray{{0.3f, -5.0f, 0.1f}, {0.0f, 1.0f, 0.0f}};
-    std::array<test::MeanEstimate, 3> path = radianceAlong(PathTracer(IntegratorSettings{}), scene, ray, 40000);
-    std::array<test::MeanEstimate, 3> naive = radianceAlong(NaivePathTracer(IntegratorSettings{}), scene, ray, 40000);
+    std::array<test::MeanEstimate, 3> path = test_support::radianceAlong(PathTracer(IntegratorSettings{}), scene, ray, 40000, 5);
+    std::array<test::MeanEstimate, 3> naive = test_support::radianceAlong(NaivePathTracer(IntegratorSettings{}), scene, ray, 40000, 5);
     for (int c = 0; c < 3; ++c) {
         const double difference = path[c].mean() - naive[c].mean();
         const double error = std::hypot(path[c].standardError(), naive[c].standardError());

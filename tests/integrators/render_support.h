@@ -2,6 +2,7 @@
 // average a channel over selected pixels with its standard error.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <functional>
 #include <utility>
@@ -44,6 +45,30 @@ inline Rendered renderWith(const Integrator& integrator, const render::SceneDesc
     settings.seed = seed;
     RenderedFilm r = renderFilm(integrator, desc, size, settings);
     return {r.film.resolve(), r.stats};
+}
+
+// Per channel, the mean radiance of n samples of `integrator` along `ray`, sample i drawing from the
+// stream (seed, 0, i).
+inline std::array<test::MeanEstimate, 3> radianceAlong(const Integrator& integrator, const render::RenderScene& scene,
+                                                       const render::Ray& ray, int n, std::uint64_t seed) {
+    const render::Camera camera(render::CameraDesc{}, 8, 8);  // for the first-hit AOVs only
+    RenderCounters counters;
+    std::array<test::MeanEstimate, 3> e;
+    for (int i = 0; i < n; ++i) {
+        SampleStream rng(seed, 0, std::uint64_t(i));
+        const RGB L = integrator.sample(scene, camera, ray, rng, counters).radiance;
+        for (int c = 0; c < 3; ++c) e[c].add(L[c]);
+    }
+    return e;
+}
+
+// The radiance of a sky of radiance 1 seen head-on through a smooth glass slab whose faces reflect
+// F at normal incidence and whose interior transmits a = exp(-sigmaA L) across: the ray's chains
+// between the two faces sum to
+//     R + T = F + (1 - F)^2 F a^2 / (1 - F^2 a^2) + (1 - F)^2 a / (1 - F^2 a^2).
+inline double glassSlabSeenHeadOn(double F, double a) {
+    const double loop = 1.0 - F * F * a * a;
+    return F + (1 - F) * (1 - F) * F * a * a / loop + (1 - F) * (1 - F) * a / loop;
 }
 
 // Mean of channel `c` over the pixels where `select` holds, with its standard error (pixels are
