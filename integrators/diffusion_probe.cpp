@@ -17,14 +17,19 @@ std::array<Vec3f, 3> probeAxes(const render::SurfaceHit& entry) {
     return {frame.n, frame.s, frame.t};
 }
 
-}  // namespace
+struct DiffusionExit {
+    render::SurfaceHit hit;  // where the light leaves, seen from the outside
+    RGB weight;              // R(|po - pi|) / pdf(po)
+};
 
+// Whether a path that arrived along -wo at `hit` and leaves along wi enters a diffusion material.
 bool entersDiffusion(const render::SurfaceHit& hit, const Vec3f& wo, const Vec3f& wi) {
     const render::MaterialParams& m = hit.material;
     return m.subsurface > 0.0f && m.subsurfaceMethod == render::SubsurfaceMethod::Diffusion && !m.thinWalled &&
            hit.interior >= 0 && dot(wo, hit.geometricNormal) > 0.0f && dot(wi, hit.geometricNormal) < 0.0f;
 }
 
+// The exit point of light entering at `entry`, or nullopt when the probe finds none.
 std::optional<DiffusionExit> sampleDiffusionExit(const render::RenderScene& scene, const render::SurfaceHit& entry,
                                                  SampleStream& rng, RenderCounters& counters) {
     const render::MaterialParams& m = entry.material;
@@ -70,6 +75,8 @@ std::optional<DiffusionExit> sampleDiffusionExit(const render::RenderScene& scen
     if (!(pdf > 0.0f)) return std::nullopt;
     return DiffusionExit{exit, profile.profile(fluence::length(d)) / pdf};
 }
+
+}  // namespace
 
 DiffusionStep stepThroughDiffusion(const render::RenderScene& scene, const render::SurfaceHit& hit, const Vec3f& wo,
                                    const Vec3f& wi, RGB& throughput, std::optional<render::SurfaceHit>& exit,

@@ -34,25 +34,12 @@ namespace fluence::integrators {
 
 inline constexpr int kMaxProbeHits = 8;
 
-struct DiffusionExit {
-    render::SurfaceHit hit;  // where the light leaves, seen from the outside
-    RGB weight;              // R(|po - pi|) / pdf(po)
-};
-
-// Whether a path that arrived along -wo at `hit` and leaves along wi enters a diffusion subsurface
-// material: it is transmitted inwards through a solid whose method is Diffusion.
-bool entersDiffusion(const render::SurfaceHit& hit, const Vec3f& wo, const Vec3f& wi);
-
-// The exit point of light entering at `entry`, or nullopt when the probe finds none. Probe rays
-// are counted as bounce rays.
-std::optional<DiffusionExit> sampleDiffusionExit(const render::RenderScene& scene, const render::SurfaceHit& entry,
-                                                 SampleStream& rng, RenderCounters& counters);
-
 // What a path does after its BSDF sample at `hit` (arrived along -wo, leaving along wi), for the
 // integrators that follow subsurface light: it did not enter a diffusion material (NotEntered:
 // go on as usual); it did, and `throughput` now carries the exit's weight and `exit` holds the
 // exit point, the next vertex, reached without tracing a ray (Exited); or no exit was found and
-// the path ends (Lost).
+// the path ends (Lost). It enters when it is transmitted inwards through a solid whose subsurface
+// method is Diffusion; probe rays are counted as bounce rays.
 enum class DiffusionStep { NotEntered, Exited, Lost };
 DiffusionStep stepThroughDiffusion(const render::RenderScene& scene, const render::SurfaceHit& hit, const Vec3f& wo,
                                    const Vec3f& wi, RGB& throughput, std::optional<render::SurfaceHit>& exit,
