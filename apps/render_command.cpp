@@ -34,13 +34,15 @@ std::string counted(std::size_t n, const std::string& singular, const std::strin
 
 // The integrator the render uses: --integrator, else the render settings' fluence:integrator,
 // else the default. Throws SceneError when the settings name none that Fluence has.
-const integrators::IntegratorInfo& chosenIntegrator(const RenderOptions& opt, const delegate::DelegateResult& populated) {
+// `sceneClasses`: the PathClass bits the scene can produce, for `auto`.
+const integrators::IntegratorInfo& chosenIntegrator(const RenderOptions& opt, const delegate::DelegateResult& populated,
+                                                    unsigned sceneClasses) {
     const auto& settings = populated.renderSettings;
     std::string name = !opt.integrator.empty() ? opt.integrator  // checked when parsed
                        : settings && !settings->integrator.empty() ? settings->integrator
                                                                    : kDefaultIntegrator;
     if (name == integrators::kAutomaticIntegrator) {
-        const integrators::AutomaticChoice choice = integrators::chooseIntegrator(integrators::scenePathClasses(populated.scene));
+        const integrators::AutomaticChoice choice = integrators::chooseIntegrator(sceneClasses);
         std::printf("fluence: integrator auto: %s, %s\n", choice.integrator->name.c_str(), choice.reason.c_str());
         return *choice.integrator;
     }
@@ -85,9 +87,11 @@ int runRender(const RenderOptions& opt) {
     std::optional<delegate::DelegateResult> populated;
     std::unique_ptr<render::RenderScene> scene;
     const integrators::IntegratorInfo* integratorInfo = nullptr;
+    unsigned sceneClasses = 0;  // the light paths the scene can produce (integrators/path_classes.h)
     try {
         populated = delegate::populateScene(*stage, dopt);
-        integratorInfo = &chosenIntegrator(opt, *populated);
+        sceneClasses = integrators::scenePathClasses(populated->scene);
+        integratorInfo = &chosenIntegrator(opt, *populated, sceneClasses);
         if (!opt.subsurface.empty())
             for (render::MaterialDesc& m : populated->scene.materials)
                 m.subsurfaceMethod = opt.subsurface == "diffusion" ? render::SubsurfaceMethod::Diffusion : render::SubsurfaceMethod::RandomWalk;
@@ -108,7 +112,7 @@ int runRender(const RenderOptions& opt) {
     }
     const double buildSeconds = secondsSince(t);
     if (scene->lightCount() == 0) warnings(populated->cameraPath, "the scene has no lights; the image will be black");
-    if (const unsigned missed = integrators::scenePathClasses(populated->scene) & ~integratorInfo->covers)
+    if (const unsigned missed = sceneClasses & ~integratorInfo->covers)
         warnings(opt.scene, "integrator '" + integratorInfo->name + "' misses: " + integrators::describePathClasses(missed) +
                                 " (light that this scene has)");
 
