@@ -161,6 +161,8 @@ RenderOptions parseRenderOptions(const std::vector<std::string>& args) {
             o.subdivLevel = parseNumber<int>(arg, cur.value(arg));
             if (*o.subdivLevel < 0 || *o.subdivLevel > kMaxSubdivLevel)
                 throw UsageError("--subdiv-level must be between 0 and " + std::to_string(kMaxSubdivLevel));
+        } else if (arg == "--lpe") {
+            o.lightPaths.push_back(parseLightPathOption(cur.value(arg)));
         } else if (arg == "--subsurface") {
             o.subsurface = cur.value(arg);
             if (o.subsurface != "randomwalk" && o.subsurface != "diffusion")
@@ -231,6 +233,9 @@ std::string usageText() {
            "      --target-error E    adaptive sampling: each pixel stops once the relative standard error of\n"
            "                          its mean is at most E (e.g. 0.01), after --min-spp and at most --spp samples\n"
            "      --min-spp N         samples every pixel takes before adaptive sampling may stop it (default 16)\n"
+           "      --lpe NAME=EXPR     a light path expression AOV: the light of the paths EXPR matches, as the\n"
+           "                          EXR layer NAME (repeatable; also RenderVars with sourceType \"lpe\");\n"
+           "                          e.g. --lpe diffuse='C<RD>.*L' --lpe specular='C<R[GS]>.*L'; `path` only\n"
            "\n"
            "environment:\n"
            "  OCIO                    an OpenColorIO config to use instead of Fluence's built-in one\n"

@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "apps/light_path_aovs.h"
 #include "scene/stage.h"
 
 namespace fluence::app {
@@ -38,6 +39,7 @@ struct RenderOptions {
     std::string settings;           // -s/--settings /Render/Path (default: the stage's renderSettingsPrimPath)
     std::vector<usd::VariantSelection> variants;  // --variant /Prim/Path:set=selection (repeatable)
     usd::LoadRules loadRules;       // --load P, --unload P (repeatable), --no-payloads
+    std::vector<LightPathOption> lightPaths;  // --lpe NAME=EXPRESSION (repeatable)
 };
 
 // Options of `fluence info`.

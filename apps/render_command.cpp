@@ -136,8 +136,30 @@ int runRender(const RenderOptions& opt) {
         printError(e.what());
         return kExitScene;
     }
+    std::vector<integrators::LightPathAov> aovs;
+    try {
+        aovs = lightPathAovs(product, opt.lightPaths);
+    } catch (const delegate::SceneError& e) {
+        printError(e.what());
+        return kExitScene;
+    } catch (const UsageError& e) {
+        printError(e.what());
+        return kExitUsage;
+    }
+    if (!aovs.empty() && !integratorInfo->lightPathExpressions) {
+        const std::string why = "integrator '" + integratorInfo->name + "' does not write light path expression AOVs (path does)";
+        if (!opt.lightPaths.empty()) {
+            printError("--lpe: " + why);
+            return kExitUsage;
+        }
+        warnings(product->path, why + "; " + counted(aovs.size(), "lpe RenderVar") + " left out");
+        aovs.clear();
+    }
+    std::vector<std::string> layers;
+    for (const integrators::LightPathAov& aov : aovs) layers.push_back(aov.name);
     integrators::IntegratorSettings isettings;
     isettings.maxDepth = opt.maxDepth;
+    isettings.lightPathAovs = std::make_shared<const std::vector<integrators::LightPathAov>>(std::move(aovs));
     std::unique_ptr<integrators::Integrator> integrator = integratorInfo->create(isettings);
     integrators::RenderSettings rs;
     rs.samplesPerPixel = opt.spp.value_or(kDefaultSpp);
@@ -146,7 +168,7 @@ int runRender(const RenderOptions& opt) {
     rs.timeLimitSeconds = opt.timeLimit;
     rs.targetError = opt.targetError;
     rs.minSamples = opt.minSpp;
-    Film film(res.first, res.second, camera->farClip());
+    Film film(res.first, res.second, camera->farClip(), layers);
     integrators::RenderProgress progress;
     integrators::RenderStats stats;
     try {

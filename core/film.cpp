@@ -3,15 +3,30 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <stdexcept>
+#include <string>
+#include <utility>
 
 namespace fluence {
 
-Film::Film(int width, int height, float farDepth)
-    : width_(width), height_(height), farDepth_(farDepth), pixels_(static_cast<std::size_t>(width) * height) {}
+Film::Film(int width, int height, float farDepth, std::vector<std::string> lightPathLayers)
+    : width_(width),
+      height_(height),
+      farDepth_(farDepth),
+      pixels_(static_cast<std::size_t>(width) * height),
+      lightPathLayers_(std::move(lightPathLayers)) {
+    if (lightPathLayers_.size() > std::size_t(kMaxLightPathLayers))
+        throw std::invalid_argument("at most " + std::to_string(kMaxLightPathLayers) + " light path expression AOVs");
+    lightPathSums_.assign(pixels_.size() * lightPathLayers_.size() * 3, 0.0);
+}
 
 void Film::add(int x, int y, const FilmSample& s) {
-    Pixel& p = pixels_[static_cast<std::size_t>(y) * width_ + x];
+    const std::size_t index = static_cast<std::size_t>(y) * width_ + x;
+    Pixel& p = pixels_[index];
     for (int c = 0; c < 3; ++c) p.radiance[c] += s.radiance[c];
+    double* layers = lightPathSums_.data() + index * lightPathLayers_.size() * 3;
+    for (std::size_t l = 0; l < lightPathLayers_.size(); ++l)
+        for (int c = 0; c < 3; ++c) layers[3 * l + c] += s.lightPaths[l][c];
     const double brightness = luminance(s.radiance);
     p.luminance += brightness;
     p.luminanceSquared += brightness * brightness;
@@ -27,8 +42,11 @@ void Film::add(int x, int y, const FilmSample& s) {
     ++p.samples;
 }
 
-std::vector<std::string> Film::channelNames() {
-    return {"R", "G", "B", "A", "albedo.R", "albedo.G", "albedo.B", "N.X", "N.Y", "N.Z", "Z", "sampleCount"};
+std::vector<std::string> Film::channelNames() const {
+    std::vector<std::string> names{"R", "G", "B", "A", "albedo.R", "albedo.G", "albedo.B", "N.X", "N.Y", "N.Z", "Z", "sampleCount"};
+    for (const std::string& layer : lightPathLayers_)
+        for (const char* c : {".R", ".G", ".B"}) names.push_back(layer + c);
+    return names;
 }
 
 std::vector<std::string> Film::dataChannelNames() { return {"N.X", "N.Y", "N.Z", "Z", "sampleCount"}; }
@@ -46,6 +64,8 @@ Image Film::resolve() const {
             for (int c = 0; c < 3; ++c) out[7 + c] = static_cast<float>(p.normal[c] * inv);
             out[10] = p.anyHit ? p.minDepth : farDepth_;
             out[11] = static_cast<float>(p.samples);
+            const double* layers = lightPathSums_.data() + (static_cast<std::size_t>(y) * width_ + x) * lightPathLayers_.size() * 3;
+            for (std::size_t i = 0; i < lightPathLayers_.size() * 3; ++i) out[12 + i] = static_cast<float>(layers[i] * inv);
         }
     return image;
 }

@@ -12,15 +12,22 @@
 //   Z            camera-space depth of the nearest first hit in the pixel (a "min" filter, as
 //                compositors expect); pixels that hit nothing read the camera's far clip
 //   sampleCount  number of samples taken in the pixel
+//   NAME.R/G/B   one layer per light path expression AOV (integrators/light_path_tracker.h), in the
+//                order given to the constructor: the part of the beauty whose paths it matches
 #pragma once
 
+#include <array>
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include "core/image.h"
 #include "core/rgb.h"
 
 namespace fluence {
+
+// The most light path expression AOVs one render can write.
+inline constexpr int kMaxLightPathLayers = 16;
 
 // What one camera sample contributes.
 struct FilmSample {
@@ -29,11 +36,15 @@ struct FilmSample {
     RGB albedo;
     Vec3f normal;
     float depth = 0.0f;  // camera-space depth of the first hit (valid when hit)
+    // The radiance of the paths each light path expression matches (the first
+    // Film::lightPathLayers() of them are used).
+    std::array<RGB, kMaxLightPathLayers> lightPaths{};
 };
 
 class Film {
 public:
-    Film(int width, int height, float farDepth);
+    // `lightPathLayers`: the names of the light path expression AOVs (at most kMaxLightPathLayers).
+    Film(int width, int height, float farDepth, std::vector<std::string> lightPathLayers = {});
 
     int width() const { return width_; }
     int height() const { return height_; }
@@ -41,7 +52,8 @@ public:
     void add(int x, int y, const FilmSample& s);
 
     // The channel names resolve() produces, in order.
-    static std::vector<std::string> channelNames();
+    std::vector<std::string> channelNames() const;
+    const std::vector<std::string>& lightPathLayers() const { return lightPathLayers_; }
     // Channels that are data rather than colour (for EXR headers).
     static std::vector<std::string> dataChannelNames();
     Image resolve() const;
@@ -74,6 +86,8 @@ private:
     int width_, height_;
     float farDepth_;
     std::vector<Pixel> pixels_;
+    std::vector<std::string> lightPathLayers_;
+    std::vector<double> lightPathSums_;  // per pixel, per layer, R G B
 };
 
 }  // namespace fluence

@@ -39,8 +39,13 @@ struct RenderCounters {
     }
 };
 
+struct LightPathAov;  // integrators/light_path_tracker.h
+
 struct IntegratorSettings {
     int maxDepth = 64;  // maximum number of scattering events along a path
+    // Light path expression AOVs, for the integrators whose IntegratorInfo::lightPathExpressions
+    // says they write them (at most kMaxLightPathLayers, core/film.h); null for none.
+    std::shared_ptr<const std::vector<LightPathAov>> lightPathAovs;
 };
 
 // The render loop (integrators/renderer.h) calls prepare() once, then for each pass
@@ -70,6 +75,7 @@ struct IntegratorInfo {
     unsigned covers = 0;      // the PathClass bits it accounts for (integrators/path_classes.h)
     std::string description;
     std::function<std::unique_ptr<Integrator>(const IntegratorSettings&)> create;
+    bool lightPathExpressions = false;  // writes IntegratorSettings::lightPathAovs into FilmSample::lightPaths
 };
 
 // Every integrator Fluence offers, in the order `fluence --help` lists them.

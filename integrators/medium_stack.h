@@ -38,12 +38,18 @@ public:
         const float in = dot(wo, hit.geometricNormal), out = dot(wi, hit.geometricNormal);
         if (hit.interior < 0 || in * out >= 0.0f) return next;  // a reflection: still on the same side
         if (out < 0.0f) {
-            if (next.size_ < kDepth) next.interiors_[next.size_++] = hit.interior;
+            if (next.size_ < kDepth) {
+                next.subsurface_[next.size_] = hit.material.subsurface > 0.0f;
+                next.interiors_[next.size_++] = hit.interior;
+            }
             return next;
         }
         for (int i = next.size_ - 1; i >= 0; --i)
             if (next.interiors_[i] == hit.interior) {
-                for (int j = i; j + 1 < next.size_; ++j) next.interiors_[j] = next.interiors_[j + 1];
+                for (int j = i; j + 1 < next.size_; ++j) {
+                    next.interiors_[j] = next.interiors_[j + 1];
+                    next.subsurface_[j] = next.subsurface_[j + 1];
+                }
                 --next.size_;
                 break;
             }
@@ -51,10 +57,14 @@ public:
     }
 
     int depth() const { return size_; }
+    // Whether the innermost interior is that of a subsurface material (entered through a surface
+    // whose material has subsurface > 0): its scatterings are subsurface scattering.
+    bool inSubsurface() const { return size_ > 0 && subsurface_[size_ - 1]; }
 
 private:
     const render::RenderScene* scene_;
     std::array<int, kDepth> interiors_{};
+    std::array<bool, kDepth> subsurface_{};
     int size_ = 0;
 };
 

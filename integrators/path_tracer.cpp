@@ -6,10 +6,12 @@
 #include "core/frame.h"
 #include "integrators/diffusion_probe.h"
 #include "integrators/first_hit.h"
+#include "integrators/light_path_tracker.h"
 #include "integrators/medium_stack.h"
 #include "media/free_flight.h"
 #include "media/phase.h"
 #include "media/ratio_tracking.h"
+#include "render/area_lights.h"
 #include "render/bsdf_arena.h"
 #include "render/material_bsdf.h"
 
@@ -56,7 +58,26 @@ struct MisState {
     }
 };
 
+// The event of a scattering in a medium (integrators/light_path_tracker.h).
+PathEvent volumeEvent(bool subsurface) {
+    return PathEvent{EventType::Volume, Scattering::Diffuse, subsurface ? "subsurface" : ""};
+}
+
+// The name of a prim path's last element ("/World/Key" -> "Key").
+std::string primName(const std::string& path) { return path.substr(path.find_last_of('/') + 1); }
+
 }  // namespace
+
+void PathTracer::prepare(const render::RenderScene& scene, const render::Camera&, std::uint64_t) const {
+    lightLabels_.clear();
+    lightEvents_.clear();
+    if (!aovs_ || aovs_->empty()) return;
+    for (std::size_t i = 0; i < scene.lightCount(); ++i) lightLabels_.push_back(primName(scene.light(i).name()));
+    for (std::size_t i = 0; i < scene.lightCount(); ++i) {
+        const bool surface = dynamic_cast<const render::TriangleLight*>(&scene.light(i)) != nullptr;
+        lightEvents_.push_back(PathEvent{surface ? EventType::Object : EventType::Light, Scattering::None, lightLabels_[i]});
+    }
+}
 
 FilmSample PathTracer::sample(const render::RenderScene& scene, const render::Camera& camera, const Ray& cameraRay,
                               SampleStream& rng, RenderCounters& counters) const {
@@ -71,13 +92,16 @@ FilmSample PathTracer::sample(const render::RenderScene& scene, const render::Ca
     render::BsdfArena arena;
     Vec3f previousPoint = ray.origin, previousNormal(0.0f);
     const bool haveLights = !scene.lightSelection().empty();
+    LightPathTracker lightPaths(aovs_ ? std::span<const LightPathAov>(*aovs_) : std::span<const LightPathAov>());
 
     // Next-event estimation from `from` (with `fromNormal` for the light tree): one light, its
     // shadow ray (from shadowFrom(wi), a point and the medium the ray starts in) through the
     // surfaces and the medium, weighted against the
-    // scattering strategy; scatter(wi) gives the BSDF or phase value (cosine included) and its density.
+    // scattering strategy; scatter(wi) gives the BSDF or phase value (cosine included) and its density,
+    // and vertexEvents(wi) the vertex's events for the light path expressions.
     // Its random numbers are drawn even when it is not `enabled`, so that every vertex uses as many.
-    auto sampleLight = [&](bool enabled, const Vec3f& from, const Vec3f& fromNormal, auto&& shadowFrom, auto&& scatter) {
+    auto sampleLight = [&](bool enabled, const Vec3f& from, const Vec3f& fromNormal, auto&& shadowFrom, auto&& scatter,
+                           auto&& vertexEvents) {
         float uLight = rng.next();
         Vec2f uPoint = rng.next2D();
         if (!enabled) return;
@@ -92,7 +116,9 @@ FilmSample PathTracer::sample(const render::RenderScene& scene, const render::Ca
         if (scene.occluded(shadowOrigin, ls->wi, ls->distance)) return;
         media::TransmittanceEstimate tr;
         if (shadowMedium) tr = media::ratioTrackingTransmittance(*shadowMedium, {shadowOrigin, ls->wi, ls->distance}, hero, rng);
-        radiance += throughput * f * ls->Li * mis.lightSample(choice.probability * ls->pdf, ls->delta ? 0.0f : scatterPdf, tr);
+        const RGB contribution = throughput * f * ls->Li * mis.lightSample(choice.probability * ls->pdf, ls->delta ? 0.0f : scatterPdf, tr);
+        radiance += contribution;
+        if (lightPaths.active()) lightPaths.connect(vertexEvents(ls->wi), lightEvents_[std::size_t(choice.light)], contribution, out);
     };
     // Emission `le` of light `index` reached by the ray (at `lh` on its shape, if it has one),
     // weighted against the light strategy unless only this path could have found it.
@@ -101,6 +127,7 @@ FilmSample PathTracer::sample(const render::RenderScene& scene, const render::Ca
         float weight = mis.emitter(
             unique ? 0.0f : lightStrategyPdf(scene, index, previousPoint, previousNormal, ray.direction, lh), unique);
         radiance += throughput * le * weight;
+        if (lightPaths.active()) lightPaths.reach(lightEvents_[std::size_t(index)], throughput * le * weight, out);
     };
 
     int interiorScatterings = 0;
@@ -124,7 +151,9 @@ FilmSample PathTracer::sample(const render::RenderScene& scene, const render::Ca
                 recordFirstVolumeEvent(out, flight.p, flight.properties.sigmaS,
                                        flight.properties.sigmaA + flight.properties.sigmaS, camera);
             if (flight.event == media::FlightEvent::Absorbed) {
-                radiance += throughput * flight.properties.emission / media::channelAverage(mis.rU);
+                const RGB emitted = throughput * flight.properties.emission / media::channelAverage(mis.rU);
+                radiance += emitted;
+                if (lightPaths.active()) lightPaths.reach(PathEvent{EventType::Object}, emitted, out);
                 break;
             }
             if (flight.event == media::FlightEvent::Scattered) {
@@ -132,6 +161,7 @@ FilmSample PathTracer::sample(const render::RenderScene& scene, const render::Ca
                 if (walking ? ++interiorScatterings > kMaxInteriorScatterings : depth >= maxDepth_) break;
                 const Vec3f wo = -ray.direction;
                 const media::HenyeyGreenstein phase(flight.properties.g);
+                const VertexEvents event(volumeEvent(inside.inSubsurface()));
                 // Inside a material's interior no light is sampled: the closed surface around the
                 // point blocks every shadow ray but those to lights inside it, which phase sampling
                 // still finds, then weighted as the only strategy (as after a delta lobe).
@@ -139,11 +169,12 @@ FilmSample PathTracer::sample(const render::RenderScene& scene, const render::Ca
                             [&](const Vec3f& wi) {
                     float p = phase.p(wo, wi);
                     return std::pair(RGB(p), p);
-                });
+                }, [&](const Vec3f&) { return event; });
                 media::PhaseSample ps = phase.sample(wo, rng.next2D());
                 if (ps.pdf <= 0.0f) break;
                 throughput *= ps.p / ps.pdf;
                 if (!continueInMedium(throughput, etaScale, depth, walking, rng)) break;
+                lightPaths.scatter(event);
                 mis.scattered(ps.pdf);
                 specularBounce = walking;  // no light strategy at this vertex
                 previousPoint = flight.p;
@@ -200,6 +231,9 @@ FilmSample PathTracer::sample(const render::RenderScene& scene, const render::Ca
             bool agree = sidesAgree(wo, wi, ng, woLocal.z, wiLocal.z);
             return std::pair(agree ? bsdf.f(woLocal, wiLocal) * std::abs(wiLocal.z) : RGB(0.0f),
                              agree ? bsdf.pdf(woLocal, wiLocal) : 0.0f);
+        }, [&](const Vec3f& wi) {
+            const Vec3f wiLocal = frame.toLocal(wi);
+            return VertexEvents(woLocal.z * wiLocal.z < 0.0f, bsdf.fByKind(woLocal, wiLocal), bsdf.f(woLocal, wiLocal));
         });
 
         // Continue the path by sampling the BSDF (a plain Lambertian has one lobe: no lobe number drawn).
@@ -211,11 +245,20 @@ FilmSample PathTracer::sample(const render::RenderScene& scene, const render::Ca
         throughput *= bs->f * (std::abs(bs->wi.z) / bs->pdf);
         etaScale *= bs->eta * bs->eta;
         if (!continuePath(throughput, etaScale, depth, rng)) break;
+        if (lightPaths.active()) {
+            const bool transmitted = woLocal.z * bs->wi.z < 0.0f;
+            lightPaths.scatter(bs->specular ? VertexEvents(PathEvent{transmitted ? EventType::Transmission : EventType::Reflection,
+                                                                     Scattering::Singular})
+                                            : VertexEvents(transmitted, bsdf.fByKind(woLocal, bs->wi), bs->f));
+        }
 
         mis.scattered(bs->pdf);
         const DiffusionStep step = stepThroughDiffusion(scene, *hit, wo, wi, throughput, diffusionExit, rng, counters);
         if (step == DiffusionStep::Lost) break;
-        if (step == DiffusionStep::Exited) continue;
+        if (step == DiffusionStep::Exited) {
+            lightPaths.scatter(VertexEvents(volumeEvent(true)));
+            continue;
+        }
         inside = inside.after(*hit, wo, wi);
         specularBounce = bs->specular;
         previousPoint = lightFrom;

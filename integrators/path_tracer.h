@@ -12,21 +12,36 @@
 // by Russian roulette (after three bounces, with survival probability equal to the throughput's
 // largest component, discounting the 1/eta^2 radiance scaling of refraction, capped at 0.95) —
 // roulette keeps the estimator unbiased.
+//
+// Light path expression AOVs (IntegratorSettings::lightPathAovs): each camera sample follows its
+// path's events through the expressions (integrators/light_path_tracker.h) and adds the light
+// each matches to the sample's layers; the beauty is unchanged.
 #pragma once
 
+#include <memory>
+#include <string>
+#include <vector>
+
 #include "integrators/integrator.h"
+#include "integrators/light_path_tracker.h"
 
 namespace fluence::integrators {
 
 class PathTracer final : public Integrator {
 public:
-    explicit PathTracer(const IntegratorSettings& settings) : maxDepth_(settings.maxDepth) {}
+    explicit PathTracer(const IntegratorSettings& settings)
+        : maxDepth_(settings.maxDepth), aovs_(settings.lightPathAovs) {}
 
+    // Names the lights' events for the light path expression AOVs.
+    void prepare(const render::RenderScene& scene, const render::Camera& camera, std::uint64_t seed) const override;
     FilmSample sample(const render::RenderScene& scene, const render::Camera& camera, const render::Ray& ray,
                       SampleStream& rng, RenderCounters& counters) const override;
 
 private:
     int maxDepth_;
+    std::shared_ptr<const std::vector<LightPathAov>> aovs_;  // null: none
+    mutable std::vector<std::string> lightLabels_;  // per light: its prim's name
+    mutable std::vector<PathEvent> lightEvents_;    // per light: its event (L, or O for an emissive triangle)
 };
 
 }  // namespace fluence::integrators

@@ -15,7 +15,7 @@ const std::vector<IntegratorInfo>& integratorRegistry() {
     static const std::vector<IntegratorInfo> registry = {
         {"path", "L(S|D)*E", kAllPathClasses & ~kDeltaLightCaustics,
          "unidirectional path tracing with next-event estimation, MIS and Russian roulette",
-         [](const IntegratorSettings& s) { return std::make_unique<PathTracer>(s); }},
+         [](const IntegratorSettings& s) { return std::make_unique<PathTracer>(s); }, true},
         {"direct", "L(D|S)?E", kEmitterSeen | kDirect | kDeltaLights,
          "local illumination with shadows: emitters seen, direct lighting of the first hit (NEE + MIS); no indirect light",
          [](const IntegratorSettings& s) { return std::make_unique<DirectLighting>(s); }},

@@ -34,6 +34,13 @@ bool allConverged(const Film& film, const RenderSettings& settings) {
     return true;
 }
 
+// Whether a sample's radiance, and the light path layers the film keeps, are all finite.
+bool finite(const FilmSample& sample, std::size_t layers) {
+    bool all = isFinite(sample.radiance);
+    for (std::size_t l = 0; l < layers; ++l) all = all && isFinite(sample.lightPaths[l]);
+    return all;
+}
+
 void renderPass(const render::RenderScene& scene, const render::Camera& camera, const Integrator& integrator,
                 const RenderSettings& settings, Film& film, PassRange pass, tbb::combinable<RenderCounters>& counters,
                 RenderProgress* progress) {
@@ -57,8 +64,9 @@ void renderPass(const render::RenderScene& scene, const render::Camera& camera, 
                             Vec2f jitter = rng.next2D();  // box filter: uniform over the pixel
                             render::Ray ray = camera.generateRay(float(x) + jitter.x, float(y) + jitter.y);
                             FilmSample sample = integrator.sample(scene, camera, ray, rng, local);
-                            if (!isFinite(sample.radiance)) {
+                            if (!finite(sample, film.lightPathLayers().size())) {
                                 sample.radiance = RGB(0.0f);
+                                sample.lightPaths.fill(RGB(0.0f));
                                 ++local.nonFiniteSamples;
                             }
                             film.add(x, y, sample);

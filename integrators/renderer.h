@@ -5,7 +5,7 @@
 // (seed, y*width+x, n), and each pixel adds its samples in index order, so the image is
 // bit-identical for any thread count and any pass division. A time limit is honoured between
 // passes (the last pass is shrunk to fit the time left), so every pixel has the same sample
-// count. A sample whose radiance is not finite is counted and replaced by zero, so one bad
+// count. A sample whose radiance (or a light path layer) is not finite is counted and replaced by zero, so one bad
 // sample cannot poison a pixel.
 //
 // Adaptive sampling (RenderSettings::targetError): before each sample index past minSamples, a

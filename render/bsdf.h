@@ -58,6 +58,13 @@
 // can be connected to a light or another vertex (next-event estimation), which any non-delta
 // lobe can.
 //
+// THE LOBE SPLIT. Light path expressions (integrators/light_path_expression.h) tell a diffuse
+// bounce from a glossy one, so a BSDF also reports its value split by the kind of lobe:
+// fByKind(wo, wi) = {diffuse part, glossy part}, whose sum is f(wo, wi) (delta lobes, which f
+// never reports, are S by construction). A model with one kind of non-delta lobe gives all of f to
+// it (the default below); models that combine kinds (Phong-style diffuse + lobe, layers, mixes)
+// split it. tests/render/bsdf_properties_test.cpp checks the sum for every model.
+//
 // The models live in render/bsdfs/, one per file. An integrator creates the BSDF of a hit in a
 // BsdfArena (render/bsdf_arena.h) without a heap allocation.
 #pragma once
@@ -79,6 +86,11 @@ enum BsdfFlags : unsigned {
     kBsdfSpecular = 1u << 4,  // a Dirac delta lobe (perfect mirror or perfect refraction)
 };
 
+// f(wo, wi) split by the kind of lobe that produces it (THE LOBE SPLIT).
+struct LobeSplit {
+    RGB diffuse, glossy;
+};
+
 struct BsdfSample {
     RGB f;                  // BSDF value (non-delta) or delta coefficient (specular), no cosine
     Vec3f wi;               // sampled direction, unit, local shading frame
@@ -93,6 +105,12 @@ public:
     virtual float pdf(const Vec3f& wo, const Vec3f& wi) const = 0;
     virtual std::optional<BsdfSample> sample(const Vec3f& wo, float uLobe, Vec2f u) const = 0;
     virtual unsigned flags() const = 0;
+    // f(wo, wi) as its diffuse and glossy parts; by default all of it is the model's one kind:
+    // glossy if it has a glossy lobe, else diffuse.
+    virtual LobeSplit fByKind(const Vec3f& wo, const Vec3f& wi) const {
+        const RGB value = f(wo, wi);
+        return (flags() & kBsdfGlossy) ? LobeSplit{RGB(0.0f), value} : LobeSplit{value, RGB(0.0f)};
+    }
 
 protected:
     // BSDFs live in a BsdfArena and are never deleted through this interface; a protected,

@@ -54,8 +54,12 @@ private:
     static float average(const RGB& c) { return (c.x + c.y + c.z) / 3.0f; }
 
     RGB fUpper(const Vec3f& wo, const Vec3f& wi) const {
+        const LobeSplit split = splitUpper(wo, wi);
+        return split.diffuse + split.glossy;
+    }
+    LobeSplit splitUpper(const Vec3f& wo, const Vec3f& wi) const {
         float c = Lobe::cosine(wo, wi);
-        return c > 0.0f ? kd_ + ks_ * std::pow(c, n_) : kd_;
+        return {kd_, c > 0.0f ? ks_ * std::pow(c, n_) : RGB(0.0f)};
     }
     float pdfUpper(const Vec3f& wo, const Vec3f& wi) const {
         return pDiffuse_ * cosineHemispherePdf(wi.z) + (1.0f - pDiffuse_) * Lobe::pdf(wo, wi, n_);

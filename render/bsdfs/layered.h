@@ -64,6 +64,21 @@ public:
         return value;
     }
 
+    LobeSplit fByKind(const Vec3f& wo, const Vec3f& wi) const override {
+        if (wo.z == 0.0f) return {RGB(0.0f), RGB(0.0f)};
+        if (mirrors(wo)) return fByKind(mirrorZ(wo), mirrorZ(wi));
+        LobeSplit split = base_->fByKind(wo, wi);
+        const RGB through = throughput(wo) * throughput(wi);
+        split.diffuse *= through;
+        split.glossy *= through;
+        if (wo.z > 0.0f && wi.z > 0.0f) {
+            const LobeSplit top = top_.fByKind(wo, wi);
+            split.diffuse += top.diffuse;
+            split.glossy += top.glossy;
+        }
+        return split;
+    }
+
     float pdf(const Vec3f& wo, const Vec3f& wi) const override {
         if (wo.z == 0.0f) return 0.0f;
         if (mirrors(wo)) return pdf(mirrorZ(wo), mirrorZ(wi));

@@ -23,6 +23,10 @@ public:
     float pdf(const Vec3f& wo, const Vec3f& wi) const override {
         return (1.0f - w_) * a_->pdf(wo, wi) + w_ * b_->pdf(wo, wi);
     }
+    LobeSplit fByKind(const Vec3f& wo, const Vec3f& wi) const override {
+        const LobeSplit a = a_->fByKind(wo, wi), b = b_->fByKind(wo, wi);
+        return {a.diffuse * (1.0f - w_) + b.diffuse * w_, a.glossy * (1.0f - w_) + b.glossy * w_};
+    }
     std::optional<BsdfSample> sample(const Vec3f& wo, float uLobe, Vec2f u) const override {
         const bool pickB = uLobe < w_;
         const float pick = pickB ? w_ : 1.0f - w_;

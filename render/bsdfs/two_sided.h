@@ -31,6 +31,15 @@ public:
         if (!(wo.z * wi.z > 0.0f)) return 0.0f;
         return wo.z > 0.0f ? model().pdfUpper(wo, wi) : model().pdfUpper(mirrorZ(wo), mirrorZ(wi));
     }
+    // A model with two kinds of lobe implements LobeSplit splitUpper(wo, wi) as fUpper's parts.
+    LobeSplit fByKind(const Vec3f& wo, const Vec3f& wi) const final {
+        if constexpr (requires(const Model& m) { m.splitUpper(wo, wi); }) {
+            if (!(wo.z * wi.z > 0.0f)) return {RGB(0.0f), RGB(0.0f)};
+            return wo.z > 0.0f ? model().splitUpper(wo, wi) : model().splitUpper(mirrorZ(wo), mirrorZ(wi));
+        } else {
+            return Bsdf::fByKind(wo, wi);
+        }
+    }
     std::optional<BsdfSample> sample(const Vec3f& wo, float uLobe, Vec2f u) const final {
         if (wo.z == 0.0f) return std::nullopt;
         std::optional<BsdfSample> s = model().sampleUpper(wo.z > 0.0f ? wo : mirrorZ(wo), uLobe, u);

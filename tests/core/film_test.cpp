@@ -16,7 +16,7 @@ TEST(Film, ResolvesMeansCoverageMinDepthAndCounts) {
     film.add(0, 0, miss);
     film.add(1, 0, miss);
     Image image = film.resolve();
-    ASSERT_EQ(image.channels, Film::channelNames());
+    ASSERT_EQ(image.channels, film.channelNames());
     const float* p = image.pixel(0, 0);
     EXPECT_FLOAT_EQ(p[image.channelIndex("R")], 5.0f / 3.0f);
     EXPECT_FLOAT_EQ(p[image.channelIndex("B")], 5.0f / 3.0f);
@@ -29,6 +29,27 @@ TEST(Film, ResolvesMeansCoverageMinDepthAndCounts) {
     EXPECT_FLOAT_EQ(q[image.channelIndex("Z")], 1000.0f);  // nothing hit: the far clip
     EXPECT_FLOAT_EQ(q[image.channelIndex("A")], 0.0f);
     EXPECT_EQ(film.totalSamples(), 4u);
+}
+
+TEST(Film, ResolvesLightPathLayersAfterTheOtherChannels) {
+    Film film(1, 1, 1000.0f, {"diffuse", "specular"});
+    FilmSample a, b;
+    a.lightPaths[0] = RGB(1, 2, 3);
+    a.lightPaths[1] = RGB(0.5f);
+    b.lightPaths[0] = RGB(3, 2, 1);
+    film.add(0, 0, a);
+    film.add(0, 0, b);
+    Image image = film.resolve();
+    ASSERT_EQ(image.channels, film.channelNames());
+    EXPECT_EQ(image.channels.back(), "specular.B");
+    const float* p = image.pixel(0, 0);
+    EXPECT_FLOAT_EQ(p[image.channelIndex("diffuse.R")], 2.0f);
+    EXPECT_FLOAT_EQ(p[image.channelIndex("diffuse.B")], 2.0f);
+    EXPECT_FLOAT_EQ(p[image.channelIndex("specular.G")], 0.25f);
+}
+
+TEST(Film, RefusesMoreLightPathLayersThanItHolds) {
+    EXPECT_THROW(Film(1, 1, 1.0f, std::vector<std::string>(kMaxLightPathLayers + 1, "x")), std::invalid_argument);
 }
 
 }  // namespace

@@ -218,6 +218,28 @@ TEST_P(BsdfProperties, SampleAgreesWithEvalAndPdf) {
         }
 }
 
+// The lobe split (render/bsdf.h, THE LOBE SPLIT) sums to f, has no negative part, and gives a
+// model nothing of a kind it has no lobe of.
+TEST_P(BsdfProperties, LobeSplitSumsToF) {
+    const Bsdf& b = bsdf();
+    const unsigned flags = b.flags();
+    for (const Vec3f& wo : incidentDirections())
+        for (int n = 0; n < 2000; ++n) {
+            SampleStream rng(3, 0, n);
+            const Vec3f wi = sampleUniformSphere(rng.next2D());
+            const LobeSplit split = b.fByKind(wo, wi);
+            const RGB f = b.f(wo, wi);
+            SCOPED_TRACE("wo " + describe(wo) + " wi " + describe(wi));
+            for (int c = 0; c < 3; ++c) {
+                EXPECT_GE(split.diffuse[c], 0.0f);
+                EXPECT_GE(split.glossy[c], 0.0f);
+                EXPECT_NEAR(split.diffuse[c] + split.glossy[c], f[c], kRecomputeTolerance * f[c]) << "channel " << c;
+            }
+            if (!(flags & kBsdfDiffuse)) EXPECT_TRUE(isBlack(split.diffuse));
+            if (!(flags & kBsdfGlossy)) EXPECT_TRUE(isBlack(split.glossy));
+        }
+}
+
 TEST_P(BsdfProperties, PdfIntegratesToTheFractionOfNonDeltaSamples) {
     const Bsdf& b = bsdf();
     constexpr int kSamples = 200'000;

@@ -1,0 +1,78 @@
+#include "integrators/light_path_tracker.h"
+
+namespace fluence::integrators {
+
+namespace {
+
+// Per channel, part / whole, 0 where the whole is 0 (no throughput left there to share).
+RGB shareOf(const RGB& part, const RGB& whole) {
+    RGB share;
+    for (int c = 0; c < 3; ++c) share[c] = whole[c] > 0.0f ? part[c] / whole[c] : 0.0f;
+    return share;
+}
+
+}  // namespace
+
+VertexEvents::VertexEvents(bool transmitted, const render::LobeSplit& split, const RGB& f) : count_(0) {
+    const EventType type = transmitted ? EventType::Transmission : EventType::Reflection;
+    if (!isBlack(split.diffuse)) {
+        events_[count_] = PathEvent{type, Scattering::Diffuse};
+        shares_[count_++] = shareOf(split.diffuse, f);
+    }
+    if (!isBlack(split.glossy)) {
+        events_[count_] = PathEvent{type, Scattering::Glossy};
+        shares_[count_++] = shareOf(split.glossy, f);
+    }
+}
+
+LightPathTracker::LightPathTracker(std::span<const LightPathAov> aovs) : aovs_(aovs) {
+    if (aovs_.empty()) return;
+    entries_.reserve(2 * aovs_.size());
+    next_.reserve(2 * aovs_.size());
+    const PathEvent camera{EventType::Camera};
+    for (int i = 0; i < int(aovs_.size()); ++i) {
+        const LightPathExpression& e = aovs_[std::size_t(i)].expression;
+        const int state = e.next(e.start(), camera);
+        if (state != LightPathExpression::kDead) entries_.push_back({i, state, RGB(1.0f)});
+    }
+}
+
+void LightPathTracker::scatter(const VertexEvents& vertex) {
+    if (entries_.empty()) return;
+    next_.clear();
+    for (const Entry& entry : entries_) {
+        const LightPathExpression& e = aovs_[std::size_t(entry.aov)].expression;
+        for (int k = 0; k < vertex.size(); ++k) {
+            const int state = e.next(entry.state, vertex.event(k));
+            const RGB share = entry.share * vertex.share(k);
+            if (state == LightPathExpression::kDead || isBlack(share)) continue;
+            Entry* same = nullptr;
+            for (Entry& n : next_)
+                if (n.aov == entry.aov && n.state == state) same = &n;
+            if (same)
+                same->share += share;
+            else
+                next_.push_back({entry.aov, state, share});
+        }
+    }
+    entries_.swap(next_);
+}
+
+void LightPathTracker::reach(const PathEvent& light, const RGB& radiance, FilmSample& out) const {
+    for (const Entry& entry : entries_) {
+        const LightPathExpression& e = aovs_[std::size_t(entry.aov)].expression;
+        if (e.accepts(e.next(entry.state, light))) out.lightPaths[std::size_t(entry.aov)] += radiance * entry.share;
+    }
+}
+
+void LightPathTracker::connect(const VertexEvents& vertex, const PathEvent& light, const RGB& radiance,
+                               FilmSample& out) const {
+    for (const Entry& entry : entries_) {
+        const LightPathExpression& e = aovs_[std::size_t(entry.aov)].expression;
+        for (int k = 0; k < vertex.size(); ++k)
+            if (e.accepts(e.next(e.next(entry.state, vertex.event(k)), light)))
+                out.lightPaths[std::size_t(entry.aov)] += radiance * entry.share * vertex.share(k);
+    }
+}
+
+}  // namespace fluence::integrators

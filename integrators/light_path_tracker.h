@@ -1,0 +1,86 @@
+// LightPathTracker: the light path expression AOVs of one camera sample, followed as an integrator
+// extends the path (`path` does; integrators/path_tracer.cpp).
+//
+// A path's throughput is shared among the histories of lobe kinds it could have been labelled
+// with: at a vertex whose BSDF mixes kinds (render/bsdf.h, THE LOBE SPLIT) the part f_D / f of the
+// throughput went through a diffuse bounce and f_G / f through a glossy one, per channel. For each
+// expression the tracker keeps the automaton states (integrators/light_path_expression.h) the path
+// can be in, each with the fraction (RGB) of the throughput that is in it. Light the path collects
+// -- emission it reaches, or a light sampled from a vertex (split by that vertex's kinds for the
+// light's direction) -- goes to every expression that accepts once the light's event is appended,
+// weighted by the fraction. Fractions never add up to more than the throughput (histories that no
+// continuation can match are dropped), so disjoint expressions that together match every path
+// split the beauty exactly: their layers sum to it sample by sample, up to float rounding. The
+// tracker draws no random numbers, so the beauty is bit-identical with and without LPE AOVs.
+//
+// Events Fluence produces, from the camera to the light:
+//   C                       the camera
+//   <R|T  D|G|S>            a surface reflection or transmission (R or T by the side wi leaves on),
+//                           by the kind of lobe: D diffuse, G glossy, S a delta lobe
+//   <V D>                   scattering in a medium (phase functions count as diffuse); inside a
+//                           subsurface material's interior, and the jump of diffusion subsurface
+//                           scattering, labelled 'subsurface'
+//   <L . 'name'>            a light (dome lights included), labelled with its prim's name
+//   <O>                     an emissive surface (a material's emission) or an emitting volume
+#pragma once
+
+#include <span>
+#include <string>
+#include <vector>
+
+#include "core/film.h"
+#include "integrators/light_path_expression.h"
+#include "render/bsdf.h"
+
+namespace fluence::integrators {
+
+// A named light path expression AOV: `name` is the EXR layer, `expression` what it collects.
+struct LightPathAov {
+    std::string name;
+    LightPathExpression expression;
+};
+
+// One vertex of a path as events: one event, or, at a BSDF that mixes kinds, one per kind with
+// the share of the throughput that went through it.
+class VertexEvents {
+public:
+    // A vertex that is one event: a delta lobe, a medium scattering, a one-kind BSDF.
+    explicit VertexEvents(const PathEvent& event) : events_{event, event}, shares_{RGB(1.0f), RGB(0.0f)}, count_(1) {}
+    // A non-delta surface scattering of value f split by kind (`transmitted`: wi leaves on the
+    // other side of the surface than wo).
+    VertexEvents(bool transmitted, const render::LobeSplit& split, const RGB& f);
+
+    int size() const { return count_; }
+    const PathEvent& event(int i) const { return events_[i]; }
+    const RGB& share(int i) const { return shares_[i]; }
+
+private:
+    PathEvent events_[2];
+    RGB shares_[2];
+    int count_;
+};
+
+class LightPathTracker {
+public:
+    // Starts at the camera event. No AOVs: every call does nothing.
+    explicit LightPathTracker(std::span<const LightPathAov> aovs);
+
+    bool active() const { return !aovs_.empty(); }
+    // The path scatters at `vertex` and goes on.
+    void scatter(const VertexEvents& vertex);
+    // The path reaches `light` (emission reached by a ray), contributing `radiance` to the beauty.
+    void reach(const PathEvent& light, const RGB& radiance, FilmSample& out) const;
+    // A light sampled from `vertex` (next-event estimation) contributes `radiance` to the beauty.
+    void connect(const VertexEvents& vertex, const PathEvent& light, const RGB& radiance, FilmSample& out) const;
+
+private:
+    struct Entry {
+        int aov;
+        int state;
+        RGB share;  // the fraction of the path's throughput in this state
+    };
+    std::span<const LightPathAov> aovs_;
+    std::vector<Entry> entries_, next_;
+};
+
+}  // namespace fluence::integrators
