@@ -81,12 +81,20 @@ void PathTracer::prepare(const render::RenderScene& scene, const render::Camera&
 
 FilmSample PathTracer::sample(const render::RenderScene& scene, const render::Camera& camera, const Ray& cameraRay,
                               SampleStream& rng, RenderCounters& counters) const {
+    return scene.hasMedia() ? trace<true>(scene, camera, cameraRay, rng, counters)
+                            : trace<false>(scene, camera, cameraRay, rng, counters);
+}
+
+template <bool kMedia>
+FilmSample PathTracer::trace(const render::RenderScene& scene, const render::Camera& camera, const Ray& cameraRay,
+                             SampleStream& rng, RenderCounters& counters) const {
     FilmSample out;
     RGB radiance(0.0f), throughput(1.0f);
     Ray ray = cameraRay;
     MediumStack inside(scene);  // the media the path is in
-    MisState mis{scene.hasMedia()};
-    const int hero = scene.hasMedia() ? media::sampleHeroChannel(rng.next()) : 0;
+    const bool withMedia = kMedia && scene.hasMedia();  // trace<true> renders media-less scenes as trace<false> does
+    MisState mis{withMedia};
+    const int hero = withMedia ? media::sampleHeroChannel(rng.next()) : 0;
     bool specularBounce = false;  // `ray` left a delta lobe: no light strategy could have found it
     float etaScale = 1.0f;        // product of eta^2 over the refractions so far (Russian roulette)
     render::BsdfArena arena;
@@ -115,7 +123,7 @@ FilmSample PathTracer::sample(const render::RenderScene& scene, const render::Ca
         const auto [shadowOrigin, shadowMedium] = shadowFrom(ls->wi);
         if (scene.occluded(shadowOrigin, ls->wi, ls->distance)) return;
         media::TransmittanceEstimate tr;
-        if (shadowMedium) tr = media::ratioTrackingTransmittance(*shadowMedium, {shadowOrigin, ls->wi, ls->distance}, hero, rng);
+        if (kMedia && shadowMedium) tr = media::ratioTrackingTransmittance(*shadowMedium, {shadowOrigin, ls->wi, ls->distance}, hero, rng);
         const RGB contribution = throughput * f * ls->Li * mis.lightSample(choice.probability * ls->pdf, ls->delta ? 0.0f : scatterPdf, tr);
         radiance += contribution;
         if (lightPaths.active()) lightPaths.connect(vertexEvents(ls->wi), lightEvents_[std::size_t(choice.light)], contribution, out);
@@ -134,14 +142,14 @@ FilmSample PathTracer::sample(const render::RenderScene& scene, const render::Ca
     std::optional<SurfaceHit> diffusionExit;  // where diffusion subsurface scattering brings the path out
     for (int depth = 0;; ++depth) {
         // The next vertex: where the ray hits, or, after a diffusion entry, its exit (no ray traced).
-        const bool exiting = diffusionExit.has_value();
+        const bool exiting = kMedia && diffusionExit.has_value();
         std::optional<SurfaceHit> hit = std::exchange(diffusionExit, std::nullopt);
         if (!exiting) {
             ++(depth == 0 ? counters.camera : counters.bounce);
             hit = scene.intersect(ray);
         }
 
-        if (const media::Medium* medium = exiting ? nullptr : inside.medium()) {  // the stretch of medium up to the surface (or out of the scene)
+        if (const media::Medium* medium = !kMedia || exiting ? nullptr : inside.medium()) {  // the stretch of medium up to the surface (or out of the scene)
             media::FreeFlight flight = media::sampleFreeFlight(
                 *medium, {ray.origin, ray.direction, hit ? hit->t : std::numeric_limits<float>::infinity()}, hero, rng);
             throughput *= flight.throughput;
@@ -224,7 +232,8 @@ FilmSample PathTracer::sample(const render::RenderScene& scene, const render::Ca
         // Next-event estimation: one light, chosen by the light tree for this point and normal; the
         // shadow ray leaves a transmissive surface on the light's side, in the medium on that side.
         auto shadowFrom = [&](const Vec3f& wi) {
-            return std::pair(transmissive ? spawnOrigin(hit->point, ng, wi) : lightFrom, inside.after(*hit, wo, wi).medium());
+            return std::pair(transmissive ? spawnOrigin(hit->point, ng, wi) : lightFrom,
+                             kMedia ? inside.after(*hit, wo, wi).medium() : nullptr);
         };
         sampleLight(haveLights && connectable, lightFrom, lightNormal, shadowFrom, [&](const Vec3f& wi) {
             Vec3f wiLocal = frame.toLocal(wi);
@@ -253,13 +262,15 @@ FilmSample PathTracer::sample(const render::RenderScene& scene, const render::Ca
         }
 
         mis.scattered(bs->pdf);
-        const DiffusionStep step = stepThroughDiffusion(scene, *hit, wo, wi, throughput, diffusionExit, rng, counters);
-        if (step == DiffusionStep::Lost) break;
-        if (step == DiffusionStep::Exited) {
-            lightPaths.scatter(VertexEvents(volumeEvent(true)));
-            continue;
+        if constexpr (kMedia) {
+            const DiffusionStep step = stepThroughDiffusion(scene, *hit, wo, wi, throughput, diffusionExit, rng, counters);
+            if (step == DiffusionStep::Lost) break;
+            if (step == DiffusionStep::Exited) {
+                lightPaths.scatter(VertexEvents(volumeEvent(true)));
+                continue;
+            }
+            inside = inside.after(*hit, wo, wi);
         }
-        inside = inside.after(*hit, wo, wi);
         specularBounce = bs->specular;
         previousPoint = lightFrom;
         previousNormal = lightNormal;
@@ -268,5 +279,10 @@ FilmSample PathTracer::sample(const render::RenderScene& scene, const render::Ca
     out.radiance = radiance;
     return out;
 }
+
+template FilmSample PathTracer::trace<true>(const render::RenderScene&, const render::Camera&, const Ray&, SampleStream&,
+                                           RenderCounters&) const;
+template FilmSample PathTracer::trace<false>(const render::RenderScene&, const render::Camera&, const Ray&, SampleStream&,
+                                            RenderCounters&) const;
 
 }  // namespace fluence::integrators

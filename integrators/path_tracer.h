@@ -34,8 +34,16 @@ public:
 
     // Names the lights' events for the light path expression AOVs.
     void prepare(const render::RenderScene& scene, const render::Camera& camera, std::uint64_t seed) const override;
+    // trace<scene.hasMedia()>.
     FilmSample sample(const render::RenderScene& scene, const render::Camera& camera, const render::Ray& ray,
                       SampleStream& rng, RenderCounters& counters) const override;
+    // The path tracer with (kMedia) or without the machinery of volumes and subsurface scattering:
+    // free flights, ratio-tracked shadow rays, the medium stack, spectral MIS, diffusion probes. A
+    // scene without media pays for none of it; on such a scene both give the same image, bit for
+    // bit (tests/integrators/path_tracer_test.cpp), and bench/media_overhead_bench.cpp times them.
+    template <bool kMedia>
+    FilmSample trace(const render::RenderScene& scene, const render::Camera& camera, const render::Ray& ray,
+                     SampleStream& rng, RenderCounters& counters) const;
 
 private:
     int maxDepth_;

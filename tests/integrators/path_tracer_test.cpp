@@ -75,6 +75,30 @@ TEST(PathTracer, ImagesAreBitIdenticalAcrossThreadCounts) {
                              one.image.pixels.size() * sizeof(float)));
 }
 
+// A scene without media pays for none of their machinery: the tracer without it gives the same
+// samples, bit for bit, as the one with it, through glass, metal and diffuse surfaces.
+TEST(PathTracer, WithoutMediaTheSurfaceOnlyTracerGivesTheSameSamples) {
+    render::SceneDescription s = test::furnaceScene(0.6f);
+    s.materials.push_back(test::glassMaterial("/glass", 0.1f));
+    s.materials.push_back(test::metalMaterial("/metal", RGB(0.9f, 0.6f, 0.3f), 0.3f));
+    s.meshes.push_back(test::roundSphereMesh(0.5f, 32, 16, 1, Vec3f(1.2f, -0.5f, 0.0f)));
+    s.meshes.push_back(test::roundSphereMesh(0.5f, 32, 16, 2, Vec3f(-1.2f, -0.5f, 0.0f)));
+    s.lights.push_back(test::sphereLight("/bulb", 0.3f, RGB(20.0f), Vec3d(0.0, -1.5, 2.0)));
+    const render::RenderScene scene(s);
+    ASSERT_FALSE(scene.hasMedia());
+    const render::Camera camera(*s.camera, 32, 32);
+    const PathTracer tracer{IntegratorSettings{}};
+    RenderCounters a, b;
+    for (int i = 0; i < 32 * 32 * 4; ++i) {
+        const render::Ray ray = camera.generateRay(float(i % 32) + 0.5f, float((i / 32) % 32) + 0.5f);
+        SampleStream rngA(5, std::uint64_t(i), 0), rngB(5, std::uint64_t(i), 0);
+        const RGB withMedia = tracer.trace<true>(scene, camera, ray, rngA, a).radiance;
+        const RGB without = tracer.trace<false>(scene, camera, ray, rngB, b).radiance;
+        ASSERT_EQ(0, std::memcmp(&withMedia, &without, sizeof(RGB))) << "sample " << i;
+    }
+    EXPECT_EQ(a.rays(), b.rays());
+}
+
 TEST(PathTracer, CountsRaysAndSamples) {
     Rendered r = renderScene(test::furnaceScene(0.5f), 16, 3);
     EXPECT_EQ(r.stats.samplesPerPixel, 3);
