@@ -32,3 +32,6 @@ set(FLUENCE_SAVED_MODULE_PATH ${CMAKE_MODULE_PATH})
 list(APPEND CMAKE_MODULE_PATH /usr/lib/${CMAKE_LIBRARY_ARCHITECTURE}/cmake/OpenVDB)
 find_package(OpenVDB REQUIRED)
 set(CMAKE_MODULE_PATH ${FLUENCE_SAVED_MODULE_PATH})
+
+# pugixml 1.13 (MaterialX documents, scene/mtlx_reader): its CMake config (target pugixml::pugixml).
+find_package(pugixml REQUIRED)

@@ -1,5 +1,7 @@
 #include "delegate/shading_network.h"
 
+#include <algorithm>
+
 #include "delegate/prim_reader.h"
 #include "delegate/render_index.h"
 
@@ -103,6 +105,77 @@ std::optional<render::InputBinding> textureBinding(const ShaderInputs& surface, 
     return b;
 }
 
+// MaterialX's address modes (uaddressmode, vaddressmode) as wrap modes.
+texture::Wrap addressModeOf(const ShaderInputs& image, const char* input) {
+    const std::string mode = image.text(input, "periodic");
+    if (mode == "constant") return texture::Wrap::Black;
+    if (mode == "clamp") return texture::Wrap::Clamp;
+    if (mode == "mirror") return texture::Wrap::Mirror;
+    if (mode != "periodic")
+        image.warn()(image.shader().path, std::string("inputs:") + input + " '" + mode + "' is not an address mode; using periodic");
+    return texture::Wrap::Repeat;
+}
+
+// How a MaterialX image's file becomes rendering-space values: its colorSpace metadata (set on
+// colour images only, scene/mtlx_reader.h); no colour space means data, read as stored.
+texture::SourceColorSpace mtlxColorSpaceOf(const ShaderInputs& image) {
+    const std::string space =
+        PrimReader(image.shader(), image.time()).attributeMetadata("inputs:file", "colorSpace").value_or("");
+    if (space.empty() || space == "lin_rec709" || space == "raw") return texture::SourceColorSpace::Raw;
+    if (space == "srgb_texture") return texture::SourceColorSpace::SRGB;
+    image.warn()(image.shader().path, "texture colour space '" + space +
+                                          "': Fluence converts image files from srgb_texture, lin_rec709 and raw; reading it as lin_rec709");
+    return texture::SourceColorSpace::Raw;
+}
+
+// A MaterialX image node (ND_image_<type>): file, default, uaddressmode/vaddressmode, and the
+// mesh's primary UV set ("st") as its texcoord. Its output `out` has the node type's channels.
+std::optional<render::InputBinding> mtlxImageBinding(const ShaderInputs& surface, const DrivableInput& input,
+                                                     const usd::PrimSpec& node) {
+    ShaderInputs image = nodeInputs(surface, node);
+    if (image.connectedNode("texcoord"))
+        image.warn()(node.path, "inputs:texcoord is connected; reading the primary UV set st instead");
+    const std::string id = idOf(image);
+    const std::string type = id.substr(id.find_last_of('_') + 1);
+    const int channels = type == "float" ? 1 : type == "vector2" ? 2 : type == "color4" || type == "vector4" ? 4 : 3;
+    render::InputBinding b;
+    b.input = input.target;
+    b.firstChannel = 0;
+    b.channels = std::min(std::min(channels, 3), input.channels);
+    render::TextureDesc& desc = b.texture.emplace();
+    desc.file = image.text("file", "");
+    desc.wrapS = addressModeOf(image, "uaddressmode");
+    desc.wrapT = addressModeOf(image, "vaddressmode");
+    const std::vector<float> fallback = image.tuple("default", std::vector<float>(std::size_t(channels), 0.0f));
+    for (std::size_t c = 0; c < 4; ++c) desc.fallback[c] = c < fallback.size() ? fallback[c] : channels == 1 ? fallback[0] : 1.0f;
+    desc.colorSpace = mtlxColorSpaceOf(image);
+    if (desc.file.empty())
+        surface.warn()(node.path, "image has no inputs:file; using its default");
+    else if (!assetFileExists(desc.file))
+        surface.warn()(node.path, "texture file " + desc.file + " not found; using its default");
+    return b;
+}
+
+// A MaterialX normalmap (ND_normalmap) of an image: the image's binding, decoded from [0, 1] to a
+// tangent-space normal, (2 t - 1) (scale, scale, 1).
+std::optional<render::InputBinding> mtlxNormalMapBinding(const ShaderInputs& surface, const DrivableInput& input,
+                                                         const usd::PrimSpec& node) {
+    ShaderInputs normalMap = nodeInputs(surface, node);
+    if (const std::string space = normalMap.text("space", "tangent"); space != "tangent")
+        normalMap.warn()(node.path, "inputs:space '" + space + "' is not supported; reading the map in tangent space");
+    std::optional<NodeOutput> source = normalMap.connectedNode("in");
+    if (!source || !idOf(nodeInputs(surface, *source->shader)).starts_with("ND_image_")) {
+        normalMap.warn()(node.path, "inputs:in is not connected to an image node; the surface keeps its own normal");
+        return std::nullopt;
+    }
+    std::optional<render::InputBinding> b = mtlxImageBinding(surface, input, *source->shader);
+    const float s = normalMap.number("scale", 1.0f);
+    const float scale[4] = {2.0f * s, 2.0f * s, 2.0f, 1.0f}, bias[4] = {-s, -s, -1.0f, 0.0f};
+    std::copy(scale, scale + 4, b->texture->scale);
+    std::copy(bias, bias + 4, b->texture->bias);
+    return b;
+}
+
 std::optional<render::InputBinding> primvarBinding(const ShaderInputs& surface, const DrivableInput& input,
                                                    const NodeOutput& node, int components) {
     ShaderInputs reader = nodeInputs(surface, *node.shader);
@@ -133,6 +206,10 @@ void readBindings(const ShaderInputs& surface, const std::vector<DrivableInput>&
         else if (id == "UsdPrimvarReader_float3" || id == "UsdPrimvarReader_normal" || id == "UsdPrimvarReader_vector" ||
                  id == "UsdPrimvarReader_point")
             b = primvarBinding(surface, input, *node, 3);
+        else if (id.starts_with("ND_image_"))
+            b = mtlxImageBinding(surface, input, *node->shader);
+        else if (id == "ND_normalmap")
+            b = mtlxNormalMapBinding(surface, input, *node->shader);
         else
             surface.warn()(surface.shader().path, std::string("input '") + input.name + "' is connected to " +
                                                       node->shader->path + " ('" + id +

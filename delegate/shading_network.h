@@ -11,6 +11,12 @@
 // | UsdTransform2d              | between the two: in, rotation (degrees), scale, translation|
 // | UsdPrimvarReader_float,     | straight into the input: varname, fallback                 |
 // | _float3 (outputs:result)    |                                                            |
+// | ND_image_<type> (MaterialX)  | file (resolved), default, uaddressmode/vaddressmode        |
+// | output out                   | (constant, clamp, periodic, mirror), the file's colorSpace |
+// |                              | (srgb_texture; lin_rec709, raw or none: as stored)         |
+// | ND_normalmap (MaterialX)     | in (an image), scale: (2 t - 1) (scale, scale, 1), tangent |
+// |                              | space                                                      |
+// MaterialX images read the primary UV set (the primvar st).
 // An st left unconnected reads the primvar "st" (as most renderers do); an st given a value
 // without a reader uses that value everywhere. Any other node warns once, naming it, and the
 // input keeps its own value. A missing texture file warns, naming it, and the binding uses the

@@ -10,8 +10,11 @@ packages=(
   libosd-dev
   libopenvdb-dev libboost-iostreams-dev
   libgtest-dev
+  libpugixml-dev
   clang-16 libclang-rt-16-dev llvm-16
 )
+# `install_dependencies.sh bench` adds what bench/run.py (make figures) runs with, under /usr/bin/python3.
+[[ "${1:-}" == bench ]] && packages+=(python3-numpy python3-openimageio python3-matplotlib)
 
 missing=()
 for p in "${packages[@]}"; do
