@@ -169,6 +169,15 @@ RenderOptions parseRenderOptions(const std::vector<std::string>& args) {
                 throw UsageError("--subsurface must be randomwalk or diffusion");
         } else if (arg == "-f" || arg == "--frame") {
             o.frame = parseNumber<double>(arg, cur.value(arg));
+            if (!std::isfinite(*o.frame)) throw UsageError(arg + " must be a finite time code");
+        } else if (arg == "-n" || arg == "--frame-count") {
+            o.frameCount = parseNumber<int>(arg, cur.value(arg));
+            if (o.frameCount < 1) throw UsageError(arg + " must be at least 1");
+        } else if (arg == "-i" || arg == "--frame-inc") {
+            o.frameIncrement = parseNumber<double>(arg, cur.value(arg));
+            if (!(o.frameIncrement > 0.0) || !std::isfinite(o.frameIncrement)) throw UsageError(arg + " must be > 0");
+        } else if (arg == "--make-output-path") {
+            o.makeOutputPath = true;
         } else if (arg == "-s" || arg == "--settings") {
             o.settings = cur.value(arg);
         } else if (arg == "--variant") {
@@ -204,7 +213,8 @@ std::string usageText() {
            "\n"
            "options:\n"
            "  -o, --output FILE.exr   output image (default: the render product's productName, else SCENE's\n"
-           "                          name with .exr, in the current folder)\n"
+           "                          name with .exr, in the current folder); frame tokens $F, $F4, $FF,\n"
+           "                          %04d expand to the frame (several frames need one)\n"
            "      --preview FILE.png  also write an sRGB preview through the OCIO display/view transform\n"
            "      --spp N             samples per pixel (default 64)\n"
            "  -r, --res W H           resolution (default: the render settings', else 640 480)\n"
@@ -216,6 +226,9 @@ std::string usageText() {
            "                          the nearest prim's --load/--unload wins\n"
            "      --no-payloads       load no payloads but those --load names (and the prims above them)\n"
            "  -f, --frame F           time code to render (default: the stage's startTimeCode, else default values)\n"
+           "  -n, --frame-count N     render N frames from --frame on, the stage read once (default 1)\n"
+           "  -i, --frame-inc K       time codes between those frames (default 1)\n"
+           "      --make-output-path  create the output's folders\n"
            "  -j, --threads N         worker threads (default 0: every core)\n"
            "      --seed S            random seed (default 0); same seed and spp give a bit-identical image\n"
            "      --integrator NAME   solution method (default: the render settings' fluence:integrator, else\n"

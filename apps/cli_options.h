@@ -36,6 +36,9 @@ struct RenderOptions {
     std::optional<int> subdivLevel; // --subdiv-level N: uniform refinement instead of dicing
     std::string subsurface;         // --subsurface randomwalk|diffusion: every material's method ("" keeps theirs)
     std::optional<double> frame;    // -f/--frame F (default: the stage's startTimeCode, else USD's default time)
+    int frameCount = 1;             // -n/--frame-count N: frames to render from --frame on
+    double frameIncrement = 1.0;    // -i/--frame-inc K: time codes between them
+    bool makeOutputPath = false;    // --make-output-path: create the output's folders
     std::string settings;           // -s/--settings /Render/Path (default: the stage's renderSettingsPrimPath)
     std::vector<usd::VariantSelection> variants;  // --variant /Prim/Path:set=selection (repeatable)
     usd::LoadRules loadRules;       // --load P, --unload P (repeatable), --no-payloads

@@ -1,10 +1,12 @@
 #include "apps/render_command.h"
 
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <thread>
 
+#include "apps/frame_tokens.h"
 #include "apps/progress_reporter.h"
 #include "color/color_management.h"
 #include "delegate/scene_delegate.h"
@@ -51,29 +53,14 @@ const integrators::IntegratorInfo& chosenIntegrator(const RenderOptions& opt, co
                                "' is not an integrator (available: " + integratorNames() + ")");
 }
 
-}  // namespace
-
-int runRender(const RenderOptions& opt) {
+// Renders the stage at time code `time` to its output; returns the exit code. `parseSeconds` is
+// the (shared) stage load's, for the summary.
+int renderFrame(const RenderOptions& opt, usd::Stage& stage, const color::ColorManagement& colors, double time,
+                double parseSeconds, WarningLog& warnings) {
     const auto start = Clock::now();
 
-    // Colour management first: every authored colour goes through it.
-    std::optional<color::ColorManagement> colors;
-    try {
-        colors = color::ColorManagement::load();
-    } catch (const std::exception& e) {
-        printError(e.what());
-        return kExitColorConfig;
-    }
-
-    // Parse and compose.
-    auto t = Clock::now();
-    WarningLog warnings;
-    std::unique_ptr<usd::Stage> stage;
-    if (int code = openStage(opt.scene, {opt.variants, opt.loadRules}, warnings, stage); code != kExitOk) return code;
-    const double parseSeconds = secondsSince(t);
-
     // Build: delegate, then the render scene.
-    t = Clock::now();
+    auto t = Clock::now();
     delegate::DelegateOptions dopt;
     dopt.cameraPath = opt.camera;
     dopt.settingsPath = opt.settings;
@@ -81,21 +68,21 @@ int runRender(const RenderOptions& opt) {
     dopt.defaultResolution = {kDefaultWidth, kDefaultHeight};
     dopt.dicing.rate = static_cast<float>(opt.dicingRate);
     dopt.dicing.uniformLevel = opt.subdivLevel.value_or(-1);
-    dopt.time = opt.frame ? *opt.frame : stage->startTimeCode().value_or(usd::kDefaultTime);
-    dopt.convertColor = [&](const RGB& c, const std::string& space) { return colors->toRenderingSpace(space, c); };
+    dopt.time = time;
+    dopt.convertColor = [&](const RGB& c, const std::string& space) { return colors.toRenderingSpace(space, c); };
     dopt.warn = [&](const std::string& path, const std::string& message) { warnings(path, message); };
     std::optional<delegate::DelegateResult> populated;
     std::unique_ptr<render::RenderScene> scene;
     const integrators::IntegratorInfo* integratorInfo = nullptr;
     unsigned sceneClasses = 0;  // the light paths the scene can produce (integrators/path_classes.h)
     try {
-        populated = delegate::populateScene(*stage, dopt);
+        populated = delegate::populateScene(stage, dopt);
         sceneClasses = integrators::scenePathClasses(populated->scene);
         integratorInfo = &chosenIntegrator(opt, *populated, sceneClasses);
         if (!opt.subsurface.empty())
             for (render::MaterialDesc& m : populated->scene.materials)
                 m.subsurfaceMethod = opt.subsurface == "diffusion" ? render::SubsurfaceMethod::Diffusion : render::SubsurfaceMethod::RandomWalk;
-        scene = std::make_unique<render::RenderScene>(populated->scene, std::make_shared<texture::TextureSystem>(*colors));
+        scene = std::make_unique<render::RenderScene>(populated->scene, std::make_shared<texture::TextureSystem>(colors));
         for (const render::Warning& w : scene->warnings()) warnings(w.where, w.message);
     } catch (const delegate::MissingAssetError& e) {
         printError(e.what());
@@ -127,7 +114,24 @@ int runRender(const RenderOptions& opt) {
     const std::pair<int, int> res = populated->resolution;
     std::string outputPath = opt.output;
     if (outputPath.empty() && product && !product->productName.empty()) outputPath = product->productName;
-    if (outputPath.empty()) outputPath = std::filesystem::path(opt.scene).stem().string() + ".exr";
+    if (outputPath.empty()) outputPath = std::filesystem::path(opt.scene).stem().string() + (opt.frameCount > 1 ? ".$F4.exr" : ".exr");
+    if (opt.frameCount > 1 && !hasFrameToken(outputPath)) {
+        printError("rendering " + std::to_string(opt.frameCount) + " frames needs a frame token ($F, $F4, %04d) in the output path '" +
+                   outputPath + "'");
+        return kExitUsage;
+    }
+    outputPath = expandFrameTokens(outputPath, time);
+    const std::string previewPath = expandFrameTokens(opt.preview, time);
+    if (opt.makeOutputPath)
+        for (const std::string& path : {outputPath, previewPath})
+            if (std::filesystem::path folder = std::filesystem::path(path).parent_path(); !path.empty() && !folder.empty()) {
+                std::error_code error;
+                std::filesystem::create_directories(folder, error);
+                if (error) {
+                    printError("cannot make the output folder " + folder.string() + ": " + error.message());
+                    return kExitOutput;
+                }
+            }
     std::unique_ptr<render::Camera> camera;
     try {
         camera = std::make_unique<render::Camera>(*populated->scene.camera, res.first, res.second, populated->framing);
@@ -191,13 +195,14 @@ int runRender(const RenderOptions& opt) {
                       {"fluence/scene", std::filesystem::absolute(opt.scene).string()},
                       {"fluence/camera", populated->cameraPath},
                       {"fluence/integrator", integratorInfo->name},
-                      {"fluence/ocioConfig", colors->configDescription()}};
-    header.floats = {{"fluence/samplesPerPixel", float(stats.samplesPerPixel)},
+                      {"fluence/ocioConfig", colors.configDescription()}};
+    if (!std::isnan(time)) header.floats.push_back({"fluence/frame", float(time)});
+    header.floats.insert(header.floats.end(), {{"fluence/samplesPerPixel", float(stats.samplesPerPixel)},
                      {"fluence/seed", float(opt.seed)},
-                     {"fluence/renderSeconds", float(stats.seconds)}};
+                     {"fluence/renderSeconds", float(stats.seconds)}});
     try {
         output::writeExr(outputPath, image, header);
-        if (!opt.preview.empty()) output::writePreviewPng(opt.preview, image, *colors);
+        if (!previewPath.empty()) output::writePreviewPng(previewPath, image, colors);
     } catch (const output::OutputError& e) {
         printError(e.what());
         return kExitOutput;
@@ -233,7 +238,42 @@ int runRender(const RenderOptions& opt) {
         std::fprintf(stderr, "fluence: warning: %llu samples were NaN or infinite and were discarded (please report)\n",
                      static_cast<unsigned long long>(stats.counters.nonFiniteSamples));
     if (const std::string note = integrator->summary(); !note.empty()) std::printf("  method       %s\n", note.c_str());
-    std::printf("  output       %s%s%s\n", outputPath.c_str(), opt.preview.empty() ? "" : ", ", opt.preview.c_str());
+    std::printf("  output       %s%s%s\n", outputPath.c_str(), previewPath.empty() ? "" : ", ", previewPath.c_str());
+    return kExitOk;
+}
+
+}  // namespace
+
+int runRender(const RenderOptions& opt) {
+    // Colour management first: every authored colour goes through it.
+    std::optional<color::ColorManagement> colors;
+    try {
+        colors = color::ColorManagement::load();
+    } catch (const std::exception& e) {
+        printError(e.what());
+        return kExitColorConfig;
+    }
+
+    // Parse and compose, once for every frame.
+    const auto t = Clock::now();
+    WarningLog warnings;
+    std::unique_ptr<usd::Stage> stage;
+    if (int code = openStage(opt.scene, {opt.variants, opt.loadRules}, warnings, stage); code != kExitOk) return code;
+    const double parseSeconds = secondsSince(t);
+
+    // The frames: --frame (else the stage's startTimeCode, else default values) and the
+    // --frame-count - 1 after it, --frame-inc apart.
+    const double first = opt.frame ? *opt.frame : stage->startTimeCode().value_or(usd::kDefaultTime);
+    if (opt.frameCount > 1 && std::isnan(first)) {
+        printError("--frame-count " + std::to_string(opt.frameCount) + " needs a first frame: give --frame or a startTimeCode");
+        return kExitUsage;
+    }
+    for (int k = 0; k < opt.frameCount; ++k) {
+        const double time = first + k * opt.frameIncrement;
+        if (opt.frameCount > 1) std::printf("fluence: frame %g (%d of %d)\n", time, k + 1, opt.frameCount);
+        if (int code = renderFrame(opt, *stage, *colors, time, k == 0 ? parseSeconds : 0.0, warnings); code != kExitOk)
+            return code;
+    }
     return kExitOk;
 }
 
