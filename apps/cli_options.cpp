@@ -255,7 +255,8 @@ std::string usageText() {
            "\n"
            "exit codes:\n"
            "  0 image written   1 internal error   2 usage error   3 scene error (syntax or semantic)\n"
-           "  4 missing input (scene file, asset)   5 output could not be written   6 colour configuration error\n";
+           "  4 missing input (scene file, asset)   5 output could not be written   6 colour configuration error\n"
+           "  7 interrupted (SIGTERM or SIGINT: the render stops between tiles and writes nothing)\n";
 }
 
 }  // namespace fluence::app

@@ -8,6 +8,7 @@
 
 #include "apps/frame_tokens.h"
 #include "apps/progress_reporter.h"
+#include "apps/stop_signals.h"
 #include "color/color_management.h"
 #include "delegate/scene_delegate.h"
 #include "integrators/automatic_choice.h"
@@ -172,15 +173,20 @@ int renderFrame(const RenderOptions& opt, usd::Stage& stage, const color::ColorM
     rs.timeLimitSeconds = opt.timeLimit;
     rs.targetError = opt.targetError;
     rs.minSamples = opt.minSpp;
+    rs.stop = &StopSignals::flag();
     Film film(res.first, res.second, camera->farClip(), layers);
     integrators::RenderProgress progress;
     integrators::RenderStats stats;
     try {
         ProgressReporter reporter(progress);
         stats = integrators::render(*scene, *camera, *integrator, rs, film, &progress);
-    } catch (const std::invalid_argument& e) {  // the method cannot render this scene (bdpt with media)
+    } catch (const std::invalid_argument& e) {  // the method cannot render this scene
         printError(e.what());
         return kExitScene;
+    }
+    if (stats.interrupted) {
+        printError("interrupted by a signal after " + std::to_string(stats.samples) + " samples; nothing written to " + outputPath);
+        return kExitInterrupted;
     }
 
     // Write.
@@ -254,6 +260,8 @@ int runRender(const RenderOptions& opt) {
         return kExitColorConfig;
     }
 
+    const StopSignals stopSignals;
+
     // Parse and compose, once for every frame.
     const auto t = Clock::now();
     WarningLog warnings;
@@ -270,6 +278,10 @@ int runRender(const RenderOptions& opt) {
     }
     for (int k = 0; k < opt.frameCount; ++k) {
         const double time = first + k * opt.frameIncrement;
+        if (StopSignals::flag()) {
+            printError("interrupted by a signal before frame " + std::to_string(time) + "; nothing more written");
+            return kExitInterrupted;
+        }
         if (opt.frameCount > 1) std::printf("fluence: frame %g (%d of %d)\n", time, k + 1, opt.frameCount);
         if (int code = renderFrame(opt, *stage, *colors, time, k == 0 ? parseSeconds : 0.0, warnings); code != kExitOk)
             return code;

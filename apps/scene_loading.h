@@ -19,6 +19,7 @@ enum ExitCode : int {
     kExitMissingInput = 4,
     kExitOutput = 5,
     kExitColorConfig = 6,
+    kExitInterrupted = 7,  // SIGTERM or SIGINT stopped the render; nothing was written
 };
 
 void printError(const std::string& message);

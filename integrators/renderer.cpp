@@ -34,6 +34,8 @@ bool allConverged(const Film& film, const RenderSettings& settings) {
     return true;
 }
 
+bool stopped(const RenderSettings& settings) { return settings.stop && settings.stop->load(std::memory_order_relaxed); }
+
 // Whether a sample's radiance, and the light path layers the film keeps, are all finite.
 bool finite(const FilmSample& sample, std::size_t layers) {
     bool all = isFinite(sample.radiance);
@@ -51,6 +53,7 @@ void renderPass(const render::RenderScene& scene, const render::Camera& camera, 
         [&](const tbb::blocked_range<int>& tiles) {
             RenderCounters& local = counters.local();
             for (int tile = tiles.begin(); tile != tiles.end(); ++tile) {
+                if (stopped(settings)) return;
                 int x0 = (tile % tilesX) * kTileSize, y0 = (tile / tilesX) * kTileSize;
                 int x1 = std::min(x0 + kTileSize, width), y1 = std::min(y0 + kTileSize, height);
                 std::uint64_t taken = 0;
@@ -96,7 +99,7 @@ RenderStats render(const render::RenderScene& scene, const render::Camera& camer
     arena.execute([&] { integrator.prepare(scene, camera, settings.seed); });  // within the thread limit
     int done = 0, passSize = 1;
     double secondsPerSample = 0.0;  // per sample per pixel over the whole image, measured
-    while (done < settings.samplesPerPixel) {
+    while (done < settings.samplesPerPixel && !stopped(settings)) {
         int count = std::min(passSize, settings.samplesPerPixel - done);
         if (settings.timeLimitSeconds > 0.0 && stats.passes > 0) {
             double left = settings.timeLimitSeconds - elapsed();
@@ -115,6 +118,7 @@ RenderStats render(const render::RenderScene& scene, const render::Camera& camer
         ++stats.passes;
         if (allConverged(film, settings)) break;
     }
+    stats.interrupted = stopped(settings);
     stats.samples = film.totalSamples();
     if (progress) progress->pixelSamplesPlanned = stats.samples;
 

@@ -36,6 +36,10 @@ struct RenderSettings {
     std::uint64_t seed = 0;
     int threads = 0;                // 0: every core
     double timeLimitSeconds = 0.0;  // 0: none
+    // Set (from another thread or a signal handler) to stop: no tile starts after it is seen, and
+    // render() returns with RenderStats::interrupted (the film is then incomplete: pixels hold
+    // different sample counts). Null: the render cannot be stopped.
+    const std::atomic<bool>* stop = nullptr;
 };
 
 // Read by a progress reporter on another thread while render() runs.
@@ -49,6 +53,7 @@ struct RenderStats {
     int samplesPerPixel = 0;  // the most taken in any pixel (in every pixel without adaptive sampling)
     std::uint64_t samples = 0;  // taken over the whole image
     int passes = 0;
+    bool interrupted = false;  // RenderSettings::stop was set before the render finished
     RenderCounters counters;
 };
 
