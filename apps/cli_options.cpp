@@ -178,6 +178,8 @@ RenderOptions parseRenderOptions(const std::vector<std::string>& args) {
             if (!(o.frameIncrement > 0.0) || !std::isfinite(o.frameIncrement)) throw UsageError(arg + " must be > 0");
         } else if (arg == "--make-output-path") {
             o.makeOutputPath = true;
+        } else if (arg == "--summary") {
+            o.summary = cur.value(arg);
         } else if (arg == "-s" || arg == "--settings") {
             o.settings = cur.value(arg);
         } else if (arg == "--variant") {
@@ -229,6 +231,8 @@ std::string usageText() {
            "  -n, --frame-count N     render N frames from --frame on, the stage read once (default 1)\n"
            "  -i, --frame-inc K       time codes between those frames (default 1)\n"
            "      --make-output-path  create the output's folders\n"
+           "      --summary FILE.json write what the render did (settings, per-stage times, peak memory,\n"
+           "                          samples, rays, warnings, exit code), whether it succeeded or not\n"
            "  -j, --threads N         worker threads (default 0: every core)\n"
            "      --seed S            random seed (default 0); same seed and spp give a bit-identical image\n"
            "      --integrator NAME   solution method (default: the render settings' fluence:integrator, else\n"

@@ -39,6 +39,7 @@ struct RenderOptions {
     int frameCount = 1;             // -n/--frame-count N: frames to render from --frame on
     double frameIncrement = 1.0;    // -i/--frame-inc K: time codes between them
     bool makeOutputPath = false;    // --make-output-path: create the output's folders
+    std::string summary;            // --summary FILE.json: what the render did (apps/run_summary.h)
     std::string settings;           // -s/--settings /Render/Path (default: the stage's renderSettingsPrimPath)
     std::vector<usd::VariantSelection> variants;  // --variant /Prim/Path:set=selection (repeatable)
     usd::LoadRules loadRules;       // --load P, --unload P (repeatable), --no-payloads

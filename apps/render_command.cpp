@@ -8,6 +8,7 @@
 
 #include "apps/frame_tokens.h"
 #include "apps/progress_reporter.h"
+#include "apps/run_summary.h"
 #include "apps/stop_signals.h"
 #include "color/color_management.h"
 #include "delegate/scene_delegate.h"
@@ -57,7 +58,7 @@ const integrators::IntegratorInfo& chosenIntegrator(const RenderOptions& opt, co
 // Renders the stage at time code `time` to its output; returns the exit code. `parseSeconds` is
 // the (shared) stage load's, for the summary.
 int renderFrame(const RenderOptions& opt, usd::Stage& stage, const color::ColorManagement& colors, double time,
-                double parseSeconds, WarningLog& warnings) {
+                double parseSeconds, WarningLog& warnings, RunSummary& summary) {
     const auto start = Clock::now();
 
     // Build: delegate, then the render scene.
@@ -245,12 +246,29 @@ int renderFrame(const RenderOptions& opt, usd::Stage& stage, const color::ColorM
                      static_cast<unsigned long long>(stats.counters.nonFiniteSamples));
     if (const std::string note = integrator->summary(); !note.empty()) std::printf("  method       %s\n", note.c_str());
     std::printf("  output       %s%s%s\n", outputPath.c_str(), previewPath.empty() ? "" : ", ", previewPath.c_str());
+
+    FrameSummary& frame = summary.frames.emplace_back();
+    frame.time = time;
+    frame.output = outputPath;
+    frame.integrator = integratorInfo->name;
+    frame.camera = populated->cameraPath;
+    frame.width = res.first;
+    frame.height = res.second;
+    frame.samplesPerPixel = stats.samplesPerPixel;
+    frame.samples = stats.samples;
+    frame.cameraRays = stats.counters.camera;
+    frame.bounceRays = stats.counters.bounce;
+    frame.shadowRays = stats.counters.shadow;
+    frame.nonFiniteSamples = stats.counters.nonFiniteSamples;
+    frame.buildSeconds = buildSeconds;
+    frame.renderSeconds = stats.seconds;
+    frame.writeSeconds = writeSeconds;
+    frame.totalSeconds = total;
     return kExitOk;
 }
 
-}  // namespace
-
-int runRender(const RenderOptions& opt) {
+// Loads the stage once and renders every frame; returns the exit code.
+int renderFrames(const RenderOptions& opt, WarningLog& warnings, RunSummary& summary) {
     // Colour management first: every authored colour goes through it.
     std::optional<color::ColorManagement> colors;
     try {
@@ -260,14 +278,11 @@ int runRender(const RenderOptions& opt) {
         return kExitColorConfig;
     }
 
-    const StopSignals stopSignals;
-
     // Parse and compose, once for every frame.
     const auto t = Clock::now();
-    WarningLog warnings;
     std::unique_ptr<usd::Stage> stage;
     if (int code = openStage(opt.scene, {opt.variants, opt.loadRules}, warnings, stage); code != kExitOk) return code;
-    const double parseSeconds = secondsSince(t);
+    const double parseSeconds = summary.parseSeconds = secondsSince(t);
 
     // The frames: --frame (else the stage's startTimeCode, else default values) and the
     // --frame-count - 1 after it, --frame-inc apart.
@@ -283,10 +298,31 @@ int runRender(const RenderOptions& opt) {
             return kExitInterrupted;
         }
         if (opt.frameCount > 1) std::printf("fluence: frame %g (%d of %d)\n", time, k + 1, opt.frameCount);
-        if (int code = renderFrame(opt, *stage, *colors, time, k == 0 ? parseSeconds : 0.0, warnings); code != kExitOk)
+        if (int code = renderFrame(opt, *stage, *colors, time, k == 0 ? parseSeconds : 0.0, warnings, summary); code != kExitOk)
             return code;
     }
     return kExitOk;
+}
+
+}  // namespace
+
+int runRender(const RenderOptions& opt) {
+    const StopSignals stopSignals;
+    WarningLog warnings;
+    RunSummary summary;
+    summary.scene = opt.scene;
+    summary.seed = opt.seed;
+    summary.threads = opt.threads > 0 ? opt.threads : int(std::thread::hardware_concurrency());
+    summary.exitCode = renderFrames(opt, warnings, summary);
+    if (opt.summary.empty()) return summary.exitCode;
+    summary.warnings = warnings.entries();
+    try {
+        writeSummary(opt.summary, summary);
+    } catch (const output::OutputError& e) {
+        printError(e.what());
+        return summary.exitCode == kExitOk ? kExitOutput : summary.exitCode;
+    }
+    return summary.exitCode;
 }
 
 }  // namespace fluence::app

@@ -84,5 +84,24 @@ TEST_F(FramesCli, WithoutMakeOutputPathAMissingFolderIsAnOutputError) {
     EXPECT_EQ(r.exitCode, 5) << r.err;
 }
 
+// --summary: one entry per frame with its output and sample counts; on failure the exit code.
+TEST_F(FramesCli, SummaryRecordsEveryFrameAndTheExitCode) {
+    RunResult r = run("render " + animatedScene() + " -r 8 8 --spp 2 -f 1 -n 2 -o '" + tmp_.file("f.$F.exr") +
+                      "' --summary " + tmp_.file("run.json"));
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    const std::string json = test::slurp(tmp_.file("run.json"));
+    EXPECT_NE(json.find("\"exitCode\": 0"), std::string::npos) << json;
+    EXPECT_NE(json.find("\"output\": \"" + tmp_.file("f.1.exr") + "\""), std::string::npos) << json;
+    EXPECT_NE(json.find("\"output\": \"" + tmp_.file("f.2.exr") + "\""), std::string::npos) << json;
+    EXPECT_NE(json.find("\"samples\": 128"), std::string::npos) << json;  // 8 x 8 x 2 per frame
+    EXPECT_NE(json.find("\"peakMemoryBytes\": "), std::string::npos) << json;
+
+    r = run("render " + tmp_.file("missing.usda") + " --summary " + tmp_.file("failed.json"));
+    EXPECT_EQ(r.exitCode, 4);
+    const std::string failed = test::slurp(tmp_.file("failed.json"));
+    EXPECT_NE(failed.find("\"exitCode\": 4"), std::string::npos) << failed;
+    EXPECT_NE(failed.find("\"frames\": []"), std::string::npos) << failed;
+}
+
 }  // namespace
 }  // namespace fluence
