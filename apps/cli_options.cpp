@@ -111,6 +111,23 @@ InfoOptions parseInfoOptions(const std::vector<std::string>& args) {
     return o;
 }
 
+AssembleOptions parseAssembleOptions(const std::vector<std::string>& args) {
+    AssembleOptions o;
+    ArgCursor cur(args);
+    while (!cur.done()) {
+        const std::string arg = cur.next();
+        if (arg == "-o" || arg == "--output")
+            o.output = cur.value(arg);
+        else if (arg.starts_with("-"))
+            throw UsageError("unknown option '" + arg + "' for assemble");
+        else
+            o.tiles.push_back(arg);
+    }
+    if (o.output.empty()) throw UsageError("assemble needs -o OUT.exr");
+    if (o.tiles.empty()) throw UsageError("assemble needs the tile images to merge");
+    return o;
+}
+
 RenderOptions parseRenderOptions(const std::vector<std::string>& args) {
     RenderOptions o;
     ArgCursor cur(args);
@@ -180,6 +197,14 @@ RenderOptions parseRenderOptions(const std::vector<std::string>& args) {
             o.makeOutputPath = true;
         } else if (arg == "--summary") {
             o.summary = cur.value(arg);
+        } else if (arg == "--tile-count") {
+            const int x = parseNumber<int>(arg, cur.value(arg)), y = parseNumber<int>(arg, cur.value(arg));
+            if (x < 1 || y < 1 || x > 1024 || y > 1024) throw UsageError("--tile-count needs X and Y from 1 to 1024");
+            o.tileCount = {x, y};
+        } else if (arg == "--tile-index") {
+            o.tileIndex = parseNumber<int>(arg, cur.value(arg));
+        } else if (arg == "--tile-suffix") {
+            o.tileSuffix = cur.value(arg);
         } else if (arg == "-s" || arg == "--settings") {
             o.settings = cur.value(arg);
         } else if (arg == "--variant") {
@@ -188,6 +213,9 @@ RenderOptions parseRenderOptions(const std::vector<std::string>& args) {
             takeScene(arg, o.scene);
         }
     }
+    if (o.tileCount && (o.tileIndex < 0 || o.tileIndex >= o.tileCount->first * o.tileCount->second))
+        throw UsageError("--tile-index must be from 0 to " + std::to_string(o.tileCount->first * o.tileCount->second - 1));
+    if (!o.tileCount && o.tileIndex != 0) throw UsageError("--tile-index needs --tile-count");
     if (o.scene.empty()) throw UsageError("no scene file given");
     o.loadRules = load.rules();
     return o;
@@ -206,6 +234,7 @@ std::string usageText() {
     return "usage: fluence render SCENE.usda [options]\n"
            "       fluence info SCENE.usda [--variant /Prim:set=sel]... [-s /Render/Settings]\n"
            "                               [--load /Prim]... [--unload /Prim]... [--no-payloads]\n"
+           "       fluence assemble -o OUT.exr TILE.exr...   merge tiles into the image rendered in one piece\n"
            "       fluence --help | --version\n"
            "\n"
            "`render` renders a USD scene to a multi-channel OpenEXR image (beauty RGBA in linear Rec.709,\n"
@@ -233,6 +262,9 @@ std::string usageText() {
            "      --make-output-path  create the output's folders\n"
            "      --summary FILE.json write what the render did (settings, per-stage times, peak memory,\n"
            "                          samples, rays, warnings, exit code), whether it succeeded or not\n"
+           "      --tile-count X Y    render one of X x Y tiles of the image (--tile-index N, 0 to X*Y-1, row\n"
+           "      --tile-index N      by row from the top left) to the output with --tile-suffix (default\n"
+           "      --tile-suffix FMT   _tile$T, $T the index) before its extension; `fluence assemble` merges them\n"
            "  -j, --threads N         worker threads (default 0: every core)\n"
            "      --seed S            random seed (default 0); same seed and spp give a bit-identical image\n"
            "      --integrator NAME   solution method (default: the render settings' fluence:integrator, else\n"

@@ -40,10 +40,19 @@ struct RenderOptions {
     double frameIncrement = 1.0;    // -i/--frame-inc K: time codes between them
     bool makeOutputPath = false;    // --make-output-path: create the output's folders
     std::string summary;            // --summary FILE.json: what the render did (apps/run_summary.h)
+    std::optional<std::pair<int, int>> tileCount;  // --tile-count X Y: the image split into X x Y tiles
+    int tileIndex = 0;              // --tile-index N: the tile to render, 0 to X*Y - 1, row by row from the top left
+    std::string tileSuffix = "_tile$T";  // --tile-suffix FMT: added before the output's extension ($T: the index)
     std::string settings;           // -s/--settings /Render/Path (default: the stage's renderSettingsPrimPath)
     std::vector<usd::VariantSelection> variants;  // --variant /Prim/Path:set=selection (repeatable)
     usd::LoadRules loadRules;       // --load P, --unload P (repeatable), --no-payloads
     std::vector<LightPathOption> lightPaths;  // --lpe NAME=EXPRESSION (repeatable)
+};
+
+// Options of `fluence assemble`.
+struct AssembleOptions {
+    std::string output;              // -o/--output OUT.exr
+    std::vector<std::string> tiles;  // the tile EXRs
 };
 
 // Options of `fluence info`.
@@ -62,6 +71,7 @@ inline constexpr const char* kDefaultIntegrator = "path";
 // Parses the arguments after `fluence render`. Throws UsageError with a one-line reason.
 RenderOptions parseRenderOptions(const std::vector<std::string>& args);
 InfoOptions parseInfoOptions(const std::vector<std::string>& args);
+AssembleOptions parseAssembleOptions(const std::vector<std::string>& args);
 // Parses "/Prim/Path:set=selection".
 usd::VariantSelection parseVariantSelection(const std::string& text);
 

@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "apps/assemble_command.h"
 #include "apps/cli_options.h"
 #include "apps/info_command.h"
 #include "apps/render_command.h"
@@ -26,7 +27,7 @@ int main(int argc, char** argv) {
         return kExitOk;
     }
     const std::string command = args[0];
-    if (command != "render" && command != "info") {
+    if (command != "render" && command != "info" && command != "assemble") {
         std::fprintf(stderr, "fluence: error: unknown command '%s' (try 'fluence --help')\n", command.c_str());
         return kExitUsage;
     }
@@ -37,6 +38,7 @@ int main(int argc, char** argv) {
             return kExitOk;
         }
     try {
+        if (command == "assemble") return runAssemble(parseAssembleOptions(args));
         return command == "info" ? runInfo(parseInfoOptions(args)) : runRender(parseRenderOptions(args));
     } catch (const UsageError& e) {
         std::fprintf(stderr, "fluence: error: %s\n(try 'fluence --help')\n", e.what());

@@ -55,6 +55,26 @@ const integrators::IntegratorInfo& chosenIntegrator(const RenderOptions& opt, co
                                "' is not an integrator (available: " + integratorNames() + ")");
 }
 
+// The part of the image a render takes: the whole, or tile --tile-index of --tile-count.
+struct TileWindow {
+    int x, y, width, height;
+};
+TileWindow tileWindow(const RenderOptions& opt, std::pair<int, int> res) {
+    if (!opt.tileCount) return {0, 0, res.first, res.second};
+    const auto [columns, rows] = *opt.tileCount;
+    const int column = opt.tileIndex % columns, row = opt.tileIndex / columns;
+    const int x0 = res.first * column / columns, x1 = res.first * (column + 1) / columns;
+    const int y0 = res.second * row / rows, y1 = res.second * (row + 1) / rows;
+    return {x0, y0, x1 - x0, y1 - y0};
+}
+
+// `path` with the tile suffix ($T: the tile's index) before its extension.
+std::string withTileSuffix(const std::string& path, std::string suffix, int index) {
+    for (std::size_t at; (at = suffix.find("$T")) != std::string::npos;) suffix.replace(at, 2, std::to_string(index));
+    const std::filesystem::path p(path);
+    return (p.parent_path() / (p.stem().string() + suffix + p.extension().string())).string();
+}
+
 // Renders the stage at time code `time` to its output; returns the exit code. `parseSeconds` is
 // the (shared) stage load's, for the summary.
 int renderFrame(const RenderOptions& opt, usd::Stage& stage, const color::ColorManagement& colors, double time,
@@ -123,6 +143,14 @@ int renderFrame(const RenderOptions& opt, usd::Stage& stage, const color::ColorM
         return kExitUsage;
     }
     outputPath = expandFrameTokens(outputPath, time);
+    const TileWindow tile = tileWindow(opt, res);
+    if (tile.width < 1 || tile.height < 1) {
+        printError("tile " + std::to_string(opt.tileIndex) + " of --tile-count " + std::to_string(opt.tileCount->first) + " " +
+                   std::to_string(opt.tileCount->second) + " has no pixels at " + std::to_string(res.first) + "x" +
+                   std::to_string(res.second));
+        return kExitUsage;
+    }
+    if (opt.tileCount) outputPath = withTileSuffix(outputPath, opt.tileSuffix, opt.tileIndex);
     const std::string previewPath = expandFrameTokens(opt.preview, time);
     if (opt.makeOutputPath)
         for (const std::string& path : {outputPath, previewPath})
@@ -175,7 +203,10 @@ int renderFrame(const RenderOptions& opt, usd::Stage& stage, const color::ColorM
     rs.targetError = opt.targetError;
     rs.minSamples = opt.minSpp;
     rs.stop = &StopSignals::flag();
-    Film film(res.first, res.second, camera->farClip(), layers);
+    rs.windowX = tile.x;
+    rs.windowY = tile.y;
+    rs.imageWidth = res.first;
+    Film film(tile.width, tile.height, camera->farClip(), layers);
     integrators::RenderProgress progress;
     integrators::RenderStats stats;
     try {
@@ -198,11 +229,19 @@ int renderFrame(const RenderOptions& opt, usd::Stage& stage, const color::ColorM
     header.chromaticities = color::ColorManagement::renderingChromaticities();
     header.pixelAspectRatio = camera->pixelAspectRatio();
     header.dataChannels = Film::dataChannelNames();
-    header.strings = {{"fluence/version", kFluenceVersion},
+    if (opt.tileCount) {
+        header.x = tile.x;
+        header.y = tile.y;
+        header.fullWidth = res.first;
+        header.fullHeight = res.second;
+        header.strings.push_back({"fluence/tile", std::to_string(opt.tileIndex) + " of " + std::to_string(opt.tileCount->first) +
+                                                      "x" + std::to_string(opt.tileCount->second)});
+    }
+    header.strings.insert(header.strings.end(), {{"fluence/version", kFluenceVersion},
                       {"fluence/scene", std::filesystem::absolute(opt.scene).string()},
                       {"fluence/camera", populated->cameraPath},
                       {"fluence/integrator", integratorInfo->name},
-                      {"fluence/ocioConfig", colors.configDescription()}};
+                      {"fluence/ocioConfig", colors.configDescription()}});
     if (!std::isnan(time)) header.floats.push_back({"fluence/frame", float(time)});
     header.floats.insert(header.floats.end(), {{"fluence/samplesPerPixel", float(stats.samplesPerPixel)},
                      {"fluence/seed", float(opt.seed)},

@@ -59,13 +59,16 @@ void renderPass(const render::RenderScene& scene, const render::Camera& camera, 
                 std::uint64_t taken = 0;
                 for (int y = y0; y < y1; ++y)
                     for (int x = x0; x < x1; ++x) {
-                        std::uint64_t pixelIndex = std::uint64_t(y) * std::uint64_t(width) + std::uint64_t(x);
+                        const int imageX = x + settings.windowX, imageY = y + settings.windowY;
+                        const std::uint64_t pixelIndex =
+                            std::uint64_t(imageY) * std::uint64_t(settings.imageWidth > 0 ? settings.imageWidth : width) +
+                            std::uint64_t(imageX);
                         for (int s = pass.first; s < pass.first + pass.count; ++s) {
                             if (film.samples(x, y) != std::uint32_t(s) || converged(film, x, y, settings)) break;
                             ++taken;
                             SampleStream rng(settings.seed, pixelIndex, std::uint64_t(s));
                             Vec2f jitter = rng.next2D();  // box filter: uniform over the pixel
-                            render::Ray ray = camera.generateRay(float(x) + jitter.x, float(y) + jitter.y);
+                            render::Ray ray = camera.generateRay(float(imageX) + jitter.x, float(imageY) + jitter.y);
                             FilmSample sample = integrator.sample(scene, camera, ray, rng, local);
                             if (!finite(sample, film.lightPathLayers().size())) {
                                 sample.radiance = RGB(0.0f);

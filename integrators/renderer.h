@@ -40,6 +40,11 @@ struct RenderSettings {
     // render() returns with RenderStats::interrupted (the film is then incomplete: pixels hold
     // different sample counts). Null: the render cannot be stopped.
     const std::atomic<bool>* stop = nullptr;
+    // The film is the window of the camera's image at (windowX, windowY), the image imageWidth
+    // pixels wide (0: the film is the whole image). Sample n of image pixel (x, y) draws from the
+    // same stream whatever the window, so tiles rendered apart assemble into the whole render, bit
+    // for bit.
+    int windowX = 0, windowY = 0, imageWidth = 0;
 };
 
 // Read by a progress reporter on another thread while render() runs.

@@ -46,6 +46,12 @@ void writeExr(const std::string& path, const Image& image, const ExrHeader& head
 
     OIIO::ImageSpec spec(image.width, image.height, static_cast<int>(image.channels.size()), OIIO::TypeDesc::FLOAT);
     spec.channelnames = image.channels;
+    if (header.fullWidth > 0) {
+        spec.x = header.x;
+        spec.y = header.y;
+        spec.full_width = header.fullWidth;
+        spec.full_height = header.fullHeight;
+    }
     // OIIO's alpha/z channel guesses from names ("A", "Z") only matter to OIIO's own compositing;
     // Fluence writes what it has, so leave them unset.
     spec.alpha_channel = -1;

@@ -25,6 +25,9 @@ struct ExrHeader {
     // Channels holding data rather than colour (N.X, Z, sampleCount, ...): listed, comma-separated,
     // in the "fluence/dataChannels" string attribute.
     std::vector<std::string> dataChannels;
+    // A tile of a larger image: the image's pixels are the data window at (x, y) of a display window
+    // of fullWidth x fullHeight (0: the image is the whole display window).
+    int x = 0, y = 0, fullWidth = 0, fullHeight = 0;
 };
 
 // Writes every channel of `image` as 32-bit float, ZIP-compressed scanlines, channel names as given
