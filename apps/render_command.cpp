@@ -209,12 +209,9 @@ int renderFrame(const RenderOptions& opt, usd::Stage& stage, const color::ColorM
     Film film(tile.width, tile.height, camera->farClip(), layers);
     integrators::RenderProgress progress;
     integrators::RenderStats stats;
-    try {
+    {
         ProgressReporter reporter(progress);
         stats = integrators::render(*scene, *camera, *integrator, rs, film, &progress);
-    } catch (const std::invalid_argument& e) {  // the method cannot render this scene
-        printError(e.what());
-        return kExitScene;
     }
     if (stats.interrupted) {
         printError("interrupted by a signal after " + std::to_string(stats.samples) + " samples; nothing written to " + outputPath);

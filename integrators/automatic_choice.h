@@ -3,9 +3,10 @@
 // The candidates, cheapest first by their cost per sample on the Cornell box
 // (bench/results/2026-11-27-integrators.md): direct, whitted, path, sppm. `radiosity` is left
 // out (its discretisation is a bias no sample count removes), as are `naive` (a test reference)
-// and `bdpt` (it covers no class `path` misses, at five times its cost). When no candidate covers
-// every class the scene has (caustics from delta lights inside a volume, say), the one that misses
-// the fewest is chosen, the cheapest among equals, and the reason names what it misses.
+// and `bdpt` (it covers no class `path` misses, at five times its cost). `sppm` covers every class
+// (caustics from delta lights, volumes and subsurface included), so there is always a choice: it is
+// taken when the cheaper three miss something (tests/integrators/automatic_choice_test.cpp checks
+// that it covers them all).
 #pragma once
 
 #include <string>

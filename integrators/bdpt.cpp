@@ -1,15 +1,17 @@
 #include "integrators/bdpt.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <optional>
-#include <stdexcept>
 #include <vector>
 
 #include "core/frame.h"
 #include "integrators/bdpt_mis.h"
 #include "integrators/bdpt_vertex.h"
 #include "integrators/first_hit.h"
+#include "media/free_flight.h"
+#include "media/ratio_tracking.h"
 
 namespace fluence::integrators {
 
@@ -24,7 +26,7 @@ constexpr float kInfinity = std::numeric_limits<float>::infinity();
 
 // One scattering of a subpath at v: the direction, the throughput factor, and the densities
 // forwards (from v.wo to wi) and backwards (1, 1 through a delta lobe). `importance`: a light
-// subpath, which carries the adjoint BSDF.
+// subpath, which carries the adjoint BSDF. In a medium, the phase function (its own adjoint).
 struct Scattering {
     Vec3f wi;
     RGB weight;
@@ -33,25 +35,82 @@ struct Scattering {
     float eta = 1.0f;  // as render::BsdfSample::eta
 };
 std::optional<Scattering> scatter(const Shading& sh, const Vertex& v, bool importance, SampleStream& rng) {
-    const Vec3f woLocal = sh.surface.frame.toLocal(v.wo);
-    const float uLobe = sh.bsdf.flags() == (render::kBsdfReflection | render::kBsdfDiffuse) ? 0.0f : rng.next();
-    std::optional<render::BsdfSample> bs = sh.bsdf.sample(woLocal, uLobe, rng.next2D());
+    if (!sh.bsdf()) {
+        const media::PhaseSample ps = sh.phase().sample(v.wo, rng.next2D());
+        if (!(ps.pdf > 0.0f)) return std::nullopt;
+        return Scattering{ps.wi, RGB(ps.p / ps.pdf), ps.pdf, sh.phase().pdf(ps.wi, v.wo)};
+    }
+    const render::Bsdf& bsdf = *sh.bsdf();
+    const Frame& frame = sh.surface().frame;
+    const Vec3f woLocal = frame.toLocal(v.wo);
+    const float uLobe = bsdf.flags() == (render::kBsdfReflection | render::kBsdfDiffuse) ? 0.0f : rng.next();
+    std::optional<render::BsdfSample> bs = bsdf.sample(woLocal, uLobe, rng.next2D());
     if (!bs || !(bs->pdf > 0.0f)) return std::nullopt;
-    Vec3f wi = sh.surface.frame.toWorld(bs->wi);
-    if (!sidesAgree(v.wo, wi, sh.surface.geometricNormal, woLocal.z, bs->wi.z)) return std::nullopt;
+    Vec3f wi = frame.toWorld(bs->wi);
+    if (!sidesAgree(v.wo, wi, sh.surface().geometricNormal, woLocal.z, bs->wi.z)) return std::nullopt;
     // A light subpath carries the adjoint f(wi, wo): evaluated where it is a function (no BSDF is
     // assumed reciprocal), and for a delta lobe from the generalised reciprocity of render/bsdf.h,
     // f(wi, wo) = f(wo, wi) eta^2.
     RGB weight = !importance  ? bs->f * (std::abs(bs->wi.z) / bs->pdf)
                  : bs->specular ? bs->f * (bs->eta * bs->eta * sh.importanceCosines(v.wo, wi) / bs->pdf)
-                                : sh.bsdf.f(bs->wi, woLocal) * (sh.importanceCosines(v.wo, wi) / bs->pdf);
+                                : bsdf.f(bs->wi, woLocal) * (sh.importanceCosines(v.wo, wi) / bs->pdf);
     if (bs->specular) return Scattering{wi, weight, 1.0f, 1.0f, true, bs->eta};
-    return Scattering{wi, weight, bs->pdf, sh.bsdf.pdf(bs->wi, woLocal), false, bs->eta};
+    return Scattering{wi, weight, bs->pdf, bsdf.pdf(bs->wi, woLocal), false, bs->eta};
 }
 
 // The ray leaving v along wi.
-Ray spawn(const Vertex& v, const Shading& sh, const Vec3f& wi) {
-    return Ray{spawnOrigin(v.hit.point, sh.surface.geometricNormal, wi), wi, 0.0f, kInfinity};
+Ray spawn(const Vertex& v, const Vec3f& wi) { return Ray{v.leaving(wi), wi, 0.0f, kInfinity}; }
+
+// 1 in the channels where c is positive, else 0.
+RGB positive(const RGB& c) { return RGB(c.x > 0.0f ? 1.0f : 0.0f, c.y > 0.0f ? 1.0f : 0.0f, c.z > 0.0f ? 1.0f : 0.0f); }
+
+// A stretch of a subpath through `medium` (nullptr: empty space) along `ray` up to tEnd: the free
+// flight (delta tracking, hero channel `hero`), and the edge it makes up to the next vertex (which
+// ends at flight.t), for the MIS weights (bdpt_mis.h, EdgeMedia).
+struct Stretch {
+    media::FreeFlight flight;
+    EdgeMedia edge;
+};
+Stretch fly(const media::Medium* medium, const Ray& ray, float tEnd, int hero, SampleStream& rng) {
+    Stretch s;
+    s.flight.t = tEnd;
+    if (!medium) return s;
+    s.flight = media::sampleFreeFlight(*medium, {ray.origin, ray.direction, tEnd}, hero, rng);
+    s.edge = {majorantDepth(medium, ray.origin, ray.direction, s.flight.t), positive(s.flight.pdfRatio),
+              positive(s.flight.lightPdfRatio)};
+    return s;
+}
+
+// A join's shadow segment through `medium`: the transmittance by ratio tracking, and its edge.
+struct Crossing {
+    media::TransmittanceEstimate tr;
+    EdgeMedia edge;
+};
+Crossing cross(const media::Medium* medium, const media::MediumRay& segment, int hero, SampleStream& rng) {
+    Crossing c;
+    if (!medium) return c;
+    c.tr = media::ratioTrackingTransmittance(*medium, segment, hero, rng);
+    c.edge = {majorantDepth(medium, segment.origin, segment.direction, segment.tMax), positive(c.tr.throughput),
+              positive(c.tr.pdfRatio)};
+    return c;
+}
+
+// The medium vertex where a subpath in `media` scatters (flight.p), arriving along `direction`.
+Vertex mediumVertex(const media::FreeFlight& flight, const Vec3f& direction, const RGB& beta, const MediumStack& media) {
+    Vertex v{SurfaceHit{}, -direction, beta, media};
+    v.hit.t = flight.t;
+    v.hit.point = flight.p;
+    v.hit.geometricNormal = v.hit.shadingNormal = Vec3f(0.0f);
+    v.inMedium = true;
+    v.walking = media.depth() > 0;
+    v.g = flight.properties.g;
+    v.sigmaS = flight.properties.sigmaS;
+    return v;
+}
+
+// Its densities as x_i of a path, reached over `edge`.
+VertexDensity densityOf(const Vertex& v, float fromLight, float fromCamera, bool delta, const EdgeMedia& edge) {
+    return {fromLight, fromCamera, delta, !v.walking, v.sigmaS, edge};
 }
 
 struct LightSubpath {
@@ -62,16 +121,19 @@ struct LightSubpath {
 // The camera subpath so far: z_1 ... z_m (z_0, the camera, enters no weight: t >= 2 always).
 using CameraSubpath = std::vector<Vertex>;
 
-// The densities of x_1 ... x_m = z_m ... z_1 and of z_0, appended to x.
+// The densities of x_{k-m} ... x_k = z_m ... z_1, z_0, appended to x. The edge into z_m is the
+// join's (filled by the caller); the edge into z_j, j < m, is the one z_{j+1} was reached over.
 void appendCamera(std::vector<VertexDensity>& x, const CameraSubpath& z) {
-    for (auto it = z.rbegin(); it != z.rend(); ++it) x.push_back({it->fromOther, it->fromOwn, it->delta});
-    x.push_back({1.0f, 1.0f, false});
+    for (std::size_t j = z.size(); j-- > 0;)
+        x.push_back(densityOf(z[j], z[j].fromOther, z[j].fromOwn, z[j].delta, j + 1 < z.size() ? z[j + 1].edge : EdgeMedia{}));
+    x.push_back({1.0f, 1.0f, false, true, RGB(1.0f), z.empty() ? EdgeMedia{} : z.front().edge});
 }
 
 // The light subpath for one sample: an emitting light chosen by power, a point and direction on
-// it, then adjoint BSDF sampling. Empty (origin.light < 0) when no light emits.
+// it, then adjoint BSDF and phase sampling through the media it starts in (mediaAt) and crosses,
+// with hero channel `hero` (-1: the scene has no media). Empty (origin.light < 0) when no light emits.
 LightSubpath traceLightSubpath(const RenderScene& scene, const std::vector<int>& emitters, const DiscreteDistribution& choice,
-                               const std::vector<float>& probability, int maxVertices, SampleStream& rng,
+                               const std::vector<float>& probability, int maxBounces, int hero, SampleStream& rng,
                                RenderCounters& counters, render::BsdfArena& arena) {
     LightSubpath path;
     const float uChoice = rng.next();
@@ -84,14 +146,31 @@ LightSubpath traceLightSubpath(const RenderScene& scene, const std::vector<int>&
     RGB beta = es->Le * (es->density.cosine / (probability[index] * es->density.position * es->density.direction));
     const bool onSurface = !path.origin.atInfinity && !path.origin.delta;
     Ray ray{onSurface ? spawnOrigin(es->point, es->normal, es->direction) : es->point, es->direction, 0.0f, kInfinity};
+    MediumStack media = hero >= 0 && !path.origin.atInfinity ? mediaAt(scene, ray.origin, ray.direction, counters)
+                                                              : MediumStack(scene);
     std::optional<Scattering> last;  // how the previous vertex was left
-    while (static_cast<int>(path.vertices.size()) < maxVertices) {
+    int bounces = 0, interiorScatterings = 0;
+    for (;;) {
         ++counters.bounce;
         std::optional<SurfaceHit> hit = scene.intersect(ray);
-        if (!hit || hit->lightShape) break;
-        Vertex v{*hit, -ray.direction, beta};
-        if (!last) v.fromOwn = emittedTowards(scene, path.origin, hit->point, hit->geometricNormal);
-        else v.fromOwn = last->delta ? 1.0f : toArea(last->pdf, path.vertices.back().hit.point, hit->point, hit->geometricNormal);
+        const media::Medium* medium = media.medium();
+        Stretch stretch = fly(medium, ray, hit ? hit->t : kInfinity, std::max(hero, 0), rng);
+        beta *= stretch.flight.throughput;
+        const media::FlightEvent event = stretch.flight.event;
+        if (event == media::FlightEvent::Absorbed) break;
+        if (event == media::FlightEvent::Escaped && (!hit || hit->lightShape)) break;
+        Vertex v = event == media::FlightEvent::Scattered ? mediumVertex(stretch.flight, ray.direction, beta, media)
+                                                          : Vertex{*hit, -ray.direction, beta, media};
+        if (v.walking ? ++interiorScatterings > kMaxInteriorScatterings : bounces >= maxBounces) break;
+        v.bounces = bounces += !v.walking;
+        v.edge = stretch.edge;
+        if (!last) {
+            v.fromOwn = emittedTowards(scene, path.origin, v);
+            // Measured from the point, as a camera subpath leaving it for the light would.
+            if (path.origin.atInfinity) v.edge.majorantDepth = majorantDepth(medium, v.point(), -ray.direction, kInfinity);
+        } else {
+            v.fromOwn = last->delta ? 1.0f : toArea(last->pdf, path.vertices.back().point(), v);
+        }
         arena.reset();
         const Shading sh(v, arena);
         v.transmissive = sh.transmissive();
@@ -99,42 +178,43 @@ LightSubpath traceLightSubpath(const RenderScene& scene, const std::vector<int>&
         if (last) {
             v.delta = last->delta;
             // The previous vertex's density as a camera subpath would draw it, through this one.
-            if (path.vertices.empty()) path.origin.fromCamera = last->delta ? 1.0f : cameraReaches(path.origin, last->pdfReverse, hit->point);
+            if (path.vertices.empty()) path.origin.fromCamera = last->delta ? 1.0f : cameraReaches(path.origin, last->pdfReverse, v.point());
             else {
                 Vertex& before = path.vertices.back();
-                before.fromOther = last->delta ? 1.0f : toArea(last->pdfReverse, hit->point, before.hit.point, before.hit.geometricNormal);
+                before.fromOther = last->delta ? 1.0f : toArea(last->pdfReverse, v.point(), before);
             }
         }
         path.vertices.push_back(v);
         if (!last) break;
         beta *= last->weight;
-        if (!continuePath(beta, 1.0f, static_cast<int>(path.vertices.size()) - 1, rng)) break;
-        ray = spawn(path.vertices.back(), sh, last->wi);
+        if (!continueInMedium(beta, 1.0f, bounces - 1, v.walking, rng)) break;
+        if (!v.inMedium) media = media.after(v.hit, v.wo, last->wi);
+        ray = spawn(v, last->wi);
     }
     return path;
 }
 
-// Whether the segment between two surface points, each left on the side `dir` (from a to b)
-// says, is free of surfaces.
-bool visible(const RenderScene& scene, const Vertex& a, const Vertex& b, const Vec3f& dir, RenderCounters& counters) {
+// The shadow segment joining a to b (`dir`, unit, from a to b), each left on its side, or nothing
+// when a surface blocks it.
+std::optional<media::MediumRay> joinSegment(const RenderScene& scene, const Vertex& a, const Vertex& b, const Vec3f& dir,
+                                            RenderCounters& counters) {
     ++counters.shadow;
-    Vec3f from = spawnOrigin(a.hit.point, a.hit.geometricNormal, dir), to = spawnOrigin(b.hit.point, b.hit.geometricNormal, -dir);
-    Vec3f d = to - from;
-    float length = std::sqrt(lengthSquared(d));
-    return length > 0.0f && !scene.occluded(from, d / length, length);
+    const Vec3f from = a.leaving(dir), to = b.leaving(-dir);
+    const Vec3f d = to - from;
+    const float length = std::sqrt(lengthSquared(d));
+    if (!(length > 0.0f) || scene.occluded(from, d / length, length)) return std::nullopt;
+    return media::MediumRay{from, d / length, length};
 }
 
 }  // namespace
 
 void Bdpt::prepare(const RenderScene& scene, const render::Camera&, std::uint64_t) const {
-    if (scene.hasMedia())
-        throw std::invalid_argument(
-            "the bdpt integrator does not support participating media or subsurface scattering (the scene has "
-            "volumes or material interiors); render it with --integrator path");
     std::vector<double> weights;
     emitters_.clear();
+    // Lights at infinity emit over the scene's bounds, which leave volumes out (bdpt.h, LEFT OUT).
+    const bool volumes = scene.medium() != nullptr;
     for (std::size_t i = 0; i < scene.lightCount(); ++i)
-        if (scene.light(i).hasEmissionSampling()) {
+        if (scene.light(i).hasEmissionSampling() && !(volumes && scene.light(i).atInfinity())) {
             emitters_.push_back(static_cast<int>(i));
             weights.push_back(std::max(0.0f, scene.light(i).power(scene.bounds())));
         }
@@ -153,55 +233,88 @@ FilmSample Bdpt::sample(const RenderScene& scene, const render::Camera& camera, 
     FilmSample out;
     RGB radiance(0.0f);
     render::BsdfArena arena, joinArena;
+    // One hero channel for both subpaths (bdpt_mis.h, SPECTRAL MIS); none without media.
+    const int hero = scene.hasMedia() ? media::sampleHeroChannel(rng.next()) : -1;
+    const int tracked = std::max(hero, 0);
     const LightSubpath light =
-        traceLightSubpath(scene, emitters_, emitterChoice_, emitterProbability_, maxDepth_ - 1, rng, counters, arena);
+        traceLightSubpath(scene, emitters_, emitterChoice_, emitterProbability_, maxDepth_ - 1, hero, rng, counters, arena);
 
     CameraSubpath z;
     std::vector<VertexDensity> x;  // the densities of the path being weighted, x_0 first
     auto weight = [&](float neeOrigin, bool hittable, int s) {
-        return misWeight(StrategyPath{x, neeOrigin, hittable}, s);
+        return misWeight(StrategyPath{x, neeOrigin, hittable, hero}, s);
     };
 
-    // s = 0: the camera subpath reaches light `index`, leaving it from `point` along `direction`
-    // (towards z.back()), having drawn its last direction with density `pdf` (`delta`).
+    // s = 0: the camera subpath reaches light `index` over `edge`, leaving it from `point` along
+    // `direction` (towards z.back()), having drawn its last direction with density `pdf` (`delta`).
     auto hitLightWeight = [&](int index, const Vec3f& point, const Vec3f& normal, const Vec3f& direction, float pdf,
-                              bool delta) {
-        if (z.empty()) return 1.0f;  // seen by the camera: the only strategy
-        const Vertex& x1 = z.back();
+                              bool delta, const EdgeMedia& edge) {
         LightOrigin x0 = originAt(scene, index, point, normal, direction, false, emitterProbability_[index]);
         x.clear();
-        x.push_back({x0.fromLight, delta ? 1.0f : cameraReaches(x0, pdf, x1.hit.point), false});
+        if (z.empty()) {  // seen by the camera: the only strategy (with media, still weighted over heroes)
+            x.push_back({x0.fromLight, 1.0f, false});
+            x.push_back({1.0f, 1.0f, false, true, RGB(1.0f), edge});
+            return hero < 0 ? 1.0f : weight(0.0f, true, 0);
+        }
+        const Vertex& x1 = z.back();
+        x.push_back({x0.fromLight, delta ? 1.0f : cameraReaches(x0, pdf, x1.point()), false});
         appendCamera(x, z);
-        x[1].fromLight = emittedTowards(scene, x0, x1.hit.point, x1.hit.geometricNormal);
+        x[1].fromLight = emittedTowards(scene, x0, x1);
+        x[1].edge = edge;
         return weight(neeDensity(scene, x0, x1, x1.wo), true, 0);
     };
 
-    RGB beta(1.0f);
+    RGB beta(1.0f), pdfRatio(1.0f);  // pdfRatio: the camera subpath's p_c / p_h (media/tracking.h), for media's emission
     Ray ray = cameraRay;
+    MediumStack media(scene);  // the media the camera subpath is in (the camera outside every closed surface)
     float etaScale = 1.0f;
+    int interiorScatterings = 0;
     std::optional<Scattering> last;  // how the previous vertex was left
     for (int depth = 0;; ++depth) {
         ++(depth == 0 ? counters.camera : counters.bounce);
         std::optional<SurfaceHit> hit = scene.intersect(ray);
         const float lastPdf = last ? last->pdf : 0.0f;
         const bool lastDelta = last && last->delta;
-        if (!hit) {
+        const media::Medium* medium = media.medium();
+        Stretch stretch = fly(medium, ray, hit ? hit->t : kInfinity, tracked, rng);
+        const media::FreeFlight& flight = stretch.flight;
+        beta *= flight.throughput;
+        pdfRatio *= flight.pdfRatio;
+        if (depth == 0 && flight.event != media::FlightEvent::Escaped)
+            recordFirstVolumeEvent(out, flight.p, flight.properties.sigmaS, flight.properties.sigmaA + flight.properties.sigmaS,
+                                   camera);
+        if (flight.event == media::FlightEvent::Absorbed) {
+            // Emission in a medium: found by the camera subpath alone (bdpt.h).
+            radiance += beta * flight.properties.emission / media::channelAverage(pdfRatio);
+            break;
+        }
+        const Vec3f start = z.empty() ? ray.origin : z.back().point();
+        if (flight.event == media::FlightEvent::Escaped && !hit) {
             for (int index : scene.lightsAtInfinity()) {
                 RGB le = scene.light(index).escaped(ray.direction);
                 if (!isBlack(le))
-                    radiance += beta * le * hitLightWeight(index, Vec3f(0.0f), -ray.direction, -ray.direction, lastPdf, lastDelta);
+                    radiance += beta * le *
+                                hitLightWeight(index, Vec3f(0.0f), -ray.direction, -ray.direction, lastPdf, lastDelta, stretch.edge);
             }
             break;
         }
-        Vertex v{*hit, -ray.direction, beta};
-        if (!z.empty()) v.fromOwn = lastDelta ? 1.0f : toArea(lastPdf, z.back().hit.point, hit->point, hit->geometricNormal);
-        if (depth == 0) recordFirstHit(out, *hit, v.wo, camera);
-        if (hit->light >= 0) {
-            RGB le = hit->lightShape ? scene.light(hit->light).emitted({hit->point, hit->geometricNormal}, v.wo) : hit->emission;
-            if (!isBlack(le))
-                radiance += beta * le * hitLightWeight(hit->light, hit->point, hit->geometricNormal, v.wo, lastPdf, lastDelta);
+        Vertex v = flight.event == media::FlightEvent::Scattered ? mediumVertex(flight, ray.direction, beta, media)
+                                                                 : Vertex{*hit, -ray.direction, beta, media};
+        v.edge = stretch.edge;
+        if (!z.empty()) v.fromOwn = lastDelta ? 1.0f : toArea(lastPdf, start, v);
+        if (!v.inMedium) {
+            if (depth == 0) recordFirstHit(out, *hit, v.wo, camera);
+            if (hit->light >= 0) {
+                RGB le = hit->lightShape ? scene.light(hit->light).emitted({hit->point, hit->geometricNormal}, v.wo) : hit->emission;
+                if (!isBlack(le))
+                    radiance += beta * le *
+                                hitLightWeight(hit->light, hit->point, hit->geometricNormal, v.wo, lastPdf, lastDelta, v.edge);
+            }
+            if (hit->lightShape || depth >= maxDepth_) break;
+        } else if (v.walking ? ++interiorScatterings > kMaxInteriorScatterings : depth >= maxDepth_) {
+            break;
         }
-        if (hit->lightShape || depth >= maxDepth_) break;
+        v.bounces = depth + !v.walking;
 
         arena.reset();
         const Shading sh(v, arena);
@@ -209,46 +322,49 @@ FilmSample Bdpt::sample(const RenderScene& scene, const render::Camera& camera, 
         z.push_back(v);
         const Vertex& zt = z.back();  // z_{t-1}, t = z.size() + 1
         const int m = static_cast<int>(z.size());
-        const Vec3f& ns = sh.surface.frame.n;
+        const bool joinable = sh.connectable() && !zt.walking;
 
         // The densities of z_{t-2} as drawn through zt from direction `in` (for the join).
         auto setAfterJoin = [&](std::size_t at, const Vec3f& in) {
             if (m < 2) return;
-            x[at].fromLight = toArea(sh.evaluate(in, zt.wo).second, zt.hit.point, z[m - 2].hit.point, z[m - 2].hit.geometricNormal);
+            x[at].fromLight = toArea(sh.evaluate(in, zt.wo).second, zt.point(), z[m - 2]);
         };
 
         // s = 1: next-event estimation, exactly as `path` samples it.
         const float uLight = rng.next();
         const Vec2f uPoint = rng.next2D();
-        if (sh.connectable()) {
+        if (joinable) {
             auto [from, normal] = gatherPoint(zt, zt.wo);
             render::LightChoice choice = scene.chooseLight(from, normal, uLight);
             std::optional<render::LightSample> ls;
             if (choice.light >= 0 && choice.probability > 0.0f) ls = scene.light(choice.light).sample(from, uPoint);
             if (ls && ls->pdf > 0.0f && !isBlack(ls->Li)) {
                 auto [f, pdfCamera] = sh.evaluate(zt.wo, ls->wi);
-                const Vec3f shadowFrom = zt.transmissive ? spawnOrigin(zt.hit.point, sh.surface.geometricNormal, ls->wi) : from;
+                const Vec3f shadowFrom = zt.transmissive ? zt.leaving(ls->wi) : from;
                 if (!isBlack(f) && (++counters.shadow, !scene.occluded(shadowFrom, ls->wi, ls->distance))) {
+                    const Crossing crossing = cross(zt.mediumTowards(ls->wi), {shadowFrom, ls->wi, ls->distance}, tracked, rng);
                     const Vec3f point = from + ls->wi * ls->distance;
                     LightOrigin x0 = originAt(scene, choice.light, point, Vec3f(0.0f), -ls->wi, ls->delta,
                                               emitterProbability_[choice.light]);
                     float nee = choice.probability *
                                 (ls->delta || x0.atInfinity ? ls->pdf : ls->pdf * x0.cosine / (ls->distance * ls->distance));
                     x.clear();
-                    x.push_back({x0.fromLight, cameraReaches(x0, pdfCamera, zt.hit.point), false});
+                    x.push_back({x0.fromLight, cameraReaches(x0, pdfCamera, zt.point()), false});
                     appendCamera(x, z);
-                    x[1] = {emittedTowards(scene, x0, zt.hit.point, zt.hit.geometricNormal), zt.fromOwn, false};
+                    x[1] = densityOf(zt, emittedTowards(scene, x0, zt), zt.fromOwn, false, crossing.edge);
                     setAfterJoin(2, ls->wi);
-                    radiance += zt.beta * f * ls->Li *
-                                (std::abs(dot(ls->wi, ns)) / (choice.probability * ls->pdf) * weight(nee, !ls->delta, 1));
+                    radiance += zt.beta * f * ls->Li * crossing.tr.throughput *
+                                (sh.cosine(ls->wi) / (choice.probability * ls->pdf) * weight(nee, !ls->delta, 1));
                 }
             }
         }
 
         // s >= 2: join y_{s-1} to zt.
-        for (int s = 2; sh.connectable() && s <= static_cast<int>(light.vertices.size()) + 1 && s + m - 1 <= maxDepth_; ++s) {
+        for (int s = 2; joinable && s <= static_cast<int>(light.vertices.size()) + 1; ++s) {
             const Vertex& y = light.vertices[s - 2];
-            const Vec3f d = y.hit.point - zt.hit.point;
+            if (y.bounces + zt.bounces > maxDepth_) break;
+            if (y.walking) continue;
+            const Vec3f d = y.point() - zt.point();
             const float dist2 = lengthSquared(d);
             if (!(dist2 > 0.0f)) continue;
             const Vec3f dir = d / std::sqrt(dist2);
@@ -259,38 +375,41 @@ FilmSample Bdpt::sample(const RenderScene& scene, const render::Camera& camera, 
             if (!shy.connectable()) continue;
             auto [fy, pdfBack] = shy.evaluate(-dir, y.wo);  // f(wi, wo): the adjoint; and y_{s-2} drawn from the camera side
             if (isBlack(fy)) continue;
-            const RGB contribution = y.beta * fy * shy.importanceCosines(y.wo, -dir) * fz * zt.beta *
-                                     (std::abs(dot(dir, ns)) / dist2);
-            if (isBlack(contribution) || !visible(scene, zt, y, dir, counters)) continue;
+            const RGB contribution = y.beta * fy * shy.importanceCosines(y.wo, -dir) * fz * zt.beta * (sh.cosine(dir) / dist2);
+            if (isBlack(contribution)) continue;
+            const std::optional<media::MediumRay> segment = joinSegment(scene, zt, y, dir, counters);
+            if (!segment) continue;
+            const Crossing crossing = cross(zt.mediumTowards(dir), *segment, tracked, rng);
+            if (isBlack(crossing.tr.throughput)) continue;
             x.clear();
             x.push_back({light.origin.fromLight, light.origin.fromCamera, false});
             for (int j = 0; j < s - 1; ++j) {
                 const Vertex& lv = light.vertices[j];
-                x.push_back({lv.fromOwn, lv.fromOther, lv.delta});
+                x.push_back(densityOf(lv, lv.fromOwn, lv.fromOther, lv.delta, lv.edge));
             }
-            x[s - 1].fromCamera = toArea(pdfCamera, zt.hit.point, y.hit.point, y.hit.geometricNormal);
+            x[s - 1].fromCamera = toArea(pdfCamera, zt.point(), y);
             x[s - 1].delta = false;
-            x[s - 2].fromCamera = s == 2 ? cameraReaches(light.origin, pdfBack, y.hit.point)
-                                         : toArea(pdfBack, y.hit.point, light.vertices[s - 3].hit.point,
-                                                  light.vertices[s - 3].hit.geometricNormal);
+            x[s - 2].fromCamera = s == 2 ? cameraReaches(light.origin, pdfBack, y.point())
+                                         : toArea(pdfBack, y.point(), light.vertices[s - 3]);
             appendCamera(x, z);
-            x[s] = {toArea(shy.evaluate(y.wo, -dir).second, y.hit.point, zt.hit.point, zt.hit.geometricNormal), zt.fromOwn, false};
+            x[s] = densityOf(zt, toArea(shy.evaluate(y.wo, -dir).second, y.point(), zt), zt.fromOwn, false, crossing.edge);
             setAfterJoin(s + 1, dir);
             const Vertex& y1 = light.vertices[0];
             const Vec3f toX2 = s >= 3 ? -light.vertices[1].wo : -dir;
-            radiance += contribution * weight(neeDensity(scene, light.origin, y1, toX2), !light.origin.delta, s);
+            radiance += contribution * crossing.tr.throughput * weight(neeDensity(scene, light.origin, y1, toX2), !light.origin.delta, s);
         }
 
         // Continue the camera subpath.
         last = scatter(sh, zt, false, rng);
         if (!last) break;
-        if (m >= 2) z[m - 2].fromOther = last->delta ? 1.0f : toArea(last->pdfReverse, zt.hit.point, z[m - 2].hit.point,
-                                                                      z[m - 2].hit.geometricNormal);
+        if (m >= 2) z[m - 2].fromOther = last->delta ? 1.0f : toArea(last->pdfReverse, zt.point(), z[m - 2]);
         z.back().delta = last->delta;
         beta *= last->weight;
         etaScale *= last->eta * last->eta;
-        if (!continuePath(beta, etaScale, depth, rng)) break;
-        ray = spawn(z.back(), sh, last->wi);
+        if (!continueInMedium(beta, etaScale, depth, zt.walking, rng)) break;
+        if (!zt.inMedium) media = media.after(zt.hit, zt.wo, last->wi);
+        depth -= zt.walking;  // an interior scattering is not a bounce
+        ray = spawn(zt, last->wi);
     }
     out.radiance = radiance;
     return out;

@@ -24,29 +24,74 @@
 // delta light). Its density p_s is the product of the light densities of x_0 ... x_{s-1} and the
 // camera densities of x_s ... x_k, and its weight p_s^2 / sum over existing strategies of p^2.
 // The ratios p_s' / p_s are accumulated outwards from s, so only densities that strategy s
-// actually sampled with (never zero) appear in denominators.
+// actually sampled with (never zero) appear in denominators. A vertex inside a material's interior
+// (a random walk's scattering, integrators/bdpt.h) is not `joinable`: no strategy joins there, so
+// it excludes strategies as a delta vertex does, but its densities are real ones.
+//
+// MEDIA (StrategyPath::hero >= 0). A medium vertex is measured per unit volume: its densities
+// carry no cosine. Every path edge e (x_{i-1} to x_i, stored at x_i) is crossed either by a free
+// flight (delta tracking, media/free_flight.h), whose density is DT(e) = Tmaj(e) prod sigmaN over
+// its null points (times sigmaS at a medium vertex it ends at), or, as the join of a strategy, by
+// ratio tracking, RT(e) (media/ratio_tracking.h). A medium vertex is always reached by a flight of
+// its own subpath, so its sigmaS is in every strategy's density; the strategies differ only in
+// which edge is joined: p_s = g_s A RT(e_s) / DT(e_s), with g_s the densities above (directions,
+// emission, no transmittance), A the product over every edge of DT and over every medium vertex of
+// sigmaS (the same for all strategies). The weights use a model of these densities, the same
+// function of the path whichever strategy drew it (which is what keeps the estimator unbiased):
+//     p~_{c,s} = g_s prod_{e != e_s} Tmaj_c(e) prod_{medium x_i} sigmaS_c(x_i) [p_{c,s} > 0],
+// channel c's majorant transmittance standing in for RT / DT. Through a homogeneous medium (every
+// material interior) the majorant is exact and no null point is drawn: p~ is the true density.
+// Through a heterogeneous one it is a model, but a consistent one, and the indicator (whether
+// channel c's tracking could draw the path's null points: EdgeMedia's masks, from the estimators'
+// own density ratios) keeps every weight zero where its strategy cannot draw the path.
+//
+// SPECTRAL MIS. Distances are drawn at one hero channel h's rates (media/tracking.h). The hero and
+// the strategy are one technique (h, s): the power heuristic over all of them, with the hero
+// chosen uniformly (one-sample MIS over heroes, every strategy evaluated), gives for channel c the
+// estimate (f_c / p_{h,s}) * 3 / sum_{c', s'} (p~_{c',s'} / p~_{h,s})^2: misWeight() returns the
+// factor after f_c / p_{h,s}. With a gray medium or none it is the power heuristic over strategies.
+// A hero that cannot draw a path (a channel a medium does not scatter) gets no weight for it.
 #pragma once
 
 #include <span>
 
+#include "core/rgb.h"
+
 namespace fluence::integrators {
 
+// How the edge from x_{i-1} to x_i crosses media (MEDIA above); all zero optical depth and
+// possible in empty space.
+struct EdgeMedia {
+    RGB majorantDepth{0.0f};    // the integral of sigmaMaj along the edge, per channel
+    RGB flightPossible{1.0f};   // 1 where delta tracking in that channel draws its null points with density > 0
+    RGB joinPossible{1.0f};     // 1 where ratio tracking in that channel does
+};
+
 struct VertexDensity {
+    VertexDensity(float fromLight_ = 0.0f, float fromCamera_ = 0.0f, bool delta_ = false, bool joinable_ = true,
+                  const RGB& sigmaS_ = RGB(1.0f), const EdgeMedia& edge_ = {})
+        : fromLight(fromLight_), fromCamera(fromCamera_), delta(delta_), joinable(joinable_), sigmaS(sigmaS_), edge(edge_) {}
+
     float fromLight = 0.0f;
     float fromCamera = 0.0f;
-    bool delta = false;  // x_i scatters by a delta lobe on this path
+    bool delta = false;     // x_i scatters by a delta lobe on this path
+    bool joinable = true;   // a strategy may join at x_i (not a scattering inside a material's interior)
+    RGB sigmaS{1.0f};       // at a medium vertex, its scattering coefficient; 1 on surfaces
+    EdgeMedia edge;         // from x_{i-1} to x_i (unused at x_0)
 };
 
 struct StrategyPath {
     std::span<const VertexDensity> vertices;  // x_0 ... x_k
     float neeOrigin = 0.0f;                   // x_0's density under next-event estimation from x_1
     bool lightHittable = true;                // x_0 is not on a delta light
+    int hero = -1;                            // the hero channel in a scene with media; -1: none
 };
 
 // Whether strategy s can produce the path.
 bool strategyExists(const StrategyPath& path, int s);
 
-// The power-heuristic weight of strategy s (which must exist) for the path.
+// The weight of strategy s (which must exist) for the path: its power-heuristic weight, and, with
+// media, the spectral factor above (to multiply f_c / p_{h,s} by; it may exceed 1).
 float misWeight(const StrategyPath& path, int s);
 
 }  // namespace fluence::integrators

@@ -1,5 +1,5 @@
-// The photon map of photon mapping: the photons one light-tracing pass left on surfaces, found
-// again by a fixed-radius range query.
+// The photon map of photon mapping: the photons one light-tracing pass left on surfaces (or, in
+// a second map, at scatterings in media), found again by a fixed-radius range query.
 //
 // Method: a hashed uniform grid (Teschner et al. 2003's spatial hashing, as in Hachisuka & Jensen
 // 2009's SPPM) of cells 2r wide, r the query radius the map is built for. A query ball of radius
@@ -15,8 +15,9 @@
 // table slot (at most 2 per photon): at most 44 bytes per photon.
 //
 // Conventions: `wi` is the unit direction the photon arrived from (pointing away from the
-// surface, towards the previous vertex of its path: the `wi` of render/bsdf.h), `power` its flux,
-// already divided by the number of photon paths emitted for the map.
+// surface or scattering point, towards the previous vertex of its path: the `wi` of render/bsdf.h
+// and media/phase.h), `power` its flux, already divided by the number of photon paths emitted
+// for the map.
 #pragma once
 
 #include <algorithm>

@@ -22,14 +22,17 @@ const std::vector<IntegratorInfo>& integratorRegistry() {
         {"whitted", "LD?S*E", kEmitterSeen | kDirect | kSpecularSeen | kDeltaLights,
          "Whitted ray tracing: direct lighting (as `direct`) seen through mirrors and smooth glass; no caustics",
          [](const IntegratorSettings& s) { return std::make_unique<Whitted>(s); }},
-        {"bdpt", "L(S|D)*E; from delta lights LD(S|D)*E and L(S|D)*DD(S|D)*E (no LS+DS*E); no media",
-         kEmitterSeen | kDirect | kSpecularSeen | kIndirect | kCaustics | kDeltaLights,
-         "bidirectional path tracing, MIS (power heuristic) over every light/camera prefix pair with t >= 2; "
-         "point-light caustics once lit onward (LS+DDE), not seen directly",
+        {"bdpt", "L(S|D|V)*E; from delta lights LD(S|D|V)*E and L(S|D|V)*DD(S|D|V)*E (no LS+DS*E)",
+         kEmitterSeen | kDirect | kSpecularSeen | kIndirect | kCaustics | kDeltaLights | kVolumes | kSubsurface,
+         "bidirectional path tracing, MIS (power heuristic, spectral in media) over every light/camera prefix pair "
+         "with t >= 2, through volumes and interiors (subsurface walks join nowhere); point-light caustics once lit "
+         "onward (LS+DDE), not seen directly",
          [](const IntegratorSettings& s) { return std::make_unique<Bdpt>(s); }},
-        {"sppm", "L(S|D)*DS*E, LS*E",
-         kEmitterSeen | kDirect | kSpecularSeen | kIndirect | kCaustics | kDeltaLightCaustics | kDeltaLights,
-         "probabilistic progressive photon mapping: caustics, also from point lights; no media or subsurface",
+        {"sppm", "L(S|D|V)*(D|V)S*E, LS*E",
+         kEmitterSeen | kDirect | kSpecularSeen | kIndirect | kCaustics | kDeltaLightCaustics | kDeltaLights | kVolumes |
+             kSubsurface,
+         "probabilistic progressive photon mapping: caustics, also from point lights, and volumetric caustics; "
+         "subsurface by random walk; emissive media light nothing",
          [](const IntegratorSettings& s) { return std::make_unique<Sppm>(s); }},
         {"radiosity", "LD*E", kEmitterSeen | kDirect | kIndirect | kDeltaLights,
          "finite-element radiosity: patches, ray-cast form factors, Gauss-Seidel; every surface diffuse",

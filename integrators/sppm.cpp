@@ -4,11 +4,15 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <limits>
 
 #include "integrators/first_hit.h"
+#include "integrators/medium_stack.h"
+#include "media/free_flight.h"
+#include "media/phase.h"
 #include "render/bsdf_arena.h"
 #include "render/material_bsdf.h"
 
@@ -32,10 +36,22 @@ float adjointCosine(const Vec3f& wo, const Vec3f& wi, const Vec3f& ns, const Vec
     return woNg > 0.0f ? std::abs(dot(wo, ns)) * std::abs(dot(wi, ng)) / woNg : 0.0f;
 }
 
-// Traces one photon path with the stream `rng`, appending a photon at each vertex with a diffuse
-// or glossy lobe. `scale` divides the emitted flux among the map's paths.
+// The photons one map's paths leave: on surfaces and in media.
+struct PhotonDeposits {
+    std::vector<Photon> surface, volume;
+};
+
+// Whether the eye can enter the interior behind a surface with these BSDF flags: eye paths
+// follow delta lobes only, so through a delta transmission (see "Media" in sppm.h).
+bool eyeCanEnter(unsigned flags) {
+    return (flags & render::kBsdfSpecular) && (flags & render::kBsdfTransmission);
+}
+
+// Traces one photon path with the stream `rng`, appending a surface photon at each surface vertex
+// with a diffuse or glossy lobe and a volume photon at each scattering in a medium. `scale`
+// divides the emitted flux among the map's paths.
 void tracePhotonPath(const render::RenderScene& scene, int maxDepth, float scale, SampleStream& rng,
-                     std::vector<Photon>& photons, std::uint64_t& rays) {
+                     PhotonDeposits& deposits, std::uint64_t& rays) {
     const float uLight = rng.next();
     const Vec2f uPoint = rng.next2D(), uDirection = rng.next2D();
     const std::size_t index = scene.lightSelection().sample(uLight);
@@ -44,19 +60,46 @@ void tracePhotonPath(const render::RenderScene& scene, int maxDepth, float scale
     const render::EmissionDensity& density = emitted->density;
     const float pdf = density.position * density.direction * scene.lightSelection().pmf(index);
     if (!(pdf > 0.0f) || isBlack(emitted->Le)) return;
-    RGB power = emitted->Le * (density.cosine * scale / pdf);
+    // The photon's flux is beta / channelAverage(pdfRatio): f / p_h and p_c / p_h of its path so
+    // far, in the hero form of media/tracking.h (both stay 1 where there are no media).
+    RGB beta = emitted->Le * (density.cosine * scale / pdf), pdfRatio(1.0f);
+    auto flux = [&] { return beta / media::channelAverage(pdfRatio); };
+    const int hero = scene.hasMedia() ? media::sampleHeroChannel(rng.next()) : 0;
+    MediumStack inside(scene);
+    std::array<bool, MediumStack::kDepth + 1> keepVolumePhotons{};  // per interior depth (index 0: unused)
+    int interiorScatterings = 0;
     Ray ray{render::offsetRayOrigin(emitted->point, emitted->normal), emitted->direction, 0.0f, kInfinity};
     render::BsdfArena arena;
     for (int depth = 0; depth < maxDepth; ++depth) {
         ++rays;
         std::optional<render::SurfaceHit> hit = scene.intersect(ray);
+        if (const media::Medium* medium = inside.medium()) {
+            const media::FreeFlight flight =
+                media::sampleFreeFlight(*medium, {ray.origin, ray.direction, hit ? hit->t : kInfinity}, hero, rng);
+            beta *= flight.throughput;
+            pdfRatio *= flight.pdfRatio;
+            if (flight.event == media::FlightEvent::Absorbed) return;
+            if (flight.event == media::FlightEvent::Scattered) {
+                const bool walking = inside.depth() > 0;
+                if (!walking || keepVolumePhotons[std::size_t(inside.depth())])
+                    deposits.volume.push_back({flight.p, -ray.direction, flux()});
+                if (walking && ++interiorScatterings > kMaxInteriorScatterings) return;
+                const media::PhaseSample ps = media::HenyeyGreenstein(flight.properties.g).sample(-ray.direction, rng.next2D());
+                if (ps.pdf <= 0.0f) return;
+                beta *= ps.p / ps.pdf;  // 1: the flux is unchanged, so the photon survives any roulette
+                ray = Ray{flight.p, ps.wi, 0.0f, kInfinity};
+                depth -= walking;  // not a bounce (integrators/first_hit.h)
+                continue;
+            }
+        }
         if (!hit || hit->lightShape) return;
         arena.reset();
         const render::Bsdf& bsdf = render::materialBsdf(hit->material, arena);
         const Vec3f wo = -ray.direction;
         const SurfaceFrame surface = shadingFrame(*hit, wo, (bsdf.flags() & render::kBsdfTransmission) != 0);
         const Vec3f woLocal = surface.frame.toLocal(wo);
-        if (bsdf.flags() & kNonDelta) photons.push_back({hit->point, wo, power});
+        const RGB power = flux();
+        if (bsdf.flags() & kNonDelta) deposits.surface.push_back({hit->point, wo, power});
 
         const float uLobe = rng.next();
         const Vec2f u = rng.next2D();
@@ -65,24 +108,27 @@ void tracePhotonPath(const render::RenderScene& scene, int maxDepth, float scale
         if (!bs) return;
         const Vec3f wi = surface.frame.toWorld(bs->wi);
         if (!sidesAgree(wo, wi, surface.geometricNormal, woLocal.z, bs->wi.z)) return;
-        const RGB next = power * bs->f *
+        const RGB next = beta * bs->f *
                          (bs->eta * bs->eta * adjointCosine(wo, wi, surface.frame.n, surface.geometricNormal) / bs->pdf);
-        const float survive = std::min(1.0f, maxComponent(next) / maxComponent(power));
+        const float survive = std::min(1.0f, maxComponent(next / media::channelAverage(pdfRatio)) / maxComponent(power));
         if (!(uSurvive < survive)) return;
-        power = next / survive;
+        beta = next / survive;
+        const MediumStack after = inside.after(*hit, wo, wi);
+        if (after.depth() > inside.depth()) keepVolumePhotons[std::size_t(after.depth())] = eyeCanEnter(bsdf.flags());
+        inside = after;
         ray = Ray{spawnOrigin(hit->point, surface.geometricNormal, wi), wi, 0.0f, kInfinity};
     }
 }
 
 // The photons of map `sampleIndex`, paths [first, last).
-std::vector<Photon> tracePhotonPaths(const render::RenderScene& scene, int maxDepth, std::uint64_t seed,
-                                     std::uint64_t sampleIndex, int first, int last, int paths, std::uint64_t& rays) {
-    std::vector<Photon> photons;
+PhotonDeposits tracePhotonPaths(const render::RenderScene& scene, int maxDepth, std::uint64_t seed,
+                                std::uint64_t sampleIndex, int first, int last, int paths, std::uint64_t& rays) {
+    PhotonDeposits deposits;
     for (int path = first; path < last; ++path) {
         SampleStream rng(mix64(seed ^ kPhotonStreamTag), std::uint64_t(path), sampleIndex);
-        tracePhotonPath(scene, maxDepth, 1.0f / float(paths), rng, photons, rays);
+        tracePhotonPath(scene, maxDepth, 1.0f / float(paths), rng, deposits, rays);
     }
-    return photons;
+    return deposits;
 }
 
 // The radiance leaving the hit towards wo that map's photons estimate.
@@ -98,19 +144,28 @@ RGB estimateRadiance(const PhotonMap& map, const render::Bsdf& bsdf, const Surfa
     return sum / (kPi * map.radius() * map.radius());
 }
 
+// sigmaS L_s(p, wo), the radiance scattered towards wo per unit length at p, that the volume
+// photons estimate (see "Media" in sppm.h).
+RGB estimateInScattering(const PhotonMap& map, const media::HenyeyGreenstein& phase, const Vec3f& p, const Vec3f& wo) {
+    RGB sum(0.0f);
+    map.forEachWithin(p, [&](const Photon& photon) { sum += photon.power * phase.p(wo, photon.wi); });
+    const float r = map.radius();
+    return sum / (4.0f / 3.0f * kPi * r * r * r);
+}
+
 }  // namespace
 
-float Sppm::radius(float initialRadius, std::uint64_t sampleIndex) {
-    double r2 = double(initialRadius) * initialRadius;
-    for (std::uint64_t j = 1; j <= sampleIndex; ++j) r2 *= (double(j) + kAlpha) / (double(j) + 1.0);
-    return float(std::sqrt(r2));
+float Sppm::radius(float initialRadius, std::uint64_t sampleIndex, int dimensions) {
+    double rd = std::pow(double(initialRadius), dimensions);
+    for (std::uint64_t j = 1; j <= sampleIndex; ++j) rd *= (double(j) + kAlpha) / (double(j) + 1.0);
+    return float(std::pow(rd, 1.0 / dimensions));
 }
 
 void Sppm::prepare(const render::RenderScene& scene, const render::Camera& camera, std::uint64_t) const {
     initialRadius_ = settings_.initialRadius > 0.0f ? settings_.initialRadius
                                                     : kInitialRadiusPixels / camera.pixelsPerUnitAt(scene.bounds().centre);
     maps_.clear();
-    mapsBuilt_ = photonsStored_ = photonRays_ = mostBytes_ = 0;
+    mapsBuilt_ = photonsStored_ = volumePhotonsStored_ = photonRays_ = mostBytes_ = 0;
     silentLights_ = 0;
     for (std::size_t i = 0; i < scene.lightCount(); ++i) silentLights_ += !scene.light(i).hasEmissionSampling();
 }
@@ -121,7 +176,7 @@ void Sppm::beginSamples(const render::RenderScene& scene, const render::Camera&,
     firstSample_ = firstSample;
     const int paths = scene.lightSelection().empty() ? 0 : settings_.photonPathsPerMap;
     const int chunks = (paths + kPathsPerChunk - 1) / kPathsPerChunk;
-    std::vector<std::vector<Photon>> chunkPhotons(std::size_t(count) * chunks);
+    std::vector<PhotonDeposits> chunkPhotons(std::size_t(count) * chunks);
     std::vector<std::uint64_t> chunkRays(chunkPhotons.size(), 0);
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, chunkPhotons.size(), 1), [&](const tbb::blocked_range<std::size_t>& r) {
         for (std::size_t task = r.begin(); task != r.end(); ++task) {
@@ -132,18 +187,22 @@ void Sppm::beginSamples(const render::RenderScene& scene, const render::Camera&,
         }
     });
     for (int map = 0; map < count; ++map) {
-        std::vector<Photon> photons;
+        PhotonDeposits photons;
         for (int chunk = 0; chunk < chunks; ++chunk) {
-            std::vector<Photon>& part = chunkPhotons[std::size_t(map) * chunks + chunk];
-            photons.insert(photons.end(), part.begin(), part.end());
+            PhotonDeposits& part = chunkPhotons[std::size_t(map) * chunks + chunk];
+            photons.surface.insert(photons.surface.end(), part.surface.begin(), part.surface.end());
+            photons.volume.insert(photons.volume.end(), part.volume.begin(), part.volume.end());
             part = {};
             photonRays_ += chunkRays[std::size_t(map) * chunks + chunk];
         }
-        photonsStored_ += photons.size();
-        maps_.emplace_back(std::move(photons), radius(initialRadius_, std::uint64_t(firstSample + map)));
+        photonsStored_ += photons.surface.size();
+        volumePhotonsStored_ += photons.volume.size();
+        const std::uint64_t sampleIndex = std::uint64_t(firstSample + map);
+        maps_.push_back({PhotonMap(std::move(photons.surface), radius(initialRadius_, sampleIndex, 2)),
+                         PhotonMap(std::move(photons.volume), radius(initialRadius_, sampleIndex, 3))});
     }
     std::uint64_t bytes = 0;
-    for (const PhotonMap& map : maps_) bytes += map.bytes();
+    for (const SampleMaps& maps : maps_) bytes += maps.surface.bytes() + maps.volume.bytes();
     mostBytes_ = std::max(mostBytes_, bytes);
     mapsBuilt_ += std::uint64_t(count);
 }
@@ -151,13 +210,18 @@ void Sppm::beginSamples(const render::RenderScene& scene, const render::Camera&,
 std::string Sppm::summary() const {
     if (mapsBuilt_ == 0) return "";
     const std::uint64_t last = mapsBuilt_ - 1;
-    char line[320];
+    char volume[160] = "";
+    if (volumePhotonsStored_ > 0)
+        std::snprintf(volume, sizeof volume, " and %.0f in media; volume radius %.4g -> %.4g",
+                      double(volumePhotonsStored_) / double(mapsBuilt_), double(initialRadius_),
+                      double(radius(initialRadius_, last, 3)));
+    char line[480];
     std::snprintf(line, sizeof line,
-                  "sppm: %llu photon maps of %d paths, %.0f photons each on average, %llu photon rays; radius %.4g -> %.4g; "
-                  "photon maps peaked at %.1f MB%s",
+                  "sppm: %llu photon maps of %d paths, %.0f photons each on average on surfaces%s, %llu photon rays; "
+                  "radius %.4g -> %.4g; photon maps peaked at %.1f MB%s",
                   static_cast<unsigned long long>(mapsBuilt_), settings_.photonPathsPerMap,
-                  double(photonsStored_) / double(mapsBuilt_), static_cast<unsigned long long>(photonRays_),
-                  double(initialRadius_), double(radius(initialRadius_, last)), double(mostBytes_) / 1e6,
+                  double(photonsStored_) / double(mapsBuilt_), volume, static_cast<unsigned long long>(photonRays_),
+                  double(initialRadius_), double(radius(initialRadius_, last, 2)), double(mostBytes_) / 1e6,
                   silentLights_ ? "; cylinder and line lights emit no photons" : "");
     return line;
 }
@@ -165,29 +229,55 @@ std::string Sppm::summary() const {
 FilmSample Sppm::sample(const render::RenderScene& scene, const render::Camera& camera, const Ray& cameraRay,
                         SampleStream& rng, RenderCounters& counters) const {
     FilmSample out;
-    RGB radiance(0.0f), throughput(1.0f);
+    // The eye path's f / p_h and p_c / p_h (media/tracking.h): its estimates are divided by
+    // channelAverage(pdfRatio), which stays 1 where there are no media.
+    RGB radiance(0.0f), throughput(1.0f), pdfRatio(1.0f);
     float etaScale = 1.0f;
     Ray ray = cameraRay;
+    MediumStack inside(scene);
+    const int hero = scene.hasMedia() ? media::sampleHeroChannel(rng.next()) : 0;
     render::BsdfArena arena;
-    const PhotonMap& map = maps_[rng.sampleIndex() - std::uint64_t(firstSample_)];
+    const SampleMaps& maps = maps_[rng.sampleIndex() - std::uint64_t(firstSample_)];
+    auto add = [&](const RGB& estimate) { radiance += throughput * estimate / media::channelAverage(pdfRatio); };
     for (int depth = 0;; ++depth) {
         ++(depth == 0 ? counters.camera : counters.bounce);
         std::optional<render::SurfaceHit> hit = scene.intersect(ray);
+        if (const media::Medium* medium = inside.medium()) {
+            const media::FreeFlight flight =
+                media::sampleFreeFlight(*medium, {ray.origin, ray.direction, hit ? hit->t : kInfinity}, hero, rng);
+            throughput *= flight.throughput;
+            pdfRatio *= flight.pdfRatio;
+            if (depth == 0 && flight.event != media::FlightEvent::Escaped)
+                recordFirstVolumeEvent(out, flight.p, flight.properties.sigmaS,
+                                       flight.properties.sigmaA + flight.properties.sigmaS, camera);
+            if (flight.event == media::FlightEvent::Absorbed) {
+                add(flight.properties.emission);
+                break;
+            }
+            if (flight.event == media::FlightEvent::Scattered) {
+                // throughput holds sigmaS (media/free_flight.h), the estimate too: one is divided out.
+                const RGB sigmaS = flight.properties.sigmaS;
+                RGB perSigmaS(0.0f);
+                for (int c = 0; c < 3; ++c) perSigmaS[c] = sigmaS[c] > 0.0f ? throughput[c] / sigmaS[c] : 0.0f;
+                throughput = perSigmaS;
+                add(estimateInScattering(maps.volume, media::HenyeyGreenstein(flight.properties.g), flight.p, -ray.direction));
+                break;
+            }
+        }
         if (!hit) {
-            for (int index : scene.lightsAtInfinity()) radiance += throughput * scene.light(index).escaped(ray.direction);
+            for (int index : scene.lightsAtInfinity()) add(scene.light(index).escaped(ray.direction));
             break;
         }
         const Vec3f wo = -ray.direction;
         if (depth == 0) recordFirstHit(out, *hit, wo, camera);
         if (hit->light >= 0)
-            radiance += throughput * (hit->lightShape ? scene.light(hit->light).emitted({hit->point, hit->geometricNormal}, wo)
-                                                      : hit->emission);
+            add(hit->lightShape ? scene.light(hit->light).emitted({hit->point, hit->geometricNormal}, wo) : hit->emission);
         if (hit->lightShape || depth >= maxDepth_) break;
 
         arena.reset();
         const render::Bsdf& bsdf = render::materialBsdf(hit->material, arena);
         const SurfaceFrame surface = shadingFrame(*hit, wo, (bsdf.flags() & render::kBsdfTransmission) != 0);
-        if (bsdf.flags() & kNonDelta) radiance += throughput * estimateRadiance(map, bsdf, surface, hit->point, wo);
+        if (bsdf.flags() & kNonDelta) add(estimateRadiance(maps.surface, bsdf, surface, hit->point, wo));
         if (!(bsdf.flags() & render::kBsdfSpecular)) break;
 
         // Through a delta lobe only: the estimate above covers every other.
@@ -200,6 +290,7 @@ FilmSample Sppm::sample(const render::RenderScene& scene, const render::Camera& 
         throughput *= bs->f * (std::abs(bs->wi.z) / bs->pdf);
         etaScale *= bs->eta * bs->eta;
         if (!continuePath(throughput, etaScale, depth, rng)) break;
+        inside = inside.after(*hit, wo, wi);
         ray = Ray{spawnOrigin(hit->point, surface.geometricNormal, wi), wi, 0.0f, kInfinity};
     }
     out.radiance = radiance;

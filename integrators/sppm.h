@@ -2,18 +2,61 @@
 // converges as samples are added: the integrator for caustics, including those of point lights,
 // which no path traced from the eye can find.
 //
-// Paths covered: L(S|D)*D S* E and L S* E. Every sample index k has its own photon map (Jensen
-// 1996): before a pass, beginSamples() traces N photon paths from the lights for each of the
-// pass's sample indices and stores a photon at every vertex with a diffuse or glossy lobe, the
-// first included, so direct light too comes from the photons (no next-event estimation: one
-// estimator for all light that reaches a D vertex, and caustics get no special treatment). A
-// camera sample follows the eye ray through delta (S) lobes only; at the first surface with a
-// diffuse or glossy lobe it estimates the reflected radiance from the photons within r_k of the hit,
+// Paths covered: L(S|D|V)*(D|V) S* E and L S* E (V: a scattering in a medium). Every sample index
+// k has its own photon maps (Jensen 1996): before a pass, beginSamples() traces N photon paths from
+// the lights for each of the pass's sample indices and stores a surface photon at every vertex with
+// a diffuse or glossy lobe and a volume photon at every scattering in a medium, the first
+// included, so direct light too comes from the photons (no next-event estimation: one estimator
+// for all light that reaches a D or V vertex, and caustics get no special treatment). A camera
+// sample follows the eye ray through delta (S) lobes only; at the first surface with a diffuse or
+// glossy lobe it estimates the reflected radiance from the surface photons within r_k of the hit,
 //     L(x, wo) ~ sum_p f(wo, wi_p) Phi_p / (pi r_k^2),
 // and ends there (when the BSDF there also has a delta lobe, one lobe is drawn: a delta lobe
 // continues the eye path, weighted as the path tracer weights it; any other ends it, as the
 // estimate covers it). Emission is added where the eye path reaches it: lights seen directly
 // and through specular chains (LS*E).
+//
+// Media (Jensen & Christensen 1998, "Efficient simulation of light transport in scenes with
+// participating media using photon maps"; made progressive as Knaus & Zwicker 2011 do for volumes).
+// Photon and eye paths cross the scene's volumes and the interiors of closed surfaces
+// (integrators/medium_stack.h) by the same free-flight sampling as `path` (media/free_flight.h:
+// delta tracking with hero-channel spectral MIS). Each path draws one hero channel and carries
+// beta = f / p_h and rU = p_c / p_h (media/tracking.h); its estimate of any prefix is beta /
+// channelAverage(rU), so a photon's flux Phi_p is that of its path up to where it is stored. A
+// photon whose flight ends in a scattering is stored there as a volume photon (position, the
+// direction it came from, Phi_p), then scatters by the medium's Henyey-Greenstein phase function
+// (whose weight p / pdf is 1: the flux is unchanged, so it survives the roulette) and goes on; an
+// absorbed one ends; one that escapes reaches the surface, attenuated. Derivation of the eye's
+// estimate: delta tracking stores a photon in the volume dV about x, arriving within dw of -wi,
+// with expected flux sigmaS(x) L(x, wi) dw dV (the flux crossing dV along wi, times the chance
+// sigmaS dl of scattering over its length dl), so for the ball of radius R_k about x,
+//     sum_p p(wo, wi_p) Phi_p / ((4/3) pi R_k^3) ~ sigmaS(x) L_s(x, wo),
+//     L_s(x, wo) = integral p(wo, wi) L(x, wi) dwi,
+// the in-scattered radiance per unit length, up to the O(R_k^2) bias of averaging over the ball
+// (O(R_k) within R_k of a medium's boundary, where part of the ball holds no photons).
+// The eye ray's radiance is integral_0^tHit T(t) sigmaS(t) L_s(t) dt + T(tHit) L(tHit); its free
+// flight scatters at t with weight beta = T sigmaS / p (the sigmaS being the same one), so at a
+// scattering the eye adds (beta / sigmaS(x)) times the sum above, divided by channelAverage(rU),
+// and ends there as at a D vertex; an absorption adds beta Le / channelAverage(rU) (the emission
+// of media is seen, and seen through specular chains, but lights nothing: photons leave lights
+// only); an escape goes on to the surface. The photon's and the eye's estimates are independent
+// and each unbiased, so their product is (up to the kernel's bias). Volume radii shrink with the
+// 3D exponent, R_k^3 = r_1^3 prod_{j=1..k-1} (j + alpha)/(j + 1), so R_k^3 ~ k^(alpha - 1): bias
+// and variance O(1/(N R_k^3)) both vanish in the pixel's average, as on surfaces, but slowly
+// (R_k ~ k^(-1/9)), so a volume's r_1 matters more than a surface's.
+//
+// Interiors: a material's interior is a medium like any other, so a random-walk subsurface
+// material is rendered by the photons' walks: photons that enter by its diffuse transmission walk
+// through the interior and are stored where they come out, on the surface's inner side, which
+// the surface estimate gathers through the transmission lobe (materials whose subsurface method
+// is diffusion are rendered by this walk too). Scatterings inside an interior count against
+// kMaxInteriorScatterings, not the depth, as in `path` (integrators/first_hit.h). Eye paths enter
+// an interior only through a delta transmission (glass around a murky liquid), so volume photons
+// are stored inside an interior only when the photon entered it through a BSDF with a delta
+// lobe and transmission; elsewhere they would never be gathered, and a walk stores up to a
+// thousand. (With surfaces that intersect, the flag of an interior a photon leaves from the
+// middle of the stack can be misassigned: volume photons are then dropped where the eye could
+// gather them, or kept where it cannot; the walks themselves are unaffected.)
 //
 // Convergence (Knaus & Zwicker 2011, after Hachisuka, Ogaki & Jensen 2008 and Hachisuka &
 // Jensen 2009): sample k's radius shrinks as r_k^2 = r_1^2 prod_{j=1..k-1} (j + alpha)/(j + 1),
@@ -24,7 +67,8 @@
 // and the sample reads map k, found from SampleStream::sampleIndex().
 //
 // r_1 is kInitialRadiusPixels pixels wide at the scene's bounding-sphere centre (the camera's
-// footprint there), unless SppmSettings::initialRadius sets it in scene units.
+// footprint there), unless SppmSettings::initialRadius sets it in scene units; the volume
+// radius starts from the same r_1.
 //
 // Conventions: photons carry flux, traced with the adjoint BSDF (render/bsdf.h, RADIANCE, NOT
 // IMPORTANCE): a refracted photon's weight is f eta^2 |cos| / pdf, and shading normals get
@@ -33,17 +77,15 @@
 // flux near the emitted flux. Photons leave the lights by their emission sampling
 // (render::Light::sampleEmission, render/light_emission.cpp), a light chosen in proportion to
 // its power (RenderScene::lightSelection()); cylinder and line lights have no emission sampling,
-// so their light reaches the eye only directly or through specular chains. Participating media and subsurface scattering are not supported (the
-// registry's `covers` says so): photons and eye rays cross volumes and material interiors as if
-// they were empty, so a subsurface material is its surface BSDF alone, whose subsurface lobe
-// transmits diffusely into an interior that neither absorbs nor scatters.
+// so their light reaches the eye only directly or through specular chains.
 //
 // Memory: the maps of one pass live together (a pass is at most 64 sample indices,
 // integrators/renderer.h) and are freed when the next pass begins (the last pass's when the
-// integrator is destroyed or prepares the next render): at most 64 maps of the
+// integrator is destroyed or prepares the next render): at most 64 pairs of maps of the
 // photons N paths leave, 44 bytes per photon at most (integrators/photon_map.h); the Cornell box
-// (about 1.7 photons per path) peaks at 230 MB with the default N. Photons are traced in chunks
-// of paths on oneTBB's default arena, so on every core whatever the render's thread count
+// (about 1.7 photons per path) peaks at 230 MB with the default N. In a medium of albedo near 1 a
+// photon path stores up to maxDepth volume photons, so thick bright media cost more. Photons are
+// traced in chunks of paths on oneTBB's default arena, so on every core whatever the render's thread count
 // (beginSamples() runs outside the renderer's arena); chunks are concatenated in order, so maps
 // do not depend on the thread count.
 //
@@ -80,8 +122,9 @@ public:
     FilmSample sample(const render::RenderScene& scene, const render::Camera& camera, const render::Ray& ray,
                       SampleStream& rng, RenderCounters& counters) const override;
 
-    // The radius of the sample of (0-based) index sampleIndex, r_k with k = sampleIndex + 1.
-    static float radius(float initialRadius, std::uint64_t sampleIndex);
+    // The radius of the sample of (0-based) index sampleIndex, r_k with k = sampleIndex + 1, for a
+    // kernel of `dimensions` 2 (surfaces: r_k^2 shrinks) or 3 (media: r_k^3 shrinks).
+    static float radius(float initialRadius, std::uint64_t sampleIndex, int dimensions);
 
 private:
     int maxDepth_;
@@ -89,8 +132,11 @@ private:
     // Written by the hooks only (integrators/integrator.h).
     mutable float initialRadius_ = 0.0f;
     mutable int firstSample_ = 0;
-    mutable std::vector<PhotonMap> maps_;  // sample indices [firstSample_, firstSample_ + size)
-    mutable std::uint64_t mapsBuilt_ = 0, photonsStored_ = 0, photonRays_ = 0, mostBytes_ = 0;
+    struct SampleMaps {
+        PhotonMap surface, volume;
+    };
+    mutable std::vector<SampleMaps> maps_;  // sample indices [firstSample_, firstSample_ + size)
+    mutable std::uint64_t mapsBuilt_ = 0, photonsStored_ = 0, volumePhotonsStored_ = 0, photonRays_ = 0, mostBytes_ = 0;
     mutable std::size_t silentLights_ = 0;  // lights without emission sampling
 };
 

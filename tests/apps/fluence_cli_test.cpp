@@ -365,15 +365,6 @@ TEST_F(FluenceCli, TargetErrorSamplesAdaptivelyAndSaysSo) {
     EXPECT_LT(counts.mean(), 64.0) << "the light's pixels, noiseless, stop at the minimum";
 }
 
-TEST_F(FluenceCli, AMethodThatCannotRenderTheSceneIsASceneError) {
-    // bdpt refuses participating media: exit 3 with its reason, and no image.
-    fs::path scene = fs::path(FLUENCE_SOURCE_DIR) / "usd_samples/smoke/smoke.usda";
-    RunResult r = run("render " + scene.string() + " -o " + (dir_ / "smoke.exr").string() + " -r 16 16 --spp 1 --integrator bdpt");
-    EXPECT_EQ(r.exitCode, 3) << r.err;
-    EXPECT_NE(r.err.find("bdpt"), std::string::npos) << r.err;
-    EXPECT_FALSE(fs::exists(dir_ / "smoke.exr"));
-}
-
 TEST_F(FluenceCli, SubsurfaceOptionOverridesEveryMaterialsMethod) {
     // The sample's materials walk by default: --subsurface randomwalk changes nothing, diffusion
     // changes the subsurface objects' pixels.

@@ -20,11 +20,15 @@ TEST(AutomaticChoice, TakesTheCheapestMethodThatCoversTheScene) {
     EXPECT_NE(choice.reason.find("cheapest"), std::string::npos) << choice.reason;
 }
 
-TEST(AutomaticChoice, WhenNothingCoversTheSceneTakesTheLeastMissingAndSaysWhat) {
-    // path misses the point light's caustic, sppm the volume: one class each, path is cheaper.
+TEST(AutomaticChoice, CausticsFromDeltaLightsInAVolumeTakeSppm) {
+    // path misses the point light's caustic; sppm covers it and the volume.
     const AutomaticChoice choice = chooseIntegrator(kDirect | kIndirect | kDeltaLightCaustics | kVolumes);
-    EXPECT_EQ(choice.integrator->name, "path");
+    EXPECT_EQ(choice.integrator->name, "sppm");
     EXPECT_NE(choice.reason.find("caustics from delta lights"), std::string::npos) << choice.reason;
+}
+
+TEST(AutomaticChoice, SppmCoversEveryPathClassSoThereIsAlwaysAChoice) {
+    EXPECT_EQ(findIntegrator("sppm")->covers & kAllPathClasses, kAllPathClasses);
 }
 
 }  // namespace
