@@ -26,7 +26,7 @@ void Film::add(int x, int y, const FilmSample& s) {
     for (int c = 0; c < 3; ++c) p.radiance[c] += s.radiance[c];
     double* layers = lightPathSums_.data() + index * lightPathLayers_.size() * 3;
     for (std::size_t l = 0; l < lightPathLayers_.size(); ++l)
-        for (int c = 0; c < 3; ++c) layers[3 * l + c] += s.lightPaths[l][c];
+        for (std::size_t c = 0; c < 3; ++c) layers[3 * l + c] += s.lightPaths[3 * l + c];
     const double brightness = luminance(s.radiance);
     p.luminance += brightness;
     p.luminanceSquared += brightness * brightness;

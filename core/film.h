@@ -16,7 +16,7 @@
 //                order given to the constructor: the part of the beauty whose paths it matches
 #pragma once
 
-#include <array>
+#include <algorithm>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -36,9 +36,17 @@ struct FilmSample {
     RGB albedo;
     Vec3f normal;
     float depth = 0.0f;  // camera-space depth of the first hit (valid when hit)
-    // The radiance of the paths each light path expression matches (the first
-    // Film::lightPathLayers() of them are used).
-    std::array<RGB, kMaxLightPathLayers> lightPaths{};
+    // The radiance of the paths each light path expression matches, R G B per layer: only the first
+    // Film::lightPathLayers() are read, and an integrator that writes them clears those first.
+    // Deliberately left uninitialised: most renders have no layers, and zeroing 192 bytes per
+    // sample cost the path tracer 2% on the Cornell box (bench/results/2026-11-27-throughput.md).
+    float lightPaths[3 * kMaxLightPathLayers];
+
+    void clearLightPaths(std::size_t layers) { std::fill_n(lightPaths, 3 * layers, 0.0f); }
+    RGB lightPath(std::size_t layer) const { return RGB(lightPaths[3 * layer], lightPaths[3 * layer + 1], lightPaths[3 * layer + 2]); }
+    void addLightPath(std::size_t layer, const RGB& v) {
+        for (int c = 0; c < 3; ++c) lightPaths[3 * layer + std::size_t(c)] += v[c];
+    }
 };
 
 class Film {

@@ -61,7 +61,7 @@ void LightPathTracker::scatter(const VertexEvents& vertex) {
 void LightPathTracker::reach(const PathEvent& light, const RGB& radiance, FilmSample& out) const {
     for (const Entry& entry : entries_) {
         const LightPathExpression& e = aovs_[std::size_t(entry.aov)].expression;
-        if (e.accepts(e.next(entry.state, light))) out.lightPaths[std::size_t(entry.aov)] += radiance * entry.share;
+        if (e.accepts(e.next(entry.state, light))) out.addLightPath(std::size_t(entry.aov), radiance * entry.share);
     }
 }
 
@@ -71,7 +71,7 @@ void LightPathTracker::connect(const VertexEvents& vertex, const PathEvent& ligh
         const LightPathExpression& e = aovs_[std::size_t(entry.aov)].expression;
         for (int k = 0; k < vertex.size(); ++k)
             if (e.accepts(e.next(e.next(entry.state, vertex.event(k)), light)))
-                out.lightPaths[std::size_t(entry.aov)] += radiance * entry.share * vertex.share(k);
+                out.addLightPath(std::size_t(entry.aov), radiance * entry.share * vertex.share(k));
     }
 }
 

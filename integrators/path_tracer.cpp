@@ -101,6 +101,7 @@ FilmSample PathTracer::trace(const render::RenderScene& scene, const render::Cam
     Vec3f previousPoint = ray.origin, previousNormal(0.0f);
     const bool haveLights = !scene.lightSelection().empty();
     LightPathTracker lightPaths(aovs_ ? std::span<const LightPathAov>(*aovs_) : std::span<const LightPathAov>());
+    if (lightPaths.active()) out.clearLightPaths(aovs_->size());
 
     // Next-event estimation from `from` (with `fromNormal` for the light tree): one light, its
     // shadow ray (from shadowFrom(wi), a point and the medium the ray starts in) through the

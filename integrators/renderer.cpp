@@ -39,7 +39,7 @@ bool stopped(const RenderSettings& settings) { return settings.stop && settings.
 // Whether a sample's radiance, and the light path layers the film keeps, are all finite.
 bool finite(const FilmSample& sample, std::size_t layers) {
     bool all = isFinite(sample.radiance);
-    for (std::size_t l = 0; l < layers; ++l) all = all && isFinite(sample.lightPaths[l]);
+    for (std::size_t l = 0; l < layers; ++l) all = all && isFinite(sample.lightPath(l));
     return all;
 }
 
@@ -72,7 +72,7 @@ void renderPass(const render::RenderScene& scene, const render::Camera& camera, 
                             FilmSample sample = integrator.sample(scene, camera, ray, rng, local);
                             if (!finite(sample, film.lightPathLayers().size())) {
                                 sample.radiance = RGB(0.0f);
-                                sample.lightPaths.fill(RGB(0.0f));
+                                sample.clearLightPaths(film.lightPathLayers().size());
                                 ++local.nonFiniteSamples;
                             }
                             film.add(x, y, sample);

@@ -111,6 +111,20 @@ bool emits(const MeshDesc& mesh, const std::vector<MaterialDesc>& materials) {
            !isBlack(materials[mesh.material].emission);
 }
 
+// Whether the segment [tMin, tMax] of the ray from o along d meets the box [lo, hi]. Conservative:
+// a slab whose bound is NaN (0 x infinity, the ray parallel to a face and on its plane) excludes
+// nothing.
+bool segmentMeetsBox(const Vec3f& o, const Vec3f& d, float tMin, float tMax, const Vec3f& lo, const Vec3f& hi) {
+    for (int axis = 0; axis < 3; ++axis) {
+        float inv = 1.0f / d[axis];
+        float tNear = (lo[axis] - o[axis]) * inv, tFar = (hi[axis] - o[axis]) * inv;
+        if (tNear > tFar) std::swap(tNear, tFar);
+        tMin = std::max(tMin, tNear);
+        tMax = std::min(tMax, tFar);
+    }
+    return tMin <= tMax;
+}
+
 // The matrix that takes a normal through `m` as m.transformNormal does, but as one linear map.
 Matrix4 normalMatrixOf(const Matrix4& m) {
     Matrix4 n = Matrix4::identity();
@@ -196,6 +210,9 @@ struct RenderScene::EmbreeState {
     RTCScene surfaces = nullptr;
     RTCScene lightShapes = nullptr;
     std::vector<RTCScene> prototypes;
+    // The light shapes' bounds, padded (set when there are any): a ray that misses them is not
+    // traced through lightShapes.
+    Vec3f lightShapesLo, lightShapesHi;
     ~EmbreeState() {
         for (RTCScene s : prototypes) rtcReleaseScene(s);
         if (surfaces) rtcReleaseScene(surfaces);
@@ -253,6 +270,15 @@ RenderScene::RenderScene(const SceneDescription& scene, std::shared_ptr<texture:
     rtcCommitScene(embree_->surfaces);
     rtcCommitScene(embree_->lightShapes);
     throwOnEmbreeError(embree_->device, "building the scene");
+    if (!lightShapeToLight_.empty()) {
+        RTCBounds b;
+        rtcGetSceneBounds(embree_->lightShapes, &b);
+        const Vec3f shapesLo(b.lower_x, b.lower_y, b.lower_z), shapesHi(b.upper_x, b.upper_y, b.upper_z);
+        // Far more than the rounding of a hit point on a shape (a few ULPs of its coordinates).
+        const float pad = 1e-4f * (maxComponent(shapesHi - shapesLo) + maxComponent(vmax(shapesHi, -shapesLo))) + 1e-20f;
+        embree_->lightShapesLo = shapesLo - Vec3f(pad);
+        embree_->lightShapesHi = shapesHi + Vec3f(pad);
+    }
 
     std::vector<double> powers;
     for (const auto& l : lights_) powers.push_back(std::max(0.0f, l->power(bounds_)));
@@ -262,6 +288,8 @@ RenderScene::RenderScene(const SceneDescription& scene, std::shared_ptr<texture:
 }
 
 RenderScene::~RenderScene() = default;
+
+RTCScene RenderScene::embreeSurfaces() const { return embree_->surfaces; }
 
 std::vector<RenderScene::SurfaceTriangle> RenderScene::surfaceTriangles() const {
     std::vector<SurfaceTriangle> out;
@@ -517,7 +545,9 @@ std::optional<SurfaceHit> RenderScene::intersect(const Ray& ray) const {
     rtcIntersect1(embree_->surfaces, &context, &surface);
 
     RTCRayHit shape = makeRayHit(ray.origin, ray.direction, ray.tMin, surface.ray.tfar);
-    rtcIntersect1(embree_->lightShapes, &context, &shape);
+    const bool nearLightShapes = !lightShapeToLight_.empty() && segmentMeetsBox(ray.origin, ray.direction, ray.tMin, surface.ray.tfar,
+                                                                                embree_->lightShapesLo, embree_->lightShapesHi);
+    if (nearLightShapes) rtcIntersect1(embree_->lightShapes, &context, &shape);
 
     if (shape.hit.geomID != RTC_INVALID_GEOMETRY_ID)
         return shadeLightShape(shape.hit.geomID, ray, shape.ray.tfar, Vec3f(shape.hit.Ng_x, shape.hit.Ng_y, shape.hit.Ng_z));

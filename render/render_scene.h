@@ -4,8 +4,9 @@
 // constructor and never edited while rendering). Two top-level Embree scenes are kept: the
 // surfaces (meshes and instances) and the light shapes (rect lights as two triangles, sphere
 // lights as an Embree sphere, disk and cylinder lights as user geometry intersected exactly;
-// point, line and infinite lights have no shape). Camera and BSDF rays look in both; shadow rays
-// look only at surfaces, so light shapes cast no shadows.
+// point, line and infinite lights have no shape). Camera and BSDF rays look in both (in the light
+// shapes only when the ray's segment up to the surface hit meets their bounds: most rays skip that
+// second Embree call); shadow rays look only at surfaces, so light shapes cast no shadows.
 //
 // Light selection for next-event estimation: chooseLight(p, n, u) walks the light tree
 // (render/light_tree.h), which favours the lights that can give the point p with normal n the
@@ -51,6 +52,7 @@
 #include "texture/texture_system.h"
 
 struct RTCGeometryTy;  // Embree's geometry handle (embree3/rtcore_geometry.h)
+struct RTCSceneTy;     // Embree's scene handle (embree3/rtcore_scene.h)
 
 namespace fluence::render {
 
@@ -133,6 +135,10 @@ public:
 
     // What went wrong while building that did not stop it (unreadable textures).
     const std::vector<Warning>& warnings() const { return warnings_; }
+
+    // The committed Embree scene of the surfaces (meshes and instances, no light shapes), for
+    // benchmarks that cast rays through bare Embree (bench/embree_throughput_bench.cpp).
+    RTCSceneTy* embreeSurfaces() const;
 
     // The camera whose pixel footprint sets the texture filter width (call before rendering).
     void setTextureFilterCamera(const Camera& camera) { filterCamera_ = camera; }

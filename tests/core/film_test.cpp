@@ -34,9 +34,11 @@ TEST(Film, ResolvesMeansCoverageMinDepthAndCounts) {
 TEST(Film, ResolvesLightPathLayersAfterTheOtherChannels) {
     Film film(1, 1, 1000.0f, {"diffuse", "specular"});
     FilmSample a, b;
-    a.lightPaths[0] = RGB(1, 2, 3);
-    a.lightPaths[1] = RGB(0.5f);
-    b.lightPaths[0] = RGB(3, 2, 1);
+    a.clearLightPaths(2);
+    b.clearLightPaths(2);
+    a.addLightPath(0, RGB(1, 2, 3));
+    a.addLightPath(1, RGB(0.5f));
+    b.addLightPath(0, RGB(3, 2, 1));
     film.add(0, 0, a);
     film.add(0, 0, b);
     Image image = film.resolve();

@@ -185,7 +185,7 @@ TEST(LightPathAovs, DiffuseAndGlossyLayersMatchAPlainLightSamplingEstimate) {
         SampleStream rng(7, 0, std::uint64_t(i));
         const FilmSample fs = integrator.sample(scene, camera, ray, rng, counters);
         for (int l = 0; l < 2; ++l)
-            for (int c = 0; c < 3; ++c) tracer[l][c].add(fs.lightPaths[std::size_t(l)][c]);
+            for (int c = 0; c < 3; ++c) tracer[l][c].add(fs.lightPath(std::size_t(l))[c]);
     }
 
     // The reference: the BSDF at the origin (shading frame = world, z up), the light's area sampled

@@ -1,0 +1,271 @@
+// Throughput against the limit (issue #10 item 4): how close the renderer's rays/s come to
+// Embree's raw ray-casting rate on the same scene, on this machine.
+//
+//   embree_throughput_bench [--spp N] [--threads N] [--repeat N] [--scale S] [SCENE.usda ...]
+//
+// Each scene is loaded as `fluence render` loads it (stage, delegate, colour management,
+// render::RenderScene, the camera at the scene's resolution times --scale). Then:
+//   raw, renderer's distribution: a path-traced pass's rays, generated with the scene's own
+//     camera, light tree and lights: per pixel sample a camera ray; at every surface hit a shadow
+//     ray to a light chosen by RenderScene::chooseLight and sampled by the light (stopped short as
+//     RenderScene::occluded does) and a cosine-distributed bounce ray, up to 8 bounces (no
+//     Russian roulette), stored in path order per image row. Each kind is replayed through bare
+//     rtcIntersect1 (camera, bounce) or rtcOccluded1 (shadow) on RenderScene::embreeSurfaces(),
+//     over --threads threads with oneTBB, in the stored order: as incoherent as the renderer's.
+//     The raw rate is then taken at the renderer's own mix of the three kinds (its counters):
+//     1 / sum(share_k / rate_k).
+//   raw, uniform: as many rays with origins uniform in the scene's bounding sphere and uniform
+//     directions, through rtcIntersect1.
+//   renderer: integrators::render() with the `path` integrator, --spp samples per pixel (default
+//     16), seed 0, and RenderCounters' rays (camera + bounce + shadow), the count `fluence render`
+//     prints. Free-flight and transmittance tracking in media (smoke, subsurface walks) cost time
+//     but cast no counted rays: those scenes' ratios include that cost.
+// Rates are rays per CPU-second of the process (all threads; CLOCK_PROCESS_CPUTIME_ID), so that a
+// shared, loaded machine slows both sides alike; the renderer's wall-clock rate is printed too.
+// Every figure is the best of --repeat runs (default 3); --scale defaults to 0.5. With no scenes
+// given, the six benchmark scenes of the issue are measured.
+#include <embree3/rtcore.h>
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
+#include <algorithm>
+#include <cmath>
+#include <ctime>
+#include <cstdio>
+#include <cstdlib>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "color/color_management.h"
+#include "core/film.h"
+#include "core/frame.h"
+#include "core/random.h"
+#include "core/sampling.h"
+#include "delegate/scene_delegate.h"
+#include "integrators/integrator.h"
+#include "integrators/renderer.h"
+#include "render/render_scene.h"
+#include "scene/stage.h"
+
+namespace {
+
+using namespace fluence;
+
+constexpr int kMaxBounces = 8;
+constexpr float kShadowRayShortening = 1e-4f;  // as RenderScene::occluded
+constexpr std::size_t kGrain = 1024;           // rays per TBB task
+
+struct Options {
+    int spp = 16, threads = 2, repeat = 3;
+    double scale = 0.5;
+    std::vector<std::string> scenes;
+};
+
+struct StoredRay {
+    Vec3f origin, direction;
+    float tFar;
+};
+
+struct RaySet {
+    std::vector<StoredRay> camera, bounce;  // closest hit
+    std::vector<StoredRay> shadow;          // any hit
+    void append(const RaySet& o) {
+        camera.insert(camera.end(), o.camera.begin(), o.camera.end());
+        bounce.insert(bounce.end(), o.bounce.begin(), o.bounce.end());
+        shadow.insert(shadow.end(), o.shadow.begin(), o.shadow.end());
+    }
+};
+
+// The rays a path-traced pass casts on image row y (see the top of the file).
+RaySet renderersRays(const render::RenderScene& scene, const render::Camera& camera, int width, int y, int spp) {
+    RaySet set;
+    for (int x = 0; x < width; ++x)
+        for (int s = 0; s < spp; ++s) {
+            SampleStream rng(1, std::uint64_t(y) * width + x, s);
+            Vec2f jitter = rng.next2D();
+            render::Ray ray = camera.generateRay(x + jitter.x, y + jitter.y);
+            for (int depth = 0; depth <= kMaxBounces; ++depth) {
+                (depth == 0 ? set.camera : set.bounce).push_back({ray.origin, ray.direction, ray.tMax});
+                std::optional<render::SurfaceHit> hit = scene.intersect(ray);
+                if (!hit || hit->lightShape) break;
+                Vec3f n = dot(hit->geometricNormal, ray.direction) < 0.0f ? hit->geometricNormal : -hit->geometricNormal;
+                Vec3f from = render::offsetRayOrigin(hit->point, n);
+                render::LightChoice choice = scene.chooseLight(from, n, rng.next());
+                if (choice.light >= 0)
+                    if (std::optional<render::LightSample> ls = scene.light(choice.light).sample(from, rng.next2D()))
+                        if (ls->pdf > 0.0f && dot(ls->wi, n) > 0.0f)
+                            set.shadow.push_back({from, ls->wi, ls->distance * (1.0f - kShadowRayShortening)});
+                ray = {from, Frame::fromNormal(n).toWorld(sampleCosineHemisphere(rng.next2D())), 0.0f,
+                       std::numeric_limits<float>::infinity()};
+            }
+        }
+    return set;
+}
+
+// Every row's rays, made in parallel and stored in row order.
+RaySet renderersRays(tbb::task_arena& arena, const render::RenderScene& scene, const render::Camera& camera, int width,
+                     int height, int spp) {
+    std::vector<RaySet> rows(static_cast<std::size_t>(height));
+    arena.execute([&] {
+        tbb::parallel_for(0, height, [&](int y) { rows[std::size_t(y)] = renderersRays(scene, camera, width, y, spp); });
+    });
+    RaySet set;
+    for (const RaySet& row : rows) set.append(row);
+    return set;
+}
+
+std::vector<StoredRay> uniformRays(const render::SceneBounds& bounds, std::size_t count) {
+    std::vector<StoredRay> rays;
+    rays.reserve(count);
+    for (std::size_t i = 0; i < count; ++i) {
+        SampleStream rng(2, i, 0);
+        Vec3f offset = sampleUniformSphere(rng.next2D()) * (bounds.radius * std::cbrt(rng.next()));
+        rays.push_back({bounds.centre + offset, sampleUniformSphere(rng.next2D()), std::numeric_limits<float>::infinity()});
+    }
+    return rays;
+}
+
+RTCRay embreeRay(const StoredRay& s) {
+    RTCRay r{};
+    r.org_x = s.origin.x;
+    r.org_y = s.origin.y;
+    r.org_z = s.origin.z;
+    r.dir_x = s.direction.x;
+    r.dir_y = s.direction.y;
+    r.dir_z = s.direction.z;
+    r.tfar = s.tFar;
+    r.mask = 0xffffffffu;
+    return r;
+}
+
+// CPU seconds of the whole process (every thread): on a shared machine, where this process gets
+// only part of the cores, rays per CPU-second measure the code, not the other tenants.
+double cpuSeconds() {
+    timespec t;
+    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
+    return double(t.tv_sec) + 1e-9 * double(t.tv_nsec);
+}
+
+// CPU seconds to trace `rays` through bare Embree over the arena's threads, closest hit or any hit.
+double trace(tbb::task_arena& arena, RTCScene scene, const std::vector<StoredRay>& rays, bool anyHit) {
+    const double start = cpuSeconds();
+    arena.execute([&] {
+        tbb::parallel_for(tbb::blocked_range<std::size_t>(0, rays.size(), kGrain), [&](const tbb::blocked_range<std::size_t>& r) {
+            RTCIntersectContext context;
+            rtcInitIntersectContext(&context);
+            for (std::size_t i = r.begin(); i != r.end(); ++i) {
+                if (anyHit) {
+                    RTCRay ray = embreeRay(rays[i]);
+                    rtcOccluded1(scene, &context, &ray);
+                } else {
+                    RTCRayHit hit{};
+                    hit.ray = embreeRay(rays[i]);
+                    hit.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+                    hit.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+                    rtcIntersect1(scene, &context, &hit);
+                }
+            }
+        });
+    });
+    return cpuSeconds() - start;
+}
+
+template <typename F>
+double best(int repeat, F&& f) {
+    double b = f();
+    for (int i = 1; i < repeat; ++i) b = std::min(b, f());
+    return b;
+}
+
+void measure(const std::string& path, const Options& opt, color::ColorManagement& colors) {
+    auto stage = usd::Stage::open(path);
+    delegate::DelegateOptions dopt;
+    dopt.time = stage->startTimeCode().value_or(usd::kDefaultTime);
+    dopt.convertColor = [&](const RGB& c, const std::string& space) { return colors.toRenderingSpace(space, c); };
+    dopt.warn = [](const std::string&, const std::string&) {};
+    delegate::DelegateResult populated = delegate::populateScene(*stage, dopt);
+    const int width = std::max(1, int(populated.resolution.first * opt.scale));
+    const int height = std::max(1, int(populated.resolution.second * opt.scale));
+    dopt.resolution = std::pair(width, height);
+    populated = delegate::populateScene(*stage, dopt);  // diced for the resolution rendered
+    render::RenderScene scene(populated.scene, std::make_shared<texture::TextureSystem>(colors));
+    render::Camera camera(*populated.scene.camera, width, height, populated.framing);
+    scene.setTextureFilterCamera(camera);
+
+    tbb::task_arena arena(opt.threads);
+    RaySet rays = renderersRays(arena, scene, camera, width, height, opt.spp);
+    const std::size_t generated = rays.camera.size() + rays.bounce.size() + rays.shadow.size();
+    std::vector<StoredRay> uniform = uniformRays(scene.bounds(), generated);
+    RTCScene embree = scene.embreeSurfaces();
+    auto rate = [&](const std::vector<StoredRay>& set, bool anyHit) {
+        return set.size() / best(opt.repeat, [&] { return trace(arena, embree, set, anyHit); }) * 1e-6;
+    };
+    const double rCamera = rate(rays.camera, false), rBounce = rate(rays.bounce, false), rShadow = rate(rays.shadow, true);
+    const double rUniform = rate(uniform, false);
+
+    auto integrator = integrators::findIntegrator("path")->create({});
+    integrators::RenderStats stats;
+    double renderer = 0.0, rendererWall = 0.0;  // per CPU-second, per second
+    for (int i = 0; i < opt.repeat; ++i) {
+        integrators::RenderSettings settings;
+        settings.samplesPerPixel = opt.spp;
+        settings.threads = opt.threads;
+        Film film(width, height, camera.farClip());
+        const double start = cpuSeconds();
+        stats = integrators::render(scene, camera, *integrator, settings, film);
+        renderer = std::max(renderer, stats.counters.rays() / (cpuSeconds() - start) * 1e-6);
+        rendererWall = std::max(rendererWall, stats.counters.rays() / stats.seconds * 1e-6);
+    }
+    const auto& c = stats.counters;
+    const double n = double(c.rays());
+    // Bare Embree's rate on the renderer's mix: the time per ray of each kind, weighted by its share.
+    const double raw = 1.0 / (c.camera / n / rCamera + c.bounce / n / rBounce + c.shadow / n / rShadow);
+    std::printf("%s  (%dx%d, %d spp, %zu triangles, %zu instances, %d threads)\n", path.c_str(), width, height, opt.spp,
+                scene.stats().triangles, scene.stats().instances, opt.threads);
+    std::printf("  rays camera/bounce/shadow  generated %zu/%zu/%zu  renderer %llu/%llu/%llu\n", rays.camera.size(),
+                rays.bounce.size(), rays.shadow.size(), (unsigned long long)c.camera, (unsigned long long)c.bounce,
+                (unsigned long long)c.shadow);
+    std::printf("  raw Mrays per CPU-s: camera %.2f  bounce %.2f  shadow (occluded) %.2f  uniform %.2f\n", rCamera, rBounce,
+                rShadow, rUniform);
+    std::printf("  Mrays per CPU-s: raw at the renderer's mix %.2f  renderer %.2f  ratio %.3f   (renderer wall-clock %.2f Mrays/s)\n\n",
+                raw, renderer, renderer / raw, rendererWall);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    Options opt;
+    for (int i = 1; i < argc; ++i) {
+        std::string arg = argv[i];
+        auto number = [&] { return i + 1 < argc ? std::atof(argv[++i]) : 0.0; };
+        if (arg == "--spp")
+            opt.spp = std::max(1, int(number()));
+        else if (arg == "--threads")
+            opt.threads = std::max(1, int(number()));
+        else if (arg == "--repeat")
+            opt.repeat = std::max(1, int(number()));
+        else if (arg == "--scale")
+            opt.scale = std::max(0.01, number());
+        else if (!arg.empty() && arg[0] != '-')
+            opt.scenes.push_back(arg);
+        else {
+            std::fprintf(stderr, "usage: embree_throughput_bench [--spp N] [--threads N] [--repeat N] [--scale S] [SCENE.usda ...]\n");
+            return 2;
+        }
+    }
+    if (opt.scenes.empty())
+        for (const char* s : {"usd_samples/cornell_box.usda", "usd_samples/material_ball/material_ball.usda",
+                              "usd_samples/subdivision/creased_cubes.usda", "usd_samples/smoke/smoke.usda",
+                              "usd_samples/subsurface/subsurface.usda", "bench/scenes/caustic_glass.usda"})
+            opt.scenes.push_back(std::string(FLUENCE_SOURCE_DIR) + "/" + s);
+    try {
+        color::ColorManagement colors = color::ColorManagement::load();
+        for (const std::string& scene : opt.scenes) measure(scene, opt, colors);
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "embree_throughput_bench: %s\n", e.what());
+        return 1;
+    }
+    return 0;
+}
