@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "apps/assemble_command.h"
+#include "apps/cat_command.h"
 #include "apps/cli_options.h"
 #include "apps/info_command.h"
 #include "apps/render_command.h"
@@ -27,7 +28,7 @@ int main(int argc, char** argv) {
         return kExitOk;
     }
     const std::string command = args[0];
-    if (command != "render" && command != "info" && command != "assemble") {
+    if (command != "render" && command != "info" && command != "cat" && command != "assemble") {
         std::fprintf(stderr, "fluence: error: unknown command '%s' (try 'fluence --help')\n", command.c_str());
         return kExitUsage;
     }
@@ -38,6 +39,7 @@ int main(int argc, char** argv) {
             return kExitOk;
         }
     try {
+        if (command == "cat") return runCat(parseCatOptions(args));
         if (command == "assemble") return runAssemble(parseAssembleOptions(args));
         return command == "info" ? runInfo(parseInfoOptions(args)) : runRender(parseRenderOptions(args));
     } catch (const UsageError& e) {

@@ -35,3 +35,6 @@ set(CMAKE_MODULE_PATH ${FLUENCE_SAVED_MODULE_PATH})
 
 # pugixml 1.13 (MaterialX documents, scene/mtlx_reader): its CMake config (target pugixml::pugixml).
 find_package(pugixml REQUIRED)
+
+# LZ4 1.9 (the compression of USD crate files, scene/crate_compression): pkg-config (liblz4).
+pkg_check_modules(LZ4 REQUIRED IMPORTED_TARGET liblz4)

@@ -8,6 +8,8 @@
 #include <optional>
 
 #include "scene/asset_path.h"
+#include "scene/crate_reader.h"
+#include "scene/layer_file.h"
 #include "scene/namespace_remap.h"
 #include "scene/usda_parser.h"
 
@@ -106,7 +108,7 @@ std::string unusableLayerProblem(const std::string& path) {
     std::error_code error;
     if (!fs::is_regular_file(path, error)) return "cannot find '" + path + "'";
     std::string start = firstBytes(path);
-    if (start.rfind("PXR-USDC", 0) == 0) return "'" + path + "': binary USD crate files are not supported yet";
+    if (isCrateHeader(start) || isMaterialXPath(path)) return "";
     std::string extension = lowercaseExtension(path);
     if (extension == ".usdz") return "'" + path + "': USDZ packages are not supported yet";
     bool textHeader = start.rfind("#usda", 0) == 0 || start.rfind("#sdf", 0) == 0;
@@ -124,7 +126,7 @@ const Layer& LayerRegistry::keep(std::unique_ptr<Layer> layer) {
 }
 
 const LayerStack& LayerRegistry::openRoot(const std::string& path) {
-    std::unique_ptr<Layer> layer = parseUsdaFile(path);
+    std::unique_ptr<Layer> layer = readLayerFile(path);
     std::string absolute = normalizedAbsolutePath(path);
     byPath_[absolute] = layer.get();
     files_.push_back(absolute);
@@ -155,7 +157,7 @@ const Layer* LayerRegistry::layerFor(const std::string& resolvedPath, const ArcS
         problem = unusableLayerProblem(resolvedPath);
         if (problem.empty()) {
             files_.push_back(resolvedPath);
-            return byPath_[resolvedPath] = &keep(parseUsdaFile(resolvedPath));
+            return byPath_[resolvedPath] = &keep(readLayerFile(resolvedPath));
         }
         byPath_[resolvedPath] = nullptr;
         problems_[resolvedPath] = problem;

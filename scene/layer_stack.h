@@ -18,7 +18,7 @@
 //
 // The LayerRegistry reads each layer file once (cached by absolute path) and builds each layer
 // stack once (cached by root layer). Files that cannot serve as layers when an arc points at
-// them (missing, binary crate, another file format) are reported and skipped; syntax errors throw.
+// them (missing, another file format) are reported and skipped; syntax errors and damaged crate files throw.
 #pragma once
 
 #include <map>
@@ -117,7 +117,8 @@ public:
     explicit LayerRegistry(CompositionLog& log) : log_(log) {}
 
     // The stage's root layer stack. open() reads the file (FileError when it cannot be read,
-    // ParseError on bad syntax, including a binary crate); adopt() takes an in-memory layer.
+    // ParseError on bad syntax; layers are read by usd::readLayerFile: text, crate or MaterialX);
+    // adopt() takes an in-memory layer.
     const LayerStack& openRoot(const std::string& path);
     const LayerStack& adoptRoot(std::unique_ptr<Layer> layer);
 

@@ -28,6 +28,8 @@ bool isRegisteredMetadataField(std::string_view name) {
         "variantSetNames", "variantSets",          "variants",
     };
     static_assert(std::is_sorted(kFields.begin(), kFields.end()));
+    // Fluence's own fields (written by flattening, scene/flatten.h, read by the delegate).
+    if (name.starts_with("fluence:")) return true;
     return std::binary_search(kFields.begin(), kFields.end(), name);
 }
 

@@ -77,7 +77,7 @@ struct Header {
 
 Header readHeader(std::string_view text, const std::string& file) {
     auto fail = [&](const std::string& message) { throw ParseError({file, 1, 1}, message); };
-    if (text.substr(0, 8) == "PXR-USDC") fail("binary USD crate files are not supported yet");
+    if (text.substr(0, 8) == "PXR-USDC") fail("a binary USD crate file, not USDA text (usd::readLayerFile reads both)");
     if (text.empty()) fail("empty file: expected a '#usda 1.0' header");
     std::size_t newline = text.find('\n');
     std::string_view line = text.substr(0, newline);

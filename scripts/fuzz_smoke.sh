@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
-# Builds the USDA reader's libFuzzer target (fuzz/), assembles its seed corpus and fuzzes it for
-# SECONDS (default 60). Exits non-zero on any finding (crash, sanitizer report, uncaught exception
+# Builds the USD readers' libFuzzer targets (fuzz/), assembles their seed corpora and fuzzes the
+# USDA reader for SECONDS (default 60), then the crate reader for CRATE_SECONDS (default SECONDS/2). Exits non-zero on any finding (crash, sanitizer report, uncaught exception
 # other than usd::ParseError, timeout, out-of-memory, leak), printing the report and the path of
 # the reproducer. `make test` runs it for 60 s; fuzz/README.md describes longer runs.
 #
@@ -14,6 +14,7 @@
 #                   has 2 cores)
 #   FUZZ_ARGS       more libFuzzer flags, e.g. "-use_value_profile=1 -only_ascii=1"
 #   JOBS            build parallelism (default 2)
+#   CRATE_SECONDS   how long to fuzz the crate reader (default SECONDS / 2; 0 skips it)
 set -euo pipefail
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
 root=$(pwd)
@@ -50,7 +51,7 @@ cmake --build "$build" -j "${JOBS:-2}" >"$build/build.log" 2>&1 || {
   echo "fuzz: building the fuzzer failed" >&2
   exit 1
 }
-fuzzer="$build/usda_fuzzer"
+crate_seconds=${CRATE_SECONDS:-$((seconds / 2))}
 
 # ---- Seed corpus ---------------------------------------------------------------------------------
 # Every USD text layer of the tests, the samples and the shared real-world corpus (when present),
@@ -59,33 +60,36 @@ fuzzer="$build/usda_fuzzer"
 # are layers over 64 KiB (-max_len): big geometry arrays only slow the fuzzer down.
 max_len=65536
 seeds="$build/seeds"
-rm -rf "$seeds"
-mkdir -p "$seeds"
+crate_seeds="$build/crate_seeds"
+rm -rf "$seeds" "$crate_seeds"
+mkdir -p "$seeds" "$crate_seeds"
 sources=(tests/scene usd_samples)
 [[ -d ../shared/usd_corpus ]] && sources+=(../shared/usd_corpus)
 while IFS= read -r -d '' file; do
-  [[ $(head -c 8 "$file") == PXR-USDC ]] && continue
-  cp "$file" "$seeds/$(sha1sum <"$file" | cut -c1-40)"
-done < <(find "${sources[@]}" -type f \( -name '*.usda' -o -name '*.sdf' -o -name '*.usd' \) \
+  if [[ $(head -c 8 "$file") == PXR-USDC ]]; then
+    cp "$file" "$crate_seeds/$(sha1sum <"$file" | cut -c1-40)"
+  else
+    cp "$file" "$seeds/$(sha1sum <"$file" | cut -c1-40)"
+  fi
+done < <(find "${sources[@]}" -type f \( -name '*.usda' -o -name '*.sdf' -o -name '*.usd' -o -name '*.usdc' \) \
            -size -$((max_len + 1))c -print0 2>/dev/null)
 if [[ -d tests/scene/fuzz_regressions ]]; then
   while IFS= read -r -d '' file; do
     cp "$file" "$seeds/$(sha1sum <"$file" | cut -c1-40)"
   done < <(find tests/scene/fuzz_regressions -type f ! -name 'README*' -print0)
 fi
-echo "fuzz: $(ls "$seeds" | wc -l) seed inputs from ${sources[*]} tests/scene/fuzz_regressions"
+echo "fuzz: $(ls "$seeds" | wc -l) text and $(ls "$crate_seeds" | wc -l) crate seed inputs from ${sources[*]} tests/scene/fuzz_regressions"
 
 # ---- Run -----------------------------------------------------------------------------------------
 if [[ -n "${FUZZ_CORPUS:-}" ]]; then
-  corpus=$FUZZ_CORPUS
-  mkdir -p "$corpus"
+  corpus_root=$FUZZ_CORPUS
+  mkdir -p "$corpus_root"
 else
-  corpus=$(mktemp -d /tmp/fluence-fuzz-corpus.XXXXXX)
-  trap 'rm -rf "$corpus"' EXIT
+  corpus_root=$(mktemp -d /tmp/fluence-fuzz-corpus.XXXXXX)
+  trap 'rm -rf "$corpus_root"' EXIT
 fi
 artifacts="$build/artifacts"
 mkdir -p "$artifacts"
-log="$build/fuzz-$(date +%Y%m%d-%H%M%S).log"
 
 symbolizer=/usr/lib/llvm-16/bin/llvm-symbolizer
 [[ -x "$symbolizer" ]] && export ASAN_SYMBOLIZER_PATH=$symbolizer
@@ -95,31 +99,44 @@ export UBSAN_OPTIONS=${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1}
 parallel=()
 if ((jobs > 1)); then parallel=(-jobs="$jobs" -workers="$jobs"); fi
 
-before=$(ls "$artifacts" | wc -l)
-echo "fuzz: running $fuzzer for ${seconds}s (seed $seed, log $log)"
-start=$(date +%s)
-status=0
-"$fuzzer" "$corpus" "$seeds" \
-  -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 -max_len=$max_len \
-  -dict=fuzz/usda.dict -seed="$seed" -print_final_stats=1 \
-  -artifact_prefix="$artifacts/" "${parallel[@]}" ${FUZZ_ARGS:-} >"$log" 2>&1 || status=$?
-elapsed=$(($(date +%s) - start))
+# fuzz NAME SEEDS SECONDS [libFuzzer flags...]: runs fuzz/NAME; exits non-zero on any finding.
+fuzz() {
+  local name=$1 seed_dir=$2 time=$3
+  shift 3
+  local fuzzer="$build/$name" corpus="$corpus_root/$name"
+  mkdir -p "$corpus"
+  local log="$build/fuzz-$name-$(date +%Y%m%d-%H%M%S).log"
+  local before
+  before=$(ls "$artifacts" | wc -l)
+  echo "fuzz: running $fuzzer for ${time}s (seed $seed, log $log)"
+  local start status=0
+  start=$(date +%s)
+  "$fuzzer" "$corpus" "$seed_dir" \
+    -max_total_time="$time" -timeout=10 -rss_limit_mb=2048 -max_len=$max_len \
+    -seed="$seed" -print_final_stats=1 \
+    -artifact_prefix="$artifacts/" "${parallel[@]}" "$@" ${FUZZ_ARGS:-} >"$log" 2>&1 || status=$?
+  local elapsed=$(($(date +%s) - start))
 
-# Summary: the last status line (executions, coverage, features, corpus) and the final stats.
-grep -E '^#[0-9]+' "$log" | tail -1 || true
-grep -E '^stat::(number_of_executed_units|average_exec_per_sec|peak_rss_mb)' "$log" || true
-echo "fuzz: corpus grew to $(ls "$corpus" | wc -l) inputs in ${elapsed}s"
+  # Summary: the last status line (executions, coverage, features, corpus) and the final stats.
+  grep -E '^#[0-9]+' "$log" | tail -1 || true
+  grep -E '^stat::(number_of_executed_units|average_exec_per_sec|peak_rss_mb)' "$log" || true
+  echo "fuzz: $name's corpus grew to $(ls "$corpus" | wc -l) inputs in ${elapsed}s"
 
-new_artifacts=$(ls -t "$artifacts" | head -n $(($(ls "$artifacts" | wc -l) - before)))
-if [[ $status -ne 0 || -n "$new_artifacts" ]]; then
-  echo "fuzz: FAILED (exit $status): the report follows" >&2
-  # The report: from the first sanitizer/libFuzzer error line to the end.
-  sed -n '/==[0-9]*==ERROR\|runtime error:\|deadly signal\|ALARM: working on the last Unit\|out-of-memory\|uncaught exception\|terminate called/,$p' "$log" | head -150 >&2
-  for artifact in $new_artifacts; do
-    echo "fuzz: reproducer: $artifacts/$artifact" >&2
-  done
-  echo "fuzz: reproduce with: $fuzzer $artifacts/<file>; minimise with: $fuzzer -minimize_crash=1 -runs=100000 $artifacts/<file>" >&2
-  echo "fuzz: full log: $log" >&2
-  exit 1
-fi
+  local new_artifacts
+  new_artifacts=$(ls -t "$artifacts" | head -n $(($(ls "$artifacts" | wc -l) - before)))
+  if [[ $status -ne 0 || -n "$new_artifacts" ]]; then
+    echo "fuzz: FAILED (exit $status): the report follows" >&2
+    # The report: from the first sanitizer/libFuzzer error line to the end.
+    sed -n '/==[0-9]*==ERROR\|runtime error:\|deadly signal\|ALARM: working on the last Unit\|out-of-memory\|uncaught exception\|terminate called/,$p' "$log" | head -150 >&2
+    for artifact in $new_artifacts; do
+      echo "fuzz: reproducer: $artifacts/$artifact" >&2
+    done
+    echo "fuzz: reproduce with: $fuzzer $artifacts/<file>; minimise with: $fuzzer -minimize_crash=1 -runs=100000 $artifacts/<file>" >&2
+    echo "fuzz: full log: $log" >&2
+    exit 1
+  fi
+}
+
+fuzz usda_fuzzer "$seeds" "$seconds" -dict=fuzz/usda.dict
+((crate_seconds > 0)) && fuzz crate_fuzzer "$crate_seeds" "$crate_seconds"
 echo "fuzz: OK, no findings"

@@ -11,6 +11,7 @@ packages=(
   libopenvdb-dev libboost-iostreams-dev
   libgtest-dev
   libpugixml-dev
+  liblz4-dev
   clang-16 libclang-rt-16-dev llvm-16
 )
 # `install_dependencies.sh bench` adds what bench/run.py (make figures) runs with, under /usr/bin/python3.

@@ -1,6 +1,6 @@
 // `fluence info` and `fluence render` on the real-world corpus in shared/usd_corpus (skipped when
 // it is absent): every valid layer opens, every invalid one is rejected with file:line:column,
-// crate files get a clear error, production assets render to a finite EXR with their missing
+// crate files open (and the damaged corrupt.usd is rejected with a clear error), production assets render to a finite EXR with their missing
 // assets reported as warnings, and two render as intended: usdrecord's SmallObjectTest (no camera,
 // a DomeLight with an HDR file) and the Teapot's Fancy variant (UsdUVTexture maps).
 #include <gtest/gtest.h>
@@ -61,9 +61,13 @@ TEST_F(CorpusCli, InfoOpensEveryValidLayerAndRejectsEveryInvalidOne) {
     for (const fs::path& path : corpusLayers()) {
         std::string start = firstBytes(path);
         test::RunResult r = run("info '" + path.string() + "'");
-        if (start.rfind("PXR-USDC", 0) == 0) {
-            EXPECT_EQ(r.exitCode, 3) << path;
-            EXPECT_NE(r.err.find("binary USD crate files are not supported yet"), std::string::npos) << r.err;
+        if (start.rfind("PXR-USDC", 0) == 0 && path.filename() == "corrupt.usd") {
+            EXPECT_EQ(r.exitCode, 4) << path;
+            EXPECT_NE(r.err.find("damaged or unsupported USD crate file"), std::string::npos) << r.err;
+            ++rejected;
+        } else if (start.rfind("PXR-USDC", 0) == 0) {
+            EXPECT_EQ(r.exitCode, 0) << path << "\n" << r.err;
+            EXPECT_NE(r.out.find("\nprims ("), std::string::npos) << path;
             ++crates;
         } else if (invalidOnPurpose(path)) {
             EXPECT_EQ(r.exitCode, 3) << path;

@@ -18,7 +18,7 @@ TEST(UsdaErrors, BadHeader) {
     expectParseError("#usda\n", 1, 1, "expected a '#usda 1.0' header");
     expectParseError("def \"A\" {}\n", 1, 1, "expected a '#usda 1.0' header on the first line");
     expectParseError("#usda 1.0 junk\n", 1, 1, "found \"#usda 1.0 junk\"");
-    expectParseError("PXR-USDC\x07\x00\x00", 1, 1, "binary USD crate files are not supported yet");
+    expectParseError("PXR-USDC\x07\x00\x00", 1, 1, "a binary USD crate file, not USDA text (usd::readLayerFile reads both)");
 }
 
 TEST(UsdaErrors, UnterminatedStrings) {

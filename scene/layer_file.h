@@ -1,0 +1,20 @@
+// Reading a layer file in whichever format it is in: USD's binary crate (chosen by its first bytes,
+// "PXR-USDC", whatever the extension: .usdc, or .usd), a MaterialX document (.mtlx, presented as
+// USD's MaterialX file format plugin does: scene/mtlx_reader.h), else USDA text.
+#pragma once
+
+#include <memory>
+#include <string>
+
+#include "scene/layer.h"
+
+namespace fluence::usd {
+
+// Whether `path` names a MaterialX document (by its extension).
+bool isMaterialXPath(const std::string& path);
+
+// Reads the layer file at `path`. Throws FileError when it cannot be read (or a crate is damaged)
+// and ParseError on bad text.
+std::unique_ptr<Layer> readLayerFile(const std::string& path);
+
+}  // namespace fluence::usd
