@@ -130,7 +130,9 @@ render::MaterialDesc standardSurface(const ShaderInputs& in, const std::string& 
                   {"coat_color", MaterialInput::CoatColor, 3},
                   {"coat_roughness", MaterialInput::CoatRoughness, 1},
                   {"emission_color", MaterialInput::Emission, 3},
-                  {"opacity", MaterialInput::Opacity, 1}},
+                  {"opacity", MaterialInput::Opacity, 1},
+                  // Read as the tangent-space normal a normalmap node (ND_normalmap) produces.
+                  {"normal", MaterialInput::Normal, 3}},
                  m.bindings);
     for (render::InputBinding& b : m.bindings)
         if (b.input == MaterialInput::Diffuse) b.factor = in.number("base", 0.8f);

@@ -42,9 +42,10 @@
 // "randomwalk" (the fallback; "randomwalk_v2" is read as the same) or "diffusion" (the
 // Christensen-Burley profile, integrators/diffusion_probe.h); another value warns and walks.
 // Inputs not listed (specular_rotation, transmission_dispersion/extra_roughness, thin_film_*,
-// coat_anisotropy/affect_*, normal, tangent) are not read. The colour,
-// weight and roughness inputs may be driven by UsdUVTexture / primvar-reader nodes (base_color
-// keeps base as its factor); MaterialX's own texture nodes are not read. Emission stays constant
+// coat_anisotropy/affect_*, tangent) are not read; normal only through a normal map. The colour,
+// weight and roughness inputs may be driven by UsdUVTexture / primvar-reader nodes and by
+// MaterialX image nodes (base_color keeps base as its factor), normal by a MaterialX normalmap
+// (delegate/shading_network.h); subsurface inputs take their own values. Emission stays constant
 // in both shaders: a node driving it is dropped with a warning (emissive triangles are lights of
 // one radiance each).
 #pragma once
