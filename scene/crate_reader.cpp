@@ -34,12 +34,7 @@ Value untyped(Value value) {
     if (value.kind == ValueKind::Dictionary) return value;
     if (value.typeName == "token" || value.typeName == "token[]") value.kind = ValueKind::String;
     value.typeName.clear();
-    if (value.isArray && value.size() == 0 && value.kind != ValueKind::List) {
-        Value empty;
-        empty.kind = ValueKind::List;
-        empty.isArray = true;
-        return empty;
-    }
+    if (value.isArray && value.size() == 0 && value.kind != ValueKind::List) return Value::list({});
     return value;
 }
 
@@ -132,9 +127,7 @@ private:
     }
 
     Value joinSubLayers(const Value& assets, const Value& offsets) const {
-        Value list;
-        list.kind = ValueKind::List;
-        list.isArray = true;
+        Value list = Value::list({});
         for (std::size_t i = 0; i < assets.strings.size(); ++i) {
             Value item;
             item.kind = ValueKind::Reference;

@@ -123,14 +123,6 @@ Value stringValue(const char* typeName, ValueKind kind, std::string text) {
     return Value::string(typeName, kind, {std::move(text)}, false);
 }
 
-Value listOf(std::vector<Value> items) {
-    Value list;
-    list.kind = ValueKind::List;
-    list.isArray = true;
-    list.items = std::move(items);
-    return list;
-}
-
 }  // namespace
 
 // Counts nesting; throws past the limit.
@@ -230,7 +222,7 @@ Value CrateValues::decode(ValueRep rep) const {
                 offset.numbers = {start, reader.read<double>()};
                 offsets.push_back(std::move(offset));
             }
-            return listOf(std::move(offsets));
+            return Value::list(std::move(offsets));
         }
         case T::VariantSelectionMap: {
             std::size_t count = reader.readCount(2 * sizeof(std::uint32_t));
@@ -454,7 +446,7 @@ Value CrateValues::listItems(int type, ByteReader& reader) const {
             std::size_t count = reader.readCount(2 * sizeof(std::uint32_t));
             std::vector<Value> items;
             for (std::size_t i = 0; i < count; ++i) items.push_back(reference(reader, type == T::ReferenceListOp));
-            return listOf(std::move(items));
+            return Value::list(std::move(items));
         }
         default: throw CrateFormatError(typeDescription(type) + " list items are not supported");
     }

@@ -838,9 +838,7 @@ Value Parser::parseArcs(const Anchor& anchor) {
     }
     if (!lexer_.peek().is('[')) return parseReference(anchor);
     Token open = lexer_.take();
-    Value list;
-    list.kind = ValueKind::List;
-    list.isArray = true;
+    Value list = Value::list({});
     values_.parseSeparated(open, ']', "the reference list",
                            [&] { list.items.push_back(parseReference(anchor)); });
     return list;
@@ -883,9 +881,7 @@ Value Parser::parseSubLayers() {
         lexer_.fail(
             open, "expected a list of asset paths [...] for 'subLayers', found " + describe(open));
     }
-    Value list;
-    list.kind = ValueKind::List;
-    list.isArray = true;
+    Value list = Value::list({});
     values_.parseSeparated(open, ']', "'subLayers'", [&] {
         Token asset = lexer_.take();
         if (asset.kind != TokenKind::Asset) {

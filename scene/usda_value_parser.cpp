@@ -71,11 +71,7 @@ Value flattenList(std::vector<Value> items) {
             return Value::string("", first.kind, std::move(strings), true);
         }
     }
-    Value list;
-    list.kind = ValueKind::List;
-    list.isArray = true;
-    list.items = std::move(items);
-    return list;
+    return Value::list(std::move(items));
 }
 
 }  // namespace

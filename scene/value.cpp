@@ -158,4 +158,12 @@ Value Value::string(std::string typeName, ValueKind kind, std::vector<std::strin
     return value;
 }
 
+Value Value::list(std::vector<Value> items) {
+    Value value;
+    value.kind = ValueKind::List;
+    value.isArray = true;
+    value.items = std::move(items);
+    return value;
+}
+
 }  // namespace fluence::usd

@@ -66,6 +66,8 @@ struct Value {
     // Builders used by the parser and by tests.
     static Value numeric(std::string typeName, std::vector<double> numbers, int components, bool isArray);
     static Value string(std::string typeName, ValueKind kind, std::vector<std::string> strings, bool isArray);
+    // An untyped bracketed list of `items` (kind List).
+    static Value list(std::vector<Value> items);
 };
 
 }  // namespace fluence::usd
