@@ -33,11 +33,15 @@ fuzz: FUZZ_SECONDS ?= 3600
 fuzz: deps
 	FUZZ_BUILD_DIR=$(BUILD_DIR)/fuzz FUZZ_CORPUS=$(BUILD_DIR)/fuzz/corpus bash scripts/fuzz_smoke.sh $(FUZZ_SECONDS)
 
-# The benchmarks (bench/*.cpp: USDA parsing, instancing, subdivision, lights, rect textures, majorant grid, volume tracking); figures go to bench/results/.
+# The benchmarks (bench/*.cpp: Embree throughput, media overhead, crate loading, USDA parsing, instancing, subdivision, lights, rect textures,
+# majorant grid, volume tracking); figures go to bench/results/.
 bench: deps
 	cmake -S . -B $(BUILD_DIR) -G Ninja -DCMAKE_BUILD_TYPE=Release
 	cmake --build $(BUILD_DIR) -j $(JOBS) --target usda_parse_bench instancing_bench subdivision_bench many_lights_bench \
-		rect_texture_bench majorant_grid_bench volume_tracking_bench
+		rect_texture_bench majorant_grid_bench volume_tracking_bench embree_throughput_bench media_overhead_bench crate_load_bench
+	$(BUILD_DIR)/bench/embree_throughput_bench
+	$(BUILD_DIR)/bench/media_overhead_bench
+	$(BUILD_DIR)/bench/crate_load_bench
 	$(BUILD_DIR)/bench/usda_parse_bench
 	$(BUILD_DIR)/bench/instancing_bench
 	$(BUILD_DIR)/bench/subdivision_bench
@@ -45,6 +49,16 @@ bench: deps
 	$(BUILD_DIR)/bench/rect_texture_bench
 	$(BUILD_DIR)/bench/majorant_grid_bench
 	$(BUILD_DIR)/bench/volume_tracking_bench
+
+# Speed against accuracy (bench/run.py): every benchmark scene and method, and Cycles where blender is installed, error
+# against time; the stability suite. Writes bench/results/DATE-figures.*, docs/RESULTS.md, docs/STABILITY.md.
+# make figures FIGURES_ARGS=--quick (or --suite stability, --scenes cornell_box,smoke).
+.PHONY: figures
+figures:
+	@bash scripts/install_dependencies.sh bench
+	cmake -S . -B $(BUILD_DIR) -G Ninja -DCMAKE_BUILD_TYPE=Release
+	cmake --build $(BUILD_DIR) -j $(JOBS) --target fluence
+	/usr/bin/python3 bench/run.py --fluence $(FLUENCE) $(FIGURES_ARGS)
 
 clean:
 	rm -rf $(BUILD_DIR) out
