@@ -1,6 +1,5 @@
 #include "delegate/render_index.h"
 
-#include <filesystem>
 #include <set>
 
 #include "delegate/camera_adapter.h"
@@ -9,6 +8,7 @@
 #include "delegate/light_adapter.h"
 #include "delegate/xform.h"
 #include "render/mesh_transform.h"
+#include "scene/asset_path.h"
 
 namespace fluence::delegate {
 
@@ -53,12 +53,7 @@ WorldTransform worldTransformOf(const usd::Stage& stage, const std::string& path
 }  // namespace
 
 bool assetFileExists(const std::string& path) {
-    if (path.empty()) return false;
-    std::size_t udim = path.find("<UDIM>");
-    if (udim == std::string::npos) return std::filesystem::is_regular_file(path);
-    for (int tile = 1001; tile <= 1100; ++tile)
-        if (std::filesystem::is_regular_file(std::string(path).replace(udim, 6, std::to_string(tile)))) return true;
-    return false;
+    return usd::assetExists(path);  // scene/asset_path.h: files, UDIM sets and USDZ package entries
 }
 
 bool isFieldAssetType(const std::string& typeName) { return typeName == "OpenVDBAsset" || typeName == "Field3DAsset"; }

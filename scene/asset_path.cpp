@@ -5,6 +5,8 @@
 #include <filesystem>
 #include <system_error>
 
+#include "scene/usdz_package.h"
+
 namespace fluence::usd {
 
 namespace fs = std::filesystem;
@@ -39,12 +41,16 @@ std::string anchorAssetPath(const std::string& layerIdentifier, const std::strin
     std::replace(path.begin(), path.end(), '\\', '/');
     fs::path asset(path);
     if (asset.is_absolute()) return asset.lexically_normal().generic_string();
+    if (auto packaged = splitPackagePath(layerIdentifier))  // a layer inside a USDZ package
+        return packagePath(normalizedAbsolutePath(packaged->package),
+                           (fs::path(packaged->entry).parent_path() / asset).lexically_normal().generic_string());
     fs::path directory = absoluteOf(fs::path(layerIdentifier)).parent_path();
     return (directory / asset).lexically_normal().generic_string();
 }
 
 bool assetExists(const std::string& resolved) {
     if (resolved.empty()) return false;
+    if (splitPackagePath(resolved)) return packagedEntryExists(resolved);
     std::error_code error;
     std::size_t udim = resolved.find("<UDIM>");
     if (udim == std::string::npos) return fs::is_regular_file(resolved, error);

@@ -9,7 +9,9 @@ namespace fluence::usd {
 // The absolute, lexically normalized path of `authored` anchored at the directory of the layer
 // `layerIdentifier` (a file path; a relative identifier counts from the current directory).
 // Absolute paths are only normalized; empty paths and URIs ("scheme:...") are returned unchanged.
-// Backslashes read as separators. Tokens such as <UDIM> are kept as written.
+// Backslashes read as separators. Tokens such as <UDIM> are kept as written. In a layer inside a
+// USDZ package ("/a/pkg.usdz[dir/layer.usdc]") relative paths resolve inside the package:
+// "./tex.png" -> "/a/pkg.usdz[dir/tex.png]".
 std::string anchorAssetPath(const std::string& layerIdentifier, const std::string& authored);
 
 // The absolute, lexically normalized form of a file path.

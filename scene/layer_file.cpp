@@ -4,20 +4,49 @@
 #include <cctype>
 #include <filesystem>
 #include <fstream>
+#include <optional>
+#include <vector>
 
 #include "scene/crate_reader.h"
 #include "scene/mtlx_reader.h"
 #include "scene/usda_parser.h"
+#include "scene/usdz_package.h"
 
 namespace fluence::usd {
 
-bool isMaterialXPath(const std::string& path) {
+namespace {
+
+std::string lowercaseExtension(const std::string& path) {
     std::string extension = std::filesystem::path(path).extension().string();
     std::transform(extension.begin(), extension.end(), extension.begin(), [](unsigned char c) { return std::tolower(c); });
-    return extension == ".mtlx";
+    return extension;
 }
 
+// The layer held by the entry `entryName` of `package`, identified as "<package>[<entry>]" so
+// that asset paths authored in it resolve inside the package (scene/asset_path.h).
+std::unique_ptr<Layer> readPackagedLayer(const UsdzPackage& package, const std::string& entryName) {
+    const std::string identifier = packagePath(package.path(), entryName);
+    std::string_view bytes = package.bytes(entryName);
+    if (isCrateHeader(bytes.substr(0, 8))) return readCrateBytes(std::vector<char>(bytes.begin(), bytes.end()), identifier);
+    if (isMaterialXPath(entryName)) return readMaterialX(std::string(bytes), identifier);
+    const std::string extension = lowercaseExtension(entryName);
+    if (extension != ".usda" && extension != ".usd")
+        throw FileError("'" + identifier + "' is not a USD layer (neither a crate nor a .usda or .usd text file)");
+    return parseUsdaString(bytes, identifier);
+}
+
+}  // namespace
+
+bool isMaterialXPath(const std::string& path) { return lowercaseExtension(path) == ".mtlx"; }
+
 std::unique_ptr<Layer> readLayerFile(const std::string& path) {
+    if (std::optional<PackagePath> packaged = splitPackagePath(path))
+        return readPackagedLayer(UsdzPackage::open(packaged->package), packaged->entry);
+    if (isUsdzPath(path)) {
+        UsdzPackage package = UsdzPackage::open(path);
+        if (package.entries().empty()) throw FileError("'" + path + "': the USDZ package holds no layer");
+        return readPackagedLayer(package, package.entries().front().name);
+    }
     std::ifstream file(path, std::ios::binary);
     char start[8] = {};
     file.read(start, sizeof start);

@@ -12,6 +12,7 @@
 #include "scene/layer_file.h"
 #include "scene/namespace_remap.h"
 #include "scene/usda_parser.h"
+#include "scene/usdz_package.h"
 
 namespace fluence::usd::detail {
 
@@ -106,11 +107,11 @@ std::string firstBytes(const std::string& path) {
 // Why the file at `path` cannot be read as a USD text layer ("" when it can be tried).
 std::string unusableLayerProblem(const std::string& path) {
     std::error_code error;
-    if (!fs::is_regular_file(path, error)) return "cannot find '" + path + "'";
+    if (!(splitPackagePath(path) ? packagedEntryExists(path) : fs::is_regular_file(path, error)))
+        return "cannot find '" + path + "'";
     std::string start = firstBytes(path);
-    if (isCrateHeader(start) || isMaterialXPath(path)) return "";
+    if (isCrateHeader(start) || isMaterialXPath(path) || isUsdzPath(path) || splitPackagePath(path)) return "";
     std::string extension = lowercaseExtension(path);
-    if (extension == ".usdz") return "'" + path + "': USDZ packages are not supported yet";
     bool textHeader = start.rfind("#usda", 0) == 0 || start.rfind("#sdf", 0) == 0;
     if (!textHeader && extension != ".usda" && extension != ".usd" && extension != ".sdf")
         return "'" + path + "' is not a USD layer (the '" + extension + "' file format is not supported)";

@@ -8,6 +8,8 @@
 #include <mutex>
 #include <vector>
 
+#include "scene/package_files.h"
+
 namespace fluence::texture {
 
 namespace OIIO = OIIO_NAMESPACE;
@@ -64,7 +66,7 @@ const TextureSystem::Texture* TextureSystem::open(const std::string& path, Sourc
     if (auto it = impl_->opened.find(key); it != impl_->opened.end()) return &it->second;
 
     OIIO::TextureSystem& ts = *impl_->system;
-    OIIO::ustring name(path);
+    OIIO::ustring name(usd::fileForAsset(path));  // a texture inside a USDZ package: its extracted copy
     Texture texture;
     texture.handle = ts.get_texture_handle(name);
     texture.udim = texture.handle && ts.is_udim(texture.handle);

@@ -1,0 +1,99 @@
+// `fluence render` of USDZ packages: the corpus's texture-cat-plane.usdz renders the same image as
+// its entries copied out to loose files (its layer and textures/texture-cat.jpg), and that image
+// depends on the packaged texture (without it the loose render differs), so the texture was read
+// from the package (with the light moved off the plane: see litOver). Truncated or corrupted packages fail with exit code 4 and an error naming them.
+// The corpus's own loose texture-cat-plane.usda/.usdc are another Blender export (other prims,
+// camera and metersPerUnit), so they are not an image reference.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include "scene/usdz_package.h"
+#include "tests/support/cli.h"
+#include "tests/support/temp_dir.h"
+
+namespace fluence {
+namespace {
+
+namespace fs = std::filesystem;
+
+const fs::path kPackage = FLUENCE_SOURCE_DIR "/../shared/usd_corpus/tinyusdz/models/texture-cat-plane.usdz";
+
+#define SKIP_WITHOUT_PACKAGE() \
+    if (!fs::is_regular_file(kPackage)) GTEST_SKIP() << "no corpus package at " << kPackage
+
+test::RunResult render(const fs::path& scene, const fs::path& out, const test::TempDir& dir) {
+    return test::runFluence("render '" + scene.string() + "' -o '" + out.string() + "' -r 48 32 --spp 4", dir.path());
+}
+
+// The largest difference between the beauty channels of two renders of one size.
+float largestDifference(const test::ExrImage& a, const test::ExrImage& b) {
+    float largest = 0.0f;
+    for (int y = 0; y < a.height; ++y)
+        for (int x = 0; x < a.width; ++x)
+            for (const char* c : {"R", "G", "B", "A"}) largest = std::max(largest, std::abs(a.at(x, y, c) - b.at(x, y, c)));
+    return largest;
+}
+
+// A layer over `scene` (a sublayer) that moves the package's light off the textured plane, where
+// Blender exported it (at the plane's centre, radius 0: the plane renders black), so the texture
+// shows.
+fs::path litOver(const fs::path& scene, const test::TempDir& dir, const std::string& name) {
+    const fs::path layer = dir.path() / name;
+    std::ofstream(layer) << "#usda 1.0\n(\n    subLayers = [@" << scene.string() << "@]\n)\n"
+                         << "over \"root\" { over \"root\" { over \"lights\" { over \"environment\" {\n"
+                         << "    matrix4d xformOp:transform = ((1, 0, 0, 0), (0, 1, 0, 0), (0, 0, 1, 0), (0, -4, 0, 1))\n"
+                         << "    over \"environment\" {\n        float inputs:radius = 0.5\n    }\n}\n}\n}\n}\n";
+    return layer;
+}
+
+TEST(UsdzCli, PackageRendersAsItsEntriesDoLoose) {
+    SKIP_WITHOUT_PACKAGE();
+    test::TempDir dir;
+    const usd::UsdzPackage package = usd::UsdzPackage::open(kPackage.string());
+    for (const usd::UsdzPackage::Entry& entry : package.entries()) {
+        fs::create_directories((dir.path() / "loose" / entry.name).parent_path());
+        std::ofstream(dir.path() / "loose" / entry.name, std::ios::binary) << package.bytes(entry);
+    }
+    const fs::path looseLayer = dir.path() / "loose" / package.entries().front().name;
+    const auto rendered = [&](const fs::path& scene, const std::string& name) {
+        test::RunResult r = render(scene, dir.path() / name, dir);
+        EXPECT_EQ(r.exitCode, 0) << r.err;
+        EXPECT_EQ(r.err.find("not found"), std::string::npos) << r.err;
+        return test::readExr(dir.path() / name);
+    };
+    test::ExrImage packaged = rendered(kPackage, "packaged.exr");
+    EXPECT_EQ(largestDifference(packaged, rendered(looseLayer, "loose.exr")), 0.0f);
+
+    test::ExrImage packagedLit = rendered(litOver(kPackage, dir, "packaged_lit.usda"), "packaged_lit.exr");
+    EXPECT_EQ(largestDifference(packagedLit, rendered(litOver(looseLayer, dir, "loose_lit.usda"), "loose_lit.exr")), 0.0f);
+    fs::remove(dir.path() / "loose" / "textures" / "texture-cat.jpg");
+    test::RunResult untextured = render(litOver(looseLayer, dir, "untextured.usda"), dir.path() / "untextured.exr", dir);
+    ASSERT_EQ(untextured.exitCode, 0) << untextured.err;
+    EXPECT_GT(largestDifference(packagedLit, test::readExr(dir.path() / "untextured.exr")), 0.01f);
+}
+
+TEST(UsdzCli, DamagedPackagesFailNamingThem) {
+    SKIP_WITHOUT_PACKAGE();
+    test::TempDir dir;
+    const std::string bytes = test::slurp(kPackage);
+    std::string compressed = bytes;
+    compressed[compressed.find("PK\x01\x02") + 10] = 8;  // the root layer's entry marked deflated
+    for (const auto& [name, content, what] :
+         {std::tuple<std::string, std::string, std::string>{"truncated.usdz", bytes.substr(0, bytes.size() / 2), "truncated"},
+          {"compressed.usdz", compressed, "compressed"}}) {
+        SCOPED_TRACE(name);
+        const fs::path scene = dir.path() / name;
+        std::ofstream(scene, std::ios::binary) << content;
+        test::RunResult r = render(scene, dir.path() / "out.exr", dir);
+        EXPECT_EQ(r.exitCode, 4) << r.err;
+        EXPECT_NE(r.err.find(scene.string()), std::string::npos) << r.err;
+        EXPECT_NE(r.err.find(what), std::string::npos) << r.err;
+        EXPECT_FALSE(fs::exists(dir.path() / "out.exr"));
+    }
+}
+
+}  // namespace
+}  // namespace fluence
