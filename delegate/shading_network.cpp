@@ -212,8 +212,9 @@ void readBindings(const ShaderInputs& surface, const std::vector<DrivableInput>&
             b = mtlxNormalMapBinding(surface, input, *node->shader);
         else
             surface.warn()(surface.shader().path, std::string("input '") + input.name + "' is connected to " +
-                                                      node->shader->path + " ('" + id +
-                                                      "'), a node Fluence does not evaluate; using the input's own value");
+                                                      node->shader->path + " ('" + id + "', from " +
+                                                      node->shader->location.file +
+                                                      "), a node Fluence does not evaluate; using the input's own value");
         if (b) bindings.push_back(std::move(*b));
     }
 }
