@@ -117,15 +117,14 @@ texture::Wrap addressModeOf(const ShaderInputs& image, const char* input) {
 }
 
 // How a MaterialX image's file becomes rendering-space values: its colorSpace metadata (set on
-// colour images only, scene/mtlx_reader.h); no colour space means data, read as stored.
-texture::SourceColorSpace mtlxColorSpaceOf(const ShaderInputs& image) {
+// colour images only, scene/mtlx_reader.h) names a colour space of the OCIO config, converted
+// from when the texture is opened (an unknown one is a texture error there, named); no colour
+// space means data, read as stored.
+void readMtlxColorSpace(const ShaderInputs& image, render::TextureDesc& desc) {
     const std::string space =
         PrimReader(image.shader(), image.time()).attributeMetadata("inputs:file", "colorSpace").value_or("");
-    if (space.empty() || space == "lin_rec709" || space == "raw") return texture::SourceColorSpace::Raw;
-    if (space == "srgb_texture") return texture::SourceColorSpace::SRGB;
-    image.warn()(image.shader().path, "texture colour space '" + space +
-                                          "': Fluence converts image files from srgb_texture, lin_rec709 and raw; reading it as lin_rec709");
-    return texture::SourceColorSpace::Raw;
+    desc.colorSpace = space == "srgb_texture" ? texture::SourceColorSpace::SRGB : texture::SourceColorSpace::Raw;
+    if (!space.empty() && space != "srgb_texture" && space != "lin_rec709" && space != "raw") desc.colorSpaceName = space;
 }
 
 // A MaterialX image node (ND_image_<type>): file, default, uaddressmode/vaddressmode, and the
@@ -148,7 +147,7 @@ std::optional<render::InputBinding> mtlxImageBinding(const ShaderInputs& surface
     desc.wrapT = addressModeOf(image, "vaddressmode");
     const std::vector<float> fallback = image.tuple("default", std::vector<float>(std::size_t(channels), 0.0f));
     for (std::size_t c = 0; c < 4; ++c) desc.fallback[c] = c < fallback.size() ? fallback[c] : channels == 1 ? fallback[0] : 1.0f;
-    desc.colorSpace = mtlxColorSpaceOf(image);
+    readMtlxColorSpace(image, desc);
     if (desc.file.empty())
         surface.warn()(node.path, "image has no inputs:file; using its default");
     else if (!assetFileExists(desc.file))

@@ -13,7 +13,7 @@
 // | _float3 (outputs:result)    |                                                            |
 // | ND_image_<type> (MaterialX)  | file (resolved), default, uaddressmode/vaddressmode        |
 // | output out                   | (constant, clamp, periodic, mirror), the file's colorSpace |
-// |                              | (srgb_texture; lin_rec709, raw or none: as stored)         |
+// |                              | (any of the OCIO config's; none: data, as stored)          |
 // | ND_normalmap (MaterialX)     | in (an image), scale: (2 t - 1) (scale, scale, 1), tangent |
 // |                              | space                                                      |
 // MaterialX images read the primary UV set (the primvar st).

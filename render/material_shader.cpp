@@ -60,7 +60,7 @@ MaterialShader::MaterialShader(const MaterialDesc& material, texture::TextureSys
         const texture::TextureSystem::Texture* opened = nullptr;
         if (b.texture && textures && !b.texture->file.empty()) {
             std::string error;
-            opened = textures->open(b.texture->file, b.texture->colorSpace, error);
+            opened = textures->open(b.texture->file, b.texture->colorSpace, error, b.texture->colorSpaceName);
             if (!opened) warnings.push_back({material.name, error + "; using the texture's fallback"});
         }
         opened_.push_back(opened);

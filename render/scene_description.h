@@ -104,6 +104,7 @@ struct TextureDesc {
     float scale[4] = {1.0f, 1.0f, 1.0f, 1.0f};
     float bias[4] = {0.0f, 0.0f, 0.0f, 0.0f};
     texture::SourceColorSpace colorSpace = texture::SourceColorSpace::Auto;
+    std::string colorSpaceName;  // a colour space of the OCIO config (MaterialX colorspace); overrides colorSpace
     std::string uvPrimvar = "st";     // the reader's varname; "" = no reader (uvFallback everywhere)
     float uvFallback[2] = {0.0f, 0.0f};  // where the mesh has no such primvar
     UvTransform uvTransform;

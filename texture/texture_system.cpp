@@ -6,6 +6,7 @@
 #include <cmath>
 #include <map>
 #include <mutex>
+#include <tuple>
 #include <vector>
 
 #include "scene/package_files.h"
@@ -26,7 +27,7 @@ struct TextureSystem::Impl {
     color::ColorManagement colors;
     OIIO::TextureSystem* system = nullptr;
     std::mutex mutex;  // guards `opened`
-    std::map<std::pair<std::string, SourceColorSpace>, Texture> opened;
+    std::map<std::tuple<std::string, SourceColorSpace, std::string>, Texture> opened;
 };
 
 TextureSystem::TextureSystem(color::ColorManagement colors) : impl_(std::make_unique<Impl>(std::move(colors))) {
@@ -60,9 +61,10 @@ OIIO::TextureOpt::Wrap oiioWrap(Wrap wrap) {
 
 }  // namespace
 
-const TextureSystem::Texture* TextureSystem::open(const std::string& path, SourceColorSpace colorSpace, std::string& error) {
+const TextureSystem::Texture* TextureSystem::open(const std::string& path, SourceColorSpace colorSpace, std::string& error,
+                                                  const std::string& namedSpace) {
     std::lock_guard<std::mutex> lock(impl_->mutex);
-    auto key = std::make_pair(path, colorSpace);
+    auto key = std::make_tuple(path, colorSpace, namedSpace);
     if (auto it = impl_->opened.find(key); it != impl_->opened.end()) return &it->second;
 
     OIIO::TextureSystem& ts = *impl_->system;
@@ -90,7 +92,7 @@ const TextureSystem::Texture* TextureSystem::open(const std::string& path, Sourc
         return nullptr;
     }
     texture.channels = spec->nchannels;
-    std::string space = sourceSpace(*spec, colorSpace, impl_->colors);
+    std::string space = namedSpace.empty() ? sourceSpace(*spec, colorSpace, impl_->colors) : namedSpace;
     try {
         texture.toRendering = impl_->colors.conversionToRenderingSpace(space);
     } catch (const color::ColorError& e) {

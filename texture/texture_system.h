@@ -38,7 +38,10 @@ public:
 
     // Opens `path` (or a UDIM pattern). Returns nullptr and sets `error` (naming the file) when
     // it cannot be read; a UDIM set is readable when at least one tile is.
-    const Texture* open(const std::string& path, SourceColorSpace colorSpace, std::string& error);
+    // `namedSpace`, when not empty, is the colour space of the config the file's values are in (a
+    // MaterialX colorspace such as "acescg"); it overrides `colorSpace`.
+    const Texture* open(const std::string& path, SourceColorSpace colorSpace, std::string& error,
+                        const std::string& namedSpace = "");
 
     // The filtered RGBA value at st; false where there is no data (an absent UDIM tile).
     bool lookup(const Texture& texture, float s, float t, const Footprint& footprint, Wrap wrapS, Wrap wrapT,

@@ -59,6 +59,9 @@ TEST_F(MaterialXLooks, ImagesAndNormalMapsBecomeBindingsAndUnknownNodesAreNamed)
       <input name="file" type="filename" value="base.png" colorspace="srgb_texture" />
       <input name="uaddressmode" type="string" value="clamp" />
     </image>
+    <image name="tint" type="color3">
+      <input name="file" type="filename" value="tint.exr" colorspace="acescg" />
+    </image>
     <image name="bumps" type="vector3">
       <input name="file" type="filename" value="normal.png" />
     </image>
@@ -70,12 +73,14 @@ TEST_F(MaterialXLooks, ImagesAndNormalMapsBecomeBindingsAndUnknownNodesAreNamed)
     <output name="base" type="color3" nodename="albedo" />
     <output name="normal" type="vector3" nodename="nm" />
     <output name="rough" type="float" nodename="grain" />
+    <output name="coat" type="color3" nodename="tint" />
   </nodegraph>
   <standard_surface name="S" type="surfaceshader">
     <input name="base_color" type="color3" nodegraph="NG" output="base" />
     <input name="normal" type="vector3" nodegraph="NG" output="normal" />
     <input name="specular_roughness" type="float" nodegraph="NG" output="rough" />
     <input name="metalness" type="float" value="0.25" />
+    <input name="coat_color" type="color3" nodegraph="NG" output="coat" />
   </standard_surface>
   <surfacematerial name="M" type="material">
     <input name="surfaceshader" type="surfaceshader" nodename="S" />
@@ -115,6 +120,11 @@ def Camera "Cam"
     EXPECT_EQ(base->texture->wrapS, texture::Wrap::Clamp);
     EXPECT_EQ(base->texture->wrapT, texture::Wrap::Repeat);
     EXPECT_EQ(base->channels, 3);
+
+    const render::InputBinding* coat = binding(*m, render::MaterialInput::CoatColor);
+    ASSERT_NE(coat, nullptr);
+    EXPECT_EQ(coat->texture->colorSpaceName, "acescg") << "converted from the config's acescg when opened";
+    EXPECT_EQ(base->texture->colorSpaceName, "") << "srgb_texture is the SRGB conversion";
 
     const render::InputBinding* normal = binding(*m, render::MaterialInput::Normal);
     ASSERT_NE(normal, nullptr);

@@ -71,6 +71,22 @@ TEST_F(TextureSystemTest, EightBitFilesAreSrgbUnlessRaw) {
     EXPECT_NEAR(at(open(quadrants(), SourceColorSpace::Auto), 0.25f, 0.75f)[0], 1.0f, 1e-6f) << "auto: floats are linear";
 }
 
+// A named colour space of the config (a MaterialX colorspace) converts the file's values through
+// OCIO, as ColorManagement converts a colour from that space; an unknown name is an error.
+TEST_F(TextureSystemTest, NamedColourSpacesConvertThroughTheConfig) {
+    const std::string path = dir.file("acescg.exr");
+    test::writeImage<float>(path, 1, 1, 3, OIIO::TypeDesc::FLOAT, {0.8f, 0.3f, 0.1f});
+    std::string error;
+    const TextureSystem::Texture* t = system.open(path, SourceColorSpace::Raw, error, "acescg");
+    ASSERT_TRUE(t) << error;
+    const RGB expected = color::ColorManagement::load().toRenderingSpace("acescg", RGB(0.8f, 0.3f, 0.1f));
+    const Rgba v = at(*t, 0.5f, 0.5f);
+    for (int c = 0; c < 3; ++c) EXPECT_NEAR(v[std::size_t(c)], expected[c], 1e-5f) << c;
+    EXPECT_GT(std::abs(v[0] - 0.8f), 0.05f) << "acescg is not the rendering space: the values change";
+    EXPECT_EQ(system.open(path, SourceColorSpace::Raw, error, "no_such_space"), nullptr);
+    EXPECT_NE(error.find(path), std::string::npos) << error;
+}
+
 TEST_F(TextureSystemTest, GreyFilesReadAsGreyRgbAndAlphaIsKept) {
     std::string grey = dir.file("grey.exr"), greyAlpha = dir.file("grey_alpha.exr");
     test::writeImage<float>(grey, 1, 1, 1, OIIO::TypeDesc::FLOAT, {0.25f});
