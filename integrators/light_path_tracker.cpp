@@ -13,7 +13,8 @@ RGB shareOf(const RGB& part, const RGB& whole) {
 
 }  // namespace
 
-VertexEvents::VertexEvents(bool transmitted, const render::LobeSplit& split, const RGB& f) : count_(0) {
+VertexEvents::VertexEvents(bool transmitted, const render::LobeSplit& split) : count_(0) {
+    const RGB f = split.diffuse + split.glossy;
     const EventType type = transmitted ? EventType::Transmission : EventType::Reflection;
     if (!isBlack(split.diffuse)) {
         events_[count_] = PathEvent{type, Scattering::Diffuse};

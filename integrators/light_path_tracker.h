@@ -46,9 +46,9 @@ class VertexEvents {
 public:
     // A vertex that is one event: a delta lobe, a medium scattering, a one-kind BSDF.
     explicit VertexEvents(const PathEvent& event) : events_{event, event}, shares_{RGB(1.0f), RGB(0.0f)}, count_(1) {}
-    // A non-delta surface scattering of value f split by kind (`transmitted`: wi leaves on the
-    // other side of the surface than wo).
-    VertexEvents(bool transmitted, const render::LobeSplit& split, const RGB& f);
+    // A non-delta surface scattering whose value f is `split` by kind (f is their sum;
+    // `transmitted`: wi leaves on the other side of the surface than wo).
+    VertexEvents(bool transmitted, const render::LobeSplit& split);
 
     int size() const { return count_; }
     const PathEvent& event(int i) const { return events_[i]; }

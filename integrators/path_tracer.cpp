@@ -243,7 +243,7 @@ FilmSample PathTracer::trace(const render::RenderScene& scene, const render::Cam
                              agree ? bsdf.pdf(woLocal, wiLocal) : 0.0f);
         }, [&](const Vec3f& wi) {
             const Vec3f wiLocal = frame.toLocal(wi);
-            return VertexEvents(woLocal.z * wiLocal.z < 0.0f, bsdf.fByKind(woLocal, wiLocal), bsdf.f(woLocal, wiLocal));
+            return VertexEvents(woLocal.z * wiLocal.z < 0.0f, bsdf.fByKind(woLocal, wiLocal));
         });
 
         // Continue the path by sampling the BSDF (a plain Lambertian has one lobe: no lobe number drawn).
@@ -259,7 +259,7 @@ FilmSample PathTracer::trace(const render::RenderScene& scene, const render::Cam
             const bool transmitted = woLocal.z * bs->wi.z < 0.0f;
             lightPaths.scatter(bs->specular ? VertexEvents(PathEvent{transmitted ? EventType::Transmission : EventType::Reflection,
                                                                      Scattering::Singular})
-                                            : VertexEvents(transmitted, bsdf.fByKind(woLocal, bs->wi), bs->f));
+                                            : VertexEvents(transmitted, bsdf.fByKind(woLocal, bs->wi)));
         }
 
         mis.scattered(bs->pdf);

@@ -41,6 +41,12 @@ std::optional<UsdType> usdTypeOf(const std::string& type) {
     return std::nullopt;
 }
 
+// The USD type name of an attribute of MaterialX type `type` ("token" for types with no value).
+const char* usdTypeNameOf(const std::string& type) {
+    const std::optional<UsdType> usd = usdTypeOf(type);
+    return usd ? usd->name : "token";
+}
+
 bool isColorType(const std::string& type) { return type == "color3" || type == "color4"; }
 
 class Reader {
@@ -80,10 +86,14 @@ private:
         return e.type() == pugi::node_element && !structural.contains(e.name());
     }
 
+    // A warning about the document (a MaterialX file has no line numbers the reader keeps).
+    void warn(std::string message) {
+        layer_->warnings.push_back(ParseWarning{SourceLocation{identifier_, 1, 1}, std::move(message)});
+    }
+
     void noteUnsupported(const std::string& kind) {
         if (!reported_.insert(kind).second) return;
-        layer_->warnings.push_back({{identifier_, 1, 1}, "MaterialX <" + kind + "> elements are not read (only materials, "
-                                                         "their shaders, node graphs and nodes)"});
+        warn("MaterialX <" + kind + "> elements are not read (only materials, their shaders, node graphs and nodes)");
     }
 
     PrimSpec& addChild(std::vector<std::unique_ptr<PrimSpec>>& siblings, const std::string& parentPath,
@@ -112,7 +122,7 @@ private:
         pugi::xml_node surface = material.find_child_by_attribute("input", "name", "surfaceshader");
         pugi::xml_node shader = surface ? topLevel(surface.attribute("nodename").value()) : pugi::xml_node();
         if (!shader) {
-            layer_->warnings.push_back({{identifier_, 1, 1}, "material '" + name + "' has no surfaceshader node"});
+            warn("material '" + name + "' has no surfaceshader node");
             return;
         }
         AttributeSpec output;
@@ -143,7 +153,7 @@ private:
         for (pugi::xml_node input : node.children("input")) addInput(prim, node, input, graphPath, type);
         AttributeSpec out;
         out.name = "outputs:out";
-        out.typeName = usdTypeOf(type) ? usdTypeOf(type)->name : "token";
+        out.typeName = usdTypeNameOf(type);
         out.location = prim.location;
         prim.attributes.push_back(std::move(out));
     }
@@ -161,14 +171,14 @@ private:
         const std::optional<UsdType> usdType = usdTypeOf(type);
         AttributeSpec a;
         a.name = "inputs:" + name;
-        a.typeName = usdType ? usdType->name : "token";
+        a.typeName = usdTypeNameOf(type);
         a.location = prim.location;
         // The material the node sits in: its prim's parent (a NodeGraph's parent for graph nodes).
         const std::string materialPath = graphPath.empty() ? parentPath(prim.path) : parentPath(graphPath);
         if (pugi::xml_attribute graph = input.attribute("nodegraph")) {
             const std::string output = input.attribute("output").value();
             a.connections = {materialPath + "/" + graph.value() + ".outputs:" + output};
-            addGraph(*materialPrim(materialPath), graph.value());
+            addGraph(*primAt(materialPath), graph.value());
         } else if (pugi::xml_attribute source = input.attribute("nodename")) {
             const std::string scope = graphPath.empty() ? materialPath : graphPath;
             a.connections = {scope + "/" + source.value() + ".outputs:out"};
@@ -193,7 +203,7 @@ private:
         pugi::xml_node graph = root_.find_child_by_attribute("nodegraph", "name", name.c_str());
         PrimSpec& prim = addChild(material.children, material.path, name, "NodeGraph");
         if (!graph) {
-            layer_->warnings.push_back({{identifier_, 1, 1}, "node graph '" + name + "' is not in the document"});
+            warn("node graph '" + name + "' is not in the document");
             return;
         }
         graphs_[prim.path] = graph;
@@ -213,7 +223,7 @@ private:
             const std::string type = output.attribute("type").value();
             AttributeSpec a;
             a.name = std::string("outputs:") + output.attribute("name").value();
-            a.typeName = usdTypeOf(type) ? usdTypeOf(type)->name : "token";
+            a.typeName = usdTypeNameOf(type);
             a.location = prim.location;
             const std::string source = output.attribute("nodename").value();
             if (!source.empty()) {
@@ -244,7 +254,6 @@ private:
         }
         return found;
     }
-    PrimSpec* materialPrim(const std::string& path) { return primAt(path); }
 
     Value valueOf(const std::string& text, const UsdType& type, pugi::xml_node input) {
         if (type.kind != ValueKind::Numeric) return Value::string(type.name, type.kind, {text}, false);
@@ -266,9 +275,8 @@ private:
             }
         }
         if (numbers.size() != std::size_t(type.components)) {
-            layer_->warnings.push_back({{identifier_, 1, 1}, "input '" + std::string(input.attribute("name").value()) +
-                                                                 "': value '" + text + "' is not a " + type.name +
-                                                                 "; using zero"});
+            warn("input '" + std::string(input.attribute("name").value()) + "': value '" + text + "' is not a " +
+                 type.name + "; using zero");
             numbers.assign(std::size_t(type.components), 0.0);
         }
         return Value::numeric(type.name, std::move(numbers), type.components, false);
