@@ -1,9 +1,11 @@
 #include "apps/cli_options.h"
 
 #include <algorithm>
+#include <cctype>
 #include <charconv>
 #include <cmath>
 
+#include "delegate/imageable.h"
 #include "integrators/automatic_choice.h"
 #include "integrators/integrator.h"
 
@@ -75,6 +77,44 @@ private:
     std::vector<std::pair<std::string, bool>> rules_;  // (prim path, load), as given
 };
 
+// "a,b,c" -> {"a", "b", "c"} (empty items dropped).
+std::vector<std::string> splitList(const std::string& text) {
+    std::vector<std::string> items;
+    for (std::size_t start = 0; start <= text.size();) {
+        std::size_t comma = std::min(text.find(',', start), text.size());
+        if (comma > start) items.push_back(text.substr(start, comma - start));
+        start = comma + 1;
+    }
+    return items;
+}
+
+// husk's -V: a verbosity digit (0: no progress) and/or 'a' for ALF_PROGRESS lines even on a
+// terminal, e.g. `-V a`, `-V2a`, `-V 0`.
+ProgressStyle parseVerbosity(const std::string& text) {
+    std::size_t digits = 0;
+    while (digits < text.size() && std::isdigit(static_cast<unsigned char>(text[digits]))) ++digits;
+    const std::string suffix = text.substr(digits);
+    if ((digits == 0 && suffix.empty()) || (suffix != "" && suffix != "a"))
+        throw UsageError("-V expects a verbosity level and/or 'a' (e.g. -V a, -V2a), got '" + text + "'");
+    if (suffix == "a") return ProgressStyle::Alfred;
+    return std::stoi(text.substr(0, digits)) == 0 ? ProgressStyle::None : ProgressStyle::Auto;
+}
+
+// --complexity, as husk has it: how finely subdivision surfaces are refined. lowest renders the
+// control cage, low and medium refine uniformly one and two levels, high dices at 2 pixels per
+// micro-edge and veryhigh (the default) at --dicing-rate. --subdiv-level and --dicing-rate, when
+// given, win.
+void applyComplexity(const std::string& complexity, bool dicingRateGiven, RenderOptions& o) {
+    if (complexity.empty() || complexity == "veryhigh") return;
+    if (complexity == "high") {
+        if (!dicingRateGiven) o.dicingRate = 2.0;
+        return;
+    }
+    const int level = complexity == "lowest" ? 0 : complexity == "low" ? 1 : complexity == "medium" ? 2 : -1;
+    if (level < 0) throw UsageError("--complexity must be lowest, low, medium, high or veryhigh, got '" + complexity + "'");
+    if (!o.subdivLevel) o.subdivLevel = level;
+}
+
 // An argument that is not an option: the scene file, given once.
 void takeScene(const std::string& arg, std::string& scene) {
     if (arg.starts_with("-") && arg.size() > 1) throw UsageError("unknown option '" + arg + "'");
@@ -132,6 +172,8 @@ RenderOptions parseRenderOptions(const std::vector<std::string>& args) {
     RenderOptions o;
     ArgCursor cur(args);
     LoadRuleArgs load;
+    std::string complexity;
+    bool dicingRateGiven = false;
     while (!cur.done()) {
         const std::string arg = cur.next();
         if (load.take(arg, cur)) continue;
@@ -172,6 +214,7 @@ RenderOptions parseRenderOptions(const std::vector<std::string>& args) {
             o.maxDepth = parseNumber<int>(arg, cur.value(arg));
             if (o.maxDepth < 0) throw UsageError("--max-depth must be >= 0");
         } else if (arg == "--dicing-rate") {
+            dicingRateGiven = true;
             o.dicingRate = parseNumber<double>(arg, cur.value(arg));
             if (!(o.dicingRate > 0.0) || !std::isfinite(o.dicingRate)) throw UsageError("--dicing-rate must be > 0 pixels");
         } else if (arg == "--subdiv-level") {
@@ -180,6 +223,12 @@ RenderOptions parseRenderOptions(const std::vector<std::string>& args) {
                 throw UsageError("--subdiv-level must be between 0 and " + std::to_string(kMaxSubdivLevel));
         } else if (arg == "--lpe") {
             o.lightPaths.push_back(parseLightPathOption(cur.value(arg)));
+        } else if (arg == "--cryptomatte") {
+            o.cryptomatte = parseCryptomatteOption(splitList(cur.value(arg)));
+        } else if (arg == "--cryptomatte-depth") {
+            o.cryptomatteDepth = parseNumber<int>(arg, cur.value(arg));
+            if (o.cryptomatteDepth < 1 || o.cryptomatteDepth > kMaxCryptomatteDepth)
+                throw UsageError("--cryptomatte-depth must be between 1 and " + std::to_string(kMaxCryptomatteDepth));
         } else if (arg == "--subsurface") {
             o.subsurface = cur.value(arg);
             if (o.subsurface != "randomwalk" && o.subsurface != "diffusion")
@@ -197,6 +246,12 @@ RenderOptions parseRenderOptions(const std::vector<std::string>& args) {
             o.makeOutputPath = true;
         } else if (arg == "--summary") {
             o.summary = cur.value(arg);
+        } else if (arg == "--checkpoint" || arg == "--snapshot") {
+            const double seconds = parseNumber<double>(arg, cur.value(arg));
+            if (!(seconds >= 0.0) || !std::isfinite(seconds)) throw UsageError(arg + " must be >= 0 seconds");
+            (arg == "--checkpoint" ? o.checkpointSeconds : o.snapshotSeconds) = seconds;
+        } else if (arg == "--resume") {
+            o.resume = true;
         } else if (arg == "--tile-count") {
             const int x = parseNumber<int>(arg, cur.value(arg)), y = parseNumber<int>(arg, cur.value(arg));
             if (x < 1 || y < 1 || x > 1024 || y > 1024) throw UsageError("--tile-count needs X and Y from 1 to 1024");
@@ -209,10 +264,26 @@ RenderOptions parseRenderOptions(const std::vector<std::string>& args) {
             o.settings = cur.value(arg);
         } else if (arg == "--variant") {
             o.variants.push_back(parseVariantSelection(cur.value(arg)));
+        } else if (arg == "--set") {
+            o.overrides.push_back(parseAttributeOverride(cur.value(arg)));
+        } else if (arg == "-V" || (arg.starts_with("-V") && arg.size() > 2)) {
+            o.progress = parseVerbosity(arg == "-V" ? cur.value(arg) : arg.substr(2));
+        } else if (arg == "--allow-missing") {
+            o.allowMissing = true;
+        } else if (arg == "--purpose") {
+            o.purposes = splitList(cur.value(arg));
+            try {
+                delegate::IncludedPurposes::fromNames(*o.purposes);
+            } catch (const std::invalid_argument& e) {
+                throw UsageError(std::string("--purpose: ") + e.what());
+            }
+        } else if (arg == "--complexity") {
+            complexity = cur.value(arg);
         } else {
             takeScene(arg, o.scene);
         }
     }
+    applyComplexity(complexity, dicingRateGiven, o);
     if (o.tileCount && (o.tileIndex < 0 || o.tileIndex >= o.tileCount->first * o.tileCount->second))
         throw UsageError("--tile-index must be from 0 to " + std::to_string(o.tileCount->first * o.tileCount->second - 1));
     if (!o.tileCount && o.tileIndex != 0) throw UsageError("--tile-index needs --tile-count");
@@ -239,6 +310,13 @@ std::string usageText() {
            "                               the layer as USDA text (stdout without -o); --flatten: the composed\n"
            "                               stage as one layer, like usdcat --flatten\n"
            "       fluence assemble -o OUT.exr TILE.exr...   merge tiles into the image rendered in one piece\n"
+           "       fluence farm submit SCENE [--frames A-B[xK]] [--tiles X Y] [--backend slurm|local]\n"
+           "                               [--output-dir DIR] [--jobs N] [-j N] [-- RENDER OPTIONS...]\n"
+           "                               one task per frame and tile, run by Slurm (default when sbatch is in\n"
+           "                               PATH) or here, N at a time; tiles merged into DIR/NAME[.0001].exr\n"
+           "       fluence farm status DIR | resume DIR | merge DIR\n"
+           "                               per task done/queued/running/failed/missing; redo the failed and\n"
+           "                               missing tasks; assemble the images whose tiles are all done\n"
            "       fluence --help | --version\n"
            "\n"
            "`render` renders a USD scene to a multi-channel OpenEXR image (beauty RGBA in linear Rec.709,\n"
@@ -260,12 +338,29 @@ std::string usageText() {
            "      --unload PATH       leave out the payloads of prim PATH and its descendants (repeatable);\n"
            "                          the nearest prim's --load/--unload wins\n"
            "      --no-payloads       load no payloads but those --load names (and the prims above them)\n"
+           "      --set [T ]P.A=V     override attribute A of prim P with the USDA value V, as a session layer\n"
+           "                          would (repeatable); T, the type, when P has no A: --set 'float /L.inputs:exposure=1'\n"
+           "      --purpose LIST      purposes to render, e.g. default,render (default: the render settings'\n"
+           "                          includedPurposes, else default,render; husk's `geometry` is `default`)\n"
+           "      --complexity LEVEL  subdivision surfaces: lowest (the cage), low, medium (1 and 2 uniform\n"
+           "                          levels), high (2-pixel dicing), veryhigh (default: --dicing-rate)\n"
+           "  -V LEVEL                progress: 0 none; a (as in -V a, -V2a) ALF_PROGRESS n% lines on stdout even on a\n"
+           "                          terminal (default: a bar on a terminal, those lines otherwise)\n"
+           "      --allow-missing     render even when layers, textures or VDB files are missing (each is a\n"
+           "                          warning); without it a missing asset is an error (exit 4)\n"
            "  -f, --frame F           time code to render (default: the stage's startTimeCode, else default values)\n"
            "  -n, --frame-count N     render N frames from --frame on, the stage read once (default 1)\n"
            "  -i, --frame-inc K       time codes between those frames (default 1)\n"
            "      --make-output-path  create the output's folders\n"
            "      --summary FILE.json write what the render did (settings, per-stage times, peak memory,\n"
            "                          samples, rays, warnings, exit code), whether it succeeded or not\n"
+           "      --checkpoint SECS   every SECS seconds (0: every pass), at a pass boundary, save the render's\n"
+           "                          state to OUTPUT.checkpoint (removed once the image is written)\n"
+           "      --resume            go on from OUTPUT.checkpoint if there is one (else render from the start);\n"
+           "                          the image is bit-identical to an uninterrupted render's; a checkpoint of\n"
+           "                          another render (scene, seed, resolution, ...) is refused (exit 2)\n"
+           "      --snapshot SECS     every SECS seconds (0: every pass), and on SIGUSR1, write the image so\n"
+           "                          far to STEM.snapshot.exr beside the output (removed once the image is written)\n"
            "      --tile-count X Y    render one of X x Y tiles of the image (--tile-index N, 0 to X*Y-1, row\n"
            "      --tile-index N      by row from the top left) to the output with --tile-suffix (default\n"
            "      --tile-suffix FMT   _tile$T, $T the index) before its extension; `fluence assemble` merges them\n"
@@ -289,6 +384,9 @@ std::string usageText() {
            "      --lpe NAME=EXPR     a light path expression AOV: the light of the paths EXPR matches, as the\n"
            "                          EXR layer NAME (repeatable; also RenderVars with sourceType \"lpe\");\n"
            "                          e.g. --lpe diffuse='C<RD>.*L' --lpe specular='C<R[GS]>.*L'; `path` only\n"
+           "      --cryptomatte L,... Cryptomatte ID layers: object (CryptoObject), material (CryptoMaterial);\n"
+           "                          also RenderVars with sourceType \"raw\" and sourceName CryptoObject/CryptoMaterial\n"
+           "      --cryptomatte-depth N  ranks (id, coverage) kept per pixel and layer (default 6)\n"
            "\n"
            "environment:\n"
            "  OCIO                    an OpenColorIO config to use instead of Fluence's built-in one\n"
@@ -296,7 +394,8 @@ std::string usageText() {
            "exit codes:\n"
            "  0 image written   1 internal error   2 usage error   3 scene error (syntax or semantic)\n"
            "  4 missing input (scene file, asset)   5 output could not be written   6 colour configuration error\n"
-           "  7 interrupted (SIGTERM or SIGINT: the render stops between tiles and writes nothing)\n";
+           "  7 interrupted (SIGTERM or SIGINT: the render stops between tiles and writes nothing)\n"
+           "  farm: 8 work still queued or running   9 tasks failed or missing (farm resume)   10 scheduler error\n";
 }
 
 }  // namespace fluence::app

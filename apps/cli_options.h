@@ -8,7 +8,10 @@
 #include <string>
 #include <vector>
 
+#include "apps/attribute_overrides.h"
+#include "apps/cryptomatte_layers.h"
 #include "apps/light_path_aovs.h"
+#include "apps/progress_reporter.h"
 #include "scene/stage.h"
 
 namespace fluence::app {
@@ -40,6 +43,9 @@ struct RenderOptions {
     double frameIncrement = 1.0;    // -i/--frame-inc K: time codes between them
     bool makeOutputPath = false;    // --make-output-path: create the output's folders
     std::string summary;            // --summary FILE.json: what the render did (apps/run_summary.h)
+    std::optional<double> checkpointSeconds;  // --checkpoint SECS: a resumable checkpoint that often (apps/pass_outputs.h)
+    bool resume = false;            // --resume: go on from the output's checkpoint, if there is one
+    std::optional<double> snapshotSeconds;    // --snapshot SECS: the image so far beside the output that often
     std::optional<std::pair<int, int>> tileCount;  // --tile-count X Y: the image split into X x Y tiles
     int tileIndex = 0;              // --tile-index N: the tile to render, 0 to X*Y - 1, row by row from the top left
     std::string tileSuffix = "_tile$T";  // --tile-suffix FMT: added before the output's extension ($T: the index)
@@ -47,6 +53,12 @@ struct RenderOptions {
     std::vector<usd::VariantSelection> variants;  // --variant /Prim/Path:set=selection (repeatable)
     usd::LoadRules loadRules;       // --load P, --unload P (repeatable), --no-payloads
     std::vector<LightPathOption> lightPaths;  // --lpe NAME=EXPRESSION (repeatable)
+    std::vector<CryptomatteSource> cryptomatte;  // --cryptomatte object,material
+    int cryptomatteDepth = kDefaultCryptomatteDepth;  // --cryptomatte-depth N
+    std::vector<AttributeOverride> overrides;  // --set [TYPE ]/Prim.attr=VALUE (repeatable)
+    ProgressStyle progress = ProgressStyle::Auto;  // -V [LEVEL][a]: 0 none, a ALF_PROGRESS lines
+    bool allowMissing = false;      // --allow-missing: render without missing layers, textures and VDBs (warnings)
+    std::optional<std::vector<std::string>> purposes;  // --purpose a,b: else the render settings' includedPurposes
 };
 
 // Options of `fluence assemble`.

@@ -8,8 +8,11 @@
 #include "apps/assemble_command.h"
 #include "apps/cat_command.h"
 #include "apps/cli_options.h"
+#include "apps/farm_command.h"
 #include "apps/info_command.h"
 #include "apps/render_command.h"
+#include "apps/scene_loading.h"
+#include "scene/usda_parser.h"
 #include "version.h"
 
 int main(int argc, char** argv) {
@@ -28,7 +31,8 @@ int main(int argc, char** argv) {
         return kExitOk;
     }
     const std::string command = args[0];
-    if (command != "render" && command != "info" && command != "cat" && command != "assemble") {
+    if (command != "render" && command != "info" && command != "cat" && command != "assemble" &&
+        command != "farm") {
         std::fprintf(stderr, "fluence: error: unknown command '%s' (try 'fluence --help')\n", command.c_str());
         return kExitUsage;
     }
@@ -41,10 +45,15 @@ int main(int argc, char** argv) {
     try {
         if (command == "cat") return runCat(parseCatOptions(args));
         if (command == "assemble") return runAssemble(parseAssembleOptions(args));
+        if (command == "farm") return runFarm(args);
         return command == "info" ? runInfo(parseInfoOptions(args)) : runRender(parseRenderOptions(args));
     } catch (const UsageError& e) {
         std::fprintf(stderr, "fluence: error: %s\n(try 'fluence --help')\n", e.what());
         return kExitUsage;
+    } catch (const fluence::usd::FileError& e) {
+        // A damaged crate array found when first read, after the stage was opened.
+        printError(e.what());
+        return kExitMissingInput;
     } catch (const std::exception& e) {
         std::fprintf(stderr, "fluence: internal error: %s\n", e.what());
         return kExitInternal;

@@ -13,8 +13,9 @@ constexpr double kPipeRepeatSeconds = 5.0;
 constexpr int kBarWidth = 40;
 }  // namespace
 
-ProgressReporter::ProgressReporter(const integrators::RenderProgress& progress)
-    : progress_(progress), terminal_(isatty(STDERR_FILENO) != 0), start_(std::chrono::steady_clock::now()),
+ProgressReporter::ProgressReporter(const integrators::RenderProgress& progress, ProgressStyle style)
+    : progress_(progress), style_(style), terminal_(style == ProgressStyle::Auto && isatty(STDERR_FILENO) != 0),
+      start_(std::chrono::steady_clock::now()),
       thread_([this] { run(); }) {}
 
 ProgressReporter::~ProgressReporter() { finish(); }
@@ -39,6 +40,7 @@ void ProgressReporter::run() {
 }
 
 void ProgressReporter::report(bool final) {
+    if (style_ == ProgressStyle::None) return;
     std::uint64_t planned = progress_.pixelSamplesPlanned.load(std::memory_order_relaxed);
     std::uint64_t done = progress_.pixelSamplesDone.load(std::memory_order_relaxed);
     double fraction = planned > 0 ? std::min(1.0, double(done) / double(planned)) : 0.0;

@@ -6,9 +6,14 @@
 #include <filesystem>
 #include <thread>
 
+#include "apps/cryptomatte_layers.h"
 #include "apps/frame_tokens.h"
+#include "apps/pass_outputs.h"
 #include "apps/progress_reporter.h"
+#include "apps/render_products.h"
+#include "apps/render_fingerprint.h"
 #include "apps/run_summary.h"
+#include "apps/snapshot_signal.h"
 #include "apps/stop_signals.h"
 #include "color/color_management.h"
 #include "delegate/scene_delegate.h"
@@ -75,22 +80,27 @@ std::string withTileSuffix(const std::string& path, std::string suffix, int inde
     return (p.parent_path() / (p.stem().string() + suffix + p.extension().string())).string();
 }
 
-// Renders the stage at time code `time` to its output; returns the exit code. `parseSeconds` is
-// the (shared) stage load's, for the summary.
+// Renders the stage at time code `time` for the products of `planned` (apps/render_products.h)
+// and writes them; returns the exit code. `parseSeconds` is the (shared) stage load's, for the
+// summary; `primvars` those the frame's primvar RenderVars read.
 int renderFrame(const RenderOptions& opt, usd::Stage& stage, const color::ColorManagement& colors, double time,
-                double parseSeconds, WarningLog& warnings, RunSummary& summary) {
+                double parseSeconds, WarningLog& warnings, RunSummary& summary, const PlannedRender& planned,
+                const std::set<std::string>& primvars) {
     const auto start = Clock::now();
 
     // Build: delegate, then the render scene.
     auto t = Clock::now();
     delegate::DelegateOptions dopt;
-    dopt.cameraPath = opt.camera;
+    dopt.cameraPath = planned.cameraPath;
     dopt.settingsPath = opt.settings;
-    dopt.resolution = opt.resolution;
+    dopt.resolution = planned.resolution;
+    dopt.aovPrimvars = primvars;
     dopt.defaultResolution = {kDefaultWidth, kDefaultHeight};
     dopt.dicing.rate = static_cast<float>(opt.dicingRate);
     dopt.dicing.uniformLevel = opt.subdivLevel.value_or(-1);
     dopt.time = time;
+    dopt.purposes = opt.purposes;
+    dopt.allowMissing = opt.allowMissing;
     dopt.convertColor = [&](const RGB& c, const std::string& space) { return colors.toRenderingSpace(space, c); };
     dopt.warn = [&](const std::string& path, const std::string& message) { warnings(path, message); };
     std::optional<delegate::DelegateResult> populated;
@@ -125,35 +135,40 @@ int renderFrame(const RenderOptions& opt, usd::Stage& stage, const color::ColorM
         warnings(opt.scene, "integrator '" + integratorInfo->name + "' misses: " + integrators::describePathClasses(missed) +
                                 " (light that this scene has)");
 
-    // Render.
-    // Resolution and output: the command line, else the render settings' first product, else the
-    // settings, else the defaults.
+    // Render: the planned products' camera and image, over their data windows' part of the tile.
     const auto& settings = populated->renderSettings;
-    const delegate::RenderProductDesc* product = settings ? settings->renderedProduct() : nullptr;
-    if (settings && settings->products.size() > 1)
-        warnings(settings->path, "only the first render product is written in this version; " +
-                                     std::to_string(settings->products.size() - 1) + " more ignored");
-    const std::pair<int, int> res = populated->resolution;
-    std::string outputPath = opt.output;
-    if (outputPath.empty() && product && !product->productName.empty()) outputPath = product->productName;
-    if (outputPath.empty()) outputPath = std::filesystem::path(opt.scene).stem().string() + (opt.frameCount > 1 ? ".$F4.exr" : ".exr");
-    if (opt.frameCount > 1 && !hasFrameToken(outputPath)) {
-        printError("rendering " + std::to_string(opt.frameCount) + " frames needs a frame token ($F, $F4, %04d) in the output path '" +
-                   outputPath + "'");
-        return kExitUsage;
+    const delegate::RenderProductDesc* product = findProduct(settings, planned.products.front().path);
+    const std::pair<int, int> res = planned.resolution;
+    std::vector<std::string> outputs;  // each product's file
+    for (const PlannedProduct& p : planned.products) {
+        if (opt.frameCount > 1 && !hasFrameToken(p.outputPattern)) {
+            printError("rendering " + std::to_string(opt.frameCount) + " frames needs a frame token ($F, $F4, %04d) in the output path '" +
+                       p.outputPattern + "'");
+            return kExitUsage;
+        }
+        const std::string path = expandFrameTokens(p.outputPattern, time);
+        outputs.push_back(opt.tileCount ? withTileSuffix(path, opt.tileSuffix, opt.tileIndex) : path);
     }
-    outputPath = expandFrameTokens(outputPath, time);
-    const TileWindow tile = tileWindow(opt, res);
-    if (tile.width < 1 || tile.height < 1) {
+    const std::string& outputPath = outputs.front();
+    const TileWindow wholeTile = tileWindow(opt, res);
+    if (wholeTile.width < 1 || wholeTile.height < 1) {
         printError("tile " + std::to_string(opt.tileIndex) + " of --tile-count " + std::to_string(opt.tileCount->first) + " " +
                    std::to_string(opt.tileCount->second) + " has no pixels at " + std::to_string(res.first) + "x" +
                    std::to_string(res.second));
         return kExitUsage;
     }
-    if (opt.tileCount) outputPath = withTileSuffix(outputPath, opt.tileSuffix, opt.tileIndex);
+    const PixelWindow window = PixelWindow{wholeTile.x, wholeTile.y, wholeTile.x + wholeTile.width, wholeTile.y + wholeTile.height}
+                                   .intersect(planned.window());
+    if (window.empty()) {
+        warnings(planned.products.front().path, "tile " + std::to_string(opt.tileIndex) + " holds no pixel of its data window; nothing written");
+        return kExitOk;
+    }
+    const TileWindow tile{window.x0, window.y0, window.width(), window.height()};
     const std::string previewPath = expandFrameTokens(opt.preview, time);
+    std::vector<std::string> made = outputs;
+    made.push_back(previewPath);
     if (opt.makeOutputPath)
-        for (const std::string& path : {outputPath, previewPath})
+        for (const std::string& path : made)
             if (std::filesystem::path folder = std::filesystem::path(path).parent_path(); !path.empty() && !folder.empty()) {
                 std::error_code error;
                 std::filesystem::create_directories(folder, error);
@@ -164,22 +179,13 @@ int renderFrame(const RenderOptions& opt, usd::Stage& stage, const color::ColorM
             }
     std::unique_ptr<render::Camera> camera;
     try {
-        camera = std::make_unique<render::Camera>(*populated->scene.camera, res.first, res.second, populated->framing);
+        camera = std::make_unique<render::Camera>(*populated->scene.camera, res.first, res.second, planned.framing);
         scene->setTextureFilterCamera(*camera);
     } catch (const std::invalid_argument& e) {
         printError(e.what());
         return kExitScene;
     }
-    std::vector<integrators::LightPathAov> aovs;
-    try {
-        aovs = lightPathAovs(product, opt.lightPaths);
-    } catch (const delegate::SceneError& e) {
-        printError(e.what());
-        return kExitScene;
-    } catch (const UsageError& e) {
-        printError(e.what());
-        return kExitUsage;
-    }
+    std::vector<integrators::LightPathAov> aovs = planned.lightPaths;
     if (!aovs.empty() && !integratorInfo->lightPathExpressions) {
         const std::string why = "integrator '" + integratorInfo->name + "' does not write light path expression AOVs (path does)";
         if (!opt.lightPaths.empty()) {
@@ -189,12 +195,23 @@ int renderFrame(const RenderOptions& opt, usd::Stage& stage, const color::ColorM
         warnings(product->path, why + "; " + counted(aovs.size(), "lpe RenderVar") + " left out");
         aovs.clear();
     }
+    std::vector<CryptomatteLayerRequest> cryptomatteRequests;
+    try {
+        cryptomatteRequests = cryptomatteLayers(product, opt.cryptomatte);
+    } catch (const delegate::SceneError& e) {
+        printError(e.what());
+        return kExitScene;
+    }
     std::vector<std::string> layers;
     for (const integrators::LightPathAov& aov : aovs) layers.push_back(aov.name);
     integrators::IntegratorSettings isettings;
     isettings.maxDepth = opt.maxDepth;
     isettings.lightPathAovs = std::make_shared<const std::vector<integrators::LightPathAov>>(std::move(aovs));
     std::unique_ptr<integrators::Integrator> integrator = integratorInfo->create(isettings);
+    if (integrator->usesSplats() && (tile.width != res.first || tile.height != res.second))  // integrators/renderer.h
+        warnings(opt.scene, "integrator '" + integratorInfo->name +
+                                "' renders a window of the image (a tile or a data window) without light tracing (t = 1): "
+                                "point-light caustics seen directly are missed");
     integrators::RenderSettings rs;
     rs.samplesPerPixel = opt.spp.value_or(kDefaultSpp);
     rs.seed = opt.seed;
@@ -207,20 +224,9 @@ int renderFrame(const RenderOptions& opt, usd::Stage& stage, const color::ColorM
     rs.windowY = tile.y;
     rs.imageWidth = res.first;
     Film film(tile.width, tile.height, camera->farClip(), layers);
-    integrators::RenderProgress progress;
-    integrators::RenderStats stats;
-    {
-        ProgressReporter reporter(progress);
-        stats = integrators::render(*scene, *camera, *integrator, rs, film, &progress);
-    }
-    if (stats.interrupted) {
-        printError("interrupted by a signal after " + std::to_string(stats.samples) + " samples; nothing written to " + outputPath);
-        return kExitInterrupted;
-    }
-
-    // Write.
-    t = Clock::now();
-    Image image = film.resolve();
+    std::unique_ptr<CryptomatteFilm> cryptomatte = cryptomatteFilm(cryptomatteRequests, tile.width, tile.height);
+    rs.cryptomatte = cryptomatte.get();
+    // The output's EXR header (its snapshots' too), but for what the render's end adds.
     output::ExrHeader header;
     header.colorSpace = color::ColorManagement::kRenderingSpace;
     header.chromaticities = color::ColorManagement::renderingChromaticities();
@@ -240,16 +246,69 @@ int renderFrame(const RenderOptions& opt, usd::Stage& stage, const color::ColorM
                       {"fluence/integrator", integratorInfo->name},
                       {"fluence/ocioConfig", colors.configDescription()}});
     if (!std::isnan(time)) header.floats.push_back({"fluence/frame", float(time)});
+    // Checkpoints and snapshots at pass boundaries (apps/pass_outputs.h).
+    const bool checkpoints = opt.checkpointSeconds || opt.resume;
+    const ResolvedRender resolved{populated->cameraPath, res.first, res.second, tile.x, tile.y, tile.width, tile.height,
+                                  time, integratorInfo->name, rs.samplesPerPixel, *isettings.lightPathAovs};
+    PassOutputs passOutputs(opt, outputPath, checkpoints ? renderFingerprint(opt, stage, resolved) : CheckpointFingerprint{},
+                            !cryptomatte, warnings, [&](const std::string& path, const Film& partial, int samplesDone) {
+                                output::ExrHeader snapshotHeader = header;
+                                snapshotHeader.floats.insert(snapshotHeader.floats.end(), {{"fluence/samplesPerPixel", float(samplesDone)},
+                                                             {"fluence/seed", float(opt.seed)}, {"fluence/snapshot", 1.0f}});
+                                output::writeExr(path, partial.resolve(), snapshotHeader);
+                            });
+    try {
+        rs.firstSample = passOutputs.resume(film);
+    } catch (const CheckpointMismatch& e) {
+        printError(std::string(e.what()) + "; delete it, or render without --resume");
+        return kExitUsage;
+    } catch (const CheckpointError& e) {
+        printError(e.what());
+        return kExitMissingInput;
+    }
+    rs.onPass = [&](int samplesDone) { passOutputs.onPass(film, samplesDone); };
+    integrators::RenderProgress progress;
+    integrators::RenderStats stats;
+    {
+        ProgressReporter reporter(progress, opt.progress);
+        stats = integrators::render(*scene, *camera, *integrator, rs, film, &progress);
+    }
+    if (stats.interrupted) {
+        printError("interrupted by a signal after " + std::to_string(stats.samples) + " samples; nothing written to " + outputPath);
+        return kExitInterrupted;
+    }
+
+    // Write.
+    t = Clock::now();
+    const Image image = film.resolve();
+    const Image firstHit = integrators::renderFirstHitAovs(*scene, *camera, rs, film, planned.firstHitAovs);
     header.floats.insert(header.floats.end(), {{"fluence/samplesPerPixel", float(stats.samplesPerPixel)},
                      {"fluence/seed", float(opt.seed)},
                      {"fluence/renderSeconds", float(stats.seconds)}});
     try {
-        output::writeExr(outputPath, image, header);
+        for (std::size_t p = 0; p < planned.products.size(); ++p) {
+            const PixelWindow written = planned.products[p].window.intersect(window);
+            if (written.empty()) {
+                warnings(planned.products[p].path, "tile " + std::to_string(opt.tileIndex) + " holds no pixel of its data window; not written");
+                continue;
+            }
+            output::ExrHeader productHeader = header;
+            Image productImg = productImage(planned.products[p], written, image, firstHit, window, productHeader);
+            describeProductHeader(productHeader, *camera, written, res);
+            if (p == 0 && cryptomatte) {
+                if (written == window)
+                    appendCryptomatteLayers(productImg, productHeader, *cryptomatte, cryptomatteRequests, *scene, opt.cryptomatteDepth);
+                else
+                    warnings(planned.products[p].path, "Cryptomatte layers need the product's data window to be its render's; left out");
+            }
+            output::writeExr(outputs[p], productImg, productHeader);
+        }
         if (!previewPath.empty()) output::writePreviewPng(previewPath, image, colors);
     } catch (const output::OutputError& e) {
         printError(e.what());
         return kExitOutput;
     }
+    passOutputs.finish();
     const double writeSeconds = secondsSince(t);
 
     // Summary.
@@ -281,7 +340,8 @@ int renderFrame(const RenderOptions& opt, usd::Stage& stage, const color::ColorM
         std::fprintf(stderr, "fluence: warning: %llu samples were NaN or infinite and were discarded (please report)\n",
                      static_cast<unsigned long long>(stats.counters.nonFiniteSamples));
     if (const std::string note = integrator->summary(); !note.empty()) std::printf("  method       %s\n", note.c_str());
-    std::printf("  output       %s%s%s\n", outputPath.c_str(), previewPath.empty() ? "" : ", ", previewPath.c_str());
+    for (const std::string& path : outputs) std::printf("  output       %s\n", path.c_str());
+    if (!previewPath.empty()) std::printf("  preview      %s\n", previewPath.c_str());
 
     FrameSummary& frame = summary.frames.emplace_back();
     frame.time = time;
@@ -303,6 +363,28 @@ int renderFrame(const RenderOptions& opt, usd::Stage& stage, const color::ColorM
     return kExitOk;
 }
 
+// Renders and writes every render product of the frame at `time` (apps/render_products.h), one
+// render per camera and image; returns the exit code.
+int renderProducts(const RenderOptions& opt, usd::Stage& stage, const color::ColorManagement& colors, double time,
+                   double parseSeconds, WarningLog& warnings, RunSummary& summary) {
+    RenderPlan plan;
+    try {
+        plan = planRenders(delegate::renderSettingsFromStage(stage, opt.settings, time), opt,
+                           std::filesystem::path(opt.scene).stem().string(), [&](const std::string& where, const std::string& message) { warnings(where, message); });
+    } catch (const delegate::SceneError& e) {
+        printError(e.what());
+        return kExitScene;
+    } catch (const UsageError& e) {
+        printError(e.what());
+        return kExitUsage;
+    }
+    for (std::size_t r = 0; r < plan.renders.size(); ++r)
+        if (int code = renderFrame(opt, stage, colors, time, r == 0 ? parseSeconds : 0.0, warnings, summary, plan.renders[r], plan.primvars());
+            code != kExitOk)
+            return code;
+    return kExitOk;
+}
+
 // Loads the stage once and renders every frame; returns the exit code.
 int renderFrames(const RenderOptions& opt, WarningLog& warnings, RunSummary& summary) {
     // Colour management first: every authored colour goes through it.
@@ -317,7 +399,17 @@ int renderFrames(const RenderOptions& opt, WarningLog& warnings, RunSummary& sum
     // Parse and compose, once for every frame.
     const auto t = Clock::now();
     std::unique_ptr<usd::Stage> stage;
-    if (int code = openStage(opt.scene, {opt.variants, opt.loadRules}, warnings, stage); code != kExitOk) return code;
+    const MissingAssets missing = opt.allowMissing ? MissingAssets::Warn : MissingAssets::Fail;
+    if (int code = openStage(opt.scene, {opt.variants, opt.loadRules}, warnings, stage, missing); code != kExitOk) return code;
+    try {
+        applyAttributeOverrides(*stage, opt.overrides);
+    } catch (const UsageError& e) {
+        printError(e.what());
+        return kExitUsage;
+    } catch (const delegate::SceneError& e) {
+        printError(e.what());
+        return kExitScene;
+    }
     const double parseSeconds = summary.parseSeconds = secondsSince(t);
 
     // The frames: --frame (else the stage's startTimeCode, else default values) and the
@@ -334,7 +426,7 @@ int renderFrames(const RenderOptions& opt, WarningLog& warnings, RunSummary& sum
             return kExitInterrupted;
         }
         if (opt.frameCount > 1) std::printf("fluence: frame %g (%d of %d)\n", time, k + 1, opt.frameCount);
-        if (int code = renderFrame(opt, *stage, *colors, time, k == 0 ? parseSeconds : 0.0, warnings, summary); code != kExitOk)
+        if (int code = renderProducts(opt, *stage, *colors, time, k == 0 ? parseSeconds : 0.0, warnings, summary); code != kExitOk)
             return code;
     }
     return kExitOk;
@@ -344,6 +436,7 @@ int renderFrames(const RenderOptions& opt, WarningLog& warnings, RunSummary& sum
 
 int runRender(const RenderOptions& opt) {
     const StopSignals stopSignals;
+    const SnapshotSignal snapshotSignal;
     WarningLog warnings;
     RunSummary summary;
     summary.scene = opt.scene;

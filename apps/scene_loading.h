@@ -24,10 +24,17 @@ enum ExitCode : int {
 
 void printError(const std::string& message);
 
+// What a missing asset (a layer an arc names, a texture, a VDB file, a clip) is.
+enum class MissingAssets {
+    Warn,  // a warning each (fluence info, fluence render --allow-missing)
+    Fail,  // an error each for what the render reads (layers, textures, VDBs), and kExitMissingInput
+           // (fluence render); other asset-valued attributes still only warn
+};
+
 // Opens and composes the stage (variant selections and payload load rules in `options`);
 // composition warnings go to `warnings`. On failure prints the error and returns a non-zero exit
 // code (missing file: kExitMissingInput; syntax: kExitScene).
 int openStage(const std::string& path, const usd::StageOptions& options, WarningLog& warnings,
-              std::unique_ptr<usd::Stage>& stage);
+              std::unique_ptr<usd::Stage>& stage, MissingAssets missing = MissingAssets::Warn);
 
 }  // namespace fluence::app

@@ -46,6 +46,7 @@
 #include "delegate/scene_delegate.h"
 #include "integrators/integrator.h"
 #include "integrators/renderer.h"
+#include "render/embree_ray.h"
 #include "render/render_scene.h"
 #include "scene/stage.h"
 
@@ -127,19 +128,6 @@ std::vector<StoredRay> uniformRays(const render::SceneBounds& bounds, std::size_
     return rays;
 }
 
-RTCRay embreeRay(const StoredRay& s) {
-    RTCRay r{};
-    r.org_x = s.origin.x;
-    r.org_y = s.origin.y;
-    r.org_z = s.origin.z;
-    r.dir_x = s.direction.x;
-    r.dir_y = s.direction.y;
-    r.dir_z = s.direction.z;
-    r.tfar = s.tFar;
-    r.mask = 0xffffffffu;
-    return r;
-}
-
 // CPU seconds of the whole process (every thread): on a shared machine, where this process gets
 // only part of the cores, rays per CPU-second measure the code, not the other tenants.
 double cpuSeconds() {
@@ -156,14 +144,15 @@ double trace(tbb::task_arena& arena, RTCScene scene, const std::vector<StoredRay
             RTCIntersectContext context;
             rtcInitIntersectContext(&context);
             for (std::size_t i = r.begin(); i != r.end(); ++i) {
+                // Written as the renderer writes its rays (render/embree_ray.h: no store-forwarding stalls).
+                const StoredRay& s = rays[i];
                 if (anyHit) {
-                    RTCRay ray = embreeRay(rays[i]);
+                    RTCRay ray;
+                    render::storeRay(ray, s.origin, s.direction, 0.0f, s.tFar);
                     rtcOccluded1(scene, &context, &ray);
                 } else {
-                    RTCRayHit hit{};
-                    hit.ray = embreeRay(rays[i]);
-                    hit.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-                    hit.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+                    RTCRayHit hit;
+                    render::storeRayHit(hit, s.origin, s.direction, 0.0f, s.tFar);
                     rtcIntersect1(scene, &context, &hit);
                 }
             }

@@ -1,6 +1,7 @@
 #include "core/film.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
@@ -51,14 +52,22 @@ std::vector<std::string> Film::channelNames() const {
 
 std::vector<std::string> Film::dataChannelNames() { return {"N.X", "N.Y", "N.Z", "Z", "sampleCount"}; }
 
+SplatFilm& Film::enableSplats() {
+    if (!splats_) splats_ = std::make_unique<SplatFilm>(width_, height_);
+    return *splats_;
+}
+
 Image Film::resolve() const {
     Image image(width_, height_, channelNames());
+    const std::uint64_t samples = totalSamples();
+    const double perLightPath = samples > 0 ? double(width_) * double(height_) / double(samples) : 0.0;
     for (int y = 0; y < height_; ++y)
         for (int x = 0; x < width_; ++x) {
             const Pixel& p = pixels_[static_cast<std::size_t>(y) * width_ + x];
             float* out = image.pixel(x, y);
             double inv = p.samples > 0 ? 1.0 / p.samples : 0.0;
-            for (int c = 0; c < 3; ++c) out[c] = static_cast<float>(p.radiance[c] * inv);
+            const std::array<double, 3> splat = splats_ ? splats_->sum(x, y) : std::array<double, 3>{};
+            for (int c = 0; c < 3; ++c) out[c] = static_cast<float>(p.radiance[c] * inv + splat[std::size_t(c)] * perLightPath);
             out[3] = static_cast<float>(p.coverage * inv);
             for (int c = 0; c < 3; ++c) out[4 + c] = static_cast<float>(p.albedo[c] * inv);
             for (int c = 0; c < 3; ++c) out[7 + c] = static_cast<float>(p.normal[c] * inv);

@@ -5,7 +5,8 @@
 // so thousands of samples add without visible rounding drift.
 //
 // Resolved channels (Nuke-style layer names, colour channels in the rendering space):
-//   R G B        beauty radiance, box-filtered over the pixel (the mean of its samples)
+//   R G B        beauty radiance, box-filtered over the pixel (the mean of its samples, plus the
+//                splats of light tracing when there are any: enableSplats() below)
 //   A            coverage: the fraction of camera samples that hit geometry or a light
 //   albedo.R/G/B diffuse reflectance at the first surface hit (data for denoisers)
 //   N.X/Y/Z      world-space shading normal at the first hit, averaged (not renormalised)
@@ -18,11 +19,15 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <iosfwd>
+#include <memory>
 #include <string>
 #include <vector>
 
 #include "core/image.h"
+#include "core/name_table.h"
 #include "core/rgb.h"
+#include "core/splat_film.h"
 
 namespace fluence {
 
@@ -36,6 +41,9 @@ struct FilmSample {
     RGB albedo;
     Vec3f normal;
     float depth = 0.0f;  // camera-space depth of the first hit (valid when hit)
+    // The first hit's names for the Cryptomatte layers (core/cryptomatte_film.h): indices into the
+    // render scene's object and material name tables, kNoName where there is none.
+    std::uint32_t objectName = kNoName, materialName = kNoName;
     // The radiance of the paths each light path expression matches, R G B per layer: only the first
     // Film::lightPathLayers() are read, and an integrator that writes them clears those first.
     // Deliberately left uninitialised: most renders have no layers, and zeroing 192 bytes per
@@ -69,6 +77,14 @@ public:
     // Statistics over the whole film (for summaries and tests).
     std::uint64_t totalSamples() const;
 
+    // Light tracing: the splat film (core/splat_film.h) into which integrators that add light to
+    // other pixels than their sample's write (bdpt's t = 1), made by enableSplats() (the render
+    // loop's, for an integrator that asks for it and a film that is the whole image); null until
+    // then. resolve() adds its sums to the beauty divided by the light paths traced per pixel,
+    // totalSamples() / (width height): one per camera sample, wherever it was taken.
+    SplatFilm& enableSplats();
+    const SplatFilm* splats() const { return splats_.get(); }
+
     // The samples taken in pixel (x, y) so far.
     std::uint32_t samples(int x, int y) const { return pixel(x, y).samples; }
     // The relative standard error of the pixel's mean luminance: sqrt(variance / n) / (mean +
@@ -79,6 +95,11 @@ public:
     double relativeError(int x, int y) const;
 
 private:
+    // Checkpoints save and restore everything below (core/film_state.h): a new field must be added
+    // there too (a static_assert there says so).
+    friend void writeFilmState(const Film& film, std::ostream& out);
+    friend void readFilmState(std::istream& in, Film& film);
+
     struct Pixel {
         double radiance[3] = {0, 0, 0};
         double luminance = 0, luminanceSquared = 0;  // sums over the samples (adaptive sampling)
@@ -96,6 +117,7 @@ private:
     std::vector<Pixel> pixels_;
     std::vector<std::string> lightPathLayers_;
     std::vector<double> lightPathSums_;  // per pixel, per layer, R G B
+    std::unique_ptr<SplatFilm> splats_;
 };
 
 }  // namespace fluence

@@ -96,7 +96,7 @@ PointInstances pointInstancesFromPrim(const PrimReader& prim, const std::functio
         Matrix4 m = Matrix4::translate({(*positions)[3 * i], (*positions)[3 * i + 1], (*positions)[3 * i + 2]});
         if (orientations) m = m * rotationOf(&(*orientations)[4 * i]);
         if (scales) m = m * Matrix4::scale({(*scales)[3 * i], (*scales)[3 * i + 1], (*scales)[3 * i + 2]});
-        result.instances.push_back({static_cast<int>(index), m});
+        result.instances.push_back({static_cast<int>(index), m, id});
     }
     if (outOfRange > 0)
         warn(std::to_string(outOfRange) + " instances have a protoIndices entry outside the " +
@@ -105,7 +105,8 @@ PointInstances pointInstancesFromPrim(const PrimReader& prim, const std::functio
 }
 
 PrototypeContents prototypeContents(const usd::Stage& stage, const std::string& root, bool includeRootTransform,
-                                    double time, const ColorConverter& convertColor, const Warn& warn, int nesting) {
+                                    double time, const ColorConverter& convertColor, const Warn& warn,
+                                    const IncludedPurposes& purposes, int nesting) {
     PrototypeContents contents;
     std::vector<MeshPart>& parts = contents.parts;
     const usd::PrimSpec* rootPrim = stage.prim(root);
@@ -115,7 +116,7 @@ PrototypeContents prototypeContents(const usd::Stage& stage, const std::string& 
     }
     std::map<std::string, Matrix4> spaces;  // prim path -> prim-to-prototype-root space
     usd::Stage::traverse(*rootPrim, [&](const usd::PrimSpec& prim) {
-        if (!isImaged(prim, time)) return false;
+        if (!isImaged(prim, time, purposes)) return false;
         Matrix4 space = Matrix4::identity();
         if (prim.path != root || includeRootTransform) {
             LocalTransform local = localTransform(PrimReader(prim, time));
@@ -140,7 +141,7 @@ PrototypeContents prototypeContents(const usd::Stage& stage, const std::string& 
             PointInstances nested = pointInstancesFromPrim(PrimReader(prim, time), warnHere);
             std::vector<PrototypeContents> nestedContents;
             for (const std::string& path : nested.prototypes)
-                nestedContents.push_back(prototypeContents(stage, path, true, time, convertColor, warn, nesting + 1));
+                nestedContents.push_back(prototypeContents(stage, path, true, time, convertColor, warn, purposes, nesting + 1));
             for (const PointInstances::Instance& instance : nested.instances) {
                 const PrototypeContents& inner = nestedContents[instance.prototype];
                 Matrix4 placement = space * instance.transform;

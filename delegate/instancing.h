@@ -37,6 +37,7 @@
 #include <vector>
 
 #include "delegate/geom_subset.h"
+#include "delegate/imageable.h"
 #include "delegate/material_adapter.h"
 #include "delegate/prim_reader.h"
 #include "delegate/subdivision_mesh.h"
@@ -56,6 +57,7 @@ struct PointInstances {
     struct Instance {
         int prototype = 0;                         // index into `prototypes`
         Matrix4 transform = Matrix4::identity();  // prototype root space -> instancer space
+        long long id = 0;                          // its `ids` entry, else its index
     };
     std::vector<std::string> prototypes;
     std::vector<Instance> instances;  // visible, active instances with a valid prototype, in order
@@ -76,6 +78,7 @@ struct PrototypeContents {
     std::vector<Subdivided> subdivided;
 };
 PrototypeContents prototypeContents(const usd::Stage& stage, const std::string& root, bool includeRootTransform,
-                                    double time, const ColorConverter& convertColor, const Warn& warn, int nesting = 0);
+                                    double time, const ColorConverter& convertColor, const Warn& warn,
+                                    const IncludedPurposes& purposes, int nesting = 0);
 
 }  // namespace fluence::delegate

@@ -128,7 +128,8 @@ void PrototypeRprim::syncData(const SyncContext& context, const usd::PrimSpec*, 
     parts_.clear();
     subdivided_.clear();
     PrototypeContents contents =
-        prototypeContents(context.stage, source_, includeSourceTransform_, context.time, context.convertColor, context.warn);
+        prototypeContents(context.stage, source_, includeSourceTransform_, context.time, context.convertColor, context.warn,
+                          context.purposes);
     for (MeshPart& part : contents.parts) parts_.push_back({std::move(part.mesh), std::move(part.materialPath)});
     for (PrototypeContents::Subdivided& s : contents.subdivided) subdivided_.push_back({std::move(s.mesh), s.placement});
 }

@@ -55,6 +55,7 @@ struct SyncContext {
     double time;
     const ColorConverter& convertColor;
     const Warn& warn;
+    const IncludedPurposes& purposes;
 };
 
 class RenderPrim {

@@ -41,7 +41,20 @@ RenderVarDesc varFromPrim(const usd::PrimSpec& prim, double time) {
     var.sourceName = reader.token({"sourceName"}, "");
     var.sourceType = reader.token({"sourceType"}, "raw");
     var.dataType = reader.token({"dataType"}, "color3f");
+    var.aovName = reader.token({"driver:parameters:aov:name"}, prim.path.substr(prim.path.find_last_of('/') + 1));
+    var.filter = reader.token({"fluence:filter"}, "");
     return var;
+}
+
+// dataWindowNDC: (xmin, ymin, xmax, ymax), min < max.
+std::array<float, 4> dataWindowOf(const PrimReader& reader) {
+    std::array<float, 4> window{0.0f, 0.0f, 1.0f, 1.0f};
+    auto v = reader.value("dataWindowNDC");
+    if (!v) return window;
+    if (!v->isNumeric() || v->numbers.size() != 4 || !(v->numbers[0] < v->numbers[2]) || !(v->numbers[1] < v->numbers[3]))
+        reader.fail("dataWindowNDC must be a float4 (xmin, ymin, xmax, ymax) with min < max, got " + v->toString());
+    for (int i = 0; i < 4; ++i) window[std::size_t(i)] = static_cast<float>(v->numbers[std::size_t(i)]);
+    return window;
 }
 
 // pixelAspectRatio and aspectRatioConformPolicy, each falling back to `inherited`'s.
@@ -108,6 +121,8 @@ std::optional<RenderSettingsDesc> renderSettingsFromStage(const usd::Stage& stag
             std::string camera = relationshipTarget(productPrim, "camera");
             product.cameraPath = camera.empty() ? s.cameraPath : camera;
             product.framing = framingOf(pr, s.framing);
+            product.dataWindowNdc = dataWindowOf(pr);
+            product.compression = pr.token({"driver:parameters:OpenEXR:compression"}, "");
             if (const usd::RelationshipSpec* vars = productPrim.relationship("orderedVars"))
                 for (const std::string& v : vars->targets)
                     product.vars.push_back(varFromPrim(targetOfType(stage, productPrim, v, "RenderVar", "orderedVars"), time));

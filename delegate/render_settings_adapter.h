@@ -11,16 +11,19 @@
 // |                | uniform token fluence:integrator ("": --integrator, else path)               |
 // | RenderProduct  | productName (""), productType ("raster"), and the RenderSettingsBase         |
 // |                | attributes above when authored on the product (they override the settings') |
-// |                | — resolution, camera, pixelAspectRatio, aspectRatioConformPolicy           |
-// | RenderVar      | sourceName (""), sourceType ("raw"), dataType ("color3f")                    |
-// In this slice the first product's productName is the default output path and its resolution,
-// camera and framing (pixelAspectRatio, aspectRatioConformPolicy) apply; writing every product
-// and var is issue #12. A policy outside USD's five tokens, or a pixelAspectRatio that is not
-// positive, raises SceneError naming the prim. `fluence:integrator` names the solution method
+// |                | — resolution, camera, pixelAspectRatio, aspectRatioConformPolicy,          |
+// |                | dataWindowNDC ((0, 0, 1, 1)); driver:parameters:OpenEXR:compression ("")   |
+// | RenderVar      | sourceName (""), sourceType ("raw"), dataType ("color3f"),                  |
+// |                | driver:parameters:aov:name (the prim's name), fluence:filter ("")           |
+// The delegate's own render uses the first product's resolution, camera and framing; the render
+// command writes every product and var (apps/render_products.h). A policy outside USD's five
+// tokens, a pixelAspectRatio that is not positive, or a dataWindowNDC that is not a float4 with
+// min < max, raises SceneError naming the prim. `fluence:integrator` names the solution method
 // (integrators/registry.cpp) when `fluence render` is not given `--integrator`; the delegate does
 // not know the integrators, so the render command rejects a name that is none of them.
 #pragma once
 
+#include <array>
 #include <optional>
 #include <string>
 #include <utility>
@@ -34,6 +37,8 @@ namespace fluence::delegate {
 struct RenderVarDesc {
     std::string path;  // prim path; its name is the AOV's name
     std::string sourceName, sourceType = "raw", dataType = "color3f";
+    std::string aovName;  // driver:parameters:aov:name, else the prim's name: the EXR layer
+    std::string filter;   // fluence:filter, "" when not authored
 };
 
 struct RenderProductDesc {
@@ -43,6 +48,9 @@ struct RenderProductDesc {
     std::pair<int, int> resolution;
     std::string cameraPath;
     render::ImageFraming framing;
+    // The part of the image written, in NDC: (xmin, ymin, xmax, ymax), (0, 0) the bottom-left corner.
+    std::array<float, 4> dataWindowNdc{0.0f, 0.0f, 1.0f, 1.0f};
+    std::string compression;  // driver:parameters:OpenEXR:compression, "" when not authored
     std::vector<RenderVarDesc> vars;
 };
 

@@ -35,9 +35,10 @@ std::string nativeKey(const std::string& key) { return "instance:" + key; }
 std::string pointInstancerKey(const std::string& root) { return "root:" + root; }
 
 // A mesh part as the render core takes it: a bound material replaces displayColor, and the
-// part keeps only the primvars its material's nodes read.
+// part keeps only the primvars its material's nodes read and those in `aovPrimvars`.
 void appendPart(SurfaceRprim::Part part, std::vector<render::MeshDesc>& meshes,
-                const std::function<int(const std::string&)>& materialFor, const std::vector<render::MaterialDesc>& materials) {
+                const std::function<int(const std::string&)>& materialFor, const std::vector<render::MaterialDesc>& materials,
+                const std::set<std::string>& aovPrimvars) {
     render::MeshDesc& mesh = part.objectSpace;
     if (mesh.indices.empty()) return;
     const render::MaterialDesc* material = nullptr;
@@ -47,9 +48,14 @@ void appendPart(SurfaceRprim::Part part, std::vector<render::MeshDesc>& meshes,
         material = &materials[static_cast<std::size_t>(mesh.material)];
     }
     std::erase_if(mesh.primvars, [&](const render::CornerPrimvar& pv) {
-        return !material || std::none_of(material->bindings.begin(), material->bindings.end(), [&](const render::InputBinding& b) {
-            return (b.texture ? b.texture->uvPrimvar : b.primvar) == pv.name;
-        });
+        if (aovPrimvars.contains(pv.name)) return false;
+        bool read = false;
+        if (material)
+            for (const render::InputBinding& b : material->bindings)
+                render::forEachSource(b, [&](const render::InputBinding& s) {
+                    read = read || (s.texture ? s.texture->uvPrimvar : s.primvar) == pv.name;
+                });
+        return !read;
     });
     meshes.push_back(std::move(mesh));
 }
@@ -58,6 +64,12 @@ void appendPart(SurfaceRprim::Part part, std::vector<render::MeshDesc>& meshes,
 
 SceneDelegate::SceneDelegate(usd::Stage& stage, DelegateOptions options) : stage_(stage), options_(std::move(options)) {
     renderSettings_ = renderSettingsFromStage(stage_, options_.settingsPath, options_.time);
+    try {
+        if (options_.purposes) purposes_ = IncludedPurposes::fromNames(*options_.purposes);
+        else if (renderSettings_) purposes_ = IncludedPurposes::fromNames(renderSettings_->includedPurposes);
+    } catch (const std::invalid_argument& e) {
+        throw SceneError((options_.purposes ? std::string("--purpose") : renderSettings_->path + ": includedPurposes") + ": " + e.what());
+    }
     populate("/");
 }
 
@@ -65,8 +77,8 @@ void SceneDelegate::populate(const std::string& root) {
     std::map<std::string, std::pair<std::size_t, std::string>> unsupported;  // type -> (count, first prim)
     std::string instanceRoot;  // the instance whose proxies are being visited, "" outside instances
     stage_.traverse([&](const usd::PrimSpec& prim) {
-        if (!isAtOrBelow(prim.path, root)) return isAtOrBelow(root, prim.path) && isImaged(prim, options_.time);
-        if (!isImaged(prim, options_.time)) return false;
+        if (!isAtOrBelow(prim.path, root)) return isAtOrBelow(root, prim.path) && isImaged(prim, options_.time, purposes_);
+        if (!isImaged(prim, options_.time, purposes_)) return false;
         const std::string& type = prim.typeName;
         if (!instanceRoot.empty() && !isAtOrBelow(prim.path, instanceRoot)) instanceRoot.clear();
         if (instanceRoot.empty() && !isGeometryType(type) && !instancePrototypeKey(prim).empty()) {
@@ -228,14 +240,20 @@ std::optional<render::VolumeDesc> SceneDelegate::volumeDesc(const VolumeRprim& v
     desc.params = material.params;
     desc.name = volume.path();
     desc.transform = volume.world();
+    bool fileMissing = false;
     auto field = [&](const std::string& name) -> std::optional<render::VolumeFieldDesc> {
         for (const VolumeRprim::Field& f : volume.fields()) {
             if (f.name != name) continue;
             const auto* asset = dynamic_cast<const FieldBprim*>(index_.find(f.assetPrim));
             if (!asset) return std::nullopt;
-            if (!asset->fileFound())
-                throw MissingAssetError(volume.path() + ": field '" + name + "': OpenVDB file " +
-                                 (asset->filePath().empty() ? "(not authored)" : asset->filePath()) + " not found");
+            if (!asset->fileFound()) {
+                const std::string what = "field '" + name + "': OpenVDB file " +
+                                         (asset->filePath().empty() ? "(not authored)" : asset->filePath()) + " not found";
+                if (!options_.allowMissing) throw MissingAssetError(volume.path() + ": " + what);
+                options_.warn(volume.path(), what + "; the volume is not rendered (--allow-missing)");
+                fileMissing = true;
+                return std::nullopt;
+            }
             return render::VolumeFieldDesc{asset->filePath(), asset->gridName(), asset->fieldIndex()};
         }
         return std::nullopt;
@@ -243,6 +261,7 @@ std::optional<render::VolumeDesc> SceneDelegate::volumeDesc(const VolumeRprim& v
     desc.density = field(material.densityField);
     desc.temperature = field(material.temperatureField);
     desc.color = field(material.colorField);
+    if (fileMissing) return std::nullopt;
     if (!desc.density) {
         options_.warn(volume.path(), "no field:" + material.densityField + " relationship to an OpenVDBAsset; the volume is not rendered");
         return std::nullopt;
@@ -297,21 +316,21 @@ render::SceneDescription SceneDelegate::describe(const render::Camera& camera, f
             case RenderPrim::Kind::Mesh: {
                 const auto& mesh = static_cast<const MeshRprim&>(*prim);
                 std::size_t first = scene.meshes.size();
-                for (MeshRprim::Part& part : mesh.worldParts(dicing)) appendPart(std::move(part), scene.meshes, materialFor, scene.materials);
+                for (MeshRprim::Part& part : mesh.worldParts(dicing)) appendPart(std::move(part), scene.meshes, materialFor, scene.materials, options_.aovPrimvars);
                 if (!mesh.subdivided().empty()) countSubdivided(scene.meshes, first);
                 break;
             }
             case RenderPrim::Kind::Instance:
                 scene.instances.push_back(
                     {prototypeFor(nativeKey(static_cast<const InstanceRprim&>(*prim).prototypeKey()), prim->world()),
-                     prim->world()});
+                     prim->world(), spec.path});
                 break;
             case RenderPrim::Kind::PointInstancer: {
                 const PointInstances& points = static_cast<const PointInstancerRprim&>(*prim).instances();
                 for (const PointInstances::Instance& instance : points.instances) {
                     Matrix4 placement = prim->world() * instance.transform;
-                    scene.instances.push_back(
-                        {prototypeFor(pointInstancerKey(points.prototypes[instance.prototype]), placement), placement});
+                    scene.instances.push_back({prototypeFor(pointInstancerKey(points.prototypes[instance.prototype]), placement),
+                                               placement, spec.path + "[" + std::to_string(instance.id) + "]"});
                 }
                 break;
             }
@@ -330,14 +349,14 @@ render::SceneDescription SceneDelegate::describe(const render::Camera& camera, f
     for (const auto& [key, index] : prototypeIndex) {
         const auto& prototype = static_cast<const PrototypeRprim&>(*index_.find(prototypes_.at(key)));
         std::vector<render::MeshDesc>& meshes = scene.prototypes[static_cast<std::size_t>(index)].meshes;
-        for (const SurfaceRprim::Part& part : prototype.parts()) appendPart(part, meshes, materialFor, scene.materials);
+        for (const SurfaceRprim::Part& part : prototype.parts()) appendPart(part, meshes, materialFor, scene.materials, options_.aovPrimvars);
         for (const SurfaceRprim::Subdivided& sub : prototype.subdivided()) {
             std::vector<Matrix4> where;
             for (const Matrix4& instance : placements[static_cast<std::size_t>(index)]) where.push_back(instance * sub.placement);
             std::size_t first = meshes.size();
             for (MeshPart& part : sub.mesh->tessellate(where, dicing))
                 appendPart({render::transformMesh(part.mesh, sub.placement), std::move(part.materialPath)}, meshes, materialFor,
-                           scene.materials);
+                           scene.materials, options_.aovPrimvars);
             countSubdivided(meshes, first);
         }
     }

@@ -32,6 +32,7 @@
 #include <functional>
 #include <map>
 #include <optional>
+#include <set>
 #include <string>
 
 #include "delegate/dicing.h"
@@ -55,6 +56,13 @@ struct DelegateOptions {
     double time = usd::kDefaultTime;
     ColorConverter convertColor;  // authored colour + colour space -> rendering space
     Warn warn;                    // (prim path, message)
+    // The purposes rendered (--purpose): these when set, else the render settings' includedPurposes.
+    std::optional<std::vector<std::string>> purposes;
+    // A missing OpenVDB file: a warning and the volume left out when true, else MissingAssetError.
+    bool allowMissing = false;
+    // Primvars (names without "primvars:") every mesh keeps for primvar RenderVars, whether or not
+    // its material reads them (render::RenderScene::primvarAt).
+    std::set<std::string> aovPrimvars;
 };
 
 class SceneDelegate {
@@ -93,9 +101,9 @@ private:
     render::SceneDescription describe(const render::Camera& camera, float scale, std::size_t& subdivisionTriangles) const;
     // The render core's description of a Volume: its material's parameters and its grids (nullopt,
     // with a warning, when it has no density field). Raises MissingAssetError when a grid file is
-    // missing.
+    // missing (with DelegateOptions::allowMissing: a warning, and nullopt).
     std::optional<render::VolumeDesc> volumeDesc(const VolumeRprim& volume) const;
-    SyncContext context() const { return {stage_, options_.time, options_.convertColor, options_.warn}; }
+    SyncContext context() const { return {stage_, options_.time, options_.convertColor, options_.warn, purposes_}; }
 
     usd::Stage& stage_;
     DelegateOptions options_;
@@ -103,6 +111,7 @@ private:
     std::map<std::string, std::string> prototypes_;  // prototype key -> prototype render prim path
     int nextPrototype_ = 1;
     std::optional<RenderSettingsDesc> renderSettings_;
+    IncludedPurposes purposes_;
     std::string cameraPath_;
 };
 

@@ -4,6 +4,8 @@
 
 namespace fluence::delegate {
 
+std::string ShaderInputs::id() const { return PrimReader(shader_, time_).token({"info:id"}, ""); }
+
 std::optional<ShaderInputs::Source> ShaderInputs::source(const std::string& input) const {
     const usd::PrimSpec* prim = &shader_;
     std::string name = "inputs:" + input;
@@ -73,6 +75,20 @@ std::vector<float> ShaderInputs::tuple(const std::string& name, const std::vecto
     if (!v || !v->isNumeric() || v->numbers.size() != fallback.size()) return fallback;
     std::vector<float> out;
     for (double x : v->numbers) out.push_back(static_cast<float>(x));
+    return out;
+}
+
+std::optional<std::vector<float>> ShaderInputs::numbers(const std::string& name) const {
+    auto source = valueSource(name);
+    if (!source) return std::nullopt;
+    PrimReader reader(*source->first, time_);
+    std::optional<usd::Value> v = reader.value(source->second);
+    if (!v || !v->isNumeric()) return std::nullopt;
+    std::vector<float> out(v->numbers.begin(), v->numbers.end());
+    if (out.size() >= 3 && v->typeName.starts_with("color")) {
+        const RGB c = convertColor_(RGB(out[0], out[1], out[2]), reader.attributeMetadata(source->second, "colorSpace").value_or(""));
+        out[0] = c.x, out[1] = c.y, out[2] = c.z;
+    }
     return out;
 }
 

@@ -35,6 +35,10 @@ public:
     double time() const { return time_; }
     const ColorConverter& convertColor() const { return convertColor_; }
     const Warn& warn() const { return warn_; }
+    // The shader's info:id ("" when it has none).
+    std::string id() const;
+    // The inputs of another shader of the same network, read the same way.
+    ShaderInputs node(const usd::PrimSpec& shader) const { return ShaderInputs(stage_, shader, time_, convertColor_, warn_); }
 
     // `name` without its "inputs:" prefix.
     RGB color(const std::string& name, const RGB& fallback) const;
@@ -44,6 +48,9 @@ public:
     std::string text(const std::string& name, const std::string& fallback) const;
     // A float2/float3/float4 input, `fallback.size()` components.
     std::vector<float> tuple(const std::string& name, const std::vector<float>& fallback) const;
+    // A numeric input of any width as authored: nullopt when it has no value; colours (color3f,
+    // color4f) converted into the rendering space, alpha as authored.
+    std::optional<std::vector<float>> numbers(const std::string& name) const;
 
     // The Shader output the input is connected to (through interface inputs and NodeGraph
     // outputs), or nullopt when it is not connected to a Shader.

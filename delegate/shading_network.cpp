@@ -1,19 +1,16 @@
 #include "delegate/shading_network.h"
 
 #include <algorithm>
+#include <variant>
 
 #include "delegate/prim_reader.h"
 #include "delegate/render_index.h"
+#include "delegate/shading_graph.h"
+#include "render/material_shader.h"
 
 namespace fluence::delegate {
 
 namespace {
-
-std::string idOf(const ShaderInputs& node) { return PrimReader(node.shader(), node.time()).token({"info:id"}, ""); }
-
-ShaderInputs nodeInputs(const ShaderInputs& surface, const usd::PrimSpec& node) {
-    return ShaderInputs(surface.stage(), node, surface.time(), surface.convertColor(), surface.warn());
-}
 
 // The channels a texture output names: {first, count}; {-1, 0} for an unknown output.
 std::pair<int, int> outputChannels(const std::string& output) {
@@ -56,7 +53,7 @@ void readTextureCoordinates(const ShaderInputs& surface, const ShaderInputs& tex
         }
         return;
     }
-    if (ShaderInputs transform = nodeInputs(surface, *node->shader); idOf(transform) == "UsdTransform2d") {
+    if (ShaderInputs transform = surface.node(*node->shader); transform.id() == "UsdTransform2d") {
         desc.uvTransform.rotationDegrees = transform.number("rotation", 0.0f);
         copyInto(transform.tuple("scale", {1.0f, 1.0f}), desc.uvTransform.scale);
         copyInto(transform.tuple("translation", {0.0f, 0.0f}), desc.uvTransform.translation);
@@ -67,9 +64,9 @@ void readTextureCoordinates(const ShaderInputs& surface, const ShaderInputs& tex
             return;
         }
     }
-    ShaderInputs reader = nodeInputs(surface, *node->shader);
-    if (idOf(reader) != "UsdPrimvarReader_float2") {
-        surface.warn()(tex.shader().path, "inputs:st is connected to " + reader.shader().path + " ('" + idOf(reader) +
+    ShaderInputs reader = surface.node(*node->shader);
+    if (reader.id() != "UsdPrimvarReader_float2") {
+        surface.warn()(tex.shader().path, "inputs:st is connected to " + reader.shader().path + " ('" + reader.id() +
                                               "'), not a UsdPrimvarReader_float2; reading the primvar st");
         return;
     }
@@ -79,7 +76,7 @@ void readTextureCoordinates(const ShaderInputs& surface, const ShaderInputs& tex
 
 std::optional<render::InputBinding> textureBinding(const ShaderInputs& surface, const DrivableInput& input,
                                                    const NodeOutput& node) {
-    ShaderInputs tex = nodeInputs(surface, *node.shader);
+    ShaderInputs tex = surface.node(*node.shader);
     auto [first, count] = outputChannels(node.output);
     if (first < 0) {
         surface.warn()(node.shader->path, "UsdUVTexture has no output '" + node.output + "'; input " + input.name + " ignores it");
@@ -127,14 +124,38 @@ void readMtlxColorSpace(const ShaderInputs& image, render::TextureDesc& desc) {
     if (!space.empty() && space != "srgb_texture" && space != "lin_rec709" && space != "raw") desc.colorSpaceName = space;
 }
 
-// A MaterialX image node (ND_image_<type>): file, default, uaddressmode/vaddressmode, and the
-// mesh's primary UV set ("st") as its texcoord. Its output `out` has the node type's channels.
+// MaterialX's filtertype: closest, linear (the default) or cubic.
+texture::Filter filterOf(const ShaderInputs& image) {
+    const std::string filter = image.text("filtertype", "linear");
+    if (filter == "closest") return texture::Filter::Closest;
+    if (filter == "cubic") return texture::Filter::Cubic;
+    if (filter != "linear")
+        image.warn()(image.shader().path, "inputs:filtertype '" + filter + "' is not closest, linear or cubic; using linear");
+    return texture::Filter::Linear;
+}
+
+// A MaterialX tiledimage's placement, as MaterialX's own graph for it computes it: st' = (st *
+// uvtiling - uvoffset) / realworldimagesize * realworldtilesize.
+void readTiling(const ShaderInputs& image, render::UvTransform& uv) {
+    const std::vector<float> tiling = image.tuple("uvtiling", {1.0f, 1.0f}), offset = image.tuple("uvoffset", {0.0f, 0.0f}),
+                             imageSize = image.tuple("realworldimagesize", {1.0f, 1.0f}),
+                             tileSize = image.tuple("realworldtilesize", {1.0f, 1.0f});
+    for (int i = 0; i < 2; ++i) {
+        const float size = tileSize[i] / imageSize[i];
+        uv.scale[i] = tiling[i] * size;
+        uv.translation[i] = -offset[i] * size;
+    }
+}
+
+// A MaterialX image node (ND_image_<type>) or tiled image (ND_tiledimage_<type>): file, default,
+// filtertype, uaddressmode/vaddressmode (images) or the tiling (tiled images, which repeat), and
+// the mesh's primary UV set ("st") as its texcoord. Its output `out` has the node type's channels.
 std::optional<render::InputBinding> mtlxImageBinding(const ShaderInputs& surface, const DrivableInput& input,
                                                      const usd::PrimSpec& node) {
-    ShaderInputs image = nodeInputs(surface, node);
+    ShaderInputs image = surface.node(node);
     if (image.connectedNode("texcoord"))
         image.warn()(node.path, "inputs:texcoord is connected; reading the primary UV set st instead");
-    const std::string id = idOf(image);
+    const std::string id = image.id();
     const std::string type = id.substr(id.find_last_of('_') + 1);
     const int channels = type == "float" ? 1 : type == "vector2" ? 2 : type == "color4" || type == "vector4" ? 4 : 3;
     render::InputBinding b;
@@ -143,8 +164,13 @@ std::optional<render::InputBinding> mtlxImageBinding(const ShaderInputs& surface
     b.channels = std::min(std::min(channels, 3), input.channels);
     render::TextureDesc& desc = b.texture.emplace();
     desc.file = image.text("file", "");
-    desc.wrapS = addressModeOf(image, "uaddressmode");
-    desc.wrapT = addressModeOf(image, "vaddressmode");
+    if (id.starts_with("ND_tiledimage_")) {
+        readTiling(image, desc.uvTransform);
+    } else {
+        desc.wrapS = addressModeOf(image, "uaddressmode");
+        desc.wrapT = addressModeOf(image, "vaddressmode");
+    }
+    desc.filter = filterOf(image);
     const std::vector<float> fallback = image.tuple("default", std::vector<float>(std::size_t(channels), 0.0f));
     for (std::size_t c = 0; c < 4; ++c) desc.fallback[c] = c < fallback.size() ? fallback[c] : channels == 1 ? fallback[0] : 1.0f;
     readMtlxColorSpace(image, desc);
@@ -159,12 +185,13 @@ std::optional<render::InputBinding> mtlxImageBinding(const ShaderInputs& surface
 // tangent-space normal, (2 t - 1) (scale, scale, 1).
 std::optional<render::InputBinding> mtlxNormalMapBinding(const ShaderInputs& surface, const DrivableInput& input,
                                                          const usd::PrimSpec& node) {
-    ShaderInputs normalMap = nodeInputs(surface, node);
+    ShaderInputs normalMap = surface.node(node);
     if (const std::string space = normalMap.text("space", "tangent"); space != "tangent")
         normalMap.warn()(node.path, "inputs:space '" + space + "' is not supported; reading the map in tangent space");
     std::optional<NodeOutput> source = normalMap.connectedNode("in");
-    if (!source || !idOf(nodeInputs(surface, *source->shader)).starts_with("ND_image_")) {
-        normalMap.warn()(node.path, "inputs:in is not connected to an image node; the surface keeps its own normal");
+    const std::string sourceId = source ? surface.node(*source->shader).id() : "";
+    if (!sourceId.starts_with("ND_image_") && !sourceId.starts_with("ND_tiledimage_")) {
+        normalMap.warn()(node.path, "inputs:in is not connected to an image or tiledimage node; the surface keeps its own normal");
         return std::nullopt;
     }
     std::optional<render::InputBinding> b = mtlxImageBinding(surface, input, *source->shader);
@@ -177,7 +204,7 @@ std::optional<render::InputBinding> mtlxNormalMapBinding(const ShaderInputs& sur
 
 std::optional<render::InputBinding> primvarBinding(const ShaderInputs& surface, const DrivableInput& input,
                                                    const NodeOutput& node, int components) {
-    ShaderInputs reader = nodeInputs(surface, *node.shader);
+    ShaderInputs reader = surface.node(*node.shader);
     render::InputBinding b;
     b.input = input.target;
     b.channels = std::min(components, input.channels);
@@ -189,32 +216,43 @@ std::optional<render::InputBinding> primvarBinding(const ShaderInputs& surface, 
     return b;
 }
 
+// The binding of a node that reads a texture or a primvar (the leaves of delegate/shading_graph.h),
+// or nullopt: a node Fluence does not evaluate is named, with the file it came from.
+std::optional<render::InputBinding> leafBinding(const ShaderInputs& surface, const DrivableInput& input, const NodeOutput& node) {
+    const std::string id = surface.node(*node.shader).id();
+    if (id == "UsdUVTexture") return textureBinding(surface, input, node);
+    if (id == "UsdPrimvarReader_float") return primvarBinding(surface, input, node, 1);
+    if (id == "UsdPrimvarReader_float3" || id == "UsdPrimvarReader_normal" || id == "UsdPrimvarReader_vector" ||
+        id == "UsdPrimvarReader_point")
+        return primvarBinding(surface, input, node, 3);
+    if (id.starts_with("ND_image_") || id.starts_with("ND_tiledimage_")) return mtlxImageBinding(surface, input, *node.shader);
+    if (id == "ND_normalmap") return mtlxNormalMapBinding(surface, input, *node.shader);
+    surface.warn()(surface.shader().path, std::string("input '") + input.name + "' is connected to " + node.shader->path +
+                                              " ('" + id + "', from " + node.shader->location.file +
+                                              "), a node Fluence does not evaluate; using the input's own value");
+    return std::nullopt;
+}
+
 }  // namespace
 
-void readBindings(const ShaderInputs& surface, const std::vector<DrivableInput>& inputs,
-                  std::vector<render::InputBinding>& bindings) {
+void readBindings(const ShaderInputs& surface, const std::vector<DrivableInput>& inputs, render::MaterialDesc& material) {
     for (const DrivableInput& input : inputs) {
         std::optional<NodeOutput> node = surface.connectedNode(input.name);
         if (!node) continue;
-        std::string id = idOf(nodeInputs(surface, *node->shader));
-        std::optional<render::InputBinding> b;
-        if (id == "UsdUVTexture")
-            b = textureBinding(surface, input, *node);
-        else if (id == "UsdPrimvarReader_float")
-            b = primvarBinding(surface, input, *node, 1);
-        else if (id == "UsdPrimvarReader_float3" || id == "UsdPrimvarReader_normal" || id == "UsdPrimvarReader_vector" ||
-                 id == "UsdPrimvarReader_point")
-            b = primvarBinding(surface, input, *node, 3);
-        else if (id.starts_with("ND_image_"))
-            b = mtlxImageBinding(surface, input, *node->shader);
-        else if (id == "ND_normalmap")
-            b = mtlxNormalMapBinding(surface, input, *node->shader);
-        else
-            surface.warn()(surface.shader().path, std::string("input '") + input.name + "' is connected to " +
-                                                      node->shader->path + " ('" + id + "', from " +
-                                                      node->shader->location.file +
-                                                      "), a node Fluence does not evaluate; using the input's own value");
-        if (b) bindings.push_back(std::move(*b));
+        // Leaves keep every channel they have; the input takes the ones it needs below.
+        const DrivableInput leafInput{input.name, input.target, 4, 1.0f};
+        const LeafReader leaf = [&](const NodeOutput& n) { return leafBinding(surface, leafInput, n); };
+        DrivenValue value = readDrivenValue(surface, input.name, *node, leaf);
+        if (const ConstantValue* c = std::get_if<ConstantValue>(&value)) {
+            float v[4];
+            for (int k = 0; k < 4; ++k) v[k] = c->value[k] * input.factor;
+            render::setMaterialInput(material, input.target, v, std::min(c->channels, input.channels));
+        } else if (render::InputBinding* b = std::get_if<render::InputBinding>(&value)) {
+            b->input = input.target;
+            b->channels = std::min(b->channels, input.channels);
+            b->factor *= input.factor;
+            material.bindings.push_back(std::move(*b));
+        }
     }
 }
 

@@ -50,22 +50,20 @@ render::MaterialDesc previewSurface(const ShaderInputs& in, const std::string& m
     m.ior = in.number("ior", 1.5f);
     m.displacement = in.number("displacement", 0.0f);
     using render::MaterialInput;
+    // The specular workflow reads specularColor and not metallic; the metallic workflow the reverse.
+    const DrivableInput workflowInput = m.specularWorkflow ? DrivableInput{"specularColor", MaterialInput::SpecularColor, 3}
+                                                           : DrivableInput{"metallic", MaterialInput::Metallic, 1};
     readBindings(in,
                  {{"diffuseColor", MaterialInput::Diffuse, 3},
                   {"emissiveColor", MaterialInput::Emission, 3},
-                  {"specularColor", MaterialInput::SpecularColor, 3},
-                  {"metallic", MaterialInput::Metallic, 1},
+                  workflowInput,
                   {"roughness", MaterialInput::Roughness, 1},
                   {"clearcoat", MaterialInput::Coat, 1},
                   {"clearcoatRoughness", MaterialInput::CoatRoughness, 1},
                   {"opacity", MaterialInput::Opacity, 1},
                   {"ior", MaterialInput::Ior, 1},
                   {"normal", MaterialInput::Normal, 3}},
-                 m.bindings);
-    if (!m.specularWorkflow)
-        std::erase_if(m.bindings, [](const render::InputBinding& b) { return b.input == render::MaterialInput::SpecularColor; });
-    else
-        std::erase_if(m.bindings, [](const render::InputBinding& b) { return b.input == render::MaterialInput::Metallic; });
+                 m);
     dropDrivenEmission(in, m);
     return m;
 }
@@ -98,6 +96,29 @@ render::MaterialDesc standardSurface(const ShaderInputs& in, const std::string& 
     m.subsurfaceColor = in.color("subsurface_color", RGB(1.0f));
     m.subsurfaceRadius = in.color("subsurface_radius", RGB(1.0f));
     m.subsurfaceScale = in.number("subsurface_scale", 1.0f);
+    using render::MaterialInput;
+    // Standard Surface's weights multiply their colours: a node drives the colour, and the weight
+    // stays its factor (base for base_color, emission for emission_color).
+    const float base = in.number("base", 0.8f), emission = in.number("emission", 0.0f);
+    readBindings(in,
+                 {{"base_color", MaterialInput::Diffuse, 3, base},
+                  {"metalness", MaterialInput::Metallic, 1},
+                  {"specular", MaterialInput::Specular, 1},
+                  {"specular_color", MaterialInput::SpecularColor, 3},
+                  {"specular_roughness", MaterialInput::Roughness, 1},
+                  {"specular_IOR", MaterialInput::Ior, 1},
+                  {"transmission", MaterialInput::Transmission, 1},
+                  {"transmission_color", MaterialInput::TransmissionColor, 3},
+                  {"sheen", MaterialInput::Sheen, 1},
+                  {"sheen_color", MaterialInput::SheenColor, 3},
+                  {"coat", MaterialInput::Coat, 1},
+                  {"coat_color", MaterialInput::CoatColor, 3},
+                  {"coat_roughness", MaterialInput::CoatRoughness, 1},
+                  {"emission_color", MaterialInput::Emission, 3, emission},
+                  {"opacity", MaterialInput::Opacity, 1},
+                  // Read as the tangent-space normal a normalmap node (ND_normalmap) produces.
+                  {"normal", MaterialInput::Normal, 3}},
+                 m);
     const float depth = in.number("transmission_depth", 0.0f);
     if (depth > 0.0f && !m.thinWalled) {  // transmission_color is reached at that depth inside
         m.interior = transmissionMedium(m.transmissionColor, in.color("transmission_scatter", RGB(0.0f)),
@@ -112,30 +133,6 @@ render::MaterialDesc standardSurface(const ShaderInputs& in, const std::string& 
     if (m.subsurface > 0.0f && !m.thinWalled && !m.interior)  // the random walk's medium (diffusion: the probes' material)
         m.interior = media::subsurfaceMedium(m.subsurfaceColor, m.subsurfaceRadius * m.subsurfaceScale,
                                              in.number("subsurface_anisotropy", 0.0f));
-    using render::MaterialInput;
-    // Standard Surface's base weight multiplies base_color: a node drives the colour, and the
-    // binding keeps the weight as its factor.
-    readBindings(in,
-                 {{"base_color", MaterialInput::Diffuse, 3},
-                  {"metalness", MaterialInput::Metallic, 1},
-                  {"specular", MaterialInput::Specular, 1},
-                  {"specular_color", MaterialInput::SpecularColor, 3},
-                  {"specular_roughness", MaterialInput::Roughness, 1},
-                  {"specular_IOR", MaterialInput::Ior, 1},
-                  {"transmission", MaterialInput::Transmission, 1},
-                  {"transmission_color", MaterialInput::TransmissionColor, 3},
-                  {"sheen", MaterialInput::Sheen, 1},
-                  {"sheen_color", MaterialInput::SheenColor, 3},
-                  {"coat", MaterialInput::Coat, 1},
-                  {"coat_color", MaterialInput::CoatColor, 3},
-                  {"coat_roughness", MaterialInput::CoatRoughness, 1},
-                  {"emission_color", MaterialInput::Emission, 3},
-                  {"opacity", MaterialInput::Opacity, 1},
-                  // Read as the tangent-space normal a normalmap node (ND_normalmap) produces.
-                  {"normal", MaterialInput::Normal, 3}},
-                 m.bindings);
-    for (render::InputBinding& b : m.bindings)
-        if (b.input == MaterialInput::Diffuse) b.factor = in.number("base", 0.8f);
     if (m.interior && std::erase_if(m.bindings, [](const render::InputBinding& b) { return b.input == MaterialInput::TransmissionColor; }) > 0)
         in.warn()(in.shader().path, "transmission_color driven by a node with transmission_depth > 0: the interior medium uses its constant value");
     dropDrivenEmission(in, m);

@@ -44,10 +44,12 @@
 // Inputs not listed (specular_rotation, transmission_dispersion/extra_roughness, thin_film_*,
 // coat_anisotropy/affect_*, tangent) are not read; normal only through a normal map. The colour,
 // weight and roughness inputs may be driven by UsdUVTexture / primvar-reader nodes and by
-// MaterialX image nodes (base_color keeps base as its factor), normal by a MaterialX normalmap
-// (delegate/shading_network.h); subsurface inputs take their own values. Emission stays constant
-// in both shaders: a node driving it is dropped with a warning (emissive triangles are lights of
-// one radiance each).
+// MaterialX image, tiledimage, constant, multiply and mix nodes (base_color keeps base as its
+// factor, emission_color emission), normal by a MaterialX normalmap (delegate/shading_network.h);
+// nodes computing a constant set the parameter itself, before the interior media are made from
+// it; subsurface inputs take their own values. Emission stays constant in both shaders: a node
+// driving it per point is dropped with a warning (emissive triangles are lights of one radiance
+// each).
 #pragma once
 
 #include <string>

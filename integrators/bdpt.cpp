@@ -23,6 +23,9 @@ using namespace bdpt;
 namespace {
 
 constexpr float kInfinity = std::numeric_limits<float>::infinity();
+// A ray from the camera towards a light vertex stops this fraction of the way short of it, so as
+// not to hit the vertex's own surface (as RenderScene::occluded shortens shadow rays).
+constexpr float kLookShortening = 1e-4f;
 
 // One scattering of a subpath at v: the direction, the throughput factor, and the densities
 // forwards (from v.wo to wi) and backwards (1, 1 through a delta lobe). `importance`: a light
@@ -206,9 +209,59 @@ std::optional<media::MediumRay> joinSegment(const RenderScene& scene, const Vert
     return media::MediumRay{from, d / length, length};
 }
 
+// t = 1 (bdpt.h): each light vertex y_{s-1} (s >= 2) joined to the pinhole, its light splatted
+// into the pixel it lands on, weighted against the path's other strategies.
+void splatToCamera(const RenderScene& scene, const render::Camera& camera, const LightSubpath& light, int hero,
+                   SampleStream& rng, RenderCounters& counters, render::BsdfArena& arena, SplatFilm& splats) {
+    const media::Medium* cameraMedium = MediumStack(scene).medium();  // the camera is outside every closed surface
+    std::vector<VertexDensity> x;
+    for (std::size_t i = 0; i < light.vertices.size(); ++i) {
+        const Vertex& y = light.vertices[i];
+        const int s = static_cast<int>(i) + 2;
+        if (y.walking) continue;
+        const std::optional<render::Camera::Connection> c = camera.connect(y.point());
+        if (!c) continue;
+        arena.reset();
+        const Shading sh(y, arena);
+        if (!sh.connectable()) continue;
+        auto [f, pdfBack] = sh.evaluate(c->direction, y.wo);  // f(wi, wo): the adjoint; and y_{s-2} drawn from the camera side
+        const RGB contribution = y.beta * f * (sh.importanceCosines(y.wo, c->direction) * c->importance);
+        if (isBlack(contribution)) continue;
+        // Visible as a camera ray sees it: from the near plane on, hidden by surfaces and by lights'
+        // shapes (which camera rays stop at, and RenderScene::occluded passes through).
+        ++counters.shadow;
+        const Ray look{camera.position(), -c->direction, c->nearDistance, c->distance * (1.0f - kLookShortening)};
+        if (!(look.tMax > look.tMin) || scene.intersect(look)) continue;
+        // Media fill the whole way to the pinhole, as for the camera subpath's first flight.
+        const Crossing crossing = cross(cameraMedium, {y.leaving(c->direction), c->direction, c->distance}, std::max(hero, 0), rng);
+        if (isBlack(crossing.tr.throughput)) continue;
+        x.clear();
+        x.push_back({light.origin.fromLight, light.origin.fromCamera, false});
+        for (int j = 0; j < s - 1; ++j) {
+            const Vertex& lv = light.vertices[j];
+            x.push_back(densityOf(lv, lv.fromOwn, lv.fromOther, lv.delta, lv.edge));
+        }
+        x[s - 1].fromCamera = toArea(c->density, camera.position(), y);
+        x[s - 1].delta = false;
+        x[s - 2].fromCamera = s == 2 ? cameraReaches(light.origin, pdfBack, y.point()) : toArea(pdfBack, y.point(), light.vertices[s - 3]);
+        x.push_back({1.0f, 1.0f, false, true, RGB(1.0f), crossing.edge});  // the camera
+        const Vec3f toX2 = s >= 3 ? -light.vertices[1].wo : c->direction;
+        const StrategyPath path{x, neeDensity(scene, light.origin, light.vertices[0], toX2), !light.origin.delta, hero, true};
+        if (!splats.add(c->raster.x, c->raster.y, contribution * crossing.tr.throughput * misWeight(path, s)))
+            ++counters.nonFiniteSamples;
+    }
+}
+
 }  // namespace
 
-void Bdpt::prepare(const RenderScene& scene, const render::Camera&, std::uint64_t) const {
+void Bdpt::attachSplats(SplatFilm* splats) const { splats_ = splats; }
+
+std::string Bdpt::summary() const { return lightTracingOff_; }
+
+void Bdpt::prepare(const RenderScene& scene, const render::Camera& camera, std::uint64_t) const {
+    lightTracing_ = splats_ && camera.hasImportance();
+    const std::string why = !splats_ ? "the film is a window of the image (a tile)" : "an orthographic camera";
+    lightTracingOff_ = lightTracing_ ? "" : "light tracing (t = 1) off: " + why + "; point-light caustics seen directly are missed";
     std::vector<double> weights;
     emitters_.clear();
     // Lights at infinity emit over the scene's bounds, which leave volumes out (bdpt.h, LEFT OUT).
@@ -236,13 +289,20 @@ FilmSample Bdpt::sample(const RenderScene& scene, const render::Camera& camera, 
     // One hero channel for both subpaths (bdpt_mis.h, SPECTRAL MIS); none without media.
     const int hero = scene.hasMedia() ? media::sampleHeroChannel(rng.next()) : -1;
     const int tracked = std::max(hero, 0);
-    const LightSubpath light =
-        traceLightSubpath(scene, emitters_, emitterChoice_, emitterProbability_, maxDepth_ - 1, hero, rng, counters, arena);
+    // With light tracing, a light subpath may reach maxDepth vertices (t = 1 joins the last to the
+    // camera); without, maxDepth - 1 (every other strategy holds a camera vertex).
+    const LightSubpath light = traceLightSubpath(scene, emitters_, emitterChoice_, emitterProbability_,
+                                                 lightTracing_ ? maxDepth_ : maxDepth_ - 1, hero, rng, counters, arena);
+    if (lightTracing_) splatToCamera(scene, camera, light, hero, rng, counters, joinArena, *splats_);
+
+    // Whether t = 1 can draw the paths through the camera's first vertex z_1 (the camera reaches it
+    // by a connection: before the far plane and past the near one, where a medium vertex may lie).
+    bool cameraJoins = false;
 
     CameraSubpath z;
     std::vector<VertexDensity> x;  // the densities of the path being weighted, x_0 first
     auto weight = [&](float neeOrigin, bool hittable, int s) {
-        return misWeight(StrategyPath{x, neeOrigin, hittable, hero}, s);
+        return misWeight(StrategyPath{x, neeOrigin, hittable, hero, cameraJoins}, s);
     };
 
     // s = 0: the camera subpath reaches light `index` over `edge`, leaving it from `point` along
@@ -301,7 +361,13 @@ FilmSample Bdpt::sample(const RenderScene& scene, const render::Camera& camera, 
         Vertex v = flight.event == media::FlightEvent::Scattered ? mediumVertex(flight, ray.direction, beta, media)
                                                                  : Vertex{*hit, -ray.direction, beta, media};
         v.edge = stretch.edge;
-        if (!z.empty()) v.fromOwn = lastDelta ? 1.0f : toArea(lastPdf, start, v);
+        if (!z.empty()) {
+            v.fromOwn = lastDelta ? 1.0f : toArea(lastPdf, start, v);
+        } else if (lightTracing_) {  // z_1: drawn by the camera with its density over the whole image (bdpt_mis.h)
+            const std::optional<render::Camera::Connection> c = camera.connect(v.point());
+            cameraJoins = c.has_value();
+            if (c) v.fromOwn = toArea(c->density, camera.position(), v);
+        }
         if (!v.inMedium) {
             if (depth == 0) recordFirstHit(out, *hit, v.wo, camera);
             if (hit->light >= 0) {

@@ -2,30 +2,40 @@
 // BDPTIntegrator, 3rd and 4th editions), through participating media (pbrt-v3's volumetric BDPT
 // for the vertices; Miller, Georgiev & Jarosz 2019 for the null-scattering densities and the
 // spectral MIS). Covers L(S|D|V)*E from lights that rays can hit; from delta lights (point, spot,
-// line, angle-0 distant), every path whose first vertex is diffuse (LD(S|D|V)*E) or which holds
-// two adjacent joinable vertices (L(S|D|V)*DD(S|D|V)*E, V a scattering in a volume): so, unlike
-// `path`, a point light's caustic once it lights another diffuse surface (LS+DD+E), but not the
-// caustic seen directly or through mirrors (LS+DS*E), which needs t = 1 (below).
+// line, angle-0 distant), every path whose first vertex is diffuse (LD(S|D|V)*E), which holds two
+// adjacent joinable vertices (L(S|D|V)*DD(S|D|V)*E, V a scattering in a volume), or whose last
+// vertex before the camera is joinable (L(S|D|V)*(D|V)E, by light tracing, t = 1): so, unlike
+// `path`, a point light's caustic, seen directly (LS+DE) or once it lights another diffuse
+// surface (LS+DD+E). Still missed from delta lights: caustics seen only through mirrors or glass
+// (LS+DS+E), which no strategy with a pinhole camera can draw.
 //
 // PER CAMERA SAMPLE: a light subpath y_0 ... y_{n-1} (a light chosen in proportion to its power
 // among those that offer emission sampling, render/light.h; a point and direction from
 // Light::sampleEmission; then BSDF sampling with the ADJOINT BSDF, f*(wo, wi) = f(wi, wo),
 // including Veach's shading-normal correction |wo.ns| |wi.ng| / (|wo.ng| |wi.ns|), since
 // render/bsdf.h's f transports radiance) and a camera subpath z_0 ... from the given ray, as
-// `path` traces it. Every prefix pair (s, t) with t >= 2 is a strategy:
+// `path` traces it. Every prefix pair (s, t) with t >= 1 is a strategy:
 //   s = 0   the camera subpath hits a light (its shape, an emissive triangle, or a light at
 //           infinity as it leaves the scene);
 //   s = 1   next-event estimation at z_{t-1}: a light chosen by the light tree and sampled by
 //           its own sampler (exactly `path`'s), with a shadow ray;
-//   s >= 2  y_{s-1} joined to z_{t-1} by a shadow ray, both non-delta.
-// LEFT OUT: t = 1 (light tracing to the camera) and t = 0 (the camera cannot be hit). Their
-// contributions land in other pixels than the sample's, and Fluence's render loop adds a sample
-// to its own pixel only (so images stay bit-identical at any thread count). The MIS weights are
-// therefore normalised over the strategies with t >= 2 (integrators/bdpt_mis.h), which keeps
-// the estimator unbiased for every path that one of them can produce. The price: a caustic from
-// a point or angle-0 distant light seen DIRECTLY (LS+DE) needs t = 1, and is missed as by
-// `path`; once it lights another diffuse surface (LS+DDE), s >= 3 with t = 2 finds it. Light
-// from cylinder and line lights (no emission sampling) is found by s = 0 and s = 1 alone.
+//   s >= 2  y_{s-1} joined to z_{t-1} by a shadow ray, both non-delta;
+//   t = 1   light tracing: y_{s-1} (s >= 2, non-delta) joined to the pinhole
+//           (render::Camera::connect), its light splatted into whichever pixel it lands on
+//           (core/splat_film.h: fixed-point sums, bit-identical at any thread count), and the
+//           splat sums divided by the light paths per pixel (one per camera sample) when the film
+//           resolves. The light subpath may then hold maxDepth scattering vertices.
+// t = 0 (a light subpath hitting the camera) does not exist: the pinhole cannot be hit.
+// LIMITS OF t = 1. It needs the render loop's splat film and a pinhole: a tile of the image (its
+// film a window, integrators/renderer.h) and an orthographic camera leave it out, and say so in
+// the render summary (and `fluence render` warns for tiles); the MIS weights then exclude it
+// (bdpt_mis.h, StrategyPath::lightTracing) and the estimator stays unbiased for every path the
+// other strategies can draw, as before t = 1 was added. A light seen directly is left to s = 0
+// (no t = 1 with s = 1: point lights stay invisible, as in `path`). Under adaptive sampling
+// (--target-error) t = 1 stays: each pixel's camera strategies are divided by its own samples and
+// the splats by the image's mean light paths per pixel, and the MIS weights still sum to one, so
+// the image is unbiased (the stopping rule reads the camera samples' statistics only). Light from
+// cylinder and line lights (no emission sampling) is found by s = 0 and s = 1 alone.
 //
 // MEDIA. Both subpaths track the media they are in as `path` does (integrators/medium_stack.h:
 // the scene's volumes everywhere, the materials' interiors inside closed surfaces; the camera
@@ -69,6 +79,7 @@
 // surface disagree, as `path` does.
 #pragma once
 
+#include <string>
 #include <vector>
 
 #include "core/sampling.h"
@@ -84,9 +95,17 @@ public:
     void prepare(const render::RenderScene& scene, const render::Camera& camera, std::uint64_t seed) const override;
     FilmSample sample(const render::RenderScene& scene, const render::Camera& camera, const render::Ray& ray,
                       SampleStream& rng, RenderCounters& counters) const override;
+    // Light tracing (t = 1) splats into the film's splat film.
+    bool usesSplats() const override { return true; }
+    void attachSplats(SplatFilm* splats) const override;
+    // Says when light tracing was left out, and why.
+    std::string summary() const override;
 
 private:
     int maxDepth_;
+    mutable SplatFilm* splats_ = nullptr;
+    mutable bool lightTracing_ = false;
+    mutable std::string lightTracingOff_;
     // Over emitting lights, by power; index -> light, and light -> its probability (0: none).
     mutable DiscreteDistribution emitterChoice_;
     mutable std::vector<int> emitters_;

@@ -59,14 +59,16 @@ bool joinableAt(const VertexDensity& v) { return !v.delta && v.joinable; }
 
 bool strategyExists(const StrategyPath& path, int s) {
     const auto& x = path.vertices;
-    if (s < 0 || s + 2 > static_cast<int>(x.size())) return false;
+    const int k = static_cast<int>(x.size()) - 1;
+    if (s == k) return path.lightTracing && k >= 2 && joinableAt(x[k - 1]);  // t = 1
+    if (s < 0 || s > k) return false;
     if (s == 0) return path.lightHittable;
     return (s == 1 || joinableAt(x[s - 1])) && joinableAt(x[s]);
 }
 
 float misWeight(const StrategyPath& path, int s) {
     const auto& x = path.vertices;
-    const int strategies = static_cast<int>(x.size()) - 1;  // s = 0 ... k - 1
+    const int strategies = static_cast<int>(x.size()) - (path.lightTracing ? 0 : 1);  // s = 0 ... k (k - 1 without t = 1)
     const bool spectral = path.hero >= 0;
     std::optional<ChannelFactors> channels;
     if (spectral) channels.emplace(path, s);

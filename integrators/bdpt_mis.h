@@ -5,9 +5,12 @@
 //
 // THE PATH. x_0 ... x_k: x_0 on a light, x_k the camera. Strategy s (0 <= s <= k - 1) draws
 // x_0 ... x_{s-1} by the light subpath and x_s ... x_k by the camera subpath, and joins x_{s-1}
-// to x_s (s = 0: the camera subpath hits the light itself). Strategies with t = k + 1 - s < 2
-// (light tracing to the camera, splatting into other pixels) are not part of Fluence's BDPT, so
-// the weights sum to one over s = 0 ... k - 1 alone.
+// to x_s (s = 0: the camera subpath hits the light itself). Strategy s = k (t = 1) is light
+// tracing: the light subpath's x_{k-1} joined to the camera x_k, splatting into the pixel it lands
+// on; it exists only when StrategyPath::lightTracing says the render uses it (a pinhole camera and
+// a film that is the whole image, integrators/bdpt.h), and for k >= 2 (a light seen directly is
+// left to s = 0). t = 0 (a light subpath hitting the camera) never exists. The weights sum to one
+// over the strategies that exist.
 //
 // THE DENSITIES, per vertex and in the measure of the path (area; solid angle for a light at
 // infinity's x_0): fromLight is the density with which the light subpath would draw x_i from
@@ -15,7 +18,11 @@
 // fromCamera that of the camera subpath drawing x_i from x_{i+1}. A delta scattering at x_i makes
 // the density of its neighbours drawn through it a Dirac delta, which is stored as 1 on both
 // sides (the same delta, so it cancels between the strategies that hold it, and any strategy that
-// would join a path at x_i is excluded). Strategy 1 is next-event estimation, which chooses the
+// would join a path at x_i is excluded). The camera x_k is a pinhole, a delta in position for every
+// strategy alike, so it enters no ratio (its densities are stored as 1); x_{k-1}.fromCamera is the
+// camera's density of its ray towards x_{k-1} over the whole image (render/camera.h,
+// directionDensity), as an area density: one light path is traced per camera sample, so light
+// tracing draws as many paths per pixel as the camera does, and the two densities compare. Strategy 1 is next-event estimation, which chooses the
 // light with the light tree and samples it by its own sampler: x_0's density under it,
 // `neeOrigin`, takes the place of x_0.fromLight for s = 1 alone.
 //
@@ -85,6 +92,7 @@ struct StrategyPath {
     float neeOrigin = 0.0f;                   // x_0's density under next-event estimation from x_1
     bool lightHittable = true;                // x_0 is not on a delta light
     int hero = -1;                            // the hero channel in a scene with media; -1: none
+    bool lightTracing = false;                // strategy s = k (t = 1) is used
 };
 
 // Whether strategy s can produce the path.

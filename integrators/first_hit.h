@@ -21,6 +21,8 @@ inline void recordFirstHit(FilmSample& out, const render::SurfaceHit& hit, const
     out.depth = camera.viewDepth(hit.point);
     out.albedo = hit.material.diffuse;
     out.normal = dot(hit.shadingNormal, wo) < 0.0f ? -hit.shadingNormal : hit.shadingNormal;
+    out.objectName = hit.objectName;
+    out.materialName = hit.materialName;
 }
 
 // Fills the AOVs of a camera sample whose first event is a real collision in a volume at p: it

@@ -62,6 +62,14 @@ public:
     virtual void prepare(const render::RenderScene& /*scene*/, const render::Camera& /*camera*/, std::uint64_t /*seed*/) const {}
     virtual void beginSamples(const render::RenderScene& /*scene*/, const render::Camera& /*camera*/, std::uint64_t /*seed*/,
                               int /*firstSample*/, int /*count*/) const {}
+    // Light tracing: a method that adds light to other pixels than its sample's (bdpt's t = 1)
+    // returns true from usesSplats(). The render loop then hands it the film's splat film
+    // (core/splat_film.h) by attachSplats() before prepare(), or nullptr where splats cannot be
+    // used (a film that is only a window of the image: a tile, integrators/renderer.h), and
+    // nullptr again when the render ends. Without one the method leaves those strategies out.
+    // sample() may add to it from any thread.
+    virtual bool usesSplats() const { return false; }
+    virtual void attachSplats(SplatFilm* /*splats*/) const {}
     // What the method has to say about its solution for the render summary (a radiosity
     // solution's residual, a photon count), one line, after render(); "" for nothing.
     virtual std::string summary() const { return ""; }

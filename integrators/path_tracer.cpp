@@ -143,12 +143,10 @@ FilmSample PathTracer::trace(const render::RenderScene& scene, const render::Cam
     std::optional<SurfaceHit> diffusionExit;  // where diffusion subsurface scattering brings the path out
     for (int depth = 0;; ++depth) {
         // The next vertex: where the ray hits, or, after a diffusion entry, its exit (no ray traced).
+        // (Initialised in place from either: a SurfaceHit is large, and copying it showed in profiles.)
         const bool exiting = kMedia && diffusionExit.has_value();
-        std::optional<SurfaceHit> hit = std::exchange(diffusionExit, std::nullopt);
-        if (!exiting) {
-            ++(depth == 0 ? counters.camera : counters.bounce);
-            hit = scene.intersect(ray);
-        }
+        if (!exiting) ++(depth == 0 ? counters.camera : counters.bounce);
+        std::optional<SurfaceHit> hit = exiting ? std::exchange(diffusionExit, std::nullopt) : scene.intersect(ray);
 
         if (const media::Medium* medium = !kMedia || exiting ? nullptr : inside.medium()) {  // the stretch of medium up to the surface (or out of the scene)
             media::FreeFlight flight = media::sampleFreeFlight(

@@ -22,11 +22,13 @@ const std::vector<IntegratorInfo>& integratorRegistry() {
         {"whitted", "LD?S*E", kEmitterSeen | kDirect | kSpecularSeen | kDeltaLights,
          "Whitted ray tracing: direct lighting (as `direct`) seen through mirrors and smooth glass; no caustics",
          [](const IntegratorSettings& s) { return std::make_unique<Whitted>(s); }},
-        {"bdpt", "L(S|D|V)*E; from delta lights LD(S|D|V)*E and L(S|D|V)*DD(S|D|V)*E (no LS+DS*E)",
-         kEmitterSeen | kDirect | kSpecularSeen | kIndirect | kCaustics | kDeltaLights | kVolumes | kSubsurface,
-         "bidirectional path tracing, MIS (power heuristic, spectral in media) over every light/camera prefix pair "
-         "with t >= 2, through volumes and interiors (subsurface walks join nowhere); point-light caustics once lit "
-         "onward (LS+DDE), not seen directly",
+        {"bdpt", "L(S|D|V)*E; from delta lights LD(S|D|V)*E, L(S|D|V)*DD(S|D|V)*E and L(S|D|V)*DE (no LS+DS+E)",
+         kEmitterSeen | kDirect | kSpecularSeen | kIndirect | kCaustics | kDeltaLightCaustics | kDeltaLights | kVolumes |
+             kSubsurface,
+         "bidirectional path tracing, MIS (power heuristic, spectral in media) over every light/camera prefix pair, "
+         "light tracing to the camera (t = 1) included, through volumes and interiors (subsurface walks join nowhere); "
+         "point-light caustics seen directly (LS+DE) or lit onward, not through glass or mirrors (LS+DS+E); tiles and "
+         "orthographic cameras leave t = 1 out",
          [](const IntegratorSettings& s) { return std::make_unique<Bdpt>(s); }},
         {"sppm", "L(S|D|V)*(D|V)S*E, LS*E",
          kEmitterSeen | kDirect | kSpecularSeen | kIndirect | kCaustics | kDeltaLightCaustics | kDeltaLights | kVolumes |

@@ -76,6 +76,7 @@ void renderPass(const render::RenderScene& scene, const render::Camera& camera, 
                                 ++local.nonFiniteSamples;
                             }
                             film.add(x, y, sample);
+                            if (settings.cryptomatte) settings.cryptomatte->add(x, y, sample);
                         }
                     }
                 if (progress) progress->pixelSamplesDone.fetch_add(taken, std::memory_order_relaxed);
@@ -93,16 +94,21 @@ RenderStats render(const render::RenderScene& scene, const render::Camera& camer
     auto elapsed = [&] { return std::chrono::duration<double>(Clock::now() - start).count(); };
     const std::uint64_t pixels = std::uint64_t(film.width()) * std::uint64_t(film.height());
     if (progress) progress->pixelSamplesPlanned = pixels * std::uint64_t(std::max(settings.samplesPerPixel, 0));
+    if (progress) progress->pixelSamplesDone = film.totalSamples();  // resumed: those already in the film
 
     int concurrency = settings.threads > 0 ? settings.threads : tbb::this_task_arena::max_concurrency();
     tbb::task_arena arena(concurrency);
     tbb::combinable<RenderCounters> counters;
     RenderStats stats;
 
+    // Light tracing (integrators/integrator.h): splats only into a film that is the whole image.
+    const bool wholeImage = film.width() == camera.imageWidth() && film.height() == camera.imageHeight();
+    integrator.attachSplats(integrator.usesSplats() && wholeImage ? &film.enableSplats() : nullptr);
     arena.execute([&] { integrator.prepare(scene, camera, settings.seed); });  // within the thread limit
-    int done = 0, passSize = 1;
+    // Resumed, the passes go on as the uninterrupted render's would have (1, 2, 4, ... doubled).
+    int done = settings.firstSample, passSize = std::clamp(done + 1, 1, kMaxPassSamples);
     double secondsPerSample = 0.0;  // per sample per pixel over the whole image, measured
-    while (done < settings.samplesPerPixel && !stopped(settings)) {
+    while (done < settings.samplesPerPixel && !stopped(settings) && !allConverged(film, settings)) {
         int count = std::min(passSize, settings.samplesPerPixel - done);
         if (settings.timeLimitSeconds > 0.0 && stats.passes > 0) {
             double left = settings.timeLimitSeconds - elapsed();
@@ -119,7 +125,7 @@ RenderStats render(const render::RenderScene& scene, const render::Camera& camer
         done += count;
         passSize = std::min(2 * passSize, kMaxPassSamples);
         ++stats.passes;
-        if (allConverged(film, settings)) break;
+        if (settings.onPass && !stopped(settings)) settings.onPass(done);
     }
     stats.interrupted = stopped(settings);
     stats.samples = film.totalSamples();
@@ -130,6 +136,7 @@ RenderStats render(const render::RenderScene& scene, const render::Camera& camer
     for (int y = 0; y < film.height(); ++y)
         for (int x = 0; x < film.width(); ++x) stats.samplesPerPixel = std::max<int>(stats.samplesPerPixel, film.samples(x, y));
     counters.combine_each([&](const RenderCounters& c) { stats.counters += c; });
+    integrator.attachSplats(nullptr);
     return stats;
 }
 

@@ -13,14 +13,27 @@
 // pixel's own samples, so it too is the same for any thread count and pass division. A pixel that
 // stopped is skipped by later passes, and the render ends when every pixel has. Stopping on an
 // estimate of the error biases the pixel slightly (the estimate and the mean are correlated), as in
-// every adaptive sampler; minSamples keeps the estimate meaningful. The integrator's prepare() runs before the first pass and its
+// every adaptive sampler; minSamples keeps the estimate meaningful. Since a pixel's samples depend
+// only on (seed, pixel, sample index), a render resumed from a pass boundary's film
+// (RenderSettings::firstSample) finishes bit-identical to one never stopped. The integrator's prepare() runs before the first pass and its
 // beginSamples() before each (integrators/integrator.h), within the render's thread limit (their
 // own parallel loops use its arena); the time they take counts towards the time limit.
+//
+// Light tracing (bdpt's t = 1): an integrator that asks for splats (Integrator::usesSplats) gets
+// the film's splat film when the film is the whole image, and none for a tile (a window), which
+// then renders without those strategies: a tile's light paths start in its own pixels only, so
+// it would miss the light that other tiles' light paths send into it. (Tiles of such a method
+// therefore assemble into the one-piece render without light tracing, not into the default one.)
+// Splats add in fixed point (core/splat_film.h), so
+// the image stays bit-identical at any thread count and pass division; with adaptive sampling,
+// they are divided by the light paths traced per pixel of the whole image (core/film.h).
 #pragma once
 
 #include <atomic>
 #include <cstdint>
+#include <functional>
 
+#include "core/cryptomatte_film.h"
 #include "core/film.h"
 #include "integrators/integrator.h"
 
@@ -45,6 +58,16 @@ struct RenderSettings {
     // same stream whatever the window, so tiles rendered apart assemble into the whole render, bit
     // for bit.
     int windowX = 0, windowY = 0, imageWidth = 0;
+    // Resuming (apps/render_checkpoint.h): the film already holds samples 0 to firstSample - 1 of
+    // every pixel (fewer where adaptive sampling stopped it), and the render goes on from there.
+    int firstSample = 0;
+    // Called after every pass that completed (never after an interrupted one), between passes,
+    // with the samples per pixel done so far: the film then holds samples 0 to samplesDone - 1 of
+    // every pixel that adaptive sampling has not stopped (for checkpoints and snapshots).
+    std::function<void(int samplesDone)> onPass;
+    // Cryptomatte layers (core/cryptomatte_film.h), the film's size: every sample the film takes is
+    // added to it too. Null: none (nothing is kept).
+    CryptomatteFilm* cryptomatte = nullptr;
 };
 
 // Read by a progress reporter on another thread while render() runs.

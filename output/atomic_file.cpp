@@ -1,11 +1,13 @@
 #include "output/atomic_file.h"
 
 #include <fcntl.h>
+#include <signal.h>
 #include <unistd.h>
 
 #include <atomic>
 #include <cerrno>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <system_error>
@@ -81,6 +83,22 @@ void AtomicFile::commit() {
         fail("cannot rename " + tempPath_ + " (" + errnoText(err) + ")");
     }
     committed_ = true;
+}
+
+void removeStaleTemporaries(const std::string& finalPath) {
+    const fs::path target(finalPath);
+    fs::path dir = target.parent_path();
+    if (dir.empty()) dir = ".";
+    std::string prefix(".");  // the AtomicFile constructor's naming (and its GCC 12 workaround)
+    prefix += target.filename().string();
+    prefix += ".tmp-";
+    std::error_code ec;
+    for (const fs::directory_entry& entry : fs::directory_iterator(dir, ec)) {
+        const std::string name = entry.path().filename().string();
+        if (!name.starts_with(prefix)) continue;
+        const long pid = std::strtol(name.c_str() + prefix.size(), nullptr, 10);
+        if (pid > 0 && ::kill(static_cast<pid_t>(pid), 0) != 0 && errno == ESRCH) fs::remove(entry.path(), ec);
+    }
 }
 
 void writeAtomically(const std::string& finalPath,

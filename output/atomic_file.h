@@ -51,6 +51,11 @@ private:
     bool committed_ = false;
 };
 
+// Removes the temporary files of `finalPath` that processes no longer running left behind (a
+// process killed while writing, e.g. by SIGKILL, cannot remove its own). Those of live processes
+// are left alone. Errors are ignored: this is tidying.
+void removeStaleTemporaries(const std::string& finalPath);
+
 // Convenience: creates an AtomicFile for `finalPath`, calls write(tempPath) and commits. If `write`
 // throws, the temporary file is removed and the error is rethrown as OutputError naming finalPath
 // (an OutputError is rethrown unchanged).

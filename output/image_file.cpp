@@ -9,7 +9,8 @@ void writeImageFile(const std::string& path, const char* format, const OIIO::Ima
     auto out = OIIO::ImageOutput::create(format);
     if (!out) file.fail(std::string("OpenImageIO has no ") + format + " writer (" + OIIO::geterror() + ")");
     if (!out->open(file.tempPath(), spec)) file.fail(out->geterror());
-    if (!out->write_image(spec.format, pixels)) {
+    // Per-channel formats: the pixels are in each channel's own type (OIIO's "native" layout).
+    if (!out->write_image(spec.channelformats.empty() ? spec.format : OIIO::TypeUnknown, pixels)) {
         const std::string error = out->geterror();
         out->close();
         file.fail(error);

@@ -10,7 +10,8 @@
 namespace fluence::output {
 
 // `format` is an OIIO plugin name ("openexr", "png"): the temporary file's name carries no
-// extension, so the plugin is chosen by name. Throws OutputError naming `path`.
+// extension, so the plugin is chosen by name. `pixels` are in spec.format, or, when the spec has
+// per-channel formats, packed in each channel's own type. Throws OutputError naming `path`.
 void writeImageFile(const std::string& path, const char* format, const OIIO::ImageSpec& spec, const void* pixels);
 
 }  // namespace fluence::output

@@ -4,6 +4,7 @@
 
 #include <memory>
 
+#include "output/cryptomatte.h"
 #include "output/image_file.h"
 
 namespace fluence::output {
@@ -30,6 +31,20 @@ std::string window(const OIIO::ImageSpec& s) {
            std::to_string(s.full_y);
 }
 
+// Adds the names of `tile`'s Cryptomatte manifests (output/cryptomatte.h) to `whole`'s: each tile
+// lists only the names its own pixels hold.
+void mergeManifests(OIIO::ImageSpec& whole, const OIIO::ImageSpec& tile, const std::string& path) {
+    for (const OIIO::ParamValue& p : tile.extra_attribs) {
+        const std::string name = p.name().string();
+        if (!name.starts_with("cryptomatte/") || !name.ends_with("/manifest")) continue;
+        try {
+            whole.attribute(name, mergeCryptomatteManifests(whole.get_string_attribute(name, "{}"), p.get_string()));
+        } catch (const std::invalid_argument& e) {
+            throw TileMismatchError("tile " + path + ": " + name + ": " + e.what());
+        }
+    }
+}
+
 }  // namespace
 
 void assembleTiles(const std::vector<std::string>& tiles, const std::string& path) {
@@ -52,6 +67,8 @@ void assembleTiles(const std::vector<std::string>& tiles, const std::string& pat
         } else if (window(s) != window(whole) || s.channelnames != whole.channelnames) {
             throw TileMismatchError("tile " + tiles[t] + " is not a part of the same image as " + tiles[0] +
                                     " (display window " + window(s) + " against " + window(whole) + ", or other channels)");
+        } else {
+            mergeManifests(whole, s, tiles[t]);
         }
         for (int y = 0; y < s.height; ++y)
             for (int x = 0; x < s.width; ++x) {

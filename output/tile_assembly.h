@@ -1,7 +1,8 @@
 // `fluence assemble`: tiles rendered apart (`fluence render --tile-count X Y --tile-index N`) back
 // into the whole image. Each tile is an EXR whose data window is its part of the display window
 // (output/exr_writer.h, ExrHeader::x/y/fullWidth/fullHeight); the assembled EXR has the tiles'
-// channels and header attributes (the first tile's) and the display window as its data window.
+// channels and header attributes (the first tile's, with the Cryptomatte manifests of every tile
+// merged) and the display window as its data window.
 // Since every pixel's samples draw from the same random streams whatever the tiling
 // (integrators/renderer.h), the result is bit-identical to the render done in one piece.
 #pragma once

@@ -37,6 +37,7 @@ RectLight::RectLight(const LightDesc& d) : name_(d.name), radiance_(d.radiance),
             distribution_.emplace(texture_->width, texture_->height, std::move(weights));
     }
     if (d.shaping) shaping_ = LightShaping(*d.shaping, normal_);
+    uniformRadiance_ = !texture_ && !shaping_.active();
 }
 
 std::array<Vec3f, 4> RectLight::corners() const {
@@ -80,7 +81,8 @@ std::optional<LightSample> RectLight::sample(const Vec3f& p, Vec2f u) const {
     Vec3f wi = d / dist;
     float cosLight = -dot(normal_, wi);
     if (cosLight <= 0.0f) return std::nullopt;
-    return LightSample{radianceAt(uv, -wi), wi, dist, areaToSolidAngle(areaPdf, dist2, cosLight), false};
+    return LightSample{uniformRadiance_ ? radiance_ : radianceAt(uv, -wi), wi, dist, areaToSolidAngle(areaPdf, dist2, cosLight),
+                       false};
 }
 
 float RectLight::pdf(const Vec3f& p, const Vec3f& wi, const LightHit& hit) const {

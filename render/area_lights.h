@@ -75,6 +75,7 @@ private:
     std::optional<ImageDistribution> distribution_;  // over texture coordinates, when the texture's luminance varies
     float meanLuminance_;  // of the radiance over the rect's area, before shaping
     LightShaping shaping_;
+    bool uniformRadiance_;  // no texture, no shaping: radianceAt is radiance_ everywhere (sample()'s fast path)
 };
 
 class DiskLight final : public Light, public AnalyticLightShape {

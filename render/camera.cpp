@@ -80,6 +80,29 @@ Ray Camera::generateRay(float x, float y) const {
     return ray;
 }
 
+Matrix4 Camera::worldToCamera() const { return Matrix4::scale({1.0, 1.0, -1.0}) * toCamera_; }
+
+Matrix4 Camera::worldToNdc() const {
+    // In the camera space of worldToCamera(), the window point of (x, y, z) is (x, y) / z for a
+    // perspective camera and (x, y) for an orthographic one.
+    const double sx = 0.5 / halfWidth_, sy = -0.5 / halfHeight_;
+    const double ox = 0.5 - centreX_ * sx, oy = 0.5 - centreY_ * sy;
+    const double n = near_, f = far_;
+    Matrix4 ndc{};
+    if (projection_ == Projection::Perspective) {
+        ndc.m[0] = {sx, 0.0, ox, 0.0};
+        ndc.m[1] = {0.0, sy, oy, 0.0};
+        ndc.m[2] = {0.0, 0.0, f / (f - n), -f * n / (f - n)};
+        ndc.m[3] = {0.0, 0.0, 1.0, 0.0};
+    } else {
+        ndc.m[0] = {sx, 0.0, 0.0, ox};
+        ndc.m[1] = {0.0, sy, 0.0, oy};
+        ndc.m[2] = {0.0, 0.0, 1.0 / (f - n), -n / (f - n)};
+        ndc.m[3] = {0.0, 0.0, 0.0, 1.0};
+    }
+    return ndc * worldToCamera();
+}
+
 float Camera::viewDepth(const Vec3f& p) const { return dot(p - position_, forward_); }
 
 float Camera::pixelsPerUnitAt(const Vec3f& p) const {

@@ -9,6 +9,8 @@
 // the far one (planes perpendicular to the view axis, not spheres).
 #pragma once
 
+#include <optional>
+
 #include "core/matrix.h"
 #include "render/ray.h"
 #include "render/scene_description.h"
@@ -54,6 +56,50 @@ public:
 
     float farClip() const { return far_; }
     const Vec3f& position() const { return position_; }
+    int imageWidth() const { return width_; }
+    int imageHeight() const { return height_; }
+
+    // ---- Importance, for light tracing (bdpt's t = 1 strategy), in render/camera_importance.cpp.
+    // Defined for the perspective (pinhole) camera only: hasImportance() is false for an
+    // orthographic one (its rays are parallel, so a point reaches it along one direction only),
+    // and then directionDensity() is 0 and rasterPosition() and connect() return nothing. USD
+    // cameras in Fluence have no lens aperture (no depth of field), so the pinhole is the whole model.
+    // Conventions (Veach's thesis, ch. 10; pbrt's PerspectiveCamera::We): the importance We(w) of
+    // the ray leaving the pinhole along unit w is normalised over the whole image,
+    //     integral over the image's directions of We(w) cos(theta) dw = 1,
+    // theta between w and the view axis, so We(w) cos(theta) is the solid-angle density of the
+    // direction of a camera ray through a uniformly chosen point of the image. The pinhole is a
+    // delta in position: its positional density is 1 (the same for every strategy, so it cancels
+    // in MIS). Exact for any affine camera transform (scaled or sheared), through the Jacobian
+    // from the image to directions.
+    bool hasImportance() const { return projection_ == Projection::Perspective; }
+    // We(w) cos(theta): the density, per unit solid angle, of camera rays along w; 0 outside the image.
+    float directionDensity(const Vec3f& w) const;
+    // We(w); 0 outside the image.
+    float importance(const Vec3f& w) const;
+    // Where a world point lands on the image, in pixels (generateRay's (x, y)), or nothing when it
+    // is outside the image, behind the camera or outside the clipping range (where camera rays
+    // cannot reach it).
+    std::optional<Vec2f> rasterPosition(const Vec3f& worldPoint) const;
+    // A connection from a world point to the pinhole (light tracing).
+    struct Connection {
+        Vec2f raster;          // where the point lands on the image, in pixels
+        Vec3f direction;       // unit, from the point towards the pinhole
+        float distance = 0;    // from the point to the pinhole
+        float nearDistance = 0;  // from the pinhole to the near plane along the connection (camera rays start there)
+        float density = 0;     // directionDensity(-direction): the camera's density of its ray towards the point
+        float importance = 0;  // We(-direction) cos(theta) / distance^2: importance reaching the point, per unit area facing it
+    };
+    std::optional<Connection> connect(const Vec3f& worldPoint) const;
+
+    // OpenEXR's standard camera attributes (ImfStandardAttributes.h), as column-vector matrices.
+    // worldToCamera: world space -> the camera space of OpenEXR and RenderMan (left-handed: +x
+    // right, +y up, +z the viewing direction, the eye at the origin).
+    Matrix4 worldToCamera() const;
+    // worldToNdc: world space -> projective NDC: divided by w, x and y are (0, 0) at the image's
+    // top-left corner and (1, 1) at its bottom-right, and z runs from 0 at the near clipping plane
+    // to 1 at the far one.
+    Matrix4 worldToNdc() const;
 
 private:
     Projection projection_;

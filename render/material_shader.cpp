@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <stdexcept>
+#include <string>
 
 namespace fluence::render {
 
@@ -29,7 +31,15 @@ void transformLinear(const UvTransform& x, float v[2]) {
     v[1] = std::sin(a) * s + std::cos(a) * t;
 }
 
-void writeInput(MaterialParams& p, MaterialInput input, const float* v, int channels) {
+// A graph source's value as the graph sees it: its channels from firstChannel, one replicated.
+void graphChannels(const InputBinding& b, const float v[4], float out[4]) {
+    const int first = b.firstChannel;
+    for (int c = 0; c < 4; ++c) out[c] = b.channels == 1 ? v[first] : first + c < 4 ? v[first + c] : 0.0f;
+}
+
+}  // namespace
+
+void setMaterialInput(MaterialParams& p, MaterialInput input, const float* v, int channels) {
     RGB colour = channels == 1 ? RGB(v[0]) : RGB(v[0], v[1], v[2]);
     switch (input) {
         case MaterialInput::Diffuse: p.diffuse = colour; break;
@@ -51,21 +61,47 @@ void writeInput(MaterialParams& p, MaterialInput input, const float* v, int chan
     }
 }
 
+namespace {
+
+// Checks that a graph can be evaluated in order on the stack.
+void checkGraph(const MaterialDesc& material, const InputBinding& b) {
+    auto fail = [&](const std::string& why) { throw std::invalid_argument(material.name + ": shading graph " + why); };
+    if (b.nodes.size() > kMaxShadingNodes) fail("has more than " + std::to_string(kMaxShadingNodes) + " nodes");
+    for (const InputBinding& source : b.sources)
+        if (!source.nodes.empty() || source.firstChannel < 0 || source.firstChannel > 3 || source.channels < 1 ||
+            source.channels > 4)
+            fail("has a source that is not one texture or primvar with channels from 0 to 3");
+    const int operandCount[] = {0, 0, 2, 3};  // by ShadingNode::Op
+    for (std::size_t n = 0; n < b.nodes.size(); ++n) {
+        const ShadingNode& node = b.nodes[n];
+        if (node.op == ShadingNode::Op::Source && (node.source < 0 || std::size_t(node.source) >= b.sources.size()))
+            fail("node " + std::to_string(n) + " reads a source that is not there");
+        for (int k = 0; k < operandCount[static_cast<int>(node.op)]; ++k)
+            if (node.operands[k] < 0 || std::size_t(node.operands[k]) >= n)
+                fail("node " + std::to_string(n) + " has an operand that is not an earlier node");
+    }
+}
+
 }  // namespace
 
 MaterialShader::MaterialShader(const MaterialDesc& material, texture::TextureSystem* textures,
                                std::vector<Warning>& warnings)
     : material_(&material), textures_(textures) {
-    for (const InputBinding& b : material.bindings) {
-        const texture::TextureSystem::Texture* opened = nullptr;
-        if (b.texture && textures && !b.texture->file.empty()) {
-            std::string error;
-            opened = textures->open(b.texture->file, b.texture->colorSpace, error, b.texture->colorSpaceName);
-            if (!opened) warnings.push_back({material.name, error + "; using the texture's fallback"});
-        }
-        opened_.push_back(opened);
-        slots_.push_back(b.texture ? b.texture->uvPrimvar : b.primvar);
-        if (tangentSlot_ < 0 && isTextureSlot(b) && !slots_.back().empty()) tangentSlot_ = static_cast<int>(slots_.size()) - 1;
+    for (const InputBinding& binding : material.bindings) {
+        checkGraph(material, binding);
+        firstSource_.push_back(sources_.size());
+        forEachSource(binding, [&](const InputBinding& b) {
+            const texture::TextureSystem::Texture* opened = nullptr;
+            if (b.texture && textures && !b.texture->file.empty()) {
+                std::string error;
+                opened = textures->open(b.texture->file, b.texture->colorSpace, error, b.texture->colorSpaceName);
+                if (!opened) warnings.push_back({material.name, error + "; using the texture's fallback"});
+            }
+            sources_.push_back({&b, opened});
+            slots_.push_back(b.texture ? b.texture->uvPrimvar : b.primvar);
+            if (tangentSlot_ < 0 && isTextureSlot(b) && !slots_.back().empty())
+                tangentSlot_ = static_cast<int>(slots_.size()) - 1;
+        });
     }
 }
 
@@ -75,9 +111,45 @@ bool MaterialShader::mayBeTransparent() const {
                        [](const InputBinding& b) { return b.input == MaterialInput::Opacity; });
 }
 
-void MaterialShader::bindingValue(std::size_t i, const ShadingPatch& patch, const CornerPrimvar* primvar,
+void MaterialShader::bindingValue(std::size_t i, const ShadingPatch& patch, const CornerPrimvar* const* primvars,
                                   float value[4]) const {
     const InputBinding& b = material_->bindings[i];
+    const std::size_t first = firstSource_[i];
+    if (b.nodes.empty()) {
+        sourceValue(first, patch, primvars[first], value);
+    } else {
+        float values[kMaxShadingNodes][4];
+        for (std::size_t n = 0; n < b.nodes.size(); ++n) {
+            const ShadingNode& node = b.nodes[n];
+            float* out = values[n];
+            const float *x = values[std::max(node.operands[0], 0)], *y = values[std::max(node.operands[1], 0)],
+                        *m = values[std::max(node.operands[2], 0)];
+            switch (node.op) {
+                case ShadingNode::Op::Constant: std::copy(node.constant, node.constant + 4, out); break;
+                case ShadingNode::Op::Source: {
+                    const std::size_t s = first + std::size_t(node.source);
+                    float v[4];
+                    sourceValue(s, patch, primvars[s], v);
+                    graphChannels(*sources_[s].binding, v, out);
+                    for (int c = 0; c < 4; ++c) out[c] *= sources_[s].binding->factor;
+                    break;
+                }
+                case ShadingNode::Op::Multiply:
+                    for (int c = 0; c < 4; ++c) out[c] = x[c] * y[c];
+                    break;
+                case ShadingNode::Op::Mix:  // x the foreground, y the background, m the amount of x
+                    for (int c = 0; c < 4; ++c) out[c] = y[c] * (1.0f - m[c]) + x[c] * m[c];
+                    break;
+            }
+        }
+        std::copy(values[b.nodes.size() - 1], values[b.nodes.size() - 1] + 4, value);
+    }
+    for (int c = 0; c < 4; ++c) value[c] *= b.factor;
+}
+
+void MaterialShader::sourceValue(std::size_t s, const ShadingPatch& patch, const CornerPrimvar* primvar,
+                                 float value[4]) const {
+    const InputBinding& b = *sources_[s].binding;
     if (!b.texture) {
         value[3] = 1.0f;
         if (!primvar) {
@@ -89,7 +161,7 @@ void MaterialShader::bindingValue(std::size_t i, const ShadingPatch& patch, cons
         return;
     }
     const TextureDesc& t = *b.texture;
-    const texture::TextureSystem::Texture* opened = opened_[i];
+    const texture::TextureSystem::Texture* opened = sources_[s].opened;
     std::array<float, 4> texel{};
     bool found = false;
     if (opened) {
@@ -109,7 +181,7 @@ void MaterialShader::bindingValue(std::size_t i, const ShadingPatch& patch, cons
             transformLinear(t.uvTransform, dy);
             f = {dx[0], dx[1], dy[0], dy[1]};
         }
-        found = textures_->lookup(*opened, st[0], st[1], f, t.wrapS, t.wrapT, texel);
+        found = textures_->lookup(*opened, st[0], st[1], f, t.wrapS, t.wrapT, texel, t.filter);
     }
     for (int c = 0; c < 4; ++c) value[c] = found ? texel[c] * t.scale[c] + t.bias[c] : t.fallback[c];
 }
@@ -138,11 +210,10 @@ void MaterialShader::evaluate(const ShadingPatch& patch, const CornerPrimvar* co
     for (std::size_t i = 0; i < material_->bindings.size(); ++i) {
         const InputBinding& b = material_->bindings[i];
         float value[4];
-        bindingValue(i, patch, primvars[i], value);
-        for (float& x : value) x *= b.factor;
-        const float* v = value + std::clamp(b.firstChannel, 0, 4 - b.channels);
+        bindingValue(i, patch, primvars, value);
+        const float* v = value + std::clamp(b.nodes.empty() ? b.firstChannel : 0, 0, 4 - b.channels);
         if (b.input != MaterialInput::Normal) {
-            writeInput(out, b.input, v, b.channels);
+            setMaterialInput(out, b.input, v, b.channels);
             continue;
         }
         // A tangent-space normal: x along dp/ds, y along dp/dt (mirrored st flips it), z along the normal.
@@ -161,8 +232,8 @@ float MaterialShader::presence(const ShadingPatch& patch, const CornerPrimvar* c
         const InputBinding& b = material_->bindings[i];
         if (b.input != MaterialInput::Opacity) continue;
         float value[4];
-        bindingValue(i, patch, primvars[i], value);
-        opacity = value[std::clamp(b.firstChannel, 0, 3)];
+        bindingValue(i, patch, primvars, value);
+        opacity = value[std::clamp(b.nodes.empty() ? b.firstChannel : 0, 0, 3)];
     }
     if (material_->opacityThreshold > 0.0f) return opacity >= material_->opacityThreshold ? 1.0f : 0.0f;
     return std::clamp(opacity, 0.0f, 1.0f);

@@ -1,18 +1,22 @@
 // A material's shading network evaluated at a surface point: MaterialDesc bindings (UsdUVTexture
-// lookups, primvar reads) written over its constant parameters.
+// lookups, primvar reads, and graphs of MaterialX multiply and mix nodes over them) written over
+// its constant parameters.
 //
 // Built once per material when the RenderScene is built: each texture is opened in the
 // texture::TextureSystem (a file that cannot be read is reported once in `warnings` and its
 // binding uses the texture's fallback value). Per hit, evaluate() interpolates each binding's
 // primvar on the hit triangle, applies the UsdTransform2d, looks the texture up with the pixel
 // footprint mapped into st (render/surface_differentials.h), applies scale and bias, and writes
-// the channels into the parameter. A Normal binding perturbs the shading normal in the tangent
+// the channels into the parameter; a binding's graph (render::ShadingNode) is evaluated node by
+// node over its sources' values, on the stack. A material without graphs pays nothing for them.
+// A Normal binding perturbs the shading normal in the tangent
 // frame of its st (tangent along dp/ds, bitangent along dp/dt, Gram-Schmidt against the
 // interpolated normal).
 //
-// Primvars are looked up by name once per mesh: primvarSlots() lists the names, in binding
+// Primvars are looked up by name once per mesh: primvarSlots() lists the names, one per source
+// (a binding without a graph is its own source; a graph's sources follow each other), in binding
 // order, and a mesh hands evaluate() the matching CornerPrimvar pointers (nullptr where it lacks
-// one: the binding's fallback st or value is used).
+// one: the source's fallback st or value is used).
 #pragma once
 
 #include <string>
@@ -37,15 +41,22 @@ struct ShadingPatch {
     PixelFootprint footprint;     // invalid: point sampling at the finest level
 };
 
+// Writes a driven value (`channels` of v: one replicated into a colour) into the parameter `input`
+// (Normal is not a parameter: nothing is written).
+void setMaterialInput(MaterialParams& p, MaterialInput input, const float* v, int channels);
+
 class MaterialShader {
 public:
+    // Throws std::invalid_argument (naming the material) for a graph whose operands are not earlier
+    // nodes, whose sources are out of range or graphs themselves, or that has more than
+    // kMaxShadingNodes nodes.
     MaterialShader(const MaterialDesc& material, texture::TextureSystem* textures, std::vector<Warning>& warnings);
 
     const MaterialDesc& material() const { return *material_; }
     bool hasBindings() const { return !material_->bindings.empty(); }
     // Whether some point of the surface may be less than fully present (opacity < 1, or a cut-out).
     bool mayBeTransparent() const;
-    // The primvar each binding reads (a texture's st or a primvar reader's), "" for none.
+    // The primvar each source reads (a texture's st or a primvar reader's), "" for none.
     const std::vector<std::string>& primvarSlots() const { return slots_; }
     // The primvar whose st the tangent frame follows (the first texture's), as an index into
     // primvarSlots(), or -1.
@@ -62,12 +73,20 @@ public:
     float presence(const ShadingPatch& patch, const CornerPrimvar* const* primvars) const;
 
 private:
-    // The binding's value (4 channels) at the patch.
-    void bindingValue(std::size_t binding, const ShadingPatch& patch, const CornerPrimvar* primvar, float value[4]) const;
+    // A texture lookup or primvar read: a binding without a graph, or a source of a graph.
+    struct Source {
+        const InputBinding* binding;
+        const texture::TextureSystem::Texture* opened;  // nullptr: the fallback, or a primvar
+    };
+    // The binding's value (4 channels, times its factor) at the patch.
+    void bindingValue(std::size_t binding, const ShadingPatch& patch, const CornerPrimvar* const* primvars, float value[4]) const;
+    // Source s's value (4 channels, before its factor) at the patch; `primvar` is its slot's.
+    void sourceValue(std::size_t s, const ShadingPatch& patch, const CornerPrimvar* primvar, float value[4]) const;
 
     const MaterialDesc* material_;
     texture::TextureSystem* textures_;
-    std::vector<const texture::TextureSystem::Texture*> opened_;  // per binding; nullptr: fallback or primvar
+    std::vector<Source> sources_;            // in slot order
+    std::vector<std::size_t> firstSource_;  // per binding: its (graph's first) source
     std::vector<std::string> slots_;
     int tangentSlot_ = -1;
 };

@@ -12,6 +12,7 @@
 #include "media/medium_union.h"
 #include "render/area_lights.h"
 #include "render/cylinder_light.h"
+#include "render/embree_ray.h"
 #include "render/infinite_lights.h"
 #include "render/mesh_transform.h"
 #include "render/sphere_light.h"
@@ -28,30 +29,6 @@ constexpr float kShadowRayShortening = 1e-4f;
 void throwOnEmbreeError(RTCDevice device, const char* what) {
     RTCError code = rtcGetDeviceError(device);
     if (code != RTC_ERROR_NONE) throw std::runtime_error(std::string("Embree error ") + std::to_string(int(code)) + " while " + what);
-}
-
-RTCRay makeRay(const Vec3f& o, const Vec3f& d, float tNear, float tFar) {
-    RTCRay r{};
-    r.org_x = o.x;
-    r.org_y = o.y;
-    r.org_z = o.z;
-    r.dir_x = d.x;
-    r.dir_y = d.y;
-    r.dir_z = d.z;
-    r.tnear = tNear;
-    r.tfar = tFar;
-    r.mask = 0xffffffffu;
-    r.time = 0.0f;
-    r.flags = 0;
-    return r;
-}
-
-RTCRayHit makeRayHit(const Vec3f& o, const Vec3f& d, float tNear, float tFar) {
-    RTCRayHit h{};
-    h.ray = makeRay(o, d, tNear, tFar);
-    h.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-    h.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
-    return h;
 }
 
 // A triangle geometry holding `positions` and `indices` (3 per triangle).
@@ -154,6 +131,7 @@ struct RenderScene::Mesh {
     RGB emission;
     int material = -1;  // into materials_, -1 = the default (Lambertian) material
     int firstLight = -1;
+    std::uint32_t objectName = kNoName, materialName = kNoName;  // objectNames_, materialNames_
 };
 
 // What a presence filter needs to know of its mesh (the user data of its Embree geometry).
@@ -203,6 +181,7 @@ struct RenderScene::Prototype {
 struct RenderScene::Instance {
     int prototype = 0;
     Matrix4 toWorld, normalToWorld;
+    std::uint32_t objectName = kNoName;  // objectNames_
 };
 
 struct RenderScene::EmbreeState {
@@ -233,7 +212,7 @@ RenderScene::RenderScene(const SceneDescription& scene, std::shared_ptr<texture:
     // surface must not let rays through its seams), at some cost in speed.
     rtcSetSceneFlags(embree_->surfaces, RTC_SCENE_FLAG_ROBUST);
 
-    for (const MeshDesc& mesh : scene.meshes) addMesh(mesh, scene.materials);
+    for (const MeshDesc& mesh : scene.meshes) addMesh(mesh, scene.materials, objectNames_.add(mesh.name));
     addPrototypes(scene);
     for (const LightDesc& light : scene.lights) addLight(light);
     addVolumes(scene.volumes);
@@ -312,7 +291,9 @@ std::vector<RenderScene::SurfaceTriangle> RenderScene::surfaceTriangles() const 
 
 void RenderScene::addMaterialShaders() {
     bool textured = std::any_of(materials_.begin(), materials_.end(), [](const MaterialDesc& m) {
-        return std::any_of(m.bindings.begin(), m.bindings.end(), [](const InputBinding& b) { return b.texture.has_value(); });
+        bool reads = false;
+        for (const InputBinding& b : m.bindings) forEachSource(b, [&](const InputBinding& s) { reads = reads || s.texture; });
+        return reads;
     });
     if (textured && !textures_) textures_ = std::make_shared<texture::TextureSystem>(color::ColorManagement::load());
     shaders_.reserve(materials_.size());
@@ -367,7 +348,7 @@ void RenderScene::addPresenceFilter(RTCGeometryTy* geometry, int meshIndex) {
     rtcCommitGeometry(geometry);
 }
 
-int RenderScene::storeMesh(const MeshDesc& desc, const std::vector<MaterialDesc>& materials) {
+int RenderScene::storeMesh(const MeshDesc& desc, const std::vector<MaterialDesc>& materials, std::uint32_t objectName) {
     if (desc.indices.size() % 3 != 0) throw std::invalid_argument(desc.name + ": triangle index count is not a multiple of 3");
     for (std::uint32_t i : desc.indices)
         if (i >= desc.positions.size()) throw std::invalid_argument(desc.name + ": triangle index out of range");
@@ -396,6 +377,8 @@ int RenderScene::storeMesh(const MeshDesc& desc, const std::vector<MaterialDesc>
         }
     MaterialDesc material = desc.material >= 0 ? materials[desc.material] : MaterialDesc{};
     mesh.material = desc.material;
+    mesh.objectName = objectName;
+    mesh.materialName = desc.material >= 0 ? materialNames_.add(material.name) : kNoName;
     mesh.diffuse = material.diffuse;
     mesh.emission = material.emission;
     stats_.meshes += 1;
@@ -404,8 +387,8 @@ int RenderScene::storeMesh(const MeshDesc& desc, const std::vector<MaterialDesc>
     return static_cast<int>(meshes_.size()) - 1;
 }
 
-void RenderScene::addMesh(const MeshDesc& desc, const std::vector<MaterialDesc>& materials) {
-    int index = storeMesh(desc, materials);
+void RenderScene::addMesh(const MeshDesc& desc, const std::vector<MaterialDesc>& materials, std::uint32_t objectName) {
+    int index = storeMesh(desc, materials, objectName);
     Mesh& mesh = meshes_[index];
     if (!isBlack(mesh.emission)) {
         std::size_t triangles = mesh.indices.size() / 3;
@@ -438,7 +421,7 @@ void RenderScene::addPrototypes(const SceneDescription& scene) {
                 proto.emissiveMeshes.push_back(static_cast<int>(i));
                 continue;
             }
-            int index = storeMesh(meshDesc, scene.materials);
+            int index = storeMesh(meshDesc, scene.materials, kNoName);  // hits are named by their instance
             const Mesh& mesh = meshes_[index];
             for (const Vec3f& p : mesh.positions) {
                 proto.lo = vmin(proto.lo, p);
@@ -458,8 +441,9 @@ void RenderScene::addPrototypes(const SceneDescription& scene) {
         if (desc.prototype < 0 || desc.prototype >= static_cast<int>(prototypes_.size()))
             throw std::invalid_argument("instance of prototype " + std::to_string(desc.prototype) + ": index out of range");
         const Prototype& proto = prototypes_[desc.prototype];
+        const std::uint32_t objectName = desc.name.empty() ? kNoName : objectNames_.add(desc.name);
         for (int m : proto.emissiveMeshes)
-            addMesh(transformMesh(scene.prototypes[desc.prototype].meshes[m], desc.transform), scene.materials);
+            addMesh(transformMesh(scene.prototypes[desc.prototype].meshes[m], desc.transform), scene.materials, objectName);
         if (proto.meshes.empty()) continue;
         RTCGeometry geom = rtcNewGeometry(embree_->device, RTC_GEOMETRY_TYPE_INSTANCE);
         rtcSetGeometryInstancedScene(geom, embree_->prototypes[desc.prototype]);
@@ -473,7 +457,7 @@ void RenderScene::addPrototypes(const SceneDescription& scene) {
         throwOnEmbreeError(embree_->device, ("adding an instance of " + scene.prototypes[desc.prototype].name).c_str());
         surfaceMeshes_.push_back(-1);
         surfaceInstances_.push_back(static_cast<int>(instances_.size()));
-        instances_.push_back({desc.prototype, desc.transform, normalMatrixOf(desc.transform)});
+        instances_.push_back({desc.prototype, desc.transform, normalMatrixOf(desc.transform), objectName});
         stats_.instances += 1;
         for (int m : proto.meshes) stats_.instancedTriangles += meshes_[m].indices.size() / 3;
     }
@@ -535,19 +519,24 @@ void RenderScene::addLight(const LightDesc& desc) {
     rtcAttachGeometryByID(embree_->lightShapes, shape, static_cast<unsigned>(lightShapeToLight_.size()));
     rtcReleaseGeometry(shape);
     lightShapeToLight_.push_back(index);
+    lightShapeNames_.push_back(objectNames_.add(desc.name));
     throwOnEmbreeError(embree_->device, ("adding light " + desc.name).c_str());
 }
 
 std::optional<SurfaceHit> RenderScene::intersect(const Ray& ray) const {
     RTCIntersectContext context;
     rtcInitIntersectContext(&context);
-    RTCRayHit surface = makeRayHit(ray.origin, ray.direction, ray.tMin, ray.tMax);
+    RTCRayHit surface, shape;
+    storeRayHit(surface, ray.origin, ray.direction, ray.tMin, ray.tMax);
     rtcIntersect1(embree_->surfaces, &context, &surface);
 
-    RTCRayHit shape = makeRayHit(ray.origin, ray.direction, ray.tMin, surface.ray.tfar);
+    shape.hit.geomID = RTC_INVALID_GEOMETRY_ID;
     const bool nearLightShapes = !lightShapeToLight_.empty() && segmentMeetsBox(ray.origin, ray.direction, ray.tMin, surface.ray.tfar,
                                                                                 embree_->lightShapesLo, embree_->lightShapesHi);
-    if (nearLightShapes) rtcIntersect1(embree_->lightShapes, &context, &shape);
+    if (nearLightShapes) {
+        storeRayHit(shape, ray.origin, ray.direction, ray.tMin, surface.ray.tfar);
+        rtcIntersect1(embree_->lightShapes, &context, &shape);
+    }
 
     if (shape.hit.geomID != RTC_INVALID_GEOMETRY_ID)
         return shadeLightShape(shape.hit.geomID, ray, shape.ray.tfar, Vec3f(shape.hit.Ng_x, shape.hit.Ng_y, shape.hit.Ng_z));
@@ -559,7 +548,8 @@ std::optional<SurfaceHit> RenderScene::intersect(const Ray& ray) const {
     return shadeMesh(prototypes_[instance.prototype].meshes[surface.hit.geomID], surface.hit.primID, u, v, t, &instance);
 }
 
-SurfaceHit RenderScene::shadeMesh(int meshIndex, unsigned primID, float u, float v, float t, const Instance* instance) const {
+std::optional<SurfaceHit> RenderScene::shadeMesh(int meshIndex, unsigned primID, float u, float v, float t,
+                                                 const Instance* instance) const {
     const Mesh& mesh = meshes_[meshIndex];
     std::size_t c = 3 * std::size_t(primID);
     const Vec3f& p0 = mesh.positions[mesh.indices[c]];
@@ -567,8 +557,13 @@ SurfaceHit RenderScene::shadeMesh(int meshIndex, unsigned primID, float u, float
     const Vec3f& p2 = mesh.positions[mesh.indices[c + 2]];
     float w = 1.0f - u - v;
 
-    SurfaceHit hit;
+    std::optional<SurfaceHit> result(std::in_place);  // returned as is (no copy of the large hit record)
+    SurfaceHit& hit = *result;
     hit.t = t;
+    hit.mesh = meshIndex;
+    hit.triangle = primID;
+    hit.b1 = u;
+    hit.b2 = v;
     hit.point = p0 * w + p1 * u + p2 * v;
     Vec3f e1 = p1 - p0, e2 = p2 - p0;
     Vec3f ng = cross(e1, e2);
@@ -590,8 +585,10 @@ SurfaceHit RenderScene::shadeMesh(int meshIndex, unsigned primID, float u, float
         e2 = Vec3f(instance->toWorld.transformVector(Vec3d(e2)));
     }
 
-    hit.material = mesh.material >= 0 ? static_cast<const MaterialParams&>(materials_[static_cast<std::size_t>(mesh.material)])
-                                      : lambertianParams(mesh.diffuse);
+    if (mesh.material >= 0)  // (not a conditional expression, which would copy the parameters twice)
+        hit.material = materials_[static_cast<std::size_t>(mesh.material)];
+    else
+        hit.material = lambertianParams(mesh.diffuse);
     if (!mesh.cornerColors.empty())
         hit.material.diffuse = mesh.cornerColors[c] * w + mesh.cornerColors[c + 1] * u + mesh.cornerColors[c + 2] * v;
     if (mesh.material >= 0 && shaders_[mesh.material].hasBindings()) {
@@ -608,24 +605,42 @@ SurfaceHit RenderScene::shadeMesh(int meshIndex, unsigned primID, float u, float
     hit.emission = mesh.emission;
     hit.interior = mesh.material >= 0 ? materialInterior_[static_cast<std::size_t>(mesh.material)] : -1;
     hit.light = mesh.firstLight >= 0 ? mesh.firstLight + static_cast<int>(primID) : -1;
-    return hit;
+    hit.objectName = instance ? instance->objectName : mesh.objectName;
+    hit.materialName = mesh.materialName;
+    return result;
 }
 
-SurfaceHit RenderScene::shadeLightShape(unsigned geomID, const Ray& ray, float t, const Vec3f& ng) const {
-    SurfaceHit hit;
+int RenderScene::primvarAt(const SurfaceHit& hit, const std::string& name, float out[4]) const {
+    if (hit.mesh < 0) return 0;
+    for (const CornerPrimvar& pv : meshes_[static_cast<std::size_t>(hit.mesh)].primvars) {
+        if (pv.name != name) continue;
+        const std::size_t k = static_cast<std::size_t>(pv.components);
+        const float* corner = pv.values.data() + 3 * std::size_t(hit.triangle) * k;
+        const float w = 1.0f - hit.b1 - hit.b2;
+        for (std::size_t c = 0; c < k; ++c) out[c] = w * corner[c] + hit.b1 * corner[k + c] + hit.b2 * corner[2 * k + c];
+        return pv.components;
+    }
+    return 0;
+}
+
+std::optional<SurfaceHit> RenderScene::shadeLightShape(unsigned geomID, const Ray& ray, float t, const Vec3f& ng) const {
+    std::optional<SurfaceHit> result(std::in_place);
+    SurfaceHit& hit = *result;
     hit.t = t;
     hit.point = ray.origin + ray.direction * t;
     hit.geometricNormal = lengthSquared(ng) > 0.0f ? normalize(ng) : -ray.direction;
     hit.shadingNormal = hit.geometricNormal;
     hit.light = lightShapeToLight_[geomID];
     hit.lightShape = true;
-    return hit;
+    hit.objectName = lightShapeNames_[geomID];
+    return result;
 }
 
 bool RenderScene::occluded(const Vec3f& origin, const Vec3f& direction, float distance) const {
     RTCIntersectContext context;
     rtcInitIntersectContext(&context);
-    RTCRay r = makeRay(origin, direction, 0.0f, distance * (1.0f - kShadowRayShortening));
+    RTCRay r;
+    storeRay(r, origin, direction, 0.0f, distance * (1.0f - kShadowRayShortening));
     rtcOccluded1(embree_->surfaces, &context, &r);
     return r.tfar < 0.0f;
 }

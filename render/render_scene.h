@@ -41,6 +41,7 @@
 #include <string>
 #include <vector>
 
+#include "core/name_table.h"
 #include "core/sampling.h"
 #include "render/camera.h"
 #include "render/light.h"
@@ -60,6 +61,10 @@ struct MeshPresence;  // what the presence filter of a mesh with holes reads (re
 
 // What a ray hit, with everything shading needs.
 struct SurfaceHit {
+    // User-provided, so that value-initialisation (std::optional's in-place construction) does not
+    // zero the whole record before the member initialisers below run: that zeroing showed in profiles.
+    SurfaceHit() {}
+
     float t = 0.0f;
     Vec3f point;
     Vec3f geometricNormal;  // unit; on the same side as shadingNormal
@@ -68,6 +73,11 @@ struct SurfaceHit {
     // (the first UV primvar a material reads) grows; zero where the surface has no UVs. Anisotropic
     // lobes align their x axis with it.
     Vec3f tangent{0.0f};
+    // Where on a mesh the hit is, for RenderScene::primvarAt: the mesh, its triangle and the
+    // barycentric weights of the triangle's second and third corners (mesh -1: a light shape).
+    int mesh = -1;
+    unsigned triangle = 0;
+    float b1 = 0.0f, b2 = 0.0f;
     // The material's parameters at this point (a mesh without a material: Lambertian, its
     // displayColor or 18% grey; light shapes: black). material.diffuse is the albedo AOV.
     MaterialParams material = lambertianParams(RGB(0.0f));
@@ -77,6 +87,8 @@ struct SurfaceHit {
     // The interior medium of the surface's material (RenderScene::mediumInside), or -1: the
     // surface bounds no medium.
     int interior = -1;
+    // Its names for Cryptomatte (RenderScene::objectNames, materialNames), kNoName where none.
+    std::uint32_t objectName = kNoName, materialName = kNoName;
 };
 
 struct SceneStats {
@@ -133,12 +145,25 @@ public:
     // Whether any ray can travel through a medium: volumes or material interiors.
     bool hasMedia() const { return medium_ || !interiors_.empty(); }
 
+    // The names hits carry (SurfaceHit::objectName, materialName), for the Cryptomatte layers: the
+    // prim path of the hit gprim (MeshDesc::name), of the instance for geometry placed by instancing
+    // (InstanceDesc::name; none when it is empty), of the light for a light's own shape; and of the
+    // bound material (MaterialDesc::name; none for a mesh without one).
+    const NameTable& objectNames() const { return objectNames_; }
+    const NameTable& materialNames() const { return materialNames_; }
+
     // What went wrong while building that did not stop it (unreadable textures).
     const std::vector<Warning>& warnings() const { return warnings_; }
 
     // The committed Embree scene of the surfaces (meshes and instances, no light shapes), for
     // benchmarks that cast rays through bare Embree (bench/embree_throughput_bench.cpp).
     RTCSceneTy* embreeSurfaces() const;
+
+    // The value of the mesh primvar `name` (as CornerPrimvar names it, without "primvars:") at a
+    // hit, interpolated over its triangle: writes its components (1 to 4) to `out` and returns how
+    // many; 0 when the hit's mesh has no such primvar (the delegate keeps only the primvars
+    // materials read, and DelegateOptions::aovPrimvars) or is a light shape.
+    int primvarAt(const SurfaceHit& hit, const std::string& name, float out[4]) const;
 
     // The camera whose pixel footprint sets the texture filter width (call before rendering).
     void setTextureFilterCamera(const Camera& camera) { filterCamera_ = camera; }
@@ -147,9 +172,9 @@ private:
     struct Mesh;
     struct Prototype;
     struct Instance;
-    // Validates `desc`, stores it and returns its index in meshes_.
-    int storeMesh(const MeshDesc& desc, const std::vector<MaterialDesc>& materials);
-    void addMesh(const MeshDesc& mesh, const std::vector<MaterialDesc>& materials);
+    // Validates `desc`, stores it and returns its index in meshes_ (`objectName`: its hits' name).
+    int storeMesh(const MeshDesc& desc, const std::vector<MaterialDesc>& materials, std::uint32_t objectName);
+    void addMesh(const MeshDesc& mesh, const std::vector<MaterialDesc>& materials, std::uint32_t objectName);
     void addPrototypes(const SceneDescription& scene);
     void addLight(const LightDesc& light);
     void addVolumes(const std::vector<VolumeDesc>& volumes);
@@ -158,8 +183,9 @@ private:
     void addPresenceFilter(RTCGeometryTy* geometry, int mesh);
     // The hit on triangle primID of mesh `mesh` at barycentrics (u, v), in world space
     // (`instance` places a prototype mesh).
-    SurfaceHit shadeMesh(int mesh, unsigned primID, float u, float v, float t, const Instance* instance) const;
-    SurfaceHit shadeLightShape(unsigned geomID, const Ray& ray, float t, const Vec3f& ng) const;
+    // (Both return the optional intersect() returns, built in place.)
+    std::optional<SurfaceHit> shadeMesh(int mesh, unsigned primID, float u, float v, float t, const Instance* instance) const;
+    std::optional<SurfaceHit> shadeLightShape(unsigned geomID, const Ray& ray, float t, const Vec3f& ng) const;
 
     struct EmbreeState;
     std::unique_ptr<EmbreeState> embree_;
@@ -179,6 +205,8 @@ private:
     std::vector<Prototype> prototypes_;
     std::vector<Instance> instances_;
     std::vector<int> lightShapeToLight_;       // Embree geometry id in the light scene -> light
+    std::vector<std::uint32_t> lightShapeNames_;  // Embree geometry id in the light scene -> object name
+    NameTable objectNames_, materialNames_;
     std::vector<std::unique_ptr<Light>> lights_;
     std::vector<int> lightsAtInfinity_;
     DiscreteDistribution lightSelection_;

@@ -108,11 +108,34 @@ struct TextureDesc {
     std::string uvPrimvar = "st";     // the reader's varname; "" = no reader (uvFallback everywhere)
     float uvFallback[2] = {0.0f, 0.0f};  // where the mesh has no such primvar
     UvTransform uvTransform;
+    texture::Filter filter = texture::Filter::Linear;  // within a mip level (MaterialX filtertype)
 };
+
+// One node of a binding's shading graph (MaterialX multiply and mix over images and constants,
+// delegate/shading_network.h). Every node's value has four channels; a one-channel value is
+// replicated into all four. Operands name earlier nodes of the same graph.
+struct ShadingNode {
+    enum class Op {
+        Constant,  // `constant`
+        Source,    // InputBinding::sources[source] at the point
+        Multiply,  // operands[0] * operands[1], per channel
+        Mix,       // operands[1] * (1 - operands[2]) + operands[0] * operands[2], per channel (fg, bg, mix)
+    };
+    Op op = Op::Constant;
+    float constant[4] = {0.0f, 0.0f, 0.0f, 0.0f};
+    int source = -1;
+    int operands[3] = {-1, -1, -1};
+};
+
+// The most nodes one binding's graph may hold (its values live on the stack while it is evaluated).
+inline constexpr std::size_t kMaxShadingNodes = 64;
 
 // One material input driven by a node: a texture's output, or a primvar read directly
 // (UsdPrimvarReader_float / _float3). Channels [firstChannel, firstChannel + channels) of the
 // source feed the input; one channel feeding a colour is replicated.
+// Or driven by a graph: when `nodes` is not empty the value is its last node's (channels from
+// 0), and the texture and primvar above are unused: the graph's leaves are `sources`, bindings
+// of their own (each a texture or primvar, its channels and factor; their `input` unused).
 struct InputBinding {
     MaterialInput input = MaterialInput::Diffuse;
     int firstChannel = 0;  // r 0, g 1, b 2, a 3, rgb 0
@@ -121,7 +144,18 @@ struct InputBinding {
     float factor = 1.0f;  // the value is multiplied by it (Standard Surface: base for base_color)
     std::string primvar;                            // when there is no texture
     float primvarFallback[3] = {0.0f, 0.0f, 0.0f};  // where the mesh has no such primvar
+    std::vector<ShadingNode> nodes;                 // at most kMaxShadingNodes
+    std::vector<InputBinding> sources;
 };
+
+// Calls `f` on every texture or primvar a binding reads: itself, or its graph's sources.
+template <typename F>
+void forEachSource(const InputBinding& b, F&& f) {
+    if (b.nodes.empty())
+        f(b);
+    else
+        for (const InputBinding& s : b.sources) f(s);
+}
 
 // A surface material as the render core takes it: its parameters where nothing drives them, the
 // inputs that textures or primvars drive, and the name for messages.
@@ -241,6 +275,9 @@ struct PrototypeDesc {
 struct InstanceDesc {
     int prototype = 0;                         // index into SceneDescription::prototypes
     Matrix4 transform = Matrix4::identity();  // prototype-to-world
+    // What names its hits: the instance prim's path, or a PointInstancer's path and the instance's
+    // id, "/World/trees[12]" ("": unnamed).
+    std::string name;
 };
 
 struct SceneDescription {

@@ -5,6 +5,7 @@
 
 #include "scene/crate_integer_coding.h"
 #include "scene/namespace_remap.h"
+#include "scene/usda_parser.h"
 
 namespace fluence::usd::detail {
 
@@ -29,6 +30,10 @@ std::string CrateVersion::str() const {
 void ByteReader::fail(std::uint64_t at, std::uint64_t size) const {
     throw CrateFormatError("data at " + describeOffset(at) + (size ? " (" + std::to_string(size) + " bytes)" : "") +
                            " lies past the end of its section (" + std::to_string(bytes_.size()) + " bytes)");
+}
+
+void throwDamagedCrateFile(const std::string& identifier, const std::string& what) {
+    throw FileError("'" + identifier + "': damaged or unsupported USD crate file: " + what);
 }
 
 std::size_t ByteReader::readCount(std::size_t itemSize) {
@@ -61,7 +66,8 @@ std::vector<std::int64_t> readCompressedInts64(ByteReader& reader, std::size_t c
 
 // ---- CrateFile ---------------------------------------------------------------------------------
 
-CrateFile::CrateFile(std::vector<char> bytes) : bytes_(std::move(bytes)) {
+CrateFile::CrateFile(SharedBytes file, std::string identifier)
+    : file_(std::move(file)), bytes_(file_->data(), file_->size()), identifier_(std::move(identifier)) {
     if (bytes_.size() < 8 || std::memcmp(bytes_.data(), "PXR-USDC", 8) != 0)
         throw CrateFormatError("not a USD crate file (no PXR-USDC header)");
     if (bytes_.size() < kBootstrapSize)

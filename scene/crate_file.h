@@ -13,7 +13,8 @@
 //
 // All multi-byte numbers are little-endian. Every offset, count and index is checked against the
 // file before use: a damaged file throws CrateFormatError (crate_compression.h), never reads out
-// of bounds.
+// of bounds. The file's bytes are shared (scene/mapped_file.h: a read-only mapping of the file, or
+// bytes in memory), so values decoded later (crate_values.h's deferred arrays) keep them alive.
 #pragma once
 
 #include <cstddef>
@@ -24,6 +25,7 @@
 #include <vector>
 
 #include "scene/crate_compression.h"
+#include "scene/mapped_file.h"
 
 namespace fluence::usd::detail {
 
@@ -97,17 +99,24 @@ private:
     std::size_t position_ = 0;
 };
 
+// Throws the FileError a damaged crate file is reported with: "'<identifier>': damaged or
+// unsupported USD crate file: <what>".
+[[noreturn]] void throwDamagedCrateFile(const std::string& identifier, const std::string& what);
+
 // A compressed integer list as crate sections store it: uint64 compressed size, then the bytes.
 std::vector<std::int32_t> readCompressedInts32(ByteReader& reader, std::size_t count);
 std::vector<std::int64_t> readCompressedInts64(ByteReader& reader, std::size_t count);
 
 class CrateFile {
 public:
-    // Reads the bootstrap header and the structural sections of `bytes` (the whole file).
-    explicit CrateFile(std::vector<char> bytes);
+    // Reads the bootstrap header and the structural sections of `file` (the whole file), named
+    // `identifier` in the errors of values decoded later.
+    CrateFile(SharedBytes file, std::string identifier);
 
     const CrateVersion& version() const { return version_; }
+    const std::string& identifier() const { return identifier_; }
     std::span<const char> bytes() const { return bytes_; }
+    const SharedBytes& sharedBytes() const { return file_; }
     // A reader at a file offset (a ValueRep payload).
     ByteReader readerAt(std::uint64_t offset) const { return ByteReader(bytes_, checkedOffset(offset)); }
 
@@ -137,7 +146,9 @@ private:
     void readPaths();
     void readSpecs();
 
-    std::vector<char> bytes_;
+    SharedBytes file_;
+    std::span<const char> bytes_;  // *file_
+    std::string identifier_;
     CrateVersion version_;
     std::vector<Section> sections_;
     std::vector<std::string> tokens_;

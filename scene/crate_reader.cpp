@@ -1,7 +1,5 @@
 #include "scene/crate_reader.h"
 
-#include <filesystem>
-#include <fstream>
 #include <unordered_map>
 #include <unordered_set>
 #include <utility>
@@ -317,32 +315,25 @@ private:
 
 bool isCrateHeader(std::string_view firstBytes) { return firstBytes.starts_with("PXR-USDC"); }
 
-std::unique_ptr<Layer> readCrateBytes(std::vector<char> bytes, const std::string& identifier) {
+std::unique_ptr<Layer> readCrateBytes(SharedBytes bytes, const std::string& identifier) {
     auto layer = std::make_unique<Layer>();
     layer->identifier = identifier;
     layer->header = "#usda 1.0";
     try {
-        CrateFile file(std::move(bytes));
+        CrateFile file(std::move(bytes), identifier);
         LayerBuilder(file, *layer).build();
     } catch (const CrateFormatError& e) {
-        throw FileError("'" + identifier + "': damaged or unsupported USD crate file: " + e.what());
+        detail::throwDamagedCrateFile(identifier, e.what());
     } catch (const std::bad_alloc&) {
         throw FileError("'" + identifier + "': USD crate file too large to read");
     }
     return layer;
 }
 
-std::unique_ptr<Layer> readCrateFile(const std::string& path) {
-    std::error_code error;
-    if (!std::filesystem::is_regular_file(path, error)) throw FileError("cannot open '" + path + "': not a readable file");
-    std::ifstream file(path, std::ios::binary | std::ios::ate);
-    if (!file) throw FileError("cannot open '" + path + "'");
-    std::streamoff size = file.tellg();
-    if (size < 0) throw FileError("cannot read '" + path + "'");
-    std::vector<char> bytes(static_cast<std::size_t>(size));
-    file.seekg(0);
-    if (!file.read(bytes.data(), size)) throw FileError("cannot read '" + path + "'");
-    return readCrateBytes(std::move(bytes), path);
+std::unique_ptr<Layer> readCrateBytes(std::vector<char> bytes, const std::string& identifier) {
+    return readCrateBytes(holdBytes(std::move(bytes)), identifier);
 }
+
+std::unique_ptr<Layer> readCrateFile(const std::string& path) { return readCrateBytes(mapFile(path), path); }
 
 }  // namespace fluence::usd

@@ -31,16 +31,22 @@
 #include <vector>
 
 #include "scene/layer.h"
+#include "scene/mapped_file.h"
 
 namespace fluence::usd {
 
 // Whether a file's first bytes are a crate file's magic, "PXR-USDC".
 bool isCrateHeader(std::string_view firstBytes);
 
-// Reads a crate layer from memory; `identifier` names it in errors and becomes Layer::identifier.
+// Reads a crate layer from shared bytes (scene/mapped_file.h); `identifier` names it in errors and
+// becomes Layer::identifier. Large numeric arrays are decoded on first use (crate_values.h) and
+// keep `bytes` alive until then; a damaged one throws FileError then, naming `identifier`.
+std::unique_ptr<Layer> readCrateBytes(SharedBytes bytes, const std::string& identifier);
+// The same, from bytes in memory.
 std::unique_ptr<Layer> readCrateBytes(std::vector<char> bytes, const std::string& identifier);
 
-// Reads a crate layer file.
+// Reads a crate layer file, memory-mapped (mapFile: read-only, kept mapped while a value still
+// to be decoded refers to it).
 std::unique_ptr<Layer> readCrateFile(const std::string& path);
 
 }  // namespace fluence::usd

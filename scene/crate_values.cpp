@@ -123,6 +123,87 @@ Value stringValue(const char* typeName, ValueKind kind, std::string text) {
     return Value::string(typeName, kind, {std::move(text)}, false);
 }
 
+// Arrays of at least this many numbers are decoded on first use (NumberArray::deferred).
+constexpr std::size_t kDeferredNumbers = 256;
+
+// An array's element count (uint32 before 0.7.0, uint64 since), checked against the file.
+std::size_t arraySize(ByteReader& reader, const CrateVersion& version) {
+    std::uint64_t count = version.atLeast(0, 7, 0) ? reader.read<std::uint64_t>() : reader.read<std::uint32_t>();
+    // Every element takes at least one byte, or (compressed) a quarter byte of codes.
+    if (count / 4 > reader.bytes().size())
+        throw CrateFormatError("an array of " + std::to_string(count) + " elements is larger than the file");
+    return static_cast<std::size_t>(count);
+}
+
+bool isIntegerScalar(const NumericLayout& layout) {
+    return layout.shape == Shape::Scalar && (layout.scalar == Scalar::I32 || layout.scalar == Scalar::U32 ||
+                                             layout.scalar == Scalar::I64 || layout.scalar == Scalar::U64);
+}
+
+bool isCompressedArray(ValueRep rep, std::size_t count, const CrateVersion& version) {
+    NumericLayout layout = *numericLayout(rep.type());
+    bool isFloat = layout.shape == Shape::Scalar && rep.type() != T::TimeCode &&
+                   (layout.scalar == Scalar::F16 || layout.scalar == Scalar::F32 || layout.scalar == Scalar::F64);
+    return rep.isCompressed() && count >= 16 &&
+           ((isIntegerScalar(layout) && version.atLeast(0, 5, 0)) || (isFloat && version.atLeast(0, 6, 0)));
+}
+
+std::size_t elementBytes(const NumericLayout& layout) {
+    return scalarBytes(layout.scalar) * static_cast<std::size_t>(layout.components());
+}
+
+// Throws unless the `count` uncompressed elements at the reader's position lie inside the file.
+void checkArrayFits(const ByteReader& reader, ValueRep rep, std::size_t count) {
+    if (count > (reader.bytes().size() - reader.position()) / elementBytes(*numericLayout(rep.type())))
+        throw CrateFormatError("an array of " + std::to_string(count) + " elements runs past the end of the file");
+}
+
+// The numbers of the numeric array `rep` whose count `reader` is at (its rank, before 0.5.0,
+// already read).
+std::vector<double> decodeNumbers(ByteReader& reader, ValueRep rep, const CrateVersion& version) {
+    NumericLayout layout = *numericLayout(rep.type());
+    std::size_t count = arraySize(reader, version);
+    std::size_t bytes = elementBytes(layout);
+    std::vector<double> numbers;
+    if (!isCompressedArray(rep, count, version)) {
+        checkArrayFits(reader, rep, count);
+        std::span<const char> data = reader.take(count * bytes);
+        numbers.reserve(count * static_cast<std::size_t>(layout.components()));
+        for (std::size_t i = 0; i < count; ++i) appendElement(data.data() + i * bytes, layout, numbers);
+        return numbers;
+    }
+    if (isIntegerScalar(layout)) {
+        numbers.reserve(count);
+        if (layout.scalar == Scalar::I64 || layout.scalar == Scalar::U64) {
+            for (std::int64_t x : readCompressedInts64(reader, count))
+                numbers.push_back(layout.scalar == Scalar::U64 ? static_cast<double>(static_cast<std::uint64_t>(x))
+                                                               : static_cast<double>(x));
+        } else {
+            for (std::int32_t x : readCompressedInts32(reader, count))
+                numbers.push_back(layout.scalar == Scalar::U32 ? static_cast<double>(static_cast<std::uint32_t>(x)) : x);
+        }
+        return numbers;
+    }
+    auto code = reader.read<char>();
+    if (code == 'i') {
+        for (std::int32_t x : readCompressedInts32(reader, count)) numbers.push_back(x);
+    } else if (code == 't') {
+        auto tableSize = reader.read<std::uint32_t>();
+        if (tableSize > reader.bytes().size() / bytes)
+            throw CrateFormatError("a lookup table of " + std::to_string(tableSize) + " entries runs past the end of the file");
+        std::span<const char> table = reader.take(tableSize * bytes);
+        numbers.reserve(count);
+        for (std::int32_t x : readCompressedInts32(reader, count)) {
+            auto at = static_cast<std::uint32_t>(x);
+            if (at >= tableSize) throw CrateFormatError("a compressed array's table index " + std::to_string(at) + " is out of range");
+            numbers.push_back(scalarAt(table.data() + at * bytes, layout.scalar));
+        }
+    } else {
+        throw CrateFormatError("unknown compressed floating-point array code " + std::to_string(static_cast<int>(code)));
+    }
+    return numbers;
+}
+
 }  // namespace
 
 // Counts nesting; throws past the limit.
@@ -145,14 +226,6 @@ private:
 bool CrateValues::isListOp(ValueRep rep) {
     int t = rep.type();
     return (t >= T::TokenListOp && t <= T::UInt64ListOp) || t == T::PayloadListOp || t == T::UnregisteredValueListOp;
-}
-
-std::size_t CrateValues::arraySize(ByteReader& reader) const {
-    std::uint64_t count = file_.version().atLeast(0, 7, 0) ? reader.read<std::uint64_t>() : reader.read<std::uint32_t>();
-    // Every element takes at least one byte, or (compressed) a quarter byte of codes.
-    if (count / 4 > reader.bytes().size())
-        throw CrateFormatError("an array of " + std::to_string(count) + " elements is larger than the file");
-    return static_cast<std::size_t>(count);
 }
 
 Value CrateValues::value(ValueRep rep) const {
@@ -299,55 +372,31 @@ Value CrateValues::numeric(ValueRep rep) const {
 
 Value CrateValues::numericArray(ValueRep rep, ByteReader& reader) const {
     NumericLayout layout = *numericLayout(rep.type());
-    std::size_t count = arraySize(reader);
-    std::size_t elementBytes = scalarBytes(layout.scalar) * static_cast<std::size_t>(layout.components());
-    std::vector<double> numbers;
-    bool isInteger = layout.shape == Shape::Scalar &&
-                     (layout.scalar == Scalar::I32 || layout.scalar == Scalar::U32 ||
-                      layout.scalar == Scalar::I64 || layout.scalar == Scalar::U64);
-    bool isFloat = layout.shape == Shape::Scalar && rep.type() != T::TimeCode &&
-                   (layout.scalar == Scalar::F16 || layout.scalar == Scalar::F32 || layout.scalar == Scalar::F64);
-    bool compressed = rep.isCompressed() && count >= 16 &&
-                      ((isInteger && file_.version().atLeast(0, 5, 0)) || (isFloat && file_.version().atLeast(0, 6, 0)));
-    if (!compressed) {
-        if (count > reader.bytes().size() / elementBytes)
-            throw CrateFormatError("an array of " + std::to_string(count) + " elements runs past the end of the file");
-        std::span<const char> data = reader.take(count * elementBytes);
-        numbers.reserve(count * static_cast<std::size_t>(layout.components()));
-        for (std::size_t i = 0; i < count; ++i) appendElement(data.data() + i * elementBytes, layout, numbers);
-        return Value::numeric(layout.name, std::move(numbers), layout.components(), true);
+    const std::size_t start = reader.position();
+    const std::size_t count = arraySize(reader, file_.version());
+    const std::size_t size = count * static_cast<std::size_t>(layout.components());
+    Value array;
+    array.typeName = layout.name;
+    array.kind = ValueKind::Numeric;
+    array.isArray = true;
+    array.components = layout.components();
+    if (size < kDeferredNumbers) {
+        reader.seek(start);
+        array.numbers = decodeNumbers(reader, rep, file_.version());
+        return array;
     }
-    if (isInteger) {
-        bool wide = layout.scalar == Scalar::I64 || layout.scalar == Scalar::U64;
-        numbers.reserve(count);
-        if (wide) {
-            for (std::int64_t x : readCompressedInts64(reader, count))
-                numbers.push_back(layout.scalar == Scalar::U64 ? static_cast<double>(static_cast<std::uint64_t>(x))
-                                                               : static_cast<double>(x));
-        } else {
-            for (std::int32_t x : readCompressedInts32(reader, count))
-                numbers.push_back(layout.scalar == Scalar::U32 ? static_cast<double>(static_cast<std::uint32_t>(x)) : x);
+    // Checked now, so that only a damaged compressed array can fail when decoded.
+    if (!isCompressedArray(rep, count, file_.version())) checkArrayFits(reader, rep, count);
+    array.numbers = NumberArray::deferred(size, [bytes = file_.sharedBytes(), identifier = file_.identifier(),
+                                                 version = file_.version(), rep, start] {
+        try {
+            ByteReader data(std::span<const char>(bytes->data(), bytes->size()), start);
+            return decodeNumbers(data, rep, version);
+        } catch (const CrateFormatError& e) {
+            throwDamagedCrateFile(identifier, e.what());
         }
-        return Value::numeric(layout.name, std::move(numbers), 1, true);
-    }
-    auto code = reader.read<char>();
-    if (code == 'i') {
-        for (std::int32_t x : readCompressedInts32(reader, count)) numbers.push_back(x);
-    } else if (code == 't') {
-        auto tableSize = reader.read<std::uint32_t>();
-        if (tableSize > reader.bytes().size() / elementBytes)
-            throw CrateFormatError("a lookup table of " + std::to_string(tableSize) + " entries runs past the end of the file");
-        std::span<const char> table = reader.take(tableSize * elementBytes);
-        numbers.reserve(count);
-        for (std::int32_t x : readCompressedInts32(reader, count)) {
-            auto at = static_cast<std::uint32_t>(x);
-            if (at >= tableSize) throw CrateFormatError("a compressed array's table index " + std::to_string(at) + " is out of range");
-            numbers.push_back(scalarAt(table.data() + at * elementBytes, layout.scalar));
-        }
-    } else {
-        throw CrateFormatError("unknown compressed floating-point array code " + std::to_string(static_cast<int>(code)));
-    }
-    return Value::numeric(layout.name, std::move(numbers), 1, true);
+    });
+    return array;
 }
 
 Value CrateValues::stringArray(ValueRep rep) const {
@@ -358,7 +407,7 @@ Value CrateValues::stringArray(ValueRep rep) const {
     if (rep.payload() != 0) {
         ByteReader reader = file_.readerAt(rep.payload());
         if (!file_.version().atLeast(0, 5, 0)) reader.read<std::uint32_t>();  // rank
-        std::size_t count = arraySize(reader);
+        std::size_t count = arraySize(reader, file_.version());
         if (count > reader.bytes().size() / sizeof(std::uint32_t))
             throw CrateFormatError("an array of " + std::to_string(count) + " strings runs past the end of the file");
         strings.reserve(count);

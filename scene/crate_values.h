@@ -18,6 +18,12 @@
 // elements use crate_integer_coding.h; compressed half/float/double arrays of 16 or more elements
 // start with 'i' (integers, coded) or 't' (a uint32 table size, the table, coded indexes).
 //
+// Numeric arrays of 256 or more numbers (points, normals, indices, primvars) are deferred: read
+// at once are only their count (and, uncompressed, that their elements lie inside the file); the
+// numbers are decoded on first use (NumberArray::deferred), over a ByteReader on the file's shared
+// bytes, which the array keeps alive until then. A damaged compressed array is found only then,
+// and throws FileError naming the file (throwDamagedCrateFile), as a damaged file does when read.
+//
 // Values stored once and used by many fields (crate files deduplicate them) are decoded once and
 // shared (Value copies share their numbers and dictionaries): this keeps reading fast, and a
 // damaged file whose dictionaries refer to each other many times over cannot make the work grow
@@ -79,7 +85,6 @@ private:
     Value nestedValue(ByteReader& reader) const;  // a VtValue: a relative jump, then its ValueRep
     Value reference(ByteReader& reader, bool withCustomData) const;
     Value listItems(int listOpType, ByteReader& reader) const;
-    std::size_t arraySize(ByteReader& reader) const;
 
     const CrateFile& file_;
     mutable int depth_ = 0;

@@ -10,6 +10,7 @@
 #include <string_view>
 #include <system_error>
 
+#include "core/fnv_hash.h"
 #include "scene/usda_parser.h"
 #include "scene/usdz_package.h"
 
@@ -18,12 +19,6 @@ namespace fluence::usd {
 namespace fs = std::filesystem;
 
 namespace {
-
-// 64-bit FNV-1a, continued from `hash`.
-std::uint64_t fnv1a(std::string_view bytes, std::uint64_t hash = 0xcbf29ce484222325ull) {
-    for (unsigned char c : bytes) hash = (hash ^ c) * 0x100000001b3ull;
-    return hash;
-}
 
 std::string hex(std::uint64_t value) {
     char text[17];

@@ -1,16 +1,12 @@
 #include "scene/usdz_package.h"
 
-#include <fcntl.h>
-#include <sys/mman.h>
-#include <sys/stat.h>
-#include <unistd.h>
-
 #include <algorithm>
 #include <cctype>
 #include <cstdint>
 #include <cstring>
 #include <filesystem>
 
+#include "scene/mapped_file.h"
 #include "scene/usda_parser.h"
 
 namespace fluence::usd {
@@ -108,25 +104,6 @@ private:
     std::string_view data_;
     const std::string& path_;
 };
-
-std::shared_ptr<const std::string_view> mapFile(const std::string& path) {
-    int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
-    if (fd < 0) throw FileError("cannot open '" + path + "': " + std::strerror(errno));
-    struct stat info {};
-    if (::fstat(fd, &info) != 0 || !S_ISREG(info.st_mode)) {
-        ::close(fd);
-        throw FileError("cannot read '" + path + "': not a regular file");
-    }
-    std::size_t size = static_cast<std::size_t>(info.st_size);
-    void* address = size ? ::mmap(nullptr, size, PROT_READ, MAP_PRIVATE, fd, 0) : nullptr;
-    ::close(fd);
-    if (address == MAP_FAILED) throw FileError("cannot read '" + path + "': " + std::strerror(errno));
-    return std::shared_ptr<const std::string_view>(new std::string_view(static_cast<const char*>(address), size),
-                                                   [](const std::string_view* view) {
-                                                       if (!view->empty()) ::munmap(const_cast<char*>(view->data()), view->size());
-                                                       delete view;
-                                                   });
-}
 
 }  // namespace
 

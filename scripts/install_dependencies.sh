@@ -13,6 +13,7 @@ packages=(
   libpugixml-dev
   liblz4-dev
   clang-16 libclang-rt-16-dev llvm-16
+  slurm-wlm munge openimageio-tools  # tests/farm/slurm_farm_test.sh: a one-node Slurm cluster; oiiotool
 )
 # `install_dependencies.sh bench` adds what bench/run.py (make figures) runs with, under /usr/bin/python3.
 [[ "${1:-}" == bench ]] && packages+=(python3-numpy python3-openimageio python3-matplotlib)

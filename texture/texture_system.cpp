@@ -49,6 +49,16 @@ std::string sourceSpace(const OIIO::ImageSpec& spec, SourceColorSpace colorSpace
     return spec.format.is_floating_point() ? "" : "sRGB";
 }
 
+// Bilinear by default: exact at texel centres, no blur within a level.
+OIIO::TextureOpt::InterpMode oiioInterpolation(Filter filter) {
+    switch (filter) {
+        case Filter::Closest: return OIIO::TextureOpt::InterpClosest;
+        case Filter::Linear: return OIIO::TextureOpt::InterpBilinear;
+        case Filter::Cubic: return OIIO::TextureOpt::InterpBicubic;
+    }
+    return OIIO::TextureOpt::InterpBilinear;
+}
+
 OIIO::TextureOpt::Wrap oiioWrap(Wrap wrap) {
     switch (wrap) {
         case Wrap::Black: return OIIO::TextureOpt::WrapBlack;
@@ -103,11 +113,11 @@ const TextureSystem::Texture* TextureSystem::open(const std::string& path, Sourc
 }
 
 bool TextureSystem::lookup(const Texture& texture, float s, float t, const Footprint& f, Wrap wrapS, Wrap wrapT,
-                           std::array<float, 4>& rgba) const {
+                           std::array<float, 4>& rgba, Filter filter) const {
     OIIO::TextureOpt options;
     options.swrap = oiioWrap(wrapS);
     options.twrap = oiioWrap(wrapT);
-    options.interpmode = OIIO::TextureOpt::InterpBilinear;  // within a level: exact at texel centres, no blur
+    options.interpmode = oiioInterpolation(filter);
     // OIIO's t runs down the image; USD's up. Within a UDIM tile the flip is per tile.
     float oiioT;
     if (texture.udim) {

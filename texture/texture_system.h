@@ -15,7 +15,8 @@
 // (a file name holding <UDIM>) are resolved by OpenImageIO: tile 1001 + floor(s) + 10 * floor(t).
 // Files without mip levels are mip-mapped on first use ("automip"), so a filter footprint of many
 // texels costs what one texel does; within a level the filter is bilinear (exact at texel
-// centres). Lookups are thread-safe; the per-thread state is OIIO's.
+// centres) unless the lookup asks for the nearest texel or bicubic. Lookups are thread-safe; the
+// per-thread state is OIIO's.
 #pragma once
 
 #include <array>
@@ -44,8 +45,9 @@ public:
                         const std::string& namedSpace = "");
 
     // The filtered RGBA value at st; false where there is no data (an absent UDIM tile).
+    // `filter` is the filter within a mip level (Closest: the nearest texel of the level).
     bool lookup(const Texture& texture, float s, float t, const Footprint& footprint, Wrap wrapS, Wrap wrapT,
-                std::array<float, 4>& rgba) const;
+                std::array<float, 4>& rgba, Filter filter = Filter::Linear) const;
 
 private:
     struct Impl;

@@ -10,6 +10,10 @@ enum class SourceColorSpace { Auto, Raw, SRGB };
 // UsdUVTexture inputs:wrapS / wrapT outside [0, 1].
 enum class Wrap { Black, Clamp, Repeat, Mirror };
 
+// How a lookup filters within a mip level (MaterialX filtertype): the nearest texel, bilinear
+// (exact at texel centres) or bicubic.
+enum class Filter { Closest, Linear, Cubic };
+
 // The texture-space footprint of a lookup: how st changes across one pixel along the screen's
 // x and y (zero: the finest level, bilinear).
 struct Footprint {

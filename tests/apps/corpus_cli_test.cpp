@@ -1,7 +1,7 @@
 // `fluence info` and `fluence render` on the real-world corpus in shared/usd_corpus (skipped when
 // it is absent): every valid layer opens, every invalid one is rejected with file:line:column,
-// crate files open (and the damaged corrupt.usd is rejected with a clear error), production assets render to a finite EXR with their missing
-// assets reported as warnings, and two render as intended: usdrecord's SmallObjectTest (no camera,
+// crate files open (and the damaged corrupt.usd is rejected with a clear error), production assets with missing textures fail
+// naming them (exit 4) and render to a finite EXR with --allow-missing, and two render as intended: usdrecord's SmallObjectTest (no camera,
 // a DomeLight with an HDR file) and the Teapot's Fancy variant (UsdUVTexture maps).
 #include <gtest/gtest.h>
 
@@ -108,11 +108,15 @@ TEST_F(CorpusCli, SpinningPyramidsRenders) {
     expectFiniteRender(run("render '" + scene.string() + "' -o '" + out.string() + "' -r 64 64 --spp 2"), out);
 }
 
-TEST_F(CorpusCli, StandardShaderBallRendersWithItsMissingAssetsNamed) {
+TEST_F(CorpusCli, StandardShaderBallRefusesItsMissingAssetsUnlessAllowed) {
     SKIP_WITHOUT_CORPUS();
     fs::path scene = kCorpus / "usd-wg-assets/full_assets/StandardShaderBall/standard_shader_ball_scene.usda";
     fs::path out = tmp_.path() / "ball.exr";
     test::RunResult r = run("render '" + scene.string() + "' -o '" + out.string() + "' -r 64 64 --spp 2");
+    EXPECT_EQ(r.exitCode, 4) << r.err;
+    EXPECT_NE(r.err.find("wall_back.ACEScg.exr (authored as"), std::string::npos) << r.err;
+    EXPECT_FALSE(fs::exists(out));
+    r = run("render '" + scene.string() + "' -o '" + out.string() + "' -r 64 64 --spp 2 --allow-missing");
     expectFiniteRender(r, out);
     EXPECT_NE(r.err.find("plastic_openpbr.mtlx@ ignored"), std::string::npos) << r.err;
     EXPECT_NE(r.err.find("asset not found:"), std::string::npos) << r.err;

@@ -24,8 +24,8 @@ const fs::path kPackage = FLUENCE_SOURCE_DIR "/../shared/usd_corpus/tinyusdz/mod
 #define SKIP_WITHOUT_PACKAGE() \
     if (!fs::is_regular_file(kPackage)) GTEST_SKIP() << "no corpus package at " << kPackage
 
-test::RunResult render(const fs::path& scene, const fs::path& out, const test::TempDir& dir) {
-    return test::runFluence("render '" + scene.string() + "' -o '" + out.string() + "' -r 48 32 --spp 4", dir.path());
+test::RunResult render(const fs::path& scene, const fs::path& out, const test::TempDir& dir, const std::string& options = "") {
+    return test::runFluence("render '" + scene.string() + "' -o '" + out.string() + "' -r 48 32 --spp 4" + options, dir.path());
 }
 
 // The largest difference between the beauty channels of two renders of one size.
@@ -70,7 +70,9 @@ TEST(UsdzCli, PackageRendersAsItsEntriesDoLoose) {
     test::ExrImage packagedLit = rendered(litOver(kPackage, dir, "packaged_lit.usda"), "packaged_lit.exr");
     EXPECT_EQ(largestDifference(packagedLit, rendered(litOver(looseLayer, dir, "loose_lit.usda"), "loose_lit.exr")), 0.0f);
     fs::remove(dir.path() / "loose" / "textures" / "texture-cat.jpg");
-    test::RunResult untextured = render(litOver(looseLayer, dir, "untextured.usda"), dir.path() / "untextured.exr", dir);
+    const fs::path untexturedScene = litOver(looseLayer, dir, "untextured.usda");
+    EXPECT_EQ(render(untexturedScene, dir.path() / "untextured.exr", dir).exitCode, 4) << "a missing texture is an error";
+    test::RunResult untextured = render(untexturedScene, dir.path() / "untextured.exr", dir, " --allow-missing");
     ASSERT_EQ(untextured.exitCode, 0) << untextured.err;
     EXPECT_GT(largestDifference(packagedLit, test::readExr(dir.path() / "untextured.exr")), 0.01f);
 }

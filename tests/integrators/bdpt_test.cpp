@@ -4,13 +4,18 @@
 // a diffuse box lit by an area light, a glossy and metal scene, glass, a scene of delta lights, an
 // emissive mesh and a cylinder light, and a white furnace, which it renders as 1; its images are
 // the same at any thread count; and it finds the light of a point light's caustic, once that
-// lights another surface, which `path` cannot. With media: its spectral MIS weights sum to one over
+// lights another surface, which `path` cannot. Light tracing (t = 1): its MIS weights take the
+// power heuristic against the camera strategies; it finds a point light's caustic seen directly,
+// as `path` does with a small sphere light in its place, which bdpt without t = 1 misses; its
+// splats are bit-identical at any thread count (with adaptive sampling too); tiles and orthographic
+// cameras leave it out and say so. With media: its spectral MIS weights sum to one over
 // heroes and strategies; it agrees with `path` in a chromatic scattering volume (isotropic and
 // forward-scattering) lit by an area light, around a light inside a scattering interior, and on a
 // subsurface random-walk object; it matches Beer-Lambert's closed form through absorbing glass;
 // a chromatic albedo-1 volume under a white sky reads 1; and it is bit-identical at any thread count.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdio>
@@ -48,10 +53,11 @@ TEST(BdptMis, WeightsSumToOneOverTheStrategiesOfAPath) {
         std::vector<VertexDensity> x(vertices);
         for (int i = 0; i < vertices; ++i) x[i] = {density(random), density(random), i > 0 && i < vertices - 1 && deltaVertex(random)};
         if (trial % 5 == 0) x[0].fromLight = 0.0f;  // a light without emission sampling
-        StrategyPath path{x, density(random), hittable(random)};
+        // Half the paths with light tracing (t = 1, s = k) among their strategies.
+        StrategyPath path{x, density(random), hittable(random), -1, trial % 2 == 1};
         double sum = 0.0;
         int strategies = 0;
-        for (int s = 0; s + 2 <= vertices; ++s)
+        for (int s = 0; s + 1 <= vertices; ++s)
             if (strategyExists(path, s) && (s < 2 || x[0].fromLight > 0.0f)) {  // (no light subpath from such a light)
                 sum += misWeight(path, s);
                 ++strategies;
@@ -89,10 +95,11 @@ TEST(BdptMis, SpectralWeightsSumToOneOverHeroesAndStrategies) {
         // Ratio tracking in channel 1 sometimes cannot draw an edge's null points.
         if (trial % 4 == 1 && opaque(random)) x[1].edge.joinPossible.y = 0.0f;
         double sum = 0.0;
+        const bool lightTracing = trial % 2 == 0;  // t = 1 among the strategies
         for (int hero = 0; hero < 3; ++hero) {
             if (hero == 2 && heroTwoBlind) continue;
-            const StrategyPath path{x, 1.7f, true, hero};
-            for (int s = 0; s + 2 <= vertices; ++s) {
+            const StrategyPath path{x, 1.7f, true, hero, lightTracing};
+            for (int s = 0; s + 1 <= vertices; ++s) {
                 const bool drawable = !(hero == 1 && s == 1 && x[1].edge.joinPossible.y == 0.0f);
                 if (strategyExists(path, s) && drawable) sum += misWeight(path, s) / 3.0;
             }
@@ -112,6 +119,25 @@ TEST(BdptMis, TwoStrategiesTakeThePowerHeuristic) {
     path.lightHittable = false;
     EXPECT_FALSE(strategyExists(path, 0));
     EXPECT_FLOAT_EQ(misWeight(path, 1), 1.0f);
+    // With light tracing, a light seen directly (k = 1) is still left to s = 0.
+    std::vector<VertexDensity> seen = {{0.5f, 2.0f, false}, {1.0f, 1.0f, false}};
+    EXPECT_FALSE(strategyExists(StrategyPath{seen, 0.0f, true, -1, true}, 1));
+}
+
+// Light tracing (t = 1, s = k) against the join at the camera's first vertex (t = 2, s = k - 1):
+// x_{k-1} is drawn by the light subpath with density fromLight, by the camera with fromCamera.
+TEST(BdptMis, LightTracingTakesThePowerHeuristicAgainstTheCameraStrategies) {
+    // x_0 on a delta light (no s = 0), x_1 a diffuse point seen by the camera x_2: s = 1
+    // (next-event estimation, neeOrigin) against s = 2 (light tracing, x_0.fromLight x_1.fromLight).
+    std::vector<VertexDensity> x = {{0.5f, 0.0f, false}, {3.0f, 4.0f, false}, {1.0f, 1.0f, false}};
+    StrategyPath path{x, 0.5f, false, -1, true};
+    ASSERT_TRUE(strategyExists(path, 2));
+    const double nee = 0.5 * 4.0, tracing = 0.5 * 3.0;  // the densities of x_0 x_1 under s = 1 and s = 2
+    EXPECT_FLOAT_EQ(misWeight(path, 1), float(nee * nee / (nee * nee + tracing * tracing)));
+    EXPECT_FLOAT_EQ(misWeight(path, 2), float(tracing * tracing / (nee * nee + tracing * tracing)));
+    // A delta x_1 (a mirror before the camera) cannot be joined to the camera.
+    x[1].delta = true;
+    EXPECT_FALSE(strategyExists(path, 2));
 }
 
 // ---- Emission sampling (render/light_emission.cpp), which light subpaths start from.
@@ -198,11 +224,8 @@ Estimates estimates(const Integrator& integrator, const render::SceneDescription
 
 // Per channel, the image means agree within their combined standard error (a two-sided test at
 // the Sidak level of the suite's family); over the regions, the sum of z^2 of the noisy ones is
-// chi-square distributed. Returns bdpt's estimates.
-Estimates expectAgreement(const render::SceneDescription& scene, int bdptSpp, int pathSpp) {
-    IntegratorSettings settings;
-    const Estimates bdpt = estimates(Bdpt(settings), scene, bdptSpp);
-    const Estimates path = estimates(PathTracer(settings), scene, pathSpp);
+// chi-square distributed.
+void expectAgreement(const Estimates& bdpt, const Estimates& path) {
     const double zLimit = test::normalQuantile(0.5 * test::kChi2Alpha);
     for (int c = 0; c < 3; ++c) {
         const double sd = std::sqrt(bdpt.imageVariance[c] + path.imageVariance[c]);
@@ -229,6 +252,13 @@ Estimates expectAgreement(const render::SceneDescription& scene, int bdptSpp, in
     EXPECT_GT(noisy, 0);
     EXPECT_GT(test::upperIncompleteGammaQ(0.5 * noisy, 0.5 * chi2), test::kChi2Alpha)
         << "chi2 " << chi2 << " over " << noisy << " region means;" << worst;
+}
+
+// The same for bdpt and `path` rendering `scene`. Returns bdpt's estimates.
+Estimates expectAgreement(const render::SceneDescription& scene, int bdptSpp, int pathSpp) {
+    IntegratorSettings settings;
+    const Estimates bdpt = estimates(Bdpt(settings), scene, bdptSpp);
+    expectAgreement(bdpt, estimates(PathTracer(settings), scene, pathSpp));
     return bdpt;
 }
 
@@ -359,10 +389,9 @@ TEST(Bdpt, IsBitIdenticalAtAnyThreadCount) {
 
 // A point light inside a smooth glass sphere above a floor, beside a back wall: every light path
 // leaves through the glass (LS+...), so no shadow ray reaches the light and `path` renders black.
-// The caustic it throws on the floor and wall, seen directly (LS+DE), needs light tracing to the
-// camera (t = 1), which bdpt leaves out; the light those lit surfaces send on to the others
-// (LS+DD+E) is found by joining the light subpath's diffuse vertex to the camera's first hit
-// (s >= 3, t = 2).
+// The caustic it throws on the floor and wall, seen directly (LS+DE), is found by light tracing
+// to the camera (t = 1); the light those lit surfaces send on to the others (LS+DD+E) by joining
+// the light subpath's diffuse vertex to the camera's first hit (s >= 3, t = 2).
 render::SceneDescription glassedPointLight() {
     render::SceneDescription s;
     s.materials.push_back(test::diffuseMaterial("/white", RGB(0.8f)));
@@ -391,6 +420,116 @@ TEST(Bdpt, FindsLightFromAPointLightCausticThatPathCannot) {
         EXPECT_EQ(path.imageMean[c], 0.0) << "channel " << c;
         EXPECT_GT(bdpt.imageMean[c], zLimit * std::sqrt(bdpt.imageVariance[c])) << "channel " << c;
     }
+}
+
+// ---- Light tracing (t = 1).
+
+// A smooth glass ball beside a point light throws its caustic on a floor, which the camera looks
+// straight down at (neither the ball nor the light in view): every pixel sees the floor, lit
+// directly (LDE) and by the caustic (LS+DE, only light tracing draws it from a point light). With
+// `radius` > 0 the point light is a sphere light of that radius and the same power, which `path`
+// finds through the glass by hitting it.
+render::SceneDescription causticOnAFloor(float radius) {
+    render::SceneDescription s;
+    s.materials.push_back(test::diffuseMaterial("/white", RGB(0.5f)));
+    s.materials.push_back(test::glassMaterial("/glass", 0.0f));
+    s.meshes.push_back(test::quadMesh("/floor", {{{-6, -6, -1}, {6, -6, -1}, {6, 6, -1}, {-6, 6, -1}}}, 0));
+    s.meshes.push_back(test::roundSphereMesh(0.4f, 48, 24, 1, Vec3f(0.0f, 0.0f, -0.5f)));
+    const Vec3d at(-1.5, 0.0, 0.0);
+    const RGB radiance(15000.0f, 12000.0f, 9000.0f);  // test::pointLight's: a sphere of radius 0.05
+    s.lights.push_back(radius > 0.0f ? test::sphereLight("/bulb", radius, radiance * (0.05f * 0.05f / (radius * radius)), at)
+                                     : test::pointLight("/point", radiance, at));
+    render::CameraDesc camera;  // looking down -Z from above the caustic, 30 degrees across
+    camera.focalLength = 50.0f;
+    camera.horizontalAperture = camera.verticalAperture = 26.8f;
+    camera.nearClip = 0.01f;
+    camera.transform = Matrix4::translate({1.8, 0.0, 2.5});
+    s.camera = camera;
+    return s;
+}
+
+// bdpt as it was before light tracing: the render loop hands it no splat film, so t = 1 is out.
+class WithoutLightTracing final : public Integrator {
+public:
+    explicit WithoutLightTracing(const Integrator& bdpt) : bdpt_(bdpt) {}
+    void prepare(const render::RenderScene& scene, const render::Camera& camera, std::uint64_t seed) const override {
+        bdpt_.prepare(scene, camera, seed);
+    }
+    FilmSample sample(const render::RenderScene& scene, const render::Camera& camera, const render::Ray& ray, SampleStream& rng,
+                      RenderCounters& counters) const override {
+        return bdpt_.sample(scene, camera, ray, rng, counters);
+    }
+
+private:
+    const Integrator& bdpt_;
+};
+
+// bdpt with the point light agrees with `path` with a small sphere light of the same power in its
+// place (radius 0.1: its finite size blurs the caustic by a few pixels, which moves little light
+// across the 8x8 regions' borders and none across the image's), over the image and region by
+// region; without t = 1 it reads significantly less, the caustic missed.
+TEST(BdptLightTracing, FindsAPointLightsCausticSeenDirectly) {
+    IntegratorSettings settings;
+    const Bdpt bdpt(settings), withoutT1(settings);
+    const Estimates traced = estimates(bdpt, causticOnAFloor(0.0f), 128);
+    const Estimates path = estimates(PathTracer(settings), causticOnAFloor(0.1f), 4096);
+    expectAgreement(traced, path);
+    const Estimates missed = estimates(WithoutLightTracing(withoutT1), causticOnAFloor(0.0f), 64);
+    const double zLimit = test::normalQuantile(test::kChi2Alpha);
+    for (int c = 0; c < 3; ++c) {
+        const double sd = std::sqrt(missed.imageVariance[c] + path.imageVariance[c]);
+        std::printf("[ measured ] channel %d: without t = 1 %.5f (path %.5f, sd %.5f)\n", c, missed.imageMean[c], path.imageMean[c], sd);
+        EXPECT_GT(path.imageMean[c] - missed.imageMean[c], zLimit * sd) << "channel " << c;
+    }
+}
+
+// The splats add in fixed point: the image is the same at any thread count, with adaptive
+// sampling too (which divides the splats by the image's mean samples per pixel).
+TEST(BdptLightTracing, IsBitIdenticalAtAnyThreadCount) {
+    const Bdpt bdpt{IntegratorSettings{}};
+    for (double targetError : {0.0, 0.2}) {
+        RenderSettings settings;
+        settings.samplesPerPixel = 8;
+        settings.targetError = targetError;
+        settings.minSamples = 2;
+        settings.threads = 1;
+        const test_support::RenderedFilm one = test_support::renderFilm(bdpt, causticOnAFloor(0.0f), 16, settings);
+        settings.threads = 2;
+        const test_support::RenderedFilm two = test_support::renderFilm(bdpt, causticOnAFloor(0.0f), 16, settings);
+        ASSERT_NE(one.film.splats(), nullptr);
+        std::vector<std::int64_t> sums = one.film.splats()->fixedSums();
+        EXPECT_GT(*std::max_element(sums.begin(), sums.end()), 0) << "nothing was splatted";
+        EXPECT_EQ(sums, two.film.splats()->fixedSums());
+        EXPECT_EQ(one.film.resolve().pixels, two.film.resolve().pixels) << "target error " << targetError;
+    }
+}
+
+// A tile (a film that is a window of the image) gets no splat film, and an orthographic camera
+// cannot be joined: bdpt leaves t = 1 out and says why in its summary.
+TEST(BdptLightTracing, TilesAndOrthographicCamerasLeaveItOutAndSaySo) {
+    const render::SceneDescription desc = causticOnAFloor(0.0f);
+    const render::RenderScene scene(desc);
+    const Bdpt bdpt{IntegratorSettings{}};
+    RenderSettings settings;
+    settings.samplesPerPixel = 1;
+    const render::Camera camera(*desc.camera, 16, 16);
+    Film whole(16, 16, camera.farClip());
+    render(scene, camera, bdpt, settings, whole);
+    EXPECT_NE(whole.splats(), nullptr);
+    EXPECT_EQ(bdpt.summary(), "");
+    Film tile(8, 16, camera.farClip());
+    settings.windowX = 8;
+    settings.imageWidth = 16;
+    render(scene, camera, bdpt, settings, tile);
+    EXPECT_EQ(tile.splats(), nullptr);
+    EXPECT_NE(bdpt.summary().find("tile"), std::string::npos) << bdpt.summary();
+    render::CameraDesc orthographic = *desc.camera;
+    orthographic.projection = render::Projection::Orthographic;
+    const render::Camera flat(orthographic, 16, 16);
+    Film film(16, 16, flat.farClip());
+    settings.windowX = settings.imageWidth = 0;
+    render(scene, flat, bdpt, settings, film);
+    EXPECT_NE(bdpt.summary().find("orthographic"), std::string::npos) << bdpt.summary();
 }
 
 // ---- Media.

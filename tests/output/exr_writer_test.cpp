@@ -7,6 +7,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <array>
 #include <bit>
 #include <cmath>
 #include <cstdint>
@@ -198,6 +199,49 @@ TEST(ExrWriter, PixelAspectRatioIsTheStandardAttribute) {
     float value = 0.0f;
     std::memcpy(&value, bytes.data() + at + needle.size(), sizeof value);
     EXPECT_EQ(value, 2.0f);
+}
+
+// Per-channel pixel types: values converted (uint rounded and clamped, not normalised), the
+// compression, m44f matrices and colorInteropID as asked; a type list of another length refused.
+TEST(ExrWriter, ChannelTypesCompressionMatricesAndInteropId) {
+    using fluence::output::PixelType;
+    TempDir dir("fluence_exr_test");
+    const std::string path = dir.file("typed.exr");
+    Image image(2, 1, {"R", "Z", "id"});
+    image.pixels = {0.5f, 1.0f / 3.0f, 6.6f, 1.0f, 2.0f, -3.0f};
+    ExrHeader header;
+    header.channelTypes = {PixelType::Float, PixelType::Half, PixelType::Uint};
+    header.compression = "piz";
+    header.colorInteropId = "lin_rec709_scene";
+    std::array<float, 16> m{};
+    for (int i = 0; i < 16; ++i) m[std::size_t(i)] = float(i);
+    header.matrices = {{"worldToCamera", m}};
+    writeExr(path, image, header);
+
+    auto in = OIIO::ImageInput::open(path);
+    ASSERT_TRUE(in);
+    const OIIO::ImageSpec& spec = in->spec();
+    EXPECT_EQ(spec.channelformat(0), OIIO::TypeDesc::FLOAT);
+    EXPECT_EQ(spec.channelformat(1), OIIO::TypeDesc::HALF);
+    EXPECT_EQ(spec.channelformat(2), OIIO::TypeDesc::UINT);
+    EXPECT_EQ(spec.get_string_attribute("compression"), "piz");
+    EXPECT_EQ(spec.get_string_attribute("colorInteropID"), "lin_rec709_scene");
+    const OIIO::ParamValue* stored = spec.find_attribute("worldToCamera", OIIO::TypeMatrix44);
+    ASSERT_NE(stored, nullptr);
+    EXPECT_EQ(std::memcmp(stored->data(), m.data(), sizeof m), 0);
+    std::uint32_t ids[2];
+    ASSERT_TRUE(in->read_image(0, 0, 2, 3, OIIO::TypeDesc::UINT, ids));
+    EXPECT_EQ(ids[0], 7u);
+    EXPECT_EQ(ids[1], 0u);
+    float z[2];
+    ASSERT_TRUE(in->read_image(0, 0, 1, 2, OIIO::TypeDesc::FLOAT, z));
+    EXPECT_NEAR(z[0], 1.0f / 3.0f, 1e-3f);  // stored in half precision
+    EXPECT_NE(z[0], 1.0f / 3.0f);
+    EXPECT_EQ(z[1], 2.0f);
+    in->close();
+
+    header.channelTypes.pop_back();
+    EXPECT_THROW(writeExr(path, image, header), OutputError);
 }
 
 TEST(ExrWriter, MissingDirectoryThrowsAndLeavesNothing) {

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <utility>
 
 namespace fluence::render {
 namespace {
@@ -80,6 +81,32 @@ TEST(Camera, OrthographicUsesTenthsOfASceneUnit) {
     Ray left = cam.generateRay(0, 5), right = cam.generateRay(10, 5);
     EXPECT_NEAR(right.origin.x - left.origin.x, 2.0f, 1e-5f);
     EXPECT_EQ(left.direction, Vec3f(0, 0, -1));
+}
+
+// worldToNdc takes every point of the ray through film position (x, y) to (x / width, y / height),
+// for both projections, with aperture offsets, a non-square pixel aspect ratio and a rotated camera;
+// and worldToCamera puts the point ahead of the eye on +z, at its view depth.
+TEST(Camera, WorldToNdcAndWorldToCameraFollowTheRays) {
+    for (Projection projection : {Projection::Perspective, Projection::Orthographic}) {
+        CameraDesc d = cornellCamera();
+        d.projection = projection;
+        d.horizontalApertureOffset = 3;
+        d.verticalApertureOffset = -2;
+        Camera cam(d, 40, 30, {1.5f, ApertureConform::ExpandAperture});
+        const Matrix4 toNdc = cam.worldToNdc(), toCamera = cam.worldToCamera();
+        for (auto [x, y] : {std::pair{0.0f, 0.0f}, {40.0f, 30.0f}, {13.5f, 7.25f}, {20.0f, 15.0f}})
+            for (float t : {20.0f, 400.0f}) {
+                const Ray ray = cam.generateRay(x, y);
+                const Vec3d p(ray.origin + ray.direction * t);
+                double h[4];
+                for (int i = 0; i < 4; ++i)
+                    h[i] = toNdc.m[std::size_t(i)][0] * p.x + toNdc.m[std::size_t(i)][1] * p.y + toNdc.m[std::size_t(i)][2] * p.z +
+                           toNdc.m[std::size_t(i)][3];
+                EXPECT_NEAR(h[0] / h[3], x / 40.0, 1e-4) << int(projection) << " " << x << "," << y << " t " << t;
+                EXPECT_NEAR(h[1] / h[3], y / 30.0, 1e-4) << int(projection) << " " << x << "," << y << " t " << t;
+                EXPECT_NEAR(toCamera.transformPoint(p).z, cam.viewDepth(Vec3f(p)), 1e-2);
+            }
+    }
 }
 
 // Every aspectRatioConformPolicy, on a square orthographic aperture 2 units wide and a 20x10 image.

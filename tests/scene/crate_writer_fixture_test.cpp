@@ -198,7 +198,7 @@ TEST_F(CrateWriterFixture, StringValuesRoundTrip) {
 
 // The reader's own type names (before the attribute's declared type is applied).
 TEST_F(CrateWriterFixture, CrateTypeNames) {
-    detail::CrateFile file(bytes);
+    detail::CrateFile file(holdBytes(bytes), "fixture.usdc");
     detail::CrateValues values(file);
     std::map<std::string, std::string> expected;
     for (const auto& c : numerics) expected["/Root." + c.name] = c.typeName;

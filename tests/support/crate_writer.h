@@ -9,7 +9,9 @@
 //   - values out of line (the ValueRep payload is the file offset of their data) except tokens,
 //     strings, asset paths, specifiers and variability, which are index/enum payloads inlined,
 //     and the explicit `inlined(type, bits)` helper for testing OpenUSD's inlined forms;
-//   - arrays: a uint64 count, then the raw elements, uncompressed (the compressed bit unset);
+//   - arrays: a uint64 count, then the raw elements, uncompressed (the compressed bit unset), or
+//     with `compressedInts` an int/uint array integer-coded as below (the compressed bit set);
+//   - path expressions: out of line, their text's string index (arrays: one string index each);
 //   - nested values (dictionary entries, time samples): a relative jump of 8, then the ValueRep;
 //   - no value deduplication; the path tree in pre-order with USD's jump coding.
 // Layout: 88-byte bootstrap, value data, then sections TOKENS, STRINGS, FIELDS, FIELDSETS, PATHS,
@@ -105,6 +107,20 @@ public:
         for (const T& c : flat) put(c);
         return rep(type, at, true);
     }
+    // An int or uint array, integer-coded (16 or more elements: the reader takes shorter ones raw).
+    Rep compressedInts(int type, const std::vector<std::int32_t>& values) {
+        std::uint64_t at = data_.size();
+        put<std::uint64_t>(values.size());
+        putInts(values);
+        return rep(type, at, true) | (1ull << 61);
+    }
+    // An SdfPathExpression value: its text (as a string index), out of line.
+    Rep pathExpression(const std::string& text) {
+        std::uint64_t at = data_.size();
+        put(string(text));
+        return rep(crate_type::PathExpression, at);
+    }
+    Rep pathExpressionArray(const std::vector<std::string>& items) { return indexList(crate_type::PathExpression, items, true); }
     Rep tokenValue(const std::string& s) { return inlined(crate_type::Token, token(s)); }
     Rep stringValue(const std::string& s) { return inlined(crate_type::String, string(s)); }
     Rep assetValue(const std::string& s) { return inlined(crate_type::AssetPath, token(s)); }
@@ -253,7 +269,7 @@ private:
     Rep indexList(int type, const std::vector<std::string>& items, bool isArray) {
         std::uint64_t at = data_.size();
         put<std::uint64_t>(items.size());
-        for (const auto& s : items) put(type == crate_type::String ? string(s) : token(s));
+        for (const auto& s : items) put(type == crate_type::String || type == crate_type::PathExpression ? string(s) : token(s));
         return rep(type, at, isArray);
     }
     static std::vector<char> compress(const void* p, std::size_t n) {

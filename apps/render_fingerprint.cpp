@@ -1,0 +1,80 @@
+#include "apps/render_fingerprint.h"
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "core/fnv_hash.h"
+#include "version.h"
+
+namespace fluence::app {
+
+namespace {
+
+// Numbers as text that reads back exactly.
+std::string exact(double value) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%.17g", value);
+    return text;
+}
+
+// FNV-1a over every layer file's path and bytes, as 16 hex digits. A layer inside a USDZ package
+// ("pkg.usdz[scene.usdc]") is hashed as its package file.
+std::string layerFilesHash(const usd::Stage& stage) {
+    std::uint64_t hash = kFnv1aOffsetBasis;
+    for (const std::string& file : stage.layerFiles()) {
+        std::string path = file;
+        if (const auto bracket = path.find('['); bracket != std::string::npos && path.ends_with("]")) path.resize(bracket);
+        hash = fnv1a(file, hash);
+        std::ifstream in(path, std::ios::binary);
+        std::ostringstream bytes;
+        bytes << in.rdbuf();
+        hash = fnv1a(bytes.str(), fnv1a(std::string_view("\0", 1), hash));
+    }
+    char text[17];
+    std::snprintf(text, sizeof text, "%016llx", static_cast<unsigned long long>(hash));
+    return text;
+}
+
+template <typename T, typename Text>
+std::string joined(const std::vector<T>& items, Text text) {
+    std::string out;
+    for (const T& item : items) {
+        if (!out.empty()) out += ' ';
+        out += text(item);
+    }
+    return out;
+}
+
+}  // namespace
+
+CheckpointFingerprint renderFingerprint(const RenderOptions& o, const usd::Stage& stage, const ResolvedRender& r) {
+    const auto size = [](int w, int h) { return std::to_string(w) + "x" + std::to_string(h); };
+    return {
+        {"fluence version", kFluenceVersion},
+        {"scene", std::filesystem::absolute(o.scene).lexically_normal().string()},
+        {"scene files", layerFilesHash(stage)},
+        {"camera", r.cameraPath},
+        {"resolution", size(r.imageWidth, r.imageHeight)},
+        {"window", size(r.windowWidth, r.windowHeight) + " at " + std::to_string(r.windowX) + "," + std::to_string(r.windowY)},
+        {"frame", std::isnan(r.time) ? "default" : exact(r.time)},
+        {"seed", std::to_string(o.seed)},
+        {"integrator", r.integrator},
+        {"samples per pixel", std::to_string(r.samplesPerPixel)},
+        {"target error", exact(o.targetError)},
+        {"min spp", std::to_string(o.minSpp)},
+        {"max depth", std::to_string(o.maxDepth)},
+        {"light path layers", joined(r.lightPathLayers, [](const integrators::LightPathAov& l) { return l.name + "=" + l.expression.text(); })},
+        {"variants", joined(o.variants, [](const usd::VariantSelection& v) { return v.primPath + ":" + v.variantSet + "=" + v.selection; })},
+        {"set", joined(o.overrides, [](const AttributeOverride& a) { return a.text; })},
+        {"purpose", o.purposes ? joined(*o.purposes, [](const std::string& p) { return p; }) : "(render settings)"},
+        {"render settings", o.settings},
+        {"subsurface", o.subsurface},
+        {"dicing rate", exact(o.dicingRate)},
+        {"subdiv level", o.subdivLevel ? std::to_string(*o.subdivLevel) : "(dicing)"},
+    };
+}
+
+}  // namespace fluence::app

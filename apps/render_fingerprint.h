@@ -1,0 +1,38 @@
+// What must be the same for a render to resume another's checkpoint (apps/render_checkpoint.h):
+// every input that changes the value of a pixel sample or the shape of the film.
+//
+// Named entries: the Fluence version; the scene (absolute path) and the content of every layer
+// file it composed (a 64-bit FNV-1a over them, so an edited layer is noticed; textures and VDB
+// files are not hashed); the camera, image resolution, window (tile) and frame; seed, integrator,
+// samples per pixel, adaptive sampling's target error and minimum, maximum depth, the light path
+// expression layers; and the options that change the scene: variants, --set, --purpose, render
+// settings prim, subsurface method, dicing. Whoever adds an option that changes what a sample
+// sees must add it here. Not in it, because they do not change the samples: threads, time limit,
+// output and preview paths, summary, checkpoint and snapshot intervals.
+#pragma once
+
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "apps/cli_options.h"
+#include "apps/render_checkpoint.h"
+#include "integrators/light_path_tracker.h"
+#include "scene/stage.h"
+
+namespace fluence::app {
+
+// What the render command resolved for one frame (the options alone do not say).
+struct ResolvedRender {
+    std::string cameraPath;
+    int imageWidth = 0, imageHeight = 0;
+    int windowX = 0, windowY = 0, windowWidth = 0, windowHeight = 0;
+    double time = 0.0;  // NaN: default values
+    std::string integrator;
+    int samplesPerPixel = 0;
+    std::vector<integrators::LightPathAov> lightPathLayers;
+};
+
+CheckpointFingerprint renderFingerprint(const RenderOptions& options, const usd::Stage& stage, const ResolvedRender& render);
+
+}  // namespace fluence::app
