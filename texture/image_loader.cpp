@@ -7,6 +7,8 @@
 #include <cmath>
 #include <functional>
 
+#include "scene/package_files.h"
+
 namespace fluence::texture {
 
 namespace {
@@ -39,7 +41,7 @@ Image loadImage(const std::string& path, SourceColorSpace colorSpace) {
     // by alpha, before the sRGB decoding that must see the stored values.
     OIIO::ImageSpec hints;
     hints.attribute("oiio:UnassociatedAlpha", 1);
-    auto in = OIIO::ImageInput::open(path, &hints);
+    auto in = OIIO::ImageInput::open(usd::fileForAsset(path), &hints);  // inside a USDZ package: its extracted copy
     if (!in) throw ImageLoadError("cannot read image '" + path + "': " + OIIO::geterror());
     const OIIO::ImageSpec& spec = in->spec();
     if (spec.depth > 1) throw ImageLoadError("cannot read image '" + path + "': volume images are not supported");

@@ -39,6 +39,8 @@ public:
     using std::runtime_error::runtime_error;
 };
 
+// Reads the image at `path`: a file, or a package-relative asset path ("scene.usdz[tex/a.png]",
+// scene/package_files.h), as dome and rect light textures name them.
 Image loadImage(const std::string& path, SourceColorSpace colorSpace = SourceColorSpace::Auto);
 
 // The sRGB electro-optical transfer function (IEC 61966-2-1): encoded value -> linear.

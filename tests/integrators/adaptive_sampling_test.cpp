@@ -18,28 +18,13 @@ namespace {
 constexpr int kSize = 24, kMaxSpp = 256, kMinSpp = 8;
 constexpr double kTarget = 0.03;
 
-// A diffuse sphere lit by a small sphere light under a uniform sky: the sky seen directly has no
-// noise at all, the sphere's lit and shadowed sides have plenty.
-render::SceneDescription litSphereUnderASky() {
-    render::SceneDescription s = test::furnaceScene(0.6f);
-    s.lights[0].radiance = RGB(0.2f);
-    render::LightDesc bulb;
-    bulb.name = "/bulb";
-    bulb.type = render::LightType::Sphere;
-    bulb.radius = 0.1f;
-    bulb.radiance = RGB(400.0f);
-    bulb.transform = Matrix4::translate({2.0, -2.0, 2.0});
-    s.lights.push_back(bulb);
-    return s;
-}
-
 test_support::RenderedFilm renderAdaptively(double targetError, int threads) {
     RenderSettings settings;
     settings.samplesPerPixel = kMaxSpp;
     settings.targetError = targetError;
     settings.minSamples = kMinSpp;
     settings.threads = threads;
-    return test_support::renderFilm(PathTracer(IntegratorSettings{}), litSphereUnderASky(), kSize, settings);
+    return test_support::renderFilm(PathTracer(IntegratorSettings{}), test::litSphereUnderASky(), kSize, settings);
 }
 
 TEST(AdaptiveSampling, EasyPixelsStopEarlyAndEveryStoppedPixelReachedTheTarget) {

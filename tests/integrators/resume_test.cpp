@@ -23,26 +23,11 @@ namespace {
 
 constexpr int kSize = 20;
 
-// A diffuse sphere under a sky with a small bright bulb: noisy enough for adaptive sampling to stop
-// pixels at many different counts.
-render::SceneDescription scene() {
-    render::SceneDescription s = test::furnaceScene(0.6f);
-    s.lights[0].radiance = RGB(0.2f);
-    render::LightDesc bulb;
-    bulb.name = "/bulb";
-    bulb.type = render::LightType::Sphere;
-    bulb.radius = 0.1f;
-    bulb.radiance = RGB(400.0f);
-    bulb.transform = Matrix4::translate({2.0, -2.0, 2.0});
-    s.lights.push_back(bulb);
-    return s;
-}
-
 // Renders uninterrupted, then again stopping after the pass that reaches `stopAt` samples per pixel
 // (saving the film there, as a checkpoint does), then resumed from the saved film; expects the
 // resumed image to equal the uninterrupted one bit for bit.
 void expectResumedEqualsUninterrupted(const Integrator& integrator, RenderSettings settings, int stopAt) {
-    const render::SceneDescription desc = scene();
+    const render::SceneDescription desc = test::litSphereUnderASky();
     const test_support::RenderedFilm whole = test_support::renderFilm(integrator, desc, kSize, settings);
 
     std::atomic<bool> stop{false};
@@ -87,7 +72,8 @@ TEST(Resume, AdaptiveSamplingGoesOnFromEachPixelsOwnCount) {
     settings.samplesPerPixel = 200;
     settings.targetError = 0.05;
     settings.minSamples = 8;
-    const test_support::RenderedFilm whole = test_support::renderFilm(PathTracer(IntegratorSettings{}), scene(), kSize, settings);
+    const test_support::RenderedFilm whole =
+        test_support::renderFilm(PathTracer(IntegratorSettings{}), test::litSphereUnderASky(), kSize, settings);
     std::uint32_t least = 1000, most = 0;  // the test means something only if pixels stopped apart
     for (int y = 0; y < kSize; ++y)
         for (int x = 0; x < kSize; ++x) {

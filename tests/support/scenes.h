@@ -231,4 +231,20 @@ inline render::SceneDescription furnaceScene(float albedo) {
     return s;
 }
 
+// The furnace's sphere (albedo 0.6) lit by a small, bright sphere light under a dim sky: the sky
+// seen directly has no noise at all, the sphere's lit and shadowed sides plenty, so adaptive
+// sampling stops pixels at many different counts.
+inline render::SceneDescription litSphereUnderASky() {
+    render::SceneDescription s = furnaceScene(0.6f);
+    s.lights[0].radiance = RGB(0.2f);
+    render::LightDesc bulb;
+    bulb.name = "/bulb";
+    bulb.type = render::LightType::Sphere;
+    bulb.radius = 0.1f;
+    bulb.radiance = RGB(400.0f);
+    bulb.transform = Matrix4::translate({2.0, -2.0, 2.0});
+    s.lights.push_back(bulb);
+    return s;
+}
+
 }  // namespace fluence::test

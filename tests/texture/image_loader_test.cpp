@@ -1,8 +1,10 @@
 // texture::loadImage: float files come back as written, 8-bit sRGB files are decoded to linear
-// (alpha left alone), Raw and SRGB override the file, and unreadable files name themselves.
+// (alpha left alone), Raw and SRGB override the file, images inside USDZ packages read as their
+// entries, and unreadable files name themselves.
 #include <gtest/gtest.h>
 
 #include <cstdint>
+#include <filesystem>
 #include <vector>
 
 #include "tests/support/temp_dir.h"
@@ -69,6 +71,17 @@ TEST(ImageLoader, UnreadableFilesNameThemselves) {
     } catch (const ImageLoadError& e) {
         EXPECT_NE(std::string(e.what()).find("missing.exr"), std::string::npos) << e.what();
     }
+}
+
+// A dome or rect light's texture inside a USDZ package (scene/package_files.h) reads as its entry.
+TEST(ImageLoader, PackagedImagesReadAsTheirEntries) {
+    const std::filesystem::path package = FLUENCE_SOURCE_DIR "/../shared/usd_corpus/tinyusdz/models/texture-cat-plane.usdz";
+    if (!std::filesystem::exists(package)) GTEST_SKIP() << "no corpus package at " << package;
+    Image image = loadImage(package.generic_string() + "[textures/texture-cat.jpg]");
+    EXPECT_GT(image.width, 1);
+    EXPECT_GT(image.height, 1);
+    EXPECT_GE(image.channels, 3);
+    EXPECT_THROW(loadImage(package.generic_string() + "[textures/no-such.jpg]"), ImageLoadError);
 }
 
 TEST(ImageLoader, SrgbTransferFunction) {
