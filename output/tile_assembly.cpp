@@ -87,7 +87,8 @@ void assembleTiles(const std::vector<std::string>& tiles, const std::string& pat
         if (!covered[at])
             throw TileMismatchError("no tile covers pixel (" + std::to_string(at % std::size_t(whole.width)) + ", " +
                                     std::to_string(at / std::size_t(whole.width)) + "): a tile is missing");
-    writeImageFile(path, "openexr", whole, pixels.data());
+    // Read as float, written in the tiles' own channel types (half, float, uint) and compression.
+    writeImageFile(path, "openexr", whole, pixels.data(), OIIO::TypeFloat);
 }
 
 }  // namespace fluence::output

@@ -147,6 +147,28 @@ TEST_F(RenderProductsCli, DataTypesSetThePixelTypes) {
     for (std::uint32_t n : counts) EXPECT_EQ(n, 4u);
 }
 
+TEST_F(RenderProductsCli, AssembledTilesKeepThePixelTypesAndValues) {
+    const std::string vars = var("depth", "depth", "raw", "half") + var("count", "sampleCount", "raw", "int");
+    const std::string args = scene("</Render/P>", product("P", "p.exr", "</Render/Vars/depth>, </Render/Vars/count>"), vars);
+    ASSERT_EQ(render(args).exitCode, 0);
+    std::string tiles;
+    for (int i = 0; i < 4; ++i) {
+        RunResult r = render(args, "--tile-count 2 2 --tile-index " + std::to_string(i));
+        ASSERT_EQ(r.exitCode, 0) << r.err;
+        tiles += " " + tmp_.file("p_tile" + std::to_string(i) + ".exr");
+    }
+    RunResult r = test::runFluence("assemble -o " + tmp_.file("assembled.exr") + tiles, tmp_.path());
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    auto whole = OIIO::ImageInput::open(tmp_.file("p.exr")), assembled = OIIO::ImageInput::open(tmp_.file("assembled.exr"));
+    ASSERT_TRUE(whole && assembled);
+    EXPECT_EQ(channelType(assembled->spec(), "Z"), OIIO::TypeDesc::HALF);
+    EXPECT_EQ(channelType(assembled->spec(), "count"), OIIO::TypeDesc::UINT);
+    EXPECT_EQ(channelType(assembled->spec(), "R"), OIIO::TypeDesc::FLOAT);
+    const test::ExrImage a = test::readExr(tmp_.file("p.exr")), b = test::readExr(tmp_.file("assembled.exr"));
+    EXPECT_EQ(a.channels, b.channels);
+    EXPECT_EQ(a.pixels, b.pixels);
+}
+
 TEST_F(RenderProductsCli, PrimvarVarsReadTheAuthoredValuesAtTheFirstHit) {
     const std::string vars = var("st", "primvars:st", "primvar", "float2") + var("colour", "displayColor", "primvar", "color3f") +
                              var("k", "primvars:k", "primvar", "float") +
