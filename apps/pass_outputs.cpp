@@ -12,9 +12,9 @@ namespace fluence::app {
 namespace fs = std::filesystem;
 
 PassOutputs::PassOutputs(const RenderOptions& options, std::string outputPath, CheckpointFingerprint fingerprint,
-                         bool checkpointable, WarningLog& warnings, SnapshotWriter writeSnapshot)
+                         CryptomatteFilm* cryptomatte, WarningLog& warnings, SnapshotWriter writeSnapshot)
     : options_(options),
-      checkpointable_(checkpointable),
+      cryptomatte_(cryptomatte),
       outputPath_(std::move(outputPath)),
       checkpointPath_(checkpointPath(outputPath_)),
       snapshotPath_(snapshotPath(outputPath_)),
@@ -22,10 +22,7 @@ PassOutputs::PassOutputs(const RenderOptions& options, std::string outputPath, C
       writeSnapshot_(std::move(writeSnapshot)),
       warnings_(warnings),
       lastCheckpoint_(Clock::now()),
-      lastSnapshot_(lastCheckpoint_) {
-    if (!checkpointable_ && (options_.checkpointSeconds || options_.resume))
-        warnings_(outputPath_, "checkpoints do not save Cryptomatte layers yet: --checkpoint and --resume are ignored");
-}
+      lastSnapshot_(lastCheckpoint_) {}
 
 std::string PassOutputs::snapshotPath(const std::string& outputPath) {
     const fs::path p(outputPath);
@@ -33,13 +30,13 @@ std::string PassOutputs::snapshotPath(const std::string& outputPath) {
 }
 
 int PassOutputs::resume(Film& film) {
-    if (!options_.resume || !checkpointable_) return 0;
+    if (!options_.resume) return 0;
     std::error_code error;
     if (!fs::exists(checkpointPath_, error)) {
         std::printf("fluence: --resume: no checkpoint at %s; rendering from the start\n", checkpointPath_.c_str());
         return 0;
     }
-    const int samplesDone = readCheckpoint(checkpointPath_, fingerprint_, film);
+    const int samplesDone = readCheckpoint(checkpointPath_, fingerprint_, film, cryptomatte_);
     std::printf("fluence: resuming from %s at %d samples per pixel\n", checkpointPath_.c_str(), samplesDone);
     return samplesDone;
 }
@@ -49,9 +46,9 @@ bool PassOutputs::due(const std::optional<double>& interval, Clock::time_point l
 }
 
 void PassOutputs::onPass(const Film& film, int samplesDone) {
-    if (checkpointable_ && due(options_.checkpointSeconds, lastCheckpoint_)) {
+    if (due(options_.checkpointSeconds, lastCheckpoint_)) {
         try {
-            writeCheckpoint(checkpointPath_, fingerprint_, samplesDone, film);
+            writeCheckpoint(checkpointPath_, fingerprint_, samplesDone, film, cryptomatte_);
         } catch (const output::OutputError& e) {
             warnings_(checkpointPath_, std::string("checkpoint not written: ") + e.what());
         }

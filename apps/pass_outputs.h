@@ -37,12 +37,12 @@ public:
     // render command writes its output. Throws output::OutputError.
     using SnapshotWriter = std::function<void(const std::string& path, const Film& film, int samplesDone)>;
 
-    // `checkpointable`: false when the render keeps state that checkpoints do not save yet
-    // (Cryptomatte layers); --checkpoint and --resume are then ignored, with a warning.
-    PassOutputs(const RenderOptions& options, std::string outputPath, CheckpointFingerprint fingerprint, bool checkpointable,
-                WarningLog& warnings, SnapshotWriter writeSnapshot);
+    // `cryptomatte`: the render's Cryptomatte coverage (null without Cryptomatte layers), saved in
+    // checkpoints and restored on resume with the film.
+    PassOutputs(const RenderOptions& options, std::string outputPath, CheckpointFingerprint fingerprint,
+                CryptomatteFilm* cryptomatte, WarningLog& warnings, SnapshotWriter writeSnapshot);
 
-    // With --resume, reads the checkpoint into `film` (fresh) and returns the samples per pixel it
+    // With --resume, reads the checkpoint into `film` (fresh) and the Cryptomatte coverage, and returns the samples per pixel it
     // holds; without a checkpoint, says so on stdout and returns 0. Throws CheckpointMismatch and
     // CheckpointError.
     int resume(Film& film);
@@ -60,7 +60,7 @@ private:
     static bool due(const std::optional<double>& interval, Clock::time_point last);
 
     const RenderOptions& options_;
-    bool checkpointable_;
+    CryptomatteFilm* cryptomatte_;
     std::string outputPath_, checkpointPath_, snapshotPath_;
     CheckpointFingerprint fingerprint_;
     SnapshotWriter writeSnapshot_;

@@ -36,7 +36,8 @@ std::string differences(const CheckpointFingerprint& saved, const CheckpointFing
 
 std::string checkpointPath(const std::string& outputPath) { return outputPath + ".checkpoint"; }
 
-void writeCheckpoint(const std::string& path, const CheckpointFingerprint& fingerprint, int samplesDone, const Film& film) {
+void writeCheckpoint(const std::string& path, const CheckpointFingerprint& fingerprint, int samplesDone, const Film& film,
+                     const CryptomatteFilm* cryptomatte) {
     output::writeAtomically(path, [&](const std::string& tempPath) {
         std::ofstream out(tempPath, std::ios::binary);
         if (!out) throw output::outputError(path, "cannot create " + tempPath);
@@ -50,12 +51,14 @@ void writeCheckpoint(const std::string& path, const CheckpointFingerprint& finge
         }
         writeBinary(out, static_cast<std::uint32_t>(samplesDone));
         writeFilmState(film, out);
+        writeBinary(out, static_cast<std::uint8_t>(cryptomatte != nullptr));
+        if (cryptomatte) cryptomatte->writeState(out);
         out.close();
         if (!out) throw output::outputError(path, "write failed (disk full?)");
     });
 }
 
-int readCheckpoint(const std::string& path, const CheckpointFingerprint& fingerprint, Film& film) {
+int readCheckpoint(const std::string& path, const CheckpointFingerprint& fingerprint, Film& film, CryptomatteFilm* cryptomatte) {
     std::ifstream in(path, std::ios::binary);
     if (!in) throw CheckpointError("cannot open the checkpoint " + path);
     try {
@@ -78,6 +81,9 @@ int readCheckpoint(const std::string& path, const CheckpointFingerprint& fingerp
             throw CheckpointMismatch("the checkpoint " + path + " is of another render (" + diff + ")");
         const auto samplesDone = readBinary<std::uint32_t>(in);
         readFilmState(in, film);
+        if (const bool saved = readBinary<std::uint8_t>(in) != 0; saved != (cryptomatte != nullptr))
+            throw FilmStateError(saved ? "it holds Cryptomatte layers, and this render has none" : "it holds no Cryptomatte layers");
+        if (cryptomatte) cryptomatte->readState(in);
         if (in.peek() != std::char_traits<char>::eof()) throw BinaryReadError("data after the film state");
         return static_cast<int>(samplesDone);
     } catch (const BinaryReadError& e) {

@@ -12,6 +12,7 @@
 //   u32 N, then N x (string name, string value)   the fingerprint
 //   u32 samplesDone                 samples per pixel the film holds (pass boundary)
 //   film state                      core/film_state.h
+//   u8 hasCryptomatte, then its state when 1 (core/cryptomatte_film.h)
 // Written to a temporary file and renamed into place (output/atomic_file.h), so a render killed
 // at any moment leaves the previous checkpoint or the new one, never a partial one.
 #pragma once
@@ -22,11 +23,12 @@
 #include <utility>
 #include <vector>
 
+#include "core/cryptomatte_film.h"
 #include "core/film.h"
 
 namespace fluence::app {
 
-inline constexpr std::uint32_t kCheckpointVersion = 1;
+inline constexpr std::uint32_t kCheckpointVersion = 2;
 
 // Named entries that must all be equal for a checkpoint to be resumed, in a fixed order.
 using CheckpointFingerprint = std::vector<std::pair<std::string, std::string>>;
@@ -47,12 +49,16 @@ public:
 // The checkpoint of the output `outputPath`: "<outputPath>.checkpoint".
 std::string checkpointPath(const std::string& outputPath);
 
-// Writes the checkpoint atomically. Throws output::OutputError.
-void writeCheckpoint(const std::string& path, const CheckpointFingerprint& fingerprint, int samplesDone, const Film& film);
+// Writes the checkpoint atomically, with the Cryptomatte coverage counts when `cryptomatte` is not
+// null. Throws output::OutputError.
+void writeCheckpoint(const std::string& path, const CheckpointFingerprint& fingerprint, int samplesDone, const Film& film,
+                     const CryptomatteFilm* cryptomatte = nullptr);
 
-// Reads the checkpoint at `path` into `film` (which must be fresh, of the render's shape and
-// layers) and returns its samplesDone. Throws CheckpointMismatch when its fingerprint differs from
-// `fingerprint`, CheckpointError when it cannot be read; `film` is then unspecified.
-int readCheckpoint(const std::string& path, const CheckpointFingerprint& fingerprint, Film& film);
+// Reads the checkpoint at `path` into `film` and `cryptomatte` (fresh, of the render's shape and
+// layers; null when the render has no Cryptomatte layers) and returns its samplesDone. Throws
+// CheckpointMismatch when its fingerprint differs from `fingerprint`, CheckpointError when it
+// cannot be read or its Cryptomatte layers are not the render's; the films are then unspecified.
+int readCheckpoint(const std::string& path, const CheckpointFingerprint& fingerprint, Film& film,
+                   CryptomatteFilm* cryptomatte = nullptr);
 
 }  // namespace fluence::app

@@ -251,7 +251,7 @@ int renderFrame(const RenderOptions& opt, usd::Stage& stage, const color::ColorM
     const ResolvedRender resolved{populated->cameraPath, res.first, res.second, tile.x, tile.y, tile.width, tile.height,
                                   time, integratorInfo->name, rs.samplesPerPixel, *isettings.lightPathAovs};
     PassOutputs passOutputs(opt, outputPath, checkpoints ? renderFingerprint(opt, stage, resolved) : CheckpointFingerprint{},
-                            !cryptomatte, warnings, [&](const std::string& path, const Film& partial, int samplesDone) {
+                            cryptomatte.get(), warnings, [&](const std::string& path, const Film& partial, int samplesDone) {
                                 output::ExrHeader snapshotHeader = header;
                                 snapshotHeader.floats.insert(snapshotHeader.floats.end(), {{"fluence/samplesPerPixel", float(samplesDone)},
                                                              {"fluence/seed", float(opt.seed)}, {"fluence/snapshot", 1.0f}});

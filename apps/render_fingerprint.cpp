@@ -74,6 +74,7 @@ CheckpointFingerprint renderFingerprint(const RenderOptions& o, const usd::Stage
         {"subsurface", o.subsurface},
         {"dicing rate", exact(o.dicingRate)},
         {"subdiv level", o.subdivLevel ? std::to_string(*o.subdivLevel) : "(dicing)"},
+        {"cryptomatte", joined(o.cryptomatte, [](CryptomatteSource s) { return s == CryptomatteSource::Object ? "object" : "material"; })},
     };
 }
 

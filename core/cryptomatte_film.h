@@ -16,6 +16,7 @@
 #pragma once
 
 #include <cstdint>
+#include <iosfwd>
 #include <vector>
 
 #include "core/film.h"
@@ -43,6 +44,14 @@ public:
     // increasing name index, so the ranking is deterministic).
     std::vector<Coverage> ranked(int x, int y, std::size_t layer) const;
     std::uint32_t samples(int x, int y) const { return pixels_[index(x, y)].samples; }
+
+    // Its whole state as bytes (render checkpoints, core/film_state.h): shape, layers, and per
+    // pixel the sample count and the (layer, name, count) entries in the order they were made, so
+    // a render that goes on from them ranks exactly as one never stopped. readState replaces the
+    // counts of a film of the same shape and layers; throws FilmStateError otherwise, or when the
+    // data is damaged.
+    void writeState(std::ostream& out) const;
+    void readState(std::istream& in);
 
 private:
     struct Entry {

@@ -125,6 +125,27 @@ TEST_F(CheckpointCli, KilledRenderResumesBitIdenticalAndRefusesAnotherRendersChe
         EXPECT_TRUE(name == "out.exr" || name == "reference.exr" || name.ends_with(".txt")) << name << " was left behind";
 }
 
+TEST_F(CheckpointCli, CryptomatteCoverageResumesBitIdenticalToo) {
+    const std::string out = tmp_.file("out.exr"), crypto = " --cryptomatte object,material";
+    {
+        Child child(kRender + crypto + " -j 1 --checkpoint 0 -o " + out, tmp_.path());
+        ASSERT_TRUE(child.waitFor([&] { return exists("out.exr.checkpoint"); })) << test::slurp(tmp_.file("child.txt"));
+        child.signal(SIGKILL);
+        ASSERT_EQ(child.wait(), -SIGKILL) << "the render finished before it was killed; make it longer";
+    }
+    test::RunResult r = test::runFluence(kRender + " --resume -o " + out, tmp_.path());
+    EXPECT_EQ(r.exitCode, 2) << "a render without the layers refuses the checkpoint: " << r.err;
+    EXPECT_NE(r.err.find("cryptomatte: object material in the checkpoint,  now"), std::string::npos) << r.err;
+    r = test::runFluence(kRender + crypto + " --resume -o " + out, tmp_.path());
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_EQ(r.out.find("at 0 samples"), std::string::npos) << r.out;
+    r = test::runFluence(kRender + crypto + " -o " + tmp_.file("reference.exr"), tmp_.path());
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    const test::ExrImage resumed = test::readExr(out);
+    ASSERT_NE(resumed.channel("CryptoObject00.R"), -1);
+    EXPECT_TRUE(samePixels(tmp_.file("reference.exr"), out));
+}
+
 TEST_F(CheckpointCli, ResumeWithoutACheckpointRendersFromTheStart) {
     const test::RunResult r = test::runFluence("render " + kScene + " -r 16 16 --spp 4 --resume -o " + tmp_.file("out.exr"), tmp_.path());
     ASSERT_EQ(r.exitCode, 0) << r.err;
