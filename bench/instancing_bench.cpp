@@ -84,7 +84,7 @@ int child(bool instanced, int count, int subdivisions, long rays) {
     std::vector<Matrix4> where = placements(count);
     if (instanced) {
         scene.prototypes.push_back({"/rock", {rock}});
-        for (const Matrix4& m : where) scene.instances.push_back({0, m});
+        for (const Matrix4& m : where) scene.instances.push_back({0, m, ""});
     } else {
         for (const Matrix4& m : where) scene.meshes.push_back(render::transformMesh(rock, m));
     }

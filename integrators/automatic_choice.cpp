@@ -9,7 +9,8 @@ AutomaticChoice chooseIntegrator(unsigned sceneClasses) {
         if ((sceneClasses & ~info->covers) == 0)
             return {info, "the cheapest method that covers the scene's light paths (" + classes + ")"};
     }
-    return {findIntegrator("sppm"), "the only candidate that covers the scene's light paths (" + classes + ")"};
+    return {findIntegrator("sppm"), "it covers the scene's light paths (" + classes +
+                                        "), which direct, whitted and path do not (bdpt covers them too)"};
 }
 
 }  // namespace fluence::integrators

@@ -17,7 +17,8 @@ using test_support::Rendered;
 
 Rendered renderScene(const render::SceneDescription& desc, int size, int spp, int threads = 0, int maxDepth = 64,
                      std::uint64_t seed = 0) {
-    return test_support::renderWith(PathTracer(IntegratorSettings{maxDepth}), desc, size, spp, threads, seed);
+    const PathTracer tracer(IntegratorSettings{.maxDepth = maxDepth, .lightPathAovs = {}});
+    return test_support::renderWith(tracer, desc, size, spp, threads, seed);
 }
 
 TEST(PathTracer, WhiteFurnaceSphereVanishes) {

@@ -93,7 +93,7 @@ TEST(ScenePathClasses, IndirectNeedsTwoSurfacesOrOneThatIsNotFlat) {
     s.prototypes = {render::PrototypeDesc{"/Proto", {floorQuad(0)}}};
     s.instances = {render::InstanceDesc{}};
     EXPECT_FALSE(scenePathClasses(s) & kIndirect) << "one flat instance";
-    s.instances.push_back(render::InstanceDesc{0, Matrix4::translate({0, 0, 1})});
+    s.instances.push_back(render::InstanceDesc{0, Matrix4::translate({0, 0, 1}), ""});
     EXPECT_TRUE(scenePathClasses(s) & kIndirect) << "two instances of it";
 }
 

@@ -28,7 +28,7 @@ std::pair<SceneDescription, SceneDescription> instancedAndCopied(int material) {
     instanced.materials = copied.materials = {glow};
     instanced.prototypes.push_back({"/proto", {ball}});
     for (const Matrix4& m : placements()) {
-        instanced.instances.push_back({0, m});
+        instanced.instances.push_back({0, m, ""});
         copied.meshes.push_back(transformMesh(ball, m));
     }
     return {instanced, copied};
@@ -77,7 +77,7 @@ TEST(Instancing, EmissivePrototypesBecomeLightsPerInstance) {
 
 TEST(Instancing, AnInstanceOfAMissingPrototypeIsRejected) {
     SceneDescription scene;
-    scene.instances.push_back({2, Matrix4::identity()});
+    scene.instances.push_back({2, Matrix4::identity(), ""});
     EXPECT_THROW(RenderScene{scene}, std::invalid_argument);
 }
 
