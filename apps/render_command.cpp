@@ -61,16 +61,13 @@ const integrators::IntegratorInfo& chosenIntegrator(const RenderOptions& opt, co
 }
 
 // The part of the image a render takes: the whole, or tile --tile-index of --tile-count.
-struct TileWindow {
-    int x, y, width, height;
-};
-TileWindow tileWindow(const RenderOptions& opt, std::pair<int, int> res) {
+PixelWindow tileWindow(const RenderOptions& opt, std::pair<int, int> res) {
     if (!opt.tileCount) return {0, 0, res.first, res.second};
     const auto [columns, rows] = *opt.tileCount;
     const int column = opt.tileIndex % columns, row = opt.tileIndex / columns;
     const int x0 = res.first * column / columns, x1 = res.first * (column + 1) / columns;
     const int y0 = res.second * row / rows, y1 = res.second * (row + 1) / rows;
-    return {x0, y0, x1 - x0, y1 - y0};
+    return {x0, y0, x1, y1};
 }
 
 // `path` with the tile suffix ($T: the tile's index) before its extension.
@@ -150,20 +147,18 @@ int renderFrame(const RenderOptions& opt, usd::Stage& stage, const color::ColorM
         outputs.push_back(opt.tileCount ? withTileSuffix(path, opt.tileSuffix, opt.tileIndex) : path);
     }
     const std::string& outputPath = outputs.front();
-    const TileWindow wholeTile = tileWindow(opt, res);
-    if (wholeTile.width < 1 || wholeTile.height < 1) {
+    const PixelWindow wholeTile = tileWindow(opt, res);
+    if (wholeTile.empty()) {
         printError("tile " + std::to_string(opt.tileIndex) + " of --tile-count " + std::to_string(opt.tileCount->first) + " " +
                    std::to_string(opt.tileCount->second) + " has no pixels at " + std::to_string(res.first) + "x" +
                    std::to_string(res.second));
         return kExitUsage;
     }
-    const PixelWindow window = PixelWindow{wholeTile.x, wholeTile.y, wholeTile.x + wholeTile.width, wholeTile.y + wholeTile.height}
-                                   .intersect(planned.window());
+    const PixelWindow window = wholeTile.intersect(planned.window());
     if (window.empty()) {
         warnings(planned.products.front().path, "tile " + std::to_string(opt.tileIndex) + " holds no pixel of its data window; nothing written");
         return kExitOk;
     }
-    const TileWindow tile{window.x0, window.y0, window.width(), window.height()};
     const std::string previewPath = expandFrameTokens(opt.preview, time);
     std::vector<std::string> made = outputs;
     made.push_back(previewPath);
@@ -208,7 +203,7 @@ int renderFrame(const RenderOptions& opt, usd::Stage& stage, const color::ColorM
     isettings.maxDepth = opt.maxDepth;
     isettings.lightPathAovs = std::make_shared<const std::vector<integrators::LightPathAov>>(std::move(aovs));
     std::unique_ptr<integrators::Integrator> integrator = integratorInfo->create(isettings);
-    if (integrator->usesSplats() && (tile.width != res.first || tile.height != res.second))  // integrators/renderer.h
+    if (integrator->usesSplats() && (window.width() != res.first || window.height() != res.second))  // integrators/renderer.h
         warnings(opt.scene, "integrator '" + integratorInfo->name +
                                 "' renders a window of the image (a tile or a data window) without light tracing (t = 1): "
                                 "point-light caustics seen directly are missed");
@@ -220,11 +215,11 @@ int renderFrame(const RenderOptions& opt, usd::Stage& stage, const color::ColorM
     rs.targetError = opt.targetError;
     rs.minSamples = opt.minSpp;
     rs.stop = &StopSignals::flag();
-    rs.windowX = tile.x;
-    rs.windowY = tile.y;
+    rs.windowX = window.x0;
+    rs.windowY = window.y0;
     rs.imageWidth = res.first;
-    Film film(tile.width, tile.height, camera->farClip(), layers);
-    std::unique_ptr<CryptomatteFilm> cryptomatte = cryptomatteFilm(cryptomatteRequests, tile.width, tile.height);
+    Film film(window.width(), window.height(), camera->farClip(), layers);
+    std::unique_ptr<CryptomatteFilm> cryptomatte = cryptomatteFilm(cryptomatteRequests, window.width(), window.height());
     rs.cryptomatte = cryptomatte.get();
     // The output's EXR header (its snapshots' too), but for what the render's end adds.
     output::ExrHeader header;
@@ -233,8 +228,8 @@ int renderFrame(const RenderOptions& opt, usd::Stage& stage, const color::ColorM
     header.pixelAspectRatio = camera->pixelAspectRatio();
     header.dataChannels = Film::dataChannelNames();
     if (opt.tileCount) {
-        header.x = tile.x;
-        header.y = tile.y;
+        header.x = window.x0;
+        header.y = window.y0;
         header.fullWidth = res.first;
         header.fullHeight = res.second;
         header.strings.push_back({"fluence/tile", std::to_string(opt.tileIndex) + " of " + std::to_string(opt.tileCount->first) +
@@ -248,7 +243,7 @@ int renderFrame(const RenderOptions& opt, usd::Stage& stage, const color::ColorM
     if (!std::isnan(time)) header.floats.push_back({"fluence/frame", float(time)});
     // Checkpoints and snapshots at pass boundaries (apps/pass_outputs.h).
     const bool checkpoints = opt.checkpointSeconds || opt.resume;
-    const ResolvedRender resolved{populated->cameraPath, res.first, res.second, tile.x, tile.y, tile.width, tile.height,
+    const ResolvedRender resolved{populated->cameraPath, res.first, res.second, window.x0, window.y0, window.width(), window.height(),
                                   time, integratorInfo->name, rs.samplesPerPixel, *isettings.lightPathAovs};
     PassOutputs passOutputs(opt, outputPath, checkpoints ? renderFingerprint(opt, stage, resolved) : CheckpointFingerprint{},
                             cryptomatte.get(), warnings, [&](const std::string& path, const Film& partial, int samplesDone) {
