@@ -121,7 +121,19 @@ struct LightSubpath {
     std::vector<Vertex> vertices;  // y_1, y_2, ...
 };
 
-// The camera subpath so far: z_1 ... z_m (z_0, the camera, enters no weight: t >= 2 always).
+// x_0 ... x_{s-1}: the densities of the light origin and the first s - 1 light subpath vertices,
+// replacing x's contents (the join or the splat appends the rest).
+void setLightDensities(std::vector<VertexDensity>& x, const LightSubpath& light, int s) {
+    x.clear();
+    x.push_back({light.origin.fromLight, light.origin.fromCamera, false});
+    for (int j = 0; j < s - 1; ++j) {
+        const Vertex& lv = light.vertices[j];
+        x.push_back(densityOf(lv, lv.fromOwn, lv.fromOther, lv.delta, lv.edge));
+    }
+}
+
+// The camera subpath so far: z_1 ... z_m (z_0, the pinhole, enters no weight: t = 1 is weighted
+// through z_1's density and StrategyPath::lightTracing, bdpt_mis.h).
 using CameraSubpath = std::vector<Vertex>;
 
 // The densities of x_{k-m} ... x_k = z_m ... z_1, z_0, appended to x. The edge into z_m is the
@@ -235,12 +247,7 @@ void splatToCamera(const RenderScene& scene, const render::Camera& camera, const
         // Media fill the whole way to the pinhole, as for the camera subpath's first flight.
         const Crossing crossing = cross(cameraMedium, {y.leaving(c->direction), c->direction, c->distance}, std::max(hero, 0), rng);
         if (isBlack(crossing.tr.throughput)) continue;
-        x.clear();
-        x.push_back({light.origin.fromLight, light.origin.fromCamera, false});
-        for (int j = 0; j < s - 1; ++j) {
-            const Vertex& lv = light.vertices[j];
-            x.push_back(densityOf(lv, lv.fromOwn, lv.fromOther, lv.delta, lv.edge));
-        }
+        setLightDensities(x, light, s);
         x[s - 1].fromCamera = toArea(c->density, camera.position(), y);
         x[s - 1].delta = false;
         x[s - 2].fromCamera = s == 2 ? cameraReaches(light.origin, pdfBack, y.point()) : toArea(pdfBack, y.point(), light.vertices[s - 3]);
@@ -447,12 +454,7 @@ FilmSample Bdpt::sample(const RenderScene& scene, const render::Camera& camera, 
             if (!segment) continue;
             const Crossing crossing = cross(zt.mediumTowards(dir), *segment, tracked, rng);
             if (isBlack(crossing.tr.throughput)) continue;
-            x.clear();
-            x.push_back({light.origin.fromLight, light.origin.fromCamera, false});
-            for (int j = 0; j < s - 1; ++j) {
-                const Vertex& lv = light.vertices[j];
-                x.push_back(densityOf(lv, lv.fromOwn, lv.fromOther, lv.delta, lv.edge));
-            }
+            setLightDensities(x, light, s);
             x[s - 1].fromCamera = toArea(pdfCamera, zt.point(), y);
             x[s - 1].delta = false;
             x[s - 2].fromCamera = s == 2 ? cameraReaches(light.origin, pdfBack, y.point())
