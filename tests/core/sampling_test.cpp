@@ -2,6 +2,10 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
 #include "core/random.h"
 #include "tests/support/chi2.h"
 
@@ -79,6 +83,29 @@ TEST(Sampling, UniformDiskStaysInsideAndCoversTheDisk) {
     }
     // E[r^2] = 1/2 for a uniform disk; Var[r^2] = 1/12, so the standard error is sqrt(1/12/N).
     EXPECT_NEAR(sumR2 / kN, 0.5, 5.0 * std::sqrt(1.0 / 12.0 / kN));
+}
+
+// The mapping's sine and cosine are polynomials (core/sampling.cpp), not std::sin/std::cos: on a
+// fine grid of the square, every point is Shirley and Chiu's concentric mapping computed in double
+// precision, to a few float ulps.
+TEST(Sampling, UniformDiskIsTheConcentricMappingToAFewUlps) {
+    constexpr int kGrid = 1001;
+    double worst = 0.0;
+    for (int i = 0; i <= kGrid; ++i)
+        for (int j = 0; j <= kGrid; ++j) {
+            const Vec2f u(float(i) / kGrid, float(j) / kGrid);
+            const double ox = 2.0 * double(u.x) - 1.0, oy = 2.0 * double(u.y) - 1.0;
+            double x = 0.0, y = 0.0;
+            if (ox != 0.0 || oy != 0.0) {
+                const double r = std::abs(ox) > std::abs(oy) ? ox : oy;
+                const double theta = std::abs(ox) > std::abs(oy) ? M_PI / 4.0 * (oy / ox) : M_PI / 2.0 - M_PI / 4.0 * (ox / oy);
+                x = r * std::cos(theta);
+                y = r * std::sin(theta);
+            }
+            const Vec2f d = sampleUniformDisk(u);
+            worst = std::max({worst, std::abs(d.x - x), std::abs(d.y - y)});
+        }
+    EXPECT_LT(worst, 4.0 * std::numeric_limits<float>::epsilon()) << "largest error " << worst;
 }
 
 TEST(Sampling, PowerHeuristic) {
