@@ -56,6 +56,9 @@ Camera::Camera(const CameraDesc& d, int imageWidth, int imageHeight, const Image
     toCamera_ = *toCamera;
     position_ = Vec3f(toWorld_.transformPoint({0, 0, 0}));
     forward_ = normalize(Vec3f(toWorld_.transformVector({0, 0, -1})));
+    axisX_ = Vec3f(toWorld_.transformVector({1, 0, 0}));
+    axisY_ = Vec3f(toWorld_.transformVector({0, 1, 0}));
+    axisZ_ = Vec3f(toWorld_.transformVector({0, 0, 1}));
 }
 
 Ray Camera::generateRay(float x, float y) const {
@@ -64,8 +67,7 @@ Ray Camera::generateRay(float x, float y) const {
     float wx = centreX_ + sx * halfWidth_, wy = centreY_ + sy * halfHeight_;
     Ray ray;
     if (projection_ == Projection::Perspective) {
-        Vec3d local(wx, wy, -1.0);
-        Vec3f dir = normalize(Vec3f(toWorld_.transformVector(local)));
+        Vec3f dir = normalize(axisX_ * wx + axisY_ * wy - axisZ_);
         float cosView = dot(dir, forward_);
         ray.origin = position_;
         ray.direction = dir;

@@ -105,6 +105,9 @@ private:
     Projection projection_;
     Matrix4 toWorld_, toCamera_;
     Vec3f position_, forward_;
+    // toWorld_'s images of the camera-space axes x, y and z, in single precision: a perspective
+    // ray's direction is their combination (generateRay, once per camera sample).
+    Vec3f axisX_, axisY_, axisZ_;
     int width_, height_;
     // Window half-extents and centre, on the plane at unit distance (perspective) or in scene
     // units (orthographic).
