@@ -16,6 +16,18 @@ float areaToSolidAngle(float areaPdf, float distanceSquared, float cosLight) {
     return cosLight > 0.0f ? areaPdf * distanceSquared / cosLight : 0.0f;
 }
 
+// A sample written straight into the returned optional's storage. Aggregate-initialising a
+// LightSample and moving it into the optional made GCC build it on the stack piece by piece and
+// copy it out in 16-byte loads, which the store buffer cannot forward: a stall on every sample.
+std::optional<LightSample> surfaceSample(const RGB& Li, const Vec3f& wi, float distance, float pdf) {
+    std::optional<LightSample> s(std::in_place);
+    s->Li = Li;
+    s->wi = wi;
+    s->distance = distance;
+    s->pdf = pdf;
+    return s;
+}
+
 }  // namespace
 
 RectLight::RectLight(const LightDesc& d) : name_(d.name), radiance_(d.radiance), texture_(d.texture) {
@@ -25,6 +37,7 @@ RectLight::RectLight(const LightDesc& d) : name_(d.name), radiance_(d.radiance),
     edgeV_ = Vec3f(t.transformVector({0.0, double(d.height), 0.0}));
     normal_ = normalize(Vec3f(t.transformNormal({0.0, 0.0, -1.0})));
     area_ = length(cross(edgeU_, edgeV_));
+    inverseArea_ = 1.0f / area_;
     if (d.normalize && area_ > 0.0f) radiance_ /= area_;
     if (texture_ && texture_->texels.empty()) texture_.reset();
     meanLuminance_ = luminance(radiance_);
@@ -66,7 +79,7 @@ RectLight::PointSample RectLight::samplePoint(Vec2f u) const {
     // The point's texture coordinates: by the texture's luminance, or uniform (u measured from
     // the corner at local (-X, -Y), the texture's bottom-right) without a texture or when its
     // luminance is the same everywhere (black included).
-    if (!distribution_) return {{1.0f - u.x, 1.0f - u.y}, 1.0f / area_};
+    if (!distribution_) return {{1.0f - u.x, 1.0f - u.y}, inverseArea_};
     ImageDistribution::Sample s = distribution_->sample(u);
     return {s.uv, s.pdf / area_};
 }
@@ -81,13 +94,12 @@ std::optional<LightSample> RectLight::sample(const Vec3f& p, Vec2f u) const {
     Vec3f wi = d / dist;
     float cosLight = -dot(normal_, wi);
     if (cosLight <= 0.0f) return std::nullopt;
-    return LightSample{uniformRadiance_ ? radiance_ : radianceAt(uv, -wi), wi, dist, areaToSolidAngle(areaPdf, dist2, cosLight),
-                       false};
+    return surfaceSample(uniformRadiance_ ? radiance_ : radianceAt(uv, -wi), wi, dist, areaToSolidAngle(areaPdf, dist2, cosLight));
 }
 
 float RectLight::pdf(const Vec3f& p, const Vec3f& wi, const LightHit& hit) const {
     if (area_ == 0.0f) return 0.0f;
-    float areaPdf = (distribution_ ? distribution_->pdf(textureCoordinates(hit.point)) : 1.0f) / area_;
+    float areaPdf = distribution_ ? distribution_->pdf(textureCoordinates(hit.point)) / area_ : inverseArea_;
     return areaToSolidAngle(areaPdf, lengthSquared(hit.point - p), -dot(normal_, wi));
 }
 
@@ -134,7 +146,7 @@ std::optional<LightSample> DiskLight::sample(const Vec3f& p, Vec2f u) const {
     Vec3f wi = d / dist;
     float cosLight = -dot(frame_.n, wi);
     if (cosLight <= 0.0f) return std::nullopt;
-    return LightSample{radiance_ * shaping_.factor(-wi), wi, dist, areaToSolidAngle(1.0f / area_, dist2, cosLight), false};
+    return surfaceSample(radiance_ * shaping_.factor(-wi), wi, dist, areaToSolidAngle(1.0f / area_, dist2, cosLight));
 }
 
 float DiskLight::pdf(const Vec3f& p, const Vec3f& wi, const LightHit& hit) const {
@@ -194,7 +206,7 @@ std::optional<LightSample> TriangleLight::sample(const Vec3f& p, Vec2f u) const 
     Vec3f wi = d / dist;
     float pdf = areaToSolidAngle(1.0f / area_, dist2, std::abs(dot(normal_, wi)));
     if (pdf == 0.0f) return std::nullopt;
-    return LightSample{radiance_, wi, dist, pdf, false};
+    return surfaceSample(radiance_, wi, dist, pdf);
 }
 
 float TriangleLight::pdf(const Vec3f& p, const Vec3f& wi, const LightHit& hit) const {

@@ -69,7 +69,7 @@ private:
 
     std::string name_;
     Vec3f corner_, edgeU_, edgeV_, normal_;  // corner_: local (-X, -Y); normal_: emitting direction
-    float area_;
+    float area_, inverseArea_;  // inverseArea_ = 1 / area_: the uniform density per unit area
     RGB radiance_;
     std::shared_ptr<const RgbImage> texture_;
     std::optional<ImageDistribution> distribution_;  // over texture coordinates, when the texture's luminance varies

@@ -71,6 +71,23 @@ float surfaceArea(const Vec3f& lo, const Vec3f& hi, float pad) {
     return 2.0f * (e.x * e.y + e.y * e.z + e.z * e.x);
 }
 
+// Node::reaches: the slack, relative to |p - centre|_1 + radius, within which a plane test is left
+// to importance(). importance()'s rounding moves its cosines by at most ~25 eps / cos(theta_u),
+// while a point the slack away from the plane has them at least 2/pi of the slack over d away from
+// 0; so the slack holds them apart while cos(theta_u) >= 1/64, i.e. 4096 (d^2 - r^2) >= d^2.
+constexpr float kReachSlack = 0x1p-10f;
+constexpr float kReachHemisphere = 4096.0f;
+
+enum class Reach { No, Yes, Unclear };
+
+// Whether x > -radius, the form both of Node::reaches's plane tests take, when x is clear of the
+// slack (NaN: unclear).
+Reach beyondPlane(float x, float radius, float slack) {
+    if (x > slack - radius) return Reach::Yes;
+    if (x < -radius - slack) return Reach::No;
+    return Reach::Unclear;
+}
+
 }  // namespace
 
 void LightTree::Node::setBounds(const LightBounds& b) {
@@ -109,6 +126,34 @@ float LightTree::Node::importance(const Vec3f& p, const Vec3f& n) const {
         if (cosReceive <= 0.0f) return 0.0f;
     }
     return phi * std::max(cosEmit, 0.0f) * cosReceive / d2;
+}
+
+bool LightTree::Node::reaches(const Vec3f& p, const Vec3f& n) const {
+    if (!(phi > 0.0f)) return false;
+    Vec3f v = p - centre;
+    float d2 = lengthSquared(v), r2 = radius * radius;
+    if (d2 <= r2) return true;  // importance() = phi / r^2
+    if (kReachHemisphere * (d2 - r2) >= d2) {
+        float slack = kReachSlack * (std::abs(v.x) + std::abs(v.y) + std::abs(v.z) + radius);
+        // Emission: every direction (theta_o = 180 degrees) or, for a cosine emitter, the plane
+        // through the centre pushed back by the radius.
+        Reach emits = Reach::Unclear;
+        if (cosO == -1.0f) {
+            emits = Reach::Yes;
+        } else if (cosO == 1.0f && cosE == 0.0f) {
+            float along = dot(axis, v);
+            emits = beyondPlane(twoSided ? std::abs(along) : along, radius, slack);
+        }
+        // Reception: the bounding sphere must rise above the plane of p (n roughly unit, as the
+        // slack assumes).
+        Reach receives = Reach::Yes;
+        if (n.x != 0.0f || n.y != 0.0f || n.z != 0.0f)
+            receives = std::abs(lengthSquared(n) - 1.0f) <= 1.0f / 64.0f ? beyondPlane(-dot(n, v), radius, slack)
+                                                                        : Reach::Unclear;
+        if (emits == Reach::No || receives == Reach::No) return false;
+        if (emits == Reach::Yes && receives == Reach::Yes) return true;
+    }
+    return importance(p, n) > 0.0f;
 }
 
 struct LightTree::Item {
@@ -235,6 +280,7 @@ float LightTree::rootWeight(const Vec3f& p, const Vec3f& n, float& total) const 
 }
 
 LightChoice LightTree::choose(const Vec3f& p, const Vec3f& n, float u) const {
+    if (oneLightOnly()) return nodes_[0].reaches(p, n) ? LightChoice{nodes_[0].light, 1.0f} : LightChoice{};
     float total;
     float treeWeight = rootWeight(p, n, total);
     if (!(total > 0.0f)) return {};
@@ -271,6 +317,7 @@ LightChoice LightTree::choose(const Vec3f& p, const Vec3f& n, float u) const {
 
 float LightTree::probability(const Vec3f& p, const Vec3f& n, int light) const {
     if (light < 0 || light >= static_cast<int>(leafOf_.size())) return 0.0f;
+    if (oneLightOnly()) return nodes_[0].reaches(p, n) ? 1.0f : 0.0f;  // `light` is the leaf's (the only one)
     float total;
     float treeWeight = rootWeight(p, n, total);
     if (!(total > 0.0f)) return 0.0f;

@@ -30,6 +30,18 @@
 // the units of the importance), and the tree as a whole weighs its root's importance at p; the
 // choice between them comes first.
 //
+// One light and none at infinity (a tree of one leaf): the rule above gives that light with
+// probability importance / importance = 1 where its importance is above 0, and no light elsewhere,
+// so only that zero test is made (Node::reaches). It is decided without square roots or divisions
+// from where p lies against two planes, one for emission and one for reception: the importance
+// is above 0 exactly when dot(axis, p - centre) > -radius, for a cosine emitter (theta_o = 0,
+// theta_e = 90 degrees; |dot| for a two-sided one), and dot(n, p - centre) < radius. Within a
+// slack of 2^-10 (|p - centre|_1 + radius) of either plane, or when the bounding sphere subtends
+// nearly a hemisphere, and for any other cone, importance() itself is evaluated, so that the
+// answer is importance() > 0's; except where that importance underflows to 0 (below FLT_MIN,
+// e.g. phi / d^2 < 1e-38), where the light is conservatively still chosen, and where it overflows
+// to infinity (a point light 1e-19 away), where the general rule's inf / inf is NaN and this is 1.
+//
 // The tree is built top down: a node's lights are split along the axis, and at the boundary among
 // 12 buckets over their centroids' extent, that minimises Conty Estevez & Kulla's
 // surface-area-orientation cost, phi * M_omega(theta_o, theta_e) * area for each side, times the
@@ -78,12 +90,16 @@ private:
         void setBounds(const LightBounds& b);
         // phi cos(theta') cos(theta_i') / d^2, with the sines taken only when needed.
         float importance(const Vec3f& p, const Vec3f& n) const;
+        // importance(p, n) > 0 (conservatively where it underflows), mostly without evaluating it.
+        bool reaches(const Vec3f& p, const Vec3f& n) const;
     };
     struct Item;
     int build(std::vector<Item>& items, std::size_t begin, std::size_t end, int parent, int depth);
     // The probability of taking an inner node's first child at (p, n).
     float leftProbability(const Node& inner, const Vec3f& p, const Vec3f& n) const;
     float rootWeight(const Vec3f& p, const Vec3f& n, float& total) const;
+    // A single leaf and no lights at infinity: the choice is that light or none (Node::reaches).
+    bool oneLightOnly() const { return nodes_.size() == 1 && infinite_.empty(); }
 
     std::vector<Node> nodes_;  // root first
     std::vector<int> leafOf_;  // light -> its leaf, -1 for lights at infinity

@@ -3,9 +3,12 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <functional>
+#include <limits>
 #include <memory>
 #include <vector>
 
+#include "core/frame.h"
 #include "core/random.h"
 #include "core/sampling.h"
 #include "render/area_lights.h"
@@ -174,6 +177,85 @@ TEST(LightTree, ShapedLightsAreNotChosenOutsideTheirCone) {
     LightTree tree(lights, kScene);
     EXPECT_FLOAT_EQ(tree.probability(Vec3f(0.3f, 0, 0), Vec3f(0, 1, 0), 0), 1.0f);  // 8.5 degrees off the axis
     EXPECT_EQ(tree.choose(Vec3f(3.0f, 0, 0), Vec3f(0, 1, 0), 0.3f).light, -1);        // 56 degrees off
+}
+
+// Beside a black sun, which weighs 0, a light takes the general walk, whose choice is that light
+// with probability importance / importance = 1, or none where the importance is 0. Alone, it takes
+// the one-light shortcut (plane tests instead of the importance), which must agree: at random
+// points and normals, and at points and normals placed on either side of the emission and
+// reception planes at distances from 2^-3 to 2^-24 of the bounding radius (in and out of the
+// shortcut's slack), and just outside the bounding sphere.
+TEST(LightTree, OneLightChoosesAsTheGeneralWalkDoes) {
+    LightDesc blackSun;
+    blackSun.type = LightType::Distant;
+    blackSun.radiance = RGB(0.0f);
+    LightDesc d;
+    d.transform = Matrix4::translate({0.3, 1.5, -0.2}) * Matrix4::rotateX(70.0) * Matrix4::rotateY(25.0);
+    d.width = 0.8f;
+    d.height = 0.5f;
+    d.radius = 0.3f;
+    LightDesc shaped = d;
+    shaped.shaping = LightShapingDesc{40.0f, 0.2f, 0.0f, RGB(0.0f)};
+    std::vector<std::function<std::unique_ptr<Light>()>> kinds = {
+        [&] { return std::make_unique<RectLight>(d); },
+        [&] { return std::make_unique<DiskLight>(d); },
+        [&] { return std::make_unique<RectLight>(shaped); },
+        [&] { return std::make_unique<SphereLight>(d); },
+        [&] { return std::make_unique<PointLight>(shaped); },
+        [&] { return std::make_unique<TriangleLight>("/tri", Vec3f(0.2f, 1.0f, 0.0f), Vec3f(0.9f, 1.2f, 0.1f), Vec3f(0.3f, 1.1f, 0.8f), RGB(2.0f)); },
+    };
+    for (std::size_t kind = 0; kind < kinds.size(); ++kind) {
+        std::vector<std::unique_ptr<Light>> alone, besideTheSun;
+        alone.push_back(kinds[kind]());
+        besideTheSun.push_back(kinds[kind]());
+        besideTheSun.push_back(std::make_unique<DistantLight>(blackSun));
+        LightTree one(alone, kScene), general(besideTheSun, kScene);
+        ASSERT_EQ(one.nodeCount(), 1u);
+        ASSERT_EQ(general.nodeCount(), 1u);
+        const LightBounds b = *alone[0]->bounds();
+        const Vec3f centre = (b.lo + b.hi) * 0.5f;
+        const float radius = 0.5f * length(b.hi - b.lo);
+        int chosen = 0, ruledOut = 0;
+        for (int i = 0; i < 40000; ++i) {
+            SampleStream rng(23, kind, i);
+            const float e = (rng.next() < 0.5f ? -1.0f : 1.0f) * std::ldexp(1.0f, -3 - int(22.0f * rng.next()));
+            Vec3f p(12.0f * rng.next() - 6.0f, 12.0f * rng.next() - 6.0f, 12.0f * rng.next() - 6.0f);
+            Vec3f n = sampleUniformSphere(rng.next2D());
+            const Frame axisFrame = Frame::fromNormal(b.axis);
+            switch (i % 5) {
+                case 0: break;
+                case 1: n = Vec3f(0.0f); break;
+                case 2:  // on the emission plane, dot(axis, p - centre) = -radius (1 + e)
+                    p = centre + axisFrame.toWorld(Vec3f(5.0f * rng.next() - 2.5f, 5.0f * rng.next() - 2.5f, -radius * (1.0f + e)));
+                    break;
+                case 3: {  // n on the reception plane's edge, dot(n, p - centre) = radius (1 + e)
+                    const Vec3f v = p - centre;
+                    const float cosine = radius * (1.0f + e) / length(v);
+                    if (cosine > 1.0f) break;
+                    const Frame toV = Frame::fromNormal(normalize(v));
+                    const float phi = 2.0f * kPi * rng.next();
+                    const float sine = std::sqrt(1.0f - cosine * cosine);
+                    n = toV.toWorld(Vec3f(sine * std::cos(phi), sine * std::sin(phi), cosine));
+                    break;
+                }
+                default:  // just outside the bounding sphere
+                    p = centre + sampleUniformSphere(rng.next2D()) * (radius * (1.0f + std::abs(e)));
+            }
+            const float u = rng.next();
+            const LightChoice a = one.choose(p, n, u), g = general.choose(p, n, u);
+            ASSERT_EQ(a.light, g.light) << "kind " << kind << " query " << i;
+            ASSERT_EQ(a.probability, g.probability) << "kind " << kind << " query " << i;
+            ASSERT_EQ(one.probability(p, n, 0), general.probability(p, n, 0)) << "kind " << kind << " query " << i;
+            ++(a.light == 0 ? chosen : ruledOut);
+        }
+        // Both answers are given often (the sphere and the point light reach every point, so only
+        // the normal rules them out).
+        EXPECT_GT(chosen, 6000) << "kind " << kind;
+        EXPECT_GT(ruledOut, 4000) << "kind " << kind;
+        const Vec3f nan(std::numeric_limits<float>::quiet_NaN());
+        EXPECT_EQ(one.choose(nan, Vec3f(0, 1, 0), 0.5f).light, -1);
+        EXPECT_EQ(one.probability(nan, Vec3f(0, 1, 0), 0), 0.0f);
+    }
 }
 
 TEST(LightTree, LightsAtInfinityAloneAreChosenByPower) {
