@@ -1,7 +1,7 @@
 // Throughput against the limit (issue #10 item 4): how close the renderer's rays/s come to
 // Embree's raw ray-casting rate on the same scene, on this machine.
 //
-//   embree_throughput_bench [--spp N] [--threads N] [--repeat N] [--scale S] [SCENE.usda ...]
+//   embree_throughput_bench [--spp N] [--threads N] [--repeat N] [--scale S] [--minimal] [SCENE.usda ...]
 //
 // Each scene is loaded as `fluence render` loads it (stage, delegate, colour management,
 // render::RenderScene, the camera at the scene's resolution times --scale). Then:
@@ -20,6 +20,12 @@
 //     16), seed 0, and RenderCounters' rays (camera + bounce + shadow), the count `fluence render`
 //     prints. Free-flight and transmittance tracking in media (smoke, subsurface walks) cost time
 //     but cast no counted rays: those scenes' ratios include that cost.
+//   minimal (--minimal): the ceiling, bench/minimal_path_tracer.h, the leanest honest path tracer
+//     with next-event estimation for Lambertian meshes and one rect light (the Cornell box), on
+//     the same Embree scene, --spp samples per pixel, seed 1; its ratio to the same raw rate says
+//     what share of the raw rate any such path tracer keeps once it shades its hits. Its image's
+//     mean luminance is printed beside the renderer's (seed 0), with their difference in standard
+//     errors (from each pixel's sample variance), to show it renders the same image.
 // Rates are rays per CPU-second of the process (all threads; CLOCK_PROCESS_CPUTIME_ID), so that a
 // shared, loaded machine slows both sides alike; the renderer's wall-clock rate is printed too.
 // Every figure is the best of --repeat runs (default 3); --scale defaults to 0.5. With no scenes
@@ -35,9 +41,13 @@
 #include <cstdio>
 #include <cstdlib>
 #include <limits>
+#include <optional>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
+#include "bench/image_mean.h"
+#include "bench/minimal_path_tracer.h"
 #include "color/color_management.h"
 #include "core/film.h"
 #include "core/frame.h"
@@ -55,12 +65,12 @@ namespace {
 using namespace fluence;
 
 constexpr int kMaxBounces = 8;
-constexpr float kShadowRayShortening = 1e-4f;  // as RenderScene::occluded
-constexpr std::size_t kGrain = 1024;           // rays per TBB task
+constexpr std::size_t kGrain = 1024;  // rays per TBB task
 
 struct Options {
     int spp = 16, threads = 2, repeat = 3;
     double scale = 0.5;
+    bool minimal = false;  // also run bench/minimal_path_tracer.h
     std::vector<std::string> scenes;
 };
 
@@ -97,7 +107,7 @@ RaySet renderersRays(const render::RenderScene& scene, const render::Camera& cam
                 if (choice.light >= 0)
                     if (std::optional<render::LightSample> ls = scene.light(choice.light).sample(from, rng.next2D()))
                         if (ls->pdf > 0.0f && dot(ls->wi, n) > 0.0f)
-                            set.shadow.push_back({from, ls->wi, ls->distance * (1.0f - kShadowRayShortening)});
+                            set.shadow.push_back({from, ls->wi, ls->distance * (1.0f - bench::kShadowRayShortening)});
                 ray = {from, Frame::fromNormal(n).toWorld(sampleCosineHemisphere(rng.next2D())), 0.0f,
                        std::numeric_limits<float>::infinity()};
             }
@@ -168,6 +178,36 @@ double best(int repeat, F&& f) {
     return b;
 }
 
+// --minimal: bench/minimal_path_tracer.h on the same scene, against the same raw rate (see the top
+// of the file); a scene it does not handle is reported and skipped.
+void measureMinimal(const render::RenderScene& scene, const render::Camera& camera, int width, int height, const Options& opt,
+                    tbb::task_arena& arena, double raw, double renderer, const bench::ImageMean& rendererMean,
+                    const integrators::RenderCounters& rendererCounters) {
+    std::optional<bench::MinimalPathTracer> made;
+    try {
+        made.emplace(scene, integrators::IntegratorSettings{}.maxDepth);
+    } catch (const std::invalid_argument& e) {
+        std::printf("  minimal path tracer: not run (%s)\n\n", e.what());
+        return;
+    }
+    bench::MinimalRender m;
+    double minimal = 0.0;
+    for (int i = 0; i < opt.repeat; ++i) {
+        const double start = cpuSeconds();
+        m = made->render(arena, camera, width, height, opt.spp, 1);
+        minimal = std::max(minimal, m.rays() / (cpuSeconds() - start) * 1e-6);
+    }
+    std::printf("  minimal path tracer: rays camera/bounce/shadow %llu/%llu/%llu  Mrays per CPU-s %.2f  ratio %.3f "
+                "(renderer's %.3f)\n", (unsigned long long)m.camera, (unsigned long long)m.bounce,
+                (unsigned long long)m.shadow, minimal, minimal / raw, renderer / raw);
+    std::printf("  image mean luminance: renderer %.6f +- %.6f  minimal %.6f +- %.6f  difference %.2f standard errors"
+                "  (RGB renderer %.5f %.5f %.5f, minimal %.5f %.5f %.5f; non-finite samples %llu/%llu)\n\n",
+                rendererMean.luminance, rendererMean.standardError, m.mean.luminance, m.mean.standardError,
+                bench::standardErrorsApart(m.mean, rendererMean), rendererMean.rgb.x, rendererMean.rgb.y, rendererMean.rgb.z,
+                m.mean.rgb.x, m.mean.rgb.y, m.mean.rgb.z, (unsigned long long)rendererCounters.nonFiniteSamples,
+                (unsigned long long)m.nonFiniteSamples);
+}
+
 void measure(const std::string& path, const Options& opt, color::ColorManagement& colors) {
     auto stage = usd::Stage::open(path);
     delegate::DelegateOptions dopt;
@@ -197,6 +237,7 @@ void measure(const std::string& path, const Options& opt, color::ColorManagement
     auto integrator = integrators::findIntegrator("path")->create({});
     integrators::RenderStats stats;
     double renderer = 0.0, rendererWall = 0.0;  // per CPU-second, per second
+    bench::ImageMean rendererMean;
     for (int i = 0; i < opt.repeat; ++i) {
         integrators::RenderSettings settings;
         settings.samplesPerPixel = opt.spp;
@@ -206,6 +247,7 @@ void measure(const std::string& path, const Options& opt, color::ColorManagement
         stats = integrators::render(scene, camera, *integrator, settings, film);
         renderer = std::max(renderer, stats.counters.rays() / (cpuSeconds() - start) * 1e-6);
         rendererWall = std::max(rendererWall, stats.counters.rays() / stats.seconds * 1e-6);
+        if (opt.minimal) rendererMean = bench::filmMean(film);
     }
     const auto& c = stats.counters;
     const double n = double(c.rays());
@@ -220,6 +262,7 @@ void measure(const std::string& path, const Options& opt, color::ColorManagement
                 rShadow, rUniform);
     std::printf("  Mrays per CPU-s: raw at the renderer's mix %.2f  renderer %.2f  ratio %.3f   (renderer wall-clock %.2f Mrays/s)\n\n",
                 raw, renderer, renderer / raw, rendererWall);
+    if (opt.minimal) measureMinimal(scene, camera, width, height, opt, arena, raw, renderer, rendererMean, c);
 }
 
 }  // namespace
@@ -237,10 +280,12 @@ int main(int argc, char** argv) {
             opt.repeat = std::max(1, int(number()));
         else if (arg == "--scale")
             opt.scale = std::max(0.01, number());
+        else if (arg == "--minimal")
+            opt.minimal = true;
         else if (!arg.empty() && arg[0] != '-')
             opt.scenes.push_back(arg);
         else {
-            std::fprintf(stderr, "usage: embree_throughput_bench [--spp N] [--threads N] [--repeat N] [--scale S] [SCENE.usda ...]\n");
+            std::fprintf(stderr, "usage: embree_throughput_bench [--spp N] [--threads N] [--repeat N] [--scale S] [--minimal] [SCENE.usda ...]\n");
             return 2;
         }
     }
