@@ -557,7 +557,13 @@ std::optional<SurfaceHit> RenderScene::shadeMesh(int meshIndex, unsigned primID,
     const Vec3f& p2 = mesh.positions[mesh.indices[c + 2]];
     float w = 1.0f - u - v;
 
-    std::optional<SurfaceHit> result(std::in_place);  // returned as is (no copy of the large hit record)
+    // Returned as is (no copy of the large hit record); the material's parameters are copied into
+    // it once (not a conditional expression, which would copy them twice).
+    std::optional<SurfaceHit> result;
+    if (mesh.material >= 0)
+        result.emplace(materials_[static_cast<std::size_t>(mesh.material)]);
+    else
+        result.emplace(lambertianParams(mesh.diffuse));
     SurfaceHit& hit = *result;
     hit.t = t;
     hit.mesh = meshIndex;
@@ -585,10 +591,6 @@ std::optional<SurfaceHit> RenderScene::shadeMesh(int meshIndex, unsigned primID,
         e2 = Vec3f(instance->toWorld.transformVector(Vec3d(e2)));
     }
 
-    if (mesh.material >= 0)  // (not a conditional expression, which would copy the parameters twice)
-        hit.material = materials_[static_cast<std::size_t>(mesh.material)];
-    else
-        hit.material = lambertianParams(mesh.diffuse);
     if (!mesh.cornerColors.empty())
         hit.material.diffuse = mesh.cornerColors[c] * w + mesh.cornerColors[c + 1] * u + mesh.cornerColors[c + 2] * v;
     if (mesh.material >= 0 && shaders_[mesh.material].hasBindings()) {

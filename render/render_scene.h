@@ -64,6 +64,8 @@ struct SurfaceHit {
     // User-provided, so that value-initialisation (std::optional's in-place construction) does not
     // zero the whole record before the member initialisers below run: that zeroing showed in profiles.
     SurfaceHit() {}
+    // Starts from the given material parameters (copied once, with no default written before).
+    explicit SurfaceHit(const MaterialParams& params) : material(params) {}
 
     float t = 0.0f;
     Vec3f point;
