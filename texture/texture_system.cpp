@@ -98,6 +98,7 @@ const TextureSystem::Texture* TextureSystem::open(const std::string& path, Sourc
     const OIIO::ImageSpec* spec = ts.imagespec(first);
     if (!texture.handle || !spec) {
         std::string reason = ts.geterror();
+        reason = reason.substr(0, reason.find('\n'));  // OpenImageIO repeats the cause on further lines
         error = "cannot read texture " + path + (reason.empty() ? "" : ": " + reason);
         return nullptr;
     }

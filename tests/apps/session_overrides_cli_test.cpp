@@ -163,6 +163,74 @@ TEST_F(SceneControlsCli, AMissingAssetIsAnErrorUnlessAllowed) {
     EXPECT_EQ(r.exitCode, 0) << "info reports, it does not refuse: " << r.err;
 }
 
+// An allowed missing texture is reported once where the asset is authored and once where the
+// material takes its fallback, and the render core does not try the file again (which used to add a
+// third warning, with OpenImageIO's message spread over two lines).
+TEST_F(SceneControlsCli, AnAllowedMissingTextureIsNamedWhereAuthoredAndWhereItsFallbackIsUsed) {
+    const std::string path = tmp_.file("texture.usda");
+    std::ofstream(path) << "#usda 1.0\n"
+        "(\n"
+        "    defaultPrim = \"World\"\n"
+        "    metersPerUnit = 1\n"
+        "    upAxis = \"Y\"\n"
+        ")\n"
+        "def Xform \"World\"\n"
+        "{\n"
+        "    def Camera \"Cam\"\n"
+        "    {\n"
+        "        double3 xformOp:translate = (0, 0, 5)\n"
+        "        uniform token[] xformOpOrder = [\"xformOp:translate\"]\n"
+        "    }\n"
+        "    def Mesh \"Quad\" (prepend apiSchemas = [\"MaterialBindingAPI\"])\n"
+        "    {\n"
+        "        int[] faceVertexCounts = [4]\n"
+        "        int[] faceVertexIndices = [0, 1, 2, 3]\n"
+        "        point3f[] points = [(-1, -1, 0), (1, -1, 0), (1, 1, 0), (-1, 1, 0)]\n"
+        "        texCoord2f[] primvars:st = [(0, 0), (1, 0), (1, 1), (0, 1)] (interpolation = \"vertex\")\n"
+        "        rel material:binding = </World/Mat>\n"
+        "    }\n"
+        "    def Material \"Mat\"\n"
+        "    {\n"
+        "        token outputs:surface.connect = </World/Mat/PBR.outputs:surface>\n"
+        "        def Shader \"PBR\"\n"
+        "        {\n"
+        "            uniform token info:id = \"UsdPreviewSurface\"\n"
+        "            color3f inputs:diffuseColor.connect = </World/Mat/Tex.outputs:rgb>\n"
+        "            token outputs:surface\n"
+        "        }\n"
+        "        def Shader \"Tex\"\n"
+        "        {\n"
+        "            uniform token info:id = \"UsdUVTexture\"\n"
+        "            asset inputs:file = @no_such_texture.png@\n"
+        "            float2 inputs:st.connect = </World/Mat/St.outputs:result>\n"
+        "            float3 outputs:rgb\n"
+        "        }\n"
+        "        def Shader \"St\"\n"
+        "        {\n"
+        "            uniform token info:id = \"UsdPrimvarReader_float2\"\n"
+        "            token inputs:varname = \"st\"\n"
+        "            float2 outputs:result\n"
+        "        }\n"
+        "    }\n"
+        "    def SphereLight \"L\"\n"
+        "    {\n"
+        "        float inputs:intensity = 10\n"
+        "        double3 xformOp:translate = (0, 0, 3)\n"
+        "        uniform token[] xformOpOrder = [\"xformOp:translate\"]\n"
+        "    }\n"
+        "}\n"
+        "";
+    RunResult r = run("render " + path + " -r 8 8 --spp 1 --allow-missing -o " + tmp_.file("t.exr"));
+    EXPECT_EQ(r.exitCode, 0) << r.err;
+    std::size_t mentions = 0;
+    for (std::size_t at = r.err.find("no_such_texture.png"); at != std::string::npos; at = r.err.find("no_such_texture.png", at + 1))
+        ++mentions;
+    EXPECT_EQ(mentions, 3u) << "the asset line names it twice (resolved and authored), the fallback line once:\n" << r.err;
+    EXPECT_NE(r.err.find("/World/Mat/Tex.inputs:file: asset not found"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("/World/Mat/Tex: texture file"), std::string::npos) << r.err;
+    EXPECT_EQ(r.err.find("cannot read texture"), std::string::npos) << r.err;
+}
+
 TEST_F(SceneControlsCli, AMissingVolumeFileLeavesTheVolumeOutWhenAllowed) {
     const std::string path = scene("volume.usda", [](std::string& usda) {
         usda += "def Volume \"Smoke\"\n{\n    rel field:density = </Smoke/Density>\n"
