@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "apps/cli_options.h"
+#include "core/name_table.h"
 #include "delegate/prim_reader.h"
 #include "output/cryptomatte.h"
 
@@ -43,7 +44,7 @@ std::vector<CryptomatteLayerRequest> cryptomatteLayers(const delegate::RenderPro
             const auto* found = std::find_if(std::begin(kSources), std::end(kSources),
                                              [&](const SourceName& s) { return var.sourceName == s.sourceName; });
             if (found == std::end(kSources)) continue;
-            const std::string name = var.path.substr(var.path.find_last_of('/') + 1);
+            const std::string name = primName(var.path);
             if (named(name)) throw delegate::SceneError("RenderVar " + var.path + ": a second Cryptomatte layer named '" + name + "'");
             layers.push_back({name, found->source});
         }

@@ -5,6 +5,7 @@
 
 #include "apps/cli_options.h"
 #include "core/film.h"
+#include "core/name_table.h"
 #include "delegate/prim_reader.h"
 
 namespace fluence::app {
@@ -22,8 +23,6 @@ std::string layerNameProblem(const std::string& name) {
         return "the layer name '" + name + "' is taken by the image's own channels";
     return "";
 }
-
-std::string primName(const std::string& path) { return path.substr(path.find_last_of('/') + 1); }
 
 }  // namespace
 

@@ -7,6 +7,7 @@
 #include <set>
 
 #include "apps/light_path_aovs.h"
+#include "core/name_table.h"
 #include "delegate/prim_reader.h"
 
 namespace fluence::app {
@@ -15,8 +16,6 @@ namespace {
 
 using delegate::SceneError;
 using integrators::PixelFilter;
-
-std::string primName(const std::string& path) { return path.substr(path.find_last_of('/') + 1); }
 
 bool contains(const std::vector<std::string>& names, const std::string& name) {
     return std::find(names.begin(), names.end(), name) != names.end();

@@ -16,6 +16,9 @@ namespace fluence {
 
 inline constexpr std::uint32_t kNoName = 0xffffffffu;
 
+// The name of a prim path's last element: "/World/Key" -> "Key" (the whole string when it has no '/').
+inline std::string primName(const std::string& path) { return path.substr(path.find_last_of('/') + 1); }
+
 class NameTable {
 public:
     // The index of `name`, added at the end when it is new.

@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "core/name_table.h"
 #include "delegate/material_adapter.h"
 #include "delegate/prim_reader.h"
 
@@ -41,7 +42,7 @@ RenderVarDesc varFromPrim(const usd::PrimSpec& prim, double time) {
     var.sourceName = reader.token({"sourceName"}, "");
     var.sourceType = reader.token({"sourceType"}, "raw");
     var.dataType = reader.token({"dataType"}, "color3f");
-    var.aovName = reader.token({"driver:parameters:aov:name"}, prim.path.substr(prim.path.find_last_of('/') + 1));
+    var.aovName = reader.token({"driver:parameters:aov:name"}, primName(prim.path));
     var.filter = reader.token({"fluence:filter"}, "");
     return var;
 }

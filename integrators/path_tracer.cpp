@@ -4,6 +4,7 @@
 #include <utility>
 
 #include "core/frame.h"
+#include "core/name_table.h"
 #include "integrators/diffusion_probe.h"
 #include "integrators/first_hit.h"
 #include "integrators/light_path_tracker.h"
@@ -62,9 +63,6 @@ struct MisState {
 PathEvent volumeEvent(bool subsurface) {
     return PathEvent{EventType::Volume, Scattering::Diffuse, subsurface ? "subsurface" : ""};
 }
-
-// The name of a prim path's last element ("/World/Key" -> "Key").
-std::string primName(const std::string& path) { return path.substr(path.find_last_of('/') + 1); }
 
 }  // namespace
 
