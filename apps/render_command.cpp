@@ -1,5 +1,6 @@
 #include "apps/render_command.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -21,6 +22,7 @@
 #include "integrators/renderer.h"
 #include "integrators/scene_path_classes.h"
 #include "output/atomic_file.h"
+#include "output/exr_attributes.h"
 #include "output/exr_writer.h"
 #include "output/preview_writer.h"
 #include "render/camera.h"
@@ -75,6 +77,16 @@ std::string withTileSuffix(const std::string& path, std::string suffix, int inde
     for (std::size_t at; (at = suffix.find("$T")) != std::string::npos;) suffix.replace(at, 2, std::to_string(index));
     const std::filesystem::path p(path);
     return (p.parent_path() / (p.stem().string() + suffix + p.extension().string())).string();
+}
+
+// Whether every output of a frame is already written by this same render (its header carries the
+// render's fingerprint digest) and none is still going (no checkpoint beside the first).
+bool alreadyRendered(const std::vector<std::string>& outputs, const std::string& checkpoint, const std::string& digest) {
+    std::error_code error;
+    if (std::filesystem::exists(checkpoint, error)) return false;
+    return std::all_of(outputs.begin(), outputs.end(), [&](const std::string& output) {
+        return std::filesystem::exists(output, error) && output::readStringAttribute(output, "fluence/fingerprint") == digest;
+    });
 }
 
 // Renders the stage at time code `time` for the products of `planned` (apps/render_products.h)
@@ -245,7 +257,16 @@ int renderFrame(const RenderOptions& opt, usd::Stage& stage, const color::ColorM
     const bool checkpoints = opt.checkpointSeconds || opt.resume;
     const ResolvedRender resolved{populated->cameraPath, res.first, res.second, window.x0, window.y0, window.width(), window.height(),
                                   time, integratorInfo->name, rs.samplesPerPixel, *isettings.lightPathAovs};
-    PassOutputs passOutputs(opt, outputPath, checkpoints ? renderFingerprint(opt, stage, resolved) : CheckpointFingerprint{},
+    const CheckpointFingerprint fingerprint = checkpoints ? renderFingerprint(opt, stage, resolved) : CheckpointFingerprint{};
+    if (checkpoints) {
+        const std::string digest = fingerprintDigest(fingerprint);
+        if (opt.resume && alreadyRendered(outputs, checkpointPath(outputPath), digest)) {
+            std::printf("fluence: --resume: %s is already rendered (same fingerprint, no checkpoint); skipped\n", outputPath.c_str());
+            return kExitOk;
+        }
+        header.strings.push_back({"fluence/fingerprint", digest});
+    }
+    PassOutputs passOutputs(opt, outputPath, fingerprint,
                             cryptomatte.get(), warnings, [&](const std::string& path, const Film& partial, int samplesDone) {
                                 output::ExrHeader snapshotHeader = header;
                                 snapshotHeader.floats.insert(snapshotHeader.floats.end(), {{"fluence/samplesPerPixel", float(samplesDone)},

@@ -22,6 +22,12 @@ std::string exact(double value) {
 
 // FNV-1a over every layer file's path and bytes, as 16 hex digits. A layer inside a USDZ package
 // ("pkg.usdz[scene.usdc]") is hashed as its package file.
+std::string hex(std::uint64_t hash) {
+    char text[17];
+    std::snprintf(text, sizeof text, "%016llx", static_cast<unsigned long long>(hash));
+    return text;
+}
+
 std::string layerFilesHash(const usd::Stage& stage) {
     std::uint64_t hash = kFnv1aOffsetBasis;
     for (const std::string& file : stage.layerFiles()) {
@@ -33,9 +39,7 @@ std::string layerFilesHash(const usd::Stage& stage) {
         bytes << in.rdbuf();
         hash = fnv1a(bytes.str(), fnv1a(std::string_view("\0", 1), hash));
     }
-    char text[17];
-    std::snprintf(text, sizeof text, "%016llx", static_cast<unsigned long long>(hash));
-    return text;
+    return hex(hash);
 }
 
 template <typename T, typename Text>
@@ -76,6 +80,17 @@ CheckpointFingerprint renderFingerprint(const RenderOptions& o, const usd::Stage
         {"subdiv level", o.subdivLevel ? std::to_string(*o.subdivLevel) : "(dicing)"},
         {"cryptomatte", joined(o.cryptomatte, [](CryptomatteSource s) { return s == CryptomatteSource::Object ? "object" : "material"; })},
     };
+}
+
+std::string fingerprintDigest(const CheckpointFingerprint& fingerprint) {
+    std::uint64_t hash = kFnv1aOffsetBasis;
+    for (const auto& [name, value] : fingerprint) {
+        hash = fnv1a(name, hash);
+        hash = fnv1a(std::string_view("\0", 1), hash);
+        hash = fnv1a(value, hash);
+        hash = fnv1a(std::string_view("\n", 1), hash);
+    }
+    return hex(hash);
 }
 
 }  // namespace fluence::app

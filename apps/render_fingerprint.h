@@ -35,4 +35,9 @@ struct ResolvedRender {
 
 CheckpointFingerprint renderFingerprint(const RenderOptions& options, const usd::Stage& stage, const ResolvedRender& render);
 
+// The fingerprint as 16 hex digits (FNV-1a over its entries), for an output's header
+// ("fluence/fingerprint"): with --resume, an output that carries the render's own digest and has
+// no checkpoint beside it is already rendered, and its frame is skipped.
+std::string fingerprintDigest(const CheckpointFingerprint& fingerprint);
+
 }  // namespace fluence::app

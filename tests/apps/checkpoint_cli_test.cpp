@@ -153,6 +153,33 @@ TEST_F(CheckpointCli, ResumeWithoutACheckpointRendersFromTheStart) {
     EXPECT_TRUE(exists("out.exr"));
 }
 
+// A resumed sequence skips the frames this same render already wrote (their headers carry its
+// fingerprint and no checkpoint is left), renders those missing, and renders again a frame written
+// by another render (here another seed).
+TEST_F(CheckpointCli, ResumeSkipsTheFramesThisRenderAlreadyWrote) {
+    const std::string pattern = "'" + tmp_.file("out.$F4.exr") + "'";
+    const std::string render = "render " + kScene + " -r 16 16 --spp 4 -f 1 -n 3 --resume -o " + pattern;
+    test::RunResult r = test::runFluence(render, tmp_.path());
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_EQ(r.out.find("skipped"), std::string::npos) << r.out;
+    const test::ExrImage first = test::readExr(tmp_.file("out.0001.exr"));
+    EXPECT_EQ(first.spec.get_string_attribute("fluence/fingerprint").size(), 16u);
+
+    fs::remove(tmp_.file("out.0002.exr"));
+    const auto written = fs::last_write_time(tmp_.file("out.0001.exr"));
+    r = test::runFluence(render, tmp_.path());
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_NE(r.out.find("out.0001.exr is already rendered"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("out.0003.exr is already rendered"), std::string::npos) << r.out;
+    EXPECT_EQ(r.out.find("out.0002.exr is already rendered"), std::string::npos) << r.out;
+    EXPECT_TRUE(exists("out.0002.exr"));
+    EXPECT_EQ(fs::last_write_time(tmp_.file("out.0001.exr")), written) << "a skipped frame is not written again";
+
+    r = test::runFluence(render + " --seed 8", tmp_.path());
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_EQ(r.out.find("already rendered"), std::string::npos) << "another seed renders every frame again:\n" << r.out;
+}
+
 TEST_F(CheckpointCli, Sigusr1WritesASnapshotBeforeTheOutputExists) {
     Child child("render " + kScene + " -r 32 32 --spp 1000000 --checkpoint 0 -o " + tmp_.file("out.exr"), tmp_.path());
     // The checkpoint shows the render is under way (the handler is installed before the scene loads).
