@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <set>
 #include <sstream>
 
 #include "core/fnv_hash.h"
@@ -42,6 +43,28 @@ std::string layerFilesHash(const usd::Stage& stage) {
     return hex(hash);
 }
 
+// The asset files the stage refers to (textures, VDBs, light images; a USDZ entry as its package)
+// by path, size and modification time, FNV-1a as 16 hex digits: an edited or replaced asset is
+// noticed without reading what can be gigabytes of volume data. A UDIM set's tiles are not listed.
+std::string assetFilesStamp(const usd::Stage& stage) {
+    std::set<std::string> files;
+    for (const usd::AssetReference& a : stage.assetReferences()) {
+        if (!a.exists) continue;
+        std::string path = a.resolved;
+        if (const auto bracket = path.find('['); bracket != std::string::npos && path.ends_with("]")) path.resize(bracket);
+        files.insert(path);
+    }
+    std::uint64_t hash = kFnv1aOffsetBasis;
+    for (const std::string& file : files) {
+        std::error_code error;
+        if (!std::filesystem::is_regular_file(file, error)) continue;
+        const auto size = std::filesystem::file_size(file, error);
+        const auto modified = std::filesystem::last_write_time(file, error).time_since_epoch().count();
+        hash = fnv1a(file + '\0' + std::to_string(size) + '\0' + std::to_string(modified) + '\n', hash);
+    }
+    return hex(hash);
+}
+
 template <typename T, typename Text>
 std::string joined(const std::vector<T>& items, Text text) {
     std::string out;
@@ -60,6 +83,7 @@ CheckpointFingerprint renderFingerprint(const RenderOptions& o, const usd::Stage
         {"fluence version", kFluenceVersion},
         {"scene", std::filesystem::absolute(o.scene).lexically_normal().string()},
         {"scene files", layerFilesHash(stage)},
+        {"asset files", assetFilesStamp(stage)},
         {"camera", r.cameraPath},
         {"resolution", size(r.imageWidth, r.imageHeight)},
         {"window", size(r.windowWidth, r.windowHeight) + " at " + std::to_string(r.windowX) + "," + std::to_string(r.windowY)},

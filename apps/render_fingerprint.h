@@ -2,8 +2,9 @@
 // every input that changes the value of a pixel sample or the shape of the film.
 //
 // Named entries: the Fluence version; the scene (absolute path) and the content of every layer
-// file it composed (a 64-bit FNV-1a over them, so an edited layer is noticed; textures and VDB
-// files are not hashed); the camera, image resolution, window (tile) and frame; seed, integrator,
+// file it composed (a 64-bit FNV-1a over them, so an edited layer is noticed); the asset files
+// it refers to (textures, VDBs) by path, size and modification time (their contents are not read;
+// a UDIM set's tiles are not listed); the camera, image resolution, window (tile) and frame; seed, integrator,
 // samples per pixel, adaptive sampling's target error and minimum, maximum depth, the light path
 // expression layers; and the options that change the scene: variants, --set, --purpose, render
 // settings prim, subsurface method, dicing. Whoever adds an option that changes what a sample
