@@ -99,7 +99,7 @@ std::optional<render::InputBinding> textureBinding(const ShaderInputs& surface, 
         surface.warn()(node.shader->path, "UsdUVTexture has no inputs:file; using its fallback");
     else if (!assetFileExists(desc.file)) {
         surface.warn()(node.shader->path, "texture file " + desc.file + " not found; using its fallback");
-        desc.file.clear();  // the render core then takes the fallback without trying the file again
+        desc.missing = true;  // the render core then takes the fallback without trying the file again
     }
     return b;
 }
@@ -180,7 +180,7 @@ std::optional<render::InputBinding> mtlxImageBinding(const ShaderInputs& surface
         surface.warn()(node.path, "image has no inputs:file; using its default");
     else if (!assetFileExists(desc.file)) {
         surface.warn()(node.path, "texture file " + desc.file + " not found; using its default");
-        desc.file.clear();  // the render core then takes the default without trying the file again
+        desc.missing = true;  // the render core then takes the default without trying the file again
     }
     return b;
 }

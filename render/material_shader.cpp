@@ -92,7 +92,7 @@ MaterialShader::MaterialShader(const MaterialDesc& material, texture::TextureSys
         firstSource_.push_back(sources_.size());
         forEachSource(binding, [&](const InputBinding& b) {
             const texture::TextureSystem::Texture* opened = nullptr;
-            if (b.texture && textures && !b.texture->file.empty()) {
+            if (b.texture && textures && !b.texture->file.empty() && !b.texture->missing) {
                 std::string error;
                 opened = textures->open(b.texture->file, b.texture->colorSpace, error, b.texture->colorSpaceName);
                 if (!opened) warnings.push_back({material.name, error + "; using the texture's fallback"});

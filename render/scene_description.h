@@ -99,6 +99,8 @@ struct UvTransform {
 // `fallback` where the file cannot be read.
 struct TextureDesc {
     std::string file;  // resolved path; may hold the UDIM tag <UDIM>
+    // The delegate found no such file (and said so): the fallback is used without trying it.
+    bool missing = false;
     texture::Wrap wrapS = texture::Wrap::Repeat, wrapT = texture::Wrap::Repeat;
     float fallback[4] = {0.0f, 0.0f, 0.0f, 1.0f};
     float scale[4] = {1.0f, 1.0f, 1.0f, 1.0f};
