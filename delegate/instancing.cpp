@@ -6,6 +6,7 @@
 
 #include "delegate/imageable.h"
 #include "delegate/implicit_geometry.h"
+#include "delegate/light_adapter.h"
 #include "delegate/xform.h"
 #include "render/mesh_transform.h"
 
@@ -133,6 +134,12 @@ PrototypeContents prototypeContents(const usd::Stage& stage, const std::string& 
         } else if (isImplicitType(prim.typeName)) {
             parts.push_back({implicitMeshFromPrim(PrimReader(prim, time), space, convertColor, warnHere),
                              boundMaterialPath(stage, prim)});
+        } else if (isLightType(prim.typeName)) {
+            // (A native instance's own lights are instance proxies, which the render index holds
+            // as lights of their own; only a point instancer places its prototypes' lights.)
+            if (includeRootTransform)
+                if (std::optional<render::LightDesc> light = lightFromPrim(PrimReader(prim, time), space, stage.upAxis(), warnHere))
+                    contents.lights.push_back(std::move(*light));
         } else if (prim.typeName == "PointInstancer") {
             if (nesting + 1 >= kMaxPrototypeNesting) {
                 warnHere("point instancers nest deeper than " + std::to_string(kMaxPrototypeNesting) + " levels; cut here");
@@ -149,6 +156,10 @@ PrototypeContents prototypeContents(const usd::Stage& stage, const std::string& 
                     parts.push_back({render::transformMesh(part.mesh, placement), part.materialPath});
                 for (const PrototypeContents::Subdivided& sub : inner.subdivided)
                     contents.subdivided.push_back({sub.mesh, placement * sub.placement});
+                for (render::LightDesc light : inner.lights) {
+                    light.transform = placement * light.transform;
+                    contents.lights.push_back(std::move(light));
+                }
             }
             return false;
         }

@@ -27,7 +27,8 @@
 //    places nothing; a bad orientations or scales array is ignored. Everything below a
 //    PointInstancer is rendered only through it. Velocities (motion blur) are not read.
 //
-// A prototype holds meshes (subdivision surfaces among them) and implicit surfaces. A PointInstancer nested inside a prototype is
+// A prototype holds meshes (subdivision surfaces among them), implicit surfaces and lights (each
+// instance places its own copy of each light). A PointInstancer nested inside a prototype is
 // expanded into copies there (Embree is built with one instance level); nesting deeper than
 // kMaxPrototypeNesting is cut with a warning.
 #pragma once
@@ -65,10 +66,13 @@ struct PointInstances {
 
 PointInstances pointInstancesFromPrim(const PrimReader& instancer, const std::function<void(const std::string&)>& warn);
 
-// Every mesh and implicit surface at or below `root` (defined, active and imaged), in the
-// root's space; with `includeRootTransform`, the root's own local transform applies too.
+// Every mesh, implicit surface and UsdLux light at or below `root` (defined, active and imaged),
+// in the root's space; with `includeRootTransform`, the root's own local transform applies too.
 // Subdivision meshes are kept unTessellated, with their placement in the root's space: they are
-// diced for the camera when the scene is described.
+// diced for the camera when the scene is described. Lights are placed once per instance (a
+// light's LightDesc::transform is all that places it); a native prototype (`includeRootTransform`
+// false) holds only those of the point instancers inside it, since the render index already holds
+// its own lights as instance proxies.
 struct PrototypeContents {
     struct Subdivided {
         std::shared_ptr<const SubdivisionMesh> mesh;
@@ -76,6 +80,7 @@ struct PrototypeContents {
     };
     std::vector<MeshPart> parts;
     std::vector<Subdivided> subdivided;
+    std::vector<render::LightDesc> lights;  // transform: light space -> prototype root space
 };
 PrototypeContents prototypeContents(const usd::Stage& stage, const std::string& root, bool includeRootTransform,
                                     double time, const ColorConverter& convertColor, const Warn& warn,

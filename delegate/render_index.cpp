@@ -132,6 +132,7 @@ void PrototypeRprim::syncData(const SyncContext& context, const usd::PrimSpec*, 
                           context.purposes);
     for (MeshPart& part : contents.parts) parts_.push_back({std::move(part.mesh), std::move(part.materialPath)});
     for (PrototypeContents::Subdivided& s : contents.subdivided) subdivided_.push_back({std::move(s.mesh), s.placement});
+    lights_ = std::move(contents.lights);
 }
 
 bool PrototypeRprim::readsAnimatedData(const usd::PrimSpec& source) const {

@@ -144,6 +144,8 @@ public:
           includeSourceTransform_(includeSourceTransform) {}
     const std::string& source() const { return source_; }
     bool includesSourceTransform() const { return includeSourceTransform_; }
+    // The lights below the source, in the source's space: each instance places a copy.
+    const std::vector<render::LightDesc>& lights() const { return lights_; }
     // Reads from another source prim from the next sync on.
     void setSource(std::string source) {
         source_ = std::move(source);
@@ -156,6 +158,7 @@ private:
     bool readsAnimatedData(const usd::PrimSpec& source) const override;
     std::string source_;
     bool includeSourceTransform_;
+    std::vector<render::LightDesc> lights_;
 };
 
 // A native instance: an instanceable prim placing the prototype its key names at world().

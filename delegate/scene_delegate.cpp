@@ -87,7 +87,9 @@ void SceneDelegate::populate(const std::string& root) {
             return true;
         }
         if (isGeometryType(type) || type == "PointInstancer") {
-            if (!instanceRoot.empty()) return true;
+            // In an instance, the prototype holds them; a point instancer's prototypes, lights
+            // included, render only through it, so nothing below it is a prim of its own.
+            if (!instanceRoot.empty()) return type != "PointInstancer";
             if (type == "PointInstancer") {
                 index_.insert(std::make_unique<PointInstancerRprim>(prim.path));
                 return false;  // what lies below renders only through the instancer
@@ -348,6 +350,11 @@ render::SceneDescription SceneDelegate::describe(const render::Camera& camera, f
     });
     for (const auto& [key, index] : prototypeIndex) {
         const auto& prototype = static_cast<const PrototypeRprim&>(*index_.find(prototypes_.at(key)));
+        for (const Matrix4& instance : placements[static_cast<std::size_t>(index)])
+            for (render::LightDesc light : prototype.lights()) {
+                light.transform = instance * light.transform;
+                scene.lights.push_back(std::move(light));
+            }
         std::vector<render::MeshDesc>& meshes = scene.prototypes[static_cast<std::size_t>(index)].meshes;
         for (const SurfaceRprim::Part& part : prototype.parts()) appendPart(part, meshes, materialFor, scene.materials, options_.aovPrimvars);
         for (const SurfaceRprim::Subdivided& sub : prototype.subdivided()) {

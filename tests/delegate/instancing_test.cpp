@@ -2,7 +2,9 @@
 // plus one transform per placement, and edits re-sync only what they touch.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <numbers>
 
 #include "delegate/scene_delegate.h"
@@ -283,6 +285,93 @@ def PointInstancer "Outer"
     ASSERT_EQ(p.result.scene.prototypes.size(), 1u);
     EXPECT_EQ(p.result.scene.prototypes[0].meshes.size(), 3u);
     EXPECT_EQ(p.result.scene.instances.size(), 2u);
+}
+
+// Lights inside prototypes are placed once per instance: by a PointInstancer (the prototype root's
+// own transform included), by a PointInstancer nested in the prototype, and by native instances.
+TEST(Instancing, EveryInstanceOfAPrototypePlacesItsLights) {
+    auto p = populate(R"(
+def PointInstancer "Lamps"
+{
+    int[] protoIndices = [0, 0, 1]
+    point3f[] positions = [(-2, 1, 0), (2, 1, 0), (0, 0, 10)]
+    rel prototypes = [</Lamps/Lamp>, </Lamps/Pair>]
+    def Xform "Lamp"
+    {
+        double3 xformOp:translate = (0, 0, 1)
+        uniform token[] xformOpOrder = ["xformOp:translate"]
+        def SphereLight "Bulb"
+        {
+            float inputs:intensity = 20
+            float inputs:radius = 0.1
+            double3 xformOp:translate = (0, 0.5, 0)
+            uniform token[] xformOpOrder = ["xformOp:translate"]
+        }
+    }
+    def PointInstancer "Pair"
+    {
+        int[] protoIndices = [0, 0]
+        point3f[] positions = [(-1, 0, 0), (1, 0, 0)]
+        rel prototypes = </Lamps/Pair/Spot>
+        def DiskLight "Spot"
+        {
+            float inputs:radius = 0.2
+        }
+    }
+}
+class Xform "_Fixture"
+{
+    def RectLight "Panel"
+    {
+        float inputs:width = 1
+        float inputs:height = 1
+    }
+    def PointInstancer "Row"
+    {
+        int[] protoIndices = [0, 0]
+        point3f[] positions = [(-3, 0, 0), (3, 0, 0)]
+        rel prototypes = </_Fixture/Row/Dot>
+        def SphereLight "Dot"
+        {
+            float inputs:radius = 0.05
+        }
+    }
+}
+def Xform "Hall" (
+    instanceable = true
+    references = </_Fixture>
+)
+{
+    double3 xformOp:translate = (0, 5, 0)
+    uniform token[] xformOpOrder = ["xformOp:translate"]
+}
+def Xform "Lobby" (
+    instanceable = true
+    references = </_Fixture>
+)
+{
+    double3 xformOp:translate = (0, 7, 0)
+    uniform token[] xformOpOrder = ["xformOp:translate"]
+}
+)");
+    const std::vector<render::LightDesc>& lights = p.result.scene.lights;
+    EXPECT_EQ(lights.size(), 10u) << "two bulbs, two spots of the nested pair, and per fixture a panel and two dots";
+    auto at = [](const render::LightDesc& l) { return l.transform.transformPoint({0, 0, 0}); };
+    std::vector<std::string> found;
+    for (const render::LightDesc& l : lights) {
+        const Vec3d c = at(l);
+        char text[96];
+        std::snprintf(text, sizeof text, "%s (%g %g %g)", l.name.c_str(), c.x, c.y, c.z);
+        found.push_back(text);
+    }
+    std::sort(found.begin(), found.end());
+    // (A native prototype is read from its first instance, /Hall: its point-instanced dots carry
+    // that name in both fixtures.)
+    EXPECT_EQ(found, (std::vector<std::string>{"/Hall/Panel (0 5 0)", "/Hall/Row/Dot (-3 5 0)", "/Hall/Row/Dot (-3 7 0)",
+                                               "/Hall/Row/Dot (3 5 0)", "/Hall/Row/Dot (3 7 0)", "/Lamps/Lamp/Bulb (-2 1.5 1)",
+                                               "/Lamps/Lamp/Bulb (2 1.5 1)", "/Lamps/Pair/Spot (-1 0 10)", "/Lamps/Pair/Spot (1 0 10)",
+                                               "/Lobby/Panel (0 7 0)"}))
+        << ::testing::PrintToString(found);
 }
 
 }  // namespace
