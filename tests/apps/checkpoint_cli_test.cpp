@@ -19,6 +19,7 @@
 
 #include "tests/support/cli.h"
 #include "tests/support/temp_dir.h"
+#include "tests/support/usd_scenes.h"
 
 namespace fs = std::filesystem;
 
@@ -191,58 +192,7 @@ TEST_F(CheckpointCli, ResumeRendersAgainAfterATextureChanged) {
     };
     writeTexture(1);
     const std::string scene = tmp_.file("textured.usda");
-    std::ofstream(scene) << "#usda 1.0\n"
-        "(\n"
-        "    defaultPrim = \"World\"\n"
-        "    metersPerUnit = 1\n"
-        "    upAxis = \"Y\"\n"
-        ")\n"
-        "def Xform \"World\"\n"
-        "{\n"
-        "    def Camera \"Cam\"\n"
-        "    {\n"
-        "        double3 xformOp:translate = (0, 0, 5)\n"
-        "        uniform token[] xformOpOrder = [\"xformOp:translate\"]\n"
-        "    }\n"
-        "    def Mesh \"Quad\" (prepend apiSchemas = [\"MaterialBindingAPI\"])\n"
-        "    {\n"
-        "        int[] faceVertexCounts = [4]\n"
-        "        int[] faceVertexIndices = [0, 1, 2, 3]\n"
-        "        point3f[] points = [(-1, -1, 0), (1, -1, 0), (1, 1, 0), (-1, 1, 0)]\n"
-        "        texCoord2f[] primvars:st = [(0, 0), (1, 0), (1, 1), (0, 1)] (interpolation = \"vertex\")\n"
-        "        rel material:binding = </World/Mat>\n"
-        "    }\n"
-        "    def Material \"Mat\"\n"
-        "    {\n"
-        "        token outputs:surface.connect = </World/Mat/PBR.outputs:surface>\n"
-        "        def Shader \"PBR\"\n"
-        "        {\n"
-        "            uniform token info:id = \"UsdPreviewSurface\"\n"
-        "            color3f inputs:diffuseColor.connect = </World/Mat/Tex.outputs:rgb>\n"
-        "            token outputs:surface\n"
-        "        }\n"
-        "        def Shader \"Tex\"\n"
-        "        {\n"
-        "            uniform token info:id = \"UsdUVTexture\"\n"
-        "            asset inputs:file = @./texture.exr@\n"
-        "            float2 inputs:st.connect = </World/Mat/St.outputs:result>\n"
-        "            float3 outputs:rgb\n"
-        "        }\n"
-        "        def Shader \"St\"\n"
-        "        {\n"
-        "            uniform token info:id = \"UsdPrimvarReader_float2\"\n"
-        "            token inputs:varname = \"st\"\n"
-        "            float2 outputs:result\n"
-        "        }\n"
-        "    }\n"
-        "    def SphereLight \"L\"\n"
-        "    {\n"
-        "        float inputs:intensity = 10\n"
-        "        double3 xformOp:translate = (0, 0, 3)\n"
-        "        uniform token[] xformOpOrder = [\"xformOp:translate\"]\n"
-        "    }\n"
-        "}\n"
-        "";
+    std::ofstream(scene) << test::texturedQuadUsda("./texture.exr");
     const std::string render = "render " + scene + " -r 8 8 --spp 2 --resume -o " + tmp_.file("out.exr");
     test::RunResult r = test::runFluence(render, tmp_.path());
     ASSERT_EQ(r.exitCode, 0) << r.err;

@@ -55,4 +55,62 @@ inline std::string furnaceUsda(double albedo) {
     return s.str();
 }
 
+// A camera looking at a unit quad whose UsdPreviewSurface takes its diffuse colour from a
+// UsdUVTexture of file @textureAsset@ (through an st primvar reader), under a sphere light.
+inline std::string texturedQuadUsda(const std::string& textureAsset) {
+    return std::string(
+           "#usda 1.0\n"
+           "(\n"
+           "    defaultPrim = \"World\"\n"
+           "    metersPerUnit = 1\n"
+           "    upAxis = \"Y\"\n"
+           ")\n"
+           "def Xform \"World\"\n"
+           "{\n"
+           "    def Camera \"Cam\"\n"
+           "    {\n"
+           "        double3 xformOp:translate = (0, 0, 5)\n"
+           "        uniform token[] xformOpOrder = [\"xformOp:translate\"]\n"
+           "    }\n"
+           "    def Mesh \"Quad\" (prepend apiSchemas = [\"MaterialBindingAPI\"])\n"
+           "    {\n"
+           "        int[] faceVertexCounts = [4]\n"
+           "        int[] faceVertexIndices = [0, 1, 2, 3]\n"
+           "        point3f[] points = [(-1, -1, 0), (1, -1, 0), (1, 1, 0), (-1, 1, 0)]\n"
+           "        texCoord2f[] primvars:st = [(0, 0), (1, 0), (1, 1), (0, 1)] (interpolation = \"vertex\")\n"
+           "        rel material:binding = </World/Mat>\n"
+           "    }\n"
+           "    def Material \"Mat\"\n"
+           "    {\n"
+           "        token outputs:surface.connect = </World/Mat/PBR.outputs:surface>\n"
+           "        def Shader \"PBR\"\n"
+           "        {\n"
+           "            uniform token info:id = \"UsdPreviewSurface\"\n"
+           "            color3f inputs:diffuseColor.connect = </World/Mat/Tex.outputs:rgb>\n"
+           "            token outputs:surface\n"
+           "        }\n"
+           "        def Shader \"Tex\"\n"
+           "        {\n"
+           "            uniform token info:id = \"UsdUVTexture\"\n"
+           "            asset inputs:file = @" + textureAsset + "@\n"
+           "            float2 inputs:st.connect = </World/Mat/St.outputs:result>\n"
+           "            float3 outputs:rgb\n"
+           "        }\n"
+           "        def Shader \"St\"\n"
+           "        {\n"
+           "            uniform token info:id = \"UsdPrimvarReader_float2\"\n"
+           "            token inputs:varname = \"st\"\n"
+           "            float2 outputs:result\n"
+           "        }\n"
+           "    }\n"
+           "    def SphereLight \"L\"\n"
+           "    {\n"
+           "        float inputs:intensity = 10\n"
+           "        double3 xformOp:translate = (0, 0, 3)\n"
+           "        uniform token[] xformOpOrder = [\"xformOp:translate\"]\n"
+           "    }\n"
+           "}\n"
+           "\n");
+}
+
 }  // namespace fluence::test
