@@ -107,6 +107,9 @@ JobCompType=jobcomp/none
 MailProg=/usr/bin/true
 ReturnToService=2
 MinJobAge=600
+# Small, so that the four tiles' task array (indices 0 to 3) is split: tasks 0-2 in one array, task
+# 3 in a second one shifted by 3 (apps/farm_slurm_backend.h).
+MaxArraySize=3
 NodeName=localhost CPUs=2 State=UNKNOWN
 PartitionName=debug Nodes=localhost Default=YES MaxTime=INFINITE State=UP
 CONF
@@ -160,6 +163,8 @@ grep -Eq '^  task 2 .* failed +exit 1 on attempt 1' "$D/status.txt" || fail "far
 [ "$(grep -c ' done  ' "$D/status.txt")" = 3 ] || fail "farm status does not report tasks 0, 1 and 3 as done"
 [ ! -e "$D/work/farm/cornell_box.exr" ] || fail "an image was merged although a tile was missing"
 grep -q 'failing on purpose' "$D/work/farm/logs/task_2.log" || fail "task 2's log does not hold its failure"
+grep -q 'rendered' "$D/work/farm/logs/task_3.log" || fail "task 3 (in the second, shifted array) has no log of its own"
+grep -q ':[0-9]*+3"' "$D/work/farm/farm.json" || fail "the plan does not record the task array as two Slurm arrays"
 command -v oiiotool >/dev/null || fail "oiiotool (openimageio-tools) is needed to check the images"
 check_no_partial_files
 echo "failure seen after $((SECONDS - t))s"
