@@ -4,10 +4,12 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <optional>
 #include <set>
 #include <sstream>
 
 #include "core/fnv_hash.h"
+#include "scene/usdz_package.h"
 #include "version.h"
 
 namespace fluence::app {
@@ -29,13 +31,17 @@ std::string hex(std::uint64_t hash) {
     return text;
 }
 
+// The file on disk that holds `path`: a USDZ entry's package ("pkg.usdz[scene.usdc]"), else itself.
+std::string fileOnDisk(const std::string& path) {
+    const std::optional<usd::PackagePath> packaged = usd::splitPackagePath(path);
+    return packaged ? packaged->package : path;
+}
+
 std::string layerFilesHash(const usd::Stage& stage) {
     std::uint64_t hash = kFnv1aOffsetBasis;
     for (const std::string& file : stage.layerFiles()) {
-        std::string path = file;
-        if (const auto bracket = path.find('['); bracket != std::string::npos && path.ends_with("]")) path.resize(bracket);
         hash = fnv1a(file, hash);
-        std::ifstream in(path, std::ios::binary);
+        std::ifstream in(fileOnDisk(file), std::ios::binary);
         std::ostringstream bytes;
         bytes << in.rdbuf();
         hash = fnv1a(bytes.str(), fnv1a(std::string_view("\0", 1), hash));
@@ -49,10 +55,7 @@ std::string layerFilesHash(const usd::Stage& stage) {
 std::string assetFilesStamp(const usd::Stage& stage) {
     std::set<std::string> files;
     for (const usd::AssetReference& a : stage.assetReferences()) {
-        if (!a.exists) continue;
-        std::string path = a.resolved;
-        if (const auto bracket = path.find('['); bracket != std::string::npos && path.ends_with("]")) path.resize(bracket);
-        files.insert(path);
+        if (a.exists) files.insert(fileOnDisk(a.resolved));
     }
     std::uint64_t hash = kFnv1aOffsetBasis;
     for (const std::string& file : files) {
