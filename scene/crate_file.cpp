@@ -79,9 +79,9 @@ CrateFile::CrateFile(SharedBytes file, std::string identifier)
     version_.patch = boot.read<std::uint8_t>();
     boot.seek(16);
     auto tocOffset = boot.read<std::uint64_t>();
-    if (!version_.atLeast(0, 4, 0) || version_.atLeast(0, 12, 0))
+    if (!version_.atLeast(0, 0, 1) || version_.atLeast(0, 12, 0))
         throw CrateFormatError("crate version " + version_.str() +
-                               " is not supported (this reader takes versions 0.4.0 to 0.11.x)");
+                               " is not supported (this reader takes versions 0.0.1 to 0.11.x)");
     readTableOfContents(tocOffset);
     readTokens();
     readStrings();
@@ -90,6 +90,8 @@ CrateFile::CrateFile(SharedBytes file, std::string identifier)
     readPaths();
     readSpecs();
 }
+
+bool CrateFile::hasCompressedSections() const { return version_.atLeast(0, 4, 0); }
 
 std::uint64_t CrateFile::checkedOffset(std::uint64_t offset) const {
     if (offset >= bytes_.size())
@@ -132,13 +134,18 @@ void CrateFile::readTokens() {
     if (!tokens) return;
     ByteReader reader = sectionReader(*tokens);
     auto count = reader.read<std::uint64_t>();
-    auto size = reader.read<std::uint64_t>();
-    auto compressedSize = reader.read<std::uint64_t>();
-    if (compressedSize > tokens->size) throw CrateFormatError("TOKENS section: compressed size past its end");
-    if (count > size) throw CrateFormatError("TOKENS section: more tokens than characters");
-    std::vector<char> text = decompressCrateBuffer(reader.take(static_cast<std::size_t>(compressedSize)),
-                                                   static_cast<std::size_t>(size));
-    if (text.size() != size) throw CrateFormatError("TOKENS section: decompressed size differs from the header");
+    std::vector<char> text;
+    if (hasCompressedSections()) {
+        auto size = reader.read<std::uint64_t>();
+        auto compressedSize = reader.read<std::uint64_t>();
+        if (compressedSize > tokens->size) throw CrateFormatError("TOKENS section: compressed size past its end");
+        text = decompressCrateBuffer(reader.take(static_cast<std::size_t>(compressedSize)), static_cast<std::size_t>(size));
+        if (text.size() != size) throw CrateFormatError("TOKENS section: decompressed size differs from the header");
+    } else {
+        std::span<const char> plain = reader.take(reader.readCount(1));
+        text.assign(plain.begin(), plain.end());
+    }
+    if (count > text.size()) throw CrateFormatError("TOKENS section: more tokens than characters");
     tokens_.reserve(static_cast<std::size_t>(count));
     std::size_t at = 0;
     while (tokens_.size() < count) {
@@ -167,6 +174,17 @@ void CrateFile::readFields() {
     const Section* fields = section("FIELDS");
     if (!fields) return;
     ByteReader reader = sectionReader(*fields);
+    if (!hasCompressedSections()) {
+        // A vector of 16-byte records: 4 bytes of padding, the token index, the ValueRep.
+        fields_.resize(reader.readCount(16));
+        for (CrateField& field : fields_) {
+            reader.read<std::uint32_t>();
+            field.token = reader.read<std::uint32_t>();
+            token(field.token);
+            field.value.bits = reader.read<std::uint64_t>();
+        }
+        return;
+    }
     auto count = reader.read<std::uint64_t>();
     if (count > fields->size * kMaxIntsPerByte) throw CrateFormatError("FIELDS section: field count too large");
     std::vector<std::int32_t> names = readCompressedInts32(reader, static_cast<std::size_t>(count));
@@ -187,10 +205,15 @@ void CrateFile::readFieldSets() {
     const Section* fieldSets = section("FIELDSETS");
     if (!fieldSets) return;
     ByteReader reader = sectionReader(*fieldSets);
-    auto count = reader.read<std::uint64_t>();
-    if (count > fieldSets->size * kMaxIntsPerByte) throw CrateFormatError("FIELDSETS section: count too large");
-    std::vector<std::int32_t> indexes = readCompressedInts32(reader, static_cast<std::size_t>(count));
-    fieldSets_.assign(indexes.begin(), indexes.end());
+    if (hasCompressedSections()) {
+        auto count = reader.read<std::uint64_t>();
+        if (count > fieldSets->size * kMaxIntsPerByte) throw CrateFormatError("FIELDSETS section: count too large");
+        std::vector<std::int32_t> indexes = readCompressedInts32(reader, static_cast<std::size_t>(count));
+        fieldSets_.assign(indexes.begin(), indexes.end());
+    } else {
+        fieldSets_.resize(reader.readCount(sizeof(std::uint32_t)));
+        for (std::uint32_t& index : fieldSets_) index = reader.read<std::uint32_t>();
+    }
     for (std::uint32_t index : fieldSets_)
         if (index != kFieldSetEnd && index >= fields_.size())
             throw CrateFormatError("FIELDSETS section: field index " + std::to_string(index) + " out of range");
@@ -203,9 +226,70 @@ void CrateFile::readPaths() {
     if (!paths) return;
     ByteReader reader = sectionReader(*paths);
     auto pathCount = reader.read<std::uint64_t>();
+    if (hasCompressedSections()) return readCompressedPathTree(reader, pathCount, paths->size);
+    // Every path takes a header of at least 12 bytes.
+    if (pathCount > paths->size / 12 + 1) throw CrateFormatError("PATHS section: path count too large");
+    paths_.assign(static_cast<std::size_t>(pathCount), std::string());
+    readPathTree(reader, paths->start);
+}
+
+void CrateFile::setPath(std::uint32_t index, std::int64_t parent, std::uint64_t element, bool isProperty) {
+    if (index >= paths_.size()) throw CrateFormatError("PATHS section: path index " + std::to_string(index) + " out of range");
+    if (!paths_[index].empty()) throw CrateFormatError("PATHS section: the path tree is malformed");
+    if (parent < 0) {
+        paths_[index] = "/";
+    } else {
+        const std::string& name = token(element);
+        const std::string& base = paths_[static_cast<std::size_t>(parent)];
+        if (isProperty)
+            paths_[index] = base + "." + name;
+        else if (name.starts_with("{") || name.starts_with("[") || name.starts_with("."))
+            paths_[index] = base + name;  // a variant selection, target or property element
+        else
+            paths_[index] = childPrimPath(base, name);
+    }
+    pathTextSize_ += paths_[index].size();
+    if (pathTextSize_ > kMaxPathText)
+        throw CrateFormatError("PATHS section: the paths add up to more than " + std::to_string(kMaxPathText) + " bytes");
+}
+
+// Before 0.4.0: the tree in pre-order, one header per path (4 bytes of padding in 0.0.1, the path
+// index, the element token index, bits: 1 has a child, 2 has a sibling, 4 is a property), a
+// header with both a child and a sibling followed by the sibling's file offset (int64).
+void CrateFile::readPathTree(ByteReader& reader, std::uint64_t sectionStart) {
+    constexpr std::uint8_t kHasChild = 1, kHasSibling = 2, kIsProperty = 4;
+    const bool padded = !version_.atLeast(0, 1, 0);
+    // (section offset, parent path index or -1) of subtrees still to read: iterative, and every
+    // header sets a new path (setPath), so a damaged tree ends after at most pathCount headers.
+    std::vector<std::pair<std::size_t, std::int64_t>> pending{{reader.position(), -1}};
+    while (!pending.empty()) {
+        auto [at, parent] = pending.back();
+        pending.pop_back();
+        reader.seek(at);
+        while (true) {
+            if (padded) reader.read<std::uint32_t>();
+            auto index = reader.read<std::uint32_t>();
+            auto element = reader.read<std::uint32_t>();
+            auto bits = reader.read<std::uint8_t>();
+            reader.take(3);  // the header's trailing padding
+            setPath(index, parent, element, bits & kIsProperty);
+            bool hasChild = bits & kHasChild, hasSibling = bits & kHasSibling;
+            if (hasChild && hasSibling) {
+                auto sibling = reader.read<std::int64_t>();
+                if (sibling < static_cast<std::int64_t>(sectionStart))
+                    throw CrateFormatError("PATHS section: a sibling lies outside the section");
+                pending.emplace_back(static_cast<std::size_t>(sibling - static_cast<std::int64_t>(sectionStart)), parent);
+            }
+            if (hasChild) parent = index;
+            if (!hasChild && !hasSibling) break;
+        }
+    }
+}
+
+void CrateFile::readCompressedPathTree(ByteReader& reader, std::uint64_t pathCount, std::uint64_t sectionSize) {
     auto encodedCount = reader.read<std::uint64_t>();
     // Every path but the empty one is in the encoded tree.
-    if (encodedCount > paths->size * kMaxIntsPerByte || pathCount > encodedCount + 1)
+    if (encodedCount > sectionSize * kMaxIntsPerByte || pathCount > encodedCount + 1)
         throw CrateFormatError("PATHS section: path count too large");
     std::size_t n = static_cast<std::size_t>(encodedCount);
     std::vector<std::int32_t> pathIndexes = readCompressedInts32(reader, n);
@@ -213,9 +297,7 @@ void CrateFile::readPaths() {
     std::vector<std::int32_t> jumps = readCompressedInts32(reader, n);
     paths_.assign(static_cast<std::size_t>(pathCount), std::string());
 
-    auto fail = [](const std::string& what) { throw CrateFormatError("PATHS section: " + what); };
     std::vector<bool> visited(n, false);
-    std::size_t textSize = 0;
     // (encoded index, parent path index or -1) of subtrees still to walk: iterative, so a deep or
     // cyclic tree in a damaged file cannot overflow the stack or loop.
     std::vector<std::pair<std::size_t, std::int64_t>> pending;
@@ -224,25 +306,11 @@ void CrateFile::readPaths() {
         auto [i, parent] = pending.back();
         pending.pop_back();
         while (true) {
-            if (i >= n || visited[i]) fail("the path tree is malformed");
+            if (i >= n || visited[i]) throw CrateFormatError("PATHS section: the path tree is malformed");
             visited[i] = true;
             auto index = static_cast<std::uint32_t>(pathIndexes[i]);
-            if (index >= paths_.size()) fail("path index " + std::to_string(index) + " out of range");
-            if (parent < 0) {
-                paths_[index] = "/";
-            } else {
-                std::int64_t element = elements[i];
-                const std::string& name = token(static_cast<std::uint64_t>(std::llabs(element)));
-                const std::string& base = paths_[static_cast<std::size_t>(parent)];
-                if (element < 0)
-                    paths_[index] = base + "." + name;
-                else if (name.starts_with("{") || name.starts_with("[") || name.starts_with("."))
-                    paths_[index] = base + name;  // a variant selection, target or property element
-                else
-                    paths_[index] = childPrimPath(base, name);
-            }
-            textSize += paths_[index].size();
-            if (textSize > kMaxPathText) fail("the paths add up to more than " + std::to_string(kMaxPathText) + " bytes");
+            std::int64_t element = elements[i];
+            setPath(index, parent, static_cast<std::uint64_t>(std::llabs(element)), element < 0);
             std::int32_t jump = jumps[i];
             bool hasChild = jump > 0 || jump == -1;
             bool hasSibling = jump >= 0;
@@ -261,12 +329,26 @@ void CrateFile::readSpecs() {
     const Section* specs = section("SPECS");
     if (!specs) return;
     ByteReader reader = sectionReader(*specs);
-    auto count = reader.read<std::uint64_t>();
-    if (count > specs->size * kMaxIntsPerByte) throw CrateFormatError("SPECS section: spec count too large");
-    std::size_t n = static_cast<std::size_t>(count);
-    std::vector<std::int32_t> paths = readCompressedInts32(reader, n);
-    std::vector<std::int32_t> fieldSets = readCompressedInts32(reader, n);
-    std::vector<std::int32_t> types = readCompressedInts32(reader, n);
+    std::vector<std::int32_t> paths, fieldSets, types;
+    if (hasCompressedSections()) {
+        auto count = reader.read<std::uint64_t>();
+        if (count > specs->size * kMaxIntsPerByte) throw CrateFormatError("SPECS section: spec count too large");
+        std::size_t n = static_cast<std::size_t>(count);
+        paths = readCompressedInts32(reader, n);
+        fieldSets = readCompressedInts32(reader, n);
+        types = readCompressedInts32(reader, n);
+    } else {
+        // A vector of records: path, field set and spec type indexes, after 4 bytes of padding in 0.0.1.
+        const bool padded = !version_.atLeast(0, 1, 0);
+        std::size_t n = reader.readCount(padded ? 16 : 12);
+        for (std::size_t i = 0; i < n; ++i) {
+            if (padded) reader.read<std::uint32_t>();
+            paths.push_back(reader.read<std::int32_t>());
+            fieldSets.push_back(reader.read<std::int32_t>());
+            types.push_back(reader.read<std::int32_t>());
+        }
+    }
+    const std::size_t n = paths.size();
     specs_.resize(n);
     for (std::size_t i = 0; i < n; ++i) {
         CrateSpec& spec = specs_[i];

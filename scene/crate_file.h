@@ -8,8 +8,13 @@
 // ended by ~0u), PATHS (the path tree, encoded as three compressed integer lists: path index,
 // element token index (negative for properties) and jump (-1 child only, 0 sibling only, -2 leaf,
 // n > 0 both: the sibling is n entries ahead)) and SPECS (path, field set and spec type per spec).
-// This reader takes the compressed structural sections of crate versions 0.4.0 to 0.11.0, the
-// versions OpenUSD has written since 2016.
+// This reader takes crate versions 0.0.1 to 0.11.x, as OpenUSD's crateFile.cpp reads them: since
+// 0.4.0 the structural sections are compressed as above; before it they are plain vectors (a
+// uint64 count, then the items): TOKENS a uint64 byte size and the NUL-separated text, FIELDS
+// 16-byte records (4 bytes of padding, token index, ValueRep), FIELDSETS uint32 indexes, SPECS
+// (path, field set, spec type) records, PATHS one header per path in pre-order (crate_file.cpp);
+// in 0.0.1 spec records and path headers start with 4 bytes of padding. Value encodings that
+// changed with the version are crate_values.h's.
 //
 // All multi-byte numbers are little-endian. Every offset, count and index is checked against the
 // file before use: a damaged file throws CrateFormatError (crate_compression.h), never reads out
@@ -144,6 +149,11 @@ private:
     void readFields();
     void readFieldSets();
     void readPaths();
+    void readPathTree(ByteReader& reader, std::uint64_t sectionStart);
+    void readCompressedPathTree(ByteReader& reader, std::uint64_t pathCount, std::uint64_t sectionSize);
+    // Sets path `index` to the child `element` (a token index) of path `parent` (-1: the root).
+    void setPath(std::uint32_t index, std::int64_t parent, std::uint64_t element, bool isProperty);
+    bool hasCompressedSections() const;  // crate 0.4.0 and later
     void readSpecs();
 
     SharedBytes file_;
@@ -156,6 +166,7 @@ private:
     std::vector<CrateField> fields_;
     std::vector<std::uint32_t> fieldSets_;
     std::vector<std::string> paths_;
+    std::size_t pathTextSize_ = 0;
     std::vector<CrateSpec> specs_;
 };
 

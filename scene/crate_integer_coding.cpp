@@ -24,6 +24,7 @@ T readAt(std::span<const char> bytes, std::size_t& at) {
 template <class Int, class Small, class Medium>
 std::vector<Int> decode(std::span<const char> encoded, std::size_t count) {
     using Unsigned = std::make_unsigned_t<Int>;
+    if (count == 0) return {};  // OpenUSD encodes no integers as no bytes, not even the common value
     std::size_t at = 0;
     Int common = readAt<Int>(encoded, at);
     std::size_t codeBytes = (count * 2 + 7) / 8;

@@ -7,6 +7,7 @@
 // ceil(n / 4) code bytes with a 2-bit code per value (lowest bits first: 0 = the common delta,
 // 1 = small, 2 = medium, 3 = large), then the non-common deltas in order, each a signed int of
 // W/4, W/2 or W bits (int8/int16/int32 for 32-bit values, int16/int32/int64 for 64-bit ones).
+// Zero integers encode as an empty buffer (an empty crate's FIELDS section holds one).
 // On disk the encoded buffer is LZ4-compressed (crate_compression.h) and preceded by its
 // compressed size as a uint64.
 //

@@ -538,9 +538,9 @@ TEST(CrateCorpus, DamagedFileFailsNamingTheFile) {
     }
 }
 
-// Every truncation and single-byte corruption of two small crate files (one with compressed
-// arrays and time samples) either reads or throws FileError naming it: never a crash, a hang or
-// another exception.
+// Every truncation and single-byte corruption of three small crate files (one with compressed
+// arrays and time samples, one of crate 0.0.1 with its plain path tree) either reads or throws
+// FileError naming it: never a crash, a hang or another exception.
 TEST(CrateRobustness, TruncatedAndCorruptedFiles) {
     auto check = [](std::vector<char> data) {
         try {
@@ -549,7 +549,7 @@ TEST(CrateRobustness, TruncatedAndCorruptedFiles) {
             EXPECT_NE(std::string(error.what()).find("damaged.usdc"), std::string::npos);
         }
     };
-    for (const char* name : {"variants.usdc", "top.geom.usd"}) {
+    for (const char* name : {"variants.usdc", "top.geom.usd", "v0.0.1/testHasDefiningSpecifier.usdc"}) {
         std::vector<char> good = fileBytes(kData / name);
         ASSERT_FALSE(good.empty()) << name;
         for (std::size_t size = 0; size < good.size(); size += 5) check(std::vector<char>(good.begin(), good.begin() + size));
