@@ -4,6 +4,7 @@
 #include <filesystem>
 
 #include "scene/usda_parser.h"
+#include "scene/usdz_package.h"
 
 namespace fluence::app {
 
@@ -11,7 +12,7 @@ void printError(const std::string& message) { std::fprintf(stderr, "fluence: err
 
 int openStage(const std::string& path, const usd::StageOptions& options, WarningLog& warnings,
               std::unique_ptr<usd::Stage>& stage, MissingAssets missing) {
-    if (!std::filesystem::exists(path)) {
+    if (!(usd::splitPackagePath(path) ? usd::packagedEntryExists(path) : std::filesystem::exists(path))) {
         printError("scene file not found: " + path);
         return kExitMissingInput;
     }

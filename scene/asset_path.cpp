@@ -41,9 +41,13 @@ std::string anchorAssetPath(const std::string& layerIdentifier, const std::strin
     std::replace(path.begin(), path.end(), '\\', '/');
     fs::path asset(path);
     if (asset.is_absolute()) return asset.lexically_normal().generic_string();
-    if (auto packaged = splitPackagePath(layerIdentifier))  // a layer inside a USDZ package
-        return packagePath(normalizedAbsolutePath(packaged->package),
-                           (fs::path(packaged->entry).parent_path() / asset).lexically_normal().generic_string());
+    if (auto packaged = splitInnermostPackagePath(layerIdentifier)) {  // a layer inside a USDZ package
+        std::string entry = (fs::path(packaged->entry).parent_path() / asset).lexically_normal().generic_string();
+        auto file = splitPackagePath(packaged->package);  // the outer package file of a nested package
+        std::string package = file ? packagePath(normalizedAbsolutePath(file->package), file->entry)
+                                   : normalizedAbsolutePath(packaged->package);
+        return packagePath(package, entry);
+    }
     fs::path directory = absoluteOf(fs::path(layerIdentifier)).parent_path();
     return (directory / asset).lexically_normal().generic_string();
 }

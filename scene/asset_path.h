@@ -11,7 +11,8 @@ namespace fluence::usd {
 // Absolute paths are only normalized; empty paths and URIs ("scheme:...") are returned unchanged.
 // Backslashes read as separators. Tokens such as <UDIM> are kept as written. In a layer inside a
 // USDZ package ("/a/pkg.usdz[dir/layer.usdc]") relative paths resolve inside the package:
-// "./tex.png" -> "/a/pkg.usdz[dir/tex.png]".
+// "./tex.png" -> "/a/pkg.usdz[dir/tex.png]", in a nested package inside the innermost one:
+// "/a/pkg.usdz[inner.usdz[dir/layer.usdc]]" -> "/a/pkg.usdz[inner.usdz[dir/tex.png]]".
 std::string anchorAssetPath(const std::string& layerIdentifier, const std::string& authored);
 
 // The absolute, lexically normalized form of a file path.

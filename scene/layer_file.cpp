@@ -40,13 +40,15 @@ std::unique_ptr<Layer> readPackagedLayer(const UsdzPackage& package, const std::
 bool isMaterialXPath(const std::string& path) { return lowercaseExtension(path) == ".mtlx"; }
 
 std::unique_ptr<Layer> readLayerFile(const std::string& path) {
-    if (std::optional<PackagePath> packaged = splitPackagePath(path))
-        return readPackagedLayer(UsdzPackage::open(packaged->package), packaged->entry);
-    if (isUsdzPath(path)) {
+    if (isUsdzPath(path)) {  // a package file, or a package inside one: its root layer
         UsdzPackage package = UsdzPackage::open(path);
         if (package.entries().empty()) throw FileError("'" + path + "': the USDZ package holds no layer");
-        return readPackagedLayer(package, package.entries().front().name);
+        const std::string& root = package.entries().front().name;
+        if (isUsdzPath(root)) return readLayerFile(packagePath(path, root));
+        return readPackagedLayer(package, root);
     }
+    if (std::optional<PackagePath> packaged = splitInnermostPackagePath(path))
+        return readPackagedLayer(UsdzPackage::open(packaged->package), packaged->entry);
     std::ifstream file(path, std::ios::binary);
     char start[8] = {};
     file.read(start, sizeof start);

@@ -1,9 +1,11 @@
 // Reading a layer file in whichever format it is in: USD's binary crate (chosen by its first bytes,
 // "PXR-USDC", whatever the extension: .usdc, or .usd), a MaterialX document (.mtlx, presented as
 // USD's MaterialX file format plugin does: scene/mtlx_reader.h), else USDA text. A USDZ package
-// (.usdz, scene/usdz_package.h) reads as its first entry, its root layer, and a package-relative
-// path "pkg.usdz[inner.usdc]" as that entry; such layers are identified by their package-relative
-// path, so asset paths authored in them resolve inside the package.
+// (.usdz, scene/usdz_package.h) reads as its first entry, its root layer (when that entry is a
+// package itself, as that package's root layer), and a package-relative path
+// "pkg.usdz[inner.usdc]" or "pkg.usdz[inner.usdz[layer.usda]]" as that entry; such layers are
+// identified by their package-relative path, so asset paths authored in them resolve inside the
+// package.
 #pragma once
 
 #include <memory>

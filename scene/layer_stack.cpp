@@ -107,8 +107,11 @@ std::string firstBytes(const std::string& path) {
 // Why the file at `path` cannot be read as a USD text layer ("" when it can be tried).
 std::string unusableLayerProblem(const std::string& path) {
     std::error_code error;
-    if (!(splitPackagePath(path) ? packagedEntryExists(path) : fs::is_regular_file(path, error)))
+    if (splitPackagePath(path)) {
+        if (std::string problem = packagedEntryProblem(path); !problem.empty()) return problem;
+    } else if (!fs::is_regular_file(path, error)) {
         return "cannot find '" + path + "'";
+    }
     std::string start = firstBytes(path);
     if (isCrateHeader(start) || isMaterialXPath(path) || isUsdzPath(path) || splitPackagePath(path)) return "";
     std::string extension = lowercaseExtension(path);

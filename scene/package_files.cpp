@@ -45,7 +45,7 @@ bool writeAtomically(const fs::path& target, std::string_view bytes) {
 }  // namespace
 
 std::string fileForAsset(const std::string& asset) {
-    std::optional<PackagePath> packaged = splitPackagePath(asset);
+    std::optional<PackagePath> packaged = splitInnermostPackagePath(asset);
     if (!packaged) return asset;
     try {
         UsdzPackage package = UsdzPackage::open(packaged->package);

@@ -86,16 +86,18 @@ private:
         entry.name.assign(data_.substr(at + kDirectoryEntrySize, nameSize));
         const std::string named = "entry '" + entry.name + "'";
         if (entry.name.empty()) fail("damaged zip archive (an entry has no name)");
-        if (u16(at + 8, record) & 1) fail(named + " is encrypted; USDZ entries must be stored plainly");
-        if (u16(at + 10, record) != 0) fail(named + " is compressed; USDZ entries must be stored uncompressed");
+        if (u16(at + 8, record) & 1) entry.unreadable = "encrypted";
+        else if (std::uint32_t method = u16(at + 10, record); method != 0)
+            entry.unreadable = "compressed (zip method " + std::to_string(method) + ")";
         std::uint32_t storedSize = u32(at + 20, record), size = u32(at + 24, record), local = u32(at + 42, record);
         if (storedSize == 0xFFFFFFFF || size == 0xFFFFFFFF || local == 0xFFFFFFFF)
             fail(named + " needs zip64, which is not supported");
-        if (storedSize != size) fail("damaged zip archive (" + named + " has a stored size unlike its size)");
+        if (entry.unreadable.empty() && storedSize != size)
+            fail("damaged zip archive (" + named + " has a stored size unlike its size)");
         if (u32(local, "local file header") != kLocalHeaderSignature)
             fail("damaged zip archive (" + named + " has no local file header)");
         entry.offset = local + kLocalHeaderSize + u16(local + 26, "local file header") + u16(local + 28, "local file header");
-        entry.size = size;
+        entry.size = storedSize;
         if (!fits(entry.offset, entry.size)) fail("truncated zip archive (" + named + " runs past the end of the file)");
         result.push_back(std::move(entry));
         return next;
@@ -110,8 +112,15 @@ private:
 UsdzPackage UsdzPackage::open(const std::string& path) {
     UsdzPackage package;
     package.path_ = path;
-    package.mapping_ = mapFile(path);
-    package.entries_ = ArchiveReader(*package.mapping_, path).entries();
+    if (std::optional<PackagePath> nested = splitInnermostPackagePath(path)) {
+        UsdzPackage outer = open(nested->package);
+        package.mapping_ = outer.mapping_;
+        package.archive_ = outer.bytes(nested->entry);
+    } else {
+        package.mapping_ = mapFile(path);
+        package.archive_ = *package.mapping_;
+    }
+    package.entries_ = ArchiveReader(package.archive_, path).entries();
     return package;
 }
 
@@ -120,7 +129,12 @@ const UsdzPackage::Entry* UsdzPackage::find(std::string_view name) const {
     return found == entries_.end() ? nullptr : &*found;
 }
 
-std::string_view UsdzPackage::bytes(const Entry& entry) const { return mapping_->substr(entry.offset, entry.size); }
+std::string_view UsdzPackage::bytes(const Entry& entry) const {
+    if (!entry.unreadable.empty())
+        throw FileError("'" + path_ + "': entry '" + entry.name + "' is " + entry.unreadable +
+                        "; USDZ entries must be stored uncompressed and unencrypted");
+    return archive_.substr(entry.offset, entry.size);
+}
 
 std::string_view UsdzPackage::bytes(std::string_view name) const {
     const Entry* entry = find(name);
@@ -134,21 +148,70 @@ std::optional<PackagePath> splitPackagePath(const std::string& path) {
     return PackagePath{path.substr(0, open), path.substr(open + 1, path.size() - open - 2)};
 }
 
-std::string packagePath(const std::string& package, const std::string& entry) { return package + "[" + entry + "]"; }
+namespace {
+
+constexpr std::size_t kMaxPackageNesting = 64;
+
+// "a.usdz[b.usdz[c.png]]" as {"a.usdz", "b.usdz", "c.png"}; a path that is not package-relative
+// as itself alone.
+std::vector<std::string> packagePathParts(const std::string& path) {
+    std::vector<std::string> parts;
+    std::string rest = path;
+    while (std::optional<PackagePath> split = splitPackagePath(rest)) {
+        if (parts.size() == kMaxPackageNesting)
+            throw FileError("'" + path + "': packages nested more than " + std::to_string(kMaxPackageNesting) + " deep");
+        parts.push_back(std::move(split->package));
+        rest = std::move(split->entry);
+    }
+    parts.push_back(std::move(rest));
+    return parts;
+}
+
+std::string joinPackagePathParts(const std::vector<std::string>& parts, std::size_t count) {
+    std::string path = parts[0];
+    for (std::size_t i = 1; i < count; ++i) path += "[" + parts[i];
+    return path + std::string(count - 1, ']');
+}
+
+}  // namespace
+
+std::optional<PackagePath> splitInnermostPackagePath(const std::string& path) {
+    std::vector<std::string> parts = packagePathParts(path);
+    if (parts.size() < 2) return std::nullopt;
+    return PackagePath{joinPackagePathParts(parts, parts.size() - 1), parts.back()};
+}
+
+std::string packagePath(const std::string& package, const std::string& entry) {
+    std::vector<std::string> parts = packagePathParts(package);
+    parts.push_back(entry);
+    return joinPackagePathParts(parts, parts.size());
+}
 
 bool isUsdzPath(const std::string& path) {
-    std::string extension = std::filesystem::path(path).extension().string();
+    std::optional<PackagePath> packaged = splitInnermostPackagePath(path);
+    std::string extension = std::filesystem::path(packaged ? packaged->entry : path).extension().string();
     std::transform(extension.begin(), extension.end(), extension.begin(), [](unsigned char c) { return std::tolower(c); });
     return extension == ".usdz";
 }
 
 bool packagedEntryExists(const std::string& path) {
-    std::optional<PackagePath> packaged = splitPackagePath(path);
+    std::optional<PackagePath> packaged = splitInnermostPackagePath(path);
     if (!packaged) return false;
     try {
         return UsdzPackage::open(packaged->package).find(packaged->entry) != nullptr;
     } catch (const FileError&) {
         return false;
+    }
+}
+
+std::string packagedEntryProblem(const std::string& path) {
+    if (!packagedEntryExists(path)) return "cannot find '" + path + "'";
+    std::optional<PackagePath> packaged = splitInnermostPackagePath(path);
+    try {
+        UsdzPackage::open(packaged->package).bytes(packaged->entry);
+        return "";
+    } catch (const FileError& e) {
+        return e.what();
     }
 }
 

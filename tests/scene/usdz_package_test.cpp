@@ -5,9 +5,11 @@
 // of range) throw FileError naming the package, never read out of bounds.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdint>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <sstream>
 #include <string>
 #include <utility>
@@ -44,15 +46,18 @@ void put(std::string& out, std::uint32_t value, int bytes) {
 }
 
 // A stored (uncompressed) zip archive of `files`, in order; CRCs are left zero (not checked).
-std::string zipOf(const std::vector<std::pair<std::string, std::string>>& files) {
+// The entries named in `deflated` are marked deflated (method 8), their bytes kept as given.
+std::string zipOf(const std::vector<std::pair<std::string, std::string>>& files,
+                  const std::vector<std::string>& deflated = {}) {
     std::string archive, directory;
     for (const auto& [name, data] : files) {
         std::uint32_t offset = static_cast<std::uint32_t>(archive.size());
-        put(archive, 0x04034b50, 4), put(archive, 20, 2), put(archive, 0, 2), put(archive, 0, 2);
+        const std::uint32_t method = std::find(deflated.begin(), deflated.end(), name) != deflated.end() ? 8 : 0;
+        put(archive, 0x04034b50, 4), put(archive, 20, 2), put(archive, 0, 2), put(archive, method, 2);
         put(archive, 0, 4), put(archive, 0, 4), put(archive, std::uint32_t(data.size()), 4), put(archive, std::uint32_t(data.size()), 4);
         put(archive, std::uint32_t(name.size()), 2), put(archive, 0, 2);
         archive += name + data;
-        put(directory, 0x02014b50, 4), put(directory, 20, 2), put(directory, 20, 2), put(directory, 0, 2), put(directory, 0, 2);
+        put(directory, 0x02014b50, 4), put(directory, 20, 2), put(directory, 20, 2), put(directory, 0, 2), put(directory, method, 2);
         put(directory, 0, 4), put(directory, 0, 4), put(directory, std::uint32_t(data.size()), 4), put(directory, std::uint32_t(data.size()), 4);
         put(directory, std::uint32_t(name.size()), 2), put(directory, 0, 2), put(directory, 0, 2), put(directory, 0, 2);
         put(directory, 0, 2), put(directory, 0, 4), put(directory, offset, 4);
@@ -197,6 +202,44 @@ TEST(UsdzPackage, DamagedPackagesAreRejectedNamingThem) {
     expectRejected(dir.file("missing.usdz"), "cannot open");
 }
 
+// As OpenUSD's usdz resolver: a package whose root layer is stored opens although other entries
+// are compressed; reading a compressed entry (a referenced layer, a texture) fails naming the
+// package and the entry, and only that.
+TEST(UsdzPackage, CompressedEntriesFailOnlyWhenRead) {
+    test::TempDir dir;
+    const std::string root = "#usda 1.0\ndef Sphere \"Ball\"\n{\n    asset tex = @./tex.png@\n}\n"
+                             "def \"Packed\" (references = @./packed.usda@</Thing>)\n{\n}\n";
+    const std::string package =
+        write(dir, "mixed.usdz", zipOf({{"root.usda", root}, {"tex.png", "\x78\x9c deflated bytes"},
+                                        {"packed.usda", "\x78\x9c deflated bytes"}},
+                                       {"tex.png", "packed.usda"}));
+    std::unique_ptr<Stage> stage;
+    ASSERT_NO_THROW(stage = Stage::open(package));
+    ASSERT_NE(stage->prim("/Ball"), nullptr);
+    bool warned = false;
+    for (const CompositionWarning& warning : stage->warnings())
+        warned |= warning.message.find("entry 'packed.usda' is compressed") != std::string::npos;
+    EXPECT_TRUE(warned) << "no warning names the compressed layer";
+
+    UsdzPackage opened = UsdzPackage::open(package);
+    EXPECT_EQ(opened.bytes("root.usda"), root);
+    auto expectCompressed = [&](const std::function<void()>& read, const std::string& entry) {
+        try {
+            read();
+            ADD_FAILURE() << "the compressed entry " << entry << " was read";
+        } catch (const FileError& e) {
+            EXPECT_NE(std::string(e.what()).find("'" + package + "'"), std::string::npos) << e.what();
+            EXPECT_NE(std::string(e.what()).find("entry '" + entry + "' is compressed (zip method 8)"), std::string::npos)
+                << e.what();
+        }
+    };
+    expectCompressed([&] { opened.bytes("tex.png"); }, "tex.png");
+    expectCompressed([&] { readLayerFile(packagePath(package, "packed.usda")); }, "packed.usda");
+    const std::string texture = packagePath(normalizedAbsolutePath(package), "tex.png");
+    EXPECT_TRUE(assetExists(texture));
+    EXPECT_EQ(fileForAsset(texture), texture);  // not extracted: the texture reader then fails naming it
+}
+
 TEST(UsdzPackage, PackagePathSyntax) {
     EXPECT_EQ(packagePath("/a/b.usdz", "t/c.png"), "/a/b.usdz[t/c.png]");
     std::optional<PackagePath> split = splitPackagePath("/a/b.usdz[t/c.png]");
@@ -208,6 +251,26 @@ TEST(UsdzPackage, PackagePathSyntax) {
     EXPECT_EQ(anchorAssetPath("/a/b.usdz[dir/root.usda]", "./t.png"), "/a/b.usdz[dir/t.png]");
     EXPECT_EQ(anchorAssetPath("/a/b.usdz[root.usda]", "/abs/t.png"), "/abs/t.png");
     EXPECT_TRUE(isUsdzPath("X.USDZ"));
+
+    // Packages nest: the outer split names the file, the inner one the innermost package.
+    EXPECT_EQ(packagePath("/a/b.usdz[c.usdz]", "t/d.png"), "/a/b.usdz[c.usdz[t/d.png]]");
+    split = splitPackagePath("/a/b.usdz[c.usdz[t/d.png]]");
+    ASSERT_TRUE(split);
+    EXPECT_EQ(split->package, "/a/b.usdz");
+    EXPECT_EQ(split->entry, "c.usdz[t/d.png]");
+    split = splitInnermostPackagePath("/a/b.usdz[c.usdz[t/d.png]]");
+    ASSERT_TRUE(split);
+    EXPECT_EQ(split->package, "/a/b.usdz[c.usdz]");
+    EXPECT_EQ(split->entry, "t/d.png");
+    EXPECT_FALSE(splitInnermostPackagePath("/a/b.png"));
+    EXPECT_EQ(anchorAssetPath("/a/b.usdz[c.usdz[dir/root.usda]]", "./t.png"), "/a/b.usdz[c.usdz[dir/t.png]]");
+    EXPECT_EQ(anchorAssetPath("/a/b.usdz[c.usdz[dir/root.usda]]", "../t.png"), "/a/b.usdz[c.usdz[t.png]]");
+    EXPECT_TRUE(isUsdzPath("/a/b.usdz[c.USDZ]"));
+    EXPECT_FALSE(isUsdzPath("/a/b.usdz[c.png]"));
+    std::string deep = "a.usdz";
+    for (int i = 0; i < 100; ++i) deep += "[b.usdz";
+    deep += std::string(100, ']');
+    EXPECT_THROW(isUsdzPath(deep), FileError);  // nested past 64 packages
 }
 
 }  // namespace
