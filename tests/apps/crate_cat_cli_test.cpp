@@ -1,7 +1,7 @@
 // `fluence cat` of crate layers (issue #11): a path expression written back as a USDA
 // `pathExpression` value, a large array decoded when first read (as the text is written), and a
 // damaged compressed array found then: exit code 4 and an error naming the file, not a crash or
-// an internal error.
+// an internal error; a crate 0.0.1 layer written as its text twin is.
 #include <gtest/gtest.h>
 
 #include <cstdint>
@@ -60,6 +60,17 @@ TEST_F(CrateCatCli, ADamagedArrayFoundWhenReadExits4NamingTheFile) {
     EXPECT_EQ(cat.exitCode, 4) << cat.err;
     EXPECT_NE(cat.err.find("fluence: error: '" + path + "': damaged or unsupported USD crate file"), std::string::npos)
         << cat.err;
+}
+
+// Crate 0.0.1 (OpenUSD's own test layer, tests/scene/data/crate/v0.0.1) cats as its text twin.
+TEST_F(CrateCatCli, Version001LayerCatsAsItsTextTwin) {
+    const std::string data = FLUENCE_SOURCE_DIR "/tests/scene/data/crate/v0.0.1/";
+    test::RunResult crate = test::runFluence("cat " + data + "testHasDefiningSpecifier.usdc", tmp_.path());
+    test::RunResult text = test::runFluence("cat " + data + "testHasDefiningSpecifier.usda", tmp_.path());
+    ASSERT_EQ(crate.exitCode, 0) << crate.err;
+    ASSERT_EQ(text.exitCode, 0) << text.err;
+    EXPECT_EQ(crate.out, text.out);
+    EXPECT_NE(crate.out.find("def \"b6\""), std::string::npos) << crate.out;
 }
 
 }  // namespace

@@ -97,5 +97,28 @@ TEST(UsdzCli, DamagedPackagesFailNamingThem) {
     }
 }
 
+// Packages inside packages from the command line (OpenUSD's test packages, tests/scene/data/usdz):
+// a package-relative path naming an inner package opens as that package's root layer, and
+// combined.usdz renders with its texture found two packages deep (a missing one exits 4).
+TEST(UsdzCli, NestedPackagesOpenAndRender) {
+    test::TempDir dir;
+    const fs::path data = fs::path(FLUENCE_SOURCE_DIR "/tests/scene/data/usdz").lexically_normal();
+    const std::string inner = usd::packagePath((data / "nested_anchored_refs.usdz").string(), "anchored_refs.usdz");
+    test::RunResult info = test::runFluence("info '" + inner + "'", dir.path());
+    EXPECT_EQ(info.exitCode, 0) << info.err;
+    EXPECT_NE(info.out.find("  " + usd::packagePath(inner, "sub/ref.usdc") + "\n"), std::string::npos) << info.out;
+    EXPECT_NE(info.out.find("Model"), std::string::npos) << info.out;
+
+    const std::string combined = (data / "combined.usdz").string();
+    info = test::runFluence("info '" + combined + "'", dir.path());
+    EXPECT_EQ(info.exitCode, 0) << info.err;
+    const std::string texture = usd::packagePath(usd::packagePath(combined, "combined.usdz_FILES/simpleMaterial.usdz"),
+                                                 "simpleMaterial.usdz_FILES/0/USDLogoLrg.png");
+    EXPECT_NE(info.out.find("ok       " + texture), std::string::npos) << info.out;
+    test::RunResult r = render(combined, dir.path() / "combined.exr", dir);
+    EXPECT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_TRUE(fs::exists(dir.path() / "combined.exr"));
+}
+
 }  // namespace
 }  // namespace fluence
