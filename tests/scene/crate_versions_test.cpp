@@ -15,6 +15,7 @@
 #include "scene/stage.h"
 #include "scene/usda_parser.h"
 #include "scene/usda_writer.h"
+#include "tests/support/crate_writer.h"
 
 namespace fluence::usd {
 namespace {
@@ -95,6 +96,46 @@ TEST(CrateVersions, Version001ArraysAndTimeSamples) {
     ASSERT_NE(order, nullptr);
     EXPECT_TRUE(order->uniform);
     EXPECT_EQ(order->defaultValue.strings, std::vector<std::string>{"xformOp:transform"});
+}
+
+// Two root prims, a prim with two children (so the path tree has a header with both a child and
+// a sibling), properties (the path tree's property bit), arrays, a token array and time samples.
+std::vector<char> sceneInCrateVersion(detail::CrateVersion version) {
+    namespace T = detail::crate_type;
+    using ST = detail::CrateSpecType;
+    test::CrateWriter w(version);
+    auto specifier = [](std::uint32_t s) { return test::CrateWriter::inlined(T::Specifier, s); };  // def, over, class
+    w.spec("/", ST::PseudoRoot, {{"defaultPrim", w.tokenValue("World")}, {"primChildren", w.tokenVector({"World", "Other"})}});
+    w.spec("/World", ST::Prim, {{"specifier", specifier(0)}, {"typeName", w.tokenValue("Xform")},
+                                {"primChildren", w.tokenVector({"Mesh", "Sibling"})}});
+    w.spec("/World/Mesh", ST::Prim, {{"specifier", specifier(0)}, {"typeName", w.tokenValue("Mesh")},
+                                     {"properties", w.tokenVector({"points", "faceVertexCounts", "tags"})}});
+    w.spec("/World/Mesh.points", ST::Attribute,
+           {{"typeName", w.tokenValue("point3f[]")},
+            {"default", w.array(T::Vec3f, std::vector<float>{0, 0, 0, 1, 0, 0, 1, 1, 0, 0.5f, -2, 8}, 4)}});
+    std::vector<test::CrateWriter::Rep> counts = {w.array(T::Int, std::vector<std::int32_t>{3}, 1),
+                                                  w.array(T::Int, std::vector<std::int32_t>{4}, 1)};
+    w.spec("/World/Mesh.faceVertexCounts", ST::Attribute,
+           {{"typeName", w.tokenValue("int[]")}, {"timeSamples", w.timeSamples({1.0, 24.0}, counts)}});
+    w.spec("/World/Mesh.tags", ST::Attribute, {{"typeName", w.tokenValue("token[]")}, {"default", w.tokenArray({"a", "b"})}});
+    w.spec("/World/Sibling", ST::Prim, {{"specifier", specifier(1)}});
+    w.spec("/Other", ST::Prim, {{"specifier", specifier(2)}, {"typeName", w.tokenValue("Scope")}});
+    return w.finish();
+}
+
+TEST(CrateVersions, EveryLayoutFromTheSpecificationReadsTheSame) {
+    const std::string expected = writeUsda(*readCrateBytes(sceneInCrateVersion({0, 8, 0}), "v080.usdc"));
+    for (const char* text : {"def Xform \"World\"", "over \"Sibling\"", "class Scope \"Other\"",
+                             "point3f[] points = [(0, 0, 0), (1, 0, 0), (1, 1, 0), (0.5, -2, 8)]",
+                             "1: [3],", "24: [4],", "token[] tags = [\"a\", \"b\"]"})
+        EXPECT_NE(expected.find(text), std::string::npos) << text << " not in\n" << expected;
+    for (detail::CrateVersion version : std::vector<detail::CrateVersion>{
+             {0, 0, 1}, {0, 1, 0}, {0, 2, 0}, {0, 3, 0}, {0, 4, 0}, {0, 5, 0}, {0, 6, 0}, {0, 7, 0}}) {
+        SCOPED_TRACE(version.str());
+        std::vector<char> bytes = sceneInCrateVersion(version);
+        ASSERT_EQ(bytes[9], version.minor);
+        EXPECT_EQ(writeUsda(*readCrateBytes(bytes, "old.usdc")), expected);
+    }
 }
 
 // tinyusdz's empty crate (0.8.0: only the pseudo-root, and a FIELDS section of zero integers,

@@ -3,7 +3,11 @@
 // the subset the tests need. It is not a production writer and is never linked into Fluence.
 //
 // It always picks the simplest valid encoding:
-//   - version 0.8.0 (array counts are uint64, references carry a layer offset);
+//   - version 0.8.0 (array counts are uint64, references carry a layer offset), or an older one
+//     given to the constructor, written as OpenUSD's crateFile.cpp describes it: before 0.7.0
+//     array counts are uint32, before 0.5.0 preceded by a uint32 rank of 1; before 0.4.0 the
+//     structural sections are plain (see finish()), in 0.0.1 with padded spec records and path
+//     headers;
 //   - LZ4 framing: chunk-count byte 0, then one block from LZ4_compress_default;
 //   - integer coding: common value 0 and every value in the widest code (3), as deltas;
 //   - values out of line (the ValueRep payload is the file offset of their data) except tokens,
@@ -15,7 +19,13 @@
 //   - nested values (dictionary entries, time samples): a relative jump of 8, then the ValueRep;
 //   - no value deduplication; the path tree in pre-order with USD's jump coding.
 // Layout: 88-byte bootstrap, value data, then sections TOKENS, STRINGS, FIELDS, FIELDSETS, PATHS,
-// SPECS, then the table of contents.
+// SPECS, then the table of contents. Before 0.4.0: TOKENS a uint64 count, a uint64 byte size and
+// the text; FIELDS a uint64 count and 16-byte records (4 bytes of padding, token, ValueRep);
+// FIELDSETS a uint64 count and uint32 indexes; PATHS a uint64 count and one 12-byte header per
+// path in pre-order (index, element token, bits 1 child / 2 sibling / 4 property, 3 bytes of
+// padding), followed when it has both a child and a sibling by the sibling's int64 file offset;
+// SPECS a uint64 count and 12-byte (path, field set, type) records; in 0.0.1 path headers and
+// spec records start with 4 more bytes of padding.
 #pragma once
 
 #include <cstdint>
@@ -44,7 +54,7 @@ public:
         double offset = 0.0, scale = 1.0;
     };
 
-    CrateWriter() : data_(88, 0) {
+    explicit CrateWriter(usd::detail::CrateVersion version = {0, 8, 0}) : version_(version), data_(88, 0) {
         token("");  // token 0 is never a property name, so every property element is negative
         nodes_.push_back({0, {}});
         pathIndex_["/"] = 0;
@@ -103,14 +113,15 @@ public:
     template <class T>
     Rep array(int type, const std::vector<T>& flat, std::size_t count) {
         std::uint64_t at = data_.size();
-        put<std::uint64_t>(count);
+        putArraySize(count);
         for (const T& c : flat) put(c);
         return rep(type, at, true);
     }
-    // An int or uint array, integer-coded (16 or more elements: the reader takes shorter ones raw).
+    // An int or uint array, integer-coded (16 or more elements: the reader takes shorter ones raw;
+    // crate 0.5.0 and later).
     Rep compressedInts(int type, const std::vector<std::int32_t>& values) {
         std::uint64_t at = data_.size();
-        put<std::uint64_t>(values.size());
+        putArraySize(values.size());
         putInts(values);
         return rep(type, at, true) | (1ull << 61);
     }
@@ -200,6 +211,7 @@ public:
     }
 
     std::vector<char> finish() {
+        if (!version_.atLeast(0, 4, 0)) return finishPlain();
         // The path tree first: it may add element tokens.
         std::vector<std::int32_t> pathIndexes, elements, jumps;
         encodeTree({0}, pathIndexes, elements, jumps);
@@ -233,20 +245,7 @@ public:
         beginSection("SPECS");
         put<std::uint64_t>(specs_[1].size());
         for (const auto& column : specs_) putInts(column);
-        sections_.back().size = data_.size() - sections_.back().start;
-
-        std::uint64_t toc = data_.size();
-        put<std::uint64_t>(sections_.size());
-        for (const Section& s : sections_) {
-            char name[16] = {};
-            std::memcpy(name, s.name, std::strlen(s.name));
-            putBytes(name, sizeof name);
-            put(s.start), put(s.size);
-        }
-        std::memcpy(data_.data(), "PXR-USDC", 8);
-        data_[8] = 0, data_[9] = 8, data_[10] = 0;  // version 0.8.0
-        std::memcpy(data_.data() + 16, &toc, sizeof toc);
-        return data_;
+        return finishTableOfContents();
     }
 
 private:
@@ -258,6 +257,85 @@ private:
         const char* name;
         std::uint64_t start = 0, size = 0;
     };
+
+    // The structural sections of crate versions before 0.4.0, uncompressed.
+    std::vector<char> finishPlain() {
+        const bool padded = !version_.atLeast(0, 1, 0);
+        beginSection("TOKENS");
+        std::string text;
+        for (const auto& t : tokens_) text += t, text += '\0';
+        put<std::uint64_t>(tokens_.size()), put<std::uint64_t>(text.size());
+        putBytes(text.data(), text.size());
+
+        beginSection("STRINGS");
+        put<std::uint64_t>(strings_.size());
+        for (std::uint32_t s : strings_) put(s);
+
+        beginSection("FIELDS");
+        put<std::uint64_t>(fieldTokens_.size());
+        for (std::size_t i = 0; i < fieldTokens_.size(); ++i) put<std::uint32_t>(0), put(fieldTokens_[i]), put(fieldReps_[i]);
+
+        beginSection("FIELDSETS");
+        put<std::uint64_t>(fieldSets_.size());
+        for (std::int32_t index : fieldSets_) put(index);
+
+        beginSection("PATHS");
+        put<std::uint64_t>(nodes_.size());
+        writeTree({0}, padded);
+
+        beginSection("SPECS");
+        put<std::uint64_t>(specs_[0].size());
+        for (std::size_t i = 0; i < specs_[0].size(); ++i) {
+            if (padded) put<std::uint32_t>(0);
+            put(specs_[0][i]), put(specs_[1][i]), put(specs_[2][i]);
+        }
+        return finishTableOfContents();
+    }
+
+    // The path tree in pre-order, each header followed (with both a child and a sibling) by the
+    // file offset of its sibling, filled in once the child subtree is written.
+    void writeTree(const std::vector<std::uint32_t>& siblings, bool padded) {
+        for (std::size_t i = 0; i < siblings.size(); ++i) {
+            const Node& node = nodes_[siblings[i]];
+            const bool hasChild = !node.children.empty(), hasSibling = i + 1 < siblings.size();
+            if (padded) put<std::uint32_t>(0);
+            put(siblings[i]);
+            put<std::uint32_t>(static_cast<std::uint32_t>(node.element < 0 ? -node.element : node.element));
+            put<std::uint8_t>((hasChild ? 1 : 0) | (hasSibling ? 2 : 0) | (node.element < 0 ? 4 : 0));
+            put<std::uint8_t>(0), put<std::uint8_t>(0), put<std::uint8_t>(0);
+            if (!hasChild) continue;
+            std::size_t siblingOffset = data_.size();
+            if (hasSibling) put<std::int64_t>(0);
+            writeTree(node.children, padded);
+            if (!hasSibling) continue;
+            std::int64_t sibling = static_cast<std::int64_t>(data_.size());
+            std::memcpy(data_.data() + siblingOffset, &sibling, sizeof sibling);
+        }
+    }
+
+    std::vector<char> finishTableOfContents() {
+        sections_.back().size = data_.size() - sections_.back().start;
+        std::uint64_t toc = data_.size();
+        put<std::uint64_t>(sections_.size());
+        for (const Section& s : sections_) {
+            char name[16] = {};
+            std::memcpy(name, s.name, std::strlen(s.name));
+            putBytes(name, sizeof name);
+            put(s.start), put(s.size);
+        }
+        std::memcpy(data_.data(), "PXR-USDC", 8);
+        data_[8] = static_cast<char>(version_.major), data_[9] = static_cast<char>(version_.minor);
+        data_[10] = static_cast<char>(version_.patch);
+        std::memcpy(data_.data() + 16, &toc, sizeof toc);
+        return data_;
+    }
+
+    // An array's element count: uint32 before 0.7.0, after a uint32 rank of 1 before 0.5.0.
+    void putArraySize(std::size_t count) {
+        if (!version_.atLeast(0, 5, 0)) put<std::uint32_t>(1);
+        if (version_.atLeast(0, 7, 0)) put<std::uint64_t>(count);
+        else put<std::uint32_t>(static_cast<std::uint32_t>(count));
+    }
     template <class T>
     void put(const T& v) {
         putBytes(&v, sizeof v);
@@ -268,7 +346,8 @@ private:
     }
     Rep indexList(int type, const std::vector<std::string>& items, bool isArray) {
         std::uint64_t at = data_.size();
-        put<std::uint64_t>(items.size());
+        if (isArray) putArraySize(items.size());
+        else put<std::uint64_t>(items.size());
         for (const auto& s : items) put(type == crate_type::String || type == crate_type::PathExpression ? string(s) : token(s));
         return rep(type, at, isArray);
     }
@@ -315,6 +394,7 @@ private:
         sections_.push_back({name, data_.size(), 0});
     }
 
+    usd::detail::CrateVersion version_;
     std::vector<char> data_;
     std::vector<std::string> tokens_;
     std::map<std::string, std::uint32_t> tokenIndex_;
