@@ -107,6 +107,29 @@ private:
     const std::string& path_;
 };
 
+constexpr std::size_t kMaxPackageNesting = 64;
+
+// "a.usdz[b.usdz[c.png]]" as {"a.usdz", "b.usdz", "c.png"}; a path that is not package-relative
+// as itself alone.
+std::vector<std::string> packagePathParts(const std::string& path) {
+    std::vector<std::string> parts;
+    std::string rest = path;
+    while (std::optional<PackagePath> split = splitPackagePath(rest)) {
+        if (parts.size() == kMaxPackageNesting)
+            throw FileError("'" + path + "': packages nested more than " + std::to_string(kMaxPackageNesting) + " deep");
+        parts.push_back(std::move(split->package));
+        rest = std::move(split->entry);
+    }
+    parts.push_back(std::move(rest));
+    return parts;
+}
+
+std::string joinPackagePathParts(const std::vector<std::string>& parts, std::size_t count) {
+    std::string path = parts[0];
+    for (std::size_t i = 1; i < count; ++i) path += "[" + parts[i];
+    return path + std::string(count - 1, ']');
+}
+
 }  // namespace
 
 UsdzPackage UsdzPackage::open(const std::string& path) {
@@ -148,32 +171,6 @@ std::optional<PackagePath> splitPackagePath(const std::string& path) {
     return PackagePath{path.substr(0, open), path.substr(open + 1, path.size() - open - 2)};
 }
 
-namespace {
-
-constexpr std::size_t kMaxPackageNesting = 64;
-
-// "a.usdz[b.usdz[c.png]]" as {"a.usdz", "b.usdz", "c.png"}; a path that is not package-relative
-// as itself alone.
-std::vector<std::string> packagePathParts(const std::string& path) {
-    std::vector<std::string> parts;
-    std::string rest = path;
-    while (std::optional<PackagePath> split = splitPackagePath(rest)) {
-        if (parts.size() == kMaxPackageNesting)
-            throw FileError("'" + path + "': packages nested more than " + std::to_string(kMaxPackageNesting) + " deep");
-        parts.push_back(std::move(split->package));
-        rest = std::move(split->entry);
-    }
-    parts.push_back(std::move(rest));
-    return parts;
-}
-
-std::string joinPackagePathParts(const std::vector<std::string>& parts, std::size_t count) {
-    std::string path = parts[0];
-    for (std::size_t i = 1; i < count; ++i) path += "[" + parts[i];
-    return path + std::string(count - 1, ']');
-}
-
-}  // namespace
 
 std::optional<PackagePath> splitInnermostPackagePath(const std::string& path) {
     std::vector<std::string> parts = packagePathParts(path);
