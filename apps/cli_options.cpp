@@ -270,6 +270,8 @@ RenderOptions parseRenderOptions(const std::vector<std::string>& args) {
             o.progress = parseVerbosity(arg == "-V" ? cur.value(arg) : arg.substr(2));
         } else if (arg == "--allow-missing") {
             o.allowMissing = true;
+        } else if (arg == "--strict") {
+            o.strict = true;
         } else if (arg == "--purpose") {
             o.purposes = splitList(cur.value(arg));
             try {
@@ -348,7 +350,11 @@ std::string usageText() {
            "                          terminal (default: a bar on a terminal, those lines otherwise)\n"
            "      --allow-missing     render even when layers, textures or VDB files are missing (each is a\n"
            "                          warning); without it a missing asset is an error (exit 4)\n"
-           "  -f, --frame F           time code to render (default: the stage's startTimeCode, else default values)\n"
+           "      --strict            a malformed prim (face counts that do not match the indices, a GeomSubset\n"
+           "                          index out of range, ...) is an error (exit 3); without it the prim is\n"
+           "                          skipped with a warning naming it and the reason, and the rest rendered\n"
+           "  -f, --frame F           time code to render (default: the stage's startTimeCode, else none: each\n"
+           "                          time-sampled attribute takes its earliest sample, as in Hydra)\n"
            "  -n, --frame-count N     render N frames from --frame on, the stage read once (default 1)\n"
            "  -i, --frame-inc K       time codes between those frames (default 1)\n"
            "      --make-output-path  create the output's folders\n"

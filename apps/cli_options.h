@@ -38,7 +38,7 @@ struct RenderOptions {
     double dicingRate = 1.0;        // --dicing-rate PIXELS: micro-edge length of subdivision surfaces
     std::optional<int> subdivLevel; // --subdiv-level N: uniform refinement instead of dicing
     std::string subsurface;         // --subsurface randomwalk|diffusion: every material's method ("" keeps theirs)
-    std::optional<double> frame;    // -f/--frame F (default: the stage's startTimeCode, else USD's default time)
+    std::optional<double> frame;    // -f/--frame F (default: the stage's startTimeCode, else none: each attribute's earliest sample)
     int frameCount = 1;             // -n/--frame-count N: frames to render from --frame on
     double frameIncrement = 1.0;    // -i/--frame-inc K: time codes between them
     bool makeOutputPath = false;    // --make-output-path: create the output's folders
@@ -58,6 +58,7 @@ struct RenderOptions {
     std::vector<AttributeOverride> overrides;  // --set [TYPE ]/Prim.attr=VALUE (repeatable)
     ProgressStyle progress = ProgressStyle::Auto;  // -V [LEVEL][a]: 0 none, a ALF_PROGRESS lines
     bool allowMissing = false;      // --allow-missing: render without missing layers, textures and VDBs (warnings)
+    bool strict = false;            // --strict: a malformed prim is an error (exit 3), not a warning and skipped
     std::optional<std::vector<std::string>> purposes;  // --purpose a,b: else the render settings' includedPurposes
 };
 

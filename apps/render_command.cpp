@@ -110,6 +110,7 @@ int renderFrame(const RenderOptions& opt, usd::Stage& stage, const color::ColorM
     dopt.time = time;
     dopt.purposes = opt.purposes;
     dopt.allowMissing = opt.allowMissing;
+    dopt.strict = opt.strict;
     dopt.convertColor = [&](const RGB& c, const std::string& space) { return colors.toRenderingSpace(space, c); };
     dopt.warn = [&](const std::string& path, const std::string& message) { warnings(path, message); };
     std::optional<delegate::DelegateResult> populated;
@@ -428,7 +429,8 @@ int renderFrames(const RenderOptions& opt, WarningLog& warnings, RunSummary& sum
     }
     const double parseSeconds = summary.parseSeconds = secondsSince(t);
 
-    // The frames: --frame (else the stage's startTimeCode, else default values) and the
+    // The frames: --frame (else the stage's startTimeCode, else none: the delegate reads each
+    // attribute's earliest time sample, delegate/prim_reader.h) and the
     // --frame-count - 1 after it, --frame-inc apart.
     const double first = opt.frame ? *opt.frame : stage->startTimeCode().value_or(usd::kDefaultTime);
     if (opt.frameCount > 1 && std::isnan(first)) {

@@ -3,6 +3,7 @@
 #include <cstdio>
 #include <filesystem>
 
+#include "delegate/render_index.h"
 #include "scene/usda_parser.h"
 #include "scene/usdz_package.h"
 
@@ -35,8 +36,11 @@ int openStage(const std::string& path, const usd::StageOptions& options, Warning
         if (a.exists) continue;
         const bool arc = a.property == "subLayers" || a.property == "references" || a.property == "payload" || a.property == "clips";
         // What the render reads: layers, shader and light inputs (textures), volume field files.
-        // Other asset-valued attributes (model:cardTexture*, documentation) only warn.
-        const bool rendered = arc || a.property.starts_with("inputs:") || a.property == "filePath";
+        // Other asset-valued attributes (model:cardTexture*, a SpatialAudio's filePath,
+        // documentation) only warn.
+        const usd::PrimSpec* prim = a.primPath.empty() ? nullptr : stage->prim(a.primPath);
+        const bool fieldFile = a.property == "filePath" && prim && delegate::isFieldAssetType(prim->typeName);
+        const bool rendered = arc || a.property.starts_with("inputs:") || fieldFile;
         const std::string where = a.primPath.empty() ? a.location.str() : a.primPath + "." + a.property;
         if (missing == MissingAssets::Fail && rendered) {
             printError(where + ": missing asset " + a.resolved + " (authored as @" + a.authored + "@)");

@@ -119,12 +119,12 @@ PrototypeContents prototypeContents(const usd::Stage& stage, const std::string& 
     usd::Stage::traverse(*rootPrim, [&](const usd::PrimSpec& prim) {
         if (!isImaged(prim, time, purposes)) return false;
         Matrix4 space = Matrix4::identity();
+        auto warnHere = [&](const std::string& message) { warn(prim.path, message); };
         if (prim.path != root || includeRootTransform) {
-            LocalTransform local = localTransform(PrimReader(prim, time));
+            LocalTransform local = localTransform(PrimReader(prim, time), warnHere);
             space = prim.path == root || local.resetsXformStack ? local.matrix : spaces.at(parentPath(prim.path)) * local.matrix;
         }
         spaces[prim.path] = space;
-        auto warnHere = [&](const std::string& message) { warn(prim.path, message); };
         if (prim.typeName == "Mesh" && SubdivisionMesh::isSubdivided(prim, time)) {
             contents.subdivided.push_back(
                 {std::make_shared<const SubdivisionMesh>(stage, prim, time, convertColor, warnHere), space});

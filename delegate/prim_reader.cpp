@@ -1,7 +1,5 @@
 #include "delegate/prim_reader.h"
 
-#include "scene/stage.h"
-
 namespace fluence::delegate {
 
 std::optional<usd::Value> PrimReader::value(const std::string& name) const {

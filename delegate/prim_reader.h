@@ -3,8 +3,13 @@
 // The delegate's one way to read authored data: every getter takes the schema's fallback value,
 // resolves the attribute at the delegate's time code, and raises SceneError (naming the prim and
 // attribute) when an authored value has the wrong type or size.
+//
+// A render with no frame (time usd::kDefaultTime: no --frame and no startTimeCode) reads the stage
+// as Hydra does then, at usd::kEarliestTime: an attribute with only time samples (an animated
+// xformOp) gives its earliest sample instead of no value, one with only a default its default.
 #pragma once
 
+#include <cmath>
 #include <initializer_list>
 #include <optional>
 #include <stdexcept>
@@ -14,6 +19,7 @@
 #include "core/matrix.h"
 #include "core/rgb.h"
 #include "scene/layer.h"
+#include "scene/stage.h"
 
 namespace fluence::delegate {
 
@@ -32,7 +38,7 @@ public:
 
 class PrimReader {
 public:
-    PrimReader(const usd::PrimSpec& prim, double time) : prim_(prim), time_(time) {}
+    PrimReader(const usd::PrimSpec& prim, double time) : prim_(prim), time_(std::isnan(time) ? usd::kEarliestTime : time) {}
 
     const usd::PrimSpec& prim() const { return prim_; }
     const std::string& path() const { return prim_.path; }

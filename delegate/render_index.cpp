@@ -35,11 +35,11 @@ struct WorldTransform {
 };
 
 // Composes local transforms from the root down to `path` (honouring !resetXformStack!).
-WorldTransform worldTransformOf(const usd::Stage& stage, const std::string& path, double time) {
+WorldTransform worldTransformOf(const usd::Stage& stage, const std::string& path, double time, const Warn& warn) {
     WorldTransform result;
     for (std::size_t slash = path.find('/', 1);; slash = path.find('/', slash + 1)) {
         if (const usd::PrimSpec* prim = stage.prim(path.substr(0, slash))) {
-            LocalTransform local = localTransform(PrimReader(*prim, time));
+            LocalTransform local = localTransform(PrimReader(*prim, time), [&](const std::string& message) { warn(prim->path, message); });
             result.matrix = local.resetsXformStack ? local.matrix : result.matrix * local.matrix;
             if (local.resetsXformStack) result.animated = false;
             for (const usd::AttributeSpec& a : prim->attributes)
@@ -65,13 +65,23 @@ bool isAtOrBelow(const std::string& path, const std::string& root) {
 
 void RenderPrim::sync(const SyncContext& context) {
     if (dirty_ == kClean) return;
-    if (dirty_ & kDirtyTransform) {
-        WorldTransform w = worldTransformOf(context.stage, path_, context.time);
-        world_ = w.matrix;
-        transformAnimated_ = w.animated;
-    }
     const usd::PrimSpec* prim = context.stage.prim(sourcePath());
-    syncData(context, prim, dirty_);
+    const std::uint32_t bits = failed() ? kAllDirty : dirty_;  // what failed may be half read
+    try {
+        if (bits & kDirtyTransform) {
+            WorldTransform w = worldTransformOf(context.stage, path_, context.time, context.warn);
+            world_ = w.matrix;
+            transformAnimated_ = w.animated;
+        }
+        syncData(context, prim, bits);
+        failure_.clear();
+    } catch (const MissingAssetError&) {
+        throw;
+    } catch (const SceneError& e) {
+        if (context.strict) throw;
+        if (failure_ != e.what()) context.warn(path_, std::string("not rendered: ") + e.what() + " (--strict makes this an error)");
+        failure_ = e.what();
+    }
     dataAnimated_ = prim && readsAnimatedData(*prim);
     dirty_ = kClean;
     ++syncCount_;
@@ -245,7 +255,7 @@ std::size_t RenderIndex::sync(const SyncContext& context) {
     syncKind([](Kind k) { return k != Kind::Material && k != Kind::Texture; });
     std::set<std::string> materials;
     for (auto& [path, prim] : prims_) {
-        if (const auto* surface = dynamic_cast<const SurfaceRprim*>(prim.get()))
+        if (const auto* surface = dynamic_cast<const SurfaceRprim*>(prim.get()); surface && !surface->failed())
             for (const std::string& m : surface->materialPaths()) materials.insert(m);
     }
     for (const std::string& m : materials)
@@ -253,7 +263,7 @@ std::size_t RenderIndex::sync(const SyncContext& context) {
     syncKind([](Kind k) { return k == Kind::Material; });
     std::set<std::string> textures;
     for (auto& [path, prim] : prims_)
-        if (prim->kind() == Kind::Material)
+        if (prim->kind() == Kind::Material && !prim->failed())
             for (const std::string& t : static_cast<const MaterialSprim&>(*prim).textures()) textures.insert(t);
     for (const std::string& t : textures)
         if (!find(t)) insert(std::make_unique<TextureBprim>(t));

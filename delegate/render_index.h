@@ -19,6 +19,12 @@
 //   - Sprims are small: any dirty bit re-reads the prim.
 //   - Each prim records whether what it read is animated (time samples), so that a change of
 //     render time dirties only animated prims.
+//   - One bad prim never sinks a render (Hydra's behaviour): a sync that raises SceneError (a
+//     malformed prim: face counts that do not match the indices, a GeomSubset index out of
+//     range, a loop-scheme mesh with quads, a primvar of the wrong size, a bad xformOp) leaves
+//     the prim failed(), with one warning naming it and the reason, and the scene is described
+//     without it; the next sync (an edit, a new render time) tries it again. With
+//     SyncContext::strict the SceneError is raised instead. A MissingAssetError is always raised.
 #pragma once
 
 #include <cstdint>
@@ -56,6 +62,7 @@ struct SyncContext {
     const ColorConverter& convertColor;
     const Warn& warn;
     const IncludedPurposes& purposes;
+    bool strict = false;  // a malformed prim raises SceneError instead of being skipped
 };
 
 class RenderPrim {
@@ -72,6 +79,10 @@ public:
     int syncCount() const { return syncCount_; }
     bool transformAnimated() const { return transformAnimated_; }
     bool dataAnimated() const { return dataAnimated_; }
+    // Whether the last sync failed (the prim is left out of the scene), and why: the SceneError's
+    // message, naming the prim (or the ancestor, material or subset) at fault.
+    bool failed() const { return !failure_.empty(); }
+    const std::string& failure() const { return failure_; }
 
     // Pulls what the dirty bits name from the stage and clears them (no-op when clean).
     void sync(const SyncContext& context);
@@ -94,6 +105,7 @@ private:
     int syncCount_ = 0;
     Matrix4 world_ = Matrix4::identity();
     bool transformAnimated_ = false, dataAnimated_ = false;
+    std::string failure_;
 };
 
 // Geometry split into one part per bound material: a mesh's or a prototype's. Polygon meshes

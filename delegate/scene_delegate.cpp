@@ -15,11 +15,13 @@ namespace fluence::delegate {
 
 namespace {
 
-// Types that carry no geometry of their own and need no warning.
+// Types that carry no geometry of their own and need no warning (a SpatialAudio is sound, which
+// no renderer reads).
 bool isStructuralType(const std::string& t) {
     static const std::set<std::string> kTypes = {"",          "Xform",          "Scope",        "Material",
                                                  "Shader",    "NodeGraph",      "GeomSubset",   "RenderSettings",
-                                                 "RenderProduct", "RenderVar",  "RenderPass",   "Camera"};
+                                                 "RenderProduct", "RenderVar",  "RenderPass",   "Camera",
+                                                 "SpatialAudio"};
     return kTypes.contains(t);
 }
 
@@ -34,16 +36,16 @@ std::uint32_t meshBitsFor(const std::string& name) {
 std::string nativeKey(const std::string& key) { return "instance:" + key; }
 std::string pointInstancerKey(const std::string& root) { return "root:" + root; }
 
-// A mesh part as the render core takes it: a bound material replaces displayColor, and the
-// part keeps only the primvars its material's nodes read and those in `aovPrimvars`.
+// A mesh part as the render core takes it: a bound material (`materialFor`: its index, -1 when
+// it failed to sync) replaces displayColor, and the part keeps only the primvars its material's
+// nodes read and those in `aovPrimvars`.
 void appendPart(SurfaceRprim::Part part, std::vector<render::MeshDesc>& meshes,
                 const std::function<int(const std::string&)>& materialFor, const std::vector<render::MaterialDesc>& materials,
                 const std::set<std::string>& aovPrimvars) {
     render::MeshDesc& mesh = part.objectSpace;
     if (mesh.indices.empty()) return;
     const render::MaterialDesc* material = nullptr;
-    if (!part.materialPath.empty()) {
-        mesh.material = materialFor(part.materialPath);
+    if (!part.materialPath.empty() && (mesh.material = materialFor(part.materialPath)) >= 0) {
         mesh.cornerColors.clear();
         material = &materials[static_cast<std::size_t>(mesh.material)];
     }
@@ -188,13 +190,16 @@ void SceneDelegate::chooseCamera() {
         if (prim->typeName != "Camera")
             throw SceneError("camera " + wanted + " is a " + (prim->typeName.empty() ? "typeless prim" : prim->typeName) +
                              ", not a Camera");
-        if (!index_.find(wanted)) throw SceneError("camera " + wanted + " is not active, defined and visible in the scene");
+        const RenderPrim* camera = index_.find(wanted);
+        if (!camera) throw SceneError("camera " + wanted + " is not active, defined and visible in the scene");
+        if (camera->failed()) throw SceneError("camera " + wanted + " cannot be used: " + camera->failure());
         cameraPath_ = wanted;
         return;
     }
     cameraPath_.clear();
     stage_.traverse([&](const usd::PrimSpec& prim) {
-        if (cameraPath_.empty() && prim.typeName == "Camera" && index_.find(prim.path)) cameraPath_ = prim.path;
+        const RenderPrim* camera = prim.typeName == "Camera" ? index_.find(prim.path) : nullptr;
+        if (cameraPath_.empty() && camera && !camera->failed()) cameraPath_ = prim.path;
         return cameraPath_.empty();
     });
     if (cameraPath_.empty())
@@ -247,7 +252,7 @@ std::optional<render::VolumeDesc> SceneDelegate::volumeDesc(const VolumeRprim& v
         for (const VolumeRprim::Field& f : volume.fields()) {
             if (f.name != name) continue;
             const auto* asset = dynamic_cast<const FieldBprim*>(index_.find(f.assetPrim));
-            if (!asset) return std::nullopt;
+            if (!asset || asset->failed()) return std::nullopt;
             if (!asset->fileFound()) {
                 const std::string what = "field '" + name + "': OpenVDB file " +
                                          (asset->filePath().empty() ? "(not authored)" : asset->filePath()) + " not found";
@@ -279,8 +284,10 @@ render::SceneDescription SceneDelegate::describe(const render::Camera& camera, f
     subdivisionTriangles = 0;
     std::map<std::string, int> materialIndex;
     std::function<int(const std::string&)> materialFor = [&](const std::string& path) {
+        const auto& sprim = static_cast<const MaterialSprim&>(*index_.find(path));
+        if (sprim.failed()) return -1;  // the default material
         auto [it, inserted] = materialIndex.try_emplace(path, static_cast<int>(scene.materials.size()));
-        if (inserted) scene.materials.push_back(static_cast<const MaterialSprim&>(*index_.find(path)).material());
+        if (inserted) scene.materials.push_back(sprim.material());
         return it->second;
     };
     DicingContext dicing{camera, options_.dicing,
@@ -308,7 +315,7 @@ render::SceneDescription SceneDelegate::describe(const render::Camera& camera, f
     };
     stage_.traverse([&](const usd::PrimSpec& spec) {
         const RenderPrim* prim = index_.find(spec.path);
-        if (!prim) return true;
+        if (!prim || prim->failed()) return true;
         switch (prim->kind()) {
             case RenderPrim::Kind::Light:
                 if (const auto& light = static_cast<const LightSprim&>(*prim).light()) scene.lights.push_back(*light);
@@ -350,6 +357,7 @@ render::SceneDescription SceneDelegate::describe(const render::Camera& camera, f
     });
     for (const auto& [key, index] : prototypeIndex) {
         const auto& prototype = static_cast<const PrototypeRprim&>(*index_.find(prototypes_.at(key)));
+        if (prototype.failed()) continue;  // its instances place nothing
         for (const Matrix4& instance : placements[static_cast<std::size_t>(index)])
             for (render::LightDesc light : prototype.lights()) {
                 light.transform = instance * light.transform;
@@ -374,6 +382,7 @@ void SceneDelegate::setTime(double time) {
     options_.time = time;
     renderSettings_ = renderSettingsFromStage(stage_, options_.settingsPath, time);
     for (const auto& [path, prim] : index_.prims()) {
+        if (prim->failed()) prim->markDirty(kAllDirty);  // it may be well formed at this time
         if (prim->transformAnimated()) prim->markDirty(kDirtyTransform);
         if (prim->dataAnimated()) prim->markDirty(kAllDirty & ~std::uint32_t(kDirtyTransform));
     }

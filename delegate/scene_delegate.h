@@ -9,7 +9,8 @@
 // material sprim for every material a mesh binds and a texture bprim for every UsdUVTexture a
 // material holds. Authored colours are converted into the rendering space through
 // `convertColor`. Prim types it cannot render yet are skipped with one warning per type.
-// Semantic errors raise SceneError naming the prim path.
+// A malformed prim is skipped with a warning naming it and the reason (render_index.h), or, with
+// DelegateOptions::strict, raises SceneError naming the prim path, as other semantic errors do.
 //
 // Change tracking. Edits go through the delegate, which applies them to the stage and marks only
 // the render prims they affect (render_index.h states the dirty-bit contract):
@@ -53,13 +54,15 @@ struct DelegateOptions {
     std::optional<std::pair<int, int>> resolution;
     std::pair<int, int> defaultResolution{640, 480};
     DicingSettings dicing;     // how subdivision surfaces are tessellated for the camera
-    double time = usd::kDefaultTime;
+    double time = usd::kDefaultTime;  // the render time code; kDefaultTime: no frame (prim_reader.h)
     ColorConverter convertColor;  // authored colour + colour space -> rendering space
     Warn warn;                    // (prim path, message)
     // The purposes rendered (--purpose): these when set, else the render settings' includedPurposes.
     std::optional<std::vector<std::string>> purposes;
     // A missing OpenVDB file: a warning and the volume left out when true, else MissingAssetError.
     bool allowMissing = false;
+    // A malformed prim (render_index.h): SceneError when true, else a warning and the prim skipped.
+    bool strict = false;
     // Primvars (names without "primvars:") every mesh keeps for primvar RenderVars, whether or not
     // its material reads them (render::RenderScene::primvarAt).
     std::set<std::string> aovPrimvars;
@@ -103,7 +106,7 @@ private:
     // with a warning, when it has no density field). Raises MissingAssetError when a grid file is
     // missing (with DelegateOptions::allowMissing: a warning, and nullopt).
     std::optional<render::VolumeDesc> volumeDesc(const VolumeRprim& volume) const;
-    SyncContext context() const { return {stage_, options_.time, options_.convertColor, options_.warn, purposes_}; }
+    SyncContext context() const { return {stage_, options_.time, options_.convertColor, options_.warn, purposes_, options_.strict}; }
 
     usd::Stage& stage_;
     DelegateOptions options_;

@@ -20,8 +20,7 @@ Matrix4 opMatrix(const PrimReader& prim, const std::string& attributeName) {
     std::string_view rest(attributeName);
     rest.remove_prefix(std::string_view("xformOp:").size());
     std::string_view type = rest.substr(0, rest.find(':'));
-    std::optional<usd::Value> v = prim.value(attributeName);
-    if (!v) prim.fail("xformOpOrder names '" + attributeName + "', which has no value");
+    const std::optional<usd::Value> v = prim.value(attributeName);  // localTransform checked it has one
     if (!v->isNumeric()) prim.fail("xform op '" + attributeName + "' is not numeric: " + v->toString());
     const std::vector<double>& n = v->numbers;
     auto need = [&](std::size_t count) {
@@ -61,7 +60,7 @@ Matrix4 opMatrix(const PrimReader& prim, const std::string& attributeName) {
 
 }  // namespace
 
-LocalTransform localTransform(const PrimReader& prim) {
+LocalTransform localTransform(const PrimReader& prim, const std::function<void(const std::string&)>& warn) {
     LocalTransform result;
     std::optional<std::vector<std::string>> order = prim.strings("xformOpOrder");
     if (!order) return result;
@@ -75,6 +74,10 @@ LocalTransform localTransform(const PrimReader& prim) {
         bool invert = entry.starts_with(kInvert);
         std::string name = invert ? entry.substr(kInvert.size()) : entry;
         if (!name.starts_with("xformOp:")) prim.fail("xformOpOrder entry '" + entry + "' is not an xform op");
+        if (!prim.value(name)) {
+            warn("xformOpOrder names '" + name + "', which has no value; the op is skipped, as USD skips it");
+            continue;
+        }
         Matrix4 m = opMatrix(prim, name);
         if (invert) {
             std::optional<Matrix4> inv = m.inverse();

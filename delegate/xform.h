@@ -5,8 +5,12 @@
 // ("xformOp:translate:pivot") and optionally inverted ("!invert!xformOp:translate:pivot"), and
 // "!resetXformStack!". Ops apply to points from last to first, as in USD: for
 // ["xformOp:translate", "xformOp:rotateXYZ", "xformOp:scale"], points are scaled, then rotated,
-// then translated.
+// then translated. An op xformOpOrder names that has no value (no attribute, or one with neither a
+// default nor time samples) is skipped with a warning, as UsdGeomXformable skips it.
 #pragma once
+
+#include <functional>
+#include <string>
 
 #include "core/matrix.h"
 #include "delegate/prim_reader.h"
@@ -18,6 +22,6 @@ struct LocalTransform {
     bool resetsXformStack = false;  // the parent's transform does not apply
 };
 
-LocalTransform localTransform(const PrimReader& prim);
+LocalTransform localTransform(const PrimReader& prim, const std::function<void(const std::string& message)>& warn);
 
 }  // namespace fluence::delegate

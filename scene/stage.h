@@ -33,6 +33,10 @@ struct LayerStack;
 
 // USD's UsdTimeCode::Default(): the attribute's default value, ignoring time samples.
 inline constexpr double kDefaultTime = std::numeric_limits<double>::quiet_NaN();
+// USD's UsdTimeCode::EarliestTime(): before every time sample, so a time-sampled attribute gives
+// its first sample and an attribute without samples its default value. Hydra renders a stage at
+// this time when no frame is asked for (UsdImagingGLRenderParams::frame, the stage scene index).
+inline constexpr double kEarliestTime = std::numeric_limits<double>::lowest();
 
 class Stage {
 public:

@@ -310,12 +310,13 @@ TEST_F(FluenceCli, AStageWithoutACameraIsFramedByADefaultOne) {
     EXPECT_TRUE(fs::exists(dir_ / "x.exr"));
 }
 
+// A malformed prim is an error under --strict (without it: tests/apps/production_scenes_cli_test.cpp).
 TEST_F(FluenceCli, SemanticErrorNamesThePrim) {
     fs::path scene = write("badmesh.usda",
                            "#usda 1.0\ndef Mesh \"Tri\"\n{\n    int[] faceVertexCounts = [3]\n"
                            "    int[] faceVertexIndices = [0, 1, 7]\n    point3f[] points = [(0,0,0), (1,0,0), (0,1,0)]\n}\n"
                            "def Camera \"Cam\"\n{\n}\n");
-    RunResult r = run("render " + scene.string() + " -o " + (dir_ / "x.exr").string());
+    RunResult r = run("render " + scene.string() + " -o " + (dir_ / "x.exr").string() + " --strict");
     EXPECT_EQ(r.exitCode, 3);
     EXPECT_NE(r.err.find("/Tri"), std::string::npos) << r.err;
     EXPECT_NE(r.err.find("faceVertexIndices[2] = 7"), std::string::npos) << r.err;

@@ -54,17 +54,23 @@ inline std::unique_ptr<usd::Stage> stageFrom(const std::string& usda) {
 }
 
 // Populates `usda` (a Camera is added unless the text starts with "#usda"), rendering through
-// `cameraPath` when given.
-inline Populated populate(const std::string& usda, const std::string& cameraPath = "") {
+// `cameraPath` when given; `strict`: DelegateOptions::strict (a malformed prim raises SceneError).
+inline Populated populateWith(const std::string& usda, const std::string& cameraPath, bool strict) {
     Populated p;
     p.stage = stageFrom(usda.starts_with("#") ? usda : kCamera + usda);
     DelegateOptions options;
     options.cameraPath = cameraPath;
+    options.strict = strict;
     options.convertColor = [](const RGB& c, const std::string&) { return c; };
     options.warn = [&p](const std::string& path, const std::string& message) { p.warnings.push_back(path + ": " + message); };
     p.result = populateScene(*p.stage, options);
     return p;
 }
+
+// As `fluence render` does: a malformed prim is skipped with a warning.
+inline Populated populate(const std::string& usda, const std::string& cameraPath = "") { return populateWith(usda, cameraPath, false); }
+// As `fluence render --strict` does: a malformed prim raises SceneError.
+inline Populated populateStrict(const std::string& usda) { return populateWith(usda, "", true); }
 
 inline Vec3d corner(const render::MeshDesc& m, std::size_t c) { return Vec3d(m.positions[m.indices[c]]); }
 

@@ -12,6 +12,7 @@ namespace fluence::delegate {
 namespace {
 
 using testing::populate;
+using testing::populateStrict;
 
 const std::string kLooks = R"(
 def Scope "Looks"
@@ -223,7 +224,7 @@ TEST(GeomSubset, OutOfRangeFaceIndicesNameTheSubset) {
     for (const char* indices : {"[0, 6]", "[-1]"}) {
         SCOPED_TRACE(indices);
         try {
-            populate(kLooks + cube("", subset("Red", "[0]", "/Looks/Red") + subset("Bad", indices, "/Looks/Blue")));
+            populateStrict(kLooks + cube("", subset("Red", "[0]", "/Looks/Red") + subset("Bad", indices, "/Looks/Blue")));
             FAIL() << "expected SceneError";
         } catch (const SceneError& e) {
             std::string what = e.what();

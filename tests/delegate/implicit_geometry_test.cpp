@@ -13,6 +13,7 @@ namespace fluence::delegate {
 namespace {
 
 using testing::populate;
+using testing::populateStrict;
 constexpr double kPi = std::numbers::pi;
 
 // An implicit prim's analytic shape, centred at the origin.
@@ -401,7 +402,7 @@ def Cylinder "Render"
 TEST(ImplicitGeometry, InvalidAttributesNameThePrim) {
     auto expectError = [](const std::string& usda, const std::string& fragment) {
         try {
-            populate(usda);
+            populateStrict(usda);
             ADD_FAILURE() << "expected SceneError for " << usda;
         } catch (const SceneError& e) {
             EXPECT_NE(std::string(e.what()).find("/Bad"), std::string::npos) << e.what();

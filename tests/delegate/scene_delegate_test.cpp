@@ -14,6 +14,7 @@ namespace {
 
 using testing::kCamera;
 using testing::populate;
+using testing::populateStrict;
 
 void expectNear(const Vec3f& a, const Vec3f& b, float eps = 1e-5f) {
     EXPECT_NEAR(a.x, b.x, eps);
@@ -128,7 +129,7 @@ def Mesh "Broken"
 }
 )";
     try {
-        populate(bad);
+        populateStrict(bad);
         FAIL() << "expected SceneError";
     } catch (const SceneError& e) {
         EXPECT_NE(std::string(e.what()).find("/Broken"), std::string::npos) << e.what();
@@ -447,9 +448,50 @@ def Xform "X"
                                                                    "t.usda"));
     const usd::PrimSpec* x = stage->prim("/X");
     ASSERT_NE(x, nullptr);
-    EXPECT_NEAR(localTransform(PrimReader(*x, 2.0)).matrix.m[0][3], 2.0, 1e-12);
-    EXPECT_NEAR(localTransform(PrimReader(*x, 0.0)).matrix.m[0][3], 0.0, 1e-12);  // held before the first
-    EXPECT_NEAR(localTransform(PrimReader(*x, 9.0)).matrix.m[0][3], 4.0, 1e-12);  // and after the last
+    const auto noWarning = [](const std::string& message) { ADD_FAILURE() << message; };
+    EXPECT_NEAR(localTransform(PrimReader(*x, 2.0), noWarning).matrix.m[0][3], 2.0, 1e-12);
+    EXPECT_NEAR(localTransform(PrimReader(*x, 0.0), noWarning).matrix.m[0][3], 0.0, 1e-12);  // held before the first
+    EXPECT_NEAR(localTransform(PrimReader(*x, 9.0), noWarning).matrix.m[0][3], 4.0, 1e-12);  // and after the last
+}
+
+// No frame asked for and no startTimeCode (OpenUSD's UsdImagingGL renders at EarliestTime then):
+// an attribute with only time samples gives its earliest sample, not "no value".
+TEST(SceneDelegate, WithoutAFrameTimeSampledAttributesGiveTheirEarliestSample) {
+    const std::string scene = R"(
+def Xform "X"
+{
+    double3 xformOp:translate.timeSamples = {
+        5: (0, 0, 9),
+        2: (1, 2, 3),
+    }
+    uniform token[] xformOpOrder = ["xformOp:translate"]
+    def Mesh "Quad"
+    {
+        uniform token subdivisionScheme = "none"
+        int[] faceVertexCounts = [4]
+        int[] faceVertexIndices = [0, 1, 2, 3]
+        point3f[] points = [(0, 0, 0), (1, 0, 0), (1, 1, 0), (0, 1, 0)]
+        float3 xformOp:scale = (1, 1, 1)
+        float3 xformOp:scale.timeSamples = {
+            7: (2, 2, 2),
+            3: (3, 3, 3),
+        }
+        uniform token[] xformOpOrder = ["xformOp:scale"]
+    }
+}
+)";
+    testing::Populated p = populate(scene);
+    EXPECT_TRUE(p.warnings.empty()) << p.warnings[0];
+    ASSERT_EQ(p.result.scene.meshes.size(), 1u);
+    // The earliest samples: translate (1, 2, 3) at 2, and scale 3 at 3 (as Hydra, over the default (1, 1, 1)).
+    const std::vector<Vec3f>& positions = p.result.scene.meshes[0].positions;
+    ASSERT_EQ(positions.size(), 4u);
+    EXPECT_EQ(positions[0], Vec3f(1, 2, 3));
+    EXPECT_EQ(positions[2], Vec3f(4, 5, 3));
+    const usd::PrimSpec* x = p.stage->prim("/X");
+    const auto noWarning = [](const std::string& message) { ADD_FAILURE() << message; };
+    EXPECT_NEAR(localTransform(PrimReader(*x, usd::kDefaultTime), noWarning).matrix.m[2][3], 3.0, 1e-12);
+    EXPECT_NEAR(localTransform(PrimReader(*x, 5.0), noWarning).matrix.m[2][3], 9.0, 1e-12) << "a frame still reads its own time";
 }
 
 }  // namespace
