@@ -68,6 +68,8 @@ std::string pathProblem(std::string_view path, const PathRules& rules, int ancho
     // Walk the '/'-separated elements: leading ".." climb from the anchor; with primOnly no
     // element may name a property.
     bool absolute = path.front() == '/';
+    if (rules.absoluteOnly && !absolute) return quoted + " must be an absolute path";
+    if (rules.primOnly && path == "/") return quoted + " is not a prim path";
     int climbs = 0;
     bool leading = !absolute;
     std::size_t start = absolute ? 1 : 0;
