@@ -800,11 +800,21 @@ Value Parser::parseMetadataValue(const std::string& key, ListOpKind op, const An
     if (op != ListOpKind::Explicit && start.isWord("None")) {
         lexer_.fail(start, "'None' cannot be used with '" + listOpName(op) + "'");
     }
-    if (isOneOf(key, {"references", "payload", "payloads"})) return parseArcs(anchor);
+    // Sdf's _PrimSet*ListItems: a list op needs arcs to edit with (None is refused above).
+    auto failEmptyListOp = [&] {
+        lexer_.fail(start, "an empty list cannot be used with '" + listOpName(op) + " " + key + "'");
+    };
+    if (isOneOf(key, {"references", "payload", "payloads"})) {
+        Value arcs = parseArcs(anchor);
+        if (op != ListOpKind::Explicit && arcs.kind == ValueKind::List && arcs.items.empty())
+            failEmptyListOp();
+        return arcs;
+    }
     if (isOneOf(key, {"inherits", "specializes"})) {
         PathRules primPaths;
         primPaths.primOnly = true;
         Targets targets = parseTargets(primPaths, anchor, "'" + key + "'", false);
+        if (op != ListOpKind::Explicit && targets.paths.empty()) failEmptyListOp();
         if (targets.blocked) return Value{};
         return Value::string("", ValueKind::Path, std::move(targets.paths), targets.bracketed);
     }

@@ -32,7 +32,12 @@
 // | relative prim path in references/payload          | refused   | IsValidReference / IsValidPayload       |
 // | </> as a reference or inherit path; @@</A>        | refused   | _PathSetPrim: IsPrimPath; empty asset   |
 // | relative target, connection and inherit paths     | accepted  | made absolute at the prim (MakeAbsolute)|
+// | variant selection in a connection or target path  | refused   | _PathSetPrimOrPropertyScenePath,        |
+// |                                                   |           |   IsValidRelationshipTargetPath         |
 // | time sample of the wrong shape for the type       | refused   | time_sample: typed_value, value factory |
+// | malformed paths: <./a>, </a/../b>, </a/>, <a/.b>  | refused   | pathParser.h: Path                      |
+// | list op with an empty list of arcs                | refused   | _PrimSet{Reference,Inherit,...}ListItems|
+// |   (append references = [])                        |           |                                         |
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -216,6 +221,38 @@ TEST_F(UsdaGrammar, ReferencePathsAreAbsolutePrimPaths) {
     auto layer = parseUsdaString(arcs("inherits = <../B>"), "test.usda");
     EXPECT_EQ(findMetadata(layer->primAtPath("/A")->metadata, "inherits")->value.asString(), "../B");
     EXPECT_EQ(parseUsdaString(arcs("references = <>"), "test.usda")->primAtPath("/A")->metadata.size(), 1u);
+}
+
+TEST_F(UsdaGrammar, ConnectionsAndTargetsHoldNoVariantSelection) {
+    expectParseError(inPrim("float inputs:x.connect = </A{v=red}B.outputs:o>"), 3, 30,
+                     "variant selections are not allowed in path");
+    expectParseError(inPrim("rel r = </A{v=red}B>"), 3, 13, "variant selections are not allowed in path");
+}
+
+TEST_F(UsdaGrammar, PathsFollowSdfPathSyntax) {
+    expectParseError(inPrim("rel r = <./dora>"), 3, 13, "<./dora> is not a valid path");
+    expectParseError(inPrim("rel r = </dora/../muda>"), 3, 13, "</dora/../muda> is not a valid path");
+    expectParseError(inPrim("rel r = <../dora/../muda>"), 3, 13, "is not a valid path");
+    expectParseError(inPrim("rel r = </a/>"), 3, 13, "</a/> is not a valid path");
+    expectParseError(inPrim("rel r = <a/.b>"), 3, 13, "<a/.b> is not a valid path");
+    expectParseError(inPrim("rel r = </a.b.c>"), 3, 13, "</a.b.c> is not a valid path");
+    expectParseError(inPrim("float x.connect = </a{v=x}/b.c>"), 3, 23, "is not a valid path");
+    auto layer = parseUsdaString(inPrim("rel r = [<.>, <../A.b:c>, <B/C>, <.d>, </>]"), "test.usda");
+    EXPECT_EQ(layer->primAtPath("/P")->relationship("r")->targets,
+              (std::vector<std::string>{".", "../A.b:c", "B/C", ".d", "/"}));
+    // Well-formed variant selections, refused for another reason (see
+    // ConnectionsAndTargetsHoldNoVariantSelection).
+    expectParseError(inPrim("rel r = </A{v=.y|z-w}B{w=}.c>"), 3, 13, "variant selections are not allowed");
+}
+
+TEST_F(UsdaGrammar, ListOpsNeedArcsToEdit) {
+    auto arcs = [](const std::string& arc) { return "#usda 1.0\ndef \"A\" (\n    " + arc + "\n)\n{\n}\n"; };
+    expectParseError(arcs("append references = []"), 3, 25, "an empty list cannot be used with 'append references'");
+    expectParseError(arcs("prepend inherits = []"), 3, 24, "an empty list cannot be used with 'prepend inherits'");
+    EXPECT_EQ(findMetadata(parseUsdaString(arcs("references = []"), "test.usda")->primAtPath("/A")->metadata,
+                           "references")
+                  ->value.size(),
+              0u);
 }
 
 TEST_F(UsdaGrammar, TimeSamplesHoldValuesOfTheDeclaredShape) {
