@@ -18,7 +18,7 @@
 //                     are identifiers joined by ':', never '::')
 //   relationship   := [listOp] ['custom'] ['varying'] 'rel' name
 //                         ( ['=' targets] [metadataBlock]
-//                         | '.' 'default' '=' targets
+//                         | '.' 'default' '=' path                 (no list op)
 //                         | '.' 'timeSamples' '=' '{' (number ':' (path | 'None')),* '}' )
 //   targets        := 'None' | path | '[' path,* ']'
 //   metadataBlock  := '(' (metadataEntry sep)* ')'
@@ -560,7 +560,17 @@ void Parser::parseRelationship(Body& body, const Token& first, ListOpKind op, bo
     }
     bool assigned = field == "default";
     if (assigned) {
+        // Sdf's prim_relationship_default: one path, no list op, no metadata.
+        if (op != ListOpKind::Explicit) {
+            lexer_.fail(first, "'" + listOpName(op) + "' cannot be used with '" +
+                                   relationship.name + ".default'");
+        }
         expect('=', "'" + relationship.name + ".default'");
+        const Token& value = lexer_.peek();
+        if (value.kind != TokenKind::Path && !value.newlineBefore) {
+            lexer_.fail(value, "expected a path <...> for '" + relationship.name +
+                                   ".default', found " + describe(value));
+        }
     } else if (lexer_.peek().is('=')) {
         lexer_.skip();
         assigned = true;
@@ -584,7 +594,7 @@ void Parser::parseRelationship(Body& body, const Token& first, ListOpKind op, bo
             relationship.blocked = targets.blocked;
         }
     }
-    if (lexer_.peek().is('(') && !lexer_.peek().newlineBefore) {
+    if (field != "default" && lexer_.peek().is('(') && !lexer_.peek().newlineBefore) {
         parseMetadataBlock(relationship.metadata, body.anchor, what, false);
     }
     endStatement(what);

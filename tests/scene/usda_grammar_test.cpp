@@ -35,6 +35,8 @@
 // | variant selection in a connection or target path  | refused   | _PathSetPrimOrPropertyScenePath,        |
 // |                                                   |           |   IsValidRelationshipTargetPath         |
 // | time sample of the wrong shape for the type       | refused   | time_sample: typed_value, value factory |
+// | rel r.default = </a>; a list, None, a list op or  | accepted; | prim_relationship_default: TOK_PATHREF  |
+// |   metadata with it                                | refused   |   only, prim_relationship_type          |
 // | malformed paths: <./a>, </a/../b>, </a/>, <a/.b>  | refused   | pathParser.h: Path                      |
 // | list op with an empty list of arcs                | refused   | _PrimSet{Reference,Inherit,...}ListItems|
 // |   (append references = [])                        |           |                                         |
@@ -253,6 +255,16 @@ TEST_F(UsdaGrammar, ListOpsNeedArcsToEdit) {
                            "references")
                   ->value.size(),
               0u);
+}
+
+TEST_F(UsdaGrammar, RelationshipDefaultIsOnePath) {
+    auto layer = parseUsdaString(inPrim("varying rel r.default = </A>"), "test.usda");
+    EXPECT_EQ(layer->primAtPath("/P")->relationship("r")->targets, (std::vector<std::string>{"/A"}));
+    expectParseError(inPrim("rel r.default = [</A>]"), 3, 21, "expected a path <...> for 'r.default', found '['");
+    expectParseError(inPrim("rel r.default = None"), 3, 21, "found 'None'");
+    expectParseError(inPrim("add rel r.default = </A>"), 3, 5, "'add' cannot be used with 'r.default'");
+    expectParseError(inPrim("rel r.default = </A> (doc = \"x\")"), 3, 26,
+                     "expected a line break or ';' after relationship 'r', found '('");
 }
 
 TEST_F(UsdaGrammar, TimeSamplesHoldValuesOfTheDeclaredShape) {
