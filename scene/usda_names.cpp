@@ -25,6 +25,90 @@ bool isPathSyntax(char32_t c) {
                            std::string_view::npos;
 }
 
+// SdfPath's syntax (pathParser.h): '/' [primElts [propElts]] | '..' ('/' '..')* ['/' pathElts]
+// | pathElts | '.', where pathElts is primElts [propElts] or propElts, primElts is prim names
+// joined by '/' or variant selections (and may end with one), and propElts is '.' then
+// identifiers joined by ':'. Target and mapper paths ('[' ... ']') are not checked further, nor
+// blanks inside variant selections (the character check refuses them first).
+class PathSyntax {
+public:
+    explicit PathSyntax(std::string_view path) : path_(path) {}
+
+    bool valid() {
+        if (path_ == "." || path_.find('[') != std::string_view::npos) return true;
+        if (eat('/')) return atEnd() || (primElements() && optionalProperty());
+        if (path_.substr(0, 2) == "..") {
+            pos_ = 2;
+            while (path_.substr(pos_, 3) == "/..") pos_ += 3;
+            if (atEnd()) return true;
+            if (!eat('/')) return false;
+        }
+        std::size_t start = pos_;
+        if (primElements()) return optionalProperty();
+        return pos_ == start && property() && atEnd();
+    }
+
+private:
+    bool atEnd() const { return pos_ == path_.size(); }
+    bool eat(char c) {
+        if (atEnd() || path_[pos_] != c) return false;
+        ++pos_;
+        return true;
+    }
+    // Characters while accept(codePoint, first) holds; false when there were none.
+    template <class Accept>
+    bool run(Accept&& accept) {
+        std::size_t start = pos_;
+        while (!atEnd()) {
+            Utf8Char c = decodeUtf8(path_, pos_);
+            if (!c.length || !accept(c.codePoint, pos_ == start)) break;
+            pos_ += c.length;
+        }
+        return pos_ > start;
+    }
+    bool identifier() {
+        return run([](char32_t c, bool first) {
+            return first ? c == '_' || isXidStart(c) : isXidContinue(c);
+        });
+    }
+    bool variantSelection() {
+        if (!eat('{')) return false;
+        if (!run([](char32_t c, bool first) {
+                return first ? c == '_' || isXidStart(c) : isXidContinue(c) || c == '-';
+            }))
+            return false;
+        if (!eat('=')) return false;
+        eat('.');
+        run([](char32_t c, bool) { return isXidContinue(c) || c == '|' || c == '-'; });
+        return eat('}');
+    }
+    bool primElements() {
+        if (!identifier()) return false;
+        while (!atEnd() && (path_[pos_] == '/' || path_[pos_] == '{')) {
+            if (eat('/')) {
+                if (!identifier()) return false;
+            } else {
+                while (!atEnd() && path_[pos_] == '{') {
+                    if (!variantSelection()) return false;
+                }
+                if (!atEnd() && path_[pos_] != '.' && !identifier()) return false;
+            }
+        }
+        return true;
+    }
+    bool property() {
+        if (!eat('.') || !identifier()) return false;
+        while (eat(':')) {
+            if (!identifier()) return false;
+        }
+        return true;
+    }
+    bool optionalProperty() { return (atEnd() || property()) && atEnd(); }
+
+    std::string_view path_;
+    std::size_t pos_ = 0;
+};
+
 }  // namespace
 
 std::string identifierProblem(std::string_view name) {
@@ -62,12 +146,15 @@ std::string pathProblem(std::string_view path, const PathRules& rules, int ancho
         return "invalid character " + describeCodePoint(c);
     });
     if (!characters.empty()) return characters + " in path " + quoted;
+    if (!PathSyntax(path).valid()) return quoted + " is not a valid path";
     if (!rules.allowVariantSelection && path.find('{') != std::string_view::npos) {
         return "variant selections are not allowed in path " + quoted;
     }
     // Walk the '/'-separated elements: leading ".." climb from the anchor; with primOnly no
     // element may name a property.
     bool absolute = path.front() == '/';
+    if (rules.absoluteOnly && !absolute) return quoted + " must be an absolute path";
+    if (rules.primOnly && path == "/") return quoted + " is not a prim path";
     int climbs = 0;
     bool leading = !absolute;
     std::size_t start = absolute ? 1 : 0;

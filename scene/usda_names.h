@@ -5,8 +5,8 @@
 // XID_Continue characters plus '|' and '-', any of them first, after an optional leading '.'.
 // Variant selections may also be empty (no selection) or a `...` expression. Paths: Sdf path
 // syntax characters and XID_Continue characters only; the rules say where empty paths, variant
-// selections and property paths are allowed, and relative paths may not climb above the root
-// from the prim they are anchored at. Malformed UTF-8 is never valid.
+// selections and property paths are allowed, whether a path must be absolute, and relative paths
+// may not climb above the root from the prim they are anchored at; </> alone is no prim path. Malformed UTF-8 is never valid.
 #pragma once
 
 #include <string>
@@ -24,6 +24,7 @@ struct PathRules {
     bool allowEmpty = false;
     bool primOnly = false;  // no property part (inherits, references, ...)
     bool allowVariantSelection = false;
+    bool absoluteOnly = false;  // references and payloads: Sdf does not anchor their prim paths
 };
 
 // Empty when `path` (the text between < and >) is acceptable; otherwise what is wrong with it.

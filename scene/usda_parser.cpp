@@ -4,31 +4,34 @@
 //   layer          := header [metadataBlock sep] (rootStatement sep)*
 //   header         := ('#usda' | '#sdf') version             (the whole first line)
 //   rootStatement  := prim | 'reorder' 'rootPrims' '=' nameList
-//   prim           := ('def' | 'over' | 'class') [typeName] string [metadataBlock] '{' body '}'
+//   prim           := ('def' | 'over' | 'class') [typeName ('.' typeName)*] string
+//                         [metadataBlock] '{' body '}'
 //   body           := (bodyStatement sep)*
 //   bodyStatement  := prim | variantSet | reorder | attribute | relationship
 //   variantSet     := 'variantSet' string '=' '{' (string [metadataBlock] '{' body '}')* '}'
 //   reorder        := 'reorder' ('nameChildren' | 'properties') '=' nameList
-//   attribute      := [listOp] ['custom'] [variability] typeName ['[' ']'] name
+//   attribute      := [listOp] ['custom'] ['uniform' | 'config'] typeName ['[' ']'] name
 //                         ( ['=' typedValue] [metadataBlock]
 //                         | '.' 'connect' '=' targets
 //                         | '.' 'timeSamples' '=' '{' (number ':' typedValue),* '}' )
+//                     ('custom' only without a field, a list op only with '.connect'; names
+//                     are identifiers joined by ':', never '::')
 //   relationship   := [listOp] ['custom'] ['varying'] 'rel' name
 //                         ( ['=' targets] [metadataBlock]
-//                         | '.' 'default' '=' targets
+//                         | '.' 'default' '=' path                 (no list op)
 //                         | '.' 'timeSamples' '=' '{' (number ':' (path | 'None')),* '}' )
 //   targets        := 'None' | path | '[' path,* ']'
 //   metadataBlock  := '(' (metadataEntry sep)* ')'
 //   metadataEntry  := string                                     (the doc string)
 //                   | [listOp] identifier '=' metadataValue
 //   listOp         := 'prepend' | 'append' | 'delete' | 'add' | 'reorder'
-//   variability    := 'uniform' | 'varying' | 'config'
 // Values (typedValue, metadataValue, dictionaries, layer offsets) are described in
 // usda_value_parser.h. A value starts on the line of its '='. Metadata values are generic except
 // for keys with a fixed shape: references/payload (references with layer offsets),
 // inherits/specializes (prim paths), subLayers (assets with layer offsets), relocates (a path
 // map), variants (string selections), the dictionaries (customData, customLayerData, assetInfo,
-// sdrMetadata), bools (active, hidden, instanceable, noLoadHint), kind (a string), permission
+// sdrMetadata), bools (active, hidden, instanceable, noLoadHint: read as bool values, stored as
+// 0 or 1), kind (a string), permission
 // (public or private) and displayUnit (a unit name of Sdf's registry). Other keys take a list op
 // only with a [...] list value.
 //
@@ -122,14 +125,6 @@ std::string listOpName(ListOpKind op) {
     }
 }
 
-bool isBoolLiteral(const Token& token) {
-    if (token.kind == TokenKind::Number) {
-        return token.integral && (token.number == 0.0 || token.number == 1.0);
-    }
-    return token.isWord("true") || token.isWord("false") || token.isWord("True") ||
-           token.isWord("False");
-}
-
 bool isOneOf(std::string_view key, std::initializer_list<std::string_view> keys) {
     return std::find(keys.begin(), keys.end(), key) != keys.end();
 }
@@ -193,7 +188,8 @@ private:
     void parseReorder(Body& body);
     void parseVariantSet(Body& body);
     void parseProperty(Body& body);
-    void parseAttribute(Body& body, const Token& first, ListOpKind op, bool custom, bool uniform);
+    void parseAttribute(Body& body, const Token& first, ListOpKind op,
+                        const std::optional<Token>& custom, bool uniform);
     void parseRelationship(Body& body, const Token& first, ListOpKind op, bool custom);
     AttributeSpec& attributeFor(Body& body, const Token& name, const std::string& typeName,
                                 bool custom, bool uniform, const Token& first);
@@ -217,6 +213,7 @@ private:
     Value parseVariantSelections();
 
     void checkPath(const Token& path, const PathRules& rules, const Anchor& anchor);
+    void checkPropertyName(const Token& name, const std::string& what);
     Token expect(char punct, const std::string& after);
     void expectValueOnSameLine();
     void endStatement(const std::string& what);
@@ -270,7 +267,13 @@ void Parser::parsePrim(Body& parent) {
     prim->location = locate(specifier);
     std::string written(specifier.text);
     if (lexer_.peek().kind == TokenKind::Identifier && !lexer_.peek().newlineBefore) {
+        // Sdf's prim_type_name: identifiers joined by '.' (a Python-qualified name).
         prim->typeName = lexer_.take().text;
+        while (lexer_.peek().is('.') && !lexer_.peek().newlineBefore &&
+               lexer_.peek(1).kind == TokenKind::Identifier && !lexer_.peek(1).newlineBefore) {
+            lexer_.skip();
+            prim->typeName += "." + std::string(lexer_.take().text);
+        }
         written += " " + prim->typeName;
     }
     Token name = lexer_.take();
@@ -417,26 +420,32 @@ void Parser::parseProperty(Body& body) {
         op = *listOp;
         lexer_.skip();
     }
-    bool custom = lexer_.peek().isWord("custom");
-    if (custom) lexer_.skip();
-    std::string variability;
+    std::optional<Token> custom;
+    if (lexer_.peek().isWord("custom")) custom = lexer_.take();
+    std::optional<Token> variability;
     const Token& next = lexer_.peek();
     if (next.isWord("uniform") || next.isWord("varying") || next.isWord("config")) {
-        variability = lexer_.take().text;
+        variability = lexer_.take();
     }
     if (lexer_.peek().isWord("rel")) {
-        if (variability == "uniform" || variability == "config") {
-            lexer_.fail(first, "relationships cannot be '" + variability + "'");
+        if (variability && !variability->isWord("varying")) {
+            lexer_.fail(*variability,
+                        "relationships cannot be '" + std::string(variability->text) + "'");
         }
-        parseRelationship(body, first, op, custom);
+        parseRelationship(body, first, op, custom.has_value());
     } else {
-        parseAttribute(body, first, op, custom,
-                       variability == "uniform" || variability == "config");
+        // Sdf's prim_attr_variability: 'uniform' or the legacy 'config' (read as uniform);
+        // attributes are varying unless declared uniform, and 'varying' is not written.
+        if (variability && variability->isWord("varying")) {
+            lexer_.fail(*variability, "attributes cannot be declared 'varying' (only "
+                                      "relationships; an attribute is varying unless 'uniform')");
+        }
+        parseAttribute(body, first, op, custom, variability.has_value());
     }
 }
 
-void Parser::parseAttribute(Body& body, const Token& first, ListOpKind op, bool custom,
-                            bool uniform) {
+void Parser::parseAttribute(Body& body, const Token& first, ListOpKind op,
+                            const std::optional<Token>& custom, bool uniform) {
     Token type = lexer_.take();
     if (type.kind != TokenKind::Identifier) {
         lexer_.fail(type, "expected a property type name or 'rel', found " + describe(type));
@@ -452,6 +461,7 @@ void Parser::parseAttribute(Body& body, const Token& first, ListOpKind op, bool 
         lexer_.fail(name, "expected an attribute name after type '" + typeName + "', found " +
                               describe(name));
     }
+    checkPropertyName(name, "attribute");
     std::string field;
     if (lexer_.peek().is('.') && !lexer_.peek().newlineBefore) {
         lexer_.skip();
@@ -466,6 +476,10 @@ void Parser::parseAttribute(Body& body, const Token& first, ListOpKind op, bool 
                                               describe(fieldToken));
         }
     }
+    if (custom && !field.empty()) {
+        lexer_.fail(*custom, "'custom' cannot be used with '" + std::string(name.text) + "." + field +
+                                 "' (declare the attribute custom in its own statement)");
+    }
     if (field != "connect" && op != ListOpKind::Explicit) {
         lexer_.fail(first,
                     "'" + listOpName(op) +
@@ -474,7 +488,8 @@ void Parser::parseAttribute(Body& body, const Token& first, ListOpKind op, bool 
     if (!detail::findValueType(type.text))
         warn(type, "unknown value type '" + std::string(type.text) + "' for attribute '" + std::string(name.text) +
                        "'; its value is kept untyped");
-    AttributeSpec& attribute = attributeFor(body, name, typeName, custom, uniform, first);
+    AttributeSpec& attribute =
+        attributeFor(body, name, typeName, custom.has_value(), uniform, first);
     std::string what = "attribute '" + attribute.name + "'";
     if (field == "connect") {
         expect('=', "'" + attribute.name + ".connect'");
@@ -517,6 +532,7 @@ void Parser::parseRelationship(Body& body, const Token& first, ListOpKind op, bo
     if (name.kind != TokenKind::Identifier || name.newlineBefore) {
         lexer_.fail(name, "expected a relationship name after 'rel', found " + describe(name));
     }
+    checkPropertyName(name, "relationship");
     std::string field;
     if (lexer_.peek().is('.') && !lexer_.peek().newlineBefore) {
         lexer_.skip();
@@ -544,7 +560,17 @@ void Parser::parseRelationship(Body& body, const Token& first, ListOpKind op, bo
     }
     bool assigned = field == "default";
     if (assigned) {
+        // Sdf's prim_relationship_default: one path, no list op, no metadata.
+        if (op != ListOpKind::Explicit) {
+            lexer_.fail(first, "'" + listOpName(op) + "' cannot be used with '" +
+                                   relationship.name + ".default'");
+        }
         expect('=', "'" + relationship.name + ".default'");
+        const Token& value = lexer_.peek();
+        if (value.kind != TokenKind::Path && !value.newlineBefore) {
+            lexer_.fail(value, "expected a path <...> for '" + relationship.name +
+                                   ".default', found " + describe(value));
+        }
     } else if (lexer_.peek().is('=')) {
         lexer_.skip();
         assigned = true;
@@ -568,7 +594,7 @@ void Parser::parseRelationship(Body& body, const Token& first, ListOpKind op, bo
             relationship.blocked = targets.blocked;
         }
     }
-    if (lexer_.peek().is('(') && !lexer_.peek().newlineBefore) {
+    if (field != "default" && lexer_.peek().is('(') && !lexer_.peek().newlineBefore) {
         parseMetadataBlock(relationship.metadata, body.anchor, what, false);
     }
     endStatement(what);
@@ -784,11 +810,21 @@ Value Parser::parseMetadataValue(const std::string& key, ListOpKind op, const An
     if (op != ListOpKind::Explicit && start.isWord("None")) {
         lexer_.fail(start, "'None' cannot be used with '" + listOpName(op) + "'");
     }
-    if (isOneOf(key, {"references", "payload", "payloads"})) return parseArcs(anchor);
+    // Sdf's _PrimSet*ListItems: a list op needs arcs to edit with (None is refused above).
+    auto failEmptyListOp = [&] {
+        lexer_.fail(start, "an empty list cannot be used with '" + listOpName(op) + " " + key + "'");
+    };
+    if (isOneOf(key, {"references", "payload", "payloads"})) {
+        Value arcs = parseArcs(anchor);
+        if (op != ListOpKind::Explicit && arcs.kind == ValueKind::List && arcs.items.empty())
+            failEmptyListOp();
+        return arcs;
+    }
     if (isOneOf(key, {"inherits", "specializes"})) {
         PathRules primPaths;
         primPaths.primOnly = true;
         Targets targets = parseTargets(primPaths, anchor, "'" + key + "'", false);
+        if (op != ListOpKind::Explicit && targets.paths.empty()) failEmptyListOp();
         if (targets.blocked) return Value{};
         return Value::string("", ValueKind::Path, std::move(targets.paths), targets.bracketed);
     }
@@ -803,8 +839,11 @@ Value Parser::parseMetadataValue(const std::string& key, ListOpKind op, const An
         lexer_.fail(start, "'" + listOpName(op) + " " + key + "' needs a list value [...], found " +
                                describe(start));
     }
-    if (isOneOf(key, {"active", "hidden", "instanceable", "noLoadHint"}) && !isBoolLiteral(start)) {
-        failExpecting("true or false");
+    if (isOneOf(key, {"active", "hidden", "instanceable", "noLoadHint"})) {
+        std::optional<bool> flag = detail::boolFromToken(start);
+        if (!flag) failExpecting("a bool (a number, true, false, yes or no)");
+        lexer_.skip();
+        return Value::numeric("", {*flag ? 1.0 : 0.0}, 1, false);
     }
     if (key == "permission" && !start.isWord("public") && !start.isWord("private")) {
         failExpecting("public or private");
@@ -848,22 +887,24 @@ Value Parser::parseReference(const Anchor& anchor) {
     Token token = lexer_.take();
     PathRules primPath;
     primPath.primOnly = true;
+    primPath.absoluteOnly = true;
     Value reference;
     reference.kind = ValueKind::Reference;
     reference.strings = {"", ""};
     if (token.kind == TokenKind::Asset) {
+        if (token.value.empty()) {
+            lexer_.fail(token, "empty asset path in a reference (an internal reference is a "
+                               "path alone: </Prim>)");
+        }
         reference.strings[0] = token.value;
         if (lexer_.peek().kind == TokenKind::Path && !lexer_.peek().newlineBefore) {
             Token path = lexer_.take();
             checkPath(path, primPath, anchor);
             reference.strings[1] = path.value;
         }
-        if (reference.strings[0].empty() && reference.strings[1].empty()) {
-            lexer_.fail(token, "empty asset path in a reference");
-        }
     } else if (token.kind == TokenKind::Path) {
         PathRules internal = primPath;
-        internal.allowEmpty = true;  // </> alone: the layer's default prim
+        internal.allowEmpty = true;  // <> alone: the layer's default prim
         checkPath(token, internal, anchor);
         reference.strings[1] = token.value;
     } else {
@@ -960,6 +1001,16 @@ Value Parser::parseVariantSelections() {
 void Parser::checkPath(const Token& path, const PathRules& rules, const Anchor& anchor) {
     std::string problem = detail::pathProblem(path.value, rules, anchor.depth);
     if (!problem.empty()) lexer_.fail(path, problem);
+}
+
+// A property name is identifiers joined by ':' (Sdf's namespaced_name); the lexer also reads the
+// '::' of C++ type names into one identifier, which only type names may hold.
+void Parser::checkPropertyName(const Token& name, const std::string& what) {
+    if (name.text.find("::") != std::string_view::npos) {
+        lexer_.fail(name, "invalid " + what + " name '" + std::string(name.text) +
+                              "': '::' may join the parts of a type name, not of a property "
+                              "name (namespaces are joined by ':')");
+    }
 }
 
 Token Parser::expect(char punct, const std::string& after) {

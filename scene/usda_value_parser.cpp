@@ -1,5 +1,6 @@
 #include "scene/usda_value_parser.h"
 
+#include <cctype>
 #include <cmath>
 #include <limits>
 #include <memory>
@@ -17,10 +18,10 @@ std::string location(const Token& token) {
 
 std::string expectedElement(const ValueType& type) {
     switch (type.element) {
-        case ElementKind::Bool: return "a bool (true, false, 1 or 0)";
+        case ElementKind::Bool: return "a bool (a number, true, false, yes or no)";
         case ElementKind::Integer: return "an integer";
         case ElementKind::Float: return "a number";
-        case ElementKind::Asset: return "an asset path @...@";
+        case ElementKind::Asset: return "an asset path @...@ or a quoted string";
         default: return "a quoted string";
     }
 }
@@ -31,6 +32,15 @@ ValueKind stringKindOf(ElementKind element) {
         case ElementKind::Asset: return ValueKind::Asset;
         default: return ValueKind::String;
     }
+}
+
+// The words a float element may be written as, bare or quoted: inf, -inf and nan (bare, -inf is
+// a number token).
+std::optional<double> floatFromWord(std::string_view word) {
+    if (word == "inf") return std::numeric_limits<double>::infinity();
+    if (word == "-inf") return -std::numeric_limits<double>::infinity();
+    if (word == "nan") return std::numeric_limits<double>::quiet_NaN();
+    return std::nullopt;
 }
 
 // The elements of `type` that the lexer's bulk path reads: numbers and tuples of numbers
@@ -76,6 +86,16 @@ Value flattenList(std::vector<Value> items) {
 
 }  // namespace
 
+std::optional<bool> boolFromToken(const Token& token) {
+    if (token.kind == TokenKind::Number) return token.number != 0.0;
+    if (token.kind != TokenKind::Identifier && token.kind != TokenKind::String) return std::nullopt;
+    std::string word(token.kind == TokenKind::String ? std::string_view(token.value) : token.text);
+    for (char& c : word) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    if (word == "true" || word == "yes" || word == "1") return true;
+    if (word == "false" || word == "no" || word == "0") return false;
+    return std::nullopt;
+}
+
 Value ValueParser::parseTyped(std::string_view baseType, bool isArray) {
     std::string typeName(baseType);
     if (isArray) typeName += "[]";
@@ -85,6 +105,11 @@ Value ValueParser::parseTyped(std::string_view baseType, bool isArray) {
         blocked.typeName = std::move(typeName);
         blocked.isArray = isArray;
         return blocked;
+    }
+    if (lexer_.peek().kind == TokenKind::Path) {
+        // Sdf's typed_value takes a path for a value of any type (a token or string attribute
+        // holding the path of an output, say); it is kept as a path under the declared type.
+        return Value::string(std::move(typeName), ValueKind::Path, {lexer_.take().value}, false);
     }
     const ValueType* type = findValueType(baseType);
     if (!type) {
@@ -170,47 +195,38 @@ void ValueParser::parseTuple(const ValueType& type, const std::string& typeName,
 
 double ValueParser::parseNumber(const ValueType& type, const std::string& typeName) {
     const Token& token = lexer_.peek();
-    double value = 0.0;
-    bool ok = false;
-    if (token.kind == TokenKind::Number) {
-        value = token.number;
-        if (type.element == ElementKind::Bool) {
-            ok = token.integral && (value == 0.0 || value == 1.0);
-        } else if (type.element == ElementKind::Integer) {
-            ok = token.integral;
-            if (ok && (value < type.min || value > type.max)) {
+    std::optional<double> value;
+    if (type.element == ElementKind::Bool) {
+        if (std::optional<bool> flag = boolFromToken(token)) value = *flag ? 1.0 : 0.0;
+    } else if (type.element == ElementKind::Integer) {
+        // A finite number, truncated toward zero as Sdf's numeric cast does (1.9 reads as 1).
+        if (token.kind == TokenKind::Number && std::isfinite(token.number)) {
+            value = std::trunc(token.number);
+            if (*value < type.min || *value > type.max) {
                 lexer_.fail(token, "value " + std::string(token.text) + " is out of range for '" +
                                        typeName + "'");
             }
-        } else {
-            ok = true;
         }
-    } else if (token.kind == TokenKind::Identifier) {
-        if (type.element == ElementKind::Bool) {
-            ok = token.text == "true" || token.text == "false" || token.text == "True" ||
-                 token.text == "False";
-            value = token.text[0] == 't' || token.text[0] == 'T' ? 1.0 : 0.0;
-        } else if (type.element == ElementKind::Float &&
-                   (token.text == "inf" || token.text == "nan")) {
-            ok = true;
-            value = token.text == "inf" ? std::numeric_limits<double>::infinity()
-                                        : std::numeric_limits<double>::quiet_NaN();
-        }
+    } else if (token.kind == TokenKind::Number) {
+        value = token.number;
+    } else if (token.kind == TokenKind::Identifier || token.kind == TokenKind::String) {
+        value = floatFromWord(token.kind == TokenKind::String ? token.value : token.text);
     }
-    if (!ok) {
+    if (!value) {
         lexer_.fail(token, "expected " + expectedElement(type) + " for '" + typeName + "', found " +
                                describe(token));
     }
     lexer_.skip();
-    return value;
+    return *value;
 }
 
 Value ValueParser::parseStrings(const ValueType& type, const std::string& typeName, bool isArray) {
-    TokenKind wanted = type.element == ElementKind::Asset ? TokenKind::Asset : TokenKind::String;
+    // Asset values may also be written as quoted strings (Sdf converts them).
+    bool isAsset = type.element == ElementKind::Asset;
     std::vector<std::string> strings;
     auto parseElement = [&] {
         Token token = lexer_.take();
-        if (token.kind != wanted) {
+        if (token.kind != TokenKind::String && !(isAsset && token.kind == TokenKind::Asset)) {
             lexer_.fail(token, "expected " + expectedElement(type) + " for '" + typeName +
                                    "', found " + describe(token));
         }
@@ -248,6 +264,12 @@ Value ValueParser::parseDictionary() {
         if (type.kind != TokenKind::Identifier) {
             lexer_.fail(type, "expected a value type name to start a dictionary entry, found " +
                                   describe(type));
+        }
+        // Unlike an attribute's, a dictionary entry's value is built as it is read: Sdf refuses
+        // a type it does not know.
+        if (!findValueType(type.text)) {
+            lexer_.fail(type, "unknown value type '" + std::string(type.text) +
+                                  "' in a dictionary entry");
         }
         bool isArray = false;
         if (lexer_.peek().is('[')) {

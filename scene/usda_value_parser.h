@@ -1,11 +1,17 @@
 // Parses USDA values into usd::Value (internal to the scene library).
 //
-//   typed value     := 'None' | element | '[' (element (',' element)* ','?)? ']'   (for T[])
-//   element         := number | 'true' | 'false' | 'inf' | 'nan'              (scalars)
+//   typed value     := 'None' | path | element | '[' (element (',' element)* ','?)? ']' (T[])
+//   element         := number | 'inf' | 'nan' | '"inf"' | '"-inf"' | '"nan"'  (float scalars)
+//                    | number                     (integers: a finite number, truncated)
+//                    | number | true | false | yes | no, in any case, bare or quoted    (bool)
 //                    | '(' number (',' number)* ','? ')'                         (vectors)
 //                    | '(' tuple (',' tuple)* ','? ')'                           (matrices)
-//                    | string | asset                       (string, token, asset types)
+//                    | string                                     (string, token types)
+//                    | asset | string                                         (asset types)
+// as Sdf's parser value context converts them (parserHelpers.h: Value::Get<T>). A path stands
+// for a value of any type and is kept as a Path value under the declared type name.
 //   dictionary      := '{' (type ['[' ']'] (identifier | string) '=' value sep)* '}'
+//                      (a known value type: unlike an attribute's, an unknown one is an error)
 //   generic value   := 'None' | number | identifier | string | path | reference
 //                    | '[' generic,* ']' | '(' generic,* ')' | '{' dictionary-or-map '}'
 //   map             := '{' (string ':' string | path ':' path),* '}'
@@ -19,6 +25,7 @@
 // same size, all strings, all paths); otherwise they become a List value.
 #pragma once
 
+#include <optional>
 #include <string>
 #include <string_view>
 
@@ -29,6 +36,10 @@
 #include "scene/value.h"
 
 namespace fluence::usd::detail {
+
+// A bool element as Sdf reads one: any number (true when not zero), or true/false/yes/no in any
+// case, bare or quoted ("1" and "0" quoted too); nullopt for any other token.
+std::optional<bool> boolFromToken(const Token& token);
 
 class ValueParser {
 public:

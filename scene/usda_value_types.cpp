@@ -110,6 +110,7 @@ constexpr std::array kValueTypes = {
     matrix("Matrix4d", 4),
     matrix("Frame", 4),
     matrix("Transform", 4),
+    scalar("Schema", E::Token),
 };
 
 }  // namespace

@@ -379,13 +379,14 @@ void writeTypedValue(std::string& out, const Value& value, std::string_view type
     } else if (type && value.isNumeric()) {
         const NumberForm form = numberFormOf(baseType);
         writeNumbers(out, value, type->rank == 2 ? type->size : 0, [form](double x) { return formatNumber(x, form); });
-    } else if (type && value.isStringLike()) {
+    } else if (type && value.isStringLike() && value.kind != ValueKind::Path) {
         if (type->element == ElementKind::Asset)
             writeStrings(out, value, [](const std::string& path) { return quoteAssetPath(path); });
         else
             writeStrings(out, value, quoteString);
     } else {
-        // Unknown types are read as untyped values: written by their shape.
+        // Unknown types are read as untyped values, and a path stands for a value of any type:
+        // written by their shape.
         writeGeneric(out, value, indent, TokenStyle::Auto, false);
     }
 }

@@ -207,18 +207,19 @@ private:
     }
 
     void writeAttribute(const AttributeSpec& attribute, int indent) {
-        const std::string declaration = std::string(attribute.custom ? "custom " : "") +
-                                        (attribute.uniform ? "uniform " : "") + attribute.typeName + " " +
-                                        attribute.name;
+        // 'custom' only on the plain declaration: Sdf's grammar refuses it on .timeSamples and
+        // .connect statements, so a custom attribute always gets one.
+        const std::string declaration =
+            std::string(attribute.uniform ? "uniform " : "") + attribute.typeName + " " + attribute.name;
         MetadataRuns metadata = splitMetadata(attribute.metadata, [](const MetadataEntry& e) {
             return e.key == "connectionPaths" && e.op != ListOpKind::Explicit;
         });
         const bool hasConnections = !attribute.connections.empty();
-        const bool declared = attribute.hasDefault || !metadata.runs[0].empty() ||
+        const bool declared = attribute.custom || attribute.hasDefault || !metadata.runs[0].empty() ||
                               (attribute.timeSamples.empty() && !hasConnections && metadata.statements.empty());
         if (declared) {
             pad(indent);
-            out_ += declaration;
+            out_ += std::string(attribute.custom ? "custom " : "") + declaration;
             if (attribute.hasDefault) {
                 out_ += " = ";
                 detail::writeTypedValue(out_, attribute.defaultValue, attribute.typeName, indent);

@@ -66,12 +66,12 @@ TEST(UsdaErrors, WrongTupleArityAndTypes) {
                      "expected a number for 'float', found string \"1.0\"");
     expectParseError("#usda 1.0\ndef \"A\" {\n    string s = 1.5\n}\n", 3, 16,
                      "expected a quoted string for 'string', found number 1.5");
-    expectParseError("#usda 1.0\ndef \"A\" {\n    int i = 1.5\n}\n", 3, 13,
+    expectParseError("#usda 1.0\ndef \"A\" {\n    int i = \"1\"\n}\n", 3, 13,
                      "expected an integer for 'int'");
     expectParseError("#usda 1.0\ndef \"A\" {\n    uchar c = 256\n}\n", 3, 15,
                      "out of range for 'uchar'");
-    expectParseError("#usda 1.0\ndef \"A\" {\n    bool b = 2\n}\n", 3, 14,
-                     "expected a bool (true, false, 1 or 0)");
+    expectParseError("#usda 1.0\ndef \"A\" {\n    bool b = off\n}\n", 3, 14,
+                     "expected a bool (a number, true, false, yes or no)");
     expectParseError("#usda 1.0\ndef \"A\" {\n    int[] i = 1\n}\n", 3, 15,
                      "expected '[' to start a 'int[]' array");
     expectParseError("#usda 1.0\ndef \"A\" {\n    token t = [\"a\"]\n}\n", 3, 15,
@@ -140,7 +140,7 @@ TEST(UsdaErrors, MetadataShapes) {
     expectParseError("#usda 1.0\ndef \"A\" (kind = component) {\n}\n", 2, 17,
                      "expected a quoted string for 'kind'");
     expectParseError("#usda 1.0\ndef \"A\" (active = maybe) {\n}\n", 2, 19,
-                     "expected true or false for 'active'");
+                     "expected a bool (a number, true, false, yes or no) for 'active', found 'maybe'");
     expectParseError("#usda 1.0\ndef \"A\" (add reeferences = @x.usda@) {\n}\n", 2, 28,
                      "'add reeferences' needs a list value [...]");
     expectParseError("#usda 1.0\ndef \"A\" (delete inherits = None) {\n}\n", 2, 28,

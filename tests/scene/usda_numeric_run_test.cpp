@@ -92,8 +92,8 @@ TEST(UsdaNumericRun, LayoutsTheTokenPathAccepts) {
 
 TEST(UsdaNumericRun, ErrorsInsideLongArraysKeepTheirPosition) {
     const std::string head = "#usda 1.0\ndef \"A\" {\n";
-    expectParseError(head + "    int[] a = [1, 2, 3.5, 4]\n}\n", 3, 22,
-                     "expected an integer for 'int[]', found number 3.5");
+    expectParseError(head + "    int[] a = [1, 2, inf, 4]\n}\n", 3, 22,
+                     "expected an integer for 'int[]', found 'inf'");
     expectParseError(head + "    uchar[] a = [1, 255, 256]\n}\n", 3, 26,
                      "value 256 is out of range for 'uchar[]'");
     expectParseError(
