@@ -270,6 +270,8 @@ RenderOptions parseRenderOptions(const std::vector<std::string>& args) {
             o.progress = parseVerbosity(arg == "-V" ? cur.value(arg) : arg.substr(2));
         } else if (arg == "--allow-missing") {
             o.allowMissing = true;
+        } else if (arg == "--no-default-light") {
+            o.defaultLight = false;
         } else if (arg == "--purpose") {
             o.purposes = splitList(cur.value(arg));
             try {
@@ -348,6 +350,10 @@ std::string usageText() {
            "                          terminal (default: a bar on a terminal, those lines otherwise)\n"
            "      --allow-missing     render even when layers, textures or VDB files are missing (each is a\n"
            "                          warning); without it a missing asset is an error (exit 4)\n"
+           "      --no-default-light  render a scene in which nothing emits (no light, emissive surface or\n"
+           "                          volume) black; by default it is lit, with a warning, by a distant light\n"
+           "                          along the camera's view and a dim dome, as usdview does (also\n"
+           "                          fluence:defaultLight = false on the render settings)\n"
            "  -f, --frame F           time code to render (default: the stage's startTimeCode, else default values)\n"
            "  -n, --frame-count N     render N frames from --frame on, the stage read once (default 1)\n"
            "  -i, --frame-inc K       time codes between those frames (default 1)\n"

@@ -6,6 +6,7 @@
 #include <set>
 
 #include "delegate/camera_adapter.h"
+#include "delegate/default_lights.h"
 #include "delegate/imageable.h"
 #include "delegate/instancing.h"
 #include "delegate/light_adapter.h"
@@ -209,9 +210,11 @@ render::SceneDescription SceneDelegate::sceneDescription() const {
     render::CameraDesc cameraDesc;
     if (cameraPrim) {
         cameraDesc = cameraPrim->camera();
-    } else {  // framed on the scene as a provisional camera dices it
+    } else {  // framed on the scene with subdivision surfaces as their cages, which hold them
+        DicingSettings cages = options_.dicing;
+        cages.uniformLevel = 0;
         render::Camera provisional(framingCamera({}, stage_.upAxis()), width, height, framing());
-        cameraDesc = framingCamera(describe(provisional, 1.0f, subdivisionTriangles), stage_.upAxis());
+        cameraDesc = framingCamera(describe(provisional, cages, 1.0f, subdivisionTriangles), stage_.upAxis());
     }
     std::unique_ptr<render::Camera> camera;
     try {
@@ -219,20 +222,26 @@ render::SceneDescription SceneDelegate::sceneDescription() const {
     } catch (const std::invalid_argument& e) {
         throw SceneError(e.what());
     }
-    render::SceneDescription scene = describe(*camera, 1.0f, subdivisionTriangles);
+    render::SceneDescription scene = describe(*camera, options_.dicing, 1.0f, subdivisionTriangles);
     // Over the scene budget: every rate scaled down until the subdivision surfaces fit (rates are
     // clamped and rounded, so the first guess can miss).
     const std::size_t budget = options_.dicing.sceneTriangleBudget, wanted = subdivisionTriangles;
     float scale = 1.0f;
     for (int attempt = 0; subdivisionTriangles > budget && attempt < 8; ++attempt) {
         scale *= 0.95f * std::sqrt(static_cast<float>(budget) / static_cast<float>(subdivisionTriangles));
-        scene = describe(*camera, scale, subdivisionTriangles);
+        scene = describe(*camera, options_.dicing, scale, subdivisionTriangles);
     }
     if (wanted > budget)
         options_.warn("/", "subdivision surfaces would take " + std::to_string(wanted) +
                                " triangles, over the scene budget of " + std::to_string(budget) + "; diced coarser, to " +
                                std::to_string(subdivisionTriangles));
     scene.camera = cameraDesc;
+    if (options_.defaultLight && (!renderSettings_ || renderSettings_->defaultLight) && !emitsLight(scene)) {
+        for (render::LightDesc& light : defaultLights(cameraDesc)) scene.lights.push_back(std::move(light));
+        options_.warn("/", "nothing in the scene emits light (no light, emissive surface or volume); lit by a default "
+                           "distant light from the camera and a dim dome, as usdview does (--no-default-light, or "
+                           "fluence:defaultLight = false on the render settings, turns them off)");
+    }
     return scene;
 }
 
@@ -271,7 +280,7 @@ std::optional<render::VolumeDesc> SceneDelegate::volumeDesc(const VolumeRprim& v
     return desc;
 }
 
-render::SceneDescription SceneDelegate::describe(const render::Camera& camera, float scale,
+render::SceneDescription SceneDelegate::describe(const render::Camera& camera, const DicingSettings& dicingSettings, float scale,
                                                  std::size_t& subdivisionTriangles) const {
     // In the stage's traversal order, so the description (and the render) does not depend on
     // the order prims entered the index; materials in the order meshes first bind them.
@@ -283,7 +292,7 @@ render::SceneDescription SceneDelegate::describe(const render::Camera& camera, f
         if (inserted) scene.materials.push_back(static_cast<const MaterialSprim&>(*index_.find(path)).material());
         return it->second;
     };
-    DicingContext dicing{camera, options_.dicing,
+    DicingContext dicing{camera, dicingSettings,
                          [&](const std::string& material) {
                              const auto* sprim = dynamic_cast<const MaterialSprim*>(index_.find(material));
                              return sprim ? sprim->material().displacement : 0.0f;
