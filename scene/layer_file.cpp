@@ -39,7 +39,17 @@ std::unique_ptr<Layer> readPackagedLayer(const UsdzPackage& package, const std::
 
 bool isMaterialXPath(const std::string& path) { return lowercaseExtension(path) == ".mtlx"; }
 
+std::string missingFormatPlugin(const std::string& path) {
+    const std::string extension = lowercaseExtension(splitPackagePath(path) ? splitPackagePath(path)->entry : path);
+    return extension == ".abc" ? "Alembic" : extension == ".drc" ? "Draco" : "";
+}
+
+std::string unsupportedFormatMessage(const std::string& path) {
+    return "'" + path + "' needs the " + missingFormatPlugin(path) + " plugin (a USD file format plugin Fluence does not have)";
+}
+
 std::unique_ptr<Layer> readLayerFile(const std::string& path) {
+    if (!missingFormatPlugin(path).empty()) throw UnsupportedFormatError(unsupportedFormatMessage(path));
     if (std::optional<PackagePath> packaged = splitPackagePath(path))
         return readPackagedLayer(UsdzPackage::open(packaged->package), packaged->entry);
     if (isUsdzPath(path)) {
