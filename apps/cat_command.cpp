@@ -17,11 +17,16 @@ namespace fluence::app {
 namespace {
 
 // The layer file alone, read as the stage reads its layers. On failure prints why and returns
-// nullptr with `exitCode` set (an unreadable file: kExitMissingInput; bad syntax: kExitScene).
+// nullptr with `exitCode` set (an unreadable file: kExitMissingInput; bad syntax or a format that
+// needs a plugin Fluence does not have: kExitScene).
 std::unique_ptr<usd::Layer> readLayer(const std::string& path, WarningLog& warnings, int& exitCode) {
     std::unique_ptr<usd::Layer> layer;
     try {
         layer = usd::readLayerFile(path);
+    } catch (const usd::UnsupportedFormatError& e) {
+        printError(e.what());
+        exitCode = kExitScene;
+        return nullptr;
     } catch (const usd::FileError& e) {
         printError(e.what());
         exitCode = kExitMissingInput;

@@ -272,6 +272,8 @@ RenderOptions parseRenderOptions(const std::vector<std::string>& args) {
             o.allowMissing = true;
         } else if (arg == "--strict") {
             o.strict = true;
+        } else if (arg == "--no-default-light") {
+            o.defaultLight = false;
         } else if (arg == "--purpose") {
             o.purposes = splitList(cur.value(arg));
             try {
@@ -349,10 +351,15 @@ std::string usageText() {
            "  -V LEVEL                progress: 0 none; a (as in -V a, -V2a) ALF_PROGRESS n% lines on stdout even on a\n"
            "                          terminal (default: a bar on a terminal, those lines otherwise)\n"
            "      --allow-missing     render even when layers, textures or VDB files are missing (each is a\n"
-           "                          warning); without it a missing asset is an error (exit 4)\n"
+           "                          warning); without it a missing asset is an error (exit 4), and a layer\n"
+           "                          that needs a file format plugin (Alembic, Draco) is one (exit 3)\n"
            "      --strict            a malformed prim (face counts that do not match the indices, a GeomSubset\n"
            "                          index out of range, ...) is an error (exit 3); without it the prim is\n"
            "                          skipped with a warning naming it and the reason, and the rest rendered\n"
+           "      --no-default-light  render a scene in which nothing emits (no light, emissive surface or\n"
+           "                          volume) black; by default it is lit, with a warning, by a distant light\n"
+           "                          along the camera's view and a dim dome, as usdview does (also\n"
+           "                          fluence:defaultLight = false on the render settings)\n"
            "  -f, --frame F           time code to render (default: the stage's startTimeCode, else none: each\n"
            "                          time-sampled attribute takes its earliest sample, as in Hydra)\n"
            "  -n, --frame-count N     render N frames from --frame on, the stage read once (default 1)\n"
@@ -399,7 +406,8 @@ std::string usageText() {
            "  OCIO                    an OpenColorIO config to use instead of Fluence's built-in one\n"
            "\n"
            "exit codes:\n"
-           "  0 image written   1 internal error   2 usage error   3 scene error (syntax or semantic)\n"
+           "  0 image written   1 internal error   2 usage error   3 scene error (syntax or semantic; a layer\n"
+           "  in a format that needs a USD plugin Fluence does not have: Alembic .abc, Draco .drc)\n"
            "  4 missing input (scene file, asset)   5 output could not be written   6 colour configuration error\n"
            "  7 interrupted (SIGTERM or SIGINT: the render stops between tiles and writes nothing)\n"
            "  farm: 8 work still queued or running   9 tasks failed or missing (farm resume)   10 scheduler error\n";

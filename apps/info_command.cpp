@@ -50,8 +50,8 @@ void printTree(const usd::PrimSpec& prim, int depth) {
 
 void section(const char* title, std::size_t count) { std::printf("\n%s (%zu)\n", title, count); }
 
-// The scene as `fluence render` would describe it to the render core (nullopt, with a warning,
-// when it cannot be).
+// The scene as `fluence render` would describe it to the render core, but for the subdivision
+// surfaces' tessellation (nullopt, with a warning, when it cannot be).
 std::optional<render::SceneDescription> describeScene(usd::Stage& stage, const InfoOptions& opt, double time,
                                                       WarningLog& warnings) {
     try {
@@ -59,6 +59,9 @@ std::optional<render::SceneDescription> describeScene(usd::Stage& stage, const I
         delegate::DelegateOptions dopt;
         dopt.settingsPath = opt.settings;
         dopt.time = time;
+        dopt.defaultLight = true;  // as the render, which adds them (and says so) by default
+        // Subdivision surfaces as their cages: the path classes do not depend on the tessellation.
+        dopt.dicing.uniformLevel = 0;
         dopt.convertColor = [&](const RGB& c, const std::string& space) { return colors.toRenderingSpace(space, c); };
         dopt.warn = [&](const std::string& path, const std::string& message) { warnings(path, message); };
         return delegate::populateScene(stage, dopt).scene;

@@ -111,6 +111,7 @@ int renderFrame(const RenderOptions& opt, usd::Stage& stage, const color::ColorM
     dopt.purposes = opt.purposes;
     dopt.allowMissing = opt.allowMissing;
     dopt.strict = opt.strict;
+    dopt.defaultLight = opt.defaultLight;
     dopt.convertColor = [&](const RGB& c, const std::string& space) { return colors.toRenderingSpace(space, c); };
     dopt.warn = [&](const std::string& path, const std::string& message) { warnings(path, message); };
     std::optional<delegate::DelegateResult> populated;

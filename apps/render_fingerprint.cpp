@@ -103,6 +103,7 @@ CheckpointFingerprint renderFingerprint(const RenderOptions& o, const usd::Stage
         {"purpose", o.purposes ? joined(*o.purposes, [](const std::string& p) { return p; }) : "(render settings)"},
         {"render settings", o.settings},
         {"subsurface", o.subsurface},
+        {"default light", o.defaultLight ? "on" : "off"},
         {"dicing rate", exact(o.dicingRate)},
         {"subdiv level", o.subdivLevel ? std::to_string(*o.subdivLevel) : "(dicing)"},
         {"cryptomatte", joined(o.cryptomatte, [](CryptomatteSource s) { return s == CryptomatteSource::Object ? "object" : "material"; })},

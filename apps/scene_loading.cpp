@@ -2,14 +2,85 @@
 
 #include <cstdio>
 #include <filesystem>
+#include <map>
+#include <vector>
 
 #include "delegate/render_index.h"
+#include "scene/layer_file.h"
 #include "scene/usda_parser.h"
 #include "scene/usdz_package.h"
 
 namespace fluence::app {
 
 void printError(const std::string& message) { std::fprintf(stderr, "fluence: error: %s\n", message.c_str()); }
+
+namespace {
+
+// The references to one asset file: the first (in the stage's order) names them all.
+struct AssetUse {
+    const usd::AssetReference* first = nullptr;
+    std::size_t count = 0;
+    bool arc = false;       // a sublayer, reference, payload or clip names it
+    bool rendered = false;  // the render reads it (see checkAssets)
+};
+
+// Missing assets (textures, VDBs) are named, once per file with the number of references to it;
+// arcs and clips that could not be followed were warned by composition (once per layer, with the
+// number of prims naming it), and are errors too when missing assets are. An arc to a layer in a
+// format that needs a plugin Fluence does not have (usd::missingFormatPlugin) is a scene error then.
+int checkAssets(const usd::Stage& stage, WarningLog& warnings, MissingAssets missing) {
+    std::vector<std::string> files;  // in the order first met
+    std::map<std::string, AssetUse> uses;
+    const std::vector<usd::AssetReference> references = stage.assetReferences();
+    for (const usd::AssetReference& a : references) {
+        const bool arc = a.property == "subLayers" || a.property == "references" || a.property == "payload" || a.property == "clips";
+        if (a.exists && !(arc && !usd::missingFormatPlugin(a.resolved).empty())) continue;
+        auto [it, inserted] = uses.try_emplace(a.resolved);
+        if (inserted) files.push_back(a.resolved);
+        AssetUse& use = it->second;
+        if (!use.first) use.first = &a;
+        ++use.count;
+        use.arc = use.arc || arc;
+        // What the render reads: layers, shader and light inputs (textures), volume field files.
+        // Other asset-valued attributes (model:cardTexture*, a SpatialAudio's filePath,
+        // documentation) only warn.
+        const usd::PrimSpec* prim = a.primPath.empty() ? nullptr : stage.prim(a.primPath);
+        const bool fieldFile = a.property == "filePath" && prim && delegate::isFieldAssetType(prim->typeName);
+        use.rendered = use.rendered || arc || a.property.starts_with("inputs:") || fieldFile;
+    }
+    std::size_t missingCount = 0, unsupportedCount = 0;
+    for (const std::string& file : files) {
+        const AssetUse& use = uses.at(file);
+        const usd::AssetReference& a = *use.first;
+        const std::string where = a.primPath.empty() ? a.location.str() : a.primPath + "." + a.property;
+        const std::string others = use.count > 1 ? " (and " + std::to_string(use.count - 1) + " more references to it)" : "";
+        if (use.arc && !usd::missingFormatPlugin(file).empty()) {
+            if (missing == MissingAssets::Fail) {
+                printError(where + ": " + usd::unsupportedFormatMessage(file) + others);
+                ++unsupportedCount;
+            }
+        } else if (missing == MissingAssets::Fail && use.rendered) {
+            printError(where + ": missing asset " + file + " (authored as @" + a.authored + "@)" + others);
+            ++missingCount;
+        } else if (!use.arc) {
+            warnings(where, "asset not found: " + file + " (authored as @" + a.authored + "@)" + others);
+        }
+    }
+    if (missingCount > 0) {
+        printError(std::to_string(missingCount) + (missingCount == 1 ? " asset is" : " assets are") +
+                   " missing; --allow-missing renders without " + (missingCount == 1 ? "it" : "them"));
+        return kExitMissingInput;
+    }
+    if (unsupportedCount > 0) {
+        printError(std::to_string(unsupportedCount) + (unsupportedCount == 1 ? " layer needs" : " layers need") +
+                   " a file format plugin Fluence does not have; --allow-missing renders without " +
+                   (unsupportedCount == 1 ? "it" : "them"));
+        return kExitScene;
+    }
+    return kExitOk;
+}
+
+}  // namespace
 
 int openStage(const std::string& path, const usd::StageOptions& options, WarningLog& warnings,
               std::unique_ptr<usd::Stage>& stage, MissingAssets missing) {
@@ -19,6 +90,9 @@ int openStage(const std::string& path, const usd::StageOptions& options, Warning
     }
     try {
         stage = usd::Stage::open(path, options);
+    } catch (const usd::UnsupportedFormatError& e) {
+        printError(e.what());
+        return kExitScene;
     } catch (const usd::FileError& e) {
         printError(e.what());
         return kExitMissingInput;
@@ -29,32 +103,7 @@ int openStage(const std::string& path, const usd::StageOptions& options, Warning
     for (const usd::CompositionWarning& w : stage->warnings())
         warnings(w.location.file.empty() ? w.primPath : w.location.str() + (w.primPath.empty() ? "" : ": " + w.primPath),
                  w.message);
-    // Missing assets (textures, VDBs) are named; arcs and clips that could not be followed were
-    // warned above, and are errors too when missing assets are.
-    std::size_t missingCount = 0;
-    for (const usd::AssetReference& a : stage->assetReferences()) {
-        if (a.exists) continue;
-        const bool arc = a.property == "subLayers" || a.property == "references" || a.property == "payload" || a.property == "clips";
-        // What the render reads: layers, shader and light inputs (textures), volume field files.
-        // Other asset-valued attributes (model:cardTexture*, a SpatialAudio's filePath,
-        // documentation) only warn.
-        const usd::PrimSpec* prim = a.primPath.empty() ? nullptr : stage->prim(a.primPath);
-        const bool fieldFile = a.property == "filePath" && prim && delegate::isFieldAssetType(prim->typeName);
-        const bool rendered = arc || a.property.starts_with("inputs:") || fieldFile;
-        const std::string where = a.primPath.empty() ? a.location.str() : a.primPath + "." + a.property;
-        if (missing == MissingAssets::Fail && rendered) {
-            printError(where + ": missing asset " + a.resolved + " (authored as @" + a.authored + "@)");
-            ++missingCount;
-        } else if (!arc) {
-            warnings(where, "asset not found: " + a.resolved + " (authored as @" + a.authored + "@)");
-        }
-    }
-    if (missingCount > 0) {
-        printError(std::to_string(missingCount) + (missingCount == 1 ? " asset is" : " assets are") +
-                   " missing; --allow-missing renders without " + (missingCount == 1 ? "it" : "them"));
-        return kExitMissingInput;
-    }
-    return kExitOk;
+    return checkAssets(*stage, warnings, missing);
 }
 
 }  // namespace fluence::app

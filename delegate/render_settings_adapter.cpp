@@ -109,6 +109,7 @@ std::optional<RenderSettingsDesc> renderSettingsFromStage(const usd::Stage& stag
     s.framing = framingOf(reader, s.framing);
     if (auto purposes = reader.strings("includedPurposes")) s.includedPurposes = *purposes;
     s.integrator = reader.token({"fluence:integrator"}, "");
+    s.defaultLight = reader.boolean({"fluence:defaultLight"}, true);
 
     if (const usd::RelationshipSpec* products = prim->relationship("products"))
         for (const std::string& target : products->targets) {

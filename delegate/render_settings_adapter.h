@@ -8,7 +8,8 @@
 // |----------------|------------------------------------------------------------------------------|
 // | RenderSettings | resolution (2048, 1080), pixelAspectRatio (1), aspectRatioConformPolicy      |
 // |                | ("expandAperture"), rel camera, rel products, includedPurposes,              |
-// |                | uniform token fluence:integrator ("": --integrator, else path)               |
+// |                | uniform token fluence:integrator ("": --integrator, else path),              |
+// |                | bool fluence:defaultLight (true: a scene with no light gets the default ones)|
 // | RenderProduct  | productName (""), productType ("raster"), and the RenderSettingsBase         |
 // |                | attributes above when authored on the product (they override the settings') |
 // |                | — resolution, camera, pixelAspectRatio, aspectRatioConformPolicy,          |
@@ -62,6 +63,7 @@ struct RenderSettingsDesc {
     render::ImageFraming framing;
     std::vector<std::string> includedPurposes{"default", "render"};
     std::string integrator;  // fluence:integrator, "" when not authored
+    bool defaultLight = true;  // fluence:defaultLight (delegate/default_lights.h)
     std::vector<RenderProductDesc> products;
 
     // The product this version renders: the first one (nullptr when there are none).

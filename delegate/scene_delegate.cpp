@@ -6,6 +6,7 @@
 #include <set>
 
 #include "delegate/camera_adapter.h"
+#include "delegate/default_lights.h"
 #include "delegate/imageable.h"
 #include "delegate/instancing.h"
 #include "delegate/light_adapter.h"
@@ -31,6 +32,11 @@ std::uint32_t meshBitsFor(const std::string& name) {
     if (name == "normals" || name.starts_with("primvars:")) return kDirtyPrimvars;
     return kDirtyTopology;  // faceVertex*, holeIndices, orientation, radius, size, height, axis, ...
 }
+
+// The uniform refinement of subdivision surfaces the default camera is framed on: their limit
+// points on a grid of 4 x 4 per cage face, whose bounds come within a few percent of the limit
+// surface's (a Catmull-Clark cube: 2%) for a fraction of a camera's dicing.
+constexpr int kFramingSubdivisionLevel = 2;
 
 // Prototype keys: one namespace for native-instancing keys, one for point-instancer roots.
 std::string nativeKey(const std::string& key) { return "instance:" + key; }
@@ -214,9 +220,11 @@ render::SceneDescription SceneDelegate::sceneDescription() const {
     render::CameraDesc cameraDesc;
     if (cameraPrim) {
         cameraDesc = cameraPrim->camera();
-    } else {  // framed on the scene as a provisional camera dices it
+    } else {  // framed on the scene with subdivision surfaces refined uniformly, a camera's dicing unknown yet
+        DicingSettings coarse = options_.dicing;
+        coarse.uniformLevel = kFramingSubdivisionLevel;
         render::Camera provisional(framingCamera({}, stage_.upAxis()), width, height, framing());
-        cameraDesc = framingCamera(describe(provisional, 1.0f, subdivisionTriangles), stage_.upAxis());
+        cameraDesc = framingCamera(describe(provisional, coarse, 1.0f, subdivisionTriangles), stage_.upAxis());
     }
     std::unique_ptr<render::Camera> camera;
     try {
@@ -224,20 +232,26 @@ render::SceneDescription SceneDelegate::sceneDescription() const {
     } catch (const std::invalid_argument& e) {
         throw SceneError(e.what());
     }
-    render::SceneDescription scene = describe(*camera, 1.0f, subdivisionTriangles);
+    render::SceneDescription scene = describe(*camera, options_.dicing, 1.0f, subdivisionTriangles);
     // Over the scene budget: every rate scaled down until the subdivision surfaces fit (rates are
     // clamped and rounded, so the first guess can miss).
     const std::size_t budget = options_.dicing.sceneTriangleBudget, wanted = subdivisionTriangles;
     float scale = 1.0f;
     for (int attempt = 0; subdivisionTriangles > budget && attempt < 8; ++attempt) {
         scale *= 0.95f * std::sqrt(static_cast<float>(budget) / static_cast<float>(subdivisionTriangles));
-        scene = describe(*camera, scale, subdivisionTriangles);
+        scene = describe(*camera, options_.dicing, scale, subdivisionTriangles);
     }
     if (wanted > budget)
         options_.warn("/", "subdivision surfaces would take " + std::to_string(wanted) +
                                " triangles, over the scene budget of " + std::to_string(budget) + "; diced coarser, to " +
                                std::to_string(subdivisionTriangles));
     scene.camera = cameraDesc;
+    if (options_.defaultLight && (!renderSettings_ || renderSettings_->defaultLight) && !emitsLight(scene)) {
+        for (render::LightDesc& light : defaultLights(cameraDesc)) scene.lights.push_back(std::move(light));
+        options_.warn("/", "nothing in the scene emits light (no light, emissive surface or volume); lit by a default "
+                           "distant light from the camera and a dim dome, as usdview does (--no-default-light, or "
+                           "fluence:defaultLight = false on the render settings, turns them off)");
+    }
     return scene;
 }
 
@@ -276,7 +290,7 @@ std::optional<render::VolumeDesc> SceneDelegate::volumeDesc(const VolumeRprim& v
     return desc;
 }
 
-render::SceneDescription SceneDelegate::describe(const render::Camera& camera, float scale,
+render::SceneDescription SceneDelegate::describe(const render::Camera& camera, const DicingSettings& dicingSettings, float scale,
                                                  std::size_t& subdivisionTriangles) const {
     // In the stage's traversal order, so the description (and the render) does not depend on
     // the order prims entered the index; materials in the order meshes first bind them.
@@ -290,7 +304,7 @@ render::SceneDescription SceneDelegate::describe(const render::Camera& camera, f
         if (inserted) scene.materials.push_back(sprim.material());
         return it->second;
     };
-    DicingContext dicing{camera, options_.dicing,
+    DicingContext dicing{camera, dicingSettings,
                          [&](const std::string& material) {
                              const auto* sprim = dynamic_cast<const MaterialSprim*>(index_.find(material));
                              return sprim ? sprim->material().displacement : 0.0f;

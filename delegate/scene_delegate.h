@@ -63,6 +63,9 @@ struct DelegateOptions {
     bool allowMissing = false;
     // A malformed prim (render_index.h): SceneError when true, else a warning and the prim skipped.
     bool strict = false;
+    // A scene in which nothing emits gets the default lights (delegate/default_lights.h), with a
+    // warning, unless this is false or the render settings' fluence:defaultLight is false.
+    bool defaultLight = false;
     // Primvars (names without "primvars:") every mesh keeps for primvar RenderVars, whether or not
     // its material reads them (render::RenderScene::primvarAt).
     std::set<std::string> aovPrimvars;
@@ -99,9 +102,10 @@ private:
     // edit); returns whether any was.
     bool markPrototypesReading(const std::string& primPath, const std::string& attribute = "");
     void chooseCamera();
-    // The description with subdivision surfaces diced for `camera`, every rate scaled by `scale`;
-    // counts the triangles they took.
-    render::SceneDescription describe(const render::Camera& camera, float scale, std::size_t& subdivisionTriangles) const;
+    // The description with subdivision surfaces diced for `camera` by `dicing`, every rate scaled
+    // by `scale`; counts the triangles they took.
+    render::SceneDescription describe(const render::Camera& camera, const DicingSettings& dicing, float scale,
+                                      std::size_t& subdivisionTriangles) const;
     // The render core's description of a Volume: its material's parameters and its grids (nullopt,
     // with a warning, when it has no density field). Raises MissingAssetError when a grid file is
     // missing (with DelegateOptions::allowMissing: a warning, and nullopt).

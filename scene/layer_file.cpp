@@ -39,7 +39,18 @@ std::unique_ptr<Layer> readPackagedLayer(const UsdzPackage& package, const std::
 
 bool isMaterialXPath(const std::string& path) { return lowercaseExtension(path) == ".mtlx"; }
 
+std::string missingFormatPlugin(const std::string& path) {
+    const std::optional<PackagePath> packaged = splitInnermostPackagePath(path);
+    const std::string extension = lowercaseExtension(packaged ? packaged->entry : path);
+    return extension == ".abc" ? "Alembic" : extension == ".drc" ? "Draco" : "";
+}
+
+std::string unsupportedFormatMessage(const std::string& path) {
+    return "'" + path + "' needs the " + missingFormatPlugin(path) + " plugin (a USD file format plugin Fluence does not have)";
+}
+
 std::unique_ptr<Layer> readLayerFile(const std::string& path) {
+    if (!missingFormatPlugin(path).empty()) throw UnsupportedFormatError(unsupportedFormatMessage(path));
     if (isUsdzPath(path)) {  // a package file, or a package inside one: its root layer
         UsdzPackage package = UsdzPackage::open(path);
         if (package.entries().empty()) throw FileError("'" + path + "': the USDZ package holds no layer");

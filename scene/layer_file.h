@@ -9,6 +9,7 @@
 #pragma once
 
 #include <memory>
+#include <stdexcept>
 #include <string>
 
 #include "scene/layer.h"
@@ -18,8 +19,22 @@ namespace fluence::usd {
 // Whether `path` names a MaterialX document (by its extension).
 bool isMaterialXPath(const std::string& path);
 
-// Reads the layer file at `path`. Throws FileError when it cannot be read (or a crate is damaged)
-// and ParseError on bad text.
+// The USD file format plugin a layer in `path`'s format needs, which Fluence does not have:
+// "Alembic" (.abc, usdAbc) or "Draco" (.drc, usdDraco); "" for any other path.
+std::string missingFormatPlugin(const std::string& path);
+
+// A layer file in a format that needs a USD file format plugin Fluence does not have.
+class UnsupportedFormatError : public std::runtime_error {
+public:
+    using std::runtime_error::runtime_error;
+};
+
+// "'x.abc' needs the Alembic plugin (a USD file format plugin Fluence does not have)".
+std::string unsupportedFormatMessage(const std::string& path);
+
+// Reads the layer file at `path`. Throws FileError when it cannot be read (or a crate is damaged),
+// UnsupportedFormatError when its format needs a plugin (missingFormatPlugin) and ParseError on
+// bad text.
 std::unique_ptr<Layer> readLayerFile(const std::string& path);
 
 }  // namespace fluence::usd

@@ -106,6 +106,7 @@ std::string firstBytes(const std::string& path) {
 
 // Why the file at `path` cannot be read as a USD text layer ("" when it can be tried).
 std::string unusableLayerProblem(const std::string& path) {
+    if (!missingFormatPlugin(path).empty()) return unsupportedFormatMessage(path);
     std::error_code error;
     if (splitPackagePath(path)) {
         if (std::string problem = packagedEntryProblem(path); !problem.empty()) return problem;
@@ -166,7 +167,8 @@ const Layer* LayerRegistry::layerFor(const std::string& resolvedPath, const ArcS
         byPath_[resolvedPath] = nullptr;
         problems_[resolvedPath] = problem;
     }
-    log_.warn(std::string(site.arc) + " @" + site.authored + "@ ignored: " + problem, site.location, site.primPath);
+    log_.warnAboutAsset(resolvedPath, std::string(site.arc) + " @" + site.authored + "@ ignored: " + problem, site.location,
+                        site.primPath);
     std::error_code error;
     log_.unresolvedArc({site.primPath, site.property, site.authored, resolvedPath,
                         fs::is_regular_file(resolvedPath, error), site.location});

@@ -7,6 +7,7 @@
 #include "scene/flatten.h"
 #include "scene/layer_stack.h"
 #include "scene/namespace_remap.h"
+#include "scene/stage_metadata.h"
 #include "scene/time_samples.h"
 
 namespace fluence::usd {
@@ -26,6 +27,7 @@ std::unique_ptr<Stage> Stage::open(const std::string& path, const StageOptions& 
 void Stage::compose(std::unique_ptr<Layer> inMemoryRoot, const std::string& path) {
     registry_ = std::make_unique<detail::LayerRegistry>(log_);
     rootStack_ = inMemoryRoot ? &registry_->adoptRoot(std::move(inMemoryRoot)) : &registry_->openRoot(path);
+    detail::checkStageMetadata(rootStack_->rootLayer(), log_);
     detail::FlattenResult result = detail::flatten(*rootStack_, *registry_, log_, options_);
     composed_ = std::move(result.layer);
     layerFiles_ = registry_->files();

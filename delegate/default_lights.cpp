@@ -1,0 +1,47 @@
+#include "delegate/default_lights.h"
+
+#include <algorithm>
+
+namespace fluence::delegate {
+
+namespace {
+
+bool materialEmits(const render::MaterialDesc& m) {
+    return !isBlack(m.emission) || std::any_of(m.bindings.begin(), m.bindings.end(), [](const render::InputBinding& b) {
+               return b.input == render::MaterialInput::Emission;
+           });
+}
+
+bool volumeEmits(const render::VolumeDesc& v) {
+    return (v.params.emissionScale > 0.0f && !isBlack(v.params.emissionColor)) ||
+           (v.params.blackbodyIntensity > 0.0f && v.temperature.has_value());
+}
+
+}  // namespace
+
+bool emitsLight(const render::SceneDescription& scene) {
+    if (!scene.lights.empty() || std::any_of(scene.volumes.begin(), scene.volumes.end(), volumeEmits)) return true;
+    auto meshEmits = [&](const render::MeshDesc& mesh) {
+        return mesh.material >= 0 && mesh.material < static_cast<int>(scene.materials.size()) &&
+               materialEmits(scene.materials[static_cast<std::size_t>(mesh.material)]);
+    };
+    if (std::any_of(scene.meshes.begin(), scene.meshes.end(), meshEmits)) return true;
+    return std::any_of(scene.prototypes.begin(), scene.prototypes.end(), [&](const render::PrototypeDesc& p) {
+        return std::any_of(p.meshes.begin(), p.meshes.end(), meshEmits);
+    });
+}
+
+std::vector<render::LightDesc> defaultLights(const render::CameraDesc& camera) {
+    render::LightDesc key;
+    key.name = "(default key light)";
+    key.type = render::LightType::Distant;
+    key.transform = camera.transform;  // the camera and a distant light both look down local -Z
+    key.radiance = RGB(kDefaultKeyIrradiance);  // a point-like (0 degree) distant light: the irradiance
+    render::LightDesc dome;
+    dome.name = "(default dome)";
+    dome.type = render::LightType::Dome;
+    dome.radiance = RGB(kDefaultDomeRadiance);
+    return {key, dome};
+}
+
+}  // namespace fluence::delegate
