@@ -1,6 +1,7 @@
 # Fluence: the two commands of the README.
 #   make render   install missing Debian packages, build, render the Cornell box sample
-#   make test     install missing Debian packages, build, run the whole test suite
+#   make test     install missing Debian packages, build, run the whole test suite (then the scene,
+#                 delegate and CLI tests again under AddressSanitizer and UBSan: scripts/sanitizer_tests.sh)
 BUILD_DIR ?= build
 JOBS ?= $(shell nproc)
 SPP ?= 256
@@ -22,9 +23,18 @@ render: build
 	$(FLUENCE) render usd_samples/cornell_box.usda -o out/cornell_box.exr --preview out/cornell_box.png --spp $(SPP)
 	@echo "Wrote $(CURDIR)/out/cornell_box.exr (linear Rec.709, beauty + AOVs) and $(CURDIR)/out/cornell_box.png (sRGB preview)"
 
+# After the suite and the fuzz smoke run, the sanitizer pass: the scene, delegate and apps (CLI)
+# tests again, built with clang++-16 -fsanitize=address,undefined into $(BUILD_DIR)/asan, any
+# sanitizer report a failure (scripts/sanitizer_tests.sh). `make test-sanitized` runs it alone.
+SANITIZER_TESTS := SANITIZE_BUILD_DIR=$(BUILD_DIR)/asan JOBS=$(JOBS) bash scripts/sanitizer_tests.sh
 test: build
 	cd $(BUILD_DIR) && ctest --output-on-failure -j $(JOBS)
 	FUZZ_BUILD_DIR=$(BUILD_DIR)/fuzz bash scripts/fuzz_smoke.sh 60
+	$(SANITIZER_TESTS)
+
+.PHONY: test-sanitized
+test-sanitized: deps
+	$(SANITIZER_TESTS)
 
 # Fuzzing the USDA reader for longer (fuzz/README.md): make fuzz FUZZ_SECONDS=3600. The working
 # corpus is kept in $(BUILD_DIR)/fuzz/corpus between runs.

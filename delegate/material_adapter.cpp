@@ -64,7 +64,9 @@ std::string boundMaterialPath(const usd::Stage& stage, const usd::PrimSpec& prim
         const usd::RelationshipSpec* rel = p ? bindingOf(*p) : nullptr;
         if (rel && (bound.empty() || strongerThanDescendants(*rel))) bound = resolveTargetPath(path, rel->targets.front());
     }
-    return bound;
+    // A target that exists but is not a Material binds nothing (UsdShade's ComputeBoundMaterial).
+    const usd::PrimSpec* target = bound.empty() ? nullptr : stage.prim(bound);
+    return target && target->typeName != "Material" ? "" : bound;
 }
 
 namespace {

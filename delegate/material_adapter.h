@@ -2,7 +2,8 @@
 //
 // Binding: the `material:binding:full` or `material:binding` relationship on the prim, else on
 // its closest ancestor — unless an ancestor's binding carries bindMaterialAs =
-// "strongerThanDescendants", in which case the highest such ancestor wins (UsdShade rules).
+// "strongerThanDescendants", in which case the highest such ancestor wins (UsdShade rules). A
+// target prim that is not a Material binds nothing; a missing one is warned about when read.
 //
 // Material: the Material's `outputs:mtlx:surface` (then `outputs:surface`) is followed, through
 // NodeGraph outputs, to a Shader whose info:id is UsdPreviewSurface or

@@ -89,7 +89,9 @@ void SceneDelegate::populate(const std::string& root) {
         if (!isImaged(prim, options_.time, purposes_)) return false;
         const std::string& type = prim.typeName;
         if (!instanceRoot.empty() && !isAtOrBelow(prim.path, instanceRoot)) instanceRoot.clear();
-        if (instanceRoot.empty() && !isGeometryType(type) && !instancePrototypeKey(prim).empty()) {
+        // An instanceable Material is a material like any other (its path is what meshes bind),
+        // not a native instance of geometry.
+        if (instanceRoot.empty() && !isGeometryType(type) && type != "Material" && !instancePrototypeKey(prim).empty()) {
             index_.insert(std::make_unique<InstanceRprim>(prim.path));
             instanceRoot = prim.path;  // its geometry is the prototype's; lights and cameras stay per prim
             return true;

@@ -1,5 +1,6 @@
 #include "texture/texture_system.h"
 
+#include <OpenImageIO/imagecache.h>
 #include <OpenImageIO/texture.h>
 
 #include <algorithm>
@@ -25,18 +26,24 @@ struct TextureSystem::Texture {
 struct TextureSystem::Impl {
     explicit Impl(color::ColorManagement c) : colors(std::move(c)) {}
     color::ColorManagement colors;
+    OIIO::ImageCache* cache = nullptr;  // the system's own, created and destroyed here: OpenImageIO 2.4
+                                        // leaks the one create(false) makes itself (LeakSanitizer)
     OIIO::TextureSystem* system = nullptr;
     std::mutex mutex;  // guards `opened`
     std::map<std::tuple<std::string, SourceColorSpace, std::string>, Texture> opened;
 };
 
 TextureSystem::TextureSystem(color::ColorManagement colors) : impl_(std::make_unique<Impl>(std::move(colors))) {
-    impl_->system = OIIO::TextureSystem::create(false);
+    impl_->cache = OIIO::ImageCache::create(false);
+    impl_->system = OIIO::TextureSystem::create(false, impl_->cache);
     impl_->system->attribute("automip", 1);
     impl_->system->attribute("max_memory_MB", 2048.0f);
 }
 
-TextureSystem::~TextureSystem() { OIIO::TextureSystem::destroy(impl_->system); }
+TextureSystem::~TextureSystem() {
+    OIIO::TextureSystem::destroy(impl_->system);
+    OIIO::ImageCache::destroy(impl_->cache);
+}
 
 namespace {
 
