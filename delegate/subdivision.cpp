@@ -115,6 +115,7 @@ struct SubdivisionSurface::Impl {
         Surface surface, varyingSurface, faceVaryingSurface;
         std::vector<int> rates, facets;            // facets: 3 face coordinates per triangle
         std::vector<double> coords, patch, value;  // coords: (u, v) per face coordinate
+        std::vector<int> controlPoints;            // a face-varying surface's value indices
         int boundaryCount = 0;                     // face coordinates on the face's boundary
         std::vector<std::uint32_t> output;         // face coordinate -> output vertex (or value)
         std::vector<char> owned;                   // face coordinate -> this face evaluates it
@@ -411,6 +412,15 @@ void SubdivisionSurface::Impl::evaluateFaceVarying(int f, int c, const Layout& l
     Surface& s = w.faceVaryingSurface;
     if (!factory->InitFaceVaryingSurface(f, &s, Bfr::SurfaceFactory::FVarID(c)))
         throw std::logic_error("subdivision mesh: OpenSubdiv has no face-varying surface for face " + std::to_string(f));
+    // Bfr reads the channel's values through these indices without bounds checks: where OpenSubdiv's
+    // face-varying topology went wrong (it once did, on values shared by several points), fail, not read out of range.
+    w.controlPoints.resize(std::size_t(s.GetNumControlPoints()));
+    s.GetControlPointIndices(w.controlPoints.data());
+    const std::size_t valueCount = input.values.size() / std::size_t(input.components);
+    for (int index : w.controlPoints)
+        if (index < 0 || std::size_t(index) >= valueCount)
+            throw std::logic_error("subdivision mesh: face " + std::to_string(f) + " of face-varying channel " + std::to_string(c) +
+                                   " refers to value " + std::to_string(index) + " of " + std::to_string(valueCount));
 
     // The output value of each face coordinate: corners by input value, edge points by span.
     const std::size_t coordCount = w.coords.size() / 2;

@@ -76,6 +76,9 @@
 // match share the edge's points. So a seam stays a seam (different indices, different values) and
 // a continuous edge is continuous bit for bit (the same index). A value shared by faces that are
 // not contiguous around a point (rare) takes the lowest-numbered face's limit.
+// One input value index used at different points (valid USD: indices only compress values; Maya
+// writes it where a UV edge collapses) becomes one copy of the value per point before OpenSubdiv,
+// whose face-varying topology assumes each value belongs to one point.
 //
 // Orientation. Bfr parameterizes a face with u along its first edge (point 0 to point 1) and v
 // along its last (point 0 to the last point), so for a counter-clockwise face (USD's right-handed default) cross(dPdu, dPdv) and the output triangles'

@@ -199,8 +199,12 @@ std::vector<int> SubdivisionMesh::segmentsFor(const std::vector<Matrix4>& placem
 std::vector<MeshPart> SubdivisionMesh::tessellate(const std::vector<Matrix4>& placements, const DicingContext& context) const {
     const DicingSettings& settings = context.settings;
     auto dice = [&](float scale, int level) {
-        return level >= 0 ? surface_->tessellateUniform(points_, level, vertexData_)
-                          : surface_->tessellate(points_, segmentsFor(placements, context, scale), vertexData_);
+        try {
+            return level >= 0 ? surface_->tessellateUniform(points_, level, vertexData_)
+                              : surface_->tessellate(points_, segmentsFor(placements, context, scale), vertexData_);
+        } catch (const std::logic_error& e) {  // too many vertices, or OpenSubdiv's data out of range: name the prim
+            throw SceneError(path_ + ": " + e.what());
+        }
     };
     int level = settings.uniformLevel;
     float scale = context.scale;

@@ -8,6 +8,8 @@
 #include <cstdint>
 #include <stdexcept>
 #include <string>
+#include <limits>
+#include <unordered_map>
 #include <unordered_set>
 
 namespace fluence::delegate::subdivision_detail {
@@ -33,6 +35,36 @@ void checkPoint(int index, int pointCount, const char* attribute, std::size_t i)
     if (index < 0 || index >= pointCount)
         fail(std::string(attribute) + "[" + std::to_string(i) + "] = " + std::to_string(index) + " is not a point (pointCount " +
              std::to_string(pointCount) + ")");
+}
+
+// USD primvar indices only compress values: one value index may serve corners at different points
+// (Maya writes this where a UV edge is collapsed to one value, as in Pixar's Kitchen Set). OpenSubdiv's
+// face-varying topology assumes each value belongs to one point (Bfr then reads patch points out of
+// range), and so does the output layout here. The first point using a value keeps its index; every
+// other point using it gets its own copy, appended. Corners at the same point still share, so seams and
+// continuous edges are those of the data, and the values are the data's.
+void splitValuesSharedByPoints(const SubdivisionTopology& t, FaceVaryingData& channel) {
+    const std::size_t k = std::size_t(channel.components);
+    const std::size_t count = channel.values.size() / k;
+    std::vector<int> pointOf(count, -1);
+    std::unordered_map<std::uint64_t, int> copies;  // (value, point) -> index of the value's copy
+    for (std::size_t i = 0; i < channel.indices.size(); ++i) {
+        const int value = channel.indices[i], point = t.faceVertexIndices[i];
+        int& owner = pointOf[std::size_t(value)];
+        if (owner < 0) owner = point;
+        if (owner == point) continue;
+        const std::uint64_t key = (std::uint64_t(std::uint32_t(value)) << 32) | std::uint32_t(point);
+        auto [it, inserted] = copies.try_emplace(key, int(channel.values.size() / k));
+        if (inserted) {
+            if (channel.values.size() / k >= std::size_t(std::numeric_limits<int>::max()))
+                fail("too many face-varying values after giving each point its own");
+            for (std::size_t c = 0; c < k; ++c) {
+                const float v = channel.values[std::size_t(value) * k + c];
+                channel.values.push_back(v);
+            }
+        }
+        channel.indices[i] = it->second;
+    }
 }
 
 }  // namespace
@@ -168,6 +200,7 @@ void normalizeFaceVarying(const SubdivisionTopology& t, std::vector<FaceVaryingD
             if (channel.indices[i] < 0 || std::size_t(channel.indices[i]) >= count)
                 fail(name + ": indices[" + std::to_string(i) + "] = " + std::to_string(channel.indices[i]) + " is not a value (" +
                      std::to_string(count) + " values)");
+        splitValuesSharedByPoints(t, channel);
     }
 }
 

@@ -43,12 +43,13 @@ struct Described {
     std::vector<std::string> warnings;
 };
 
-Described describe(const std::string& usda, DicingSettings dicing = {}) {
+Described describe(const std::string& usda, DicingSettings dicing = {}, std::set<std::string> aovPrimvars = {}) {
     Described d;
     d.stage = stageFrom(usda);
     DelegateOptions options;
     options.resolution = std::make_pair(512, 512);
     options.dicing = dicing;
+    options.aovPrimvars = std::move(aovPrimvars);
     options.convertColor = [](const RGB& c, const std::string&) { return c; };
     options.warn = [&d](const std::string& path, const std::string& message) { d.warnings.push_back(path + ": " + message); };
     d.scene = populateScene(*d.stage, options).scene;
@@ -225,6 +226,46 @@ TEST(SubdivisionMesh, BadTopologyNamesThePrimAndSkipsIt) {
     ASSERT_EQ(d.warnings.size(), 1u);
     EXPECT_NE(d.warnings[0].find("/Cube: not rendered: "), std::string::npos) << d.warnings[0];
     EXPECT_NE(d.warnings[0].find("faceVertexIndices[3] = 9"), std::string::npos) << d.warnings[0];
+}
+
+// Indexed primvars only compress values: one `st` value may serve corners at different points (Maya
+// writes this where a UV edge collapses to one value). OpenSubdiv's face-varying topology assumes
+// each value belongs to one point; each point now gets its own copy of a shared value. 21 faces (a
+// hexagon and a heptagon among them) whose connectivity is modelled on Kitchen Set's WallPineapple
+// pCube587 (renumbered; made-up points and values), with `st` values shared by different points and
+// another face-varying primvar before it. Before the fix Bfr gave face 18 a face-varying control
+// point out of channel 1's range: a segfault in SubdivisionSurface::Impl::evaluateFaceVarying.
+TEST(SubdivisionMesh, SharedFaceVaryingValuesOnIrregularFacesStayInRange) {
+    const std::string usda = R"(#usda 1.0
+def Mesh "M"
+{
+    float[] primvars:a = [0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15, 16, 17, 18, 19, 20, 21, 22, 23, 24, 25, 26, 27, 28, 29, 30, 31, 32, 33, 34, 35, 36, 37, 38, 39, 40, 41, 42, 43, 44, 45, 46, 47, 48, 49, 50, 51, 52, 53, 54, 55, 56, 57, 58, 59, 60, 61, 62, 63, 64, 65, 66, 67, 68, 69, 70, 71, 72, 73, 74, 75, 76, 77, 78, 79, 80, 81, 82, 83, 84, 85, 86, 87, 88] (
+        interpolation = "faceVarying"
+    )
+    int[] faceVertexCounts = [4, 4, 4, 4, 4, 4, 4, 4, 4, 4, 4, 4, 4, 4, 4, 4, 4, 4, 4, 6, 7]
+    int[] faceVertexIndices = [0, 1, 2, 3, 1, 0, 4, 5, 5, 4, 6, 7, 8, 9, 10, 11, 11, 10, 12, 13, 14, 3, 13, 12, 15, 0, 3, 14, 0, 15, 16, 4, 4, 16, 17, 6, 18, 19, 20, 21, 22, 23, 21, 20, 24, 25, 19, 18, 8, 26, 24, 18, 8, 18, 21, 9, 23, 27, 9, 21, 28, 7, 6, 29, 29, 6, 17, 30, 31, 30, 17, 32, 33, 34, 35, 36, 37, 38, 39, 33, 40, 41, 40, 33, 36, 35, 42, 43, 44]
+    point3f[] points = [(0, 0, 0), (1, 0, 3), (2, 0, 1), (3, 0, 4), (4, 0, 2), (5, 0, 0), (6, 0, 3), (0, 1, 1), (1, 1, 4), (2, 1, 2), (3, 1, 0), (4, 1, 3), (5, 1, 1), (6, 1, 4), (0, 2, 2), (1, 2, 0), (2, 2, 3), (3, 2, 1), (4, 2, 4), (5, 2, 2), (6, 2, 0), (0, 3, 3), (1, 3, 1), (2, 3, 4), (3, 3, 2), (4, 3, 0), (5, 3, 3), (6, 3, 1), (0, 4, 4), (1, 4, 2), (2, 4, 0), (3, 4, 3), (4, 4, 1), (5, 4, 4), (6, 4, 2), (0, 5, 0), (1, 5, 3), (2, 5, 1), (3, 5, 4), (4, 5, 2), (5, 5, 0), (6, 5, 3), (0, 6, 1), (1, 6, 4), (2, 6, 2)]
+    texCoord2f[] primvars:st = [(0, 0), (0.166667, 0), (0.333333, 0), (0.5, 0), (0.666667, 0), (0.833333, 0), (0, 0.166667), (0.166667, 0.166667), (0.333333, 0.166667), (0.5, 0.166667), (0.666667, 0.166667), (0.833333, 0.166667), (0, 0.333333), (0.166667, 0.333333), (0.333333, 0.333333), (0.5, 0.333333), (0.666667, 0.333333), (0.833333, 0.333333), (0, 0.5), (0.166667, 0.5), (0.333333, 0.5), (0.5, 0.5), (0.666667, 0.5), (0.833333, 0.5), (0, 0.666667), (0.166667, 0.666667), (0.333333, 0.666667), (0.5, 0.666667), (0.666667, 0.666667), (0.833333, 0.666667), (0, 0.833333), (0.166667, 0.833333), (0.333333, 0.833333), (0.5, 0.833333), (0.666667, 0.833333), (0.833333, 0.833333), (0, 1), (0.166667, 1), (0.333333, 1), (0.5, 1)] (
+        interpolation = "faceVarying"
+    )
+    int[] primvars:st:indices = [0, 1, 2, 3, 1, 0, 4, 5, 5, 4, 6, 7, 8, 9, 10, 11, 11, 10, 12, 13, 14, 3, 13, 12, 15, 0, 3, 14, 0, 15, 16, 4, 4, 16, 17, 6, 18, 19, 20, 21, 22, 23, 21, 20, 24, 24, 19, 18, 8, 25, 24, 18, 8, 18, 21, 9, 23, 26, 9, 21, 27, 27, 6, 28, 28, 6, 17, 29, 30, 29, 17, 31, 32, 33, 34, 35, 24, 24, 36, 32, 37, 38, 37, 32, 35, 34, 27, 27, 39]
+}
+)";
+    Described d = describe(usda, {}, {"a", "st"});
+    ASSERT_EQ(d.scene.meshes.size(), 1u);
+    const render::MeshDesc& mesh = d.scene.meshes[0];
+    ASSERT_GT(mesh.indices.size(), 0u);
+    ASSERT_EQ(mesh.primvars.size(), 2u);
+    for (const render::CornerPrimvar& pv : mesh.primvars) {
+        SCOPED_TRACE(pv.name);
+        ASSERT_EQ(pv.values.size(), std::size_t(pv.components) * mesh.indices.size());
+        const float high = pv.name == "a" ? 88.0f : 1.0f;  // the data's largest value
+        for (float v : pv.values) {
+            ASSERT_TRUE(std::isfinite(v));
+            EXPECT_GE(v, -1e-3f);
+            EXPECT_LE(v, high + 1e-3f);
+        }
+    }
 }
 
 TEST(SubdivisionMesh, InstancedSubdivisionSurfacesAreDicedForTheNearestInstance) {
