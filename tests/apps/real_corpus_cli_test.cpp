@@ -61,8 +61,9 @@ bool isLayer(const fs::path& p) {
 
 std::string exitCode(const test::RunResult& r) { return r.exitCode < 0 ? "signal" : std::to_string(r.exitCode); }
 
-// lit: some beauty is above zero; dark: geometry covers a pixel (alpha) but the beauty is zero;
-// empty: nothing in view; nonfinite: a NaN or infinite value in any channel.
+// lit: the beauty is above zero in a pixel geometry covers (alpha); dark: geometry covers a pixel
+// but the beauty is zero wherever it does; empty: nothing in view (a dome seen behind nothing, the
+// default lights' included, does not count); nonfinite: a NaN or infinite value in any channel.
 std::string imageClass(const fs::path& exr) {
     if (!fs::exists(exr)) return "no-image";
     test::ExrImage img = test::readExr(exr);
@@ -71,8 +72,9 @@ std::string imageClass(const fs::path& exr) {
     bool lit = false, covered = false;
     for (int y = 0; y < img.height; ++y)
         for (int x = 0; x < img.width; ++x) {
-            lit = lit || img.at(x, y, "R") > 0.0f || img.at(x, y, "G") > 0.0f || img.at(x, y, "B") > 0.0f;
-            covered = covered || img.at(x, y, "A") > 0.0f;
+            const bool here = img.at(x, y, "A") > 0.0f;
+            covered = covered || here;
+            lit = lit || (here && (img.at(x, y, "R") > 0.0f || img.at(x, y, "G") > 0.0f || img.at(x, y, "B") > 0.0f));
         }
     return lit ? "lit" : covered ? "dark" : "empty";
 }
