@@ -22,7 +22,15 @@ struct AssetUse {
     std::size_t count = 0;
     bool arc = false;       // a sublayer, reference, payload or clip names it
     bool rendered = false;  // the render reads it (see checkAssets)
+    bool needsPlugin = false;  // an arc names it, and its format needs a plugin Fluence does not have
 };
+
+// A volume field prim's filePath (OpenVDBAsset, Field3DAsset), which the render reads.
+bool isFieldFile(const usd::Stage& stage, const usd::AssetReference& a) {
+    if (a.property != "filePath" || a.primPath.empty()) return false;
+    const usd::PrimSpec* prim = stage.prim(a.primPath);
+    return prim && delegate::isFieldAssetType(prim->typeName);
+}
 
 // Missing assets (textures, VDBs) are named, once per file with the number of references to it;
 // arcs and clips that could not be followed were warned by composition (once per layer, with the
@@ -34,19 +42,19 @@ int checkAssets(const usd::Stage& stage, WarningLog& warnings, MissingAssets mis
     const std::vector<usd::AssetReference> references = stage.assetReferences();
     for (const usd::AssetReference& a : references) {
         const bool arc = a.property == "subLayers" || a.property == "references" || a.property == "payload" || a.property == "clips";
-        if (a.exists && !(arc && !usd::missingFormatPlugin(a.resolved).empty())) continue;
+        const bool needsPlugin = arc && !usd::missingFormatPlugin(a.resolved).empty();
+        if (a.exists && !needsPlugin) continue;
         auto [it, inserted] = uses.try_emplace(a.resolved);
         if (inserted) files.push_back(a.resolved);
         AssetUse& use = it->second;
         if (!use.first) use.first = &a;
         ++use.count;
         use.arc = use.arc || arc;
+        use.needsPlugin = use.needsPlugin || needsPlugin;
         // What the render reads: layers, shader and light inputs (textures), volume field files.
         // Other asset-valued attributes (model:cardTexture*, a SpatialAudio's filePath,
         // documentation) only warn.
-        const usd::PrimSpec* prim = a.primPath.empty() ? nullptr : stage.prim(a.primPath);
-        const bool fieldFile = a.property == "filePath" && prim && delegate::isFieldAssetType(prim->typeName);
-        use.rendered = use.rendered || arc || a.property.starts_with("inputs:") || fieldFile;
+        use.rendered = use.rendered || arc || a.property.starts_with("inputs:") || isFieldFile(stage, a);
     }
     std::size_t missingCount = 0, unsupportedCount = 0;
     for (const std::string& file : files) {
@@ -54,7 +62,7 @@ int checkAssets(const usd::Stage& stage, WarningLog& warnings, MissingAssets mis
         const usd::AssetReference& a = *use.first;
         const std::string where = a.primPath.empty() ? a.location.str() : a.primPath + "." + a.property;
         const std::string others = use.count > 1 ? " (and " + std::to_string(use.count - 1) + " more references to it)" : "";
-        if (use.arc && !usd::missingFormatPlugin(file).empty()) {
+        if (use.needsPlugin) {
             if (missing == MissingAssets::Fail) {
                 printError(where + ": " + usd::unsupportedFormatMessage(file) + others);
                 ++unsupportedCount;
