@@ -142,8 +142,9 @@ private:
         out.push_back({key, ListOpKind::Reorder, Value::string("", ValueKind::String, order.strings, true), location()});
     }
 
-    void addMetadata(Metadata& out, const std::string& field, ValueRep rep) {
+    void addMetadata(Metadata& out, const std::string& field, ValueRep authored) {
         std::string key = metadataKey(field);
+        const ValueRep rep = values_.unwrapUnregistered(authored);
         if (!detail::isRegisteredMetadataField(key))
             layer_.warnings.push_back({location(), "unregistered metadata field '" + key + "'; kept, but nothing reads it"});
         if (CrateValues::isListOp(rep)) {

@@ -433,14 +433,24 @@ Value CrateValues::dictionary(ByteReader& reader) const {
     return map;
 }
 
-Value CrateValues::nestedValue(ByteReader& reader) const {
+ValueRep CrateValues::nestedRep(ByteReader& reader) const {
     std::size_t start = reader.position();
     auto jump = reader.read<std::int64_t>();
     if (jump < 0 || static_cast<std::uint64_t>(jump) > reader.bytes().size() - start)
         throw CrateFormatError("a value's offset " + std::to_string(jump) + " at " + std::to_string(start) +
                                " points outside the file");
     reader.seek(start + static_cast<std::uint64_t>(jump));
-    ValueRep rep{reader.read<std::uint64_t>()};
+    return ValueRep{reader.read<std::uint64_t>()};
+}
+
+ValueRep CrateValues::unwrapUnregistered(ValueRep rep) const {
+    if (rep.type() != T::UnregisteredValue || rep.isInlined() || rep.payload() == 0) return rep;
+    ByteReader reader = file_.readerAt(rep.payload());
+    return nestedRep(reader);
+}
+
+Value CrateValues::nestedValue(ByteReader& reader) const {
+    ValueRep rep = nestedRep(reader);
     if (isListOp(rep) || isTimeSamples(rep))
         throw CrateFormatError("a " + typeDescription(rep.type()) + " nested in a dictionary is not supported");
     return value(rep);
@@ -490,6 +500,13 @@ Value CrateValues::listItems(int type, ByteReader& reader) const {
         case T::UIntListOp: return numbers("uint[]", std::uint32_t{});
         case T::Int64ListOp: return numbers("int64[]", std::int64_t{});
         case T::UInt64ListOp: return numbers("uint64[]", std::uint64_t{});
+        case T::UnregisteredValueListOp: {
+            // SdfUnregisteredValue items, each a VtValue (in practice the text of a value).
+            std::size_t count = reader.readCount(sizeof(std::int64_t));
+            std::vector<Value> items;
+            for (std::size_t i = 0; i < count; ++i) items.push_back(nestedValue(reader));
+            return Value::list(std::move(items));
+        }
         case T::ReferenceListOp:
         case T::PayloadListOp: {
             std::size_t count = reader.readCount(2 * sizeof(std::uint32_t));

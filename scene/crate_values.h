@@ -72,6 +72,9 @@ public:
     static bool isTimeSamples(ValueRep rep) { return rep.type() == crate_type::TimeSamples; }
 
     Value value(ValueRep rep) const;
+    // What an SdfUnregisteredValue (a field no schema registers) holds, as a rep of its own: a
+    // string, a dictionary or an SdfUnregisteredValueListOp; any other rep as it is.
+    ValueRep unwrapUnregistered(ValueRep rep) const;
     CrateListOp listOp(ValueRep rep) const;
     TimeSamples timeSamples(ValueRep rep) const;
 
@@ -83,6 +86,7 @@ private:
     Value stringArray(ValueRep rep) const;
     Value dictionary(ByteReader& reader) const;
     Value nestedValue(ByteReader& reader) const;  // a VtValue: a relative jump, then its ValueRep
+    ValueRep nestedRep(ByteReader& reader) const;  // the ValueRep of such a VtValue
     Value reference(ByteReader& reader, bool withCustomData) const;
     Value listItems(int listOpType, ByteReader& reader) const;
 

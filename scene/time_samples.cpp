@@ -1,6 +1,7 @@
 #include "scene/time_samples.h"
 
 #include <algorithm>
+#include <cmath>
 
 namespace fluence::usd {
 
@@ -22,6 +23,10 @@ Value valueAtTime(const TimeSamples& samples, double time) {
     const auto& [loTime, lo] = *(after - 1);
     const auto& [hiTime, hi] = *after;
     if (!interpolates(lo, hi)) return lo;  // held
+    // A neighbour at an infinite time (Sdf reads inf and -inf times): the interpolation tends to
+    // the finite neighbour's value, where the formula below would give inf/inf.
+    if (std::isinf(hiTime)) return lo;
+    if (std::isinf(loTime)) return hi;
     double a = (time - loTime) / (hiTime - loTime);
     std::vector<double> mixed(lo.numbers.size());
     for (std::size_t i = 0; i < mixed.size(); ++i) mixed[i] = lo.numbers[i] + a * (hi.numbers[i] - lo.numbers[i]);

@@ -13,14 +13,15 @@
 //   attribute      := [listOp] ['custom'] ['uniform' | 'config'] typeName ['[' ']'] name
 //                         ( ['=' typedValue] [metadataBlock]
 //                         | '.' 'connect' '=' targets
-//                         | '.' 'timeSamples' '=' '{' (number ':' typedValue),* '}' )
+//                         | '.' 'timeSamples' '=' '{' (time ':' typedValue),* '}' )
 //                     ('custom' only without a field, a list op only with '.connect'; names
 //                     are identifiers joined by ':', never '::')
 //   relationship   := [listOp] ['custom'] ['varying'] 'rel' name
-//                         ( ['=' targets] [metadataBlock]
+//                         ( ['=' targets] [metadataBlock]              (metadata without listOp)
 //                         | '.' 'default' '=' path                 (no list op)
-//                         | '.' 'timeSamples' '=' '{' (number ':' (path | 'None')),* '}' )
+//                         | '.' 'timeSamples' '=' '{' (time ':' (path | 'None')),* '}' )
 //   targets        := 'None' | path | '[' path,* ']'
+//   time           := number | 'inf' | 'nan'                   (a sample at nan is left out)
 //   metadataBlock  := '(' (metadataEntry sep)* ')'
 //   metadataEntry  := string                                     (the doc string)
 //                   | [listOp] identifier '=' metadataValue
@@ -31,7 +32,7 @@
 // inherits/specializes (prim paths), subLayers (assets with layer offsets), relocates (a path
 // map), variants (string selections), the dictionaries (customData, customLayerData, assetInfo,
 // sdrMetadata), bools (active, hidden, instanceable, noLoadHint: read as bool values, stored as
-// 0 or 1), kind (a string), permission
+// 0 or 1), kind (a string, on prims and variants), permission
 // (public or private) and displayUnit (a unit name of Sdf's registry). Other keys take a list op
 // only with a [...] list value.
 //
@@ -44,8 +45,10 @@
 #include "scene/usda_parser.h"
 
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <optional>
 #include <unordered_map>
 #include <unordered_set>
@@ -163,6 +166,10 @@ struct Body {
     std::unordered_map<std::string, std::size_t> relationshipIndex;
 };
 
+// Whose metadata a block is: Sdf's schema registers different fields per spec type (variants
+// take a prim's).
+enum class SpecKind { Layer, Prim, Property };
+
 struct Targets {
     std::vector<std::string> paths;
     bool blocked = false;    // None
@@ -197,15 +204,16 @@ private:
                                       const Token& first);
     std::vector<std::pair<double, Value>> parseTimeSamples(std::string_view type, bool isArray);
     Value parseRelationshipTimeSamples(const Anchor& anchor);
+    std::optional<double> parseTime();
     Targets parseTargets(const PathRules& rules, const Anchor& anchor, const std::string& context,
                          bool forbidDuplicates);
     void checkListOp(ListOpKind op, const Targets& targets);
 
     void parseMetadataBlock(Metadata& out, const Anchor& anchor, const std::string& owner,
-                            bool isLayer);
-    void parseMetadataEntry(Metadata& out, const Anchor& anchor, bool isLayer);
+                            SpecKind spec);
+    void parseMetadataEntry(Metadata& out, const Anchor& anchor, SpecKind spec);
     Value parseMetadataValue(const std::string& key, ListOpKind op, const Anchor& anchor,
-                             bool isLayer);
+                             SpecKind spec);
     Value parseArcs(const Anchor& anchor);
     Value parseReference(const Anchor& anchor);
     Value parseSubLayers();
@@ -238,7 +246,7 @@ std::unique_ptr<Layer> Parser::parse() {
     root.metadata = &layer->metadata;
     root.children = &layer->rootPrims;
     if (lexer_.peek().is('(')) {
-        parseMetadataBlock(layer->metadata, root.anchor, "the layer", true);
+        parseMetadataBlock(layer->metadata, root.anchor, "the layer", SpecKind::Layer);
         endStatement("the layer metadata");
     }
     while (lexer_.peek().kind != TokenKind::End) {
@@ -297,7 +305,7 @@ void Parser::parsePrim(Body& parent) {
 
     Body body;
     body.anchor = {prim->path, parent.anchor.depth + 1};
-    if (lexer_.peek().is('(')) parseMetadataBlock(prim->metadata, body.anchor, what, false);
+    if (lexer_.peek().is('(')) parseMetadataBlock(prim->metadata, body.anchor, what, SpecKind::Prim);
     Token open = lexer_.take();
     if (!open.is('{')) {
         lexer_.fail(open, "expected '{' to open the body of " + what + ", found " + describe(open));
@@ -392,7 +400,7 @@ void Parser::parseVariantSet(Body& body) {
         variantBody.anchor = {body.anchor.path + "{" + set.name + "=" + variant.name + "}",
                               body.anchor.depth};
         if (lexer_.peek().is('(')) {
-            parseMetadataBlock(variant.metadata, variantBody.anchor, variantWhat, false);
+            parseMetadataBlock(variant.metadata, variantBody.anchor, variantWhat, SpecKind::Prim);
         }
         Token bodyOpen = lexer_.take();
         if (!bodyOpen.is('{')) {
@@ -520,7 +528,7 @@ void Parser::parseAttribute(Body& body, const Token& first, ListOpKind op,
                                   describe(next));
         }
         if (lexer_.peek().is('(') && !lexer_.peek().newlineBefore) {
-            parseMetadataBlock(attribute.metadata, body.anchor, what, false);
+            parseMetadataBlock(attribute.metadata, body.anchor, what, SpecKind::Property);
         }
     }
     endStatement(what);
@@ -595,7 +603,13 @@ void Parser::parseRelationship(Body& body, const Token& first, ListOpKind op, bo
         }
     }
     if (field != "default" && lexer_.peek().is('(') && !lexer_.peek().newlineBefore) {
-        parseMetadataBlock(relationship.metadata, body.anchor, what, false);
+        // Sdf's prim_relationship: only the explicit statement takes relationship_metadata_list_opt.
+        if (op != ListOpKind::Explicit) {
+            lexer_.fail(lexer_.peek(), "metadata cannot follow '" + listOpName(op) + "' on " + what +
+                                           " (give it in its own statement: rel " + relationship.name +
+                                           " (...))");
+        }
+        parseMetadataBlock(relationship.metadata, body.anchor, what, SpecKind::Property);
     }
     endStatement(what);
 }
@@ -653,13 +667,9 @@ std::vector<std::pair<double, Value>> Parser::parseTimeSamples(std::string_view 
     NestingGuard guard(lexer_, open);
     std::vector<std::pair<double, Value>> samples;
     values_.parseSeparated(open, '}', "the time samples", [&] {
-        Token time = lexer_.take();
-        if (time.kind != TokenKind::Number) {
-            lexer_.fail(time,
-                        "expected a time code (a number) in time samples, found " + describe(time));
-        }
-        expect(':', "time code " + std::string(time.text));
-        samples.emplace_back(time.number, values_.parseTyped(type, isArray));
+        std::optional<double> time = parseTime();
+        Value value = values_.parseTyped(type, isArray);
+        if (time) samples.emplace_back(*time, std::move(value));
     });
     // Sorted by time; a time authored twice keeps its last value.
     std::stable_sort(samples.begin(), samples.end(),
@@ -675,18 +685,36 @@ std::vector<std::pair<double, Value>> Parser::parseTimeSamples(std::string_view 
     return unique;
 }
 
+// A sample's time and its ':'. Sdf's extended_number: a number (-inf included), or a word read
+// as a double, which only inf and nan are. A sample at nan has no place on the time line (Sdf's
+// std::map cannot order it): it is read, warned about and left out (nullopt).
+std::optional<double> Parser::parseTime() {
+    Token time = lexer_.take();
+    double value = time.number;
+    if (time.isWord("inf")) {
+        value = std::numeric_limits<double>::infinity();
+    } else if (time.isWord("nan")) {
+        value = std::numeric_limits<double>::quiet_NaN();
+    } else if (time.kind != TokenKind::Number) {
+        lexer_.fail(time, "expected a time code (a number, inf or nan) in time samples, found " + describe(time));
+    }
+    expect(':', "time code " + std::string(time.text));
+    if (std::isnan(value)) {
+        warn(time, "a time sample at nan cannot be ordered in time; it is left out");
+        return std::nullopt;
+    }
+    return value;
+}
+
 Value Parser::parseRelationshipTimeSamples(const Anchor& anchor) {
     Token open = lexer_.take();
     if (!open.is('{'))
         lexer_.fail(open, "expected '{' to start time samples, found " + describe(open));
     auto samples = std::make_shared<Dictionary>();
     values_.parseSeparated(open, '}', "the time samples", [&] {
-        Token time = lexer_.take();
-        if (time.kind != TokenKind::Number) {
-            lexer_.fail(time,
-                        "expected a time code (a number) in time samples, found " + describe(time));
-        }
-        expect(':', "time code " + std::string(time.text));
+        const Token& timeToken = lexer_.peek();
+        std::string text(timeToken.text);
+        std::optional<double> time = parseTime();
         Token target = lexer_.take();
         Value value;
         if (target.kind == TokenKind::Path) {
@@ -695,7 +723,7 @@ Value Parser::parseRelationshipTimeSamples(const Anchor& anchor) {
         } else if (!target.isWord("None")) {
             lexer_.fail(target, "expected a path <...> or None, found " + describe(target));
         }
-        samples->emplace_back(std::string(time.text), std::move(value));
+        if (time) samples->emplace_back(std::move(text), std::move(value));
     });
     Value dictionary;
     dictionary.kind = ValueKind::Dictionary;
@@ -748,7 +776,7 @@ void Parser::checkListOp(ListOpKind op, const Targets& targets) {
 // ---- Metadata ---------------------------------------------------------------------------------
 
 void Parser::parseMetadataBlock(Metadata& out, const Anchor& anchor, const std::string& owner,
-                                bool isLayer) {
+                                SpecKind spec) {
     Token open = lexer_.take();
     while (!lexer_.peek().is(')')) {
         if (lexer_.peek().kind == TokenKind::End) {
@@ -756,7 +784,7 @@ void Parser::parseMetadataBlock(Metadata& out, const Anchor& anchor, const std::
                         "unexpected end of file, expected ')' to close the metadata of " + owner +
                             " opened at " + lineColumn(locate(open)));
         }
-        parseMetadataEntry(out, anchor, isLayer);
+        parseMetadataEntry(out, anchor, spec);
         const Token& next = lexer_.peek();
         if (next.is(';')) {
             lexer_.skip();
@@ -768,7 +796,7 @@ void Parser::parseMetadataBlock(Metadata& out, const Anchor& anchor, const std::
     lexer_.skip();
 }
 
-void Parser::parseMetadataEntry(Metadata& out, const Anchor& anchor, bool isLayer) {
+void Parser::parseMetadataEntry(Metadata& out, const Anchor& anchor, SpecKind spec) {
     Token first = lexer_.peek();
     if (first.kind == TokenKind::String) {
         lexer_.skip();
@@ -796,13 +824,13 @@ void Parser::parseMetadataEntry(Metadata& out, const Anchor& anchor, bool isLaye
         value = Value::string("", ValueKind::Token, {""}, false);
     } else {
         expectValueOnSameLine();
-        value = parseMetadataValue(name, op, anchor, isLayer);
+        value = parseMetadataValue(name, op, anchor, spec);
     }
     out.push_back({std::move(name), op, std::move(value), locate(first)});
 }
 
 Value Parser::parseMetadataValue(const std::string& key, ListOpKind op, const Anchor& anchor,
-                                 bool isLayer) {
+                                 SpecKind spec) {
     Token start = lexer_.peek();
     auto failExpecting = [&](const std::string& expected) {
         lexer_.fail(start, "expected " + expected + " for '" + key + "', found " + describe(start));
@@ -828,7 +856,7 @@ Value Parser::parseMetadataValue(const std::string& key, ListOpKind op, const An
         if (targets.blocked) return Value{};
         return Value::string("", ValueKind::Path, std::move(targets.paths), targets.bracketed);
     }
-    if (isLayer && key == "subLayers") return parseSubLayers();
+    if (spec == SpecKind::Layer && key == "subLayers") return parseSubLayers();
     if (key == "relocates") return parseRelocates(anchor);
     if (key == "variants") return parseVariantSelections();
     if (isOneOf(key, {"customData", "customLayerData", "assetInfo", "sdrMetadata"})) {
@@ -848,7 +876,10 @@ Value Parser::parseMetadataValue(const std::string& key, ListOpKind op, const An
     if (key == "permission" && !start.isWord("public") && !start.isWord("private")) {
         failExpecting("public or private");
     }
-    if (isOneOf(key, {"kind", "colorSpace"}) && start.kind != TokenKind::String) {
+    // Sdf's prim_metadata reads kind as TOK_KIND '=' TOK_STRING; on a layer or a property kind is
+    // no field of the spec, so any value is kept unregistered.
+    const bool quotedKind = key == "kind" && spec == SpecKind::Prim;
+    if ((quotedKind || key == "colorSpace") && start.kind != TokenKind::String) {
         failExpecting("a quoted string");
     }
     if (key == "colorConfiguration" && start.kind != TokenKind::Asset) {

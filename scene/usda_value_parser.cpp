@@ -113,6 +113,13 @@ Value ValueParser::parseTyped(std::string_view baseType, bool isArray) {
     }
     const ValueType* type = findValueType(baseType);
     if (!type) {
+        // Sdf keeps the text of a value of an unknown type, which must still be a typed_value: no
+        // dictionary.
+        if (lexer_.peek().is('{'))
+            lexer_.fail(lexer_.peek(), "a value of type '" + typeName + "' cannot be a dictionary {...}" +
+                                           (baseType == "dictionary" ? " ('dictionary' is a type of dictionary "
+                                                                       "entries and metadata, not of attributes)"
+                                                                     : ""));
         Value value = parseGeneric(false);
         value.typeName = std::move(typeName);
         return value;
@@ -120,9 +127,6 @@ Value ValueParser::parseTyped(std::string_view baseType, bool isArray) {
     switch (type->element) {
         case ElementKind::Opaque:
             lexer_.fail(lexer_.peek(), "attributes of type '" + typeName + "' cannot have a value");
-        case ElementKind::Dictionary:
-            if (isArray) lexer_.fail(lexer_.peek(), "dictionary arrays are not supported");
-            return parseDictionary();
         case ElementKind::String:
         case ElementKind::Token:
         case ElementKind::Asset: return parseStrings(*type, typeName, isArray);
@@ -266,13 +270,15 @@ Value ValueParser::parseDictionary() {
                                   describe(type));
         }
         // Unlike an attribute's, a dictionary entry's value is built as it is read: Sdf refuses
-        // a type it does not know.
-        if (!findValueType(type.text)) {
+        // a type it does not know. 'dictionary' is the entry rule of its own (TOK_DICTIONARY key
+        // '=' typed_dictionary).
+        const bool nested = type.text == "dictionary";
+        if (!nested && !findValueType(type.text)) {
             lexer_.fail(type, "unknown value type '" + std::string(type.text) +
                                   "' in a dictionary entry");
         }
         bool isArray = false;
-        if (lexer_.peek().is('[')) {
+        if (lexer_.peek().is('[') && !nested) {
             lexer_.skip();
             Token close = lexer_.take();
             if (!close.is(']'))
@@ -294,7 +300,7 @@ Value ValueParser::parseDictionary() {
         }
         if (lexer_.peek().newlineBefore)
             lexer_.fail(lexer_.peek(), "expected a value after '=' on the same line");
-        Value value = parseTyped(type.text, isArray);
+        Value value = nested ? parseDictionary() : parseTyped(type.text, isArray);
         auto [slot, inserted] = index.emplace(name, entries->size());
         if (inserted)
             entries->emplace_back(std::move(name), std::move(value));

@@ -35,7 +35,6 @@ constexpr std::array kValueTypes = {
     scalar("token", E::Token),
     scalar("asset", E::Asset),
     scalar("pathExpression", E::String),
-    scalar("dictionary", E::Dictionary),
     scalar("opaque", E::Opaque),
     scalar("group", E::Opaque),
     tuple("int2", E::Integer, 2),

@@ -3,14 +3,15 @@
 // Each entry tells the value parser the shape of one element: a scalar, a tuple of `size`
 // numbers (vectors, colours, quaternions), or `size` tuples of `size` numbers (matrices,
 // flattened row-major); and how each number is checked (bool, integer range, any float). Legacy
-// Sdf names (Vec3f, PointFloat, Matrix4d, ...) map to the same shapes.
+// Sdf names (Vec3f, PointFloat, Matrix4d, ...) map to the same shapes. 'dictionary' is no value
+// type (Sdf's value factories have none): only a dictionary entry may be one, by its own rule.
 #pragma once
 
 #include <string_view>
 
 namespace fluence::usd::detail {
 
-enum class ElementKind { Bool, Integer, Float, String, Token, Asset, Dictionary, Opaque };
+enum class ElementKind { Bool, Integer, Float, String, Token, Asset, Opaque };
 
 struct ValueType {
     std::string_view name;

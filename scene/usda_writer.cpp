@@ -262,6 +262,9 @@ private:
                    (e.key == "timeSamples" && e.op == ListOpKind::Explicit && e.value.kind == ValueKind::Dictionary);
         });
         const bool assigned = !relationship.targets.empty() || relationship.blocked;
+        // Sdf's grammar takes metadata only on an explicit statement: list-edited targets get
+        // their own statement and the metadata a plain declaration after it.
+        const bool listEdited = !relationship.targets.empty() && relationship.op != ListOpKind::Explicit;
         if (assigned || !metadata.runs[0].empty() || metadata.statements.empty()) {
             pad(indent);
             if (!relationship.targets.empty()) out_ += listOpWord(relationship.op);
@@ -272,8 +275,9 @@ private:
                 out_ += " = ";
                 writeTargets(relationship.targets, indent);
             }
-            writeMetadataBlock(metadata.runs[0], indent);
+            if (!listEdited) writeMetadataBlock(metadata.runs[0], indent);
             out_ += '\n';
+            if (listEdited) writeDeclaration(declaration, metadata.runs[0], indent);
         }
         for (std::size_t i = 0; i < metadata.statements.size(); ++i) {
             const MetadataEntry& statement = *metadata.statements[i];

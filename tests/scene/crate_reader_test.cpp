@@ -310,6 +310,19 @@ TEST(CrateSamples, Version07SinglePayloadMatchesItsTwin) {
     EXPECT_EQ(payload->value.strings, (std::vector<std::string>{"Payload.usda", "/Parent"}));
 }
 
+// `prepend apiSchema = ["SkelBindingAPI"]` (a misspelt, unregistered field) as OpenUSD writes it:
+// an SdfUnregisteredValue wrapping an SdfUnregisteredValueListOp of SdfUnregisteredValue items.
+TEST(CrateSamples, UnregisteredListOpsAreReadAsTheirText) {
+    std::unique_ptr<Layer> layer = readLayerFile((kData / "unregistered-listop-usdskel-002.usdc").string());
+    const MetadataEntry* entry = findMetadata(primAt(*layer, "/Model/Arm").metadata, "apiSchema");
+    ASSERT_NE(entry, nullptr);
+    EXPECT_EQ(entry->op, ListOpKind::Prepend);
+    ASSERT_EQ(entry->value.kind, ValueKind::List);
+    ASSERT_EQ(entry->value.items.size(), 1u);
+    EXPECT_NE(entry->value.items[0].asString().value_or("").find("SkelBindingAPI"), std::string::npos)
+        << entry->value.toString();
+}
+
 TEST(CrateSamples, Version04TimeSamplesAndCompressedArrays) {
     std::unique_ptr<Layer> layer = readLayerFile((kData / "top.geom.usd").string());
     EXPECT_EQ(findMetadata(layer->metadata, "startTimeCode")->value.asDouble(), 48.0);

@@ -48,5 +48,15 @@ TEST(TimeSamples, TheEarliestTimeReadsTheFirstSampleElseTheDefault) {
     EXPECT_EQ(at(stage, "samplesOnly", 0.5), -30.0 + (0.5 + 3.0) / 7.0 * 70.0) << "a numeric time interpolates as before";
 }
 
+TEST(TimeSamples, SamplesAtInfiniteTimesHoldTheFiniteNeighbour) {
+    Stage stage(parseUsdaString("#usda 1.0\ndef Xform \"X\"\n{\n"
+                                "    double x.timeSamples = {-inf: 1, 4: 40, 6: 60, inf: 100}\n}\n",
+                                "t.usda"));
+    EXPECT_EQ(at(stage, "x", kEarliestTime), 40.0) << "the earliest time is finite: between -inf and 4";
+    EXPECT_EQ(at(stage, "x", 0.0), 40.0) << "between -inf and 4";
+    EXPECT_EQ(at(stage, "x", 5.0), 50.0);
+    EXPECT_EQ(at(stage, "x", 1e300), 60.0) << "between 6 and inf";
+}
+
 }  // namespace
 }  // namespace fluence::usd

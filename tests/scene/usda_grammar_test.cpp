@@ -40,6 +40,17 @@
 // | malformed paths: <./a>, </a/../b>, </a/>, <a/.b>  | refused   | pathParser.h: Path                      |
 // | list op with an empty list of arcs                | refused   | _PrimSet{Reference,Inherit,...}ListItems|
 // |   (append references = [])                        |           |                                         |
+// | kind on a prim or variant not a quoted string     | refused   | prim_metadata: TOK_KIND '=' TOK_STRING  |
+// |   (kind = None)                                   |           |                                         |
+// | kind = None on a layer, attribute or relationship | accepted  | no field of those specs: unregistered   |
+// | metadata after a list-op relationship statement   | refused   | prim_relationship: only the explicit    |
+// |   (add rel r = </a> (doc = "x"))                  |           |   form has relationship_metadata_list   |
+// | dictionary-typed attribute with a {...} value     | refused   | no 'dictionary' value factory; a value  |
+// |   (dictionary x = {int a = 1})                    |           |   of an unknown type is a typed_value   |
+// | dictionary-typed attribute without a value, or    | accepted  | unknown type: value kept as text        |
+// |   with a typed_value (dictionary x = 1)           |           |                                         |
+// | time sample at inf, -inf (and nan, left out with  | accepted  | time_sample: extended_number (TOK_NUMBER|
+// |   a warning: a map cannot order it); other words  | refused   |   or identifier read as double)         |
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -275,6 +286,77 @@ TEST_F(UsdaGrammar, TimeSamplesHoldValuesOfTheDeclaredShape) {
     expectParseError(inPrim("float[] x.timeSamples = {1: 1}"), 3, 33,
                      "expected '[' to start a 'float[]' array, found number 1");
     expectParseError(inPrim("int x.timeSamples = {1: \"a\"}"), 3, 29, "expected an integer for 'int'");
+}
+
+TEST_F(UsdaGrammar, KindIsAQuotedStringOnlyOnPrims) {
+    auto prim = [](const std::string& metadata) { return "#usda 1.0\ndef \"A\" (\n    " + metadata + "\n)\n{\n}\n"; };
+    expectParseError(prim("kind = None"), 3, 12, "expected a quoted string for 'kind', found 'None'");
+    expectParseError(prim("kind = model"), 3, 12, "expected a quoted string for 'kind', found 'model'");
+    expectParseError("#usda 1.0\ndef \"A\" {\n    variantSet \"v\" = {\n        \"a\" (kind = None) {\n        }\n    }\n}\n",
+                     4, 21, "expected a quoted string for 'kind', found 'None'");
+    // Not a field of a layer or a property: any value, kept as it is.
+    auto layer = parseUsdaString("#usda 1.0\n(\n    kind = None\n)\n", "test.usda");
+    EXPECT_TRUE(findMetadata(layer->metadata, "kind")->value.isBlocked());
+    EXPECT_TRUE(findMetadata(attribute("float x = 1 (kind = None)", "x").metadata, "kind")->value.isBlocked());
+    auto rel = parseUsdaString(inPrim("rel r (kind = 3)"), "test.usda");
+    EXPECT_EQ(findMetadata(rel->primAtPath("/P")->relationship("r")->metadata, "kind")->value.asDouble(), 3.0);
+}
+
+TEST_F(UsdaGrammar, ListEditedRelationshipsTakeNoMetadata) {
+    expectParseError(inPrim("add rel r = </a> (doc = \"x\")"), 3, 22,
+                     "metadata cannot follow 'add' on relationship 'r'");
+    expectParseError(inPrim("prepend custom rel r = [</a>, </b>] (\n    )"), 3, 41,
+                     "metadata cannot follow 'prepend' on relationship 'r'");
+    expectParseError(inPrim("delete rel r = </a> ()"), 3, 25, "metadata cannot follow 'delete'");
+    // Metadata and list-edited targets in two statements; written back so.
+    auto layer = parseUsdaString(inPrim("append rel r = </a>\n    rel r (doc = \"x\")"), "test.usda");
+    const std::string text = writeUsda(*layer);
+    EXPECT_NE(text.find("append rel r = </a>\n"), std::string::npos) << text;
+    auto reread = parseUsdaString(text, "b.usda");
+    const RelationshipSpec* r = reread->primAtPath("/P")->relationship("r");
+    ASSERT_NE(r, nullptr);
+    EXPECT_EQ(r->op, ListOpKind::Append);
+    EXPECT_EQ(r->targets, (std::vector<std::string>{"/a"}));
+    EXPECT_EQ(findMetadata(r->metadata, "doc")->value.asString(), "x");
+}
+
+TEST_F(UsdaGrammar, DictionaryIsNoAttributeValueType) {
+    expectParseError(inPrim("dictionary x = {int a = 1}"), 3, 20,
+                     "a value of type 'dictionary' cannot be a dictionary {...}");
+    expectParseError(inPrim("madeUp x = {int a = 1}"), 3, 16, "a value of type 'madeUp' cannot be a dictionary");
+    // An attribute of an unknown type, 'dictionary' included, keeps a typed_value untyped.
+    EXPECT_FALSE(attribute("dictionary x", "x").hasDefault);
+    EXPECT_EQ(attribute("dictionary x = 1", "x").defaultValue.asDouble(), 1.0);
+    // In a dictionary, 'dictionary' introduces a nested one, and nothing else.
+    auto layer = parseUsdaString(
+        "#usda 1.0\n(\n    customLayerData = {\n        dictionary d = {\n            int a = 1\n        }\n    }\n)\n",
+        "test.usda");
+    const Value* nested = findMetadata(layer->metadata, "customLayerData")->value.find("d");
+    ASSERT_NE(nested, nullptr);
+    EXPECT_EQ(nested->kind, ValueKind::Dictionary);
+    expectParseError("#usda 1.0\n(\n    customData = {\n        dictionary d = None\n    }\n)\n", 4, 24,
+                     "expected '{' to start a dictionary, found 'None'");
+}
+
+TEST_F(UsdaGrammar, TimeSampleTimesMayBeInfinite) {
+    const AttributeSpec& x = attribute("float x.timeSamples = {inf: 2, -inf: 1, 4: inf, 5: nan}", "x");
+    ASSERT_EQ(x.timeSamples.size(), 4u);
+    EXPECT_EQ(x.timeSamples[0].first, -kInf);
+    EXPECT_EQ(x.timeSamples[3].first, kInf);
+    EXPECT_EQ(x.timeSamples[3].second.asDouble(), 2.0);
+    EXPECT_EQ(x.timeSamples[1].second.asDouble(), kInf);
+    EXPECT_TRUE(std::isnan(*x.timeSamples[2].second.asDouble()));
+    // Written and read back the same.
+    auto reread = parseUsdaString(writeUsda(*layer_), "b.usda");
+    EXPECT_EQ(reread->primAtPath("/P")->attribute("x")->timeSamples.size(), 4u);
+    // A sample at nan: read, warned about at its time, left out.
+    const AttributeSpec& y = attribute("float y.timeSamples = {1: 1, nan: 2}", "y");
+    ASSERT_EQ(y.timeSamples.size(), 1u);
+    ASSERT_EQ(layer_->warnings.size(), 1u);
+    EXPECT_EQ(layer_->warnings[0].location.column, 34);
+    expectParseError(inPrim("float x.timeSamples = {foo: 1}"), 3, 28,
+                     "expected a time code (a number, inf or nan) in time samples, found 'foo'");
+    expectParseError(inPrim("rel r.timeSamples = {Inf: </A>}"), 3, 26, "found 'Inf'");
 }
 
 }  // namespace
