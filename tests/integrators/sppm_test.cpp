@@ -23,6 +23,7 @@
 
 #include "integrators/bdpt.h"
 #include "integrators/path_tracer.h"
+#include "integrators/photon_map.h"
 #include "media/subsurface_medium.h"
 #include "tests/integrators/render_support.h"
 #include "tests/support/scenes.h"
