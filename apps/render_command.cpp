@@ -357,7 +357,7 @@ int renderFrame(const RenderOptions& opt, usd::Stage& stage, const color::ColorM
     if (stats.counters.nonFiniteSamples > 0)
         std::fprintf(stderr, "fluence: warning: %llu samples were NaN or infinite and were discarded (please report)\n",
                      static_cast<unsigned long long>(stats.counters.nonFiniteSamples));
-    if (const std::string note = integrator->summary(); !note.empty()) std::printf("  method       %s\n", note.c_str());
+    if (const std::string& note = stats.methodSummary; !note.empty()) std::printf("  method       %s\n", note.c_str());
     for (const std::string& path : outputs) std::printf("  output       %s\n", path.c_str());
     if (!previewPath.empty()) std::printf("  preview      %s\n", previewPath.c_str());
 

@@ -28,9 +28,9 @@ using namespace fluence;
 template <bool kMedia>
 class TracerVariant final : public integrators::Integrator {
 public:
-    FilmSample sample(const render::RenderScene& scene, const render::Camera& camera, const render::Ray& ray,
-                      SampleStream& rng, integrators::RenderCounters& counters) const override {
-        return tracer_.trace<kMedia>(scene, camera, ray, rng, counters);
+    FilmSample sample(const integrators::RenderState&, const render::RenderScene& scene, const render::Camera& camera,
+                      const render::Ray& ray, SampleStream& rng, integrators::RenderCounters& counters) const override {
+        return tracer_.trace<kMedia>(integrators::LightEvents(), scene, camera, ray, rng, counters);
     }
 
 private:

@@ -12,7 +12,7 @@
 
 #include "core/frame.h"
 #include "core/sampling.h"
-#include "integrators/first_hit.h"
+#include "integrators/russian_roulette.h"
 #include "render/area_lights.h"
 #include "render/bsdf_arena.h"
 #include "render/bsdfs/lambertian.h"

@@ -14,7 +14,7 @@
 //     rect light by uniform area sampling, one rtcOccluded1 shadow ray from
 //     render::offsetRayOrigin(p, n) stopped short as RenderScene::occluded stops it, weighted by
 //     Veach's power heuristic against the cosine BSDF density; a cosine-weighted bounce; Russian
-//     roulette as `path` plays it (integrators/first_hit.h continuePath); at most maxDepth bounces;
+//     roulette as `path` plays it (integrators/russian_roulette.h continuePath); at most maxDepth bounces;
 //   - BSDF-sampled rays are tested against the light's rectangle analytically (a plane and two edge
 //     coordinates) up to the surface hit; emission reached from its front is weighted against the
 //     light strategy (in full for camera rays), and a path ends on the light, as in `path`.

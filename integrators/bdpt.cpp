@@ -4,12 +4,17 @@
 #include <cmath>
 #include <limits>
 #include <optional>
+#include <string>
 #include <vector>
 
 #include "core/frame.h"
+#include "core/sampling.h"
 #include "integrators/bdpt_mis.h"
 #include "integrators/bdpt_vertex.h"
+#include "integrators/emission.h"
 #include "integrators/first_hit.h"
+#include "integrators/russian_roulette.h"
+#include "integrators/surface_frame.h"
 #include "media/free_flight.h"
 #include "media/ratio_tracking.h"
 
@@ -115,6 +120,17 @@ Vertex mediumVertex(const media::FreeFlight& flight, const Vec3f& direction, con
 VertexDensity densityOf(const Vertex& v, float fromLight, float fromCamera, bool delta, const EdgeMedia& edge) {
     return {fromLight, fromCamera, delta, !v.walking, v.sigmaS, edge};
 }
+
+// The per-render state (integrators/integrator.h).
+struct BdptState final : RenderState {
+    SplatFilm* splats = nullptr;  // light tracing's (t = 1); null: t = 1 is left out
+    std::string lightTracingOff;  // why it is left out ("" when it is not)
+    // Over emitting lights, by power; index -> light, and light -> its probability (0: none).
+    DiscreteDistribution emitterChoice;
+    std::vector<int> emitters;
+    std::vector<float> emitterProbability;
+    std::string summary() const override { return lightTracingOff; }
+};
 
 struct LightSubpath {
     LightOrigin origin;
@@ -261,226 +277,269 @@ void splatToCamera(const RenderScene& scene, const render::Camera& camera, const
 
 }  // namespace
 
-void Bdpt::attachSplats(SplatFilm* splats) const { splats_ = splats; }
-
-std::string Bdpt::summary() const { return lightTracingOff_; }
-
-void Bdpt::prepare(const RenderScene& scene, const render::Camera& camera, std::uint64_t) const {
-    lightTracing_ = splats_ && camera.hasImportance();
-    const std::string why = !splats_ ? "the film is a window of the image (a tile)" : "an orthographic camera";
-    lightTracingOff_ = lightTracing_ ? "" : "light tracing (t = 1) off: " + why + "; point-light caustics seen directly are missed";
+std::unique_ptr<RenderState> Bdpt::prepare(const RenderScene& scene, const render::Camera& camera, std::uint64_t,
+                                           SplatFilm* splats) const {
+    auto state = std::make_unique<BdptState>();
+    state->splats = splats && camera.hasImportance() ? splats : nullptr;
+    const std::string why = !splats ? "the film is a window of the image (a tile)" : "an orthographic camera";
+    state->lightTracingOff =
+        state->splats ? "" : "light tracing (t = 1) off: " + why + "; point-light caustics seen directly are missed";
     std::vector<double> weights;
-    emitters_.clear();
     // Lights at infinity emit over the scene's bounds, which leave volumes out (bdpt.h, LEFT OUT).
     const bool volumes = scene.medium() != nullptr;
     for (std::size_t i = 0; i < scene.lightCount(); ++i)
         if (scene.light(i).hasEmissionSampling() && !(volumes && scene.light(i).atInfinity())) {
-            emitters_.push_back(static_cast<int>(i));
+            state->emitters.push_back(static_cast<int>(i));
             weights.push_back(std::max(0.0f, scene.light(i).power(scene.bounds())));
         }
-    emitterProbability_.assign(scene.lightCount(), 0.0f);
-    emitterChoice_ = DiscreteDistribution();
-    if (emitters_.empty()) return;
+    state->emitterProbability.assign(scene.lightCount(), 0.0f);
+    if (state->emitters.empty()) return state;
     double total = 0.0;
     for (double w : weights) total += w;
     if (!(total > 0.0)) weights.assign(weights.size(), 1.0);
-    emitterChoice_ = DiscreteDistribution(weights);
-    for (std::size_t k = 0; k < emitters_.size(); ++k) emitterProbability_[emitters_[k]] = emitterChoice_.pmf(k);
+    state->emitterChoice = DiscreteDistribution(weights);
+    for (std::size_t k = 0; k < state->emitters.size(); ++k)
+        state->emitterProbability[state->emitters[k]] = state->emitterChoice.pmf(k);
+    return state;
 }
 
-FilmSample Bdpt::sample(const RenderScene& scene, const render::Camera& camera, const Ray& cameraRay, SampleStream& rng,
-                        RenderCounters& counters) const {
-    FilmSample out;
-    RGB radiance(0.0f);
+namespace {
+
+// The camera subpath of one sample, vertex by vertex, and at each vertex z_{t-1} the strategies
+// that end there: s = 0 (it is on a light), s = 1 (next-event estimation), s >= 2 (joins to the
+// light subpath), each weighted against the path's other strategies.
+class CameraWalk {
+public:
+    CameraWalk(const BdptState& state, int maxDepth, const LightSubpath& light, int hero, const RenderScene& scene,
+               const render::Camera& camera, SampleStream& rng, RenderCounters& counters)
+        : state_(state), maxDepth_(maxDepth), light_(light), hero_(hero), tracked_(std::max(hero, 0)), scene_(scene),
+          camera_(camera), rng_(rng), counters_(counters) {}
+
+    FilmSample run(const Ray& cameraRay) {
+        Ray ray = cameraRay;
+        for (int depth = 0;; ++depth) {
+            const std::optional<Vertex> next = arrive(ray, depth);
+            if (!next) break;
+            arena_.reset();
+            const Shading sh(*next, arena_);
+            z_.push_back(*next);
+            z_.back().transmissive = sh.transmissive();
+            const Vertex& zt = z_.back();  // z_{t-1}, t = z_.size() + 1
+            const bool joinable = sh.connectable() && !zt.walking;
+            // s = 1: next-event estimation, exactly as `path` samples it (its numbers drawn at every vertex).
+            const float uLight = rng_.next();
+            const Vec2f uPoint = rng_.next2D();
+            if (joinable) sampleLight(sh, uLight, uPoint);
+            for (int s = 2; joinable && s <= static_cast<int>(light_.vertices.size()) + 1; ++s)
+                if (!joinLightVertex(sh, s)) break;
+            if (!extend(sh, ray, depth)) break;
+        }
+        out_.radiance = radiance_;
+        return out_;
+    }
+
+private:
+    // The ray's next vertex z_{t-1}, its densities set, and the light it found on the way (s = 0);
+    // none where the camera subpath ends.
+    std::optional<Vertex> arrive(const Ray& ray, int depth) {
+        ++(depth == 0 ? counters_.camera : counters_.bounce);
+        std::optional<SurfaceHit> hit = scene_.intersect(ray);
+        const float lastPdf = last_ ? last_->pdf : 0.0f;
+        const bool lastDelta = last_ && last_->delta;
+        const media::Medium* medium = media_.medium();
+        Stretch stretch = fly(medium, ray, hit ? hit->t : kInfinity, tracked_, rng_);
+        const media::FreeFlight& flight = stretch.flight;
+        beta_ *= flight.throughput;
+        pdfRatio_ *= flight.pdfRatio;
+        if (depth == 0 && flight.event != media::FlightEvent::Escaped)
+            recordFirstVolumeEvent(out_, flight.p, flight.properties.sigmaS, flight.properties.sigmaA + flight.properties.sigmaS,
+                                   camera_);
+        if (flight.event == media::FlightEvent::Absorbed) {
+            // Emission in a medium: found by the camera subpath alone (bdpt.h).
+            radiance_ += beta_ * flight.properties.emission / media::channelAverage(pdfRatio_);
+            return std::nullopt;
+        }
+        const Vec3f start = z_.empty() ? ray.origin : z_.back().point();
+        if (flight.event == media::FlightEvent::Escaped && !hit) {
+            forEachLightAtInfinity(scene_, ray.direction, [&](int index, const RGB& le) {
+                radiance_ += beta_ * le * hitLightWeight(index, Vec3f(0.0f), -ray.direction, -ray.direction, lastPdf, lastDelta, stretch.edge);
+            });
+            return std::nullopt;
+        }
+        Vertex v = flight.event == media::FlightEvent::Scattered ? mediumVertex(flight, ray.direction, beta_, media_)
+                                                                 : Vertex{*hit, -ray.direction, beta_, media_};
+        v.edge = stretch.edge;
+        if (!z_.empty()) {
+            v.fromOwn = lastDelta ? 1.0f : toArea(lastPdf, start, v);
+        } else if (state_.splats) {  // z_1: drawn by the camera with its density over the whole image (bdpt_mis.h)
+            const std::optional<render::Camera::Connection> c = camera_.connect(v.point());
+            cameraJoins_ = c.has_value();
+            if (c) v.fromOwn = toArea(c->density, camera_.position(), v);
+        }
+        if (!v.inMedium) {
+            if (depth == 0) recordFirstHit(out_, *hit, v.wo, camera_);
+            if (hit->light >= 0) {
+                const RGB le = emittedAtHit(scene_, *hit, v.wo);
+                if (!isBlack(le))
+                    radiance_ += beta_ * le * hitLightWeight(hit->light, hit->point, hit->geometricNormal, v.wo, lastPdf, lastDelta, v.edge);
+            }
+            if (hit->lightShape || depth >= maxDepth_) return std::nullopt;
+        } else if (v.walking ? ++interiorScatterings_ > kMaxInteriorScatterings : depth >= maxDepth_) {
+            return std::nullopt;
+        }
+        v.bounces = depth + !v.walking;
+        return v;
+    }
+
+    // The MIS weight of strategy s for the path whose densities x_ holds.
+    float weight(float neeOrigin, bool hittable, int s) const {
+        return misWeight(StrategyPath{x_, neeOrigin, hittable, hero_, cameraJoins_}, s);
+    }
+
+    // s = 0: the camera subpath reaches light `index` over `edge`, leaving it from `point` along
+    // `direction` (towards z_.back()), having drawn its last direction with density `pdf` (`delta`).
+    float hitLightWeight(int index, const Vec3f& point, const Vec3f& normal, const Vec3f& direction, float pdf, bool delta,
+                         const EdgeMedia& edge) {
+        LightOrigin x0 = originAt(scene_, index, point, normal, direction, false, state_.emitterProbability[index]);
+        x_.clear();
+        if (z_.empty()) {  // seen by the camera: the only strategy (with media, still weighted over heroes)
+            x_.push_back({x0.fromLight, 1.0f, false});
+            x_.push_back({1.0f, 1.0f, false, true, RGB(1.0f), edge});
+            return hero_ < 0 ? 1.0f : weight(0.0f, true, 0);
+        }
+        const Vertex& x1 = z_.back();
+        x_.push_back({x0.fromLight, delta ? 1.0f : cameraReaches(x0, pdf, x1.point()), false});
+        appendCamera(x_, z_);
+        x_[1].fromLight = emittedTowards(scene_, x0, x1);
+        x_[1].edge = edge;
+        return weight(neeDensity(scene_, x0, x1, x1.wo), true, 0);
+    }
+
+    // The densities of z_{t-2} as drawn through z_{t-1} from direction `in` (for a join), at x_[at].
+    void setAfterJoin(const Shading& sh, std::size_t at, const Vec3f& in) {
+        const std::size_t m = z_.size();
+        if (m < 2) return;
+        const Vertex& zt = z_.back();
+        x_[at].fromLight = toArea(sh.evaluate(in, zt.wo).second, zt.point(), z_[m - 2]);
+    }
+
+    // s = 1: next-event estimation at z_{t-1}, exactly as `path` samples it.
+    void sampleLight(const Shading& sh, float uLight, const Vec2f& uPoint) {
+        const Vertex& zt = z_.back();
+        auto [from, normal] = gatherPoint(zt, zt.wo);
+        render::LightChoice choice = scene_.chooseLight(from, normal, uLight);
+        std::optional<render::LightSample> ls;
+        if (choice.light >= 0 && choice.probability > 0.0f) ls = scene_.light(choice.light).sample(from, uPoint);
+        if (!ls || !(ls->pdf > 0.0f) || isBlack(ls->Li)) return;
+        auto [f, pdfCamera] = sh.evaluate(zt.wo, ls->wi);
+        const Vec3f shadowFrom = zt.transmissive ? zt.leaving(ls->wi) : from;
+        if (isBlack(f) || (++counters_.shadow, scene_.occluded(shadowFrom, ls->wi, ls->distance))) return;
+        const Crossing crossing = cross(zt.mediumTowards(ls->wi), {shadowFrom, ls->wi, ls->distance}, tracked_, rng_);
+        const Vec3f point = from + ls->wi * ls->distance;
+        LightOrigin x0 = originAt(scene_, choice.light, point, Vec3f(0.0f), -ls->wi, ls->delta,
+                                  state_.emitterProbability[choice.light]);
+        float nee = choice.probability * (ls->delta || x0.atInfinity ? ls->pdf : ls->pdf * x0.cosine / (ls->distance * ls->distance));
+        x_.clear();
+        x_.push_back({x0.fromLight, cameraReaches(x0, pdfCamera, zt.point()), false});
+        appendCamera(x_, z_);
+        x_[1] = densityOf(zt, emittedTowards(scene_, x0, zt), zt.fromOwn, false, crossing.edge);
+        setAfterJoin(sh, 2, ls->wi);
+        radiance_ += zt.beta * f * ls->Li * crossing.tr.throughput *
+                     (sh.cosine(ls->wi) / (choice.probability * ls->pdf) * weight(nee, !ls->delta, 1));
+    }
+
+    // s >= 2: y_{s-1} joined to z_{t-1}. False once the joins are over (the path too long).
+    bool joinLightVertex(const Shading& sh, int s) {
+        const Vertex& zt = z_.back();
+        const Vertex& y = light_.vertices[s - 2];
+        if (y.bounces + zt.bounces > maxDepth_) return false;
+        if (y.walking) return true;
+        const Vec3f d = y.point() - zt.point();
+        const float dist2 = lengthSquared(d);
+        if (!(dist2 > 0.0f)) return true;
+        const Vec3f dir = d / std::sqrt(dist2);
+        auto [fz, pdfCamera] = sh.evaluate(zt.wo, dir);
+        if (isBlack(fz)) return true;
+        joinArena_.reset();
+        const Shading shy(y, joinArena_);
+        if (!shy.connectable()) return true;
+        auto [fy, pdfBack] = shy.evaluate(-dir, y.wo);  // f(wi, wo): the adjoint; and y_{s-2} drawn from the camera side
+        if (isBlack(fy)) return true;
+        const RGB contribution = y.beta * fy * shy.importanceCosines(y.wo, -dir) * fz * zt.beta * (sh.cosine(dir) / dist2);
+        if (isBlack(contribution)) return true;
+        const std::optional<media::MediumRay> segment = joinSegment(scene_, zt, y, dir, counters_);
+        if (!segment) return true;
+        const Crossing crossing = cross(zt.mediumTowards(dir), *segment, tracked_, rng_);
+        if (isBlack(crossing.tr.throughput)) return true;
+        setLightDensities(x_, light_, s);
+        x_[s - 1].fromCamera = toArea(pdfCamera, zt.point(), y);
+        x_[s - 1].delta = false;
+        x_[s - 2].fromCamera = s == 2 ? cameraReaches(light_.origin, pdfBack, y.point())
+                                      : toArea(pdfBack, y.point(), light_.vertices[s - 3]);
+        appendCamera(x_, z_);
+        x_[s] = densityOf(zt, toArea(shy.evaluate(y.wo, -dir).second, y.point(), zt), zt.fromOwn, false, crossing.edge);
+        setAfterJoin(sh, s + 1, dir);
+        const Vertex& y1 = light_.vertices[0];
+        const Vec3f toX2 = s >= 3 ? -light_.vertices[1].wo : -dir;
+        radiance_ += contribution * crossing.tr.throughput * weight(neeDensity(scene_, light_.origin, y1, toX2), !light_.origin.delta, s);
+        return true;
+    }
+
+    // Continues the camera subpath from z_{t-1}: the next ray, or false where it ends.
+    bool extend(const Shading& sh, Ray& ray, int& depth) {
+        const Vertex& zt = z_.back();
+        const std::size_t m = z_.size();
+        last_ = scatter(sh, zt, false, rng_);
+        if (!last_) return false;
+        if (m >= 2) z_[m - 2].fromOther = last_->delta ? 1.0f : toArea(last_->pdfReverse, zt.point(), z_[m - 2]);
+        z_.back().delta = last_->delta;
+        beta_ *= last_->weight;
+        etaScale_ *= last_->eta * last_->eta;
+        if (!continueInMedium(beta_, etaScale_, depth, zt.walking, rng_)) return false;
+        if (!zt.inMedium) media_ = media_.after(zt.hit, zt.wo, last_->wi);
+        depth -= zt.walking;  // an interior scattering is not a bounce
+        ray = spawn(zt, last_->wi);
+        return true;
+    }
+
+    const BdptState& state_;
+    const int maxDepth_;
+    const LightSubpath& light_;
+    const int hero_, tracked_;
+    const RenderScene& scene_;
+    const render::Camera& camera_;
+    SampleStream& rng_;
+    RenderCounters& counters_;
+    render::BsdfArena arena_, joinArena_;
+    FilmSample out_;
+    RGB radiance_{0.0f};
+    // Whether t = 1 can draw the paths through the camera's first vertex z_1 (the camera reaches it
+    // by a connection: before the far plane and past the near one, where a medium vertex may lie).
+    bool cameraJoins_ = false;
+    CameraSubpath z_;
+    std::vector<VertexDensity> x_;  // the densities of the path being weighted, x_0 first
+    RGB beta_{1.0f}, pdfRatio_{1.0f};  // pdfRatio_: the camera subpath's p_c / p_h (media/tracking.h), for media's emission
+    MediumStack media_{scene_};        // the media the camera subpath is in (the camera outside every closed surface)
+    float etaScale_ = 1.0f;
+    int interiorScatterings_ = 0;
+    std::optional<Scattering> last_;  // how the previous vertex was left
+};
+
+}  // namespace
+
+FilmSample Bdpt::sample(const RenderState& renderState, const RenderScene& scene, const render::Camera& camera,
+                        const Ray& cameraRay, SampleStream& rng, RenderCounters& counters) const {
+    const BdptState& state = static_cast<const BdptState&>(renderState);
+    const bool lightTracing = state.splats != nullptr;
     render::BsdfArena arena, joinArena;
     // One hero channel for both subpaths (bdpt_mis.h, SPECTRAL MIS); none without media.
     const int hero = scene.hasMedia() ? media::sampleHeroChannel(rng.next()) : -1;
-    const int tracked = std::max(hero, 0);
     // With light tracing, a light subpath may reach maxDepth vertices (t = 1 joins the last to the
     // camera); without, maxDepth - 1 (every other strategy holds a camera vertex).
-    const LightSubpath light = traceLightSubpath(scene, emitters_, emitterChoice_, emitterProbability_,
-                                                 lightTracing_ ? maxDepth_ : maxDepth_ - 1, hero, rng, counters, arena);
-    if (lightTracing_) splatToCamera(scene, camera, light, hero, rng, counters, joinArena, *splats_);
-
-    // Whether t = 1 can draw the paths through the camera's first vertex z_1 (the camera reaches it
-    // by a connection: before the far plane and past the near one, where a medium vertex may lie).
-    bool cameraJoins = false;
-
-    CameraSubpath z;
-    std::vector<VertexDensity> x;  // the densities of the path being weighted, x_0 first
-    auto weight = [&](float neeOrigin, bool hittable, int s) {
-        return misWeight(StrategyPath{x, neeOrigin, hittable, hero, cameraJoins}, s);
-    };
-
-    // s = 0: the camera subpath reaches light `index` over `edge`, leaving it from `point` along
-    // `direction` (towards z.back()), having drawn its last direction with density `pdf` (`delta`).
-    auto hitLightWeight = [&](int index, const Vec3f& point, const Vec3f& normal, const Vec3f& direction, float pdf,
-                              bool delta, const EdgeMedia& edge) {
-        LightOrigin x0 = originAt(scene, index, point, normal, direction, false, emitterProbability_[index]);
-        x.clear();
-        if (z.empty()) {  // seen by the camera: the only strategy (with media, still weighted over heroes)
-            x.push_back({x0.fromLight, 1.0f, false});
-            x.push_back({1.0f, 1.0f, false, true, RGB(1.0f), edge});
-            return hero < 0 ? 1.0f : weight(0.0f, true, 0);
-        }
-        const Vertex& x1 = z.back();
-        x.push_back({x0.fromLight, delta ? 1.0f : cameraReaches(x0, pdf, x1.point()), false});
-        appendCamera(x, z);
-        x[1].fromLight = emittedTowards(scene, x0, x1);
-        x[1].edge = edge;
-        return weight(neeDensity(scene, x0, x1, x1.wo), true, 0);
-    };
-
-    RGB beta(1.0f), pdfRatio(1.0f);  // pdfRatio: the camera subpath's p_c / p_h (media/tracking.h), for media's emission
-    Ray ray = cameraRay;
-    MediumStack media(scene);  // the media the camera subpath is in (the camera outside every closed surface)
-    float etaScale = 1.0f;
-    int interiorScatterings = 0;
-    std::optional<Scattering> last;  // how the previous vertex was left
-    for (int depth = 0;; ++depth) {
-        ++(depth == 0 ? counters.camera : counters.bounce);
-        std::optional<SurfaceHit> hit = scene.intersect(ray);
-        const float lastPdf = last ? last->pdf : 0.0f;
-        const bool lastDelta = last && last->delta;
-        const media::Medium* medium = media.medium();
-        Stretch stretch = fly(medium, ray, hit ? hit->t : kInfinity, tracked, rng);
-        const media::FreeFlight& flight = stretch.flight;
-        beta *= flight.throughput;
-        pdfRatio *= flight.pdfRatio;
-        if (depth == 0 && flight.event != media::FlightEvent::Escaped)
-            recordFirstVolumeEvent(out, flight.p, flight.properties.sigmaS, flight.properties.sigmaA + flight.properties.sigmaS,
-                                   camera);
-        if (flight.event == media::FlightEvent::Absorbed) {
-            // Emission in a medium: found by the camera subpath alone (bdpt.h).
-            radiance += beta * flight.properties.emission / media::channelAverage(pdfRatio);
-            break;
-        }
-        const Vec3f start = z.empty() ? ray.origin : z.back().point();
-        if (flight.event == media::FlightEvent::Escaped && !hit) {
-            for (int index : scene.lightsAtInfinity()) {
-                RGB le = scene.light(index).escaped(ray.direction);
-                if (!isBlack(le))
-                    radiance += beta * le *
-                                hitLightWeight(index, Vec3f(0.0f), -ray.direction, -ray.direction, lastPdf, lastDelta, stretch.edge);
-            }
-            break;
-        }
-        Vertex v = flight.event == media::FlightEvent::Scattered ? mediumVertex(flight, ray.direction, beta, media)
-                                                                 : Vertex{*hit, -ray.direction, beta, media};
-        v.edge = stretch.edge;
-        if (!z.empty()) {
-            v.fromOwn = lastDelta ? 1.0f : toArea(lastPdf, start, v);
-        } else if (lightTracing_) {  // z_1: drawn by the camera with its density over the whole image (bdpt_mis.h)
-            const std::optional<render::Camera::Connection> c = camera.connect(v.point());
-            cameraJoins = c.has_value();
-            if (c) v.fromOwn = toArea(c->density, camera.position(), v);
-        }
-        if (!v.inMedium) {
-            if (depth == 0) recordFirstHit(out, *hit, v.wo, camera);
-            if (hit->light >= 0) {
-                RGB le = hit->lightShape ? scene.light(hit->light).emitted({hit->point, hit->geometricNormal}, v.wo) : hit->emission;
-                if (!isBlack(le))
-                    radiance += beta * le *
-                                hitLightWeight(hit->light, hit->point, hit->geometricNormal, v.wo, lastPdf, lastDelta, v.edge);
-            }
-            if (hit->lightShape || depth >= maxDepth_) break;
-        } else if (v.walking ? ++interiorScatterings > kMaxInteriorScatterings : depth >= maxDepth_) {
-            break;
-        }
-        v.bounces = depth + !v.walking;
-
-        arena.reset();
-        const Shading sh(v, arena);
-        v.transmissive = sh.transmissive();
-        z.push_back(v);
-        const Vertex& zt = z.back();  // z_{t-1}, t = z.size() + 1
-        const int m = static_cast<int>(z.size());
-        const bool joinable = sh.connectable() && !zt.walking;
-
-        // The densities of z_{t-2} as drawn through zt from direction `in` (for the join).
-        auto setAfterJoin = [&](std::size_t at, const Vec3f& in) {
-            if (m < 2) return;
-            x[at].fromLight = toArea(sh.evaluate(in, zt.wo).second, zt.point(), z[m - 2]);
-        };
-
-        // s = 1: next-event estimation, exactly as `path` samples it.
-        const float uLight = rng.next();
-        const Vec2f uPoint = rng.next2D();
-        if (joinable) {
-            auto [from, normal] = gatherPoint(zt, zt.wo);
-            render::LightChoice choice = scene.chooseLight(from, normal, uLight);
-            std::optional<render::LightSample> ls;
-            if (choice.light >= 0 && choice.probability > 0.0f) ls = scene.light(choice.light).sample(from, uPoint);
-            if (ls && ls->pdf > 0.0f && !isBlack(ls->Li)) {
-                auto [f, pdfCamera] = sh.evaluate(zt.wo, ls->wi);
-                const Vec3f shadowFrom = zt.transmissive ? zt.leaving(ls->wi) : from;
-                if (!isBlack(f) && (++counters.shadow, !scene.occluded(shadowFrom, ls->wi, ls->distance))) {
-                    const Crossing crossing = cross(zt.mediumTowards(ls->wi), {shadowFrom, ls->wi, ls->distance}, tracked, rng);
-                    const Vec3f point = from + ls->wi * ls->distance;
-                    LightOrigin x0 = originAt(scene, choice.light, point, Vec3f(0.0f), -ls->wi, ls->delta,
-                                              emitterProbability_[choice.light]);
-                    float nee = choice.probability *
-                                (ls->delta || x0.atInfinity ? ls->pdf : ls->pdf * x0.cosine / (ls->distance * ls->distance));
-                    x.clear();
-                    x.push_back({x0.fromLight, cameraReaches(x0, pdfCamera, zt.point()), false});
-                    appendCamera(x, z);
-                    x[1] = densityOf(zt, emittedTowards(scene, x0, zt), zt.fromOwn, false, crossing.edge);
-                    setAfterJoin(2, ls->wi);
-                    radiance += zt.beta * f * ls->Li * crossing.tr.throughput *
-                                (sh.cosine(ls->wi) / (choice.probability * ls->pdf) * weight(nee, !ls->delta, 1));
-                }
-            }
-        }
-
-        // s >= 2: join y_{s-1} to zt.
-        for (int s = 2; joinable && s <= static_cast<int>(light.vertices.size()) + 1; ++s) {
-            const Vertex& y = light.vertices[s - 2];
-            if (y.bounces + zt.bounces > maxDepth_) break;
-            if (y.walking) continue;
-            const Vec3f d = y.point() - zt.point();
-            const float dist2 = lengthSquared(d);
-            if (!(dist2 > 0.0f)) continue;
-            const Vec3f dir = d / std::sqrt(dist2);
-            auto [fz, pdfCamera] = sh.evaluate(zt.wo, dir);
-            if (isBlack(fz)) continue;
-            joinArena.reset();
-            const Shading shy(y, joinArena);
-            if (!shy.connectable()) continue;
-            auto [fy, pdfBack] = shy.evaluate(-dir, y.wo);  // f(wi, wo): the adjoint; and y_{s-2} drawn from the camera side
-            if (isBlack(fy)) continue;
-            const RGB contribution = y.beta * fy * shy.importanceCosines(y.wo, -dir) * fz * zt.beta * (sh.cosine(dir) / dist2);
-            if (isBlack(contribution)) continue;
-            const std::optional<media::MediumRay> segment = joinSegment(scene, zt, y, dir, counters);
-            if (!segment) continue;
-            const Crossing crossing = cross(zt.mediumTowards(dir), *segment, tracked, rng);
-            if (isBlack(crossing.tr.throughput)) continue;
-            setLightDensities(x, light, s);
-            x[s - 1].fromCamera = toArea(pdfCamera, zt.point(), y);
-            x[s - 1].delta = false;
-            x[s - 2].fromCamera = s == 2 ? cameraReaches(light.origin, pdfBack, y.point())
-                                         : toArea(pdfBack, y.point(), light.vertices[s - 3]);
-            appendCamera(x, z);
-            x[s] = densityOf(zt, toArea(shy.evaluate(y.wo, -dir).second, y.point(), zt), zt.fromOwn, false, crossing.edge);
-            setAfterJoin(s + 1, dir);
-            const Vertex& y1 = light.vertices[0];
-            const Vec3f toX2 = s >= 3 ? -light.vertices[1].wo : -dir;
-            radiance += contribution * crossing.tr.throughput * weight(neeDensity(scene, light.origin, y1, toX2), !light.origin.delta, s);
-        }
-
-        // Continue the camera subpath.
-        last = scatter(sh, zt, false, rng);
-        if (!last) break;
-        if (m >= 2) z[m - 2].fromOther = last->delta ? 1.0f : toArea(last->pdfReverse, zt.point(), z[m - 2]);
-        z.back().delta = last->delta;
-        beta *= last->weight;
-        etaScale *= last->eta * last->eta;
-        if (!continueInMedium(beta, etaScale, depth, zt.walking, rng)) break;
-        if (!zt.inMedium) media = media.after(zt.hit, zt.wo, last->wi);
-        depth -= zt.walking;  // an interior scattering is not a bounce
-        ray = spawn(zt, last->wi);
-    }
-    out.radiance = radiance;
-    return out;
+    const LightSubpath light = traceLightSubpath(scene, state.emitters, state.emitterChoice, state.emitterProbability,
+                                                 lightTracing ? maxDepth_ : maxDepth_ - 1, hero, rng, counters, arena);
+    if (lightTracing) splatToCamera(scene, camera, light, hero, rng, counters, joinArena, *state.splats);
+    return CameraWalk(state, maxDepth_, light, hero, scene, camera, rng, counters).run(cameraRay);
 }
 
 }  // namespace fluence::integrators

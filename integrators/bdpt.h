@@ -73,16 +73,14 @@
 // random walk through their interior medium, not by integrators/diffusion_probe.h's profile.
 //
 // Paths hold at most maxDepth scattering vertices (s + t - 2, as `path` counts them; walk steps
-// apart); both subpaths play Russian roulette (integrators/first_hit.h). Two-sided surfaces are
+// apart); both subpaths play Russian roulette (integrators/russian_roulette.h). Two-sided surfaces are
 // shaded on the side a subpath arrives from, transmissive ones keep their orientation
 // (render/bsdf.h, SIDES), and every join drops directions on which the shading frame and the
 // surface disagree, as `path` does.
 #pragma once
 
-#include <string>
-#include <vector>
+#include <memory>
 
-#include "core/sampling.h"
 #include "integrators/integrator.h"
 
 namespace fluence::integrators {
@@ -91,25 +89,17 @@ class Bdpt final : public Integrator {
 public:
     explicit Bdpt(const IntegratorSettings& settings) : maxDepth_(settings.maxDepth) {}
 
-    // Builds the choice of light for light subpaths.
-    void prepare(const render::RenderScene& scene, const render::Camera& camera, std::uint64_t seed) const override;
-    FilmSample sample(const render::RenderScene& scene, const render::Camera& camera, const render::Ray& ray,
-                      SampleStream& rng, RenderCounters& counters) const override;
+    // The per-render state: the choice of light for light subpaths, and light tracing's splat
+    // film (t = 1 is left out without one, or with an orthographic camera, and the summary says why).
+    std::unique_ptr<RenderState> prepare(const render::RenderScene& scene, const render::Camera& camera,
+                                         std::uint64_t seed, SplatFilm* splats) const override;
+    FilmSample sample(const RenderState& state, const render::RenderScene& scene, const render::Camera& camera,
+                      const render::Ray& ray, SampleStream& rng, RenderCounters& counters) const override;
     // Light tracing (t = 1) splats into the film's splat film.
     bool usesSplats() const override { return true; }
-    void attachSplats(SplatFilm* splats) const override;
-    // Says when light tracing was left out, and why.
-    std::string summary() const override;
 
 private:
     int maxDepth_;
-    mutable SplatFilm* splats_ = nullptr;
-    mutable bool lightTracing_ = false;
-    mutable std::string lightTracingOff_;
-    // Over emitting lights, by power; index -> light, and light -> its probability (0: none).
-    mutable DiscreteDistribution emitterChoice_;
-    mutable std::vector<int> emitters_;
-    mutable std::vector<float> emitterProbability_;
 };
 
 }  // namespace fluence::integrators

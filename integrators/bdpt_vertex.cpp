@@ -34,8 +34,7 @@ std::pair<RGB, float> Shading::evaluate(const Vec3f& a, const Vec3f& b) const {
 
 float Shading::importanceCosines(const Vec3f& wo, const Vec3f& wi) const {
     if (!bsdf_) return 1.0f;
-    float woNg = std::abs(dot(wo, surface_.geometricNormal));
-    return woNg > 0.0f ? std::abs(dot(wo, surface_.frame.n)) * std::abs(dot(wi, surface_.geometricNormal)) / woNg : 0.0f;
+    return adjointShadingCosine(wo, wi, surface_.frame.n, surface_.geometricNormal);
 }
 
 std::pair<Vec3f, Vec3f> gatherPoint(const Vertex& x1, const Vec3f& toX2) {

@@ -10,7 +10,7 @@
 //
 // Shading follows `path`: a two-sided surface is shaded on the side its own subpath arrives from,
 // a transmissive one keeps its orientation, and directions on which the shading frame and the
-// surface disagree carry nothing (integrators/first_hit.h). A light subpath transports importance:
+// surface disagree carry nothing (integrators/surface_frame.h). A light subpath transports importance:
 // render/bsdf.h's f is for radiance, so it uses the adjoint f*(wo, wi) = f(wi, wo) with Veach's
 // correction for shading normals (thesis, sec. 5.3), |wo.ns| |wi.ng| / (|wo.ng| |wi.ns|).
 #pragma once
@@ -19,7 +19,7 @@
 #include <utility>
 
 #include "integrators/bdpt_mis.h"
-#include "integrators/first_hit.h"
+#include "integrators/surface_frame.h"
 #include "integrators/integrator.h"
 #include "integrators/medium_stack.h"
 #include "media/phase.h"
@@ -89,7 +89,8 @@ public:
     // The cosine of a camera subpath's transport towards wi (1 in a medium).
     float cosine(const Vec3f& wi) const { return bsdf_ ? std::abs(dot(wi, surface_.frame.n)) : 1.0f; }
     // Cosine factors of a light subpath's transport from wo to wi (adjoint, with the shading-normal
-    // correction), to multiply f(wi, wo) by; 1 in a medium.
+    // correction, adjointShadingCosine in integrators/surface_frame.h), to multiply f(wi, wo) by; 1
+    // in a medium.
     float importanceCosines(const Vec3f& wo, const Vec3f& wi) const;
     // What bdpt.cpp's scatter() samples: the BSDF and its frame, or (bsdf() null) the phase function.
     const render::Bsdf* bsdf() const { return bsdf_; }

@@ -6,8 +6,11 @@
 
 #include "core/frame.h"
 #include "core/sampling.h"
+#include "integrators/emission.h"
 #include "integrators/first_hit.h"
 #include "integrators/medium_stack.h"
+#include "integrators/russian_roulette.h"
+#include "integrators/surface_frame.h"
 #include "media/ratio_tracking.h"
 #include "render/bsdf_arena.h"
 #include "render/material_bsdf.h"
@@ -50,8 +53,7 @@ FilmSample directLightingThroughDeltaLobes(const render::RenderScene& scene, con
     Vec3f from(0.0f), fromNormal(0.0f);
     auto emitterWeight = [&](int light, const LightHit& lh) {
         if (unique) return 1.0f;
-        return powerHeuristic(bsdfPdf, scene.lightProbability(from, fromNormal, light) *
-                                           scene.light(light).pdf(from, ray.direction, lh));
+        return powerHeuristic(bsdfPdf, lightStrategyPdf(scene, light, from, fromNormal, ray.direction, lh));
     };
 
     for (int depth = 0;; ++depth) {
@@ -60,18 +62,16 @@ FilmSample directLightingThroughDeltaLobes(const render::RenderScene& scene, con
         throughput *= transmittance(inside.medium(), ray.origin, ray.direction,
                                     hit ? hit->t : std::numeric_limits<float>::infinity(), rng);
         if (!hit) {
-            for (int index : scene.lightsAtInfinity()) {
-                const RGB le = scene.light(index).escaped(ray.direction);
-                if (!isBlack(le)) radiance += throughput * le * emitterWeight(index, LightHit{});
-            }
+            forEachLightAtInfinity(scene, ray.direction, [&](int index, const RGB& le) {
+                radiance += throughput * le * emitterWeight(index, LightHit{});
+            });
             break;
         }
         const Vec3f wo = -ray.direction;
         if (depth == 0) recordFirstHit(out, *hit, wo, camera);
         if (hit->light >= 0) {
-            const LightHit lh{hit->point, hit->geometricNormal};
-            const RGB le = hit->lightShape ? scene.light(hit->light).emitted(lh, wo) : hit->emission;
-            if (!isBlack(le)) radiance += throughput * le * emitterWeight(hit->light, lh);
+            const RGB le = emittedAtHit(scene, *hit, wo);
+            if (!isBlack(le)) radiance += throughput * le * emitterWeight(hit->light, LightHit{hit->point, hit->geometricNormal});
         }
         if (hit->lightShape || !unique || depth >= maxDepth) break;
 

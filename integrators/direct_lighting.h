@@ -46,7 +46,7 @@ namespace fluence::integrators {
 // estimation and one BSDF sample, by MIS) at each non-delta surface vertex the ray reaches through
 // delta lobes, over at most maxDepth scattering events. A path ends at its first non-delta BSDF
 // sample, once that sample's ray has found its emission; it follows a delta sample (mirror
-// reflection, smooth refraction) with Russian roulette after three bounces (first_hit.h).
+// reflection, smooth refraction) with Russian roulette after three bounces (integrators/russian_roulette.h).
 FilmSample directLightingThroughDeltaLobes(const render::RenderScene& scene, const render::Camera& camera,
                                            const render::Ray& ray, SampleStream& rng, RenderCounters& counters,
                                            int maxDepth);
@@ -55,8 +55,8 @@ class DirectLighting final : public Integrator {
 public:
     explicit DirectLighting(const IntegratorSettings& settings) : maxDepth_(settings.maxDepth < 1 ? 0 : 1) {}
 
-    FilmSample sample(const render::RenderScene& scene, const render::Camera& camera, const render::Ray& ray,
-                      SampleStream& rng, RenderCounters& counters) const override {
+    FilmSample sample(const RenderState&, const render::RenderScene& scene, const render::Camera& camera,
+                      const render::Ray& ray, SampleStream& rng, RenderCounters& counters) const override {
         return directLightingThroughDeltaLobes(scene, camera, ray, rng, counters, maxDepth_);
     }
 

@@ -48,33 +48,44 @@ struct IntegratorSettings {
     std::shared_ptr<const std::vector<LightPathAov>> lightPathAovs;
 };
 
-// The render loop (integrators/renderer.h) calls prepare() once, then for each pass
-// beginSamples() and sample() for every pixel sample of the pass, in parallel. The hooks are
-// called one at a time (never during sample()), and may run parallel loops of their own. The two hooks
-// are for methods that need scene-wide work shared by every pixel: a radiosity solution, or the
-// photon maps of photon mapping (one per sample index, so that a sample's value still depends
-// only on (seed, pixel, sample index), whatever the passes and threads). What they compute is
-// kept in the integrator (mutable: written only by the hooks, between passes, and only read by
-// sample()). Methods that need neither leave them empty.
+// What an integrator computes for one render before its samples, shared by every pixel: a
+// radiosity solution, the photon maps of photon mapping, the choice of light for light subpaths,
+// the events of the scene's lights for light path expressions. Integrators that need some derive
+// their own (RadiositySolution, SppmRenderState, ...); the others use this empty one. The render
+// loop owns it for the length of the render; sample() only reads it.
+class RenderState {
+public:
+    virtual ~RenderState() = default;
+    // What the method has to say about its solution for the render summary (a radiosity
+    // solution's residual, a photon count), one line, read after the render; "" for nothing.
+    virtual std::string summary() const { return ""; }
+};
+
+// PER-RENDER STATE. An integrator is immutable once built: its settings only. The render loop
+// (integrators/renderer.h) calls prepare() once, which returns the render's state; then, for each
+// pass, beginSamples() with that state and sample() for every pixel sample of the pass, in
+// parallel, each given the state as a const argument. beginSamples() is called one at a time
+// (never during sample()) and may run parallel loops of its own: it is where a method builds what
+// a pass's sample indices need (the photon maps of photon mapping, one per sample index, so that a
+// sample's value still depends only on (seed, pixel, sample index), whatever the passes and
+// threads). Methods that need neither leave both hooks as they are.
 class Integrator {
 public:
     virtual ~Integrator() = default;
-    virtual void prepare(const render::RenderScene& /*scene*/, const render::Camera& /*camera*/, std::uint64_t /*seed*/) const {}
-    virtual void beginSamples(const render::RenderScene& /*scene*/, const render::Camera& /*camera*/, std::uint64_t /*seed*/,
-                              int /*firstSample*/, int /*count*/) const {}
     // Light tracing: a method that adds light to other pixels than its sample's (bdpt's t = 1)
-    // returns true from usesSplats(). The render loop then hands it the film's splat film
-    // (core/splat_film.h) by attachSplats() before prepare(), or nullptr where splats cannot be
-    // used (a film that is only a window of the image: a tile, integrators/renderer.h), and
-    // nullptr again when the render ends. Without one the method leaves those strategies out.
-    // sample() may add to it from any thread.
+    // returns true from usesSplats(). The render loop then hands prepare() the film's splat film
+    // (core/splat_film.h), or nullptr where splats cannot be used (a film that is only a window of
+    // the image: a tile, integrators/renderer.h); the state keeps it for the render, and sample()
+    // may add to it from any thread. Without one the method leaves those strategies out.
     virtual bool usesSplats() const { return false; }
-    virtual void attachSplats(SplatFilm* /*splats*/) const {}
-    // What the method has to say about its solution for the render summary (a radiosity
-    // solution's residual, a photon count), one line, after render(); "" for nothing.
-    virtual std::string summary() const { return ""; }
-    virtual FilmSample sample(const render::RenderScene& scene, const render::Camera& camera, const render::Ray& ray,
-                              SampleStream& rng, RenderCounters& counters) const = 0;
+    virtual std::unique_ptr<RenderState> prepare(const render::RenderScene& /*scene*/, const render::Camera& /*camera*/,
+                                                 std::uint64_t /*seed*/, SplatFilm* /*splats*/) const {
+        return std::make_unique<RenderState>();
+    }
+    virtual void beginSamples(RenderState& /*state*/, const render::RenderScene& /*scene*/, const render::Camera& /*camera*/,
+                              std::uint64_t /*seed*/, int /*firstSample*/, int /*count*/) const {}
+    virtual FilmSample sample(const RenderState& state, const render::RenderScene& scene, const render::Camera& camera,
+                              const render::Ray& ray, SampleStream& rng, RenderCounters& counters) const = 0;
 };
 
 struct IntegratorInfo {

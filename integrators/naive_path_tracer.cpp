@@ -5,8 +5,11 @@
 
 #include "core/frame.h"
 #include "integrators/diffusion_probe.h"
+#include "integrators/emission.h"
 #include "integrators/first_hit.h"
 #include "integrators/medium_stack.h"
+#include "integrators/russian_roulette.h"
+#include "integrators/surface_frame.h"
 #include "media/free_flight.h"
 #include "media/phase.h"
 #include "render/bsdf_arena.h"
@@ -14,7 +17,7 @@
 
 namespace fluence::integrators {
 
-FilmSample NaivePathTracer::sample(const render::RenderScene& scene, const render::Camera& camera,
+FilmSample NaivePathTracer::sample(const RenderState&, const render::RenderScene& scene, const render::Camera& camera,
                                    const render::Ray& cameraRay, SampleStream& rng, RenderCounters& counters) const {
     FilmSample out;
     RGB radiance(0.0f), throughput(1.0f);
@@ -50,7 +53,7 @@ FilmSample NaivePathTracer::sample(const render::RenderScene& scene, const rende
                 break;
             }
             if (flight.event == media::FlightEvent::Scattered) {
-                const bool walking = inside.depth() > 0;  // inside a material's interior (first_hit.h)
+                const bool walking = inside.depth() > 0;  // inside a material's interior (russian_roulette.h)
                 if (walking ? ++interiorScatterings > kMaxInteriorScatterings : depth >= maxDepth_) break;
                 media::PhaseSample ps = media::HenyeyGreenstein(flight.properties.g).sample(-ray.direction, rng.next2D());
                 if (ps.pdf <= 0.0f) break;
@@ -62,15 +65,12 @@ FilmSample NaivePathTracer::sample(const render::RenderScene& scene, const rende
             }
         }
         if (!hit) {
-            for (int index : scene.lightsAtInfinity())
-                radiance += throughput * weighted(scene.light(index).escaped(ray.direction));
+            forEachLightAtInfinity(scene, ray.direction, [&](int, const RGB& le) { radiance += throughput * weighted(le); });
             break;
         }
         const Vec3f wo = exiting ? -hit->shadingNormal : -ray.direction;
         if (depth == 0) recordFirstHit(out, *hit, wo, camera);
-        if (!exiting && hit->light >= 0)
-            radiance += throughput * weighted(hit->lightShape ? scene.light(hit->light).emitted({hit->point, hit->geometricNormal}, wo)
-                                                               : hit->emission);
+        if (!exiting && hit->light >= 0) radiance += throughput * weighted(emittedAtHit(scene, *hit, wo));
         if (hit->lightShape || depth >= maxDepth_) break;
 
         arena.reset();

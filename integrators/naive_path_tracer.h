@@ -17,8 +17,8 @@ class NaivePathTracer final : public Integrator {
 public:
     explicit NaivePathTracer(const IntegratorSettings& settings) : maxDepth_(settings.maxDepth) {}
 
-    FilmSample sample(const render::RenderScene& scene, const render::Camera& camera, const render::Ray& ray,
-                      SampleStream& rng, RenderCounters& counters) const override;
+    FilmSample sample(const RenderState& state, const render::RenderScene& scene, const render::Camera& camera,
+                      const render::Ray& ray, SampleStream& rng, RenderCounters& counters) const override;
 
 private:
     int maxDepth_;

@@ -24,6 +24,7 @@
 
 #include "integrators/integrator.h"
 #include "integrators/light_path_tracker.h"
+#include "integrators/path_events.h"
 
 namespace fluence::integrators {
 
@@ -32,24 +33,25 @@ public:
     explicit PathTracer(const IntegratorSettings& settings)
         : maxDepth_(settings.maxDepth), aovs_(settings.lightPathAovs) {}
 
-    // Names the lights' events for the light path expression AOVs.
-    void prepare(const render::RenderScene& scene, const render::Camera& camera, std::uint64_t seed) const override;
+    // The per-render state: the lights' events for the light path expression AOVs (none without).
+    std::unique_ptr<RenderState> prepare(const render::RenderScene& scene, const render::Camera& camera,
+                                         std::uint64_t seed, SplatFilm* splats) const override;
     // trace<scene.hasMedia()>.
-    FilmSample sample(const render::RenderScene& scene, const render::Camera& camera, const render::Ray& ray,
-                      SampleStream& rng, RenderCounters& counters) const override;
+    FilmSample sample(const RenderState& state, const render::RenderScene& scene, const render::Camera& camera,
+                      const render::Ray& ray, SampleStream& rng, RenderCounters& counters) const override;
     // The path tracer with (kMedia) or without the machinery of volumes and subsurface scattering:
     // free flights, ratio-tracked shadow rays, the medium stack, spectral MIS, diffusion probes. A
     // scene without media pays for none of it; on such a scene both give the same image, bit for
     // bit (tests/integrators/path_tracer_test.cpp), and bench/media_overhead_bench.cpp times them.
+    // `lightEvents`: the scene's (integrators/path_events.h) where there are light path expression
+    // AOVs; unused without.
     template <bool kMedia>
-    FilmSample trace(const render::RenderScene& scene, const render::Camera& camera, const render::Ray& ray,
+    FilmSample trace(const LightEvents& lightEvents, const render::RenderScene& scene, const render::Camera& camera, const render::Ray& ray,
                      SampleStream& rng, RenderCounters& counters) const;
 
 private:
     int maxDepth_;
     std::shared_ptr<const std::vector<LightPathAov>> aovs_;  // null: none
-    mutable std::vector<std::string> lightLabels_;  // per light: its prim's name
-    mutable std::vector<PathEvent> lightEvents_;    // per light: its event (L, or O for an emissive triangle)
 };
 
 }  // namespace fluence::integrators

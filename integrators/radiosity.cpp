@@ -8,6 +8,7 @@
 
 #include "core/frame.h"
 #include "core/sampling.h"
+#include "integrators/emission.h"
 #include "integrators/first_hit.h"
 #include "render/area_lights.h"
 
@@ -108,81 +109,88 @@ RGB gathered(const std::vector<FormFactor>& row, const RGB& direct, const std::v
 
 }  // namespace
 
-void Radiosity::prepare(const render::RenderScene& scene, const render::Camera&, std::uint64_t seed) const {
+std::unique_ptr<RadiositySolution> Radiosity::solve(const render::RenderScene& scene, std::uint64_t seed) const {
+    auto solution = std::make_unique<RadiositySolution>();
+    std::vector<Patch>& patches = solution->patches;
+    std::vector<RGB>& radiance = solution->radiance;
     const float edge = settings_.patchEdge > 0.0f ? settings_.patchEdge : defaultPatchEdge(scene.bounds());
-    patches_ = meshPatches(scene.surfaceTriangles(), edge);
-    locator_ = PatchLocator(patches_);
-    const int elements = kSides * static_cast<int>(patches_.size());
+    patches = meshPatches(scene.surfaceTriangles(), edge);
+    solution->locator = PatchLocator(patches);
+    const int elements = kSides * static_cast<int>(patches.size());
 
     FormFactorRows rows(elements);
     std::vector<RGB> direct(elements);
     const ExternalLights external = externalLights(scene);
     tbb::parallel_for(0, elements, [&](int e) {
-        rows[e] = formFactorRow(scene, patches_, locator_, e, settings_.formFactorRays, seed);
-        direct[e] = directLight(scene, external, patches_[e / kSides], e, settings_.directSamples, seed);
+        rows[e] = formFactorRow(scene, patches, solution->locator, e, settings_.formFactorRays, seed);
+        direct[e] = directLight(scene, external, patches[e / kSides], e, settings_.directSamples, seed);
     });
 
     // Gauss-Seidel on B = E + rho (D + F B), from B = E + rho D. The norms weigh each element by
     // its area and take the largest colour channel.
     auto updated = [&](int e) {  // the right-hand side for element e, from the current B
-        const Patch& p = patches_[e / kSides];
-        return p.emission + p.albedo * gathered(rows[e], direct[e], radiance_);
+        const Patch& p = patches[e / kSides];
+        return p.emission + p.albedo * gathered(rows[e], direct[e], radiance);
     };
-    radiance_.resize(elements);
+    radiance.resize(elements);
     double sourceNorm = 0.0;
     for (int e = 0; e < elements; ++e) {
-        const Patch& p = patches_[e / kSides];
-        radiance_[e] = p.emission + p.albedo * direct[e];
-        sourceNorm += p.area * maxComponent(radiance_[e]);
+        const Patch& p = patches[e / kSides];
+        radiance[e] = p.emission + p.albedo * direct[e];
+        sourceNorm += p.area * maxComponent(radiance[e]);
     }
     auto relativeResidual = [&] {
         if (sourceNorm <= 0.0) return 0.0f;
         double r = 0.0;
         for (int e = 0; e < elements; ++e) {
-            const RGB difference = updated(e) - radiance_[e];
-            r += patches_[e / kSides].area *
+            const RGB difference = updated(e) - radiance[e];
+            r += patches[e / kSides].area *
                  maxComponent(RGB(std::abs(difference.x), std::abs(difference.y), std::abs(difference.z)));
         }
         return float(r / sourceNorm);
     };
-    sweeps_ = 0;
-    residual_ = relativeResidual();
-    while (residual_ > settings_.tolerance && sweeps_ < settings_.maxSweeps) {
-        for (int e = 0; e < elements; ++e) radiance_[e] = updated(e);
-        ++sweeps_;
-        residual_ = relativeResidual();
+    solution->tolerance = settings_.tolerance;
+    solution->residual = relativeResidual();
+    while (solution->residual > settings_.tolerance && solution->sweeps < settings_.maxSweeps) {
+        for (int e = 0; e < elements; ++e) radiance[e] = updated(e);
+        ++solution->sweeps;
+        solution->residual = relativeResidual();
     }
-    irradiance_.resize(elements);
-    for (int e = 0; e < elements; ++e) irradiance_[e] = gathered(rows[e], direct[e], radiance_);
-    cornerIrradiance_ = cornerAverages(patches_, irradiance_);
+    solution->irradiance.resize(elements);
+    for (int e = 0; e < elements; ++e) solution->irradiance[e] = gathered(rows[e], direct[e], radiance);
+    solution->cornerIrradiance = cornerAverages(patches, solution->irradiance);
+    return solution;
 }
 
-std::string Radiosity::summary() const {
+std::unique_ptr<RenderState> Radiosity::prepare(const render::RenderScene& scene, const render::Camera&, std::uint64_t seed,
+                                                SplatFilm*) const {
+    return solve(scene, seed);
+}
+
+std::string RadiositySolution::summary() const {
     char line[160];
     std::snprintf(line, sizeof line, "radiosity: %zu patches, %d Gauss-Seidel sweeps, residual %.3g (tolerance %.3g)",
-                  patches_.size(), sweeps_, double(residual_), double(settings_.tolerance));
+                  patches.size(), sweeps, double(residual), double(tolerance));
     return line;
 }
 
-FilmSample Radiosity::sample(const render::RenderScene& scene, const render::Camera& camera, const render::Ray& ray,
-                             SampleStream&, RenderCounters& counters) const {
+FilmSample Radiosity::sample(const RenderState& state, const render::RenderScene& scene, const render::Camera& camera,
+                             const render::Ray& ray, SampleStream&, RenderCounters& counters) const {
+    const RadiositySolution& solution = static_cast<const RadiositySolution&>(state);
     FilmSample out;
     ++counters.camera;
     std::optional<render::SurfaceHit> hit = scene.intersect(ray);
     if (!hit) {
-        for (int index : scene.lightsAtInfinity()) out.radiance += scene.light(index).escaped(ray.direction);
+        forEachLightAtInfinity(scene, ray.direction, [&](int, const RGB& le) { out.radiance += le; });
         return out;
     }
     const Vec3f wo = -ray.direction;
     recordFirstHit(out, *hit, wo, camera);
-    if (hit->lightShape) {
-        out.radiance = scene.light(hit->light).emitted({hit->point, hit->geometricNormal}, wo);
-        return out;
-    }
-    out.radiance = hit->emission;
-    if (std::optional<PatchPoint> at = locator_.locate(patches_, hit->point, hit->geometricNormal)) {
-        const int e = elementOf(at->patch, dot(wo, patches_[at->patch].normal) > 0.0f ? 0 : 1);
-        const RGB* corner = &cornerIrradiance_[3 * std::size_t(e)];
+    out.radiance = emittedAtHit(scene, *hit, wo);
+    if (hit->lightShape) return out;
+    if (std::optional<PatchPoint> at = solution.locator.locate(solution.patches, hit->point, hit->geometricNormal)) {
+        const int e = elementOf(at->patch, dot(wo, solution.patches[at->patch].normal) > 0.0f ? 0 : 1);
+        const RGB* corner = &solution.cornerIrradiance[3 * std::size_t(e)];
         out.radiance += hit->material.diffuse * (corner[0] * (1.0f - at->b1 - at->b2) + corner[1] * at->b1 + corner[2] * at->b2);
     }
     return out;

@@ -4,7 +4,7 @@
 // interreflection uses each material's constant diffuse colour), so mirrors, glass and caustics
 // are missed and glossy surfaces look matte.
 //
-// prepare() solves, once per render:
+// prepare() solves, once per render (solve(); the solution is the render's state):
 //  - Meshing (integrators/radiosity_mesh.h): every surface triangle cut into patches no longer
 //    than RadiositySettings::patchEdge (default: defaultPatchEdge(), the scene's diameter / 16).
 //    Each patch has two elements, one per side (Fluence's surfaces are two-sided), with constant
@@ -41,6 +41,8 @@
 // (1993), ch. 4 (form factors by ray casting) and ch. 5 (Gauss-Seidel).
 #pragma once
 
+#include <memory>
+#include <string>
 #include <vector>
 
 #include "integrators/integrator.h"
@@ -56,32 +58,34 @@ struct RadiositySettings {
     int maxSweeps = 500;       // Gauss-Seidel sweeps at most
 };
 
+// The solution: the patches, and per element (2 * patch + side; side 0 is the patch normal's) the
+// mean incident radiance H and the outgoing radiance B = E + rho H. It is the per-render state
+// (integrators/integrator.h) that sample() reads.
+struct RadiositySolution final : RenderState {
+    std::vector<Patch> patches;
+    PatchLocator locator;
+    std::vector<RGB> irradiance, radiance;
+    std::vector<RGB> cornerIrradiance;  // cornerAverages() of irradiance, for display
+    int sweeps = 0;
+    float residual = 0.0f;
+    float tolerance = 0.0f;  // RadiositySettings::tolerance, for the summary
+    // Patches, sweeps and the residual.
+    std::string summary() const override;
+};
+
 class Radiosity final : public Integrator {
 public:
     explicit Radiosity(const RadiositySettings& settings = {}) : settings_(settings) {}
 
-    void prepare(const render::RenderScene& scene, const render::Camera& camera, std::uint64_t seed) const override;
-    std::string summary() const override;
-    FilmSample sample(const render::RenderScene& scene, const render::Camera& camera, const render::Ray& ray,
-                      SampleStream& rng, RenderCounters& counters) const override;
-
-    // The solution, after prepare(): the patches, and per element (2 * patch + side; side 0 is the
-    // patch normal's) the mean incident radiance H and the outgoing radiance B = E + rho H.
-    const std::vector<Patch>& patches() const { return patches_; }
-    const std::vector<RGB>& irradiance() const { return irradiance_; }
-    const std::vector<RGB>& radiance() const { return radiance_; }
-    int sweeps() const { return sweeps_; }
-    float residual() const { return residual_; }
+    // The solution for `scene`, its random numbers drawn from `seed`.
+    std::unique_ptr<RadiositySolution> solve(const render::RenderScene& scene, std::uint64_t seed) const;
+    std::unique_ptr<RenderState> prepare(const render::RenderScene& scene, const render::Camera& camera,
+                                         std::uint64_t seed, SplatFilm* splats) const override;
+    FilmSample sample(const RenderState& state, const render::RenderScene& scene, const render::Camera& camera,
+                      const render::Ray& ray, SampleStream& rng, RenderCounters& counters) const override;
 
 private:
     RadiositySettings settings_;
-    // Written by prepare() only.
-    mutable std::vector<Patch> patches_;
-    mutable PatchLocator locator_;
-    mutable std::vector<RGB> irradiance_, radiance_;
-    mutable std::vector<RGB> cornerIrradiance_;  // cornerAverages() of irradiance_, for display
-    mutable int sweeps_ = 0;
-    mutable float residual_ = 0.0f;
 };
 
 }  // namespace fluence::integrators

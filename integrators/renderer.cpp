@@ -44,7 +44,7 @@ bool finite(const FilmSample& sample, std::size_t layers) {
 }
 
 void renderPass(const render::RenderScene& scene, const render::Camera& camera, const Integrator& integrator,
-                const RenderSettings& settings, Film& film, PassRange pass, tbb::combinable<RenderCounters>& counters,
+                const RenderState& state, const RenderSettings& settings, Film& film, PassRange pass, tbb::combinable<RenderCounters>& counters,
                 RenderProgress* progress) {
     const int width = film.width(), height = film.height();
     const int tilesX = (width + kTileSize - 1) / kTileSize, tilesY = (height + kTileSize - 1) / kTileSize;
@@ -69,7 +69,7 @@ void renderPass(const render::RenderScene& scene, const render::Camera& camera, 
                             SampleStream rng(settings.seed, pixelIndex, std::uint64_t(s));
                             Vec2f jitter = rng.next2D();  // box filter: uniform over the pixel
                             render::Ray ray = camera.generateRay(float(imageX) + jitter.x, float(imageY) + jitter.y);
-                            FilmSample sample = integrator.sample(scene, camera, ray, rng, local);
+                            FilmSample sample = integrator.sample(state, scene, camera, ray, rng, local);
                             if (!finite(sample, film.lightPathLayers().size())) {
                                 sample.radiance = RGB(0.0f);
                                 sample.clearLightPaths(film.lightPathLayers().size());
@@ -103,8 +103,9 @@ RenderStats render(const render::RenderScene& scene, const render::Camera& camer
 
     // Light tracing (integrators/integrator.h): splats only into a film that is the whole image.
     const bool wholeImage = film.width() == camera.imageWidth() && film.height() == camera.imageHeight();
-    integrator.attachSplats(integrator.usesSplats() && wholeImage ? &film.enableSplats() : nullptr);
-    arena.execute([&] { integrator.prepare(scene, camera, settings.seed); });  // within the thread limit
+    SplatFilm* splats = integrator.usesSplats() && wholeImage ? &film.enableSplats() : nullptr;
+    std::unique_ptr<RenderState> state;  // the integrator's per-render state (integrators/integrator.h)
+    arena.execute([&] { state = integrator.prepare(scene, camera, settings.seed, splats); });  // within the thread limit
     // Resumed, the passes go on as the uninterrupted render's would have (1, 2, 4, ... doubled).
     int done = settings.firstSample, passSize = std::clamp(done + 1, 1, kMaxPassSamples);
     double secondsPerSample = 0.0;  // per sample per pixel over the whole image, measured
@@ -118,8 +119,8 @@ RenderStats render(const render::RenderScene& scene, const render::Camera& camer
         }
         double passStart = elapsed();
         arena.execute([&] {
-            integrator.beginSamples(scene, camera, settings.seed, done, count);
-            renderPass(scene, camera, integrator, settings, film, {done, count}, counters, progress);
+            integrator.beginSamples(*state, scene, camera, settings.seed, done, count);
+            renderPass(scene, camera, integrator, *state, settings, film, {done, count}, counters, progress);
         });
         secondsPerSample = (elapsed() - passStart) / count;
         done += count;
@@ -136,7 +137,7 @@ RenderStats render(const render::RenderScene& scene, const render::Camera& camer
     for (int y = 0; y < film.height(); ++y)
         for (int x = 0; x < film.width(); ++x) stats.samplesPerPixel = std::max<int>(stats.samplesPerPixel, film.samples(x, y));
     counters.combine_each([&](const RenderCounters& c) { stats.counters += c; });
-    integrator.attachSplats(nullptr);
+    stats.methodSummary = state->summary();
     return stats;
 }
 

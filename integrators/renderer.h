@@ -32,6 +32,7 @@
 #include <atomic>
 #include <cstdint>
 #include <functional>
+#include <string>
 
 #include "core/cryptomatte_film.h"
 #include "core/film.h"
@@ -83,6 +84,7 @@ struct RenderStats {
     int passes = 0;
     bool interrupted = false;  // RenderSettings::stop was set before the render finished
     RenderCounters counters;
+    std::string methodSummary;  // the integrator's per-render state's summary() ("" for nothing)
 };
 
 RenderStats render(const render::RenderScene& scene, const render::Camera& camera, const Integrator& integrator,

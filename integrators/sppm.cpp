@@ -8,9 +8,15 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <string>
+#include <vector>
 
+#include "integrators/emission.h"
 #include "integrators/first_hit.h"
 #include "integrators/medium_stack.h"
+#include "integrators/photon_map.h"
+#include "integrators/russian_roulette.h"
+#include "integrators/surface_frame.h"
 #include "media/free_flight.h"
 #include "media/phase.h"
 #include "render/bsdf_arena.h"
@@ -27,14 +33,6 @@ constexpr int kPathsPerChunk = 4096;                              // photon path
 
 constexpr float kInfinity = std::numeric_limits<float>::infinity();
 constexpr unsigned kNonDelta = render::kBsdfDiffuse | render::kBsdfGlossy;
-
-// Veach's correction (1997, eq. 5.19) of the adjoint BSDF for shading normals, times |wi.ns|:
-// the cosine factor of a photon leaving along wi having arrived from wo (both world, away from
-// the surface).
-float adjointCosine(const Vec3f& wo, const Vec3f& wi, const Vec3f& ns, const Vec3f& ng) {
-    const float woNg = std::abs(dot(wo, ng));
-    return woNg > 0.0f ? std::abs(dot(wo, ns)) * std::abs(dot(wi, ng)) / woNg : 0.0f;
-}
 
 // The photons one map's paths leave: on surfaces and in media.
 struct PhotonDeposits {
@@ -88,7 +86,7 @@ void tracePhotonPath(const render::RenderScene& scene, int maxDepth, float scale
                 if (ps.pdf <= 0.0f) return;
                 beta *= ps.p / ps.pdf;  // 1: the flux is unchanged, so the photon survives any roulette
                 ray = Ray{flight.p, ps.wi, 0.0f, kInfinity};
-                depth -= walking;  // not a bounce (integrators/first_hit.h)
+                depth -= walking;  // not a bounce (integrators/russian_roulette.h)
                 continue;
             }
         }
@@ -109,7 +107,7 @@ void tracePhotonPath(const render::RenderScene& scene, int maxDepth, float scale
         const Vec3f wi = surface.frame.toWorld(bs->wi);
         if (!sidesAgree(wo, wi, surface.geometricNormal, woLocal.z, bs->wi.z)) return;
         const RGB next = beta * bs->f *
-                         (bs->eta * bs->eta * adjointCosine(wo, wi, surface.frame.n, surface.geometricNormal) / bs->pdf);
+                         (bs->eta * bs->eta * adjointShadingCosine(wo, wi, surface.frame.n, surface.geometricNormal) / bs->pdf);
         const float survive = std::min(1.0f, maxComponent(next / media::channelAverage(pdfRatio)) / maxComponent(power));
         if (!(uSurvive < survive)) return;
         beta = next / survive;
@@ -153,6 +151,21 @@ RGB estimateInScattering(const PhotonMap& map, const media::HenyeyGreenstein& ph
     return sum / (4.0f / 3.0f * kPi * r * r * r);
 }
 
+// The per-render state (integrators/integrator.h): what prepare() and beginSamples() compute.
+struct SppmState final : RenderState {
+    float initialRadius = 0.0f;
+    int photonPathsPerMap = 0;  // SppmSettings::photonPathsPerMap, for the summary
+    int firstSample = 0;
+    struct SampleMaps {
+        PhotonMap surface, volume;
+    };
+    std::vector<SampleMaps> maps;  // sample indices [firstSample, firstSample + size)
+    std::uint64_t mapsBuilt = 0, photonsStored = 0, volumePhotonsStored = 0, photonRays = 0, mostBytes = 0;
+    std::size_t silentLights = 0;  // lights without emission sampling
+    // Photon maps, photons and rays, the radii, the peak memory.
+    std::string summary() const override;
+};
+
 }  // namespace
 
 float Sppm::radius(float initialRadius, std::uint64_t sampleIndex, int dimensions) {
@@ -161,19 +174,21 @@ float Sppm::radius(float initialRadius, std::uint64_t sampleIndex, int dimension
     return float(std::pow(rd, 1.0 / dimensions));
 }
 
-void Sppm::prepare(const render::RenderScene& scene, const render::Camera& camera, std::uint64_t) const {
-    initialRadius_ = settings_.initialRadius > 0.0f ? settings_.initialRadius
-                                                    : kInitialRadiusPixels / camera.pixelsPerUnitAt(scene.bounds().centre);
-    maps_.clear();
-    mapsBuilt_ = photonsStored_ = volumePhotonsStored_ = photonRays_ = mostBytes_ = 0;
-    silentLights_ = 0;
-    for (std::size_t i = 0; i < scene.lightCount(); ++i) silentLights_ += !scene.light(i).hasEmissionSampling();
+std::unique_ptr<RenderState> Sppm::prepare(const render::RenderScene& scene, const render::Camera& camera, std::uint64_t,
+                                           SplatFilm*) const {
+    auto state = std::make_unique<SppmState>();
+    state->initialRadius = settings_.initialRadius > 0.0f ? settings_.initialRadius
+                                                          : kInitialRadiusPixels / camera.pixelsPerUnitAt(scene.bounds().centre);
+    state->photonPathsPerMap = settings_.photonPathsPerMap;
+    for (std::size_t i = 0; i < scene.lightCount(); ++i) state->silentLights += !scene.light(i).hasEmissionSampling();
+    return state;
 }
 
-void Sppm::beginSamples(const render::RenderScene& scene, const render::Camera&, std::uint64_t seed, int firstSample,
-                        int count) const {
-    maps_.clear();  // the previous pass's samples are done
-    firstSample_ = firstSample;
+void Sppm::beginSamples(RenderState& renderState, const render::RenderScene& scene, const render::Camera&, std::uint64_t seed,
+                        int firstSample, int count) const {
+    SppmState& state = static_cast<SppmState&>(renderState);
+    state.maps.clear();  // the previous pass's samples are done
+    state.firstSample = firstSample;
     const int paths = scene.lightSelection().empty() ? 0 : settings_.photonPathsPerMap;
     const int chunks = (paths + kPathsPerChunk - 1) / kPathsPerChunk;
     std::vector<PhotonDeposits> chunkPhotons(std::size_t(count) * chunks);
@@ -193,41 +208,42 @@ void Sppm::beginSamples(const render::RenderScene& scene, const render::Camera&,
             photons.surface.insert(photons.surface.end(), part.surface.begin(), part.surface.end());
             photons.volume.insert(photons.volume.end(), part.volume.begin(), part.volume.end());
             part = {};
-            photonRays_ += chunkRays[std::size_t(map) * chunks + chunk];
+            state.photonRays += chunkRays[std::size_t(map) * chunks + chunk];
         }
-        photonsStored_ += photons.surface.size();
-        volumePhotonsStored_ += photons.volume.size();
+        state.photonsStored += photons.surface.size();
+        state.volumePhotonsStored += photons.volume.size();
         const std::uint64_t sampleIndex = std::uint64_t(firstSample + map);
-        maps_.push_back({PhotonMap(std::move(photons.surface), radius(initialRadius_, sampleIndex, 2)),
-                         PhotonMap(std::move(photons.volume), radius(initialRadius_, sampleIndex, 3))});
+        state.maps.push_back({PhotonMap(std::move(photons.surface), radius(state.initialRadius, sampleIndex, 2)),
+                              PhotonMap(std::move(photons.volume), radius(state.initialRadius, sampleIndex, 3))});
     }
     std::uint64_t bytes = 0;
-    for (const SampleMaps& maps : maps_) bytes += maps.surface.bytes() + maps.volume.bytes();
-    mostBytes_ = std::max(mostBytes_, bytes);
-    mapsBuilt_ += std::uint64_t(count);
+    for (const SppmState::SampleMaps& maps : state.maps) bytes += maps.surface.bytes() + maps.volume.bytes();
+    state.mostBytes = std::max(state.mostBytes, bytes);
+    state.mapsBuilt += std::uint64_t(count);
 }
 
-std::string Sppm::summary() const {
-    if (mapsBuilt_ == 0) return "";
-    const std::uint64_t last = mapsBuilt_ - 1;
+std::string SppmState::summary() const {
+    if (mapsBuilt == 0) return "";
+    const std::uint64_t last = mapsBuilt - 1;
     char volume[160] = "";
-    if (volumePhotonsStored_ > 0)
+    if (volumePhotonsStored > 0)
         std::snprintf(volume, sizeof volume, " and %.0f in media; volume radius %.4g -> %.4g",
-                      double(volumePhotonsStored_) / double(mapsBuilt_), double(initialRadius_),
-                      double(radius(initialRadius_, last, 3)));
+                      double(volumePhotonsStored) / double(mapsBuilt), double(initialRadius),
+                      double(Sppm::radius(initialRadius, last, 3)));
     char line[480];
     std::snprintf(line, sizeof line,
                   "sppm: %llu photon maps of %d paths, %.0f photons each on average on surfaces%s, %llu photon rays; "
                   "radius %.4g -> %.4g; photon maps peaked at %.1f MB%s",
-                  static_cast<unsigned long long>(mapsBuilt_), settings_.photonPathsPerMap,
-                  double(photonsStored_) / double(mapsBuilt_), volume, static_cast<unsigned long long>(photonRays_),
-                  double(initialRadius_), double(radius(initialRadius_, last, 2)), double(mostBytes_) / 1e6,
-                  silentLights_ ? "; cylinder and line lights emit no photons" : "");
+                  static_cast<unsigned long long>(mapsBuilt), photonPathsPerMap, double(photonsStored) / double(mapsBuilt),
+                  volume, static_cast<unsigned long long>(photonRays), double(initialRadius),
+                  double(Sppm::radius(initialRadius, last, 2)), double(mostBytes) / 1e6,
+                  silentLights ? "; cylinder and line lights emit no photons" : "");
     return line;
 }
 
-FilmSample Sppm::sample(const render::RenderScene& scene, const render::Camera& camera, const Ray& cameraRay,
-                        SampleStream& rng, RenderCounters& counters) const {
+FilmSample Sppm::sample(const RenderState& renderState, const render::RenderScene& scene, const render::Camera& camera,
+                        const Ray& cameraRay, SampleStream& rng, RenderCounters& counters) const {
+    const SppmState& state = static_cast<const SppmState&>(renderState);
     FilmSample out;
     // The eye path's f / p_h and p_c / p_h (media/tracking.h): its estimates are divided by
     // channelAverage(pdfRatio), which stays 1 where there are no media.
@@ -237,7 +253,7 @@ FilmSample Sppm::sample(const render::RenderScene& scene, const render::Camera& 
     MediumStack inside(scene);
     const int hero = scene.hasMedia() ? media::sampleHeroChannel(rng.next()) : 0;
     render::BsdfArena arena;
-    const SampleMaps& maps = maps_[rng.sampleIndex() - std::uint64_t(firstSample_)];
+    const SppmState::SampleMaps& maps = state.maps[rng.sampleIndex() - std::uint64_t(state.firstSample)];
     auto add = [&](const RGB& estimate) { radiance += throughput * estimate / media::channelAverage(pdfRatio); };
     for (int depth = 0;; ++depth) {
         ++(depth == 0 ? counters.camera : counters.bounce);
@@ -265,13 +281,12 @@ FilmSample Sppm::sample(const render::RenderScene& scene, const render::Camera& 
             }
         }
         if (!hit) {
-            for (int index : scene.lightsAtInfinity()) add(scene.light(index).escaped(ray.direction));
+            forEachLightAtInfinity(scene, ray.direction, [&](int, const RGB& le) { add(le); });
             break;
         }
         const Vec3f wo = -ray.direction;
         if (depth == 0) recordFirstHit(out, *hit, wo, camera);
-        if (hit->light >= 0)
-            add(hit->lightShape ? scene.light(hit->light).emitted({hit->point, hit->geometricNormal}, wo) : hit->emission);
+        if (hit->light >= 0) add(emittedAtHit(scene, *hit, wo));
         if (hit->lightShape || depth >= maxDepth_) break;
 
         arena.reset();

@@ -50,7 +50,7 @@
 // through the interior and are stored where they come out, on the surface's inner side, which
 // the surface estimate gathers through the transmission lobe (materials whose subsurface method
 // is diffusion are rendered by this walk too). Scatterings inside an interior count against
-// kMaxInteriorScatterings, not the depth, as in `path` (integrators/first_hit.h). Eye paths enter
+// kMaxInteriorScatterings, not the depth, as in `path` (integrators/russian_roulette.h). Eye paths enter
 // an interior only through a delta transmission (glass around a murky liquid), so volume photons
 // are stored inside an interior only when the photon entered it through a BSDF with a delta
 // lobe and transmission; elsewhere they would never be gathered, and a walk stores up to a
@@ -81,7 +81,7 @@
 //
 // Memory: the maps of one pass live together (a pass is at most 64 sample indices,
 // integrators/renderer.h) and are freed when the next pass begins (the last pass's when the
-// integrator is destroyed or prepares the next render): at most 64 pairs of maps of the
+// render ends): at most 64 pairs of maps of the
 // photons N paths leave, 44 bytes per photon at most (integrators/photon_map.h); the Cornell box
 // (about 1.7 photons per path) peaks at 230 MB with the default N. In a medium of albedo near 1 a
 // photon path stores up to maxDepth volume photons, so thick bright media cost more. Photons are
@@ -95,10 +95,10 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 #include "integrators/integrator.h"
-#include "integrators/photon_map.h"
 
 namespace fluence::integrators {
 
@@ -115,12 +115,14 @@ public:
     explicit Sppm(const IntegratorSettings& settings, const SppmSettings& sppm = {})
         : maxDepth_(settings.maxDepth), settings_(sppm) {}
 
-    void prepare(const render::RenderScene& scene, const render::Camera& camera, std::uint64_t seed) const override;
-    void beginSamples(const render::RenderScene& scene, const render::Camera& camera, std::uint64_t seed,
-                      int firstSample, int count) const override;
-    std::string summary() const override;
-    FilmSample sample(const render::RenderScene& scene, const render::Camera& camera, const render::Ray& ray,
-                      SampleStream& rng, RenderCounters& counters) const override;
+    // The per-render state: the initial radius; then, from beginSamples(), the photon maps of the
+    // pass's sample indices, and the counts the summary reports.
+    std::unique_ptr<RenderState> prepare(const render::RenderScene& scene, const render::Camera& camera,
+                                         std::uint64_t seed, SplatFilm* splats) const override;
+    void beginSamples(RenderState& state, const render::RenderScene& scene, const render::Camera& camera,
+                      std::uint64_t seed, int firstSample, int count) const override;
+    FilmSample sample(const RenderState& state, const render::RenderScene& scene, const render::Camera& camera,
+                      const render::Ray& ray, SampleStream& rng, RenderCounters& counters) const override;
 
     // The radius of the sample of (0-based) index sampleIndex, r_k with k = sampleIndex + 1, for a
     // kernel of `dimensions` 2 (surfaces: r_k^2 shrinks) or 3 (media: r_k^3 shrinks).
@@ -129,15 +131,6 @@ public:
 private:
     int maxDepth_;
     SppmSettings settings_;
-    // Written by the hooks only (integrators/integrator.h).
-    mutable float initialRadius_ = 0.0f;
-    mutable int firstSample_ = 0;
-    struct SampleMaps {
-        PhotonMap surface, volume;
-    };
-    mutable std::vector<SampleMaps> maps_;  // sample indices [firstSample_, firstSample_ + size)
-    mutable std::uint64_t mapsBuilt_ = 0, photonsStored_ = 0, volumePhotonsStored_ = 0, photonRays_ = 0, mostBytes_ = 0;
-    mutable std::size_t silentLights_ = 0;  // lights without emission sampling
 };
 
 }  // namespace fluence::integrators

@@ -4,8 +4,8 @@
 
 namespace fluence::integrators {
 
-FilmSample Whitted::sample(const render::RenderScene& scene, const render::Camera& camera, const render::Ray& ray,
-                           SampleStream& rng, RenderCounters& counters) const {
+FilmSample Whitted::sample(const RenderState&, const render::RenderScene& scene, const render::Camera& camera,
+                           const render::Ray& ray, SampleStream& rng, RenderCounters& counters) const {
     return directLightingThroughDeltaLobes(scene, camera, ray, rng, counters, maxDepth_);
 }
 

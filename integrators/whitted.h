@@ -11,7 +11,7 @@
 // MIS) and ends there; a glossy surface is an endpoint like a diffuse one. A material with both
 // kinds of lobe (a smooth clear coat over a diffuse base) takes direct lighting through its
 // non-delta lobes and continues when its sample falls in the delta lobe. Paths end at maxDepth
-// scattering events, with Russian roulette after three (first_hit.h), as in `path`; with
+// scattering events, with Russian roulette after three (integrators/russian_roulette.h), as in `path`; with
 // maxDepth 1 it is `direct`.
 //
 // WHAT IT MISSES. Light that reaches a diffuse or glossy surface other than straight from an
@@ -29,8 +29,8 @@ class Whitted final : public Integrator {
 public:
     explicit Whitted(const IntegratorSettings& settings) : maxDepth_(settings.maxDepth) {}
 
-    FilmSample sample(const render::RenderScene& scene, const render::Camera& camera, const render::Ray& ray,
-                      SampleStream& rng, RenderCounters& counters) const override;
+    FilmSample sample(const RenderState& state, const render::RenderScene& scene, const render::Camera& camera,
+                      const render::Ray& ray, SampleStream& rng, RenderCounters& counters) const override;
 
 private:
     int maxDepth_;

@@ -452,12 +452,13 @@ render::SceneDescription causticOnAFloor(float radius) {
 class WithoutLightTracing final : public Integrator {
 public:
     explicit WithoutLightTracing(const Integrator& bdpt) : bdpt_(bdpt) {}
-    void prepare(const render::RenderScene& scene, const render::Camera& camera, std::uint64_t seed) const override {
-        bdpt_.prepare(scene, camera, seed);
+    std::unique_ptr<RenderState> prepare(const render::RenderScene& scene, const render::Camera& camera, std::uint64_t seed,
+                                         SplatFilm*) const override {
+        return bdpt_.prepare(scene, camera, seed, nullptr);
     }
-    FilmSample sample(const render::RenderScene& scene, const render::Camera& camera, const render::Ray& ray, SampleStream& rng,
-                      RenderCounters& counters) const override {
-        return bdpt_.sample(scene, camera, ray, rng, counters);
+    FilmSample sample(const RenderState& state, const render::RenderScene& scene, const render::Camera& camera,
+                      const render::Ray& ray, SampleStream& rng, RenderCounters& counters) const override {
+        return bdpt_.sample(state, scene, camera, ray, rng, counters);
     }
 
 private:
@@ -514,38 +515,31 @@ TEST(BdptLightTracing, TilesAndOrthographicCamerasLeaveItOutAndSaySo) {
     settings.samplesPerPixel = 1;
     const render::Camera camera(*desc.camera, 16, 16);
     Film whole(16, 16, camera.farClip());
-    render(scene, camera, bdpt, settings, whole);
+    EXPECT_EQ(render(scene, camera, bdpt, settings, whole).methodSummary, "");
     EXPECT_NE(whole.splats(), nullptr);
-    EXPECT_EQ(bdpt.summary(), "");
     Film tile(8, 16, camera.farClip());
     settings.windowX = 8;
     settings.imageWidth = 16;
-    render(scene, camera, bdpt, settings, tile);
+    const std::string tileSummary = render(scene, camera, bdpt, settings, tile).methodSummary;
     EXPECT_EQ(tile.splats(), nullptr);
-    EXPECT_NE(bdpt.summary().find("tile"), std::string::npos) << bdpt.summary();
+    EXPECT_NE(tileSummary.find("tile"), std::string::npos) << tileSummary;
     render::CameraDesc orthographic = *desc.camera;
     orthographic.projection = render::Projection::Orthographic;
     const render::Camera flat(orthographic, 16, 16);
     Film film(16, 16, flat.farClip());
     settings.windowX = settings.imageWidth = 0;
-    render(scene, flat, bdpt, settings, film);
-    EXPECT_NE(bdpt.summary().find("orthographic"), std::string::npos) << bdpt.summary();
+    const std::string flatSummary = render(scene, flat, bdpt, settings, film).methodSummary;
+    EXPECT_NE(flatSummary.find("orthographic"), std::string::npos) << flatSummary;
 }
 
 // ---- Media.
 
-// bdpt, prepared for `scene` (radianceAlong calls sample() alone).
-Bdpt preparedBdpt(const render::RenderScene& scene) {
-    Bdpt bdpt{IntegratorSettings{}};
-    bdpt.prepare(scene, render::Camera(render::CameraDesc{}, 8, 8), 0);
-    return bdpt;
-}
 
 // Per channel, bdpt's and `path`'s means along a ray agree within their combined standard error
 // (two-sided, Sidak over the three channels at the suite's level).
 void expectAgreementAlong(const render::SceneDescription& desc, const render::Ray& ray, int n) {
     const render::RenderScene scene(desc);
-    const std::array<test::MeanEstimate, 3> bdpt = test_support::radianceAlong(preparedBdpt(scene), scene, ray, n, 3);
+    const std::array<test::MeanEstimate, 3> bdpt = test_support::radianceAlong(Bdpt{IntegratorSettings{}}, scene, ray, n, 3);
     const std::array<test::MeanEstimate, 3> path = test_support::radianceAlong(PathTracer(IntegratorSettings{}), scene, ray, n, 3);
     const double zLimit = test::normalQuantile(0.5 * test::sidakAlpha(3));
     for (int c = 0; c < 3; ++c) {
@@ -686,7 +680,7 @@ TEST(BdptMedia, MatchesBeerLambertThroughAbsorbingGlass) {
     desc.meshes[0] = test::boxMesh(Vec3f(side / 2.0f), 0);
     const render::RenderScene scene(desc);
     const std::array<test::MeanEstimate, 3> e =
-        test_support::radianceAlong(preparedBdpt(scene), scene, render::Ray{{0.1f, -5.0f, 0.2f}, {0.0f, 1.0f, 0.0f}}, 400000, 5);
+        test_support::radianceAlong(Bdpt{IntegratorSettings{}}, scene, render::Ray{{0.1f, -5.0f, 0.2f}, {0.0f, 1.0f, 0.0f}}, 400000, 5);
     for (int c = 0; c < 3; ++c) {
         const double expected = test_support::glassSlabSeenHeadOn(F, std::exp(-sigmaA[c] * side));
         std::printf("[ measured ] channel %d: %.5f +- %.5f (expected %.5f)\n", c, e[c].mean(), e[c].standardError(), expected);
@@ -710,7 +704,7 @@ TEST(BdptMedia, RendersAChromaticAlbedoOneVolumeUnderAWhiteSkyAsOne) {
     desc.camera = test::lookAtOriginCamera(4.0f);
     const render::RenderScene scene(desc);
     const std::array<test::MeanEstimate, 3> e =
-        test_support::radianceAlong(preparedBdpt(scene), scene, render::Ray{{0.05f, -4.0f, 0.1f}, {0.0f, 1.0f, 0.0f}}, 200000, 9);
+        test_support::radianceAlong(Bdpt{IntegratorSettings{}}, scene, render::Ray{{0.05f, -4.0f, 0.1f}, {0.0f, 1.0f, 0.0f}}, 200000, 9);
     for (int c = 0; c < 3; ++c) {
         std::printf("[ measured ] channel %d: %.5f +- %.5f\n", c, e[c].mean(), e[c].standardError());
         EXPECT_NEAR(e[c].mean(), 1.0, 4.5 * e[c].standardError() + 1e-5) << "channel " << c;

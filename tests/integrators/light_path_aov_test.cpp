@@ -176,14 +176,14 @@ TEST(LightPathAovs, DiffuseAndGlossyLayersMatchAPlainLightSamplingEstimate) {
     const render::Ray ray{eye, normalize(-eye), 0.0f, 1e30f};
     const Layers layers = {{"diffuse", "C<RD>L"}, {"glossy", "C<RG>L"}};
     const PathTracer integrator(withLayers(layers));
-    integrator.prepare(scene, render::Camera(render::CameraDesc{}, 8, 8), 0);
     const render::Camera camera(render::CameraDesc{}, 8, 8);
+    const std::unique_ptr<RenderState> state = integrator.prepare(scene, camera, 0, nullptr);
     constexpr int kSamples = 200'000;
     std::array<std::array<test::MeanEstimate, 3>, 2> tracer;
     RenderCounters counters;
     for (int i = 0; i < kSamples; ++i) {
         SampleStream rng(7, 0, std::uint64_t(i));
-        const FilmSample fs = integrator.sample(scene, camera, ray, rng, counters);
+        const FilmSample fs = integrator.sample(*state, scene, camera, ray, rng, counters);
         for (int l = 0; l < 2; ++l)
             for (int c = 0; c < 3; ++c) tracer[l][c].add(fs.lightPath(std::size_t(l))[c]);
     }

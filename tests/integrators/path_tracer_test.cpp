@@ -93,8 +93,8 @@ TEST(PathTracer, WithoutMediaTheSurfaceOnlyTracerGivesTheSameSamples) {
     for (int i = 0; i < 32 * 32 * 4; ++i) {
         const render::Ray ray = camera.generateRay(float(i % 32) + 0.5f, float((i / 32) % 32) + 0.5f);
         SampleStream rngA(5, std::uint64_t(i), 0), rngB(5, std::uint64_t(i), 0);
-        const RGB withMedia = tracer.trace<true>(scene, camera, ray, rngA, a).radiance;
-        const RGB without = tracer.trace<false>(scene, camera, ray, rngB, b).radiance;
+        const RGB withMedia = tracer.trace<true>(LightEvents(), scene, camera, ray, rngA, a).radiance;
+        const RGB without = tracer.trace<false>(LightEvents(), scene, camera, ray, rngB, b).radiance;
         ASSERT_EQ(0, std::memcmp(&withMedia, &without, sizeof(RGB))) << "sample " << i;
     }
     EXPECT_EQ(a.rays(), b.rays());
@@ -123,8 +123,8 @@ TEST(Renderer, DiscardsAndCountsNonFiniteSamples) {
     // sum (the NaN ones count as zero) and the render reports how many were discarded.
     class EveryThirdNaN final : public Integrator {
     public:
-        FilmSample sample(const render::RenderScene&, const render::Camera&, const render::Ray&, SampleStream& rng,
-                          RenderCounters&) const override {
+        FilmSample sample(const RenderState&, const render::RenderScene&, const render::Camera&, const render::Ray&,
+                          SampleStream& rng, RenderCounters&) const override {
             FilmSample s;
             s.radiance = RGB(rng.next() < 0.0f ? 0.0f : 1.0f);
             if (++calls_ % 3 == 0) s.radiance.y = std::numeric_limits<float>::quiet_NaN();

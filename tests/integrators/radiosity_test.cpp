@@ -30,21 +30,22 @@ TEST(Radiosity, ClosedEmissiveBoxIsSolvedExactly) {
     settings.tolerance = 1e-6f;
     Radiosity radiosity(settings);
     test_support::Rendered image = test_support::renderWith(radiosity, desc, 16, 1);
+    const std::unique_ptr<RadiositySolution> solution = radiosity.solve(render::RenderScene(desc), 0);  // the render's (seed 0)
 
-    EXPECT_LE(radiosity.residual(), settings.tolerance);
+    EXPECT_LE(solution->residual, settings.tolerance);
     // The error bound from the residual: rows of F sum to at most 1, so the largest error is at most
     // the largest residual / (1 - a); the residual reported is an area-weighted L1 norm relative to
     // the source's (sum over elements of area x E), so the largest residual is at most
     // residual x source / smallest area.
     double source = 0.0, smallest = 1e30;
-    for (const Patch& p : radiosity.patches()) {
+    for (const Patch& p : solution->patches) {
         source += 2.0 * p.area * kEmission;
         smallest = std::min(smallest, double(p.area));
     }
-    const double bound = radiosity.residual() * source / (smallest * (1.0 - kAlbedo)) + 1e-5;
+    const double bound = solution->residual * source / (smallest * (1.0 - kAlbedo)) + 1e-5;
     const double exact = kEmission / (1.0 - kAlbedo);
-    for (std::size_t p = 0; p < radiosity.patches().size(); ++p)
-        ASSERT_NEAR(radiosity.radiance()[2 * p + 1].x, exact, bound) << "patch " << p;  // side 1: the inside
+    for (std::size_t p = 0; p < solution->patches.size(); ++p)
+        ASSERT_NEAR(solution->radiance[2 * p + 1].x, exact, bound) << "patch " << p;  // side 1: the inside
     for (int y = 0; y < image.image.height; ++y)
         for (int x = 0; x < image.image.width; ++x) ASSERT_NEAR(image.image.pixel(x, y)[0], exact, bound);
 }
@@ -66,13 +67,13 @@ TEST(Radiosity, DeltaLightIsGatheredExactly) {
     desc.camera = test::lookAtOriginCamera(4.0f);
     render::RenderScene scene(desc);
     Radiosity radiosity(RadiositySettings{.patchEdge = 0.5f});
-    radiosity.prepare(scene, render::Camera(*desc.camera, 8, 8), 0);
+    const std::unique_ptr<RadiositySolution> solution = radiosity.solve(scene, 0);
 
     const double exact = kAlbedo * kIrradiance * std::cos(kTiltDegrees * kPi / 180.0f) / kPi;
-    ASSERT_FALSE(radiosity.patches().empty());
-    for (std::size_t p = 0; p < radiosity.patches().size(); ++p) {
-        ASSERT_NEAR(radiosity.radiance()[2 * p].y, exact, 1e-5 * exact) << "patch " << p;
-        ASSERT_EQ(radiosity.radiance()[2 * p + 1].y, 0.0f) << "patch " << p;
+    ASSERT_FALSE(solution->patches.empty());
+    for (std::size_t p = 0; p < solution->patches.size(); ++p) {
+        ASSERT_NEAR(solution->radiance[2 * p].y, exact, 1e-5 * exact) << "patch " << p;
+        ASSERT_EQ(solution->radiance[2 * p + 1].y, 0.0f) << "patch " << p;
     }
 }
 
@@ -124,8 +125,8 @@ TEST(Radiosity, ApproachesPathTracerAsMeshIsRefined) {
             settings.patchEdge = edges[level];
             Radiosity radiosity(settings);
             const test_support::Rendered image = test_support::renderWith(radiosity, room, kSize, 1, 0, seed);
-            EXPECT_LE(radiosity.residual(), settings.tolerance) << radiosity.summary();
-            if (seed == 0) std::printf("edge %.2f: %s\n", edges[level], radiosity.summary().c_str());
+            EXPECT_LE(radiosity.solve(render::RenderScene(room), seed)->residual, settings.tolerance) << image.stats.methodSummary;
+            if (seed == 0) std::printf("edge %.2f: %s\n", edges[level], image.stats.methodSummary.c_str());
             for (int c = 0; c < 3; ++c) means[c].add(test_support::channelMean(image.image, c, everyPixel).mean());
         }
         for (int c = 0; c < 3; ++c) {

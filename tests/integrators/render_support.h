@@ -48,15 +48,16 @@ inline Rendered renderWith(const Integrator& integrator, const render::SceneDesc
 }
 
 // Per channel, the mean radiance of n samples of `integrator` along `ray`, sample i drawing from the
-// stream (seed, 0, i).
+// stream (seed, 0, i), prepared for the scene without a splat film (so bdpt leaves light tracing out).
 inline std::array<test::MeanEstimate, 3> radianceAlong(const Integrator& integrator, const render::RenderScene& scene,
                                                        const render::Ray& ray, int n, std::uint64_t seed) {
     const render::Camera camera(render::CameraDesc{}, 8, 8);  // for the first-hit AOVs only
+    const std::unique_ptr<RenderState> state = integrator.prepare(scene, camera, seed, nullptr);
     RenderCounters counters;
     std::array<test::MeanEstimate, 3> e;
     for (int i = 0; i < n; ++i) {
         SampleStream rng(seed, 0, std::uint64_t(i));
-        const RGB L = integrator.sample(scene, camera, ray, rng, counters).radiance;
+        const RGB L = integrator.sample(*state, scene, camera, ray, rng, counters).radiance;
         for (int c = 0; c < 3; ++c) e[c].add(L[c]);
     }
     return e;

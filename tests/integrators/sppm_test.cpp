@@ -23,6 +23,7 @@
 
 #include "integrators/bdpt.h"
 #include "integrators/path_tracer.h"
+#include "integrators/photon_map.h"
 #include "media/subsurface_medium.h"
 #include "tests/integrators/render_support.h"
 #include "tests/support/scenes.h"
@@ -277,14 +278,14 @@ double sppmSampleMean(const render::SceneDescription& desc, const SppmSettings& 
     const Sppm sppm(IntegratorSettings{}, settings);
     const render::RenderScene scene(desc);
     const render::Camera camera(*desc.camera, size, size);
-    sppm.prepare(scene, camera, seed);
-    sppm.beginSamples(scene, camera, seed, int(sampleIndex), 1);
+    const std::unique_ptr<RenderState> state = sppm.prepare(scene, camera, seed, nullptr);
+    sppm.beginSamples(*state, scene, camera, seed, int(sampleIndex), 1);
     RenderCounters counters;
     double sum = 0.0;
     for (int y = 0; y < size; ++y)
         for (int x = 0; x < size; ++x) {
             SampleStream rng(seed, std::uint64_t(y) * size + x, sampleIndex);
-            sum += sppm.sample(scene, camera, camera.generateRay(float(x) + 0.5f, float(y) + 0.5f), rng, counters).radiance.x;
+            sum += sppm.sample(*state, scene, camera, camera.generateRay(float(x) + 0.5f, float(y) + 0.5f), rng, counters).radiance.x;
         }
     return sum / (size * size);
 }
@@ -455,7 +456,7 @@ TEST(SppmMedia, SampleSmokeRendersWithoutNonFiniteValues) {
         return p[alpha] > 0.0f;
     });
     std::printf("smoke: %d pixels covered, red %.4f +- %.4f; %s\n", covered.count(), covered.mean(), covered.standardError(),
-                sppm.summary().c_str());
+                r.stats.methodSummary.c_str());
     EXPECT_GT(covered.mean(), 4 * covered.standardError());
 }
 

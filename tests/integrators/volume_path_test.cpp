@@ -58,11 +58,12 @@ render::SceneDescription smokeUnderAWhiteSky(const std::string& file, float dens
 test::MeanEstimate radianceAlong(const render::RenderScene& scene, const render::Ray& ray, int n,
                                  const Integrator& tracer = PathTracer(IntegratorSettings{}), bool alpha = false) {
     render::Camera camera(render::CameraDesc{}, 8, 8);
+    const std::unique_ptr<RenderState> state = tracer.prepare(scene, camera, 11, nullptr);
     RenderCounters counters;
     test::MeanEstimate e;
     for (int i = 0; i < n; ++i) {
         SampleStream rng(11, 0, std::uint64_t(i));
-        FilmSample s = tracer.sample(scene, camera, ray, rng, counters);
+        FilmSample s = tracer.sample(*state, scene, camera, ray, rng, counters);
         e.add(alpha ? (s.hit ? 1.0f : 0.0f) : (s.radiance.x + s.radiance.y + s.radiance.z) / 3.0f);
     }
     return e;

@@ -1,7 +1,9 @@
-// What the surface integrators share (integrators/first_hit.h): the shading frame of a hit (its
-// tangent, and which BSDFs see it flipped), the check that a direction leaves on the side its
-// shading direction says, where rays leaving a hit start, and Russian roulette inside glass.
-#include "integrators/first_hit.h"
+// What the surface integrators share (integrators/surface_frame.h, integrators/russian_roulette.h):
+// the shading frame of a hit (its tangent, and which BSDFs see it flipped), the check that a
+// direction leaves on the side its shading direction says, where rays leaving a hit start, Veach's
+// adjoint shading-normal correction, and Russian roulette inside glass.
+#include "integrators/russian_roulette.h"
+#include "integrators/surface_frame.h"
 
 #include <gtest/gtest.h>
 
@@ -68,6 +70,16 @@ TEST(ShadingFrame, RaysStartOnTheSideTheyLeaveBy) {
     EXPECT_GT(spawnOrigin(p, ng, Vec3f(0.0f, 0.6f, 0.8f)).z, p.z);
     EXPECT_LT(spawnOrigin(p, ng, Vec3f(0.0f, 0.6f, -0.8f)).z, p.z);
     EXPECT_LT(spawnOrigin(p, -ng, Vec3f(0.0f, 0.6f, -0.8f)).z, p.z) << "whichever way the normal points";
+}
+
+// Veach's correction is |wo.ns| |wi.ng| / |wo.ng|: |wi.n| where the shading normal is the geometric
+// one (no correction), and, with a tilted shading normal, the ratio of the cosines it changes.
+TEST(ShadingFrame, AdjointCosineIsVeachsCorrection) {
+    const Vec3f ng(0.0f, 0.0f, 1.0f), ns = normalize(Vec3f(0.3f, 0.0f, 1.0f));
+    const Vec3f wo = normalize(Vec3f(0.5f, 0.2f, 0.8f)), wi = normalize(Vec3f(-0.4f, 0.1f, 0.6f));
+    EXPECT_FLOAT_EQ(adjointShadingCosine(wo, wi, ng, ng), wi.z);
+    EXPECT_FLOAT_EQ(adjointShadingCosine(wo, wi, ns, ng), dot(wo, ns) * wi.z / wo.z);
+    EXPECT_EQ(adjointShadingCosine(Vec3f(1.0f, 0.0f, 0.0f), wi, ns, ng), 0.0f) << "wo grazing the geometric surface";
 }
 
 TEST(RussianRoulette, RadianceScaledByRefractionIsNoReasonToEndAPath) {

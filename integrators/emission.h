@@ -1,0 +1,37 @@
+// Light a ray reaches, as every integrator finds it: the emission of the surface or light shape it
+// hits, the lights at infinity (dome, distant) it meets when it leaves the scene, and the density
+// with which next-event estimation would have sampled that light instead (for the MIS weight of
+// emission reached by BSDF sampling).
+#pragma once
+
+#include "core/rgb.h"
+#include "core/vec.h"
+#include "render/render_scene.h"
+
+namespace fluence::integrators {
+
+// The radiance towards wo of what `hit` emits: its light's shape, or an emissive surface (the
+// hit's own emission, black on a surface that does not emit). Meaningful where hit.light >= 0 or
+// hit.lightShape.
+inline RGB emittedAtHit(const render::RenderScene& scene, const render::SurfaceHit& hit, const Vec3f& wo) {
+    return hit.lightShape ? scene.light(hit.light).emitted({hit.point, hit.geometricNormal}, wo) : hit.emission;
+}
+
+// Calls reached(index, le) for every light at infinity that sends radiance le (not black) along
+// -direction to a ray that left the scene along `direction`, in the scene's order.
+template <class Reached>
+void forEachLightAtInfinity(const render::RenderScene& scene, const Vec3f& direction, Reached&& reached) {
+    for (int index : scene.lightsAtInfinity()) {
+        const RGB le = scene.light(index).escaped(direction);
+        if (!isBlack(le)) reached(index, le);
+    }
+}
+
+// The density with which next-event estimation from `from` (with `fromNormal` for the light tree)
+// would pick light `index` and sample direction wi towards `hit` on it.
+inline float lightStrategyPdf(const render::RenderScene& scene, int index, const Vec3f& from, const Vec3f& fromNormal,
+                              const Vec3f& wi, const render::LightHit& hit) {
+    return scene.lightProbability(from, fromNormal, index) * scene.light(index).pdf(from, wi, hit);
+}
+
+}  // namespace fluence::integrators

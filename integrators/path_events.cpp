@@ -1,0 +1,30 @@
+#include "integrators/path_events.h"
+
+#include "core/name_table.h"
+#include "render/area_lights.h"
+
+namespace fluence::integrators {
+
+LightEvents::LightEvents(const render::RenderScene& scene) {
+    for (std::size_t i = 0; i < scene.lightCount(); ++i) labels_.push_back(primName(scene.light(i).name()));
+    for (std::size_t i = 0; i < scene.lightCount(); ++i) {
+        const bool surface = dynamic_cast<const render::TriangleLight*>(&scene.light(i)) != nullptr;
+        events_.push_back(PathEvent{surface ? EventType::Object : EventType::Light, Scattering::None, labels_[i]});
+    }
+}
+
+PathEvent volumeEvent(bool subsurface) {
+    return PathEvent{EventType::Volume, Scattering::Diffuse, subsurface ? "subsurface" : ""};
+}
+
+VertexEvents joinedEvents(const render::Bsdf& bsdf, const Vec3f& woLocal, const Vec3f& wiLocal) {
+    return VertexEvents(woLocal.z * wiLocal.z < 0.0f, bsdf.fByKind(woLocal, wiLocal));
+}
+
+VertexEvents sampledEvents(const render::Bsdf& bsdf, const Vec3f& woLocal, const render::BsdfSample& bs) {
+    if (!bs.specular) return joinedEvents(bsdf, woLocal, bs.wi);
+    const bool transmitted = woLocal.z * bs.wi.z < 0.0f;
+    return VertexEvents(PathEvent{transmitted ? EventType::Transmission : EventType::Reflection, Scattering::Singular});
+}
+
+}  // namespace fluence::integrators
