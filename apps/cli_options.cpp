@@ -142,6 +142,8 @@ InfoOptions parseInfoOptions(const std::vector<std::string>& args) {
             o.variants.push_back(parseVariantSelection(cur.value(arg)));
         } else if (arg == "-s" || arg == "--settings") {
             o.settings = cur.value(arg);
+        } else if (arg == "--strict") {
+            o.strict = true;
         } else {
             takeScene(arg, o.scene);
         }
@@ -308,7 +310,7 @@ std::string usageText() {
         integratorList += "                        " + i.name + "  " + i.pathClasses + "  " + i.description + "\n";
     return "usage: fluence render SCENE.usda [options]\n"
            "       fluence info SCENE.usda [--variant /Prim:set=sel]... [-s /Render/Settings]\n"
-           "                               [--load /Prim]... [--unload /Prim]... [--no-payloads]\n"
+           "                               [--load /Prim]... [--unload /Prim]... [--no-payloads] [--strict]\n"
            "       fluence cat LAYER [-o OUT.usda] [--flatten [--variant /Prim:set=sel]... [--load /Prim]...\n"
            "                         [--unload /Prim]... [--no-payloads]]\n"
            "                               the layer as USDA text (stdout without -o); --flatten: the composed\n"
@@ -326,7 +328,8 @@ std::string usageText() {
            "`render` renders a USD scene to a multi-channel OpenEXR image (beauty RGBA in linear Rec.709,\n"
            "plus albedo, N, Z and sampleCount AOVs). `info` prints the composed prim tree, the cameras,\n"
            "lights, materials, volumes and render settings, the classes of light paths the scene can\n"
-           "produce and those each integrator misses, and every asset path with whether it resolves.\n"
+           "produce and those each integrator misses, every asset path with whether it resolves, and the\n"
+           "malformed prims a render leaves out (with --strict, `info` exits 3 when there is one).\n"
            "\n"
            "options:\n"
            "  -o, --output FILE.exr   output image (default: the render product's productName, else SCENE's\n"
@@ -356,6 +359,9 @@ std::string usageText() {
            "      --strict            a malformed prim (face counts that do not match the indices, a GeomSubset\n"
            "                          index out of range, ...) is an error (exit 3); without it the prim is\n"
            "                          skipped with a warning naming it and the reason, and the rest rendered\n"
+           "                          (in an instance's prototype, only that prim); a visibility or purpose\n"
+           "                          that is not a token is read as not authored, as USD reads it, with a\n"
+           "                          warning (an error with --strict)\n"
            "      --no-default-light  render a scene in which nothing emits (no light, emissive surface or\n"
            "                          volume) black; by default it is lit, with a warning, by a distant light\n"
            "                          along the camera's view and a dim dome, as usdview does (also\n"

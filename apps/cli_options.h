@@ -75,6 +75,7 @@ struct InfoOptions {
     std::vector<usd::VariantSelection> variants;
     std::string settings;
     usd::LoadRules loadRules;
+    bool strict = false;  // --strict: exit 3 when a prim is malformed (what `render --strict` refuses)
 };
 
 inline constexpr int kDefaultSpp = 64;

@@ -48,12 +48,27 @@ void printTree(const usd::PrimSpec& prim, int depth) {
     for (const auto& child : prim.children) printTree(*child, depth + 1);
 }
 
+// What `describe` says of a prim, or, when reading it raises SceneError, that it is malformed.
+std::string describedOrMalformed(const std::function<std::string()>& describe) {
+    try {
+        return describe();
+    } catch (const delegate::SceneError&) {
+        return "  (malformed: see 'malformed prims')";
+    }
+}
+
 void section(const char* title, std::size_t count) { std::printf("\n%s (%zu)\n", title, count); }
 
 // The scene as `fluence render` would describe it to the render core, but for the subdivision
-// surfaces' tessellation (nullopt, with a warning, when it cannot be).
-std::optional<render::SceneDescription> describeScene(usd::Stage& stage, const InfoOptions& opt, double time,
-                                                      WarningLog& warnings) {
+// surfaces' tessellation (nullopt, with a warning, when it cannot be), and the malformed prims
+// the render leaves out.
+struct DescribedScene {
+    std::optional<render::SceneDescription> scene;
+    std::vector<delegate::MalformedPrim> malformed;
+};
+
+DescribedScene describeScene(usd::Stage& stage, const InfoOptions& opt, double time, WarningLog& warnings) {
+    DescribedScene described;
     try {
         const color::ColorManagement colors = color::ColorManagement::load();
         delegate::DelegateOptions dopt;
@@ -64,13 +79,16 @@ std::optional<render::SceneDescription> describeScene(usd::Stage& stage, const I
         dopt.dicing.uniformLevel = 0;
         dopt.convertColor = [&](const RGB& c, const std::string& space) { return colors.toRenderingSpace(space, c); };
         dopt.warn = [&](const std::string& path, const std::string& message) { warnings(path, message); };
-        return delegate::populateScene(stage, dopt).scene;
+        delegate::SceneDelegate delegate(stage, dopt);
+        delegate.sync();
+        described.malformed = delegate.malformedPrims();
+        described.scene = delegate.sceneDescription();
     } catch (const delegate::SceneError& e) {
         warnings("path classes", e.what());
     } catch (const color::ColorError& e) {
         warnings("path classes", e.what());
     }
-    return std::nullopt;
+    return described;
 }
 
 // The classes of light paths the scene can produce, and which of them each integrator misses.
@@ -125,15 +143,19 @@ int runInfo(const InfoOptions& opt) {
                                  (first ? " (read from here)" : ""));
         }
         if (p.typeName == "PointInstancer") {
-            delegate::PointInstances points =
-                delegate::pointInstancesFromPrim(r, [&](const std::string& message) { warnings(p.path, message); });
-            instancing.push_back(p.path + "  PointInstancer: " + std::to_string(points.instances.size()) + " instances of " +
-                                 std::to_string(points.prototypes.size()) + " prototypes");
+            instancing.push_back(p.path + describedOrMalformed([&] {
+                                     delegate::PointInstances points = delegate::pointInstancesFromPrim(
+                                         r, [&](const std::string& message) { warnings(p.path, message); });
+                                     return "  PointInstancer: " + std::to_string(points.instances.size()) + " instances of " +
+                                            std::to_string(points.prototypes.size()) + " prototypes";
+                                 }));
         }
         if (p.typeName == "Camera") {
-            cameras.push_back(p.path + "  focalLength " + std::to_string(r.number({"focalLength"}, 50.0)) + ", aperture " +
-                              std::to_string(r.number({"horizontalAperture"}, 20.955)) + " x " +
-                              std::to_string(r.number({"verticalAperture"}, 15.2908)));
+            cameras.push_back(p.path + describedOrMalformed([&] {
+                                  return "  focalLength " + std::to_string(r.number({"focalLength"}, 50.0)) + ", aperture " +
+                                         std::to_string(r.number({"horizontalAperture"}, 20.955)) + " x " +
+                                         std::to_string(r.number({"verticalAperture"}, 15.2908));
+                              }));
         } else if (p.typeName.ends_with("Light")) {
             lights.push_back(p.path + "  " + p.typeName + (delegate::isLightType(p.typeName) ? "" : "  (not supported yet)"));
         } else if (p.typeName == "Material") {
@@ -181,7 +203,10 @@ int runInfo(const InfoOptions& opt) {
         warnings("render settings", e.what());
     }
 
-    if (auto scene = describeScene(*stage, opt, time, warnings)) printPathClasses(*scene);
+    const DescribedScene described = describeScene(*stage, opt, time, warnings);
+    if (described.scene) printPathClasses(*described.scene);
+    section("malformed prims", described.malformed.size());
+    for (const delegate::MalformedPrim& m : described.malformed) std::printf("  %s  %s\n", m.path.c_str(), m.reason.c_str());
 
     std::vector<usd::AssetReference> assets = stage->assetReferences();
     std::size_t missing = 0;
@@ -191,6 +216,11 @@ int runInfo(const InfoOptions& opt) {
         std::printf("  %-8s %s  (%s%s%s)\n", a.exists ? "ok" : "MISSING", a.resolved.c_str(), a.primPath.c_str(),
                     a.property.empty() ? "" : ".", a.property.c_str());
     std::printf("\n%zu warnings\n", warnings.count());
+    if (opt.strict && !described.malformed.empty()) {
+        printError(std::to_string(described.malformed.size()) + " malformed prim" + (described.malformed.size() == 1 ? "" : "s") +
+                   " (listed above under 'malformed prims'), which `fluence render --strict` refuses");
+        return kExitScene;
+    }
     return kExitOk;
 }
 

@@ -32,6 +32,14 @@ bool isFieldFile(const usd::Stage& stage, const usd::AssetReference& a) {
     return prim && delegate::isFieldAssetType(prim->typeName);
 }
 
+// What is wrong with an asset file the stage cannot use: an entry of a USDZ package that is there
+// but cannot be read (compressed, encrypted) says so, naming the package and the entry; any other
+// is `missing` followed by the file.
+std::string assetProblem(const std::string& file, const std::string& missing) {
+    if (usd::splitPackagePath(file) && usd::packagedEntryExists(file)) return usd::packagedEntryProblem(file);
+    return missing + file;
+}
+
 // Missing assets (textures, VDBs) are named, once per file with the number of references to it;
 // arcs and clips that could not be followed were warned by composition (once per layer, with the
 // number of prims naming it), and are errors too when missing assets are. An arc to a layer in a
@@ -68,10 +76,10 @@ int checkAssets(const usd::Stage& stage, WarningLog& warnings, MissingAssets mis
                 ++unsupportedCount;
             }
         } else if (missing == MissingAssets::Fail && use.rendered) {
-            printError(where + ": missing asset " + file + " (authored as @" + a.authored + "@)" + others);
+            printError(where + ": " + assetProblem(file, "missing asset ") + " (authored as @" + a.authored + "@)" + others);
             ++missingCount;
         } else if (!use.arc) {
-            warnings(where, "asset not found: " + file + " (authored as @" + a.authored + "@)" + others);
+            warnings(where, assetProblem(file, "asset not found: ") + " (authored as @" + a.authored + "@)" + others);
         }
     }
     if (missingCount > 0) {

@@ -26,10 +26,29 @@ bool IncludedPurposes::includes(const std::string& purpose) const {
     return true;  // "default", and values USD does not define, render
 }
 
-bool isImaged(const usd::PrimSpec& prim, double time, const IncludedPurposes& purposes) {
+namespace {
+
+// A UsdGeomImageable token attribute. A value of another type is no opinion, as
+// UsdAttribute::Get<TfToken> reads it; `ignored` is told.
+std::string imageableToken(const PrimReader& reader, const char* name, const std::string& fallback,
+                           const std::function<void(const SceneError&)>& ignored) {
+    std::optional<usd::Value> v = reader.value(name);
+    if (!v) return fallback;
+    if (v->typeName != "token" || v->isArray || v->strings.size() != 1) {
+        ignored(SceneError(reader.prim().location.str() + ": " + reader.path() + ": '" + name + "' must be a token, got " +
+                           (v->typeName.empty() ? "" : v->typeName + " ") + v->toString()));
+        return fallback;
+    }
+    return v->strings[0];
+}
+
+}  // namespace
+
+bool isImaged(const usd::PrimSpec& prim, double time, const IncludedPurposes& purposes,
+              const std::function<void(const SceneError&)>& ignored) {
     PrimReader reader(prim, time);
-    if (reader.token({"visibility"}, "inherited") == "invisible") return false;
-    return purposes.includes(reader.token({"purpose"}, "default"));
+    if (imageableToken(reader, "visibility", "inherited", ignored) == "invisible") return false;
+    return purposes.includes(imageableToken(reader, "purpose", "default", ignored));
 }
 
 bool isGeometryType(const std::string& typeName) { return typeName == "Mesh" || isImplicitType(typeName); }

@@ -1,9 +1,11 @@
 // UsdGeomImageable rules the delegate applies everywhere: what is rendered, and what is geometry.
 #pragma once
 
+#include <functional>
 #include <string>
 #include <vector>
 
+#include "delegate/prim_reader.h"
 #include "scene/layer.h"
 
 namespace fluence::delegate {
@@ -21,8 +23,14 @@ struct IncludedPurposes {
 
 // Whether a prim's subtree is rendered at all: `visibility = "invisible"` prunes it, and so does
 // a purpose the render does not include. Pruning the subtree is USD's purpose inheritance: a
-// descendant of a guide prim is a guide whatever its own purpose.
-bool isImaged(const usd::PrimSpec& prim, double time, const IncludedPurposes& purposes);
+// descendant of a guide prim is a guide whatever its own purpose. A visibility or purpose that
+// is not a token (`int visibility = 3`, `string purpose = "guide"`) counts as not authored, as
+// OpenUSD reads it (UsdGeomImageable::ComputeVisibility); `ignored` is given the SceneError
+// naming the prim and the value.
+bool isImaged(const usd::PrimSpec& prim, double time, const IncludedPurposes& purposes,
+              const std::function<void(const SceneError&)>& ignored);
+// What is done with such a value (the consequence a warning about it names).
+inline constexpr const char* kReadAsNotAuthored = "read as not authored, as USD reads it";
 
 // A Mesh or an implicit surface (Sphere, Cube, Cylinder, Cone, Capsule).
 bool isGeometryType(const std::string& typeName);

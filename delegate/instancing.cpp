@@ -105,65 +105,90 @@ PointInstances pointInstancesFromPrim(const PrimReader& prim, const std::functio
     return result;
 }
 
-PrototypeContents prototypeContents(const usd::Stage& stage, const std::string& root, bool includeRootTransform,
-                                    double time, const ColorConverter& convertColor, const Warn& warn,
-                                    const IncludedPurposes& purposes, int nesting) {
-    PrototypeContents contents;
+namespace {
+
+// Adds `prim`, met walking the prototype at `root`, to `contents` (`spaces`: the transforms of the
+// prims met before it); returns whether the walk goes below it. Raises SceneError when it is
+// malformed.
+bool addToPrototype(const SyncContext& context, const usd::PrimSpec& prim, const std::string& root, bool includeRootTransform,
+                    int nesting, std::map<std::string, Matrix4>& spaces, PrototypeContents& contents) {
+    const usd::Stage& stage = context.stage;
+    const double time = context.time;
     std::vector<MeshPart>& parts = contents.parts;
-    const usd::PrimSpec* rootPrim = stage.prim(root);
+    if (!isImaged(prim, time, context.purposes, [&](const SceneError& e) {
+            contents.malformed.push_back(skipMalformed(context, prim.path, e, kReadAsNotAuthored));
+        }))
+        return false;
+    Matrix4 space = Matrix4::identity();
+    auto warnHere = [&](const std::string& message) { context.warn(prim.path, message); };
+    if (prim.path != root || includeRootTransform) {
+        LocalTransform local = localTransform(PrimReader(prim, time), warnHere);
+        space = prim.path == root || local.resetsXformStack ? local.matrix : spaces.at(parentPath(prim.path)) * local.matrix;
+    }
+    spaces[prim.path] = space;
+    if (prim.typeName == "Mesh" && SubdivisionMesh::isSubdivided(prim, time)) {
+        contents.subdivided.push_back(
+            {std::make_shared<const SubdivisionMesh>(stage, prim, time, context.convertColor, warnHere), space});
+    } else if (prim.typeName == "Mesh") {
+        for (MeshPart& part : meshPartsFromPrim(stage, prim, time, space, context.convertColor, warnHere))
+            parts.push_back(std::move(part));
+    } else if (isImplicitType(prim.typeName)) {
+        parts.push_back({implicitMeshFromPrim(PrimReader(prim, time), space, context.convertColor, warnHere),
+                         boundMaterialPath(stage, prim)});
+    } else if (isLightType(prim.typeName)) {
+        // (A native instance's own lights are instance proxies, which the render index holds
+        // as lights of their own; only a point instancer places its prototypes' lights.)
+        if (includeRootTransform)
+            if (std::optional<render::LightDesc> light = lightFromPrim(PrimReader(prim, time), space, stage.upAxis(), warnHere))
+                contents.lights.push_back(std::move(*light));
+    } else if (prim.typeName == "PointInstancer") {
+        if (nesting + 1 >= kMaxPrototypeNesting) {
+            warnHere("point instancers nest deeper than " + std::to_string(kMaxPrototypeNesting) + " levels; cut here");
+            return false;
+        }
+        PointInstances nested = pointInstancesFromPrim(PrimReader(prim, time), warnHere);
+        std::vector<PrototypeContents> nestedContents;
+        for (const std::string& path : nested.prototypes) {
+            nestedContents.push_back(prototypeContents(context, path, true, nesting + 1));
+            for (MalformedPrim& m : nestedContents.back().malformed) contents.malformed.push_back(std::move(m));
+        }
+        for (const PointInstances::Instance& instance : nested.instances) {
+            const PrototypeContents& inner = nestedContents[instance.prototype];
+            Matrix4 placement = space * instance.transform;
+            for (const MeshPart& part : inner.parts)
+                parts.push_back({render::transformMesh(part.mesh, placement), part.materialPath});
+            for (const PrototypeContents::Subdivided& sub : inner.subdivided)
+                contents.subdivided.push_back({sub.mesh, placement * sub.placement});
+            for (render::LightDesc light : inner.lights) {
+                light.transform = placement * light.transform;
+                contents.lights.push_back(std::move(light));
+            }
+        }
+        return false;
+    }
+    return true;
+}
+
+}  // namespace
+
+PrototypeContents prototypeContents(const SyncContext& context, const std::string& root, bool includeRootTransform,
+                                    int nesting) {
+    PrototypeContents contents;
+    const usd::PrimSpec* rootPrim = context.stage.prim(root);
     if (!rootPrim) {
-        warn(root, "prototype prim does not exist");
+        context.warn(root, "prototype prim does not exist");
         return contents;
     }
     std::map<std::string, Matrix4> spaces;  // prim path -> prim-to-prototype-root space
     usd::Stage::traverse(*rootPrim, [&](const usd::PrimSpec& prim) {
-        if (!isImaged(prim, time, purposes)) return false;
-        Matrix4 space = Matrix4::identity();
-        auto warnHere = [&](const std::string& message) { warn(prim.path, message); };
-        if (prim.path != root || includeRootTransform) {
-            LocalTransform local = localTransform(PrimReader(prim, time), warnHere);
-            space = prim.path == root || local.resetsXformStack ? local.matrix : spaces.at(parentPath(prim.path)) * local.matrix;
-        }
-        spaces[prim.path] = space;
-        if (prim.typeName == "Mesh" && SubdivisionMesh::isSubdivided(prim, time)) {
-            contents.subdivided.push_back(
-                {std::make_shared<const SubdivisionMesh>(stage, prim, time, convertColor, warnHere), space});
-        } else if (prim.typeName == "Mesh") {
-            for (MeshPart& part : meshPartsFromPrim(stage, prim, time, space, convertColor, warnHere))
-                parts.push_back(std::move(part));
-        } else if (isImplicitType(prim.typeName)) {
-            parts.push_back({implicitMeshFromPrim(PrimReader(prim, time), space, convertColor, warnHere),
-                             boundMaterialPath(stage, prim)});
-        } else if (isLightType(prim.typeName)) {
-            // (A native instance's own lights are instance proxies, which the render index holds
-            // as lights of their own; only a point instancer places its prototypes' lights.)
-            if (includeRootTransform)
-                if (std::optional<render::LightDesc> light = lightFromPrim(PrimReader(prim, time), space, stage.upAxis(), warnHere))
-                    contents.lights.push_back(std::move(*light));
-        } else if (prim.typeName == "PointInstancer") {
-            if (nesting + 1 >= kMaxPrototypeNesting) {
-                warnHere("point instancers nest deeper than " + std::to_string(kMaxPrototypeNesting) + " levels; cut here");
-                return false;
-            }
-            PointInstances nested = pointInstancesFromPrim(PrimReader(prim, time), warnHere);
-            std::vector<PrototypeContents> nestedContents;
-            for (const std::string& path : nested.prototypes)
-                nestedContents.push_back(prototypeContents(stage, path, true, time, convertColor, warn, purposes, nesting + 1));
-            for (const PointInstances::Instance& instance : nested.instances) {
-                const PrototypeContents& inner = nestedContents[instance.prototype];
-                Matrix4 placement = space * instance.transform;
-                for (const MeshPart& part : inner.parts)
-                    parts.push_back({render::transformMesh(part.mesh, placement), part.materialPath});
-                for (const PrototypeContents::Subdivided& sub : inner.subdivided)
-                    contents.subdivided.push_back({sub.mesh, placement * sub.placement});
-                for (render::LightDesc light : inner.lights) {
-                    light.transform = placement * light.transform;
-                    contents.lights.push_back(std::move(light));
-                }
-            }
+        try {
+            return addToPrototype(context, prim, root, includeRootTransform, nesting, spaces, contents);
+        } catch (const MissingAssetError&) {
+            throw;
+        } catch (const SceneError& e) {
+            contents.malformed.push_back(skipMalformed(context, prim.path, e));
             return false;
         }
-        return true;
     });
     return contents;
 }

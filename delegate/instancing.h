@@ -42,6 +42,7 @@
 #include "delegate/material_adapter.h"
 #include "delegate/prim_reader.h"
 #include "delegate/subdivision_mesh.h"
+#include "delegate/sync_context.h"
 #include "scene/stage.h"
 
 namespace fluence::delegate {
@@ -72,7 +73,8 @@ PointInstances pointInstancesFromPrim(const PrimReader& instancer, const std::fu
 // diced for the camera when the scene is described. Lights are placed once per instance (a
 // light's LightDesc::transform is all that places it); a native prototype (`includeRootTransform`
 // false) holds only those of the point instancers inside it, since the render index already holds
-// its own lights as instance proxies.
+// its own lights as instance proxies. A malformed prim (render_index.h) is left out with its
+// subtree, and the rest kept; with SyncContext::strict its SceneError is raised.
 struct PrototypeContents {
     struct Subdivided {
         std::shared_ptr<const SubdivisionMesh> mesh;
@@ -81,9 +83,9 @@ struct PrototypeContents {
     std::vector<MeshPart> parts;
     std::vector<Subdivided> subdivided;
     std::vector<render::LightDesc> lights;  // transform: light space -> prototype root space
+    std::vector<MalformedPrim> malformed;   // left out, each with one warning (an error when strict)
 };
-PrototypeContents prototypeContents(const usd::Stage& stage, const std::string& root, bool includeRootTransform,
-                                    double time, const ColorConverter& convertColor, const Warn& warn,
-                                    const IncludedPurposes& purposes, int nesting = 0);
+PrototypeContents prototypeContents(const SyncContext& context, const std::string& root, bool includeRootTransform,
+                                    int nesting = 0);
 
 }  // namespace fluence::delegate

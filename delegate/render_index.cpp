@@ -79,7 +79,7 @@ void RenderPrim::sync(const SyncContext& context) {
         throw;
     } catch (const SceneError& e) {
         if (context.strict) throw;
-        if (failure_ != e.what()) context.warn(path_, std::string("not rendered: ") + e.what() + " (--strict makes this an error)");
+        if (failure_ != e.what()) context.warn(path_, malformedWarning("not rendered", e.what()));
         failure_ = e.what();
     }
     dataAnimated_ = prim && readsAnimatedData(*prim);
@@ -137,12 +137,11 @@ void PrototypeRprim::syncData(const SyncContext& context, const usd::PrimSpec*, 
     ++dataReads_;
     parts_.clear();
     subdivided_.clear();
-    PrototypeContents contents =
-        prototypeContents(context.stage, source_, includeSourceTransform_, context.time, context.convertColor, context.warn,
-                          context.purposes);
+    PrototypeContents contents = prototypeContents(context, source_, includeSourceTransform_);
     for (MeshPart& part : contents.parts) parts_.push_back({std::move(part.mesh), std::move(part.materialPath)});
     for (PrototypeContents::Subdivided& s : contents.subdivided) subdivided_.push_back({std::move(s.mesh), s.placement});
     lights_ = std::move(contents.lights);
+    malformed_ = std::move(contents.malformed);
 }
 
 bool PrototypeRprim::readsAnimatedData(const usd::PrimSpec& source) const {

@@ -23,7 +23,8 @@
 //     malformed prim: face counts that do not match the indices, a GeomSubset index out of
 //     range, a loop-scheme mesh with quads, a primvar of the wrong size, a bad xformOp) leaves
 //     the prim failed(), with one warning naming it and the reason, and the scene is described
-//     without it; the next sync (an edit, a new render time) tries it again. With
+//     without it; the next sync (an edit, a new render time) tries it again. In a prototype, only
+//     the malformed prim (and what lies below it) is left out: the prototype keeps the rest. With
 //     SyncContext::strict the SceneError is raised instead. A MissingAssetError is always raised.
 #pragma once
 
@@ -39,6 +40,7 @@
 #include "delegate/volume_adapter.h"
 #include "delegate/prim_reader.h"
 #include "delegate/subdivision_mesh.h"
+#include "delegate/sync_context.h"
 #include "render/scene_description.h"
 #include "scene/stage.h"
 
@@ -53,16 +55,6 @@ enum DirtyBits : std::uint32_t {
     kDirtyMaterial = 1u << 4,   // material binding
     kDirtyParams = 1u << 5,     // a sprim's own attributes
     kAllDirty = ~0u,
-};
-
-// What a sync may read.
-struct SyncContext {
-    const usd::Stage& stage;
-    double time;
-    const ColorConverter& convertColor;
-    const Warn& warn;
-    const IncludedPurposes& purposes;
-    bool strict = false;  // a malformed prim raises SceneError instead of being skipped
 };
 
 class RenderPrim {
@@ -158,6 +150,8 @@ public:
     bool includesSourceTransform() const { return includeSourceTransform_; }
     // The lights below the source, in the source's space: each instance places a copy.
     const std::vector<render::LightDesc>& lights() const { return lights_; }
+    // The malformed prims below the source the last sync left out.
+    const std::vector<MalformedPrim>& malformed() const { return malformed_; }
     // Reads from another source prim from the next sync on.
     void setSource(std::string source) {
         source_ = std::move(source);
@@ -171,6 +165,7 @@ private:
     std::string source_;
     bool includeSourceTransform_;
     std::vector<render::LightDesc> lights_;
+    std::vector<MalformedPrim> malformed_;
 };
 
 // A native instance: an instanceable prim placing the prototype its key names at world().

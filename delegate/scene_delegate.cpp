@@ -84,9 +84,16 @@ SceneDelegate::SceneDelegate(usd::Stage& stage, DelegateOptions options) : stage
 void SceneDelegate::populate(const std::string& root) {
     std::map<std::string, std::pair<std::size_t, std::string>> unsupported;  // type -> (count, first prim)
     std::string instanceRoot;  // the instance whose proxies are being visited, "" outside instances
+    std::erase_if(walkMalformed_, [&](const auto& entry) { return isAtOrBelow(entry.first, root); });
+    const SyncContext sync = context();
+    auto imaged = [&](const usd::PrimSpec& prim) {
+        return isImaged(prim, options_.time, purposes_, [&](const SceneError& e) {
+            walkMalformed_.insert_or_assign(prim.path, skipMalformed(sync, prim.path, e, kReadAsNotAuthored).reason);
+        });
+    };
     stage_.traverse([&](const usd::PrimSpec& prim) {
-        if (!isAtOrBelow(prim.path, root)) return isAtOrBelow(root, prim.path) && isImaged(prim, options_.time, purposes_);
-        if (!isImaged(prim, options_.time, purposes_)) return false;
+        if (!isAtOrBelow(prim.path, root)) return isAtOrBelow(root, prim.path) && imaged(prim);
+        if (!imaged(prim)) return false;
         const std::string& type = prim.typeName;
         if (!instanceRoot.empty() && !isAtOrBelow(prim.path, instanceRoot)) instanceRoot.clear();
         // An instanceable Material is a material like any other (its path is what meshes bind),
@@ -440,6 +447,18 @@ void SceneDelegate::setVariantSelection(const std::string& primPath, const std::
                                         const std::string& selection) {
     stage_.setVariantSelection(primPath, variantSet, selection);
     repopulate(primPath);
+}
+
+std::vector<MalformedPrim> SceneDelegate::malformedPrims() const {
+    std::map<std::string, std::string> all = walkMalformed_;
+    for (const auto& [path, prim] : index_.prims()) {
+        if (prim->failed()) all.try_emplace(path, prim->failure());
+        if (prim->kind() == RenderPrim::Kind::Prototype)
+            for (const MalformedPrim& m : static_cast<const PrototypeRprim&>(*prim).malformed()) all.try_emplace(m.path, m.reason);
+    }
+    std::vector<MalformedPrim> result;
+    for (auto& [path, reason] : all) result.push_back({path, std::move(reason)});
+    return result;
 }
 
 std::pair<int, int> SceneDelegate::resolution() const {

@@ -87,6 +87,9 @@ public:
     std::pair<int, int> resolution() const;
     render::ImageFraming framing() const;
     const RenderIndex& renderIndex() const { return index_; }
+    // Every malformed prim the last populate and sync left out or read a value of as not authored
+    // (none under DelegateOptions::strict, which raises SceneError instead), in path order.
+    std::vector<MalformedPrim> malformedPrims() const;
 
     // Edits (see the table above). Each returns after marking; call sync() to pull the changes.
     void setTime(double time);
@@ -120,6 +123,7 @@ private:
     std::optional<RenderSettingsDesc> renderSettings_;
     IncludedPurposes purposes_;
     std::string cameraPath_;
+    std::map<std::string, std::string> walkMalformed_;  // prim path -> why populate ignored a value of it
 };
 
 struct DelegateResult {

@@ -42,11 +42,21 @@ std::string anchorAssetPath(const std::string& layerIdentifier, const std::strin
     fs::path asset(path);
     if (asset.is_absolute()) return asset.lexically_normal().generic_string();
     if (auto packaged = splitInnermostPackagePath(layerIdentifier)) {  // a layer inside a USDZ package
-        std::string entry = (fs::path(packaged->entry).parent_path() / asset).lexically_normal().generic_string();
         auto file = splitPackagePath(packaged->package);  // the outer package file of a nested package
-        std::string package = file ? packagePath(normalizedAbsolutePath(file->package), file->entry)
-                                   : normalizedAbsolutePath(packaged->package);
-        return packagePath(package, entry);
+        const std::string outerFile = normalizedAbsolutePath(file ? file->package : packaged->package);
+        const std::string package = file ? packagePath(outerFile, file->entry) : outerFile;
+        auto besideEntry = [&](const std::string& entry) {
+            return packagePath(package, (fs::path(entry).parent_path() / asset).lexically_normal().generic_string());
+        };
+        const std::string anchored = besideEntry(packaged->entry);
+        if (path.front() == '.' || packagedEntryExists(anchored)) return anchored;
+        // A search-relative path (SdfComputeAssetPathRelativeToLayer): beside the package's root
+        // layer, then beside the package file, else (not found) as anchored.
+        if (std::string root = packageRootLayer(package); !root.empty())
+            if (std::string besideRoot = besideEntry(root); packagedEntryExists(besideRoot)) return besideRoot;
+        std::error_code error;
+        const fs::path besidePackage = (fs::path(outerFile).parent_path() / asset).lexically_normal();
+        return fs::is_regular_file(besidePackage, error) ? besidePackage.generic_string() : anchored;
     }
     fs::path directory = absoluteOf(fs::path(layerIdentifier)).parent_path();
     return (directory / asset).lexically_normal().generic_string();
@@ -54,7 +64,7 @@ std::string anchorAssetPath(const std::string& layerIdentifier, const std::strin
 
 bool assetExists(const std::string& resolved) {
     if (resolved.empty()) return false;
-    if (splitPackagePath(resolved)) return packagedEntryExists(resolved);
+    if (splitPackagePath(resolved)) return packagedEntryProblem(resolved).empty();  // there, and readable
     std::error_code error;
     std::size_t udim = resolved.find("<UDIM>");
     if (udim == std::string::npos) return fs::is_regular_file(resolved, error);

@@ -191,6 +191,15 @@ bool isUsdzPath(const std::string& path) {
     return extension == ".usdz";
 }
 
+std::string packageRootLayer(const std::string& package) {
+    try {
+        UsdzPackage opened = UsdzPackage::open(package);
+        return opened.entries().empty() ? "" : opened.entries().front().name;
+    } catch (const FileError&) {
+        return "";
+    }
+}
+
 bool packagedEntryExists(const std::string& path) {
     std::optional<PackagePath> packaged = splitInnermostPackagePath(path);
     if (!packaged) return false;

@@ -80,6 +80,10 @@ std::string packagePath(const std::string& package, const std::string& entry);
 // entry of a package-relative path ("a.usdz[b.usdz]").
 bool isUsdzPath(const std::string& path);
 
+// The root layer (first entry) of the package at `package` (a file or a package-relative path);
+// "" when it cannot be read or is empty.
+std::string packageRootLayer(const std::string& package);
+
 // Whether the package-relative `path` names an entry of a readable package.
 bool packagedEntryExists(const std::string& path);
 

@@ -322,6 +322,28 @@ TEST_F(FluenceCli, SemanticErrorNamesThePrim) {
     EXPECT_NE(r.err.find("faceVertexIndices[2] = 7"), std::string::npos) << r.err;
 }
 
+// `fluence info` lists the malformed prims a render leaves out; with --strict it exits 3, as
+// `render --strict` would, and without it 0.
+TEST_F(FluenceCli, InfoListsMalformedPrimsAndStrictRefusesThem) {
+    fs::path scene = write("malformed.usda",
+                           "#usda 1.0\ndef Mesh \"Tri\"\n{\n    int[] faceVertexCounts = [3]\n"
+                           "    int[] faceVertexIndices = [0, 1, 7]\n    point3f[] points = [(0,0,0), (1,0,0), (0,1,0)]\n}\n"
+                           "def Xform \"Rig\"\n{\n    int visibility = 3\n}\n"
+                           "def Camera \"Cam\"\n{\n    string focalLength = \"long\"\n}\n");
+    RunResult r = run("info " + scene.string());
+    EXPECT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_NE(r.out.find("malformed prims (3)\n  /Cam  "), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("\n  /Rig  " + scene.string() + ":"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("\n  /Tri  " + scene.string() + ":"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("faceVertexIndices[2] = 7"), std::string::npos) << r.out;
+    r = run("info " + scene.string() + " --strict");
+    EXPECT_EQ(r.exitCode, 3) << r.err;
+    EXPECT_NE(r.out.find("malformed prims (3)"), std::string::npos) << r.out;
+    EXPECT_NE(r.err.find("3 malformed prims"), std::string::npos) << r.err;
+    write("fine.usda", "#usda 1.0\ndef Camera \"Cam\"\n{\n}\n");
+    EXPECT_EQ(run("info " + (dir_ / "fine.usda").string() + " --strict").exitCode, 0);
+}
+
 TEST_F(FluenceCli, UnwritableOutputFailsAndLeavesNothing) {
     fs::path scene = fs::path(FLUENCE_SOURCE_DIR) / "usd_samples/cornell_box.usda";
     RunResult r = run("render " + scene.string() + " -o " + (dir_ / "no/such/dir/x.exr").string() + " -r 8 8 --spp 1");

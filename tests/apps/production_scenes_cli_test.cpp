@@ -81,12 +81,16 @@ TEST_F(ProductionScenesCli, MissingAssetsTheRenderNeverReadsDoNotFailIt) {
     usda.insert(usda.find("def Xform \"World\"\n{\n") + std::string("def Xform \"World\"\n{\n").size(),
                 "    asset model:cardTextureXPos = @./no_such_card.png@\n");
     usda += "def SpatialAudio \"Music\"\n{\n    uniform asset filePath = @./no_such_music.wav@\n}\n";
+    usda += "def Xform \"Asset\" (\n    assetInfo = {\n        asset identifier = @./no_such_asset.usd@\n"
+            "        asset[] payloadAssetDependencies = [@./no_such_dependency.png@]\n    }\n)\n{\n}\n";
     const std::string scene = write("audio.usda", usda);
     RunResult r = render(scene, "a.exr");
     EXPECT_EQ(r.exitCode, 0) << r.err;
     EXPECT_NE(r.err.find("/World.model:cardTextureXPos: asset not found"), std::string::npos) << r.err;
     EXPECT_NE(r.err.find("/Music.filePath: asset not found"), std::string::npos) << r.err;
     EXPECT_EQ(r.err.find("SpatialAudio"), std::string::npos) << "audio is not a prim type to warn about:\n" << r.err;
+    EXPECT_EQ(r.err.find("no_such_asset.usd"), std::string::npos) << "assetInfo names the asset; nothing reads it:\n" << r.err;
+    EXPECT_EQ(r.err.find("no_such_dependency.png"), std::string::npos) << r.err;
     EXPECT_TRUE(fs::exists(tmp_.file("a.exr")));
 }
 

@@ -97,6 +97,34 @@ TEST(UsdzCli, DamagedPackagesFailNamingThem) {
     }
 }
 
+// A texture entry stored compressed (USDZ requires stored entries) is a missing asset named by
+// Fluence, with the package, the entry and why: exit 4, and --allow-missing renders with the
+// texture's fallback.
+TEST(UsdzCli, ACompressedTextureEntryIsAMissingAssetSayingWhy) {
+    SKIP_WITHOUT_PACKAGE();
+    test::TempDir dir;
+    std::string bytes = test::slurp(kPackage);
+    const std::string entry = "textures/texture-cat.jpg";
+    const std::size_t name = bytes.rfind(entry);  // in the central directory, the archive's last part
+    ASSERT_NE(name, std::string::npos);
+    const std::size_t record = name - 46;  // a central directory entry's fixed part precedes its name
+    ASSERT_EQ(bytes.compare(record, 4, "PK\x01\x02"), 0);
+    bytes[record + 10] = 8;  // marked deflated
+    const fs::path scene = dir.path() / "compressed_texture.usdz";
+    std::ofstream(scene, std::ios::binary) << bytes;
+    test::RunResult r = render(scene, dir.path() / "out.exr", dir);
+    EXPECT_EQ(r.exitCode, 4) << r.err;
+    EXPECT_NE(r.err.find("'" + scene.string() + "': entry '" + entry + "' is compressed (zip method 8); USDZ entries must be stored"),
+              std::string::npos)
+        << r.err;
+    EXPECT_FALSE(fs::exists(dir.path() / "out.exr"));
+    r = render(scene, dir.path() / "out.exr", dir, " --allow-missing");
+    EXPECT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_NE(r.err.find("is compressed (zip method 8)"), std::string::npos) << r.err;
+    EXPECT_EQ(r.err.find("cannot read texture"), std::string::npos) << "OpenImageIO is not asked:\n" << r.err;
+    EXPECT_TRUE(fs::exists(dir.path() / "out.exr"));
+}
+
 // Packages inside packages from the command line (OpenUSD's test packages, tests/scene/data/usdz):
 // a package-relative path naming an inner package opens as that package's root layer, and
 // combined.usdz renders with its texture found two packages deep (a missing one exits 4).
@@ -118,6 +146,27 @@ TEST(UsdzCli, NestedPackagesOpenAndRender) {
     test::RunResult r = render(combined, dir.path() / "combined.exr", dir);
     EXPECT_EQ(r.exitCode, 0) << r.err;
     EXPECT_TRUE(fs::exists(dir.path() / "combined.exr"));
+}
+
+// OpenUSD's testUsdUsdzFileFormat search_refs packages (tests/scene/data/usdz/README.md): a
+// search-relative reference inside a package ("sub/x.usd", no "./") resolves beside the layer that
+// authors it, else beside the package's root layer, so every package flattens to what OpenUSD's
+// test expects (the loose root.usd composed with search_refs/ as the search path), with no warning.
+TEST(UsdzCli, SearchRelativePathsResolveInsideThePackage) {
+    test::TempDir dir;
+    const fs::path data = fs::path(FLUENCE_SOURCE_DIR "/tests/scene/data/usdz").lexically_normal();
+    const std::string expected = "#usda 1.0\n\ndef \"Model\"\n{\n"
+                                 "    string attr_in_both = \"right_attr_in_both\"\n"  // beside refs/ref.usd, not the root's
+                                 "    string attr_in_root = \"attr_in_root\"\n"        // only beside the root layer
+                                 "    string attr_in_subdir = \"attr_in_subdir\"\n"
+                                 "    string attr_usd = \"usd\"\n}\n";
+    for (const char* package : {"search_refs.usdz", "search_refs_sub.usdz", "nested_search_refs.usdz", "nested_search_refs_sub.usdz"}) {
+        SCOPED_TRACE(package);
+        const test::RunResult r = test::runFluence("cat --flatten '" + (data / package).string() + "'", dir.path());
+        EXPECT_EQ(r.exitCode, 0) << r.err;
+        EXPECT_EQ(r.err, "");
+        EXPECT_EQ(r.out, expected);
+    }
 }
 
 }  // namespace

@@ -142,5 +142,84 @@ TEST(MalformedPrims, AMalformedCameraIsSkippedUnlessItIsTheOneAskedFor) {
     }
 }
 
+// UsdGeomImageable reads a visibility or purpose that is not a token as not authored
+// (UsdAttribute::Get<TfToken> fails): the prim renders, with a warning; under strict, an error.
+TEST(MalformedPrims, AVisibilityOrPurposeThatIsNotATokenIsReadAsNotAuthored) {
+    for (const std::string& attribute : {std::string("int visibility = 3"), std::string("string visibility = \"invisible\""),
+                                         std::string("string purpose = \"guide\"")}) {
+        SCOPED_TRACE(attribute);
+        const std::string scene = kGoodQuad + "def Xform \"Rig\"\n{\n    " + attribute + "\n" + badMesh("none", "[4, 4]", kTwoQuads) + "}\n";
+        testing::Populated p = populate(scene);
+        EXPECT_NE(p.mesh("/Rig/Bad"), nullptr) << "rendered, the value read as not authored";
+        ASSERT_EQ(p.warnings.size(), 1u);
+        EXPECT_EQ(p.warnings[0].rfind("/Rig: read as not authored, as USD reads it: test.usda:", 0), 0u) << p.warnings[0];
+        EXPECT_NE(p.warnings[0].find("must be a token, got"), std::string::npos) << p.warnings[0];
+        EXPECT_THROW(populateStrict(scene), SceneError);
+    }
+}
+
+// A point-instancer prototype /Protos with a well-formed quad and a malformed mesh; the
+// instancer places it twice.
+std::string instancedPrototype(const std::string& badLines) {
+    return R"(
+def PointInstancer "Instancer"
+{
+    rel prototypes = </Instancer/Protos>
+    int[] protoIndices = [0, 0]
+    point3f[] positions = [(0, 0, 0), (5, 0, 0)]
+    def Xform "Protos"
+    {
+)" + kGoodQuad + badLines + R"(
+    }
+}
+)";
+}
+
+TEST(MalformedPrims, InAPrototypeOnlyTheMalformedPrimIsLeftOut) {
+    for (const MalformedCase& c : malformedCases()) {
+        SCOPED_TRACE(c.what);
+        testing::Populated p = populate(instancedPrototype(c.usda));
+        ASSERT_EQ(p.result.scene.prototypes.size(), 1u);
+        EXPECT_EQ(p.result.scene.prototypes[0].meshes.size(), 1u) << "the well-formed quad stays";
+        EXPECT_EQ(p.result.scene.instances.size(), 2u);
+        ASSERT_EQ(p.warnings.size(), 1u);
+        EXPECT_EQ(p.warnings[0].rfind("/Instancer/Protos/Bad: not rendered: test.usda:", 0), 0u) << p.warnings[0];
+        std::string reason = c.reason;  // the prims it names are inside the prototype
+        for (std::size_t at = reason.find("/Bad"); at != std::string::npos; at = reason.find("/Bad", at + 20))
+            reason.replace(at, 4, "/Instancer/Protos/Bad");
+        EXPECT_NE(p.warnings[0].find(reason), std::string::npos) << p.warnings[0];
+        EXPECT_THROW(populateStrict(instancedPrototype(c.usda)), SceneError);
+    }
+}
+
+TEST(MalformedPrims, InANativeInstanceOnlyTheMalformedMeshIsLeftOut) {
+    const std::string scene = "def Xform \"Asset\"\n{\n" + kGoodQuad + badMesh("none", "[4, 4]", "[0, 1, 2, 3, 1, 4]") + "}\n" +
+                              "def \"A\" (instanceable = true\n references = </Asset>)\n{\n}\n"
+                              "def \"B\" (instanceable = true\n references = </Asset>)\n{\n}\n";
+    testing::Populated p = populate(scene);
+    ASSERT_EQ(p.result.scene.prototypes.size(), 1u);
+    EXPECT_EQ(p.result.scene.prototypes[0].meshes.size(), 1u);
+    EXPECT_EQ(p.result.scene.instances.size(), 2u);
+    EXPECT_NE(p.mesh("/Asset/Good"), nullptr);
+    EXPECT_EQ(p.mesh("/Asset/Bad"), nullptr);
+}
+
+TEST(MalformedPrims, TheDelegateListsEveryMalformedPrim) {
+    auto stage = stageFrom(testing::kCamera + kGoodQuad + badMesh("loop", "[4, 4]", kTwoQuads) +
+                           "def Xform \"Hidden\"\n{\n    int visibility = 0\n}\n" +
+                           instancedPrototype(badMesh("none", "[4, 4]", "[0, 1, 2, 3, 1, 4]")));
+    DelegateOptions options;
+    options.convertColor = [](const RGB& c, const std::string&) { return c; };
+    options.warn = [](const std::string&, const std::string&) {};
+    SceneDelegate delegate(*stage, options);
+    delegate.sync();
+    std::vector<MalformedPrim> malformed = delegate.malformedPrims();
+    ASSERT_EQ(malformed.size(), 3u);
+    EXPECT_EQ(malformed[0].path, "/Bad");
+    EXPECT_NE(malformed[0].reason.find("the loop scheme needs triangles"), std::string::npos) << malformed[0].reason;
+    EXPECT_EQ(malformed[1].path, "/Hidden");
+    EXPECT_EQ(malformed[2].path, "/Instancer/Protos/Bad");
+}
+
 }  // namespace
 }  // namespace fluence::delegate
