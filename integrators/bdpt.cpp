@@ -357,7 +357,7 @@ FilmSample Bdpt::sample(const RenderScene& scene, const render::Camera& camera, 
         }
         const Vec3f start = z.empty() ? ray.origin : z.back().point();
         if (flight.event == media::FlightEvent::Escaped && !hit) {
-            for (int index : scene.lightsAtInfinity()) {
+            for (int index : scene.lightsAtInfinity(depth == 0)) {
                 RGB le = scene.light(index).escaped(ray.direction);
                 if (!isBlack(le))
                     radiance += beta * le *

@@ -60,7 +60,7 @@ FilmSample directLightingThroughDeltaLobes(const render::RenderScene& scene, con
         throughput *= transmittance(inside.medium(), ray.origin, ray.direction,
                                     hit ? hit->t : std::numeric_limits<float>::infinity(), rng);
         if (!hit) {
-            for (int index : scene.lightsAtInfinity()) {
+            for (int index : scene.lightsAtInfinity(depth == 0)) {
                 const RGB le = scene.light(index).escaped(ray.direction);
                 if (!isBlack(le)) radiance += throughput * le * emitterWeight(index, LightHit{});
             }

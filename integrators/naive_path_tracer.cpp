@@ -62,7 +62,7 @@ FilmSample NaivePathTracer::sample(const render::RenderScene& scene, const rende
             }
         }
         if (!hit) {
-            for (int index : scene.lightsAtInfinity())
+            for (int index : scene.lightsAtInfinity(depth == 0))
                 radiance += throughput * weighted(scene.light(index).escaped(ray.direction));
             break;
         }

@@ -191,7 +191,7 @@ FilmSample PathTracer::trace(const render::RenderScene& scene, const render::Cam
         }
 
         if (!hit) {
-            for (int index : scene.lightsAtInfinity()) {
+            for (int index : scene.lightsAtInfinity(depth == 0)) {
                 RGB le = scene.light(index).escaped(ray.direction);
                 if (!isBlack(le)) addEmitted(le, index, LightHit{}, depth);
             }

@@ -170,7 +170,7 @@ FilmSample Radiosity::sample(const render::RenderScene& scene, const render::Cam
     ++counters.camera;
     std::optional<render::SurfaceHit> hit = scene.intersect(ray);
     if (!hit) {
-        for (int index : scene.lightsAtInfinity()) out.radiance += scene.light(index).escaped(ray.direction);
+        for (int index : scene.lightsAtInfinity(true)) out.radiance += scene.light(index).escaped(ray.direction);
         return out;
     }
     const Vec3f wo = -ray.direction;

@@ -265,7 +265,7 @@ FilmSample Sppm::sample(const render::RenderScene& scene, const render::Camera& 
             }
         }
         if (!hit) {
-            for (int index : scene.lightsAtInfinity()) add(scene.light(index).escaped(ray.direction));
+            for (int index : scene.lightsAtInfinity(depth == 0)) add(scene.light(index).escaped(ray.direction));
             break;
         }
         const Vec3f wo = -ray.direction;
