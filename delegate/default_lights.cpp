@@ -41,6 +41,7 @@ std::vector<render::LightDesc> defaultLights(const render::CameraDesc& camera) {
     dome.name = "(default dome)";
     dome.type = render::LightType::Dome;
     dome.radiance = RGB(kDefaultDomeRadiance);
+    dome.visibleToCamera = false;
     return {key, dome};
 }
 

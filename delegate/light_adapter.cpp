@@ -33,6 +33,16 @@ render::LightShapingDesc shapingOf(const PrimReader& prim) {
     return s;
 }
 
+// A light input connected to a shader output (an Arnold or RenderMan light shader, say): Fluence
+// evaluates no shading network on lights, so, as Storm and usdview do, the input's own value is
+// used (its authored value, else the UsdLux fallback), with one warning naming the source.
+void warnConnectedInputs(const usd::PrimSpec& prim, const Warn& warn) {
+    for (const usd::AttributeSpec& a : prim.attributes)
+        if (a.name.starts_with("inputs:") && !a.connections.empty())
+            warn(a.name + " is connected to <" + a.connections.front() +
+                 ">, a light shader Fluence does not evaluate; the input's own value is used");
+}
+
 // The image at `path` as rendering-space RGB, or null (with a warning) when it cannot be read.
 std::shared_ptr<const render::RgbImage> loadTexture(const std::string& path, const std::string& fallback, const Warn& warn) {
     texture::Image image;
@@ -92,6 +102,7 @@ std::optional<render::LightDesc> lightFromPrim(const PrimReader& prim, const Mat
     render::LightDesc light;
     light.name = prim.path();
     light.transform = toWorld;
+    warnConnectedInputs(prim.prim(), warn);
 
     double intensity = prim.number({"inputs:intensity", "intensity"}, type == "DistantLight" ? 50000.0 : 1.0);
     double exposure = prim.number({"inputs:exposure", "exposure"}, 0.0);

@@ -361,7 +361,7 @@ private:
         }
         const Vec3f start = z_.empty() ? ray.origin : z_.back().point();
         if (flight.event == media::FlightEvent::Escaped && !hit) {
-            forEachLightAtInfinity(scene_, ray.direction, [&](int index, const RGB& le) {
+            forEachLightAtInfinity(scene_, ray.direction, depth == 0, [&](int index, const RGB& le) {
                 radiance_ += beta_ * le * hitLightWeight(index, Vec3f(0.0f), -ray.direction, -ray.direction, lastPdf, lastDelta, stretch.edge);
             });
             return std::nullopt;

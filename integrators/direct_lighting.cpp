@@ -62,7 +62,7 @@ FilmSample directLightingThroughDeltaLobes(const render::RenderScene& scene, con
         throughput *= transmittance(inside.medium(), ray.origin, ray.direction,
                                     hit ? hit->t : std::numeric_limits<float>::infinity(), rng);
         if (!hit) {
-            forEachLightAtInfinity(scene, ray.direction, [&](int index, const RGB& le) {
+            forEachLightAtInfinity(scene, ray.direction, depth == 0, [&](int index, const RGB& le) {
                 radiance += throughput * le * emitterWeight(index, LightHit{});
             });
             break;

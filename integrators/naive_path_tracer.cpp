@@ -65,7 +65,7 @@ FilmSample NaivePathTracer::sample(const RenderState&, const render::RenderScene
             }
         }
         if (!hit) {
-            forEachLightAtInfinity(scene, ray.direction, [&](int, const RGB& le) { radiance += throughput * weighted(le); });
+            forEachLightAtInfinity(scene, ray.direction, depth == 0, [&](int, const RGB& le) { radiance += throughput * weighted(le); });
             break;
         }
         const Vec3f wo = exiting ? -hit->shadingNormal : -ray.direction;

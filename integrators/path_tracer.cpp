@@ -144,7 +144,7 @@ public:
                 if (step == Step::Next) continue;
             }
             if (!hit) {
-                forEachLightAtInfinity(scene_, ray_.direction,
+                forEachLightAtInfinity(scene_, ray_.direction, depth == 0,
                                        [&](int index, const RGB& le) { addEmitted(le, index, LightHit{}, depth); });
                 break;
             }

@@ -281,7 +281,7 @@ FilmSample Sppm::sample(const RenderState& renderState, const render::RenderScen
             }
         }
         if (!hit) {
-            forEachLightAtInfinity(scene, ray.direction, [&](int, const RGB& le) { add(le); });
+            forEachLightAtInfinity(scene, ray.direction, depth == 0, [&](int, const RGB& le) { add(le); });
             break;
         }
         const Vec3f wo = -ray.direction;

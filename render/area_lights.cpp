@@ -181,7 +181,7 @@ std::optional<LightBounds> DiskLight::bounds() const {
 
 std::optional<ShapeHit> DiskLight::intersect(const Vec3f& o, const Vec3f& d, float tMin, float tMax) const {
     float denom = dot(d, frame_.n);
-    if (denom == 0.0f) return std::nullopt;
+    if (!(denom < 0.0f)) return std::nullopt;  // seen from behind (or edge on): rays pass through
     float t = dot(centre_ - o, frame_.n) / denom;
     if (!(t > tMin && t < tMax) || lengthSquared(o + d * t - centre_) > radius_ * radius_) return std::nullopt;
     return ShapeHit{t, frame_.n};

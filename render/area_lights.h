@@ -51,6 +51,7 @@ public:
     // counter-clockwise seen from behind, so (c1 - c0) x (c3 - c0) points away from the emitting side.
     std::array<Vec3f, 4> corners() const;
     float area() const { return area_; }
+    const Vec3f& normal() const { return normal_; }  // the emitting direction
 
 private:
     // Texture coordinates (u from the texture's left edge, v from its top, both in [0, 1]) of a

@@ -22,7 +22,8 @@ public:
     virtual ~AnalyticLightShape() = default;
     // World-space box holding the surface.
     virtual void shapeBounds(Vec3f& lo, Vec3f& hi) const = 0;
-    // The nearest intersection of the ray o + t d with the surface for t in (tMin, tMax).
+    // The nearest intersection of the ray o + t d with the surface for t in (tMin, tMax); a one-sided
+    // shape (a disk) is met from its emitting side only, as rect lights are (RenderScene).
     virtual std::optional<ShapeHit> intersect(const Vec3f& o, const Vec3f& d, float tMin, float tMax) const = 0;
 };
 

@@ -170,6 +170,15 @@ void presenceFilter(const RTCFilterFunctionNArguments* args) {
         args->valid[0] = 0;
 }
 
+// Embree filter function of a rect light's triangles (user data: the RectLight): a ray that meets
+// the back of the light, travelling along its emitting direction, passes through it. Lights emit
+// from the front only, and from behind they neither block sight nor light, as for shadow rays.
+void frontSideFilter(const RTCFilterFunctionNArguments* args) {
+    if (args->N != 1 || !args->valid[0]) return;  // the scenes are only traced one ray at a time
+    const Vec3f direction(RTCRayN_dir_x(args->ray, 1, 0), RTCRayN_dir_y(args->ray, 1, 0), RTCRayN_dir_z(args->ray, 1, 0));
+    if (dot(direction, static_cast<const RectLight*>(args->geometryUserPtr)->normal()) >= 0.0f) args->valid[0] = 0;
+}
+
 }  // namespace
 
 struct RenderScene::Prototype {
@@ -471,6 +480,9 @@ void RenderScene::addLight(const LightDesc& desc) {
             auto light = std::make_unique<RectLight>(desc);
             auto c = light->corners();
             shape = triangleGeometry(embree_->device, {c[0], c[1], c[2], c[3]}, {0, 1, 2, 0, 2, 3});
+            rtcSetGeometryUserData(shape, light.get());
+            rtcSetGeometryIntersectFilterFunction(shape, frontSideFilter);
+            rtcCommitGeometry(shape);
             lights_.push_back(std::move(light));
             break;
         }
@@ -510,10 +522,12 @@ void RenderScene::addLight(const LightDesc& desc) {
         case LightType::Distant:
             lights_.push_back(std::make_unique<DistantLight>(desc));
             lightsAtInfinity_.push_back(index);
+            lightsAtInfinitySeenByCamera_.push_back(index);
             return;
         case LightType::Dome:
             lights_.push_back(std::make_unique<DomeLight>(desc));
             lightsAtInfinity_.push_back(index);
+            if (desc.visibleToCamera) lightsAtInfinitySeenByCamera_.push_back(index);
             return;
     }
     rtcAttachGeometryByID(embree_->lightShapes, shape, static_cast<unsigned>(lightShapeToLight_.size()));

@@ -116,7 +116,11 @@ public:
     std::size_t lightCount() const { return lights_.size(); }
     const Light& light(std::size_t i) const { return *lights_[i]; }
     // Lights at infinity (dome, distant), seen by rays that leave the scene.
-    const std::vector<int>& lightsAtInfinity() const { return lightsAtInfinity_; }
+    // The lights at infinity a ray that leaves the scene sees: all of them, but for a camera ray
+    // (straight from the camera) those a LightDesc marks invisible to the camera.
+    const std::vector<int>& lightsAtInfinity(bool cameraRay) const {
+        return cameraRay ? lightsAtInfinitySeenByCamera_ : lightsAtInfinity_;
+    }
     // Chooses a light for next-event estimation at point p with normal n (the geometric normal on
     // the side the light is gathered from; a zero vector where there is no surface) from u in
     // [0, 1). light = -1 when no light can reach p.
@@ -210,7 +214,7 @@ private:
     std::vector<std::uint32_t> lightShapeNames_;  // Embree geometry id in the light scene -> object name
     NameTable objectNames_, materialNames_;
     std::vector<std::unique_ptr<Light>> lights_;
-    std::vector<int> lightsAtInfinity_;
+    std::vector<int> lightsAtInfinity_, lightsAtInfinitySeenByCamera_;
     DiscreteDistribution lightSelection_;
     LightTree lightTree_;
     SceneBounds bounds_;

@@ -227,6 +227,9 @@ struct LightDesc {
     // Null: the constant radiance.
     std::shared_ptr<const RgbImage> texture;
     std::optional<LightShapingDesc> shaping;  // Rect, Disk, Sphere, Cylinder
+    // Dome: whether a camera ray that leaves the scene sees it (false: the background is black with
+    // alpha 0, while the dome still lights the scene and shows in reflections).
+    bool visibleToCamera = true;
 };
 
 // One grid of an OpenVDB file (a UsdVol OpenVDBAsset).

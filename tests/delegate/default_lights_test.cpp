@@ -60,6 +60,7 @@ TEST(DefaultLights, UnlitSceneGetsAKeyLightAlongTheViewAndADimDome) {
     EXPECT_EQ(lights[1].type, render::LightType::Dome);
     EXPECT_EQ(lights[1].radiance, RGB(kDefaultDomeRadiance));
     EXPECT_EQ(lights[1].texture, nullptr);
+    EXPECT_FALSE(lights[1].visibleToCamera);  // lights the scene, not the background
 }
 
 TEST(DefaultLights, OffByOptionOrRenderSettings) {

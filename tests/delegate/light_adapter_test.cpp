@@ -97,6 +97,39 @@ def RectLight "Off"
     EXPECT_EQ(light(p, "/Off").radiance, RGB(1.0f)) << "only with enableColorTemperature";
 }
 
+// An input connected to a shader Fluence does not evaluate (an Arnold light shader here) keeps its
+// own value, or UsdLux's fallback, with a warning naming the light, the input and the source: the
+// light is never black (as in Storm, which reads the attribute's value).
+TEST(LightAdapter, InputConnectedToAnUnknownShaderUsesItsOwnValue) {
+    auto p = populate(R"(
+def RectLight "Authored"
+{
+    color3f inputs:color = (0.5, 0.25, 1)
+    color3f inputs:color.connect = </Tint.outputs:out>
+    float inputs:intensity = 4
+}
+def RectLight "Unauthored"
+{
+    color3f inputs:color.connect = </Tint.outputs:out>
+}
+def Shader "Tint"
+{
+    uniform token info:id = "arnold:color_correct"
+    color3f inputs:multiply = (5, 0, 0)
+    color4f outputs:out
+}
+)");
+    EXPECT_EQ(light(p, "/Authored").radiance, RGB(2.0f, 1.0f, 4.0f));
+    EXPECT_EQ(light(p, "/Unauthored").radiance, RGB(1.0f));
+    for (const char* name : {"/Authored", "/Unauthored"})
+        EXPECT_TRUE(warned(p, std::string(name) + ": inputs:color is connected to </Tint.outputs:out>, a light shader Fluence "
+                                                  "does not evaluate; the input's own value is used"))
+            << name;
+    EXPECT_EQ(std::count_if(p.warnings.begin(), p.warnings.end(),
+                            [](const std::string& w) { return w.find("is connected to") != std::string::npos; }),
+              2);
+}
+
 TEST(LightAdapter, ShapingApiIsReadOnAreaLights) {
     auto p = populate(R"(
 def RectLight "Applied" (

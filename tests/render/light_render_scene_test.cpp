@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include "render/render_scene.h"
+#include "tests/support/scenes.h"
 
 namespace fluence::render {
 namespace {
@@ -62,10 +63,37 @@ TEST(LightRenderScene, DiskAndCylinderShapesAreHitExactly) {
     EXPECT_FALSE(scene.intersect(Ray{Vec3f(-3.0f, 0.0f, 3.0f), Vec3f(0, 1, 0), 0.0f, kInf}));
 }
 
+// Rect and disk lights emit from their front only; a ray meeting one from behind passes through it
+// (as shadow rays do) and finds what lies beyond: here a floor at y = 0 under both lights.
+TEST(LightRenderScene, RaysPassThroughTheBackOfRectAndDiskLights) {
+    SceneDescription desc = sceneWithEveryLight();
+    desc.lights.resize(1);  // the disk at y = 2, emitting down
+    LightDesc rect;
+    rect.name = "/rect";
+    rect.type = LightType::Rect;
+    rect.transform = Matrix4::translate({3, 2, 0}) * Matrix4::rotateX(-90);  // emits down -Y at y = 2
+    desc.lights.push_back(rect);
+    desc.materials.push_back(test::diffuseMaterial("/grey", RGB(0.5f)));
+    desc.meshes.push_back(test::quadMesh("/floor", {{{-5, 0, -5}, {5, 0, -5}, {5, 0, 5}, {-5, 0, 5}}}, 0));
+    RenderScene scene(desc);
+    constexpr float kInf = std::numeric_limits<float>::infinity();
+    for (const Vec3f& above : {Vec3f(0.1f, 4.0f, 0.1f), Vec3f(3.1f, 4.0f, 0.1f)}) {
+        auto down = scene.intersect(Ray{above, Vec3f(0, -1, 0), 0.0f, kInf});
+        ASSERT_TRUE(down);
+        EXPECT_FALSE(down->lightShape) << "the back of the light at x = " << above.x << " stopped the ray";
+        EXPECT_NEAR(down->t, 4.0f, 1e-5f);
+        auto up = scene.intersect(Ray{Vec3f(above.x, 1.0f, above.z), Vec3f(0, 1, 0), 0.0f, kInf});
+        ASSERT_TRUE(up);
+        EXPECT_TRUE(up->lightShape) << "the front of the light at x = " << above.x;
+        EXPECT_NEAR(up->t, 1.0f, 1e-5f);
+    }
+}
+
 TEST(LightRenderScene, ChooseLightIsTheLightTreesChoice) {
     RenderScene scene(sceneWithEveryLight());
     ASSERT_EQ(scene.lightCount(), 5u);
-    EXPECT_EQ(scene.lightsAtInfinity(), std::vector<int>{4});
+    EXPECT_EQ(scene.lightsAtInfinity(false), std::vector<int>{4});
+    EXPECT_EQ(scene.lightsAtInfinity(true), std::vector<int>{4}) << "a dome is seen by the camera unless marked not to be";
     Vec3f p(0.5f, 0.0f, 0.5f), n(0, 1, 0);
     double sum = 0.0;
     for (int i = 0; i < 5; ++i) sum += scene.lightProbability(p, n, i);
