@@ -5,6 +5,7 @@
 #include <charconv>
 #include <cmath>
 
+#include "apps/integrator_parameters.h"
 #include "delegate/imageable.h"
 #include "integrators/automatic_choice.h"
 #include "integrators/integrator.h"
@@ -285,6 +286,10 @@ RenderOptions parseRenderOptions(const std::vector<std::string>& args) {
             }
         } else if (arg == "--complexity") {
             complexity = cur.value(arg);
+        } else if (const integrators::IntegratorParameter* p = arg.starts_with("--") ? findIntegratorParameter(arg.substr(2)) : nullptr) {
+            const double value = parseNumber<double>(arg, cur.value(arg));
+            if (const std::string why = parameterProblem(*p, value); !why.empty()) throw UsageError(arg + " " + why);
+            o.integratorParameters[p->option] = value;
         } else {
             takeScene(arg, o.scene);
         }
@@ -392,6 +397,8 @@ std::string usageText() {
            integratorList +
            "                        auto  the cheapest of direct, whitted, path, sppm that covers the scene's path\n"
            "                              classes (fluence info lists them); the render log says which and why\n"
+           "  method parameters (the option wins over the render settings' attribute):\n" +
+           integratorParameterUsage() +
            "      --max-depth N       maximum scattering events per path (default 64)\n"
            "      --dicing-rate PX    subdivision surfaces: target micro-edge length in pixels (default 1)\n"
            "      --subdiv-level N    subdivision surfaces: uniform refinement, 4^N triangle pairs per quad,\n"

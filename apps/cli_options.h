@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstdint>
+#include <map>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -31,6 +32,7 @@ struct RenderOptions {
     int threads = 0;                // -j/--threads N (0: all cores)
     std::uint64_t seed = 0;         // --seed S
     std::string integrator;         // --integrator NAME ("": the render settings' fluence:integrator, else path)
+    std::map<std::string, double> integratorParameters;  // --sppm-photons N, ... (apps/integrator_parameters.h)
     double timeLimit = 0.0;         // --time-limit SECONDS (0: none)
     double targetError = 0.0;       // --target-error E: adaptive sampling's relative error per pixel (0: off)
     int minSpp = 16;                // --min-spp N: samples every pixel takes before it may stop

@@ -68,10 +68,10 @@ std::string assetFilesStamp(const usd::Stage& stage) {
     return hex(hash);
 }
 
-template <typename T, typename Text>
-std::string joined(const std::vector<T>& items, Text text) {
+template <typename Items, typename Text>
+std::string joined(const Items& items, Text text) {
     std::string out;
-    for (const T& item : items) {
+    for (const auto& item : items) {
         if (!out.empty()) out += ' ';
         out += text(item);
     }
@@ -93,6 +93,7 @@ CheckpointFingerprint renderFingerprint(const RenderOptions& o, const usd::Stage
         {"frame", std::isnan(r.time) ? "default" : exact(r.time)},
         {"seed", std::to_string(o.seed)},
         {"integrator", r.integrator},
+        {"integrator parameters", joined(r.integratorParameters, [](const auto& p) { return p.first + "=" + exact(p.second); })},
         {"samples per pixel", std::to_string(r.samplesPerPixel)},
         {"target error", exact(o.targetError)},
         {"min spp", std::to_string(o.minSpp)},

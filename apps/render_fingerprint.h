@@ -12,6 +12,7 @@
 // output and preview paths, summary, checkpoint and snapshot intervals.
 #pragma once
 
+#include <map>
 #include <string>
 #include <utility>
 #include <vector>
@@ -30,6 +31,7 @@ struct ResolvedRender {
     int windowX = 0, windowY = 0, windowWidth = 0, windowHeight = 0;
     double time = 0.0;  // NaN: default values
     std::string integrator;
+    std::map<std::string, double> integratorParameters;  // by option
     int samplesPerPixel = 0;
     std::vector<integrators::LightPathAov> lightPathLayers;
 };

@@ -1,5 +1,6 @@
 #include "delegate/render_settings_adapter.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "core/name_table.h"
@@ -110,6 +111,10 @@ std::optional<RenderSettingsDesc> renderSettingsFromStage(const usd::Stage& stag
     if (auto purposes = reader.strings("includedPurposes")) s.includedPurposes = *purposes;
     s.integrator = reader.token({"fluence:integrator"}, "");
     s.defaultLight = reader.boolean({"fluence:defaultLight"}, true);
+    for (const usd::AttributeSpec& attribute : prim->attributes)
+        if (attribute.name.starts_with("fluence:") && std::count(attribute.name.begin(), attribute.name.end(), ':') == 2)
+            if (reader.value(attribute.name))
+                s.integratorParameters[attribute.name] = reader.number({attribute.name.c_str()}, 0.0);
 
     if (const usd::RelationshipSpec* products = prim->relationship("products"))
         for (const std::string& target : products->targets) {

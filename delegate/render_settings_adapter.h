@@ -10,6 +10,8 @@
 // |                | ("expandAperture"), rel camera, rel products, includedPurposes,              |
 // |                | uniform token fluence:integrator ("": --integrator, else path),              |
 // |                | bool fluence:defaultLight (true: a scene with no light gets the default ones)|
+// |                | fluence:<method>:<parameter> numbers (the integrators' parameters, e.g.     |
+// |                | fluence:sppm:photons: the render command checks them, apps/integrator_parameters.h)|
 // | RenderProduct  | productName (""), productType ("raster"), and the RenderSettingsBase         |
 // |                | attributes above when authored on the product (they override the settings') |
 // |                | — resolution, camera, pixelAspectRatio, aspectRatioConformPolicy,          |
@@ -25,6 +27,7 @@
 #pragma once
 
 #include <array>
+#include <map>
 #include <optional>
 #include <string>
 #include <utility>
@@ -64,6 +67,7 @@ struct RenderSettingsDesc {
     std::vector<std::string> includedPurposes{"default", "render"};
     std::string integrator;  // fluence:integrator, "" when not authored
     bool defaultLight = true;  // fluence:defaultLight (delegate/default_lights.h)
+    std::map<std::string, double> integratorParameters;  // authored fluence:<method>:<parameter>, by attribute name
     std::vector<RenderProductDesc> products;
 
     // The product this version renders: the first one (nullptr when there are none).

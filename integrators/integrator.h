@@ -10,6 +10,7 @@
 #include <atomic>
 #include <cstdint>
 #include <functional>
+#include <map>
 #include <memory>
 #include <string>
 #include <vector>
@@ -43,6 +44,13 @@ struct LightPathAov;  // integrators/light_path_tracker.h
 
 struct IntegratorSettings {
     int maxDepth = 64;  // maximum number of scattering events along a path
+    // The method's parameters given (IntegratorInfo::parameters), by IntegratorParameter::option;
+    // one not given takes the method's default.
+    std::map<std::string, double> parameters;
+    double parameter(const std::string& option, double fallback) const {
+        const auto it = parameters.find(option);
+        return it == parameters.end() ? fallback : it->second;
+    }
     // Light path expression AOVs, for the integrators whose IntegratorInfo::lightPathExpressions
     // says they write them (at most kMaxLightPathLayers, core/film.h); null for none.
     std::shared_ptr<const std::vector<LightPathAov>> lightPathAovs;
@@ -88,6 +96,17 @@ public:
                               const render::Ray& ray, SampleStream& rng, RenderCounters& counters) const = 0;
 };
 
+// A parameter of one method, set by `fluence render --OPTION VALUE` or by the RenderSettings
+// attribute ATTRIBUTE (the option wins); a value must be positive, at most `maximum`, and whole
+// for a count.
+struct IntegratorParameter {
+    std::string option;     // e.g. "radiosity-patch-size"
+    std::string attribute;  // e.g. "fluence:radiosity:patchSize"
+    std::string meaning;    // for --help: what it sets and its default
+    bool count = false;     // a whole number
+    double maximum = 1e30;  // a count's bounds its memory (photon maps)
+};
+
 struct IntegratorInfo {
     std::string name;
     std::string pathClasses;  // Heckbert notation
@@ -95,6 +114,7 @@ struct IntegratorInfo {
     std::string description;
     std::function<std::unique_ptr<Integrator>(const IntegratorSettings&)> create;
     bool lightPathExpressions = false;  // writes IntegratorSettings::lightPathAovs into FilmSample::lightPaths
+    std::vector<IntegratorParameter> parameters;  // read by create() from IntegratorSettings::parameters
 };
 
 // Every integrator Fluence offers, in the order `fluence --help` lists them.

@@ -35,10 +35,26 @@ const std::vector<IntegratorInfo>& integratorRegistry() {
              kSubsurface,
          "probabilistic progressive photon mapping: caustics, also from point lights, and volumetric caustics; "
          "subsurface by random walk; emissive media light nothing",
-         [](const IntegratorSettings& s) { return std::make_unique<Sppm>(s); }},
+         [](const IntegratorSettings& s) {
+             SppmSettings sppm;
+             sppm.photonPathsPerMap = static_cast<int>(s.parameter("sppm-photons", sppm.photonPathsPerMap));
+             sppm.initialRadius = static_cast<float>(s.parameter("sppm-radius", sppm.initialRadius));
+             return std::make_unique<Sppm>(s, sppm);
+         },
+         false,
+         {{"sppm-photons", "fluence:sppm:photons", "photon paths traced per sample index (default 50000)", true, 1e7},
+          {"sppm-radius", "fluence:sppm:radius",
+           "the first sample's gather radius in scene units (default: 1.5 pixels' footprint at the scene's centre)"}}},
         {"radiosity", "LD*E", kEmitterSeen | kDirect | kIndirect | kDeltaLights,
          "finite-element radiosity: patches, ray-cast form factors, Gauss-Seidel; every surface diffuse",
-         [](const IntegratorSettings&) { return std::make_unique<Radiosity>(); }},
+         [](const IntegratorSettings& s) {
+             RadiositySettings radiosity;
+             radiosity.patchEdge = static_cast<float>(s.parameter("radiosity-patch-size", radiosity.patchEdge));
+             return std::make_unique<Radiosity>(radiosity);
+         },
+         false,
+         {{"radiosity-patch-size", "fluence:radiosity:patchSize",
+           "the longest patch edge in scene units (default: the scene's diameter / 16)"}}},
         {"naive", "L(S|D)*E without delta lights", kAllPathClasses & ~(kDeltaLights | kDeltaLightCaustics),
          "reference path tracing by BSDF sampling only (no NEE, no MIS): slow; for validating `path`",
          [](const IntegratorSettings& s) { return std::make_unique<NaivePathTracer>(s); }},

@@ -12,6 +12,7 @@
 #include "scene/usda_parser.h"
 #include "scene/usda_writer.h"
 #include "tests/support/cli.h"
+#include "tests/support/shared_data.h"
 #include "tests/support/temp_dir.h"
 
 namespace fluence {
@@ -20,7 +21,7 @@ namespace {
 namespace fs = std::filesystem;
 
 const fs::path kSamples = FLUENCE_SOURCE_DIR "/usd_samples";
-const fs::path kCorpus = FLUENCE_SOURCE_DIR "/../shared/usd_corpus";
+const fs::path kCorpus = test::sharedPath("usd_corpus");
 
 // `fluence info` output without what names the files read: the "scene" line and the "layers"
 // list, and the reader's notes about Fluence's own composition metadata (fluence:*), which a
@@ -73,7 +74,7 @@ TEST_F(CatCli, WritesALayerToStdoutAsItIsAuthored) {
 }
 
 TEST_F(CatCli, WritesACorpusLayerToAFileAtomically) {
-    if (!fs::is_directory(kCorpus)) GTEST_SKIP() << "no corpus at " << kCorpus;
+    FLUENCE_REQUIRE_SHARED(kCorpus);
     const fs::path teapot = kCorpus / "usd-wg-assets/full_assets/Teapot/Teapot.usd";
     const fs::path out = dir_ / "teapot.usda";
     test::RunResult toFile = run("cat " + teapot.string() + " -o " + out.string());
@@ -89,7 +90,7 @@ TEST_F(CatCli, WritesACorpusLayerToAFileAtomically) {
 
 TEST_F(CatCli, WritesACrateLayerAsText) {
     const fs::path crate = kCorpus / "usd-wg-assets/full_assets/OpenChessSet/assets/Pawn/Pawn_geom.usd";
-    if (!fs::exists(crate)) GTEST_SKIP() << "no corpus at " << kCorpus;
+    FLUENCE_REQUIRE_SHARED(crate);
     test::RunResult r = run("cat " + crate.string());
     ASSERT_EQ(r.exitCode, 0) << r.err;
     ASSERT_TRUE(r.out.starts_with("#usda 1.0\n"));

@@ -12,6 +12,7 @@
 #include <regex>
 
 #include "tests/support/cli.h"
+#include "tests/support/shared_data.h"
 #include "tests/support/temp_dir.h"
 
 namespace fluence {
@@ -19,10 +20,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-const fs::path kCorpus = FLUENCE_SOURCE_DIR "/../shared/usd_corpus";
-
-#define SKIP_WITHOUT_CORPUS() \
-    if (!fs::is_directory(kCorpus)) GTEST_SKIP() << "no corpus at " << kCorpus
+const fs::path kCorpus = test::sharedPath("usd_corpus");
 
 std::string firstBytes(const fs::path& p) {
     std::ifstream in(p, std::ios::binary);
@@ -55,7 +53,7 @@ protected:
 };
 
 TEST_F(CorpusCli, InfoOpensEveryValidLayerAndRejectsEveryInvalidOne) {
-    SKIP_WITHOUT_CORPUS();
+    FLUENCE_REQUIRE_SHARED(kCorpus);
     const std::regex location(":[0-9]+:[0-9]+: ");
     int opened = 0, rejected = 0, crates = 0;
     for (const fs::path& path : corpusLayers()) {
@@ -85,7 +83,7 @@ TEST_F(CorpusCli, InfoOpensEveryValidLayerAndRejectsEveryInvalidOne) {
 }
 
 TEST_F(CorpusCli, UnregisteredMetadataAndUnknownTypesOpenWithAWarning) {
-    SKIP_WITHOUT_CORPUS();
+    FLUENCE_REQUIRE_SHARED(kCorpus);
     const fs::path dir = kCorpus / "OpenUSD/pxr/usd/usd/testenv/testUsdFlatten";
     test::RunResult r = run("info '" + (dir / "badMetadata.usd").string() + "'");
     EXPECT_EQ(r.exitCode, 0);
@@ -102,14 +100,14 @@ void expectFiniteRender(const test::RunResult& r, const fs::path& exr) {
 }
 
 TEST_F(CorpusCli, SpinningPyramidsRenders) {
-    SKIP_WITHOUT_CORPUS();
+    FLUENCE_REQUIRE_SHARED(kCorpus);
     fs::path scene = kCorpus / "usd-wg-assets/full_assets/SubdivisionSurfaces/Creases_SpinningPyramids.usda";
     fs::path out = tmp_.path() / "pyramids.exr";
     expectFiniteRender(run("render '" + scene.string() + "' -o '" + out.string() + "' -r 64 64 --spp 2"), out);
 }
 
 TEST_F(CorpusCli, StandardShaderBallRefusesItsMissingAssetsUnlessAllowed) {
-    SKIP_WITHOUT_CORPUS();
+    FLUENCE_REQUIRE_SHARED(kCorpus);
     fs::path scene = kCorpus / "usd-wg-assets/full_assets/StandardShaderBall/standard_shader_ball_scene.usda";
     fs::path out = tmp_.path() / "ball.exr";
     test::RunResult r = run("render '" + scene.string() + "' -o '" + out.string() + "' -r 64 64 --spp 2");
@@ -124,7 +122,7 @@ TEST_F(CorpusCli, StandardShaderBallRefusesItsMissingAssetsUnlessAllowed) {
 }
 
 TEST_F(CorpusCli, SmallObjectTestIsFramedAndLitByItsDome) {
-    SKIP_WITHOUT_CORPUS();
+    FLUENCE_REQUIRE_SHARED(kCorpus);
     fs::path scene = kCorpus / "OpenUSD/pxr/usdImaging/bin/usdrecord/testenv/SmallObjectTest/test.usda";
     fs::path out = tmp_.path() / "small.exr";
     test::RunResult r = run("render '" + scene.string() + "' -o '" + out.string() + "' -r 48 32 --spp 4");
@@ -140,7 +138,7 @@ TEST_F(CorpusCli, SmallObjectTestIsFramedAndLitByItsDome) {
 }
 
 TEST_F(CorpusCli, FancyTeapotRendersWithItsTextures) {
-    SKIP_WITHOUT_CORPUS();
+    FLUENCE_REQUIRE_SHARED(kCorpus);
     const fs::path teapot = kCorpus / "usd-wg-assets/full_assets/Teapot/Teapot.usd";
     const fs::path hdr = kCorpus / "OpenUSD/pxr/usdImaging/bin/usdrecord/testenv/SmallObjectTest/StinsonBeach.hdr";
     fs::path scene = tmp_.path() / "teapot.usda";

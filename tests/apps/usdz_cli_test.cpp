@@ -12,6 +12,7 @@
 
 #include "scene/usdz_package.h"
 #include "tests/support/cli.h"
+#include "tests/support/shared_data.h"
 #include "tests/support/temp_dir.h"
 
 namespace fluence {
@@ -19,10 +20,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-const fs::path kPackage = FLUENCE_SOURCE_DIR "/../shared/usd_corpus/tinyusdz/models/texture-cat-plane.usdz";
-
-#define SKIP_WITHOUT_PACKAGE() \
-    if (!fs::is_regular_file(kPackage)) GTEST_SKIP() << "no corpus package at " << kPackage
+const fs::path kPackage = test::sharedPath("usd_corpus/tinyusdz/models/texture-cat-plane.usdz");
 
 test::RunResult render(const fs::path& scene, const fs::path& out, const test::TempDir& dir, const std::string& options = "") {
     return test::runFluence("render '" + scene.string() + "' -o '" + out.string() + "' -r 48 32 --spp 4" + options, dir.path());
@@ -50,7 +48,7 @@ fs::path litOver(const fs::path& scene, const test::TempDir& dir, const std::str
 }
 
 TEST(UsdzCli, PackageRendersAsItsEntriesDoLoose) {
-    SKIP_WITHOUT_PACKAGE();
+    FLUENCE_REQUIRE_SHARED(kPackage);
     test::TempDir dir;
     const usd::UsdzPackage package = usd::UsdzPackage::open(kPackage.string());
     for (const usd::UsdzPackage::Entry& entry : package.entries()) {
@@ -78,7 +76,7 @@ TEST(UsdzCli, PackageRendersAsItsEntriesDoLoose) {
 }
 
 TEST(UsdzCli, DamagedPackagesFailNamingThem) {
-    SKIP_WITHOUT_PACKAGE();
+    FLUENCE_REQUIRE_SHARED(kPackage);
     test::TempDir dir;
     const std::string bytes = test::slurp(kPackage);
     std::string compressed = bytes;

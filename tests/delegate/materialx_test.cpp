@@ -11,6 +11,7 @@
 
 #include "delegate/scene_delegate.h"
 #include "scene/stage.h"
+#include "tests/support/shared_data.h"
 
 namespace fs = std::filesystem;
 
@@ -144,8 +145,8 @@ def Camera "Cam"
 }
 
 TEST(MaterialXChessSet, TheBishopsLooksReachStandardSurfaceWithTheirTextures) {
-    const fs::path bishop = fs::path(FLUENCE_SOURCE_DIR) / "../shared/usd_corpus/usd-wg-assets/full_assets/OpenChessSet/assets/Bishop/Bishop.usd";
-    if (!fs::exists(bishop)) GTEST_SKIP() << bishop << " is not here (../shared/usd_corpus)";
+    const fs::path bishop = test::sharedPath("usd_corpus/usd-wg-assets/full_assets/OpenChessSet/assets/Bishop/Bishop.usd");
+    FLUENCE_REQUIRE_SHARED(bishop);
     const Loaded l = load(bishop.string());
     const render::MaterialDesc* m = material(l, "/Bishop/Materials/M_Bishop_B");
     ASSERT_NE(m, nullptr);

@@ -8,6 +8,7 @@
 
 #include "delegate/scene_delegate.h"
 #include "tests/delegate/delegate_test_support.h"
+#include "tests/support/shared_data.h"
 #include "tests/support/temp_dir.h"
 
 namespace fluence::delegate {
@@ -15,7 +16,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-const fs::path kVdbTests = FLUENCE_SOURCE_DIR "/../shared/usd_corpus/OpenUSD/pxr/usdImaging/usdImagingGL/testenv/testUsdImagingGLVdbVolume";
+const fs::path kVdbTests = test::sharedPath("usd_corpus/OpenUSD/pxr/usdImaging/usdImagingGL/testenv/testUsdImagingGLVdbVolume");
 
 struct Opened {
     std::unique_ptr<usd::Stage> stage;
@@ -35,7 +36,7 @@ Opened open(const fs::path& file, double time) {
 }
 
 TEST(VolumeAdapter, TwoFieldsAndAPreviewMaterialReadThroughPrimvarReaders) {
-    if (!fs::is_directory(kVdbTests)) GTEST_SKIP() << "no corpus";
+    FLUENCE_REQUIRE_SHARED(kVdbTests);
     Opened o = open(kVdbTests / "vdbVolumeTwoFields.usda", 1.0);
     ASSERT_EQ(o.result.scene.volumes.size(), 1u);
     const render::VolumeDesc& v = o.result.scene.volumes[0];
@@ -56,7 +57,7 @@ TEST(VolumeAdapter, TwoFieldsAndAPreviewMaterialReadThroughPrimvarReaders) {
 }
 
 TEST(VolumeAdapter, UnboundVolumesUseTheFallbackAndFileSequencesFollowTheFrame) {
-    if (!fs::is_directory(kVdbTests)) GTEST_SKIP() << "no corpus";
+    FLUENCE_REQUIRE_SHARED(kVdbTests);
     for (int frame : {1, 3}) {
         Opened o = open(kVdbTests / "vdbVolumeFallbackMaterial.usda", frame);
         ASSERT_EQ(o.result.scene.volumes.size(), 1u);

@@ -14,16 +14,14 @@
 
 #include "scene/stage.h"
 #include "scene/usda_parser.h"
+#include "tests/support/shared_data.h"
 
 namespace fluence::usd {
 namespace {
 
 namespace fs = std::filesystem;
 
-const fs::path kCorpus = fs::path(FLUENCE_SOURCE_DIR "/../shared/usd_corpus").lexically_normal();
-
-#define SKIP_WITHOUT_CORPUS() \
-    if (!fs::is_directory(kCorpus)) GTEST_SKIP() << "no corpus at " << kCorpus
+const fs::path kCorpus = test::sharedPath("usd_corpus");
 
 bool isCrate(const fs::path& path) {
     std::ifstream file(path, std::ios::binary);
@@ -68,7 +66,7 @@ std::string allWarnings(const Stage& stage) {
 }
 
 TEST(CompositionCorpus, EveryValidLayerComposes) {
-    SKIP_WITHOUT_CORPUS();
+    FLUENCE_REQUIRE_SHARED(kCorpus);
     int composed = 0;
     std::size_t warnings = 0;
     for (const auto& entry : fs::recursive_directory_iterator(kCorpus)) {
@@ -88,7 +86,7 @@ TEST(CompositionCorpus, EveryValidLayerComposes) {
 }
 
 TEST(CompositionCorpus, SpinningPyramids) {
-    SKIP_WITHOUT_CORPUS();
+    FLUENCE_REQUIRE_SHARED(kCorpus);
     auto stage = timedOpen("usd-wg-assets/full_assets/SubdivisionSurfaces/Creases_SpinningPyramids.usda");
     EXPECT_TRUE(stage->warnings().empty()) << allWarnings(*stage);
     EXPECT_EQ(stage->layerFiles().size(), 5u);  // the scene, Pyramid.usd, payload, mtl, geo
@@ -135,7 +133,7 @@ TEST(CompositionCorpus, SpinningPyramids) {
 }
 
 TEST(CompositionCorpus, StandardShaderBall) {
-    SKIP_WITHOUT_CORPUS();
+    FLUENCE_REQUIRE_SHARED(kCorpus);
     auto stage = timedOpen("usd-wg-assets/full_assets/StandardShaderBall/standard_shader_ball_scene.usda");
     // The only warnings: the MaterialX documents the corpus leaves out (its README), referenced by
     // the selected "OpenPBRSurface" variant of example_materials.usda.

@@ -19,6 +19,7 @@
 #include "scene/layer_file.h"
 #include "scene/stage.h"
 #include "scene/usda_parser.h"
+#include "tests/support/shared_data.h"
 
 namespace fluence::usd {
 namespace {
@@ -26,10 +27,7 @@ namespace {
 namespace fs = std::filesystem;
 using detail::CrateFormatError;
 
-const fs::path kCorpus = FLUENCE_SOURCE_DIR "/../shared/usd_corpus";
-
-#define SKIP_WITHOUT_CORPUS() \
-    if (!fs::is_directory(kCorpus)) GTEST_SKIP() << "no corpus at " << kCorpus
+const fs::path kCorpus = test::sharedPath("usd_corpus");
 
 std::vector<char> bytes(std::initializer_list<int> values) {
     std::vector<char> out;
@@ -450,7 +448,7 @@ const std::map<std::string, std::vector<std::string>> kTwinDifferences = {
 };
 
 TEST(CrateCorpus, EveryCrateTwinMatchesItsTextLayer) {
-    SKIP_WITHOUT_CORPUS();
+    FLUENCE_REQUIRE_SHARED(kCorpus);
     int compared = 0;
     for (const auto& entry : fs::directory_iterator(kCorpus / "tinyusdz/models")) {
         fs::path crate = entry.path();
@@ -470,7 +468,7 @@ TEST(CrateCorpus, EveryCrateTwinMatchesItsTextLayer) {
 }
 
 TEST(CrateCorpus, EveryCrateFileReads) {
-    SKIP_WITHOUT_CORPUS();
+    FLUENCE_REQUIRE_SHARED(kCorpus);
     int read = 0;
     for (const fs::path& path : crateFiles()) {
         if (isDamagedOnPurpose(path)) continue;
@@ -486,7 +484,7 @@ TEST(CrateCorpus, EveryCrateFileReads) {
 }
 
 TEST(CrateCorpus, ChessPieceGeometry) {
-    SKIP_WITHOUT_CORPUS();
+    FLUENCE_REQUIRE_SHARED(kCorpus);
     fs::path path = kCorpus / "usd-wg-assets/full_assets/OpenChessSet/assets/King/King_geom.usd";
     std::unique_ptr<Layer> layer = readLayerFile(path.string());
     ASSERT_FALSE(layer->rootPrims.empty());
@@ -516,7 +514,7 @@ TEST(CrateCorpus, ChessPieceGeometry) {
 }
 
 TEST(CrateCorpus, ChessSetComposes) {
-    SKIP_WITHOUT_CORPUS();
+    FLUENCE_REQUIRE_SHARED(kCorpus);
     fs::path path = kCorpus / "usd-wg-assets/full_assets/OpenChessSet/chess_set.usda";
     std::unique_ptr<Stage> stage;
     ASSERT_NO_THROW(stage = Stage::open(path.string()));
@@ -539,7 +537,7 @@ TEST(CrateCorpus, ChessSetComposes) {
 }
 
 TEST(CrateCorpus, DamagedFileFailsNamingTheFile) {
-    SKIP_WITHOUT_CORPUS();
+    FLUENCE_REQUIRE_SHARED(kCorpus);
     fs::path path = kCorpus / "OpenUSD/pxr/usd/usd/testenv/testUsdReadOutOfBounds/corrupt.usd";
     ASSERT_TRUE(fs::exists(path));
     try {

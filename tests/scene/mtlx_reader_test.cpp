@@ -8,12 +8,13 @@
 #include <filesystem>
 
 #include "scene/usda_parser.h"
+#include "tests/support/shared_data.h"
 
 namespace fluence::usd {
 namespace {
 
-const std::string kBishop = std::string(FLUENCE_SOURCE_DIR) +
-                            "/../shared/usd_corpus/usd-wg-assets/full_assets/OpenChessSet/assets/Bishop/Bishop_mat.mtlx";
+const std::string kBishop =
+    test::sharedPath("usd_corpus/usd-wg-assets/full_assets/OpenChessSet/assets/Bishop/Bishop_mat.mtlx").string();
 
 std::string connectionOf(const PrimSpec& prim, const std::string& attribute) {
     const AttributeSpec* a = prim.attribute(attribute);
@@ -32,7 +33,7 @@ std::string colorSpaceOf(const PrimSpec& prim, const std::string& attribute) {
 }
 
 TEST(MaterialXReader, ReadsTheChessSetsLooksAsUsdMtlxLaysThemOut) {
-    if (!std::filesystem::exists(kBishop)) GTEST_SKIP() << kBishop << " is not here (../shared/usd_corpus)";
+    FLUENCE_REQUIRE_SHARED(kBishop);
     std::unique_ptr<Layer> layer = readMaterialXFile(kBishop);
     EXPECT_TRUE(layer->warnings.empty());
     const PrimSpec* material = layer->primAtPath("/MaterialX/Materials/M_Bishop_B");

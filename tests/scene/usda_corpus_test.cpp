@@ -11,16 +11,14 @@
 #include <vector>
 
 #include "scene/usda_parser.h"
+#include "tests/support/shared_data.h"
 
 namespace fluence::usd {
 namespace {
 
 namespace fs = std::filesystem;
 
-const fs::path kCorpus = FLUENCE_SOURCE_DIR "/../shared/usd_corpus";
-
-#define SKIP_WITHOUT_CORPUS() \
-    if (!fs::is_directory(kCorpus)) GTEST_SKIP() << "no corpus at " << kCorpus
+const fs::path kCorpus = test::sharedPath("usd_corpus");
 
 enum class Format { Text, Crate, Other };
 
@@ -56,7 +54,7 @@ bool isInvalidOnPurpose(const fs::path& path) {
 }
 
 TEST(UsdaCorpus, EveryTextLayerParses) {
-    SKIP_WITHOUT_CORPUS();
+    FLUENCE_REQUIRE_SHARED(kCorpus);
     int parsed = 0;
     for (const fs::path& path : layerFiles()) {
         if (path.extension() == ".usdc" || isInvalidOnPurpose(path)) continue;
@@ -75,7 +73,7 @@ TEST(UsdaCorpus, EveryTextLayerParses) {
 }
 
 TEST(UsdaCorpus, InvalidLayersAreRejected) {
-    SKIP_WITHOUT_CORPUS();
+    FLUENCE_REQUIRE_SHARED(kCorpus);
     int rejected = 0;
     for (const fs::path& path : layerFiles()) {
         if (!isInvalidOnPurpose(path)) continue;
@@ -92,7 +90,7 @@ TEST(UsdaCorpus, InvalidLayersAreRejected) {
 }
 
 TEST(UsdaCorpus, CrateFilesAreNotTakenForText) {
-    SKIP_WITHOUT_CORPUS();
+    FLUENCE_REQUIRE_SHARED(kCorpus);
     int crates = 0;
     for (const fs::path& path : layerFiles()) {
         if (formatOf(path) != Format::Crate) continue;
@@ -110,7 +108,7 @@ TEST(UsdaCorpus, CrateFilesAreNotTakenForText) {
 }
 
 TEST(UsdaCorpus, SpotChecks) {
-    SKIP_WITHOUT_CORPUS();
+    FLUENCE_REQUIRE_SHARED(kCorpus);
     auto pyramids = parseUsdaFile(
         (kCorpus / "usd-wg-assets/full_assets/SubdivisionSurfaces/Creases_SpinningPyramids.usda")
             .string());

@@ -21,6 +21,7 @@
 #include "scene/usda_parser.h"
 #include "scene/usda_value_writer.h"
 #include "scene/usda_writer.h"
+#include "tests/support/shared_data.h"
 
 namespace fluence::usd {
 namespace {
@@ -242,9 +243,11 @@ std::vector<fs::path> textLayersUnder(const fs::path& root) {
 }
 
 TEST(UsdaWriter, EveryParsedTextLayerRoundTrips) {
+    const fs::path corpus = test::sharedPath("usd_corpus");
+    FLUENCE_REQUIRE_SHARED(corpus);
     int roundTripped = 0, unparsed = 0;
-    for (const char* folder : {"/../shared/usd_corpus", "/usd_samples", "/tests/scene"}) {
-        for (const fs::path& path : textLayersUnder(fs::path(FLUENCE_SOURCE_DIR) / fs::path(folder).relative_path())) {
+    for (const fs::path& folder : {corpus, fs::path(FLUENCE_SOURCE_DIR) / "usd_samples", fs::path(FLUENCE_SOURCE_DIR) / "tests/scene"}) {
+        for (const fs::path& path : textLayersUnder(folder)) {
             std::unique_ptr<Layer> layer;
             try {
                 layer = parseUsdaFile(path.string());
@@ -264,8 +267,10 @@ TEST(UsdaWriter, EveryParsedTextLayerRoundTrips) {
 // Crate layers hold floats and halves as such, and list ops, typed metadata and orderings as the
 // crate reader maps them: their text reads back as the same Layer too.
 TEST(UsdaWriter, EveryCrateLayerRoundTrips) {
+    const fs::path corpus = test::sharedPath("usd_corpus");
+    FLUENCE_REQUIRE_SHARED(corpus);
     int roundTripped = 0;
-    for (const auto& entry : fs::recursive_directory_iterator(fs::path(FLUENCE_SOURCE_DIR) / "../shared/usd_corpus")) {
+    for (const auto& entry : fs::recursive_directory_iterator(corpus)) {
         std::ifstream file(entry.path(), std::ios::binary);
         char magic[8] = {};
         file.read(magic, sizeof magic);

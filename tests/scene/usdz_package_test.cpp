@@ -22,6 +22,7 @@
 #include "scene/usda_parser.h"
 #include "scene/usda_writer.h"
 #include "scene/usdz_package.h"
+#include "tests/support/shared_data.h"
 #include "tests/support/temp_dir.h"
 
 namespace fluence::usd {
@@ -29,10 +30,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-const fs::path kModels = fs::path(FLUENCE_SOURCE_DIR "/../shared/usd_corpus/tinyusdz/models").lexically_normal();
-
-#define SKIP_WITHOUT_MODELS() \
-    if (!fs::is_directory(kModels)) GTEST_SKIP() << "no corpus models at " << kModels
+const fs::path kModels = test::sharedPath("usd_corpus/tinyusdz/models");
 
 std::string slurp(const fs::path& path) {
     std::ifstream in(path, std::ios::binary);
@@ -77,7 +75,7 @@ std::string write(const test::TempDir& dir, const std::string& name, const std::
 }
 
 TEST(UsdzPackage, CorpusPackagesOpenWithTheirEntries) {
-    SKIP_WITHOUT_MODELS();
+    FLUENCE_REQUIRE_SHARED(kModels);
     UsdzPackage cube = UsdzPackage::open((kModels / "cube.usdz").string());
     ASSERT_EQ(cube.entries().size(), 1u);
     EXPECT_EQ(cube.entries()[0].name, "cube.usdc");
@@ -94,7 +92,7 @@ TEST(UsdzPackage, CorpusPackagesOpenWithTheirEntries) {
 // the packaged layers (other prims and metadata), so each root layer is compared, as the USDA text
 // it writes, with its own entry copied out to a loose file.
 TEST(UsdzPackage, RootLayersReadAsTheirEntriesDoLoose) {
-    SKIP_WITHOUT_MODELS();
+    FLUENCE_REQUIRE_SHARED(kModels);
     test::TempDir dir;
     for (const char* name : {"cube", "texture-cat-plane"}) {
         SCOPED_TRACE(name);
@@ -110,7 +108,7 @@ TEST(UsdzPackage, RootLayersReadAsTheirEntriesDoLoose) {
 }
 
 TEST(UsdzPackage, TexturePathsResolveInsideThePackageAndExtract) {
-    SKIP_WITHOUT_MODELS();
+    FLUENCE_REQUIRE_SHARED(kModels);
     const std::string package = (kModels / "texture-cat-plane.usdz").generic_string();
     std::unique_ptr<Stage> stage = Stage::open(package);
     const PrimSpec* shader = stage->prim("/root/_materials/Material_001/Image_Texture");

@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <vector>
 
+#include "tests/support/shared_data.h"
 #include "tests/support/temp_dir.h"
 #include "tests/texture/image_writer.h"
 #include "texture/image_loader.h"
@@ -75,8 +76,8 @@ TEST(ImageLoader, UnreadableFilesNameThemselves) {
 
 // A dome or rect light's texture inside a USDZ package (scene/package_files.h) reads as its entry.
 TEST(ImageLoader, PackagedImagesReadAsTheirEntries) {
-    const std::filesystem::path package = FLUENCE_SOURCE_DIR "/../shared/usd_corpus/tinyusdz/models/texture-cat-plane.usdz";
-    if (!std::filesystem::exists(package)) GTEST_SKIP() << "no corpus package at " << package;
+    const std::filesystem::path package = test::sharedPath("usd_corpus/tinyusdz/models/texture-cat-plane.usdz");
+    FLUENCE_REQUIRE_SHARED(package);
     Image image = loadImage(package.generic_string() + "[textures/texture-cat.jpg]");
     EXPECT_GT(image.width, 1);
     EXPECT_GT(image.height, 1);

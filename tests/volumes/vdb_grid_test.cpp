@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "core/random.h"
+#include "tests/support/shared_data.h"
 #include "tests/support/temp_dir.h"
 #include "tests/volumes/vdb_test_files.h"
 #include "volumes/vdb_file_cache.h"
@@ -206,9 +207,9 @@ TEST(VdbGrid, ConcurrentLoadsShareOneOpen) {
 // The plume the Cycles peer renders (shared/peers/cycles/README.md): one float grid "density",
 // voxel size 0.02 with no offset, active index box (-33,-37,1)-(42,30,126), values in [0, 1].
 TEST(VdbGrid, ReadsTheCyclesPeersSmoke) {
-    const std::string path = FLUENCE_SOURCE_DIR "/../shared/peers/cycles/smoke.vdb";
-    if (!std::filesystem::exists(path)) GTEST_SKIP() << path << " is absent";
-    FloatVdbGrid grid(path, "density");
+    const std::filesystem::path path = test::sharedPath("peers/cycles/smoke.vdb");
+    FLUENCE_REQUIRE_SHARED(path);
+    FloatVdbGrid grid(path.string(), "density");
     ASSERT_TRUE(grid.activeVoxels());
     const IndexBox& box = *grid.activeVoxels();
     EXPECT_EQ(box.lo, Vec3i(-33, -37, 1));
