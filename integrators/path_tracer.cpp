@@ -12,7 +12,6 @@
 #include "media/free_flight.h"
 #include "media/phase.h"
 #include "media/ratio_tracking.h"
-#include "render/area_lights.h"
 #include "render/bsdf_arena.h"
 #include "render/material_bsdf.h"
 
@@ -72,7 +71,7 @@ void PathTracer::prepare(const render::RenderScene& scene, const render::Camera&
     if (!aovs_ || aovs_->empty()) return;
     for (std::size_t i = 0; i < scene.lightCount(); ++i) lightLabels_.push_back(primName(scene.light(i).name()));
     for (std::size_t i = 0; i < scene.lightCount(); ++i) {
-        const bool surface = dynamic_cast<const render::TriangleLight*>(&scene.light(i)) != nullptr;
+        const bool surface = scene.light(i).isSurfaceEmitter();
         lightEvents_.push_back(PathEvent{surface ? EventType::Object : EventType::Light, Scattering::None, lightLabels_[i]});
     }
 }

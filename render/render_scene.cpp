@@ -10,12 +10,11 @@
 #include "core/random.h"
 #include "media/homogeneous_medium.h"
 #include "media/medium_union.h"
-#include "render/area_lights.h"
-#include "render/cylinder_light.h"
 #include "render/embree_ray.h"
-#include "render/infinite_lights.h"
+#include "render/light_shape.h"
+#include "render/lights/light_registry.h"
+#include "render/lights/triangle_light.h"
 #include "render/mesh_transform.h"
-#include "render/sphere_light.h"
 #include "volumes/grid_medium.h"
 
 namespace fluence::render {
@@ -81,6 +80,30 @@ RTCGeometry analyticGeometry(RTCDevice device, const AnalyticLightShape& shape) 
     rtcSetGeometryIntersectFunction(geom, analyticShapeIntersect);
     rtcCommitGeometry(geom);
     return geom;
+}
+
+// The Embree geometry of a light's surface for camera and BSDF rays, committed (nullptr: none).
+RTCGeometry lightSurfaceGeometry(RTCDevice device, const LightSurface& surface) {
+    switch (surface.kind) {
+        case LightSurface::Kind::None: return nullptr;
+        case LightSurface::Kind::Quad: {
+            const auto& c = surface.corners;
+            return triangleGeometry(device, {c[0], c[1], c[2], c[3]}, {0, 1, 2, 0, 2, 3});
+        }
+        case LightSurface::Kind::Sphere: {
+            RTCGeometry geom = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_SPHERE_POINT);
+            auto* v = static_cast<float*>(
+                rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT4, 4 * sizeof(float), 1));
+            v[0] = surface.centre.x;
+            v[1] = surface.centre.y;
+            v[2] = surface.centre.z;
+            v[3] = surface.radius;
+            rtcCommitGeometry(geom);
+            return geom;
+        }
+        case LightSurface::Kind::Analytic: return analyticGeometry(device, *surface.shape);
+    }
+    return nullptr;
 }
 
 bool emits(const MeshDesc& mesh, const std::vector<MaterialDesc>& materials) {
@@ -465,57 +488,11 @@ void RenderScene::addPrototypes(const SceneDescription& scene) {
 
 void RenderScene::addLight(const LightDesc& desc) {
     int index = static_cast<int>(lights_.size());
-    RTCGeometry shape = nullptr;  // the light's surface for camera and BSDF rays, committed
-    switch (desc.type) {
-        case LightType::Rect: {
-            auto light = std::make_unique<RectLight>(desc);
-            auto c = light->corners();
-            shape = triangleGeometry(embree_->device, {c[0], c[1], c[2], c[3]}, {0, 1, 2, 0, 2, 3});
-            lights_.push_back(std::move(light));
-            break;
-        }
-        case LightType::Disk: {
-            auto light = std::make_unique<DiskLight>(desc);
-            shape = analyticGeometry(embree_->device, *light);
-            lights_.push_back(std::move(light));
-            break;
-        }
-        case LightType::Sphere: {
-            if (desc.treatAsPoint) {
-                lights_.push_back(std::make_unique<PointLight>(desc));
-                return;
-            }
-            auto light = std::make_unique<SphereLight>(desc);
-            shape = rtcNewGeometry(embree_->device, RTC_GEOMETRY_TYPE_SPHERE_POINT);
-            auto* v = static_cast<float*>(
-                rtcSetNewGeometryBuffer(shape, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT4, 4 * sizeof(float), 1));
-            v[0] = light->centre().x;
-            v[1] = light->centre().y;
-            v[2] = light->centre().z;
-            v[3] = light->radius();
-            rtcCommitGeometry(shape);
-            lights_.push_back(std::move(light));
-            break;
-        }
-        case LightType::Cylinder: {
-            if (desc.treatAsLine) {
-                lights_.push_back(std::make_unique<LineLight>(desc));
-                return;
-            }
-            auto light = std::make_unique<CylinderLight>(desc);
-            shape = analyticGeometry(embree_->device, *light);
-            lights_.push_back(std::move(light));
-            break;
-        }
-        case LightType::Distant:
-            lights_.push_back(std::make_unique<DistantLight>(desc));
-            lightsAtInfinity_.push_back(index);
-            return;
-        case LightType::Dome:
-            lights_.push_back(std::make_unique<DomeLight>(desc));
-            lightsAtInfinity_.push_back(index);
-            return;
-    }
+    lights_.push_back(makeLight(desc));
+    const Light& light = *lights_.back();
+    if (light.atInfinity()) lightsAtInfinity_.push_back(index);
+    RTCGeometry shape = lightSurfaceGeometry(embree_->device, light.surface());  // committed
+    if (!shape) return;
     rtcAttachGeometryByID(embree_->lightShapes, shape, static_cast<unsigned>(lightShapeToLight_.size()));
     rtcReleaseGeometry(shape);
     lightShapeToLight_.push_back(index);
