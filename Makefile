@@ -9,6 +9,10 @@ BUILD_DIR ?= build
 export CCACHE_BASEDIR ?= $(CURDIR)
 export CCACHE_NOHASHDIR ?= true
 JOBS ?= $(shell nproc)
+# Warnings as errors (CMake option FLUENCE_WERROR): on for `make test` (and so in CI), off for
+# `make build` and `make render`, where a newer compiler's new warning must not stop a user.
+WERROR ?= OFF
+test: WERROR = ON
 SPP ?= 256
 FLUENCE := $(BUILD_DIR)/apps/fluence
 # When make started, for `make render`'s total time (packages, configure, build and render).
@@ -22,7 +26,7 @@ deps:
 	@bash scripts/install_dependencies.sh
 
 configure: deps
-	cmake -S . -B $(BUILD_DIR) -G Ninja -DCMAKE_BUILD_TYPE=Release
+	cmake -S . -B $(BUILD_DIR) -G Ninja -DCMAKE_BUILD_TYPE=Release -DFLUENCE_WERROR=$(WERROR)
 
 build: configure
 	cmake --build $(BUILD_DIR) -j $(JOBS)
@@ -45,7 +49,7 @@ render: configure
 # interrupts, products, Cryptomatte, light paths, path classes, frame ranges);
 # `make test-sanitized SANITIZE_APPS_EXCLUDE=` runs them all.
 SANITIZE_APPS_EXCLUDE ?= ^(BenchStability|StabilityScenes|CheckpointCli|TilesCli|Farm|Signals/InterruptCli|RenderProductsCli|CryptomatteCli|LightPathCli|PathClassCli|FramesCli)
-SANITIZER_TESTS = SANITIZE_BUILD_DIR=$(BUILD_DIR)/asan JOBS=$(JOBS) \
+SANITIZER_TESTS = SANITIZE_BUILD_DIR=$(BUILD_DIR)/asan JOBS=$(JOBS) WERROR=$(WERROR) \
 	SANITIZE_ARGS='$(if $(SANITIZE_APPS_EXCLUDE),-E $(SANITIZE_APPS_EXCLUDE))' bash scripts/sanitizer_tests.sh
 test: build
 	cd $(BUILD_DIR) && ctest --output-on-failure -j $(JOBS)

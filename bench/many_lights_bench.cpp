@@ -30,7 +30,7 @@
 
 #include "core/random.h"
 #include "core/sampling.h"
-#include "render/infinite_lights.h"
+#include "render/lights/dome_light.h"
 #include "render/render_scene.h"
 #include "tests/support/statistics.h"
 

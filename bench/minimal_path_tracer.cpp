@@ -13,10 +13,11 @@
 #include "core/frame.h"
 #include "core/sampling.h"
 #include "integrators/russian_roulette.h"
-#include "render/area_lights.h"
 #include "render/bsdf_arena.h"
 #include "render/bsdfs/lambertian.h"
 #include "render/embree_ray.h"
+#include "render/lights/rect_light.h"
+#include "render/lights/rect_light.h"
 #include "render/material_bsdf.h"
 
 namespace fluence::bench {

@@ -31,8 +31,8 @@
 #include <vector>
 
 #include "core/random.h"
-#include "render/area_lights.h"
 #include "render/light_image_distribution.h"
+#include "render/lights/rect_light.h"
 #include "render/render_scene.h"
 #include "tests/support/scenes.h"
 

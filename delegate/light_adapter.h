@@ -33,8 +33,8 @@
 // - DomeLight_1 poleAxis: "Y" keeps the OpenEXR lat-long orientation (top +Y, longitude 0 along
 //   +Z); "Z" turns the dome +90 degrees about X so its top is +Z and longitude 0 looks along -Y,
 //   as UsdLux says; "scene" follows the stage's upAxis. DomeLight always has its pole on +Y.
-// - treatAsPoint / treatAsLine render the point and line lights of render/sphere_light.h and
-//   render/cylinder_light.h. A normalized sphere of radius 0 is a point light, a normalized
+// - treatAsPoint / treatAsLine render the point and line lights of render/lights/point_light.h and
+//   render/lights/line_light.h. A normalized sphere of radius 0 is a point light, a normalized
 //   cylinder of radius 0 a line light; unnormalized, they emit nothing and are skipped with a
 //   warning.
 // - Not supported, with one warning each: shaping:ies:*, shaping on dome and distant lights.

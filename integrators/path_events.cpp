@@ -1,14 +1,13 @@
 #include "integrators/path_events.h"
 
 #include "core/name_table.h"
-#include "render/area_lights.h"
 
 namespace fluence::integrators {
 
 LightEvents::LightEvents(const render::RenderScene& scene) {
     for (std::size_t i = 0; i < scene.lightCount(); ++i) labels_.push_back(primName(scene.light(i).name()));
     for (std::size_t i = 0; i < scene.lightCount(); ++i) {
-        const bool surface = dynamic_cast<const render::TriangleLight*>(&scene.light(i)) != nullptr;
+        const bool surface = scene.light(i).isSurfaceEmitter();
         events_.push_back(PathEvent{surface ? EventType::Object : EventType::Light, Scattering::None, labels_[i]});
     }
 }

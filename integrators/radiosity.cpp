@@ -10,7 +10,6 @@
 #include "core/sampling.h"
 #include "integrators/emission.h"
 #include "integrators/first_hit.h"
-#include "render/area_lights.h"
 
 namespace fluence::integrators {
 
@@ -70,7 +69,7 @@ ExternalLights externalLights(const render::RenderScene& scene) {
     std::vector<double> powers;
     for (std::size_t i = 0; i < scene.lightCount(); ++i) {
         const render::Light& light = scene.light(i);
-        if (dynamic_cast<const render::TriangleLight*>(&light)) continue;
+        if (light.isSurfaceEmitter()) continue;
         out.lights.push_back(static_cast<int>(i));
         powers.push_back(std::max(0.0f, light.power(scene.bounds())));
     }

@@ -6,6 +6,7 @@
 
 #include "integrators/path_classes.h"
 #include "render/bsdfs/ggx.h"
+#include "render/lights/light_registry.h"
 
 namespace fluence::integrators {
 
@@ -112,15 +113,6 @@ std::vector<Surface> surfacesOf(const render::SceneDescription& scene) {
     return surfaces;
 }
 
-bool isDeltaLight(const render::LightDesc& light) {
-    switch (light.type) {
-        case render::LightType::Sphere: return light.treatAsPoint;
-        case render::LightType::Cylinder: return light.treatAsLine;
-        case render::LightType::Distant: return light.angleDegrees <= 0.0f;
-        default: return false;
-    }
-}
-
 }  // namespace
 
 unsigned scenePathClasses(const render::SceneDescription& scene) {
@@ -129,9 +121,9 @@ unsigned scenePathClasses(const render::SceneDescription& scene) {
     const bool diffuseOrGlossy = anySurface([](const Surface& s) { return s.lobes.diffuseOrGlossy; });
     const bool delta = anySurface([](const Surface& s) { return s.lobes.delta; });
     const bool emissiveSurface = anySurface([](const Surface& s) { return s.lobes.emits; });
-    const bool deltaLight = std::any_of(scene.lights.begin(), scene.lights.end(), isDeltaLight);
+    const bool deltaLight = std::any_of(scene.lights.begin(), scene.lights.end(), render::isDeltaLight);
     const bool areaLight = emissiveSurface || std::any_of(scene.lights.begin(), scene.lights.end(),
-                                                          [](const render::LightDesc& l) { return !isDeltaLight(l); });
+                                                          [](const render::LightDesc& l) { return !render::isDeltaLight(l); });
     const bool receiver = diffuseOrGlossy || !scene.volumes.empty();
     const bool lightReturns = surfaces.size() > 1 || anySurface([](const Surface& s) { return !isFlat(*s.mesh); });
     const bool focused = delta && receiver && (lightReturns || !scene.volumes.empty());

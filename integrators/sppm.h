@@ -75,7 +75,7 @@
 // Veach's adjoint correction (1997, eq. 5.19). Photon paths play Russian roulette with survival
 // min(1, the ratio of the new to the old flux's largest component), which keeps the photons'
 // flux near the emitted flux. Photons leave the lights by their emission sampling
-// (render::Light::sampleEmission, render/light_emission.cpp), a light chosen in proportion to
+// (render::Light::sampleEmission, in each light of render/lights/), a light chosen in proportion to
 // its power (RenderScene::lightSelection()); cylinder and line lights have no emission sampling,
 // so their light reaches the eye only directly or through specular chains.
 //

@@ -17,15 +17,23 @@
 //                      light to sample.
 //   bounds()           where and in which directions a light not at infinity emits, for the
 //                      light tree (render/light_tree.h); nullopt for lights at infinity.
+//   surface()          the surface camera and BSDF rays can hit, which RenderScene puts in the
+//                      ray-tracing scene (LightSurface); none for lights at infinity, delta
+//                      lights and emissive mesh triangles (their mesh is in the scene already).
+//   isSurfaceEmitter() whether the light is a triangle of an emissive mesh (an object that emits,
+//                      render/lights/triangle_light.h) rather than a UsdLux light.
 //   sampleEmission(uPosition, uDirection, scene)  emission sampling, for light subpaths (bdpt):
 //                      a point on the light and a direction light leaves it in, with the
 //                      radiance carried (EmissionSample); emissionDensity(point, direction, scene)
 //                      the densities it draws them with. hasEmissionSampling() says whether a
-//                      light offers them (defaults: no; implemented in render/light_emission.cpp).
+//                      light offers them (default: no).
+// Each light lives in one file pair of render/lights/ (its sampling and emission together); lights
+// described by a LightDesc are made by the table in render/lights/light_registry.cpp.
 // Every light's sample/pdf pair is checked by the chi-square and consistency tests in
 // tests/render/light*_test.cpp.
 #pragma once
 
+#include <array>
 #include <limits>
 #include <optional>
 #include <string>
@@ -88,6 +96,27 @@ struct EmissionSample {
     bool delta = false;       // a point light or an angle-0 distant light, which no ray can hit
 };
 
+class AnalyticLightShape;  // render/light_shape.h
+
+// The surface of a light that camera and BSDF rays can hit (Light::surface): none, a quad (corners
+// counter-clockwise seen from behind, as RectLight::corners), a sphere, or a shape RenderScene
+// traces as Embree user geometry through its exact intersection (render/light_shape.h).
+struct LightSurface {
+    enum class Kind { None, Quad, Sphere, Analytic };
+    Kind kind = Kind::None;
+    std::array<Vec3f, 4> corners{};              // Quad
+    Vec3f front;                                 // Quad: its emitting direction (rays along it meet its back)
+    Vec3f centre;                                // Sphere
+    float radius = 0.0f;                         // Sphere
+    const AnalyticLightShape* shape = nullptr;   // Analytic
+
+    static LightSurface quad(const std::array<Vec3f, 4>& corners, const Vec3f& front) {
+        return {Kind::Quad, corners, front, {}, 0.0f, nullptr};
+    }
+    static LightSurface sphere(const Vec3f& centre, float radius) { return {Kind::Sphere, {}, {}, centre, radius, nullptr}; }
+    static LightSurface analytic(const AnalyticLightShape& shape) { return {Kind::Analytic, {}, {}, {}, 0.0f, &shape}; }
+};
+
 class Light {
 public:
     virtual ~Light() = default;
@@ -100,6 +129,8 @@ public:
     virtual float power(const SceneBounds& bounds) const = 0;
     virtual std::optional<LightBounds> bounds() const = 0;
     virtual std::string name() const = 0;
+    virtual LightSurface surface() const { return {}; }
+    virtual bool isSurfaceEmitter() const { return false; }
     virtual bool hasEmissionSampling() const { return false; }
     virtual std::optional<EmissionSample> sampleEmission(Vec2f /*uPosition*/, Vec2f /*uDirection*/,
                                                          const SceneBounds& /*scene*/) const {

@@ -10,12 +10,11 @@
 #include "core/random.h"
 #include "media/homogeneous_medium.h"
 #include "media/medium_union.h"
-#include "render/area_lights.h"
-#include "render/cylinder_light.h"
 #include "render/embree_ray.h"
-#include "render/infinite_lights.h"
+#include "render/light_shape.h"
+#include "render/lights/light_registry.h"
+#include "render/lights/triangle_light.h"
 #include "render/mesh_transform.h"
-#include "render/sphere_light.h"
 #include "volumes/grid_medium.h"
 
 namespace fluence::render {
@@ -81,6 +80,30 @@ RTCGeometry analyticGeometry(RTCDevice device, const AnalyticLightShape& shape) 
     rtcSetGeometryIntersectFunction(geom, analyticShapeIntersect);
     rtcCommitGeometry(geom);
     return geom;
+}
+
+// The Embree geometry of a light's surface for camera and BSDF rays, committed (nullptr: none).
+RTCGeometry lightSurfaceGeometry(RTCDevice device, const LightSurface& surface) {
+    switch (surface.kind) {
+        case LightSurface::Kind::None: return nullptr;
+        case LightSurface::Kind::Quad: {
+            const auto& c = surface.corners;
+            return triangleGeometry(device, {c[0], c[1], c[2], c[3]}, {0, 1, 2, 0, 2, 3});
+        }
+        case LightSurface::Kind::Sphere: {
+            RTCGeometry geom = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_SPHERE_POINT);
+            auto* v = static_cast<float*>(
+                rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT4, 4 * sizeof(float), 1));
+            v[0] = surface.centre.x;
+            v[1] = surface.centre.y;
+            v[2] = surface.centre.z;
+            v[3] = surface.radius;
+            rtcCommitGeometry(geom);
+            return geom;
+        }
+        case LightSurface::Kind::Analytic: return analyticGeometry(device, *surface.shape);
+    }
+    return nullptr;
 }
 
 bool emits(const MeshDesc& mesh, const std::vector<MaterialDesc>& materials) {
@@ -149,6 +172,16 @@ float hashOfHit(const float (&ray)[6], unsigned geomID, unsigned primID, unsigne
     return toUnitFloat(h);
 }
 
+// Embree filter function of a quad light's triangles (user data: its emitting direction, a Vec3f):
+// a ray that meets the back of the light, travelling along its emitting direction, passes through
+// it. Lights emit from the front only, and from behind they neither block sight nor light, as for
+// shadow rays.
+void frontSideFilter(const RTCFilterFunctionNArguments* args) {
+    if (args->N != 1 || !args->valid[0]) return;  // the scenes are only traced one ray at a time
+    const Vec3f direction(RTCRayN_dir_x(args->ray, 1, 0), RTCRayN_dir_y(args->ray, 1, 0), RTCRayN_dir_z(args->ray, 1, 0));
+    if (dot(direction, *static_cast<const Vec3f*>(args->geometryUserPtr)) >= 0.0f) args->valid[0] = 0;
+}
+
 // Embree filter function of a mesh whose material may have holes: rejects the candidate hit
 // where the surface is absent (see render_scene.h).
 void presenceFilter(const RTCFilterFunctionNArguments* args) {
@@ -168,15 +201,6 @@ void presenceFilter(const RTCFilterFunctionNArguments* args) {
     if (presence <= 0.0f ||
         hashOfHit(ray, RTCHitN_geomID(args->hit, 1, 0), primID, RTCHitN_instID(args->hit, 1, 0, 0)) >= presence)
         args->valid[0] = 0;
-}
-
-// Embree filter function of a rect light's triangles (user data: the RectLight): a ray that meets
-// the back of the light, travelling along its emitting direction, passes through it. Lights emit
-// from the front only, and from behind they neither block sight nor light, as for shadow rays.
-void frontSideFilter(const RTCFilterFunctionNArguments* args) {
-    if (args->N != 1 || !args->valid[0]) return;  // the scenes are only traced one ray at a time
-    const Vec3f direction(RTCRayN_dir_x(args->ray, 1, 0), RTCRayN_dir_y(args->ray, 1, 0), RTCRayN_dir_z(args->ray, 1, 0));
-    if (dot(direction, static_cast<const RectLight*>(args->geometryUserPtr)->normal()) >= 0.0f) args->valid[0] = 0;
 }
 
 }  // namespace
@@ -474,61 +498,17 @@ void RenderScene::addPrototypes(const SceneDescription& scene) {
 
 void RenderScene::addLight(const LightDesc& desc) {
     int index = static_cast<int>(lights_.size());
-    RTCGeometry shape = nullptr;  // the light's surface for camera and BSDF rays, committed
-    switch (desc.type) {
-        case LightType::Rect: {
-            auto light = std::make_unique<RectLight>(desc);
-            auto c = light->corners();
-            shape = triangleGeometry(embree_->device, {c[0], c[1], c[2], c[3]}, {0, 1, 2, 0, 2, 3});
-            rtcSetGeometryUserData(shape, light.get());
-            rtcSetGeometryIntersectFilterFunction(shape, frontSideFilter);
-            rtcCommitGeometry(shape);
-            lights_.push_back(std::move(light));
-            break;
-        }
-        case LightType::Disk: {
-            auto light = std::make_unique<DiskLight>(desc);
-            shape = analyticGeometry(embree_->device, *light);
-            lights_.push_back(std::move(light));
-            break;
-        }
-        case LightType::Sphere: {
-            if (desc.treatAsPoint) {
-                lights_.push_back(std::make_unique<PointLight>(desc));
-                return;
-            }
-            auto light = std::make_unique<SphereLight>(desc);
-            shape = rtcNewGeometry(embree_->device, RTC_GEOMETRY_TYPE_SPHERE_POINT);
-            auto* v = static_cast<float*>(
-                rtcSetNewGeometryBuffer(shape, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT4, 4 * sizeof(float), 1));
-            v[0] = light->centre().x;
-            v[1] = light->centre().y;
-            v[2] = light->centre().z;
-            v[3] = light->radius();
-            rtcCommitGeometry(shape);
-            lights_.push_back(std::move(light));
-            break;
-        }
-        case LightType::Cylinder: {
-            if (desc.treatAsLine) {
-                lights_.push_back(std::make_unique<LineLight>(desc));
-                return;
-            }
-            auto light = std::make_unique<CylinderLight>(desc);
-            shape = analyticGeometry(embree_->device, *light);
-            lights_.push_back(std::move(light));
-            break;
-        }
-        case LightType::Distant:
-            lights_.push_back(std::make_unique<DistantLight>(desc));
-            lightsAtInfinity_.push_back(index);
-            lightsAtInfinitySeenByCamera_.push_back(index);
-            return;
-        case LightType::Dome:
-            lights_.push_back(std::make_unique<DomeLight>(desc));
-            lightsAtInfinity_.push_back(index);
-            if (desc.visibleToCamera) lightsAtInfinitySeenByCamera_.push_back(index);
-            return;
+    lights_.push_back(makeLight(desc));
+    const Light& light = *lights_.back();
+    if (light.atInfinity()) lightsAtInfinity_.push_back(index);
+    if (light.atInfinity() && desc.visibleToCamera) lightsAtInfinitySeenByCamera_.push_back(index);
+    const LightSurface surface = light.surface();
+    RTCGeometry shape = lightSurfaceGeometry(embree_->device, surface);  // committed
+    if (!shape) return;
+    if (surface.kind == LightSurface::Kind::Quad) {
+        rtcSetGeometryUserData(shape, &quadLightFronts_.emplace_back(surface.front));
+        rtcSetGeometryIntersectFilterFunction(shape, frontSideFilter);
+        rtcCommitGeometry(shape);
     }
     rtcAttachGeometryByID(embree_->lightShapes, shape, static_cast<unsigned>(lightShapeToLight_.size()));
     rtcReleaseGeometry(shape);

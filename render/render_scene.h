@@ -36,6 +36,7 @@
 // of the ray and the triangle (deterministic, whatever the thread count, and unbiased over rays).
 #pragma once
 
+#include <deque>
 #include <memory>
 #include <optional>
 #include <string>
@@ -215,6 +216,7 @@ private:
     NameTable objectNames_, materialNames_;
     std::vector<std::unique_ptr<Light>> lights_;
     std::vector<int> lightsAtInfinity_, lightsAtInfinitySeenByCamera_;
+    std::deque<Vec3f> quadLightFronts_;  // each quad light's emitting direction, its Embree filter's user data
     DiscreteDistribution lightSelection_;
     LightTree lightTree_;
     SceneBounds bounds_;

@@ -18,8 +18,6 @@ namespace fluence::usd {
 
 namespace {
 
-constexpr const char* kMaterialsPath = "/MaterialX/Materials";
-
 struct UsdType {
     const char* name;
     ValueKind kind;

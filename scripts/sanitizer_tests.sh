@@ -14,6 +14,7 @@
 #   SANITIZE_LABELS     ctest -L regex of the suites to run (default ^(scene|delegate|apps)$)
 #   SANITIZE_ARGS       more ctest arguments, e.g. "-R Instanced"
 #   JOBS                build and ctest parallelism (default 2)
+#   WERROR              ON: compiler warnings are errors (CMake FLUENCE_WERROR; `make test` sets it)
 set -euo pipefail
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
 root=$(pwd)
@@ -36,7 +37,7 @@ command -v ninja >/dev/null && generator=(-G Ninja)
 export CCACHE_BASEDIR="$root" CCACHE_NOHASHDIR=true
 start=$(date +%s)
 cmake -S . -B "$build" "${generator[@]}" -DCMAKE_BUILD_TYPE=Release -DFLUENCE_SANITIZE=ON \
-  -DCMAKE_CXX_COMPILER="$clang" >/dev/null
+  -DFLUENCE_WERROR="${WERROR:-OFF}" -DCMAKE_CXX_COMPILER="$clang" >/dev/null
 cmake --build "$build" -j "$jobs" --target fluence scene_tests delegate_tests apps_tests
 built=$(date +%s)
 echo "sanitize: built in $((built - start)) s"

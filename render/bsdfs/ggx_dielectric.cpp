@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "render/bsdfs/bsdf_checks.h"
 #include "render/bsdfs/fresnel.h"
 #include "render/bsdfs/local_geometry.h"
 
@@ -46,11 +47,13 @@ float GgxDielectricBsdf::density(const Configuration& c) const {
 }
 
 RGB GgxDielectricBsdf::f(const Vec3f& wo, const Vec3f& wi) const {
+    dcheckDirections(wo, wi);
     std::optional<Configuration> c = configuration(wo, wi);
     return c ? value(*c) : RGB(0.0f);
 }
 
 float GgxDielectricBsdf::pdf(const Vec3f& wo, const Vec3f& wi) const {
+    dcheckDirections(wo, wi);
     std::optional<Configuration> c = configuration(wo, wi);
     return c ? density(*c) : 0.0f;
 }
@@ -74,7 +77,11 @@ std::optional<BsdfSample> GgxDielectricBsdf::sampleSmooth(const Vec3f& wo, float
 
 std::optional<BsdfSample> GgxDielectricBsdf::sample(const Vec3f& wo, float uLobe, Vec2f u) const {
     if (wo.z == 0.0f) return std::nullopt;
-    if (isSmooth()) return sampleSmooth(wo, uLobe);
+    if (isSmooth()) {
+        std::optional<BsdfSample> s = sampleSmooth(wo, uLobe);
+        dcheckSample(wo, s);
+        return s;
+    }
     Configuration c;
     c.eta = relativeEta(wo);
     c.wo = wo.z > 0.0f ? wo : mirrorZ(wo);
@@ -94,7 +101,9 @@ std::optional<BsdfSample> GgxDielectricBsdf::sample(const Vec3f& wo, float uLobe
     float p = density(c);
     if (!(p > 0.0f)) return std::nullopt;
     Vec3f wi = wo.z > 0.0f ? c.wi : mirrorZ(c.wi);
-    return BsdfSample{value(c), wi, p, false, c.reflected ? 1.0f : c.eta};
+    std::optional<BsdfSample> s = BsdfSample{value(c), wi, p, false, c.reflected ? 1.0f : c.eta};
+    dcheckSample(wo, s);
+    return s;
 }
 
 }  // namespace fluence::render

@@ -12,6 +12,7 @@
 #include <optional>
 
 #include "render/bsdf.h"
+#include "render/bsdfs/bsdf_checks.h"
 
 namespace fluence::render {
 
@@ -41,6 +42,7 @@ public:
             s->f = f(wo, s->wi);
             s->pdf = pdf(wo, s->wi);
         }
+        dcheckSample(wo, s);
         return s;
     }
     unsigned flags() const override { return a_->flags() | b_->flags(); }

@@ -16,6 +16,7 @@
 #include <optional>
 
 #include "render/bsdf.h"
+#include "render/bsdfs/bsdf_checks.h"
 #include "render/bsdfs/local_geometry.h"
 
 namespace fluence::render {
@@ -24,10 +25,12 @@ template <typename Model>
 class TwoSidedReflection : public Bsdf {
 public:
     RGB f(const Vec3f& wo, const Vec3f& wi) const final {
+        dcheckDirections(wo, wi);
         if (!(wo.z * wi.z > 0.0f)) return RGB(0.0f);
         return wo.z > 0.0f ? model().fUpper(wo, wi) : model().fUpper(mirrorZ(wo), mirrorZ(wi));
     }
     float pdf(const Vec3f& wo, const Vec3f& wi) const final {
+        dcheckDirections(wo, wi);
         if (!(wo.z * wi.z > 0.0f)) return 0.0f;
         return wo.z > 0.0f ? model().pdfUpper(wo, wi) : model().pdfUpper(mirrorZ(wo), mirrorZ(wi));
     }
@@ -44,6 +47,7 @@ public:
         if (wo.z == 0.0f) return std::nullopt;
         std::optional<BsdfSample> s = model().sampleUpper(wo.z > 0.0f ? wo : mirrorZ(wo), uLobe, u);
         if (s && wo.z < 0.0f) s->wi = mirrorZ(s->wi);
+        dcheckSample(wo, s);
         return s;
     }
 

@@ -29,12 +29,16 @@
 #include "integrators/bdpt_mis.h"
 #include "integrators/bdpt_vertex.h"
 #include "integrators/path_tracer.h"
-#include "render/area_lights.h"
-#include "render/infinite_lights.h"
-#include "render/sphere_light.h"
+#include "media/subsurface_medium.h"
+#include "render/lights/disk_light.h"
+#include "render/lights/distant_light.h"
+#include "render/lights/dome_light.h"
+#include "render/lights/point_light.h"
+#include "render/lights/rect_light.h"
+#include "render/lights/sphere_light.h"
+#include "render/lights/triangle_light.h"
 #include "tests/integrators/render_support.h"
 #include "tests/support/chi2.h"
-#include "media/subsurface_medium.h"
 #include "tests/support/scenes.h"
 #include "tests/support/temp_dir.h"
 #include "tests/volumes/vdb_test_files.h"
@@ -140,7 +144,7 @@ TEST(BdptMis, LightTracingTakesThePowerHeuristicAgainstTheCameraStrategies) {
     EXPECT_FALSE(strategyExists(path, 2));
 }
 
-// ---- Emission sampling (render/light_emission.cpp), which light subpaths start from.
+// ---- Emission sampling (each light's sampleEmission, render/lights/), which light subpaths start from.
 
 // Each light's sampleEmission() reports the densities emissionDensity() gives for its point and
 // direction, and only points and directions that carry light.

@@ -235,8 +235,13 @@ TEST_P(BsdfProperties, LobeSplitSumsToF) {
                 EXPECT_GE(split.glossy[c], 0.0f);
                 EXPECT_NEAR(split.diffuse[c] + split.glossy[c], f[c], kRecomputeTolerance * f[c]) << "channel " << c;
             }
-            if (!(flags & kBsdfDiffuse)) EXPECT_TRUE(isBlack(split.diffuse));
-            if (!(flags & kBsdfGlossy)) EXPECT_TRUE(isBlack(split.glossy));
+            // Braced: gtest's EXPECT_* expands to an if/else (GCC's -Wdangling-else).
+            if (!(flags & kBsdfDiffuse)) {
+                EXPECT_TRUE(isBlack(split.diffuse));
+            }
+            if (!(flags & kBsdfGlossy)) {
+                EXPECT_TRUE(isBlack(split.glossy));
+            }
         }
 }
 

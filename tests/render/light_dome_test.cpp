@@ -9,7 +9,7 @@
 #include <cmath>
 
 #include "core/sampling.h"
-#include "render/infinite_lights.h"
+#include "render/lights/dome_light.h"
 #include "tests/render/light_test_support.h"
 #include "tests/support/chi2.h"
 

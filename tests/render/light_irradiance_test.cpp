@@ -5,9 +5,12 @@
 
 #include <cmath>
 
-#include "render/area_lights.h"
-#include "render/cylinder_light.h"
-#include "render/sphere_light.h"
+#include "render/lights/cylinder_light.h"
+#include "render/lights/disk_light.h"
+#include "render/lights/line_light.h"
+#include "render/lights/point_light.h"
+#include "render/lights/rect_light.h"
+#include "render/lights/sphere_light.h"
 #include "tests/render/light_test_support.h"
 
 namespace fluence::render {

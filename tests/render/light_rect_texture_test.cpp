@@ -9,8 +9,8 @@
 #include <vector>
 
 #include "core/sampling.h"
-#include "render/area_lights.h"
 #include "render/light_image_distribution.h"
+#include "render/lights/rect_light.h"
 #include "tests/render/light_test_support.h"
 #include "tests/support/chi2.h"
 

@@ -5,9 +5,11 @@
 #include <cmath>
 
 #include "core/sampling.h"
-#include "render/area_lights.h"
-#include "render/cylinder_light.h"
-#include "render/sphere_light.h"
+#include "render/lights/cylinder_light.h"
+#include "render/lights/disk_light.h"
+#include "render/lights/line_light.h"
+#include "render/lights/point_light.h"
+#include "render/lights/rect_light.h"
 #include "tests/render/light_test_support.h"
 #include "tests/support/chi2.h"
 

@@ -2,9 +2,11 @@
 
 #include <cmath>
 
-#include "render/area_lights.h"
-#include "render/infinite_lights.h"
-#include "render/sphere_light.h"
+#include "render/lights/distant_light.h"
+#include "render/lights/dome_light.h"
+#include "render/lights/rect_light.h"
+#include "render/lights/sphere_light.h"
+#include "render/lights/triangle_light.h"
 #include "tests/render/light_test_support.h"
 #include "tests/support/chi2.h"
 

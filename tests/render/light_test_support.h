@@ -11,8 +11,8 @@
 #include <optional>
 
 #include "core/random.h"
-#include "render/area_lights.h"
 #include "render/light.h"
+#include "render/lights/rect_light.h"
 #include "tests/support/statistics.h"
 
 namespace fluence::test {

@@ -1,27 +1,29 @@
-#include "render/sphere_light.h"
+#include "render/lights/sphere_light.h"
 
 #include <cmath>
 
+#include "core/check.h"
 #include "core/frame.h"
 #include "core/sampling.h"
+#include "render/lights/surface_sampling.h"
 
 namespace fluence::render {
 
-namespace {
-
-float worldRadius(const LightDesc& d) {
+float sphereLightRadius(const LightDesc& d) {
     return d.radius * static_cast<float>(std::cbrt(std::abs(d.transform.determinant3x3())));
 }
+
+LightShaping sphereLightShaping(const LightDesc& d) {
+    return d.shaping ? LightShaping(*d.shaping, normalize(Vec3f(d.transform.transformVector({0.0, 0.0, -1.0}))))
+                     : LightShaping();
+}
+
+namespace {
 
 // The sphere's radiance: the authored one, divided by the world-space area when normalized.
 RGB sphereRadiance(const LightDesc& d, float radius) {
     float area = 4.0f * kPi * radius * radius;
     return d.normalize && area > 0.0f ? d.radiance / area : d.radiance;
-}
-
-LightShaping shapingOf(const LightDesc& d) {
-    return d.shaping ? LightShaping(*d.shaping, normalize(Vec3f(d.transform.transformVector({0.0, 0.0, -1.0}))))
-                     : LightShaping();
 }
 
 // 1 - cos(theta_max) of the cone a sphere of radius r subtends at distance^2 d2, computed without
@@ -33,9 +35,9 @@ double coneOneMinusCos(double r, double d2) {
 
 }  // namespace
 
-SphereLight::SphereLight(const LightDesc& d) : name_(d.name), shaping_(shapingOf(d)) {
+SphereLight::SphereLight(const LightDesc& d) : name_(d.name), shaping_(sphereLightShaping(d)) {
     centre_ = Vec3f(d.transform.transformPoint({0, 0, 0}));
-    radius_ = worldRadius(d);
+    radius_ = sphereLightRadius(d);
     radiance_ = sphereRadiance(d, radius_);
 }
 
@@ -55,6 +57,7 @@ std::optional<LightSample> SphereLight::sample(const Vec3f& p, Vec2f u) const {
     double b = dot(Vec3d(toCentre), Vec3d(wi));
     double disc = double(radius_) * radius_ - (d2 - b * b);
     float t = static_cast<float>(b - std::sqrt(std::max(0.0, disc)));
+    FLUENCE_DCHECK(isUnit(wi) && oneMinusCosMax >= 0.0);
     return LightSample{radiance_ * shaping_.factor(-wi), wi, t, static_cast<float>(1.0 / (2.0 * M_PI * oneMinusCosMax)),
                        false};
 }
@@ -79,30 +82,17 @@ std::optional<LightBounds> SphereLight::bounds() const {
     return shaping_.narrow(b, false);
 }
 
-PointLight::PointLight(const LightDesc& d) : name_(d.name), shaping_(shapingOf(d)) {
-    position_ = Vec3f(d.transform.transformPoint({0, 0, 0}));
-    float radius = worldRadius(d);
-    intensity_ = d.normalize ? d.radiance / 4.0f : d.radiance * (kPi * radius * radius);
+std::optional<EmissionSample> SphereLight::sampleEmission(Vec2f uPosition, Vec2f uDirection, const SceneBounds&) const {
+    if (radius_ <= 0.0f) return std::nullopt;
+    Vec3f n = sampleUniformSphere(uPosition);
+    EmissionSample e = fromSurface(centre_ + n * radius_, n, 1.0f / (4.0f * kPi * radius_ * radius_), uDirection);
+    e.Le = radiance_ * shaping_.factor(e.direction);
+    return e;
 }
 
-std::optional<LightSample> PointLight::sample(const Vec3f& p, Vec2f) const {
-    Vec3f d = position_ - p;
-    float dist2 = lengthSquared(d);
-    if (dist2 == 0.0f) return std::nullopt;
-    float dist = std::sqrt(dist2);
-    Vec3f wi = d / dist;
-    return LightSample{intensity_ * shaping_.factor(-wi) / dist2, wi, dist, 1.0f, true};
-}
-
-float PointLight::power(const SceneBounds&) const {
-    return luminance(intensity_) * 4.0f * kPi * shaping_.powerFraction(false);
-}
-
-std::optional<LightBounds> PointLight::bounds() const {
-    LightBounds b;
-    b.lo = b.hi = position_;
-    b.phi = luminance(intensity_) * 4.0f * kPi;
-    return shaping_.narrow(b, false);
+EmissionDensity SphereLight::emissionDensity(const Vec3f& point, const Vec3f& direction, const SceneBounds&) const {
+    if (radius_ <= 0.0f) return {};
+    return surfaceDensity(normalize(point - centre_), 1.0f / (4.0f * kPi * radius_ * radius_), direction);
 }
 
 }  // namespace fluence::render

@@ -1,4 +1,4 @@
-// UsdLux SphereLight, and the point light it becomes with treatAsPoint.
+// UsdLux SphereLight (with treatAsPoint it becomes the point light of point_light.h).
 //
 // | UsdLux input   | type  | default | notes                                                      |
 // |----------------|-------|---------|------------------------------------------------------------|
@@ -16,6 +16,7 @@
 // sphere it stands for: intensity I = L pi r^2 (L / 4 when normalized, whatever the radius), which
 // gives the irradiance pi L (r/d)^2 the sphere gives a surface facing it at any distance d > r.
 // A zero-radius sphere that is not normalized therefore emits nothing (the delegate warns).
+// Emission sampling: a point uniformly over the sphere, a cosine-weighted direction outwards.
 #pragma once
 
 #include "render/light.h"
@@ -23,6 +24,12 @@
 #include "render/scene_description.h"
 
 namespace fluence::render {
+
+// The world-space radius of a sphere light: its radius scaled by the cube root of the
+// transform's determinant.
+float sphereLightRadius(const LightDesc& desc);
+// Its shaping, about the world image of its local -Z (also the point light's).
+LightShaping sphereLightShaping(const LightDesc& desc);
 
 class SphereLight final : public Light {
 public:
@@ -34,6 +41,7 @@ public:
     float power(const SceneBounds& bounds) const override;
     std::optional<LightBounds> bounds() const override;
     std::string name() const override { return name_; }
+    LightSurface surface() const override { return LightSurface::sphere(centre_, radius_); }
     bool hasEmissionSampling() const override { return true; }
     std::optional<EmissionSample> sampleEmission(Vec2f uPosition, Vec2f uDirection, const SceneBounds& scene) const override;
     EmissionDensity emissionDensity(const Vec3f& point, const Vec3f& direction, const SceneBounds& scene) const override;
@@ -46,29 +54,6 @@ private:
     Vec3f centre_;
     float radius_;
     RGB radiance_;
-    LightShaping shaping_;
-};
-
-// A point light (a delta light: sample() returns the irradiance I / d^2 with pdf 1).
-class PointLight final : public Light {
-public:
-    explicit PointLight(const LightDesc& desc);
-
-    std::optional<LightSample> sample(const Vec3f& p, Vec2f u) const override;
-    float pdf(const Vec3f&, const Vec3f&, const LightHit&) const override { return 0.0f; }
-    float power(const SceneBounds& bounds) const override;
-    std::optional<LightBounds> bounds() const override;
-    std::string name() const override { return name_; }
-    bool hasEmissionSampling() const override { return true; }
-    std::optional<EmissionSample> sampleEmission(Vec2f uPosition, Vec2f uDirection, const SceneBounds& scene) const override;
-    EmissionDensity emissionDensity(const Vec3f& point, const Vec3f& direction, const SceneBounds& scene) const override;
-
-    const RGB& intensity() const { return intensity_; }
-
-private:
-    std::string name_;
-    Vec3f position_;
-    RGB intensity_;
     LightShaping shaping_;
 };
 

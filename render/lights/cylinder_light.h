@@ -1,4 +1,4 @@
-// UsdLux CylinderLight, and the line light it becomes with treatAsLine.
+// UsdLux CylinderLight (with treatAsLine it becomes the line light of line_light.h).
 //
 // | UsdLux input  | type  | default | notes                                                       |
 // |---------------|-------|---------|-------------------------------------------------------------|
@@ -24,6 +24,7 @@
 // the cylinder's 2 pi^2 r L length. Normalized, 2 r L / (2 pi r length) = L / (pi length).
 // The line is a delta light: its sampler picks a point uniformly in the angle the line subtends
 // at p and returns that sample's estimate of the irradiance with pdf 1.
+// Cylinder lights offer no emission sampling (a light subpath never starts on them).
 #pragma once
 
 #include "core/frame.h"
@@ -33,6 +34,19 @@
 #include "render/scene_description.h"
 
 namespace fluence::render {
+
+// The cylinder a LightDesc describes, in world space (also the line light's).
+struct Cylinder {
+    Vec3f centre, axis;
+    float length, radius;
+    RGB radiance;  // normalized by the side area when asked
+    LightShaping shaping;
+};
+Cylinder cylinderOf(const LightDesc& desc);
+
+// Box around a segment of `length` centred at `centre` along unit `axis`, widened by `radius`
+// across it.
+void segmentBounds(const Vec3f& centre, const Vec3f& axis, float length, float radius, Vec3f& lo, Vec3f& hi);
 
 class CylinderLight final : public Light, public AnalyticLightShape {
 public:
@@ -44,6 +58,7 @@ public:
     float power(const SceneBounds& bounds) const override;
     std::optional<LightBounds> bounds() const override;
     std::string name() const override { return name_; }
+    LightSurface surface() const override { return LightSurface::analytic(*this); }
 
     void shapeBounds(Vec3f& lo, Vec3f& hi) const override;
     std::optional<ShapeHit> intersect(const Vec3f& o, const Vec3f& d, float tMin, float tMax) const override;
@@ -63,27 +78,6 @@ private:
     Frame frame_;  // n: the cylinder's axis (local +X)
     float radius_, length_;
     RGB radiance_;
-    LightShaping shaping_;
-};
-
-class LineLight final : public Light {
-public:
-    explicit LineLight(const LightDesc& desc);
-
-    std::optional<LightSample> sample(const Vec3f& p, Vec2f u) const override;
-    float pdf(const Vec3f&, const Vec3f&, const LightHit&) const override { return 0.0f; }
-    float power(const SceneBounds& bounds) const override;
-    std::optional<LightBounds> bounds() const override;
-    std::string name() const override { return name_; }
-
-    // Radiant intensity per unit length towards a direction at right angles to the line.
-    const RGB& linearIntensity() const { return linearIntensity_; }
-
-private:
-    std::string name_;
-    Vec3f start_, axis_;  // the line runs from start_ along unit axis_ for length_
-    float length_;
-    RGB linearIntensity_;
     LightShaping shaping_;
 };
 

@@ -1,14 +1,13 @@
-// Lights at infinity: UsdLux DistantLight and DomeLight (and DomeLight_1, whose pole axis the
+// UsdLux DomeLight, a light at infinity (and DomeLight_1, whose pole axis the
 // delegate folds into the transform).
 //
-// | UsdLux input   | DistantLight                             | DomeLight                          |
-// |----------------|------------------------------------------|------------------------------------|
-// | angle          | angular diameter (0.53 degrees)          | —                                  |
-// | normalize      | the value is the irradiance of the disk  | no effect                          |
-// | texture:file   | —                                        | lat-long image (below)             |
-// | shaping:*      | ignored (the delegate warns)             | ignored (the delegate warns)       |
-// Only the rotation of a light's transform matters (a dome's is orthonormalised; its scale and
-// translation are ignored).
+// | UsdLux input   | type  | default | notes                                                  |
+// |----------------|-------|---------|--------------------------------------------------------|
+// | texture:file   | asset | none    | lat-long image (below)                                 |
+// | normalize      | bool  | false   | no effect                                              |
+// | shaping:*      |       |         | ignored (the delegate warns)                           |
+// Only the rotation of the transform matters (orthonormalised; its scale and translation are
+// ignored).
 //
 // The dome's image follows OpenEXR's lat-long convention, which UsdLux's DomeLight adopts: the
 // top row is latitude +pi/2 (the dome's +Y), the bottom row -pi/2; the left column is longitude
@@ -24,6 +23,8 @@
 // weights luminance x sin(theta) at each row's centre (the sin(theta) is the area a texel row
 // covers on the sphere), so the density in solid angle is p(u, v) / (2 pi^2 sin theta). Without a
 // texture the dome is sampled uniformly over the sphere.
+// Emission sampling: a direction by sample() (reversed), and a point on the disk of the scene's
+// bounding radius facing it (emission_at_infinity.h).
 #pragma once
 
 #include <memory>
@@ -34,34 +35,6 @@
 #include "render/scene_description.h"
 
 namespace fluence::render {
-
-// UsdLux DistantLight: light from a distant disk of angular diameter `angle` around the light's
-// +Z axis (it emits along -Z). angle = 0 is a delta light whose value is the irradiance on a
-// surface facing it. For angle > 0 the authored radiance is the disk's radiance, unless
-// `normalize` is on, in which case it is the irradiance the whole disk delivers.
-class DistantLight final : public Light {
-public:
-    explicit DistantLight(const LightDesc& desc);
-
-    std::optional<LightSample> sample(const Vec3f& p, Vec2f u) const override;
-    float pdf(const Vec3f& p, const Vec3f& wi, const LightHit& hit) const override;
-    bool atInfinity() const override { return true; }
-    RGB escaped(const Vec3f& direction) const override;
-    float power(const SceneBounds& bounds) const override;
-    std::optional<LightBounds> bounds() const override { return std::nullopt; }
-    std::string name() const override { return name_; }
-    bool hasEmissionSampling() const override { return true; }
-    std::optional<EmissionSample> sampleEmission(Vec2f uPosition, Vec2f uDirection, const SceneBounds& scene) const override;
-    EmissionDensity emissionDensity(const Vec3f& point, const Vec3f& direction, const SceneBounds& scene) const override;
-
-    bool isDelta() const { return oneMinusCosMax_ == 0.0; }
-
-private:
-    std::string name_;
-    Vec3f towardsLight_;
-    double oneMinusCosMax_;  // 0 for a delta light
-    RGB value_;              // radiance of the disk, or irradiance for a delta light
-};
 
 class DomeLight final : public Light {
 public:

@@ -1,51 +1,13 @@
-#include "render/infinite_lights.h"
+#include "render/lights/dome_light.h"
 
 #include <algorithm>
 #include <cmath>
-#include <numbers>
 
+#include "core/check.h"
 #include "core/sampling.h"
+#include "render/lights/emission_at_infinity.h"
 
 namespace fluence::render {
-
-DistantLight::DistantLight(const LightDesc& d) : name_(d.name), value_(d.radiance) {
-    towardsLight_ = normalize(Vec3f(d.transform.transformVector({0.0, 0.0, 1.0})));
-    double halfAngle = std::clamp(double(d.angleDegrees), 0.0, 359.999) * 0.5 * std::numbers::pi / 180.0;
-    oneMinusCosMax_ = halfAngle > 0.0 ? 2.0 * std::sin(0.5 * halfAngle) * std::sin(0.5 * halfAngle) : 0.0;
-    if (!isDelta() && d.normalize) {
-        // Irradiance of a uniform disk on a surface facing it: E = L * pi * sin^2(theta_max).
-        double sinMax = std::sin(std::min(halfAngle, std::numbers::pi / 2));
-        value_ /= static_cast<float>(std::numbers::pi * sinMax * sinMax);
-    }
-}
-
-std::optional<LightSample> DistantLight::sample(const Vec3f&, Vec2f u) const {
-    if (isDelta()) return LightSample{value_, towardsLight_, std::numeric_limits<float>::infinity(), 1.0f, true};
-    double cosTheta = 1.0 - u.x * oneMinusCosMax_;
-    double sinTheta = std::sqrt(std::max(0.0, (1.0 - cosTheta) * (1.0 + cosTheta)));
-    double phi = 2.0 * std::numbers::pi * u.y;
-    Vec3f wi = normalize(Frame::fromNormal(towardsLight_)
-                             .toWorld(Vec3f(float(sinTheta * std::cos(phi)), float(sinTheta * std::sin(phi)),
-                                            float(cosTheta))));
-    return LightSample{value_, wi, std::numeric_limits<float>::infinity(),
-                       static_cast<float>(1.0 / (2.0 * std::numbers::pi * oneMinusCosMax_)), false};
-}
-
-float DistantLight::pdf(const Vec3f&, const Vec3f& wi, const LightHit&) const {
-    if (isDelta() || 1.0 - double(dot(wi, towardsLight_)) > oneMinusCosMax_) return 0.0f;
-    return static_cast<float>(1.0 / (2.0 * std::numbers::pi * oneMinusCosMax_));
-}
-
-RGB DistantLight::escaped(const Vec3f& direction) const {
-    if (isDelta() || 1.0 - double(dot(direction, towardsLight_)) > oneMinusCosMax_) return RGB(0.0f);
-    return value_;
-}
-
-float DistantLight::power(const SceneBounds& b) const {
-    float irradiance = isDelta() ? luminance(value_)
-                                 : luminance(value_) * static_cast<float>(2.0 * std::numbers::pi * oneMinusCosMax_);
-    return irradiance * kPi * b.radius * b.radius;
-}
 
 namespace {
 
@@ -108,6 +70,7 @@ std::optional<LightSample> DomeLight::sample(const Vec3f&, Vec2f u) const {
     ImageDistribution::Sample s = distribution_.sample(u);
     float sinTheta = std::sin(kPi * s.uv.y);
     if (!(sinTheta > 0.0f) || s.pdf == 0.0f) return std::nullopt;
+    FLUENCE_DCHECK(isValidDensity(s.pdf));
     return LightSample{radianceAt(s.uv), direction(s.uv), kInfinity, s.pdf / (2.0f * kPi * kPi * sinTheta), false};
 }
 
@@ -122,6 +85,16 @@ RGB DomeLight::escaped(const Vec3f& direction) const { return texture_ ? radianc
 
 float DomeLight::power(const SceneBounds& b) const {
     return luminance(meanRadiance_) * 4.0f * kPi * kPi * b.radius * b.radius;
+}
+
+std::optional<EmissionSample> DomeLight::sampleEmission(Vec2f uPosition, Vec2f uDirection, const SceneBounds& scene) const {
+    std::optional<LightSample> s = sample(scene.centre, uDirection);
+    if (!s) return std::nullopt;
+    return fromInfinity(-s->wi, s->pdf, s->Li, uPosition, scene);
+}
+
+EmissionDensity DomeLight::emissionDensity(const Vec3f&, const Vec3f& direction, const SceneBounds& scene) const {
+    return {infinityPositionDensity(scene), pdf(scene.centre, -direction, {}), 1.0f};
 }
 
 }  // namespace fluence::render

@@ -1,21 +1,12 @@
-#include "render/cylinder_light.h"
+#include "render/lights/cylinder_light.h"
 
 #include <algorithm>
 #include <cmath>
 
+#include "core/check.h"
 #include "core/sampling.h"
 
 namespace fluence::render {
-
-namespace {
-
-// The cylinder a LightDesc describes, in world space.
-struct Cylinder {
-    Vec3f centre, axis;
-    float length, radius;
-    RGB radiance;  // normalized by the side area when asked
-    LightShaping shaping;
-};
 
 Cylinder cylinderOf(const LightDesc& d) {
     const Matrix4& t = d.transform;
@@ -32,8 +23,6 @@ Cylinder cylinderOf(const LightDesc& d) {
     return c;
 }
 
-// Box around a segment of `length` centred at `centre` along unit `axis`, widened by `radius`
-// across it.
 void segmentBounds(const Vec3f& centre, const Vec3f& axis, float length, float radius, Vec3f& lo, Vec3f& hi) {
     Vec3f a = centre - axis * (0.5f * length), b = centre + axis * (0.5f * length);
     Vec3f across = Vec3f(std::sqrt(std::max(0.0f, 1.0f - axis.x * axis.x)), std::sqrt(std::max(0.0f, 1.0f - axis.y * axis.y)),
@@ -41,8 +30,6 @@ void segmentBounds(const Vec3f& centre, const Vec3f& axis, float length, float r
     lo = vmin(a, b) - across;
     hi = vmax(a, b) + across;
 }
-
-}  // namespace
 
 CylinderLight::CylinderLight(const LightDesc& d) {
     Cylinder c = cylinderOf(d);
@@ -84,6 +71,7 @@ std::optional<LightSample> CylinderLight::sample(const Vec3f& p, Vec2f u) const 
     Vec3f wi = d / dist;
     if (!(rho > 0.0f) || dot(frame_.s * x + frame_.t * y, wi) >= 0.0f) return std::nullopt;
     float pdf = dist * dist * dist / (2.0f * psiMax * length_ * rho * rho);
+    FLUENCE_DCHECK(isUnit(wi) && isValidDensity(pdf));
     return LightSample{radiance_ * shaping_.factor(-wi), wi, dist, pdf, false};
 }
 
@@ -130,45 +118,6 @@ std::optional<ShapeHit> CylinderLight::intersect(const Vec3f& o, const Vec3f& d,
         return ShapeHit{static_cast<float>(t), normal};
     }
     return std::nullopt;
-}
-
-LineLight::LineLight(const LightDesc& d) {
-    Cylinder c = cylinderOf(d);
-    name_ = d.name;
-    axis_ = c.axis;
-    length_ = c.length;
-    start_ = c.centre - axis_ * (0.5f * length_);
-    linearIntensity_ = c.radiance * (2.0f * c.radius);
-    shaping_ = c.shaping;
-}
-
-std::optional<LightSample> LineLight::sample(const Vec3f& p, Vec2f u) const {
-    // With p's foot on the line at `along` and distance h, a point at offset s from the foot is at
-    // angle phi = atan(s / h). Uniform phi has density h / d^2 per unit length, which cancels the
-    // inverse square law: the estimate of E = integral of I sin(theta) cos / d^2 ds is
-    // I (h/d) cos / d^2 * d^2 / h * (phi1 - phi0) = I (phi1 - phi0) cos / d.
-    Vec3f q = p - start_;
-    float along = dot(q, axis_);
-    float h = length(q - axis_ * along);
-    if (!(h > 1e-6f * length_)) return std::nullopt;
-    float phi0 = std::atan2(-along, h), phi1 = std::atan2(length_ - along, h);
-    float phi = phi0 + u.x * (phi1 - phi0);
-    Vec3f point = start_ + axis_ * (along + h * std::tan(phi));
-    Vec3f d = point - p;
-    float dist = length(d);
-    Vec3f wi = d / dist;
-    return LightSample{linearIntensity_ * shaping_.factor(-wi) * ((phi1 - phi0) / dist), wi, dist, 1.0f, true};
-}
-
-float LineLight::power(const SceneBounds&) const {
-    return luminance(linearIntensity_) * kPi * kPi * length_ * shaping_.powerFraction(false);
-}
-
-std::optional<LightBounds> LineLight::bounds() const {
-    LightBounds b;
-    segmentBounds(start_ + axis_ * (0.5f * length_), axis_, length_, 0.0f, b.lo, b.hi);
-    b.phi = luminance(linearIntensity_) * kPi * kPi * length_;
-    return shaping_.narrow(b, false);
 }
 
 }  // namespace fluence::render

@@ -1,0 +1,45 @@
+// UsdLux DistantLight: light from a distant disk of angular diameter `angle` around the light's
+// +Z axis (it emits along -Z). A light at infinity: only the rotation of its transform matters.
+//
+// | UsdLux input   | type  | default      | notes                                          |
+// |----------------|-------|--------------|------------------------------------------------|
+// | angle          | float | 0.53 degrees | angular diameter                               |
+// | normalize      | bool  | false        | the value is the irradiance of the disk        |
+// | shaping:*      |       |              | ignored (the delegate warns)                   |
+// angle = 0 is a delta light whose value is the irradiance on a surface facing it. For angle > 0
+// the authored radiance is the disk's radiance, unless `normalize` is on, in which case it is the
+// irradiance the whole disk delivers; the disk is sampled uniformly in its cone.
+// Emission sampling: a direction by sample() (towards the light, reversed), and a point on the
+// disk of the scene's bounding radius facing it (emission_at_infinity.h).
+#pragma once
+
+#include "render/light.h"
+#include "render/scene_description.h"
+
+namespace fluence::render {
+
+class DistantLight final : public Light {
+public:
+    explicit DistantLight(const LightDesc& desc);
+
+    std::optional<LightSample> sample(const Vec3f& p, Vec2f u) const override;
+    float pdf(const Vec3f& p, const Vec3f& wi, const LightHit& hit) const override;
+    bool atInfinity() const override { return true; }
+    RGB escaped(const Vec3f& direction) const override;
+    float power(const SceneBounds& bounds) const override;
+    std::optional<LightBounds> bounds() const override { return std::nullopt; }
+    std::string name() const override { return name_; }
+    bool hasEmissionSampling() const override { return true; }
+    std::optional<EmissionSample> sampleEmission(Vec2f uPosition, Vec2f uDirection, const SceneBounds& scene) const override;
+    EmissionDensity emissionDensity(const Vec3f& point, const Vec3f& direction, const SceneBounds& scene) const override;
+
+    bool isDelta() const { return oneMinusCosMax_ == 0.0; }
+
+private:
+    std::string name_;
+    Vec3f towardsLight_;
+    double oneMinusCosMax_;  // 0 for a delta light
+    RGB value_;              // radiance of the disk, or irradiance for a delta light
+};
+
+}  // namespace fluence::render

@@ -1,0 +1,67 @@
+#include "render/lights/triangle_light.h"
+
+#include <cmath>
+
+#include "render/lights/surface_sampling.h"
+
+namespace fluence::render {
+
+TriangleLight::TriangleLight(std::string meshName, const Vec3f& p0, const Vec3f& p1, const Vec3f& p2,
+                             const RGB& radiance)
+    : name_(std::move(meshName)), p0_(p0), p1_(p1), p2_(p2), radiance_(radiance) {
+    Vec3f n = cross(p1 - p0, p2 - p0);
+    area_ = 0.5f * length(n);
+    normal_ = area_ > 0.0f ? normalize(n) : Vec3f(0, 0, 1);
+}
+
+std::optional<LightSample> TriangleLight::sample(const Vec3f& p, Vec2f u) const {
+    if (area_ == 0.0f) return std::nullopt;
+    Vec2f b = sampleUniformTriangle(u);
+    Vec3f q = p0_ * b.x + p1_ * b.y + p2_ * (1.0f - b.x - b.y);
+    Vec3f d = q - p;
+    float dist2 = lengthSquared(d);
+    if (dist2 == 0.0f) return std::nullopt;
+    float dist = std::sqrt(dist2);
+    Vec3f wi = d / dist;
+    float pdf = areaToSolidAngle(1.0f / area_, dist2, std::abs(dot(normal_, wi)));
+    if (pdf == 0.0f) return std::nullopt;
+    return surfaceSample(radiance_, wi, dist, pdf);
+}
+
+float TriangleLight::pdf(const Vec3f& p, const Vec3f& wi, const LightHit& hit) const {
+    return area_ > 0.0f ? areaToSolidAngle(1.0f / area_, lengthSquared(hit.point - p), std::abs(dot(normal_, wi)))
+                        : 0.0f;
+}
+
+float TriangleLight::power(const SceneBounds&) const { return luminance(radiance_) * area_ * 2.0f * kPi; }
+
+std::optional<LightBounds> TriangleLight::bounds() const {
+    LightBounds b;
+    b.lo = vmin(p0_, vmin(p1_, p2_));
+    b.hi = vmax(p0_, vmax(p1_, p2_));
+    b.phi = power({});
+    b.axis = normal_;
+    b.cosThetaO = 1.0f;
+    b.twoSided = true;
+    return b;
+}
+
+std::optional<EmissionSample> TriangleLight::sampleEmission(Vec2f uPosition, Vec2f uDirection, const SceneBounds&) const {
+    if (area_ == 0.0f) return std::nullopt;
+    Vec2f b = sampleUniformTriangle(uPosition);
+    const bool back = uDirection.x < 0.5f;  // the side, and uDirection.x rescaled to [0, 1) again
+    uDirection.x = back ? 2.0f * uDirection.x : 2.0f * uDirection.x - 1.0f;
+    EmissionSample e = fromSurface(p0_ * b.x + p1_ * b.y + p2_ * (1.0f - b.x - b.y), back ? -normal_ : normal_,
+                                   1.0f / area_, uDirection);
+    e.density.direction *= 0.5f;
+    e.Le = radiance_;
+    return e;
+}
+
+EmissionDensity TriangleLight::emissionDensity(const Vec3f&, const Vec3f& direction, const SceneBounds&) const {
+    if (area_ == 0.0f) return {};
+    float cosine = std::abs(dot(normal_, direction));
+    return {1.0f / area_, 0.5f * cosineHemispherePdf(cosine), cosine};
+}
+
+}  // namespace fluence::render
