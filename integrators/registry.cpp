@@ -15,13 +15,13 @@ const std::vector<IntegratorInfo>& integratorRegistry() {
     static const std::vector<IntegratorInfo> registry = {
         {"path", "L(S|D)*E", kAllPathClasses & ~kDeltaLightCaustics,
          "unidirectional path tracing with next-event estimation, MIS and Russian roulette",
-         [](const IntegratorSettings& s) { return std::make_unique<PathTracer>(s); }, true},
+         [](const IntegratorSettings& s) { return std::make_unique<PathTracer>(s); }, true, {}},
         {"direct", "L(D|S)?E", kEmitterSeen | kDirect | kDeltaLights,
          "local illumination with shadows: emitters seen, direct lighting of the first hit (NEE + MIS); no indirect light",
-         [](const IntegratorSettings& s) { return std::make_unique<DirectLighting>(s); }},
+         [](const IntegratorSettings& s) { return std::make_unique<DirectLighting>(s); }, false, {}},
         {"whitted", "LD?S*E", kEmitterSeen | kDirect | kSpecularSeen | kDeltaLights,
          "Whitted ray tracing: direct lighting (as `direct`) seen through mirrors and smooth glass; no caustics",
-         [](const IntegratorSettings& s) { return std::make_unique<Whitted>(s); }},
+         [](const IntegratorSettings& s) { return std::make_unique<Whitted>(s); }, false, {}},
         {"bdpt", "L(S|D|V)*E; from delta lights LD(S|D|V)*E, L(S|D|V)*DD(S|D|V)*E and L(S|D|V)*DE (no LS+DS+E)",
          kEmitterSeen | kDirect | kSpecularSeen | kIndirect | kCaustics | kDeltaLightCaustics | kDeltaLights | kVolumes |
              kSubsurface,
@@ -29,7 +29,7 @@ const std::vector<IntegratorInfo>& integratorRegistry() {
          "light tracing to the camera (t = 1) included, through volumes and interiors (subsurface walks join nowhere); "
          "point-light caustics seen directly (LS+DE) or lit onward, not through glass or mirrors (LS+DS+E); tiles and "
          "orthographic cameras leave t = 1 out",
-         [](const IntegratorSettings& s) { return std::make_unique<Bdpt>(s); }},
+         [](const IntegratorSettings& s) { return std::make_unique<Bdpt>(s); }, false, {}},
         {"sppm", "L(S|D|V)*(D|V)S*E, LS*E",
          kEmitterSeen | kDirect | kSpecularSeen | kIndirect | kCaustics | kDeltaLightCaustics | kDeltaLights | kVolumes |
              kSubsurface,
@@ -57,7 +57,7 @@ const std::vector<IntegratorInfo>& integratorRegistry() {
            "the longest patch edge in scene units (default: the scene's diameter / 16)"}}},
         {"naive", "L(S|D)*E without delta lights", kAllPathClasses & ~(kDeltaLights | kDeltaLightCaustics),
          "reference path tracing by BSDF sampling only (no NEE, no MIS): slow; for validating `path`",
-         [](const IntegratorSettings& s) { return std::make_unique<NaivePathTracer>(s); }},
+         [](const IntegratorSettings& s) { return std::make_unique<NaivePathTracer>(s); }, false, {}},
     };
     return registry;
 }

@@ -99,7 +99,7 @@ TEST(UsdzCli, DamagedPackagesFailNamingThem) {
 // Fluence, with the package, the entry and why: exit 4, and --allow-missing renders with the
 // texture's fallback.
 TEST(UsdzCli, ACompressedTextureEntryIsAMissingAssetSayingWhy) {
-    SKIP_WITHOUT_PACKAGE();
+    FLUENCE_REQUIRE_SHARED(kPackage);
     test::TempDir dir;
     std::string bytes = test::slurp(kPackage);
     const std::string entry = "textures/texture-cat.jpg";

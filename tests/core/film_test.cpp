@@ -7,8 +7,17 @@ namespace {
 
 TEST(Film, ResolvesMeansCoverageMinDepthAndCounts) {
     Film film(2, 1, 1000.0f);
-    FilmSample a{RGB(1, 2, 3), true, RGB(0.5f), Vec3f(0, 0, 1), 4.0f};
-    FilmSample b{RGB(3, 2, 1), true, RGB(0.25f), Vec3f(0, 1, 0), 2.0f};
+    auto hitSample = [](RGB radiance, RGB albedo, Vec3f normal, float depth) {
+        FilmSample s;
+        s.radiance = radiance;
+        s.hit = true;
+        s.albedo = albedo;
+        s.normal = normal;
+        s.depth = depth;
+        return s;
+    };
+    const FilmSample a = hitSample(RGB(1, 2, 3), RGB(0.5f), Vec3f(0, 0, 1), 4.0f);
+    const FilmSample b = hitSample(RGB(3, 2, 1), RGB(0.25f), Vec3f(0, 1, 0), 2.0f);
     FilmSample miss;
     miss.radiance = RGB(1, 1, 1);
     film.add(0, 0, a);

@@ -98,7 +98,7 @@ TEST(DirectLighting, AgreesWithPathAtDepthOneUnderEveryLightKind) {
     // difference over the image is 0 within its noise.
     const render::SceneDescription scene = everyLightScene();
     const Image direct = renderWith(DirectLighting(IntegratorSettings{}), scene, 64, 64, 0, 1).image;
-    const Image path = renderWith(PathTracer(IntegratorSettings{.maxDepth = 1, .lightPathAovs = {}}), scene, 64, 64, 0, 2).image;
+    const Image path = renderWith(PathTracer(IntegratorSettings{.maxDepth = 1, .parameters = {}, .lightPathAovs = {}}), scene, 64, 64, 0, 2).image;
     for (int c = 0; c < 3; ++c) {
         const test::MeanEstimate d = meanDifference(direct, path, c, everyPixel);
         const test::MeanEstimate level = test_support::channelMean(direct, c, [](const float*) { return true; });
