@@ -28,9 +28,10 @@ protected:
         desc.lights = {test::rectLight("/World/Light", 1.0f, 1.0f, RGB(1.0f), Matrix4::translate({3.5, 0.5, 0}))};
         scene_ = std::make_unique<RenderScene>(desc);
     }
-    // What a ray straight down onto (x, 0.5) hits: its object and material names ("" for none).
-    std::pair<std::string, std::string> namesAt(float x) const {
-        std::optional<SurfaceHit> hit = scene_->intersect(Ray{Vec3f(x, 0.5f, 5.0f), Vec3f(0, 0, -1)});
+    // What a ray straight down onto (x, 0.5) from height z (up from below for z < 0) hits: its
+    // object and material names ("" for none).
+    std::pair<std::string, std::string> namesAt(float x, float z = 5.0f) const {
+        std::optional<SurfaceHit> hit = scene_->intersect(Ray{Vec3f(x, 0.5f, z), Vec3f(0, 0, z > 0.0f ? -1.0f : 1.0f)});
         EXPECT_TRUE(hit.has_value()) << x;
         if (!hit) return {};
         return {hit->objectName == kNoName ? "" : scene_->objectNames().name(hit->objectName),
@@ -46,7 +47,8 @@ TEST_F(CryptomatteNames, HitsCarryTheirPrimsNames) {
     EXPECT_EQ(namesAt(-1.5f), std::make_pair(std::string("/World/InstA"), std::string("/Looks/Blue")));
     EXPECT_EQ(namesAt(-0.5f), std::make_pair(std::string("/World/InstB"), std::string("/Looks/Blue")));
     EXPECT_EQ(namesAt(1.5f), std::make_pair(std::string("/World/Trees[7]"), std::string("/Looks/Glow")));
-    EXPECT_EQ(namesAt(3.5f), std::make_pair(std::string("/World/Light"), std::string()));
+    // A rect light emits along its -z and is seen from that side only (rays pass through its back).
+    EXPECT_EQ(namesAt(3.5f, -5.0f), std::make_pair(std::string("/World/Light"), std::string()));
 }
 
 // Each name is stored once, and prototype meshes' own names are not among them (a hit inside an
