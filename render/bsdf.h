@@ -48,10 +48,11 @@
 // the sample record), and f obeys the generalised reciprocity
 //     f(wo, wi) / n(wo)^2 == f(wi, wo) / n(wi)^2
 // (n = IOR on that direction's side) instead of plain symmetry. Energy (flux) is conserved as
-// the integral of f(wo, wi) * (n(wi)/n(wo))^2 * |wi.z| dwi <= 1. A tracer of importance (light
-// paths, as BDPT or photon mapping would need) must use the adjoint f*(wo, wi) = f(wi, wo),
-// that is multiply the transmitted part by eta^2; no such tracer exists yet, so there is no
-// transport-mode argument.
+// the integral of f(wo, wi) * (n(wi)/n(wo))^2 * |wi.z| dwi <= 1. The tracers of importance (the
+// light subpaths of `bdpt`, the photons of `sppm`) use the adjoint f*(wo, wi) = f(wi, wo): they
+// evaluate f with its arguments swapped, multiply a sampled refraction's weight by eta^2, and
+// correct for shading normals with integrators/surface_frame.h's adjointShadingCosine. There is
+// no transport-mode argument: the caller chooses the adjoint by how it calls.
 //
 // LABELS. For the path classes integrators declare (Heckbert's L(S|D)*E), a delta lobe is S and
 // every other lobe, diffuse or glossy, counts as D: what the class decides is whether a vertex
