@@ -187,7 +187,9 @@ int runInfo(const InfoOptions& opt) {
     list("volumes", volumes);
     list("render settings prims", settings);
     try {
-        if (auto s = delegate::renderSettingsFromStage(*stage, opt.settings, time)) {
+        std::function<void(const std::string&, const std::string&)> warnMissing;
+        if (!opt.strict) warnMissing = [&](const std::string& where, const std::string& message) { warnings(where, message); };
+        if (auto s = delegate::renderSettingsFromStage(*stage, opt.settings, time, warnMissing)) {
             std::printf("  used: %s  resolution %d x %d, camera %s, %zu products%s\n", s->path.c_str(), s->resolution.first,
                         s->resolution.second, s->cameraPath.empty() ? "(none)" : s->cameraPath.c_str(), s->products.size(),
                         s->integrator.empty() ? "" : (", integrator " + s->integrator).c_str());

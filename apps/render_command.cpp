@@ -3,6 +3,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <functional>
 #include <thread>
 
 #include "apps/frame_build.h"
@@ -55,8 +56,10 @@ int renderProducts(const RenderOptions& opt, usd::Stage& stage, const color::Col
                    double parseSeconds, WarningLog& warnings, RunSummary& summary) {
     RenderPlan plan;
     try {
-        plan = planRenders(delegate::renderSettingsFromStage(stage, opt.settings, time), opt,
-                           std::filesystem::path(opt.scene).stem().string(), [&](const std::string& where, const std::string& message) { warnings(where, message); });
+        std::function<void(const std::string&, const std::string&)> warn =
+            [&](const std::string& where, const std::string& message) { warnings(where, message); };
+        plan = planRenders(delegate::renderSettingsFromStage(stage, opt.settings, time, opt.strict ? nullptr : warn), opt,
+                           std::filesystem::path(opt.scene).stem().string(), warn);
     } catch (const delegate::SceneError& e) {
         printError(e.what());
         return kExitScene;

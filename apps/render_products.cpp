@@ -144,10 +144,13 @@ ProductVar varOf(const delegate::RenderVarDesc& desc, const std::function<void(c
     } else {
         throw SceneError("RenderVar " + desc.path + ": sourceType '" + desc.sourceType + "' is not one Fluence writes (raw, primvar, lpe)");
     }
-    if (needs && type->components != needs)
+    if (needs == 1 && type->components > 1)
+        warn(desc.path, "dataType " + desc.dataType + " has " + std::to_string(type->components) + " components; source '" +
+                            desc.sourceName + "' gives 1, which is written to each");
+    else if (needs && type->components != needs)
         throw SceneError("RenderVar " + desc.path + ": dataType " + desc.dataType + " has " + std::to_string(type->components) +
                          (type->components == 1 ? " component" : " components") + "; source '" + desc.sourceName + "' gives " + std::to_string(needs));
-    var.components = type->components;
+    var.components = needs == 1 ? 1 : type->components;
     var.type = type->type;
     var.filter = chosenFilter(desc, var.source, warn);
     var.colour = var.source == VarSource::Beauty || var.source == VarSource::Alpha || var.source == VarSource::Albedo ||
@@ -429,9 +432,10 @@ Image productImage(const PlannedProduct& product, const PixelWindow& window, con
         const std::vector<std::string> from = filmChannels(var.source, var.name, var.components);
         if (var.source == VarSource::LightPath && film.channelIndex(from.front()) < 0) continue;
         for (std::size_t c = 0; c < var.channels.size(); ++c) {
+            const std::size_t component = std::min(c, std::size_t(var.components - 1));  // one component fills every channel
             names.push_back(var.channels[c]);
-            sources.push_back(var.firstHitAov >= 0 ? Source{&firstHit, firstHit.channelIndex(std::to_string(var.firstHitAov) + "." + std::to_string(c))}
-                                                   : Source{&film, film.channelIndex(from[c])});
+            sources.push_back(var.firstHitAov >= 0 ? Source{&firstHit, firstHit.channelIndex(std::to_string(var.firstHitAov) + "." + std::to_string(component))}
+                                                   : Source{&film, film.channelIndex(from[component])});
             header.channelTypes.push_back(var.type);
             if (!var.colour) header.dataChannels.push_back(var.channels[c]);
         }

@@ -30,7 +30,8 @@
 //
 // Errors (delegate::SceneError naming the RenderVar or RenderProduct prim, exit code 3): an
 // unknown sourceType, raw sourceName or dataType; a dataType whose component count the source
-// cannot give; two vars writing the same channel; two products writing the same file; an unknown
+// cannot give (but a one-component source, such as depth, under a 2-4 component dataType is
+// repeated in each channel, with a warning: arnold-usd's tests declare Z as color3f); two vars writing the same channel; two products writing the same file; an unknown
 // compression; a data window outside the image. Warnings: an unsupported filter; lossy compression
 // (b44, b44a, dwaa, dwab, pxr24) on a product with data channels, which is written with zip.
 #pragma once
@@ -75,7 +76,7 @@ struct ProductVar {
     std::string path;  // the RenderVar prim; "" for the default channels and the implicit beauty
     VarSource source = VarSource::Beauty;
     std::string name;  // LightPath: the layer; Primvar: the primvar, without "primvars:"
-    int components = 3;
+    int components = 3;  // the components its source gives (a single one is repeated in every channel)
     output::PixelType type = output::PixelType::Float;
     integrators::PixelFilter filter = integrators::PixelFilter::Box;
     bool colour = true;  // colour channels (in the rendering space), else data

@@ -86,15 +86,24 @@ render::ImageFraming framingOf(const PrimReader& reader, const render::ImageFram
 
 }  // namespace
 
-std::optional<RenderSettingsDesc> renderSettingsFromStage(const usd::Stage& stage, const std::string& settingsPath,
-                                                          double time) {
+std::optional<RenderSettingsDesc> renderSettingsFromStage(
+    const usd::Stage& stage, const std::string& settingsPath, double time,
+    const std::function<void(const std::string& where, const std::string& message)>& warnMissing) {
     std::string path = settingsPath;
-    if (path.empty())
+    bool fromMetadata = path.empty();
+    if (fromMetadata)
         if (const usd::MetadataEntry* e = usd::findMetadata(stage.rootLayer().metadata, "renderSettingsPrimPath"))
             path = e->value.asString().value_or("");
     if (path.empty()) return std::nullopt;
     const usd::PrimSpec* prim = stage.prim(path);
-    if (!prim) throw SceneError("render settings " + path + " do not exist in the scene");
+    if (!prim && fromMetadata && warnMissing) {
+        warnMissing(stage.rootLayer().identifier,
+                    "renderSettingsPrimPath names " + path + ", which is not in the scene; rendering with default settings");
+        return std::nullopt;
+    }
+    if (!prim)
+        throw SceneError(fromMetadata ? "the stage's renderSettingsPrimPath names " + path + ", which is not in the scene"
+                                      : "render settings " + path + " do not exist in the scene");
     if (prim->typeName != "RenderSettings")
         throw SceneError("render settings " + path + " is a " + (prim->typeName.empty() ? "typeless prim" : prim->typeName) +
                          ", not a RenderSettings prim");

@@ -27,6 +27,7 @@
 #pragma once
 
 #include <array>
+#include <functional>
 #include <map>
 #include <optional>
 #include <string>
@@ -79,9 +80,13 @@ struct RenderSettingsDesc {
 };
 
 // `settingsPath` "" means the stage's renderSettingsPrimPath (or no settings). Throws SceneError
-// when a named prim is missing or is not a RenderSettings prim, or when a product or var
-// relationship targets a prim of the wrong type.
-std::optional<RenderSettingsDesc> renderSettingsFromStage(const usd::Stage& stage, const std::string& settingsPath,
-                                                          double time);
+// when a named prim is not a RenderSettings prim, when a product or var relationship targets a
+// prim of the wrong type, and when `settingsPath` names no prim. When the stage's
+// renderSettingsPrimPath names no prim (a layer written for another stage, as arnold-usd's tests
+// have), `warnMissing` is told (where, message) and there are no settings, as husk does; without
+// `warnMissing` (--strict) that is a SceneError too.
+std::optional<RenderSettingsDesc> renderSettingsFromStage(
+    const usd::Stage& stage, const std::string& settingsPath, double time,
+    const std::function<void(const std::string& where, const std::string& message)>& warnMissing);
 
 }  // namespace fluence::delegate

@@ -68,10 +68,18 @@ void appendPart(SurfaceRprim::Part part, std::vector<render::MeshDesc>& meshes,
     meshes.push_back(std::move(mesh));
 }
 
+// Where renderSettingsFromStage reports a renderSettingsPrimPath that names no prim: nowhere
+// under --strict (it is an error then), else the delegate's warnings (a no-op when it has none).
+Warn settingsWarning(const DelegateOptions& options) {
+    if (options.strict) return nullptr;
+    if (options.warn) return options.warn;
+    return [](const std::string&, const std::string&) {};
+}
+
 }  // namespace
 
 SceneDelegate::SceneDelegate(usd::Stage& stage, DelegateOptions options) : stage_(stage), options_(std::move(options)) {
-    renderSettings_ = renderSettingsFromStage(stage_, options_.settingsPath, options_.time);
+    renderSettings_ = renderSettingsFromStage(stage_, options_.settingsPath, options_.time, settingsWarning(options_));
     try {
         if (options_.purposes) purposes_ = IncludedPurposes::fromNames(*options_.purposes);
         else if (renderSettings_) purposes_ = IncludedPurposes::fromNames(renderSettings_->includedPurposes);
@@ -403,7 +411,7 @@ render::SceneDescription SceneDelegate::describe(const render::Camera& camera, c
 
 void SceneDelegate::setTime(double time) {
     options_.time = time;
-    renderSettings_ = renderSettingsFromStage(stage_, options_.settingsPath, time);
+    renderSettings_ = renderSettingsFromStage(stage_, options_.settingsPath, time, settingsWarning(options_));
     for (const auto& [path, prim] : index_.prims()) {
         if (prim->failed()) prim->markDirty(kAllDirty);  // it may be well formed at this time
         if (prim->transformAnimated()) prim->markDirty(kDirtyTransform);

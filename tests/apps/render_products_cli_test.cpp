@@ -273,6 +273,19 @@ TEST_F(RenderProductsCli, FiltersPickTheSamplesValue) {
     EXPECT_NEAR(img.at(2, 2, "odd.Z"), 1.0f, 1e-5f);
 }
 
+TEST_F(RenderProductsCli, AOneComponentSourceFillsEveryChannelOfAWiderDataType) {
+    // arnold-usd's tests declare depth as color3f: depth (10 everywhere, as above) is written to
+    // each channel, from the film (the default min filter) and from the first-hit AOVs (max).
+    const std::string vars = var("zc", "depth", "raw", "color3f") +
+                             var("zfar", "depth", "raw", "float2", "            uniform token fluence:filter = \"max\"\n");
+    RunResult r = render(scene("</Render/P>", product("P", "p.exr", "</Render/Vars/zc>, </Render/Vars/zfar>"), vars));
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_NE(r.err.find("/Render/Vars/zc: dataType color3f has 3 components; source 'depth' gives 1, which is written to each"),
+              std::string::npos) << r.err;
+    const test::ExrImage img = test::readExr(tmp_.file("p.exr"));
+    for (const char* channel : {"zc.R", "zc.G", "zc.B", "zfar.X", "zfar.Y"}) EXPECT_NEAR(img.at(2, 2, channel), 10.0f, 1e-4f) << channel;
+}
+
 TEST_F(RenderProductsCli, AVarFluenceCannotProduceIsASceneErrorNamingIt) {
     RunResult r = render(scene("</Render/P>", product("P", "p.exr", "</Render/Vars/motion>"), var("motion", "motionVector", "raw", "float3")));
     EXPECT_EQ(r.exitCode, 3);

@@ -1,7 +1,8 @@
 // Messages a person can read about a stage: a missing layer named by many prims is one warning
 // (or one error) with the count; stage metadata USD would flag is a warning at its line; a layer
 // in a format that needs a USD plugin Fluence lacks (Alembic, Draco) is a scene error (exit 3)
-// that says which plugin, not a missing input (exit 4).
+// that says which plugin, not a missing input (exit 4); a renderSettingsPrimPath naming no prim is
+// a warning (an error under --strict).
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -96,6 +97,37 @@ def Sphere "Ball"
     r = run("info " + good.string());
     ASSERT_EQ(r.exitCode, 0) << r.err;
     for (const char* key : {"upAxis", "framesPerSecond", "TimeCode"}) EXPECT_EQ(r.err.find(key), std::string::npos) << r.err;
+}
+
+TEST_F(SceneMessagesCli, ARenderSettingsPrimPathNamingNoPrimIsAWarningAndTheDefaultsAreUsed) {
+    // arnold-usd's test_1868 names settings its layer does not hold: husk warns and renders.
+    const fs::path scene = write("settings.usda", R"(#usda 1.0
+(
+    renderSettingsPrimPath = "/Render/Gone"
+)
+def Sphere "Ball"
+{
+}
+)");
+    const std::string out = " -o " + (dir_ / "settings.exr").string() + " -r 8 8 --spp 1";
+    test::RunResult r = run("render " + scene.string() + out);
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_EQ(occurrences(r.err, "renderSettingsPrimPath names /Render/Gone, which is not in the scene; rendering with default settings"), 1u)
+        << r.err;
+    EXPECT_TRUE(fs::exists(dir_ / "settings.exr"));
+    test::RunResult info = run("info " + scene.string());
+    EXPECT_EQ(info.exitCode, 0) << info.err;
+    EXPECT_NE(info.err.find("renderSettingsPrimPath names /Render/Gone"), std::string::npos) << info.err;
+
+    // --strict refuses it, and settings named on the command line must exist.
+    fs::remove(dir_ / "settings.exr");
+    r = run("render " + scene.string() + out + " --strict");
+    EXPECT_EQ(r.exitCode, 3) << r.err;
+    EXPECT_NE(r.err.find("the stage's renderSettingsPrimPath names /Render/Gone, which is not in the scene"), std::string::npos) << r.err;
+    r = run("render " + scene.string() + out + " -s /Render/Other");
+    EXPECT_EQ(r.exitCode, 3) << r.err;
+    EXPECT_NE(r.err.find("render settings /Render/Other do not exist in the scene"), std::string::npos) << r.err;
+    EXPECT_FALSE(fs::exists(dir_ / "settings.exr"));
 }
 
 TEST_F(SceneMessagesCli, AlembicAndDracoLayersNeedTheirPlugins) {
