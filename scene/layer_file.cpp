@@ -54,9 +54,9 @@ std::unique_ptr<Layer> readLayerFile(const std::string& path) {
     if (isUsdzPath(path)) {  // a package file, or a package inside one: its root layer
         UsdzPackage package = UsdzPackage::open(path);
         if (package.entries().empty()) throw FileError("'" + path + "': the USDZ package holds no layer");
-        const std::string& root = package.entries().front().name;
-        if (isUsdzPath(root)) return readLayerFile(packagePath(path, root));
-        return readPackagedLayer(package, root);
+        // As a packaged path, so that a root layer in a format Fluence has no plugin for (an
+        // Alembic root, as in OpenUSD's usdchecker tests) is named as such.
+        return readLayerFile(packagePath(path, package.entries().front().name));
     }
     if (std::optional<PackagePath> packaged = splitInnermostPackagePath(path))
         return readPackagedLayer(UsdzPackage::open(packaged->package), packaged->entry);
