@@ -1,12 +1,13 @@
 // render_census LISTING OUT.tsv [TIMEOUT_SECONDS]: the render census of a list of USD files, as
 // `fluence render FILE -o out.exr -r 16 16 --spp 1 -j 1` runs it (apps/command_line.h), again with
-// --allow-missing when that exits 4, each run in a forked child (a crash or a hang costs only that
+// --allow-missing when that exits 4 (a missing asset) or 3 for a layer that needs a file format
+// plugin Fluence does not have (Alembic, Draco), each run in a forked child (a crash or a hang costs only that
 // file: TIMEOUT_SECONDS, 60 by default, then SIGKILL). Forking skips what starting a process costs
 // (loading the shared libraries takes most of a tiny render's time), so the 2,859 files of the
 // four public mirrors take minutes instead of an hour. Rows already in OUT.tsv are skipped, so a
 // stopped census resumes. One row per file, tab-separated, as bench/census_summary.py reads them:
 // path; exit code of the plain run (or timeout, signal N); exit code with --allow-missing when the
-// plain run exited 4, else -; the image class (lit: some beauty above 0; dark: alpha above 0 but
+// plain run was retried with it, else -; the image class (lit: some beauty above 0; dark: alpha above 0 but
 // the beauty 0; empty: neither; nonfinite; - no image); seconds; whether stderr names a
 // file:line:column (yes/no); stderr's first error line (else its first line).
 #include <OpenImageIO/imageio.h>
@@ -137,12 +138,14 @@ int main(int argc, char** argv) {
         if (path.empty() || done.count(path)) continue;
         const auto start = std::chrono::steady_clock::now();
         const Run plain = render(path, false, work, timeoutSeconds);
-        const Run last = plain.exit == "4" ? render(path, true, work, timeoutSeconds) : plain;
+        // A missing asset (exit 4), or a layer in a format Fluence has no plugin for (exit 3): again with --allow-missing.
+        const bool retry = plain.exit == "4" || (plain.exit == "3" && plain.err.find("plugin Fluence does not have") != std::string::npos);
+        const Run last = retry ? render(path, true, work, timeoutSeconds) : plain;
         const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
         const std::string& err = last.exit == "0" ? plain.err : last.err;  // why it failed, else the first run's warnings
         char time[32];
         std::snprintf(time, sizeof time, "%.2f", seconds);
-        out << path << '\t' << plain.exit << '\t' << (plain.exit == "4" ? last.exit : "-") << '\t'
+        out << path << '\t' << plain.exit << '\t' << (retry ? last.exit : "-") << '\t'
             << (last.image.empty() ? "-" : last.image) << '\t' << time << '\t'
             << (std::regex_search(err, location) ? "yes" : "no") << '\t' << firstErrorLine(err) << std::endl;
     }
