@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -105,7 +106,8 @@ void appendAlong(const Primvar& pv, std::size_t c, std::size_t firstVarying, std
 }
 
 // Raises SceneError unless `pv` has the values its interpolation needs.
-void checkCount(const PrimReader& prim, const Primvar& pv, std::size_t curves, std::size_t varying, std::size_t vertices) {
+void checkCount(const PrimReader& prim, Primvar& pv, std::size_t curves, std::size_t varying, std::size_t vertices) {
+    if (pv.elementCount() == 1) pv.interpolation = "constant";  // one value can only mean the whole prim (as Hydra reads it)
     std::size_t need = 0;
     if (pv.interpolation == "constant") need = 1;
     else if (pv.interpolation == "uniform") need = curves;
@@ -134,8 +136,8 @@ CurvePrimvars readCurvePrimvars(const PrimReader& prim) {
     return p;
 }
 
-void checkCounts(const PrimReader& prim, const CurvePrimvars& p, std::size_t curves, std::size_t varying, std::size_t vertices) {
-    for (const std::optional<Primvar>* pv : {&p.widths, &p.normals, &p.colors})
+void checkCounts(const PrimReader& prim, CurvePrimvars& p, std::size_t curves, std::size_t varying, std::size_t vertices) {
+    for (std::optional<Primvar>* pv : {&p.widths, &p.normals, &p.colors})
         if (*pv) checkCount(prim, **pv, curves, varying, vertices);
 }
 
@@ -187,40 +189,52 @@ render::CurvesDesc unrolled(const PrimReader& prim, const Topology& topo, const 
     return desc;
 }
 
-render::CurvesDesc basisCurvesFromPrim(const PrimReader& prim, const ColorConverter& convertColor) {
+render::CurvesDesc basisCurvesFromPrim(const PrimReader& prim, const ColorConverter& convertColor,
+                                       const std::function<void(const std::string&)>& warn) {
     const Topology topo = topologyOf(prim);
     VertexData data;
     data.points = prim.numbers("points", 3).value_or(Values{});
     const std::vector<Curve> curves = curvesOf(prim, data.points.size() / 3);
-    std::size_t varying = 0;
+    // A curve whose count fits no segment is left out alone (its varying values count none), as
+    // Hydra leaves it; the others render.
+    std::vector<Curve> valid;
+    std::size_t varying = 0, invalid = 0;
     for (std::size_t i = 0; i < curves.size(); ++i) {
-        if (topo.segments(curves[i].count) == 0)
-            prim.fail("curve " + std::to_string(i) + " has " + std::to_string(curves[i].count) +
-                      " vertices, not a valid count for its type, basis and wrap");
+        if (topo.segments(curves[i].count) == 0) {
+            if (invalid++ == 0)
+                warn("curve " + std::to_string(i) + " has " + std::to_string(curves[i].count) +
+                     " vertices, not a valid count for its type, basis and wrap; such curves are left out");
+            continue;
+        }
+        valid.push_back(curves[i]);
         varying += topo.varying(curves[i].count);
     }
-    const CurvePrimvars primvars = readCurvePrimvars(prim);
+    if (invalid > 1) warn(std::to_string(invalid) + " of its " + std::to_string(curves.size()) + " curves are left out for their vertex counts");
+    CurvePrimvars primvars = readCurvePrimvars(prim);
     checkCounts(prim, primvars, curves.size(), varying, data.points.size() / 3);
     auto expand = [&](const std::optional<Primvar>& pv, Values& out) {
         if (!pv) return;
         std::size_t firstVarying = 0;
         for (std::size_t i = 0; i < curves.size(); ++i) {
             const Curve& c = curves[i];
+            const std::size_t m = topo.segments(c.count) == 0 ? 0 : topo.varying(c.count);
             for (std::size_t j = 0; j < c.count; ++j) {
                 if (pv->interpolation == "vertex") {
                     const double* v = pv->element(c.first + j);
                     out.insert(out.end(), v, v + pv->components);
+                } else if (pv->interpolation == "varying" && m == 0) {
+                    out.insert(out.end(), static_cast<std::size_t>(pv->components), 0.0);  // a curve left out
                 } else {
-                    appendAlong(*pv, i, firstVarying, topo.varying(c.count), topo.varyingPosition(j, c.count), topo.periodic(), out);
+                    appendAlong(*pv, i, firstVarying, m, topo.varyingPosition(j, c.count), topo.periodic(), out);
                 }
             }
-            firstVarying += topo.varying(c.count);
+            firstVarying += m;
         }
     };
     expand(primvars.widths, data.widths);
     expand(primvars.normals, data.normals);
     expand(primvars.colors, data.colors);
-    return unrolled(prim, topo, curves, data, primvars, convertColor);
+    return unrolled(prim, topo, valid, data, primvars, convertColor);
 }
 
 // The B-spline basis functions of degree p that are non-zero at t in knot span `span`
@@ -268,7 +282,7 @@ render::CurvesDesc nurbsCurvesFromPrim(const PrimReader& prim, const ColorConver
     if (knots.size() != knotCount) prim.fail("knots has " + std::to_string(knots.size()) + " values; the curves' vertex counts and orders need " + std::to_string(knotCount));
     for (std::size_t i = 1; i < knots.size(); ++i)
         if (knots[i] < knots[i - 1]) prim.fail("knots decrease at index " + std::to_string(i));
-    const CurvePrimvars primvars = readCurvePrimvars(prim);
+    CurvePrimvars primvars = readCurvePrimvars(prim);
     checkCounts(prim, primvars, curves.size(), varying, points.size() / 3);
 
     // Each curve sampled, as the vertices of a pinned Catmull-Rom batch.
@@ -326,8 +340,10 @@ render::CurvesDesc nurbsCurvesFromPrim(const PrimReader& prim, const ColorConver
 
 bool isCurvesType(const std::string& typeName) { return typeName == "BasisCurves" || typeName == "NurbsCurves"; }
 
-render::CurvesDesc curvesFromPrim(const PrimReader& prim, const ColorConverter& convertColor) {
-    return prim.prim().typeName == "NurbsCurves" ? nurbsCurvesFromPrim(prim, convertColor) : basisCurvesFromPrim(prim, convertColor);
+render::CurvesDesc curvesFromPrim(const PrimReader& prim, const ColorConverter& convertColor,
+                                  const std::function<void(const std::string&)>& warn) {
+    return prim.prim().typeName == "NurbsCurves" ? nurbsCurvesFromPrim(prim, convertColor)
+                                                 : basisCurvesFromPrim(prim, convertColor, warn);
 }
 
 render::CurvesDesc transformCurves(render::CurvesDesc curves, const Matrix4& toWorld) {

@@ -18,9 +18,14 @@
 // curve through them (pinned: it starts and ends where the NURBS curve does). Vertex widths and
 // colours are evaluated with the same basis; constant, uniform and varying ones as for BasisCurves.
 //
-// Counts that do not match the tables, or a primvar with too few values, raise SceneError naming
-// the prim (the render index leaves it out with a warning).
+// A curve whose vertex count fits no row of the tables is left out alone, with a warning (as Hydra
+// draws the batch's valid curves); counts that do not add up to the points, a primvar with too few
+// values, or malformed NURBS knots raise SceneError naming the prim (the render index leaves it out
+// with a warning). A primvar of exactly one value is constant whatever its interpolation says.
 #pragma once
+
+#include <functional>
+#include <string>
 
 #include "delegate/material_adapter.h"
 #include "delegate/prim_reader.h"
@@ -30,7 +35,9 @@ namespace fluence::delegate {
 
 bool isCurvesType(const std::string& typeName);
 
-render::CurvesDesc curvesFromPrim(const PrimReader& prim, const ColorConverter& convertColor);
+// `warn` hears of BasisCurves curves left out for their vertex counts.
+render::CurvesDesc curvesFromPrim(const PrimReader& prim, const ColorConverter& convertColor,
+                                  const std::function<void(const std::string&)>& warn);
 
 // The curves moved by `toWorld`: points and normals, and radii scaled by the cube root of its
 // volume scale (exact for uniform scales).

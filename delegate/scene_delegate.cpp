@@ -375,7 +375,7 @@ render::SceneDescription SceneDelegate::describe(const render::Camera& camera, c
                 render::CurvesDesc desc = curves.worldCurves();
                 if (!curves.materialPath().empty()) desc.material = materialFor(curves.materialPath());
                 if (desc.material >= 0) desc.colors.clear();  // a bound material replaces displayColor
-                scene.curves.push_back(std::move(desc));
+                if (!desc.segments.empty()) scene.curves.push_back(std::move(desc));
                 break;
             }
             case RenderPrim::Kind::Volume:

@@ -4,7 +4,7 @@
 Run from the repository root: python3 scripts/make_hair.py
 A sphere "scalp" carries 3,000 cubic B-spline strands (pinned, 6 vertices each) rooted on its
 upper half, combed back and down by gravity, tapering from root to tip; a few hundred are
-flyaways. The strands bind a UsdPreviewSurface whose diffuseColor is the hair's colour (Fluence
+flyaways. Render settings ask for 640 x 360. The strands bind a UsdPreviewSurface whose diffuseColor is the hair's colour (Fluence
 turns it into the hair BSDF's absorption) and whose roughness is the fibre's. Deterministic: the
 same file every run (a fixed-seed generator).
 """
@@ -36,15 +36,16 @@ def strand(rng):
     length = LENGTH * rng.uniform(0.8, 1.1) * (1.2 if flyaway else 1.0)
     points, widths = [], []
     p = list(root)
-    d = list(normal)
+    # Leaves the scalp at a shallow angle, combed back (+y) and down.
+    d = [normal[0] * 0.35, normal[1] * 0.35 + 0.6, normal[2] * 0.35 - 0.2]
     step = length / (VERTICES - 1)
     for i in range(VERTICES):
         points.append(tuple(p))
         t = i / (VERTICES - 1)
         widths.append(ROOT_WIDTH + (TIP_WIDTH - ROOT_WIDTH) * t)
         # Combed back (+y) and pulled down by gravity (-z); pushed out so it clears the scalp.
-        gravity = 0.55 if not flyaway else 0.2
-        d = [d[0] * 0.8 + rng.gauss(0, 0.05), d[1] * 0.8 + 0.25 + rng.gauss(0, 0.05), d[2] * 0.8 - gravity]
+        gravity = 0.45 if not flyaway else 0.15
+        d = [d[0] + rng.gauss(0, 0.06), d[1] + 0.15 + rng.gauss(0, 0.06), d[2] - gravity]
         n = math.sqrt(sum(c * c for c in d))
         d = [c / n for c in d]
         p = [p[k] + d[k] * step for k in range(3)]
@@ -74,6 +75,11 @@ def main():
     upAxis = "Z"
     metersPerUnit = 0.1
 )
+
+def RenderSettings "RenderSettings"
+{
+    uniform int2 resolution = (640, 360)
+}
 
 def Xform "World"
 {
@@ -154,8 +160,8 @@ def Xform "World"
         float horizontalAperture = 36
         float verticalAperture = 24
         float2 clippingRange = (0.1, 100)
-        double3 xformOp:translate = (6.5, -6.5, 1.2)
-        float3 xformOp:rotateXYZ = (82, 0, 45)
+        double3 xformOp:translate = (6.2, -4.4, 0.9)
+        float3 xformOp:rotateXYZ = (84, 0, 55)
         uniform token[] xformOpOrder = ["xformOp:translate", "xformOp:rotateXYZ"]
     }
 }

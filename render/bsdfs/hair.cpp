@@ -14,9 +14,10 @@ namespace {
 float safeSqrt(float x) { return std::sqrt(std::max(0.0f, x)); }
 float safeAsin(float x) { return std::asin(std::clamp(x, -1.0f, 1.0f)); }
 
-// log I0(x), the modified Bessel function of the first kind: exact below 12, its asymptotic
+// log I0(x), the modified Bessel function of the first kind (x >= 0): exact below 12, its asymptotic
 // series above (relative error under 1e-6 there), where I0 itself would overflow floats soon.
 float logBesselI0(float x) {
+    x = std::max(x, 0.0f);  // cos theta of +-pi/2 rounds to -4e-8 in float
     if (x < 12.0f) return static_cast<float>(std::log(std::cyl_bessel_i(0.0, double(x))));
     const float inv = 1.0f / x;
     return x - 0.5f * std::log(2.0f * kPi * x) + std::log1p(inv / 8.0f + 9.0f * inv * inv / 128.0f);

@@ -111,27 +111,22 @@ TEST(CurvesAdapter, WidthsByEveryInterpolation) {
 
 TEST(CurvesAdapter, BadCountsSkipThePrimWithAWarningNamingIt) {
     const std::string bad[] = {
-        // 5 is not 4 + 3k for a Bezier curve.
-        R"(    uniform token type = "cubic"
-    int[] curveVertexCounts = [5]
-    point3f[] points = [(0, 0, 0), (1, 0, 0), (2, 0, 0), (3, 0, 0), (4, 0, 0)]
-)",
         // The counts add up to more than the points.
         R"(    uniform token type = "linear"
     int[] curveVertexCounts = [3]
     point3f[] points = [(0, 0, 0), (1, 0, 0)]
 )",
-        // Varying widths need segments + 1 = 2 values.
-        R"(    uniform token type = "linear"
-    int[] curveVertexCounts = [2]
-    point3f[] points = [(0, 0, 0), (1, 0, 0)]
-    float[] widths = [1] (interpolation = "varying")
-)",
-        // Uniform colours need one per curve.
+        // Varying widths need segments + 1 = 2 values per curve.
         R"(    uniform token type = "linear"
     int[] curveVertexCounts = [2, 2]
     point3f[] points = [(0, 0, 0), (1, 0, 0), (0, 1, 0), (1, 1, 0)]
-    color3f[] primvars:displayColor = [(1, 0, 0)] (interpolation = "uniform")
+    float[] widths = [1, 2, 3] (interpolation = "varying")
+)",
+        // Uniform colours need one per curve.
+        R"(    uniform token type = "linear"
+    int[] curveVertexCounts = [2, 2, 2]
+    point3f[] points = [(0, 0, 0), (1, 0, 0), (0, 1, 0), (1, 1, 0), (0, 2, 0), (1, 2, 0)]
+    color3f[] primvars:displayColor = [(1, 0, 0), (0, 1, 0)] (interpolation = "uniform")
 )",
         R"(    uniform token type = "linear"
     uniform token basis = "hermite"
@@ -148,6 +143,24 @@ TEST(CurvesAdapter, BadCountsSkipThePrimWithAWarningNamingIt) {
         EXPECT_TRUE(named) << body;
         EXPECT_THROW(testing::populateStrict(curves(body)), SceneError) << body;
     }
+}
+
+TEST(CurvesAdapter, ACurveOfInvalidCountIsLeftOutAloneAndOneValueIsConstant) {
+    // 5 is not 4 + 3k for a Bezier curve: that curve is left out with a warning, the other renders
+    // (as Hydra draws a batch's valid curves); one width (no interpolation said) is constant.
+    auto p = populate(curves(R"(    uniform token type = "cubic"
+    int[] curveVertexCounts = [5, 4]
+    point3f[] points = [(0, 0, 0), (1, 0, 0), (2, 0, 0), (3, 0, 0), (4, 0, 0), (0, 1, 0), (1, 1, 0), (2, 1, 0), (3, 1, 0)]
+    float[] widths = [0.5]
+)"));
+    const render::CurvesDesc* d = curvesNamed(p, "/C");
+    ASSERT_NE(d, nullptr);
+    EXPECT_EQ(d->segments, (std::vector<std::uint32_t>{0}));
+    EXPECT_EQ(d->points.front(), Vec3f(0, 1, 0));
+    EXPECT_EQ(d->radii, std::vector<float>(4, 0.25f));
+    bool named = false;
+    for (const std::string& w : p.warnings) named = named || (w.starts_with("/C: ") && w.find("curve 0 has 5 vertices") != std::string::npos);
+    EXPECT_TRUE(named);
 }
 
 TEST(CurvesAdapter, ColoursNormalsStyleAndTransform) {
