@@ -74,6 +74,7 @@ def main():
     doc = "Groomed hair: 3,000 BasisCurves strands on a sphere, written by scripts/make_hair.py"
     upAxis = "Z"
     metersPerUnit = 0.1
+    renderSettingsPrimPath = "/RenderSettings"
 )
 
 def RenderSettings "RenderSettings"
@@ -98,6 +99,7 @@ def Xform "World"
         uniform token type = "cubic"
         uniform token basis = "bspline"
         uniform token wrap = "pinned"
+        token visibility = "inherited"
         int[] curveVertexCounts = [%(counts)s]
         point3f[] points = [%(points)s]
         float[] widths = [%(widths)s] (

@@ -14,11 +14,20 @@ namespace {
 float safeSqrt(float x) { return std::sqrt(std::max(0.0f, x)); }
 float safeAsin(float x) { return std::asin(std::clamp(x, -1.0f, 1.0f)); }
 
-// log I0(x), the modified Bessel function of the first kind (x >= 0): exact below 12, its asymptotic
-// series above (relative error under 1e-6 there), where I0 itself would overflow floats soon.
+// log I0(x), the modified Bessel function of the first kind (x >= 0): its power series
+// sum (x^2/4)^k / (k!)^2 below 12 (summed until a term adds less than 1e-8 of the sum; at most 40
+// terms there), the asymptotic series above, where I0 itself would soon overflow floats.
 float logBesselI0(float x) {
     x = std::max(x, 0.0f);  // cos theta of +-pi/2 rounds to -4e-8 in float
-    if (x < 12.0f) return static_cast<float>(std::log(std::cyl_bessel_i(0.0, double(x))));
+    if (x < 12.0f) {
+        const float y = 0.25f * x * x;
+        float term = 1.0f, sum = 1.0f;
+        for (int k = 1; k <= 40 && term > 1e-8f * sum; ++k) {
+            term *= y / float(k * k);
+            sum += term;
+        }
+        return std::log(sum);
+    }
     const float inv = 1.0f / x;
     return x - 0.5f * std::log(2.0f * kPi * x) + std::log1p(inv / 8.0f + 9.0f * inv * inv / 128.0f);
 }
