@@ -45,6 +45,9 @@ void printFrameSummary(const RenderOptions& opt, const std::pair<int, int>& res,
         std::printf("  adaptive     target error %g: %.1f spp on average (%d to %d per pixel)\n", rs.targetError,
                     double(stats.samples) / (double(res.first) * res.second), std::min(rs.minSamples, stats.samplesPerPixel),
                     stats.samplesPerPixel);
+    if (st.curves > 0)
+        std::printf("  curves       %s, %s (Embree native curves)\n", counted(st.curves, "curve set").c_str(),
+                    counted(st.curveSegments, "segment").c_str());
     if (st.instances > 0)
         std::printf("  instancing   %s placing %s (stored once)\n", counted(st.instances, "instance").c_str(),
                     counted(st.instancedTriangles, "triangle").c_str());

@@ -3,6 +3,7 @@
 #include <set>
 
 #include "delegate/camera_adapter.h"
+#include "delegate/curves_rprim.h"
 #include "delegate/geom_subset.h"
 #include "delegate/implicit_geometry.h"
 #include "delegate/light_adapter.h"
@@ -256,6 +257,8 @@ std::size_t RenderIndex::sync(const SyncContext& context) {
     for (auto& [path, prim] : prims_) {
         if (const auto* surface = dynamic_cast<const SurfaceRprim*>(prim.get()); surface && !surface->failed())
             for (const std::string& m : surface->materialPaths()) materials.insert(m);
+        if (const auto* curves = dynamic_cast<const CurvesRprim*>(prim.get()); curves && !curves->failed() && !curves->materialPath().empty())
+            materials.insert(curves->materialPath());
     }
     for (const std::string& m : materials)
         if (!find(m)) insert(std::make_unique<MaterialSprim>(m));

@@ -1,7 +1,8 @@
 // The render index: the delegate's render prims, each synced from the stage when dirty.
 //
 // As in Hydra, prims come in kinds: rprims (geometry: meshes and tessellated implicit surfaces;
-// prototypes, native instances and point instancers (delegate/instancing.h); UsdVol volumes),
+// prototypes, native instances and point instancers (delegate/instancing.h); UsdVol volumes;
+// BasisCurves and NurbsCurves, delegate/curves_rprim.h),
 // sprims (state: cameras, lights, materials) and bprims (buffers: the OpenVDB field assets
 // volumes name, and the UsdUVTexture images materials use; the render core loads the files).
 //
@@ -59,7 +60,7 @@ enum DirtyBits : std::uint32_t {
 
 class RenderPrim {
 public:
-    enum class Kind { Mesh, Prototype, Instance, PointInstancer, Volume, Camera, Light, Material, Field, Texture };
+    enum class Kind { Mesh, Prototype, Instance, PointInstancer, Volume, Camera, Light, Material, Field, Texture, Curves };
 
     RenderPrim(Kind kind, std::string path) : kind_(kind), path_(std::move(path)) {}
     virtual ~RenderPrim() = default;

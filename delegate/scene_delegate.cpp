@@ -6,6 +6,8 @@
 #include <set>
 
 #include "delegate/camera_adapter.h"
+#include "delegate/curves_adapter.h"
+#include "delegate/curves_rprim.h"
 #include "delegate/default_lights.h"
 #include "delegate/imageable.h"
 #include "delegate/instancing.h"
@@ -121,6 +123,8 @@ void SceneDelegate::populate(const std::string& root) {
             }
             index_.insert(std::make_unique<MeshRprim>(prim.path));
         }
+        else if (isCurvesType(type) && instanceRoot.empty())
+            index_.insert(std::make_unique<CurvesRprim>(prim.path));
         else if (type == "Volume")
             index_.insert(std::make_unique<VolumeRprim>(prim.path));
         else if (isFieldAssetType(type))
@@ -372,6 +376,14 @@ render::SceneDescription SceneDelegate::describe(const render::Camera& camera, c
                     scene.instances.push_back({prototypeFor(pointInstancerKey(points.prototypes[instance.prototype]), placement),
                                                placement, spec.path + "[" + std::to_string(instance.id) + "]"});
                 }
+                break;
+            }
+            case RenderPrim::Kind::Curves: {
+                const auto& curves = static_cast<const CurvesRprim&>(*prim);
+                render::CurvesDesc desc = curves.worldCurves();
+                if (!curves.materialPath().empty()) desc.material = materialFor(curves.materialPath());
+                if (desc.material >= 0) desc.colors.clear();  // a bound material replaces displayColor
+                if (!desc.segments.empty()) scene.curves.push_back(std::move(desc));
                 break;
             }
             case RenderPrim::Kind::Volume:

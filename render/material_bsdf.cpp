@@ -7,6 +7,7 @@
 #include "render/bsdfs/fresnel.h"
 #include "render/bsdfs/ggx_conductor.h"
 #include "render/bsdfs/ggx_dielectric.h"
+#include "render/bsdfs/hair.h"
 #include "render/bsdfs/lambertian.h"
 #include "render/bsdfs/lambertian_transmission.h"
 #include "render/bsdfs/oren_nayar.h"
@@ -81,6 +82,7 @@ const Bsdf& clearCoat(const Bsdf& under, const MaterialParams& m, BsdfArena& are
 }  // namespace
 
 const Bsdf& materialBsdf(const MaterialParams& m, BsdfArena& arena) {
+    if (m.hair) return arena.make<HairBsdf>(*m.hair);
     const Bsdf* bsdf = m.diffuseRoughness > 0.0f ? static_cast<const Bsdf*>(&arena.make<OrenNayarBsdf>(m.diffuse, m.diffuseRoughness))
                                                  : &arena.make<LambertianBsdf>(m.diffuse);
     if (m.subsurface > 0.0f) {  // a solid's walk inside gives the colour; a thin wall is tinted once

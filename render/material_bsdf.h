@@ -48,6 +48,9 @@
 // MaterialDesc::interior). Not modelled: the metal's edge tint (specularColor in the metallic
 // workflow tints only the dielectric lobe), thin-film. A material whose lobes are all off is
 // exactly Lambertian.
+//
+// Hair: a curve's hit carries MaterialParams::hair, and its BSDF is HairBsdf(hair) alone
+// (render/bsdfs/hair.h; render/hair_material.h derives the parameters from the material).
 #pragma once
 
 #include "render/bsdf.h"

@@ -246,6 +246,7 @@ RenderScene::RenderScene(const SceneDescription& scene, std::shared_ptr<texture:
     rtcSetSceneFlags(embree_->surfaces, RTC_SCENE_FLAG_ROBUST);
 
     for (const MeshDesc& mesh : scene.meshes) addMesh(mesh, scene.materials, objectNames_.add(mesh.name));
+    for (const CurvesDesc& curves : scene.curves) addCurves(curves, scene.materials);
     addPrototypes(scene);
     for (const LightDesc& light : scene.lights) addLight(light);
     addVolumes(scene.volumes);
@@ -259,6 +260,7 @@ RenderScene::RenderScene(const SceneDescription& scene, std::shared_ptr<texture:
                 lo = vmin(lo, p);
                 hi = vmax(hi, p);
             }
+    curves_.growBounds(lo, hi);
     for (const Instance& instance : instances_) {
         const Prototype& proto = prototypes_[instance.prototype];
         if (proto.lo.x > proto.hi.x) continue;
@@ -441,6 +443,19 @@ void RenderScene::addMesh(const MeshDesc& desc, const std::vector<MaterialDesc>&
     surfaceInstances_.push_back(-1);
 }
 
+void RenderScene::addCurves(const CurvesDesc& desc, const std::vector<MaterialDesc>& materials) {
+    const auto geomID = static_cast<unsigned>(surfaceMeshes_.size());
+    const std::uint32_t materialName = desc.material >= 0 && desc.material < static_cast<int>(materials.size())
+                                           ? materialNames_.add(materials[static_cast<std::size_t>(desc.material)].name)
+                                           : kNoName;
+    curves_.add(embree_->device, embree_->surfaces, geomID, desc, materials, objectNames_.add(desc.name), materialName);
+    throwOnEmbreeError(embree_->device, ("adding curves " + desc.name).c_str());
+    surfaceMeshes_.push_back(-1);
+    surfaceInstances_.push_back(-1);
+    stats_.curves += 1;
+    stats_.curveSegments += desc.segments.size();
+}
+
 void RenderScene::addPrototypes(const SceneDescription& scene) {
     for (const PrototypeDesc& desc : scene.prototypes) {
         Prototype proto;
@@ -536,6 +551,9 @@ std::optional<SurfaceHit> RenderScene::intersect(const Ray& ray) const {
         return shadeLightShape(shape.hit.geomID, ray, shape.ray.tfar, Vec3f(shape.hit.Ng_x, shape.hit.Ng_y, shape.hit.Ng_z));
     if (surface.hit.geomID == RTC_INVALID_GEOMETRY_ID) return std::nullopt;
     const float u = surface.hit.u, v = surface.hit.v, t = surface.ray.tfar;
+    if (surface.hit.instID[0] == RTC_INVALID_GEOMETRY_ID && curves_.contains(surface.hit.geomID))
+        return curves_.shade(surface.hit.geomID, surface.hit.primID, u, ray, t,
+                             Vec3f(surface.hit.Ng_x, surface.hit.Ng_y, surface.hit.Ng_z));
     if (surface.hit.instID[0] == RTC_INVALID_GEOMETRY_ID)
         return shadeMesh(surfaceMeshes_[surface.hit.geomID], surface.hit.primID, u, v, t, nullptr);
     const Instance& instance = instances_[surfaceInstances_[surface.hit.instID[0]]];

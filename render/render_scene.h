@@ -45,6 +45,7 @@
 #include "core/name_table.h"
 #include "core/sampling.h"
 #include "render/camera.h"
+#include "render/curve_geometry.h"
 #include "render/light.h"
 #include "render/light_tree.h"
 #include "render/material_shader.h"
@@ -99,6 +100,7 @@ struct SceneStats {
     std::size_t instances = 0;             // Embree instances
     std::size_t instancedTriangles = 0;    // triangles seen through instances (not stored again)
     std::size_t lights = 0, emissiveTriangles = 0;
+    std::size_t curves = 0, curveSegments = 0;  // CurvesDesc, and their Embree segments
 };
 
 class RenderScene {
@@ -182,6 +184,7 @@ private:
     // Validates `desc`, stores it and returns its index in meshes_ (`objectName`: its hits' name).
     int storeMesh(const MeshDesc& desc, const std::vector<MaterialDesc>& materials, std::uint32_t objectName);
     void addMesh(const MeshDesc& mesh, const std::vector<MaterialDesc>& materials, std::uint32_t objectName);
+    void addCurves(const CurvesDesc& curves, const std::vector<MaterialDesc>& materials);
     void addPrototypes(const SceneDescription& scene);
     void addLight(const LightDesc& light);
     void addVolumes(const std::vector<VolumeDesc>& volumes);
@@ -196,6 +199,7 @@ private:
 
     struct EmbreeState;
     std::unique_ptr<EmbreeState> embree_;
+    CurveGeometry curves_;  // the surface scene's curve geometries (released before embree_'s device)
     std::vector<Mesh> meshes_;
     std::vector<MaterialDesc> materials_;
     std::shared_ptr<texture::TextureSystem> textures_;

@@ -15,6 +15,7 @@
 
 #include "core/matrix.h"
 #include "core/rgb.h"
+#include "render/curves_description.h"
 #include "media/medium.h"
 #include "texture/texture_types.h"
 #include "volumes/grid_medium_params.h"
@@ -69,6 +70,9 @@ struct MaterialParams {
     // UsdPreviewSurface displacement along the normal, in object units. Geometry, not shading:
     // the delegate applies it when it tessellates a subdivision surface; the render core ignores it.
     float displacement = 0.0f;
+    // Set on a curve's hits: the material is the hair BSDF (render/bsdfs/hair.h) with these
+    // parameters, derived from the rest by render/hair_material.h; the lobes above are not used.
+    std::optional<HairParams> hair;
 };
 
 // The parameters of a plain Lambertian surface (every other lobe off): the material of a mesh
@@ -288,6 +292,7 @@ struct InstanceDesc {
 struct SceneDescription {
     std::vector<MaterialDesc> materials;
     std::vector<MeshDesc> meshes;  // world space
+    std::vector<CurvesDesc> curves;  // world space
     std::vector<PrototypeDesc> prototypes;
     std::vector<InstanceDesc> instances;
     std::vector<LightDesc> lights;

@@ -1,0 +1,16 @@
+#include "delegate/curves_rprim.h"
+
+#include "delegate/curves_adapter.h"
+
+namespace fluence::delegate {
+
+void CurvesRprim::syncData(const SyncContext& context, const usd::PrimSpec* prim, std::uint32_t bits) {
+    if (!prim || (bits & ~std::uint32_t(kDirtyTransform)) == 0) return;  // a move keeps the object-space curves
+    objectSpace_ = curvesFromPrim(PrimReader(*prim, context.time), context.convertColor,
+                                  [&](const std::string& message) { context.warn(prim->path, message); });
+    materialPath_ = boundMaterialPath(context.stage, *prim);
+}
+
+render::CurvesDesc CurvesRprim::worldCurves() const { return transformCurves(objectSpace_, world()); }
+
+}  // namespace fluence::delegate

@@ -1,0 +1,216 @@
+#include "render/curve_geometry.h"
+
+#include <embree3/rtcore.h>
+
+#include <algorithm>
+#include <limits>
+#include <stdexcept>
+#include <string>
+
+#include "core/frame.h"
+#include "render/hair_material.h"
+#include "render/render_scene.h"
+
+namespace fluence::render {
+
+namespace {
+
+RTCGeometryType embreeType(CurveBasis basis, CurveStyle style) {
+    const bool round = style == CurveStyle::Round, flat = style == CurveStyle::Flat;
+    switch (basis) {
+        case CurveBasis::Linear: return round ? RTC_GEOMETRY_TYPE_ROUND_LINEAR_CURVE : RTC_GEOMETRY_TYPE_FLAT_LINEAR_CURVE;
+        case CurveBasis::Bezier:
+            return round ? RTC_GEOMETRY_TYPE_ROUND_BEZIER_CURVE
+                         : flat ? RTC_GEOMETRY_TYPE_FLAT_BEZIER_CURVE : RTC_GEOMETRY_TYPE_NORMAL_ORIENTED_BEZIER_CURVE;
+        case CurveBasis::BSpline:
+            return round ? RTC_GEOMETRY_TYPE_ROUND_BSPLINE_CURVE
+                         : flat ? RTC_GEOMETRY_TYPE_FLAT_BSPLINE_CURVE : RTC_GEOMETRY_TYPE_NORMAL_ORIENTED_BSPLINE_CURVE;
+        case CurveBasis::CatmullRom:
+            return round ? RTC_GEOMETRY_TYPE_ROUND_CATMULL_ROM_CURVE
+                         : flat ? RTC_GEOMETRY_TYPE_FLAT_CATMULL_ROM_CURVE : RTC_GEOMETRY_TYPE_NORMAL_ORIENTED_CATMULL_ROM_CURVE;
+    }
+    return RTC_GEOMETRY_TYPE_ROUND_LINEAR_CURVE;
+}
+
+int controlPointsPerSegment(CurveBasis basis) { return basis == CurveBasis::Linear ? 2 : 4; }
+
+// Linear segments as Bezier segments with their control points at thirds (Embree has no
+// normal-oriented linear curve): the same straight pieces, with radii and normals varying linearly.
+CurvesDesc asBezier(const CurvesDesc& linear) {
+    CurvesDesc out = linear;
+    out.basis = CurveBasis::Bezier;
+    out.points.clear();
+    out.radii.clear();
+    out.normals.clear();
+    out.colors.clear();
+    out.segments.clear();
+    for (std::uint32_t s : linear.segments) {
+        out.segments.push_back(static_cast<std::uint32_t>(out.points.size()));
+        for (int k = 0; k < 4; ++k) {
+            const float w = k / 3.0f;
+            auto lerp = [&](const auto& values) { return values[s] * (1.0f - w) + values[s + 1] * w; };
+            out.points.push_back(lerp(linear.points));
+            out.radii.push_back(lerp(linear.radii));
+            out.normals.push_back(lerp(linear.normals));
+            if (!linear.colors.empty()) out.colors.push_back(lerp(linear.colors));
+        }
+    }
+    return out;
+}
+
+void validate(const CurvesDesc& desc, std::size_t materials) {
+    const std::size_t n = desc.points.size();
+    if (desc.radii.size() != n) throw std::invalid_argument(desc.name + ": expected one radius per control point");
+    if (desc.style == CurveStyle::Oriented && desc.normals.size() != n)
+        throw std::invalid_argument(desc.name + ": an oriented ribbon needs one normal per control point");
+    if (!desc.colors.empty() && desc.colors.size() != n) throw std::invalid_argument(desc.name + ": expected one colour per control point");
+    const std::size_t last = static_cast<std::size_t>(controlPointsPerSegment(desc.basis)) - 1;
+    for (std::uint32_t s : desc.segments)
+        if (s + last >= n) throw std::invalid_argument(desc.name + ": a segment reads control points past the last");
+    if (desc.material >= static_cast<int>(materials)) throw std::invalid_argument(desc.name + ": material index out of range");
+}
+
+// Embree filter function of round tubes: drops a hit where the ray leaves the tube (see the header).
+void seenFromOutside(const RTCFilterFunctionNArguments* args) {
+    if (args->N != 1 || !args->valid[0]) return;  // the scenes are only traced one ray at a time
+    const float leaving = RTCRayN_dir_x(args->ray, 1, 0) * RTCHitN_Ng_x(args->hit, 1, 0) +
+                          RTCRayN_dir_y(args->ray, 1, 0) * RTCHitN_Ng_y(args->hit, 1, 0) +
+                          RTCRayN_dir_z(args->ray, 1, 0) * RTCHitN_Ng_z(args->hit, 1, 0);
+    if (leaving > 0.0f) args->valid[0] = 0;
+}
+
+template <typename T>
+T* newBuffer(RTCGeometry geom, RTCBufferType type, unsigned slot, RTCFormat format, std::size_t components, std::size_t count) {
+    return static_cast<T*>(rtcSetNewGeometryBuffer(geom, type, slot, format, components * sizeof(T), count));
+}
+
+}  // namespace
+
+struct CurveGeometry::Curves {
+    RTCGeometry geometry = nullptr;  // retained, for rtcInterpolate
+    CurveStyle style = CurveStyle::Round;
+    bool colored = false;  // displayColor as vertex attribute 0
+    MaterialParams material;
+    Vec3f boundsLo{std::numeric_limits<float>::max()}, boundsHi{-std::numeric_limits<float>::max()};
+    std::uint32_t objectName = kNoName, materialName = kNoName;
+};
+
+CurveGeometry::CurveGeometry() = default;
+
+CurveGeometry::~CurveGeometry() {
+    for (Curves& c : curves_) rtcReleaseGeometry(c.geometry);
+}
+
+void CurveGeometry::add(RTCDeviceTy* device, RTCSceneTy* scene, unsigned geomID, const CurvesDesc& original,
+                        const std::vector<MaterialDesc>& materials, std::uint32_t objectName, std::uint32_t materialName) {
+    validate(original, materials.size());
+    const CurvesDesc desc =
+        original.basis == CurveBasis::Linear && original.style == CurveStyle::Oriented ? asBezier(original) : original;
+    const std::size_t n = desc.points.size();
+    RTCGeometry geom = rtcNewGeometry(device, embreeType(desc.basis, desc.style));
+    float* vertices = newBuffer<float>(geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT4, 4, n);
+    Curves curves;
+    for (std::size_t i = 0; i < n; ++i) {
+        const Vec3f& p = desc.points[i];
+        const float r = std::max(desc.radii[i], 0.0f);
+        vertices[4 * i] = p.x;
+        vertices[4 * i + 1] = p.y;
+        vertices[4 * i + 2] = p.z;
+        vertices[4 * i + 3] = r;
+        curves.boundsLo = vmin(curves.boundsLo, p - Vec3f(r));
+        curves.boundsHi = vmax(curves.boundsHi, p + Vec3f(r));
+    }
+    unsigned* index = newBuffer<unsigned>(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT, 1, desc.segments.size());
+    std::copy(desc.segments.begin(), desc.segments.end(), index);
+    if (desc.style == CurveStyle::Oriented) {
+        float* normals = newBuffer<float>(geom, RTC_BUFFER_TYPE_NORMAL, 0, RTC_FORMAT_FLOAT3, 3, n);
+        for (std::size_t i = 0; i < n; ++i)
+            for (int k = 0; k < 3; ++k) normals[3 * i + k] = desc.normals[i][k];
+    }
+    curves.colored = !desc.colors.empty() && desc.material < 0;
+    if (curves.colored) {
+        rtcSetGeometryVertexAttributeCount(geom, 1);
+        float* colors = newBuffer<float>(geom, RTC_BUFFER_TYPE_VERTEX_ATTRIBUTE, 0, RTC_FORMAT_FLOAT3, 3, n);
+        for (std::size_t i = 0; i < n; ++i)
+            for (int k = 0; k < 3; ++k) colors[3 * i + k] = desc.colors[i][k];
+    }
+    if (desc.style == CurveStyle::Round) {
+        rtcSetGeometryIntersectFilterFunction(geom, seenFromOutside);
+        rtcSetGeometryOccludedFilterFunction(geom, seenFromOutside);
+    }
+    rtcCommitGeometry(geom);
+    rtcAttachGeometryByID(scene, geom, geomID);
+    curves.geometry = geom;  // the scene holds its own reference; this one is released with us
+    curves.style = desc.style;
+    curves.material = desc.material >= 0 ? static_cast<const MaterialParams&>(materials[static_cast<std::size_t>(desc.material)])
+                                         : MaterialParams{};
+    curves.objectName = objectName;
+    curves.materialName = materialName;
+    if (byGeomID_.size() <= geomID) byGeomID_.resize(geomID + 1, -1);
+    byGeomID_[geomID] = static_cast<int>(curves_.size());
+    curves_.push_back(std::move(curves));
+    segments_ += desc.segments.size();
+}
+
+bool CurveGeometry::contains(unsigned geomID) const { return geomID < byGeomID_.size() && byGeomID_[geomID] >= 0; }
+
+void CurveGeometry::growBounds(Vec3f& lo, Vec3f& hi) const {
+    for (const Curves& c : curves_) {
+        lo = vmin(lo, c.boundsLo);
+        hi = vmax(hi, c.boundsHi);
+    }
+}
+
+std::optional<SurfaceHit> CurveGeometry::shade(unsigned geomID, unsigned primID, float u, const Ray& ray, float t,
+                                               const Vec3f& ng) const {
+    const Curves& curves = curves_[static_cast<std::size_t>(byGeomID_[geomID])];
+    float centre[4], derivative[4];
+    RTCInterpolateArguments args{};
+    args.geometry = curves.geometry;
+    args.primID = primID;
+    args.u = u;
+    args.bufferType = RTC_BUFFER_TYPE_VERTEX;
+    args.bufferSlot = 0;
+    args.P = centre;
+    args.dPdu = derivative;
+    args.valueCount = 4;
+    rtcInterpolate(&args);
+
+    std::optional<SurfaceHit> result(std::in_place, curves.material);
+    SurfaceHit& hit = *result;
+    hit.t = t;
+    hit.point = ray.origin + ray.direction * t;
+    const Vec3f wo = -ray.direction;
+    Vec3f tangent(derivative[0], derivative[1], derivative[2]);
+    tangent = lengthSquared(tangent) > 0.0f ? normalize(tangent) : Frame::fromNormal(wo).s;
+    // The ribbon's normal: facing the ray, or the oriented ribbon's own; perpendicular to the tangent.
+    const Vec3f facing = curves.style == CurveStyle::Oriented && lengthSquared(ng) > 0.0f ? ng : wo;
+    Vec3f normal = facing - tangent * dot(facing, tangent);
+    normal = lengthSquared(normal) > 0.0f ? normalize(normal) : Frame::fromNormal(tangent).s;
+    if (dot(normal, wo) < 0.0f) normal = -normal;
+    hit.geometricNormal = hit.shadingNormal = normal;
+    hit.tangent = tangent;
+
+    RGB colour = curves.material.diffuse;
+    if (curves.colored) {
+        float c[3];
+        args.bufferType = RTC_BUFFER_TYPE_VERTEX_ATTRIBUTE;
+        args.P = c;
+        args.dPdu = nullptr;
+        args.valueCount = 3;
+        rtcInterpolate(&args);
+        colour = RGB(c[0], c[1], c[2]);
+    }
+    HairParams hair = hairFromMaterial(curves.material, colour);
+    const float radius = centre[3];
+    const Vec3f across = cross(normal, tangent);
+    hair.offset = radius > 0.0f ? std::clamp(dot(hit.point - Vec3f(centre[0], centre[1], centre[2]), across) / radius, -1.0f, 1.0f)
+                                : 0.0f;
+    hit.material.hair = hair;
+    hit.material.diffuse = colour;
+    hit.objectName = curves.objectName;
+    hit.materialName = curves.materialName;
+    return result;
+}
+
+}  // namespace fluence::render

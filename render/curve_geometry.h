@@ -1,0 +1,60 @@
+// Curves in the render scene: each CurvesDesc one Embree native curve geometry (round tubes,
+// flat ribbons facing the ray, or normal-oriented ribbons; linear, Bezier, B-spline or
+// Catmull-Rom segments; render/curves_description.h), and the SurfaceHit of a ray that meets one.
+//
+// A hit's frame follows the fibre: the tangent is the curve's derivative at the hit, and the
+// shading and geometric normals are the normal of the ribbon that faces the ray (an oriented
+// ribbon's own normal), perpendicular to the tangent, on the ray's side. Across the curve, the
+// hit's offset from the axis in radii (HairParams::offset) is measured along normal x tangent.
+// The hit's material is the hair BSDF (render/hair_material.h) of its material, its colour the
+// material's diffuse, or the curve's displayColor interpolated with the curve's own basis where no
+// material is bound. Materials' textures and emission are not evaluated on curves.
+//
+// A round tube is seen from outside only: a ray that meets one from inside (one that went through
+// the fibre, the hair BSDF's transmission) passes out through it (an Embree filter drops the hit
+// where the ray leaves the tube), so light crosses a fibre as the BSDF says and not twice.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <vector>
+
+#include "render/ray.h"
+#include "render/scene_description.h"
+
+struct RTCDeviceTy;
+struct RTCGeometryTy;
+struct RTCSceneTy;
+
+namespace fluence::render {
+
+struct SurfaceHit;
+
+class CurveGeometry {
+public:
+    CurveGeometry();
+    ~CurveGeometry();
+    CurveGeometry(const CurveGeometry&) = delete;
+    CurveGeometry& operator=(const CurveGeometry&) = delete;
+
+    // Validates `desc` (std::invalid_argument naming it when its arrays disagree), makes its Embree
+    // geometry and attaches it to `scene` as `geomID`.
+    void add(RTCDeviceTy* device, RTCSceneTy* scene, unsigned geomID, const CurvesDesc& desc,
+             const std::vector<MaterialDesc>& materials, std::uint32_t objectName, std::uint32_t materialName);
+    // Whether the surface geometry `geomID` is one of these curves.
+    bool contains(unsigned geomID) const;
+    // The hit of `ray` on segment primID of curve geometry geomID at curve parameter u, distance t,
+    // with Embree's geometric normal ng.
+    std::optional<SurfaceHit> shade(unsigned geomID, unsigned primID, float u, const Ray& ray, float t, const Vec3f& ng) const;
+    // Grows [lo, hi] by every control point's sphere.
+    void growBounds(Vec3f& lo, Vec3f& hi) const;
+    std::size_t segmentCount() const { return segments_; }
+
+private:
+    struct Curves;
+    std::vector<Curves> curves_;
+    std::vector<int> byGeomID_;  // Embree geometry id -> into curves_, or -1
+    std::size_t segments_ = 0;
+};
+
+}  // namespace fluence::render

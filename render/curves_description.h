@@ -1,0 +1,49 @@
+// Curves as the render core takes them (hair, fur, grass, wires): Embree's native curve
+// primitives, with the parameters of the hair BSDF that shades them. Plain structs, USD-free:
+// delegate/curves_adapter.h turns UsdGeomBasisCurves and UsdGeomNurbsCurves into them.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "core/rgb.h"
+#include "core/vec.h"
+
+namespace fluence::render {
+
+// The cubic basis (or linear segments) of a curve set's control points, as Embree takes them:
+// every segment reads the control points from its `segments` entry on (2 for Linear, 4 for the
+// cubics), so periodic and pinned USD curves arrive already unrolled.
+enum class CurveBasis { Linear, Bezier, BSpline, CatmullRom };
+
+// How a curve is drawn: a round tube (the default), a flat ribbon that always faces the ray
+// (primvars:fluence:curveStyle = "flat"), or a ribbon oriented by authored normals.
+enum class CurveStyle { Round, Flat, Oriented };
+
+// The parameters of the hair BSDF (render/bsdfs/hair.h) at a point of a fibre: Chiang et al.
+// 2016's absorption coefficient (per unit of the fibre's diameter), longitudinal and azimuthal
+// roughness in (0, 1], the fibre's index of refraction, the tilt of its cuticle scales, and where
+// across the fibre the ray met it, h in [-1, 1].
+struct HairParams {
+    RGB absorption{0.0f};
+    float longitudinalRoughness = 0.3f;
+    float azimuthalRoughness = 0.3f;
+    float ior = 1.55f;
+    float tiltDegrees = 2.0f;
+    float offset = 0.0f;  // h: signed distance of the hit from the fibre's axis, in radii
+};
+
+struct CurvesDesc {
+    std::string name;  // prim path, for messages
+    CurveBasis basis = CurveBasis::Linear;
+    CurveStyle style = CurveStyle::Round;
+    std::vector<Vec3f> points;            // world-space control points
+    std::vector<float> radii;             // one per control point (half the USD width)
+    std::vector<Vec3f> normals;           // Oriented: one per control point; else empty
+    std::vector<RGB> colors;              // empty, or one per control point: displayColor
+    std::vector<std::uint32_t> segments;  // each segment's first control point
+    int material = -1;                    // index into SceneDescription::materials, -1 = default
+};
+
+}  // namespace fluence::render
