@@ -141,7 +141,7 @@ std::optional<SkinnedPose> pose(const usd::Stage& stage, const usd::PrimSpec& me
     const usd::PrimSpec& skeletonPrim = target(stage, *skelOwner, "skel:skeleton", "Skeleton");
     auto warnAt = [&](const std::string& path) { return [&warn, path](const std::string& m) { warn(path, m); }; };
     const Skeleton skeleton = readSkeleton(PrimReader(skeletonPrim, time), warnAt(skeletonPrim.path));
-    const usd::PrimSpec* animOwner = nearest(stage, skeletonPrim.path, root, [](const usd::PrimSpec& p) { return hasTargets(p, "skel:animationSource"); });
+    const usd::PrimSpec* animOwner = nearest(stage, skeletonPrim.path, "/", [](const usd::PrimSpec& p) { return hasTargets(p, "skel:animationSource"); });
     const usd::PrimSpec* animation = animOwner ? &target(stage, *animOwner, "skel:animationSource", "SkelAnimation") : nullptr;
     const std::optional<PrimReader> animationReader = animation ? std::optional<PrimReader>(std::in_place, *animation, time) : std::nullopt;
     const SkeletonPose skeletonPose = poseSkeleton(skeleton, animationReader ? &*animationReader : nullptr, warnAt(skeletonPrim.path));

@@ -6,8 +6,8 @@
 // interpolation, elementSize influences per point), `primvars:skel:geomBindTransform`
 // (identity when unauthored), `primvars:skel:skinningMethod` ("classicLinear", or
 // "dualQuaternion") and `skel:joints` (the joint names the indices count in; the skeleton's joints
-// when unauthored). `skel:animationSource` is read from the Skeleton, else its nearest ancestor up
-// to the SkelRoot. `skel:blendShapes` and `skel:blendShapeTargets` are the mesh's own: weights
+// when unauthored). `skel:animationSource` is read from the Skeleton, else its nearest ancestor
+// that binds one. `skel:blendShapes` and `skel:blendShapeTargets` are the mesh's own: weights
 // from the animation's `blendShapes`/`blendShapeWeights`, by name (0 for a name it does not
 // animate). SkelBindingAPI need not be applied (older files do not apply it).
 //
@@ -17,6 +17,9 @@
 // has no effect, as UsdSkel defines. A mesh with blend shapes but no joint influences stays in
 // its own space. Authored normals (vertex, varying or faceVarying, not indexed) are skinned like
 // their points; others are dropped, and the render core shades the triangles' geometric normals.
+//
+// Not skinned: meshes inside native instances and point-instancer prototypes (they render in
+// their rest pose), and gprims other than Mesh (as in Hydra).
 //
 // A binding that cannot apply (no skeleton, a skeleton or influences that are malformed, sizes
 // that do not match) leaves the mesh in its rest pose with one warning naming the prim, as Hydra
