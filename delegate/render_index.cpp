@@ -111,8 +111,11 @@ void MeshRprim::syncData(const SyncContext& context, const usd::PrimSpec* spec, 
                                                 context.convertColor, warn))
             parts_.push_back({std::move(part.mesh), std::move(part.materialPath)});
     } else {
-        parts_.push_back({implicitMeshFromPrim(PrimReader(prim, context.time), Matrix4::identity(), context.convertColor, warn),
-                          boundMaterialPath(context.stage, prim)});
+        render::MeshDesc surface = implicitMeshFromPrim(PrimReader(prim, context.time), Matrix4::identity(), context.convertColor, warn);
+        const std::optional<bool> posed = skinSurface(context.stage, prim, context.time, context.warn, surface);
+        skinned_ = posed.has_value();
+        skinAnimated_ = posed.value_or(false);
+        parts_.push_back({std::move(surface), boundMaterialPath(context.stage, prim)});
     }
 }
 

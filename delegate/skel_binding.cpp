@@ -95,13 +95,10 @@ std::vector<Vec3d> vectors(const std::vector<double>& n) {
     return out;
 }
 
-std::vector<double> numbers(const std::vector<Vec3d>& v, const Matrix4& m, bool normals) {
+std::vector<double> numbers(const std::vector<Vec3d>& v) {
     std::vector<double> out;
     out.reserve(3 * v.size());
-    for (const Vec3d& x : v) {
-        const Vec3d y = normals ? m.transformNormal(x) : m.transformPoint(x);
-        out.insert(out.end(), {y.x, y.y, y.z});
-    }
+    for (const Vec3d& x : v) out.insert(out.end(), {x.x, x.y, x.z});
     return out;
 }
 
@@ -131,12 +128,25 @@ bool applyBlendShapes(const usd::Stage& stage, const usd::PrimSpec& mesh, double
     return animated;
 }
 
-std::optional<SkinnedPose> pose(const usd::Stage& stage, const usd::PrimSpec& mesh, const std::string& root, double time, const Warn& warn) {
-    const PrimReader reader(mesh, time);
-    const usd::PrimSpec* indicesOwner = nearest(stage, mesh.path, root, [](const usd::PrimSpec& p) { return p.attribute(kJointIndices) != nullptr; });
-    const bool shaped = hasTargets(mesh, "skel:blendShapeTargets");
-    if (!indicesOwner && !shaped) return std::nullopt;  // nothing of UsdSkel deforms it
-    const usd::PrimSpec* skelOwner = nearest(stage, mesh.path, root, [](const usd::PrimSpec& p) { return hasTargets(p, "skel:skeleton"); });
+// What skinning moves: points, and normals that follow point normalPoint[i] (per point when
+// `perPointNormals`, so blend shapes' normal offsets apply to them).
+struct Deformable {
+    std::vector<Vec3d> points;
+    std::vector<Vec3d> normals;
+    std::vector<std::size_t> normalPoint;
+    bool perPointNormals = false;
+};
+
+// Poses `shape`, the geometry of `prim`, by the prim's UsdSkel binding below `root`, into the
+// prim's own space. False when nothing of UsdSkel deforms the prim; raises SceneError when its
+// binding cannot apply. `animated`: whether the pose changes with time.
+bool deform(const usd::Stage& stage, const usd::PrimSpec& prim, const std::string& root, double time, const Warn& warn,
+            Deformable& shape, bool& animated) {
+    const PrimReader reader(prim, time);
+    const usd::PrimSpec* indicesOwner = nearest(stage, prim.path, root, [](const usd::PrimSpec& p) { return p.attribute(kJointIndices) != nullptr; });
+    const bool shaped = hasTargets(prim, "skel:blendShapeTargets");
+    if (!indicesOwner && !shaped) return false;  // nothing of UsdSkel deforms it
+    const usd::PrimSpec* skelOwner = nearest(stage, prim.path, root, [](const usd::PrimSpec& p) { return hasTargets(p, "skel:skeleton"); });
     if (!skelOwner) reader.fail("has joint influences or blend shapes but no skel:skeleton is bound to it or above it in " + root);
     const usd::PrimSpec& skeletonPrim = target(stage, *skelOwner, "skel:skeleton", "Skeleton");
     auto warnAt = [&](const std::string& path) { return [&warn, path](const std::string& m) { warn(path, m); }; };
@@ -146,50 +156,74 @@ std::optional<SkinnedPose> pose(const usd::Stage& stage, const usd::PrimSpec& me
     const std::optional<PrimReader> animationReader = animation ? std::optional<PrimReader>(std::in_place, *animation, time) : std::nullopt;
     const SkeletonPose skeletonPose = poseSkeleton(skeleton, animationReader ? &*animationReader : nullptr, warnAt(skeletonPrim.path));
 
-    SkinnedPose result;
-    result.animated = hasTimeSamples(skeletonPrim) || (animation && hasTimeSamples(*animation));
-    std::vector<Vec3d> points = vectors(reader.numbers("points", 3).value_or(std::vector<double>{}));
+    animated = hasTimeSamples(skeletonPrim) || (animation && hasTimeSamples(*animation));
+    animated = applyBlendShapes(stage, prim, time, skeletonPose, warn, shape.points, shape.perPointNormals ? &shape.normals : nullptr) || animated;
+    if (!indicesOwner) return true;  // blend shapes alone: the prim's own space
+
+    const JointInfluences influences =
+        readInfluences(*indicesOwner, nearest(stage, prim.path, root, [](const usd::PrimSpec& p) { return p.attribute(kJointWeights) != nullptr; }), time);
+    std::vector<Matrix4> skinning = skeletonPose.skinning;
+    if (const usd::PrimSpec* jointsOwner = nearest(stage, prim.path, root, [](const usd::PrimSpec& p) { return p.attribute("skel:joints") != nullptr; })) {
+        std::map<std::string, std::size_t> index;
+        for (std::size_t j = 0; j < skeleton.joints.size(); ++j) index.emplace(skeleton.joints[j], j);
+        skinning.clear();
+        for (const std::string& name : PrimReader(*jointsOwner, time).strings("skel:joints").value_or(std::vector<std::string>{})) {
+            auto it = index.find(name);
+            skinning.push_back(it == index.end() ? Matrix4::identity() : skeletonPose.skinning[it->second]);
+        }
+    }
+    if (std::optional<std::string> problem = influences.problem(shape.points.size(), skinning.size())) PrimReader(*indicesOwner, time).fail(*problem);
+    Matrix4 geomBind = Matrix4::identity();
+    if (const usd::PrimSpec* owner = nearest(stage, prim.path, root, [](const usd::PrimSpec& p) { return p.attribute("primvars:skel:geomBindTransform") != nullptr; }))
+        if (auto m = PrimReader(*owner, time).numbers("primvars:skel:geomBindTransform", 16); m && m->size() == 16) geomBind = Matrix4::fromUsdRowMajor(m->data());
+    SkinningMethod method = SkinningMethod::ClassicLinear;
+    if (const usd::PrimSpec* owner = nearest(stage, prim.path, root, [](const usd::PrimSpec& p) { return p.attribute("primvars:skel:skinningMethod") != nullptr; })) {
+        const std::string name = PrimReader(*owner, time).token({"primvars:skel:skinningMethod"}, "classicLinear");
+        if (name == "dualQuaternion") method = SkinningMethod::DualQuaternion;
+        else if (name != "classicLinear") warn(owner->path, "primvars:skel:skinningMethod '" + name + "' is not classicLinear or dualQuaternion; classicLinear used");
+    }
+    skinPoints(method, geomBind, skinning, influences, shape.points);
+    skinNormals(method, geomBind, skinning, influences, shape.normalPoint, shape.normals);
+    const std::optional<Matrix4> fromWorld = worldTransformOf(stage, prim.path, time, warn).matrix.inverse();
+    if (!fromWorld) reader.fail("its transform is not invertible, so its skinned points cannot be placed");
+    const Matrix4 toPrim = *fromWorld * worldTransformOf(stage, skeletonPrim.path, time, warn).matrix;  // skeleton space -> the prim's
+    for (Vec3d& p : shape.points) p = toPrim.transformPoint(p);
+    for (Vec3d& n : shape.normals) n = toPrim.transformNormal(n);
+    return true;
+}
+
+std::optional<SkinnedPose> meshPose(const usd::Stage& stage, const usd::PrimSpec& mesh, const std::string& root, double time, const Warn& warn) {
+    const PrimReader reader(mesh, time);
+    Deformable shape;
+    shape.points = vectors(reader.numbers("points", 3).value_or(std::vector<double>{}));
     const char* normalsName = reader.value("primvars:normals") ? "primvars:normals" : "normals";
     std::optional<Primvar> normalsPrimvar = readPrimvar(reader, normalsName, "vertex");
-    std::optional<std::vector<std::size_t>> pointOf = normalsPrimvar ? normalPoints(*normalsPrimvar, reader, points.size()) : std::nullopt;
-    std::vector<Vec3d> normals = pointOf ? vectors(normalsPrimvar->values) : std::vector<Vec3d>{};
-    const bool perPointNormals = pointOf && normalsPrimvar->interpolation != "faceVarying";
-    result.animated = applyBlendShapes(stage, mesh, time, skeletonPose, warn, points, perPointNormals ? &normals : nullptr) || result.animated;
-
-    Matrix4 toMesh = Matrix4::identity();  // skeleton space -> the mesh's own space
-    if (indicesOwner) {
-        const JointInfluences influences =
-            readInfluences(*indicesOwner, nearest(stage, mesh.path, root, [](const usd::PrimSpec& p) { return p.attribute(kJointWeights) != nullptr; }), time);
-        std::vector<Matrix4> skinning = skeletonPose.skinning;
-        if (const usd::PrimSpec* jointsOwner = nearest(stage, mesh.path, root, [](const usd::PrimSpec& p) { return p.attribute("skel:joints") != nullptr; })) {
-            std::map<std::string, std::size_t> index;
-            for (std::size_t j = 0; j < skeleton.joints.size(); ++j) index.emplace(skeleton.joints[j], j);
-            skinning.clear();
-            for (const std::string& name : PrimReader(*jointsOwner, time).strings("skel:joints").value_or(std::vector<std::string>{})) {
-                auto it = index.find(name);
-                skinning.push_back(it == index.end() ? Matrix4::identity() : skeletonPose.skinning[it->second]);
-            }
-        }
-        if (std::optional<std::string> problem = influences.problem(points.size(), skinning.size())) PrimReader(*indicesOwner, time).fail(*problem);
-        Matrix4 geomBind = Matrix4::identity();
-        if (const usd::PrimSpec* owner = nearest(stage, mesh.path, root, [](const usd::PrimSpec& p) { return p.attribute("primvars:skel:geomBindTransform") != nullptr; }))
-            if (auto m = PrimReader(*owner, time).numbers("primvars:skel:geomBindTransform", 16); m && m->size() == 16) geomBind = Matrix4::fromUsdRowMajor(m->data());
-        SkinningMethod method = SkinningMethod::ClassicLinear;
-        if (const usd::PrimSpec* owner = nearest(stage, mesh.path, root, [](const usd::PrimSpec& p) { return p.attribute("primvars:skel:skinningMethod") != nullptr; })) {
-            const std::string name = PrimReader(*owner, time).token({"primvars:skel:skinningMethod"}, "classicLinear");
-            if (name == "dualQuaternion") method = SkinningMethod::DualQuaternion;
-            else if (name != "classicLinear") warn(owner->path, "primvars:skel:skinningMethod '" + name + "' is not classicLinear or dualQuaternion; classicLinear used");
-        }
-        skinPoints(method, geomBind, skinning, influences, points);
-        if (pointOf) skinNormals(method, geomBind, skinning, influences, *pointOf, normals);
-        const std::optional<Matrix4> fromWorld = worldTransformOf(stage, mesh.path, time, warn).matrix.inverse();
-        if (!fromWorld) reader.fail("its transform is not invertible, so its skinned points cannot be placed");
-        toMesh = *fromWorld * worldTransformOf(stage, skeletonPrim.path, time, warn).matrix;
+    std::optional<std::vector<std::size_t>> pointOf = normalsPrimvar ? normalPoints(*normalsPrimvar, reader, shape.points.size()) : std::nullopt;
+    if (pointOf) {
+        shape.normals = vectors(normalsPrimvar->values);
+        shape.normalPoint = std::move(*pointOf);
+        shape.perPointNormals = normalsPrimvar->interpolation != "faceVarying";
     }
-    result.points = numbers(points, toMesh, false);
-    if (pointOf) result.normals = numbers(normals, toMesh, true);
+    SkinnedPose result;
+    if (!deform(stage, mesh, root, time, warn, shape, result.animated)) return std::nullopt;
+    result.points = numbers(shape.points);
+    if (pointOf) result.normals = numbers(shape.normals);
     result.normalsName = normalsName;
     return result;
+}
+
+// Runs `pose`, turning a binding that cannot apply into a warning naming the prim (nullopt).
+template <typename Pose>
+auto warnedPose(const usd::PrimSpec& prim, const Warn& warn, Pose&& pose) -> decltype(pose()) {
+    try {
+        return pose();
+    } catch (const MissingAssetError&) {
+        throw;
+    } catch (const SceneError& e) {
+        warn(prim.path, std::string("UsdSkel binding not applied, the ") + (prim.typeName == "Mesh" ? "mesh" : "prim") +
+                            " renders in its rest pose: " + e.what());
+        return {};
+    }
 }
 
 std::unique_ptr<usd::PrimSpec> clone(const usd::PrimSpec& prim) {
@@ -222,14 +256,25 @@ void setArray(usd::PrimSpec& prim, const std::string& name, const std::string& t
 std::optional<SkinnedPose> skinnedPose(const usd::Stage& stage, const usd::PrimSpec& mesh, double time, const Warn& warn) {
     const std::string root = skelRootAbove(stage, mesh.path);
     if (root.empty()) return std::nullopt;  // bindings outside a SkelRoot mean nothing
-    try {
-        return pose(stage, mesh, root, time, warn);
-    } catch (const MissingAssetError&) {
-        throw;
-    } catch (const SceneError& e) {
-        warn(mesh.path, std::string("UsdSkel binding not applied, the mesh renders in its rest pose: ") + e.what());
-        return std::nullopt;
-    }
+    return warnedPose(mesh, warn, [&] { return meshPose(stage, mesh, root, time, warn); });
+}
+
+std::optional<bool> skinSurface(const usd::Stage& stage, const usd::PrimSpec& prim, double time, const Warn& warn, render::MeshDesc& surface) {
+    const std::string root = skelRootAbove(stage, prim.path);
+    if (root.empty()) return std::nullopt;
+    return warnedPose(prim, warn, [&]() -> std::optional<bool> {
+        Deformable shape;
+        for (const Vec3f& p : surface.positions) shape.points.push_back(Vec3d(p));
+        for (std::size_t c = 0; c < surface.cornerNormals.size(); ++c) {
+            shape.normals.push_back(Vec3d(surface.cornerNormals[c]));
+            shape.normalPoint.push_back(surface.indices[c]);
+        }
+        bool animated = false;
+        if (!deform(stage, prim, root, time, warn, shape, animated)) return std::nullopt;
+        for (std::size_t i = 0; i < shape.points.size(); ++i) surface.positions[i] = Vec3f(shape.points[i]);
+        for (std::size_t c = 0; c < shape.normals.size(); ++c) surface.cornerNormals[c] = Vec3f(normalize(shape.normals[c]));
+        return animated;
+    });
 }
 
 std::unique_ptr<usd::PrimSpec> posedMeshSpec(const usd::PrimSpec& mesh, const SkinnedPose& pose) {

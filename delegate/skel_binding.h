@@ -1,6 +1,7 @@
-// UsdSkel bindings on a Mesh (SkelBindingAPI): the skinned pose a mesh renders in.
+// UsdSkel bindings on a Mesh (SkelBindingAPI): the skinned pose a mesh renders in; and on the
+// implicit gprims (Sphere, Cube, ...), whose tessellation is posed the same way.
 //
-// Only meshes below a SkelRoot are skinned. From the mesh up to that SkelRoot, the nearest prim
+// Only prims below a SkelRoot are skinned. From the mesh up to that SkelRoot, the nearest prim
 // authoring each of these gives it (they inherit down namespace): `skel:skeleton` (the Skeleton),
 // `primvars:skel:jointIndices` and `primvars:skel:jointWeights` (constant or vertex
 // interpolation, elementSize influences per point), `primvars:skel:geomBindTransform`
@@ -19,7 +20,7 @@
 // their points; others are dropped, and the render core shades the triangles' geometric normals.
 //
 // Not skinned: meshes inside native instances and point-instancer prototypes (they render in
-// their rest pose), and gprims other than Mesh (as in Hydra).
+// their rest pose), and curves and points (not rendered yet).
 //
 // A binding that cannot apply (no skeleton, a skeleton or influences that are malformed, sizes
 // that do not match) leaves the mesh in its rest pose with one warning naming the prim, as Hydra
@@ -32,6 +33,7 @@
 #include <vector>
 
 #include "delegate/material_adapter.h"
+#include "render/scene_description.h"
 #include "scene/stage.h"
 
 namespace fluence::delegate {
@@ -48,6 +50,12 @@ struct SkinnedPose {
 // The mesh's skinned pose at `time`, or nullopt when it is not skinned (or its binding is
 // malformed: warned, naming the prim). The motion blur of a skinned mesh samples this at each time.
 std::optional<SkinnedPose> skinnedPose(const usd::Stage& stage, const usd::PrimSpec& mesh, double time, const Warn& warn);
+
+// Poses `surface`, the tessellation of an implicit gprim `prim` (Sphere, Cube, ...) in its own
+// space, by the prim's binding: constant (rigid) joint influences, as a Mesh's. nullopt when it is
+// not skinned (or its binding is malformed: warned); else whether the pose is animated.
+std::optional<bool> skinSurface(const usd::Stage& stage, const usd::PrimSpec& prim, double time, const Warn& warn,
+                                render::MeshDesc& surface);
 
 // A copy of the mesh's prim spec (children included) holding `pose` as its points and normals,
 // with UsdSkel's primvars removed: what the mesh adapters read for a skinned mesh.
