@@ -44,6 +44,7 @@ std::vector<Primvar> readShadingPrimvars(const PrimReader& prim) {
     std::vector<Primvar> out;
     for (const usd::AttributeSpec& a : prim.prim().attributes) {
         if (!a.name.starts_with("primvars:") || a.name.ends_with(":indices") || a.name == "primvars:normals") continue;
+        if (a.name.starts_with("primvars:skel:")) continue;  // UsdSkel's joint influences, not shading data
         std::optional<usd::Value> v = prim.value(a.name);
         if (!v || !v->isNumeric() || v->components < 1 || v->components > 3) continue;
         const std::string& type = v->typeName;

@@ -40,7 +40,8 @@ std::optional<Primvar> readPrimvar(const PrimReader& prim, const std::string& na
 
 // The primvars a material's nodes may read (UsdPrimvarReader varnames): every authored
 // "primvars:NAME" of 1 to 3 floating-point components (st, float, float3, colours...), except
-// normals, with "constant" as the default interpolation. Names are without "primvars:".
+// normals and UsdSkel's primvars:skel:*, with "constant" as the default interpolation. Names are
+// without "primvars:".
 std::vector<Primvar> readShadingPrimvars(const PrimReader& prim);
 
 // Raises SceneError unless `pv` has the elements its interpolation needs on a mesh of `faces`

@@ -7,6 +7,7 @@
 #include "delegate/geom_subset.h"
 #include "delegate/implicit_geometry.h"
 #include "delegate/light_adapter.h"
+#include "delegate/skel_binding.h"
 #include "delegate/xform.h"
 #include "render/mesh_transform.h"
 #include "scene/asset_path.h"
@@ -30,12 +31,8 @@ bool hasAnimatedData(const usd::PrimSpec& prim, bool recursive, bool withTransfo
     return false;
 }
 
-struct WorldTransform {
-    Matrix4 matrix = Matrix4::identity();
-    bool animated = false;
-};
+}  // namespace
 
-// Composes local transforms from the root down to `path` (honouring !resetXformStack!).
 WorldTransform worldTransformOf(const usd::Stage& stage, const std::string& path, double time, const Warn& warn) {
     WorldTransform result;
     for (std::size_t slash = path.find('/', 1);; slash = path.find('/', slash + 1)) {
@@ -50,8 +47,6 @@ WorldTransform worldTransformOf(const usd::Stage& stage, const std::string& path
     }
     return result;
 }
-
-}  // namespace
 
 bool assetFileExists(const std::string& path) {
     return usd::assetExists(path);  // scene/asset_path.h: files, UDIM sets and USDZ package entries
@@ -91,8 +86,15 @@ void RenderPrim::sync(const SyncContext& context) {
 bool RenderPrim::readsAnimatedData(const usd::PrimSpec& source) const { return hasAnimatedData(source, false, false); }
 
 void MeshRprim::syncData(const SyncContext& context, const usd::PrimSpec* spec, std::uint32_t bits) {
-    if (!spec || (bits & ~std::uint32_t(kDirtyTransform)) == 0) return;  // a moved mesh keeps its object-space data
-    const usd::PrimSpec& prim = *spec;
+    // A moved mesh keeps its object-space data, unless it is skinned: its points are placed by its
+    // skeleton, whatever its own transform.
+    if (!spec || ((bits & ~std::uint32_t(kDirtyTransform)) == 0 && !skinned_)) return;
+    const std::optional<SkinnedPose> pose =
+        spec->typeName == "Mesh" ? skinnedPose(context.stage, *spec, context.time, context.warn) : std::nullopt;
+    skinned_ = pose.has_value();
+    skinAnimated_ = pose && pose->animated;
+    const std::unique_ptr<usd::PrimSpec> posed = pose ? posedMeshSpec(*spec, *pose) : nullptr;
+    const usd::PrimSpec& prim = posed ? *posed : *spec;
     ++dataReads_;
     auto warn = [&](const std::string& message) { context.warn(prim.path, message); };
     if ((bits & ~std::uint32_t(kDirtyTransform | kDirtyPoints)) == 0 && subdivided_.size() == 1) {
@@ -110,9 +112,16 @@ void MeshRprim::syncData(const SyncContext& context, const usd::PrimSpec* spec, 
                                                 context.convertColor, warn))
             parts_.push_back({std::move(part.mesh), std::move(part.materialPath)});
     } else {
-        parts_.push_back({implicitMeshFromPrim(PrimReader(prim, context.time), Matrix4::identity(), context.convertColor, warn),
-                          boundMaterialPath(context.stage, prim)});
+        render::MeshDesc surface = implicitMeshFromPrim(PrimReader(prim, context.time), Matrix4::identity(), context.convertColor, warn);
+        const std::optional<bool> posed = skinSurface(context.stage, prim, context.time, context.warn, surface);
+        skinned_ = posed.has_value();
+        skinAnimated_ = posed.value_or(false);
+        parts_.push_back({std::move(surface), boundMaterialPath(context.stage, prim)});
     }
+}
+
+bool MeshRprim::readsAnimatedData(const usd::PrimSpec& source) const {
+    return skinAnimated_ || RenderPrim::readsAnimatedData(source);
 }
 
 std::vector<std::string> SurfaceRprim::materialPaths() const {

@@ -138,6 +138,8 @@ public:
 
 private:
     void syncData(const SyncContext& context, const usd::PrimSpec* prim, std::uint32_t bits) override;
+    bool readsAnimatedData(const usd::PrimSpec& source) const override;
+    bool skinned_ = false, skinAnimated_ = false;  // posed by UsdSkel (delegate/skel_binding.h); the pose is animated
 };
 
 // Geometry shared by instances: every surface below `source`, in the source's space (with the
@@ -298,6 +300,14 @@ public:
 private:
     std::map<std::string, std::unique_ptr<RenderPrim>> prims_;
 };
+
+// A prim's local-to-world transform at `time`, composed from the root down (honouring
+// !resetXformStack!), and whether an xformOp on the way is time-sampled.
+struct WorldTransform {
+    Matrix4 matrix = Matrix4::identity();
+    bool animated = false;
+};
+WorldTransform worldTransformOf(const usd::Stage& stage, const std::string& path, double time, const Warn& warn);
 
 // True when `path` is `root` or lies below it.
 bool isAtOrBelow(const std::string& path, const std::string& root);

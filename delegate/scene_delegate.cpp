@@ -19,12 +19,13 @@ namespace fluence::delegate {
 namespace {
 
 // Types that carry no geometry of their own and need no warning (a SpatialAudio is sound, which
-// no renderer reads).
+// no renderer reads; UsdSkel's prims pose the meshes bound to them, delegate/skel_binding.h).
 bool isStructuralType(const std::string& t) {
     static const std::set<std::string> kTypes = {"",          "Xform",          "Scope",        "Material",
                                                  "Shader",    "NodeGraph",      "GeomSubset",   "RenderSettings",
                                                  "RenderProduct", "RenderVar",  "RenderPass",   "Camera",
-                                                 "SpatialAudio"};
+                                                 "SpatialAudio", "SkelRoot",    "Skeleton",     "SkelAnimation",
+                                                 "BlendShape"};
     return kTypes.contains(t);
 }
 

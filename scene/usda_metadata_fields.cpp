@@ -7,7 +7,7 @@ namespace fluence::usd::detail {
 
 bool isRegisteredMetadataField(std::string_view name) {
     // Sorted, for binary search.
-    static constexpr std::array<std::string_view, 72> kFields = {
+    static constexpr std::array<std::string_view, 73> kFields = {
         "active",          "allowedTokens",        "apiSchemas",        "assetInfo",
         "bindMaterialAs",  "clipSets",             "clips",             "colorConfiguration",
         "colorManagementSystem", "colorSpace",     "comment",           "connectability",
@@ -25,7 +25,7 @@ bool isRegisteredMetadataField(std::string_view name) {
         "suffix",          "suffixSubstitutions",  "symmetricPeer",     "symmetryArguments",
         "symmetryFunction", "targetPaths",         "timeCodesPerSecond", "timeSamples",
         "typeName",        "unauthoredValuesIndex", "upAxis",           "variantSelection",
-        "variantSetNames", "variantSets",          "variants",
+        "variantSetNames", "variantSets",          "variants",          "weight",  // UsdSkel's in-between weight
     };
     static_assert(std::is_sorted(kFields.begin(), kFields.end()));
     // Fluence's own fields (written by flattening, scene/flatten.h, read by the delegate).
