@@ -33,37 +33,34 @@ constexpr float kInfinity = std::numeric_limits<float>::infinity();
 constexpr float kLookShortening = 1e-4f;
 
 // One scattering of a subpath at v: the direction, the throughput factor, and the densities
-// forwards (from v.wo to wi) and backwards (1, 1 through a delta lobe). `importance`: a light
-// subpath, which carries the adjoint BSDF. In a medium, the phase function (its own adjoint).
-struct Scattering {
+// forwards (from v.wo to wi) and backwards (1, 1 through a delta lobe). A light subpath carries
+// importance (render/bsdf.h, TRANSPORT MODE), with the shading-normal correction of its cosine. In
+// a medium, the phase function (its own adjoint).
+struct Bounce {
     Vec3f wi;
     RGB weight;
     float pdf = 0.0f, pdfReverse = 0.0f;
     bool delta = false;
     float eta = 1.0f;  // as render::BsdfSample::eta
 };
-std::optional<Scattering> scatter(const Shading& sh, const Vertex& v, bool importance, SampleStream& rng) {
+std::optional<Bounce> scatter(const Shading& sh, const Vertex& v, render::Transport mode, SampleStream& rng) {
     if (!sh.bsdf()) {
         const media::PhaseSample ps = sh.phase().sample(v.wo, rng.next2D());
         if (!(ps.pdf > 0.0f)) return std::nullopt;
-        return Scattering{ps.wi, RGB(ps.p / ps.pdf), ps.pdf, sh.phase().pdf(ps.wi, v.wo)};
+        return Bounce{ps.wi, RGB(ps.p / ps.pdf), ps.pdf, sh.phase().pdf(ps.wi, v.wo)};
     }
     const render::Bsdf& bsdf = *sh.bsdf();
     const Frame& frame = sh.surface().frame;
     const Vec3f woLocal = frame.toLocal(v.wo);
     const float uLobe = bsdf.flags() == (render::kBsdfReflection | render::kBsdfDiffuse) ? 0.0f : rng.next();
-    std::optional<render::BsdfSample> bs = bsdf.sample(woLocal, uLobe, rng.next2D());
+    std::optional<render::BsdfSample> bs = bsdf.sample(woLocal, uLobe, rng.next2D(), mode);
     if (!bs || !(bs->pdf > 0.0f)) return std::nullopt;
     Vec3f wi = frame.toWorld(bs->wi);
     if (!sidesAgree(v.wo, wi, sh.surface().geometricNormal, woLocal.z, bs->wi.z)) return std::nullopt;
-    // A light subpath carries the adjoint f(wi, wo): evaluated where it is a function (no BSDF is
-    // assumed reciprocal), and for a delta lobe from the generalised reciprocity of render/bsdf.h,
-    // f(wi, wo) = f(wo, wi) eta^2.
-    RGB weight = !importance  ? bs->f * (std::abs(bs->wi.z) / bs->pdf)
-                 : bs->specular ? bs->f * (bs->eta * bs->eta * sh.importanceCosines(v.wo, wi) / bs->pdf)
-                                : bsdf.f(bs->wi, woLocal) * (sh.importanceCosines(v.wo, wi) / bs->pdf);
-    if (bs->specular) return Scattering{wi, weight, 1.0f, 1.0f, true, bs->eta};
-    return Scattering{wi, weight, bs->pdf, bsdf.pdf(bs->wi, woLocal), false, bs->eta};
+    const float cosine = mode == render::Transport::Radiance ? std::abs(bs->wi.z) : sh.importanceCosines(v.wo, wi);
+    RGB weight = bs->f * (cosine / bs->pdf);
+    if (bs->specular) return Bounce{wi, weight, 1.0f, 1.0f, true, bs->eta};
+    return Bounce{wi, weight, bs->pdf, bsdf.pdf(bs->wi, woLocal), false, bs->eta};
 }
 
 // The ray leaving v along wi.
@@ -179,7 +176,7 @@ LightSubpath traceLightSubpath(const RenderScene& scene, const std::vector<int>&
     Ray ray{onSurface ? spawnOrigin(es->point, es->normal, es->direction) : es->point, es->direction, 0.0f, kInfinity};
     MediumStack media = hero >= 0 && !path.origin.atInfinity ? mediaAt(scene, ray.origin, ray.direction, counters)
                                                               : MediumStack(scene);
-    std::optional<Scattering> last;  // how the previous vertex was left
+    std::optional<Bounce> last;  // how the previous vertex was left
     int bounces = 0, interiorScatterings = 0;
     for (;;) {
         ++counters.bounce;
@@ -205,7 +202,7 @@ LightSubpath traceLightSubpath(const RenderScene& scene, const std::vector<int>&
         arena.reset();
         const Shading sh(v, arena);
         v.transmissive = sh.transmissive();
-        last = scatter(sh, v, true, rng);
+        last = scatter(sh, v, render::Transport::Importance, rng);
         if (last) {
             v.delta = last->delta;
             // The previous vertex's density as a camera subpath would draw it, through this one.
@@ -252,8 +249,8 @@ void splatToCamera(const RenderScene& scene, const render::Camera& camera, const
         arena.reset();
         const Shading sh(y, arena);
         if (!sh.connectable()) continue;
-        auto [f, pdfBack] = sh.evaluate(c->direction, y.wo);  // f(wi, wo): the adjoint; and y_{s-2} drawn from the camera side
-        const RGB contribution = y.beta * f * (sh.importanceCosines(y.wo, c->direction) * c->importance);
+        const Scattered toCamera = sh.evaluate(y.wo, c->direction, render::Transport::Importance);
+        const RGB contribution = y.beta * toCamera.f * (sh.importanceCosines(y.wo, c->direction) * c->importance);
         if (isBlack(contribution)) continue;
         // Visible as a camera ray sees it: from the near plane on, hidden by surfaces and by lights'
         // shapes (which camera rays stop at, and RenderScene::occluded passes through).
@@ -266,6 +263,7 @@ void splatToCamera(const RenderScene& scene, const render::Camera& camera, const
         setLightDensities(x, light, s);
         x[s - 1].fromCamera = toArea(c->density, camera.position(), y);
         x[s - 1].delta = false;
+        const float pdfBack = toCamera.pdfReverse;  // y_{s-2} drawn from the camera side
         x[s - 2].fromCamera = s == 2 ? cameraReaches(light.origin, pdfBack, y.point()) : toArea(pdfBack, y.point(), light.vertices[s - 3]);
         x.push_back({1.0f, 1.0f, false, true, RGB(1.0f), crossing.edge});  // the camera
         const Vec3f toX2 = s >= 3 ? -light.vertices[1].wo : c->direction;
@@ -420,7 +418,7 @@ private:
         const std::size_t m = z_.size();
         if (m < 2) return;
         const Vertex& zt = z_.back();
-        x_[at].fromLight = toArea(sh.evaluate(in, zt.wo).second, zt.point(), z_[m - 2]);
+        x_[at].fromLight = toArea(sh.evaluate(zt.wo, in).pdfReverse, zt.point(), z_[m - 2]);
     }
 
     // s = 1: next-event estimation at z_{t-1}, exactly as `path` samples it.
@@ -431,7 +429,9 @@ private:
         std::optional<render::LightSample> ls;
         if (choice.light >= 0 && choice.probability > 0.0f) ls = scene_.light(choice.light).sample(from, uPoint);
         if (!ls || !(ls->pdf > 0.0f) || isBlack(ls->Li)) return;
-        auto [f, pdfCamera] = sh.evaluate(zt.wo, ls->wi);
+        const Scattered toLight = sh.evaluate(zt.wo, ls->wi);
+        const RGB& f = toLight.f;
+        const float pdfCamera = toLight.pdf;
         const Vec3f shadowFrom = zt.transmissive ? zt.leaving(ls->wi) : from;
         if (isBlack(f) || (++counters_.shadow, scene_.occluded(shadowFrom, ls->wi, ls->distance))) return;
         const Crossing crossing = cross(zt.mediumTowards(ls->wi), {shadowFrom, ls->wi, ls->distance}, tracked_, rng_);
@@ -458,14 +458,16 @@ private:
         const float dist2 = lengthSquared(d);
         if (!(dist2 > 0.0f)) return true;
         const Vec3f dir = d / std::sqrt(dist2);
-        auto [fz, pdfCamera] = sh.evaluate(zt.wo, dir);
+        const Scattered atZ = sh.evaluate(zt.wo, dir);
+        const RGB& fz = atZ.f;
+        const float pdfCamera = atZ.pdf;
         if (isBlack(fz)) return true;
         joinArena_.reset();
         const Shading shy(y, joinArena_);
         if (!shy.connectable()) return true;
-        auto [fy, pdfBack] = shy.evaluate(-dir, y.wo);  // f(wi, wo): the adjoint; and y_{s-2} drawn from the camera side
-        if (isBlack(fy)) return true;
-        const RGB contribution = y.beta * fy * shy.importanceCosines(y.wo, -dir) * fz * zt.beta * (sh.cosine(dir) / dist2);
+        const Scattered atY = shy.evaluate(y.wo, -dir, render::Transport::Importance);
+        if (isBlack(atY.f)) return true;
+        const RGB contribution = y.beta * atY.f * shy.importanceCosines(y.wo, -dir) * fz * zt.beta * (sh.cosine(dir) / dist2);
         if (isBlack(contribution)) return true;
         const std::optional<media::MediumRay> segment = joinSegment(scene_, zt, y, dir, counters_);
         if (!segment) return true;
@@ -474,10 +476,10 @@ private:
         setLightDensities(x_, light_, s);
         x_[s - 1].fromCamera = toArea(pdfCamera, zt.point(), y);
         x_[s - 1].delta = false;
-        x_[s - 2].fromCamera = s == 2 ? cameraReaches(light_.origin, pdfBack, y.point())
-                                      : toArea(pdfBack, y.point(), light_.vertices[s - 3]);
+        x_[s - 2].fromCamera = s == 2 ? cameraReaches(light_.origin, atY.pdfReverse, y.point())
+                                      : toArea(atY.pdfReverse, y.point(), light_.vertices[s - 3]);
         appendCamera(x_, z_);
-        x_[s] = densityOf(zt, toArea(shy.evaluate(y.wo, -dir).second, y.point(), zt), zt.fromOwn, false, crossing.edge);
+        x_[s] = densityOf(zt, toArea(atY.pdf, y.point(), zt), zt.fromOwn, false, crossing.edge);
         setAfterJoin(sh, s + 1, dir);
         const Vertex& y1 = light_.vertices[0];
         const Vec3f toX2 = s >= 3 ? -light_.vertices[1].wo : -dir;
@@ -489,7 +491,7 @@ private:
     bool extend(const Shading& sh, Ray& ray, int& depth) {
         const Vertex& zt = z_.back();
         const std::size_t m = z_.size();
-        last_ = scatter(sh, zt, false, rng_);
+        last_ = scatter(sh, zt, render::Transport::Radiance, rng_);
         if (!last_) return false;
         if (m >= 2) z_[m - 2].fromOther = last_->delta ? 1.0f : toArea(last_->pdfReverse, zt.point(), z_[m - 2]);
         z_.back().delta = last_->delta;
@@ -522,7 +524,7 @@ private:
     MediumStack media_{scene_};        // the media the camera subpath is in (the camera outside every closed surface)
     float etaScale_ = 1.0f;
     int interiorScatterings_ = 0;
-    std::optional<Scattering> last_;  // how the previous vertex was left
+    std::optional<Bounce> last_;  // how the previous vertex was left
 };
 
 }  // namespace

@@ -22,14 +22,14 @@ Shading::Shading(const Vertex& v, render::BsdfArena& arena)
       surface_(v.inMedium ? SurfaceFrame{} : shadingFrame(v.hit, v.wo, transmissive())),
       phase_(v.g) {}
 
-std::pair<RGB, float> Shading::evaluate(const Vec3f& a, const Vec3f& b) const {
-    if (!bsdf_) {
-        const float p = phase_.p(a, b);
-        return {RGB(p), p};
+Scattered Shading::evaluate(const Vec3f& wo, const Vec3f& wi, render::Transport mode) const {
+    if (!bsdf_) {  // Henyey-Greenstein: its own adjoint, its value its density
+        const float forward = phase_.p(wo, wi), reverse = phase_.p(wi, wo);
+        return {RGB(mode == render::Transport::Radiance ? forward : reverse), forward, reverse};
     }
-    Vec3f al = surface_.frame.toLocal(a), bl = surface_.frame.toLocal(b);
-    if (!sidesAgree(a, b, surface_.geometricNormal, al.z, bl.z)) return {RGB(0.0f), 0.0f};
-    return {bsdf_->f(al, bl), bsdf_->pdf(al, bl)};
+    Vec3f woLocal = surface_.frame.toLocal(wo), wiLocal = surface_.frame.toLocal(wi);
+    if (!sidesAgree(wo, wi, surface_.geometricNormal, woLocal.z, wiLocal.z)) return {};
+    return {bsdf_->f(woLocal, wiLocal, mode), bsdf_->pdf(woLocal, wiLocal), bsdf_->pdf(wiLocal, woLocal)};
 }
 
 float Shading::importanceCosines(const Vec3f& wo, const Vec3f& wi) const {

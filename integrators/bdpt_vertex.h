@@ -11,8 +11,9 @@
 // Shading follows `path`: a two-sided surface is shaded on the side its own subpath arrives from,
 // a transmissive one keeps its orientation, and directions on which the shading frame and the
 // surface disagree carry nothing (integrators/surface_frame.h). A light subpath transports importance:
-// render/bsdf.h's f is for radiance, so it uses the adjoint f*(wo, wi) = f(wi, wo) with Veach's
-// correction for shading normals (thesis, sec. 5.3), |wo.ns| |wi.ng| / (|wo.ng| |wi.ns|).
+// it evaluates and samples its BSDFs with render::Transport::Importance (the adjoint f(wi, wo),
+// render/bsdf.h) and Veach's correction for shading normals (thesis, sec. 5.3),
+// |wo.ns| |wi.ng| / (|wo.ng| |wi.ns|).
 #pragma once
 
 #include <cmath>
@@ -76,6 +77,14 @@ struct Vertex {
 // volume density in a medium).
 float toArea(float pdf, const Vec3f& from, const Vertex& to);
 
+// What Shading::evaluate gives for world directions wo and wi: f for the transport mode (the
+// adjoint f(wi, wo) for importance), the density of drawing wi from wo, and of wo from wi; zero
+// where the shading frame and the surface disagree.
+struct Scattered {
+    RGB f;
+    float pdf = 0.0f, pdfReverse = 0.0f;
+};
+
 // The BSDF (or phase function) of a vertex, shaded as seen from its own subpath's previous vertex.
 class Shading {
 public:
@@ -83,14 +92,13 @@ public:
 
     bool transmissive() const { return bsdf_ && (bsdf_->flags() & render::kBsdfTransmission) != 0; }
     bool connectable() const { return !bsdf_ || (bsdf_->flags() & (render::kBsdfDiffuse | render::kBsdfGlossy)) != 0; }
-    // f(a, b) and the density of drawing b from a, for world directions a (as wo) and b (as wi);
-    // zero where the shading frame and the surface disagree.
-    std::pair<RGB, float> evaluate(const Vec3f& a, const Vec3f& b) const;
+    // The scattering from wo to wi of a subpath carrying `mode` (Scattered).
+    Scattered evaluate(const Vec3f& wo, const Vec3f& wi, render::Transport mode = render::Transport::Radiance) const;
     // The cosine of a camera subpath's transport towards wi (1 in a medium).
     float cosine(const Vec3f& wi) const { return bsdf_ ? std::abs(dot(wi, surface_.frame.n)) : 1.0f; }
     // Cosine factors of a light subpath's transport from wo to wi (adjoint, with the shading-normal
-    // correction, adjointShadingCosine in integrators/surface_frame.h), to multiply f(wi, wo) by; 1
-    // in a medium.
+    // correction, adjointShadingCosine in integrators/surface_frame.h), to multiply the importance
+    // mode's f by; 1 in a medium.
     float importanceCosines(const Vec3f& wo, const Vec3f& wi) const;
     // What bdpt.cpp's scatter() samples: the BSDF and its frame, or (bsdf() null) the phase function.
     const render::Bsdf* bsdf() const { return bsdf_; }

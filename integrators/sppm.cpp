@@ -102,12 +102,11 @@ void tracePhotonPath(const render::RenderScene& scene, int maxDepth, float scale
         const float uLobe = rng.next();
         const Vec2f u = rng.next2D();
         const float uSurvive = rng.next();
-        std::optional<render::BsdfSample> bs = bsdf.sample(woLocal, uLobe, u);
+        std::optional<render::BsdfSample> bs = bsdf.sample(woLocal, uLobe, u, render::Transport::Importance);
         if (!bs) return;
         const Vec3f wi = surface.frame.toWorld(bs->wi);
         if (!sidesAgree(wo, wi, surface.geometricNormal, woLocal.z, bs->wi.z)) return;
-        const RGB next = beta * bs->f *
-                         (bs->eta * bs->eta * adjointShadingCosine(wo, wi, surface.frame.n, surface.geometricNormal) / bs->pdf);
+        const RGB next = beta * bs->f * (adjointShadingCosine(wo, wi, surface.frame.n, surface.geometricNormal) / bs->pdf);
         const float survive = std::min(1.0f, maxComponent(next / media::channelAverage(pdfRatio)) / maxComponent(power));
         if (!(uSurvive < survive)) return;
         beta = next / survive;

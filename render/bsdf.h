@@ -42,17 +42,20 @@
 //     mirrors wo below to above as a reflector does.
 //   - wo.z == 0 (grazing) scatters nothing: f = 0, pdf = 0, sample() = nullopt.
 //
-// RADIANCE, NOT IMPORTANCE. Every f here is the BSDF for radiance transport (paths traced from
-// the camera, as `path` and `naive` do). Refraction compresses solid angle, so radiance is
+// TRANSPORT MODE. A model's virtual f and sample() are the BSDF for radiance transport (paths
+// traced from the camera, as `path` and `naive` do). Refraction compresses solid angle, so radiance is
 // scaled by eta^-2 across the interface: the transmitted part of f carries 1 / eta^2 (eta as in
 // the sample record), and f obeys the generalised reciprocity
 //     f(wo, wi) / n(wo)^2 == f(wi, wo) / n(wi)^2
 // (n = IOR on that direction's side) instead of plain symmetry. Energy (flux) is conserved as
-// the integral of f(wo, wi) * (n(wi)/n(wo))^2 * |wi.z| dwi <= 1. The tracers of importance (the
-// light subpaths of `bdpt`, the photons of `sppm`) use the adjoint f*(wo, wi) = f(wi, wo): they
-// evaluate f with its arguments swapped, multiply a sampled refraction's weight by eta^2, and
-// correct for shading normals with integrators/surface_frame.h's adjointShadingCosine. There is
-// no transport-mode argument: the caller chooses the adjoint by how it calls.
+// the integral of f(wo, wi) * (n(wi)/n(wo))^2 * |wi.z| dwi <= 1. Paths that carry importance (the
+// light subpaths of `bdpt`, the photons of `sppm`) scatter by the adjoint f*(wo, wi) = f(wi, wo),
+// which differs from f where f is not symmetric: refraction's 1 / eta^2, and any model that is not
+// reciprocal. They say so with Transport::Importance to the non-virtual f(wo, wi, mode) and
+// sample(wo, uLobe, u, mode) below (called through a Bsdf&): f(wi, wo) evaluated, and a sampled
+// delta refraction's coefficient times eta^2 (the generalised reciprocity above). Shading
+// normals break the symmetry of the cosine too; that correction needs the geometric normal, so it
+// is the integrator's: integrators/surface_frame.h's adjointShadingCosine.
 //
 // LABELS. For the path classes integrators declare (Heckbert's L(S|D)*E), a delta lobe is S and
 // every other lobe, diffuse or glossy, counts as D: what the class decides is whether a vertex
@@ -87,6 +90,9 @@ enum BsdfFlags : unsigned {
     kBsdfSpecular = 1u << 4,  // a Dirac delta lobe (perfect mirror or perfect refraction)
 };
 
+// What a path carries (TRANSPORT MODE): radiance from the camera, or importance from a light.
+enum class Transport { Radiance, Importance };
+
 // f(wo, wi) split by the kind of lobe that produces it (THE LOBE SPLIT).
 struct LobeSplit {
     RGB diffuse, glossy;
@@ -111,6 +117,16 @@ public:
     virtual LobeSplit fByKind(const Vec3f& wo, const Vec3f& wi) const {
         const RGB value = f(wo, wi);
         return (flags() & kBsdfGlossy) ? LobeSplit{RGB(0.0f), value} : LobeSplit{value, RGB(0.0f)};
+    }
+
+    // The BSDF a path carrying `mode` scatters by (TRANSPORT MODE): f(wo, wi) for radiance, the
+    // adjoint f(wi, wo) for importance.
+    RGB f(const Vec3f& wo, const Vec3f& wi, Transport mode) const { return mode == Transport::Radiance ? f(wo, wi) : f(wi, wo); }
+    // sample() for `mode`: the same direction and density, with the sample's f that of `mode`.
+    std::optional<BsdfSample> sample(const Vec3f& wo, float uLobe, Vec2f u, Transport mode) const {
+        std::optional<BsdfSample> s = sample(wo, uLobe, u);
+        if (s && mode == Transport::Importance) s->f = s->specular ? s->f * (s->eta * s->eta) : f(s->wi, wo);
+        return s;
     }
 
 protected:

@@ -17,6 +17,9 @@
 //                      light to sample.
 //   bounds()           where and in which directions a light not at infinity emits, for the
 //                      light tree (render/light_tree.h); nullopt for lights at infinity.
+//   name()             the light's prim path, given to the base's constructor.
+// Lights at infinity (distant, dome) derive from InfiniteLight (render/lights/infinite_light.h),
+// which answers atInfinity(), bounds() and hasEmissionSampling() for them.
 //   surface()          the surface camera and BSDF rays can hit, which RenderScene puts in the
 //                      ray-tracing scene (LightSurface); none for lights at infinity, delta
 //                      lights and emissive mesh triangles (their mesh is in the scene already).
@@ -37,6 +40,7 @@
 #include <limits>
 #include <optional>
 #include <string>
+#include <utility>
 
 #include "core/rgb.h"
 
@@ -119,6 +123,7 @@ struct LightSurface {
 
 class Light {
 public:
+    explicit Light(std::string name) : name_(std::move(name)) {}
     virtual ~Light() = default;
 
     virtual std::optional<LightSample> sample(const Vec3f& p, Vec2f u) const = 0;
@@ -128,7 +133,8 @@ public:
     virtual RGB escaped(const Vec3f& direction) const { return RGB(0.0f); }
     virtual float power(const SceneBounds& bounds) const = 0;
     virtual std::optional<LightBounds> bounds() const = 0;
-    virtual std::string name() const = 0;
+    // The light's prim path (an emissive triangle's: its mesh's), for warnings and light path expressions.
+    const std::string& name() const { return name_; }
     virtual LightSurface surface() const { return {}; }
     virtual bool isSurfaceEmitter() const { return false; }
     virtual bool hasEmissionSampling() const { return false; }
@@ -140,6 +146,9 @@ public:
                                             const SceneBounds& /*scene*/) const {
         return {};
     }
+
+private:
+    std::string name_;
 };
 
 }  // namespace fluence::render

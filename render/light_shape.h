@@ -12,6 +12,13 @@
 
 namespace fluence::render {
 
+// THE BACK OF A LIGHT. One-sided light shapes (rect lights' quads, disks) emit from their front
+// only, and a ray that meets one from behind -- travelling along its emitting direction `front`,
+// or edge on -- passes through it: it neither sees the light nor is blocked by it, as shadow rays
+// are never blocked by lights. RenderScene applies it to quads in an Embree filter, and disks in
+// their exact intersection (DiskLight::intersect); both ask this.
+inline bool meetsFront(const Vec3f& rayDirection, const Vec3f& front) { return dot(rayDirection, front) < 0.0f; }
+
 struct ShapeHit {
     float t = 0.0f;
     Vec3f normal;  // unit geometric normal: the emitting side's for a disk, outward for a cylinder
@@ -23,7 +30,7 @@ public:
     // World-space box holding the surface.
     virtual void shapeBounds(Vec3f& lo, Vec3f& hi) const = 0;
     // The nearest intersection of the ray o + t d with the surface for t in (tMin, tMax); a one-sided
-    // shape (a disk) is met from its emitting side only, as rect lights are (RenderScene).
+    // shape (a disk) is met from its emitting side only (meetsFront).
     virtual std::optional<ShapeHit> intersect(const Vec3f& o, const Vec3f& d, float tMin, float tMax) const = 0;
 };
 

@@ -173,13 +173,12 @@ float hashOfHit(const float (&ray)[6], unsigned geomID, unsigned primID, unsigne
 }
 
 // Embree filter function of a quad light's triangles (user data: its emitting direction, a Vec3f):
-// a ray that meets the back of the light, travelling along its emitting direction, passes through
-// it. Lights emit from the front only, and from behind they neither block sight nor light, as for
-// shadow rays.
+// a ray that meets the back of the light passes through it (render/light_shape.h, THE BACK OF A
+// LIGHT).
 void frontSideFilter(const RTCFilterFunctionNArguments* args) {
     if (args->N != 1 || !args->valid[0]) return;  // the scenes are only traced one ray at a time
     const Vec3f direction(RTCRayN_dir_x(args->ray, 1, 0), RTCRayN_dir_y(args->ray, 1, 0), RTCRayN_dir_z(args->ray, 1, 0));
-    if (dot(direction, *static_cast<const Vec3f*>(args->geometryUserPtr)) >= 0.0f) args->valid[0] = 0;
+    if (!meetsFront(direction, *static_cast<const Vec3f*>(args->geometryUserPtr))) args->valid[0] = 0;
 }
 
 // Embree filter function of a mesh whose material may have holes: rejects the candidate hit

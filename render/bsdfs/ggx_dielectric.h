@@ -9,7 +9,7 @@
 //   refraction (wi.z < 0), h = normalize(wo + eta' wi) turned to +z:
 //       f = T(F(wo.h)) D(h) G2(wo, wi) |wo.h| |wi.h| / (|cos theta_o| |cos theta_i| (wo.h + eta' wi.h)^2)
 // (Walter et al. 2007, "Microfacet Models for Refraction through Rough Surfaces", eq. 20-21),
-// which includes the radiance factor 1 / eta'^2 (render/bsdf.h, "RADIANCE, NOT IMPORTANCE").
+// which includes the radiance factor 1 / eta'^2 (render/bsdf.h, TRANSPORT MODE).
 // Smooth (both widths < kGgxSmoothAlpha, or eta == 1: an index-matched interface is invisible):
 // a delta mirror with reflectance R(F(cos theta_o)) and a delta refraction with transmittance
 // T(F) / eta'^2.

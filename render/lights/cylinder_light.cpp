@@ -31,9 +31,8 @@ void segmentBounds(const Vec3f& centre, const Vec3f& axis, float length, float r
     hi = vmax(a, b) + across;
 }
 
-CylinderLight::CylinderLight(const LightDesc& d) {
+CylinderLight::CylinderLight(const LightDesc& d) : Light(d.name) {
     Cylinder c = cylinderOf(d);
-    name_ = d.name;
     centre_ = c.centre;
     frame_ = Frame::fromNormal(c.axis);
     radius_ = c.radius;

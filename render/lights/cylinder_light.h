@@ -57,7 +57,6 @@ public:
     RGB emitted(const LightHit& hit, const Vec3f& wo) const override;
     float power(const SceneBounds& bounds) const override;
     std::optional<LightBounds> bounds() const override;
-    std::string name() const override { return name_; }
     LightSurface surface() const override { return LightSurface::analytic(*this); }
 
     void shapeBounds(Vec3f& lo, Vec3f& hi) const override;
@@ -73,7 +72,6 @@ private:
     // radius of the axis: only the open ends are in view).
     float halfAngleAcross(const Vec3f& p) const;
 
-    std::string name_;
     Vec3f centre_;
     Frame frame_;  // n: the cylinder's axis (local +X)
     float radius_, length_;

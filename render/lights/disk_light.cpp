@@ -7,7 +7,7 @@
 
 namespace fluence::render {
 
-DiskLight::DiskLight(const LightDesc& d) : name_(d.name), radiance_(d.radiance) {
+DiskLight::DiskLight(const LightDesc& d) : Light(d.name), radiance_(d.radiance) {
     const Matrix4& t = d.transform;
     centre_ = Vec3f(t.transformPoint({0.0, 0.0, 0.0}));
     frame_ = Frame::fromNormal(normalize(Vec3f(t.transformNormal({0.0, 0.0, -1.0}))));
@@ -63,8 +63,8 @@ std::optional<LightBounds> DiskLight::bounds() const {
 }
 
 std::optional<ShapeHit> DiskLight::intersect(const Vec3f& o, const Vec3f& d, float tMin, float tMax) const {
+    if (!meetsFront(d, frame_.n)) return std::nullopt;  // seen from behind (or edge on): rays pass through
     float denom = dot(d, frame_.n);
-    if (!(denom < 0.0f)) return std::nullopt;  // seen from behind (or edge on): rays pass through
     float t = dot(centre_ - o, frame_.n) / denom;
     if (!(t > tMin && t < tMax) || lengthSquared(o + d * t - centre_) > radius_ * radius_) return std::nullopt;
     return ShapeHit{t, frame_.n};

@@ -31,7 +31,6 @@ public:
     RGB emitted(const LightHit& hit, const Vec3f& wo) const override;
     float power(const SceneBounds& bounds) const override;
     std::optional<LightBounds> bounds() const override;
-    std::string name() const override { return name_; }
     LightSurface surface() const override { return LightSurface::analytic(*this); }
     bool hasEmissionSampling() const override { return true; }
     std::optional<EmissionSample> sampleEmission(Vec2f uPosition, Vec2f uDirection, const SceneBounds& scene) const override;
@@ -45,7 +44,6 @@ public:
     float radius() const { return radius_; }
 
 private:
-    std::string name_;
     Vec3f centre_;
     Frame frame_;  // n: emitting direction
     float radius_, area_;

@@ -11,7 +11,7 @@
 
 namespace fluence::render {
 
-DistantLight::DistantLight(const LightDesc& d) : name_(d.name), value_(d.radiance) {
+DistantLight::DistantLight(const LightDesc& d) : InfiniteLight(d.name), value_(d.radiance) {
     towardsLight_ = normalize(Vec3f(d.transform.transformVector({0.0, 0.0, 1.0})));
     double halfAngle = std::clamp(double(d.angleDegrees), 0.0, 359.999) * 0.5 * std::numbers::pi / 180.0;
     oneMinusCosMax_ = halfAngle > 0.0 ? 2.0 * std::sin(0.5 * halfAngle) * std::sin(0.5 * halfAngle) : 0.0;

@@ -13,30 +13,25 @@
 // disk of the scene's bounding radius facing it (emission_at_infinity.h).
 #pragma once
 
-#include "render/light.h"
+#include "render/lights/infinite_light.h"
 #include "render/scene_description.h"
 
 namespace fluence::render {
 
-class DistantLight final : public Light {
+class DistantLight final : public InfiniteLight {
 public:
     explicit DistantLight(const LightDesc& desc);
 
     std::optional<LightSample> sample(const Vec3f& p, Vec2f u) const override;
     float pdf(const Vec3f& p, const Vec3f& wi, const LightHit& hit) const override;
-    bool atInfinity() const override { return true; }
     RGB escaped(const Vec3f& direction) const override;
     float power(const SceneBounds& bounds) const override;
-    std::optional<LightBounds> bounds() const override { return std::nullopt; }
-    std::string name() const override { return name_; }
-    bool hasEmissionSampling() const override { return true; }
     std::optional<EmissionSample> sampleEmission(Vec2f uPosition, Vec2f uDirection, const SceneBounds& scene) const override;
     EmissionDensity emissionDensity(const Vec3f& point, const Vec3f& direction, const SceneBounds& scene) const override;
 
     bool isDelta() const { return oneMinusCosMax_ == 0.0; }
 
 private:
-    std::string name_;
     Vec3f towardsLight_;
     double oneMinusCosMax_;  // 0 for a delta light
     RGB value_;              // radiance of the disk, or irradiance for a delta light

@@ -24,7 +24,7 @@ Frame rotationOf(const Matrix4& m) {
 }  // namespace
 
 DomeLight::DomeLight(const LightDesc& d)
-    : name_(d.name), radiance_(d.radiance), frame_(rotationOf(d.transform)), texture_(d.texture), meanRadiance_(d.radiance) {
+    : InfiniteLight(d.name), radiance_(d.radiance), frame_(rotationOf(d.transform)), texture_(d.texture), meanRadiance_(d.radiance) {
     if (texture_ && texture_->texels.empty()) texture_.reset();
     if (!texture_) return;
     const int w = texture_->width, h = texture_->height;

@@ -30,24 +30,20 @@
 #include <memory>
 
 #include "core/frame.h"
-#include "render/light.h"
+#include "render/lights/infinite_light.h"
 #include "render/light_image_distribution.h"
 #include "render/scene_description.h"
 
 namespace fluence::render {
 
-class DomeLight final : public Light {
+class DomeLight final : public InfiniteLight {
 public:
     explicit DomeLight(const LightDesc& desc);
 
     std::optional<LightSample> sample(const Vec3f& p, Vec2f u) const override;
     float pdf(const Vec3f& p, const Vec3f& wi, const LightHit& hit) const override;
-    bool atInfinity() const override { return true; }
     RGB escaped(const Vec3f& direction) const override;
     float power(const SceneBounds& bounds) const override;
-    std::optional<LightBounds> bounds() const override { return std::nullopt; }
-    std::string name() const override { return name_; }
-    bool hasEmissionSampling() const override { return true; }
     std::optional<EmissionSample> sampleEmission(Vec2f uPosition, Vec2f uDirection, const SceneBounds& scene) const override;
     EmissionDensity emissionDensity(const Vec3f& point, const Vec3f& direction, const SceneBounds& scene) const override;
 
@@ -58,7 +54,6 @@ public:
 private:
     RGB radianceAt(Vec2f uv) const;
 
-    std::string name_;
     RGB radiance_;
     Frame frame_;  // the world images of the dome's X (s), Y (t) and Z (n) axes
     std::shared_ptr<const RgbImage> texture_;

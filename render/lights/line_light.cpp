@@ -7,9 +7,8 @@
 
 namespace fluence::render {
 
-LineLight::LineLight(const LightDesc& d) {
+LineLight::LineLight(const LightDesc& d) : Light(d.name) {
     Cylinder c = cylinderOf(d);
-    name_ = d.name;
     axis_ = c.axis;
     length_ = c.length;
     start_ = c.centre - axis_ * (0.5f * length_);

@@ -18,13 +18,11 @@ public:
     float pdf(const Vec3f&, const Vec3f&, const LightHit&) const override { return 0.0f; }
     float power(const SceneBounds& bounds) const override;
     std::optional<LightBounds> bounds() const override;
-    std::string name() const override { return name_; }
 
     // Radiant intensity per unit length towards a direction at right angles to the line.
     const RGB& linearIntensity() const { return linearIntensity_; }
 
 private:
-    std::string name_;
     Vec3f start_, axis_;  // the line runs from start_ along unit axis_ for length_
     float length_;
     RGB linearIntensity_;

@@ -7,7 +7,7 @@
 
 namespace fluence::render {
 
-PointLight::PointLight(const LightDesc& d) : name_(d.name), shaping_(sphereLightShaping(d)) {
+PointLight::PointLight(const LightDesc& d) : Light(d.name), shaping_(sphereLightShaping(d)) {
     position_ = Vec3f(d.transform.transformPoint({0, 0, 0}));
     float radius = sphereLightRadius(d);
     intensity_ = d.normalize ? d.radiance / 4.0f : d.radiance * (kPi * radius * radius);

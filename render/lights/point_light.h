@@ -17,7 +17,6 @@ public:
     float pdf(const Vec3f&, const Vec3f&, const LightHit&) const override { return 0.0f; }
     float power(const SceneBounds& bounds) const override;
     std::optional<LightBounds> bounds() const override;
-    std::string name() const override { return name_; }
     bool hasEmissionSampling() const override { return true; }
     std::optional<EmissionSample> sampleEmission(Vec2f uPosition, Vec2f uDirection, const SceneBounds& scene) const override;
     EmissionDensity emissionDensity(const Vec3f& point, const Vec3f& direction, const SceneBounds& scene) const override;
@@ -25,7 +24,6 @@ public:
     const RGB& intensity() const { return intensity_; }
 
 private:
-    std::string name_;
     Vec3f position_;
     RGB intensity_;
     LightShaping shaping_;

@@ -8,7 +8,7 @@
 
 namespace fluence::render {
 
-RectLight::RectLight(const LightDesc& d) : name_(d.name), radiance_(d.radiance), texture_(d.texture) {
+RectLight::RectLight(const LightDesc& d) : Light(d.name), radiance_(d.radiance), texture_(d.texture) {
     const Matrix4& t = d.transform;
     corner_ = Vec3f(t.transformPoint({-0.5 * d.width, -0.5 * d.height, 0.0}));
     edgeU_ = Vec3f(t.transformVector({double(d.width), 0.0, 0.0}));

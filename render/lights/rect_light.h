@@ -37,7 +37,6 @@ public:
     RGB emitted(const LightHit& hit, const Vec3f& wo) const override;
     float power(const SceneBounds& bounds) const override;
     std::optional<LightBounds> bounds() const override;
-    std::string name() const override { return name_; }
     LightSurface surface() const override;
     bool hasEmissionSampling() const override { return true; }
     std::optional<EmissionSample> sampleEmission(Vec2f uPosition, Vec2f uDirection, const SceneBounds& scene) const override;
@@ -63,7 +62,6 @@ private:
     // Radiance leaving the rect at texture coordinates uv in direction `wo`, facing or not.
     RGB radianceAt(Vec2f uv, const Vec3f& wo) const;
 
-    std::string name_;
     Vec3f corner_, edgeU_, edgeV_, normal_;  // corner_: local (-X, -Y); normal_: emitting direction
     float area_, inverseArea_;  // inverseArea_ = 1 / area_: the uniform density per unit area
     RGB radiance_;

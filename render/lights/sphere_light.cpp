@@ -35,7 +35,7 @@ double coneOneMinusCos(double r, double d2) {
 
 }  // namespace
 
-SphereLight::SphereLight(const LightDesc& d) : name_(d.name), shaping_(sphereLightShaping(d)) {
+SphereLight::SphereLight(const LightDesc& d) : Light(d.name), shaping_(sphereLightShaping(d)) {
     centre_ = Vec3f(d.transform.transformPoint({0, 0, 0}));
     radius_ = sphereLightRadius(d);
     radiance_ = sphereRadiance(d, radius_);

@@ -8,7 +8,7 @@ namespace fluence::render {
 
 TriangleLight::TriangleLight(std::string meshName, const Vec3f& p0, const Vec3f& p1, const Vec3f& p2,
                              const RGB& radiance)
-    : name_(std::move(meshName)), p0_(p0), p1_(p1), p2_(p2), radiance_(radiance) {
+    : Light(std::move(meshName)), p0_(p0), p1_(p1), p2_(p2), radiance_(radiance) {
     Vec3f n = cross(p1 - p0, p2 - p0);
     area_ = 0.5f * length(n);
     normal_ = area_ > 0.0f ? normalize(n) : Vec3f(0, 0, 1);

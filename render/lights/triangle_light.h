@@ -22,14 +22,12 @@ public:
     RGB emitted(const LightHit& hit, const Vec3f& wo) const override { return radiance_; }
     float power(const SceneBounds& bounds) const override;
     std::optional<LightBounds> bounds() const override;
-    std::string name() const override { return name_; }
     bool isSurfaceEmitter() const override { return true; }
     bool hasEmissionSampling() const override { return true; }
     std::optional<EmissionSample> sampleEmission(Vec2f uPosition, Vec2f uDirection, const SceneBounds& scene) const override;
     EmissionDensity emissionDensity(const Vec3f& point, const Vec3f& direction, const SceneBounds& scene) const override;
 
 private:
-    std::string name_;
     Vec3f p0_, p1_, p2_, normal_;
     float area_;
     RGB radiance_;

@@ -5,6 +5,8 @@
 //     BSDFs that have a delta lobe, transmitted ones only from transmissive BSDFs;
 //   - pdf integrates to the fraction of samples that are not delta (so to at most 1);
 //   - reciprocity (generalised with n^2 across a refracting interface);
+//   - the importance transport mode is the adjoint: f(wi, wo), and the same samples as radiance's
+//     with the adjoint's f;
 //   - the albedo (flux) is at most 1 for the models that conserve energy, and mirrored
 //     directions give the same values on a two-sided reflector (and on a thin sheet, which
 //     transmits straight through as a delta but has two alike sides).
@@ -293,6 +295,33 @@ TEST_P(BsdfProperties, IsReciprocal) {
     }
 }
 
+TEST_P(BsdfProperties, ImportanceModeIsTheAdjoint) {
+    // Transport::Importance (render/bsdf.h, TRANSPORT MODE) evaluates f(wi, wo); its sample() draws
+    // what the radiance sample() draws from the same numbers, with f(wi, wo) for a non-delta sample
+    // and, for a delta one, the coefficient times eta^2 (generalised reciprocity).
+    const Bsdf& b = bsdf();
+    for (const Vec3f& wo : incidentDirections())
+        for (int n = 0; n < 2000; ++n) {
+            SampleStream rng(5, 0, n);
+            const float uLobe = rng.next();
+            const Vec2f u = rng.next2D();
+            const auto radiance = b.sample(wo, uLobe, u, Transport::Radiance), importance = b.sample(wo, uLobe, u, Transport::Importance);
+            ASSERT_EQ(radiance.has_value(), importance.has_value());
+            if (!radiance) continue;
+            EXPECT_EQ(radiance->f, b.sample(wo, uLobe, u)->f) << "radiance is the models' own f";
+            EXPECT_EQ(importance->wi, radiance->wi);
+            EXPECT_EQ(importance->pdf, radiance->pdf);
+            EXPECT_EQ(importance->specular, radiance->specular);
+            EXPECT_EQ(importance->eta, radiance->eta);
+            const RGB expected = radiance->specular ? radiance->f * (radiance->eta * radiance->eta) : b.f(radiance->wi, wo);
+            EXPECT_EQ(importance->f, expected) << "wo " << describe(wo) << " wi " << describe(radiance->wi);
+            if (!radiance->specular) {
+                EXPECT_EQ(b.f(wo, radiance->wi, Transport::Importance), b.f(radiance->wi, wo));
+                EXPECT_EQ(b.f(wo, radiance->wi, Transport::Radiance), b.f(wo, radiance->wi));
+            }
+        }
+}
+
 TEST_P(BsdfProperties, ReflectorsAreTwoSidedTransmittersAreNot) {
     const Bsdf& b = bsdf();
     const bool transmits = b.flags() & kBsdfTransmission;
@@ -319,9 +348,10 @@ TEST_P(BsdfProperties, ReflectorsAreTwoSidedTransmittersAreNot) {
 }
 
 TEST_P(BsdfProperties, ReflectsAtMostAllTheLight) {
-    // The flux albedo: the mean of f |cos| / pdf, with eta^2 for transmitted samples (render/bsdf.h,
-    // "RADIANCE, NOT IMPORTANCE"), over every sample including delta ones and failures (which
-    // count 0). It must not exceed 1 by more than z standard errors in any channel.
+    // The flux albedo: the mean weight f |cos| / pdf of the importance mode's samples (the adjoint,
+    // which carries flux: render/bsdf.h, TRANSPORT MODE), over every sample including delta ones
+    // and failures (which count 0). It must not exceed 1 by more than z standard errors in any
+    // channel. (Radiance's weights do, by 1 / eta^2, for light leaving a denser medium.)
     if (!GetParam().conservesEnergy) GTEST_SKIP() << "does not conserve energy (see bsdf_phong_test.cpp)";
     const Bsdf& b = bsdf();
     constexpr int kSamples = 200'000;
@@ -331,8 +361,8 @@ TEST_P(BsdfProperties, ReflectsAtMostAllTheLight) {
         for (int n = 0; n < kSamples; ++n) {
             SampleStream rng(4, 0, n);
             float uLobe = rng.next();
-            auto s = b.sample(wo, uLobe, rng.next2D());
-            RGB w = s ? s->f * (std::abs(s->wi.z) * s->eta * s->eta / s->pdf) : RGB(0.0f);
+            auto s = b.sample(wo, uLobe, rng.next2D(), Transport::Importance);
+            RGB w = s ? s->f * (std::abs(s->wi.z) / s->pdf) : RGB(0.0f);
             for (int c = 0; c < 3; ++c) albedo[c].add(w[c]);
         }
         for (int c = 0; c < 3; ++c)
