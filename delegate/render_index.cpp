@@ -6,6 +6,7 @@
 #include "delegate/geom_subset.h"
 #include "delegate/implicit_geometry.h"
 #include "delegate/light_adapter.h"
+#include "delegate/points_rprim.h"
 #include "delegate/xform.h"
 #include "render/mesh_transform.h"
 #include "scene/asset_path.h"
@@ -256,6 +257,8 @@ std::size_t RenderIndex::sync(const SyncContext& context) {
     for (auto& [path, prim] : prims_) {
         if (const auto* surface = dynamic_cast<const SurfaceRprim*>(prim.get()); surface && !surface->failed())
             for (const std::string& m : surface->materialPaths()) materials.insert(m);
+        if (const auto* points = dynamic_cast<const PointsRprim*>(prim.get()); points && !points->failed() && !points->materialPath().empty())
+            materials.insert(points->materialPath());
     }
     for (const std::string& m : materials)
         if (!find(m)) insert(std::make_unique<MaterialSprim>(m));

@@ -10,6 +10,7 @@
 #include "delegate/imageable.h"
 #include "delegate/instancing.h"
 #include "delegate/light_adapter.h"
+#include "delegate/points_rprim.h"
 #include "render/mesh_transform.h"
 
 namespace fluence::delegate {
@@ -113,6 +114,8 @@ void SceneDelegate::populate(const std::string& root) {
             }
             index_.insert(std::make_unique<MeshRprim>(prim.path));
         }
+        else if (type == "Points" && instanceRoot.empty())
+            index_.insert(std::make_unique<PointsRprim>(prim.path));
         else if (type == "Volume")
             index_.insert(std::make_unique<VolumeRprim>(prim.path));
         else if (isFieldAssetType(type))
@@ -364,6 +367,12 @@ render::SceneDescription SceneDelegate::describe(const render::Camera& camera, c
                     scene.instances.push_back({prototypeFor(pointInstancerKey(points.prototypes[instance.prototype]), placement),
                                                placement, spec.path + "[" + std::to_string(instance.id) + "]"});
                 }
+                break;
+            }
+            case RenderPrim::Kind::Points: {
+                const auto& points = static_cast<const PointsRprim&>(*prim);
+                render::PointsDesc& desc = scene.points.emplace_back(points.worldPoints());
+                if (!points.materialPath().empty() && (desc.material = materialFor(points.materialPath())) >= 0) desc.colors.clear();
                 break;
             }
             case RenderPrim::Kind::Volume:
