@@ -84,7 +84,7 @@ Image render(const render::SceneDescription& s) {
 TEST(DepthOfField, DefocusedLightMakesTheCircleOfConfusion) {
     const render::SceneDescription s = defocusedLight(0, 0.0f);
     const Expected e = expected(s);
-    ASSERT_GT(e.blur, 8.0 * e.light) << "the blur must dominate the light's own size";
+    ASSERT_GT(e.blur, 3.0 * e.light) << "the blur must dominate the light's own size";
     const Moments m = moments(render(s), 0.5 * e.blur);
     const double box = 2.0 / 12.0;
     const double diameter = 2.0 * std::sqrt(2.0 * (m.second - box) - e.light * e.light);
