@@ -37,6 +37,12 @@ public:
         return {a, next()};
     }
     constexpr std::uint32_t dimension() const { return dimension_; }
+    // The point of the camera's aperture (render/thin_lens.h): two values of their own, outside the
+    // sequence next() walks, so depth of field changes no other dimension of a sample (a pinhole
+    // camera's images stay as they were) and a tile draws the same lens point on any thread.
+    constexpr Vec2f lens() const {
+        return {toUnitFloat(mix64(key_ ^ 0xa0761d6478bd642full)), toUnitFloat(mix64(key_ ^ 0xe7037ed1a0b428dbull))};
+    }
     // The sample index the stream was made for: methods that keep per-sample-index state (the
     // photon map of each sample index, integrators/sppm.h) look theirs up by it.
     constexpr std::uint64_t sampleIndex() const { return sampleIndex_; }

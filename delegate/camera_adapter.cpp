@@ -26,6 +26,15 @@ render::CameraDesc cameraFromPrim(const PrimReader& prim, const Matrix4& toWorld
         c.nearClip = static_cast<float>(range->numbers[0]);
         c.farClip = static_cast<float>(range->numbers[1]);
     }
+    c.fStop = static_cast<float>(prim.number({"fStop"}, 0.0));
+    c.focusDistance = static_cast<float>(prim.number({"focusDistance"}, 0.0));
+    const double blades = prim.number({"fluence:camera:apertureBlades"}, 0.0);
+    c.apertureRotation = static_cast<float>(prim.number({"fluence:camera:apertureRotation"}, 0.0));
+    if (!(c.fStop >= 0.0f) || !(c.focusDistance >= 0.0f)) prim.fail("fStop and focusDistance must not be negative");
+    if (!(blades == 0.0 || (blades >= 3.0 && blades <= 64.0 && blades == std::floor(blades))))
+        prim.fail("fluence:camera:apertureBlades must be 0 (round) or a whole number from 3 to 64, got " + std::to_string(blades));
+    if (!std::isfinite(c.apertureRotation)) prim.fail("fluence:camera:apertureRotation must be finite");
+    c.apertureBlades = static_cast<int>(blades);
     if (!(c.focalLength > 0.0f)) prim.fail("focalLength must be positive");
     if (!(c.horizontalAperture > 0.0f) || !(c.verticalAperture > 0.0f)) prim.fail("apertures must be positive");
     if (!(c.nearClip >= 0.0f) || !(c.farClip > c.nearClip)) prim.fail("clippingRange must satisfy 0 <= near < far");
@@ -49,6 +58,8 @@ render::CameraDesc framingCamera(const render::SceneDescription& scene, char upA
     Bounds world;
     for (const render::MeshDesc& m : scene.meshes)
         for (const Vec3f& p : m.positions) world.add(Vec3d(p));
+    for (const render::PointsDesc& points : scene.points)
+        for (const Vec3f& p : points.positions) world.add(Vec3d(p));
     std::vector<Bounds> prototypes(scene.prototypes.size());
     for (std::size_t i = 0; i < scene.prototypes.size(); ++i)
         for (const render::MeshDesc& m : scene.prototypes[i].meshes)

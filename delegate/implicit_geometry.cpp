@@ -7,6 +7,8 @@
 #include <utility>
 #include <vector>
 
+#include "delegate/nurbs_patch.h"
+
 namespace fluence::delegate {
 
 namespace {
@@ -125,6 +127,53 @@ std::vector<ProfilePoint> capsuleProfile(double radius, double height, int segme
     return profile;
 }
 
+// Capsule_1 with different radii: spheres of radius `top` at +height/2 and `bottom` at -height/2
+// joined by the cone tangent to both (C1, as UsdGeomCapsule_1 defines it), whose outward normal
+// makes the polar angle acos((top - bottom) / height) with the axis. Each cap keeps the sphere's
+// steps of latitude (pi / (segments/2)) and ends at the tangent circle.
+std::vector<ProfilePoint> taperedCapsuleProfile(double top, double bottom, double height, int segments) {
+    const int bands = segments / 2;
+    const double tangent = std::acos((top - bottom) / height);
+    std::vector<ProfilePoint> profile;
+    auto onSphere = [&](double radius, double centre, double theta) {
+        const double s = theta == 0.0 || theta == kPi ? 0.0 : std::sin(theta), c = std::cos(theta);
+        profile.push_back({radius * s, centre + radius * c, s, c});
+    };
+    for (int k = 0; kPi * k / bands < tangent; ++k) onSphere(top, 0.5 * height, kPi * k / bands);
+    onSphere(top, 0.5 * height, tangent);
+    onSphere(bottom, -0.5 * height, tangent);
+    for (int k = 0; k <= bands; ++k)
+        if (kPi * k / bands > tangent) onSphere(bottom, -0.5 * height, kPi * k / bands);
+    return profile;
+}
+
+// A cylinder whose ends have radii `top` (at +height/2) and `bottom`, with a flat cap on each end
+// of non-zero radius: Cylinder, Cylinder_1 and (top 0) Cone.
+void frustum(Builder& out, double top, double bottom, double height, char axis) {
+    const double up = 0.5 * height, down = -0.5 * height;
+    const int n = circleSegments();
+    if (top > 0.0) lathe(out, {{0.0, up, 0.0, 1.0}, {top, up, 0.0, 1.0}}, n, axis);
+    const double slant = std::hypot(height, bottom - top);
+    if (slant > 0.0)
+        lathe(out, {{top, up, height / slant, (bottom - top) / slant}, {bottom, down, height / slant, (bottom - top) / slant}}, n,
+              axis);
+    if (bottom > 0.0) lathe(out, {{bottom, down, 0.0, -1.0}, {0.0, down, 0.0, -1.0}}, n, axis);
+}
+
+// UsdGeomPlane: a width x length rectangle through the origin facing +axis; width along x (along z
+// when the axis is X), length along y (along z when the axis is Y).
+void plane(Builder& out, double width, double length, char axis) {
+    Vec3d n(0.0), u(0.0), v(0.0);
+    const int a = axis - 'X';
+    n[a] = 1.0;
+    u[axis == 'X' ? 2 : 0] = 0.5 * width;
+    v[axis == 'Y' ? 2 : 1] = 0.5 * length;
+    if (dot(cross(u, v), n) < 0.0) std::swap(u, v);  // counter-clockwise seen from +axis
+    std::uint32_t p0 = out.vertex(-u - v, n), p1 = out.vertex(u - v, n), p2 = out.vertex(u + v, n), p3 = out.vertex(v - u, n);
+    out.triangle(p0, p1, p2);
+    out.triangle(p0, p2, p3);
+}
+
 void cube(Builder& out, double size) {
     const double h = 0.5 * size;
     for (int axis = 0; axis < 3; ++axis) {
@@ -191,7 +240,8 @@ int sphereSegments() {
 }
 
 bool isImplicitType(const std::string& t) {
-    return t == "Sphere" || t == "Cube" || t == "Cylinder" || t == "Cone" || t == "Capsule";
+    return t == "Sphere" || t == "Cube" || t == "Cylinder" || t == "Cone" || t == "Capsule" || t == "Plane" ||
+           t == "Cylinder_1" || t == "Capsule_1" || t == "NurbsPatch";
 }
 
 render::MeshDesc implicitMeshFromPrim(const PrimReader& prim, const Matrix4& toWorld,
@@ -210,23 +260,34 @@ render::MeshDesc implicitMeshFromPrim(const PrimReader& prim, const Matrix4& toW
         double height = nonNegative(prim, "height", 1.0);
         char axis = axisOf(prim);
         if (radius > 0.0) lathe(local, capsuleProfile(radius, height, sphereSegments()), sphereSegments(), axis);
-    } else if (type == "Cylinder" || type == "Cone") {
-        double radius = nonNegative(prim, "radius", 1.0);
-        double height = nonNegative(prim, "height", 2.0);
-        char axis = axisOf(prim);
-        const double top = 0.5 * height, bottom = -0.5 * height;
-        const int n = circleSegments();
-        if (radius > 0.0) {
-            if (type == "Cylinder") {
-                lathe(local, {{0.0, top, 0.0, 1.0}, {radius, top, 0.0, 1.0}}, n, axis);
-                lathe(local, {{radius, top, 1.0, 0.0}, {radius, bottom, 1.0, 0.0}}, n, axis);
-            } else {
-                double slant = std::hypot(height, radius);
-                lathe(local, {{0.0, top, height / slant, radius / slant}, {radius, bottom, height / slant, radius / slant}}, n,
-                      axis);
-            }
-            lathe(local, {{radius, bottom, 0.0, -1.0}, {0.0, bottom, 0.0, -1.0}}, n, axis);
+    } else if (type == "Capsule_1") {
+        const double top = nonNegative(prim, "radiusTop", 0.5), bottom = nonNegative(prim, "radiusBottom", 0.5);
+        const double height = nonNegative(prim, "height", 1.0);
+        const char axis = axisOf(prim);
+        if (top == bottom && top > 0.0) {
+            lathe(local, capsuleProfile(top, height, sphereSegments()), sphereSegments(), axis);
+        } else if (top != bottom) {
+            if (!(std::abs(top - bottom) < height))
+                prim.fail("the radii of a Capsule_1 must differ by less than its height (one cap would swallow the other)");
+            lathe(local, taperedCapsuleProfile(top, bottom, height, sphereSegments()), sphereSegments(), axis);
         }
+    } else if (type == "Cylinder" || type == "Cone") {
+        const double radius = nonNegative(prim, "radius", 1.0);
+        const double height = nonNegative(prim, "height", 2.0);
+        const char axis = axisOf(prim);
+        if (radius > 0.0) frustum(local, type == "Cone" ? 0.0 : radius, radius, height, axis);
+    } else if (type == "Cylinder_1") {
+        const double top = nonNegative(prim, "radiusTop", 1.0), bottom = nonNegative(prim, "radiusBottom", 1.0);
+        const double height = nonNegative(prim, "height", 2.0);
+        if (top > 0.0 || bottom > 0.0) frustum(local, top, bottom, height, axisOf(prim));
+    } else if (type == "NurbsPatch") {
+        TessellatedSurface patch = tessellateNurbsPatch(prim, warn);
+        local.points = std::move(patch.points);
+        local.normals = std::move(patch.normals);
+        local.indices = std::move(patch.indices);
+    } else if (type == "Plane") {
+        const double width = nonNegative(prim, "width", 2.0), length = nonNegative(prim, "length", 2.0);
+        if (width > 0.0 && length > 0.0) plane(local, width, length, axisOf(prim));
     } else {
         prim.fail("'" + type + "' is not an implicit surface");
     }

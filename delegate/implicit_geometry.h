@@ -1,5 +1,6 @@
-// UsdGeom implicit surfaces (Sphere, Cube, Cylinder, Cone, Capsule) -> render::MeshDesc,
-// tessellated in world space.
+// The UsdGeom surfaces the delegate tessellates itself -> render::MeshDesc, in world space: the
+// implicit surfaces (Sphere, Cube, Cylinder, Cone, Capsule, Plane, Cylinder_1, Capsule_1) and
+// NurbsPatch (evaluated by delegate/nurbs_patch.h; its attributes are tabled there).
 //
 // Each surface is centred at the prim's origin, as UsdGeom defines it; `axis` is the spine of the
 // surfaces of revolution. Attributes read:
@@ -11,11 +12,16 @@
 // | Cylinder | radius (1), height (2), axis ("Z")                                                    |
 // | Cone     | radius (1), height (2), axis ("Z"); base at -height/2, apex at +height/2 on the axis  |
 // | Capsule  | radius (0.5), height (1): the cylinder part, hemispherical caps of `radius` added     |
+// | Cylinder_1 | radiusTop (1), radiusBottom (1), height (2), axis ("Z"): a capped frustum         |
+// | Capsule_1  | radiusTop (0.5), radiusBottom (0.5), height (1), axis ("Z"): spherical caps of     |
+// |            | each radius joined by their tangent cone; radii differing by height or more fail  |
+// | Plane    | width (2), length (2), axis ("Z"): a rectangle facing +axis, width along x (z for   |
+// |          | axis X), length along y (z for axis Y); two triangles                               |
 // A displayColor that is not constant warns and uses its first value (UsdGeom gives implicit
 // surfaces no face or vertex order for uniform/vertex primvars to follow). A negative or
-// non-finite size, radius or height, or an axis other than "X", "Y", "Z", raises SceneError
-// naming the prim; a radius or size of 0 gives an empty mesh. Not read yet: orientation,
-// doubleSided, extent, and the Cylinder_1/Capsule_1 schemas (radiusTop/radiusBottom).
+// non-finite size, radius, height, width or length, or an axis other than "X", "Y", "Z", raises
+// SceneError naming the prim; a radius or size of 0 gives an empty mesh. Not read yet:
+// orientation, doubleSided (every surface is two-sided), extent.
 //
 // Tessellation: a fixed resolution chosen so that the tessellated surface lies within
 // kSilhouetteTolerance * radius of the analytic one everywhere (so no silhouette, from any view,

@@ -8,6 +8,7 @@
 #include "delegate/implicit_geometry.h"
 #include "delegate/light_adapter.h"
 #include "delegate/skel_binding.h"
+#include "delegate/points_rprim.h"
 #include "delegate/xform.h"
 #include "render/mesh_transform.h"
 #include "scene/asset_path.h"
@@ -268,6 +269,8 @@ std::size_t RenderIndex::sync(const SyncContext& context) {
             for (const std::string& m : surface->materialPaths()) materials.insert(m);
         if (const auto* curves = dynamic_cast<const CurvesRprim*>(prim.get()); curves && !curves->failed() && !curves->materialPath().empty())
             materials.insert(curves->materialPath());
+        if (const auto* points = dynamic_cast<const PointsRprim*>(prim.get()); points && !points->failed() && !points->materialPath().empty())
+            materials.insert(points->materialPath());
     }
     for (const std::string& m : materials)
         if (!find(m)) insert(std::make_unique<MaterialSprim>(m));

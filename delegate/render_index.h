@@ -60,7 +60,7 @@ enum DirtyBits : std::uint32_t {
 
 class RenderPrim {
 public:
-    enum class Kind { Mesh, Prototype, Instance, PointInstancer, Volume, Camera, Light, Material, Field, Texture, Curves };
+    enum class Kind { Mesh, Prototype, Instance, PointInstancer, Volume, Camera, Light, Material, Field, Texture, Curves, Points };
 
     RenderPrim(Kind kind, std::string path) : kind_(kind), path_(std::move(path)) {}
     virtual ~RenderPrim() = default;

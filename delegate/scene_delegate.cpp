@@ -12,6 +12,7 @@
 #include "delegate/imageable.h"
 #include "delegate/instancing.h"
 #include "delegate/light_adapter.h"
+#include "delegate/points_rprim.h"
 #include "render/mesh_transform.h"
 
 namespace fluence::delegate {
@@ -126,6 +127,8 @@ void SceneDelegate::populate(const std::string& root) {
         }
         else if (isCurvesType(type) && instanceRoot.empty())
             index_.insert(std::make_unique<CurvesRprim>(prim.path));
+        else if (type == "Points" && instanceRoot.empty())
+            index_.insert(std::make_unique<PointsRprim>(prim.path));
         else if (type == "Volume")
             index_.insert(std::make_unique<VolumeRprim>(prim.path));
         else if (isFieldAssetType(type))
@@ -385,6 +388,12 @@ render::SceneDescription SceneDelegate::describe(const render::Camera& camera, c
                 if (!curves.materialPath().empty()) desc.material = materialFor(curves.materialPath());
                 if (desc.material >= 0) desc.colors.clear();  // a bound material replaces displayColor
                 if (!desc.segments.empty()) scene.curves.push_back(std::move(desc));
+                break;
+            }
+            case RenderPrim::Kind::Points: {
+                const auto& points = static_cast<const PointsRprim&>(*prim);
+                render::PointsDesc& desc = scene.points.emplace_back(points.worldPoints());
+                if (!points.materialPath().empty() && (desc.material = materialFor(points.materialPath())) >= 0) desc.colors.clear();
                 break;
             }
             case RenderPrim::Kind::Volume:

@@ -279,7 +279,8 @@ std::unique_ptr<RenderState> Bdpt::prepare(const RenderScene& scene, const rende
                                            SplatFilm* splats) const {
     auto state = std::make_unique<BdptState>();
     state->splats = splats && camera.hasImportance() ? splats : nullptr;
-    const std::string why = !splats ? "the film is a window of the image (a tile)" : "an orthographic camera";
+    const std::string why =
+        !splats ? "the film is a window of the image (a tile)" : "an orthographic camera or one with depth of field";
     state->lightTracingOff =
         state->splats ? "" : "light tracing (t = 1) off: " + why + "; point-light caustics seen directly are missed";
     std::vector<double> weights;

@@ -27,7 +27,7 @@
 //           resolves. The light subpath may then hold maxDepth scattering vertices.
 // t = 0 (a light subpath hitting the camera) does not exist: the pinhole cannot be hit.
 // LIMITS OF t = 1. It needs the render loop's splat film and a pinhole: a tile of the image (its
-// film a window, integrators/renderer.h) and an orthographic camera leave it out, and say so in
+// film a window, integrators/renderer.h) and an orthographic camera or one with depth of field leave it out, and say so in
 // the render summary (and `fluence render` warns for tiles); the MIS weights then exclude it
 // (bdpt_mis.h, StrategyPath::lightTracing) and the estimator stays unbiased for every path the
 // other strategies can draw, as before t = 1 was added. A light seen directly is left to s = 0
@@ -90,7 +90,7 @@ public:
     explicit Bdpt(const IntegratorSettings& settings) : maxDepth_(settings.maxDepth) {}
 
     // The per-render state: the choice of light for light subpaths, and light tracing's splat
-    // film (t = 1 is left out without one, or with an orthographic camera, and the summary says why).
+    // film (t = 1 is left out without one, or with an orthographic camera or depth of field, and the summary says why).
     std::unique_ptr<RenderState> prepare(const render::RenderScene& scene, const render::Camera& camera,
                                          std::uint64_t seed, SplatFilm* splats) const override;
     FilmSample sample(const RenderState& state, const render::RenderScene& scene, const render::Camera& camera,

@@ -101,7 +101,7 @@ Image renderFirstHitAovs(const render::RenderScene& scene, const render::Camera&
                     for (std::uint32_t s = 0; s < samples; ++s) {
                         SampleStream rng(settings.seed, pixelIndex, std::uint64_t(s));
                         const Vec2f jitter = rng.next2D();  // as the renderer places its camera ray
-                        const render::Ray ray = camera.generateRay(float(imageX) + jitter.x, float(imageY) + jitter.y);
+                        const render::Ray ray = camera.generateRay(float(imageX) + jitter.x, float(imageY) + jitter.y, rng.lens());
                         const std::optional<render::SurfaceHit> hit = scene.intersect(ray);
                         const float depth = hit ? camera.viewDepth(hit->point) : camera.farClip();
                         for (std::size_t a = 0; a < aovs.size(); ++a)

@@ -28,7 +28,7 @@ const std::vector<IntegratorInfo>& integratorRegistry() {
          "bidirectional path tracing, MIS (power heuristic, spectral in media) over every light/camera prefix pair, "
          "light tracing to the camera (t = 1) included, through volumes and interiors (subsurface walks join nowhere); "
          "point-light caustics seen directly (LS+DE) or lit onward, not through glass or mirrors (LS+DS+E); tiles and "
-         "orthographic cameras leave t = 1 out",
+         "orthographic cameras and depth of field leave t = 1 out",
          [](const IntegratorSettings& s) { return std::make_unique<Bdpt>(s); }, false, {}},
         {"sppm", "L(S|D|V)*(D|V)S*E, LS*E",
          kEmitterSeen | kDirect | kSpecularSeen | kIndirect | kCaustics | kDeltaLightCaustics | kDeltaLights | kVolumes |

@@ -8,6 +8,7 @@ namespace fluence::render {
 
 namespace {
 constexpr float kOrthographicApertureUnit = 0.1f;  // GfCamera::APERTURE_UNIT
+constexpr float kLensUnit = 0.1f;                  // GfCamera::FOCAL_LENGTH_UNIT: tenths of a scene unit
 }
 
 Camera::Camera(const CameraDesc& d, int imageWidth, int imageHeight, const ImageFraming& framing)
@@ -20,6 +21,10 @@ Camera::Camera(const CameraDesc& d, int imageWidth, int imageHeight, const Image
         throw std::invalid_argument("camera " + d.name + ": focalLength must be positive");
     if (!(framing.pixelAspectRatio > 0.0f) || !std::isfinite(framing.pixelAspectRatio))
         throw std::invalid_argument("pixelAspectRatio must be positive");
+    if (!(d.fStop >= 0.0f) || !(d.focusDistance >= 0.0f) || d.apertureBlades < 0)
+        throw std::invalid_argument("camera " + d.name + ": fStop, focusDistance and apertureBlades must not be negative");
+    if (projection_ == Projection::Perspective && d.fStop > 0.0f && d.focusDistance > 0.0f)
+        lens_ = ThinLens{kLensUnit * d.focalLength / (2.0f * d.fStop), d.focusDistance, d.apertureBlades, d.apertureRotation};
 
     float hAperture = d.horizontalAperture, vAperture = d.verticalAperture;
     const float apertureAspect = hAperture / vAperture;
@@ -61,15 +66,22 @@ Camera::Camera(const CameraDesc& d, int imageWidth, int imageHeight, const Image
     axisZ_ = Vec3f(toWorld_.transformVector({0, 0, 1}));
 }
 
-Ray Camera::generateRay(float x, float y) const {
+Ray Camera::generateRay(float x, float y, Vec2f lens) const {
     float sx = 2.0f * x / static_cast<float>(width_) - 1.0f;   // -1 left .. 1 right
     float sy = 1.0f - 2.0f * y / static_cast<float>(height_);  // 1 top .. -1 bottom
     float wx = centreX_ + sx * halfWidth_, wy = centreY_ + sy * halfHeight_;
     Ray ray;
     if (projection_ == Projection::Perspective) {
         Vec3f dir = normalize(axisX_ * wx + axisY_ * wy - axisZ_);
-        float cosView = dot(dir, forward_);
         ray.origin = position_;
+        if (!lens_.isPinhole()) {
+            // From the aperture point towards where the pinhole ray meets the plane of focus.
+            const Vec2f a = lens_.sampleAperture(lens);
+            const float f = lens_.focusDistance;
+            ray.origin = position_ + axisX_ * a.x + axisY_ * a.y;
+            dir = normalize(axisX_ * (wx * f - a.x) + axisY_ * (wy * f - a.y) - axisZ_ * f);
+        }
+        float cosView = dot(dir, forward_);
         ray.direction = dir;
         ray.tMin = near_ / cosView;
         ray.tMax = far_ / cosView;

@@ -14,6 +14,7 @@
 #include "core/matrix.h"
 #include "render/ray.h"
 #include "render/scene_description.h"
+#include "render/thin_lens.h"
 
 namespace fluence::render {
 
@@ -40,8 +41,14 @@ public:
     float pixelAspectRatio() const { return pixelAspectRatio_; }
 
     // A ray through film position (x, y) in pixels: (0,0) is the top-left corner of the image,
-    // (width, height) the bottom-right.
-    Ray generateRay(float x, float y) const;
+    // (width, height) the bottom-right. A perspective camera with depth of field starts it at the
+    // aperture point `lens` (uniform in [0, 1)^2; the default is the lens's centre) picks
+    // (render/thin_lens.h); a pinhole or orthographic camera ignores `lens`.
+    Ray generateRay(float x, float y, Vec2f lens = {0.5f, 0.5f}) const;
+    // The thin lens (a pinhole when CameraDesc's fStop or focusDistance is 0, or for an
+    // orthographic camera): aperture radius focalLength / (2 fStop), the focal length converted from
+    // tenths of a scene unit as UsdGeomCamera measures it.
+    const ThinLens& lens() const { return lens_; }
 
     // Depth along the view axis of a world-space point (positive in front of the camera).
     float viewDepth(const Vec3f& worldPoint) const;
@@ -60,10 +67,11 @@ public:
     int imageHeight() const { return height_; }
 
     // ---- Importance, for light tracing (bdpt's t = 1 strategy), in render/camera_importance.cpp.
-    // Defined for the perspective (pinhole) camera only: hasImportance() is false for an
-    // orthographic one (its rays are parallel, so a point reaches it along one direction only),
-    // and then directionDensity() is 0 and rasterPosition() and connect() return nothing. USD
-    // cameras in Fluence have no lens aperture (no depth of field), so the pinhole is the whole model.
+    // Defined for the perspective pinhole camera only: hasImportance() is false for an
+    // orthographic one (its rays are parallel, so a point reaches it along one direction only)
+    // and for one with depth of field (its importance would spread over the aperture's area; not
+    // modelled yet), and then directionDensity() is 0 and rasterPosition() and connect() return
+    // nothing.
     // Conventions (Veach's thesis, ch. 10; pbrt's PerspectiveCamera::We): the importance We(w) of
     // the ray leaving the pinhole along unit w is normalised over the whole image,
     //     integral over the image's directions of We(w) cos(theta) dw = 1,
@@ -72,7 +80,7 @@ public:
     // delta in position: its positional density is 1 (the same for every strategy, so it cancels
     // in MIS). Exact for any affine camera transform (scaled or sheared), through the Jacobian
     // from the image to directions.
-    bool hasImportance() const { return projection_ == Projection::Perspective; }
+    bool hasImportance() const { return projection_ == Projection::Perspective && lens_.isPinhole(); }
     // We(w) cos(theta): the density, per unit solid angle, of camera rays along w; 0 outside the image.
     float directionDensity(const Vec3f& w) const;
     // We(w); 0 outside the image.
@@ -114,6 +122,7 @@ private:
     float halfWidth_, halfHeight_, centreX_, centreY_;
     float near_, far_;
     float pixelAspectRatio_;
+    ThinLens lens_;
 };
 
 }  // namespace fluence::render

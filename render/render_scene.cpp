@@ -15,6 +15,7 @@
 #include "render/lights/light_registry.h"
 #include "render/lights/triangle_light.h"
 #include "render/mesh_transform.h"
+#include "render/point_geometry.h"
 #include "volumes/grid_medium.h"
 
 namespace fluence::render {
@@ -246,6 +247,7 @@ RenderScene::RenderScene(const SceneDescription& scene, std::shared_ptr<texture:
 
     for (const MeshDesc& mesh : scene.meshes) addMesh(mesh, scene.materials, objectNames_.add(mesh.name));
     for (const CurvesDesc& curves : scene.curves) addCurves(curves, scene.materials);
+    for (const PointsDesc& points : scene.points) addPoints(points, scene.materials);
     addPrototypes(scene);
     for (const LightDesc& light : scene.lights) addLight(light);
     addVolumes(scene.volumes);
@@ -253,12 +255,13 @@ RenderScene::RenderScene(const SceneDescription& scene, std::shared_ptr<texture:
 
     // Scene bounds (for the power of lights at infinity) from surfaces, instances and lights.
     Vec3f lo(std::numeric_limits<float>::max()), hi(-std::numeric_limits<float>::max());
-    for (int m : surfaceMeshes_)
-        if (m >= 0)
-            for (const Vec3f& p : meshes_[m].positions) {
-                lo = vmin(lo, p);
-                hi = vmax(hi, p);
-            }
+    for (const std::vector<int>* shapes : {&surfaceMeshes_, &surfacePoints_})
+        for (int m : *shapes)
+            if (m >= 0)
+                for (const Vec3f& p : meshes_[m].positions) {
+                    lo = vmin(lo, p);
+                    hi = vmax(hi, p);
+                }
     curves_.growBounds(lo, hi);
     for (const Instance& instance : instances_) {
         const Prototype& proto = prototypes_[instance.prototype];
@@ -440,6 +443,21 @@ void RenderScene::addMesh(const MeshDesc& desc, const std::vector<MaterialDesc>&
     throwOnEmbreeError(embree_->device, ("adding mesh " + desc.name).c_str());
     surfaceMeshes_.push_back(index);
     surfaceInstances_.push_back(-1);
+    surfacePoints_.push_back(-1);
+}
+
+void RenderScene::addPoints(const PointsDesc& desc, const std::vector<MaterialDesc>& materials) {
+    validatePoints(desc);
+    const int index = storeMesh(pointShadingMesh(desc), materials, objectNames_.add(desc.name));
+    stats_.meshes -= 1;  // its shading mesh is not a surface
+    stats_.triangles -= desc.positions.size();
+    RTCGeometry geom = pointGeometry(embree_->device, desc);
+    rtcAttachGeometryByID(embree_->surfaces, geom, static_cast<unsigned>(surfaceMeshes_.size()));
+    rtcReleaseGeometry(geom);
+    throwOnEmbreeError(embree_->device, ("adding points " + desc.name).c_str());
+    surfaceMeshes_.push_back(-1);
+    surfaceInstances_.push_back(-1);
+    surfacePoints_.push_back(index);
 }
 
 void RenderScene::addCurves(const CurvesDesc& desc, const std::vector<MaterialDesc>& materials) {
@@ -451,6 +469,7 @@ void RenderScene::addCurves(const CurvesDesc& desc, const std::vector<MaterialDe
     throwOnEmbreeError(embree_->device, ("adding curves " + desc.name).c_str());
     surfaceMeshes_.push_back(-1);
     surfaceInstances_.push_back(-1);
+    surfacePoints_.push_back(-1);
     stats_.curves += 1;
     stats_.curveSegments += desc.segments.size();
 }
@@ -504,6 +523,7 @@ void RenderScene::addPrototypes(const SceneDescription& scene) {
         throwOnEmbreeError(embree_->device, ("adding an instance of " + scene.prototypes[desc.prototype].name).c_str());
         surfaceMeshes_.push_back(-1);
         surfaceInstances_.push_back(static_cast<int>(instances_.size()));
+        surfacePoints_.push_back(-1);
         instances_.push_back({desc.prototype, desc.transform, normalMatrixOf(desc.transform), objectName});
         stats_.instances += 1;
         for (int m : proto.meshes) stats_.instancedTriangles += meshes_[m].indices.size() / 3;
@@ -553,6 +573,11 @@ std::optional<SurfaceHit> RenderScene::intersect(const Ray& ray) const {
     if (surface.hit.instID[0] == RTC_INVALID_GEOMETRY_ID && curves_.contains(surface.hit.geomID))
         return curves_.shade(surface.hit.geomID, surface.hit.primID, u, ray, t,
                              Vec3f(surface.hit.Ng_x, surface.hit.Ng_y, surface.hit.Ng_z));
+    if (surface.hit.instID[0] == RTC_INVALID_GEOMETRY_ID && surfacePoints_[surface.hit.geomID] >= 0) {
+        std::optional<SurfaceHit> hit = shadeMesh(surfacePoints_[surface.hit.geomID], surface.hit.primID, 0.0f, 0.0f, t, nullptr);
+        placeOnPoint(*hit, ray, t, Vec3f(surface.hit.Ng_x, surface.hit.Ng_y, surface.hit.Ng_z));
+        return hit;
+    }
     if (surface.hit.instID[0] == RTC_INVALID_GEOMETRY_ID)
         return shadeMesh(surfaceMeshes_[surface.hit.geomID], surface.hit.primID, u, v, t, nullptr);
     const Instance& instance = instances_[surfaceInstances_[surface.hit.instID[0]]];

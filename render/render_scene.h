@@ -185,6 +185,8 @@ private:
     int storeMesh(const MeshDesc& desc, const std::vector<MaterialDesc>& materials, std::uint32_t objectName);
     void addMesh(const MeshDesc& mesh, const std::vector<MaterialDesc>& materials, std::uint32_t objectName);
     void addCurves(const CurvesDesc& curves, const std::vector<MaterialDesc>& materials);
+    // A point set (render/point_geometry.h): Embree points, shaded through a mesh of its own.
+    void addPoints(const PointsDesc& points, const std::vector<MaterialDesc>& materials);
     void addPrototypes(const SceneDescription& scene);
     void addLight(const LightDesc& light);
     void addVolumes(const std::vector<VolumeDesc>& volumes);
@@ -213,6 +215,7 @@ private:
     std::vector<Warning> warnings_;
     std::vector<int> surfaceMeshes_;     // Embree geometry id in the surface scene -> mesh, or -1
     std::vector<int> surfaceInstances_;  // Embree geometry id in the surface scene -> instance, or -1
+    std::vector<int> surfacePoints_;     // Embree geometry id in the surface scene -> a point set's shading mesh, or -1
     std::vector<Prototype> prototypes_;
     std::vector<Instance> instances_;
     std::vector<int> lightShapeToLight_;       // Embree geometry id in the light scene -> light

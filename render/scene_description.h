@@ -17,6 +17,7 @@
 #include "core/rgb.h"
 #include "render/curves_description.h"
 #include "media/medium.h"
+#include "render/points_description.h"
 #include "texture/texture_types.h"
 #include "volumes/grid_medium_params.h"
 
@@ -272,6 +273,12 @@ struct CameraDesc {
     float horizontalApertureOffset = 0.0f;
     float verticalApertureOffset = 0.0f;
     float nearClip = 1.0f, farClip = 1000000.0f;
+    // Depth of field (render/thin_lens.h): UsdGeomCamera's fStop (0: a pinhole) and focusDistance
+    // (scene units; 0: a pinhole), and Fluence's fluence:camera:apertureBlades (0: round) and
+    // fluence:camera:apertureRotation (degrees).
+    float fStop = 0.0f, focusDistance = 0.0f;
+    int apertureBlades = 0;
+    float apertureRotation = 0.0f;
 };
 
 // Geometry shared by instances: its meshes in the prototype's own space, stored once.
@@ -293,6 +300,7 @@ struct SceneDescription {
     std::vector<MaterialDesc> materials;
     std::vector<MeshDesc> meshes;  // world space
     std::vector<CurvesDesc> curves;  // world space
+    std::vector<PointsDesc> points;  // world space (render/points_description.h)
     std::vector<PrototypeDesc> prototypes;
     std::vector<InstanceDesc> instances;
     std::vector<LightDesc> lights;

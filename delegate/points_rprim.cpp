@@ -1,0 +1,16 @@
+#include "delegate/points_rprim.h"
+
+#include "delegate/material_adapter.h"
+#include "delegate/points_adapter.h"
+
+namespace fluence::delegate {
+
+void PointsRprim::syncData(const SyncContext& context, const usd::PrimSpec* prim, std::uint32_t bits) {
+    if (!prim || (bits & ~std::uint32_t(kDirtyTransform)) == 0) return;  // moved points keep their object-space data
+    objectSpace_ = pointsFromPrim(PrimReader(*prim, context.time), context.convertColor);
+    materialPath_ = boundMaterialPath(context.stage, *prim);
+}
+
+render::PointsDesc PointsRprim::worldPoints() const { return pointsToWorld(objectSpace_, world()); }
+
+}  // namespace fluence::delegate
