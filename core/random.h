@@ -37,6 +37,9 @@ public:
         return {a, next()};
     }
     constexpr std::uint32_t dimension() const { return dimension_; }
+    // The sample's time in the shutter interval, uniform in [0, 1): its own dimension (0, which
+    // next() never draws), so drawing it or not changes no other value of the stream.
+    constexpr float shutterTime() const { return toUnitFloat(mix64(key_)); }
     // The sample index the stream was made for: methods that keep per-sample-index state (the
     // photon map of each sample index, integrators/sppm.h) look theirs up by it.
     constexpr std::uint64_t sampleIndex() const { return sampleIndex_; }

@@ -87,6 +87,16 @@ struct RenderStats {
     std::string methodSummary;  // the integrator's per-render state's summary() ("" for nothing)
 };
 
+// The camera ray of one sample of image pixel (x, y): the stream's first two dimensions place it
+// in the pixel (a box filter), and its own shutter dimension (SampleStream::shutterTime) gives its
+// time, so that adding motion blur changes no other random number of the sample.
+inline render::Ray cameraSampleRay(const render::Camera& camera, SampleStream& rng, int imageX, int imageY) {
+    const Vec2f jitter = rng.next2D();
+    render::Ray ray = camera.generateRay(float(imageX) + jitter.x, float(imageY) + jitter.y);
+    ray.time = rng.shutterTime();
+    return ray;
+}
+
 RenderStats render(const render::RenderScene& scene, const render::Camera& camera, const Integrator& integrator,
                    const RenderSettings& settings, Film& film, RenderProgress* progress = nullptr);
 
