@@ -190,7 +190,7 @@ struct MeshDesc {
     // Deformation blur: the positions at evenly spaced times over the shutter, the first at its
     // opening and the last at its close (render/motion_geometry.h), each indexed like `positions`;
     // empty: the mesh does not move while the shutter is open. `positions` stays the frame's.
-    std::vector<std::vector<Vec3f>> motionPositions;
+    std::vector<std::vector<Vec3f>> motionPositions{};
 };
 
 enum class LightType { Rect, Disk, Sphere, Cylinder, Distant, Dome };
@@ -293,7 +293,7 @@ struct InstanceDesc {
     std::string name;
     // Transformation blur: prototype-to-world at evenly spaced times over the shutter, as
     // MeshDesc::motionPositions; empty: the instance does not move. `transform` stays the frame's.
-    std::vector<Matrix4> motionTransforms;
+    std::vector<Matrix4> motionTransforms{};
 };
 
 struct SceneDescription {
