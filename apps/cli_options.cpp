@@ -277,6 +277,8 @@ RenderOptions parseRenderOptions(const std::vector<std::string>& args) {
             o.strict = true;
         } else if (arg == "--no-default-light") {
             o.defaultLight = false;
+        } else if (arg == "--no-motion-blur") {
+            o.motionBlur = false;
         } else if (arg == "--purpose") {
             o.purposes = splitList(cur.value(arg));
             try {
@@ -372,6 +374,9 @@ std::string usageText() {
            "                          along the camera's view and a dim dome, as usdview does; the dome is\n"
            "                          not the background, which stays black with alpha 0 (also\n"
            "                          fluence:defaultLight = false on the render settings)\n"
+           "      --no-motion-blur    render every camera's shutter as an instant (as disableMotionBlur on\n"
+           "                          the render settings does); by default what moves while the shutter is\n"
+           "                          open (shutter:open to shutter:close, time codes around the frame) blurs\n"
            "  -f, --frame F           time code to render (default: the stage's startTimeCode, else none: each\n"
            "                          time-sampled attribute takes its earliest sample, as in Hydra)\n"
            "  -n, --frame-count N     render N frames from --frame on, the stage read once (default 1)\n"

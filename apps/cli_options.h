@@ -60,6 +60,7 @@ struct RenderOptions {
     std::vector<AttributeOverride> overrides;  // --set [TYPE ]/Prim.attr=VALUE (repeatable)
     ProgressStyle progress = ProgressStyle::Auto;  // -V [LEVEL][a]: 0 none, a ALF_PROGRESS lines
     bool defaultLight = true;       // --no-default-light: no default lights in a scene where nothing emits
+    bool motionBlur = true;         // --no-motion-blur: the camera's shutter as an instant
     bool allowMissing = false;      // --allow-missing: render without missing layers, textures and VDBs (warnings)
     bool strict = false;            // --strict: a malformed prim is an error (exit 3), not a warning and skipped
     std::optional<std::vector<std::string>> purposes;  // --purpose a,b: else the render settings' includedPurposes

@@ -29,6 +29,7 @@ delegate::DelegateOptions delegateOptions(const RenderOptions& opt, const color:
     dopt.allowMissing = opt.allowMissing;
     dopt.strict = opt.strict;
     dopt.defaultLight = opt.defaultLight;
+    dopt.motionBlur = opt.motionBlur;
     dopt.convertColor = [&colors](const RGB& c, const std::string& space) { return colors.toRenderingSpace(space, c); };
     dopt.warn = [&warnings](const std::string& path, const std::string& message) { warnings(path, message); };
     return dopt;

@@ -105,6 +105,7 @@ CheckpointFingerprint renderFingerprint(const RenderOptions& o, const usd::Stage
         {"render settings", o.settings},
         {"subsurface", o.subsurface},
         {"default light", o.defaultLight ? "on" : "off"},
+        {"motion blur", o.motionBlur ? "on" : "off"},
         {"dicing rate", exact(o.dicingRate)},
         {"subdiv level", o.subdivLevel ? std::to_string(*o.subdivLevel) : "(dicing)"},
         {"cryptomatte", joined(o.cryptomatte, [](CryptomatteSource s) { return s == CryptomatteSource::Object ? "object" : "material"; })},

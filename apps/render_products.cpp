@@ -66,7 +66,8 @@ std::vector<std::string> filmChannels(VarSource source, const std::string& name,
         case VarSource::Depth: return {"Z"};
         case VarSource::SampleCount: return {"sampleCount"};
         case VarSource::LightPath: return {name + ".R", name + ".G", name + ".B"};
-        case VarSource::Primvar: break;
+        case VarSource::Primvar:
+        case VarSource::MotionVector: break;
     }
     return {};
 }
@@ -100,6 +101,7 @@ std::vector<PixelFilter> filtersOf(VarSource source) {
         case VarSource::Depth: return {PixelFilter::Min, PixelFilter::Box, PixelFilter::Max, PixelFilter::Closest};
         case VarSource::Albedo:
         case VarSource::Normal:
+        case VarSource::MotionVector:
         case VarSource::Primvar: return {PixelFilter::Box, PixelFilter::Min, PixelFilter::Max, PixelFilter::Closest};
         default: return {PixelFilter::Box};
     }
@@ -127,12 +129,13 @@ ProductVar varOf(const delegate::RenderVarDesc& desc, const std::function<void(c
     int needs = 0;  // the components the source has (0: any of 1 to 4)
     if (desc.sourceType == "raw") {
         static const VarSource kRaw[] = {VarSource::Beauty, VarSource::Alpha,  VarSource::Albedo,
-                                         VarSource::Normal, VarSource::Depth, VarSource::SampleCount};
+                                         VarSource::Normal, VarSource::Depth, VarSource::SampleCount,
+                                         VarSource::MotionVector};
         const VarSource* found = std::find_if(std::begin(kRaw), std::end(kRaw), [&](VarSource s) { return contains(rawSourceNames(s), desc.sourceName); });
         if (found == std::end(kRaw))
             throw SceneError("RenderVar " + desc.path + ": raw sourceName '" + desc.sourceName +
                              "' is not an output of Fluence (see docs/RENDER_PRODUCTS.md: color/Ci/C, alpha/a, albedo, N/normal, "
-                             "depth/z/Z, sampleCount)");
+                             "depth/z/Z, sampleCount, motionvector)");
         var.source = *found;
         needs = var.source == VarSource::Beauty ? (type->components == 4 ? 4 : 3)
                 : var.source == VarSource::Albedo || var.source == VarSource::Normal ? 3
@@ -195,7 +198,7 @@ std::vector<ProductVar> defaultVars() {
 
 // Whether the film holds a var as it is asked (else the first-hit pass computes it).
 bool fromFilm(const ProductVar& var) {
-    if (var.source == VarSource::Primvar) return false;
+    if (var.source == VarSource::Primvar || var.source == VarSource::MotionVector) return false;
     if (var.source == VarSource::Depth) return var.filter == PixelFilter::Min;
     return var.filter == PixelFilter::Box;
 }
@@ -205,6 +208,7 @@ integrators::FirstHitAov firstHitAovOf(const ProductVar& var) {
     aov.source = var.source == VarSource::Depth    ? integrators::FirstHitSource::Depth
                  : var.source == VarSource::Normal ? integrators::FirstHitSource::Normal
                  : var.source == VarSource::Albedo ? integrators::FirstHitSource::Albedo
+                 : var.source == VarSource::MotionVector ? integrators::FirstHitSource::MotionVector
                                                    : integrators::FirstHitSource::Primvar;
     aov.primvar = var.name;
     aov.components = var.components;
@@ -291,6 +295,7 @@ const std::vector<std::string>& rawSourceNames(VarSource source) {
     static const std::vector<std::string> kNormal{"N", "normal", "Nn"};
     static const std::vector<std::string> kDepth{"depth", "z", "Z", "Pz"};
     static const std::vector<std::string> kSampleCount{"sampleCount"};
+    static const std::vector<std::string> kMotionVector{"motionvector", "motionVector"};
     static const std::vector<std::string> kNone;
     switch (source) {
         case VarSource::Beauty: return kBeauty;
@@ -299,6 +304,7 @@ const std::vector<std::string>& rawSourceNames(VarSource source) {
         case VarSource::Normal: return kNormal;
         case VarSource::Depth: return kDepth;
         case VarSource::SampleCount: return kSampleCount;
+        case VarSource::MotionVector: return kMotionVector;
         default: return kNone;
     }
 }

@@ -67,7 +67,7 @@ struct PixelWindow {
 // The pixels whose centres lie in `ndc` (xmin, ymin, xmax, ymax; (0, 0) the bottom-left corner).
 PixelWindow pixelWindowOf(const std::array<float, 4>& ndc, std::pair<int, int> resolution);
 
-enum class VarSource { Beauty, Alpha, Albedo, Normal, Depth, SampleCount, LightPath, Primvar };
+enum class VarSource { Beauty, Alpha, Albedo, Normal, Depth, SampleCount, LightPath, Primvar, MotionVector };
 
 // The raw sourceNames each source answers to (docs/RENDER_PRODUCTS.md lists them).
 const std::vector<std::string>& rawSourceNames(VarSource source);

@@ -43,6 +43,9 @@ public:
     constexpr Vec2f lens() const {
         return {toUnitFloat(mix64(key_ ^ 0xa0761d6478bd642full)), toUnitFloat(mix64(key_ ^ 0xe7037ed1a0b428dbull))};
     }
+    // The sample's time in the shutter interval, uniform in [0, 1): its own dimension (0, which
+    // next() never draws), so drawing it or not changes no other value of the stream.
+    constexpr float shutterTime() const { return toUnitFloat(mix64(key_)); }
     // The sample index the stream was made for: methods that keep per-sample-index state (the
     // photon map of each sample index, integrators/sppm.h) look theirs up by it.
     constexpr std::uint64_t sampleIndex() const { return sampleIndex_; }

@@ -35,6 +35,10 @@ render::CameraDesc cameraFromPrim(const PrimReader& prim, const Matrix4& toWorld
         prim.fail("fluence:camera:apertureBlades must be 0 (round) or a whole number from 3 to 64, got " + std::to_string(blades));
     if (!std::isfinite(c.apertureRotation)) prim.fail("fluence:camera:apertureRotation must be finite");
     c.apertureBlades = static_cast<int>(blades);
+    c.shutterOpen = prim.number({"shutter:open"}, 0.0);
+    c.shutterClose = prim.number({"shutter:close"}, 0.0);
+    if (!std::isfinite(c.shutterOpen) || !std::isfinite(c.shutterClose) || c.shutterClose < c.shutterOpen)
+        prim.fail("shutter:close must not be before shutter:open (time codes relative to the frame)");
     if (!(c.focalLength > 0.0f)) prim.fail("focalLength must be positive");
     if (!(c.horizontalAperture > 0.0f) || !(c.verticalAperture > 0.0f)) prim.fail("apertures must be positive");
     if (!(c.nearClip >= 0.0f) || !(c.farClip > c.nearClip)) prim.fail("clippingRange must satisfy 0 <= near < far");

@@ -8,6 +8,7 @@
 
 #include "delegate/material_adapter.h"
 #include "delegate/mesh_adapter.h"
+#include "delegate/motion_samples.h"
 #include "delegate/prim_reader.h"
 
 namespace fluence::delegate {
@@ -152,8 +153,9 @@ std::vector<MeshPart> splitByMaterial(TriangulatedMesh&& whole, const MaterialAs
 std::vector<MeshPart> meshPartsFromPrim(const usd::Stage& stage, const usd::PrimSpec& prim, double time,
                                         const Matrix4& toWorld,
                                         const std::function<RGB(const RGB&, const std::string&)>& convertColor,
-                                        const std::function<void(const std::string&)>& warn) {
+                                        const std::function<void(const std::string&)>& warn, double velocityFrame) {
     TriangulatedMesh whole = triangulatedMeshFromPrim(PrimReader(prim, time), toWorld, convertColor);
+    moveByVelocities(stage, prim, time, velocityFrame, toWorld, whole.mesh.positions);
     MaterialAssignment assignment = readMaterialAssignment(stage, prim, time, whole.faceCount, warn);
     return splitByMaterial(std::move(whole), assignment);
 }

@@ -59,10 +59,12 @@ struct TriangulatedMesh;
 std::vector<MeshPart> splitByMaterial(TriangulatedMesh&& whole, const MaterialAssignment& assignment);
 
 // `convertColor` maps an authored colour (with the attribute's colorSpace, "" if none) into the
-// rendering space; `warn` reports a problem that does not stop the render.
+// rendering space; `warn` reports a problem that does not stop the render. `velocityFrame`: see
+// DelegateOptions::velocityFrame (delegate/motion_samples.h).
 std::vector<MeshPart> meshPartsFromPrim(const usd::Stage& stage, const usd::PrimSpec& mesh, double time,
                                         const Matrix4& toWorld,
                                         const std::function<RGB(const RGB&, const std::string&)>& convertColor,
-                                        const std::function<void(const std::string&)>& warn);
+                                        const std::function<void(const std::string&)>& warn,
+                                        double velocityFrame = usd::kDefaultTime);
 
 }  // namespace fluence::delegate

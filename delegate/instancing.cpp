@@ -7,6 +7,7 @@
 #include "delegate/imageable.h"
 #include "delegate/implicit_geometry.h"
 #include "delegate/light_adapter.h"
+#include "delegate/motion_samples.h"
 #include "delegate/xform.h"
 #include "render/mesh_transform.h"
 
@@ -65,7 +66,8 @@ std::vector<std::string> pointInstancerPrototypes(const usd::PrimSpec& instancer
     return paths;
 }
 
-PointInstances pointInstancesFromPrim(const PrimReader& prim, const std::function<void(const std::string&)>& warn) {
+PointInstances pointInstancesFromPrim(const PrimReader& prim, const std::function<void(const std::string&)>& warn,
+                                      const SyncContext* motion) {
     PointInstances result;
     result.prototypes = pointInstancerPrototypes(prim.prim());
     std::vector<double> protoIndices = prim.numbers("protoIndices", 1).value_or(std::vector<double>{});
@@ -82,6 +84,9 @@ PointInstances pointInstancesFromPrim(const PrimReader& prim, const std::functio
     std::optional<std::vector<double>> scales = perInstance(prim, "scales", 3, count, warn);
     std::optional<std::vector<double>> ids = perInstance(prim, "ids", 1, count, warn);
 
+    const std::optional<InstanceVelocityMotion> moving =
+        motion ? instanceVelocityMotion(motion->stage, prim.prim(), motion->time, motion->velocityFrame, count) : std::nullopt;
+
     std::set<long long> hidden = listOpIds(prim.prim().metadata, "inactiveIds");
     for (double id : prim.numbers("invisibleIds", 1).value_or(std::vector<double>{})) hidden.insert(static_cast<long long>(id));
 
@@ -94,7 +99,11 @@ PointInstances pointInstancesFromPrim(const PrimReader& prim, const std::functio
             ++outOfRange;
             continue;
         }
-        Matrix4 m = Matrix4::translate({(*positions)[3 * i], (*positions)[3 * i + 1], (*positions)[3 * i + 2]});
+        Vec3d position((*positions)[3 * i], (*positions)[3 * i + 1], (*positions)[3 * i + 2]);
+        if (moving && !moving->offsets.empty()) position = position + moving->offsets[i];
+        Matrix4 m = Matrix4::translate(position);
+        // As UsdGeomPointInstancer composes them: the angular motion turns the oriented instance.
+        if (moving && !moving->rotations.empty()) m = m * moving->rotations[i];
         if (orientations) m = m * rotationOf(&(*orientations)[4 * i]);
         if (scales) m = m * Matrix4::scale({(*scales)[3 * i], (*scales)[3 * i + 1], (*scales)[3 * i + 2]});
         result.instances.push_back({static_cast<int>(index), m, id});

@@ -65,7 +65,10 @@ struct PointInstances {
     std::vector<Instance> instances;  // visible, active instances with a valid prototype, in order
 };
 
-PointInstances pointInstancesFromPrim(const PrimReader& instancer, const std::function<void(const std::string&)>& warn);
+// `motion`, when given, moves the instances by their velocities at a motion step (its velocityFrame,
+// delegate/motion_samples.h).
+PointInstances pointInstancesFromPrim(const PrimReader& instancer, const std::function<void(const std::string&)>& warn,
+                                      const SyncContext* motion = nullptr);
 
 // Every mesh, implicit surface and UsdLux light at or below `root` (defined, active and imaged),
 // in the root's space; with `includeRootTransform`, the root's own local transform applies too.

@@ -110,7 +110,7 @@ void MeshRprim::syncData(const SyncContext& context, const usd::PrimSpec* spec, 
                                Matrix4::identity()});
     } else if (prim.typeName == "Mesh") {
         for (MeshPart& part : meshPartsFromPrim(context.stage, prim, context.time, Matrix4::identity(),
-                                                context.convertColor, warn))
+                                                context.convertColor, warn, context.velocityFrame))
             parts_.push_back({std::move(part.mesh), std::move(part.materialPath)});
     } else {
         render::MeshDesc surface = implicitMeshFromPrim(PrimReader(prim, context.time), Matrix4::identity(), context.convertColor, warn);
@@ -170,7 +170,7 @@ void InstanceRprim::syncData(const SyncContext&, const usd::PrimSpec* prim, std:
 void PointInstancerRprim::syncData(const SyncContext& context, const usd::PrimSpec* prim, std::uint32_t) {
     if (!prim) return;
     instances_ = pointInstancesFromPrim(PrimReader(*prim, context.time),
-                                        [&](const std::string& message) { context.warn(prim->path, message); });
+                                        [&](const std::string& message) { context.warn(prim->path, message); }, &context);
 }
 
 void VolumeRprim::syncData(const SyncContext& context, const usd::PrimSpec* prim, std::uint32_t) {

@@ -120,6 +120,7 @@ std::optional<RenderSettingsDesc> renderSettingsFromStage(
     if (auto purposes = reader.strings("includedPurposes")) s.includedPurposes = *purposes;
     s.integrator = reader.token({"fluence:integrator"}, "");
     s.defaultLight = reader.boolean({"fluence:defaultLight"}, true);
+    s.disableMotionBlur = reader.boolean({"disableMotionBlur", "instantaneousShutter"}, false);
     for (const usd::AttributeSpec& attribute : prim->attributes)
         if (attribute.name.starts_with("fluence:") && std::count(attribute.name.begin(), attribute.name.end(), ':') == 2)
             if (reader.value(attribute.name))
@@ -138,6 +139,7 @@ std::optional<RenderSettingsDesc> renderSettingsFromStage(
             product.cameraPath = camera.empty() ? s.cameraPath : camera;
             product.framing = framingOf(pr, s.framing);
             product.dataWindowNdc = dataWindowOf(pr);
+            product.disableMotionBlur = pr.boolean({"disableMotionBlur", "instantaneousShutter"}, s.disableMotionBlur);
             product.compression = pr.token({"driver:parameters:OpenEXR:compression"}, "");
             if (const usd::RelationshipSpec* vars = productPrim.relationship("orderedVars"))
                 for (const std::string& v : vars->targets)

@@ -13,6 +13,7 @@
 #include "delegate/instancing.h"
 #include "delegate/light_adapter.h"
 #include "delegate/points_rprim.h"
+#include "delegate/motion_samples.h"
 #include "render/mesh_transform.h"
 
 namespace fluence::delegate {
@@ -507,8 +508,11 @@ render::ImageFraming SceneDelegate::framing() const {
 DelegateResult populateScene(usd::Stage& stage, const DelegateOptions& options) {
     SceneDelegate delegate(stage, options);
     delegate.sync();
-    return {delegate.sceneDescription(), delegate.cameraPath(), delegate.renderSettings(), delegate.resolution(),
-            delegate.framing()};
+    DelegateResult result{delegate.sceneDescription(), delegate.cameraPath(), delegate.renderSettings(), delegate.resolution(),
+                          delegate.framing()};
+    if (options.motionBlur && !(result.renderSettings && result.renderSettings->motionBlurDisabled()))
+        addMotion(stage, options, result.cameraPath, *result.scene.camera, result.scene);
+    return result;
 }
 
 }  // namespace fluence::delegate

@@ -69,6 +69,12 @@ struct DelegateOptions {
     // Primvars (names without "primvars:") every mesh keeps for primvar RenderVars, whether or not
     // its material reads them (render::RenderScene::primvarAt).
     std::set<std::string> aovPrimvars;
+    // Motion blur over the camera's shutter (delegate/motion_samples.h), unless this is false
+    // (--no-motion-blur) or the render settings' disableMotionBlur is true.
+    bool motionBlur = true;
+    // Set: points and instances with velocities move from this frame to `time` at sync (a motion
+    // step, delegate/motion_samples.h); kDefaultTime: they are read as authored.
+    double velocityFrame = usd::kDefaultTime;
 };
 
 class SceneDelegate {
@@ -113,7 +119,9 @@ private:
     // with a warning, when it has no density field). Raises MissingAssetError when a grid file is
     // missing (with DelegateOptions::allowMissing: a warning, and nullopt).
     std::optional<render::VolumeDesc> volumeDesc(const VolumeRprim& volume) const;
-    SyncContext context() const { return {stage_, options_.time, options_.convertColor, options_.warn, purposes_, options_.strict}; }
+    SyncContext context() const {
+        return {stage_, options_.time, options_.convertColor, options_.warn, purposes_, options_.strict, options_.velocityFrame};
+    }
 
     usd::Stage& stage_;
     DelegateOptions options_;

@@ -18,6 +18,7 @@ struct SyncContext {
     const Warn& warn;
     const IncludedPurposes& purposes;
     bool strict = false;  // a malformed prim raises SceneError instead of being skipped
+    double velocityFrame = usd::kDefaultTime;  // DelegateOptions::velocityFrame
 };
 
 // A prim left out of the render (or a value of it ignored) because it is malformed, and why.

@@ -64,7 +64,7 @@ std::optional<Bounce> scatter(const Shading& sh, const Vertex& v, render::Transp
 }
 
 // The ray leaving v along wi.
-Ray spawn(const Vertex& v, const Vec3f& wi) { return Ray{v.leaving(wi), wi, 0.0f, kInfinity}; }
+Ray spawn(const Vertex& v, const Vec3f& wi) { return Ray{v.leaving(wi), wi, 0.0f, kInfinity, v.hit.time}; }
 
 // 1 in the channels where c is positive, else 0.
 RGB positive(const RGB& c) { return RGB(c.x > 0.0f ? 1.0f : 0.0f, c.y > 0.0f ? 1.0f : 0.0f, c.z > 0.0f ? 1.0f : 0.0f); }
@@ -101,9 +101,10 @@ Crossing cross(const media::Medium* medium, const media::MediumRay& segment, int
 }
 
 // The medium vertex where a subpath in `media` scatters (flight.p), arriving along `direction`.
-Vertex mediumVertex(const media::FreeFlight& flight, const Vec3f& direction, const RGB& beta, const MediumStack& media) {
-    Vertex v{SurfaceHit{}, -direction, beta, media};
+Vertex mediumVertex(const media::FreeFlight& flight, const Ray& ray, const RGB& beta, const MediumStack& media) {
+    Vertex v{SurfaceHit{}, -ray.direction, beta, media};
     v.hit.t = flight.t;
+    v.hit.time = ray.time;
     v.hit.point = flight.p;
     v.hit.geometricNormal = v.hit.shadingNormal = Vec3f(0.0f);
     v.inMedium = true;
@@ -159,9 +160,10 @@ void appendCamera(std::vector<VertexDensity>& x, const CameraSubpath& z) {
 
 // The light subpath for one sample: an emitting light chosen by power, a point and direction on
 // it, then adjoint BSDF and phase sampling through the media it starts in (mediaAt) and crosses,
-// with hero channel `hero` (-1: the scene has no media). Empty (origin.light < 0) when no light emits.
+// with hero channel `hero` (-1: the scene has no media), at `time` in the shutter interval (the camera
+// ray's). Empty (origin.light < 0) when no light emits.
 LightSubpath traceLightSubpath(const RenderScene& scene, const std::vector<int>& emitters, const DiscreteDistribution& choice,
-                               const std::vector<float>& probability, int maxBounces, int hero, SampleStream& rng,
+                               const std::vector<float>& probability, int maxBounces, int hero, float time, SampleStream& rng,
                                RenderCounters& counters, render::BsdfArena& arena) {
     LightSubpath path;
     const float uChoice = rng.next();
@@ -173,7 +175,7 @@ LightSubpath traceLightSubpath(const RenderScene& scene, const std::vector<int>&
     path.origin = originAt(scene, index, es->point, es->normal, es->direction, es->delta, probability[index]);
     RGB beta = es->Le * (es->density.cosine / (probability[index] * es->density.position * es->density.direction));
     const bool onSurface = !path.origin.atInfinity && !path.origin.delta;
-    Ray ray{onSurface ? spawnOrigin(es->point, es->normal, es->direction) : es->point, es->direction, 0.0f, kInfinity};
+    Ray ray{onSurface ? spawnOrigin(es->point, es->normal, es->direction) : es->point, es->direction, 0.0f, kInfinity, time};
     MediumStack media = hero >= 0 && !path.origin.atInfinity ? mediaAt(scene, ray.origin, ray.direction, counters)
                                                               : MediumStack(scene);
     std::optional<Bounce> last;  // how the previous vertex was left
@@ -187,7 +189,7 @@ LightSubpath traceLightSubpath(const RenderScene& scene, const std::vector<int>&
         const media::FlightEvent event = stretch.flight.event;
         if (event == media::FlightEvent::Absorbed) break;
         if (event == media::FlightEvent::Escaped && (!hit || hit->lightShape)) break;
-        Vertex v = event == media::FlightEvent::Scattered ? mediumVertex(stretch.flight, ray.direction, beta, media)
+        Vertex v = event == media::FlightEvent::Scattered ? mediumVertex(stretch.flight, ray, beta, media)
                                                           : Vertex{*hit, -ray.direction, beta, media};
         if (v.walking ? ++interiorScatterings > kMaxInteriorScatterings : bounces >= maxBounces) break;
         v.bounces = bounces += !v.walking;
@@ -230,7 +232,7 @@ std::optional<media::MediumRay> joinSegment(const RenderScene& scene, const Vert
     const Vec3f from = a.leaving(dir), to = b.leaving(-dir);
     const Vec3f d = to - from;
     const float length = std::sqrt(lengthSquared(d));
-    if (!(length > 0.0f) || scene.occluded(from, d / length, length)) return std::nullopt;
+    if (!(length > 0.0f) || scene.occluded(from, d / length, length, a.hit.time)) return std::nullopt;
     return media::MediumRay{from, d / length, length};
 }
 
@@ -365,7 +367,7 @@ private:
             });
             return std::nullopt;
         }
-        Vertex v = flight.event == media::FlightEvent::Scattered ? mediumVertex(flight, ray.direction, beta_, media_)
+        Vertex v = flight.event == media::FlightEvent::Scattered ? mediumVertex(flight, ray, beta_, media_)
                                                                  : Vertex{*hit, -ray.direction, beta_, media_};
         v.edge = stretch.edge;
         if (!z_.empty()) {
@@ -434,7 +436,7 @@ private:
         const RGB& f = toLight.f;
         const float pdfCamera = toLight.pdf;
         const Vec3f shadowFrom = zt.transmissive ? zt.leaving(ls->wi) : from;
-        if (isBlack(f) || (++counters_.shadow, scene_.occluded(shadowFrom, ls->wi, ls->distance))) return;
+        if (isBlack(f) || (++counters_.shadow, scene_.occluded(shadowFrom, ls->wi, ls->distance, zt.hit.time))) return;
         const Crossing crossing = cross(zt.mediumTowards(ls->wi), {shadowFrom, ls->wi, ls->distance}, tracked_, rng_);
         const Vec3f point = from + ls->wi * ls->distance;
         LightOrigin x0 = originAt(scene_, choice.light, point, Vec3f(0.0f), -ls->wi, ls->delta,
@@ -540,7 +542,7 @@ FilmSample Bdpt::sample(const RenderState& renderState, const RenderScene& scene
     // With light tracing, a light subpath may reach maxDepth vertices (t = 1 joins the last to the
     // camera); without, maxDepth - 1 (every other strategy holds a camera vertex).
     const LightSubpath light = traceLightSubpath(scene, state.emitters, state.emitterChoice, state.emitterProbability,
-                                                 lightTracing ? maxDepth_ : maxDepth_ - 1, hero, rng, counters, arena);
+                                                 lightTracing ? maxDepth_ : maxDepth_ - 1, hero, cameraRay.time, rng, counters, arena);
     if (lightTracing) splatToCamera(scene, camera, light, hero, rng, counters, joinArena, *state.splats);
     return CameraWalk(state, maxDepth_, light, hero, scene, camera, rng, counters).run(cameraRay);
 }

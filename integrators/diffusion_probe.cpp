@@ -54,7 +54,7 @@ std::optional<DiffusionExit> sampleDiffusionExit(const render::RenderScene& scen
     const float length = 2.0f * halfChord;
     while (found < kMaxProbeHits) {
         ++counters.bounce;
-        std::optional<render::SurfaceHit> hit = scene.intersect(render::Ray{start, along, t, length});
+        std::optional<render::SurfaceHit> hit = scene.intersect(render::Ray{start, along, t, length, entry.time});
         if (!hit) break;
         if (hit->interior == entry.interior) hits[found++] = *hit;
         t = std::nextafter(hit->t, length) + 1e-5f * length;

@@ -102,7 +102,7 @@ FilmSample directLightingThroughDeltaLobes(const render::RenderScene& scene, con
             if (isBlack(f)) return RGB(0.0f);
             ++counters.shadow;
             const Vec3f shadowOrigin = transmissive ? spawnOrigin(hit->point, ng, ls->wi) : lightFrom;
-            if (scene.occluded(shadowOrigin, ls->wi, ls->distance)) return RGB(0.0f);
+            if (scene.occluded(shadowOrigin, ls->wi, ls->distance, ray.time)) return RGB(0.0f);
             const float lightPdf = choice.probability * ls->pdf;
             const float weight = ls->delta ? 1.0f : powerHeuristic(lightPdf, bsdf.pdf(woLocal, wiLocal));
             const RGB tr = transmittance(inside.after(*hit, wo, ls->wi).medium(), shadowOrigin, ls->wi, ls->distance, rng);
@@ -126,7 +126,7 @@ FilmSample directLightingThroughDeltaLobes(const render::RenderScene& scene, con
         bsdfPdf = bs->pdf;
         from = lightFrom;
         fromNormal = lightNormal;
-        ray = Ray{spawnOrigin(hit->point, ng, wi), wi, 0.0f, std::numeric_limits<float>::infinity()};
+        ray = Ray{spawnOrigin(hit->point, ng, wi), wi, 0.0f, std::numeric_limits<float>::infinity(), ray.time};
     }
     out.radiance = radiance;
     return out;

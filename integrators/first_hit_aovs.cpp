@@ -17,7 +17,16 @@ namespace {
 using Value = std::array<float, 4>;
 
 // One AOV's value for one camera sample (`hit` null: a miss).
-Value sampleValue(const FirstHitAov& aov, const render::RenderScene& scene, const render::Camera& camera,
+// Where a world point lands on the image, in pixels from its top-left corner (`toNdc`: the camera's
+// worldToNdc).
+Vec2f rasterOf(const render::Camera& camera, const Matrix4& toNdc, const Vec3f& p) {
+    const double x = toNdc.m[0][0] * p.x + toNdc.m[0][1] * p.y + toNdc.m[0][2] * p.z + toNdc.m[0][3];
+    const double y = toNdc.m[1][0] * p.x + toNdc.m[1][1] * p.y + toNdc.m[1][2] * p.z + toNdc.m[1][3];
+    const double w = toNdc.m[3][0] * p.x + toNdc.m[3][1] * p.y + toNdc.m[3][2] * p.z + toNdc.m[3][3];
+    return {float(x / w * camera.imageWidth()), float(y / w * camera.imageHeight())};
+}
+
+Value sampleValue(const FirstHitAov& aov, const render::RenderScene& scene, const render::Camera& camera, const Matrix4& toNdc,
                   const render::Ray& ray, const render::SurfaceHit* hit) {
     Value v{0.0f, 0.0f, 0.0f, 0.0f};
     if (!hit) {
@@ -38,6 +47,12 @@ Value sampleValue(const FirstHitAov& aov, const render::RenderScene& scene, cons
             float value[4] = {0.0f, 0.0f, 0.0f, 0.0f};
             const int k = scene.primvarAt(*hit, aov.primvar, value);
             for (int c = 0; c < std::min(k, 4); ++c) v[std::size_t(c)] = value[c];
+            break;
+        }
+        case FirstHitSource::MotionVector: {
+            const Vec2f open = rasterOf(camera, toNdc, scene.pointAt(*hit, 0.0f));
+            const Vec2f close = rasterOf(camera, toNdc, scene.pointAt(*hit, 1.0f));
+            v = {close.x - open.x, open.y - close.y, 0.0f, 0.0f};  // raster y grows downwards
             break;
         }
     }
@@ -82,9 +97,10 @@ Image renderFirstHitAovs(const render::RenderScene& scene, const render::Camera&
     Image image(film.width(), film.height(), channels);
     if (aovs.empty()) return image;
     const std::uint64_t imageWidth = std::uint64_t(settings.imageWidth > 0 ? settings.imageWidth : film.width());
+    const Matrix4 toNdc = camera.worldToNdc();
     const std::vector<Value> missValues = [&] {
         std::vector<Value> values;
-        for (const FirstHitAov& aov : aovs) values.push_back(sampleValue(aov, scene, camera, render::Ray{}, nullptr));
+        for (const FirstHitAov& aov : aovs) values.push_back(sampleValue(aov, scene, camera, toNdc, render::Ray{}, nullptr));
         return values;
     }();
 
@@ -100,12 +116,11 @@ Image renderFirstHitAovs(const render::RenderScene& scene, const render::Camera&
                     const std::uint32_t samples = film.samples(x, y);
                     for (std::uint32_t s = 0; s < samples; ++s) {
                         SampleStream rng(settings.seed, pixelIndex, std::uint64_t(s));
-                        const Vec2f jitter = rng.next2D();  // as the renderer places its camera ray
-                        const render::Ray ray = camera.generateRay(float(imageX) + jitter.x, float(imageY) + jitter.y, rng.lens());
+                        const render::Ray ray = cameraSampleRay(camera, rng, imageX, imageY);  // the renderer's
                         const std::optional<render::SurfaceHit> hit = scene.intersect(ray);
                         const float depth = hit ? camera.viewDepth(hit->point) : camera.farClip();
                         for (std::size_t a = 0; a < aovs.size(); ++a)
-                            pixel[a].add(aovs[a].filter, sampleValue(aovs[a], scene, camera, ray, hit ? &*hit : nullptr),
+                            pixel[a].add(aovs[a].filter, sampleValue(aovs[a], scene, camera, toNdc, ray, hit ? &*hit : nullptr),
                                          hit.has_value(), depth);
                     }
                     float* out = image.pixel(x, y);

@@ -12,7 +12,10 @@
 // Values per sample: Depth is the camera-space depth of the hit (the far clip on a miss), Normal
 // the world-space shading normal turned towards the camera, Albedo the diffuse reflectance, and
 // Primvar the primvar interpolated over the hit triangle (render::RenderScene::primvarAt; zero on
-// a miss, on a light shape and on meshes without it; components it lacks read zero).
+// a miss, on a light shape and on meshes without it; components it lacks read zero), and
+// MotionVector where the hit point moves on the image from the shutter's opening to its close, in
+// pixels (x to the right, y up, as compositing packages read it; zero for what does not move and
+// on a miss; render::RenderScene::pointAt).
 // Filters: Box is the mean over every sample (misses included with their value); Min and Max are
 // per component over the samples that hit; Closest is the value of the hit nearest the camera
 // (the first of equals). A pixel without hits reads the miss value.
@@ -32,7 +35,7 @@ namespace fluence::integrators {
 // How a pixel combines its samples' values.
 enum class PixelFilter { Box, Min, Max, Closest };
 
-enum class FirstHitSource { Depth, Normal, Albedo, Primvar };
+enum class FirstHitSource { Depth, Normal, Albedo, Primvar, MotionVector };
 
 struct FirstHitAov {
     FirstHitSource source = FirstHitSource::Depth;

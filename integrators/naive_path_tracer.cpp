@@ -59,7 +59,7 @@ FilmSample NaivePathTracer::sample(const RenderState&, const render::RenderScene
                 if (ps.pdf <= 0.0f) break;
                 throughput *= ps.p / ps.pdf;
                 if (!continueInMedium(throughput, etaScale, depth, walking, rng)) break;
-                ray = render::Ray{flight.p, ps.wi, 0.0f, std::numeric_limits<float>::infinity()};
+                ray = render::Ray{flight.p, ps.wi, 0.0f, std::numeric_limits<float>::infinity(), ray.time};
                 depth -= walking;  // not a bounce
                 continue;
             }
@@ -92,7 +92,7 @@ FilmSample NaivePathTracer::sample(const RenderState&, const render::RenderScene
         if (step == DiffusionStep::Exited) continue;
         inside = inside.after(*hit, wo, wi);
         ray = render::Ray{spawnOrigin(hit->point, surface.geometricNormal, wi), wi, 0.0f,
-                          std::numeric_limits<float>::infinity()};
+                          std::numeric_limits<float>::infinity(), ray.time};
     }
     out.radiance = radiance;
     return out;

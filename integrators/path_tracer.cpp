@@ -200,7 +200,7 @@ private:
         specularBounce_ = walking;  // no light strategy at this vertex
         previousPoint_ = flight.p;
         previousNormal_ = Vec3f(0.0f);
-        ray_ = Ray{flight.p, ps.wi, 0.0f, std::numeric_limits<float>::infinity()};
+        ray_ = Ray{flight.p, ps.wi, 0.0f, std::numeric_limits<float>::infinity(), ray_.time};
         depth -= walking;  // not a bounce
         return Step::Next;
     }
@@ -267,7 +267,7 @@ private:
         specularBounce_ = bs->specular;
         previousPoint_ = v.lightFrom;
         previousNormal_ = v.lightNormal;
-        ray_ = Ray{spawnOrigin(v.hit.point, ng, wi), wi, 0.0f, std::numeric_limits<float>::infinity()};
+        ray_ = Ray{spawnOrigin(v.hit.point, ng, wi), wi, 0.0f, std::numeric_limits<float>::infinity(), ray_.time};
         return Step::Next;
     }
 
@@ -291,7 +291,7 @@ private:
         if (isBlack(f)) return;
         ++counters_.shadow;
         const auto [shadowOrigin, shadowMedium] = shadowFrom(ls->wi);
-        if (scene_.occluded(shadowOrigin, ls->wi, ls->distance)) return;
+        if (scene_.occluded(shadowOrigin, ls->wi, ls->distance, ray_.time)) return;
         media::TransmittanceEstimate tr;
         if (kMedia && shadowMedium)
             tr = media::ratioTrackingTransmittance(*shadowMedium, {shadowOrigin, ls->wi, ls->distance}, hero_, rng_);

@@ -67,8 +67,7 @@ void renderPass(const render::RenderScene& scene, const render::Camera& camera, 
                             if (film.samples(x, y) != std::uint32_t(s) || converged(film, x, y, settings)) break;
                             ++taken;
                             SampleStream rng(settings.seed, pixelIndex, std::uint64_t(s));
-                            Vec2f jitter = rng.next2D();  // box filter: uniform over the pixel
-                            render::Ray ray = camera.generateRay(float(imageX) + jitter.x, float(imageY) + jitter.y, rng.lens());
+                            const render::Ray ray = cameraSampleRay(camera, rng, imageX, imageY);
                             FilmSample sample = integrator.sample(state, scene, camera, ray, rng, local);
                             if (!finite(sample, film.lightPathLayers().size())) {
                                 sample.radiance = RGB(0.0f);

@@ -87,6 +87,17 @@ struct RenderStats {
     std::string methodSummary;  // the integrator's per-render state's summary() ("" for nothing)
 };
 
+// The camera ray of one sample of image pixel (x, y): the stream's first two dimensions place it
+// in the pixel (a box filter), its own lens values (SampleStream::lens) the point of the aperture,
+// and its own shutter dimension (SampleStream::shutterTime) its time, so that depth of field and
+// motion blur change no other random number of the sample.
+inline render::Ray cameraSampleRay(const render::Camera& camera, SampleStream& rng, int imageX, int imageY) {
+    const Vec2f jitter = rng.next2D();
+    render::Ray ray = camera.generateRay(float(imageX) + jitter.x, float(imageY) + jitter.y, rng.lens());
+    ray.time = rng.shutterTime();
+    return ray;
+}
+
 RenderStats render(const render::RenderScene& scene, const render::Camera& camera, const Integrator& integrator,
                    const RenderSettings& settings, Film& film, RenderProgress* progress = nullptr);
 

@@ -66,7 +66,9 @@ void tracePhotonPath(const render::RenderScene& scene, int maxDepth, float scale
     MediumStack inside(scene);
     std::array<bool, MediumStack::kDepth + 1> keepVolumePhotons{};  // per interior depth (index 0: unused)
     int interiorScatterings = 0;
-    Ray ray{render::offsetRayOrigin(emitted->point, emitted->normal), emitted->direction, 0.0f, kInfinity};
+    // Each photon path at its own time in the shutter (its stream's own dimension): gathered by
+    // camera paths of every time, the photons blur what moves.
+    Ray ray{render::offsetRayOrigin(emitted->point, emitted->normal), emitted->direction, 0.0f, kInfinity, rng.shutterTime()};
     render::BsdfArena arena;
     for (int depth = 0; depth < maxDepth; ++depth) {
         ++rays;
@@ -85,7 +87,7 @@ void tracePhotonPath(const render::RenderScene& scene, int maxDepth, float scale
                 const media::PhaseSample ps = media::HenyeyGreenstein(flight.properties.g).sample(-ray.direction, rng.next2D());
                 if (ps.pdf <= 0.0f) return;
                 beta *= ps.p / ps.pdf;  // 1: the flux is unchanged, so the photon survives any roulette
-                ray = Ray{flight.p, ps.wi, 0.0f, kInfinity};
+                ray = Ray{flight.p, ps.wi, 0.0f, kInfinity, ray.time};
                 depth -= walking;  // not a bounce (integrators/russian_roulette.h)
                 continue;
             }
@@ -113,7 +115,7 @@ void tracePhotonPath(const render::RenderScene& scene, int maxDepth, float scale
         const MediumStack after = inside.after(*hit, wo, wi);
         if (after.depth() > inside.depth()) keepVolumePhotons[std::size_t(after.depth())] = eyeCanEnter(bsdf.flags());
         inside = after;
-        ray = Ray{spawnOrigin(hit->point, surface.geometricNormal, wi), wi, 0.0f, kInfinity};
+        ray = Ray{spawnOrigin(hit->point, surface.geometricNormal, wi), wi, 0.0f, kInfinity, ray.time};
     }
 }
 
@@ -305,7 +307,7 @@ FilmSample Sppm::sample(const RenderState& renderState, const render::RenderScen
         etaScale *= bs->eta * bs->eta;
         if (!continuePath(throughput, etaScale, depth, rng)) break;
         inside = inside.after(*hit, wo, wi);
-        ray = Ray{spawnOrigin(hit->point, surface.geometricNormal, wi), wi, 0.0f, kInfinity};
+        ray = Ray{spawnOrigin(hit->point, surface.geometricNormal, wi), wi, 0.0f, kInfinity, ray.time};
     }
     out.radiance = radiance;
     return out;

@@ -5,7 +5,7 @@
 // flight, so a ray written field by field stalls each call until those stores retire (in profiles
 // of the Cornell box this was the largest self cost of RenderScene::intersect,
 // bench/results/2026-11-27-throughput-s6.md). These write each group as one 16-byte store.
-// Conventions: time 0, every mask bit set, id and flags 0; storeRayHit also marks the hit empty
+// Conventions: the ray's time (0 unless given), every mask bit set, id and flags 0; storeRayHit also marks the hit empty
 // (geomID and instID[0] invalid), as Embree requires; the other hit fields are left for Embree.
 #pragma once
 
@@ -19,15 +19,16 @@
 
 namespace fluence::render {
 
-inline void storeRay(RTCRay& r, const Vec3f& origin, const Vec3f& direction, float tNear, float tFar) {
+inline void storeRay(RTCRay& r, const Vec3f& origin, const Vec3f& direction, float tNear, float tFar, float time = 0.0f) {
     static_assert(offsetof(RTCRay, tnear) == 12 && offsetof(RTCRay, time) == 28 && offsetof(RTCRay, flags) == 44);
     _mm_store_ps(&r.org_x, _mm_setr_ps(origin.x, origin.y, origin.z, tNear));
-    _mm_store_ps(&r.dir_x, _mm_setr_ps(direction.x, direction.y, direction.z, 0.0f));
+    _mm_store_ps(&r.dir_x, _mm_setr_ps(direction.x, direction.y, direction.z, time));
     _mm_store_ps(&r.tfar, _mm_castsi128_ps(_mm_setr_epi32(std::bit_cast<int>(tFar), -1, 0, 0)));
 }
 
-inline void storeRayHit(RTCRayHit& h, const Vec3f& origin, const Vec3f& direction, float tNear, float tFar) {
-    storeRay(h.ray, origin, direction, tNear, tFar);
+inline void storeRayHit(RTCRayHit& h, const Vec3f& origin, const Vec3f& direction, float tNear, float tFar,
+                        float time = 0.0f) {
+    storeRay(h.ray, origin, direction, tNear, tFar, time);
     h.hit.geomID = RTC_INVALID_GEOMETRY_ID;
     h.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
 }

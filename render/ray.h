@@ -15,6 +15,9 @@ struct Ray {
     Vec3f direction;  // unit length
     float tMin = 0.0f;
     float tMax = std::numeric_limits<float>::infinity();
+    // When in the shutter interval the ray travels: 0 at its opening, 1 at its close (moving
+    // geometry is met where it is then). A camera ray draws it; every ray of its path keeps it.
+    float time = 0.0f;
 };
 
 // Moves a surface point off its surface along the geometric normal by a few ULPs of its

@@ -16,6 +16,7 @@
 #include "render/lights/triangle_light.h"
 #include "render/mesh_transform.h"
 #include "render/point_geometry.h"
+#include "render/motion_geometry.h"
 #include "volumes/grid_medium.h"
 
 namespace fluence::render {
@@ -31,19 +32,11 @@ void throwOnEmbreeError(RTCDevice device, const char* what) {
     if (code != RTC_ERROR_NONE) throw std::runtime_error(std::string("Embree error ") + std::to_string(int(code)) + " while " + what);
 }
 
-// A triangle geometry holding `positions` and `indices` (3 per triangle).
-RTCGeometry triangleGeometry(RTCDevice device, const std::vector<Vec3f>& positions, const std::vector<std::uint32_t>& indices) {
-    RTCGeometry geom = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
-    auto* vertices = static_cast<float*>(
-        rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), positions.size()));
-    for (std::size_t i = 0; i < positions.size(); ++i) {
-        vertices[3 * i] = positions[i].x;
-        vertices[3 * i + 1] = positions[i].y;
-        vertices[3 * i + 2] = positions[i].z;
-    }
-    auto* index = static_cast<unsigned*>(
-        rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(unsigned), indices.size() / 3));
-    std::copy(indices.begin(), indices.end(), index);
+// A committed triangle geometry holding `positions` and `indices` (3 per triangle), with the time
+// steps of `motion` when it moves (render/motion_geometry.h).
+RTCGeometry triangleGeometry(RTCDevice device, const std::vector<Vec3f>& positions, const std::vector<std::uint32_t>& indices,
+                             const std::vector<std::vector<Vec3f>>& motion = {}) {
+    RTCGeometry geom = newTriangleGeometry(device, positions, motion, indices);
     rtcCommitGeometry(geom);
     return geom;
 }
@@ -148,6 +141,7 @@ struct RenderScene::Mesh {
     std::vector<Vec3f> cornerNormals;
     std::vector<RGB> cornerColors;
     std::vector<CornerPrimvar> primvars;
+    std::vector<std::vector<Vec3f>> motionPositions;  // MeshDesc::motionPositions
     // For each primvar slot of the material's shader, the mesh's primvar (nullptr: none). Points
     // into `primvars`' buffer, which moving a Mesh does not move.
     std::vector<const CornerPrimvar*> slots;
@@ -215,6 +209,7 @@ struct RenderScene::Instance {
     int prototype = 0;
     Matrix4 toWorld, normalToWorld;
     std::uint32_t objectName = kNoName;  // objectNames_
+    std::vector<Matrix4> motionTransforms;  // InstanceDesc::motionTransforms
 };
 
 struct RenderScene::EmbreeState {
@@ -257,21 +252,30 @@ RenderScene::RenderScene(const SceneDescription& scene, std::shared_ptr<texture:
     Vec3f lo(std::numeric_limits<float>::max()), hi(-std::numeric_limits<float>::max());
     for (const std::vector<int>* shapes : {&surfaceMeshes_, &surfacePoints_})
         for (int m : *shapes)
-            if (m >= 0)
+            if (m >= 0) {
                 for (const Vec3f& p : meshes_[m].positions) {
                     lo = vmin(lo, p);
                     hi = vmax(hi, p);
                 }
+                for (const std::vector<Vec3f>& step : meshes_[m].motionPositions)
+                    for (const Vec3f& p : step) {
+                        lo = vmin(lo, p);
+                        hi = vmax(hi, p);
+                    }
+            }
     curves_.growBounds(lo, hi);
     for (const Instance& instance : instances_) {
         const Prototype& proto = prototypes_[instance.prototype];
         if (proto.lo.x > proto.hi.x) continue;
-        for (int corner = 0; corner < 8; ++corner) {
-            Vec3d c(corner & 1 ? proto.hi.x : proto.lo.x, corner & 2 ? proto.hi.y : proto.lo.y, corner & 4 ? proto.hi.z : proto.lo.z);
-            Vec3f p(instance.toWorld.transformPoint(c));
-            lo = vmin(lo, p);
-            hi = vmax(hi, p);
-        }
+        std::vector<Matrix4> placements = instance.motionTransforms;
+        placements.push_back(instance.toWorld);
+        for (const Matrix4& placement : placements)
+            for (int corner = 0; corner < 8; ++corner) {
+                Vec3d c(corner & 1 ? proto.hi.x : proto.lo.x, corner & 2 ? proto.hi.y : proto.lo.y, corner & 4 ? proto.hi.z : proto.lo.z);
+                Vec3f p(placement.transformPoint(c));
+                lo = vmin(lo, p);
+                hi = vmax(hi, p);
+            }
     }
     for (const auto& light : lights_)
         if (std::optional<LightBounds> b = light->bounds()) {
@@ -398,6 +402,7 @@ int RenderScene::storeMesh(const MeshDesc& desc, const std::vector<MaterialDesc>
     for (const CornerPrimvar& p : desc.primvars)
         if (p.components < 1 || p.components > 4 || p.values.size() != triangles * 3 * std::size_t(p.components))
             throw std::invalid_argument(desc.name + ": primvar " + p.name + " needs 1 to 4 values per triangle corner");
+    checkMotionPositions(desc.name, desc.motionPositions, desc.positions.size());
 
     Mesh mesh;
     mesh.name = desc.name;
@@ -406,6 +411,7 @@ int RenderScene::storeMesh(const MeshDesc& desc, const std::vector<MaterialDesc>
     mesh.cornerNormals = desc.cornerNormals;
     mesh.cornerColors = desc.cornerColors;
     mesh.primvars = desc.primvars;
+    mesh.motionPositions = desc.motionPositions;
     if (desc.material >= 0)
         for (const std::string& name : shaders_[desc.material].primvarSlots()) {
             auto found = std::find_if(mesh.primvars.begin(), mesh.primvars.end(),
@@ -435,8 +441,12 @@ void RenderScene::addMesh(const MeshDesc& desc, const std::vector<MaterialDesc>&
                                                               mesh.positions[mesh.indices[3 * t + 1]],
                                                               mesh.positions[mesh.indices[3 * t + 2]], mesh.emission));
         stats_.emissiveTriangles += triangles;
+        if (!mesh.motionPositions.empty()) {  // its triangles are lights, sampled where they are at the frame
+            warnings_.push_back({desc.name, "an emissive mesh does not move during the shutter (rendered without motion blur)"});
+            mesh.motionPositions.clear();
+        }
     }
-    RTCGeometry geom = triangleGeometry(embree_->device, mesh.positions, mesh.indices);
+    RTCGeometry geom = triangleGeometry(embree_->device, mesh.positions, mesh.indices, mesh.motionPositions);
     addPresenceFilter(geom, index);
     rtcAttachGeometryByID(embree_->surfaces, geom, static_cast<unsigned>(surfaceMeshes_.size()));
     rtcReleaseGeometry(geom);
@@ -493,7 +503,12 @@ void RenderScene::addPrototypes(const SceneDescription& scene) {
                 proto.lo = vmin(proto.lo, p);
                 proto.hi = vmax(proto.hi, p);
             }
-            RTCGeometry geom = triangleGeometry(embree_->device, mesh.positions, mesh.indices);
+            for (const std::vector<Vec3f>& step : mesh.motionPositions)
+                for (const Vec3f& p : step) {
+                    proto.lo = vmin(proto.lo, p);
+                    proto.hi = vmax(proto.hi, p);
+                }
+            RTCGeometry geom = triangleGeometry(embree_->device, mesh.positions, mesh.indices, mesh.motionPositions);
             addPresenceFilter(geom, index);
             rtcAttachGeometryByID(rtcScene, geom, static_cast<unsigned>(proto.meshes.size()));
             rtcReleaseGeometry(geom);
@@ -513,10 +528,9 @@ void RenderScene::addPrototypes(const SceneDescription& scene) {
         if (proto.meshes.empty()) continue;
         RTCGeometry geom = rtcNewGeometry(embree_->device, RTC_GEOMETRY_TYPE_INSTANCE);
         rtcSetGeometryInstancedScene(geom, embree_->prototypes[desc.prototype]);
-        float xfm[12];
-        for (int column = 0; column < 4; ++column)
-            for (int row = 0; row < 3; ++row) xfm[3 * column + row] = static_cast<float>(desc.transform.m[row][column]);
-        rtcSetGeometryTransform(geom, 0, RTC_FORMAT_FLOAT3X4_COLUMN_MAJOR, xfm);
+        if (desc.motionTransforms.size() == 1)
+            throw std::invalid_argument(desc.name + ": motion needs at least two time steps");
+        setInstanceTransforms(geom, desc.transform, desc.motionTransforms);
         rtcCommitGeometry(geom);
         rtcAttachGeometryByID(embree_->surfaces, geom, static_cast<unsigned>(surfaceMeshes_.size()));
         rtcReleaseGeometry(geom);
@@ -524,7 +538,7 @@ void RenderScene::addPrototypes(const SceneDescription& scene) {
         surfaceMeshes_.push_back(-1);
         surfaceInstances_.push_back(static_cast<int>(instances_.size()));
         surfacePoints_.push_back(-1);
-        instances_.push_back({desc.prototype, desc.transform, normalMatrixOf(desc.transform), objectName});
+        instances_.push_back({desc.prototype, desc.transform, normalMatrixOf(desc.transform), objectName, desc.motionTransforms});
         stats_.instances += 1;
         for (int m : proto.meshes) stats_.instancedTriangles += meshes_[m].indices.size() / 3;
     }
@@ -555,14 +569,14 @@ std::optional<SurfaceHit> RenderScene::intersect(const Ray& ray) const {
     RTCIntersectContext context;
     rtcInitIntersectContext(&context);
     RTCRayHit surface, shape;
-    storeRayHit(surface, ray.origin, ray.direction, ray.tMin, ray.tMax);
+    storeRayHit(surface, ray.origin, ray.direction, ray.tMin, ray.tMax, ray.time);
     rtcIntersect1(embree_->surfaces, &context, &surface);
 
     shape.hit.geomID = RTC_INVALID_GEOMETRY_ID;
     const bool nearLightShapes = !lightShapeToLight_.empty() && segmentMeetsBox(ray.origin, ray.direction, ray.tMin, surface.ray.tfar,
                                                                                 embree_->lightShapesLo, embree_->lightShapesHi);
     if (nearLightShapes) {
-        storeRayHit(shape, ray.origin, ray.direction, ray.tMin, surface.ray.tfar);
+        storeRayHit(shape, ray.origin, ray.direction, ray.tMin, surface.ray.tfar, ray.time);
         rtcIntersect1(embree_->lightShapes, &context, &shape);
     }
 
@@ -579,19 +593,21 @@ std::optional<SurfaceHit> RenderScene::intersect(const Ray& ray) const {
         return hit;
     }
     if (surface.hit.instID[0] == RTC_INVALID_GEOMETRY_ID)
-        return shadeMesh(surfaceMeshes_[surface.hit.geomID], surface.hit.primID, u, v, t, nullptr);
-    const Instance& instance = instances_[surfaceInstances_[surface.hit.instID[0]]];
-    return shadeMesh(prototypes_[instance.prototype].meshes[surface.hit.geomID], surface.hit.primID, u, v, t, &instance);
+        return shadeMesh(surfaceMeshes_[surface.hit.geomID], surface.hit.primID, u, v, t, -1, ray.time);
+    const int instance = surfaceInstances_[surface.hit.instID[0]];
+    return shadeMesh(prototypes_[instances_[instance].prototype].meshes[surface.hit.geomID], surface.hit.primID, u, v, t, instance,
+                     ray.time);
 }
 
-std::optional<SurfaceHit> RenderScene::shadeMesh(int meshIndex, unsigned primID, float u, float v, float t,
-                                                 const Instance* instance) const {
+std::optional<SurfaceHit> RenderScene::shadeMesh(int meshIndex, unsigned primID, float u, float v, float t, int instanceIndex,
+                                                 float time) const {
     const Mesh& mesh = meshes_[meshIndex];
     std::size_t c = 3 * std::size_t(primID);
-    const Vec3f& p0 = mesh.positions[mesh.indices[c]];
-    const Vec3f& p1 = mesh.positions[mesh.indices[c + 1]];
-    const Vec3f& p2 = mesh.positions[mesh.indices[c + 2]];
+    const Triangle corners = triangleAt(mesh, primID, time);
+    const Vec3f &p0 = corners.p0, &p1 = corners.p1, &p2 = corners.p2;
     float w = 1.0f - u - v;
+    std::optional<Instance> moved;
+    const Instance* instance = instanceAt(instanceIndex, time, moved);
 
     // Returned as is (no copy of the large hit record); the material's parameters are copied into
     // it once (not a conditional expression, which would copy them twice).
@@ -602,7 +618,9 @@ std::optional<SurfaceHit> RenderScene::shadeMesh(int meshIndex, unsigned primID,
         result.emplace(lambertianParams(mesh.diffuse));
     SurfaceHit& hit = *result;
     hit.t = t;
+    hit.time = time;
     hit.mesh = meshIndex;
+    hit.instance = instanceIndex;
     hit.triangle = primID;
     hit.b1 = u;
     hit.b2 = v;
@@ -665,6 +683,7 @@ std::optional<SurfaceHit> RenderScene::shadeLightShape(unsigned geomID, const Ra
     std::optional<SurfaceHit> result(std::in_place);
     SurfaceHit& hit = *result;
     hit.t = t;
+    hit.time = ray.time;
     hit.point = ray.origin + ray.direction * t;
     hit.geometricNormal = lengthSquared(ng) > 0.0f ? normalize(ng) : -ray.direction;
     hit.shadingNormal = hit.geometricNormal;
@@ -674,13 +693,42 @@ std::optional<SurfaceHit> RenderScene::shadeLightShape(unsigned geomID, const Ra
     return result;
 }
 
-bool RenderScene::occluded(const Vec3f& origin, const Vec3f& direction, float distance) const {
+bool RenderScene::occluded(const Vec3f& origin, const Vec3f& direction, float distance, float time) const {
     RTCIntersectContext context;
     rtcInitIntersectContext(&context);
     RTCRay r;
-    storeRay(r, origin, direction, 0.0f, distance * (1.0f - kShadowRayShortening));
+    storeRay(r, origin, direction, 0.0f, distance * (1.0f - kShadowRayShortening), time);
     rtcOccluded1(embree_->surfaces, &context, &r);
     return r.tfar < 0.0f;
+}
+
+}  // namespace fluence::render
+
+namespace fluence::render {
+
+RenderScene::Triangle RenderScene::triangleAt(const Mesh& mesh, unsigned triangle, float time) const {
+    const std::uint32_t* corner = &mesh.indices[3 * std::size_t(triangle)];
+    if (mesh.motionPositions.empty()) return {mesh.positions[corner[0]], mesh.positions[corner[1]], mesh.positions[corner[2]]};
+    return {positionAt(mesh.motionPositions, corner[0], time), positionAt(mesh.motionPositions, corner[1], time),
+            positionAt(mesh.motionPositions, corner[2], time)};
+}
+
+const RenderScene::Instance* RenderScene::instanceAt(int index, float time, std::optional<Instance>& moved) const {
+    if (index < 0) return nullptr;
+    const Instance& instance = instances_[static_cast<std::size_t>(index)];
+    if (instance.motionTransforms.empty()) return &instance;
+    const Matrix4 toWorld = transformAt(instance.motionTransforms, time);
+    moved.emplace(Instance{instance.prototype, toWorld, normalMatrixOf(toWorld), instance.objectName, {}});
+    return &*moved;
+}
+
+Vec3f RenderScene::pointAt(const SurfaceHit& hit, float time) const {
+    if (hit.mesh < 0) return hit.point;
+    const Triangle corners = triangleAt(meshes_[static_cast<std::size_t>(hit.mesh)], hit.triangle, time);
+    const Vec3f p = corners.p0 * (1.0f - hit.b1 - hit.b2) + corners.p1 * hit.b1 + corners.p2 * hit.b2;
+    std::optional<Instance> moved;
+    const Instance* instance = instanceAt(hit.instance, time, moved);
+    return instance ? Vec3f(instance->toWorld.transformPoint(Vec3d(p))) : p;
 }
 
 }  // namespace fluence::render

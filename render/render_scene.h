@@ -70,6 +70,7 @@ struct SurfaceHit {
     explicit SurfaceHit(const MaterialParams& params) : material(params) {}
 
     float t = 0.0f;
+    float time = 0.0f;  // the ray's time in the shutter interval (render::Ray::time): rays leaving the hit keep it
     Vec3f point;
     Vec3f geometricNormal;  // unit; on the same side as shadingNormal
     Vec3f shadingNormal;    // unit
@@ -80,6 +81,7 @@ struct SurfaceHit {
     // Where on a mesh the hit is, for RenderScene::primvarAt: the mesh, its triangle and the
     // barycentric weights of the triangle's second and third corners (mesh -1: a light shape).
     int mesh = -1;
+    int instance = -1;  // the instance placing the mesh, -1 for a world mesh (RenderScene's own numbering)
     unsigned triangle = 0;
     float b1 = 0.0f, b2 = 0.0f;
     // The material's parameters at this point (a mesh without a material: Lambertian, its
@@ -113,8 +115,12 @@ public:
     RenderScene& operator=(const RenderScene&) = delete;
 
     std::optional<SurfaceHit> intersect(const Ray& ray) const;
-    // True when a surface blocks the segment from `origin` along unit `direction` for `distance`.
-    bool occluded(const Vec3f& origin, const Vec3f& direction, float distance) const;
+    // True when a surface blocks the segment from `origin` along unit `direction` for `distance`,
+    // at `time` in the shutter interval (render::Ray::time).
+    bool occluded(const Vec3f& origin, const Vec3f& direction, float distance, float time = 0.0f) const;
+    // Where the surface point of `hit` is at `time` in the shutter interval: the same point of the
+    // same triangle, moved with its mesh and instance (the hit's own point for a light shape).
+    Vec3f pointAt(const SurfaceHit& hit, float time) const;
 
     std::size_t lightCount() const { return lights_.size(); }
     const Light& light(std::size_t i) const { return *lights_[i]; }
@@ -196,7 +202,15 @@ private:
     // The hit on triangle primID of mesh `mesh` at barycentrics (u, v), in world space
     // (`instance` places a prototype mesh).
     // (Both return the optional intersect() returns, built in place.)
-    std::optional<SurfaceHit> shadeMesh(int mesh, unsigned primID, float u, float v, float t, const Instance* instance) const;
+    // `instance`: into instances_, -1 for a world mesh; `time`: the ray's (render::Ray::time).
+    std::optional<SurfaceHit> shadeMesh(int mesh, unsigned primID, float u, float v, float t, int instance, float time) const;
+    // A triangle's corners, and an instance's placement, at a ray's time (render/motion_geometry.h).
+    struct Triangle {
+        Vec3f p0, p1, p2;
+    };
+    Triangle triangleAt(const Mesh& mesh, unsigned triangle, float time) const;
+    // The instance at `index` (nullptr for -1), or, when it moves, its copy placed at `time` in `moved`.
+    const Instance* instanceAt(int index, float time, std::optional<Instance>& moved) const;
     std::optional<SurfaceHit> shadeLightShape(unsigned geomID, const Ray& ray, float t, const Vec3f& ng) const;
 
     struct EmbreeState;

@@ -192,6 +192,10 @@ struct MeshDesc {
     std::vector<RGB> cornerColors;        // empty, or 3 per triangle: diffuse colour (displayColor)
     int material = -1;                    // index into SceneDescription::materials, -1 = default
     std::vector<CornerPrimvar> primvars;  // those the mesh's material reads (st, ...)
+    // Deformation blur: the positions at evenly spaced times over the shutter, the first at its
+    // opening and the last at its close (render/motion_geometry.h), each indexed like `positions`;
+    // empty: the mesh does not move while the shutter is open. `positions` stays the frame's.
+    std::vector<std::vector<Vec3f>> motionPositions{};
 };
 
 enum class LightType { Rect, Disk, Sphere, Cylinder, Distant, Dome };
@@ -279,6 +283,10 @@ struct CameraDesc {
     float fStop = 0.0f, focusDistance = 0.0f;
     int apertureBlades = 0;
     float apertureRotation = 0.0f;
+    // UsdGeomCamera shutter:open and shutter:close, in time codes relative to the frame; equal:
+    // no motion blur. The render core only needs to know that a ray's time 0 is the opening and
+    // 1 the close (render::Ray::time); the delegate samples the motion over this interval.
+    double shutterOpen = 0.0, shutterClose = 0.0;
 };
 
 // Geometry shared by instances: its meshes in the prototype's own space, stored once.
@@ -294,6 +302,9 @@ struct InstanceDesc {
     // What names its hits: the instance prim's path, or a PointInstancer's path and the instance's
     // id, "/World/trees[12]" ("": unnamed).
     std::string name;
+    // Transformation blur: prototype-to-world at evenly spaced times over the shutter, as
+    // MeshDesc::motionPositions; empty: the instance does not move. `transform` stays the frame's.
+    std::vector<Matrix4> motionTransforms{};
 };
 
 struct SceneDescription {

@@ -53,16 +53,22 @@ inline std::unique_ptr<usd::Stage> stageFrom(const std::string& usda) {
         usd::parseUsdaString(usda.starts_with("#") ? usda : "#usda 1.0\n" + usda, "test.usda"));
 }
 
+// The options the tests populate with: colours kept as authored, warnings collected in `p`.
+inline DelegateOptions testOptions(Populated& p) {
+    DelegateOptions options;
+    options.convertColor = [](const RGB& c, const std::string&) { return c; };
+    options.warn = [&p](const std::string& path, const std::string& message) { p.warnings.push_back(path + ": " + message); };
+    return options;
+}
+
 // Populates `usda` (a Camera is added unless the text starts with "#usda"), rendering through
 // `cameraPath` when given; `strict`: DelegateOptions::strict (a malformed prim raises SceneError).
 inline Populated populateWith(const std::string& usda, const std::string& cameraPath, bool strict) {
     Populated p;
     p.stage = stageFrom(usda.starts_with("#") ? usda : kCamera + usda);
-    DelegateOptions options;
+    DelegateOptions options = testOptions(p);
     options.cameraPath = cameraPath;
     options.strict = strict;
-    options.convertColor = [](const RGB& c, const std::string&) { return c; };
-    options.warn = [&p](const std::string& path, const std::string& message) { p.warnings.push_back(path + ": " + message); };
     p.result = populateScene(*p.stage, options);
     return p;
 }

@@ -1,0 +1,154 @@
+#include "delegate/motion_samples.h"
+
+#include <algorithm>
+#include <cmath>
+#include <set>
+
+#include "delegate/scene_delegate.h"
+#include "scene/layer_stack.h"
+
+namespace fluence::delegate {
+
+namespace {
+
+// Whether the attribute `name` of `prim` has more than one time sample (its value changes).
+bool timeSampled(const usd::PrimSpec& prim, const char* name) {
+    const usd::AttributeSpec* attribute = prim.attribute(name);
+    return attribute && attribute->timeSamples.size() > 1;
+}
+
+// The seconds from `from` to `to`, in time codes of the stage.
+double secondsBetween(const usd::Stage& stage, double from, double to) {
+    return (to - from) / usd::detail::timeCodesPerSecond(stage.rootLayer());
+}
+
+// Vectors of `name` read at `time`, when it holds `count` of them.
+std::optional<std::vector<double>> vectorsOf(const usd::PrimSpec& prim, double time, const char* name, std::size_t count) {
+    std::optional<std::vector<double>> values = PrimReader(prim, time).numbers(name, 3);
+    if (!values || values->size() != 3 * count) return std::nullopt;
+    return values;
+}
+
+// Whether `b` holds other values than `a` (both the same size).
+bool moved(const std::vector<Vec3f>& a, const std::vector<Vec3f>& b) { return !std::equal(a.begin(), a.end(), b.begin()); }
+
+// Whether two descriptions of a mesh have the same triangles.
+bool sameTopology(const render::MeshDesc& a, const render::MeshDesc& b) {
+    return a.name == b.name && a.positions.size() == b.positions.size() && a.indices == b.indices;
+}
+
+}  // namespace
+
+std::vector<double> motionStepTimes(const usd::Stage& stage, double frame, double open, double close) {
+    const double lo = frame + open, hi = frame + close, span = hi - lo;
+    std::set<double> inside;  // the authored sample times strictly inside the shutter
+    stage.traverse([&](const usd::PrimSpec& prim) {
+        for (const usd::AttributeSpec& attribute : prim.attributes)
+            for (const auto& sample : attribute.timeSamples)
+                if (sample.first > lo && sample.first < hi) inside.insert(sample.first);
+        return true;
+    });
+    int segments = 1;
+    auto onSteps = [&](int n) {
+        return std::all_of(inside.begin(), inside.end(), [&](double t) {
+            const double x = (t - lo) / span * n;
+            return std::abs(x - std::round(x)) < 1e-6 * n;
+        });
+    };
+    while (segments < kMaxMotionSteps - 1 && !onSteps(segments)) ++segments;
+    std::vector<double> times;
+    for (int k = 0; k <= segments; ++k) times.push_back(lo + span * k / segments);
+    times.back() = hi;
+    return times;
+}
+
+void moveByVelocities(const usd::Stage& stage, const usd::PrimSpec& prim, double time, double velocityFrame,
+                      const Matrix4& toWorld, std::vector<Vec3f>& positions) {
+    if (std::isnan(velocityFrame) || timeSampled(prim, "points")) return;
+    const std::optional<std::vector<double>> velocities = vectorsOf(prim, velocityFrame, "velocities", positions.size());
+    if (!velocities) return;
+    const std::optional<std::vector<double>> accelerations = vectorsOf(prim, velocityFrame, "accelerations", positions.size());
+    const double dt = secondsBetween(stage, velocityFrame, time);
+    for (std::size_t i = 0; i < positions.size(); ++i) {
+        Vec3d step = Vec3d((*velocities)[3 * i], (*velocities)[3 * i + 1], (*velocities)[3 * i + 2]) * dt;
+        if (accelerations)
+            step = step + Vec3d((*accelerations)[3 * i], (*accelerations)[3 * i + 1], (*accelerations)[3 * i + 2]) * (0.5 * dt * dt);
+        positions[i] = Vec3f(Vec3d(positions[i]) + toWorld.transformVector(step));
+    }
+}
+
+std::optional<InstanceVelocityMotion> instanceVelocityMotion(const usd::Stage& stage, const usd::PrimSpec& instancer, double time,
+                                                             double velocityFrame, std::size_t count) {
+    if (std::isnan(velocityFrame) || timeSampled(instancer, "positions")) return std::nullopt;
+    const std::optional<std::vector<double>> velocities = vectorsOf(instancer, velocityFrame, "velocities", count);
+    const std::optional<std::vector<double>> angular = vectorsOf(instancer, velocityFrame, "angularVelocities", count);
+    if (!velocities && !angular) return std::nullopt;
+    const std::optional<std::vector<double>> accelerations = vectorsOf(instancer, velocityFrame, "accelerations", count);
+    const double dt = secondsBetween(stage, velocityFrame, time);
+    InstanceVelocityMotion motion;
+    for (std::size_t i = 0; velocities && i < count; ++i) {
+        Vec3d offset = Vec3d((*velocities)[3 * i], (*velocities)[3 * i + 1], (*velocities)[3 * i + 2]) * dt;
+        if (accelerations)
+            offset = offset + Vec3d((*accelerations)[3 * i], (*accelerations)[3 * i + 1], (*accelerations)[3 * i + 2]) * (0.5 * dt * dt);
+        motion.offsets.push_back(offset);
+    }
+    for (std::size_t i = 0; angular && i < count; ++i) {
+        const Vec3d w((*angular)[3 * i], (*angular)[3 * i + 1], (*angular)[3 * i + 2]);
+        const double speed = length(w);  // degrees per second
+        if (!(speed > 0.0)) {
+            motion.rotations.push_back(Matrix4::identity());
+            continue;
+        }
+        const double half = 0.5 * speed * dt * M_PI / 180.0;
+        const Vec3d axis = w / speed * std::sin(half);
+        motion.rotations.push_back(Matrix4::fromQuaternion(std::cos(half), axis.x, axis.y, axis.z));
+    }
+    return motion;
+}
+
+void addMotion(usd::Stage& stage, const DelegateOptions& options, const std::string& cameraPath, const render::CameraDesc& camera,
+               render::SceneDescription& scene) {
+    if (std::isnan(options.time) || !(camera.shutterClose > camera.shutterOpen)) return;
+    const std::vector<double> times = motionStepTimes(stage, options.time, camera.shutterOpen, camera.shutterClose);
+    std::vector<std::vector<std::vector<Vec3f>>> meshSteps(scene.meshes.size());
+    std::vector<std::vector<Matrix4>> instanceSteps(scene.instances.size());
+    std::vector<bool> meshStill(scene.meshes.size(), false), instanceStill(scene.instances.size(), false);
+    for (double time : times) {
+        DelegateOptions at = options;
+        at.time = time;
+        at.velocityFrame = options.time;
+        at.motionBlur = false;
+        at.cameraPath = cameraPath;
+        at.defaultLight = false;
+        at.warn = [](const std::string&, const std::string&) {};  // said once, at the frame
+        const render::SceneDescription step = populateScene(stage, at).scene;
+        for (std::size_t m = 0; m < scene.meshes.size(); ++m) {
+            const bool same = m < step.meshes.size() && sameTopology(scene.meshes[m], step.meshes[m]);
+            if (!same && !meshStill[m])
+                options.warn(scene.meshes[m].name, "its triangles change during the shutter; rendered without motion blur");
+            meshStill[m] = meshStill[m] || !same;
+            if (!meshStill[m]) meshSteps[m].push_back(step.meshes[m].positions);
+        }
+        for (std::size_t i = 0; i < scene.instances.size(); ++i) {
+            const bool same = i < step.instances.size() && step.instances[i].name == scene.instances[i].name &&
+                              step.instances[i].prototype == scene.instances[i].prototype;
+            if (!same && !instanceStill[i])
+                options.warn(scene.instances[i].name, "the instances change during the shutter; rendered without motion blur");
+            instanceStill[i] = instanceStill[i] || !same;
+            if (!instanceStill[i]) instanceSteps[i].push_back(step.instances[i].transform);
+        }
+    }
+    for (std::size_t m = 0; m < scene.meshes.size(); ++m) {
+        std::vector<std::vector<Vec3f>>& steps = meshSteps[m];
+        if (meshStill[m] || std::none_of(steps.begin(), steps.end(), [&](const auto& s) { return moved(steps.front(), s); })) continue;
+        scene.meshes[m].motionPositions = std::move(steps);
+    }
+    for (std::size_t i = 0; i < scene.instances.size(); ++i) {
+        std::vector<Matrix4>& steps = instanceSteps[i];
+        if (instanceStill[i] || std::all_of(steps.begin(), steps.end(), [&](const Matrix4& s) { return s.m == steps.front().m; }))
+            continue;
+        scene.instances[i].motionTransforms = std::move(steps);
+    }
+}
+
+}  // namespace fluence::delegate

@@ -1,0 +1,64 @@
+// Motion blur read from the stage: what moves while the camera's shutter is open.
+//
+// The shutter is the camera's `shutter:open` and `shutter:close`, time codes relative to the
+// frame (UsdGeomCamera; both 0 by default: an instant, no blur). Motion is sampled at evenly
+// spaced steps over it, the first at its opening and the last at its close (Embree interpolates
+// linearly between steps, render/motion_geometry.h): as few steps as put one on every time sample
+// authored strictly inside the shutter, so several segments follow a motion keyed inside it, and
+// at most kMaxMotionSteps. The scene is described at each step by a delegate of its own, and
+// what moved between steps is handed to the render core:
+//   - a world mesh whose positions differ between steps (a time-sampled xform of it or of an
+//     ancestor, time-sampled `points`, skinned points) gets MeshDesc::motionPositions, provided
+//     its triangles stay the same at every step (else it renders still, with a warning);
+//   - an instance (native, or of a PointInstancer) whose transform differs gets
+//     InstanceDesc::motionTransforms;
+//   - points that are not time-sampled move by their `velocities` (units per second) and
+//     `accelerations`, as UsdGeomPointBased::ComputePointsAtTime moves them, and PointInstancer
+//     instances by `velocities` and `angularVelocities` (degrees per second) (applied at sync
+//     when DelegateOptions::velocityFrame is set: moveByVelocities, instanceVelocityMotion).
+// The camera and the lights stay where they are at the frame; so do emissive meshes (their
+// triangles are lights) and meshes inside prototypes.
+#pragma once
+
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/matrix.h"
+#include "core/vec.h"
+#include "delegate/prim_reader.h"
+#include "render/scene_description.h"
+#include "scene/stage.h"
+
+namespace fluence::delegate {
+
+struct DelegateOptions;
+
+inline constexpr int kMaxMotionSteps = 33;
+
+// The time codes of the motion steps over [frame + open, frame + close] (see above).
+std::vector<double> motionStepTimes(const usd::Stage& stage, double frame, double open, double close);
+
+// Moves a point-based prim's `positions` (one per point, already through `toWorld`) from the
+// `velocityFrame` to `time` by its `velocities` and `accelerations` read at the frame, when its
+// `points` are not time-sampled and the velocities have one entry per point (else nothing moves).
+void moveByVelocities(const usd::Stage& stage, const usd::PrimSpec& prim, double time, double velocityFrame,
+                      const Matrix4& toWorld, std::vector<Vec3f>& positions);
+
+// A PointInstancer's instances moved from `velocityFrame` to `time`: for instance i, the offset
+// of its position and the rotation applied before its orientation. Nullopt when `positions` are
+// time-sampled or no velocities are authored.
+struct InstanceVelocityMotion {
+    std::vector<Vec3d> offsets;       // empty: no `velocities`
+    std::vector<Matrix4> rotations;   // empty: no `angularVelocities`
+};
+std::optional<InstanceVelocityMotion> instanceVelocityMotion(const usd::Stage& stage, const usd::PrimSpec& instancer, double time,
+                                                             double velocityFrame, std::size_t count);
+
+// Adds the motion over `camera`'s shutter to `scene`, described by `options` at the frame (see
+// above). Warns through options.warn what cannot move.
+void addMotion(usd::Stage& stage, const DelegateOptions& options, const std::string& cameraPath, const render::CameraDesc& camera,
+               render::SceneDescription& scene);
+
+}  // namespace fluence::delegate

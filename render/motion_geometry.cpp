@@ -1,0 +1,88 @@
+#include "render/motion_geometry.h"
+
+#include <embree3/rtcore.h>
+
+#include <algorithm>
+#include <stdexcept>
+#include <string>
+
+namespace fluence::render {
+
+MotionSegment motionSegment(std::size_t steps, float time) {
+    const float x = std::clamp(time, 0.0f, 1.0f) * static_cast<float>(steps - 1);
+    const std::size_t step = std::min(static_cast<std::size_t>(x), steps - 2);
+    return {step, x - static_cast<float>(step)};
+}
+
+Vec3f positionAt(const std::vector<std::vector<Vec3f>>& steps, std::uint32_t index, float time) {
+    const MotionSegment s = motionSegment(steps.size(), time);
+    const Vec3f& a = steps[s.step][index];
+    const Vec3f& b = steps[s.step + 1][index];
+    return a * (1.0f - s.fraction) + b * s.fraction;
+}
+
+Matrix4 transformAt(const std::vector<Matrix4>& steps, float time) {
+    const MotionSegment s = motionSegment(steps.size(), time);
+    const double f = s.fraction;
+    Matrix4 m = steps[s.step];
+    for (int row = 0; row < 4; ++row)
+        for (int column = 0; column < 4; ++column)
+            m.m[row][column] = (1.0 - f) * m.m[row][column] + f * steps[s.step + 1].m[row][column];
+    return m;
+}
+
+namespace {
+
+void fillVertexBuffer(RTCGeometry geom, unsigned slot, const std::vector<Vec3f>& positions) {
+    auto* v = static_cast<float*>(
+        rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, slot, RTC_FORMAT_FLOAT3, 3 * sizeof(float), positions.size()));
+    for (std::size_t i = 0; i < positions.size(); ++i) {
+        v[3 * i] = positions[i].x;
+        v[3 * i + 1] = positions[i].y;
+        v[3 * i + 2] = positions[i].z;
+    }
+}
+
+void setTransform(RTCGeometry instance, unsigned step, const Matrix4& transform) {
+    float xfm[12];
+    for (int column = 0; column < 4; ++column)
+        for (int row = 0; row < 3; ++row) xfm[3 * column + row] = static_cast<float>(transform.m[row][column]);
+    rtcSetGeometryTransform(instance, step, RTC_FORMAT_FLOAT3X4_COLUMN_MAJOR, xfm);
+}
+
+}  // namespace
+
+RTCGeometryTy* newTriangleGeometry(RTCDeviceTy* device, const std::vector<Vec3f>& positions,
+                                   const std::vector<std::vector<Vec3f>>& motion, const std::vector<std::uint32_t>& indices) {
+    RTCGeometry geom = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
+    if (motion.empty()) {
+        fillVertexBuffer(geom, 0, positions);
+    } else {
+        rtcSetGeometryTimeStepCount(geom, static_cast<unsigned>(motion.size()));
+        for (std::size_t step = 0; step < motion.size(); ++step) fillVertexBuffer(geom, static_cast<unsigned>(step), motion[step]);
+    }
+    auto* index = static_cast<unsigned*>(
+        rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(unsigned), indices.size() / 3));
+    std::copy(indices.begin(), indices.end(), index);
+    return geom;
+}
+
+void setInstanceTransforms(RTCGeometryTy* instance, const Matrix4& transform, const std::vector<Matrix4>& motion) {
+    if (motion.empty()) {
+        setTransform(instance, 0, transform);
+        return;
+    }
+    rtcSetGeometryTimeStepCount(instance, static_cast<unsigned>(motion.size()));
+    for (std::size_t step = 0; step < motion.size(); ++step) setTransform(instance, static_cast<unsigned>(step), motion[step]);
+}
+
+void checkMotionPositions(const std::string& name, const std::vector<std::vector<Vec3f>>& motion, std::size_t vertices) {
+    if (motion.empty()) return;
+    if (motion.size() < 2) throw std::invalid_argument(name + ": motion needs at least two time steps");
+    for (const std::vector<Vec3f>& step : motion)
+        if (step.size() != vertices)
+            throw std::invalid_argument(name + ": every motion time step needs one position per vertex (" +
+                                        std::to_string(vertices) + ")");
+}
+
+}  // namespace fluence::render
