@@ -588,7 +588,7 @@ std::optional<SurfaceHit> RenderScene::intersect(const Ray& ray) const {
         return curves_.shade(surface.hit.geomID, surface.hit.primID, u, ray, t,
                              Vec3f(surface.hit.Ng_x, surface.hit.Ng_y, surface.hit.Ng_z));
     if (surface.hit.instID[0] == RTC_INVALID_GEOMETRY_ID && surfacePoints_[surface.hit.geomID] >= 0) {
-        std::optional<SurfaceHit> hit = shadeMesh(surfacePoints_[surface.hit.geomID], surface.hit.primID, 0.0f, 0.0f, t, nullptr);
+        std::optional<SurfaceHit> hit = shadeMesh(surfacePoints_[surface.hit.geomID], surface.hit.primID, 0.0f, 0.0f, t, -1, ray.time);
         placeOnPoint(*hit, ray, t, Vec3f(surface.hit.Ng_x, surface.hit.Ng_y, surface.hit.Ng_z));
         return hit;
     }

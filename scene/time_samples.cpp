@@ -8,8 +8,11 @@ namespace fluence::usd {
 namespace {
 
 bool interpolates(const Value& a, const Value& b) {
-    return a.isNumeric() && b.isNumeric() && a.numbers.size() == b.numbers.size() &&
-           a.typeName.find("int") == std::string::npos && a.typeName != "bool";
+    // Integers and bools are held; every floating-point type interpolates (point3f[] among them:
+    // its name holds "int", which once held every point array).
+    const std::string scalar = a.typeName.substr(0, a.typeName.find('['));
+    const bool integral = scalar.starts_with("int") || scalar.starts_with("uint") || scalar == "uchar" || scalar == "bool";
+    return a.isNumeric() && b.isNumeric() && a.numbers.size() == b.numbers.size() && !integral;
 }
 
 }  // namespace

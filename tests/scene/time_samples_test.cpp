@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <optional>
+#include <vector>
 
 #include "scene/stage.h"
 #include "scene/usda_parser.h"
@@ -56,6 +57,27 @@ TEST(TimeSamples, SamplesAtInfiniteTimesHoldTheFiniteNeighbour) {
     EXPECT_EQ(at(stage, "x", 0.0), 40.0) << "between -inf and 4";
     EXPECT_EQ(at(stage, "x", 5.0), 50.0);
     EXPECT_EQ(at(stage, "x", 1e300), 60.0) << "between 6 and inf";
+}
+
+TEST(TimeSamples, FloatingPointTypesInterpolateAndIntegersAreHeld) {
+    // Sdf interpolates every floating-point type linearly (point3f[] too, whose name holds "int")
+    // and holds integers and bools.
+    Stage stage(parseUsdaString("#usda 1.0\ndef Xform \"X\"\n{\n"
+                                "    point3f[] p.timeSamples = {0: [(0, 0, 0), (1, 2, 3)], 2: [(2, 0, 0), (3, 2, 5)]}\n"
+                                "    int[] i.timeSamples = {0: [0, 10], 2: [2, 20]}\n"
+                                "    uint u.timeSamples = {0: 0, 2: 2}\n"
+                                "    int64 l.timeSamples = {0: 0, 2: 2}\n"
+                                "    bool b.timeSamples = {0: 0, 2: 1}\n"
+                                "    color3f c.timeSamples = {0: (0, 0, 0), 2: (1, 1, 1)}\n}\n",
+                                "t.usda"));
+    auto numbers = [&](const char* name) {
+        const NumberArray n = Stage::resolve(*stage.prim("/X")->attribute(name), 1.0)->numbers;
+        return std::vector<double>(n.begin(), n.end());
+    };
+    EXPECT_EQ(numbers("p"), (std::vector<double>{1, 0, 0, 2, 2, 4}));
+    EXPECT_EQ(numbers("c"), (std::vector<double>{0.5, 0.5, 0.5}));
+    EXPECT_EQ(numbers("i"), (std::vector<double>{0, 10}));
+    for (const char* held : {"u", "l", "b"}) EXPECT_EQ(numbers(held), (std::vector<double>{0})) << held;
 }
 
 }  // namespace
