@@ -2,7 +2,9 @@
 //
 // Built once from a SceneDescription (the Embree scenes are committed at the end of the
 // constructor and never edited while rendering). Two top-level Embree scenes are kept: the
-// surfaces (meshes and instances) and the light shapes (rect lights as two triangles, sphere
+// surfaces (meshes, instances, Embree's native curves for BasisCurves and NurbsCurves,
+// render/curve_geometry.h, and Embree's points for UsdGeomPoints, render/point_geometry.h) and the
+// light shapes (rect lights as two triangles, sphere
 // lights as an Embree sphere, disk and cylinder lights as user geometry intersected exactly;
 // point, line and infinite lights have no shape). Camera and BSDF rays look in both (in the light
 // shapes only when the ray's segment up to the surface hit meets their bounds: most rays skip that
@@ -29,6 +31,10 @@
 // cannot be read raises std::invalid_argument naming the volume, the file and the grid. A
 // material with an interior (MaterialDesc::interior) fills its closed meshes with a
 // media::HomogeneousMedium; inside one, rays cross it and the volumes together (mediumInside).
+//
+// Motion blur: a mesh with MeshDesc::motionPositions and an instance with motionTransforms get
+// Embree time steps (render/motion_geometry.h); rays are intersected at Ray::time and hits shaded
+// where the geometry is at that time.
 //
 // Opacity: a mesh whose material may be less than opaque gets Embree filter functions, so every
 // ray (camera, BSDF and shadow) passes through its holes. A cut-out (opacityThreshold > 0) is a
