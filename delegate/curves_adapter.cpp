@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "delegate/primvar.h"
+#include "render/mesh_transform.h"
 
 namespace fluence::delegate {
 
@@ -347,13 +348,7 @@ render::CurvesDesc curvesFromPrim(const PrimReader& prim, const ColorConverter& 
 }
 
 render::CurvesDesc transformCurves(render::CurvesDesc curves, const Matrix4& toWorld) {
-    const auto scale = static_cast<float>(std::cbrt(std::abs(toWorld.determinant3x3())));
-    for (Vec3f& p : curves.points) p = Vec3f(toWorld.transformPoint(Vec3d(p)));
-    for (float& r : curves.radii) r *= scale;
-    for (Vec3f& n : curves.normals) {
-        const Vec3d world = toWorld.transformNormal(Vec3d(n));
-        n = length(world) > 0.0 ? Vec3f(world / length(world)) : n;
-    }
+    render::transformPrimitives(curves.points, curves.radii, curves.normals, toWorld);
     return curves;
 }
 

@@ -4,6 +4,7 @@
 #include <optional>
 
 #include "delegate/primvar.h"
+#include "render/mesh_transform.h"
 
 namespace fluence::delegate {
 
@@ -76,13 +77,7 @@ render::PointsDesc pointsFromPrim(const PrimReader& prim, const std::function<RG
 }
 
 render::PointsDesc pointsToWorld(render::PointsDesc p, const Matrix4& toWorld) {
-    const float scale = static_cast<float>(std::cbrt(std::abs(toWorld.determinant3x3())));
-    for (Vec3f& x : p.positions) x = Vec3f(toWorld.transformPoint(Vec3d(x)));
-    for (float& r : p.radii) r *= scale;
-    for (Vec3f& normal : p.normals) {
-        const Vec3d w = toWorld.transformNormal(Vec3d(normal));
-        normal = length(w) > 0.0 ? Vec3f(w / length(w)) : normal;
-    }
+    render::transformPrimitives(p.positions, p.radii, p.normals, toWorld);
     return p;
 }
 

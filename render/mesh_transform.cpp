@@ -1,5 +1,6 @@
 #include "render/mesh_transform.h"
 
+#include <cmath>
 #include <utility>
 
 namespace fluence::render {
@@ -19,6 +20,17 @@ MeshDesc transformMesh(const MeshDesc& mesh, const Matrix4& transform) {
             if (!out.cornerColors.empty()) std::swap(out.cornerColors[c + 1], out.cornerColors[c + 2]);
         }
     return out;
+}
+
+void transformPrimitives(std::vector<Vec3f>& points, std::vector<float>& radii, std::vector<Vec3f>& normals,
+                         const Matrix4& transform) {
+    const auto scale = static_cast<float>(std::cbrt(std::abs(transform.determinant3x3())));
+    for (Vec3f& p : points) p = Vec3f(transform.transformPoint(Vec3d(p)));
+    for (float& r : radii) r *= scale;
+    for (Vec3f& n : normals) {
+        const Vec3d world = transform.transformNormal(Vec3d(n));
+        n = length(world) > 0.0 ? Vec3f(world / length(world)) : n;
+    }
 }
 
 }  // namespace fluence::render

@@ -287,9 +287,9 @@ TEST_F(RenderProductsCli, AOneComponentSourceFillsEveryChannelOfAWiderDataType) 
 }
 
 TEST_F(RenderProductsCli, AVarFluenceCannotProduceIsASceneErrorNamingIt) {
-    RunResult r = render(scene("</Render/P>", product("P", "p.exr", "</Render/Vars/motion>"), var("motion", "motionVector", "raw", "float3")));
+    RunResult r = render(scene("</Render/P>", product("P", "p.exr", "</Render/Vars/curv>"), var("curv", "curvature", "raw", "float3")));
     EXPECT_EQ(r.exitCode, 3);
-    EXPECT_NE(r.err.find("RenderVar /Render/Vars/motion: raw sourceName 'motionVector'"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("RenderVar /Render/Vars/curv: raw sourceName 'curvature'"), std::string::npos) << r.err;
     EXPECT_FALSE(fs::exists(tmp_.file("p.exr")));
 
     r = render(scene("</Render/P>", product("P", "p.exr", "</Render/Vars/n>"), var("n", "N", "raw", "float")));
