@@ -18,7 +18,7 @@ FLUENCE := $(BUILD_DIR)/apps/fluence
 # When make started, for `make render`'s total time (packages, configure, build and render).
 MAKE_START := $(shell date +%s)
 
-.PHONY: all deps configure build render test clean
+.PHONY: all deps configure build render test clean format format-check
 
 all: build
 
@@ -51,7 +51,7 @@ render: configure
 SANITIZE_APPS_EXCLUDE ?= ^(BenchStability|StabilityScenes|CheckpointCli|TilesCli|Farm|Signals/InterruptCli|RenderProductsCli|CryptomatteCli|LightPathCli|PathClassCli|FramesCli)
 SANITIZER_TESTS = SANITIZE_BUILD_DIR=$(BUILD_DIR)/asan JOBS=$(JOBS) WERROR=$(WERROR) \
 	SANITIZE_ARGS='$(if $(SANITIZE_APPS_EXCLUDE),-E $(SANITIZE_APPS_EXCLUDE))' bash scripts/sanitizer_tests.sh
-test: build
+test: format-check build
 	cd $(BUILD_DIR) && ctest --output-on-failure -j $(JOBS)
 	FUZZ_BUILD_DIR=$(BUILD_DIR)/fuzz bash scripts/fuzz_smoke.sh 60
 	$(SANITIZER_TESTS)
@@ -59,6 +59,15 @@ test: build
 .PHONY: test-sanitized
 test-sanitized: deps
 	$(SANITIZER_TESTS)
+
+# The tree follows .clang-format (clang-format 14). `make format` rewrites every tracked .cpp and .h
+# in place; `make format-check` (run first by `make test`) names the files that differ and fails.
+CLANG_FORMAT ?= clang-format-14
+format: deps
+	git ls-files '*.cpp' '*.h' | xargs $(CLANG_FORMAT) -i
+format-check: deps
+	@git ls-files '*.cpp' '*.h' | xargs $(CLANG_FORMAT) --dry-run -Werror \
+		|| { echo "format-check: the files above differ from .clang-format; run make format" >&2; exit 1; }
 
 # Fuzzing the USDA reader for longer (fuzz/README.md): make fuzz FUZZ_SECONDS=3600. The working
 # corpus is kept in $(BUILD_DIR)/fuzz/corpus between runs.

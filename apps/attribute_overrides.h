@@ -20,7 +20,7 @@ struct AttributeOverride {
     std::string typeName;  // "" = the type of the attribute authored on the prim
     std::string primPath;
     std::string attribute;
-    std::string value;     // USDA text
+    std::string value;  // USDA text
 };
 
 // Parses one --set argument. Throws UsageError naming what is wrong.

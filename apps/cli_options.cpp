@@ -112,7 +112,8 @@ void applyComplexity(const std::string& complexity, bool dicingRateGiven, Render
         return;
     }
     const int level = complexity == "lowest" ? 0 : complexity == "low" ? 1 : complexity == "medium" ? 2 : -1;
-    if (level < 0) throw UsageError("--complexity must be lowest, low, medium, high or veryhigh, got '" + complexity + "'");
+    if (level < 0)
+        throw UsageError("--complexity must be lowest, low, medium, high or veryhigh, got '" + complexity + "'");
     if (!o.subdivLevel) o.subdivLevel = level;
 }
 
@@ -190,11 +191,13 @@ RenderOptions parseRenderOptions(const std::vector<std::string>& args) {
         } else if (arg == "-r" || arg == "--res") {
             int w = parseNumber<int>(arg, cur.value(arg));
             int h = parseNumber<int>(arg, cur.value(arg));
-            if (w < 1 || h < 1 || w > 65536 || h > 65536) throw UsageError(arg + " needs a width and height from 1 to 65536");
+            if (w < 1 || h < 1 || w > 65536 || h > 65536)
+                throw UsageError(arg + " needs a width and height from 1 to 65536");
             o.resolution = {w, h};
         } else if (arg == "-c" || arg == "--camera") {
             o.camera = cur.value(arg);
-            if (!o.camera.starts_with("/")) throw UsageError(arg + " needs an absolute prim path such as /World/Camera");
+            if (!o.camera.starts_with("/"))
+                throw UsageError(arg + " needs an absolute prim path such as /World/Camera");
         } else if (arg == "-j" || arg == "--threads") {
             o.threads = parseNumber<int>(arg, cur.value(arg));
             if (o.threads < 0) throw UsageError(arg + " must be 0 (all cores) or more");
@@ -206,10 +209,12 @@ RenderOptions parseRenderOptions(const std::vector<std::string>& args) {
                 throw UsageError("unknown integrator '" + o.integrator + "' (available: " + integratorNames() + ")");
         } else if (arg == "--time-limit") {
             o.timeLimit = parseNumber<double>(arg, cur.value(arg));
-            if (!(o.timeLimit >= 0.0) || !std::isfinite(o.timeLimit)) throw UsageError("--time-limit must be >= 0 seconds");
+            if (!(o.timeLimit >= 0.0) || !std::isfinite(o.timeLimit))
+                throw UsageError("--time-limit must be >= 0 seconds");
         } else if (arg == "--target-error") {
             o.targetError = parseNumber<double>(arg, cur.value(arg));
-            if (!(o.targetError >= 0.0) || !std::isfinite(o.targetError)) throw UsageError("--target-error must be >= 0");
+            if (!(o.targetError >= 0.0) || !std::isfinite(o.targetError))
+                throw UsageError("--target-error must be >= 0");
         } else if (arg == "--min-spp") {
             o.minSpp = parseNumber<int>(arg, cur.value(arg));
             if (o.minSpp < 2) throw UsageError("--min-spp must be at least 2");
@@ -219,7 +224,8 @@ RenderOptions parseRenderOptions(const std::vector<std::string>& args) {
         } else if (arg == "--dicing-rate") {
             dicingRateGiven = true;
             o.dicingRate = parseNumber<double>(arg, cur.value(arg));
-            if (!(o.dicingRate > 0.0) || !std::isfinite(o.dicingRate)) throw UsageError("--dicing-rate must be > 0 pixels");
+            if (!(o.dicingRate > 0.0) || !std::isfinite(o.dicingRate))
+                throw UsageError("--dicing-rate must be > 0 pixels");
         } else if (arg == "--subdiv-level") {
             o.subdivLevel = parseNumber<int>(arg, cur.value(arg));
             if (*o.subdivLevel < 0 || *o.subdivLevel > kMaxSubdivLevel)
@@ -288,7 +294,8 @@ RenderOptions parseRenderOptions(const std::vector<std::string>& args) {
             }
         } else if (arg == "--complexity") {
             complexity = cur.value(arg);
-        } else if (const integrators::IntegratorParameter* p = arg.starts_with("--") ? findIntegratorParameter(arg.substr(2)) : nullptr) {
+        } else if (const integrators::IntegratorParameter* p =
+                       arg.starts_with("--") ? findIntegratorParameter(arg.substr(2)) : nullptr) {
             const double value = parseNumber<double>(arg, cur.value(arg));
             if (const std::string why = parameterProblem(*p, value); !why.empty()) throw UsageError(arg + " " + why);
             o.integratorParameters[p->option] = value;
@@ -298,7 +305,8 @@ RenderOptions parseRenderOptions(const std::vector<std::string>& args) {
     }
     applyComplexity(complexity, dicingRateGiven, o);
     if (o.tileCount && (o.tileIndex < 0 || o.tileIndex >= o.tileCount->first * o.tileCount->second))
-        throw UsageError("--tile-index must be from 0 to " + std::to_string(o.tileCount->first * o.tileCount->second - 1));
+        throw UsageError("--tile-index must be from 0 to " +
+                         std::to_string(o.tileCount->first * o.tileCount->second - 1));
     if (!o.tileCount && o.tileIndex != 0) throw UsageError("--tile-index needs --tile-count");
     if (o.scene.empty()) throw UsageError("no scene file given");
     o.loadRules = load.rules();
@@ -353,12 +361,14 @@ std::string usageText() {
            "                          the nearest prim's --load/--unload wins\n"
            "      --no-payloads       load no payloads but those --load names (and the prims above them)\n"
            "      --set [T ]P.A=V     override attribute A of prim P with the USDA value V, as a session layer\n"
-           "                          would (repeatable); T, the type, when P has no A: --set 'float /L.inputs:exposure=1'\n"
+           "                          would (repeatable); T, the type, when P has no A: --set 'float "
+           "/L.inputs:exposure=1'\n"
            "      --purpose LIST      purposes to render, e.g. default,render (default: the render settings'\n"
            "                          includedPurposes, else default,render; husk's `geometry` is `default`)\n"
            "      --complexity LEVEL  subdivision surfaces: lowest (the cage), low, medium (1 and 2 uniform\n"
            "                          levels), high (2-pixel dicing), veryhigh (default: --dicing-rate)\n"
-           "  -V LEVEL                progress: 0 none; a (as in -V a, -V2a) ALF_PROGRESS n% lines on stdout even on a\n"
+           "  -V LEVEL                progress: 0 none; a (as in -V a, -V2a) ALF_PROGRESS n% lines on stdout even on "
+           "a\n"
            "                          terminal (default: a bar on a terminal, those lines otherwise)\n"
            "      --allow-missing     render even when layers, textures or VDB files are missing (each is a\n"
            "                          warning); without it a missing asset is an error (exit 4), and a layer\n"
@@ -398,8 +408,8 @@ std::string usageText() {
            "  -j, --threads N         worker threads (default 0: every core)\n"
            "      --seed S            random seed (default 0); same seed and spp give a bit-identical image\n"
            "      --integrator NAME   solution method (default: the render settings' fluence:integrator, else\n"
-           "                          " + std::string(kDefaultIntegrator) + "):\n" +
-           integratorList +
+           "                          " +
+           std::string(kDefaultIntegrator) + "):\n" + integratorList +
            "                        auto  the cheapest of direct, whitted, path, sppm that covers the scene's path\n"
            "                              classes (fluence info lists them); the render log says which and why\n"
            "  method parameters (the option wins over the render settings' attribute):\n" +
@@ -418,7 +428,8 @@ std::string usageText() {
            "                          EXR layer NAME (repeatable; also RenderVars with sourceType \"lpe\");\n"
            "                          e.g. --lpe diffuse='C<RD>.*L' --lpe specular='C<R[GS]>.*L'; `path` only\n"
            "      --cryptomatte L,... Cryptomatte ID layers: object (CryptoObject), material (CryptoMaterial);\n"
-           "                          also RenderVars with sourceType \"raw\" and sourceName CryptoObject/CryptoMaterial\n"
+           "                          also RenderVars with sourceType \"raw\" and sourceName "
+           "CryptoObject/CryptoMaterial\n"
            "      --cryptomatte-depth N  ranks (id, coverage) kept per pixel and layer (default 6)\n"
            "\n"
            "environment:\n"

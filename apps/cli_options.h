@@ -24,45 +24,47 @@ public:
 
 struct RenderOptions {
     std::string scene;
-    std::string output;             // -o/--output; default: <scene stem>.exr
-    std::string preview;            // --preview FILE.png: an sRGB preview through the OCIO display/view
-    std::optional<int> spp;         // --spp N (default 64)
+    std::string output;                             // -o/--output; default: <scene stem>.exr
+    std::string preview;                            // --preview FILE.png: an sRGB preview through the OCIO display/view
+    std::optional<int> spp;                         // --spp N (default 64)
     std::optional<std::pair<int, int>> resolution;  // -r/--res W H
-    std::string camera;             // -c/--camera /Prim/Path
-    int threads = 0;                // -j/--threads N (0: all cores)
-    std::uint64_t seed = 0;         // --seed S
-    std::string integrator;         // --integrator NAME ("": the render settings' fluence:integrator, else path)
+    std::string camera;                             // -c/--camera /Prim/Path
+    int threads = 0;                                // -j/--threads N (0: all cores)
+    std::uint64_t seed = 0;                         // --seed S
+    std::string integrator;  // --integrator NAME ("": the render settings' fluence:integrator, else path)
     std::map<std::string, double> integratorParameters;  // --sppm-photons N, ... (apps/integrator_parameters.h)
-    double timeLimit = 0.0;         // --time-limit SECONDS (0: none)
-    double targetError = 0.0;       // --target-error E: adaptive sampling's relative error per pixel (0: off)
-    int minSpp = 16;                // --min-spp N: samples every pixel takes before it may stop
-    int maxDepth = 64;              // --max-depth N
-    double dicingRate = 1.0;        // --dicing-rate PIXELS: micro-edge length of subdivision surfaces
-    std::optional<int> subdivLevel; // --subdiv-level N: uniform refinement instead of dicing
-    std::string subsurface;         // --subsurface randomwalk|diffusion: every material's method ("" keeps theirs)
-    std::optional<double> frame;    // -f/--frame F (default: the stage's startTimeCode, else none: each attribute's earliest sample)
-    int frameCount = 1;             // -n/--frame-count N: frames to render from --frame on
-    double frameIncrement = 1.0;    // -i/--frame-inc K: time codes between them
-    bool makeOutputPath = false;    // --make-output-path: create the output's folders
-    std::string summary;            // --summary FILE.json: what the render did (apps/run_summary.h)
-    std::optional<double> checkpointSeconds;  // --checkpoint SECS: a resumable checkpoint that often (apps/pass_outputs.h)
-    bool resume = false;            // --resume: go on from the output's checkpoint, if there is one
-    std::optional<double> snapshotSeconds;    // --snapshot SECS: the image so far beside the output that often
+    double timeLimit = 0.0;                              // --time-limit SECONDS (0: none)
+    double targetError = 0.0;        // --target-error E: adaptive sampling's relative error per pixel (0: off)
+    int minSpp = 16;                 // --min-spp N: samples every pixel takes before it may stop
+    int maxDepth = 64;               // --max-depth N
+    double dicingRate = 1.0;         // --dicing-rate PIXELS: micro-edge length of subdivision surfaces
+    std::optional<int> subdivLevel;  // --subdiv-level N: uniform refinement instead of dicing
+    std::string subsurface;          // --subsurface randomwalk|diffusion: every material's method ("" keeps theirs)
+    std::optional<double>
+        frame;  // -f/--frame F (default: the stage's startTimeCode, else none: each attribute's earliest sample)
+    int frameCount = 1;           // -n/--frame-count N: frames to render from --frame on
+    double frameIncrement = 1.0;  // -i/--frame-inc K: time codes between them
+    bool makeOutputPath = false;  // --make-output-path: create the output's folders
+    std::string summary;          // --summary FILE.json: what the render did (apps/run_summary.h)
+    std::optional<double>
+        checkpointSeconds;  // --checkpoint SECS: a resumable checkpoint that often (apps/pass_outputs.h)
+    bool resume = false;    // --resume: go on from the output's checkpoint, if there is one
+    std::optional<double> snapshotSeconds;         // --snapshot SECS: the image so far beside the output that often
     std::optional<std::pair<int, int>> tileCount;  // --tile-count X Y: the image split into X x Y tiles
-    int tileIndex = 0;              // --tile-index N: the tile to render, 0 to X*Y - 1, row by row from the top left
+    int tileIndex = 0;  // --tile-index N: the tile to render, 0 to X*Y - 1, row by row from the top left
     std::string tileSuffix = "_tile$T";  // --tile-suffix FMT: added before the output's extension ($T: the index)
-    std::string settings;           // -s/--settings /Render/Path (default: the stage's renderSettingsPrimPath)
-    std::vector<usd::VariantSelection> variants;  // --variant /Prim/Path:set=selection (repeatable)
-    usd::LoadRules loadRules;       // --load P, --unload P (repeatable), --no-payloads
-    std::vector<LightPathOption> lightPaths;  // --lpe NAME=EXPRESSION (repeatable)
-    std::vector<CryptomatteSource> cryptomatte;  // --cryptomatte object,material
+    std::string settings;                // -s/--settings /Render/Path (default: the stage's renderSettingsPrimPath)
+    std::vector<usd::VariantSelection> variants;      // --variant /Prim/Path:set=selection (repeatable)
+    usd::LoadRules loadRules;                         // --load P, --unload P (repeatable), --no-payloads
+    std::vector<LightPathOption> lightPaths;          // --lpe NAME=EXPRESSION (repeatable)
+    std::vector<CryptomatteSource> cryptomatte;       // --cryptomatte object,material
     int cryptomatteDepth = kDefaultCryptomatteDepth;  // --cryptomatte-depth N
-    std::vector<AttributeOverride> overrides;  // --set [TYPE ]/Prim.attr=VALUE (repeatable)
-    ProgressStyle progress = ProgressStyle::Auto;  // -V [LEVEL][a]: 0 none, a ALF_PROGRESS lines
-    bool defaultLight = true;       // --no-default-light: no default lights in a scene where nothing emits
-    bool motionBlur = true;         // --no-motion-blur: the camera's shutter as an instant
-    bool allowMissing = false;      // --allow-missing: render without missing layers, textures and VDBs (warnings)
-    bool strict = false;            // --strict: a malformed prim is an error (exit 3), not a warning and skipped
+    std::vector<AttributeOverride> overrides;         // --set [TYPE ]/Prim.attr=VALUE (repeatable)
+    ProgressStyle progress = ProgressStyle::Auto;     // -V [LEVEL][a]: 0 none, a ALF_PROGRESS lines
+    bool defaultLight = true;   // --no-default-light: no default lights in a scene where nothing emits
+    bool motionBlur = true;     // --no-motion-blur: the camera's shutter as an instant
+    bool allowMissing = false;  // --allow-missing: render without missing layers, textures and VDBs (warnings)
+    bool strict = false;        // --strict: a malformed prim is an error (exit 3), not a warning and skipped
     std::optional<std::vector<std::string>> purposes;  // --purpose a,b: else the render settings' includedPurposes
 };
 

@@ -29,8 +29,7 @@ int runCommandLine(std::vector<std::string> args) {
         return kExitOk;
     }
     const std::string command = args[0];
-    if (command != "render" && command != "info" && command != "cat" && command != "assemble" &&
-        command != "farm") {
+    if (command != "render" && command != "info" && command != "cat" && command != "assemble" && command != "farm") {
         std::fprintf(stderr, "fluence: error: unknown command '%s' (try 'fluence --help')\n", command.c_str());
         return kExitUsage;
     }

@@ -25,8 +25,10 @@ std::vector<CryptomatteSource> parseCryptomatteOption(const std::vector<std::str
     if (items.empty()) throw UsageError("--cryptomatte expects a list of layers: object, material");
     std::vector<CryptomatteSource> sources;
     for (const std::string& item : items) {
-        const auto* found = std::find_if(std::begin(kSources), std::end(kSources), [&](const SourceName& s) { return item == s.option; });
-        if (found == std::end(kSources)) throw UsageError("--cryptomatte: '" + item + "' is not a layer (object, material)");
+        const auto* found = std::find_if(std::begin(kSources), std::end(kSources),
+                                         [&](const SourceName& s) { return item == s.option; });
+        if (found == std::end(kSources))
+            throw UsageError("--cryptomatte: '" + item + "' is not a layer (object, material)");
         if (std::find(sources.begin(), sources.end(), found->source) == sources.end()) sources.push_back(found->source);
     }
     return sources;
@@ -36,7 +38,8 @@ std::vector<CryptomatteLayerRequest> cryptomatteLayers(const delegate::RenderPro
                                                        const std::vector<CryptomatteSource>& options) {
     std::vector<CryptomatteLayerRequest> layers;
     auto named = [&](const std::string& name) {
-        return std::any_of(layers.begin(), layers.end(), [&](const CryptomatteLayerRequest& l) { return l.typeName == name; });
+        return std::any_of(layers.begin(), layers.end(),
+                           [&](const CryptomatteLayerRequest& l) { return l.typeName == name; });
     };
     if (product)
         for (const delegate::RenderVarDesc& var : product->vars) {
@@ -45,17 +48,21 @@ std::vector<CryptomatteLayerRequest> cryptomatteLayers(const delegate::RenderPro
                                              [&](const SourceName& s) { return var.sourceName == s.sourceName; });
             if (found == std::end(kSources)) continue;
             const std::string name = primName(var.path);
-            if (named(name)) throw delegate::SceneError("RenderVar " + var.path + ": a second Cryptomatte layer named '" + name + "'");
+            if (named(name))
+                throw delegate::SceneError("RenderVar " + var.path + ": a second Cryptomatte layer named '" + name +
+                                           "'");
             layers.push_back({name, found->source});
         }
     for (CryptomatteSource source : options) {
-        const auto* found = std::find_if(std::begin(kSources), std::end(kSources), [&](const SourceName& s) { return s.source == source; });
+        const auto* found = std::find_if(std::begin(kSources), std::end(kSources),
+                                         [&](const SourceName& s) { return s.source == source; });
         if (!named(found->sourceName)) layers.push_back({found->sourceName, source});
     }
     return layers;
 }
 
-std::unique_ptr<CryptomatteFilm> cryptomatteFilm(const std::vector<CryptomatteLayerRequest>& layers, int width, int height) {
+std::unique_ptr<CryptomatteFilm> cryptomatteFilm(const std::vector<CryptomatteLayerRequest>& layers, int width,
+                                                 int height) {
     if (layers.empty()) return nullptr;
     std::vector<CryptomatteSource> sources;
     for (const CryptomatteLayerRequest& layer : layers) sources.push_back(layer.source);
@@ -63,10 +70,12 @@ std::unique_ptr<CryptomatteFilm> cryptomatteFilm(const std::vector<CryptomatteLa
 }
 
 void appendCryptomatteLayers(Image& image, output::ExrHeader& header, const CryptomatteFilm& film,
-                             const std::vector<CryptomatteLayerRequest>& layers, const render::RenderScene& scene, int depth) {
+                             const std::vector<CryptomatteLayerRequest>& layers, const render::RenderScene& scene,
+                             int depth) {
     std::vector<output::CryptomatteLayer> described;
     for (const CryptomatteLayerRequest& layer : layers)
-        described.push_back({layer.typeName, layer.source == CryptomatteSource::Object ? &scene.objectNames() : &scene.materialNames()});
+        described.push_back({layer.typeName, layer.source == CryptomatteSource::Object ? &scene.objectNames()
+                                                                                       : &scene.materialNames()});
     output::appendCryptomatte(image, header, film, described, depth);
 }
 

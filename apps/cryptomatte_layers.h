@@ -43,11 +43,13 @@ std::vector<CryptomatteLayerRequest> cryptomatteLayers(const delegate::RenderPro
                                                        const std::vector<CryptomatteSource>& options);
 
 // The film that accumulates `layers` over a width x height window, or null when there are none.
-std::unique_ptr<CryptomatteFilm> cryptomatteFilm(const std::vector<CryptomatteLayerRequest>& layers, int width, int height);
+std::unique_ptr<CryptomatteFilm> cryptomatteFilm(const std::vector<CryptomatteLayerRequest>& layers, int width,
+                                                 int height);
 
 // Appends the film's channels and metadata (output/cryptomatte.h) to the resolved image and its
 // header, `depth` ranks per layer, the names read from `scene`'s name tables.
 void appendCryptomatteLayers(Image& image, output::ExrHeader& header, const CryptomatteFilm& film,
-                             const std::vector<CryptomatteLayerRequest>& layers, const render::RenderScene& scene, int depth);
+                             const std::vector<CryptomatteLayerRequest>& layers, const render::RenderScene& scene,
+                             int depth);
 
 }  // namespace fluence::app

@@ -37,7 +37,8 @@ int parseCount(const std::string& flag, const std::string& text, int least) {
     int v = 0;
     auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), v);
     if (error != std::errc() || end != text.data() + text.size() || v < least)
-        throw UsageError(flag + " expects a whole number of at least " + std::to_string(least) + ", got '" + text + "'");
+        throw UsageError(flag + " expects a whole number of at least " + std::to_string(least) + ", got '" + text +
+                         "'");
     return v;
 }
 
@@ -70,13 +71,14 @@ void checkRenderArgs(const SubmitOptions& o) {
     args.insert(args.end(), o.renderArgs.begin(), o.renderArgs.end());
     const RenderOptions r = parseRenderOptions(args);  // throws UsageError for what render refuses
     const RenderOptions defaults;
-    const char* taken = !r.output.empty()                        ? "-o/--output (the farm names each task's output)"
-                        : r.frame || r.frameCount != 1 || r.frameIncrement != defaults.frameIncrement ? "-f/-n/-i (use --frames)"
-                        : r.tileCount || r.tileSuffix != defaults.tileSuffix ? "--tile-count/--tile-suffix (use --tiles)"
-                        : r.threads != 0                         ? "-j/--threads (give it before --)"
-                        : !r.summary.empty()                     ? "--summary (each task records its own result)"
-                        : !r.preview.empty()                     ? "--preview (the farm writes EXR images only)"
-                                                                 : nullptr;
+    const char* taken =
+        !r.output.empty() ? "-o/--output (the farm names each task's output)"
+        : r.frame || r.frameCount != 1 || r.frameIncrement != defaults.frameIncrement ? "-f/-n/-i (use --frames)"
+        : r.tileCount || r.tileSuffix != defaults.tileSuffix ? "--tile-count/--tile-suffix (use --tiles)"
+        : r.threads != 0                                     ? "-j/--threads (give it before --)"
+        : !r.summary.empty()                                 ? "--summary (each task records its own result)"
+        : !r.preview.empty()                                 ? "--preview (the farm writes EXR images only)"
+                                                             : nullptr;
     if (taken) throw UsageError(std::string("the render arguments after -- cannot hold ") + taken);
 }
 
@@ -124,7 +126,8 @@ SubmitOptions parseSubmit(const std::vector<std::string>& args) {
 
 // The folder argument of status, resume and merge.
 std::string folderArgument(const std::string& action, const std::vector<std::string>& args) {
-    if (args.size() != 1 || args[0].starts_with("-")) throw UsageError("farm " + action + " needs the farm's output folder, and only it");
+    if (args.size() != 1 || args[0].starts_with("-"))
+        throw UsageError("farm " + action + " needs the farm's output folder, and only it");
     return args[0];
 }
 
@@ -174,7 +177,8 @@ FarmState inspectFarm(const FarmPlan& plan, FarmBackend& backend, bool needSched
             for (const QueuedTask& q : queued)
                 if (q.jobId == s.taskJob && q.index == task.index && s.backend == backend.name()) {
                     status = q.state == QueueState::Running ? TaskStatus::Running : TaskStatus::Queued;
-                    if (std::find(state.busyTaskJobs.begin(), state.busyTaskJobs.end(), q.jobId) == state.busyTaskJobs.end())
+                    if (std::find(state.busyTaskJobs.begin(), state.busyTaskJobs.end(), q.jobId) ==
+                        state.busyTaskJobs.end())
                         state.busyTaskJobs.push_back(q.jobId);
                 }
         if (fs::exists(plan.path(task.output))) status = TaskStatus::Done;
@@ -194,9 +198,9 @@ bool allImagesDone(const FarmState& state) {
 
 // Prints the state; returns 0 (all done), kExitFarmPending or kExitFarmIncomplete.
 int reportState(const FarmPlan& plan, const FarmState& state) {
-    std::printf("fluence farm: %s: %zu tasks (%zu %s, %dx%d tiles), backend %s\n", plan.folder.c_str(), plan.tasks.size(),
-                plan.images.size(), plan.images.size() == 1 ? "image" : "images", plan.tileColumns, plan.tileRows,
-                plan.backend.c_str());
+    std::printf("fluence farm: %s: %zu tasks (%zu %s, %dx%d tiles), backend %s\n", plan.folder.c_str(),
+                plan.tasks.size(), plan.images.size(), plan.images.size() == 1 ? "image" : "images", plan.tileColumns,
+                plan.tileRows, plan.backend.c_str());
     if (!state.schedulerNote.empty())
         std::printf("  (the scheduler was not asked, so queued and running tasks show as failed or missing: %s)\n",
                     state.schedulerNote.c_str());
@@ -207,8 +211,10 @@ int reportState(const FarmPlan& plan, const FarmState& state) {
         std::string detail = task.output;
         if (s == TaskStatus::Failed) {
             const TaskRecord& r = *state.records[task.index];
-            detail = (r.exitCode ? "exit " + std::to_string(*r.exitCode) : std::string("ended without recording an exit (killed?)")) +
-                     " on attempt " + std::to_string(r.attempts) + "; log logs/task_" + std::to_string(task.index) + ".log";
+            detail = (r.exitCode ? "exit " + std::to_string(*r.exitCode)
+                                 : std::string("ended without recording an exit (killed?)")) +
+                     " on attempt " + std::to_string(r.attempts) + "; log logs/task_" + std::to_string(task.index) +
+                     ".log";
         }
         std::printf("  task %-4d %s%s tile %-3d %-8s %s\n", task.index, task.frame ? "frame " : "",
                     task.frame ? jsonNumber(*task.frame).c_str() : "", task.tile, statusName(s), detail.c_str());
@@ -219,8 +225,8 @@ int reportState(const FarmPlan& plan, const FarmState& state) {
         std::printf("  image %-40s %s\n", plan.images[i].output.c_str(), state.imageDone[i] ? "done" : "not done");
     }
     for (const std::string& id : state.queuedMergeJobs) std::printf("  merge job %s is queued\n", id.c_str());
-    std::printf("summary: %d done, %d queued, %d running, %d failed, %d missing; %zu of %zu images done\n", counts[0], counts[1],
-                counts[2], counts[3], counts[4], imagesDone, plan.images.size());
+    std::printf("summary: %d done, %d queued, %d running, %d failed, %d missing; %zu of %zu images done\n", counts[0],
+                counts[1], counts[2], counts[3], counts[4], imagesDone, plan.images.size());
     if (imagesDone == plan.images.size()) return kExitOk;
     if (counts[1] + counts[2] > 0 || !state.queuedMergeJobs.empty()) return kExitFarmPending;
     std::printf("run `fluence farm resume %s` to redo the failed and missing tasks\n", plan.folder.c_str());
@@ -229,7 +235,8 @@ int reportState(const FarmPlan& plan, const FarmState& state) {
 
 // Submits `indices` as a task array and the merge job after it (and after `afterAny`), records
 // the submission in the plan. Throws SchedulerError; then nothing stays queued.
-void submitTasks(FarmPlan& plan, FarmBackend& backend, const std::vector<int>& indices, const std::vector<std::string>& afterAny) {
+void submitTasks(FarmPlan& plan, FarmBackend& backend, const std::vector<int>& indices,
+                 const std::vector<std::string>& afterAny) {
     for (const char* folder : {"logs", "tasks"}) fs::create_directories(plan.path(folder));
     const std::string fluence = currentExecutable(), name = "fluence-" + fs::path(plan.scene).stem().string();
     FarmSubmission submission;
@@ -263,9 +270,11 @@ void submitTasks(FarmPlan& plan, FarmBackend& backend, const std::vector<int>& i
     plan.submissions.push_back(submission);
     writeFarmPlan(plan);
     if (backend.name() != "local")
-        std::printf("fluence farm: submitted %zu tasks as %s job %s and the merge as job %s; `fluence farm status %s` follows them\n",
-                    indices.size(), backend.name().c_str(), submission.taskJob.empty() ? "(none)" : submission.taskJob.c_str(),
-                    submission.mergeJob.c_str(), plan.folder.c_str());
+        std::printf(
+            "fluence farm: submitted %zu tasks as %s job %s and the merge as job %s; `fluence farm status %s` follows "
+            "them\n",
+            indices.size(), backend.name().c_str(), submission.taskJob.empty() ? "(none)" : submission.taskJob.c_str(),
+            submission.mergeJob.c_str(), plan.folder.c_str());
 }
 
 // After a submission: the local backend has done the work, so its state is the result; a
@@ -285,7 +294,8 @@ int runSubmit(const std::vector<std::string>& args) {
     plan.folder = fs::absolute(o.folder).lexically_normal().string();
     while (plan.folder.size() > 1 && plan.folder.back() == '/') plan.folder.pop_back();
     if (fs::exists(plan.path(kFarmPlanFile))) {
-        printError(plan.path(kFarmPlanFile) + " exists: that folder holds a farm render already (`fluence farm resume " + o.folder +
+        printError(plan.path(kFarmPlanFile) +
+                   " exists: that folder holds a farm render already (`fluence farm resume " + o.folder +
                    "`, or give another --output-dir)");
         return kExitUsage;
     }
@@ -297,7 +307,8 @@ int runSubmit(const std::vector<std::string>& args) {
     plan.maxParallel = o.jobs;
     plan.threadsPerTask = o.threads;
     const int cores = std::max(1, int(std::thread::hardware_concurrency()));
-    if (o.backend == "local" && o.threads == 0) plan.threadsPerTask = std::max(1, cores / (o.jobs > 0 ? std::min(o.jobs, cores) : cores));
+    if (o.backend == "local" && o.threads == 0)
+        plan.threadsPerTask = std::max(1, cores / (o.jobs > 0 ? std::min(o.jobs, cores) : cores));
     planTasks(plan, o.frames);
     std::unique_ptr<FarmBackend> backend = makeFarmBackend(plan.backend, plan.maxParallel);
     std::vector<int> all(plan.tasks.size());
@@ -332,13 +343,15 @@ int runResume(const std::string& folder) {
         state = inspectFarm(plan, *backend, true);  // never resubmit a task the scheduler still runs
         std::vector<int> redo;
         for (const FarmTask& task : plan.tasks)
-            if (state.tasks[task.index] == TaskStatus::Failed || state.tasks[task.index] == TaskStatus::Missing) redo.push_back(task.index);
+            if (state.tasks[task.index] == TaskStatus::Failed || state.tasks[task.index] == TaskStatus::Missing)
+                redo.push_back(task.index);
         if (allImagesDone(state)) {
             std::printf("fluence farm: %s: every image is done; nothing to resume\n", plan.folder.c_str());
             return kExitOk;
         }
         if (redo.empty() && !state.queuedMergeJobs.empty()) {
-            std::printf("fluence farm: %s: nothing failed; the tasks and the merge are still queued or running\n", plan.folder.c_str());
+            std::printf("fluence farm: %s: nothing failed; the tasks and the merge are still queued or running\n",
+                        plan.folder.c_str());
             return kExitFarmPending;
         }
         std::printf("fluence farm: %s: resubmitting %zu task%s and the merge\n", plan.folder.c_str(), redo.size(),
@@ -358,10 +371,11 @@ int runMerge(const std::string& folder) {
         const std::string out = plan.path(image.output);
         if (fs::exists(out)) continue;
         std::vector<std::string> tiles, missing;
-        for (int index : image.tasks) (fs::exists(plan.path(plan.tasks[index].output)) ? tiles : missing).push_back(plan.tasks[index].output);
+        for (int index : image.tasks)
+            (fs::exists(plan.path(plan.tasks[index].output)) ? tiles : missing).push_back(plan.tasks[index].output);
         if (!missing.empty()) {
-            printError(image.output + " cannot be merged yet: " + std::to_string(missing.size()) + " tasks are not done (" + missing[0] +
-                       (missing.size() > 1 ? ", ..." : "") + ")");
+            printError(image.output + " cannot be merged yet: " + std::to_string(missing.size()) +
+                       " tasks are not done (" + missing[0] + (missing.size() > 1 ? ", ..." : "") + ")");
             result = result == kExitOk ? kExitFarmIncomplete : result;
             continue;
         }

@@ -22,7 +22,9 @@ std::string expandTaskIndex(std::string pattern, int index) {
 LocalFarmBackend::LocalFarmBackend(int maxJobs)
     : maxJobs_(maxJobs > 0 ? maxJobs : std::max(1, int(std::thread::hardware_concurrency()))) {}
 
-std::string LocalFarmBackend::newJobId() { return "local-" + std::to_string(::getpid()) + "-" + std::to_string(++submitted_); }
+std::string LocalFarmBackend::newJobId() {
+    return "local-" + std::to_string(::getpid()) + "-" + std::to_string(++submitted_);
+}
 
 std::string LocalFarmBackend::submitArray(const ArrayJob& job) {
     const std::string id = newJobId();
@@ -59,10 +61,11 @@ std::string LocalFarmBackend::submitArray(const ArrayJob& job) {
 
 std::string LocalFarmBackend::submitDependent(const SingleJob& job, const Dependencies& dependencies) {
     const std::string id = newJobId();
-    const bool ready = std::all_of(dependencies.afterOk.begin(), dependencies.afterOk.end(), [&](const std::string& dep) {
-        const auto it = succeeded_.find(dep);
-        return it != succeeded_.end() && it->second;
-    });
+    const bool ready =
+        std::all_of(dependencies.afterOk.begin(), dependencies.afterOk.end(), [&](const std::string& dep) {
+            const auto it = succeeded_.find(dep);
+            return it != succeeded_.end() && it->second;
+        });
     if (!ready) {
         std::printf("fluence farm: %s not run: a job it needs failed\n", job.name.c_str());
         succeeded_[id] = false;

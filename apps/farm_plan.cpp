@@ -61,7 +61,8 @@ std::vector<double> parseFrameRange(const std::string& text) {
         if (times != std::string::npos) throw UsageError("--frames A-BxK needs the last frame B, got '" + text + "'");
         return {double(first)};
     }
-    const int last = parseInt(text.substr(dash + 1, times == std::string::npos ? std::string::npos : times - dash - 1), text);
+    const int last =
+        parseInt(text.substr(dash + 1, times == std::string::npos ? std::string::npos : times - dash - 1), text);
     const int step = times == std::string::npos ? 1 : parseInt(text.substr(times + 1), text);
     if (last < first) throw UsageError("--frames " + text + ": the last frame comes before the first");
     if (step < 1) throw UsageError("--frames " + text + ": the step must be at least 1");
@@ -99,33 +100,37 @@ std::vector<std::string> taskRenderArgs(const FarmPlan& plan, const FarmTask& ta
     if (task.frame) args.insert(args.end(), {"-f", formatNumber(*task.frame)});
     // The task names its output exactly: an empty tile suffix leaves the path as given.
     if (plan.tiled())
-        args.insert(args.end(), {"--tile-count", std::to_string(plan.tileColumns), std::to_string(plan.tileRows), "--tile-index",
-                                 std::to_string(task.tile), "--tile-suffix", ""});
+        args.insert(args.end(), {"--tile-count", std::to_string(plan.tileColumns), std::to_string(plan.tileRows),
+                                 "--tile-index", std::to_string(task.tile), "--tile-suffix", ""});
     return args;
 }
 
 void writeFarmPlan(const FarmPlan& plan) {
-    std::string json = "{\n  \"fluenceFarmPlan\": 1,\n  \"scene\": " + jsonQuoted(plan.scene) + ",\n  \"renderArgs\": [";
+    std::string json =
+        "{\n  \"fluenceFarmPlan\": 1,\n  \"scene\": " + jsonQuoted(plan.scene) + ",\n  \"renderArgs\": [";
     for (std::size_t i = 0; i < plan.renderArgs.size(); ++i) json += (i ? ", " : "") + jsonQuoted(plan.renderArgs[i]);
     json += "],\n  \"tiles\": [" + std::to_string(plan.tileColumns) + ", " + std::to_string(plan.tileRows) +
-            "],\n  \"backend\": " + jsonQuoted(plan.backend) + ",\n  \"threadsPerTask\": " + std::to_string(plan.threadsPerTask) +
+            "],\n  \"backend\": " + jsonQuoted(plan.backend) +
+            ",\n  \"threadsPerTask\": " + std::to_string(plan.threadsPerTask) +
             ",\n  \"maxParallel\": " + std::to_string(plan.maxParallel) + ",\n  \"tasks\": [";
     for (std::size_t i = 0; i < plan.tasks.size(); ++i) {
         const FarmTask& t = plan.tasks[i];
-        json += std::string(i ? "," : "") + "\n    {\"index\": " + std::to_string(t.index) + ", \"frame\": " + frameJson(t.frame) +
-                ", \"tile\": " + std::to_string(t.tile) + ", \"output\": " + jsonQuoted(t.output) + "}";
+        json += std::string(i ? "," : "") + "\n    {\"index\": " + std::to_string(t.index) +
+                ", \"frame\": " + frameJson(t.frame) + ", \"tile\": " + std::to_string(t.tile) +
+                ", \"output\": " + jsonQuoted(t.output) + "}";
     }
     json += "\n  ],\n  \"images\": [";
     for (std::size_t i = 0; i < plan.images.size(); ++i) {
         const FarmImage& im = plan.images[i];
-        json += std::string(i ? "," : "") + "\n    {\"frame\": " + frameJson(im.frame) + ", \"output\": " + jsonQuoted(im.output) +
-                ", \"tasks\": " + intList(im.tasks) + "}";
+        json += std::string(i ? "," : "") + "\n    {\"frame\": " + frameJson(im.frame) +
+                ", \"output\": " + jsonQuoted(im.output) + ", \"tasks\": " + intList(im.tasks) + "}";
     }
     json += "\n  ],\n  \"submissions\": [";
     for (std::size_t i = 0; i < plan.submissions.size(); ++i) {
         const FarmSubmission& s = plan.submissions[i];
-        json += std::string(i ? "," : "") + "\n    {\"backend\": " + jsonQuoted(s.backend) + ", \"tasks\": " + intList(s.tasks) +
-                ", \"taskJob\": " + jsonQuoted(s.taskJob) + ", \"mergeJob\": " + jsonQuoted(s.mergeJob) + "}";
+        json += std::string(i ? "," : "") + "\n    {\"backend\": " + jsonQuoted(s.backend) +
+                ", \"tasks\": " + intList(s.tasks) + ", \"taskJob\": " + jsonQuoted(s.taskJob) +
+                ", \"mergeJob\": " + jsonQuoted(s.mergeJob) + "}";
     }
     json += std::string(plan.submissions.empty() ? "" : "\n  ") + "]\n}\n";
     const std::string file = plan.path(kFarmPlanFile);
@@ -139,7 +144,9 @@ void writeFarmPlan(const FarmPlan& plan) {
 FarmPlan readFarmPlan(const std::string& folder) {
     const std::string file = (fs::path(folder) / kFarmPlanFile).string();
     std::ifstream in(file, std::ios::binary);
-    if (!in) throw FarmPlanError(file + ": no farm plan here (is " + folder + " the output folder of `fluence farm submit`?)");
+    if (!in)
+        throw FarmPlanError(file + ": no farm plan here (is " + folder +
+                            " the output folder of `fluence farm submit`?)");
     std::stringstream text;
     text << in.rdbuf();
     FarmPlan plan;
@@ -172,7 +179,8 @@ FarmPlan readFarmPlan(const std::string& folder) {
             image.output = im.at("output", "an image").asString("images[].output");
             image.tasks = readIntList(im.at("tasks", "an image"), "images[].tasks");
             for (int index : image.tasks)
-                if (index < 0 || index >= int(plan.tasks.size())) throw JsonError("images[].tasks names no task: " + std::to_string(index));
+                if (index < 0 || index >= int(plan.tasks.size()))
+                    throw JsonError("images[].tasks names no task: " + std::to_string(index));
         }
         for (const JsonValue& s : root.at("submissions", "the plan").asArray("submissions")) {
             FarmSubmission& sub = plan.submissions.emplace_back();

@@ -38,25 +38,25 @@ struct FarmTask {
     int index = 0;
     std::optional<double> frame;  // none: the stage's default (no --frame)
     int tile = 0;
-    std::string output;           // relative to the plan's folder
+    std::string output;  // relative to the plan's folder
 };
 
 struct FarmImage {
     std::optional<double> frame;
-    std::string output;     // relative to the plan's folder
+    std::string output;      // relative to the plan's folder
     std::vector<int> tasks;  // its tiles' tasks, by tile index
 };
 
 struct FarmSubmission {
     std::string backend;
-    std::vector<int> tasks;   // the tasks submitted (may be none: a merge alone)
-    std::string taskJob;      // the array's job id ("" when no task was submitted)
-    std::string mergeJob;     // the dependent merge job's id
+    std::vector<int> tasks;  // the tasks submitted (may be none: a merge alone)
+    std::string taskJob;     // the array's job id ("" when no task was submitted)
+    std::string mergeJob;    // the dependent merge job's id
 };
 
 struct FarmPlan {
-    std::string folder;  // absolute; where farm.json lives (not stored in it)
-    std::string scene;   // absolute
+    std::string folder;                   // absolute; where farm.json lives (not stored in it)
+    std::string scene;                    // absolute
     std::vector<std::string> renderArgs;  // extra `fluence render` arguments, the same for every task
     int tileColumns = 1, tileRows = 1;
     std::string backend;

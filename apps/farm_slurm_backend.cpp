@@ -45,7 +45,8 @@ std::string parsedJobId(const std::string& out) {
 }
 
 std::vector<std::string> sbatchCommon(const std::string& name, const std::string& log, const std::string& workDir) {
-    return {"sbatch", "--parsable", "--job-name=" + name, "--output=" + log, "--open-mode=append", "--chdir=" + workDir};
+    return {"sbatch",          "--parsable",         "--job-name=" + name,
+            "--output=" + log, "--open-mode=append", "--chdir=" + workDir};
 }
 
 // Slurm's --array list: runs of consecutive indices as ranges, "0-3,7,9-10".
@@ -80,8 +81,8 @@ int maxArraySize() {
         int value = 0;
         if (equals == std::string::npos) break;
         const std::size_t digits = line.find_first_of("0123456789", equals);
-        if (digits != std::string::npos && std::from_chars(line.data() + digits, line.data() + line.size(), value).ec == std::errc() &&
-            value > 0)
+        if (digits != std::string::npos &&
+            std::from_chars(line.data() + digits, line.data() + line.size(), value).ec == std::errc() && value > 0)
             return value;
         break;
     }
@@ -141,10 +142,12 @@ std::string SlurmFarmBackend::submitArray(const ArrayJob& job) {
             std::vector<std::string> argv = sbatchCommon(job.name, shifted ? "/dev/null" : job.logPattern, job.workDir);
             argv.push_back("--array=" + indices);
             if (job.cpusPerTask > 0) argv.push_back("--cpus-per-task=" + std::to_string(job.cpusPerTask));
-            const std::string task = offset > 0 ? "\"$((SLURM_ARRAY_TASK_ID + " + std::to_string(offset) + "))\"" : "\"$SLURM_ARRAY_TASK_ID\"";
+            const std::string task = offset > 0 ? "\"$((SLURM_ARRAY_TASK_ID + " + std::to_string(offset) + "))\""
+                                                : "\"$SLURM_ARRAY_TASK_ID\"";
             std::string wrap = shellCommand(job.command) + " " + task;
             if (shifted)
-                wrap += " >> " + shellQuoted(job.logPattern.substr(0, at)) + task + shellQuoted(job.logPattern.substr(at + 2)) + " 2>&1";
+                wrap += " >> " + shellQuoted(job.logPattern.substr(0, at)) + task +
+                        shellQuoted(job.logPattern.substr(at + 2)) + " 2>&1";
             argv.push_back("--wrap=" + wrap);
             const std::string id = parsedJobId(slurm(argv));
             submitted.push_back(offset > 0 ? id + "+" + std::to_string(offset) : id);
@@ -159,8 +162,10 @@ std::string SlurmFarmBackend::submitArray(const ArrayJob& job) {
 std::string SlurmFarmBackend::submitDependent(const SingleJob& job, const Dependencies& dependencies) {
     std::vector<std::string> argv = sbatchCommon(job.name, job.logPath, job.workDir);
     std::vector<std::string> conditions;
-    if (!dependencies.afterOk.empty()) conditions.push_back("afterok:" + joined(plainJobIds(dependencies.afterOk), ':'));
-    if (!dependencies.afterAny.empty()) conditions.push_back("afterany:" + joined(plainJobIds(dependencies.afterAny), ':'));
+    if (!dependencies.afterOk.empty())
+        conditions.push_back("afterok:" + joined(plainJobIds(dependencies.afterOk), ':'));
+    if (!dependencies.afterAny.empty())
+        conditions.push_back("afterany:" + joined(plainJobIds(dependencies.afterAny), ':'));
     if (!conditions.empty()) {
         argv.push_back("--dependency=" + joined(conditions, ','));
         argv.push_back("--kill-on-invalid-dep=yes");

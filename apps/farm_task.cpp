@@ -20,7 +20,8 @@ namespace {
 
 void writeTaskRecord(const FarmPlan& plan, int index, const TaskRecord& record) {
     const std::string file = taskRecordPath(plan, index);
-    const std::string json = "{\"task\": " + std::to_string(index) + ", \"attempts\": " + std::to_string(record.attempts) +
+    const std::string json = "{\"task\": " + std::to_string(index) +
+                             ", \"attempts\": " + std::to_string(record.attempts) +
                              ", \"exitCode\": " + (record.exitCode ? std::to_string(*record.exitCode) : "null") + "}\n";
     output::writeAtomically(file, [&](const std::string& temp) {
         std::ofstream out(temp, std::ios::binary);
@@ -47,7 +48,8 @@ std::string describe(const FarmPlan& plan, const FarmTask& task) {
     std::string what = "task " + std::to_string(task.index);
     if (task.frame) what += ", frame " + jsonNumber(*task.frame);
     if (plan.tiled())
-        what += ", tile " + std::to_string(task.tile) + " of " + std::to_string(plan.tileColumns) + "x" + std::to_string(plan.tileRows);
+        what += ", tile " + std::to_string(task.tile) + " of " + std::to_string(plan.tileColumns) + "x" +
+                std::to_string(plan.tileRows);
     return what;
 }
 
@@ -80,7 +82,8 @@ std::optional<TaskRecord> readTaskRecord(const FarmPlan& plan, int index) {
         const JsonValue root = parseJson(text.str());
         TaskRecord record;
         record.attempts = root.at("attempts", "the task record").asInt("attempts");
-        if (const JsonValue& code = root.at("exitCode", "the task record"); !code.isNull()) record.exitCode = code.asInt("exitCode");
+        if (const JsonValue& code = root.at("exitCode", "the task record"); !code.isNull())
+            record.exitCode = code.asInt("exitCode");
         return record;
     } catch (const JsonError&) {
         return std::nullopt;

@@ -41,7 +41,7 @@ delegate::DelegateOptions delegateOptions(const RenderOptions& opt, const color:
 const integrators::IntegratorInfo& chosenIntegrator(const RenderOptions& opt, const delegate::DelegateResult& populated,
                                                     unsigned sceneClasses) {
     const auto& settings = populated.renderSettings;
-    std::string name = !opt.integrator.empty() ? opt.integrator  // checked when parsed
+    std::string name = !opt.integrator.empty()                     ? opt.integrator  // checked when parsed
                        : settings && !settings->integrator.empty() ? settings->integrator
                                                                    : kDefaultIntegrator;
     if (name == integrators::kAutomaticIntegrator) {
@@ -58,7 +58,8 @@ const integrators::IntegratorInfo& chosenIntegrator(const RenderOptions& opt, co
 void overrideSubsurface(const std::string& method, render::SceneDescription& scene) {
     if (method.empty()) return;
     for (render::MaterialDesc& m : scene.materials)
-        m.subsurfaceMethod = method == "diffusion" ? render::SubsurfaceMethod::Diffusion : render::SubsurfaceMethod::RandomWalk;
+        m.subsurfaceMethod =
+            method == "diffusion" ? render::SubsurfaceMethod::Diffusion : render::SubsurfaceMethod::RandomWalk;
 }
 
 // The delegate's and the render scene's work; returns the light paths the scene can produce.
@@ -67,9 +68,11 @@ unsigned populate(const RenderOptions& opt, usd::Stage& stage, const color::Colo
     built.populated = delegate::populateScene(stage, dopt);
     const unsigned sceneClasses = integrators::scenePathClasses(built.populated->scene);
     built.integrator = &chosenIntegrator(opt, *built.populated, sceneClasses);
-    built.parameters = integratorParameters(opt.integratorParameters, built.populated->renderSettings, *built.integrator, warnings);
+    built.parameters =
+        integratorParameters(opt.integratorParameters, built.populated->renderSettings, *built.integrator, warnings);
     overrideSubsurface(opt.subsurface, built.populated->scene);
-    built.scene = std::make_unique<render::RenderScene>(built.populated->scene, std::make_shared<texture::TextureSystem>(colors));
+    built.scene =
+        std::make_unique<render::RenderScene>(built.populated->scene, std::make_shared<texture::TextureSystem>(colors));
     for (const render::Warning& w : built.scene->warnings()) warnings(w.where, w.message);
     return sceneClasses;
 }
@@ -77,11 +80,13 @@ unsigned populate(const RenderOptions& opt, usd::Stage& stage, const color::Colo
 }  // namespace
 
 int buildFrame(const RenderOptions& opt, usd::Stage& stage, const color::ColorManagement& colors, double time,
-               const PlannedRender& planned, const std::set<std::string>& primvars, WarningLog& warnings, BuiltFrame& built) {
+               const PlannedRender& planned, const std::set<std::string>& primvars, WarningLog& warnings,
+               BuiltFrame& built) {
     const Stopwatch clock;
     unsigned sceneClasses = 0;  // the light paths the scene can produce (integrators/path_classes.h)
     try {
-        sceneClasses = populate(opt, stage, colors, delegateOptions(opt, colors, time, planned, primvars, warnings), warnings, built);
+        sceneClasses = populate(opt, stage, colors, delegateOptions(opt, colors, time, planned, primvars, warnings),
+                                warnings, built);
     } catch (const delegate::MissingAssetError& e) {
         printError(e.what());
         return kExitMissingInput;
@@ -96,10 +101,11 @@ int buildFrame(const RenderOptions& opt, usd::Stage& stage, const color::ColorMa
         return kExitScene;
     }
     built.seconds = clock.seconds();
-    if (built.scene->lightCount() == 0) warnings(built.populated->cameraPath, "the scene has no lights; the image will be black");
+    if (built.scene->lightCount() == 0)
+        warnings(built.populated->cameraPath, "the scene has no lights; the image will be black");
     if (const unsigned missed = sceneClasses & ~built.integrator->covers)
-        warnings(opt.scene, "integrator '" + built.integrator->name + "' misses: " + integrators::describePathClasses(missed) +
-                                " (light that this scene has)");
+        warnings(opt.scene, "integrator '" + built.integrator->name + "' misses: " +
+                                integrators::describePathClasses(missed) + " (light that this scene has)");
     return kExitOk;
 }
 

@@ -24,13 +24,14 @@ struct BuiltFrame {
     std::unique_ptr<render::RenderScene> scene;
     const integrators::IntegratorInfo* integrator = nullptr;  // --integrator, else fluence:integrator, else path
     std::map<std::string, double> parameters;                 // its parameters (apps/integrator_parameters.h)
-    double seconds = 0.0;                                      // the build's time
+    double seconds = 0.0;                                     // the build's time
 };
 
 // Builds the stage at time code `time` for `planned` (its camera, resolution and framing);
 // `primvars`: those the frame's primvar RenderVars read. Warns of a scene without lights and of
 // the light paths the integrator misses. Returns the exit code: kExitOk, else the error printed.
 int buildFrame(const RenderOptions& opt, usd::Stage& stage, const color::ColorManagement& colors, double time,
-               const PlannedRender& planned, const std::set<std::string>& primvars, WarningLog& warnings, BuiltFrame& built);
+               const PlannedRender& planned, const std::set<std::string>& primvars, WarningLog& warnings,
+               BuiltFrame& built);
 
 }  // namespace fluence::app

@@ -30,8 +30,8 @@ std::string withTileSuffix(const std::string& path, std::string suffix, int inde
 int productFiles(const RenderOptions& opt, double time, const PlannedRender& planned, std::vector<std::string>& files) {
     for (const PlannedProduct& p : planned.products) {
         if (opt.frameCount > 1 && !hasFrameToken(p.outputPattern)) {
-            printError("rendering " + std::to_string(opt.frameCount) + " frames needs a frame token ($F, $F4, %04d) in the output path '" +
-                       p.outputPattern + "'");
+            printError("rendering " + std::to_string(opt.frameCount) +
+                       " frames needs a frame token ($F, $F4, %04d) in the output path '" + p.outputPattern + "'");
             return kExitUsage;
         }
         const std::string path = expandFrameTokens(p.outputPattern, time);
@@ -45,7 +45,8 @@ int makeOutputFolders(const FrameOutputs& outputs) {
     std::vector<std::string> made = outputs.files;
     made.push_back(outputs.preview);
     for (const std::string& path : made)
-        if (std::filesystem::path folder = std::filesystem::path(path).parent_path(); !path.empty() && !folder.empty()) {
+        if (std::filesystem::path folder = std::filesystem::path(path).parent_path();
+            !path.empty() && !folder.empty()) {
             std::error_code error;
             std::filesystem::create_directories(folder, error);
             if (error) {
@@ -64,14 +65,15 @@ int planFrameOutputs(const RenderOptions& opt, double time, const PlannedRender&
     const std::pair<int, int> res = planned.resolution;
     const PixelWindow wholeTile = tileWindow(opt, res);
     if (wholeTile.empty()) {
-        printError("tile " + std::to_string(opt.tileIndex) + " of --tile-count " + std::to_string(opt.tileCount->first) + " " +
-                   std::to_string(opt.tileCount->second) + " has no pixels at " + std::to_string(res.first) + "x" +
-                   std::to_string(res.second));
+        printError("tile " + std::to_string(opt.tileIndex) + " of --tile-count " +
+                   std::to_string(opt.tileCount->first) + " " + std::to_string(opt.tileCount->second) +
+                   " has no pixels at " + std::to_string(res.first) + "x" + std::to_string(res.second));
         return kExitUsage;
     }
     outputs.window = wholeTile.intersect(planned.window());
     if (outputs.window.empty()) {
-        warnings(planned.products.front().path, "tile " + std::to_string(opt.tileIndex) + " holds no pixel of its data window; nothing written");
+        warnings(planned.products.front().path,
+                 "tile " + std::to_string(opt.tileIndex) + " holds no pixel of its data window; nothing written");
         return kExitOk;
     }
     outputs.preview = expandFrameTokens(opt.preview, time);

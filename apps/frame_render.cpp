@@ -20,11 +20,13 @@ namespace {
 
 // Whether every output of a frame is already written by this same render (its header carries the
 // render's fingerprint digest) and none is still going (no checkpoint beside the first).
-bool alreadyRendered(const std::vector<std::string>& outputs, const std::string& checkpoint, const std::string& digest) {
+bool alreadyRendered(const std::vector<std::string>& outputs, const std::string& checkpoint,
+                     const std::string& digest) {
     std::error_code error;
     if (std::filesystem::exists(checkpoint, error)) return false;
     return std::all_of(outputs.begin(), outputs.end(), [&](const std::string& output) {
-        return std::filesystem::exists(output, error) && output::readStringAttribute(output, "fluence/fingerprint") == digest;
+        return std::filesystem::exists(output, error) &&
+               output::readStringAttribute(output, "fluence/fingerprint") == digest;
     });
 }
 
@@ -34,7 +36,8 @@ int lightPathAovs(const RenderOptions& opt, const PlannedRender& planned, const 
                   WarningLog& warnings, std::vector<integrators::LightPathAov>& aovs) {
     aovs = planned.lightPaths;
     if (aovs.empty() || integrator.lightPathExpressions) return kExitOk;
-    const std::string why = "integrator '" + integrator.name + "' does not write light path expression AOVs (path does)";
+    const std::string why =
+        "integrator '" + integrator.name + "' does not write light path expression AOVs (path does)";
     if (!opt.lightPaths.empty()) {
         printError("--lpe: " + why);
         return kExitUsage;
@@ -60,9 +63,9 @@ integrators::RenderSettings renderSettings(const RenderOptions& opt, const Pixel
 }
 
 // The outputs' EXR header (their snapshots' too), but for what the render's end adds.
-output::ExrHeader frameHeader(const RenderOptions& opt, const color::ColorManagement& colors, const render::Camera& camera,
-                              const PixelWindow& window, std::pair<int, int> res, const std::string& cameraPath,
-                              const std::string& integrator, double time) {
+output::ExrHeader frameHeader(const RenderOptions& opt, const color::ColorManagement& colors,
+                              const render::Camera& camera, const PixelWindow& window, std::pair<int, int> res,
+                              const std::string& cameraPath, const std::string& integrator, double time) {
     output::ExrHeader header;
     header.colorSpace = color::ColorManagement::kRenderingSpace;
     header.chromaticities = color::ColorManagement::renderingChromaticities();
@@ -73,8 +76,9 @@ output::ExrHeader frameHeader(const RenderOptions& opt, const color::ColorManage
         header.y = window.y0;
         header.fullWidth = res.first;
         header.fullHeight = res.second;
-        header.strings.push_back({"fluence/tile", std::to_string(opt.tileIndex) + " of " + std::to_string(opt.tileCount->first) +
-                                                      "x" + std::to_string(opt.tileCount->second)});
+        header.strings.push_back({"fluence/tile", std::to_string(opt.tileIndex) + " of " +
+                                                      std::to_string(opt.tileCount->first) + "x" +
+                                                      std::to_string(opt.tileCount->second)});
     }
     header.strings.insert(header.strings.end(), {{"fluence/version", kFluenceVersion},
                                                  {"fluence/scene", std::filesystem::absolute(opt.scene).string()},
@@ -91,7 +95,8 @@ int prepare(const RenderOptions& opt, const PlannedRender& planned, BuiltFrame& 
             WarningLog& warnings, std::vector<integrators::LightPathAov>& aovs, RenderedFrame& frame) {
     const std::pair<int, int> res = planned.resolution;
     try {
-        frame.camera = std::make_unique<render::Camera>(*built.populated->scene.camera, res.first, res.second, planned.framing);
+        frame.camera =
+            std::make_unique<render::Camera>(*built.populated->scene.camera, res.first, res.second, planned.framing);
         built.scene->setTextureFilterCamera(*frame.camera);
     } catch (const std::invalid_argument& e) {
         printError(e.what());
@@ -99,8 +104,8 @@ int prepare(const RenderOptions& opt, const PlannedRender& planned, BuiltFrame& 
     }
     if (int code = lightPathAovs(opt, planned, *built.integrator, warnings, aovs); code != kExitOk) return code;
     try {
-        frame.cryptomatteRequests =
-            cryptomatteLayers(findProduct(built.populated->renderSettings, planned.products.front().path), opt.cryptomatte);
+        frame.cryptomatteRequests = cryptomatteLayers(
+            findProduct(built.populated->renderSettings, planned.products.front().path), opt.cryptomatte);
     } catch (const delegate::SceneError& e) {
         printError(e.what());
         return kExitScene;
@@ -110,23 +115,27 @@ int prepare(const RenderOptions& opt, const PlannedRender& planned, BuiltFrame& 
     isettings.parameters = built.parameters;
     isettings.lightPathAovs = std::make_shared<const std::vector<integrators::LightPathAov>>(aovs);
     frame.integrator = built.integrator->create(isettings);
-    if (frame.integrator->usesSplats() && (window.width() != res.first || window.height() != res.second))  // integrators/renderer.h
-        warnings(opt.scene, "integrator '" + built.integrator->name +
-                                "' renders a window of the image (a tile or a data window) without light tracing (t = 1): "
-                                "point-light caustics seen directly are missed");
+    if (frame.integrator->usesSplats() &&
+        (window.width() != res.first || window.height() != res.second))  // integrators/renderer.h
+        warnings(opt.scene,
+                 "integrator '" + built.integrator->name +
+                     "' renders a window of the image (a tile or a data window) without light tracing (t = 1): "
+                     "point-light caustics seen directly are missed");
     return kExitOk;
 }
 
 // With --checkpoint or --resume: the render's fingerprint, in the header; frame.alreadyWritten
 // when --resume finds the outputs written by this same render.
-CheckpointFingerprint fingerprintRender(const RenderOptions& opt, const usd::Stage& stage, const ResolvedRender& resolved,
-                                        const FrameOutputs& outputs, RenderedFrame& frame) {
+CheckpointFingerprint fingerprintRender(const RenderOptions& opt, const usd::Stage& stage,
+                                        const ResolvedRender& resolved, const FrameOutputs& outputs,
+                                        RenderedFrame& frame) {
     if (!opt.checkpointSeconds && !opt.resume) return {};
     const CheckpointFingerprint fingerprint = renderFingerprint(opt, stage, resolved);
     const std::string digest = fingerprintDigest(fingerprint);
     const std::string& outputPath = outputs.files.front();
     if (opt.resume && alreadyRendered(outputs.files, checkpointPath(outputPath), digest)) {
-        std::printf("fluence: --resume: %s is already rendered (same fingerprint, no checkpoint); skipped\n", outputPath.c_str());
+        std::printf("fluence: --resume: %s is already rendered (same fingerprint, no checkpoint); skipped\n",
+                    outputPath.c_str());
         frame.alreadyWritten = true;
     }
     frame.header.strings.push_back({"fluence/fingerprint", digest});
@@ -138,10 +147,12 @@ CheckpointFingerprint fingerprintRender(const RenderOptions& opt, const usd::Sta
 int startPasses(const RenderOptions& opt, const std::string& outputPath, const CheckpointFingerprint& fingerprint,
                 WarningLog& warnings, RenderedFrame& frame) {
     frame.passOutputs = std::make_unique<PassOutputs>(
-        opt, outputPath, fingerprint, frame.cryptomatte.get(), warnings, [&opt, &frame](const std::string& path, const Film& partial, int samplesDone) {
+        opt, outputPath, fingerprint, frame.cryptomatte.get(), warnings,
+        [&opt, &frame](const std::string& path, const Film& partial, int samplesDone) {
             output::ExrHeader snapshotHeader = frame.header;
             snapshotHeader.floats.insert(snapshotHeader.floats.end(), {{"fluence/samplesPerPixel", float(samplesDone)},
-                                                                       {"fluence/seed", float(opt.seed)}, {"fluence/snapshot", 1.0f}});
+                                                                       {"fluence/seed", float(opt.seed)},
+                                                                       {"fluence/snapshot", 1.0f}});
             output::writeExr(path, partial.resolve(), snapshotHeader);
         });
     try {
@@ -159,9 +170,9 @@ int startPasses(const RenderOptions& opt, const std::string& outputPath, const C
 
 }  // namespace
 
-int renderFrameImage(const RenderOptions& opt, const usd::Stage& stage, const color::ColorManagement& colors, double time,
-                     const PlannedRender& planned, BuiltFrame& built, const FrameOutputs& outputs, WarningLog& warnings,
-                     RenderedFrame& frame) {
+int renderFrameImage(const RenderOptions& opt, const usd::Stage& stage, const color::ColorManagement& colors,
+                     double time, const PlannedRender& planned, BuiltFrame& built, const FrameOutputs& outputs,
+                     WarningLog& warnings, RenderedFrame& frame) {
     const std::pair<int, int> res = planned.resolution;
     const PixelWindow& window = outputs.window;
     std::vector<integrators::LightPathAov> aovs;
@@ -174,19 +185,30 @@ int renderFrameImage(const RenderOptions& opt, const usd::Stage& stage, const co
     frame.settings.cryptomatte = frame.cryptomatte.get();
     const std::string& cameraPath = built.populated->cameraPath;
     frame.header = frameHeader(opt, colors, *frame.camera, window, res, cameraPath, built.integrator->name, time);
-    const ResolvedRender resolved{cameraPath, res.first, res.second, window.x0, window.y0, window.width(), window.height(),
-                                  time, built.integrator->name, built.parameters, frame.settings.samplesPerPixel, aovs};
+    const ResolvedRender resolved{cameraPath,
+                                  res.first,
+                                  res.second,
+                                  window.x0,
+                                  window.y0,
+                                  window.width(),
+                                  window.height(),
+                                  time,
+                                  built.integrator->name,
+                                  built.parameters,
+                                  frame.settings.samplesPerPixel,
+                                  aovs};
     const CheckpointFingerprint fingerprint = fingerprintRender(opt, stage, resolved, outputs, frame);
     if (frame.alreadyWritten) return kExitOk;
     if (int code = startPasses(opt, outputs.files.front(), fingerprint, warnings, frame); code != kExitOk) return code;
     integrators::RenderProgress progress;
     {
         ProgressReporter reporter(progress, opt.progress);
-        frame.stats = integrators::render(*built.scene, *frame.camera, *frame.integrator, frame.settings, *frame.film, &progress);
+        frame.stats =
+            integrators::render(*built.scene, *frame.camera, *frame.integrator, frame.settings, *frame.film, &progress);
     }
     if (frame.stats.interrupted) {
-        printError("interrupted by a signal after " + std::to_string(frame.stats.samples) + " samples; nothing written to " +
-                   outputs.files.front());
+        printError("interrupted by a signal after " + std::to_string(frame.stats.samples) +
+                   " samples; nothing written to " + outputs.files.front());
         return kExitInterrupted;
     }
     return kExitOk;

@@ -42,8 +42,8 @@ struct RenderedFrame {
 
 // Renders `built` into `frame` for `planned`, over `outputs.window`. Returns the exit code:
 // kExitOk (with frame.alreadyWritten when --resume had nothing left to do), else the error printed.
-int renderFrameImage(const RenderOptions& opt, const usd::Stage& stage, const color::ColorManagement& colors, double time,
-                     const PlannedRender& planned, BuiltFrame& built, const FrameOutputs& outputs, WarningLog& warnings,
-                     RenderedFrame& frame);
+int renderFrameImage(const RenderOptions& opt, const usd::Stage& stage, const color::ColorManagement& colors,
+                     double time, const PlannedRender& planned, BuiltFrame& built, const FrameOutputs& outputs,
+                     WarningLog& warnings, RenderedFrame& frame);
 
 }  // namespace fluence::app

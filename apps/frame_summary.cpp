@@ -40,11 +40,12 @@ void printFrameSummary(const RenderOptions& opt, const std::pair<int, int>& res,
                 opt.threads > 0 ? opt.threads : int(std::thread::hardware_concurrency()));
     std::printf("  scene        %s, %s, %s (%s), %s\n", counted(st.meshes, "mesh", "meshes").c_str(),
                 counted(st.triangles, "triangle").c_str(), counted(st.lights, "light").c_str(),
-                counted(st.emissiveTriangles, "emissive triangle").c_str(), counted(warnings.count(), "warning").c_str());
+                counted(st.emissiveTriangles, "emissive triangle").c_str(),
+                counted(warnings.count(), "warning").c_str());
     if (rs.targetError > 0.0)
         std::printf("  adaptive     target error %g: %.1f spp on average (%d to %d per pixel)\n", rs.targetError,
-                    double(stats.samples) / (double(res.first) * res.second), std::min(rs.minSamples, stats.samplesPerPixel),
-                    stats.samplesPerPixel);
+                    double(stats.samples) / (double(res.first) * res.second),
+                    std::min(rs.minSamples, stats.samplesPerPixel), stats.samplesPerPixel);
     if (st.curves > 0)
         std::printf("  curves       %s, %s (Embree native curves)\n", counted(st.curves, "curve set").c_str(),
                     counted(st.curveSegments, "segment").c_str());
@@ -59,8 +60,8 @@ void printFrameSummary(const RenderOptions& opt, const std::pair<int, int>& res,
     if (!outputs.preview.empty()) std::printf("  preview      %s\n", outputs.preview.c_str());
 }
 
-FrameSummary frameSummary(double time, const std::pair<int, int>& res, const BuiltFrame& built, const RenderedFrame& frame,
-                          const FrameOutputs& outputs, const FrameTimes& times) {
+FrameSummary frameSummary(double time, const std::pair<int, int>& res, const BuiltFrame& built,
+                          const RenderedFrame& frame, const FrameOutputs& outputs, const FrameTimes& times) {
     const integrators::RenderStats& stats = frame.stats;
     FrameSummary summary;
     summary.time = time;

@@ -26,7 +26,7 @@ void printFrameSummary(const RenderOptions& opt, const std::pair<int, int>& res,
                        const RenderedFrame& frame, const FrameOutputs& outputs, const FrameTimes& times,
                        const WarningLog& warnings);
 
-FrameSummary frameSummary(double time, const std::pair<int, int>& res, const BuiltFrame& built, const RenderedFrame& frame,
-                          const FrameOutputs& outputs, const FrameTimes& times);
+FrameSummary frameSummary(double time, const std::pair<int, int>& res, const BuiltFrame& built,
+                          const RenderedFrame& frame, const FrameOutputs& outputs, const FrameTimes& times);
 
 }  // namespace fluence::app

@@ -33,7 +33,8 @@ void forEachToken(const std::string& pattern, double time, Visit&& token) {
         } else if (pattern[i] == '%') {
             std::size_t j = i + 1;
             int width = 0;
-            while (j < pattern.size() && pattern[j] >= '0' && pattern[j] <= '9') width = width * 10 + (pattern[j++] - '0');
+            while (j < pattern.size() && pattern[j] >= '0' && pattern[j] <= '9')
+                width = width * 10 + (pattern[j++] - '0');
             if (j < pattern.size() && pattern[j] == 'd' && width <= 32) token(i, j + 1 - i, padded(frame, width));
         }
     }
@@ -50,11 +51,12 @@ bool hasFrameToken(const std::string& pattern) {
 std::string expandFrameTokens(const std::string& pattern, double time) {
     std::string out;
     std::size_t copied = 0;
-    forEachToken(pattern, std::isnan(time) ? 0.0 : time, [&](std::size_t at, std::size_t length, const std::string& expansion) {
-        if (at < copied) return;  // inside a token already replaced
-        out += pattern.substr(copied, at - copied) + expansion;
-        copied = at + length;
-    });
+    forEachToken(pattern, std::isnan(time) ? 0.0 : time,
+                 [&](std::size_t at, std::size_t length, const std::string& expansion) {
+                     if (at < copied) return;  // inside a token already replaced
+                     out += pattern.substr(copied, at - copied) + expansion;
+                     copied = at + length;
+                 });
     return out + pattern.substr(copied);
 }
 

@@ -9,13 +9,14 @@ namespace fluence::app {
 namespace {
 
 // Product `p` of `planned`: its vars over the part of its data window the render took.
-void writeProduct(const RenderOptions& opt, const PlannedRender& planned, std::size_t p, const render::RenderScene& scene,
-                  const FrameOutputs& outputs, const Image& image, const Image& firstHit, WarningLog& warnings,
-                  const RenderedFrame& frame) {
+void writeProduct(const RenderOptions& opt, const PlannedRender& planned, std::size_t p,
+                  const render::RenderScene& scene, const FrameOutputs& outputs, const Image& image,
+                  const Image& firstHit, WarningLog& warnings, const RenderedFrame& frame) {
     const PlannedProduct& product = planned.products[p];
     const PixelWindow written = product.window.intersect(outputs.window);
     if (written.empty()) {
-        warnings(product.path, "tile " + std::to_string(opt.tileIndex) + " holds no pixel of its data window; not written");
+        warnings(product.path,
+                 "tile " + std::to_string(opt.tileIndex) + " holds no pixel of its data window; not written");
         return;
     }
     output::ExrHeader productHeader = frame.header;
@@ -34,13 +35,15 @@ void writeProduct(const RenderOptions& opt, const PlannedRender& planned, std::s
 }  // namespace
 
 int writeFrame(const RenderOptions& opt, const color::ColorManagement& colors, const PlannedRender& planned,
-               const render::RenderScene& scene, const FrameOutputs& outputs, WarningLog& warnings, RenderedFrame& frame) {
+               const render::RenderScene& scene, const FrameOutputs& outputs, WarningLog& warnings,
+               RenderedFrame& frame) {
     const Image image = frame.film->resolve();
     const Image firstHit =
         integrators::renderFirstHitAovs(scene, *frame.camera, frame.settings, *frame.film, planned.firstHitAovs);
-    frame.header.floats.insert(frame.header.floats.end(), {{"fluence/samplesPerPixel", float(frame.stats.samplesPerPixel)},
-                                                           {"fluence/seed", float(opt.seed)},
-                                                           {"fluence/renderSeconds", float(frame.stats.seconds)}});
+    frame.header.floats.insert(frame.header.floats.end(),
+                               {{"fluence/samplesPerPixel", float(frame.stats.samplesPerPixel)},
+                                {"fluence/seed", float(opt.seed)},
+                                {"fluence/renderSeconds", float(frame.stats.seconds)}});
     try {
         for (std::size_t p = 0; p < planned.products.size(); ++p)
             writeProduct(opt, planned, p, scene, outputs, image, firstHit, warnings, frame);

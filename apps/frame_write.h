@@ -15,6 +15,7 @@ namespace fluence::app {
 // Writes the products of `planned` and the preview from `frame`, then lets its pass outputs go
 // (checkpoint and snapshot removed). Returns the exit code: kExitOk, else the error printed.
 int writeFrame(const RenderOptions& opt, const color::ColorManagement& colors, const PlannedRender& planned,
-               const render::RenderScene& scene, const FrameOutputs& outputs, WarningLog& warnings, RenderedFrame& frame);
+               const render::RenderScene& scene, const FrameOutputs& outputs, WarningLog& warnings,
+               RenderedFrame& frame);
 
 }  // namespace fluence::app

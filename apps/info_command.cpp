@@ -146,18 +146,19 @@ int runInfo(const InfoOptions& opt) {
             instancing.push_back(p.path + describedOrMalformed([&] {
                                      delegate::PointInstances points = delegate::pointInstancesFromPrim(
                                          r, [&](const std::string& message) { warnings(p.path, message); });
-                                     return "  PointInstancer: " + std::to_string(points.instances.size()) + " instances of " +
-                                            std::to_string(points.prototypes.size()) + " prototypes";
+                                     return "  PointInstancer: " + std::to_string(points.instances.size()) +
+                                            " instances of " + std::to_string(points.prototypes.size()) + " prototypes";
                                  }));
         }
         if (p.typeName == "Camera") {
             cameras.push_back(p.path + describedOrMalformed([&] {
-                                  return "  focalLength " + std::to_string(r.number({"focalLength"}, 50.0)) + ", aperture " +
-                                         std::to_string(r.number({"horizontalAperture"}, 20.955)) + " x " +
-                                         std::to_string(r.number({"verticalAperture"}, 15.2908));
+                                  return "  focalLength " + std::to_string(r.number({"focalLength"}, 50.0)) +
+                                         ", aperture " + std::to_string(r.number({"horizontalAperture"}, 20.955)) +
+                                         " x " + std::to_string(r.number({"verticalAperture"}, 15.2908));
                               }));
         } else if (p.typeName.ends_with("Light")) {
-            lights.push_back(p.path + "  " + p.typeName + (delegate::isLightType(p.typeName) ? "" : "  (not supported yet)"));
+            lights.push_back(p.path + "  " + p.typeName +
+                             (delegate::isLightType(p.typeName) ? "" : "  (not supported yet)"));
         } else if (p.typeName == "Material") {
             const usd::AttributeSpec* surface = p.attribute("outputs:surface");
             std::string shader = surface && !surface->connections.empty()
@@ -168,8 +169,10 @@ int runInfo(const InfoOptions& opt) {
             std::string fields;
             for (const usd::RelationshipSpec& rel : p.relationships)
                 if (rel.name.starts_with("field:") && !rel.targets.empty())
-                    fields.append(" ").append(rel.name.substr(6)).append("=").append(
-                        delegate::resolveTargetPath(p.path, rel.targets.front()));
+                    fields.append(" ")
+                        .append(rel.name.substr(6))
+                        .append("=")
+                        .append(delegate::resolveTargetPath(p.path, rel.targets.front()));
             volumes.push_back(p.path + (fields.empty() ? "  (no fields)" : " " + fields));
         } else if (p.typeName == "RenderSettings") {
             settings.push_back(p.path);
@@ -188,17 +191,19 @@ int runInfo(const InfoOptions& opt) {
     list("render settings prims", settings);
     try {
         std::function<void(const std::string&, const std::string&)> warnMissing;
-        if (!opt.strict) warnMissing = [&](const std::string& where, const std::string& message) { warnings(where, message); };
+        if (!opt.strict)
+            warnMissing = [&](const std::string& where, const std::string& message) { warnings(where, message); };
         if (auto s = delegate::renderSettingsFromStage(*stage, opt.settings, time, warnMissing)) {
-            std::printf("  used: %s  resolution %d x %d, camera %s, %zu products%s\n", s->path.c_str(), s->resolution.first,
-                        s->resolution.second, s->cameraPath.empty() ? "(none)" : s->cameraPath.c_str(), s->products.size(),
+            std::printf("  used: %s  resolution %d x %d, camera %s, %zu products%s\n", s->path.c_str(),
+                        s->resolution.first, s->resolution.second,
+                        s->cameraPath.empty() ? "(none)" : s->cameraPath.c_str(), s->products.size(),
                         s->integrator.empty() ? "" : (", integrator " + s->integrator).c_str());
             for (const auto& p : s->products) {
                 std::printf("    product %s  productName '%s'  %d x %d\n", p.path.c_str(), p.productName.c_str(),
                             p.resolution.first, p.resolution.second);
                 for (const auto& v : p.vars)
-                    std::printf("      var %s  %s %s (%s)\n", v.path.c_str(), v.sourceType.c_str(), v.sourceName.c_str(),
-                                v.dataType.c_str());
+                    std::printf("      var %s  %s %s (%s)\n", v.path.c_str(), v.sourceType.c_str(),
+                                v.sourceName.c_str(), v.dataType.c_str());
             }
         }
     } catch (const delegate::SceneError& e) {
@@ -208,7 +213,8 @@ int runInfo(const InfoOptions& opt) {
     const DescribedScene described = describeScene(*stage, opt, time, warnings);
     if (described.scene) printPathClasses(*described.scene);
     section("malformed prims", described.malformed.size());
-    for (const delegate::MalformedPrim& m : described.malformed) std::printf("  %s  %s\n", m.path.c_str(), m.reason.c_str());
+    for (const delegate::MalformedPrim& m : described.malformed)
+        std::printf("  %s  %s\n", m.path.c_str(), m.reason.c_str());
 
     std::vector<usd::AssetReference> assets = stage->assetReferences();
     std::size_t missing = 0;
@@ -219,7 +225,8 @@ int runInfo(const InfoOptions& opt) {
                     a.property.empty() ? "" : ".", a.property.c_str());
     std::printf("\n%zu warnings\n", warnings.count());
     if (opt.strict && !described.malformed.empty()) {
-        printError(std::to_string(described.malformed.size()) + " malformed prim" + (described.malformed.size() == 1 ? "" : "s") +
+        printError(std::to_string(described.malformed.size()) + " malformed prim" +
+                   (described.malformed.size() == 1 ? "" : "s") +
                    " (listed above under 'malformed prims'), which `fluence render --strict` refuses");
         return kExitScene;
     }

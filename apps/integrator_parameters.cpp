@@ -43,10 +43,12 @@ std::string parameterProblem(const integrators::IntegratorParameter& parameter, 
 
 std::map<std::string, double> integratorParameters(const std::map<std::string, double>& given,
                                                    const std::optional<delegate::RenderSettingsDesc>& settings,
-                                                   const integrators::IntegratorInfo& integrator, WarningLog& warnings) {
+                                                   const integrators::IntegratorInfo& integrator,
+                                                   WarningLog& warnings) {
     const auto notRead = [&](const std::string& where, const std::string& option) {
         const auto& own = integrator.parameters;
-        if (std::none_of(own.begin(), own.end(), [&](const integrators::IntegratorParameter& p) { return p.option == option; }))
+        if (std::none_of(own.begin(), own.end(),
+                         [&](const integrators::IntegratorParameter& p) { return p.option == option; }))
             warnings(where, "integrator '" + integrator.name + "' has no such parameter; ignored");
     };
     std::map<std::string, double> parameters;
@@ -54,7 +56,8 @@ std::map<std::string, double> integratorParameters(const std::map<std::string, d
         for (const auto& [attribute, value] : settings->integratorParameters) {
             const integrators::IntegratorParameter* p = parameterOfAttribute(attribute);
             if (!p) {
-                warnings(settings->path, attribute + " is no integrator's parameter; ignored (fluence --help lists them)");
+                warnings(settings->path,
+                         attribute + " is no integrator's parameter; ignored (fluence --help lists them)");
                 continue;
             }
             if (const std::string why = parameterProblem(*p, value); !why.empty())

@@ -178,9 +178,7 @@ private:
     int depth_ = 0;
 };
 
-[[noreturn]] void wrongType(const std::string& what, const char* type) {
-    throw JsonError(what + " must be " + type);
-}
+[[noreturn]] void wrongType(const std::string& what, const char* type) { throw JsonError(what + " must be " + type); }
 
 }  // namespace
 

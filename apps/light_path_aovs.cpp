@@ -17,7 +17,8 @@ constexpr std::array<const char*, 8> kFilmLayers{"R", "G", "B", "A", "albedo", "
 // Why `name` cannot be a layer name, or "" when it can.
 std::string layerNameProblem(const std::string& name) {
     const auto identifierChar = [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; };
-    if (name.empty() || std::isdigit(static_cast<unsigned char>(name.front())) || !std::all_of(name.begin(), name.end(), identifierChar))
+    if (name.empty() || std::isdigit(static_cast<unsigned char>(name.front())) ||
+        !std::all_of(name.begin(), name.end(), identifierChar))
         return "the layer name '" + name + "' is not an identifier (letters, digits, _)";
     if (std::find(kFilmLayers.begin(), kFilmLayers.end(), name) != kFilmLayers.end())
         return "the layer name '" + name + "' is taken by the image's own channels";
@@ -43,7 +44,8 @@ std::vector<integrators::LightPathAov> lightPathAovs(const delegate::RenderProdu
                                                      const std::vector<LightPathOption>& options) {
     std::vector<integrators::LightPathAov> aovs;
     auto named = [&](const std::string& name) {
-        return std::find_if(aovs.begin(), aovs.end(), [&](const integrators::LightPathAov& a) { return a.name == name; });
+        return std::find_if(aovs.begin(), aovs.end(),
+                            [&](const integrators::LightPathAov& a) { return a.name == name; });
     };
     if (product)
         for (const delegate::RenderVarDesc& var : product->vars) {
@@ -51,11 +53,13 @@ std::vector<integrators::LightPathAov> lightPathAovs(const delegate::RenderProdu
             const std::string name = primName(var.path);
             if (std::string problem = layerNameProblem(name); !problem.empty())
                 throw delegate::SceneError("RenderVar " + var.path + ": " + problem);
-            if (named(name) != aovs.end()) throw delegate::SceneError("RenderVar " + var.path + ": a second layer named '" + name + "'");
+            if (named(name) != aovs.end())
+                throw delegate::SceneError("RenderVar " + var.path + ": a second layer named '" + name + "'");
             try {
                 aovs.push_back({name, integrators::LightPathExpression(var.sourceName)});
             } catch (const integrators::LpeSyntaxError& e) {
-                throw delegate::SceneError("RenderVar " + var.path + ": sourceName '" + var.sourceName + "' is not a light path expression: " + e.what());
+                throw delegate::SceneError("RenderVar " + var.path + ": sourceName '" + var.sourceName +
+                                           "' is not a light path expression: " + e.what());
             }
         }
     for (const LightPathOption& option : options) {

@@ -4,4 +4,6 @@
 
 #include "apps/command_line.h"
 
-int main(int argc, char** argv) { return fluence::app::runCommandLine(std::vector<std::string>(argv + 1, argv + argc)); }
+int main(int argc, char** argv) {
+    return fluence::app::runCommandLine(std::vector<std::string>(argv + 1, argv + argc));
+}

@@ -14,7 +14,9 @@ constexpr int kBarWidth = 40;
 }  // namespace
 
 ProgressReporter::ProgressReporter(const integrators::RenderProgress& progress, ProgressStyle style)
-    : progress_(progress), style_(style), terminal_(style == ProgressStyle::Auto && isatty(STDERR_FILENO) != 0),
+    : progress_(progress),
+      style_(style),
+      terminal_(style == ProgressStyle::Auto && isatty(STDERR_FILENO) != 0),
       start_(std::chrono::steady_clock::now()),
       thread_([this] { run(); }) {}
 

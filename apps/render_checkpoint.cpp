@@ -36,8 +36,8 @@ std::string differences(const CheckpointFingerprint& saved, const CheckpointFing
 
 std::string checkpointPath(const std::string& outputPath) { return outputPath + ".checkpoint"; }
 
-void writeCheckpoint(const std::string& path, const CheckpointFingerprint& fingerprint, int samplesDone, const Film& film,
-                     const CryptomatteFilm* cryptomatte) {
+void writeCheckpoint(const std::string& path, const CheckpointFingerprint& fingerprint, int samplesDone,
+                     const Film& film, const CryptomatteFilm* cryptomatte) {
     output::writeAtomically(path, [&](const std::string& tempPath) {
         std::ofstream out(tempPath, std::ios::binary);
         if (!out) throw output::outputError(path, "cannot create " + tempPath);
@@ -58,7 +58,8 @@ void writeCheckpoint(const std::string& path, const CheckpointFingerprint& finge
     });
 }
 
-int readCheckpoint(const std::string& path, const CheckpointFingerprint& fingerprint, Film& film, CryptomatteFilm* cryptomatte) {
+int readCheckpoint(const std::string& path, const CheckpointFingerprint& fingerprint, Film& film,
+                   CryptomatteFilm* cryptomatte) {
     std::ifstream in(path, std::ios::binary);
     if (!in) throw CheckpointError("cannot open the checkpoint " + path);
     try {
@@ -82,7 +83,8 @@ int readCheckpoint(const std::string& path, const CheckpointFingerprint& fingerp
         const auto samplesDone = readBinary<std::uint32_t>(in);
         readFilmState(in, film);
         if (const bool saved = readBinary<std::uint8_t>(in) != 0; saved != (cryptomatte != nullptr))
-            throw FilmStateError(saved ? "it holds Cryptomatte layers, and this render has none" : "it holds no Cryptomatte layers");
+            throw FilmStateError(saved ? "it holds Cryptomatte layers, and this render has none"
+                                       : "it holds no Cryptomatte layers");
         if (cryptomatte) cryptomatte->readState(in);
         if (in.peek() != std::char_traits<char>::eof()) throw BinaryReadError("data after the film state");
         return static_cast<int>(samplesDone);

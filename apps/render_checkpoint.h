@@ -51,8 +51,8 @@ std::string checkpointPath(const std::string& outputPath);
 
 // Writes the checkpoint atomically, with the Cryptomatte coverage counts when `cryptomatte` is not
 // null. Throws output::OutputError.
-void writeCheckpoint(const std::string& path, const CheckpointFingerprint& fingerprint, int samplesDone, const Film& film,
-                     const CryptomatteFilm* cryptomatte = nullptr);
+void writeCheckpoint(const std::string& path, const CheckpointFingerprint& fingerprint, int samplesDone,
+                     const Film& film, const CryptomatteFilm* cryptomatte = nullptr);
 
 // Reads the checkpoint at `path` into `film` and `cryptomatte` (fresh, of the render's shape and
 // layers; null when the render has no Cryptomatte layers) and returns its samplesDone. Throws

@@ -34,7 +34,8 @@ int renderFrame(const RenderOptions& opt, usd::Stage& stage, const color::ColorM
                 const std::set<std::string>& primvars) {
     const Stopwatch total;
     BuiltFrame built;
-    if (int code = buildFrame(opt, stage, colors, time, planned, primvars, warnings, built); code != kExitOk) return code;
+    if (int code = buildFrame(opt, stage, colors, time, planned, primvars, warnings, built); code != kExitOk)
+        return code;
     FrameOutputs outputs;
     if (int code = planFrameOutputs(opt, time, planned, warnings, outputs); code != kExitOk || outputs.window.empty())
         return code;
@@ -43,7 +44,8 @@ int renderFrame(const RenderOptions& opt, usd::Stage& stage, const color::ColorM
         code != kExitOk || frame.alreadyWritten)
         return code;
     const Stopwatch writing;
-    if (int code = writeFrame(opt, colors, planned, *built.scene, outputs, warnings, frame); code != kExitOk) return code;
+    if (int code = writeFrame(opt, colors, planned, *built.scene, outputs, warnings, frame); code != kExitOk)
+        return code;
     const FrameTimes times{parseSeconds, built.seconds, writing.seconds(), total.seconds()};
     printFrameSummary(opt, planned.resolution, built, frame, outputs, times, warnings);
     summary.frames.push_back(frameSummary(time, planned.resolution, built, frame, outputs, times));
@@ -58,8 +60,8 @@ int renderProducts(const RenderOptions& opt, usd::Stage& stage, const color::Col
     try {
         std::function<void(const std::string&, const std::string&)> warn =
             [&](const std::string& where, const std::string& message) { warnings(where, message); };
-        plan = planRenders(delegate::renderSettingsFromStage(stage, opt.settings, time, opt.strict ? nullptr : warn), opt,
-                           std::filesystem::path(opt.scene).stem().string(), warn);
+        plan = planRenders(delegate::renderSettingsFromStage(stage, opt.settings, time, opt.strict ? nullptr : warn),
+                           opt, std::filesystem::path(opt.scene).stem().string(), warn);
     } catch (const delegate::SceneError& e) {
         printError(e.what());
         return kExitScene;
@@ -68,7 +70,8 @@ int renderProducts(const RenderOptions& opt, usd::Stage& stage, const color::Col
         return kExitUsage;
     }
     for (std::size_t r = 0; r < plan.renders.size(); ++r)
-        if (int code = renderFrame(opt, stage, colors, time, r == 0 ? parseSeconds : 0.0, warnings, summary, plan.renders[r], plan.primvars());
+        if (int code = renderFrame(opt, stage, colors, time, r == 0 ? parseSeconds : 0.0, warnings, summary,
+                                   plan.renders[r], plan.primvars());
             code != kExitOk)
             return code;
     return kExitOk;
@@ -89,7 +92,8 @@ int renderFrames(const RenderOptions& opt, WarningLog& warnings, RunSummary& sum
     const Stopwatch parsing;
     std::unique_ptr<usd::Stage> stage;
     const MissingAssets missing = opt.allowMissing ? MissingAssets::Warn : MissingAssets::Fail;
-    if (int code = openStage(opt.scene, {opt.variants, opt.loadRules}, warnings, stage, missing); code != kExitOk) return code;
+    if (int code = openStage(opt.scene, {opt.variants, opt.loadRules}, warnings, stage, missing); code != kExitOk)
+        return code;
     try {
         applyAttributeOverrides(*stage, opt.overrides);
     } catch (const UsageError& e) {
@@ -106,7 +110,8 @@ int renderFrames(const RenderOptions& opt, WarningLog& warnings, RunSummary& sum
     // --frame-count - 1 after it, --frame-inc apart.
     const double first = opt.frame ? *opt.frame : stage->startTimeCode().value_or(usd::kDefaultTime);
     if (opt.frameCount > 1 && std::isnan(first)) {
-        printError("--frame-count " + std::to_string(opt.frameCount) + " needs a first frame: give --frame or a startTimeCode");
+        printError("--frame-count " + std::to_string(opt.frameCount) +
+                   " needs a first frame: give --frame or a startTimeCode");
         return kExitUsage;
     }
     for (int k = 0; k < opt.frameCount; ++k) {
@@ -116,7 +121,8 @@ int renderFrames(const RenderOptions& opt, WarningLog& warnings, RunSummary& sum
             return kExitInterrupted;
         }
         if (opt.frameCount > 1) std::printf("fluence: frame %g (%d of %d)\n", time, k + 1, opt.frameCount);
-        if (int code = renderProducts(opt, *stage, *colors, time, k == 0 ? parseSeconds : 0.0, warnings, summary); code != kExitOk)
+        if (int code = renderProducts(opt, *stage, *colors, time, k == 0 ? parseSeconds : 0.0, warnings, summary);
+            code != kExitOk)
             return code;
     }
     return kExitOk;

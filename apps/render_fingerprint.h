@@ -36,7 +36,8 @@ struct ResolvedRender {
     std::vector<integrators::LightPathAov> lightPathLayers;
 };
 
-CheckpointFingerprint renderFingerprint(const RenderOptions& options, const usd::Stage& stage, const ResolvedRender& render);
+CheckpointFingerprint renderFingerprint(const RenderOptions& options, const usd::Stage& stage,
+                                        const ResolvedRender& render);
 
 // The fingerprint as 16 hex digits (FNV-1a over its entries), for an output's header
 // ("fluence/fingerprint"): with --resume, an output that carries the render's own digest and has

@@ -43,7 +43,9 @@ std::optional<DataType> parseDataType(const std::string& token) {
     if (std::regex_match(token, m, kScalar)) {
         t.components = m[2].length() ? std::stoi(m[2]) : 1;
         const std::string base = m[1];
-        t.type = base == "half" ? output::PixelType::Half : base == "int" || base == "uint" ? output::PixelType::Uint : output::PixelType::Float;
+        t.type = base == "half"                    ? output::PixelType::Half
+                 : base == "int" || base == "uint" ? output::PixelType::Uint
+                                                   : output::PixelType::Float;
         return t;
     }
     if (std::regex_match(token, m, kRole)) {
@@ -59,7 +61,9 @@ std::optional<DataType> parseDataType(const std::string& token) {
 // The film's channels a source reads (Film::channelNames), for `components` of them.
 std::vector<std::string> filmChannels(VarSource source, const std::string& name, int components) {
     switch (source) {
-        case VarSource::Beauty: return components == 4 ? std::vector<std::string>{"R", "G", "B", "A"} : std::vector<std::string>{"R", "G", "B"};
+        case VarSource::Beauty:
+            return components == 4 ? std::vector<std::string>{"R", "G", "B", "A"}
+                                   : std::vector<std::string>{"R", "G", "B"};
         case VarSource::Alpha: return {"A"};
         case VarSource::Albedo: return {"albedo.R", "albedo.G", "albedo.B"};
         case VarSource::Normal: return {"N.X", "N.Y", "N.Z"};
@@ -84,7 +88,8 @@ bool namedLikeItsSource(VarSource source, const std::string& aovName) {
 
 // The channel names a var writes: see the header.
 std::vector<std::string> channelNames(VarSource source, const std::string& aovName, const DataType& type) {
-    if (source == VarSource::Beauty && namedLikeItsSource(source, aovName)) return filmChannels(VarSource::Beauty, "", type.components);
+    if (source == VarSource::Beauty && namedLikeItsSource(source, aovName))
+        return filmChannels(VarSource::Beauty, "", type.components);
     if (source == VarSource::Alpha && namedLikeItsSource(source, aovName)) return {"A"};
     if (source == VarSource::Depth && namedLikeItsSource(source, aovName)) return {"Z"};
     if (type.components == 1) return {aovName};
@@ -109,8 +114,10 @@ std::vector<PixelFilter> filtersOf(VarSource source) {
 
 PixelFilter chosenFilter(const delegate::RenderVarDesc& desc, VarSource source,
                          const std::function<void(const std::string&, const std::string&)>& warn) {
-    static const std::pair<const char*, PixelFilter> kNames[] = {
-        {"box", PixelFilter::Box}, {"min", PixelFilter::Min}, {"max", PixelFilter::Max}, {"closest", PixelFilter::Closest}};
+    static const std::pair<const char*, PixelFilter> kNames[] = {{"box", PixelFilter::Box},
+                                                                 {"min", PixelFilter::Min},
+                                                                 {"max", PixelFilter::Max},
+                                                                 {"closest", PixelFilter::Closest}};
     const std::vector<PixelFilter> allowed = filtersOf(source);
     if (desc.filter.empty()) return allowed.front();
     for (const auto& [name, filter] : kNames)
@@ -121,38 +128,48 @@ PixelFilter chosenFilter(const delegate::RenderVarDesc& desc, VarSource source,
 }
 
 // The source of a raw or primvar RenderVar (lpe vars are read by lightPathAovs). Throws SceneError.
-ProductVar varOf(const delegate::RenderVarDesc& desc, const std::function<void(const std::string&, const std::string&)>& warn) {
+ProductVar varOf(const delegate::RenderVarDesc& desc,
+                 const std::function<void(const std::string&, const std::string&)>& warn) {
     ProductVar var;
     var.path = desc.path;
     std::optional<DataType> type = parseDataType(desc.dataType);
-    if (!type) throw SceneError("RenderVar " + desc.path + ": dataType '" + desc.dataType + "' is not a type Fluence writes (half, float, int, their 2-4 component forms, and color/vector/normal/point/texCoord types)");
+    if (!type)
+        throw SceneError("RenderVar " + desc.path + ": dataType '" + desc.dataType +
+                         "' is not a type Fluence writes (half, float, int, their 2-4 component forms, and "
+                         "color/vector/normal/point/texCoord types)");
     int needs = 0;  // the components the source has (0: any of 1 to 4)
     if (desc.sourceType == "raw") {
-        static const VarSource kRaw[] = {VarSource::Beauty, VarSource::Alpha,  VarSource::Albedo,
-                                         VarSource::Normal, VarSource::Depth, VarSource::SampleCount,
+        static const VarSource kRaw[] = {VarSource::Beauty,      VarSource::Alpha, VarSource::Albedo,
+                                         VarSource::Normal,      VarSource::Depth, VarSource::SampleCount,
                                          VarSource::MotionVector};
-        const VarSource* found = std::find_if(std::begin(kRaw), std::end(kRaw), [&](VarSource s) { return contains(rawSourceNames(s), desc.sourceName); });
+        const VarSource* found = std::find_if(std::begin(kRaw), std::end(kRaw), [&](VarSource s) {
+            return contains(rawSourceNames(s), desc.sourceName);
+        });
         if (found == std::end(kRaw))
-            throw SceneError("RenderVar " + desc.path + ": raw sourceName '" + desc.sourceName +
-                             "' is not an output of Fluence (see docs/RENDER_PRODUCTS.md: color/Ci/C, alpha/a, albedo, N/normal, "
-                             "depth/z/Z, sampleCount, motionvector)");
+            throw SceneError(
+                "RenderVar " + desc.path + ": raw sourceName '" + desc.sourceName +
+                "' is not an output of Fluence (see docs/RENDER_PRODUCTS.md: color/Ci/C, alpha/a, albedo, N/normal, "
+                "depth/z/Z, sampleCount, motionvector)");
         var.source = *found;
-        needs = var.source == VarSource::Beauty ? (type->components == 4 ? 4 : 3)
+        needs = var.source == VarSource::Beauty                                      ? (type->components == 4 ? 4 : 3)
                 : var.source == VarSource::Albedo || var.source == VarSource::Normal ? 3
-                                                                                      : 1;
+                                                                                     : 1;
     } else if (desc.sourceType == "primvar") {
         var.source = VarSource::Primvar;
         var.name = desc.sourceName.starts_with("primvars:") ? desc.sourceName.substr(9) : desc.sourceName;
-        if (var.name.empty()) throw SceneError("RenderVar " + desc.path + ": sourceType primvar needs a sourceName (primvars:NAME)");
+        if (var.name.empty())
+            throw SceneError("RenderVar " + desc.path + ": sourceType primvar needs a sourceName (primvars:NAME)");
     } else {
-        throw SceneError("RenderVar " + desc.path + ": sourceType '" + desc.sourceType + "' is not one Fluence writes (raw, primvar, lpe)");
+        throw SceneError("RenderVar " + desc.path + ": sourceType '" + desc.sourceType +
+                         "' is not one Fluence writes (raw, primvar, lpe)");
     }
     if (needs == 1 && type->components > 1)
-        warn(desc.path, "dataType " + desc.dataType + " has " + std::to_string(type->components) + " components; source '" +
-                            desc.sourceName + "' gives 1, which is written to each");
+        warn(desc.path, "dataType " + desc.dataType + " has " + std::to_string(type->components) +
+                            " components; source '" + desc.sourceName + "' gives 1, which is written to each");
     else if (needs && type->components != needs)
-        throw SceneError("RenderVar " + desc.path + ": dataType " + desc.dataType + " has " + std::to_string(type->components) +
-                         (type->components == 1 ? " component" : " components") + "; source '" + desc.sourceName + "' gives " + std::to_string(needs));
+        throw SceneError("RenderVar " + desc.path + ": dataType " + desc.dataType + " has " +
+                         std::to_string(type->components) + (type->components == 1 ? " component" : " components") +
+                         "; source '" + desc.sourceName + "' gives " + std::to_string(needs));
     var.components = needs == 1 ? 1 : type->components;
     var.type = type->type;
     var.filter = chosenFilter(desc, var.source, warn);
@@ -173,7 +190,8 @@ ProductVar lightPathVar(const integrators::LightPathAov& aov, const delegate::Re
                 var.path = desc.path;
                 std::optional<DataType> type = parseDataType(desc.dataType);
                 if (!type || type->components != 3)
-                    throw SceneError("RenderVar " + desc.path + ": an lpe var's dataType must have 3 components (color3f, color3h, ...), got '" +
+                    throw SceneError("RenderVar " + desc.path +
+                                     ": an lpe var's dataType must have 3 components (color3f, color3h, ...), got '" +
                                      desc.dataType + "'");
                 var.type = type->type;
             }
@@ -192,8 +210,9 @@ ProductVar filmVar(VarSource source, int components, bool colour) {
 
 // The vars of a product without RenderVars: the film's own channels (Film::channelNames).
 std::vector<ProductVar> defaultVars() {
-    return {filmVar(VarSource::Beauty, 4, true), filmVar(VarSource::Albedo, 3, true), filmVar(VarSource::Normal, 3, false),
-            filmVar(VarSource::Depth, 1, false), filmVar(VarSource::SampleCount, 1, false)};
+    return {filmVar(VarSource::Beauty, 4, true), filmVar(VarSource::Albedo, 3, true),
+            filmVar(VarSource::Normal, 3, false), filmVar(VarSource::Depth, 1, false),
+            filmVar(VarSource::SampleCount, 1, false)};
 }
 
 // Whether the film holds a var as it is asked (else the first-hit pass computes it).
@@ -205,11 +224,11 @@ bool fromFilm(const ProductVar& var) {
 
 integrators::FirstHitAov firstHitAovOf(const ProductVar& var) {
     integrators::FirstHitAov aov;
-    aov.source = var.source == VarSource::Depth    ? integrators::FirstHitSource::Depth
-                 : var.source == VarSource::Normal ? integrators::FirstHitSource::Normal
-                 : var.source == VarSource::Albedo ? integrators::FirstHitSource::Albedo
+    aov.source = var.source == VarSource::Depth          ? integrators::FirstHitSource::Depth
+                 : var.source == VarSource::Normal       ? integrators::FirstHitSource::Normal
+                 : var.source == VarSource::Albedo       ? integrators::FirstHitSource::Albedo
                  : var.source == VarSource::MotionVector ? integrators::FirstHitSource::MotionVector
-                                                   : integrators::FirstHitSource::Primvar;
+                                                         : integrators::FirstHitSource::Primvar;
     aov.primvar = var.name;
     aov.components = var.components;
     aov.filter = var.filter;
@@ -229,11 +248,14 @@ std::string compressionOf(const delegate::RenderProductDesc& product, const std:
     static const std::vector<std::string> kLossy{"pxr24", "b44", "b44a", "dwaa", "dwab"};
     if (contains(kLossless, method)) return product.compression;
     if (!contains(kLossy, method))
-        throw SceneError("RenderProduct " + product.path + ": driver:parameters:OpenEXR:compression '" + product.compression +
+        throw SceneError("RenderProduct " + product.path + ": driver:parameters:OpenEXR:compression '" +
+                         product.compression +
                          "' is not one of none, rle, zips, zip, piz, pxr24, b44, b44a, dwaa, dwab");
-    const bool data = std::any_of(vars.begin(), vars.end(), [](const ProductVar& v) { return !v.colour || v.type == output::PixelType::Uint; });
+    const bool data = std::any_of(vars.begin(), vars.end(),
+                                  [](const ProductVar& v) { return !v.colour || v.type == output::PixelType::Uint; });
     if (!data) return product.compression;
-    warn(product.path, "lossy compression '" + product.compression + "' would alter its data channels; written with zip");
+    warn(product.path,
+         "lossy compression '" + product.compression + "' would alter its data channels; written with zip");
     return "zip";
 }
 
@@ -242,10 +264,12 @@ std::string defaultOutput(const std::string& sceneStem, const std::string& suffi
 }
 
 // The vars of one RenderProduct (nullptr: the default product), with the implicit beauty.
-std::vector<ProductVar> productVars(const delegate::RenderProductDesc* product, const std::vector<integrators::LightPathAov>& lightPaths,
+std::vector<ProductVar> productVars(const delegate::RenderProductDesc* product,
+                                    const std::vector<integrators::LightPathAov>& lightPaths,
                                     const std::function<void(const std::string&, const std::string&)>& warn) {
     std::vector<ProductVar> vars;
-    if (!product || std::all_of(product->vars.begin(), product->vars.end(), [](const auto& v) { return v.sourceType == "lpe" || isCryptomatteVar(v); }))
+    if (!product || std::all_of(product->vars.begin(), product->vars.end(),
+                                [](const auto& v) { return v.sourceType == "lpe" || isCryptomatteVar(v); }))
         vars = defaultVars();
     if (product)
         for (const delegate::RenderVarDesc& desc : product->vars)
@@ -253,7 +277,8 @@ std::vector<ProductVar> productVars(const delegate::RenderProductDesc* product, 
     for (const integrators::LightPathAov& aov : lightPaths) vars.push_back(lightPathVar(aov, product));
     // The beauty in front, unless a var writes R, and without the channels vars write.
     auto writes = [&](const std::string& channel) {
-        return std::any_of(vars.begin(), vars.end(), [&](const ProductVar& v) { return contains(v.channels, channel); });
+        return std::any_of(vars.begin(), vars.end(),
+                           [&](const ProductVar& v) { return contains(v.channels, channel); });
     };
     if (!writes("R")) {
         const bool alpha = !writes("A");
@@ -265,8 +290,9 @@ std::vector<ProductVar> productVars(const delegate::RenderProductDesc* product, 
     for (const ProductVar& var : vars)
         for (const std::string& channel : var.channels)
             if (!seen.insert(channel).second)
-                throw SceneError((var.path.empty() ? std::string("--lpe") : "RenderVar " + var.path) + ": the channel '" + channel +
-                                 "' is written by another var of " + (product ? "RenderProduct " + product->path : std::string("the product")));
+                throw SceneError((var.path.empty() ? std::string("--lpe") : "RenderVar " + var.path) +
+                                 ": the channel '" + channel + "' is written by another var of " +
+                                 (product ? "RenderProduct " + product->path : std::string("the product")));
     return vars;
 }
 
@@ -284,7 +310,9 @@ PixelWindow PixelWindow::unite(const PixelWindow& o) const {
 
 PixelWindow pixelWindowOf(const std::array<float, 4>& ndc, std::pair<int, int> resolution) {
     const double w = resolution.first, h = resolution.second;
-    auto first = [](double edge) { return int(std::ceil(edge - 0.5)); };  // the first pixel whose centre is at or past edge
+    auto first = [](double edge) {
+        return int(std::ceil(edge - 0.5));
+    };  // the first pixel whose centre is at or past edge
     return {first(w * ndc[0]), first(h * (1.0 - ndc[3])), first(w * ndc[2]), first(h * (1.0 - ndc[1]))};
 }
 
@@ -324,7 +352,8 @@ std::set<std::string> RenderPlan::primvars() const {
 }
 
 RenderPlan planRenders(const std::optional<delegate::RenderSettingsDesc>& settings, const RenderOptions& opt,
-                       const std::string& sceneStem, const std::function<void(const std::string&, const std::string&)>& warn) {
+                       const std::string& sceneStem,
+                       const std::function<void(const std::string&, const std::string&)>& warn) {
     std::vector<const delegate::RenderProductDesc*> products;
     if (settings)
         for (const delegate::RenderProductDesc& p : settings->products) products.push_back(&p);
@@ -338,15 +367,22 @@ RenderPlan planRenders(const std::optional<delegate::RenderSettingsDesc>& settin
                                                : desc         ? desc->resolution
                                                : settings     ? settings->resolution
                                                               : std::pair<int, int>{kDefaultWidth, kDefaultHeight};
-        const std::string camera = !opt.camera.empty() ? opt.camera : desc ? desc->cameraPath : settings ? settings->cameraPath : "";
-        const render::ImageFraming framing = desc ? desc->framing : settings ? settings->framing : render::ImageFraming{};
+        const std::string camera = !opt.camera.empty() ? opt.camera
+                                   : desc              ? desc->cameraPath
+                                   : settings          ? settings->cameraPath
+                                                       : "";
+        const render::ImageFraming framing = desc       ? desc->framing
+                                             : settings ? settings->framing
+                                                        : render::ImageFraming{};
 
         PlannedProduct product;
         product.path = desc ? desc->path : "";
         const std::string label = desc ? "RenderProduct " + desc->path : std::string("the output");
-        product.outputPattern = i == 0 && !opt.output.empty()     ? opt.output
-                                : desc && !desc->productName.empty() ? desc->productName
-                                                                     : defaultOutput(sceneStem, i == 0 ? "" : "_" + primName(desc->path), opt.frameCount);
+        product.outputPattern =
+            i == 0 && !opt.output.empty() ? opt.output
+            : desc && !desc->productName.empty()
+                ? desc->productName
+                : defaultOutput(sceneStem, i == 0 ? "" : "_" + primName(desc->path), opt.frameCount);
         for (const auto& [pattern, other] : outputs)
             if (pattern == product.outputPattern)
                 throw SceneError(label + ": writes " + pattern + ", as " + other + " does");
@@ -355,32 +391,40 @@ RenderPlan planRenders(const std::optional<delegate::RenderSettingsDesc>& settin
         const PixelWindow full{0, 0, resolution.first, resolution.second};
         product.window = desc ? pixelWindowOf(desc->dataWindowNdc, resolution) : full;
         if (product.window.intersect(full) != product.window)
-            warn(product.path, "dataWindowNDC reaches outside the image (overscan), which Fluence does not render; clipped to the image");
+            warn(product.path,
+                 "dataWindowNDC reaches outside the image (overscan), which Fluence does not render; clipped to the "
+                 "image");
         product.window = product.window.intersect(full);
-        if (product.window.empty()) throw SceneError(label + ": dataWindowNDC holds no pixel of the " + std::to_string(resolution.first) + "x" +
-                                                     std::to_string(resolution.second) + " image");
+        if (product.window.empty())
+            throw SceneError(label + ": dataWindowNDC holds no pixel of the " + std::to_string(resolution.first) + "x" +
+                             std::to_string(resolution.second) + " image");
 
-        const std::vector<integrators::LightPathAov> lightPaths = lightPathAovs(desc, i == 0 ? opt.lightPaths : std::vector<LightPathOption>{});
+        const std::vector<integrators::LightPathAov> lightPaths =
+            lightPathAovs(desc, i == 0 ? opt.lightPaths : std::vector<LightPathOption>{});
         product.vars = productVars(desc, lightPaths, warn);
         product.compression = desc ? compressionOf(*desc, product.vars, warn) : "zip";
 
         // Its render: one of the same camera, resolution and framing, else a new one.
         auto same = std::find_if(plan.renders.begin(), plan.renders.end(), [&](const PlannedRender& r) {
-            return r.cameraPath == camera && r.resolution == resolution && r.framing.pixelAspectRatio == framing.pixelAspectRatio &&
-                   r.framing.conform == framing.conform;
+            return r.cameraPath == camera && r.resolution == resolution &&
+                   r.framing.pixelAspectRatio == framing.pixelAspectRatio && r.framing.conform == framing.conform;
         });
-        PlannedRender& render = same != plan.renders.end() ? *same : plan.renders.emplace_back(PlannedRender{camera, resolution, framing, {}, {}, {}});
+        PlannedRender& render = same != plan.renders.end()
+                                    ? *same
+                                    : plan.renders.emplace_back(PlannedRender{camera, resolution, framing, {}, {}, {}});
         for (const integrators::LightPathAov& aov : lightPaths) {
-            auto existing = std::find_if(render.lightPaths.begin(), render.lightPaths.end(), [&](const auto& a) { return a.name == aov.name; });
+            auto existing = std::find_if(render.lightPaths.begin(), render.lightPaths.end(),
+                                         [&](const auto& a) { return a.name == aov.name; });
             if (existing == render.lightPaths.end())
                 render.lightPaths.push_back(aov);
             else if (existing->expression.text() != aov.expression.text())
                 throw SceneError(label + ": light path layer '" + aov.name + "' is '" + aov.expression.text() +
-                                 "' here but '" + existing->expression.text() + "' in another product of the same render");
+                                 "' here but '" + existing->expression.text() +
+                                 "' in another product of the same render");
         }
         if (render.lightPaths.size() > std::size_t(kMaxLightPathLayers))
-            throw SceneError(label + ": its render needs " + std::to_string(render.lightPaths.size()) + " light path layers; at most " +
-                             std::to_string(kMaxLightPathLayers));
+            throw SceneError(label + ": its render needs " + std::to_string(render.lightPaths.size()) +
+                             " light path layers; at most " + std::to_string(kMaxLightPathLayers));
         for (ProductVar& var : product.vars) {
             if (fromFilm(var)) continue;
             const integrators::FirstHitAov aov = firstHitAovOf(var);
@@ -394,7 +438,8 @@ RenderPlan planRenders(const std::optional<delegate::RenderSettingsDesc>& settin
     return plan;
 }
 
-const delegate::RenderProductDesc* findProduct(const std::optional<delegate::RenderSettingsDesc>& settings, const std::string& path) {
+const delegate::RenderProductDesc* findProduct(const std::optional<delegate::RenderSettingsDesc>& settings,
+                                               const std::string& path) {
     if (!settings || path.empty()) return nullptr;
     for (const delegate::RenderProductDesc& p : settings->products)
         if (p.path == path) return &p;
@@ -407,14 +452,15 @@ void describeProductHeader(output::ExrHeader& header, const render::Camera& came
     auto m44f = [](const Matrix4& m) {
         std::array<float, 16> values{};
         for (int row = 0; row < 4; ++row)
-            for (int column = 0; column < 4; ++column) values[std::size_t(4 * column + row)] = float(m.m[std::size_t(row)][std::size_t(column)]);
+            for (int column = 0; column < 4; ++column)
+                values[std::size_t(4 * column + row)] = float(m.m[std::size_t(row)][std::size_t(column)]);
         return values;
     };
     header.matrices.push_back({"worldToCamera", m44f(camera.worldToCamera())});
     header.matrices.push_back({"worldToNDC", m44f(camera.worldToNdc())});
     // The ASWF Color Interop Forum's IDs of the spaces Fluence renders in.
-    static const std::pair<const char*, const char*> kInteropIds[] = {{"lin_rec709", "lin_rec709_scene"}, {"ACEScg", "lin_ap1_scene"},
-                                                                      {"acescg", "lin_ap1_scene"}};
+    static const std::pair<const char*, const char*> kInteropIds[] = {
+        {"lin_rec709", "lin_rec709_scene"}, {"ACEScg", "lin_ap1_scene"}, {"acescg", "lin_ap1_scene"}};
     for (const auto& [space, id] : kInteropIds)
         if (header.colorSpace == space) header.colorInteropId = id;
     if (written == PixelWindow{0, 0, resolution.first, resolution.second}) return;
@@ -438,10 +484,13 @@ Image productImage(const PlannedProduct& product, const PixelWindow& window, con
         const std::vector<std::string> from = filmChannels(var.source, var.name, var.components);
         if (var.source == VarSource::LightPath && film.channelIndex(from.front()) < 0) continue;
         for (std::size_t c = 0; c < var.channels.size(); ++c) {
-            const std::size_t component = std::min(c, std::size_t(var.components - 1));  // one component fills every channel
+            const std::size_t component =
+                std::min(c, std::size_t(var.components - 1));  // one component fills every channel
             names.push_back(var.channels[c]);
-            sources.push_back(var.firstHitAov >= 0 ? Source{&firstHit, firstHit.channelIndex(std::to_string(var.firstHitAov) + "." + std::to_string(component))}
-                                                   : Source{&film, film.channelIndex(from[component])});
+            sources.push_back(var.firstHitAov >= 0
+                                  ? Source{&firstHit, firstHit.channelIndex(std::to_string(var.firstHitAov) + "." +
+                                                                            std::to_string(component))}
+                                  : Source{&film, film.channelIndex(from[component])});
             header.channelTypes.push_back(var.type);
             if (!var.colour) header.dataChannels.push_back(var.channels[c]);
         }
@@ -452,7 +501,8 @@ Image productImage(const PlannedProduct& product, const PixelWindow& window, con
         for (int x = 0; x < window.width(); ++x) {
             float* out = image.pixel(x, y);
             const int fx = x + window.x0 - filmWindow.x0, fy = y + window.y0 - filmWindow.y0;
-            for (std::size_t c = 0; c < sources.size(); ++c) out[c] = sources[c].image->pixel(fx, fy)[sources[c].channel];
+            for (std::size_t c = 0; c < sources.size(); ++c)
+                out[c] = sources[c].image->pixel(fx, fy)[sources[c].channel];
         }
     return image;
 }

@@ -75,7 +75,7 @@ const std::vector<std::string>& rawSourceNames(VarSource source);
 struct ProductVar {
     std::string path;  // the RenderVar prim; "" for the default channels and the implicit beauty
     VarSource source = VarSource::Beauty;
-    std::string name;  // LightPath: the layer; Primvar: the primvar, without "primvars:"
+    std::string name;    // LightPath: the layer; Primvar: the primvar, without "primvars:"
     int components = 3;  // the components its source gives (a single one is repeated in every channel)
     output::PixelType type = output::PixelType::Float;
     integrators::PixelFilter filter = integrators::PixelFilter::Box;
@@ -111,10 +111,12 @@ struct RenderPlan {
 // outputs). Throws delegate::SceneError (naming the prim) and UsageError (--lpe); `warn` gets
 // (prim path, message).
 RenderPlan planRenders(const std::optional<delegate::RenderSettingsDesc>& settings, const RenderOptions& opt,
-                       const std::string& sceneStem, const std::function<void(const std::string&, const std::string&)>& warn);
+                       const std::string& sceneStem,
+                       const std::function<void(const std::string&, const std::string&)>& warn);
 
 // The RenderProduct prim at `path` in `settings` (nullptr for the default product).
-const delegate::RenderProductDesc* findProduct(const std::optional<delegate::RenderSettingsDesc>& settings, const std::string& path);
+const delegate::RenderProductDesc* findProduct(const std::optional<delegate::RenderSettingsDesc>& settings,
+                                               const std::string& path);
 
 // Adds to a product's header what its render's camera and image say: OpenEXR's worldToCamera and
 // worldToNDC (render::Camera), the colour space's colorInteropID, and `written` as the data

@@ -19,14 +19,15 @@ long peakResidentBytes() {
 }
 
 std::string frameJson(const FrameSummary& f) {
-    return "{\"time\": " + jsonNumber(f.time) + ", \"output\": " + jsonQuoted(f.output) + ", \"integrator\": " + jsonQuoted(f.integrator) +
-           ", \"camera\": " + jsonQuoted(f.camera) + ", \"resolution\": [" + std::to_string(f.width) + ", " +
-           std::to_string(f.height) + "], \"samplesPerPixel\": " + std::to_string(f.samplesPerPixel) +
+    return "{\"time\": " + jsonNumber(f.time) + ", \"output\": " + jsonQuoted(f.output) +
+           ", \"integrator\": " + jsonQuoted(f.integrator) + ", \"camera\": " + jsonQuoted(f.camera) +
+           ", \"resolution\": [" + std::to_string(f.width) + ", " + std::to_string(f.height) +
+           "], \"samplesPerPixel\": " + std::to_string(f.samplesPerPixel) +
            ", \"samples\": " + std::to_string(f.samples) + ", \"rays\": {\"camera\": " + std::to_string(f.cameraRays) +
            ", \"bounce\": " + std::to_string(f.bounceRays) + ", \"shadow\": " + std::to_string(f.shadowRays) +
-           "}, \"nonFiniteSamples\": " + std::to_string(f.nonFiniteSamples) + ", \"seconds\": {\"build\": " +
-           jsonNumber(f.buildSeconds) + ", \"render\": " + jsonNumber(f.renderSeconds) + ", \"write\": " + jsonNumber(f.writeSeconds) +
-           ", \"total\": " + jsonNumber(f.totalSeconds) + "}}";
+           "}, \"nonFiniteSamples\": " + std::to_string(f.nonFiniteSamples) +
+           ", \"seconds\": {\"build\": " + jsonNumber(f.buildSeconds) + ", \"render\": " + jsonNumber(f.renderSeconds) +
+           ", \"write\": " + jsonNumber(f.writeSeconds) + ", \"total\": " + jsonNumber(f.totalSeconds) + "}}";
 }
 
 }  // namespace
@@ -34,13 +35,15 @@ std::string frameJson(const FrameSummary& f) {
 std::string summaryJson(const RunSummary& s) {
     std::string json = "{\n  \"fluence\": " + jsonQuoted(kFluenceVersion) + ",\n  \"scene\": " + jsonQuoted(s.scene) +
                        ",\n  \"exitCode\": " + std::to_string(s.exitCode) + ",\n  \"seed\": " + std::to_string(s.seed) +
-                       ",\n  \"threads\": " + std::to_string(s.threads) + ",\n  \"parseSeconds\": " + jsonNumber(s.parseSeconds) +
+                       ",\n  \"threads\": " + std::to_string(s.threads) +
+                       ",\n  \"parseSeconds\": " + jsonNumber(s.parseSeconds) +
                        ",\n  \"peakMemoryBytes\": " + std::to_string(peakResidentBytes()) + ",\n  \"warnings\": [";
     for (std::size_t i = 0; i < s.warnings.size(); ++i)
-        json += std::string(i ? "," : "") + "\n    {\"where\": " + jsonQuoted(s.warnings[i].first) + ", \"message\": " +
-                jsonQuoted(s.warnings[i].second) + "}";
+        json += std::string(i ? "," : "") + "\n    {\"where\": " + jsonQuoted(s.warnings[i].first) +
+                ", \"message\": " + jsonQuoted(s.warnings[i].second) + "}";
     json += std::string(s.warnings.empty() ? "" : "\n  ") + "],\n  \"frames\": [";
-    for (std::size_t i = 0; i < s.frames.size(); ++i) json += std::string(i ? "," : "") + "\n    " + frameJson(s.frames[i]);
+    for (std::size_t i = 0; i < s.frames.size(); ++i)
+        json += std::string(i ? "," : "") + "\n    " + frameJson(s.frames[i]);
     return json + std::string(s.frames.empty() ? "" : "\n  ") + "]\n}\n";
 }
 

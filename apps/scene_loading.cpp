@@ -20,8 +20,8 @@ namespace {
 struct AssetUse {
     const usd::AssetReference* first = nullptr;
     std::size_t count = 0;
-    bool arc = false;       // a sublayer, reference, payload or clip names it
-    bool rendered = false;  // the render reads it (see checkAssets)
+    bool arc = false;          // a sublayer, reference, payload or clip names it
+    bool rendered = false;     // the render reads it (see checkAssets)
     bool needsPlugin = false;  // an arc names it, and its format needs a plugin Fluence does not have
 };
 
@@ -49,7 +49,8 @@ int checkAssets(const usd::Stage& stage, WarningLog& warnings, MissingAssets mis
     std::map<std::string, AssetUse> uses;
     const std::vector<usd::AssetReference> references = stage.assetReferences();
     for (const usd::AssetReference& a : references) {
-        const bool arc = a.property == "subLayers" || a.property == "references" || a.property == "payload" || a.property == "clips";
+        const bool arc =
+            a.property == "subLayers" || a.property == "references" || a.property == "payload" || a.property == "clips";
         const bool needsPlugin = arc && !usd::missingFormatPlugin(a.resolved).empty();
         if (a.exists && !needsPlugin) continue;
         auto [it, inserted] = uses.try_emplace(a.resolved);
@@ -69,14 +70,16 @@ int checkAssets(const usd::Stage& stage, WarningLog& warnings, MissingAssets mis
         const AssetUse& use = uses.at(file);
         const usd::AssetReference& a = *use.first;
         const std::string where = a.primPath.empty() ? a.location.str() : a.primPath + "." + a.property;
-        const std::string others = use.count > 1 ? " (and " + std::to_string(use.count - 1) + " more references to it)" : "";
+        const std::string others =
+            use.count > 1 ? " (and " + std::to_string(use.count - 1) + " more references to it)" : "";
         if (use.needsPlugin) {
             if (missing == MissingAssets::Fail) {
                 printError(where + ": " + usd::unsupportedFormatMessage(file) + others);
                 ++unsupportedCount;
             }
         } else if (missing == MissingAssets::Fail && use.rendered) {
-            printError(where + ": " + assetProblem(file, "missing asset ") + " (authored as @" + a.authored + "@)" + others);
+            printError(where + ": " + assetProblem(file, "missing asset ") + " (authored as @" + a.authored + "@)" +
+                       others);
             ++missingCount;
         } else if (!use.arc) {
             warnings(where, assetProblem(file, "asset not found: ") + " (authored as @" + a.authored + "@)" + others);
@@ -117,8 +120,9 @@ int openStage(const std::string& path, const usd::StageOptions& options, Warning
         return kExitScene;
     }
     for (const usd::CompositionWarning& w : stage->warnings())
-        warnings(w.location.file.empty() ? w.primPath : w.location.str() + (w.primPath.empty() ? "" : ": " + w.primPath),
-                 w.message);
+        warnings(
+            w.location.file.empty() ? w.primPath : w.location.str() + (w.primPath.empty() ? "" : ": " + w.primPath),
+            w.message);
     return checkAssets(*stage, warnings, missing);
 }
 

@@ -97,9 +97,10 @@ int main() {
         const double bytes = double(fs::file_size(file));
         const double read = bestOf(5, [&] { fluence::usd::readCrateFile(file.string()); }).cpu;
         const double touched = bestOf(5, [&] {
-            const std::unique_ptr<fluence::usd::Layer> layer = fluence::usd::readCrateFile(file.string());
-            for (const auto& prim : layer->rootPrims) numbers += touchNumbers(*prim);
-        }).cpu;
+                                   const std::unique_ptr<fluence::usd::Layer> layer =
+                                       fluence::usd::readCrateFile(file.string());
+                                   for (const auto& prim : layer->rootPrims) numbers += touchNumbers(*prim);
+                               }).cpu;
         totalBytes += bytes;
         totalRead += read;
         totalTouched += touched;

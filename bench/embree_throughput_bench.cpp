@@ -101,7 +101,8 @@ RaySet renderersRays(const render::RenderScene& scene, const render::Camera& cam
                 (depth == 0 ? set.camera : set.bounce).push_back({ray.origin, ray.direction, ray.tMax});
                 std::optional<render::SurfaceHit> hit = scene.intersect(ray);
                 if (!hit || hit->lightShape) break;
-                Vec3f n = dot(hit->geometricNormal, ray.direction) < 0.0f ? hit->geometricNormal : -hit->geometricNormal;
+                Vec3f n =
+                    dot(hit->geometricNormal, ray.direction) < 0.0f ? hit->geometricNormal : -hit->geometricNormal;
                 Vec3f from = render::offsetRayOrigin(hit->point, n);
                 render::LightChoice choice = scene.chooseLight(from, n, rng.next());
                 if (choice.light >= 0)
@@ -120,7 +121,8 @@ RaySet renderersRays(tbb::task_arena& arena, const render::RenderScene& scene, c
                      int height, int spp) {
     std::vector<RaySet> rows(static_cast<std::size_t>(height));
     arena.execute([&] {
-        tbb::parallel_for(0, height, [&](int y) { rows[std::size_t(y)] = renderersRays(scene, camera, width, y, spp); });
+        tbb::parallel_for(0, height,
+                          [&](int y) { rows[std::size_t(y)] = renderersRays(scene, camera, width, y, spp); });
     });
     RaySet set;
     for (const RaySet& row : rows) set.append(row);
@@ -133,7 +135,8 @@ std::vector<StoredRay> uniformRays(const render::SceneBounds& bounds, std::size_
     for (std::size_t i = 0; i < count; ++i) {
         SampleStream rng(2, i, 0);
         Vec3f offset = sampleUniformSphere(rng.next2D()) * (bounds.radius * std::cbrt(rng.next()));
-        rays.push_back({bounds.centre + offset, sampleUniformSphere(rng.next2D()), std::numeric_limits<float>::infinity()});
+        rays.push_back(
+            {bounds.centre + offset, sampleUniformSphere(rng.next2D()), std::numeric_limits<float>::infinity()});
     }
     return rays;
 }
@@ -150,23 +153,24 @@ double cpuSeconds() {
 double trace(tbb::task_arena& arena, RTCScene scene, const std::vector<StoredRay>& rays, bool anyHit) {
     const double start = cpuSeconds();
     arena.execute([&] {
-        tbb::parallel_for(tbb::blocked_range<std::size_t>(0, rays.size(), kGrain), [&](const tbb::blocked_range<std::size_t>& r) {
-            RTCIntersectContext context;
-            rtcInitIntersectContext(&context);
-            for (std::size_t i = r.begin(); i != r.end(); ++i) {
-                // Written as the renderer writes its rays (render/embree_ray.h: no store-forwarding stalls).
-                const StoredRay& s = rays[i];
-                if (anyHit) {
-                    RTCRay ray;
-                    render::storeRay(ray, s.origin, s.direction, 0.0f, s.tFar);
-                    rtcOccluded1(scene, &context, &ray);
-                } else {
-                    RTCRayHit hit;
-                    render::storeRayHit(hit, s.origin, s.direction, 0.0f, s.tFar);
-                    rtcIntersect1(scene, &context, &hit);
-                }
-            }
-        });
+        tbb::parallel_for(tbb::blocked_range<std::size_t>(0, rays.size(), kGrain),
+                          [&](const tbb::blocked_range<std::size_t>& r) {
+                              RTCIntersectContext context;
+                              rtcInitIntersectContext(&context);
+                              for (std::size_t i = r.begin(); i != r.end(); ++i) {
+                                  // Written as the renderer writes its rays (render/embree_ray.h: no store-forwarding stalls).
+                                  const StoredRay& s = rays[i];
+                                  if (anyHit) {
+                                      RTCRay ray;
+                                      render::storeRay(ray, s.origin, s.direction, 0.0f, s.tFar);
+                                      rtcOccluded1(scene, &context, &ray);
+                                  } else {
+                                      RTCRayHit hit;
+                                      render::storeRayHit(hit, s.origin, s.direction, 0.0f, s.tFar);
+                                      rtcIntersect1(scene, &context, &hit);
+                                  }
+                              }
+                          });
     });
     return cpuSeconds() - start;
 }
@@ -180,9 +184,9 @@ double best(int repeat, F&& f) {
 
 // --minimal: bench/minimal_path_tracer.h on the same scene, against the same raw rate (see the top
 // of the file); a scene it does not handle is reported and skipped.
-void measureMinimal(const render::RenderScene& scene, const render::Camera& camera, int width, int height, const Options& opt,
-                    tbb::task_arena& arena, double raw, double renderer, const bench::ImageMean& rendererMean,
-                    const integrators::RenderCounters& rendererCounters) {
+void measureMinimal(const render::RenderScene& scene, const render::Camera& camera, int width, int height,
+                    const Options& opt, tbb::task_arena& arena, double raw, double renderer,
+                    const bench::ImageMean& rendererMean, const integrators::RenderCounters& rendererCounters) {
     std::optional<bench::MinimalPathTracer> made;
     try {
         made.emplace(scene, integrators::IntegratorSettings{}.maxDepth);
@@ -197,15 +201,18 @@ void measureMinimal(const render::RenderScene& scene, const render::Camera& came
         m = made->render(arena, camera, width, height, opt.spp, 1);
         minimal = std::max(minimal, m.rays() / (cpuSeconds() - start) * 1e-6);
     }
-    std::printf("  minimal path tracer: rays camera/bounce/shadow %llu/%llu/%llu  Mrays per CPU-s %.2f  ratio %.3f "
-                "(renderer's %.3f)\n", (unsigned long long)m.camera, (unsigned long long)m.bounce,
-                (unsigned long long)m.shadow, minimal, minimal / raw, renderer / raw);
-    std::printf("  image mean luminance: renderer %.6f +- %.6f  minimal %.6f +- %.6f  difference %.2f standard errors"
-                "  (RGB renderer %.5f %.5f %.5f, minimal %.5f %.5f %.5f; non-finite samples %llu/%llu)\n\n",
-                rendererMean.luminance, rendererMean.standardError, m.mean.luminance, m.mean.standardError,
-                bench::standardErrorsApart(m.mean, rendererMean), rendererMean.rgb.x, rendererMean.rgb.y, rendererMean.rgb.z,
-                m.mean.rgb.x, m.mean.rgb.y, m.mean.rgb.z, (unsigned long long)rendererCounters.nonFiniteSamples,
-                (unsigned long long)m.nonFiniteSamples);
+    std::printf(
+        "  minimal path tracer: rays camera/bounce/shadow %llu/%llu/%llu  Mrays per CPU-s %.2f  ratio %.3f "
+        "(renderer's %.3f)\n",
+        (unsigned long long)m.camera, (unsigned long long)m.bounce, (unsigned long long)m.shadow, minimal,
+        minimal / raw, renderer / raw);
+    std::printf(
+        "  image mean luminance: renderer %.6f +- %.6f  minimal %.6f +- %.6f  difference %.2f standard errors"
+        "  (RGB renderer %.5f %.5f %.5f, minimal %.5f %.5f %.5f; non-finite samples %llu/%llu)\n\n",
+        rendererMean.luminance, rendererMean.standardError, m.mean.luminance, m.mean.standardError,
+        bench::standardErrorsApart(m.mean, rendererMean), rendererMean.rgb.x, rendererMean.rgb.y, rendererMean.rgb.z,
+        m.mean.rgb.x, m.mean.rgb.y, m.mean.rgb.z, (unsigned long long)rendererCounters.nonFiniteSamples,
+        (unsigned long long)m.nonFiniteSamples);
 }
 
 void measure(const std::string& path, const Options& opt, color::ColorManagement& colors) {
@@ -231,7 +238,8 @@ void measure(const std::string& path, const Options& opt, color::ColorManagement
     auto rate = [&](const std::vector<StoredRay>& set, bool anyHit) {
         return set.size() / best(opt.repeat, [&] { return trace(arena, embree, set, anyHit); }) * 1e-6;
     };
-    const double rCamera = rate(rays.camera, false), rBounce = rate(rays.bounce, false), rShadow = rate(rays.shadow, true);
+    const double rCamera = rate(rays.camera, false), rBounce = rate(rays.bounce, false),
+                 rShadow = rate(rays.shadow, true);
     const double rUniform = rate(uniform, false);
 
     auto integrator = integrators::findIntegrator("path")->create({});
@@ -258,10 +266,12 @@ void measure(const std::string& path, const Options& opt, color::ColorManagement
     std::printf("  rays camera/bounce/shadow  generated %zu/%zu/%zu  renderer %llu/%llu/%llu\n", rays.camera.size(),
                 rays.bounce.size(), rays.shadow.size(), (unsigned long long)c.camera, (unsigned long long)c.bounce,
                 (unsigned long long)c.shadow);
-    std::printf("  raw Mrays per CPU-s: camera %.2f  bounce %.2f  shadow (occluded) %.2f  uniform %.2f\n", rCamera, rBounce,
-                rShadow, rUniform);
-    std::printf("  Mrays per CPU-s: raw at the renderer's mix %.2f  renderer %.2f  ratio %.3f   (renderer wall-clock %.2f Mrays/s)\n\n",
-                raw, renderer, renderer / raw, rendererWall);
+    std::printf("  raw Mrays per CPU-s: camera %.2f  bounce %.2f  shadow (occluded) %.2f  uniform %.2f\n", rCamera,
+                rBounce, rShadow, rUniform);
+    std::printf(
+        "  Mrays per CPU-s: raw at the renderer's mix %.2f  renderer %.2f  ratio %.3f   (renderer wall-clock %.2f "
+        "Mrays/s)\n\n",
+        raw, renderer, renderer / raw, rendererWall);
     if (opt.minimal) measureMinimal(scene, camera, width, height, opt, arena, raw, renderer, rendererMean, c);
 }
 
@@ -285,7 +295,9 @@ int main(int argc, char** argv) {
         else if (!arg.empty() && arg[0] != '-')
             opt.scenes.push_back(arg);
         else {
-            std::fprintf(stderr, "usage: embree_throughput_bench [--spp N] [--threads N] [--repeat N] [--scale S] [--minimal] [SCENE.usda ...]\n");
+            std::fprintf(stderr,
+                         "usage: embree_throughput_bench [--spp N] [--threads N] [--repeat N] [--scale S] [--minimal] "
+                         "[SCENE.usda ...]\n");
             return 2;
         }
     }

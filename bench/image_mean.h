@@ -40,7 +40,8 @@ public:
     }
     ImageMean mean() const {
         const double n = double(pixels_);
-        return {RGB(float(rgb_[0] / n), float(rgb_[1] / n), float(rgb_[2] / n)), luminance_ / n, std::sqrt(variance_) / n};
+        return {RGB(float(rgb_[0] / n), float(rgb_[1] / n), float(rgb_[2] / n)), luminance_ / n,
+                std::sqrt(variance_) / n};
     }
 
 private:
@@ -57,7 +58,8 @@ inline ImageMean filmMean(const Film& film) {
     ImageMeanSum sum;
     for (int y = 0; y < film.height(); ++y)
         for (int x = 0; x < film.width(); ++x) {
-            const float* p = &image.pixels[(std::size_t(y) * std::size_t(film.width()) + std::size_t(x)) * image.channelCount()];
+            const float* p =
+                &image.pixels[(std::size_t(y) * std::size_t(film.width()) + std::size_t(x)) * image.channelCount()];
             const RGB mean(p[r], p[g], p[b]);
             const double l = luminance(mean);
             const double error = film.relativeError(x, y) * (std::abs(l) + Film::kRelativeErrorFloor);
@@ -68,7 +70,8 @@ inline ImageMean filmMean(const Film& film) {
 
 // How many standard errors of their difference two independent estimates' luminances are apart.
 inline double standardErrorsApart(const ImageMean& a, const ImageMean& b) {
-    return (a.luminance - b.luminance) / std::sqrt(a.standardError * a.standardError + b.standardError * b.standardError);
+    return (a.luminance - b.luminance) /
+           std::sqrt(a.standardError * a.standardError + b.standardError * b.standardError);
 }
 
 }  // namespace fluence::bench

@@ -32,18 +32,18 @@ namespace {
 
 using namespace fluence;
 
-
 // An icosphere of unit radius: an icosahedron whose triangles are split in four `subdivisions`
 // times, new vertices pushed onto the sphere.
 render::MeshDesc icosphere(int subdivisions) {
     render::MeshDesc mesh;
     mesh.name = "/rock";
     const float t = (1.0f + std::sqrt(5.0f)) / 2.0f;
-    for (Vec3f p : {Vec3f(-1, t, 0), Vec3f(1, t, 0), Vec3f(-1, -t, 0), Vec3f(1, -t, 0), Vec3f(0, -1, t), Vec3f(0, 1, t),
-                    Vec3f(0, -1, -t), Vec3f(0, 1, -t), Vec3f(t, 0, -1), Vec3f(t, 0, 1), Vec3f(-t, 0, -1), Vec3f(-t, 0, 1)})
+    for (Vec3f p :
+         {Vec3f(-1, t, 0), Vec3f(1, t, 0), Vec3f(-1, -t, 0), Vec3f(1, -t, 0), Vec3f(0, -1, t), Vec3f(0, 1, t),
+          Vec3f(0, -1, -t), Vec3f(0, 1, -t), Vec3f(t, 0, -1), Vec3f(t, 0, 1), Vec3f(-t, 0, -1), Vec3f(-t, 0, 1)})
         mesh.positions.push_back(normalize(p));
-    mesh.indices = {0, 11, 5, 0, 5,  1, 0, 1, 7, 0, 7,  10, 0, 10, 11, 1, 5, 9, 5, 11, 4,  11, 10, 2,  10, 7, 6, 7, 1, 8,
-                    3, 9,  4, 3, 4,  2, 3, 2, 6, 3, 6,  8,  3, 8,  9,  4, 9, 5, 2, 4,  11, 6,  2,  10, 8,  6, 7, 9, 8, 1};
+    mesh.indices = {0, 11, 5, 0, 5, 1, 0, 1, 7, 0, 7, 10, 0, 10, 11, 1, 5, 9, 5, 11, 4,  11, 10, 2,  10, 7, 6, 7, 1, 8,
+                    3, 9,  4, 3, 4, 2, 3, 2, 6, 3, 6, 8,  3, 8,  9,  4, 9, 5, 2, 4,  11, 6,  2,  10, 8,  6, 7, 9, 8, 1};
     for (int s = 0; s < subdivisions; ++s) {
         std::map<std::pair<std::uint32_t, std::uint32_t>, std::uint32_t> midpoints;
         auto midpoint = [&](std::uint32_t a, std::uint32_t b) {
@@ -70,7 +70,8 @@ std::vector<Matrix4> placements(int count) {
     std::vector<Matrix4> out;
     for (int i = 0; i < count; ++i) {
         double x = (i % side - side / 2.0) * 3.0, z = (i / side - side / 2.0) * 3.0;
-        out.push_back(Matrix4::translate({x, 0, z}) * Matrix4::rotateY(37.0 * i) * Matrix4::scale(Vec3d(0.6 + 0.4 * ((i * 7) % 10) / 10.0)));
+        out.push_back(Matrix4::translate({x, 0, z}) * Matrix4::rotateY(37.0 * i) *
+                      Matrix4::scale(Vec3d(0.6 + 0.4 * ((i * 7) % 10) / 10.0)));
     }
     return out;
 }
@@ -124,7 +125,8 @@ std::map<std::string, double> runChild(bool instanced, int count, int subdivisio
     close(pipeFds[1]);
     std::string text;
     char buffer[4096];
-    for (ssize_t got; (got = read(pipeFds[0], buffer, sizeof buffer)) > 0;) text.append(buffer, static_cast<std::size_t>(got));
+    for (ssize_t got; (got = read(pipeFds[0], buffer, sizeof buffer)) > 0;)
+        text.append(buffer, static_cast<std::size_t>(got));
     close(pipeFds[0]);
     int status = 0;
     waitpid(pid, &status, 0);
@@ -167,7 +169,8 @@ int main(int argc, char** argv) {
     for (int count : counts)
         for (bool instanced : {true, false}) {
             if (!instanced && double(count) * (20 << (2 * subdivisions)) > kMaxCopiedTriangles) {
-                std::printf("%10d  %-9s  (skipped: more than %.0f M triangles)\n", count, "copied", kMaxCopiedTriangles * 1e-6);
+                std::printf("%10d  %-9s  (skipped: more than %.0f M triangles)\n", count, "copied",
+                            kMaxCopiedTriangles * 1e-6);
                 continue;
             }
             auto f = runChild(instanced, count, subdivisions, rays);

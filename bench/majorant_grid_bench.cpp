@@ -52,8 +52,8 @@ void run(const char* title, const FloatVdbGrid& grid, float densityScale, const 
     const IndexBox& box = *grid.activeVoxels();
     Vec3i support = box.hi - box.lo + Vec3i(2);
     double voxel = length(Vec3d(grid.indexToWorld().transformVector({1.0, 0.0, 0.0})));
-    std::printf("\n%s\n  support %d x %d x %d voxels of %.4g, max density %.3f, density scale %g, %zu camera rays\n", title,
-                support.x, support.y, support.z, voxel, grid.maxValue(), densityScale, rays.size());
+    std::printf("\n%s\n  support %d x %d x %d voxels of %.4g, max density %.3f, density scale %g, %zu camera rays\n",
+                title, support.x, support.y, support.z, voxel, grid.maxValue(), densityScale, rays.size());
 
     // Optical depth along every ray that meets the support (the global grid's one segment spans it).
     MajorantGrid global(grid, {8.0, 1});
@@ -68,7 +68,8 @@ void run(const char* title, const FloatVdbGrid& grid, float densityScale, const 
         int n = std::max(1, int(std::ceil((s->tMax - s->tMin) / step)));
         double dt = (s->tMax - s->tMin) / n;
         for (int k = 0; k < n; ++k)
-            depth += grid.sample(rays[r].origin + rays[r].direction * float(s->tMin + (k + 0.5) * dt)) * densityScale * dt;
+            depth +=
+                grid.sample(rays[r].origin + rays[r].direction * float(s->tMin + (k + 0.5) * dt)) * densityScale * dt;
         tau[r] = depth;
         tauSum += depth;
         ++hits;
@@ -88,8 +89,10 @@ void run(const char* title, const FloatVdbGrid& grid, float densityScale, const 
     std::printf("  %-18s %-10s %9s %8s %10s %13s %15s %9s %9s\n", "majorant", "cells", "build ms", "KB", "cells/ray",
                 "segments/ray", "collisions/ray", "/ tau", "ns/ray");
 
-    const Config configs[] = {{"global (1 cell)", {8.0, 1}},   {"16 voxels/cell", {16.0, 1024}},
-                              {"8 voxels/cell *", {8.0, 64}},  {"4 voxels/cell", {4.0, 1024}},
+    const Config configs[] = {{"global (1 cell)", {8.0, 1}},
+                              {"16 voxels/cell", {16.0, 1024}},
+                              {"8 voxels/cell *", {8.0, 64}},
+                              {"4 voxels/cell", {4.0, 1024}},
                               {"16^3 (pbrt-v4)", {1.0, 16}}};
     for (const Config& config : configs) {
         start = Clock::now();

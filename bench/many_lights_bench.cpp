@@ -87,7 +87,8 @@ std::vector<double> referenceIrradiance(const render::RenderScene& scene, int po
     for (int i = 0; i < points; ++i)
         for (std::size_t light = 0; light < scene.lightCount(); ++light)
             for (int k = 0; k < 16; ++k)
-                reference[i] += nextEventSample(scene, floorPoint(i), int(light), 1.0f, SampleStream(3, light, k).next2D()) / 16.0;
+                reference[i] +=
+                    nextEventSample(scene, floorPoint(i), int(light), 1.0f, SampleStream(3, light, k).next2D()) / 16.0;
     return reference;
 }
 
@@ -109,7 +110,8 @@ Figures nextEventEstimate(const render::RenderScene& scene, const std::vector<do
     float sink = 0.0f;
     start = Clock::now();
     for (std::size_t i = 0; i < reference.size(); ++i)
-        for (int s = 0; s < samples; ++s) sink += choose(floorPoint(int(i)), kUp, SampleStream(11, i, std::uint64_t(s)).next()).probability;
+        for (int s = 0; s < samples; ++s)
+            sink += choose(floorPoint(int(i)), kUp, SampleStream(11, i, std::uint64_t(s)).next()).probability;
     double choiceSeconds = std::chrono::duration<double>(Clock::now() - start).count();
     if (sink < 0.0f) std::puts("");  // keeps the choices observable
     double relativeVariance = 0.0;
@@ -157,7 +159,8 @@ void benchDome() {
     render::DomeLight dome(d);
     constexpr int kN = 1000000;
     std::printf("\nnormal     sampler     irradiance  relative sd / sample  ns/sample\n");
-    for (auto [name, n] : {std::pair{"up", Vec3f(0, 1, 0)}, std::pair{"-X (sun)", Vec3f(-1, 0, 0)}, std::pair{"+X", Vec3f(1, 0, 0)}}) {
+    for (auto [name, n] :
+         {std::pair{"up", Vec3f(0, 1, 0)}, std::pair{"-X (sun)", Vec3f(-1, 0, 0)}, std::pair{"+X", Vec3f(1, 0, 0)}}) {
         for (bool importance : {true, false}) {
             test::MeanEstimate e;
             auto start = Clock::now();
@@ -165,7 +168,8 @@ void benchDome() {
                 Vec2f u = SampleStream(5, 0, std::uint64_t(i)).next2D();
                 double value = 0.0;
                 if (importance) {
-                    if (auto s = dome.sample(Vec3f(0.0f), u)) value = luminance(s->Li) * std::max(0.0f, dot(n, s->wi)) / s->pdf;
+                    if (auto s = dome.sample(Vec3f(0.0f), u))
+                        value = luminance(s->Li) * std::max(0.0f, dot(n, s->wi)) / s->pdf;
                 } else {
                     Vec3f wi = sampleUniformSphere(u);
                     value = luminance(dome.escaped(wi)) * std::max(0.0f, dot(n, wi)) / kUniformSpherePdf;
@@ -184,8 +188,10 @@ void benchDome() {
 int main(int argc, char** argv) {
     int points = 512, samples = 256;
     for (int i = 1; i + 1 < argc; i += 2) {
-        if (!std::strcmp(argv[i], "--points")) points = std::atoi(argv[i + 1]);
-        else if (!std::strcmp(argv[i], "--samples")) samples = std::atoi(argv[i + 1]);
+        if (!std::strcmp(argv[i], "--points"))
+            points = std::atoi(argv[i + 1]);
+        else if (!std::strcmp(argv[i], "--samples"))
+            samples = std::atoi(argv[i + 1]);
     }
     benchManyLights(points, samples);
     benchDome();

@@ -53,8 +53,8 @@ struct Timed {
     Image image;
 };
 
-Timed renderWith(const integrators::Integrator& integrator, const render::RenderScene& scene, const render::Camera& camera,
-                 std::pair<int, int> res, int spp) {
+Timed renderWith(const integrators::Integrator& integrator, const render::RenderScene& scene,
+                 const render::Camera& camera, std::pair<int, int> res, int spp) {
     integrators::RenderSettings settings;
     settings.samplesPerPixel = spp;
     settings.seed = 3;
@@ -73,7 +73,8 @@ double median(std::vector<double> v) {
 int main() {
     constexpr int kRounds = 7;
     const std::pair<int, int> res{320, 240};
-    std::printf("%-28s %6s %16s %16s %8s %10s\n", "scene", "spp", "without Msmp/s", "with Msmp/s", "ratio", "identical");
+    std::printf("%-28s %6s %16s %16s %8s %10s\n", "scene", "spp", "without Msmp/s", "with Msmp/s", "ratio",
+                "identical");
     for (const auto& [file, spp] : std::vector<std::pair<std::string, int>>{
              {"usd_samples/cornell_box.usda", 16}, {"usd_samples/material_ball/material_ball.usda", 8}}) {
         const render::SceneDescription desc = load(std::string(FLUENCE_SOURCE_DIR) + "/" + file, res);
@@ -89,11 +90,13 @@ int main() {
             a.push_back(x.samplesPerSecond * 1e-6);
             b.push_back(y.samplesPerSecond * 1e-6);
             ratio.push_back(x.samplesPerSecond / y.samplesPerSecond);
-            identical = identical && x.image.pixels.size() == y.image.pixels.size() &&
-                        std::memcmp(x.image.pixels.data(), y.image.pixels.data(), x.image.pixels.size() * sizeof(float)) == 0;
+            identical =
+                identical && x.image.pixels.size() == y.image.pixels.size() &&
+                std::memcmp(x.image.pixels.data(), y.image.pixels.data(), x.image.pixels.size() * sizeof(float)) == 0;
         }
-        std::printf("%-28s %6d %16.3f %16.3f %8.3f %10s\n", file.substr(file.find_last_of('/') + 1).c_str(), spp, median(a),
-                    median(b), median(ratio), identical ? "yes" : "NO");
+        std::printf("%-28s %6d %16.3f %16.3f %8.3f %10s\n", file.substr(file.find_last_of('/') + 1).c_str(), spp,
+                    median(a), median(b), median(ratio), identical ? "yes" : "NO");
     }
-    std::printf("\nratio = samples/s without the media machinery / with it (median of %d interleaved rounds)\n", kRounds);
+    std::printf("\nratio = samples/s without the media machinery / with it (median of %d interleaved rounds)\n",
+                kRounds);
 }

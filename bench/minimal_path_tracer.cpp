@@ -56,7 +56,8 @@ MinimalPathTracer::MinimalPathTracer(const render::RenderScene& scene, int maxDe
     for (int i = 0; i < 5; ++i)
         for (int j = 0; j < 5; ++j)
             for (const Vec3f& wo : tilts)
-                if (rect->emitted({corner_ + edgeU_ * ((i + 0.5f) / 5.0f) + edgeV_ * ((j + 0.5f) / 5.0f), normal_}, wo) != radiance_)
+                if (rect->emitted({corner_ + edgeU_ * ((i + 0.5f) / 5.0f) + edgeV_ * ((j + 0.5f) / 5.0f), normal_},
+                                  wo) != radiance_)
                     refuse("needs a light of uniform radiance (no texture, no shaping)");
 
     // The table of triangles: each surface triangle, hit inside from just above it, through bare
@@ -83,7 +84,8 @@ MinimalPathTracer::MinimalPathTracer(const render::RenderScene& scene, int maxDe
             refuse("found no triangle inside a triangle");
         if (std::abs(h.hit.u - 0.3f) > 1e-3f || std::abs(h.hit.v - 0.1f) > 1e-3f)
             refuse("found Embree's triangle corners in another order than RenderScene::surfaceTriangles'");
-        if (std::abs(dot(hit->shadingNormal, hit->geometricNormal)) < 1.0f - 1e-5f) refuse("takes only flat-shaded meshes");
+        if (std::abs(dot(hit->shadingNormal, hit->geometricNormal)) < 1.0f - 1e-5f)
+            refuse("takes only flat-shaded meshes");
         arena.reset();
         const render::Bsdf& bsdf = render::materialBsdf(hit->material, arena);
         if (!dynamic_cast<const render::LambertianBsdf*>(&bsdf)) refuse("takes only Lambertian materials");
@@ -133,7 +135,8 @@ RGB MinimalPathTracer::radiance(render::Ray ray, SampleStream& rng, Counters& co
         if (const float t = hitLight(ray.origin, ray.direction, ray.tMin, h.ray.tfar); t > 0.0f) {
             const float cosLight = -dot(normal_, ray.direction);
             if (cosLight > 0.0f)
-                L += throughput * radiance_ * (depth == 0 ? 1.0f : powerHeuristic(scatterPdf, t * t / (area_ * cosLight)));
+                L += throughput * radiance_ *
+                     (depth == 0 ? 1.0f : powerHeuristic(scatterPdf, t * t / (area_ * cosLight)));
             break;
         }
         if (h.hit.geomID == RTC_INVALID_GEOMETRY_ID || depth >= maxDepth_) break;
@@ -142,7 +145,8 @@ RGB MinimalPathTracer::radiance(render::Ray ray, SampleStream& rng, Counters& co
         const Vec3f ng(h.hit.Ng_x, h.hit.Ng_y, h.hit.Ng_z);
         const Vec3f n = ng * ((dot(ng, ray.direction) > 0.0f ? -1.0f : 1.0f) / std::sqrt(lengthSquared(ng)));
         const Triangle& hit = triangle(h.hit.geomID, h.hit.primID);
-        const Vec3f from = render::offsetRayOrigin(hit.p0 * (1.0f - h.hit.u - h.hit.v) + hit.p1 * h.hit.u + hit.p2 * h.hit.v, n);
+        const Vec3f from =
+            render::offsetRayOrigin(hit.p0 * (1.0f - h.hit.u - h.hit.v) + hit.p1 * h.hit.u + hit.p2 * h.hit.v, n);
         const RGB& a = hit.albedo;
 
         // Next-event estimation: a point uniform on the light, its shadow ray, the power heuristic
@@ -174,8 +178,8 @@ RGB MinimalPathTracer::radiance(render::Ray ray, SampleStream& rng, Counters& co
     return L;
 }
 
-MinimalRender MinimalPathTracer::render(tbb::task_arena& arena, const render::Camera& camera, int width, int height, int spp,
-                                        std::uint64_t seed) const {
+MinimalRender MinimalPathTracer::render(tbb::task_arena& arena, const render::Camera& camera, int width, int height,
+                                        int spp, std::uint64_t seed) const {
     struct Row {
         Counters counters;
         std::uint64_t nonFinite = 0;
@@ -189,7 +193,8 @@ MinimalRender MinimalPathTracer::render(tbb::task_arena& arena, const render::Ca
                 RGB sum(0.0f);
                 double lum = 0.0, lumSquared = 0.0;
                 for (int s = 0; s < spp; ++s) {
-                    SampleStream rng(seed, std::uint64_t(y) * std::uint64_t(width) + std::uint64_t(x), std::uint64_t(s));
+                    SampleStream rng(seed, std::uint64_t(y) * std::uint64_t(width) + std::uint64_t(x),
+                                     std::uint64_t(s));
                     const Vec2f jitter = rng.next2D();
                     RGB L = radiance(camera.generateRay(float(x) + jitter.x, float(y) + jitter.y), rng, row.counters);
                     if (!isFinite(L)) {

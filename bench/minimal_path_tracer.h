@@ -81,7 +81,9 @@ private:
         Vec3f p0, p1, p2;  // Embree's corners: the hit at barycentrics (u, v) is p0 (1 - u - v) + p1 u + p2 v
         RGB albedo;
     };
-    const Triangle& triangle(unsigned geomID, unsigned primID) const { return triangles_[firstTriangle_[geomID] + primID]; }
+    const Triangle& triangle(unsigned geomID, unsigned primID) const {
+        return triangles_[firstTriangle_[geomID] + primID];
+    }
 
     RTCSceneTy* surfaces_;
     int maxDepth_;

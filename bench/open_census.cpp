@@ -52,6 +52,7 @@ int main(int argc, char** argv) {
         const auto start = std::chrono::steady_clock::now();
         const std::string error = openError(path);
         const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-        std::cout << path << '\t' << (error.empty() ? "ok" : "refused") << '\t' << seconds << '\t' << error << std::endl;
+        std::cout << path << '\t' << (error.empty() ? "ok" : "refused") << '\t' << seconds << '\t' << error
+                  << std::endl;
     }
 }

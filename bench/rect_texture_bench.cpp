@@ -166,8 +166,10 @@ double distributionNs(const render::RgbImage& image) {
 int main(int argc, char** argv) {
     int points = 64, samples = 4096;
     for (int i = 1; i + 1 < argc; i += 2) {
-        if (!std::strcmp(argv[i], "--points")) points = std::atoi(argv[i + 1]);
-        else if (!std::strcmp(argv[i], "--samples")) samples = std::atoi(argv[i + 1]);
+        if (!std::strcmp(argv[i], "--points"))
+            points = std::atoi(argv[i + 1]);
+        else if (!std::strcmp(argv[i], "--samples"))
+            samples = std::atoi(argv[i + 1]);
     }
     auto window = [](int x, int y) {
         return x >= 24 && x < 40 && y >= 20 && y < 32 ? RGB(20.0f, 18.0f, 15.0f) : RGB(0.01f);
@@ -180,7 +182,9 @@ int main(int argc, char** argv) {
     const std::pair<const char*, std::shared_ptr<render::RgbImage>> textures[] = {
         {"window", makeTexture(window)}, {"panes", makeTexture(panes)}, {"white", makeTexture(white)}};
     constexpr int kReferenceSamples = 1 << 18;
-    std::printf("texture  ball  sampler     ns/sample  relative variance  RMS error, 16 spp  RMS error, time of 16 uniform spp\n");
+    std::printf(
+        "texture  ball  sampler     ns/sample  relative variance  RMS error, 16 spp  RMS error, time of 16 uniform "
+        "spp\n");
     for (bool ball : {false, true})
         for (const auto& [name, image] : textures) {
             render::RenderScene scene(::scene(image, ball));
@@ -189,13 +193,15 @@ int main(int argc, char** argv) {
             std::vector<double> reference(points, 0.0);
             for (int i = 0; i < points; ++i)
                 for (int s = 0; s < kReferenceSamples; ++s)
-                    reference[i] += importance(floorPoint(i), SampleStream(3, i, std::uint64_t(s)).next2D()) / kReferenceSamples;
+                    reference[i] +=
+                        importance(floorPoint(i), SampleStream(3, i, std::uint64_t(s)).next2D()) / kReferenceSamples;
             Figures is = measure(importance, reference, samples);
             Figures uniform = measure(UniformSampler(scene, rect), reference, samples);
             const double budget = 16.0 * uniform.nsPerSample;  // the time of 16 uniform samples
             for (auto [sampler, f] : {std::pair{"importance", is}, std::pair{"uniform", uniform}})
                 std::printf("%-7s  %-4s  %-10s  %9.1f  %17.3f  %17.4f  %33.4f\n", name, ball ? "yes" : "no", sampler,
-                            f.nsPerSample, f.relativeVariance, f.rms16, std::sqrt(f.relativeVariance * f.nsPerSample / budget));
+                            f.nsPerSample, f.relativeVariance, f.rms16,
+                            std::sqrt(f.relativeVariance * f.nsPerSample / budget));
         }
     std::printf("\ntexture  ns per ImageDistribution::sample\n");
     for (const auto& [name, image] : textures) std::printf("%-7s  %5.1f\n", name, distributionNs(*image));

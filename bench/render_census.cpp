@@ -41,7 +41,8 @@ std::string imageClass(const fs::path& exr) {
     const OIIO::ImageSpec& spec = in->spec();
     std::vector<float> pixels(std::size_t(spec.width) * std::size_t(spec.height) * std::size_t(spec.nchannels));
     if (!in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, pixels.data())) return "unreadable";
-    const int r = spec.channelindex("R"), g = spec.channelindex("G"), b = spec.channelindex("B"), a = spec.channelindex("A");
+    const int r = spec.channelindex("R"), g = spec.channelindex("G"), b = spec.channelindex("B"),
+              a = spec.channelindex("A");
     if (r < 0 || g < 0 || b < 0) return "unreadable";
     bool lit = false, covered = false;
     for (std::size_t p = 0; p < pixels.size(); p += std::size_t(spec.nchannels)) {
@@ -88,7 +89,8 @@ Run render(const std::string& scene, bool allowMissing, const fs::path& work, in
         std::this_thread::sleep_for(std::chrono::milliseconds(5));
     }
     if (run.exit.empty())
-        run.exit = WIFEXITED(status) ? std::to_string(WEXITSTATUS(status)) : "signal " + std::to_string(WTERMSIG(status));
+        run.exit =
+            WIFEXITED(status) ? std::to_string(WEXITSTATUS(status)) : "signal " + std::to_string(WTERMSIG(status));
     std::stringstream text;
     text << std::ifstream(err).rdbuf();
     run.err = text.str();
@@ -139,10 +141,12 @@ int main(int argc, char** argv) {
         const auto start = std::chrono::steady_clock::now();
         const Run plain = render(path, false, work, timeoutSeconds);
         // A missing asset (exit 4), or a layer in a format Fluence has no plugin for (exit 3): again with --allow-missing.
-        const bool retry = plain.exit == "4" || (plain.exit == "3" && plain.err.find("plugin Fluence does not have") != std::string::npos);
+        const bool retry = plain.exit == "4" ||
+                           (plain.exit == "3" && plain.err.find("plugin Fluence does not have") != std::string::npos);
         const Run last = retry ? render(path, true, work, timeoutSeconds) : plain;
         const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-        const std::string& err = last.exit == "0" ? plain.err : last.err;  // why it failed, else the first run's warnings
+        const std::string& err =
+            last.exit == "0" ? plain.err : last.err;  // why it failed, else the first run's warnings
         char time[32];
         std::snprintf(time, sizeof time, "%.2f", seconds);
         out << path << '\t' << plain.exit << '\t' << (retry ? last.exit : "-") << '\t'

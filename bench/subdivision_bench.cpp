@@ -35,7 +35,6 @@ using Clock = std::chrono::steady_clock;
 
 double secondsSince(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
 
-
 delegate::DelegateOptions optionsFor(std::pair<int, int> resolution, const delegate::DicingSettings& dicing) {
     delegate::DelegateOptions o;
     o.resolution = resolution;
@@ -131,7 +130,8 @@ void speedAgainstAccuracy(usd::Stage& stage, int spp) {
     delegate::DicingSettings referenceDicing;
     referenceDicing.rate = 0.25f;
     Rendered reference = renderWith(stage, referenceDicing, spp);
-    std::printf("reference: dicing rate 0.25 px, %zu triangles, render %.2f s\n\n", reference.triangles, reference.render);
+    std::printf("reference: dicing rate 0.25 px, %zu triangles, render %.2f s\n\n", reference.triangles,
+                reference.render);
     std::printf("%-18s  %11s  %8s  %8s  %9s  %9s  %10s\n", "tessellation", "triangles", "dice s", "build s", "render s",
                 "total s", "RMS error");
     auto row = [&](const std::string& name, const delegate::DicingSettings& dicing) {

@@ -79,8 +79,14 @@ private:
 class Writer {
 public:
     std::string text;
-    Writer& operator<<(std::string_view s) { text.append(s); return *this; }
-    Writer& operator<<(char c) { text.push_back(c); return *this; }
+    Writer& operator<<(std::string_view s) {
+        text.append(s);
+        return *this;
+    }
+    Writer& operator<<(char c) {
+        text.push_back(c);
+        return *this;
+    }
     Writer& operator<<(int v) { return number(v); }
     // Floats as USD writes them: the shortest text that round-trips the float32 value.
     Writer& f(float v) {
@@ -161,8 +167,7 @@ void writeMesh(Writer& w, int index, const Options& o, Random& random) {
             w << a << ", " << a + 1 << ", " << a + W + 1 << ", " << a + W;
         }
     }
-    w << "]\n            rel material:binding = </World/Looks/Mat_"
-      << padded(index % o.materials, 3) << ">\n";
+    w << "]\n            rel material:binding = </World/Looks/Mat_" << padded(index % o.materials, 3) << ">\n";
     w << "            normal3f[] normals = [";
     for (std::size_t k = 0; k < nx.size(); ++k) {
         if (k) w << ", ";
@@ -182,8 +187,8 @@ void writeMesh(Writer& w, int index, const Options& o, Random& random) {
     for (int j = 0; j < H; ++j) {
         for (int i = 0; i < W; ++i) {
             if (i || j) w << ", ";
-            w.tuple({static_cast<float>(i) / static_cast<float>(W - 1),
-                     static_cast<float>(j) / static_cast<float>(H - 1)});
+            w.tuple(
+                {static_cast<float>(i) / static_cast<float>(W - 1), static_cast<float>(j) / static_cast<float>(H - 1)});
         }
     }
     w << "] (\n                interpolation = \"faceVarying\"\n            )\n";
@@ -210,17 +215,17 @@ void writeMaterial(Writer& w, int index, Random& random) {
     w.f(static_cast<float>(random.uniform() < 0.2)) << "\n                float inputs:roughness = ";
     w.f(static_cast<float>(random.uniform())) << "\n                color3f inputs:emissiveColor = ";
     w.tuple({0.0f, 0.0f, 0.0f}) << "\n"
-      << "                token outputs:surface\n            }\n\n"
-      << "            def Shader \"Texture\"\n            {\n"
-      << "                uniform token info:id = \"UsdUVTexture\"\n"
-      << "                asset inputs:file = @textures/" << name << "_diffuse.png@\n"
-      << "                token inputs:sourceColorSpace = \"sRGB\"\n"
-      << "                float2 inputs:st.connect = <" << path << "/Reader.outputs:result>\n"
-      << "                float3 outputs:rgb\n            }\n\n"
-      << "            def Shader \"Reader\"\n            {\n"
-      << "                uniform token info:id = \"UsdPrimvarReader_float2\"\n"
-      << "                string inputs:varname = \"st\"\n"
-      << "                float2 outputs:result\n            }\n        }\n\n";
+                                << "                token outputs:surface\n            }\n\n"
+                                << "            def Shader \"Texture\"\n            {\n"
+                                << "                uniform token info:id = \"UsdUVTexture\"\n"
+                                << "                asset inputs:file = @textures/" << name << "_diffuse.png@\n"
+                                << "                token inputs:sourceColorSpace = \"sRGB\"\n"
+                                << "                float2 inputs:st.connect = <" << path << "/Reader.outputs:result>\n"
+                                << "                float3 outputs:rgb\n            }\n\n"
+                                << "            def Shader \"Reader\"\n            {\n"
+                                << "                uniform token info:id = \"UsdPrimvarReader_float2\"\n"
+                                << "                string inputs:varname = \"st\"\n"
+                                << "                float2 outputs:result\n            }\n        }\n\n";
 }
 
 void writeInstance(Writer& w, int index, Random& random) {
@@ -252,8 +257,8 @@ void writeInstance(Writer& w, int index, Random& random) {
     w << "            float3 xformOp:scale = ";
     float s = static_cast<float>(0.5 + random.uniform());
     w.tuple({s, s, s}) << "\n"
-      << "            uniform token[] xformOpOrder = [\"xformOp:translate\", \"xformOp:rotateXYZ\", "
-         "\"xformOp:scale\"]\n        }\n\n";
+                       << "            uniform token[] xformOpOrder = [\"xformOp:translate\", \"xformOp:rotateXYZ\", "
+                          "\"xformOp:scale\"]\n        }\n\n";
 }
 
 std::string generateLayer(const Options& o) {
@@ -312,8 +317,8 @@ void count(const Metadata& metadata, LayerStats& s) {
 
 void count(const std::vector<std::unique_ptr<PrimSpec>>& prims, LayerStats& s);
 
-void countProperties(const std::vector<AttributeSpec>& attributes,
-                     const std::vector<RelationshipSpec>& relationships, LayerStats& s) {
+void countProperties(const std::vector<AttributeSpec>& attributes, const std::vector<RelationshipSpec>& relationships,
+                     LayerStats& s) {
     for (const AttributeSpec& a : attributes) {
         ++s.attributes;
         if (a.hasDefault) count(a.defaultValue, s);
@@ -363,7 +368,6 @@ LayerStats statsOf(const Layer& layer, const LayerStats* counted = nullptr) {
     return s;
 }
 
-
 std::string readFile(const std::string& path) {
     std::ifstream file(path, std::ios::binary);
     if (!file) throw std::runtime_error("cannot read " + path);
@@ -387,16 +391,15 @@ int memoryChild(const std::string& mode, const std::string& path) {
         auto stage = Stage::open(path);
         long rss1 = fluence::bench::statusKiB("VmRSS"), hwm1 = fluence::bench::statusKiB("VmHWM");
         LayerStats s = statsOf(stage->rootLayer());
-        std::printf("rss0 %ld\nhwm0 %ld\nrss1 %ld\nhwm1 %ld\npayload %zu\ncomposed %zu\n", rss0, hwm0,
-                    rss1, hwm1, s.payloadBytes(), composedPayload(*stage, s));
+        std::printf("rss0 %ld\nhwm0 %ld\nrss1 %ld\nhwm1 %ld\npayload %zu\ncomposed %zu\n", rss0, hwm0, rss1, hwm1,
+                    s.payloadBytes(), composedPayload(*stage, s));
     } else {  // "parse": the text is read first; only the parse is measured
         std::string text = readFile(path);
         long rss0 = fluence::bench::statusKiB("VmRSS"), hwm0 = fluence::bench::statusKiB("VmHWM");
         auto layer = parseUsdaString(text, path);
         long rss1 = fluence::bench::statusKiB("VmRSS"), hwm1 = fluence::bench::statusKiB("VmHWM");
         LayerStats s = statsOf(*layer);
-        std::printf("rss0 %ld\nhwm0 %ld\nrss1 %ld\nhwm1 %ld\npayload %zu\n", rss0, hwm0, rss1, hwm1,
-                    s.payloadBytes());
+        std::printf("rss0 %ld\nhwm0 %ld\nrss1 %ld\nhwm1 %ld\npayload %zu\n", rss0, hwm0, rss1, hwm1, s.payloadBytes());
     }
     return 0;
 }
@@ -421,12 +424,18 @@ MemoryFigures measureMemory(const std::string& mode, const std::string& path) {
     long long value;
     while (std::fscanf(pipe, "%31s %lld", key, &value) == 2) {
         std::string k = key;
-        if (k == "rss0") m.rss0 = value;
-        else if (k == "hwm0") m.hwm0 = value;
-        else if (k == "rss1") m.rss1 = value;
-        else if (k == "hwm1") m.hwm1 = value;
-        else if (k == "payload") m.payload = static_cast<std::size_t>(value);
-        else if (k == "composed") m.composed = static_cast<std::size_t>(value);
+        if (k == "rss0")
+            m.rss0 = value;
+        else if (k == "hwm0")
+            m.hwm0 = value;
+        else if (k == "rss1")
+            m.rss1 = value;
+        else if (k == "hwm1")
+            m.hwm1 = value;
+        else if (k == "payload")
+            m.payload = static_cast<std::size_t>(value);
+        else if (k == "composed")
+            m.composed = static_cast<std::size_t>(value);
     }
     int status = pclose(pipe);
     if (status != 0) throw std::runtime_error("memory measurement failed: " + command);
@@ -473,18 +482,25 @@ int main(int argc, char** argv) {
                 return argv[++i];
             };
             if (arg == "--memory-child" && i + 2 < argc) return memoryChild(argv[i + 1], argv[i + 2]);
-            if (arg == "--meshes") o.meshes = std::stoi(next());
+            if (arg == "--meshes")
+                o.meshes = std::stoi(next());
             else if (arg == "--grid") {
                 std::string g = next();
                 std::size_t x = g.find('x');
                 if (x == std::string::npos) return usage();
                 o.gridW = std::stoi(g.substr(0, x)), o.gridH = std::stoi(g.substr(x + 1));
-            } else if (arg == "--runs") o.runs = std::max(1, std::stoi(next()));
-            else if (arg == "--keep") o.keep = next();
-            else if (arg == "--file") o.file = next();
-            else if (arg == "--parse-once") o.parseOnce = true;
-            else if (arg == "--help" || arg == "-h") return usage(), 0;
-            else return usage();
+            } else if (arg == "--runs")
+                o.runs = std::max(1, std::stoi(next()));
+            else if (arg == "--keep")
+                o.keep = next();
+            else if (arg == "--file")
+                o.file = next();
+            else if (arg == "--parse-once")
+                o.parseOnce = true;
+            else if (arg == "--help" || arg == "-h")
+                return usage(), 0;
+            else
+                return usage();
         }
         if (o.meshes < 1 || o.gridW < 2 || o.gridH < 2) return usage();
         if (o.parseOnce) {
@@ -509,8 +525,8 @@ int main(int argc, char** argv) {
                 path = o.keep;
             } else {
                 const char* tmp = std::getenv("TMPDIR");
-                path = std::string(tmp && *tmp ? tmp : "/tmp") + "/usda_parse_bench-" +
-                       std::to_string(getpid()) + ".usda";
+                path =
+                    std::string(tmp && *tmp ? tmp : "/tmp") + "/usda_parse_bench-" + std::to_string(getpid()) + ".usda";
                 temporary = true;
             }
             std::ofstream out(path, std::ios::binary);
@@ -555,37 +571,33 @@ int main(int argc, char** argv) {
         std::printf("USDA parse benchmark (%s)\n\n", o.file.empty() ? "generated layer" : o.file.c_str());
         std::printf("layer\n");
         if (o.file.empty()) {
-            std::printf("  generated            %d meshes of %dx%d vertices, %d materials, %d instances"
-                        " (%.2f s to generate)\n",
-                        o.meshes, o.gridW, o.gridH, o.materials, o.meshes, generateSeconds);
-            std::printf("  points               %ld\n",
-                        static_cast<long>(o.meshes) * o.gridW * o.gridH);
+            std::printf(
+                "  generated            %d meshes of %dx%d vertices, %d materials, %d instances"
+                " (%.2f s to generate)\n",
+                o.meshes, o.gridW, o.gridH, o.materials, o.meshes, generateSeconds);
+            std::printf("  points               %ld\n", static_cast<long>(o.meshes) * o.gridW * o.gridH);
         }
         std::printf("  text                 %s (%.0f bytes)\n", mb(bytes).c_str(), bytes);
-        std::printf("  prims / attributes   %zu / %zu (%zu relationships, %zu time samples)\n",
-                    stats.prims, stats.attributes, stats.relationships, stats.timeSamples);
-        std::printf("  values               %zu: %zu numbers, %zu strings (%zu chars)\n", stats.values,
-                    stats.numbers, stats.strings, stats.stringBytes);
+        std::printf("  prims / attributes   %zu / %zu (%zu relationships, %zu time samples)\n", stats.prims,
+                    stats.attributes, stats.relationships, stats.timeSamples);
+        std::printf("  values               %zu: %zu numbers, %zu strings (%zu chars)\n", stats.values, stats.numbers,
+                    stats.strings, stats.stringBytes);
         std::printf("  value payload        %s (numbers x 8 B + string chars); doubles allocated %s\n\n",
                     mb(payload).c_str(), mb(stats.numberCapacity * 8.0).c_str());
 
-        std::printf("%-34s %12s %12s %14s\n", "time (best / median of runs)", "best", "median",
-                    "throughput");
-        std::printf("%-34s %10.3f s %10.3f s %9.1f MB/s\n", "parseUsdaString (text in memory)",
-                    parse.best, parse.median, throughput);
+        std::printf("%-34s %12s %12s %14s\n", "time (best / median of runs)", "best", "median", "throughput");
+        std::printf("%-34s %10.3f s %10.3f s %9.1f MB/s\n", "parseUsdaString (text in memory)", parse.best,
+                    parse.median, throughput);
         std::printf("%-34s %10.3f s %10.3f s %9.1f MB/s\n", "Stage::open (read, parse, compose)", open.best,
                     open.median, bytes / 1e6 / open.best);
-        std::printf("%-34s %10.3f s %10.3f s\n\n", "freeing the parsed layer", destroy.best,
-                    destroy.median);
+        std::printf("%-34s %10.3f s %10.3f s\n\n", "freeing the parsed layer", destroy.best, destroy.median);
 
-        std::printf("%-34s %12s %14s\n", "memory (fresh process, VmHWM)", "peak growth",
-                    "x payload");
-        std::printf("%-34s %12s %13.2fx\n", "Stage::open peak", mb(openPeak).c_str(),
-                    openPeak / payload);
-        std::printf("%-34s %12s %13.2fx\n", "parseUsdaString (text already read)",
-                    mb(parsePeak).c_str(), parsePeak / payload);
-        std::printf("%-34s %12s %13.2fx\n", "retained after Stage::open (VmRSS)",
-                    mb(retained).c_str(), retained / payload);
+        std::printf("%-34s %12s %14s\n", "memory (fresh process, VmHWM)", "peak growth", "x payload");
+        std::printf("%-34s %12s %13.2fx\n", "Stage::open peak", mb(openPeak).c_str(), openPeak / payload);
+        std::printf("%-34s %12s %13.2fx\n", "parseUsdaString (text already read)", mb(parsePeak).c_str(),
+                    parsePeak / payload);
+        std::printf("%-34s %12s %13.2fx\n", "retained after Stage::open (VmRSS)", mb(retained).c_str(),
+                    retained / payload);
         std::printf("%-34s %12s %13.2fx\n", "  composed layer's own values",
                     mb(static_cast<double>(openMemory.composed)).c_str(),
                     static_cast<double>(openMemory.composed) / payload);

@@ -79,7 +79,8 @@ Figures measure(const media::Medium& medium, const std::vector<Ray>& rays) {
         lookupsBefore = counting.lookups;
         for (int i = 0; i < kPerRay; ++i) {
             SampleStream rng(3, r, std::uint64_t(i));
-            media::FreeFlight flight = media::sampleFreeFlight(counting, {ray.origin, ray.direction}, media::sampleHeroChannel(rng.next()), rng);
+            media::FreeFlight flight = media::sampleFreeFlight(counting, {ray.origin, ray.direction},
+                                                               media::sampleHeroChannel(rng.next()), rng);
             ++flights;
             real += flight.event != media::FlightEvent::Escaped;
         }
@@ -89,8 +90,8 @@ Figures measure(const media::Medium& medium, const std::vector<Ray>& rays) {
         lookupsBefore = counting.lookups;
         for (int i = 0; i < kPerRay; ++i) {
             SampleStream rng(5, r, std::uint64_t(i));
-            media::TransmittanceEstimate tr =
-                media::ratioTrackingTransmittance(counting, {ray.origin, ray.direction, 1e4f}, media::sampleHeroChannel(rng.next()), rng);
+            media::TransmittanceEstimate tr = media::ratioTrackingTransmittance(
+                counting, {ray.origin, ray.direction, 1e4f}, media::sampleHeroChannel(rng.next()), rng);
             trSum += tr.estimate().y;
             ++estimates;
         }
@@ -118,8 +119,9 @@ int main(int argc, char** argv) {
     params.densityScale = 6.0f;
     params.albedo = RGB(0.9f);
     std::vector<Ray> rays = smokeCameraRays(stride);
-    std::printf("volume tracking through %s, %zu camera rays (stride %d), 16 flights and 16 transmittance estimates per ray\n",
-                file.c_str(), rays.size(), stride);
+    std::printf(
+        "volume tracking through %s, %zu camera rays (stride %d), 16 flights and 16 transmittance estimates per ray\n",
+        file.c_str(), rays.size(), stride);
     std::printf("%-22s %6s %12s %12s %10s %14s %10s %8s %8s\n", "majorants", "rays", "lookups/flt", "null/real",
                 "ns/flight", "lookups/trans", "ns/trans", "mean T", "real/flt");
     struct Variant {

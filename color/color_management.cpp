@@ -62,8 +62,7 @@ struct ColorManagement::Impl {
 
     OCIO::ConstCPUProcessorRcPtr toRendering(const std::string& fromSpace) const {
         const std::string src = canonical(fromSpace);
-        if (src.empty())
-            throw ColorError("unknown colour space '" + fromSpace + "' (not in " + description + ")");
+        if (src.empty()) throw ColorError("unknown colour space '" + fromSpace + "' (not in " + description + ")");
         if (src == renderingName) return nullptr;
         auto it = cache.find(src);
         if (it != cache.end()) return it->second;
@@ -72,8 +71,7 @@ struct ColorManagement::Impl {
             auto processor = config->getProcessor(src.c_str(), renderingName.c_str());
             if (!processor->isNoOp()) cpu = processor->getDefaultCPUProcessor();
         } catch (const OCIO::Exception& e) {
-            throw ColorError("cannot convert colour space '" + fromSpace + "' to " + renderingName + ": " +
-                             e.what());
+            throw ColorError("cannot convert colour space '" + fromSpace + "' to " + renderingName + ": " + e.what());
         }
         cache.emplace(src, cpu);
         return cpu;
@@ -148,8 +146,8 @@ ColorManagement ColorManagement::load(const std::string& configPath) {
     } catch (const ColorError&) {
         throw;
     } catch (const std::exception& e) {
-        throw ColorError("cannot load OCIO config " + (path.empty() ? std::string(kBuiltinDescription) : where) +
-                         ": " + e.what());
+        throw ColorError("cannot load OCIO config " + (path.empty() ? std::string(kBuiltinDescription) : where) + ": " +
+                         e.what());
     }
 
     const char* rendering = impl->config->getCanonicalName(kRenderingSpace);

@@ -72,8 +72,7 @@ public:
     // result is display-encoded and clamped to [0, 1] (NaN becomes 0). "" means the config's
     // default display, and that display's default view. Throws ColorError for an unknown
     // display or view.
-    void applyDisplayView(const std::string& display, const std::string& view, float* rgb,
-                          std::size_t count) const;
+    void applyDisplayView(const std::string& display, const std::string& view, float* rgb, std::size_t count) const;
 
     std::string defaultDisplay() const;
     // Default view of `display` ("" means the default display). Throws ColorError if unknown.

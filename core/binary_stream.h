@@ -41,7 +41,8 @@ template <typename T>
 void readBinary(std::istream& in, T* values, std::size_t count) {
     static_assert(std::is_trivially_copyable_v<T>);
     const auto bytes = static_cast<std::streamsize>(sizeof(T) * count);
-    if (!in.read(reinterpret_cast<char*>(values), bytes) || in.gcount() != bytes) throw BinaryReadError("the data ends early");
+    if (!in.read(reinterpret_cast<char*>(values), bytes) || in.gcount() != bytes)
+        throw BinaryReadError("the data ends early");
 }
 template <typename T>
 T readBinary(std::istream& in) {
@@ -51,7 +52,9 @@ T readBinary(std::istream& in) {
 }
 inline std::string readBinaryString(std::istream& in, std::uint32_t maxLength) {
     const auto length = readBinary<std::uint32_t>(in);
-    if (length > maxLength) throw BinaryReadError("a string of " + std::to_string(length) + " bytes (at most " + std::to_string(maxLength) + " expected)");
+    if (length > maxLength)
+        throw BinaryReadError("a string of " + std::to_string(length) + " bytes (at most " + std::to_string(maxLength) +
+                              " expected)");
     std::string text(length, '\0');
     readBinary(in, text.data(), length);
     return text;

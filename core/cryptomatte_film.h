@@ -61,7 +61,9 @@ private:
         std::vector<Entry> entries;
         std::uint32_t samples = 0;
     };
-    std::size_t index(int x, int y) const { return static_cast<std::size_t>(y) * static_cast<std::size_t>(width_) + static_cast<std::size_t>(x); }
+    std::size_t index(int x, int y) const {
+        return static_cast<std::size_t>(y) * static_cast<std::size_t>(width_) + static_cast<std::size_t>(x);
+    }
 
     int width_, height_;
     std::vector<CryptomatteSource> layers_;

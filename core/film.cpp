@@ -44,7 +44,8 @@ void Film::add(int x, int y, const FilmSample& s) {
 }
 
 std::vector<std::string> Film::channelNames() const {
-    std::vector<std::string> names{"R", "G", "B", "A", "albedo.R", "albedo.G", "albedo.B", "N.X", "N.Y", "N.Z", "Z", "sampleCount"};
+    std::vector<std::string> names{"R",        "G",   "B",   "A",   "albedo.R", "albedo.G",
+                                   "albedo.B", "N.X", "N.Y", "N.Z", "Z",        "sampleCount"};
     for (const std::string& layer : lightPathLayers_)
         for (const char* c : {".R", ".G", ".B"}) names.push_back(layer + c);
     return names;
@@ -67,14 +68,17 @@ Image Film::resolve() const {
             float* out = image.pixel(x, y);
             double inv = p.samples > 0 ? 1.0 / p.samples : 0.0;
             const std::array<double, 3> splat = splats_ ? splats_->sum(x, y) : std::array<double, 3>{};
-            for (int c = 0; c < 3; ++c) out[c] = static_cast<float>(p.radiance[c] * inv + splat[std::size_t(c)] * perLightPath);
+            for (int c = 0; c < 3; ++c)
+                out[c] = static_cast<float>(p.radiance[c] * inv + splat[std::size_t(c)] * perLightPath);
             out[3] = static_cast<float>(p.coverage * inv);
             for (int c = 0; c < 3; ++c) out[4 + c] = static_cast<float>(p.albedo[c] * inv);
             for (int c = 0; c < 3; ++c) out[7 + c] = static_cast<float>(p.normal[c] * inv);
             out[10] = p.anyHit ? p.minDepth : farDepth_;
             out[11] = static_cast<float>(p.samples);
-            const double* layers = lightPathSums_.data() + (static_cast<std::size_t>(y) * width_ + x) * lightPathLayers_.size() * 3;
-            for (std::size_t i = 0; i < lightPathLayers_.size() * 3; ++i) out[12 + i] = static_cast<float>(layers[i] * inv);
+            const double* layers =
+                lightPathSums_.data() + (static_cast<std::size_t>(y) * width_ + x) * lightPathLayers_.size() * 3;
+            for (std::size_t i = 0; i < lightPathLayers_.size() * 3; ++i)
+                out[12 + i] = static_cast<float>(layers[i] * inv);
         }
     return image;
 }

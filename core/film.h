@@ -51,7 +51,9 @@ struct FilmSample {
     float lightPaths[3 * kMaxLightPathLayers];
 
     void clearLightPaths(std::size_t layers) { std::fill_n(lightPaths, 3 * layers, 0.0f); }
-    RGB lightPath(std::size_t layer) const { return RGB(lightPaths[3 * layer], lightPaths[3 * layer + 1], lightPaths[3 * layer + 2]); }
+    RGB lightPath(std::size_t layer) const {
+        return RGB(lightPaths[3 * layer], lightPaths[3 * layer + 1], lightPaths[3 * layer + 2]);
+    }
     void addLightPath(std::size_t layer, const RGB& v) {
         for (int c = 0; c < 3; ++c) lightPaths[3 * layer + std::size_t(c)] += v[c];
     }

@@ -69,8 +69,8 @@ void readFilmState(std::istream& in, Film& film) {
                                  std::to_string(kFilmStateVersion) + ")");
         const auto width = readBinary<std::int32_t>(in), height = readBinary<std::int32_t>(in);
         if (width != film.width_ || height != film.height_)
-            throw FilmStateError("the saved film is " + std::to_string(width) + "x" + std::to_string(height) + ", this one " +
-                                 std::to_string(film.width_) + "x" + std::to_string(film.height_));
+            throw FilmStateError("the saved film is " + std::to_string(width) + "x" + std::to_string(height) +
+                                 ", this one " + std::to_string(film.width_) + "x" + std::to_string(film.height_));
         if (const auto farDepth = readBinary<float>(in); farDepth != film.farDepth_)
             throw FilmStateError("the saved film's far depth is " + std::to_string(farDepth) + ", this one's " +
                                  std::to_string(film.farDepth_));

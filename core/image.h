@@ -18,7 +18,9 @@ struct Image {
 
     Image() = default;
     Image(int w, int h, std::vector<std::string> names)
-        : width(w), height(h), channels(std::move(names)),
+        : width(w),
+          height(h),
+          channels(std::move(names)),
           pixels(static_cast<std::size_t>(w) * h * channels.size(), 0.0f) {}
 
     std::size_t channelCount() const { return channels.size(); }

@@ -118,9 +118,12 @@ Vec3d Matrix4::transformNormal(const Vec3d& n) const {
     // by the sign of det gives the direction of inverse-transpose * n, and this works for
     // singular matrices too.
     const auto& a = m;
-    Vec3d c0(a[1][1] * a[2][2] - a[1][2] * a[2][1], a[1][2] * a[2][0] - a[1][0] * a[2][2], a[1][0] * a[2][1] - a[1][1] * a[2][0]);
-    Vec3d c1(a[0][2] * a[2][1] - a[0][1] * a[2][2], a[0][0] * a[2][2] - a[0][2] * a[2][0], a[0][1] * a[2][0] - a[0][0] * a[2][1]);
-    Vec3d c2(a[0][1] * a[1][2] - a[0][2] * a[1][1], a[0][2] * a[1][0] - a[0][0] * a[1][2], a[0][0] * a[1][1] - a[0][1] * a[1][0]);
+    Vec3d c0(a[1][1] * a[2][2] - a[1][2] * a[2][1], a[1][2] * a[2][0] - a[1][0] * a[2][2],
+             a[1][0] * a[2][1] - a[1][1] * a[2][0]);
+    Vec3d c1(a[0][2] * a[2][1] - a[0][1] * a[2][2], a[0][0] * a[2][2] - a[0][2] * a[2][0],
+             a[0][1] * a[2][0] - a[0][0] * a[2][1]);
+    Vec3d c2(a[0][1] * a[1][2] - a[0][2] * a[1][1], a[0][2] * a[1][0] - a[0][0] * a[1][2],
+             a[0][0] * a[1][1] - a[0][1] * a[1][0]);
     Vec3d r(dot(c0, n), dot(c1, n), dot(c2, n));
     return determinant3x3() < 0.0 ? -r : r;
 }

@@ -18,7 +18,8 @@ struct SinCos {
 SinCos sinCosQuarterTurn(float a) {
     const float z = a * a;
     const float s = ((-1.9515295891e-4f * z + 8.3321608736e-3f) * z - 1.6666654611e-1f) * z * a + a;
-    const float c = ((2.443315711809948e-5f * z - 1.388731625493765e-3f) * z + 4.166664568298827e-2f) * z * z - 0.5f * z + 1.0f;
+    const float c =
+        ((2.443315711809948e-5f * z - 1.388731625493765e-3f) * z + 4.166664568298827e-2f) * z * z - 0.5f * z + 1.0f;
     return {s, c};
 }
 
@@ -74,7 +75,8 @@ Vec2f sampleUniformTriangle(Vec2f u) {
 DiscreteDistribution::DiscreteDistribution(const std::vector<double>& weights) {
     double total = 0.0;
     for (double w : weights) {
-        if (!(w >= 0.0) || !std::isfinite(w)) throw std::invalid_argument("DiscreteDistribution: weights must be finite and >= 0");
+        if (!(w >= 0.0) || !std::isfinite(w))
+            throw std::invalid_argument("DiscreteDistribution: weights must be finite and >= 0");
         total += w;
     }
     if (weights.empty()) return;

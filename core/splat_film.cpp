@@ -16,14 +16,16 @@ constexpr std::int64_t kMaxSum = std::numeric_limits<std::int64_t>::max();
 // the order of the adds.
 void saturatingAdd(std::atomic<std::int64_t>& sum, std::int64_t v) {
     std::int64_t old = sum.load(std::memory_order_relaxed);
-    while (!sum.compare_exchange_weak(old, v > kMaxSum - old ? kMaxSum : old + v, std::memory_order_relaxed)) {
-    }
+    while (!sum.compare_exchange_weak(old, v > kMaxSum - old ? kMaxSum : old + v, std::memory_order_relaxed)) {}
 }
 
 }  // namespace
 
 SplatFilm::SplatFilm(int width, int height, int originX, int originY)
-    : width_(width), height_(height), originX_(originX), originY_(originY),
+    : width_(width),
+      height_(height),
+      originX_(originX),
+      originY_(originY),
       sums_(static_cast<std::size_t>(width > 0 ? width : 0) * static_cast<std::size_t>(height > 0 ? height : 0) * 3) {
     if (width <= 0 || height <= 0) throw std::invalid_argument("splat film resolution must be positive");
 }
@@ -33,7 +35,8 @@ bool SplatFilm::add(float x, float y, const RGB& value) {
         if (!std::isfinite(value[c]) || value[c] < 0.0f) return false;
     const double px = std::floor(double(x)) - originX_, py = std::floor(double(y)) - originY_;
     if (!(px >= 0.0 && px < width_ && py >= 0.0 && py < height_)) return true;
-    const std::size_t index = (static_cast<std::size_t>(py) * static_cast<std::size_t>(width_) + static_cast<std::size_t>(px)) * 3;
+    const std::size_t index =
+        (static_cast<std::size_t>(py) * static_cast<std::size_t>(width_) + static_cast<std::size_t>(px)) * 3;
     for (int c = 0; c < 3; ++c) {
         if (value[c] == 0.0f) continue;
         const double clamped = std::min(double(value[c]), kMaxValue);
@@ -43,7 +46,8 @@ bool SplatFilm::add(float x, float y, const RGB& value) {
 }
 
 std::array<double, 3> SplatFilm::sum(int x, int y) const {
-    const std::size_t index = (static_cast<std::size_t>(y) * static_cast<std::size_t>(width_) + static_cast<std::size_t>(x)) * 3;
+    const std::size_t index =
+        (static_cast<std::size_t>(y) * static_cast<std::size_t>(width_) + static_cast<std::size_t>(x)) * 3;
     std::array<double, 3> s;
     for (std::size_t c = 0; c < 3; ++c) s[c] = double(sums_[index + c].load(std::memory_order_relaxed)) / kScale;
     return s;

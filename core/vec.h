@@ -30,32 +30,67 @@ struct Vec3 {
     constexpr Vec3 operator*(T s) const { return {x * s, y * s, z * s}; }
     constexpr Vec3 operator/(T s) const { return {x / s, y / s, z / s}; }
     constexpr Vec3 operator-() const { return {-x, -y, -z}; }
-    constexpr Vec3& operator+=(const Vec3& o) { x += o.x; y += o.y; z += o.z; return *this; }
-    constexpr Vec3& operator-=(const Vec3& o) { x -= o.x; y -= o.y; z -= o.z; return *this; }
-    constexpr Vec3& operator*=(const Vec3& o) { x *= o.x; y *= o.y; z *= o.z; return *this; }
-    constexpr Vec3& operator*=(T s) { x *= s; y *= s; z *= s; return *this; }
-    constexpr Vec3& operator/=(T s) { x /= s; y /= s; z /= s; return *this; }
+    constexpr Vec3& operator+=(const Vec3& o) {
+        x += o.x;
+        y += o.y;
+        z += o.z;
+        return *this;
+    }
+    constexpr Vec3& operator-=(const Vec3& o) {
+        x -= o.x;
+        y -= o.y;
+        z -= o.z;
+        return *this;
+    }
+    constexpr Vec3& operator*=(const Vec3& o) {
+        x *= o.x;
+        y *= o.y;
+        z *= o.z;
+        return *this;
+    }
+    constexpr Vec3& operator*=(T s) {
+        x *= s;
+        y *= s;
+        z *= s;
+        return *this;
+    }
+    constexpr Vec3& operator/=(T s) {
+        x /= s;
+        y /= s;
+        z /= s;
+        return *this;
+    }
     constexpr bool operator==(const Vec3&) const = default;
 };
 
 template <typename T>
-constexpr Vec3<T> operator*(T s, const Vec3<T>& v) { return v * s; }
+constexpr Vec3<T> operator*(T s, const Vec3<T>& v) {
+    return v * s;
+}
 
 using Vec3f = Vec3<float>;
 using Vec3d = Vec3<double>;
 
 template <typename T>
-constexpr T dot(const Vec3<T>& a, const Vec3<T>& b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+constexpr T dot(const Vec3<T>& a, const Vec3<T>& b) {
+    return a.x * b.x + a.y * b.y + a.z * b.z;
+}
 template <typename T>
 constexpr Vec3<T> cross(const Vec3<T>& a, const Vec3<T>& b) {
     return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
 }
 template <typename T>
-inline T length(const Vec3<T>& v) { return std::sqrt(dot(v, v)); }
+inline T length(const Vec3<T>& v) {
+    return std::sqrt(dot(v, v));
+}
 template <typename T>
-inline T lengthSquared(const Vec3<T>& v) { return dot(v, v); }
+inline T lengthSquared(const Vec3<T>& v) {
+    return dot(v, v);
+}
 template <typename T>
-inline Vec3<T> normalize(const Vec3<T>& v) { return v / length(v); }
+inline Vec3<T> normalize(const Vec3<T>& v) {
+    return v / length(v);
+}
 template <typename T>
 constexpr Vec3<T> vmin(const Vec3<T>& a, const Vec3<T>& b) {
     return {std::min(a.x, b.x), std::min(a.y, b.y), std::min(a.z, b.z)};
@@ -65,7 +100,9 @@ constexpr Vec3<T> vmax(const Vec3<T>& a, const Vec3<T>& b) {
     return {std::max(a.x, b.x), std::max(a.y, b.y), std::max(a.z, b.z)};
 }
 template <typename T>
-constexpr T maxComponent(const Vec3<T>& v) { return std::max(v.x, std::max(v.y, v.z)); }
+constexpr T maxComponent(const Vec3<T>& v) {
+    return std::max(v.x, std::max(v.y, v.z));
+}
 
 template <typename T>
 inline std::string to_string(const Vec3<T>& v) {

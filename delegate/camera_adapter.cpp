@@ -22,7 +22,8 @@ render::CameraDesc cameraFromPrim(const PrimReader& prim, const Matrix4& toWorld
     c.horizontalApertureOffset = static_cast<float>(prim.number({"horizontalApertureOffset"}, 0.0));
     c.verticalApertureOffset = static_cast<float>(prim.number({"verticalApertureOffset"}, 0.0));
     if (auto range = prim.value("clippingRange")) {
-        if (!range->isNumeric() || range->numbers.size() != 2) prim.fail("clippingRange must be a float2, got " + range->toString());
+        if (!range->isNumeric() || range->numbers.size() != 2)
+            prim.fail("clippingRange must be a float2, got " + range->toString());
         c.nearClip = static_cast<float>(range->numbers[0]);
         c.farClip = static_cast<float>(range->numbers[1]);
     }
@@ -32,7 +33,8 @@ render::CameraDesc cameraFromPrim(const PrimReader& prim, const Matrix4& toWorld
     c.apertureRotation = static_cast<float>(prim.number({"fluence:camera:apertureRotation"}, 0.0));
     if (!(c.fStop >= 0.0f) || !(c.focusDistance >= 0.0f)) prim.fail("fStop and focusDistance must not be negative");
     if (!(blades == 0.0 || (blades >= 3.0 && blades <= 64.0 && blades == std::floor(blades))))
-        prim.fail("fluence:camera:apertureBlades must be 0 (round) or a whole number from 3 to 64, got " + std::to_string(blades));
+        prim.fail("fluence:camera:apertureBlades must be 0 (round) or a whole number from 3 to 64, got " +
+                  std::to_string(blades));
     if (!std::isfinite(c.apertureRotation)) prim.fail("fluence:camera:apertureRotation must be finite");
     c.apertureBlades = static_cast<int>(blades);
     c.shutterOpen = prim.number({"shutter:open"}, 0.0);
@@ -82,7 +84,8 @@ render::CameraDesc framingCamera(const render::SceneDescription& scene, char upA
     }
     const double radius = std::max(length(extent), 1e-6);
     render::CameraDesc camera;  // UsdGeomCamera's fallback lens
-    const double halfAngle = std::atan(0.5 * std::min(camera.horizontalAperture, camera.verticalAperture) / camera.focalLength);
+    const double halfAngle =
+        std::atan(0.5 * std::min(camera.horizontalAperture, camera.verticalAperture) / camera.focalLength);
     const double distance = radius / std::sin(halfAngle);
     Matrix4 orient = upAxis == 'Z' ? Matrix4::rotateX(90.0) : Matrix4::identity();  // local -Z -> +Y, +Y -> +Z
     Vec3d back = upAxis == 'Z' ? Vec3d(0.0, -1.0, 0.0) : Vec3d(0.0, 0.0, 1.0);

@@ -25,7 +25,9 @@ struct Topology {
 
     std::size_t vstep() const { return basis == CurveBasis::Bezier ? 3 : 1; }
     bool periodic() const { return wrap == Wrap::Periodic; }
-    bool phantoms() const { return wrap == Wrap::Pinned && (basis == CurveBasis::BSpline || basis == CurveBasis::CatmullRom); }
+    bool phantoms() const {
+        return wrap == Wrap::Pinned && (basis == CurveBasis::BSpline || basis == CurveBasis::CatmullRom);
+    }
     // The segments of a curve of n vertices; 0 when n is not a valid count.
     std::size_t segments(std::size_t n) const {
         if (basis == CurveBasis::Linear) return periodic() ? (n >= 3 ? n : 0) : (n >= 2 ? n - 1 : 0);
@@ -61,9 +63,12 @@ Topology topologyOf(const PrimReader& prim) {
         t.basis = CurveBasis::CatmullRom;
     else
         prim.fail("basis '" + basis + "' is not bezier, bspline or catmullRom");
-    if (wrap == "periodic") t.wrap = Wrap::Periodic;
-    else if (wrap == "pinned") t.wrap = Wrap::Pinned;
-    else if (wrap != "nonperiodic") prim.fail("wrap '" + wrap + "' is not nonperiodic, periodic or pinned");
+    if (wrap == "periodic")
+        t.wrap = Wrap::Periodic;
+    else if (wrap == "pinned")
+        t.wrap = Wrap::Pinned;
+    else if (wrap != "nonperiodic")
+        prim.fail("wrap '" + wrap + "' is not nonperiodic, periodic or pinned");
     return t;
 }
 
@@ -81,7 +86,8 @@ std::vector<Curve> curvesOf(const PrimReader& prim, std::size_t points) {
         first += static_cast<std::size_t>(c);
     }
     if (first != points)
-        prim.fail("curveVertexCounts add up to " + std::to_string(first) + " but there are " + std::to_string(points) + " points");
+        prim.fail("curveVertexCounts add up to " + std::to_string(first) + " but there are " + std::to_string(points) +
+                  " points");
     return curves;
 }
 
@@ -91,8 +97,8 @@ using Values = std::vector<double>;
 
 // The element of a non-vertex primvar at `position` along curve `c`'s varying values (m of them,
 // from `firstVarying`), interpolated linearly; constant and uniform ones are the same all along.
-void appendAlong(const Primvar& pv, std::size_t c, std::size_t firstVarying, std::size_t m, double position, bool periodic,
-                 Values& out) {
+void appendAlong(const Primvar& pv, std::size_t c, std::size_t firstVarying, std::size_t m, double position,
+                 bool periodic, Values& out) {
     const auto k = static_cast<std::size_t>(pv.components);
     if (pv.interpolation != "varying") {
         const double* v = pv.element(pv.interpolation == "uniform" ? c : 0);
@@ -108,13 +114,19 @@ void appendAlong(const Primvar& pv, std::size_t c, std::size_t firstVarying, std
 
 // Raises SceneError unless `pv` has the values its interpolation needs.
 void checkCount(const PrimReader& prim, Primvar& pv, std::size_t curves, std::size_t varying, std::size_t vertices) {
-    if (pv.elementCount() == 1) pv.interpolation = "constant";  // one value can only mean the whole prim (as Hydra reads it)
+    if (pv.elementCount() == 1)
+        pv.interpolation = "constant";  // one value can only mean the whole prim (as Hydra reads it)
     std::size_t need = 0;
-    if (pv.interpolation == "constant") need = 1;
-    else if (pv.interpolation == "uniform") need = curves;
-    else if (pv.interpolation == "varying") need = varying;
-    else if (pv.interpolation == "vertex") need = vertices;
-    else prim.fail("'" + pv.name + "' has interpolation '" + pv.interpolation + "', which curves do not take");
+    if (pv.interpolation == "constant")
+        need = 1;
+    else if (pv.interpolation == "uniform")
+        need = curves;
+    else if (pv.interpolation == "varying")
+        need = varying;
+    else if (pv.interpolation == "vertex")
+        need = vertices;
+    else
+        prim.fail("'" + pv.name + "' has interpolation '" + pv.interpolation + "', which curves do not take");
     if (pv.elementCount() < need)
         prim.fail("'" + pv.name + "' has " + std::to_string(pv.elementCount()) + " values but " + pv.interpolation +
                   " interpolation needs " + std::to_string(need));
@@ -137,7 +149,8 @@ CurvePrimvars readCurvePrimvars(const PrimReader& prim) {
     return p;
 }
 
-void checkCounts(const PrimReader& prim, CurvePrimvars& p, std::size_t curves, std::size_t varying, std::size_t vertices) {
+void checkCounts(const PrimReader& prim, CurvePrimvars& p, std::size_t curves, std::size_t varying,
+                 std::size_t vertices) {
     for (std::optional<Primvar>* pv : {&p.widths, &p.normals, &p.colors})
         if (*pv) checkCount(prim, **pv, curves, varying, vertices);
 }
@@ -152,15 +165,17 @@ render::CurveStyle styleOf(const PrimReader& prim, bool hasNormals) {
     const std::string style = prim.token({"primvars:fluence:curveStyle"}, "");
     if (style == "flat") return render::CurveStyle::Flat;
     if (style == "round") return render::CurveStyle::Round;
-    if (style == "ribbon" && !hasNormals) prim.fail("primvars:fluence:curveStyle is 'ribbon' but no normals are authored");
-    if (!style.empty() && style != "ribbon") prim.fail("primvars:fluence:curveStyle '" + style + "' is not round, flat or ribbon");
+    if (style == "ribbon" && !hasNormals)
+        prim.fail("primvars:fluence:curveStyle is 'ribbon' but no normals are authored");
+    if (!style.empty() && style != "ribbon")
+        prim.fail("primvars:fluence:curveStyle '" + style + "' is not round, flat or ribbon");
     return hasNormals ? render::CurveStyle::Oriented : render::CurveStyle::Round;
 }
 
 // Unrolls per-vertex data into Embree's control points (periodic curves repeat their first
 // vertices, pinned ones gain phantom points) and segments.
-render::CurvesDesc unrolled(const PrimReader& prim, const Topology& topo, const std::vector<Curve>& curves, const VertexData& data,
-                            const CurvePrimvars& primvars, const ColorConverter& convertColor) {
+render::CurvesDesc unrolled(const PrimReader& prim, const Topology& topo, const std::vector<Curve>& curves,
+                            const VertexData& data, const CurvePrimvars& primvars, const ColorConverter& convertColor) {
     render::CurvesDesc desc;
     desc.name = prim.path();
     desc.basis = topo.basis;
@@ -171,11 +186,13 @@ render::CurvesDesc unrolled(const PrimReader& prim, const Topology& topo, const 
         auto extrapolated = [&](auto value) { return b ? value(a) * 2.0f - value(*b) : value(a); };
         desc.points.push_back(extrapolated([&](std::size_t i) { return vec3(data.points, i); }));
         desc.radii.push_back(std::max(0.0f, 0.5f * extrapolated([&](std::size_t i) {
-                                                   return data.widths.empty() ? 1.0f : static_cast<float>(data.widths[i]);
-                                               })));
-        if (!data.normals.empty()) desc.normals.push_back(extrapolated([&](std::size_t i) { return vec3(data.normals, i); }));
+                                                return data.widths.empty() ? 1.0f : static_cast<float>(data.widths[i]);
+                                            })));
+        if (!data.normals.empty())
+            desc.normals.push_back(extrapolated([&](std::size_t i) { return vec3(data.normals, i); }));
         if (!data.colors.empty())
-            desc.colors.push_back(convertColor(RGB(extrapolated([&](std::size_t i) { return vec3(data.colors, i); })), primvars.colorSpace));
+            desc.colors.push_back(convertColor(RGB(extrapolated([&](std::size_t i) { return vec3(data.colors, i); })),
+                                               primvars.colorSpace));
     };
     for (const Curve& c : curves) {
         const auto base = static_cast<std::uint32_t>(desc.points.size());
@@ -183,9 +200,11 @@ render::CurvesDesc unrolled(const PrimReader& prim, const Topology& topo, const 
         if (topo.phantoms()) push(c.first, c.first + 1);
         for (std::size_t j = c.first; j <= last; ++j) push(j, std::nullopt);
         if (topo.periodic())
-            for (std::size_t j = 0; j < (topo.basis == CurveBasis::Linear ? 1 : 4 - topo.vstep()); ++j) push(c.first + j, std::nullopt);
+            for (std::size_t j = 0; j < (topo.basis == CurveBasis::Linear ? 1 : 4 - topo.vstep()); ++j)
+                push(c.first + j, std::nullopt);
         if (topo.phantoms()) push(last, last - 1);
-        for (std::size_t s = 0; s < topo.segments(c.count); ++s) desc.segments.push_back(base + static_cast<std::uint32_t>(s * topo.vstep()));
+        for (std::size_t s = 0; s < topo.segments(c.count); ++s)
+            desc.segments.push_back(base + static_cast<std::uint32_t>(s * topo.vstep()));
     }
     return desc;
 }
@@ -210,7 +229,9 @@ render::CurvesDesc basisCurvesFromPrim(const PrimReader& prim, const ColorConver
         valid.push_back(curves[i]);
         varying += topo.varying(curves[i].count);
     }
-    if (invalid > 1) warn(std::to_string(invalid) + " of its " + std::to_string(curves.size()) + " curves are left out for their vertex counts");
+    if (invalid > 1)
+        warn(std::to_string(invalid) + " of its " + std::to_string(curves.size()) +
+             " curves are left out for their vertex counts");
     CurvePrimvars primvars = readCurvePrimvars(prim);
     checkCounts(prim, primvars, curves.size(), varying, data.points.size() / 3);
     auto expand = [&](const std::optional<Primvar>& pv, Values& out) {
@@ -268,19 +289,28 @@ render::CurvesDesc nurbsCurvesFromPrim(const PrimReader& prim, const ColorConver
     const Values knots = prim.numbers("knots", 1).value_or(Values{});
     const Values weights = prim.numbers("pointWeights", 1).value_or(Values(points.size() / 3, 1.0));
     const Values ranges = prim.numbers("ranges", 2).value_or(Values{});
-    if (orders.size() != curves.size()) prim.fail("order has " + std::to_string(orders.size()) + " values for " + std::to_string(curves.size()) + " curves");
-    if (weights.size() != points.size() / 3) prim.fail("pointWeights has " + std::to_string(weights.size()) + " values for " + std::to_string(points.size() / 3) + " points");
-    if (!ranges.empty() && ranges.size() != 2 * curves.size()) prim.fail("ranges has " + std::to_string(ranges.size() / 2) + " values for " + std::to_string(curves.size()) + " curves");
+    if (orders.size() != curves.size())
+        prim.fail("order has " + std::to_string(orders.size()) + " values for " + std::to_string(curves.size()) +
+                  " curves");
+    if (weights.size() != points.size() / 3)
+        prim.fail("pointWeights has " + std::to_string(weights.size()) + " values for " +
+                  std::to_string(points.size() / 3) + " points");
+    if (!ranges.empty() && ranges.size() != 2 * curves.size())
+        prim.fail("ranges has " + std::to_string(ranges.size() / 2) + " values for " + std::to_string(curves.size()) +
+                  " curves");
     std::size_t knotCount = 0, varying = 0;
     for (std::size_t i = 0; i < curves.size(); ++i) {
         const auto order = static_cast<std::size_t>(orders[i]);
         if (orders[i] < 2 || curves[i].count < order)
-            prim.fail("curve " + std::to_string(i) + " has order " + std::to_string(static_cast<long long>(orders[i])) + " and " +
-                      std::to_string(curves[i].count) + " vertices (order must be 2 or more and at most the vertex count)");
+            prim.fail("curve " + std::to_string(i) + " has order " + std::to_string(static_cast<long long>(orders[i])) +
+                      " and " + std::to_string(curves[i].count) +
+                      " vertices (order must be 2 or more and at most the vertex count)");
         knotCount += curves[i].count + order;
         varying += curves[i].count - order + 2;
     }
-    if (knots.size() != knotCount) prim.fail("knots has " + std::to_string(knots.size()) + " values; the curves' vertex counts and orders need " + std::to_string(knotCount));
+    if (knots.size() != knotCount)
+        prim.fail("knots has " + std::to_string(knots.size()) + " values; the curves' vertex counts and orders need " +
+                  std::to_string(knotCount));
     for (std::size_t i = 1; i < knots.size(); ++i)
         if (knots[i] < knots[i - 1]) prim.fail("knots decrease at index " + std::to_string(i));
     CurvePrimvars primvars = readCurvePrimvars(prim);
@@ -309,7 +339,8 @@ render::CurvesDesc nurbsCurvesFromPrim(const PrimReader& prim, const ColorConver
                 double w = 0.0;
                 std::vector<double> sum(components, 0.0);
                 for (int j = 0; j <= p; ++j) {
-                    const std::size_t vertex = c.first + span - static_cast<std::size_t>(p) + static_cast<std::size_t>(j);
+                    const std::size_t vertex =
+                        c.first + span - static_cast<std::size_t>(p) + static_cast<std::size_t>(j);
                     const double nw = n[static_cast<std::size_t>(j)] * weights[vertex];
                     w += nw;
                     for (std::size_t a = 0; a < components; ++a) sum[a] += nw * perVertex[vertex * components + a];
@@ -321,7 +352,8 @@ render::CurvesDesc nurbsCurvesFromPrim(const PrimReader& prim, const ColorConver
                 if (!pv) return;
                 if (pv->interpolation == "vertex") {
                     Values flat;
-                    for (std::size_t e = 0; e < points.size() / 3; ++e) flat.insert(flat.end(), pv->element(e), pv->element(e) + pv->components);
+                    for (std::size_t e = 0; e < points.size() / 3; ++e)
+                        flat.insert(flat.end(), pv->element(e), pv->element(e) + pv->components);
                     evaluate(flat, static_cast<std::size_t>(pv->components), out);
                 } else {
                     appendAlong(*pv, i, firstVarying, m, fraction * static_cast<double>(m - 1), false, out);

@@ -8,8 +8,8 @@ namespace {
 
 bool materialEmits(const render::MaterialDesc& m) {
     return !isBlack(m.emission) || std::any_of(m.bindings.begin(), m.bindings.end(), [](const render::InputBinding& b) {
-               return b.input == render::MaterialInput::Emission;
-           });
+        return b.input == render::MaterialInput::Emission;
+    });
 }
 
 bool volumeEmits(const render::VolumeDesc& v) {
@@ -35,7 +35,7 @@ std::vector<render::LightDesc> defaultLights(const render::CameraDesc& camera) {
     render::LightDesc key;
     key.name = "(default key light)";
     key.type = render::LightType::Distant;
-    key.transform = camera.transform;  // the camera and a distant light both look down local -Z
+    key.transform = camera.transform;           // the camera and a distant light both look down local -Z
     key.radiance = RGB(kDefaultKeyIrradiance);  // a point-like (0 degree) distant light: the irradiance
     render::LightDesc dome;
     dome.name = "(default dome)";

@@ -21,8 +21,8 @@ std::vector<int> edgeSegments(const render::Camera& camera, const DicingSettings
         float pixels = length(b - a) * pixelsPerUnit;
         float edgeRate = rate * (inView ? 1.0f : settings.offscreenFactor);
         float wanted = std::ceil(scale * pixels / edgeRate);
-        segments.push_back(std::isfinite(wanted) ? std::clamp(static_cast<int>(std::min(wanted, 1e6f)), 1, settings.maxSegments)
-                                                 : 1);
+        segments.push_back(
+            std::isfinite(wanted) ? std::clamp(static_cast<int>(std::min(wanted, 1e6f)), 1, settings.maxSegments) : 1);
     }
     return segments;
 }

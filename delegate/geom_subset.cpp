@@ -28,8 +28,9 @@ bool hasBinding(const usd::PrimSpec& prim) {
     return false;
 }
 
-std::vector<MaterialAssignment::Subset> materialBindSubsets(const usd::Stage& stage, const usd::PrimSpec& mesh, double time,
-                                                std::size_t faceCount, const std::function<void(const std::string&)>& warn) {
+std::vector<MaterialAssignment::Subset> materialBindSubsets(const usd::Stage& stage, const usd::PrimSpec& mesh,
+                                                            double time, std::size_t faceCount,
+                                                            const std::function<void(const std::string&)>& warn) {
     std::vector<MaterialAssignment::Subset> subsets;
     for (const auto& child : mesh.children) {
         if (child->typeName != "GeomSubset" || child->specifier != usd::Specifier::Def || !isActive(*child)) continue;
@@ -83,8 +84,9 @@ MaterialAssignment readMaterialAssignment(const usd::Stage& stage, const usd::Pr
                 firstOverlap = f;
         }
         if (overlaps > 0)
-            warn("GeomSubset " + a.subsets[s].path + " lists " + std::to_string(overlaps) + (overlaps == 1 ? " face" : " faces") +
-                 " (first: face " + std::to_string(firstOverlap) + ") already in an earlier materialBind subset (" +
+            warn("GeomSubset " + a.subsets[s].path + " lists " + std::to_string(overlaps) +
+                 (overlaps == 1 ? " face" : " faces") + " (first: face " + std::to_string(firstOverlap) +
+                 ") already in an earlier materialBind subset (" +
                  a.subsets[static_cast<std::size_t>(a.subsetOfFace[firstOverlap])].path + "), which keeps them");
     }
     return a;
@@ -118,7 +120,8 @@ std::vector<MeshPart> splitByMaterial(TriangulatedMesh&& whole, const MaterialAs
         partOfSubset.push_back(it->second);
     }
     for (MeshPart& part : parts)
-        for (const render::CornerPrimvar& pv : mesh.primvars) part.mesh.primvars.push_back({pv.name, pv.components, {}});
+        for (const render::CornerPrimvar& pv : mesh.primvars)
+            part.mesh.primvars.push_back({pv.name, pv.components, {}});
 
     // Copy each triangle into its part, renumbering the points each part uses.
     constexpr std::uint32_t kUnused = std::numeric_limits<std::uint32_t>::max();

@@ -10,9 +10,12 @@ namespace fluence::delegate {
 IncludedPurposes IncludedPurposes::fromNames(const std::vector<std::string>& names) {
     IncludedPurposes purposes{false, false, false};
     for (const std::string& name : names) {
-        if (name == "render") purposes.render = true;
-        else if (name == "proxy") purposes.proxy = true;
-        else if (name == "guide") purposes.guide = true;
+        if (name == "render")
+            purposes.render = true;
+        else if (name == "proxy")
+            purposes.proxy = true;
+        else if (name == "guide")
+            purposes.guide = true;
         else if (name != "default" && name != "geometry")
             throw std::invalid_argument("unknown purpose '" + name + "' (default, render, proxy, guide)");
     }
@@ -35,8 +38,8 @@ std::string imageableToken(const PrimReader& reader, const char* name, const std
     std::optional<usd::Value> v = reader.value(name);
     if (!v) return fallback;
     if (v->typeName != "token" || v->isArray || v->strings.size() != 1) {
-        ignored(SceneError(reader.prim().location.str() + ": " + reader.path() + ": '" + name + "' must be a token, got " +
-                           (v->typeName.empty() ? "" : v->typeName + " ") + v->toString()));
+        ignored(SceneError(reader.prim().location.str() + ": " + reader.path() + ": '" + name +
+                           "' must be a token, got " + (v->typeName.empty() ? "" : v->typeName + " ") + v->toString()));
         return fallback;
     }
     return v->strings[0];

@@ -155,8 +155,10 @@ void frustum(Builder& out, double top, double bottom, double height, char axis) 
     if (top > 0.0) lathe(out, {{0.0, up, 0.0, 1.0}, {top, up, 0.0, 1.0}}, n, axis);
     const double slant = std::hypot(height, bottom - top);
     if (slant > 0.0)
-        lathe(out, {{top, up, height / slant, (bottom - top) / slant}, {bottom, down, height / slant, (bottom - top) / slant}}, n,
-              axis);
+        lathe(
+            out,
+            {{top, up, height / slant, (bottom - top) / slant}, {bottom, down, height / slant, (bottom - top) / slant}},
+            n, axis);
     if (bottom > 0.0) lathe(out, {{bottom, down, 0.0, -1.0}, {0.0, down, 0.0, -1.0}}, n, axis);
 }
 
@@ -169,7 +171,8 @@ void plane(Builder& out, double width, double length, char axis) {
     u[axis == 'X' ? 2 : 0] = 0.5 * width;
     v[axis == 'Y' ? 2 : 1] = 0.5 * length;
     if (dot(cross(u, v), n) < 0.0) std::swap(u, v);  // counter-clockwise seen from +axis
-    std::uint32_t p0 = out.vertex(-u - v, n), p1 = out.vertex(u - v, n), p2 = out.vertex(u + v, n), p3 = out.vertex(v - u, n);
+    std::uint32_t p0 = out.vertex(-u - v, n), p1 = out.vertex(u - v, n), p2 = out.vertex(u + v, n),
+                  p3 = out.vertex(v - u, n);
     out.triangle(p0, p1, p2);
     out.triangle(p0, p2, p3);
 }
@@ -200,11 +203,13 @@ double nonNegative(const PrimReader& prim, const char* name, double fallback) {
 
 char axisOf(const PrimReader& prim) {
     std::string axis = prim.token({"axis"}, "Z");
-    if (axis != "X" && axis != "Y" && axis != "Z") prim.fail("axis must be \"X\", \"Y\" or \"Z\", got \"" + axis + "\"");
+    if (axis != "X" && axis != "Y" && axis != "Z")
+        prim.fail("axis must be \"X\", \"Y\" or \"Z\", got \"" + axis + "\"");
     return axis[0];
 }
 
-std::optional<RGB> displayColor(const PrimReader& prim, const std::function<RGB(const RGB&, const std::string&)>& convertColor,
+std::optional<RGB> displayColor(const PrimReader& prim,
+                                const std::function<RGB(const RGB&, const std::string&)>& convertColor,
                                 const std::function<void(const std::string&)>& warn) {
     const std::string name = "primvars:displayColor";
     std::optional<std::vector<double>> values = prim.numbers(name, 3);
@@ -268,7 +273,8 @@ render::MeshDesc implicitMeshFromPrim(const PrimReader& prim, const Matrix4& toW
             lathe(local, capsuleProfile(top, height, sphereSegments()), sphereSegments(), axis);
         } else if (top != bottom) {
             if (!(std::abs(top - bottom) < height))
-                prim.fail("the radii of a Capsule_1 must differ by less than its height (one cap would swallow the other)");
+                prim.fail(
+                    "the radii of a Capsule_1 must differ by less than its height (one cap would swallow the other)");
             lathe(local, taperedCapsuleProfile(top, bottom, height, sphereSegments()), sphereSegments(), axis);
         }
     } else if (type == "Cylinder" || type == "Cone") {
@@ -309,7 +315,8 @@ render::MeshDesc implicitMeshFromPrim(const PrimReader& prim, const Matrix4& toW
         for (std::size_t t = 0; t < mesh.indices.size(); t += 3) std::swap(mesh.indices[t + 1], mesh.indices[t + 2]);
     mesh.cornerNormals.reserve(mesh.indices.size());
     for (std::uint32_t i : mesh.indices) mesh.cornerNormals.push_back(normals[i]);
-    if (std::optional<RGB> color = displayColor(prim, convertColor, warn)) mesh.cornerColors.assign(mesh.indices.size(), *color);
+    if (std::optional<RGB> color = displayColor(prim, convertColor, warn))
+        mesh.cornerColors.assign(mesh.indices.size(), *color);
     return mesh;
 }
 

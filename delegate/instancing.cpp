@@ -75,20 +75,23 @@ PointInstances pointInstancesFromPrim(const PrimReader& prim, const std::functio
     if (count == 0) return result;
     std::optional<std::vector<double>> positions = perInstance(prim, "positions", 3, count, warn);
     if (!positions) {
-        warn("'positions' must hold one point per protoIndices entry (" + std::to_string(count) + "); no instances placed");
+        warn("'positions' must hold one point per protoIndices entry (" + std::to_string(count) +
+             "); no instances placed");
         return result;
     }
-    std::optional<std::vector<double>> orientations =
-        prim.value("orientations") ? perInstance(prim, "orientations", 4, count, warn)
-                                   : perInstance(prim, "orientationsf", 4, count, warn);
+    std::optional<std::vector<double>> orientations = prim.value("orientations")
+                                                          ? perInstance(prim, "orientations", 4, count, warn)
+                                                          : perInstance(prim, "orientationsf", 4, count, warn);
     std::optional<std::vector<double>> scales = perInstance(prim, "scales", 3, count, warn);
     std::optional<std::vector<double>> ids = perInstance(prim, "ids", 1, count, warn);
 
     const std::optional<InstanceVelocityMotion> moving =
-        motion ? instanceVelocityMotion(motion->stage, prim.prim(), motion->time, motion->velocityFrame, count) : std::nullopt;
+        motion ? instanceVelocityMotion(motion->stage, prim.prim(), motion->time, motion->velocityFrame, count)
+               : std::nullopt;
 
     std::set<long long> hidden = listOpIds(prim.prim().metadata, "inactiveIds");
-    for (double id : prim.numbers("invisibleIds", 1).value_or(std::vector<double>{})) hidden.insert(static_cast<long long>(id));
+    for (double id : prim.numbers("invisibleIds", 1).value_or(std::vector<double>{}))
+        hidden.insert(static_cast<long long>(id));
 
     std::size_t outOfRange = 0;
     for (std::size_t i = 0; i < count; ++i) {
@@ -119,8 +122,9 @@ namespace {
 // Adds `prim`, met walking the prototype at `root`, to `contents` (`spaces`: the transforms of the
 // prims met before it); returns whether the walk goes below it. Raises SceneError when it is
 // malformed.
-bool addToPrototype(const SyncContext& context, const usd::PrimSpec& prim, const std::string& root, bool includeRootTransform,
-                    int nesting, std::map<std::string, Matrix4>& spaces, PrototypeContents& contents) {
+bool addToPrototype(const SyncContext& context, const usd::PrimSpec& prim, const std::string& root,
+                    bool includeRootTransform, int nesting, std::map<std::string, Matrix4>& spaces,
+                    PrototypeContents& contents) {
     const usd::Stage& stage = context.stage;
     const double time = context.time;
     std::vector<MeshPart>& parts = contents.parts;
@@ -132,7 +136,8 @@ bool addToPrototype(const SyncContext& context, const usd::PrimSpec& prim, const
     auto warnHere = [&](const std::string& message) { context.warn(prim.path, message); };
     if (prim.path != root || includeRootTransform) {
         LocalTransform local = localTransform(PrimReader(prim, time), warnHere);
-        space = prim.path == root || local.resetsXformStack ? local.matrix : spaces.at(parentPath(prim.path)) * local.matrix;
+        space = prim.path == root || local.resetsXformStack ? local.matrix
+                                                            : spaces.at(parentPath(prim.path)) * local.matrix;
     }
     spaces[prim.path] = space;
     if (prim.typeName == "Mesh" && SubdivisionMesh::isSubdivided(prim, time)) {
@@ -148,7 +153,8 @@ bool addToPrototype(const SyncContext& context, const usd::PrimSpec& prim, const
         // (A native instance's own lights are instance proxies, which the render index holds
         // as lights of their own; only a point instancer places its prototypes' lights.)
         if (includeRootTransform)
-            if (std::optional<render::LightDesc> light = lightFromPrim(PrimReader(prim, time), space, stage.upAxis(), warnHere))
+            if (std::optional<render::LightDesc> light =
+                    lightFromPrim(PrimReader(prim, time), space, stage.upAxis(), warnHere))
                 contents.lights.push_back(std::move(*light));
     } else if (prim.typeName == "PointInstancer") {
         if (nesting + 1 >= kMaxPrototypeNesting) {

@@ -57,9 +57,9 @@ std::vector<std::string> pointInstancerPrototypes(const usd::PrimSpec& instancer
 
 struct PointInstances {
     struct Instance {
-        int prototype = 0;                         // index into `prototypes`
+        int prototype = 0;                        // index into `prototypes`
         Matrix4 transform = Matrix4::identity();  // prototype root space -> instancer space
-        long long id = 0;                          // its `ids` entry, else its index
+        long long id = 0;                         // its `ids` entry, else its index
     };
     std::vector<std::string> prototypes;
     std::vector<Instance> instances;  // visible, active instances with a valid prototype, in order

@@ -44,7 +44,8 @@ void warnConnectedInputs(const usd::PrimSpec& prim, const Warn& warn) {
 }
 
 // The image at `path` as rendering-space RGB, or null (with a warning) when it cannot be read.
-std::shared_ptr<const render::RgbImage> loadTexture(const std::string& path, const std::string& fallback, const Warn& warn) {
+std::shared_ptr<const render::RgbImage> loadTexture(const std::string& path, const std::string& fallback,
+                                                    const Warn& warn) {
     texture::Image image;
     try {
         image = texture::loadImage(path);
@@ -118,7 +119,8 @@ std::optional<render::LightDesc> lightFromPrim(const PrimReader& prim, const Mat
         light.radiance *= blackbodyRgb(kelvin);
     }
     bool shaped = appliesSchema(prim.prim(), "ShapingAPI") || authorsShaping(prim.prim());
-    if (prim.value({"inputs:shaping:ies:file", "shaping:ies:file"})) warn("IES profiles are not supported yet; ignored");
+    if (prim.value({"inputs:shaping:ies:file", "shaping:ies:file"}))
+        warn("IES profiles are not supported yet; ignored");
 
     if (type == "RectLight") {
         light.type = render::LightType::Rect;

@@ -28,7 +28,6 @@ std::pair<std::string, std::string> splitPropertyPath(const std::string& path) {
     return {path.substr(0, dot), path.substr(dot + 1)};
 }
 
-
 std::string parentPath(const std::string& path) {
     auto slash = path.rfind('/');
     return slash == 0 || slash == std::string::npos ? "/" : path.substr(0, slash);
@@ -62,7 +61,8 @@ std::string boundMaterialPath(const usd::Stage& stage, const usd::PrimSpec& prim
     for (std::string path = prim.path; !path.empty() && path != "/"; path = parentPath(path)) {
         const usd::PrimSpec* p = stage.prim(path);
         const usd::RelationshipSpec* rel = p ? bindingOf(*p) : nullptr;
-        if (rel && (bound.empty() || strongerThanDescendants(*rel))) bound = resolveTargetPath(path, rel->targets.front());
+        if (rel && (bound.empty() || strongerThanDescendants(*rel)))
+            bound = resolveTargetPath(path, rel->targets.front());
     }
     // A target that exists but is not a Material binds nothing (UsdShade's ComputeBoundMaterial).
     const usd::PrimSpec* target = bound.empty() ? nullptr : stage.prim(bound);
@@ -106,7 +106,8 @@ render::MaterialDesc materialFromPath(const usd::Stage& stage, const std::string
         std::string id = PrimReader(*shader, time).token({"info:id"}, "");
         ShaderInputs inputs(stage, *shader, time, convertColor, warn);
         if (id == "UsdPreviewSurface" || id == kStandardSurfaceId)
-            return id == kStandardSurfaceId ? standardSurface(inputs, materialPath) : previewSurface(inputs, materialPath);
+            return id == kStandardSurfaceId ? standardSurface(inputs, materialPath)
+                                            : previewSurface(inputs, materialPath);
         if (unsupported.empty()) unsupported = shader->path + " ('" + id + "')";
     }
     warn(materialPath, unsupported.empty()

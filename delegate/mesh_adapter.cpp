@@ -43,11 +43,13 @@ TriangulatedMesh triangulatedMeshFromPrim(const PrimReader& prim, const Matrix4&
                   std::to_string(indices.size()) + " entries");
     for (std::size_t i = 0; i < indices.size(); ++i)
         if (indices[i] < 0 || indices[i] >= static_cast<double>(pointCount))
-            prim.fail("faceVertexIndices[" + std::to_string(i) + "] = " + std::to_string(static_cast<long long>(indices[i])) +
-                      " is out of range (" + std::to_string(pointCount) + " points)");
+            prim.fail("faceVertexIndices[" + std::to_string(i) +
+                      "] = " + std::to_string(static_cast<long long>(indices[i])) + " is out of range (" +
+                      std::to_string(pointCount) + " points)");
 
     std::set<std::size_t> holes;
-    for (double h : prim.numbers("holeIndices", 1).value_or(std::vector<double>{})) holes.insert(static_cast<std::size_t>(h));
+    for (double h : prim.numbers("holeIndices", 1).value_or(std::vector<double>{}))
+        holes.insert(static_cast<std::size_t>(h));
     const bool leftHanded = prim.token({"orientation"}, "rightHanded") == "leftHanded";
 
     std::optional<Primvar> normals = readPrimvar(prim, "primvars:normals", "vertex");

@@ -23,14 +23,17 @@ double secondsBetween(const usd::Stage& stage, double from, double to) {
 }
 
 // Vectors of `name` read at `time`, when it holds `count` of them.
-std::optional<std::vector<double>> vectorsOf(const usd::PrimSpec& prim, double time, const char* name, std::size_t count) {
+std::optional<std::vector<double>> vectorsOf(const usd::PrimSpec& prim, double time, const char* name,
+                                             std::size_t count) {
     std::optional<std::vector<double>> values = PrimReader(prim, time).numbers(name, 3);
     if (!values || values->size() != 3 * count) return std::nullopt;
     return values;
 }
 
 // Whether `b` holds other values than `a` (both the same size).
-bool moved(const std::vector<Vec3f>& a, const std::vector<Vec3f>& b) { return !std::equal(a.begin(), a.end(), b.begin()); }
+bool moved(const std::vector<Vec3f>& a, const std::vector<Vec3f>& b) {
+    return !std::equal(a.begin(), a.end(), b.begin());
+}
 
 // Whether two descriptions of a mesh have the same triangles.
 bool sameTopology(const render::MeshDesc& a, const render::MeshDesc& b) {
@@ -65,31 +68,36 @@ std::vector<double> motionStepTimes(const usd::Stage& stage, double frame, doubl
 void moveByVelocities(const usd::Stage& stage, const usd::PrimSpec& prim, double time, double velocityFrame,
                       const Matrix4& toWorld, std::vector<Vec3f>& positions) {
     if (std::isnan(velocityFrame) || timeSampled(prim, "points")) return;
-    const std::optional<std::vector<double>> velocities = vectorsOf(prim, velocityFrame, "velocities", positions.size());
+    const std::optional<std::vector<double>> velocities =
+        vectorsOf(prim, velocityFrame, "velocities", positions.size());
     if (!velocities) return;
-    const std::optional<std::vector<double>> accelerations = vectorsOf(prim, velocityFrame, "accelerations", positions.size());
+    const std::optional<std::vector<double>> accelerations =
+        vectorsOf(prim, velocityFrame, "accelerations", positions.size());
     const double dt = secondsBetween(stage, velocityFrame, time);
     for (std::size_t i = 0; i < positions.size(); ++i) {
         Vec3d step = Vec3d((*velocities)[3 * i], (*velocities)[3 * i + 1], (*velocities)[3 * i + 2]) * dt;
         if (accelerations)
-            step = step + Vec3d((*accelerations)[3 * i], (*accelerations)[3 * i + 1], (*accelerations)[3 * i + 2]) * (0.5 * dt * dt);
+            step = step + Vec3d((*accelerations)[3 * i], (*accelerations)[3 * i + 1], (*accelerations)[3 * i + 2]) *
+                              (0.5 * dt * dt);
         positions[i] = Vec3f(Vec3d(positions[i]) + toWorld.transformVector(step));
     }
 }
 
-std::optional<InstanceVelocityMotion> instanceVelocityMotion(const usd::Stage& stage, const usd::PrimSpec& instancer, double time,
-                                                             double velocityFrame, std::size_t count) {
+std::optional<InstanceVelocityMotion> instanceVelocityMotion(const usd::Stage& stage, const usd::PrimSpec& instancer,
+                                                             double time, double velocityFrame, std::size_t count) {
     if (std::isnan(velocityFrame) || timeSampled(instancer, "positions")) return std::nullopt;
     const std::optional<std::vector<double>> velocities = vectorsOf(instancer, velocityFrame, "velocities", count);
     const std::optional<std::vector<double>> angular = vectorsOf(instancer, velocityFrame, "angularVelocities", count);
     if (!velocities && !angular) return std::nullopt;
-    const std::optional<std::vector<double>> accelerations = vectorsOf(instancer, velocityFrame, "accelerations", count);
+    const std::optional<std::vector<double>> accelerations =
+        vectorsOf(instancer, velocityFrame, "accelerations", count);
     const double dt = secondsBetween(stage, velocityFrame, time);
     InstanceVelocityMotion motion;
     for (std::size_t i = 0; velocities && i < count; ++i) {
         Vec3d offset = Vec3d((*velocities)[3 * i], (*velocities)[3 * i + 1], (*velocities)[3 * i + 2]) * dt;
         if (accelerations)
-            offset = offset + Vec3d((*accelerations)[3 * i], (*accelerations)[3 * i + 1], (*accelerations)[3 * i + 2]) * (0.5 * dt * dt);
+            offset = offset + Vec3d((*accelerations)[3 * i], (*accelerations)[3 * i + 1], (*accelerations)[3 * i + 2]) *
+                                  (0.5 * dt * dt);
         motion.offsets.push_back(offset);
     }
     for (std::size_t i = 0; angular && i < count; ++i) {
@@ -106,8 +114,8 @@ std::optional<InstanceVelocityMotion> instanceVelocityMotion(const usd::Stage& s
     return motion;
 }
 
-void addMotion(usd::Stage& stage, const DelegateOptions& options, const std::string& cameraPath, const render::CameraDesc& camera,
-               render::SceneDescription& scene) {
+void addMotion(usd::Stage& stage, const DelegateOptions& options, const std::string& cameraPath,
+               const render::CameraDesc& camera, render::SceneDescription& scene) {
     if (std::isnan(options.time) || !(camera.shutterClose > camera.shutterOpen)) return;
     const std::vector<double> times = motionStepTimes(stage, options.time, camera.shutterOpen, camera.shutterClose);
     std::vector<std::vector<std::vector<Vec3f>>> meshSteps(scene.meshes.size());
@@ -125,7 +133,8 @@ void addMotion(usd::Stage& stage, const DelegateOptions& options, const std::str
         for (std::size_t m = 0; m < scene.meshes.size(); ++m) {
             const bool same = m < step.meshes.size() && sameTopology(scene.meshes[m], step.meshes[m]);
             if (!same && !meshStill[m])
-                options.warn(scene.meshes[m].name, "its triangles change during the shutter; rendered without motion blur");
+                options.warn(scene.meshes[m].name,
+                             "its triangles change during the shutter; rendered without motion blur");
             meshStill[m] = meshStill[m] || !same;
             if (!meshStill[m]) meshSteps[m].push_back(step.meshes[m].positions);
         }
@@ -133,19 +142,23 @@ void addMotion(usd::Stage& stage, const DelegateOptions& options, const std::str
             const bool same = i < step.instances.size() && step.instances[i].name == scene.instances[i].name &&
                               step.instances[i].prototype == scene.instances[i].prototype;
             if (!same && !instanceStill[i])
-                options.warn(scene.instances[i].name, "the instances change during the shutter; rendered without motion blur");
+                options.warn(scene.instances[i].name,
+                             "the instances change during the shutter; rendered without motion blur");
             instanceStill[i] = instanceStill[i] || !same;
             if (!instanceStill[i]) instanceSteps[i].push_back(step.instances[i].transform);
         }
     }
     for (std::size_t m = 0; m < scene.meshes.size(); ++m) {
         std::vector<std::vector<Vec3f>>& steps = meshSteps[m];
-        if (meshStill[m] || std::none_of(steps.begin(), steps.end(), [&](const auto& s) { return moved(steps.front(), s); })) continue;
+        if (meshStill[m] ||
+            std::none_of(steps.begin(), steps.end(), [&](const auto& s) { return moved(steps.front(), s); }))
+            continue;
         scene.meshes[m].motionPositions = std::move(steps);
     }
     for (std::size_t i = 0; i < scene.instances.size(); ++i) {
         std::vector<Matrix4>& steps = instanceSteps[i];
-        if (instanceStill[i] || std::all_of(steps.begin(), steps.end(), [&](const Matrix4& s) { return s.m == steps.front().m; }))
+        if (instanceStill[i] ||
+            std::all_of(steps.begin(), steps.end(), [&](const Matrix4& s) { return s.m == steps.front().m; }))
             continue;
         scene.instances[i].motionTransforms = std::move(steps);
     }

@@ -50,15 +50,15 @@ void moveByVelocities(const usd::Stage& stage, const usd::PrimSpec& prim, double
 // of its position and the rotation applied before its orientation. Nullopt when `positions` are
 // time-sampled or no velocities are authored.
 struct InstanceVelocityMotion {
-    std::vector<Vec3d> offsets;       // empty: no `velocities`
-    std::vector<Matrix4> rotations;   // empty: no `angularVelocities`
+    std::vector<Vec3d> offsets;      // empty: no `velocities`
+    std::vector<Matrix4> rotations;  // empty: no `angularVelocities`
 };
-std::optional<InstanceVelocityMotion> instanceVelocityMotion(const usd::Stage& stage, const usd::PrimSpec& instancer, double time,
-                                                             double velocityFrame, std::size_t count);
+std::optional<InstanceVelocityMotion> instanceVelocityMotion(const usd::Stage& stage, const usd::PrimSpec& instancer,
+                                                             double time, double velocityFrame, std::size_t count);
 
 // Adds the motion over `camera`'s shutter to `scene`, described by `options` at the frame (see
 // above). Warns through options.warn what cannot move.
-void addMotion(usd::Stage& stage, const DelegateOptions& options, const std::string& cameraPath, const render::CameraDesc& camera,
-               render::SceneDescription& scene);
+void addMotion(usd::Stage& stage, const DelegateOptions& options, const std::string& cameraPath,
+               const render::CameraDesc& camera, render::SceneDescription& scene);
 
 }  // namespace fluence::delegate

@@ -60,11 +60,12 @@ Direction readDirection(const PrimReader& prim, char name) {
     d.count = static_cast<int>(prim.number({(n + "VertexCount").c_str()}, 0.0));
     d.order = static_cast<int>(prim.number({(n + "Order").c_str()}, 0.0));
     if (d.order < 2 || d.count < d.order)
-        prim.fail(n + "Order must be at least 2 and at most " + n + "VertexCount (" + std::to_string(d.count) + "), got " +
-                  std::to_string(d.order));
+        prim.fail(n + "Order must be at least 2 and at most " + n + "VertexCount (" + std::to_string(d.count) +
+                  "), got " + std::to_string(d.order));
     std::optional<std::vector<double>> knots = prim.numbers(n + "Knots", 1);
     if (!knots || knots->size() != std::size_t(d.count + d.order))
-        prim.fail(n + "Knots must hold " + n + "VertexCount + " + n + "Order = " + std::to_string(d.count + d.order) + " values");
+        prim.fail(n + "Knots must hold " + n + "VertexCount + " + n + "Order = " + std::to_string(d.count + d.order) +
+                  " values");
     if (!std::is_sorted(knots->begin(), knots->end())) prim.fail(n + "Knots must not decrease");
     d.knots = std::move(*knots);
     d.lo = d.knots[std::size_t(d.order - 1)];
@@ -87,8 +88,10 @@ TessellatedSurface tessellateNurbsPatch(const PrimReader& prim, const std::funct
         prim.fail("points must hold uVertexCount x vVertexCount = " + std::to_string(count) + " points");
     std::vector<double> weights(count, 1.0);
     if (std::optional<std::vector<double>> w = prim.numbers("pointWeights", 1); w && !w->empty()) {
-        if (w->size() != count) prim.fail("pointWeights must hold one weight per point (" + std::to_string(count) + ")");
-        if (std::any_of(w->begin(), w->end(), [](double x) { return !(x > 0.0); })) prim.fail("pointWeights must be positive");
+        if (w->size() != count)
+            prim.fail("pointWeights must hold one weight per point (" + std::to_string(count) + ")");
+        if (std::any_of(w->begin(), w->end(), [](double x) { return !(x > 0.0); }))
+            prim.fail("pointWeights must be positive");
         weights = std::move(*w);
     }
     if (prim.value("trimCurve:counts")) warn("trim curves are not applied yet; the whole NurbsPatch is rendered");

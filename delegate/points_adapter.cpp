@@ -40,11 +40,13 @@ render::PointStyle styleOf(const PrimReader& prim, bool hasNormals) {
 
 }  // namespace
 
-render::PointsDesc pointsFromPrim(const PrimReader& prim, const std::function<RGB(const RGB&, const std::string&)>& convertColor) {
+render::PointsDesc pointsFromPrim(const PrimReader& prim,
+                                  const std::function<RGB(const RGB&, const std::string&)>& convertColor) {
     render::PointsDesc p;
     p.name = prim.path();
     if (std::optional<std::vector<double>> points = prim.numbers("points", 3))
-        for (std::size_t i = 0; i + 2 < points->size(); i += 3) p.positions.emplace_back(Vec3d((*points)[i], (*points)[i + 1], (*points)[i + 2]));
+        for (std::size_t i = 0; i + 2 < points->size(); i += 3)
+            p.positions.emplace_back(Vec3d((*points)[i], (*points)[i + 1], (*points)[i + 2]));
     const std::size_t n = p.positions.size();
 
     const std::optional<Primvar> widths = widthsOf(prim);
@@ -52,7 +54,8 @@ render::PointsDesc pointsFromPrim(const PrimReader& prim, const std::function<RG
     if (widths && widths->elementCount() > 0)
         for (std::size_t i = 0; i < n; ++i) {
             const double w = widths->element(elementFor(prim, *widths, n, i))[0];
-            if (!(w >= 0.0) || !std::isfinite(w)) prim.fail("widths must be finite and not negative, got " + std::to_string(w));
+            if (!(w >= 0.0) || !std::isfinite(w))
+                prim.fail("widths must be finite and not negative, got " + std::to_string(w));
             p.radii[i] = static_cast<float>(0.5 * w);
         }
 
@@ -61,9 +64,11 @@ render::PointsDesc pointsFromPrim(const PrimReader& prim, const std::function<RG
     if (p.style == render::PointStyle::OrientedDisc)
         for (std::size_t i = 0; i < n; ++i) p.normals.emplace_back(normals->at(elementFor(prim, *normals, n, i)));
 
-    if (std::optional<Primvar> color = readPrimvar(prim, "primvars:displayColor", "constant"); color && color->elementCount() > 0) {
+    if (std::optional<Primvar> color = readPrimvar(prim, "primvars:displayColor", "constant");
+        color && color->elementCount() > 0) {
         const std::string space = prim.attributeMetadata("primvars:displayColor", "colorSpace").value_or("");
-        for (std::size_t i = 0; i < n; ++i) p.colors.push_back(convertColor(RGB(color->at(elementFor(prim, *color, n, i))), space));
+        for (std::size_t i = 0; i < n; ++i)
+            p.colors.push_back(convertColor(RGB(color->at(elementFor(prim, *color, n, i))), space));
     }
     for (const Primvar& pv : readShadingPrimvars(prim)) {
         if (pv.elementCount() == 0) continue;

@@ -25,7 +25,8 @@
 namespace fluence::delegate {
 
 // The points in object space (widths as radii; normals unnormalised).
-render::PointsDesc pointsFromPrim(const PrimReader& prim, const std::function<RGB(const RGB&, const std::string&)>& convertColor);
+render::PointsDesc pointsFromPrim(const PrimReader& prim,
+                                  const std::function<RGB(const RGB&, const std::string&)>& convertColor);
 
 // `points` moved into world space by `toWorld`: centres transformed, radii scaled by the cube
 // root of the transform's volume scale (a sphere stays a sphere), normals as normals.

@@ -31,7 +31,8 @@ double PrimReader::number(std::initializer_list<const char*> names, double fallb
     auto v = value(names);
     if (!v) return fallback;
     if (!v->isNumeric() || v->isArray || v->numbers.size() != 1)
-        fail("attribute '" + std::string(firstAuthored(prim_, names)) + "' must be a scalar number, got " + v->toString());
+        fail("attribute '" + std::string(firstAuthored(prim_, names)) + "' must be a scalar number, got " +
+             v->toString());
     return v->numbers[0];
 }
 
@@ -43,7 +44,8 @@ std::string PrimReader::token(std::initializer_list<const char*> names, const st
     auto v = value(names);
     if (!v) return fallback;
     if (!v->isStringLike() || v->isArray || v->strings.size() != 1)
-        fail("attribute '" + std::string(firstAuthored(prim_, names)) + "' must be a token or string, got " + v->toString());
+        fail("attribute '" + std::string(firstAuthored(prim_, names)) + "' must be a token or string, got " +
+             v->toString());
     return v->strings[0];
 }
 
@@ -67,7 +69,8 @@ std::optional<std::vector<double>> PrimReader::numbers(const std::string& name, 
 std::optional<std::vector<std::string>> PrimReader::strings(const std::string& name) const {
     auto v = value(name);
     if (!v) return std::nullopt;
-    if (!v->isStringLike()) fail("attribute '" + name + "' must be an array of tokens or strings, got " + v->toString());
+    if (!v->isStringLike())
+        fail("attribute '" + name + "' must be an array of tokens or strings, got " + v->toString());
     return std::move(v->strings);
 }
 

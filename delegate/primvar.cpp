@@ -2,8 +2,8 @@
 
 namespace fluence::delegate {
 
-std::optional<Primvar> readPrimvar(const PrimReader& prim, const std::string& name, const std::string& defaultInterpolation,
-                                   int components) {
+std::optional<Primvar> readPrimvar(const PrimReader& prim, const std::string& name,
+                                   const std::string& defaultInterpolation, int components) {
     std::optional<std::vector<double>> values = prim.numbers(name, components);
     if (!values) return std::nullopt;
     Primvar pv;
@@ -14,8 +14,9 @@ std::optional<Primvar> readPrimvar(const PrimReader& prim, const std::string& na
     if (auto idx = prim.numbers(name + ":indices", 1)) {
         for (double d : *idx) {
             if (d < 0 || d >= static_cast<double>(pv.values.size() / components))
-                prim.fail("'" + name + ":indices' holds " + std::to_string(static_cast<long long>(d)) + ", outside the " +
-                          std::to_string(pv.values.size() / components) + " values of '" + name + "'");
+                prim.fail("'" + name + ":indices' holds " + std::to_string(static_cast<long long>(d)) +
+                          ", outside the " + std::to_string(pv.values.size() / components) + " values of '" + name +
+                          "'");
             pv.indices.push_back(static_cast<int>(d));
         }
     }

@@ -35,8 +35,8 @@ struct Primvar {
 // The primvar `name` of `components` components (nullopt when not authored), with
 // `defaultInterpolation` when the attribute has no interpolation metadata. Values of another
 // shape and out-of-range indices raise SceneError.
-std::optional<Primvar> readPrimvar(const PrimReader& prim, const std::string& name, const std::string& defaultInterpolation,
-                                   int components = 3);
+std::optional<Primvar> readPrimvar(const PrimReader& prim, const std::string& name,
+                                   const std::string& defaultInterpolation, int components = 3);
 
 // The primvars a material's nodes may read (UsdPrimvarReader varnames): every authored
 // "primvars:NAME" of 1 to 3 floating-point components (st, float, float3, colours...), except

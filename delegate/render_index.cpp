@@ -38,7 +38,8 @@ WorldTransform worldTransformOf(const usd::Stage& stage, const std::string& path
     WorldTransform result;
     for (std::size_t slash = path.find('/', 1);; slash = path.find('/', slash + 1)) {
         if (const usd::PrimSpec* prim = stage.prim(path.substr(0, slash))) {
-            LocalTransform local = localTransform(PrimReader(*prim, time), [&](const std::string& message) { warn(prim->path, message); });
+            LocalTransform local =
+                localTransform(PrimReader(*prim, time), [&](const std::string& message) { warn(prim->path, message); });
             result.matrix = local.resetsXformStack ? local.matrix : result.matrix * local.matrix;
             if (local.resetsXformStack) result.animated = false;
             for (const usd::AttributeSpec& a : prim->attributes)
@@ -106,14 +107,16 @@ void MeshRprim::syncData(const SyncContext& context, const usd::PrimSpec* spec, 
     parts_.clear();
     subdivided_.clear();
     if (prim.typeName == "Mesh" && SubdivisionMesh::isSubdivided(prim, context.time)) {
-        subdivided_.push_back({std::make_shared<const SubdivisionMesh>(context.stage, prim, context.time, context.convertColor, warn),
-                               Matrix4::identity()});
+        subdivided_.push_back(
+            {std::make_shared<const SubdivisionMesh>(context.stage, prim, context.time, context.convertColor, warn),
+             Matrix4::identity()});
     } else if (prim.typeName == "Mesh") {
         for (MeshPart& part : meshPartsFromPrim(context.stage, prim, context.time, Matrix4::identity(),
                                                 context.convertColor, warn, context.velocityFrame))
             parts_.push_back({std::move(part.mesh), std::move(part.materialPath)});
     } else {
-        render::MeshDesc surface = implicitMeshFromPrim(PrimReader(prim, context.time), Matrix4::identity(), context.convertColor, warn);
+        render::MeshDesc surface =
+            implicitMeshFromPrim(PrimReader(prim, context.time), Matrix4::identity(), context.convertColor, warn);
         const std::optional<bool> posed = skinSurface(context.stage, prim, context.time, context.warn, surface);
         skinned_ = posed.has_value();
         skinAnimated_ = posed.value_or(false);
@@ -150,7 +153,8 @@ void PrototypeRprim::syncData(const SyncContext& context, const usd::PrimSpec*, 
     subdivided_.clear();
     PrototypeContents contents = prototypeContents(context, source_, includeSourceTransform_);
     for (MeshPart& part : contents.parts) parts_.push_back({std::move(part.mesh), std::move(part.materialPath)});
-    for (PrototypeContents::Subdivided& s : contents.subdivided) subdivided_.push_back({std::move(s.mesh), s.placement});
+    for (PrototypeContents::Subdivided& s : contents.subdivided)
+        subdivided_.push_back({std::move(s.mesh), s.placement});
     lights_ = std::move(contents.lights);
     malformed_ = std::move(contents.malformed);
 }
@@ -169,8 +173,9 @@ void InstanceRprim::syncData(const SyncContext&, const usd::PrimSpec* prim, std:
 
 void PointInstancerRprim::syncData(const SyncContext& context, const usd::PrimSpec* prim, std::uint32_t) {
     if (!prim) return;
-    instances_ = pointInstancesFromPrim(PrimReader(*prim, context.time),
-                                        [&](const std::string& message) { context.warn(prim->path, message); }, &context);
+    instances_ = pointInstancesFromPrim(
+        PrimReader(*prim, context.time), [&](const std::string& message) { context.warn(prim->path, message); },
+        &context);
 }
 
 void VolumeRprim::syncData(const SyncContext& context, const usd::PrimSpec* prim, std::uint32_t) {
@@ -181,8 +186,9 @@ void VolumeRprim::syncData(const SyncContext& context, const usd::PrimSpec* prim
         Field field{rel.name.substr(6), resolveTargetPath(prim->path, rel.targets.front())};
         const usd::PrimSpec* asset = context.stage.prim(field.assetPrim);
         if (!asset || !isFieldAssetType(asset->typeName)) {
-            context.warn(prim->path, "field '" + field.name + "' targets " + field.assetPrim +
-                                         (asset ? ", a " + asset->typeName + ", not an OpenVDBAsset" : ", which does not exist"));
+            context.warn(prim->path,
+                         "field '" + field.name + "' targets " + field.assetPrim +
+                             (asset ? ", a " + asset->typeName + ", not an OpenVDBAsset" : ", which does not exist"));
             continue;
         }
         fields_.push_back(std::move(field));
@@ -209,7 +215,9 @@ void TextureBprim::syncData(const SyncContext& context, const usd::PrimSpec* pri
     fileFound_ = assetFileExists(filePath_);
 }
 
-bool MaterialSprim::readsAnimatedData(const usd::PrimSpec& source) const { return hasAnimatedData(source, true, false); }
+bool MaterialSprim::readsAnimatedData(const usd::PrimSpec& source) const {
+    return hasAnimatedData(source, true, false);
+}
 
 void CameraSprim::syncData(const SyncContext& context, const usd::PrimSpec* prim, std::uint32_t) {
     if (prim) camera_ = cameraFromPrim(PrimReader(*prim, context.time), world());
@@ -244,7 +252,8 @@ RenderPrim* RenderIndex::find(const std::string& path) const {
 }
 
 void RenderIndex::removeSubtree(const std::string& path) {
-    for (auto it = prims_.begin(); it != prims_.end();) it = isAtOrBelow(it->first, path) ? prims_.erase(it) : std::next(it);
+    for (auto it = prims_.begin(); it != prims_.end();)
+        it = isAtOrBelow(it->first, path) ? prims_.erase(it) : std::next(it);
 }
 
 void RenderIndex::markSubtreeDirty(const std::string& path, std::uint32_t bits, std::optional<RenderPrim::Kind> kind) {
@@ -267,9 +276,11 @@ std::size_t RenderIndex::sync(const SyncContext& context) {
     for (auto& [path, prim] : prims_) {
         if (const auto* surface = dynamic_cast<const SurfaceRprim*>(prim.get()); surface && !surface->failed())
             for (const std::string& m : surface->materialPaths()) materials.insert(m);
-        if (const auto* curves = dynamic_cast<const CurvesRprim*>(prim.get()); curves && !curves->failed() && !curves->materialPath().empty())
+        if (const auto* curves = dynamic_cast<const CurvesRprim*>(prim.get());
+            curves && !curves->failed() && !curves->materialPath().empty())
             materials.insert(curves->materialPath());
-        if (const auto* points = dynamic_cast<const PointsRprim*>(prim.get()); points && !points->failed() && !points->materialPath().empty())
+        if (const auto* points = dynamic_cast<const PointsRprim*>(prim.get());
+            points && !points->failed() && !points->materialPath().empty())
             materials.insert(points->materialPath());
     }
     for (const std::string& m : materials)

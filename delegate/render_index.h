@@ -52,15 +52,28 @@ enum DirtyBits : std::uint32_t {
     kDirtyTransform = 1u << 0,  // the prim's or an ancestor's xformOps
     kDirtyTopology = 1u << 1,   // faces, holes, subsets, implicit shape parameters
     kDirtyPoints = 1u << 2,
-    kDirtyPrimvars = 1u << 3,   // normals, displayColor
-    kDirtyMaterial = 1u << 4,   // material binding
-    kDirtyParams = 1u << 5,     // a sprim's own attributes
+    kDirtyPrimvars = 1u << 3,  // normals, displayColor
+    kDirtyMaterial = 1u << 4,  // material binding
+    kDirtyParams = 1u << 5,    // a sprim's own attributes
     kAllDirty = ~0u,
 };
 
 class RenderPrim {
 public:
-    enum class Kind { Mesh, Prototype, Instance, PointInstancer, Volume, Camera, Light, Material, Field, Texture, Curves, Points };
+    enum class Kind {
+        Mesh,
+        Prototype,
+        Instance,
+        PointInstancer,
+        Volume,
+        Camera,
+        Light,
+        Material,
+        Field,
+        Texture,
+        Curves,
+        Points
+    };
 
     RenderPrim(Kind kind, std::string path) : kind_(kind), path_(std::move(path)) {}
     virtual ~RenderPrim() = default;
@@ -147,7 +160,8 @@ private:
 class PrototypeRprim final : public SurfaceRprim {
 public:
     PrototypeRprim(std::string path, std::string source, bool includeSourceTransform)
-        : SurfaceRprim(Kind::Prototype, std::move(path)), source_(std::move(source)),
+        : SurfaceRprim(Kind::Prototype, std::move(path)),
+          source_(std::move(source)),
           includeSourceTransform_(includeSourceTransform) {}
     const std::string& source() const { return source_; }
     bool includesSourceTransform() const { return includeSourceTransform_; }

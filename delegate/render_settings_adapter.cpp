@@ -16,7 +16,8 @@ const usd::PrimSpec& targetOfType(const usd::Stage& stage, const usd::PrimSpec& 
     std::string path = resolveTargetPath(from.path, target);
     const usd::PrimSpec* prim = stage.prim(path);
     if (!prim || prim->typeName != type)
-        throw SceneError(from.location.str() + ": " + from.path + ": " + relationship + " targets " + path + ", which is " +
+        throw SceneError(from.location.str() + ": " + from.path + ": " + relationship + " targets " + path +
+                         ", which is " +
                          (prim ? "a " + (prim->typeName.empty() ? std::string("typeless prim") : prim->typeName)
                                : std::string("missing")) +
                          ", not a " + type);
@@ -53,7 +54,8 @@ std::array<float, 4> dataWindowOf(const PrimReader& reader) {
     std::array<float, 4> window{0.0f, 0.0f, 1.0f, 1.0f};
     auto v = reader.value("dataWindowNDC");
     if (!v) return window;
-    if (!v->isNumeric() || v->numbers.size() != 4 || !(v->numbers[0] < v->numbers[2]) || !(v->numbers[1] < v->numbers[3]))
+    if (!v->isNumeric() || v->numbers.size() != 4 || !(v->numbers[0] < v->numbers[2]) ||
+        !(v->numbers[1] < v->numbers[3]))
         reader.fail("dataWindowNDC must be a float4 (xmin, ymin, xmax, ymax) with min < max, got " + v->toString());
     for (int i = 0; i < 4; ++i) window[std::size_t(i)] = static_cast<float>(v->numbers[std::size_t(i)]);
     return window;
@@ -97,16 +99,17 @@ std::optional<RenderSettingsDesc> renderSettingsFromStage(
     if (path.empty()) return std::nullopt;
     const usd::PrimSpec* prim = stage.prim(path);
     if (!prim && fromMetadata && warnMissing) {
-        warnMissing(stage.rootLayer().identifier,
-                    "renderSettingsPrimPath names " + path + ", which is not in the scene; rendering with default settings");
+        warnMissing(stage.rootLayer().identifier, "renderSettingsPrimPath names " + path +
+                                                      ", which is not in the scene; rendering with default settings");
         return std::nullopt;
     }
     if (!prim)
-        throw SceneError(fromMetadata ? "the stage's renderSettingsPrimPath names " + path + ", which is not in the scene"
-                                      : "render settings " + path + " do not exist in the scene");
+        throw SceneError(fromMetadata
+                             ? "the stage's renderSettingsPrimPath names " + path + ", which is not in the scene"
+                             : "render settings " + path + " do not exist in the scene");
     if (prim->typeName != "RenderSettings")
-        throw SceneError("render settings " + path + " is a " + (prim->typeName.empty() ? "typeless prim" : prim->typeName) +
-                         ", not a RenderSettings prim");
+        throw SceneError("render settings " + path + " is a " +
+                         (prim->typeName.empty() ? "typeless prim" : prim->typeName) + ", not a RenderSettings prim");
 
     PrimReader reader(*prim, time);
     RenderSettingsDesc s;
@@ -122,7 +125,8 @@ std::optional<RenderSettingsDesc> renderSettingsFromStage(
     s.defaultLight = reader.boolean({"fluence:defaultLight"}, true);
     s.disableMotionBlur = reader.boolean({"disableMotionBlur", "instantaneousShutter"}, false);
     for (const usd::AttributeSpec& attribute : prim->attributes)
-        if (attribute.name.starts_with("fluence:") && std::count(attribute.name.begin(), attribute.name.end(), ':') == 2)
+        if (attribute.name.starts_with("fluence:") &&
+            std::count(attribute.name.begin(), attribute.name.end(), ':') == 2)
             if (reader.value(attribute.name))
                 s.integratorParameters[attribute.name] = reader.number({attribute.name.c_str()}, 0.0);
 
@@ -143,7 +147,8 @@ std::optional<RenderSettingsDesc> renderSettingsFromStage(
             product.compression = pr.token({"driver:parameters:OpenEXR:compression"}, "");
             if (const usd::RelationshipSpec* vars = productPrim.relationship("orderedVars"))
                 for (const std::string& v : vars->targets)
-                    product.vars.push_back(varFromPrim(targetOfType(stage, productPrim, v, "RenderVar", "orderedVars"), time));
+                    product.vars.push_back(
+                        varFromPrim(targetOfType(stage, productPrim, v, "RenderVar", "orderedVars"), time));
             s.products.push_back(std::move(product));
         }
     return s;

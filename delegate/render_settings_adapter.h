@@ -56,7 +56,7 @@ struct RenderProductDesc {
     // The part of the image written, in NDC: (xmin, ymin, xmax, ymax), (0, 0) the bottom-left corner.
     std::array<float, 4> dataWindowNdc{0.0f, 0.0f, 1.0f, 1.0f};
     bool disableMotionBlur = false;  // UsdRenderSettingsBase disableMotionBlur, inherited from the settings
-    std::string compression;  // driver:parameters:OpenEXR:compression, "" when not authored
+    std::string compression;         // driver:parameters:OpenEXR:compression, "" when not authored
     std::vector<RenderVarDesc> vars;
 };
 
@@ -67,7 +67,7 @@ struct RenderSettingsDesc {
     std::string cameraPath;
     render::ImageFraming framing;
     std::vector<std::string> includedPurposes{"default", "render"};
-    std::string integrator;  // fluence:integrator, "" when not authored
+    std::string integrator;    // fluence:integrator, "" when not authored
     bool defaultLight = true;  // fluence:defaultLight (delegate/default_lights.h)
     // UsdRenderSettingsBase disableMotionBlur (or its deprecated instantaneousShutter): every
     // camera's shutter is closed to an instant (husk reads it so too).
@@ -80,9 +80,13 @@ struct RenderSettingsDesc {
     // The camera of the rendered product, which falls back to the settings' own camera.
     const std::string& renderedCamera() const { return renderedProduct() ? renderedProduct()->cameraPath : cameraPath; }
     // The framing of the rendered product, which falls back to the settings' own.
-    const render::ImageFraming& renderedFraming() const { return renderedProduct() ? renderedProduct()->framing : framing; }
+    const render::ImageFraming& renderedFraming() const {
+        return renderedProduct() ? renderedProduct()->framing : framing;
+    }
     // Whether the rendered product (else the settings) turns motion blur off.
-    bool motionBlurDisabled() const { return renderedProduct() ? renderedProduct()->disableMotionBlur : disableMotionBlur; }
+    bool motionBlurDisabled() const {
+        return renderedProduct() ? renderedProduct()->disableMotionBlur : disableMotionBlur;
+    }
 };
 
 // `settingsPath` "" means the stage's renderSettingsPrimPath (or no settings). Throws SceneError

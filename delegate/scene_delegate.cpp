@@ -23,10 +23,22 @@ namespace {
 // Types that carry no geometry of their own and need no warning (a SpatialAudio is sound, which
 // no renderer reads; UsdSkel's prims pose the meshes bound to them, delegate/skel_binding.h).
 bool isStructuralType(const std::string& t) {
-    static const std::set<std::string> kTypes = {"",          "Xform",          "Scope",        "Material",
-                                                 "Shader",    "NodeGraph",      "GeomSubset",   "RenderSettings",
-                                                 "RenderProduct", "RenderVar",  "RenderPass",   "Camera",
-                                                 "SpatialAudio", "SkelRoot",    "Skeleton",     "SkelAnimation",
+    static const std::set<std::string> kTypes = {"",
+                                                 "Xform",
+                                                 "Scope",
+                                                 "Material",
+                                                 "Shader",
+                                                 "NodeGraph",
+                                                 "GeomSubset",
+                                                 "RenderSettings",
+                                                 "RenderProduct",
+                                                 "RenderVar",
+                                                 "RenderPass",
+                                                 "Camera",
+                                                 "SpatialAudio",
+                                                 "SkelRoot",
+                                                 "Skeleton",
+                                                 "SkelAnimation",
                                                  "BlendShape"};
     return kTypes.contains(t);
 }
@@ -51,8 +63,8 @@ std::string pointInstancerKey(const std::string& root) { return "root:" + root; 
 // it failed to sync) replaces displayColor, and the part keeps only the primvars its material's
 // nodes read and those in `aovPrimvars`.
 void appendPart(SurfaceRprim::Part part, std::vector<render::MeshDesc>& meshes,
-                const std::function<int(const std::string&)>& materialFor, const std::vector<render::MaterialDesc>& materials,
-                const std::set<std::string>& aovPrimvars) {
+                const std::function<int(const std::string&)>& materialFor,
+                const std::vector<render::MaterialDesc>& materials, const std::set<std::string>& aovPrimvars) {
     render::MeshDesc& mesh = part.objectSpace;
     if (mesh.indices.empty()) return;
     const render::MaterialDesc* material = nullptr;
@@ -86,10 +98,13 @@ Warn settingsWarning(const DelegateOptions& options) {
 SceneDelegate::SceneDelegate(usd::Stage& stage, DelegateOptions options) : stage_(stage), options_(std::move(options)) {
     renderSettings_ = renderSettingsFromStage(stage_, options_.settingsPath, options_.time, settingsWarning(options_));
     try {
-        if (options_.purposes) purposes_ = IncludedPurposes::fromNames(*options_.purposes);
-        else if (renderSettings_) purposes_ = IncludedPurposes::fromNames(renderSettings_->includedPurposes);
+        if (options_.purposes)
+            purposes_ = IncludedPurposes::fromNames(*options_.purposes);
+        else if (renderSettings_)
+            purposes_ = IncludedPurposes::fromNames(renderSettings_->includedPurposes);
     } catch (const std::invalid_argument& e) {
-        throw SceneError((options_.purposes ? std::string("--purpose") : renderSettings_->path + ": includedPurposes") + ": " + e.what());
+        throw SceneError((options_.purposes ? std::string("--purpose") : renderSettings_->path + ": includedPurposes") +
+                         ": " + e.what());
     }
     populate("/");
 }
@@ -111,7 +126,8 @@ void SceneDelegate::populate(const std::string& root) {
         if (!instanceRoot.empty() && !isAtOrBelow(prim.path, instanceRoot)) instanceRoot.clear();
         // An instanceable Material is a material like any other (its path is what meshes bind),
         // not a native instance of geometry.
-        if (instanceRoot.empty() && !isGeometryType(type) && type != "Material" && !instancePrototypeKey(prim).empty()) {
+        if (instanceRoot.empty() && !isGeometryType(type) && type != "Material" &&
+            !instancePrototypeKey(prim).empty()) {
             index_.insert(std::make_unique<InstanceRprim>(prim.path));
             instanceRoot = prim.path;  // its geometry is the prototype's; lights and cameras stay per prim
             return true;
@@ -125,8 +141,7 @@ void SceneDelegate::populate(const std::string& root) {
                 return false;  // what lies below renders only through the instancer
             }
             index_.insert(std::make_unique<MeshRprim>(prim.path));
-        }
-        else if (isCurvesType(type) && instanceRoot.empty())
+        } else if (isCurvesType(type) && instanceRoot.empty())
             index_.insert(std::make_unique<CurvesRprim>(prim.path));
         else if (type == "Points" && instanceRoot.empty())
             index_.insert(std::make_unique<PointsRprim>(prim.path));
@@ -145,8 +160,8 @@ void SceneDelegate::populate(const std::string& root) {
         return true;
     });
     for (const auto& [type, entry] : unsupported)
-        options_.warn(entry.second, "prim type '" + type + "' is not supported yet; skipped " + std::to_string(entry.first) +
-                                        (entry.first == 1 ? " prim" : " prims"));
+        options_.warn(entry.second, "prim type '" + type + "' is not supported yet; skipped " +
+                                        std::to_string(entry.first) + (entry.first == 1 ? " prim" : " prims"));
     reconcilePrototypes();
 }
 
@@ -155,7 +170,8 @@ void SceneDelegate::reconcilePrototypes() {
     std::map<std::string, std::pair<std::string, bool>> wanted;  // key -> (source prim, include its transform)
     for (const auto& [path, prim] : index_.prims()) {
         if (prim->kind() == RenderPrim::Kind::Instance) {
-            if (const usd::PrimSpec* spec = stage_.prim(path)) wanted.try_emplace(nativeKey(instancePrototypeKey(*spec)), path, false);
+            if (const usd::PrimSpec* spec = stage_.prim(path))
+                wanted.try_emplace(nativeKey(instancePrototypeKey(*spec)), path, false);
         } else if (prim->kind() == RenderPrim::Kind::PointInstancer) {
             if (const usd::PrimSpec* spec = stage_.prim(path))
                 for (const std::string& root : pointInstancerPrototypes(*spec))
@@ -220,8 +236,8 @@ void SceneDelegate::chooseCamera() {
         const usd::PrimSpec* prim = stage_.prim(wanted);
         if (!prim) throw SceneError("camera " + wanted + " does not exist in the scene");
         if (prim->typeName != "Camera")
-            throw SceneError("camera " + wanted + " is a " + (prim->typeName.empty() ? "typeless prim" : prim->typeName) +
-                             ", not a Camera");
+            throw SceneError("camera " + wanted + " is a " +
+                             (prim->typeName.empty() ? "typeless prim" : prim->typeName) + ", not a Camera");
         const RenderPrim* camera = index_.find(wanted);
         if (!camera) throw SceneError("camera " + wanted + " is not active, defined and visible in the scene");
         if (camera->failed()) throw SceneError("camera " + wanted + " cannot be used: " + camera->failure());
@@ -269,14 +285,15 @@ render::SceneDescription SceneDelegate::sceneDescription() const {
     }
     if (wanted > budget)
         options_.warn("/", "subdivision surfaces would take " + std::to_string(wanted) +
-                               " triangles, over the scene budget of " + std::to_string(budget) + "; diced coarser, to " +
-                               std::to_string(subdivisionTriangles));
+                               " triangles, over the scene budget of " + std::to_string(budget) +
+                               "; diced coarser, to " + std::to_string(subdivisionTriangles));
     scene.camera = cameraDesc;
     if (options_.defaultLight && (!renderSettings_ || renderSettings_->defaultLight) && !emitsLight(scene)) {
         for (render::LightDesc& light : defaultLights(cameraDesc)) scene.lights.push_back(std::move(light));
-        options_.warn("/", "nothing in the scene emits light (no light, emissive surface or volume); lit by a default "
-                           "distant light from the camera and a dim dome, as usdview does (--no-default-light, or "
-                           "fluence:defaultLight = false on the render settings, turns them off)");
+        options_.warn("/",
+                      "nothing in the scene emits light (no light, emissive surface or volume); lit by a default "
+                      "distant light from the camera and a dim dome, as usdview does (--no-default-light, or "
+                      "fluence:defaultLight = false on the render settings, turns them off)");
     }
     return scene;
 }
@@ -295,7 +312,8 @@ std::optional<render::VolumeDesc> SceneDelegate::volumeDesc(const VolumeRprim& v
             if (!asset || asset->failed()) return std::nullopt;
             if (!asset->fileFound()) {
                 const std::string what = "field '" + name + "': OpenVDB file " +
-                                         (asset->filePath().empty() ? "(not authored)" : asset->filePath()) + " not found";
+                                         (asset->filePath().empty() ? "(not authored)" : asset->filePath()) +
+                                         " not found";
                 if (!options_.allowMissing) throw MissingAssetError(volume.path() + ": " + what);
                 options_.warn(volume.path(), what + "; the volume is not rendered (--allow-missing)");
                 fileMissing = true;
@@ -310,14 +328,15 @@ std::optional<render::VolumeDesc> SceneDelegate::volumeDesc(const VolumeRprim& v
     desc.color = field(material.colorField);
     if (fileMissing) return std::nullopt;
     if (!desc.density) {
-        options_.warn(volume.path(), "no field:" + material.densityField + " relationship to an OpenVDBAsset; the volume is not rendered");
+        options_.warn(volume.path(), "no field:" + material.densityField +
+                                         " relationship to an OpenVDBAsset; the volume is not rendered");
         return std::nullopt;
     }
     return desc;
 }
 
-render::SceneDescription SceneDelegate::describe(const render::Camera& camera, const DicingSettings& dicingSettings, float scale,
-                                                 std::size_t& subdivisionTriangles) const {
+render::SceneDescription SceneDelegate::describe(const render::Camera& camera, const DicingSettings& dicingSettings,
+                                                 float scale, std::size_t& subdivisionTriangles) const {
     // In the stage's traversal order, so the description (and the render) does not depend on
     // the order prims entered the index; materials in the order meshes first bind them.
     render::SceneDescription scene;
@@ -347,7 +366,8 @@ render::SceneDescription SceneDelegate::describe(const render::Camera& camera, c
     auto prototypeFor = [&](const std::string& key, const Matrix4& placement) {
         auto [it, inserted] = prototypeIndex.try_emplace(key, static_cast<int>(scene.prototypes.size()));
         if (inserted) {
-            scene.prototypes.push_back({static_cast<const PrototypeRprim&>(*index_.find(prototypes_.at(key))).source(), {}});
+            scene.prototypes.push_back(
+                {static_cast<const PrototypeRprim&>(*index_.find(prototypes_.at(key))).source(), {}});
             placements.emplace_back();
         }
         placements[static_cast<std::size_t>(it->second)].push_back(placement);
@@ -365,7 +385,8 @@ render::SceneDescription SceneDelegate::describe(const render::Camera& camera, c
             case RenderPrim::Kind::Mesh: {
                 const auto& mesh = static_cast<const MeshRprim&>(*prim);
                 std::size_t first = scene.meshes.size();
-                for (MeshRprim::Part& part : mesh.worldParts(dicing)) appendPart(std::move(part), scene.meshes, materialFor, scene.materials, options_.aovPrimvars);
+                for (MeshRprim::Part& part : mesh.worldParts(dicing))
+                    appendPart(std::move(part), scene.meshes, materialFor, scene.materials, options_.aovPrimvars);
                 if (!mesh.subdivided().empty()) countSubdivided(scene.meshes, first);
                 break;
             }
@@ -378,8 +399,9 @@ render::SceneDescription SceneDelegate::describe(const render::Camera& camera, c
                 const PointInstances& points = static_cast<const PointInstancerRprim&>(*prim).instances();
                 for (const PointInstances::Instance& instance : points.instances) {
                     Matrix4 placement = prim->world() * instance.transform;
-                    scene.instances.push_back({prototypeFor(pointInstancerKey(points.prototypes[instance.prototype]), placement),
-                                               placement, spec.path + "[" + std::to_string(instance.id) + "]"});
+                    scene.instances.push_back(
+                        {prototypeFor(pointInstancerKey(points.prototypes[instance.prototype]), placement), placement,
+                         spec.path + "[" + std::to_string(instance.id) + "]"});
                 }
                 break;
             }
@@ -394,7 +416,8 @@ render::SceneDescription SceneDelegate::describe(const render::Camera& camera, c
             case RenderPrim::Kind::Points: {
                 const auto& points = static_cast<const PointsRprim&>(*prim);
                 render::PointsDesc& desc = scene.points.emplace_back(points.worldPoints());
-                if (!points.materialPath().empty() && (desc.material = materialFor(points.materialPath())) >= 0) desc.colors.clear();
+                if (!points.materialPath().empty() && (desc.material = materialFor(points.materialPath())) >= 0)
+                    desc.colors.clear();
                 break;
             }
             case RenderPrim::Kind::Volume:
@@ -404,8 +427,7 @@ render::SceneDescription SceneDelegate::describe(const render::Camera& camera, c
             case RenderPrim::Kind::Material:
             case RenderPrim::Kind::Prototype:
             case RenderPrim::Kind::Field:
-            case RenderPrim::Kind::Texture:
-                break;
+            case RenderPrim::Kind::Texture: break;
         }
         return true;
     });
@@ -418,14 +440,16 @@ render::SceneDescription SceneDelegate::describe(const render::Camera& camera, c
                 scene.lights.push_back(std::move(light));
             }
         std::vector<render::MeshDesc>& meshes = scene.prototypes[static_cast<std::size_t>(index)].meshes;
-        for (const SurfaceRprim::Part& part : prototype.parts()) appendPart(part, meshes, materialFor, scene.materials, options_.aovPrimvars);
+        for (const SurfaceRprim::Part& part : prototype.parts())
+            appendPart(part, meshes, materialFor, scene.materials, options_.aovPrimvars);
         for (const SurfaceRprim::Subdivided& sub : prototype.subdivided()) {
             std::vector<Matrix4> where;
-            for (const Matrix4& instance : placements[static_cast<std::size_t>(index)]) where.push_back(instance * sub.placement);
+            for (const Matrix4& instance : placements[static_cast<std::size_t>(index)])
+                where.push_back(instance * sub.placement);
             std::size_t first = meshes.size();
             for (MeshPart& part : sub.mesh->tessellate(where, dicing))
-                appendPart({render::transformMesh(part.mesh, sub.placement), std::move(part.materialPath)}, meshes, materialFor,
-                           scene.materials, options_.aovPrimvars);
+                appendPart({render::transformMesh(part.mesh, sub.placement), std::move(part.materialPath)}, meshes,
+                           materialFor, scene.materials, options_.aovPrimvars);
             countSubdivided(meshes, first);
         }
     }
@@ -485,7 +509,8 @@ std::vector<MalformedPrim> SceneDelegate::malformedPrims() const {
     for (const auto& [path, prim] : index_.prims()) {
         if (prim->failed()) all.try_emplace(path, prim->failure());
         if (prim->kind() == RenderPrim::Kind::Prototype)
-            for (const MalformedPrim& m : static_cast<const PrototypeRprim&>(*prim).malformed()) all.try_emplace(m.path, m.reason);
+            for (const MalformedPrim& m : static_cast<const PrototypeRprim&>(*prim).malformed())
+                all.try_emplace(m.path, m.reason);
     }
     std::vector<MalformedPrim> result;
     for (auto& [path, reason] : all) result.push_back({path, std::move(reason)});
@@ -508,8 +533,8 @@ render::ImageFraming SceneDelegate::framing() const {
 DelegateResult populateScene(usd::Stage& stage, const DelegateOptions& options) {
     SceneDelegate delegate(stage, options);
     delegate.sync();
-    DelegateResult result{delegate.sceneDescription(), delegate.cameraPath(), delegate.renderSettings(), delegate.resolution(),
-                          delegate.framing()};
+    DelegateResult result{delegate.sceneDescription(), delegate.cameraPath(), delegate.renderSettings(),
+                          delegate.resolution(), delegate.framing()};
     if (options.motionBlur && !(result.renderSettings && result.renderSettings->motionBlurDisabled()))
         addMotion(stage, options, result.cameraPath, *result.scene.camera, result.scene);
     return result;

@@ -53,10 +53,10 @@ struct DelegateOptions {
     // render settings', else `defaultResolution`.
     std::optional<std::pair<int, int>> resolution;
     std::pair<int, int> defaultResolution{640, 480};
-    DicingSettings dicing;     // how subdivision surfaces are tessellated for the camera
+    DicingSettings dicing;            // how subdivision surfaces are tessellated for the camera
     double time = usd::kDefaultTime;  // the render time code; kDefaultTime: no frame (prim_reader.h)
-    ColorConverter convertColor;  // authored colour + colour space -> rendering space
-    Warn warn;                    // (prim path, message)
+    ColorConverter convertColor;      // authored colour + colour space -> rendering space
+    Warn warn;                        // (prim path, message)
     // The purposes rendered (--purpose): these when set, else the render settings' includedPurposes.
     std::optional<std::vector<std::string>> purposes;
     // A missing OpenVDB file: a warning and the volume left out when true, else MissingAssetError.
@@ -120,7 +120,8 @@ private:
     // missing (with DelegateOptions::allowMissing: a warning, and nullopt).
     std::optional<render::VolumeDesc> volumeDesc(const VolumeRprim& volume) const;
     SyncContext context() const {
-        return {stage_, options_.time, options_.convertColor, options_.warn, purposes_, options_.strict, options_.velocityFrame};
+        return {stage_,    options_.time,   options_.convertColor, options_.warn,
+                purposes_, options_.strict, options_.velocityFrame};
     }
 
     usd::Stage& stage_;

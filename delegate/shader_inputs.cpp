@@ -16,7 +16,8 @@ std::optional<ShaderInputs::Source> ShaderInputs::source(const std::string& inpu
         auto [sourcePrim, sourceProp] = splitPropertyPath(resolveTargetPath(prim->path, a->connections.front()));
         const usd::PrimSpec* next = stage_.prim(sourcePrim);
         if (!next) {
-            warn_(shader_.path, "input '" + name + "' connects to missing prim " + sourcePrim + "; using its own value");
+            warn_(shader_.path,
+                  "input '" + name + "' connects to missing prim " + sourcePrim + "; using its own value");
             return Source{prim, name, false};
         }
         if (next->typeName != "Material" && next->typeName != "NodeGraph") return Source{next, sourceProp, true};
@@ -60,7 +61,9 @@ float ShaderInputs::number(const std::string& name, float fallback) const {
     return static_cast<float>(PrimReader(*source->first, time_).number({source->second.c_str()}, fallback));
 }
 
-bool ShaderInputs::flag(const std::string& name, bool fallback) const { return number(name, fallback ? 1.0f : 0.0f) != 0.0f; }
+bool ShaderInputs::flag(const std::string& name, bool fallback) const {
+    return number(name, fallback ? 1.0f : 0.0f) != 0.0f;
+}
 
 std::string ShaderInputs::text(const std::string& name, const std::string& fallback) const {
     auto source = valueSource(name);
@@ -86,7 +89,8 @@ std::optional<std::vector<float>> ShaderInputs::numbers(const std::string& name)
     if (!v || !v->isNumeric()) return std::nullopt;
     std::vector<float> out(v->numbers.begin(), v->numbers.end());
     if (out.size() >= 3 && v->typeName.starts_with("color")) {
-        const RGB c = convertColor_(RGB(out[0], out[1], out[2]), reader.attributeMetadata(source->second, "colorSpace").value_or(""));
+        const RGB c = convertColor_(RGB(out[0], out[1], out[2]),
+                                    reader.attributeMetadata(source->second, "colorSpace").value_or(""));
         out[0] = c.x, out[1] = c.y, out[2] = c.z;
     }
     return out;

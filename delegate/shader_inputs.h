@@ -38,7 +38,9 @@ public:
     // The shader's info:id ("" when it has none).
     std::string id() const;
     // The inputs of another shader of the same network, read the same way.
-    ShaderInputs node(const usd::PrimSpec& shader) const { return ShaderInputs(stage_, shader, time_, convertColor_, warn_); }
+    ShaderInputs node(const usd::PrimSpec& shader) const {
+        return ShaderInputs(stage_, shader, time_, convertColor_, warn_);
+    }
 
     // `name` without its "inputs:" prefix.
     RGB color(const std::string& name, const RGB& fallback) const;

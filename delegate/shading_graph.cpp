@@ -90,12 +90,14 @@ private:
     }
 
     void warn(const std::string& message) const {
-        surface_.warn()(surface_.shader().path, "input '" + inputName_ + "': " + message + "; using the input's own value");
+        surface_.warn()(surface_.shader().path,
+                        "input '" + inputName_ + "': " + message + "; using the input's own value");
     }
 
     std::optional<Operand> read(const NodeOutput& output, int depth) {
         if (depth > kMaxGraphDepth) {
-            warn("nodes nested deeper than " + std::to_string(kMaxGraphDepth) + " at " + output.shader->path + " (a cycle?)");
+            warn("nodes nested deeper than " + std::to_string(kMaxGraphDepth) + " at " + output.shader->path +
+                 " (a cycle?)");
             return std::nullopt;
         }
         const std::string key = output.shader->path + "." + output.output;

@@ -79,7 +79,8 @@ std::optional<render::InputBinding> textureBinding(const ShaderInputs& surface, 
     ShaderInputs tex = surface.node(*node.shader);
     auto [first, count] = outputChannels(node.output);
     if (first < 0) {
-        surface.warn()(node.shader->path, "UsdUVTexture has no output '" + node.output + "'; input " + input.name + " ignores it");
+        surface.warn()(node.shader->path,
+                       "UsdUVTexture has no output '" + node.output + "'; input " + input.name + " ignores it");
         return std::nullopt;
     }
     render::InputBinding b;
@@ -111,7 +112,8 @@ texture::Wrap addressModeOf(const ShaderInputs& image, const char* input) {
     if (mode == "clamp") return texture::Wrap::Clamp;
     if (mode == "mirror") return texture::Wrap::Mirror;
     if (mode != "periodic")
-        image.warn()(image.shader().path, std::string("inputs:") + input + " '" + mode + "' is not an address mode; using periodic");
+        image.warn()(image.shader().path,
+                     std::string("inputs:") + input + " '" + mode + "' is not an address mode; using periodic");
     return texture::Wrap::Repeat;
 }
 
@@ -123,7 +125,8 @@ void readMtlxColorSpace(const ShaderInputs& image, render::TextureDesc& desc) {
     const std::string space =
         PrimReader(image.shader(), image.time()).attributeMetadata("inputs:file", "colorSpace").value_or("");
     desc.colorSpace = space == "srgb_texture" ? texture::SourceColorSpace::SRGB : texture::SourceColorSpace::Raw;
-    if (!space.empty() && space != "srgb_texture" && space != "lin_rec709" && space != "raw") desc.colorSpaceName = space;
+    if (!space.empty() && space != "srgb_texture" && space != "lin_rec709" && space != "raw")
+        desc.colorSpaceName = space;
 }
 
 // MaterialX's filtertype: closest, linear (the default) or cubic.
@@ -132,14 +135,16 @@ texture::Filter filterOf(const ShaderInputs& image) {
     if (filter == "closest") return texture::Filter::Closest;
     if (filter == "cubic") return texture::Filter::Cubic;
     if (filter != "linear")
-        image.warn()(image.shader().path, "inputs:filtertype '" + filter + "' is not closest, linear or cubic; using linear");
+        image.warn()(image.shader().path,
+                     "inputs:filtertype '" + filter + "' is not closest, linear or cubic; using linear");
     return texture::Filter::Linear;
 }
 
 // A MaterialX tiledimage's placement, as MaterialX's own graph for it computes it: st' = (st *
 // uvtiling - uvoffset) / realworldimagesize * realworldtilesize.
 void readTiling(const ShaderInputs& image, render::UvTransform& uv) {
-    const std::vector<float> tiling = image.tuple("uvtiling", {1.0f, 1.0f}), offset = image.tuple("uvoffset", {0.0f, 0.0f}),
+    const std::vector<float> tiling = image.tuple("uvtiling", {1.0f, 1.0f}),
+                             offset = image.tuple("uvoffset", {0.0f, 0.0f}),
                              imageSize = image.tuple("realworldimagesize", {1.0f, 1.0f}),
                              tileSize = image.tuple("realworldtilesize", {1.0f, 1.0f});
     for (int i = 0; i < 2; ++i) {
@@ -174,7 +179,8 @@ std::optional<render::InputBinding> mtlxImageBinding(const ShaderInputs& surface
     }
     desc.filter = filterOf(image);
     const std::vector<float> fallback = image.tuple("default", std::vector<float>(std::size_t(channels), 0.0f));
-    for (std::size_t c = 0; c < 4; ++c) desc.fallback[c] = c < fallback.size() ? fallback[c] : channels == 1 ? fallback[0] : 1.0f;
+    for (std::size_t c = 0; c < 4; ++c)
+        desc.fallback[c] = c < fallback.size() ? fallback[c] : channels == 1 ? fallback[0] : 1.0f;
     readMtlxColorSpace(image, desc);
     if (desc.file.empty())
         surface.warn()(node.path, "image has no inputs:file; using its default");
@@ -195,7 +201,8 @@ std::optional<render::InputBinding> mtlxNormalMapBinding(const ShaderInputs& sur
     std::optional<NodeOutput> source = normalMap.connectedNode("in");
     const std::string sourceId = source ? surface.node(*source->shader).id() : "";
     if (!sourceId.starts_with("ND_image_") && !sourceId.starts_with("ND_tiledimage_")) {
-        normalMap.warn()(node.path, "inputs:in is not connected to an image or tiledimage node; the surface keeps its own normal");
+        normalMap.warn()(node.path,
+                         "inputs:in is not connected to an image or tiledimage node; the surface keeps its own normal");
         return std::nullopt;
     }
     std::optional<render::InputBinding> b = mtlxImageBinding(surface, input, *source->shader);
@@ -222,24 +229,27 @@ std::optional<render::InputBinding> primvarBinding(const ShaderInputs& surface, 
 
 // The binding of a node that reads a texture or a primvar (the leaves of delegate/shading_graph.h),
 // or nullopt: a node Fluence does not evaluate is named, with the file it came from.
-std::optional<render::InputBinding> leafBinding(const ShaderInputs& surface, const DrivableInput& input, const NodeOutput& node) {
+std::optional<render::InputBinding> leafBinding(const ShaderInputs& surface, const DrivableInput& input,
+                                                const NodeOutput& node) {
     const std::string id = surface.node(*node.shader).id();
     if (id == "UsdUVTexture") return textureBinding(surface, input, node);
     if (id == "UsdPrimvarReader_float") return primvarBinding(surface, input, node, 1);
     if (id == "UsdPrimvarReader_float3" || id == "UsdPrimvarReader_normal" || id == "UsdPrimvarReader_vector" ||
         id == "UsdPrimvarReader_point")
         return primvarBinding(surface, input, node, 3);
-    if (id.starts_with("ND_image_") || id.starts_with("ND_tiledimage_")) return mtlxImageBinding(surface, input, *node.shader);
+    if (id.starts_with("ND_image_") || id.starts_with("ND_tiledimage_"))
+        return mtlxImageBinding(surface, input, *node.shader);
     if (id == "ND_normalmap") return mtlxNormalMapBinding(surface, input, *node.shader);
-    surface.warn()(surface.shader().path, std::string("input '") + input.name + "' is connected to " + node.shader->path +
-                                              " ('" + id + "', from " + node.shader->location.file +
+    surface.warn()(surface.shader().path, std::string("input '") + input.name + "' is connected to " +
+                                              node.shader->path + " ('" + id + "', from " + node.shader->location.file +
                                               "), a node Fluence does not evaluate; using the input's own value");
     return std::nullopt;
 }
 
 }  // namespace
 
-void readBindings(const ShaderInputs& surface, const std::vector<DrivableInput>& inputs, render::MaterialDesc& material) {
+void readBindings(const ShaderInputs& surface, const std::vector<DrivableInput>& inputs,
+                  render::MaterialDesc& material) {
     for (const DrivableInput& input : inputs) {
         std::optional<NodeOutput> node = surface.connectedNode(input.name);
         if (!node) continue;

@@ -47,6 +47,7 @@ struct DrivableInput {
 
 // For each input of `surface` connected to nodes Fluence evaluates: appends a binding to
 // `material.bindings`, or, where the nodes compute a constant, sets the parameter to it.
-void readBindings(const ShaderInputs& surface, const std::vector<DrivableInput>& inputs, render::MaterialDesc& material);
+void readBindings(const ShaderInputs& surface, const std::vector<DrivableInput>& inputs,
+                  render::MaterialDesc& material);
 
 }  // namespace fluence::delegate

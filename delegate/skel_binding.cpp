@@ -35,7 +35,8 @@ std::string skelRootAbove(const usd::Stage& stage, const std::string& path) {
 
 // The nearest prim from `path` up to `root` (both included) for which `authors` holds.
 template <typename Authors>
-const usd::PrimSpec* nearest(const usd::Stage& stage, const std::string& path, const std::string& root, Authors&& authors) {
+const usd::PrimSpec* nearest(const usd::Stage& stage, const std::string& path, const std::string& root,
+                             Authors&& authors) {
     for (std::string p = path;; p = parentPath(p)) {
         if (const usd::PrimSpec* prim = stage.prim(p); prim && authors(*prim)) return prim;
         if (p == root || p == "/") return nullptr;
@@ -44,13 +45,14 @@ const usd::PrimSpec* nearest(const usd::Stage& stage, const std::string& path, c
 
 // The first target of relationship `name` on `owner`, resolved to the prim it names; raises
 // SceneError naming `owner` unless it is of type `type`.
-const usd::PrimSpec& target(const usd::Stage& stage, const usd::PrimSpec& owner, const std::string& name, const std::string& type) {
+const usd::PrimSpec& target(const usd::Stage& stage, const usd::PrimSpec& owner, const std::string& name,
+                            const std::string& type) {
     const std::string path = resolveTargetPath(owner.path, owner.relationship(name)->targets.front());
     const usd::PrimSpec* prim = stage.prim(path);
     if (!prim) throw SceneError(owner.path + ": " + name + " targets " + path + ", which does not exist");
     if (prim->typeName != type)
-        throw SceneError(owner.path + ": " + name + " targets " + path + ", a " + (prim->typeName.empty() ? "typeless prim" : prim->typeName) +
-                         ", not a " + type);
+        throw SceneError(owner.path + ": " + name + " targets " + path + ", a " +
+                         (prim->typeName.empty() ? "typeless prim" : prim->typeName) + ", not a " + type);
     return *prim;
 }
 
@@ -58,19 +60,22 @@ JointInfluences readInfluences(const usd::PrimSpec& indicesOwner, const usd::Pri
     const PrimReader indices(indicesOwner, time);
     if (!weightsOwner) indices.fail(std::string(kJointIndices) + " is authored but " + kJointWeights + " is not");
     JointInfluences influences;
-    for (double i : indices.numbers(kJointIndices, 1).value_or(std::vector<double>{})) influences.indices.push_back(static_cast<int>(i));
+    for (double i : indices.numbers(kJointIndices, 1).value_or(std::vector<double>{}))
+        influences.indices.push_back(static_cast<int>(i));
     influences.weights = PrimReader(*weightsOwner, time).numbers(kJointWeights, 1).value_or(std::vector<double>{});
     const usd::MetadataEntry* size = usd::findMetadata(indicesOwner.attribute(kJointIndices)->metadata, "elementSize");
     influences.perPoint = size ? static_cast<int>(size->value.asDouble().value_or(1.0)) : 1;
     const std::string interpolation = indices.attributeMetadata(kJointIndices, "interpolation").value_or("constant");
     if (interpolation != "constant" && interpolation != "vertex")
-        indices.fail(std::string(kJointIndices) + " has " + interpolation + " interpolation; UsdSkel takes constant or vertex");
+        indices.fail(std::string(kJointIndices) + " has " + interpolation +
+                     " interpolation; UsdSkel takes constant or vertex");
     influences.constant = interpolation == "constant";
     return influences;
 }
 
 // Which point each authored normal follows, or nullopt when the normals cannot be skinned.
-std::optional<std::vector<std::size_t>> normalPoints(const Primvar& normals, const PrimReader& mesh, std::size_t pointCount) {
+std::optional<std::vector<std::size_t>> normalPoints(const Primvar& normals, const PrimReader& mesh,
+                                                     std::size_t pointCount) {
     if (!normals.indices.empty()) return std::nullopt;
     const std::size_t count = normals.values.size() / 3;
     std::vector<std::size_t> pointOf;
@@ -103,8 +108,8 @@ std::vector<double> numbers(const std::vector<Vec3d>& v) {
 }
 
 // The mesh's blend shapes applied at the pose's weights.
-bool applyBlendShapes(const usd::Stage& stage, const usd::PrimSpec& mesh, double time, const SkeletonPose& pose, const Warn& warn,
-                      std::vector<Vec3d>& points, std::vector<Vec3d>* normals) {
+bool applyBlendShapes(const usd::Stage& stage, const usd::PrimSpec& mesh, double time, const SkeletonPose& pose,
+                      const Warn& warn, std::vector<Vec3d>& points, std::vector<Vec3d>* normals) {
     if (!hasTargets(mesh, "skel:blendShapeTargets")) return false;
     const PrimReader reader(mesh, time);
     const std::vector<std::string> names = reader.strings("skel:blendShapes").value_or(std::vector<std::string>{});
@@ -113,12 +118,14 @@ bool applyBlendShapes(const usd::Stage& stage, const usd::PrimSpec& mesh, double
         reader.fail("has " + std::to_string(names.size()) + " skel:blendShapes but " + std::to_string(targets.size()) +
                     " skel:blendShapeTargets");
     std::map<std::string, double> weights;
-    for (std::size_t i = 0; i < pose.blendShapes.size(); ++i) weights.emplace(pose.blendShapes[i], pose.blendShapeWeights[i]);
+    for (std::size_t i = 0; i < pose.blendShapes.size(); ++i)
+        weights.emplace(pose.blendShapes[i], pose.blendShapeWeights[i]);
     bool animated = false;
     for (std::size_t i = 0; i < names.size(); ++i) {
         const std::string path = resolveTargetPath(mesh.path, targets[i]);
         const usd::PrimSpec* prim = stage.prim(path);
-        if (!prim || prim->typeName != "BlendShape") reader.fail("skel:blendShapeTargets[" + std::to_string(i) + "] " + path + " is not a BlendShape");
+        if (!prim || prim->typeName != "BlendShape")
+            reader.fail("skel:blendShapeTargets[" + std::to_string(i) + "] " + path + " is not a BlendShape");
         animated = animated || hasTimeSamples(*prim);
         const BlendShape shape = readBlendShape(PrimReader(*prim, time), [&](const std::string& m) { warn(path, m); });
         if (std::optional<std::string> problem = shape.problem(points.size())) reader.fail(*problem);
@@ -143,62 +150,87 @@ struct Deformable {
 bool deform(const usd::Stage& stage, const usd::PrimSpec& prim, const std::string& root, double time, const Warn& warn,
             Deformable& shape, bool& animated) {
     const PrimReader reader(prim, time);
-    const usd::PrimSpec* indicesOwner = nearest(stage, prim.path, root, [](const usd::PrimSpec& p) { return p.attribute(kJointIndices) != nullptr; });
+    const usd::PrimSpec* indicesOwner =
+        nearest(stage, prim.path, root, [](const usd::PrimSpec& p) { return p.attribute(kJointIndices) != nullptr; });
     const bool shaped = hasTargets(prim, "skel:blendShapeTargets");
     if (!indicesOwner && !shaped) return false;  // nothing of UsdSkel deforms it
-    const usd::PrimSpec* skelOwner = nearest(stage, prim.path, root, [](const usd::PrimSpec& p) { return hasTargets(p, "skel:skeleton"); });
-    if (!skelOwner) reader.fail("has joint influences or blend shapes but no skel:skeleton is bound to it or above it in " + root);
+    const usd::PrimSpec* skelOwner =
+        nearest(stage, prim.path, root, [](const usd::PrimSpec& p) { return hasTargets(p, "skel:skeleton"); });
+    if (!skelOwner)
+        reader.fail("has joint influences or blend shapes but no skel:skeleton is bound to it or above it in " + root);
     const usd::PrimSpec& skeletonPrim = target(stage, *skelOwner, "skel:skeleton", "Skeleton");
     auto warnAt = [&](const std::string& path) { return [&warn, path](const std::string& m) { warn(path, m); }; };
     const Skeleton skeleton = readSkeleton(PrimReader(skeletonPrim, time), warnAt(skeletonPrim.path));
-    const usd::PrimSpec* animOwner = nearest(stage, skeletonPrim.path, "/", [](const usd::PrimSpec& p) { return hasTargets(p, "skel:animationSource"); });
-    const usd::PrimSpec* animation = animOwner ? &target(stage, *animOwner, "skel:animationSource", "SkelAnimation") : nullptr;
-    const std::optional<PrimReader> animationReader = animation ? std::optional<PrimReader>(std::in_place, *animation, time) : std::nullopt;
-    const SkeletonPose skeletonPose = poseSkeleton(skeleton, animationReader ? &*animationReader : nullptr, warnAt(skeletonPrim.path));
+    const usd::PrimSpec* animOwner = nearest(
+        stage, skeletonPrim.path, "/", [](const usd::PrimSpec& p) { return hasTargets(p, "skel:animationSource"); });
+    const usd::PrimSpec* animation =
+        animOwner ? &target(stage, *animOwner, "skel:animationSource", "SkelAnimation") : nullptr;
+    const std::optional<PrimReader> animationReader =
+        animation ? std::optional<PrimReader>(std::in_place, *animation, time) : std::nullopt;
+    const SkeletonPose skeletonPose =
+        poseSkeleton(skeleton, animationReader ? &*animationReader : nullptr, warnAt(skeletonPrim.path));
 
     animated = hasTimeSamples(skeletonPrim) || (animation && hasTimeSamples(*animation));
-    animated = applyBlendShapes(stage, prim, time, skeletonPose, warn, shape.points, shape.perPointNormals ? &shape.normals : nullptr) || animated;
+    animated = applyBlendShapes(stage, prim, time, skeletonPose, warn, shape.points,
+                                shape.perPointNormals ? &shape.normals : nullptr) ||
+               animated;
     if (!indicesOwner) return true;  // blend shapes alone: the prim's own space
 
-    const JointInfluences influences =
-        readInfluences(*indicesOwner, nearest(stage, prim.path, root, [](const usd::PrimSpec& p) { return p.attribute(kJointWeights) != nullptr; }), time);
+    const JointInfluences influences = readInfluences(
+        *indicesOwner,
+        nearest(stage, prim.path, root, [](const usd::PrimSpec& p) { return p.attribute(kJointWeights) != nullptr; }),
+        time);
     std::vector<Matrix4> skinning = skeletonPose.skinning;
-    if (const usd::PrimSpec* jointsOwner = nearest(stage, prim.path, root, [](const usd::PrimSpec& p) { return p.attribute("skel:joints") != nullptr; })) {
+    if (const usd::PrimSpec* jointsOwner = nearest(
+            stage, prim.path, root, [](const usd::PrimSpec& p) { return p.attribute("skel:joints") != nullptr; })) {
         std::map<std::string, std::size_t> index;
         for (std::size_t j = 0; j < skeleton.joints.size(); ++j) index.emplace(skeleton.joints[j], j);
         skinning.clear();
-        for (const std::string& name : PrimReader(*jointsOwner, time).strings("skel:joints").value_or(std::vector<std::string>{})) {
+        for (const std::string& name :
+             PrimReader(*jointsOwner, time).strings("skel:joints").value_or(std::vector<std::string>{})) {
             auto it = index.find(name);
             skinning.push_back(it == index.end() ? Matrix4::identity() : skeletonPose.skinning[it->second]);
         }
     }
-    if (std::optional<std::string> problem = influences.problem(shape.points.size(), skinning.size())) PrimReader(*indicesOwner, time).fail(*problem);
+    if (std::optional<std::string> problem = influences.problem(shape.points.size(), skinning.size()))
+        PrimReader(*indicesOwner, time).fail(*problem);
     Matrix4 geomBind = Matrix4::identity();
-    if (const usd::PrimSpec* owner = nearest(stage, prim.path, root, [](const usd::PrimSpec& p) { return p.attribute("primvars:skel:geomBindTransform") != nullptr; }))
-        if (auto m = PrimReader(*owner, time).numbers("primvars:skel:geomBindTransform", 16); m && m->size() == 16) geomBind = Matrix4::fromUsdRowMajor(m->data());
+    if (const usd::PrimSpec* owner = nearest(stage, prim.path, root, [](const usd::PrimSpec& p) {
+            return p.attribute("primvars:skel:geomBindTransform") != nullptr;
+        }))
+        if (auto m = PrimReader(*owner, time).numbers("primvars:skel:geomBindTransform", 16); m && m->size() == 16)
+            geomBind = Matrix4::fromUsdRowMajor(m->data());
     SkinningMethod method = SkinningMethod::ClassicLinear;
-    if (const usd::PrimSpec* owner = nearest(stage, prim.path, root, [](const usd::PrimSpec& p) { return p.attribute("primvars:skel:skinningMethod") != nullptr; })) {
+    if (const usd::PrimSpec* owner = nearest(stage, prim.path, root, [](const usd::PrimSpec& p) {
+            return p.attribute("primvars:skel:skinningMethod") != nullptr;
+        })) {
         const std::string name = PrimReader(*owner, time).token({"primvars:skel:skinningMethod"}, "classicLinear");
-        if (name == "dualQuaternion") method = SkinningMethod::DualQuaternion;
-        else if (name != "classicLinear") warn(owner->path, "primvars:skel:skinningMethod '" + name + "' is not classicLinear or dualQuaternion; classicLinear used");
+        if (name == "dualQuaternion")
+            method = SkinningMethod::DualQuaternion;
+        else if (name != "classicLinear")
+            warn(owner->path, "primvars:skel:skinningMethod '" + name +
+                                  "' is not classicLinear or dualQuaternion; classicLinear used");
     }
     skinPoints(method, geomBind, skinning, influences, shape.points);
     skinNormals(method, geomBind, skinning, influences, shape.normalPoint, shape.normals);
     const std::optional<Matrix4> fromWorld = worldTransformOf(stage, prim.path, time, warn).matrix.inverse();
     if (!fromWorld) reader.fail("its transform is not invertible, so its skinned points cannot be placed");
-    const Matrix4 toPrim = *fromWorld * worldTransformOf(stage, skeletonPrim.path, time, warn).matrix;  // skeleton space -> the prim's
+    const Matrix4 toPrim =
+        *fromWorld * worldTransformOf(stage, skeletonPrim.path, time, warn).matrix;  // skeleton space -> the prim's
     for (Vec3d& p : shape.points) p = toPrim.transformPoint(p);
     for (Vec3d& n : shape.normals) n = toPrim.transformNormal(n);
     return true;
 }
 
-std::optional<SkinnedPose> meshPose(const usd::Stage& stage, const usd::PrimSpec& mesh, const std::string& root, double time, const Warn& warn) {
+std::optional<SkinnedPose> meshPose(const usd::Stage& stage, const usd::PrimSpec& mesh, const std::string& root,
+                                    double time, const Warn& warn) {
     const PrimReader reader(mesh, time);
     Deformable shape;
     shape.points = vectors(reader.numbers("points", 3).value_or(std::vector<double>{}));
     const char* normalsName = reader.value("primvars:normals") ? "primvars:normals" : "normals";
     std::optional<Primvar> normalsPrimvar = readPrimvar(reader, normalsName, "vertex");
-    std::optional<std::vector<std::size_t>> pointOf = normalsPrimvar ? normalPoints(*normalsPrimvar, reader, shape.points.size()) : std::nullopt;
+    std::optional<std::vector<std::size_t>> pointOf =
+        normalsPrimvar ? normalPoints(*normalsPrimvar, reader, shape.points.size()) : std::nullopt;
     if (pointOf) {
         shape.normals = vectors(normalsPrimvar->values);
         shape.normalPoint = std::move(*pointOf);
@@ -253,13 +285,15 @@ void setArray(usd::PrimSpec& prim, const std::string& name, const std::string& t
 
 }  // namespace
 
-std::optional<SkinnedPose> skinnedPose(const usd::Stage& stage, const usd::PrimSpec& mesh, double time, const Warn& warn) {
+std::optional<SkinnedPose> skinnedPose(const usd::Stage& stage, const usd::PrimSpec& mesh, double time,
+                                       const Warn& warn) {
     const std::string root = skelRootAbove(stage, mesh.path);
     if (root.empty()) return std::nullopt;  // bindings outside a SkelRoot mean nothing
     return warnedPose(mesh, warn, [&] { return meshPose(stage, mesh, root, time, warn); });
 }
 
-std::optional<bool> skinSurface(const usd::Stage& stage, const usd::PrimSpec& prim, double time, const Warn& warn, render::MeshDesc& surface) {
+std::optional<bool> skinSurface(const usd::Stage& stage, const usd::PrimSpec& prim, double time, const Warn& warn,
+                                render::MeshDesc& surface) {
     const std::string root = skelRootAbove(stage, prim.path);
     if (root.empty()) return std::nullopt;
     return warnedPose(prim, warn, [&]() -> std::optional<bool> {
@@ -272,7 +306,8 @@ std::optional<bool> skinSurface(const usd::Stage& stage, const usd::PrimSpec& pr
         bool animated = false;
         if (!deform(stage, prim, root, time, warn, shape, animated)) return std::nullopt;
         for (std::size_t i = 0; i < shape.points.size(); ++i) surface.positions[i] = Vec3f(shape.points[i]);
-        for (std::size_t c = 0; c < shape.normals.size(); ++c) surface.cornerNormals[c] = Vec3f(normalize(shape.normals[c]));
+        for (std::size_t c = 0; c < shape.normals.size(); ++c)
+            surface.cornerNormals[c] = Vec3f(normalize(shape.normals[c]));
         return animated;
     });
 }

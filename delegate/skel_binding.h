@@ -41,15 +41,16 @@ namespace fluence::delegate {
 // A mesh's skinned points and normals at one time code, in the mesh's own space (the space its
 // points are authored in: its world transform takes them where UsdSkel puts them).
 struct SkinnedPose {
-    std::vector<double> points;               // 3 per point
+    std::vector<double> points;                  // 3 per point
     std::optional<std::vector<double>> normals;  // the authored normals skinned; nullopt: drop them
-    std::string normalsName;                  // the attribute they were read from ("primvars:normals" or "normals")
-    bool animated = false;                    // the pose changes with time (animation, skeleton or shapes sampled)
+    std::string normalsName;                     // the attribute they were read from ("primvars:normals" or "normals")
+    bool animated = false;                       // the pose changes with time (animation, skeleton or shapes sampled)
 };
 
 // The mesh's skinned pose at `time`, or nullopt when it is not skinned (or its binding is
 // malformed: warned, naming the prim). The motion blur of a skinned mesh samples this at each time.
-std::optional<SkinnedPose> skinnedPose(const usd::Stage& stage, const usd::PrimSpec& mesh, double time, const Warn& warn);
+std::optional<SkinnedPose> skinnedPose(const usd::Stage& stage, const usd::PrimSpec& mesh, double time,
+                                       const Warn& warn);
 
 // Poses `surface`, the tessellation of an implicit gprim `prim` (Sphere, Cube, ...) in its own
 // space, by the prim's binding: constant (rigid) joint influences, as a Mesh's. nullopt when it is

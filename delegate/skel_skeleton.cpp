@@ -26,9 +26,9 @@ std::optional<AnimatedJoints> animatedJoints(const Skeleton& skeleton, const Pri
     const std::vector<double> s = animation.numbers("scales", 3).value_or(std::vector<double>{});
     if (joints.empty()) return std::nullopt;
     if (t.size() != 3 * joints.size() || r.size() != 4 * joints.size() || s.size() != 3 * joints.size()) {
-        warn(animation.path() + " animates " + std::to_string(joints.size()) + " joints but has " + std::to_string(t.size() / 3) +
-             " translations, " + std::to_string(r.size() / 4) + " rotations and " + std::to_string(s.size() / 3) +
-             " scales; its joints are left in their rest pose, as UsdSkel does");
+        warn(animation.path() + " animates " + std::to_string(joints.size()) + " joints but has " +
+             std::to_string(t.size() / 3) + " translations, " + std::to_string(r.size() / 4) + " rotations and " +
+             std::to_string(s.size() / 3) + " scales; its joints are left in their rest pose, as UsdSkel does");
         return std::nullopt;
     }
     std::map<std::string, std::size_t> index;
@@ -55,7 +55,8 @@ Skeleton readSkeleton(const PrimReader& prim, const std::function<void(const std
     const std::size_t n = skeleton.joints.size();
     std::map<std::string, int> index;
     for (std::size_t j = 0; j < n; ++j)
-        if (!index.emplace(skeleton.joints[j], static_cast<int>(j)).second) prim.fail("joint '" + skeleton.joints[j] + "' is listed twice");
+        if (!index.emplace(skeleton.joints[j], static_cast<int>(j)).second)
+            prim.fail("joint '" + skeleton.joints[j] + "' is listed twice");
     for (std::size_t j = 0; j < n; ++j) {
         int parent = -1;
         for (std::string p = skeleton.joints[j]; parent < 0;) {
@@ -65,7 +66,8 @@ Skeleton readSkeleton(const PrimReader& prim, const std::function<void(const std
             if (auto it = index.find(p); it != index.end()) parent = it->second;
         }
         if (parent >= static_cast<int>(j))
-            prim.fail("joint '" + skeleton.joints[j] + "' is listed before its parent '" + skeleton.joints[static_cast<std::size_t>(parent)] + "'");
+            prim.fail("joint '" + skeleton.joints[j] + "' is listed before its parent '" +
+                      skeleton.joints[static_cast<std::size_t>(parent)] + "'");
         skeleton.parents.push_back(parent);
     }
     const std::vector<Matrix4> bind = matrices(prim.numbers("bindTransforms", 16).value_or(std::vector<double>{}));
@@ -73,12 +75,15 @@ Skeleton readSkeleton(const PrimReader& prim, const std::function<void(const std
         prim.fail("has " + std::to_string(bind.size()) + " bindTransforms for " + std::to_string(n) + " joints");
     for (std::size_t j = 0; j < n; ++j) {
         std::optional<Matrix4> inverse = bind[j].inverse();
-        if (!inverse) prim.fail("bindTransforms[" + std::to_string(j) + "] (joint '" + skeleton.joints[j] + "') is not invertible");
+        if (!inverse)
+            prim.fail("bindTransforms[" + std::to_string(j) + "] (joint '" + skeleton.joints[j] +
+                      "') is not invertible");
         skeleton.inverseBind.push_back(*inverse);
     }
     skeleton.rest = matrices(prim.numbers("restTransforms", 16).value_or(std::vector<double>{}));
     if (!skeleton.rest.empty() && skeleton.rest.size() != n) {
-        warn("has " + std::to_string(skeleton.rest.size()) + " restTransforms for " + std::to_string(n) + " joints; they are ignored");
+        warn("has " + std::to_string(skeleton.rest.size()) + " restTransforms for " + std::to_string(n) +
+             " joints; they are ignored");
         skeleton.rest.clear();
     }
     return skeleton;
@@ -92,15 +97,17 @@ SkeletonPose poseSkeleton(const Skeleton& skeleton, const PrimReader* animation,
         pose.blendShapes = animation->strings("blendShapes").value_or(std::vector<std::string>{});
         pose.blendShapeWeights = animation->numbers("blendShapeWeights", 1).value_or(std::vector<double>{});
         if (pose.blendShapeWeights.size() != pose.blendShapes.size()) {
-            warn(animation->path() + " has " + std::to_string(pose.blendShapeWeights.size()) + " blendShapeWeights for " +
-                 std::to_string(pose.blendShapes.size()) + " blendShapes; its blend shapes are not applied");
+            warn(animation->path() + " has " + std::to_string(pose.blendShapeWeights.size()) +
+                 " blendShapeWeights for " + std::to_string(pose.blendShapes.size()) +
+                 " blendShapes; its blend shapes are not applied");
             pose.blendShapes.clear();
             pose.blendShapeWeights.clear();
         }
     }
     if (!skeleton.joints.empty() && skeleton.rest.empty() && !(animated && animated->complete))
-        throw SceneError(skeleton.path + ": has no pose: restTransforms are not authored (or of the wrong size) and " +
-                         (animated ? "the animation leaves joints out" : std::string("no animation gives every joint")));
+        throw SceneError(
+            skeleton.path + ": has no pose: restTransforms are not authored (or of the wrong size) and " +
+            (animated ? "the animation leaves joints out" : std::string("no animation gives every joint")));
     std::vector<Matrix4> world(skeleton.joints.size());
     pose.skinning.reserve(world.size());
     for (std::size_t j = 0; j < world.size(); ++j) {

@@ -25,9 +25,9 @@ namespace fluence::delegate {
 struct Skeleton {
     std::string path;
     std::vector<std::string> joints;
-    std::vector<int> parents;   // per joint: the parent joint, -1 for a root
+    std::vector<int> parents;          // per joint: the parent joint, -1 for a root
     std::vector<Matrix4> inverseBind;  // the inverses of bindTransforms, per joint
-    std::vector<Matrix4> rest;  // joint-local rest transforms; empty when unauthored or of the wrong size
+    std::vector<Matrix4> rest;         // joint-local rest transforms; empty when unauthored or of the wrong size
 };
 
 // Raises SceneError naming the skeleton when its joints, bind transforms or hierarchy are unusable;
@@ -36,9 +36,9 @@ Skeleton readSkeleton(const PrimReader& prim, const std::function<void(const std
 
 // A skeleton posed by an animation at the readers' time.
 struct SkeletonPose {
-    std::vector<Matrix4> skinning;                // per skeleton joint
-    std::vector<std::string> blendShapes;         // the animation's blend shape names
-    std::vector<double> blendShapeWeights;        // one per name
+    std::vector<Matrix4> skinning;          // per skeleton joint
+    std::vector<std::string> blendShapes;   // the animation's blend shape names
+    std::vector<double> blendShapeWeights;  // one per name
 };
 
 // `animation`: the bound SkelAnimation, or nullptr (the rest pose). An animation whose arrays do

@@ -147,13 +147,14 @@ std::vector<FactoredJoint> factorAll(const std::vector<Matrix4>& skinning, bool&
 std::optional<std::string> JointInfluences::problem(std::size_t pointCount, std::size_t jointCount) const {
     if (perPoint < 1) return "the joint influences' elementSize is " + std::to_string(perPoint) + ", not 1 or more";
     if (indices.size() != weights.size())
-        return "primvars:skel:jointIndices has " + std::to_string(indices.size()) + " values but primvars:skel:jointWeights has " +
-               std::to_string(weights.size());
+        return "primvars:skel:jointIndices has " + std::to_string(indices.size()) +
+               " values but primvars:skel:jointWeights has " + std::to_string(weights.size());
     const std::size_t need = static_cast<std::size_t>(perPoint) * (constant ? 1 : pointCount);
     if (indices.size() != need)
         return "the joint influences have " + std::to_string(indices.size()) + " values but " +
-               (constant ? std::string("constant") : "vertex") + " interpolation with elementSize " + std::to_string(perPoint) +
-               " over " + std::to_string(pointCount) + " points needs " + std::to_string(need);
+               (constant ? std::string("constant") : "vertex") + " interpolation with elementSize " +
+               std::to_string(perPoint) + " over " + std::to_string(pointCount) + " points needs " +
+               std::to_string(need);
     for (std::size_t i = 0; i < indices.size(); ++i)
         if (indices[i] < 0 || static_cast<std::size_t>(indices[i]) >= jointCount)
             return "primvars:skel:jointIndices[" + std::to_string(i) + "] = " + std::to_string(indices[i]) +
@@ -167,7 +168,8 @@ void skinPoints(SkinningMethod method, const Matrix4& geomBind, const std::vecto
         for (std::size_t p = 0; p < points.size(); ++p) {
             const Vec3d bound = geomBind.transformPoint(points[p]);
             Vec3d sum{0.0, 0.0, 0.0};
-            forEachInfluence(influences, p, [&](std::size_t j, double w) { sum += skinning[j].transformPoint(bound) * w; });
+            forEachInfluence(influences, p,
+                             [&](std::size_t j, double w) { sum += skinning[j].transformPoint(bound) * w; });
             points[p] = sum;
         }
         return;
@@ -178,7 +180,8 @@ void skinPoints(SkinningMethod method, const Matrix4& geomBind, const std::vecto
         Vec3d bound = geomBind.transformPoint(points[p]);
         if (anyRest) {
             Vec3d scaled{0.0, 0.0, 0.0};
-            forEachInfluence(influences, p, [&](std::size_t j, double w) { scaled += joints[j].rest.transformVector(bound) * w; });
+            forEachInfluence(influences, p,
+                             [&](std::size_t j, double w) { scaled += joints[j].rest.transformVector(bound) * w; });
             bound = scaled;
         }
         points[p] = blendedRigid(joints, influences, p).transformPoint(bound);
@@ -186,12 +189,14 @@ void skinPoints(SkinningMethod method, const Matrix4& geomBind, const std::vecto
 }
 
 void skinNormals(SkinningMethod method, const Matrix4& geomBind, const std::vector<Matrix4>& skinning,
-                 const JointInfluences& influences, const std::vector<std::size_t>& pointOf, std::vector<Vec3d>& normals) {
+                 const JointInfluences& influences, const std::vector<std::size_t>& pointOf,
+                 std::vector<Vec3d>& normals) {
     if (method == SkinningMethod::ClassicLinear) {
         for (std::size_t i = 0; i < normals.size(); ++i) {
             const Vec3d bound = geomBind.transformNormal(normals[i]);
             Vec3d sum{0.0, 0.0, 0.0};
-            forEachInfluence(influences, pointOf[i], [&](std::size_t j, double w) { sum += skinning[j].transformNormal(bound) * w; });
+            forEachInfluence(influences, pointOf[i],
+                             [&](std::size_t j, double w) { sum += skinning[j].transformNormal(bound) * w; });
             normals[i] = sum;
         }
         return;
@@ -202,7 +207,8 @@ void skinNormals(SkinningMethod method, const Matrix4& geomBind, const std::vect
         Vec3d bound = geomBind.transformNormal(normals[i]);
         if (anyRest) {
             Vec3d scaled{0.0, 0.0, 0.0};
-            forEachInfluence(influences, pointOf[i], [&](std::size_t j, double w) { scaled += joints[j].rest.transformNormal(bound) * w; });
+            forEachInfluence(influences, pointOf[i],
+                             [&](std::size_t j, double w) { scaled += joints[j].rest.transformNormal(bound) * w; });
             bound = scaled;
         }
         normals[i] = blendedRigid(joints, influences, pointOf[i]).real.rotate(bound);

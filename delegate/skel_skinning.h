@@ -47,6 +47,7 @@ void skinPoints(SkinningMethod method, const Matrix4& geomBind, const std::vecto
 
 // Skins `normals` in place; normal i takes the influences of point pointOf[i].
 void skinNormals(SkinningMethod method, const Matrix4& geomBind, const std::vector<Matrix4>& skinning,
-                 const JointInfluences& influences, const std::vector<std::size_t>& pointOf, std::vector<Vec3d>& normals);
+                 const JointInfluences& influences, const std::vector<std::size_t>& pointOf,
+                 std::vector<Vec3d>& normals);
 
 }  // namespace fluence::delegate

@@ -25,8 +25,8 @@ namespace Far = OpenSubdiv::Far;
 namespace {
 
 // A factory whose patch cache may be shared by threads calling tessellate() at once.
-using ThreadSafeCache =
-    Bfr::SurfaceFactoryCacheThreaded<std::shared_mutex, std::shared_lock<std::shared_mutex>, std::unique_lock<std::shared_mutex>>;
+using ThreadSafeCache = Bfr::SurfaceFactoryCacheThreaded<std::shared_mutex, std::shared_lock<std::shared_mutex>,
+                                                         std::unique_lock<std::shared_mutex>>;
 using SurfaceFactory = Bfr::RefinerSurfaceFactory<ThreadSafeCache>;
 using Surface = Bfr::Surface<double>;
 
@@ -78,7 +78,8 @@ struct SubdivisionSurface::Impl {
 
     int faceSize(int f) const { return faceStart[f + 1] - faceStart[f]; }
     std::span<const int> facePoints(int f) const {
-        return std::span<const int>(topology.faceVertexIndices).subspan(std::size_t(faceStart[f]), std::size_t(faceSize(f)));
+        return std::span<const int>(topology.faceVertexIndices)
+            .subspan(std::size_t(faceStart[f]), std::size_t(faceSize(f)));
     }
     // True when face edge i of face f runs from the edge's lower point to its higher point.
     bool edgeForward(int f, int i) const {
@@ -133,7 +134,8 @@ struct SubdivisionSurface::Impl {
     int walkBoundary(int f, const std::vector<int>& rates, Corner&& corner, EdgePoint&& edgePoint) const;
     void evaluateFace(int f, const Layout& layout, const MeshData& mesh, FaceWork& work, Result& result,
                       std::vector<char>& degenerate) const;
-    void evaluateFaceVarying(int f, int channel, const Layout& layout, const MeshData& mesh, FaceWork& work, Result& result) const;
+    void evaluateFaceVarying(int f, int channel, const Layout& layout, const MeshData& mesh, FaceWork& work,
+                             Result& result) const;
 };
 
 void SubdivisionSurface::Impl::buildEdges() {
@@ -243,7 +245,8 @@ bool SubdivisionSurface::faceHasLimitSurface(int face) const { return impl_->has
 std::span<const int> SubdivisionSurface::faceEdges(int face) const {
     const Impl& m = *impl_;
     if (face < 0 || face >= faceCount()) throw std::out_of_range("subdivision mesh: no face " + std::to_string(face));
-    return std::span<const int>(m.faceEdgeIndices).subspan(std::size_t(m.faceStart[face]), std::size_t(m.faceSize(face)));
+    return std::span<const int>(m.faceEdgeIndices)
+        .subspan(std::size_t(m.faceStart[face]), std::size_t(m.faceSize(face)));
 }
 
 SubdivisionSurface::Result SubdivisionSurface::tessellateUniform(std::span<const Vec3f> points, int level,
@@ -256,11 +259,13 @@ SubdivisionSurface::Result SubdivisionSurface::tessellateUniform(std::span<const
 
 void SubdivisionSurface::Impl::faceRates(int f, std::span<const int> edgeSegments, std::vector<int>& rates) const {
     rates.resize(std::size_t(faceSize(f)));
-    for (int i = 0; i < faceSize(f); ++i) rates[std::size_t(i)] = edgeSegments[std::size_t(faceEdgeIndices[std::size_t(faceStart[f] + i)])];
+    for (int i = 0; i < faceSize(f); ++i)
+        rates[std::size_t(i)] = edgeSegments[std::size_t(faceEdgeIndices[std::size_t(faceStart[f] + i)])];
 }
 
 template <typename Corner, typename EdgePoint>
-int SubdivisionSurface::Impl::walkBoundary(int f, const std::vector<int>& rates, Corner&& corner, EdgePoint&& edgePoint) const {
+int SubdivisionSurface::Impl::walkBoundary(int f, const std::vector<int>& rates, Corner&& corner,
+                                           EdgePoint&& edgePoint) const {
     int b = 0;
     for (int i = 0, n = faceSize(f); i < n; ++i) {
         corner(b++, i);
@@ -293,7 +298,8 @@ SubdivisionSurface::Impl::Layout SubdivisionSurface::Impl::layout(std::span<cons
         // Bfr counts a face's points in int: keep n (rate + 1)^2, a bound on them, below INT_MAX.
         const std::int64_t maxRate = *std::max_element(rates.begin(), rates.end());
         if (std::int64_t(faceSize(f)) * (maxRate + 1) * (maxRate + 1) > INT_MAX)
-            throw std::length_error("subdivision mesh: face " + std::to_string(f) + " would have too many points at these rates");
+            throw std::length_error("subdivision mesh: face " + std::to_string(f) +
+                                    " would have too many points at these rates");
         Bfr::Tessellation tess(factory->GetFaceParameterization(f), int(rates.size()), rates.data(), triangles);
         l.interiorBase[std::size_t(f)] = next;
         next += std::uint64_t(tess.GetNumInteriorCoords());
@@ -302,8 +308,8 @@ SubdivisionSurface::Impl::Layout SubdivisionSurface::Impl::layout(std::span<cons
     l.vertexCount = next;
     l.triangleCount = l.triangleBase.back();
     if (l.vertexCount > kMaxIndex || 3 * l.triangleCount > kMaxIndex)
-        throw std::length_error("subdivision mesh: " + std::to_string(l.vertexCount) + " vertices and " + std::to_string(l.triangleCount) +
-                                " triangles do not fit 32-bit indices");
+        throw std::length_error("subdivision mesh: " + std::to_string(l.vertexCount) + " vertices and " +
+                                std::to_string(l.triangleCount) + " triangles do not fit 32-bit indices");
 
     // Face-varying values: those of base points, then the spans' inner points, then the faces'
     // interiors (as many as the interior vertices).
@@ -318,7 +324,8 @@ SubdivisionSurface::Impl::Layout SubdivisionSurface::Impl::layout(std::span<cons
         }
         channel.interiorStart = value;
         channel.count = value + (l.vertexCount - l.interiorStart);
-        if (channel.count > kMaxIndex) throw std::length_error("subdivision mesh: too many face-varying values for 32-bit indices");
+        if (channel.count > kMaxIndex)
+            throw std::length_error("subdivision mesh: too many face-varying values for 32-bit indices");
     }
     return l;
 }
@@ -329,7 +336,8 @@ void SubdivisionSurface::Impl::evaluateFace(int f, const Layout& l, const MeshDa
         throw std::logic_error("subdivision mesh: OpenSubdiv has no limit surface for face " + std::to_string(f));
     if (mesh.anyVarying && !factory->InitVaryingSurface(f, &w.varyingSurface))
         throw std::logic_error("subdivision mesh: OpenSubdiv has no varying surface for face " + std::to_string(f));
-    Bfr::Tessellation tess(w.surface.GetParameterization(), int(w.rates.size()), w.rates.data(), Bfr::Tessellation::Options());
+    Bfr::Tessellation tess(w.surface.GetParameterization(), int(w.rates.size()), w.rates.data(),
+                           Bfr::Tessellation::Options());
     const int coordCount = tess.GetNumCoords();
     w.boundaryCount = tess.GetNumBoundaryCoords();
     w.coords.resize(2 * std::size_t(coordCount));
@@ -405,13 +413,15 @@ void SubdivisionSurface::Impl::evaluateFace(int f, const Layout& l, const MeshDa
     for (int c = 0; c < int(fvar.size()); ++c) evaluateFaceVarying(f, c, l, mesh, w, r);
 }
 
-void SubdivisionSurface::Impl::evaluateFaceVarying(int f, int c, const Layout& l, const MeshData& mesh, FaceWork& w, Result& r) const {
+void SubdivisionSurface::Impl::evaluateFaceVarying(int f, int c, const Layout& l, const MeshData& mesh, FaceWork& w,
+                                                   Result& r) const {
     const FaceVaryingLayout& layout = fvar[std::size_t(c)];
     const Layout::Channel& bases = l.faceVarying[std::size_t(c)];
     const FaceVaryingData& input = faceVarying[std::size_t(c)];
     Surface& s = w.faceVaryingSurface;
     if (!factory->InitFaceVaryingSurface(f, &s, Bfr::SurfaceFactory::FVarID(c)))
-        throw std::logic_error("subdivision mesh: OpenSubdiv has no face-varying surface for face " + std::to_string(f));
+        throw std::logic_error("subdivision mesh: OpenSubdiv has no face-varying surface for face " +
+                               std::to_string(f));
     // Bfr reads the channel's values through these indices without bounds checks: where OpenSubdiv's
     // face-varying topology went wrong (it once did, on values shared by several points), fail, not read out of range.
     w.controlPoints.resize(std::size_t(s.GetNumControlPoints()));
@@ -419,8 +429,9 @@ void SubdivisionSurface::Impl::evaluateFaceVarying(int f, int c, const Layout& l
     const std::size_t valueCount = input.values.size() / std::size_t(input.components);
     for (int index : w.controlPoints)
         if (index < 0 || std::size_t(index) >= valueCount)
-            throw std::logic_error("subdivision mesh: face " + std::to_string(f) + " of face-varying channel " + std::to_string(c) +
-                                   " refers to value " + std::to_string(index) + " of " + std::to_string(valueCount));
+            throw std::logic_error("subdivision mesh: face " + std::to_string(f) + " of face-varying channel " +
+                                   std::to_string(c) + " refers to value " + std::to_string(index) + " of " +
+                                   std::to_string(valueCount));
 
     // The output value of each face coordinate: corners by input value, edge points by span.
     const std::size_t coordCount = w.coords.size() / 2;
@@ -439,7 +450,8 @@ void SubdivisionSurface::Impl::evaluateFaceVarying(int f, int c, const Layout& l
             w.owned[std::size_t(b)] = layout.spanOwner[span] == f;
         });
     const std::uint64_t interior = bases.interiorStart + (l.interiorBase[std::size_t(f)] - l.interiorStart);
-    for (std::size_t j = std::size_t(w.boundaryCount); j < coordCount; ++j) w.output[j] = std::uint32_t(interior + (j - std::size_t(w.boundaryCount)));
+    for (std::size_t j = std::size_t(w.boundaryCount); j < coordCount; ++j)
+        w.output[j] = std::uint32_t(interior + (j - std::size_t(w.boundaryCount)));
 
     const int components = input.components;
     w.patch.resize(std::size_t(components) * std::size_t(s.GetNumPatchPoints()));
@@ -449,7 +461,9 @@ void SubdivisionSurface::Impl::evaluateFaceVarying(int f, int c, const Layout& l
     for (std::size_t j = 0; j < coordCount; ++j) {
         if (!w.owned[j]) continue;
         s.Evaluate(&w.coords[2 * j], w.patch.data(), components, w.value.data());
-        for (int k = 0; k < components; ++k) out.values[std::size_t(w.output[j]) * std::size_t(components) + std::size_t(k)] = float(w.value[std::size_t(k)]);
+        for (int k = 0; k < components; ++k)
+            out.values[std::size_t(w.output[j]) * std::size_t(components) + std::size_t(k)] =
+                float(w.value[std::size_t(k)]);
     }
     const std::size_t first = 3 * l.triangleBase[std::size_t(f)];
     for (std::size_t k = 0; k < w.facets.size(); ++k) out.indices[first + k] = w.output[std::size_t(w.facets[k])];
@@ -479,23 +493,26 @@ void repairNormals(SubdivisionSurface::Result& r, const std::vector<char>& degen
 
 }  // namespace
 
-SubdivisionSurface::Result SubdivisionSurface::tessellate(std::span<const Vec3f> points, std::span<const int> edgeSegments,
+SubdivisionSurface::Result SubdivisionSurface::tessellate(std::span<const Vec3f> points,
+                                                          std::span<const int> edgeSegments,
                                                           std::span<const VertexData> vertexData) const {
     const Impl& m = *impl_;
     auto fail = [](const std::string& message) { throw std::invalid_argument("subdivision mesh: " + message); };
     if (points.size() != std::size_t(m.topology.pointCount))
-        fail(std::to_string(points.size()) + " points given for " + std::to_string(m.topology.pointCount) + " control points");
+        fail(std::to_string(points.size()) + " points given for " + std::to_string(m.topology.pointCount) +
+             " control points");
     if (edgeSegments.size() != m.edges.size())
-        fail(std::to_string(edgeSegments.size()) + " edge segment counts given for " + std::to_string(m.edges.size()) + " edges");
+        fail(std::to_string(edgeSegments.size()) + " edge segment counts given for " + std::to_string(m.edges.size()) +
+             " edges");
     for (std::size_t e = 0; e < edgeSegments.size(); ++e)
         if (edgeSegments[e] < 1 || edgeSegments[e] > kMaxEdgeSegments)
-            fail("edge " + std::to_string(e) + " has " + std::to_string(edgeSegments[e]) + " segments (1 to " + std::to_string(kMaxEdgeSegments) +
-                 " allowed)");
+            fail("edge " + std::to_string(e) + " has " + std::to_string(edgeSegments[e]) + " segments (1 to " +
+                 std::to_string(kMaxEdgeSegments) + " allowed)");
     for (std::size_t c = 0; c < vertexData.size(); ++c) {
         if (vertexData[c].components < 1) fail("vertex data channel " + std::to_string(c) + " has no components");
         if (vertexData[c].values.size() != std::size_t(vertexData[c].components) * points.size())
-            fail("vertex data channel " + std::to_string(c) + " has " + std::to_string(vertexData[c].values.size()) + " floats, expected " +
-                 std::to_string(vertexData[c].components) + " per point");
+            fail("vertex data channel " + std::to_string(c) + " has " + std::to_string(vertexData[c].values.size()) +
+                 " floats, expected " + std::to_string(vertexData[c].components) + " per point");
     }
 
     const Impl::Layout layout = m.layout(edgeSegments);
@@ -506,7 +523,8 @@ SubdivisionSurface::Result SubdivisionSurface::tessellate(std::span<const Vec3f>
     r.dPdv.resize(layout.vertexCount);
     r.surfaceCoords.resize(layout.vertexCount);
     r.vertexData.resize(vertexData.size());
-    for (std::size_t c = 0; c < vertexData.size(); ++c) r.vertexData[c].resize(layout.vertexCount * std::size_t(vertexData[c].components));
+    for (std::size_t c = 0; c < vertexData.size(); ++c)
+        r.vertexData[c].resize(layout.vertexCount * std::size_t(vertexData[c].components));
     r.indices.resize(3 * layout.triangleCount);
     r.triangleFaces.resize(layout.triangleCount);
     r.cornerNormals.resize(3 * layout.triangleCount);

@@ -104,9 +104,10 @@ namespace fluence::delegate {
 struct SubdivisionTopology {
     enum class Scheme { CatmullClark, Loop, Bilinear };
     Scheme scheme = Scheme::CatmullClark;
-    std::string interpolateBoundary = "edgeAndCorner";             // none, edgeOnly, edgeAndCorner
-    std::string faceVaryingLinearInterpolation = "cornersPlus1";  // all, none, boundaries, cornersOnly, cornersPlus1, cornersPlus2
-    std::string triangleSubdivisionRule = "catmullClark";          // catmullClark, smooth
+    std::string interpolateBoundary = "edgeAndCorner";  // none, edgeOnly, edgeAndCorner
+    std::string faceVaryingLinearInterpolation =
+        "cornersPlus1";  // all, none, boundaries, cornersOnly, cornersPlus1, cornersPlus2
+    std::string triangleSubdivisionRule = "catmullClark";  // catmullClark, smooth
     int pointCount = 0;
     std::vector<int> faceVertexCounts, faceVertexIndices;
     // USD semantics: creaseLengths[i] points of creaseIndices form crease i's chain; one sharpness
@@ -170,12 +171,12 @@ public:
 
     struct Result {
         // Per output vertex (laid out as described above):
-        std::vector<Vec3f> positions;             // limit positions
+        std::vector<Vec3f> positions;  // limit positions
         // Unit limit normals, normalize(cross(dPdu, dPdv)) of the owner face. Where that is
         // undefined (parallel derivatives: coincident control points, a smooth valence-2 corner),
         // the area-weighted normal of the triangles around the vertex; never zero.
         std::vector<Vec3f> normals;
-        std::vector<Vec3f> dPdu, dPdv;            // limit derivatives in the owner face's (u, v)
+        std::vector<Vec3f> dPdu, dPdv;  // limit derivatives in the owner face's (u, v)
         std::vector<SurfaceCoord> surfaceCoords;
         std::vector<std::vector<float>> vertexData;  // per VertexData channel: components per vertex
         // Per triangle (3 indices each, wound as their faces; faces in order, holes give none):
@@ -197,7 +198,8 @@ public:
                       std::span<const VertexData> vertexData = {}) const;
     // 2^level segments on every edge (level in [0, 12]): an all-quad Catmull-Clark mesh gives
     // 2 * 4^level triangles per face, as `--subdiv-level N` expects.
-    Result tessellateUniform(std::span<const Vec3f> points, int level, std::span<const VertexData> vertexData = {}) const;
+    Result tessellateUniform(std::span<const Vec3f> points, int level,
+                             std::span<const VertexData> vertexData = {}) const;
 
     static constexpr int kMaxEdgeSegments = 4096;
 

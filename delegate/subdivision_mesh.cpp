@@ -51,7 +51,8 @@ bool SubdivisionMesh::isSubdivided(const usd::PrimSpec& mesh, double time) {
 }
 
 SubdivisionMesh::SubdivisionMesh(const usd::Stage& stage, const usd::PrimSpec& mesh, double time,
-                                 const ColorConverter& convertColor, const std::function<void(const std::string&)>& warn)
+                                 const ColorConverter& convertColor,
+                                 const std::function<void(const std::string&)>& warn)
     : path_(mesh.path) {
     PrimReader prim(mesh, time);
     SubdivisionTopology topology;
@@ -61,7 +62,8 @@ SubdivisionMesh::SubdivisionMesh(const usd::Stage& stage, const usd::PrimSpec& m
     topology.triangleSubdivisionRule = prim.token({"triangleSubdivisionRule"}, "catmullClark");
     std::vector<double> points = prim.numbers("points", 3).value_or(std::vector<double>{});
     topology.pointCount = static_cast<int>(points.size() / 3);
-    for (std::size_t i = 0; i + 2 < points.size(); i += 3) points_.emplace_back(points[i], points[i + 1], points[i + 2]);
+    for (std::size_t i = 0; i + 2 < points.size(); i += 3)
+        points_.emplace_back(points[i], points[i + 1], points[i + 2]);
     topology.faceVertexCounts = integers(prim, "faceVertexCounts");
     topology.faceVertexIndices = integers(prim, "faceVertexIndices");
     topology.creaseIndices = integers(prim, "creaseIndices");
@@ -84,7 +86,8 @@ SubdivisionMesh::SubdivisionMesh(const usd::Stage& stage, const usd::PrimSpec& m
         std::string space = prim.attributeMetadata("primvars:displayColor", "colorSpace").value_or("");
         std::vector<float> values;  // converted, indexed like the authored values
         for (std::size_t i = 0; i < colors->values.size() / 3; ++i) {
-            RGB c = convertColor(RGB(Vec3d(colors->values[3 * i], colors->values[3 * i + 1], colors->values[3 * i + 2])), space);
+            RGB c = convertColor(
+                RGB(Vec3d(colors->values[3 * i], colors->values[3 * i + 1], colors->values[3 * i + 2])), space);
             values.insert(values.end(), {c.x, c.y, c.z});
         }
         displayColor_ = static_cast<int>(primvars_.size());
@@ -115,16 +118,19 @@ void SubdivisionMesh::addPrimvar(const Primvar& pv, std::vector<float> values, c
         return values.begin() + static_cast<std::ptrdiff_t>(i * k);
     };
     if (pv.interpolation == "constant" || pv.interpolation == "uniform") {
-        out.source = pv.interpolation == "constant" ? RefinedPrimvar::Source::Constant : RefinedPrimvar::Source::Uniform;
+        out.source =
+            pv.interpolation == "constant" ? RefinedPrimvar::Source::Constant : RefinedPrimvar::Source::Uniform;
         std::size_t n = pv.interpolation == "constant" ? 1 : topology.faceVertexCounts.size();
-        for (std::size_t e = 0; e < n; ++e) out.values.insert(out.values.end(), element(e), element(e) + static_cast<std::ptrdiff_t>(k));
+        for (std::size_t e = 0; e < n; ++e)
+            out.values.insert(out.values.end(), element(e), element(e) + static_cast<std::ptrdiff_t>(k));
     } else if (pv.interpolation == "faceVarying") {
         out.source = RefinedPrimvar::Source::FaceVarying;
         out.channel = static_cast<int>(faceVarying.size());
         FaceVaryingData data{pv.components, std::move(values), pv.indices};
         if (leftHanded) {  // values follow their face-vertices
             std::vector<int> order(pv.elementCount());
-            for (std::size_t i = 0; i < order.size(); ++i) order[i] = pv.indices.empty() ? static_cast<int>(i) : pv.indices[i];
+            for (std::size_t i = 0; i < order.size(); ++i)
+                order[i] = pv.indices.empty() ? static_cast<int>(i) : pv.indices[i];
             reverseFaces(topology.faceVertexCounts, order);
             data.indices = order;
         }
@@ -133,7 +139,8 @@ void SubdivisionMesh::addPrimvar(const Primvar& pv, std::vector<float> values, c
         out.source = RefinedPrimvar::Source::Vertex;
         out.channel = static_cast<int>(vertexData_.size());
         VertexData data{pv.components, {}, pv.interpolation == "varying"};
-        for (std::size_t p = 0; p < points_.size(); ++p) data.values.insert(data.values.end(), element(p), element(p) + static_cast<std::ptrdiff_t>(k));
+        for (std::size_t p = 0; p < points_.size(); ++p)
+            data.values.insert(data.values.end(), element(p), element(p) + static_cast<std::ptrdiff_t>(k));
         vertexData_.push_back(std::move(data));
     }
     primvars_.push_back(std::move(out));
@@ -145,7 +152,8 @@ const float* SubdivisionMesh::cornerValues(const RefinedPrimvar& pv, const Subdi
     switch (pv.source) {
         case RefinedPrimvar::Source::Constant: return pv.values.data();
         case RefinedPrimvar::Source::Uniform: return &pv.values[result.triangleFaces[c / 3] * k];
-        case RefinedPrimvar::Source::Vertex: return &result.vertexData.at(static_cast<std::size_t>(pv.channel))[mesh.indices[c] * k];
+        case RefinedPrimvar::Source::Vertex:
+            return &result.vertexData.at(static_cast<std::size_t>(pv.channel))[mesh.indices[c] * k];
         case RefinedPrimvar::Source::FaceVarying: {
             const FaceVaryingData& fv = result.faceVarying.at(static_cast<std::size_t>(pv.channel));
             return &fv.values[static_cast<std::size_t>(fv.indices[c]) * k];
@@ -161,7 +169,8 @@ std::shared_ptr<const SubdivisionMesh> SubdivisionMesh::withPoints(const usd::Pr
         prim.fail("points has " + std::to_string(points.size() / 3) + " points, but the topology uses " +
                   std::to_string(points_.size()));
     auto copy = std::make_shared<SubdivisionMesh>(*this);
-    for (std::size_t i = 0; i < points_.size(); ++i) copy->points_[i] = Vec3f(points[3 * i], points[3 * i + 1], points[3 * i + 2]);
+    for (std::size_t i = 0; i < points_.size(); ++i)
+        copy->points_[i] = Vec3f(points[3 * i], points[3 * i + 1], points[3 * i + 2]);
     return copy;
 }
 
@@ -178,7 +187,9 @@ std::vector<int> SubdivisionMesh::segmentsFor(const std::vector<Matrix4>& placem
     // The placements nearest the camera need the finest rates.
     std::vector<const Matrix4*> nearest;
     for (const Matrix4& m : placements) nearest.push_back(&m);
-    auto distance = [&](const Matrix4* m) { return length(Vec3f(m->transformPoint({0, 0, 0})) - context.camera.position()); };
+    auto distance = [&](const Matrix4* m) {
+        return length(Vec3f(m->transformPoint({0, 0, 0})) - context.camera.position());
+    };
     if (nearest.size() > kNearestPlacements) {
         std::partial_sort(nearest.begin(), nearest.begin() + kNearestPlacements, nearest.end(),
                           [&](const Matrix4* a, const Matrix4* b) { return distance(a) < distance(b); });
@@ -196,7 +207,8 @@ std::vector<int> SubdivisionMesh::segmentsFor(const std::vector<Matrix4>& placem
     return segments;
 }
 
-std::vector<MeshPart> SubdivisionMesh::tessellate(const std::vector<Matrix4>& placements, const DicingContext& context) const {
+std::vector<MeshPart> SubdivisionMesh::tessellate(const std::vector<Matrix4>& placements,
+                                                  const DicingContext& context) const {
     const DicingSettings& settings = context.settings;
     auto dice = [&](float scale, int level) {
         try {
@@ -215,7 +227,8 @@ std::vector<MeshPart> SubdivisionMesh::tessellate(const std::vector<Matrix4>& pl
         if (level > 0)
             --level;
         else if (level < 0)
-            scale *= 0.9f * std::sqrt(static_cast<float>(settings.meshTriangleBudget) / static_cast<float>(result.indices.size() / 3));
+            scale *= 0.9f * std::sqrt(static_cast<float>(settings.meshTriangleBudget) /
+                                      static_cast<float>(result.indices.size() / 3));
         else
             break;
         result = dice(scale, level);
@@ -232,7 +245,8 @@ std::vector<MeshPart> SubdivisionMesh::tessellate(const std::vector<Matrix4>& pl
     return splitByMaterial(std::move(whole), materials_);
 }
 
-render::MeshDesc SubdivisionMesh::meshFrom(const SubdivisionSurface::Result& result, const DicingContext& context) const {
+render::MeshDesc SubdivisionMesh::meshFrom(const SubdivisionSurface::Result& result,
+                                           const DicingContext& context) const {
     render::MeshDesc mesh;
     mesh.name = path_;
     mesh.positions = result.positions;
@@ -242,8 +256,9 @@ render::MeshDesc SubdivisionMesh::meshFrom(const SubdivisionSurface::Result& res
     auto materialOf = [&](std::uint32_t face) -> const std::string& {
         if (materials_.subsetOfFace.empty()) return materials_.meshMaterial;
         int subset = materials_.subsetOfFace[face];
-        return subset == MaterialAssignment::kNoSubset ? materials_.meshMaterial
-                                                       : materials_.subsets[static_cast<std::size_t>(subset)].materialPath;
+        return subset == MaterialAssignment::kNoSubset
+                   ? materials_.meshMaterial
+                   : materials_.subsets[static_cast<std::size_t>(subset)].materialPath;
     };
     for (std::size_t v = 0; v < mesh.positions.size(); ++v) {
         const std::string& material = materialOf(result.surfaceCoords[v].face);

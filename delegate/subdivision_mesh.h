@@ -71,7 +71,8 @@ public:
     std::vector<MeshPart> tessellate(const std::vector<Matrix4>& placements, const DicingContext& context) const;
 
 private:
-    std::vector<int> segmentsFor(const std::vector<Matrix4>& placements, const DicingContext& context, float scale) const;
+    std::vector<int> segmentsFor(const std::vector<Matrix4>& placements, const DicingContext& context,
+                                 float scale) const;
     render::MeshDesc meshFrom(const SubdivisionSurface::Result& result, const DicingContext& context) const;
 
     std::string path_;

@@ -33,8 +33,8 @@ float osdSharpness(float s, const char* attribute, std::size_t i) {
 
 void checkPoint(int index, int pointCount, const char* attribute, std::size_t i) {
     if (index < 0 || index >= pointCount)
-        fail(std::string(attribute) + "[" + std::to_string(i) + "] = " + std::to_string(index) + " is not a point (pointCount " +
-             std::to_string(pointCount) + ")");
+        fail(std::string(attribute) + "[" + std::to_string(i) + "] = " + std::to_string(index) +
+             " is not a point (pointCount " + std::to_string(pointCount) + ")");
 }
 
 // USD primvar indices only compress values: one value index may serve corners at different points
@@ -81,24 +81,39 @@ OpenSubdiv::Sdc::SchemeType sdcScheme(SubdivisionTopology::Scheme scheme) {
 Options sdcOptions(const SubdivisionTopology& t) {
     Options options;
     const std::string& boundary = t.interpolateBoundary;
-    if (boundary == "none") options.SetVtxBoundaryInterpolation(Options::VTX_BOUNDARY_NONE);
-    else if (boundary == "edgeOnly") options.SetVtxBoundaryInterpolation(Options::VTX_BOUNDARY_EDGE_ONLY);
-    else if (boundary == "edgeAndCorner") options.SetVtxBoundaryInterpolation(Options::VTX_BOUNDARY_EDGE_AND_CORNER);
-    else fail("unknown interpolateBoundary \"" + boundary + "\" (none, edgeOnly or edgeAndCorner)");
+    if (boundary == "none")
+        options.SetVtxBoundaryInterpolation(Options::VTX_BOUNDARY_NONE);
+    else if (boundary == "edgeOnly")
+        options.SetVtxBoundaryInterpolation(Options::VTX_BOUNDARY_EDGE_ONLY);
+    else if (boundary == "edgeAndCorner")
+        options.SetVtxBoundaryInterpolation(Options::VTX_BOUNDARY_EDGE_AND_CORNER);
+    else
+        fail("unknown interpolateBoundary \"" + boundary + "\" (none, edgeOnly or edgeAndCorner)");
 
     const std::string& fvar = t.faceVaryingLinearInterpolation;
-    if (fvar == "none") options.SetFVarLinearInterpolation(Options::FVAR_LINEAR_NONE);
-    else if (fvar == "cornersOnly") options.SetFVarLinearInterpolation(Options::FVAR_LINEAR_CORNERS_ONLY);
-    else if (fvar == "cornersPlus1") options.SetFVarLinearInterpolation(Options::FVAR_LINEAR_CORNERS_PLUS1);
-    else if (fvar == "cornersPlus2") options.SetFVarLinearInterpolation(Options::FVAR_LINEAR_CORNERS_PLUS2);
-    else if (fvar == "boundaries") options.SetFVarLinearInterpolation(Options::FVAR_LINEAR_BOUNDARIES);
-    else if (fvar == "all") options.SetFVarLinearInterpolation(Options::FVAR_LINEAR_ALL);
-    else fail("unknown faceVaryingLinearInterpolation \"" + fvar + "\" (all, none, boundaries, cornersOnly, cornersPlus1 or cornersPlus2)");
+    if (fvar == "none")
+        options.SetFVarLinearInterpolation(Options::FVAR_LINEAR_NONE);
+    else if (fvar == "cornersOnly")
+        options.SetFVarLinearInterpolation(Options::FVAR_LINEAR_CORNERS_ONLY);
+    else if (fvar == "cornersPlus1")
+        options.SetFVarLinearInterpolation(Options::FVAR_LINEAR_CORNERS_PLUS1);
+    else if (fvar == "cornersPlus2")
+        options.SetFVarLinearInterpolation(Options::FVAR_LINEAR_CORNERS_PLUS2);
+    else if (fvar == "boundaries")
+        options.SetFVarLinearInterpolation(Options::FVAR_LINEAR_BOUNDARIES);
+    else if (fvar == "all")
+        options.SetFVarLinearInterpolation(Options::FVAR_LINEAR_ALL);
+    else
+        fail("unknown faceVaryingLinearInterpolation \"" + fvar +
+             "\" (all, none, boundaries, cornersOnly, cornersPlus1 or cornersPlus2)");
 
     const std::string& triangles = t.triangleSubdivisionRule;
-    if (triangles == "catmullClark") options.SetTriangleSubdivision(Options::TRI_SUB_CATMARK);
-    else if (triangles == "smooth") options.SetTriangleSubdivision(Options::TRI_SUB_SMOOTH);
-    else fail("unknown triangleSubdivisionRule \"" + triangles + "\" (catmullClark or smooth)");
+    if (triangles == "catmullClark")
+        options.SetTriangleSubdivision(Options::TRI_SUB_CATMARK);
+    else if (triangles == "smooth")
+        options.SetTriangleSubdivision(Options::TRI_SUB_SMOOTH);
+    else
+        fail("unknown triangleSubdivisionRule \"" + triangles + "\" (catmullClark or smooth)");
 
     options.SetCreasingMethod(Options::CREASE_UNIFORM);
     return options;
@@ -110,11 +125,15 @@ void validateTopology(const SubdivisionTopology& t) {
     std::int64_t total = 0;
     for (std::size_t f = 0; f < t.faceVertexCounts.size(); ++f) {
         int n = t.faceVertexCounts[f];
-        if (n < 3) fail("faceVertexCounts[" + std::to_string(f) + "] is " + std::to_string(n) + ": a face needs 3 points or more");
-        if (n > maxFaceSize) fail("faceVertexCounts[" + std::to_string(f) + "] is " + std::to_string(n) + ", more than OpenSubdiv's " +
-                                  std::to_string(maxFaceSize));
+        if (n < 3)
+            fail("faceVertexCounts[" + std::to_string(f) + "] is " + std::to_string(n) +
+                 ": a face needs 3 points or more");
+        if (n > maxFaceSize)
+            fail("faceVertexCounts[" + std::to_string(f) + "] is " + std::to_string(n) + ", more than OpenSubdiv's " +
+                 std::to_string(maxFaceSize));
         if (t.scheme == SubdivisionTopology::Scheme::Loop && n != 3)
-            fail("the loop scheme needs triangles, but face " + std::to_string(f) + " has " + std::to_string(n) + " points");
+            fail("the loop scheme needs triangles, but face " + std::to_string(f) + " has " + std::to_string(n) +
+                 " points");
         total += n;
     }
     if (total != std::int64_t(t.faceVertexIndices.size()))
@@ -125,10 +144,13 @@ void validateTopology(const SubdivisionTopology& t) {
     std::size_t first = 0;
     for (std::size_t f = 0; f < t.faceVertexCounts.size(); ++f) {
         const int n = t.faceVertexCounts[f];
-        for (int i = 0; i < n; ++i) checkPoint(t.faceVertexIndices[first + i], t.pointCount, "faceVertexIndices", first + i);
+        for (int i = 0; i < n; ++i)
+            checkPoint(t.faceVertexIndices[first + i], t.pointCount, "faceVertexIndices", first + i);
         for (int i = 0; i < n; ++i) {
             int a = t.faceVertexIndices[first + i], b = t.faceVertexIndices[first + (i + 1) % n];
-            if (a == b) fail("face " + std::to_string(f) + " uses point " + std::to_string(a) + " twice in a row (a degenerate edge)");
+            if (a == b)
+                fail("face " + std::to_string(f) + " uses point " + std::to_string(a) +
+                     " twice in a row (a degenerate edge)");
             meshEdges.insert(edgeKey(a, b));
         }
         first += std::size_t(n);
@@ -136,26 +158,29 @@ void validateTopology(const SubdivisionTopology& t) {
 
     std::int64_t creasePoints = 0, creaseEdges = 0;
     for (std::size_t c = 0; c < t.creaseLengths.size(); ++c) {
-        if (t.creaseLengths[c] < 2) fail("creaseLengths[" + std::to_string(c) + "] is " + std::to_string(t.creaseLengths[c]) + ": a crease needs 2 points or more");
+        if (t.creaseLengths[c] < 2)
+            fail("creaseLengths[" + std::to_string(c) + "] is " + std::to_string(t.creaseLengths[c]) +
+                 ": a crease needs 2 points or more");
         creasePoints += t.creaseLengths[c];
         creaseEdges += t.creaseLengths[c] - 1;
     }
     if (creasePoints != std::int64_t(t.creaseIndices.size()))
-        fail("creaseLengths add up to " + std::to_string(creasePoints) + " but creaseIndices has " + std::to_string(t.creaseIndices.size()) +
-             " entries");
+        fail("creaseLengths add up to " + std::to_string(creasePoints) + " but creaseIndices has " +
+             std::to_string(t.creaseIndices.size()) + " entries");
     const std::size_t sharpnesses = t.creaseSharpnesses.size();
     if (sharpnesses != t.creaseLengths.size() && std::int64_t(sharpnesses) != creaseEdges)
-        fail("creaseSharpnesses has " + std::to_string(sharpnesses) + " entries: expected one per crease (" + std::to_string(t.creaseLengths.size()) +
-             ") or one per crease edge (" + std::to_string(creaseEdges) + ")");
-    for (std::size_t i = 0; i < t.creaseIndices.size(); ++i) checkPoint(t.creaseIndices[i], t.pointCount, "creaseIndices", i);
+        fail("creaseSharpnesses has " + std::to_string(sharpnesses) + " entries: expected one per crease (" +
+             std::to_string(t.creaseLengths.size()) + ") or one per crease edge (" + std::to_string(creaseEdges) + ")");
+    for (std::size_t i = 0; i < t.creaseIndices.size(); ++i)
+        checkPoint(t.creaseIndices[i], t.pointCount, "creaseIndices", i);
     for (std::size_t i = 0; i < sharpnesses; ++i) osdSharpness(t.creaseSharpnesses[i], "creaseSharpnesses", i);
     std::size_t start = 0;
     for (std::size_t c = 0; c < t.creaseLengths.size(); ++c) {
         for (int k = 0; k + 1 < t.creaseLengths[c]; ++k) {
             int a = t.creaseIndices[start + k], b = t.creaseIndices[start + k + 1];
             if (!meshEdges.contains(edgeKey(a, b)))
-                fail("crease " + std::to_string(c) + " runs from point " + std::to_string(a) + " to point " + std::to_string(b) +
-                     ", which is not an edge of the mesh");
+                fail("crease " + std::to_string(c) + " runs from point " + std::to_string(a) + " to point " +
+                     std::to_string(b) + ", which is not an edge of the mesh");
         }
         start += std::size_t(t.creaseLengths[c]);
     }
@@ -170,8 +195,8 @@ void validateTopology(const SubdivisionTopology& t) {
     for (std::size_t i = 0; i < t.holeIndices.size(); ++i) {
         int h = t.holeIndices[i];
         if (h < 0 || h >= int(t.faceVertexCounts.size()))
-            fail("holeIndices[" + std::to_string(i) + "] = " + std::to_string(h) + " is not a face (" + std::to_string(t.faceVertexCounts.size()) +
-                 " faces)");
+            fail("holeIndices[" + std::to_string(i) + "] = " + std::to_string(h) + " is not a face (" +
+                 std::to_string(t.faceVertexCounts.size()) + " faces)");
     }
 }
 
@@ -182,29 +207,30 @@ void normalizeFaceVarying(const SubdivisionTopology& t, std::vector<FaceVaryingD
         const std::string name = "face-varying channel " + std::to_string(c);
         if (channel.components < 1) fail(name + " has " + std::to_string(channel.components) + " components");
         if (channel.values.size() % std::size_t(channel.components) != 0)
-            fail(name + " has " + std::to_string(channel.values.size()) + " floats, not a multiple of its " + std::to_string(channel.components) +
-                 " components");
+            fail(name + " has " + std::to_string(channel.values.size()) + " floats, not a multiple of its " +
+                 std::to_string(channel.components) + " components");
         const std::size_t count = channel.values.size() / std::size_t(channel.components);
         if (channel.indices.empty()) {
             if (count != faceVertices)
-                fail(name + " has no indices and " + std::to_string(count) + " values, but the mesh has " + std::to_string(faceVertices) +
-                     " face-vertices");
+                fail(name + " has no indices and " + std::to_string(count) + " values, but the mesh has " +
+                     std::to_string(faceVertices) + " face-vertices");
             channel.indices.resize(faceVertices);
             for (std::size_t i = 0; i < faceVertices; ++i) channel.indices[i] = int(i);
             continue;
         }
         if (channel.indices.size() != faceVertices)
-            fail(name + " has " + std::to_string(channel.indices.size()) + " indices, but the mesh has " + std::to_string(faceVertices) +
-                 " face-vertices");
+            fail(name + " has " + std::to_string(channel.indices.size()) + " indices, but the mesh has " +
+                 std::to_string(faceVertices) + " face-vertices");
         for (std::size_t i = 0; i < faceVertices; ++i)
             if (channel.indices[i] < 0 || std::size_t(channel.indices[i]) >= count)
-                fail(name + ": indices[" + std::to_string(i) + "] = " + std::to_string(channel.indices[i]) + " is not a value (" +
-                     std::to_string(count) + " values)");
+                fail(name + ": indices[" + std::to_string(i) + "] = " + std::to_string(channel.indices[i]) +
+                     " is not a value (" + std::to_string(count) + " values)");
         splitValuesSharedByPoints(t, channel);
     }
 }
 
-std::unique_ptr<OpenSubdiv::Far::TopologyRefiner> createRefiner(const SubdivisionTopology& t, const std::vector<FaceVaryingData>& channels) {
+std::unique_ptr<OpenSubdiv::Far::TopologyRefiner> createRefiner(const SubdivisionTopology& t,
+                                                                const std::vector<FaceVaryingData>& channels) {
     using OpenSubdiv::Far::TopologyDescriptor;
 
     // Crease chains become the vertex pairs of their edges, each with its sharpness.

@@ -15,7 +15,8 @@ namespace {
 void dropDrivenEmission(const ShaderInputs& in, render::MaterialDesc& m) {
     auto driven = [](const render::InputBinding& b) { return b.input == render::MaterialInput::Emission; };
     if (std::erase_if(m.bindings, driven) > 0)
-        in.warn()(in.shader().path, "emission driven by a texture or primvar is not rendered yet; using its constant value");
+        in.warn()(in.shader().path,
+                  "emission driven by a texture or primvar is not rendered yet; using its constant value");
 }
 
 }  // namespace
@@ -51,8 +52,9 @@ render::MaterialDesc previewSurface(const ShaderInputs& in, const std::string& m
     m.displacement = in.number("displacement", 0.0f);
     using render::MaterialInput;
     // The specular workflow reads specularColor and not metallic; the metallic workflow the reverse.
-    const DrivableInput workflowInput = m.specularWorkflow ? DrivableInput{"specularColor", MaterialInput::SpecularColor, 3}
-                                                           : DrivableInput{"metallic", MaterialInput::Metallic, 1};
+    const DrivableInput workflowInput = m.specularWorkflow
+                                            ? DrivableInput{"specularColor", MaterialInput::SpecularColor, 3}
+                                            : DrivableInput{"metallic", MaterialInput::Metallic, 1};
     readBindings(in,
                  {{"diffuseColor", MaterialInput::Diffuse, 3},
                   {"emissiveColor", MaterialInput::Emission, 3},
@@ -129,12 +131,18 @@ render::MaterialDesc standardSurface(const ShaderInputs& in, const std::string& 
     if (method == "diffusion")
         m.subsurfaceMethod = render::SubsurfaceMethod::Diffusion;
     else if (method != "randomwalk" && method != "randomwalk_v2")
-        in.warn()(in.shader().path, "subsurface_type '" + method + "' is not diffusion or randomwalk; using randomwalk");
-    if (m.subsurface > 0.0f && !m.thinWalled && !m.interior)  // the random walk's medium (diffusion: the probes' material)
+        in.warn()(in.shader().path,
+                  "subsurface_type '" + method + "' is not diffusion or randomwalk; using randomwalk");
+    if (m.subsurface > 0.0f && !m.thinWalled &&
+        !m.interior)  // the random walk's medium (diffusion: the probes' material)
         m.interior = media::subsurfaceMedium(m.subsurfaceColor, m.subsurfaceRadius * m.subsurfaceScale,
                                              in.number("subsurface_anisotropy", 0.0f));
-    if (m.interior && std::erase_if(m.bindings, [](const render::InputBinding& b) { return b.input == MaterialInput::TransmissionColor; }) > 0)
-        in.warn()(in.shader().path, "transmission_color driven by a node with transmission_depth > 0: the interior medium uses its constant value");
+    if (m.interior && std::erase_if(m.bindings, [](const render::InputBinding& b) {
+                          return b.input == MaterialInput::TransmissionColor;
+                      }) > 0)
+        in.warn()(in.shader().path,
+                  "transmission_color driven by a node with transmission_depth > 0: the interior medium uses its "
+                  "constant value");
     dropDrivenEmission(in, m);
     return m;
 }

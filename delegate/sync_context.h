@@ -17,7 +17,7 @@ struct SyncContext {
     const ColorConverter& convertColor;
     const Warn& warn;
     const IncludedPurposes& purposes;
-    bool strict = false;  // a malformed prim raises SceneError instead of being skipped
+    bool strict = false;                       // a malformed prim raises SceneError instead of being skipped
     double velocityFrame = usd::kDefaultTime;  // DelegateOptions::velocityFrame
 };
 

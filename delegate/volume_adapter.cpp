@@ -48,7 +48,8 @@ public:
         return in_.number(name, fallback);
     }
     RGB color(const std::string& name, const RGB& fallback) const {
-        if (auto v = primvarValue(name, 3)) return v->size() >= 3 ? RGB(Vec3d(v->at(0), v->at(1), v->at(2))) : RGB(float(v->at(0)));
+        if (auto v = primvarValue(name, 3))
+            return v->size() >= 3 ? RGB(Vec3d(v->at(0), v->at(1), v->at(2))) : RGB(float(v->at(0)));
         return in_.color(name, fallback);
     }
     // The field a field reader on `name` names, or `fallback` when the input is not read from a field.
@@ -58,7 +59,10 @@ public:
         ShaderInputs reader(in_.stage(), *node->shader, time_, in_.convertColor(), in_.warn());
         std::string fieldName = reader.text("fieldname", "");
         if (fieldName.empty())
-            in_.warn()(node->shader->path, "input '" + name + "' is not connected to a field reader (inputs:fieldname); reading the field '" + fallback + "'");
+            in_.warn()(node->shader->path,
+                       "input '" + name +
+                           "' is not connected to a field reader (inputs:fieldname); reading the field '" + fallback +
+                           "'");
         return fieldName.empty() ? fallback : fieldName;
     }
 
@@ -73,8 +77,10 @@ private:
         ShaderInputs reader(in_.stage(), *node->shader, time_, in_.convertColor(), in_.warn());
         std::string varname = reader.text("varname", "");
         std::optional<usd::Value> v = PrimReader(volume_, time_).value("primvars:" + varname);
-        if (v && v->isNumeric() && !v->numbers.empty()) return std::vector<double>(v->numbers.begin(), v->numbers.end());
-        std::vector<float> fallback = reader.tuple("fallback", std::vector<float>(static_cast<std::size_t>(components), 0.0f));
+        if (v && v->isNumeric() && !v->numbers.empty())
+            return std::vector<double>(v->numbers.begin(), v->numbers.end());
+        std::vector<float> fallback =
+            reader.tuple("fallback", std::vector<float>(static_cast<std::size_t>(components), 0.0f));
         return std::vector<double>(fallback.begin(), fallback.end());
     }
 
@@ -93,7 +99,8 @@ VolumeMaterial volumeMaterialOf(const usd::Stage& stage, const usd::PrimSpec& vo
     const usd::PrimSpec* material = stage.prim(path);
     const usd::PrimSpec* shader = material ? volumeShader(stage, *material) : nullptr;
     if (!shader) {
-        warn(volume.path, "bound material " + path + " has no outputs:volume connected to a shader; using the fallback volume");
+        warn(volume.path,
+             "bound material " + path + " has no outputs:volume connected to a shader; using the fallback volume");
         return m;
     }
     ShaderInputs inputs(stage, *shader, time, convertColor, warn);

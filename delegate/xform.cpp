@@ -10,7 +10,9 @@ Matrix4 rotationFromOrder(std::string_view order, const Vec3d& angles) {
     // angles are authored (x, y, z); `order` lists the axes in the order they apply to a point.
     Matrix4 m = Matrix4::identity();
     for (char axis : order) {
-        Matrix4 r = axis == 'X' ? Matrix4::rotateX(angles.x) : axis == 'Y' ? Matrix4::rotateY(angles.y) : Matrix4::rotateZ(angles.z);
+        Matrix4 r = axis == 'X'   ? Matrix4::rotateX(angles.x)
+                    : axis == 'Y' ? Matrix4::rotateY(angles.y)
+                                  : Matrix4::rotateZ(angles.z);
         m = r * m;
     }
     return m;
@@ -25,7 +27,8 @@ Matrix4 opMatrix(const PrimReader& prim, const std::string& attributeName) {
     const std::vector<double>& n = v->numbers;
     auto need = [&](std::size_t count) {
         if (n.size() != count)
-            prim.fail("xform op '" + attributeName + "' needs " + std::to_string(count) + " numbers, got " + v->toString());
+            prim.fail("xform op '" + attributeName + "' needs " + std::to_string(count) + " numbers, got " +
+                      v->toString());
     };
     if (type == "translate") {
         need(3);
@@ -37,7 +40,9 @@ Matrix4 opMatrix(const PrimReader& prim, const std::string& attributeName) {
     }
     if (type == "rotateX" || type == "rotateY" || type == "rotateZ") {
         need(1);
-        return type == "rotateX" ? Matrix4::rotateX(n[0]) : type == "rotateY" ? Matrix4::rotateY(n[0]) : Matrix4::rotateZ(n[0]);
+        return type == "rotateX"   ? Matrix4::rotateX(n[0])
+               : type == "rotateY" ? Matrix4::rotateY(n[0])
+                                   : Matrix4::rotateZ(n[0]);
     }
     if (type.size() == 9 && type.starts_with("rotate")) {
         std::string_view order = type.substr(6);

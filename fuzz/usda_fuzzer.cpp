@@ -73,7 +73,11 @@ void touch(const Metadata& metadata) {
 // The times at which an attribute is resolved: the default time, far before and after, every
 // authored sample time, and midpoints between neighbouring samples (interpolation).
 std::vector<double> timesFor(const AttributeSpec& attribute) {
-    std::vector<double> times = {kDefaultTime, -1e9, 0.0, 1.0, 1e9,
+    std::vector<double> times = {kDefaultTime,
+                                 -1e9,
+                                 0.0,
+                                 1.0,
+                                 1e9,
                                  -std::numeric_limits<double>::infinity(),
                                  std::numeric_limits<double>::infinity()};
     const auto& samples = attribute.timeSamples;
@@ -85,8 +89,8 @@ std::vector<double> timesFor(const AttributeSpec& attribute) {
 }
 
 void touch(const AttributeSpec& attribute) {
-    gSink = gSink + static_cast<double>(attribute.name.size() + attribute.typeName.size() +
-                                        attribute.connections.size());
+    gSink =
+        gSink + static_cast<double>(attribute.name.size() + attribute.typeName.size() + attribute.connections.size());
     if (attribute.hasDefault) touch(attribute.defaultValue);
     for (const auto& [time, value] : attribute.timeSamples) {
         gSink = gSink + (std::isfinite(time) ? time : 1.0);
@@ -191,8 +195,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
         layer = parseUsdaString(text, kIdentifier);
     } catch (const ParseError& error) {
         // The expected outcome for most inputs; the message must still be readable.
-        gSink = gSink + static_cast<double>(std::string_view(error.what()).size()) +
-                error.location().line;
+        gSink = gSink + static_cast<double>(std::string_view(error.what()).size()) + error.location().line;
         if (error.location().line < 1 || error.location().column < 1) std::abort();
         return 0;
     }
@@ -206,9 +209,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     // error in one of those is a ParseError too, as Stage::open documents.
     try {
         Stage stage(std::move(layer));
-        gSink = gSink + static_cast<double>(stage.defaultPrim().size()) + stage.upAxis() +
-                stage.metersPerUnit() + stage.startTimeCode().value_or(0.0) +
-                stage.endTimeCode().value_or(0.0);
+        gSink = gSink + static_cast<double>(stage.defaultPrim().size()) + stage.upAxis() + stage.metersPerUnit() +
+                stage.startTimeCode().value_or(0.0) + stage.endTimeCode().value_or(0.0);
         touchComposition(stage);
         stage.traverse([&](const PrimSpec& prim) {
             if (stage.prim(prim.path) == nullptr && prim.path.find('{') == std::string::npos) {

@@ -154,7 +154,8 @@ using CameraSubpath = std::vector<Vertex>;
 // join's (filled by the caller); the edge into z_j, j < m, is the one z_{j+1} was reached over.
 void appendCamera(std::vector<VertexDensity>& x, const CameraSubpath& z) {
     for (std::size_t j = z.size(); j-- > 0;)
-        x.push_back(densityOf(z[j], z[j].fromOther, z[j].fromOwn, z[j].delta, j + 1 < z.size() ? z[j + 1].edge : EdgeMedia{}));
+        x.push_back(
+            densityOf(z[j], z[j].fromOther, z[j].fromOwn, z[j].delta, j + 1 < z.size() ? z[j + 1].edge : EdgeMedia{}));
     x.push_back({1.0f, 1.0f, false, true, RGB(1.0f), z.empty() ? EdgeMedia{} : z.front().edge});
 }
 
@@ -162,9 +163,10 @@ void appendCamera(std::vector<VertexDensity>& x, const CameraSubpath& z) {
 // it, then adjoint BSDF and phase sampling through the media it starts in (mediaAt) and crosses,
 // with hero channel `hero` (-1: the scene has no media), at `time` in the shutter interval (the camera
 // ray's). Empty (origin.light < 0) when no light emits.
-LightSubpath traceLightSubpath(const RenderScene& scene, const std::vector<int>& emitters, const DiscreteDistribution& choice,
-                               const std::vector<float>& probability, int maxBounces, int hero, float time, SampleStream& rng,
-                               RenderCounters& counters, render::BsdfArena& arena) {
+LightSubpath traceLightSubpath(const RenderScene& scene, const std::vector<int>& emitters,
+                               const DiscreteDistribution& choice, const std::vector<float>& probability,
+                               int maxBounces, int hero, float time, SampleStream& rng, RenderCounters& counters,
+                               render::BsdfArena& arena) {
     LightSubpath path;
     const float uChoice = rng.next();
     const Vec2f uPosition = rng.next2D(), uDirection = rng.next2D();
@@ -175,9 +177,10 @@ LightSubpath traceLightSubpath(const RenderScene& scene, const std::vector<int>&
     path.origin = originAt(scene, index, es->point, es->normal, es->direction, es->delta, probability[index]);
     RGB beta = es->Le * (es->density.cosine / (probability[index] * es->density.position * es->density.direction));
     const bool onSurface = !path.origin.atInfinity && !path.origin.delta;
-    Ray ray{onSurface ? spawnOrigin(es->point, es->normal, es->direction) : es->point, es->direction, 0.0f, kInfinity, time};
-    MediumStack media = hero >= 0 && !path.origin.atInfinity ? mediaAt(scene, ray.origin, ray.direction, counters)
-                                                              : MediumStack(scene);
+    Ray ray{onSurface ? spawnOrigin(es->point, es->normal, es->direction) : es->point, es->direction, 0.0f, kInfinity,
+            time};
+    MediumStack media =
+        hero >= 0 && !path.origin.atInfinity ? mediaAt(scene, ray.origin, ray.direction, counters) : MediumStack(scene);
     std::optional<Bounce> last;  // how the previous vertex was left
     int bounces = 0, interiorScatterings = 0;
     for (;;) {
@@ -197,7 +200,8 @@ LightSubpath traceLightSubpath(const RenderScene& scene, const std::vector<int>&
         if (!last) {
             v.fromOwn = emittedTowards(scene, path.origin, v);
             // Measured from the point, as a camera subpath leaving it for the light would.
-            if (path.origin.atInfinity) v.edge.majorantDepth = majorantDepth(medium, v.point(), -ray.direction, kInfinity);
+            if (path.origin.atInfinity)
+                v.edge.majorantDepth = majorantDepth(medium, v.point(), -ray.direction, kInfinity);
         } else {
             v.fromOwn = last->delta ? 1.0f : toArea(last->pdf, path.vertices.back().point(), v);
         }
@@ -208,7 +212,8 @@ LightSubpath traceLightSubpath(const RenderScene& scene, const std::vector<int>&
         if (last) {
             v.delta = last->delta;
             // The previous vertex's density as a camera subpath would draw it, through this one.
-            if (path.vertices.empty()) path.origin.fromCamera = last->delta ? 1.0f : cameraReaches(path.origin, last->pdfReverse, v.point());
+            if (path.vertices.empty())
+                path.origin.fromCamera = last->delta ? 1.0f : cameraReaches(path.origin, last->pdfReverse, v.point());
             else {
                 Vertex& before = path.vertices.back();
                 before.fromOther = last->delta ? 1.0f : toArea(last->pdfReverse, v.point(), before);
@@ -226,8 +231,8 @@ LightSubpath traceLightSubpath(const RenderScene& scene, const std::vector<int>&
 
 // The shadow segment joining a to b (`dir`, unit, from a to b), each left on its side, or nothing
 // when a surface blocks it.
-std::optional<media::MediumRay> joinSegment(const RenderScene& scene, const Vertex& a, const Vertex& b, const Vec3f& dir,
-                                            RenderCounters& counters) {
+std::optional<media::MediumRay> joinSegment(const RenderScene& scene, const Vertex& a, const Vertex& b,
+                                            const Vec3f& dir, RenderCounters& counters) {
     ++counters.shadow;
     const Vec3f from = a.leaving(dir), to = b.leaving(-dir);
     const Vec3f d = to - from;
@@ -260,16 +265,19 @@ void splatToCamera(const RenderScene& scene, const render::Camera& camera, const
         const Ray look{camera.position(), -c->direction, c->nearDistance, c->distance * (1.0f - kLookShortening)};
         if (!(look.tMax > look.tMin) || scene.intersect(look)) continue;
         // Media fill the whole way to the pinhole, as for the camera subpath's first flight.
-        const Crossing crossing = cross(cameraMedium, {y.leaving(c->direction), c->direction, c->distance}, std::max(hero, 0), rng);
+        const Crossing crossing =
+            cross(cameraMedium, {y.leaving(c->direction), c->direction, c->distance}, std::max(hero, 0), rng);
         if (isBlack(crossing.tr.throughput)) continue;
         setLightDensities(x, light, s);
         x[s - 1].fromCamera = toArea(c->density, camera.position(), y);
         x[s - 1].delta = false;
         const float pdfBack = toCamera.pdfReverse;  // y_{s-2} drawn from the camera side
-        x[s - 2].fromCamera = s == 2 ? cameraReaches(light.origin, pdfBack, y.point()) : toArea(pdfBack, y.point(), light.vertices[s - 3]);
+        x[s - 2].fromCamera = s == 2 ? cameraReaches(light.origin, pdfBack, y.point())
+                                     : toArea(pdfBack, y.point(), light.vertices[s - 3]);
         x.push_back({1.0f, 1.0f, false, true, RGB(1.0f), crossing.edge});  // the camera
         const Vec3f toX2 = s >= 3 ? -light.vertices[1].wo : c->direction;
-        const StrategyPath path{x, neeDensity(scene, light.origin, light.vertices[0], toX2), !light.origin.delta, hero, true};
+        const StrategyPath path{x, neeDensity(scene, light.origin, light.vertices[0], toX2), !light.origin.delta, hero,
+                                true};
         if (!splats.add(c->raster.x, c->raster.y, contribution * crossing.tr.throughput * misWeight(path, s)))
             ++counters.nonFiniteSamples;
     }
@@ -313,8 +321,15 @@ class CameraWalk {
 public:
     CameraWalk(const BdptState& state, int maxDepth, const LightSubpath& light, int hero, const RenderScene& scene,
                const render::Camera& camera, SampleStream& rng, RenderCounters& counters)
-        : state_(state), maxDepth_(maxDepth), light_(light), hero_(hero), tracked_(std::max(hero, 0)), scene_(scene),
-          camera_(camera), rng_(rng), counters_(counters) {}
+        : state_(state),
+          maxDepth_(maxDepth),
+          light_(light),
+          hero_(hero),
+          tracked_(std::max(hero, 0)),
+          scene_(scene),
+          camera_(camera),
+          rng_(rng),
+          counters_(counters) {}
 
     FilmSample run(const Ray& cameraRay) {
         Ray ray = cameraRay;
@@ -353,8 +368,8 @@ private:
         beta_ *= flight.throughput;
         pdfRatio_ *= flight.pdfRatio;
         if (depth == 0 && flight.event != media::FlightEvent::Escaped)
-            recordFirstVolumeEvent(out_, flight.p, flight.properties.sigmaS, flight.properties.sigmaA + flight.properties.sigmaS,
-                                   camera_);
+            recordFirstVolumeEvent(out_, flight.p, flight.properties.sigmaS,
+                                   flight.properties.sigmaA + flight.properties.sigmaS, camera_);
         if (flight.event == media::FlightEvent::Absorbed) {
             // Emission in a medium: found by the camera subpath alone (bdpt.h).
             radiance_ += beta_ * flight.properties.emission / media::channelAverage(pdfRatio_);
@@ -363,7 +378,9 @@ private:
         const Vec3f start = z_.empty() ? ray.origin : z_.back().point();
         if (flight.event == media::FlightEvent::Escaped && !hit) {
             forEachLightAtInfinity(scene_, ray.direction, depth == 0, [&](int index, const RGB& le) {
-                radiance_ += beta_ * le * hitLightWeight(index, Vec3f(0.0f), -ray.direction, -ray.direction, lastPdf, lastDelta, stretch.edge);
+                radiance_ += beta_ * le *
+                             hitLightWeight(index, Vec3f(0.0f), -ray.direction, -ray.direction, lastPdf, lastDelta,
+                                            stretch.edge);
             });
             return std::nullopt;
         }
@@ -382,7 +399,9 @@ private:
             if (hit->light >= 0) {
                 const RGB le = emittedAtHit(scene_, *hit, v.wo);
                 if (!isBlack(le))
-                    radiance_ += beta_ * le * hitLightWeight(hit->light, hit->point, hit->geometricNormal, v.wo, lastPdf, lastDelta, v.edge);
+                    radiance_ +=
+                        beta_ * le *
+                        hitLightWeight(hit->light, hit->point, hit->geometricNormal, v.wo, lastPdf, lastDelta, v.edge);
             }
             if (hit->lightShape || depth >= maxDepth_) return std::nullopt;
         } else if (v.walking ? ++interiorScatterings_ > kMaxInteriorScatterings : depth >= maxDepth_) {
@@ -399,8 +418,8 @@ private:
 
     // s = 0: the camera subpath reaches light `index` over `edge`, leaving it from `point` along
     // `direction` (towards z_.back()), having drawn its last direction with density `pdf` (`delta`).
-    float hitLightWeight(int index, const Vec3f& point, const Vec3f& normal, const Vec3f& direction, float pdf, bool delta,
-                         const EdgeMedia& edge) {
+    float hitLightWeight(int index, const Vec3f& point, const Vec3f& normal, const Vec3f& direction, float pdf,
+                         bool delta, const EdgeMedia& edge) {
         LightOrigin x0 = originAt(scene_, index, point, normal, direction, false, state_.emitterProbability[index]);
         x_.clear();
         if (z_.empty()) {  // seen by the camera: the only strategy (with media, still weighted over heroes)
@@ -441,7 +460,8 @@ private:
         const Vec3f point = from + ls->wi * ls->distance;
         LightOrigin x0 = originAt(scene_, choice.light, point, Vec3f(0.0f), -ls->wi, ls->delta,
                                   state_.emitterProbability[choice.light]);
-        float nee = choice.probability * (ls->delta || x0.atInfinity ? ls->pdf : ls->pdf * x0.cosine / (ls->distance * ls->distance));
+        float nee = choice.probability *
+                    (ls->delta || x0.atInfinity ? ls->pdf : ls->pdf * x0.cosine / (ls->distance * ls->distance));
         x_.clear();
         x_.push_back({x0.fromLight, cameraReaches(x0, pdfCamera, zt.point()), false});
         appendCamera(x_, z_);
@@ -470,7 +490,8 @@ private:
         if (!shy.connectable()) return true;
         const Scattered atY = shy.evaluate(y.wo, -dir, render::Transport::Importance);
         if (isBlack(atY.f)) return true;
-        const RGB contribution = y.beta * atY.f * shy.importanceCosines(y.wo, -dir) * fz * zt.beta * (sh.cosine(dir) / dist2);
+        const RGB contribution =
+            y.beta * atY.f * shy.importanceCosines(y.wo, -dir) * fz * zt.beta * (sh.cosine(dir) / dist2);
         if (isBlack(contribution)) return true;
         const std::optional<media::MediumRay> segment = joinSegment(scene_, zt, y, dir, counters_);
         if (!segment) return true;
@@ -486,7 +507,8 @@ private:
         setAfterJoin(sh, s + 1, dir);
         const Vertex& y1 = light_.vertices[0];
         const Vec3f toX2 = s >= 3 ? -light_.vertices[1].wo : -dir;
-        radiance_ += contribution * crossing.tr.throughput * weight(neeDensity(scene_, light_.origin, y1, toX2), !light_.origin.delta, s);
+        radiance_ += contribution * crossing.tr.throughput *
+                     weight(neeDensity(scene_, light_.origin, y1, toX2), !light_.origin.delta, s);
         return true;
     }
 
@@ -523,8 +545,9 @@ private:
     bool cameraJoins_ = false;
     CameraSubpath z_;
     std::vector<VertexDensity> x_;  // the densities of the path being weighted, x_0 first
-    RGB beta_{1.0f}, pdfRatio_{1.0f};  // pdfRatio_: the camera subpath's p_c / p_h (media/tracking.h), for media's emission
-    MediumStack media_{scene_};        // the media the camera subpath is in (the camera outside every closed surface)
+    RGB beta_{1.0f},
+        pdfRatio_{1.0f};         // pdfRatio_: the camera subpath's p_c / p_h (media/tracking.h), for media's emission
+    MediumStack media_{scene_};  // the media the camera subpath is in (the camera outside every closed surface)
     float etaScale_ = 1.0f;
     int interiorScatterings_ = 0;
     std::optional<Bounce> last_;  // how the previous vertex was left
@@ -541,8 +564,9 @@ FilmSample Bdpt::sample(const RenderState& renderState, const RenderScene& scene
     const int hero = scene.hasMedia() ? media::sampleHeroChannel(rng.next()) : -1;
     // With light tracing, a light subpath may reach maxDepth vertices (t = 1 joins the last to the
     // camera); without, maxDepth - 1 (every other strategy holds a camera vertex).
-    const LightSubpath light = traceLightSubpath(scene, state.emitters, state.emitterChoice, state.emitterProbability,
-                                                 lightTracing ? maxDepth_ : maxDepth_ - 1, hero, cameraRay.time, rng, counters, arena);
+    const LightSubpath light =
+        traceLightSubpath(scene, state.emitters, state.emitterChoice, state.emitterProbability,
+                          lightTracing ? maxDepth_ : maxDepth_ - 1, hero, cameraRay.time, rng, counters, arena);
     if (lightTracing) splatToCamera(scene, camera, light, hero, rng, counters, joinArena, *state.splats);
     return CameraWalk(state, maxDepth_, light, hero, scene, camera, rng, counters).run(cameraRay);
 }

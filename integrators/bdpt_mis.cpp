@@ -68,7 +68,8 @@ bool strategyExists(const StrategyPath& path, int s) {
 
 float misWeight(const StrategyPath& path, int s) {
     const auto& x = path.vertices;
-    const int strategies = static_cast<int>(x.size()) - (path.lightTracing ? 0 : 1);  // s = 0 ... k (k - 1 without t = 1)
+    const int strategies =
+        static_cast<int>(x.size()) - (path.lightTracing ? 0 : 1);  // s = 0 ... k (k - 1 without t = 1)
     const bool spectral = path.hero >= 0;
     std::optional<ChannelFactors> channels;
     if (spectral) channels.emplace(path, s);

@@ -69,22 +69,27 @@ namespace fluence::integrators {
 // How the edge from x_{i-1} to x_i crosses media (MEDIA above); all zero optical depth and
 // possible in empty space.
 struct EdgeMedia {
-    RGB majorantDepth{0.0f};    // the integral of sigmaMaj along the edge, per channel
-    RGB flightPossible{1.0f};   // 1 where delta tracking in that channel draws its null points with density > 0
-    RGB joinPossible{1.0f};     // 1 where ratio tracking in that channel does
+    RGB majorantDepth{0.0f};   // the integral of sigmaMaj along the edge, per channel
+    RGB flightPossible{1.0f};  // 1 where delta tracking in that channel draws its null points with density > 0
+    RGB joinPossible{1.0f};    // 1 where ratio tracking in that channel does
 };
 
 struct VertexDensity {
     VertexDensity(float fromLight_ = 0.0f, float fromCamera_ = 0.0f, bool delta_ = false, bool joinable_ = true,
                   const RGB& sigmaS_ = RGB(1.0f), const EdgeMedia& edge_ = {})
-        : fromLight(fromLight_), fromCamera(fromCamera_), delta(delta_), joinable(joinable_), sigmaS(sigmaS_), edge(edge_) {}
+        : fromLight(fromLight_),
+          fromCamera(fromCamera_),
+          delta(delta_),
+          joinable(joinable_),
+          sigmaS(sigmaS_),
+          edge(edge_) {}
 
     float fromLight = 0.0f;
     float fromCamera = 0.0f;
-    bool delta = false;     // x_i scatters by a delta lobe on this path
-    bool joinable = true;   // a strategy may join at x_i (not a scattering inside a material's interior)
-    RGB sigmaS{1.0f};       // at a medium vertex, its scattering coefficient; 1 on surfaces
-    EdgeMedia edge;         // from x_{i-1} to x_i (unused at x_0)
+    bool delta = false;    // x_i scatters by a delta lobe on this path
+    bool joinable = true;  // a strategy may join at x_i (not a scattering inside a material's interior)
+    RGB sigmaS{1.0f};      // at a medium vertex, its scattering coefficient; 1 on surfaces
+    EdgeMedia edge;        // from x_{i-1} to x_i (unused at x_0)
 };
 
 struct StrategyPath {

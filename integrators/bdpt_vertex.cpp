@@ -54,8 +54,8 @@ float neeDensity(const RenderScene& scene, const LightOrigin& x0, const Vertex& 
     return d2 > 0.0f ? choice * light.pdf(from, d / std::sqrt(d2), {x0.point, x0.normal}) * x0.cosine / d2 : 0.0f;
 }
 
-LightOrigin originAt(const RenderScene& scene, int light, const Vec3f& point, const Vec3f& normal, const Vec3f& direction,
-                     bool delta, float choice) {
+LightOrigin originAt(const RenderScene& scene, int light, const Vec3f& point, const Vec3f& normal,
+                     const Vec3f& direction, bool delta, float choice) {
     const render::Light& l = scene.light(light);
     render::EmissionDensity density = l.emissionDensity(point, direction, scene.bounds());
     LightOrigin o{light, point, normal, direction, l.atInfinity(), delta, density.cosine};
@@ -95,10 +95,12 @@ MediumStack mediaAt(const RenderScene& scene, const Vec3f& point, const Vec3f& d
         std::optional<render::SurfaceHit> hit = scene.intersect(ray);
         if (!hit) break;
         if (hit->interior >= 0) {
-            if (dot(direction, hit->geometricNormal) < 0.0f) entered.push_back(hit->interior);
+            if (dot(direction, hit->geometricNormal) < 0.0f)
+                entered.push_back(hit->interior);
             else if (auto it = std::find(entered.rbegin(), entered.rend(), hit->interior); it != entered.rend())
                 entered.erase(std::next(it).base());
-            else holding.push_back(hit->interior);
+            else
+                holding.push_back(hit->interior);
         }
         ray.origin = spawnOrigin(hit->point, hit->geometricNormal, direction);
     }

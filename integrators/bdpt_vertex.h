@@ -48,25 +48,27 @@ struct Vertex {
         : hit(hit_), wo(wo_), beta(beta_), media(media_) {}
 
     render::SurfaceHit hit;
-    Vec3f wo;          // unit, towards the previous vertex of its own subpath
-    RGB beta;          // the subpath's throughput up to here
-    MediumStack media; // the media its subpath was in on reaching it
-    float fromOwn = 0.0f;    // area (volume) density its own subpath drew it with (1 through a delta lobe)
-    float fromOther = 0.0f;  // the density the other subpath would, filled when the next vertex is drawn
-    bool delta = false;          // left by a delta lobe
-    bool transmissive = false;   // its BSDF transmits (shaded without flipping, light gathered from both sides)
+    Vec3f wo;                   // unit, towards the previous vertex of its own subpath
+    RGB beta;                   // the subpath's throughput up to here
+    MediumStack media;          // the media its subpath was in on reaching it
+    float fromOwn = 0.0f;       // area (volume) density its own subpath drew it with (1 through a delta lobe)
+    float fromOther = 0.0f;     // the density the other subpath would, filled when the next vertex is drawn
+    bool delta = false;         // left by a delta lobe
+    bool transmissive = false;  // its BSDF transmits (shaded without flipping, light gathered from both sides)
     bool inMedium = false;
-    bool walking = false;        // a scattering inside a material's interior: never joined (bdpt.h)
-    float g = 0.0f;              // Henyey-Greenstein anisotropy, at a medium vertex
-    RGB sigmaS{1.0f};            // scattering coefficient at a medium vertex (bdpt_mis.h); 1 on surfaces
-    EdgeMedia edge;              // how the edge from its subpath's previous vertex crosses media
-    int bounces = 0;             // its subpath's scattering vertices up to it, interior walks not counted
+    bool walking = false;  // a scattering inside a material's interior: never joined (bdpt.h)
+    float g = 0.0f;        // Henyey-Greenstein anisotropy, at a medium vertex
+    RGB sigmaS{1.0f};      // scattering coefficient at a medium vertex (bdpt_mis.h); 1 on surfaces
+    EdgeMedia edge;        // how the edge from its subpath's previous vertex crosses media
+    int bounces = 0;       // its subpath's scattering vertices up to it, interior walks not counted
 
     const Vec3f& point() const { return hit.point; }
     // |cos| between direction d and the surface (1 in a medium: densities per unit volume).
     float cosine(const Vec3f& d) const { return inMedium ? 1.0f : std::abs(dot(hit.geometricNormal, d)); }
     // Where a ray towards direction d leaves it: just off the surface on d's side, or the point.
-    Vec3f leaving(const Vec3f& d) const { return inMedium ? hit.point : spawnOrigin(hit.point, hit.geometricNormal, d); }
+    Vec3f leaving(const Vec3f& d) const {
+        return inMedium ? hit.point : spawnOrigin(hit.point, hit.geometricNormal, d);
+    }
     // The medium a ray leaving it along d travels through, or nullptr.
     const media::Medium* mediumTowards(const Vec3f& d) const {
         return inMedium ? media.medium() : media.after(hit, wo, d).medium();
@@ -121,8 +123,8 @@ float neeDensity(const render::RenderScene& scene, const LightOrigin& x0, const 
 
 // x_0 completed by its emission densities: `light` at `point` (normal `normal`) sending light
 // along `direction`; `choice`: the probability light subpaths start on it.
-LightOrigin originAt(const render::RenderScene& scene, int light, const Vec3f& point, const Vec3f& normal, const Vec3f& direction,
-                     bool delta, float choice);
+LightOrigin originAt(const render::RenderScene& scene, int light, const Vec3f& point, const Vec3f& normal,
+                     const Vec3f& direction, bool delta, float choice);
 
 // Density of x_1 drawn from the origin by emission sampling.
 float emittedTowards(const render::RenderScene& scene, const LightOrigin& x0, const Vertex& x1);
@@ -139,6 +141,7 @@ RGB majorantDepth(const media::Medium* medium, const Vec3f& from, const Vec3f& d
 // surface it first crosses outwards holds it. For light subpaths, whose lights may sit inside
 // closed surfaces (a camera is assumed outside all of them, as `path` assumes).
 inline constexpr int kMaxProbeSurfaces = 16;
-MediumStack mediaAt(const render::RenderScene& scene, const Vec3f& point, const Vec3f& direction, RenderCounters& counters);
+MediumStack mediaAt(const render::RenderScene& scene, const Vec3f& point, const Vec3f& direction,
+                    RenderCounters& counters);
 
 }  // namespace fluence::integrators::bdpt

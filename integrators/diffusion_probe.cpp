@@ -69,7 +69,8 @@ std::optional<DiffusionExit> sampleDiffusionExit(const render::RenderScene& scen
         const float rProjected = std::sqrt(std::max(0.0f, dot(d, d) - height * height));
         const float cosine = std::abs(dot(exit.geometricNormal, axes[a]));
         for (int c = 0; c < 3; ++c)
-            if (rProjected < profile.maxRadius(c)) pdf += kAxisProbability[a] * cosine * profile.pdfArea(c, rProjected) / 3.0f;
+            if (rProjected < profile.maxRadius(c))
+                pdf += kAxisProbability[a] * cosine * profile.pdfArea(c, rProjected) / 3.0f;
     }
     pdf /= static_cast<float>(found);
     if (!(pdf > 0.0f)) return std::nullopt;

@@ -71,7 +71,8 @@ FilmSample directLightingThroughDeltaLobes(const render::RenderScene& scene, con
         if (depth == 0) recordFirstHit(out, *hit, wo, camera);
         if (hit->light >= 0) {
             const RGB le = emittedAtHit(scene, *hit, wo);
-            if (!isBlack(le)) radiance += throughput * le * emitterWeight(hit->light, LightHit{hit->point, hit->geometricNormal});
+            if (!isBlack(le))
+                radiance += throughput * le * emitterWeight(hit->light, LightHit{hit->point, hit->geometricNormal});
         }
         if (hit->lightShape || !unique || depth >= maxDepth) break;
 
@@ -105,7 +106,8 @@ FilmSample directLightingThroughDeltaLobes(const render::RenderScene& scene, con
             if (scene.occluded(shadowOrigin, ls->wi, ls->distance, ray.time)) return RGB(0.0f);
             const float lightPdf = choice.probability * ls->pdf;
             const float weight = ls->delta ? 1.0f : powerHeuristic(lightPdf, bsdf.pdf(woLocal, wiLocal));
-            const RGB tr = transmittance(inside.after(*hit, wo, ls->wi).medium(), shadowOrigin, ls->wi, ls->distance, rng);
+            const RGB tr =
+                transmittance(inside.after(*hit, wo, ls->wi).medium(), shadowOrigin, ls->wi, ls->distance, rng);
             return f * ls->Li * tr * (weight / lightPdf);
         };
         if (haveLights && connectable) radiance += throughput * sampleLight();

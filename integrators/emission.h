@@ -21,7 +21,8 @@ inline RGB emittedAtHit(const render::RenderScene& scene, const render::SurfaceH
 // -direction to a ray that left the scene along `direction`, in the scene's order; a camera ray
 // (straight from the camera) sees only those visible to the camera (RenderScene::lightsAtInfinity).
 template <class Reached>
-void forEachLightAtInfinity(const render::RenderScene& scene, const Vec3f& direction, bool cameraRay, Reached&& reached) {
+void forEachLightAtInfinity(const render::RenderScene& scene, const Vec3f& direction, bool cameraRay,
+                            Reached&& reached) {
     for (int index : scene.lightsAtInfinity(cameraRay)) {
         const RGB le = scene.light(index).escaped(direction);
         if (!isBlack(le)) reached(index, le);

@@ -9,7 +9,8 @@
 namespace fluence::integrators {
 
 // Fills the AOVs of a camera sample from its first hit.
-inline void recordFirstHit(FilmSample& out, const render::SurfaceHit& hit, const Vec3f& wo, const render::Camera& camera) {
+inline void recordFirstHit(FilmSample& out, const render::SurfaceHit& hit, const Vec3f& wo,
+                           const render::Camera& camera) {
     out.hit = true;
     out.depth = camera.viewDepth(hit.point);
     out.albedo = hit.material.diffuse;

@@ -26,8 +26,8 @@ Vec2f rasterOf(const render::Camera& camera, const Matrix4& toNdc, const Vec3f& 
     return {float(x / w * camera.imageWidth()), float(y / w * camera.imageHeight())};
 }
 
-Value sampleValue(const FirstHitAov& aov, const render::RenderScene& scene, const render::Camera& camera, const Matrix4& toNdc,
-                  const render::Ray& ray, const render::SurfaceHit* hit) {
+Value sampleValue(const FirstHitAov& aov, const render::RenderScene& scene, const render::Camera& camera,
+                  const Matrix4& toNdc, const render::Ray& ray, const render::SurfaceHit* hit) {
     Value v{0.0f, 0.0f, 0.0f, 0.0f};
     if (!hit) {
         if (aov.source == FirstHitSource::Depth) v[0] = camera.farClip();
@@ -41,7 +41,8 @@ Value sampleValue(const FirstHitAov& aov, const render::RenderScene& scene, cons
             break;
         }
         case FirstHitSource::Albedo:
-            if (!hit->lightShape) v = {hit->material.diffuse[0], hit->material.diffuse[1], hit->material.diffuse[2], 0.0f};
+            if (!hit->lightShape)
+                v = {hit->material.diffuse[0], hit->material.diffuse[1], hit->material.diffuse[2], 0.0f};
             break;
         case FirstHitSource::Primvar: {
             float value[4] = {0.0f, 0.0f, 0.0f, 0.0f};
@@ -74,7 +75,9 @@ struct Accumulator {
             case PixelFilter::Min:
             case PixelFilter::Max:
                 for (std::size_t c = 0; c < 4; ++c)
-                    best[c] = !anyHit ? v[c] : filter == PixelFilter::Min ? std::min(best[c], v[c]) : std::max(best[c], v[c]);
+                    best[c] = !anyHit                      ? v[c]
+                              : filter == PixelFilter::Min ? std::min(best[c], v[c])
+                                                           : std::max(best[c], v[c]);
                 break;
             case PixelFilter::Closest:
                 if (depth < bestDepth) {
@@ -100,7 +103,8 @@ Image renderFirstHitAovs(const render::RenderScene& scene, const render::Camera&
     const Matrix4 toNdc = camera.worldToNdc();
     const std::vector<Value> missValues = [&] {
         std::vector<Value> values;
-        for (const FirstHitAov& aov : aovs) values.push_back(sampleValue(aov, scene, camera, toNdc, render::Ray{}, nullptr));
+        for (const FirstHitAov& aov : aovs)
+            values.push_back(sampleValue(aov, scene, camera, toNdc, render::Ray{}, nullptr));
         return values;
     }();
 
@@ -120,7 +124,8 @@ Image renderFirstHitAovs(const render::RenderScene& scene, const render::Camera&
                         const std::optional<render::SurfaceHit> hit = scene.intersect(ray);
                         const float depth = hit ? camera.viewDepth(hit->point) : camera.farClip();
                         for (std::size_t a = 0; a < aovs.size(); ++a)
-                            pixel[a].add(aovs[a].filter, sampleValue(aovs[a], scene, camera, toNdc, ray, hit ? &*hit : nullptr),
+                            pixel[a].add(aovs[a].filter,
+                                         sampleValue(aovs[a], scene, camera, toNdc, ray, hit ? &*hit : nullptr),
                                          hit.has_value(), depth);
                     }
                     float* out = image.pixel(x, y);
@@ -128,9 +133,10 @@ Image renderFirstHitAovs(const render::RenderScene& scene, const render::Camera&
                         const Accumulator& acc = pixel[a];
                         for (int c = 0; c < aovs[a].components; ++c) {
                             const std::size_t k = std::size_t(c);
-                            *out++ = aovs[a].filter == PixelFilter::Box ? (samples > 0 ? float(acc.sum[k] / samples) : missValues[a][k])
-                                     : acc.anyHit                       ? acc.best[k]
-                                                                        : missValues[a][k];
+                            *out++ = aovs[a].filter == PixelFilter::Box
+                                         ? (samples > 0 ? float(acc.sum[k] / samples) : missValues[a][k])
+                                     : acc.anyHit ? acc.best[k]
+                                                  : missValues[a][k];
                         }
                     }
                 }

@@ -90,8 +90,9 @@ public:
                                                  std::uint64_t /*seed*/, SplatFilm* /*splats*/) const {
         return std::make_unique<RenderState>();
     }
-    virtual void beginSamples(RenderState& /*state*/, const render::RenderScene& /*scene*/, const render::Camera& /*camera*/,
-                              std::uint64_t /*seed*/, int /*firstSample*/, int /*count*/) const {}
+    virtual void beginSamples(RenderState& /*state*/, const render::RenderScene& /*scene*/,
+                              const render::Camera& /*camera*/, std::uint64_t /*seed*/, int /*firstSample*/,
+                              int /*count*/) const {}
     virtual FilmSample sample(const RenderState& state, const render::RenderScene& scene, const render::Camera& camera,
                               const render::Ray& ray, SampleStream& rng, RenderCounters& counters) const = 0;
 };

@@ -17,7 +17,7 @@ constexpr std::uint8_t kAllScatterings = (1u << kScatteringCount) - 1;
 constexpr int kMaxRepetition = 1000;
 constexpr int kMaxNesting = 100;  // groups and stacked repetitions, which the parser and NFA recurse into
 constexpr std::size_t kMaxNfaStates = 1u << 16;
-constexpr std::size_t kMaxClosureSteps = 1u << 24;  // NFA states visited while determinizing (time and memory)
+constexpr std::size_t kMaxClosureSteps = 1u << 24;        // NFA states visited while determinizing (time and memory)
 constexpr std::string_view kTypeLetters = "CRTVLOB";      // in EventType order
 constexpr std::string_view kScatteringLetters = "-DGSs";  // in Scattering order (None has none)
 
@@ -108,7 +108,8 @@ private:
     Node parseSequence() {
         Node sequence{Node::Kind::Sequence};
         while (!atEnd() && peek() != '|' && peek() != ')') sequence.children.push_back(parseRepeated());
-        if (sequence.children.empty()) fail(pos_, atEnd() ? "nothing to match at the end" : "nothing to match before " + quoted(peek()));
+        if (sequence.children.empty())
+            fail(pos_, atEnd() ? "nothing to match at the end" : "nothing to match before " + quoted(peek()));
         if (sequence.children.size() == 1) return std::move(sequence.children.front());
         return sequence;
     }
@@ -147,12 +148,14 @@ private:
         if (atEnd()) fail(open, "unclosed '{'");
         if (peek() != '}') fail(pos_, "expected '}'");
         ++pos_;
-        if (max != -1 && max < min) fail(open, "reversed repetition bounds (" + std::to_string(min) + " > " + std::to_string(max) + ")");
+        if (max != -1 && max < min)
+            fail(open, "reversed repetition bounds (" + std::to_string(min) + " > " + std::to_string(max) + ")");
         return {min, max};
     }
 
     void enterLevel(std::size_t at) {
-        if (++depth_ > kMaxNesting) fail(at, "groups and repetitions nested more than " + std::to_string(kMaxNesting) + " deep");
+        if (++depth_ > kMaxNesting)
+            fail(at, "groups and repetitions nested more than " + std::to_string(kMaxNesting) + " deep");
     }
 
     int parseNumber(const char* whatIfMissing) {
@@ -210,7 +213,8 @@ private:
         } else if (const int scattering = scatteringIndex(c); scattering >= 0) {
             test.scatterings = static_cast<std::uint8_t>(1u << scattering);
         } else {
-            fail(pos_, std::isalpha(static_cast<unsigned char>(c)) ? "unknown letter " + quoted(c) : "unexpected character " + quoted(c));
+            fail(pos_, std::isalpha(static_cast<unsigned char>(c)) ? "unknown letter " + quoted(c)
+                                                                   : "unexpected character " + quoted(c));
         }
         ++pos_;
         return test;
@@ -272,7 +276,8 @@ private:
         for (int position = 0;; ++position) {
             const char c = peek();
             if (c == '>') break;
-            if (c != '.' && c != '[' && c != '\'' && !std::isalpha(static_cast<unsigned char>(c))) fail(open, "unclosed '<'");
+            if (c != '.' && c != '[' && c != '\'' && !std::isalpha(static_cast<unsigned char>(c)))
+                fail(open, "unclosed '<'");
             if (position == 3) fail(pos_, "an event ends after its label (positions: type, scattering, label)");
             if (labelComes()) position = 2;
             parsePosition(position, test);
@@ -368,7 +373,8 @@ struct Nfa {
     std::vector<State> states;
 
     int add() {
-        if (states.size() == kMaxNfaStates) failTooComplex("its repetitions expand to more than " + std::to_string(kMaxNfaStates) + " steps");
+        if (states.size() == kMaxNfaStates)
+            failTooComplex("its repetitions expand to more than " + std::to_string(kMaxNfaStates) + " steps");
         states.emplace_back();
         return static_cast<int>(states.size()) - 1;
     }
@@ -441,7 +447,8 @@ struct Dfa {
 // Subset construction. A DFA state is the set of NFA states reachable by the path so far, kept
 // as its sorted "important" states (those with a move on a pattern, and the accepting end): two
 // closures with the same important states behave alike.
-Dfa determinize(const Nfa& nfa, Nfa::Fragment whole, const std::vector<std::vector<char>>& patternMatchesClass, std::size_t classes) {
+Dfa determinize(const Nfa& nfa, Nfa::Fragment whole, const std::vector<std::vector<char>>& patternMatchesClass,
+                std::size_t classes) {
     std::vector<std::uint32_t> visited(nfa.states.size(), 0);
     std::uint32_t visit = 0;
     std::size_t steps = 0;
@@ -458,7 +465,8 @@ Dfa determinize(const Nfa& nfa, Nfa::Fragment whole, const std::vector<std::vect
         }
         steps += set.size();
         if (steps > kMaxClosureSteps) failTooComplex("building its automaton would take too long");
-        std::erase_if(set, [&](int s) { return nfa.states[static_cast<std::size_t>(s)].pattern < 0 && s != whole.end; });
+        std::erase_if(set,
+                      [&](int s) { return nfa.states[static_cast<std::size_t>(s)].pattern < 0 && s != whole.end; });
         std::sort(set.begin(), set.end());
         return set;
     };
@@ -470,7 +478,8 @@ Dfa determinize(const Nfa& nfa, Nfa::Fragment whole, const std::vector<std::vect
         const auto [it, added] = ids.emplace(std::move(set), static_cast<int>(sets.size()));
         if (added) {
             if (sets.size() == static_cast<std::size_t>(LightPathExpression::kMaxStates))
-                failTooComplex("its automaton would need more than " + std::to_string(LightPathExpression::kMaxStates) + " states");
+                failTooComplex("its automaton would need more than " + std::to_string(LightPathExpression::kMaxStates) +
+                               " states");
             sets.push_back(&it->first);
             dfa.accepting.push_back(std::binary_search(it->first.begin(), it->first.end(), whole.end) ? 1 : 0);
         }
@@ -482,7 +491,8 @@ Dfa determinize(const Nfa& nfa, Nfa::Fragment whole, const std::vector<std::vect
             std::vector<int> moved;
             for (int s : *sets[state]) {
                 const Nfa::State& nfaState = nfa.states[static_cast<std::size_t>(s)];
-                if (nfaState.pattern >= 0 && patternMatchesClass[static_cast<std::size_t>(nfaState.pattern)][c]) moved.push_back(nfaState.target);
+                if (nfaState.pattern >= 0 && patternMatchesClass[static_cast<std::size_t>(nfaState.pattern)][c])
+                    moved.push_back(nfaState.target);
             }
             dfa.transitions.push_back(moved.empty() ? -1 : idOf(closure(std::move(moved))));
         }
@@ -495,7 +505,8 @@ Dfa determinize(const Nfa& nfa, Nfa::Fragment whole, const std::vector<std::vect
 class Partition {
 public:
     // States 0..count-1, split into the blocks given by `initialBlock` (0-based, dense).
-    Partition(std::size_t count, const std::vector<int>& initialBlock) : members_(count), location_(count), blockOf_(initialBlock) {
+    Partition(std::size_t count, const std::vector<int>& initialBlock)
+        : members_(count), location_(count), blockOf_(initialBlock) {
         const int blocks = 1 + *std::max_element(initialBlock.begin(), initialBlock.end());
         first_.assign(static_cast<std::size_t>(blocks) + 1, 0);
         for (int b : initialBlock) ++first_[static_cast<std::size_t>(b) + 1];
@@ -503,16 +514,20 @@ public:
         end_.assign(first_.begin() + 1, first_.end());
         first_.pop_back();
         std::vector<int> fill(first_.begin(), first_.end());
-        for (std::size_t s = 0; s < count; ++s) place(static_cast<int>(s), fill[static_cast<std::size_t>(blockOf_[s])]++);
+        for (std::size_t s = 0; s < count; ++s)
+            place(static_cast<int>(s), fill[static_cast<std::size_t>(blockOf_[s])]++);
         marked_.assign(first_.size(), 0);
     }
 
     int blockCount() const { return static_cast<int>(first_.size()); }
     int blockOf(int state) const { return blockOf_[static_cast<std::size_t>(state)]; }
     std::vector<int> membersOf(int block) const {
-        return {members_.begin() + first_[static_cast<std::size_t>(block)], members_.begin() + end_[static_cast<std::size_t>(block)]};
+        return {members_.begin() + first_[static_cast<std::size_t>(block)],
+                members_.begin() + end_[static_cast<std::size_t>(block)]};
     }
-    int sizeOf(int block) const { return end_[static_cast<std::size_t>(block)] - first_[static_cast<std::size_t>(block)]; }
+    int sizeOf(int block) const {
+        return end_[static_cast<std::size_t>(block)] - first_[static_cast<std::size_t>(block)];
+    }
 
     void mark(int state) {
         const auto b = static_cast<std::size_t>(blockOf(state));
@@ -536,7 +551,8 @@ public:
                 end_.push_back(first_[old] + marked_[old]);
                 marked_.push_back(0);
                 first_[old] = end_.back();
-                for (int i = first_.back(); i < end_.back(); ++i) blockOf_[static_cast<std::size_t>(members_[static_cast<std::size_t>(i)])] = created;
+                for (int i = first_.back(); i < end_.back(); ++i)
+                    blockOf_[static_cast<std::size_t>(members_[static_cast<std::size_t>(i)])] = created;
                 onSplit(b, created);
             }
             marked_[old] = 0;
@@ -572,7 +588,9 @@ Dfa minimize(const Dfa& dfa, std::size_t classes) {
     for (std::size_t i = 1; i < offsets.size(); ++i) offsets[i] += offsets[i - 1];
     std::vector<int> fill(offsets.begin(), offsets.end() - 1);
     for (std::size_t c = 0; c < classes; ++c)
-        for (std::size_t s = 0; s <= n; ++s) sources[static_cast<std::size_t>(fill[c * (n + 1) + static_cast<std::size_t>(target(s, c))]++)] = static_cast<int>(s);
+        for (std::size_t s = 0; s <= n; ++s)
+            sources[static_cast<std::size_t>(fill[c * (n + 1) + static_cast<std::size_t>(target(s, c))]++)] =
+                static_cast<int>(s);
 
     std::vector<int> initial(n + 1, 0);
     for (std::size_t s = 0; s < n; ++s) initial[s] = dfa.accepting[s];
@@ -588,11 +606,15 @@ Dfa minimize(const Dfa& dfa, std::size_t classes) {
         for (std::size_t c = 0; c < classes; ++c) {
             for (int t : into) {
                 const std::size_t at = c * (n + 1) + static_cast<std::size_t>(t);
-                for (int i = offsets[at]; i < offsets[at + 1]; ++i) partition.mark(sources[static_cast<std::size_t>(i)]);
+                for (int i = offsets[at]; i < offsets[at + 1]; ++i)
+                    partition.mark(sources[static_cast<std::size_t>(i)]);
             }
             partition.split([&](int old, int created) {
                 waiting.push_back(0);
-                const int smaller = waiting[static_cast<std::size_t>(old)] || partition.sizeOf(created) < partition.sizeOf(old) ? created : old;
+                const int smaller =
+                    waiting[static_cast<std::size_t>(old)] || partition.sizeOf(created) < partition.sizeOf(old)
+                        ? created
+                        : old;
                 work.push_back(smaller);
                 waiting[static_cast<std::size_t>(smaller)] = 1;
             });
@@ -614,7 +636,8 @@ Dfa minimize(const Dfa& dfa, std::size_t classes) {
         if (b < 0) continue;
         minimal.accepting[static_cast<std::size_t>(b)] = dfa.accepting[s];
         for (std::size_t c = 0; c < classes; ++c)
-            minimal.transitions[static_cast<std::size_t>(b) * classes + c] = number[static_cast<std::size_t>(partition.blockOf(target(s, c)))];
+            minimal.transitions[static_cast<std::size_t>(b) * classes + c] =
+                number[static_cast<std::size_t>(partition.blockOf(target(s, c)))];
     }
     return minimal;
 }
@@ -626,7 +649,8 @@ LightPathExpression::LightPathExpression(std::string_view text) : text_(text) {
     const Node root = parser.parseWhole();
 
     for (const EventPattern& pattern : parser.patterns)
-        for (const EventTest& test : pattern.anyOf) labels_.insert(labels_.end(), test.label.names.begin(), test.label.names.end());
+        for (const EventTest& test : pattern.anyOf)
+            labels_.insert(labels_.end(), test.label.names.begin(), test.label.names.end());
     std::sort(labels_.begin(), labels_.end());
     labels_.erase(std::unique(labels_.begin(), labels_.end()), labels_.end());
 
@@ -639,8 +663,10 @@ LightPathExpression::LightPathExpression(std::string_view text) : text_(text) {
             for (std::size_t label = 0; label < labelSlots; ++label) {
                 const std::string* name = label < labels_.size() ? &labels_[label] : nullptr;
                 std::vector<char> signature;
-                for (const EventPattern& pattern : parser.patterns) signature.push_back(matches(pattern, type, scattering, name) ? 1 : 0);
-                const auto [it, added] = classOfSignature.emplace(signature, static_cast<std::uint32_t>(classSignatures.size()));
+                for (const EventPattern& pattern : parser.patterns)
+                    signature.push_back(matches(pattern, type, scattering, name) ? 1 : 0);
+                const auto [it, added] =
+                    classOfSignature.emplace(signature, static_cast<std::uint32_t>(classSignatures.size()));
                 if (added) classSignatures.push_back(std::move(signature));
                 symbolClass_.push_back(it->second);
             }

@@ -90,7 +90,7 @@ public:
 
     static constexpr int kDead = -1;  // no continuation can match
     static constexpr int kMaxStates = 4096;
-    int start() const { return start_; }  // the state before any event (kDead if nothing can match)
+    int start() const { return start_; }                 // the state before any event (kDead if nothing can match)
     int next(int state, const PathEvent& event) const {  // kDead stays kDead
         if (state == kDead) return kDead;
         return transitions_[static_cast<std::size_t>(state) * classCount_ + symbolClass_[symbolOf(event)]];
@@ -109,11 +109,11 @@ private:
     }
 
     std::string text_;
-    std::vector<std::string> labels_;            // the custom labels the expression mentions, sorted
-    std::vector<std::uint32_t> symbolClass_;     // alphabet symbol -> class
+    std::vector<std::string> labels_;         // the custom labels the expression mentions, sorted
+    std::vector<std::uint32_t> symbolClass_;  // alphabet symbol -> class
     std::size_t classCount_ = 0;
-    std::vector<int> transitions_;               // [state * classCount_ + class] -> state or kDead
-    std::vector<std::uint8_t> accepting_;        // per state
+    std::vector<int> transitions_;         // [state * classCount_ + class] -> state or kDead
+    std::vector<std::uint8_t> accepting_;  // per state
     int start_ = kDead;
 };
 

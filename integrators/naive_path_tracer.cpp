@@ -55,7 +55,8 @@ FilmSample NaivePathTracer::sample(const RenderState&, const render::RenderScene
             if (flight.event == media::FlightEvent::Scattered) {
                 const bool walking = inside.depth() > 0;  // inside a material's interior (russian_roulette.h)
                 if (walking ? ++interiorScatterings > kMaxInteriorScatterings : depth >= maxDepth_) break;
-                media::PhaseSample ps = media::HenyeyGreenstein(flight.properties.g).sample(-ray.direction, rng.next2D());
+                media::PhaseSample ps =
+                    media::HenyeyGreenstein(flight.properties.g).sample(-ray.direction, rng.next2D());
                 if (ps.pdf <= 0.0f) break;
                 throughput *= ps.p / ps.pdf;
                 if (!continueInMedium(throughput, etaScale, depth, walking, rng)) break;
@@ -65,7 +66,8 @@ FilmSample NaivePathTracer::sample(const RenderState&, const render::RenderScene
             }
         }
         if (!hit) {
-            forEachLightAtInfinity(scene, ray.direction, depth == 0, [&](int, const RGB& le) { radiance += throughput * weighted(le); });
+            forEachLightAtInfinity(scene, ray.direction, depth == 0,
+                                   [&](int, const RGB& le) { radiance += throughput * weighted(le); });
             break;
         }
         const Vec3f wo = exiting ? -hit->shadingNormal : -ray.direction;

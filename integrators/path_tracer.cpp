@@ -46,7 +46,8 @@ struct MisState {
     // The weight of a light sample of density lightPdf whose direction the BSDF or phase function
     // would have drawn with scatterPdf (0 for a delta light), through transmittance `tr`.
     RGB lightSample(float lightPdf, float scatterPdf, const media::TransmittanceEstimate& tr) const {
-        if (!spectral) return RGB(scatterPdf > 0.0f ? powerHeuristic(lightPdf, scatterPdf) / lightPdf : 1.0f / lightPdf);
+        if (!spectral)
+            return RGB(scatterPdf > 0.0f ? powerHeuristic(lightPdf, scatterPdf) / lightPdf : 1.0f / lightPdf);
         return tr.throughput / media::channelAverage(rU * (tr.pdfRatio * lightPdf + tr.throughput * scatterPdf));
     }
     // The ray continues in a direction drawn with density pdf (a delta lobe's: its lobe probability).
@@ -122,12 +123,22 @@ SurfaceVertex surfaceVertex(const SurfaceHit& hit, const Vec3f& wo, const render
 template <bool kMedia>
 class PathWalk {
 public:
-    PathWalk(const LightEvents& lightEvents, std::span<const LightPathAov> aovs, int maxDepth, const render::RenderScene& scene,
-             const render::Camera& camera, const Ray& cameraRay, SampleStream& rng, RenderCounters& counters)
-        : lightEvents_(lightEvents), maxDepth_(maxDepth), scene_(scene), camera_(camera), rng_(rng), counters_(counters),
-          ray_(cameraRay), inside_(scene), mis_{kMedia && scene.hasMedia()},
-          hero_(mis_.spectral ? media::sampleHeroChannel(rng.next()) : 0), previousPoint_(cameraRay.origin),
-          haveLights_(!scene.lightSelection().empty()), lightPaths_(aovs) {
+    PathWalk(const LightEvents& lightEvents, std::span<const LightPathAov> aovs, int maxDepth,
+             const render::RenderScene& scene, const render::Camera& camera, const Ray& cameraRay, SampleStream& rng,
+             RenderCounters& counters)
+        : lightEvents_(lightEvents),
+          maxDepth_(maxDepth),
+          scene_(scene),
+          camera_(camera),
+          rng_(rng),
+          counters_(counters),
+          ray_(cameraRay),
+          inside_(scene),
+          mis_{kMedia && scene.hasMedia()},
+          hero_(mis_.spectral ? media::sampleHeroChannel(rng.next()) : 0),
+          previousPoint_(cameraRay.origin),
+          haveLights_(!scene.lightSelection().empty()),
+          lightPaths_(aovs) {
         if (lightPaths_.active()) out_.clearLightPaths(aovs.size());
     }
 
@@ -137,7 +148,8 @@ public:
             // (Initialised in place from either: a SurfaceHit is large, and copying it showed in profiles.)
             const bool exiting = kMedia && diffusionExit_.has_value();
             if (!exiting) ++(depth == 0 ? counters_.camera : counters_.bounce);
-            std::optional<SurfaceHit> hit = exiting ? std::exchange(diffusionExit_, std::nullopt) : scene_.intersect(ray_);
+            std::optional<SurfaceHit> hit =
+                exiting ? std::exchange(diffusionExit_, std::nullopt) : scene_.intersect(ray_);
             if (const media::Medium* medium = !kMedia || exiting ? nullptr : inside_.medium()) {
                 const Step step = throughMedium(*medium, hit, depth);
                 if (step == Step::End) break;
@@ -164,8 +176,8 @@ private:
         mis_.rU *= flight.pdfRatio;
         mis_.rL *= flight.lightPdfRatio;
         if (depth == 0 && flight.event != media::FlightEvent::Escaped)
-            recordFirstVolumeEvent(out_, flight.p, flight.properties.sigmaS, flight.properties.sigmaA + flight.properties.sigmaS,
-                                   camera_);
+            recordFirstVolumeEvent(out_, flight.p, flight.properties.sigmaS,
+                                   flight.properties.sigmaA + flight.properties.sigmaS, camera_);
         if (flight.event == media::FlightEvent::Absorbed) {
             const RGB emitted = throughput_ * flight.properties.emission / media::channelAverage(mis_.rU);
             radiance_ += emitted;
@@ -186,11 +198,13 @@ private:
         // Inside a material's interior no light is sampled: the closed surface around the
         // point blocks every shadow ray but those to lights inside it, which phase sampling
         // still finds, then weighted as the only strategy (as after a delta lobe).
-        sampleLight(haveLights_ && !walking, flight.p, Vec3f(0.0f), [&](const Vec3f&) { return std::pair(flight.p, &medium); },
-                    [&](const Vec3f& wi) {
-            float p = phase.p(wo, wi);
-            return std::pair(RGB(p), p);
-        }, [&](const Vec3f&) { return event; });
+        sampleLight(
+            haveLights_ && !walking, flight.p, Vec3f(0.0f), [&](const Vec3f&) { return std::pair(flight.p, &medium); },
+            [&](const Vec3f& wi) {
+                float p = phase.p(wo, wi);
+                return std::pair(RGB(p), p);
+            },
+            [&](const Vec3f&) { return event; });
         media::PhaseSample ps = phase.sample(wo, rng_.next2D());
         if (ps.pdf <= 0.0f) return Step::End;
         throughput_ *= ps.p / ps.pdf;
@@ -218,7 +232,8 @@ private:
         if (hit.lightShape || depth >= maxDepth_) return Step::End;
         arena_.reset();
         const SurfaceVertex v = surfaceVertex(
-            hit, wo, exiting ? render::subsurfaceExitBsdf(hit.material, arena_) : render::materialBsdf(hit.material, arena_));
+            hit, wo,
+            exiting ? render::subsurfaceExitBsdf(hit.material, arena_) : render::materialBsdf(hit.material, arena_));
         sampleLightAt(v);
         return continueFrom(v, depth);
     }
@@ -233,12 +248,15 @@ private:
             return std::pair(v.transmissive ? spawnOrigin(v.hit.point, ng, wi) : v.lightFrom,
                              kMedia ? inside_.after(v.hit, v.wo, wi).medium() : nullptr);
         };
-        sampleLight(haveLights_ && v.connectable, v.lightFrom, v.lightNormal, shadowFrom, [&](const Vec3f& wi) {
-            Vec3f wiLocal = frame.toLocal(wi);
-            bool agree = sidesAgree(v.wo, wi, ng, v.woLocal.z, wiLocal.z);
-            return std::pair(agree ? v.bsdf.f(v.woLocal, wiLocal) * std::abs(wiLocal.z) : RGB(0.0f),
-                             agree ? v.bsdf.pdf(v.woLocal, wiLocal) : 0.0f);
-        }, [&](const Vec3f& wi) { return joinedEvents(v.bsdf, v.woLocal, frame.toLocal(wi)); });
+        sampleLight(
+            haveLights_ && v.connectable, v.lightFrom, v.lightNormal, shadowFrom,
+            [&](const Vec3f& wi) {
+                Vec3f wiLocal = frame.toLocal(wi);
+                bool agree = sidesAgree(v.wo, wi, ng, v.woLocal.z, wiLocal.z);
+                return std::pair(agree ? v.bsdf.f(v.woLocal, wiLocal) * std::abs(wiLocal.z) : RGB(0.0f),
+                                 agree ? v.bsdf.pdf(v.woLocal, wiLocal) : 0.0f);
+            },
+            [&](const Vec3f& wi) { return joinedEvents(v.bsdf, v.woLocal, frame.toLocal(wi)); });
     }
 
     // Continues the path by sampling the BSDF (a plain Lambertian has one lobe: no lobe number drawn).
@@ -248,7 +266,8 @@ private:
         std::optional<render::BsdfSample> bs = v.bsdf.sample(v.woLocal, uLobe, rng_.next2D());
         if (!bs) return Step::End;
         Vec3f wi = v.surface.frame.toWorld(bs->wi);
-        if (!sidesAgree(v.wo, wi, ng, v.woLocal.z, bs->wi.z)) return Step::End;  // the shading frame disagrees with the surface
+        if (!sidesAgree(v.wo, wi, ng, v.woLocal.z, bs->wi.z))
+            return Step::End;  // the shading frame disagrees with the surface
         throughput_ *= bs->f * (std::abs(bs->wi.z) / bs->pdf);
         etaScale_ *= bs->eta * bs->eta;
         if (!continuePath(throughput_, etaScale_, depth, rng_)) return Step::End;
@@ -256,7 +275,8 @@ private:
 
         mis_.scattered(bs->pdf);
         if constexpr (kMedia) {
-            const DiffusionStep step = stepThroughDiffusion(scene_, v.hit, v.wo, wi, throughput_, diffusionExit_, rng_, counters_);
+            const DiffusionStep step =
+                stepThroughDiffusion(scene_, v.hit, v.wo, wi, throughput_, diffusionExit_, rng_, counters_);
             if (step == DiffusionStep::Lost) return Step::End;
             if (step == DiffusionStep::Exited) {
                 lightPaths_.scatter(VertexEvents(volumeEvent(true)));
@@ -278,8 +298,8 @@ private:
     // and vertexEvents(wi) the vertex's events for the light path expressions.
     // Its random numbers are drawn even when it is not `enabled`, so that every vertex uses as many.
     template <class ShadowFrom, class Scatter, class Events>
-    void sampleLight(bool enabled, const Vec3f& from, const Vec3f& fromNormal, ShadowFrom&& shadowFrom, Scatter&& scatter,
-                     Events&& vertexEvents) {
+    void sampleLight(bool enabled, const Vec3f& from, const Vec3f& fromNormal, ShadowFrom&& shadowFrom,
+                     Scatter&& scatter, Events&& vertexEvents) {
         float uLight = rng_.next();
         Vec2f uPoint = rng_.next2D();
         if (!enabled) return;
@@ -295,10 +315,11 @@ private:
         media::TransmittanceEstimate tr;
         if (kMedia && shadowMedium)
             tr = media::ratioTrackingTransmittance(*shadowMedium, {shadowOrigin, ls->wi, ls->distance}, hero_, rng_);
-        const RGB contribution =
-            throughput_ * f * ls->Li * mis_.lightSample(choice.probability * ls->pdf, ls->delta ? 0.0f : scatterPdf, tr);
+        const RGB contribution = throughput_ * f * ls->Li *
+                                 mis_.lightSample(choice.probability * ls->pdf, ls->delta ? 0.0f : scatterPdf, tr);
         radiance_ += contribution;
-        if (lightPaths_.active()) lightPaths_.connect(vertexEvents(ls->wi), lightEvents_[choice.light], contribution, out_);
+        if (lightPaths_.active())
+            lightPaths_.connect(vertexEvents(ls->wi), lightEvents_[choice.light], contribution, out_);
     }
 
     // Emission `le` of light `index` reached by the ray (at `lh` on its shape, if it has one),
@@ -306,7 +327,8 @@ private:
     void addEmitted(const RGB& le, int index, const LightHit& lh, int depth) {
         const bool unique = depth == 0 || specularBounce_;
         float weight = mis_.emitter(
-            unique ? 0.0f : lightStrategyPdf(scene_, index, previousPoint_, previousNormal_, ray_.direction, lh), unique);
+            unique ? 0.0f : lightStrategyPdf(scene_, index, previousPoint_, previousNormal_, ray_.direction, lh),
+            unique);
         radiance_ += throughput_ * le * weight;
         if (lightPaths_.active()) lightPaths_.reach(lightEvents_[index], throughput_ * le * weight, out_);
     }
@@ -336,15 +358,17 @@ private:
 }  // namespace
 
 template <bool kMedia>
-FilmSample PathTracer::trace(const LightEvents& lightEvents, const render::RenderScene& scene, const render::Camera& camera,
-                             const Ray& cameraRay, SampleStream& rng, RenderCounters& counters) const {
-    const std::span<const LightPathAov> aovs = aovs_ ? std::span<const LightPathAov>(*aovs_) : std::span<const LightPathAov>();
+FilmSample PathTracer::trace(const LightEvents& lightEvents, const render::RenderScene& scene,
+                             const render::Camera& camera, const Ray& cameraRay, SampleStream& rng,
+                             RenderCounters& counters) const {
+    const std::span<const LightPathAov> aovs =
+        aovs_ ? std::span<const LightPathAov>(*aovs_) : std::span<const LightPathAov>();
     return PathWalk<kMedia>(lightEvents, aovs, maxDepth_, scene, camera, cameraRay, rng, counters).run();
 }
 
-template FilmSample PathTracer::trace<true>(const LightEvents&, const render::RenderScene&, const render::Camera&, const Ray&, SampleStream&,
-                                           RenderCounters&) const;
-template FilmSample PathTracer::trace<false>(const LightEvents&, const render::RenderScene&, const render::Camera&, const Ray&, SampleStream&,
-                                            RenderCounters&) const;
+template FilmSample PathTracer::trace<true>(const LightEvents&, const render::RenderScene&, const render::Camera&,
+                                            const Ray&, SampleStream&, RenderCounters&) const;
+template FilmSample PathTracer::trace<false>(const LightEvents&, const render::RenderScene&, const render::Camera&,
+                                             const Ray&, SampleStream&, RenderCounters&) const;
 
 }  // namespace fluence::integrators

@@ -46,8 +46,8 @@ public:
     // `lightEvents`: the scene's (integrators/path_events.h) where there are light path expression
     // AOVs; unused without.
     template <bool kMedia>
-    FilmSample trace(const LightEvents& lightEvents, const render::RenderScene& scene, const render::Camera& camera, const render::Ray& ray,
-                     SampleStream& rng, RenderCounters& counters) const;
+    FilmSample trace(const LightEvents& lightEvents, const render::RenderScene& scene, const render::Camera& camera,
+                     const render::Ray& ray, SampleStream& rng, RenderCounters& counters) const;
 
 private:
     int maxDepth_;

@@ -25,8 +25,8 @@ std::array<int, 3> PhotonMap::cellOf(const Vec3f& p) const {
 
 std::uint32_t PhotonMap::slotOf(const std::array<int, 3>& cell) const {
     // Teschner et al.'s three large primes; the table size is a power of two.
-    const std::uint32_t h = std::uint32_t(cell[0]) * 73856093u ^ std::uint32_t(cell[1]) * 19349663u ^
-                            std::uint32_t(cell[2]) * 83492791u;
+    const std::uint32_t h =
+        std::uint32_t(cell[0]) * 73856093u ^ std::uint32_t(cell[1]) * 19349663u ^ std::uint32_t(cell[2]) * 83492791u;
     return h & std::uint32_t(slotStart_.size() - 2);
 }
 

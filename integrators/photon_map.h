@@ -68,7 +68,7 @@ private:
     std::uint32_t slotOf(const std::array<int, 3>& cell) const;
 
     float radius_, cellSize_;
-    std::vector<Photon> photons_;          // sorted by slot
+    std::vector<Photon> photons_;           // sorted by slot
     std::vector<std::uint32_t> slotStart_;  // photons of slot s: [slotStart_[s], slotStart_[s + 1])
 };
 

@@ -161,8 +161,8 @@ std::unique_ptr<RadiositySolution> Radiosity::solve(const render::RenderScene& s
     return solution;
 }
 
-std::unique_ptr<RenderState> Radiosity::prepare(const render::RenderScene& scene, const render::Camera&, std::uint64_t seed,
-                                                SplatFilm*) const {
+std::unique_ptr<RenderState> Radiosity::prepare(const render::RenderScene& scene, const render::Camera&,
+                                                std::uint64_t seed, SplatFilm*) const {
     return solve(scene, seed);
 }
 
@@ -190,7 +190,8 @@ FilmSample Radiosity::sample(const RenderState& state, const render::RenderScene
     if (std::optional<PatchPoint> at = solution.locator.locate(solution.patches, hit->point, hit->geometricNormal)) {
         const int e = elementOf(at->patch, dot(wo, solution.patches[at->patch].normal) > 0.0f ? 0 : 1);
         const RGB* corner = &solution.cornerIrradiance[3 * std::size_t(e)];
-        out.radiance += hit->material.diffuse * (corner[0] * (1.0f - at->b1 - at->b2) + corner[1] * at->b1 + corner[2] * at->b2);
+        out.radiance +=
+            hit->material.diffuse * (corner[0] * (1.0f - at->b1 - at->b2) + corner[1] * at->b1 + corner[2] * at->b2);
     }
     return out;
 }

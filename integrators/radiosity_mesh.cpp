@@ -42,7 +42,9 @@ std::vector<Patch> meshPatches(const std::vector<render::RenderScene::SurfaceTri
         for (int j = 0; j < cuts; ++j)
             for (int i = 0; i + j < cuts; ++i) {
                 patches.push_back({at(i, j), at(i + 1, j), at(i, j + 1), normal, area, t.albedo, t.emission});
-                if (i + j + 1 < cuts) patches.push_back({at(i + 1, j), at(i + 1, j + 1), at(i, j + 1), normal, area, t.albedo, t.emission});
+                if (i + j + 1 < cuts)
+                    patches.push_back(
+                        {at(i + 1, j), at(i + 1, j + 1), at(i, j + 1), normal, area, t.albedo, t.emission});
             }
     }
     return patches;
@@ -82,7 +84,8 @@ std::vector<RGB> cornerAverages(const std::vector<Patch>& patches, const std::ve
                     auto found = cells.find(cellKey(x + dx, y + dy, z + dz));
                     if (found == cells.end()) continue;
                     for (int g : found->second)
-                        if (lengthSquared(groups[g].point - point) <= weld * weld && dot(groups[g].normal, normal) >= kSmoothingCosine)
+                        if (lengthSquared(groups[g].point - point) <= weld * weld &&
+                            dot(groups[g].normal, normal) >= kSmoothingCosine)
                             return g;
                 }
         groups.push_back({point, normal});
@@ -113,13 +116,17 @@ PatchLocator::PatchLocator(const std::vector<Patch>& patches) : cellSize_(gridCe
         const Vec3f lo = vmin(p.p0, vmin(p.p1, p.p2)) - Vec3f(pad), hi = vmax(p.p0, vmax(p.p1, p.p2)) + Vec3f(pad);
         for (std::int64_t x = cellOf(lo.x); x <= cellOf(hi.x); ++x)
             for (std::int64_t y = cellOf(lo.y); y <= cellOf(hi.y); ++y)
-                for (std::int64_t z = cellOf(lo.z); z <= cellOf(hi.z); ++z) cells_[cellKey(x, y, z)].push_back(static_cast<int>(i));
+                for (std::int64_t z = cellOf(lo.z); z <= cellOf(hi.z); ++z)
+                    cells_[cellKey(x, y, z)].push_back(static_cast<int>(i));
     }
 }
 
-std::int64_t PatchLocator::cellOf(float coordinate) const { return static_cast<std::int64_t>(std::floor(coordinate / cellSize_)); }
+std::int64_t PatchLocator::cellOf(float coordinate) const {
+    return static_cast<std::int64_t>(std::floor(coordinate / cellSize_));
+}
 
-std::optional<PatchPoint> PatchLocator::locate(const std::vector<Patch>& patches, const Vec3f& p, const Vec3f& n) const {
+std::optional<PatchPoint> PatchLocator::locate(const std::vector<Patch>& patches, const Vec3f& p,
+                                               const Vec3f& n) const {
     auto found = cells_.find(cellKey(cellOf(p.x), cellOf(p.y), cellOf(p.z)));
     if (found == cells_.end()) return std::nullopt;
     std::optional<PatchPoint> best;

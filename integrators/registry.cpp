@@ -13,26 +13,43 @@ namespace fluence::integrators {
 // the reference estimator last.
 const std::vector<IntegratorInfo>& integratorRegistry() {
     static const std::vector<IntegratorInfo> registry = {
-        {"path", "L(S|D)*E", kAllPathClasses & ~kDeltaLightCaustics,
+        {"path",
+         "L(S|D)*E",
+         kAllPathClasses & ~kDeltaLightCaustics,
          "unidirectional path tracing with next-event estimation, MIS and Russian roulette",
-         [](const IntegratorSettings& s) { return std::make_unique<PathTracer>(s); }, true, {}},
-        {"direct", "L(D|S)?E", kEmitterSeen | kDirect | kDeltaLights,
-         "local illumination with shadows: emitters seen, direct lighting of the first hit (NEE + MIS); no indirect light",
-         [](const IntegratorSettings& s) { return std::make_unique<DirectLighting>(s); }, false, {}},
-        {"whitted", "LD?S*E", kEmitterSeen | kDirect | kSpecularSeen | kDeltaLights,
+         [](const IntegratorSettings& s) { return std::make_unique<PathTracer>(s); },
+         true,
+         {}},
+        {"direct",
+         "L(D|S)?E",
+         kEmitterSeen | kDirect | kDeltaLights,
+         "local illumination with shadows: emitters seen, direct lighting of the first hit (NEE + MIS); no indirect "
+         "light",
+         [](const IntegratorSettings& s) { return std::make_unique<DirectLighting>(s); },
+         false,
+         {}},
+        {"whitted",
+         "LD?S*E",
+         kEmitterSeen | kDirect | kSpecularSeen | kDeltaLights,
          "Whitted ray tracing: direct lighting (as `direct`) seen through mirrors and smooth glass; no caustics",
-         [](const IntegratorSettings& s) { return std::make_unique<Whitted>(s); }, false, {}},
-        {"bdpt", "L(S|D|V)*E; from delta lights LD(S|D|V)*E, L(S|D|V)*DD(S|D|V)*E and L(S|D|V)*DE (no LS+DS+E)",
-         kEmitterSeen | kDirect | kSpecularSeen | kIndirect | kCaustics | kDeltaLightCaustics | kDeltaLights | kVolumes |
-             kSubsurface,
+         [](const IntegratorSettings& s) { return std::make_unique<Whitted>(s); },
+         false,
+         {}},
+        {"bdpt",
+         "L(S|D|V)*E; from delta lights LD(S|D|V)*E, L(S|D|V)*DD(S|D|V)*E and L(S|D|V)*DE (no LS+DS+E)",
+         kEmitterSeen | kDirect | kSpecularSeen | kIndirect | kCaustics | kDeltaLightCaustics | kDeltaLights |
+             kVolumes | kSubsurface,
          "bidirectional path tracing, MIS (power heuristic, spectral in media) over every light/camera prefix pair, "
          "light tracing to the camera (t = 1) included, through volumes and interiors (subsurface walks join nowhere); "
          "point-light caustics seen directly (LS+DE) or lit onward, not through glass or mirrors (LS+DS+E); tiles and "
          "orthographic cameras and depth of field leave t = 1 out",
-         [](const IntegratorSettings& s) { return std::make_unique<Bdpt>(s); }, false, {}},
-        {"sppm", "L(S|D|V)*(D|V)S*E, LS*E",
-         kEmitterSeen | kDirect | kSpecularSeen | kIndirect | kCaustics | kDeltaLightCaustics | kDeltaLights | kVolumes |
-             kSubsurface,
+         [](const IntegratorSettings& s) { return std::make_unique<Bdpt>(s); },
+         false,
+         {}},
+        {"sppm",
+         "L(S|D|V)*(D|V)S*E, LS*E",
+         kEmitterSeen | kDirect | kSpecularSeen | kIndirect | kCaustics | kDeltaLightCaustics | kDeltaLights |
+             kVolumes | kSubsurface,
          "probabilistic progressive photon mapping: caustics, also from point lights, and volumetric caustics; "
          "subsurface by random walk; emissive media light nothing",
          [](const IntegratorSettings& s) {
@@ -45,7 +62,9 @@ const std::vector<IntegratorInfo>& integratorRegistry() {
          {{"sppm-photons", "fluence:sppm:photons", "photon paths traced per sample index (default 50000)", true, 1e7},
           {"sppm-radius", "fluence:sppm:radius",
            "the first sample's gather radius in scene units (default: 1.5 pixels' footprint at the scene's centre)"}}},
-        {"radiosity", "LD*E", kEmitterSeen | kDirect | kIndirect | kDeltaLights,
+        {"radiosity",
+         "LD*E",
+         kEmitterSeen | kDirect | kIndirect | kDeltaLights,
          "finite-element radiosity: patches, ray-cast form factors, Gauss-Seidel; every surface diffuse",
          [](const IntegratorSettings& s) {
              RadiositySettings radiosity;
@@ -55,9 +74,13 @@ const std::vector<IntegratorInfo>& integratorRegistry() {
          false,
          {{"radiosity-patch-size", "fluence:radiosity:patchSize",
            "the longest patch edge in scene units (default: the scene's diameter / 16)"}}},
-        {"naive", "L(S|D)*E without delta lights", kAllPathClasses & ~(kDeltaLights | kDeltaLightCaustics),
+        {"naive",
+         "L(S|D)*E without delta lights",
+         kAllPathClasses & ~(kDeltaLights | kDeltaLightCaustics),
          "reference path tracing by BSDF sampling only (no NEE, no MIS): slow; for validating `path`",
-         [](const IntegratorSettings& s) { return std::make_unique<NaivePathTracer>(s); }, false, {}},
+         [](const IntegratorSettings& s) { return std::make_unique<NaivePathTracer>(s); },
+         false,
+         {}},
     };
     return registry;
 }

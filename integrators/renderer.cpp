@@ -44,8 +44,8 @@ bool finite(const FilmSample& sample, std::size_t layers) {
 }
 
 void renderPass(const render::RenderScene& scene, const render::Camera& camera, const Integrator& integrator,
-                const RenderState& state, const RenderSettings& settings, Film& film, PassRange pass, tbb::combinable<RenderCounters>& counters,
-                RenderProgress* progress) {
+                const RenderState& state, const RenderSettings& settings, Film& film, PassRange pass,
+                tbb::combinable<RenderCounters>& counters, RenderProgress* progress) {
     const int width = film.width(), height = film.height();
     const int tilesX = (width + kTileSize - 1) / kTileSize, tilesY = (height + kTileSize - 1) / kTileSize;
     tbb::parallel_for(
@@ -61,7 +61,8 @@ void renderPass(const render::RenderScene& scene, const render::Camera& camera, 
                     for (int x = x0; x < x1; ++x) {
                         const int imageX = x + settings.windowX, imageY = y + settings.windowY;
                         const std::uint64_t pixelIndex =
-                            std::uint64_t(imageY) * std::uint64_t(settings.imageWidth > 0 ? settings.imageWidth : width) +
+                            std::uint64_t(imageY) *
+                                std::uint64_t(settings.imageWidth > 0 ? settings.imageWidth : width) +
                             std::uint64_t(imageX);
                         for (int s = pass.first; s < pass.first + pass.count; ++s) {
                             if (film.samples(x, y) != std::uint32_t(s) || converged(film, x, y, settings)) break;
@@ -104,7 +105,8 @@ RenderStats render(const render::RenderScene& scene, const render::Camera& camer
     const bool wholeImage = film.width() == camera.imageWidth() && film.height() == camera.imageHeight();
     SplatFilm* splats = integrator.usesSplats() && wholeImage ? &film.enableSplats() : nullptr;
     std::unique_ptr<RenderState> state;  // the integrator's per-render state (integrators/integrator.h)
-    arena.execute([&] { state = integrator.prepare(scene, camera, settings.seed, splats); });  // within the thread limit
+    arena.execute(
+        [&] { state = integrator.prepare(scene, camera, settings.seed, splats); });  // within the thread limit
     // Resumed, the passes go on as the uninterrupted render's would have (1, 2, 4, ... doubled).
     int done = settings.firstSample, passSize = std::clamp(done + 1, 1, kMaxPassSamples);
     double secondsPerSample = 0.0;  // per sample per pixel over the whole image, measured
@@ -134,7 +136,8 @@ RenderStats render(const render::RenderScene& scene, const render::Camera& camer
     stats.seconds = elapsed();
     stats.samplesPerPixel = 0;
     for (int y = 0; y < film.height(); ++y)
-        for (int x = 0; x < film.width(); ++x) stats.samplesPerPixel = std::max<int>(stats.samplesPerPixel, film.samples(x, y));
+        for (int x = 0; x < film.width(); ++x)
+            stats.samplesPerPixel = std::max<int>(stats.samplesPerPixel, film.samples(x, y));
     counters.combine_each([&](const RenderCounters& c) { stats.counters += c; });
     stats.methodSummary = state->summary();
     return stats;

@@ -79,7 +79,7 @@ struct RenderProgress {
 
 struct RenderStats {
     double seconds = 0.0;
-    int samplesPerPixel = 0;  // the most taken in any pixel (in every pixel without adaptive sampling)
+    int samplesPerPixel = 0;    // the most taken in any pixel (in every pixel without adaptive sampling)
     std::uint64_t samples = 0;  // taken over the whole image
     int passes = 0;
     bool interrupted = false;  // RenderSettings::stop was set before the render finished

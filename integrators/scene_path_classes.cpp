@@ -16,7 +16,8 @@ using render::MaterialDesc;
 using render::MaterialInput;
 
 bool driven(const MaterialDesc& m, MaterialInput input) {
-    return std::any_of(m.bindings.begin(), m.bindings.end(), [&](const render::InputBinding& b) { return b.input == input; });
+    return std::any_of(m.bindings.begin(), m.bindings.end(),
+                       [&](const render::InputBinding& b) { return b.input == input; });
 }
 
 // The least and greatest values a scalar parameter takes over the surface.
@@ -54,11 +55,11 @@ SurfaceLobes lobesOf(const MaterialDesc& m) {
     const Span metallic = spanOf(m, MaterialInput::Metallic, m.metallic);
     const Span coat = spanOf(m, MaterialInput::Coat, m.coat);
     const bool base = transmission.lo < 1.0f && metallic.lo < 1.0f;
-    const bool specularReflects =
-        m.specularWorkflow ? mayBeNonBlack(m, MaterialInput::SpecularColor, m.specularColor)
-                           : (m.ior > 1.0f || driven(m, MaterialInput::Ior)) &&
-                                 spanOf(m, MaterialInput::Specular, m.specular).hi > 0.0f &&
-                                 mayBeNonBlack(m, MaterialInput::SpecularColor, m.specularColor);
+    const bool specularReflects = m.specularWorkflow
+                                      ? mayBeNonBlack(m, MaterialInput::SpecularColor, m.specularColor)
+                                      : (m.ior > 1.0f || driven(m, MaterialInput::Ior)) &&
+                                            spanOf(m, MaterialInput::Specular, m.specular).hi > 0.0f &&
+                                            mayBeNonBlack(m, MaterialInput::SpecularColor, m.specularColor);
     const bool glass = transmission.hi > 0.0f && metallic.lo < 1.0f;
     const bool metal = metallic.hi > 0.0f;
     const bool specularLike = (base && specularReflects) || glass || metal;
@@ -105,7 +106,8 @@ std::vector<Surface> surfacesOf(const render::SceneDescription& scene) {
     const SurfaceLobes lambertian = lobesOf(plain);
     std::vector<Surface> surfaces;
     auto place = [&](const render::MeshDesc& mesh) {
-        surfaces.push_back({&mesh, mesh.material >= 0 ? lobesOf(scene.materials[std::size_t(mesh.material)]) : lambertian});
+        surfaces.push_back(
+            {&mesh, mesh.material >= 0 ? lobesOf(scene.materials[std::size_t(mesh.material)]) : lambertian});
     };
     for (const render::MeshDesc& mesh : scene.meshes) place(mesh);
     for (const render::InstanceDesc& instance : scene.instances)
@@ -122,8 +124,9 @@ unsigned scenePathClasses(const render::SceneDescription& scene) {
     const bool delta = anySurface([](const Surface& s) { return s.lobes.delta; });
     const bool emissiveSurface = anySurface([](const Surface& s) { return s.lobes.emits; });
     const bool deltaLight = std::any_of(scene.lights.begin(), scene.lights.end(), render::isDeltaLight);
-    const bool areaLight = emissiveSurface || std::any_of(scene.lights.begin(), scene.lights.end(),
-                                                          [](const render::LightDesc& l) { return !render::isDeltaLight(l); });
+    const bool areaLight =
+        emissiveSurface || std::any_of(scene.lights.begin(), scene.lights.end(),
+                                       [](const render::LightDesc& l) { return !render::isDeltaLight(l); });
     const bool receiver = diffuseOrGlossy || !scene.volumes.empty();
     const bool lightReturns = surfaces.size() > 1 || anySurface([](const Surface& s) { return !isFlat(*s.mesh); });
     const bool focused = delta && receiver && (lightReturns || !scene.volumes.empty());

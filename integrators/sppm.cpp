@@ -29,7 +29,7 @@ using render::Ray;
 namespace {
 
 constexpr std::uint64_t kPhotonStreamTag = 0x70686f746f6e73ull;  // keeps photon streams apart from the camera's
-constexpr int kPathsPerChunk = 4096;                              // photon paths traced as one task
+constexpr int kPathsPerChunk = 4096;                             // photon paths traced as one task
 
 constexpr float kInfinity = std::numeric_limits<float>::infinity();
 constexpr unsigned kNonDelta = render::kBsdfDiffuse | render::kBsdfGlossy;
@@ -41,9 +41,7 @@ struct PhotonDeposits {
 
 // Whether the eye can enter the interior behind a surface with these BSDF flags: eye paths
 // follow delta lobes only, so through a delta transmission (see "Media" in sppm.h).
-bool eyeCanEnter(unsigned flags) {
-    return (flags & render::kBsdfSpecular) && (flags & render::kBsdfTransmission);
-}
+bool eyeCanEnter(unsigned flags) { return (flags & render::kBsdfSpecular) && (flags & render::kBsdfTransmission); }
 
 // Traces one photon path with the stream `rng`, appending a surface photon at each surface vertex
 // with a diffuse or glossy lobe and a volume photon at each scattering in a medium. `scale`
@@ -53,7 +51,8 @@ void tracePhotonPath(const render::RenderScene& scene, int maxDepth, float scale
     const float uLight = rng.next();
     const Vec2f uPoint = rng.next2D(), uDirection = rng.next2D();
     const std::size_t index = scene.lightSelection().sample(uLight);
-    std::optional<render::EmissionSample> emitted = scene.light(index).sampleEmission(uPoint, uDirection, scene.bounds());
+    std::optional<render::EmissionSample> emitted =
+        scene.light(index).sampleEmission(uPoint, uDirection, scene.bounds());
     if (!emitted) return;
     const render::EmissionDensity& density = emitted->density;
     const float pdf = density.position * density.direction * scene.lightSelection().pmf(index);
@@ -68,7 +67,8 @@ void tracePhotonPath(const render::RenderScene& scene, int maxDepth, float scale
     int interiorScatterings = 0;
     // Each photon path at its own time in the shutter (its stream's own dimension): gathered by
     // camera paths of every time, the photons blur what moves.
-    Ray ray{render::offsetRayOrigin(emitted->point, emitted->normal), emitted->direction, 0.0f, kInfinity, rng.shutterTime()};
+    Ray ray{render::offsetRayOrigin(emitted->point, emitted->normal), emitted->direction, 0.0f, kInfinity,
+            rng.shutterTime()};
     render::BsdfArena arena;
     for (int depth = 0; depth < maxDepth; ++depth) {
         ++rays;
@@ -84,7 +84,8 @@ void tracePhotonPath(const render::RenderScene& scene, int maxDepth, float scale
                 if (!walking || keepVolumePhotons[std::size_t(inside.depth())])
                     deposits.volume.push_back({flight.p, -ray.direction, flux()});
                 if (walking && ++interiorScatterings > kMaxInteriorScatterings) return;
-                const media::PhaseSample ps = media::HenyeyGreenstein(flight.properties.g).sample(-ray.direction, rng.next2D());
+                const media::PhaseSample ps =
+                    media::HenyeyGreenstein(flight.properties.g).sample(-ray.direction, rng.next2D());
                 if (ps.pdf <= 0.0f) return;
                 beta *= ps.p / ps.pdf;  // 1: the flux is unchanged, so the photon survives any roulette
                 ray = Ray{flight.p, ps.wi, 0.0f, kInfinity, ray.time};
@@ -108,8 +109,10 @@ void tracePhotonPath(const render::RenderScene& scene, int maxDepth, float scale
         if (!bs) return;
         const Vec3f wi = surface.frame.toWorld(bs->wi);
         if (!sidesAgree(wo, wi, surface.geometricNormal, woLocal.z, bs->wi.z)) return;
-        const RGB next = beta * bs->f * (adjointShadingCosine(wo, wi, surface.frame.n, surface.geometricNormal) / bs->pdf);
-        const float survive = std::min(1.0f, maxComponent(next / media::channelAverage(pdfRatio)) / maxComponent(power));
+        const RGB next =
+            beta * bs->f * (adjointShadingCosine(wo, wi, surface.frame.n, surface.geometricNormal) / bs->pdf);
+        const float survive =
+            std::min(1.0f, maxComponent(next / media::channelAverage(pdfRatio)) / maxComponent(power));
         if (!(uSurvive < survive)) return;
         beta = next / survive;
         const MediumStack after = inside.after(*hit, wo, wi);
@@ -175,18 +178,19 @@ float Sppm::radius(float initialRadius, std::uint64_t sampleIndex, int dimension
     return float(std::pow(rd, 1.0 / dimensions));
 }
 
-std::unique_ptr<RenderState> Sppm::prepare(const render::RenderScene& scene, const render::Camera& camera, std::uint64_t,
-                                           SplatFilm*) const {
+std::unique_ptr<RenderState> Sppm::prepare(const render::RenderScene& scene, const render::Camera& camera,
+                                           std::uint64_t, SplatFilm*) const {
     auto state = std::make_unique<SppmState>();
-    state->initialRadius = settings_.initialRadius > 0.0f ? settings_.initialRadius
-                                                          : kInitialRadiusPixels / camera.pixelsPerUnitAt(scene.bounds().centre);
+    state->initialRadius = settings_.initialRadius > 0.0f
+                               ? settings_.initialRadius
+                               : kInitialRadiusPixels / camera.pixelsPerUnitAt(scene.bounds().centre);
     state->photonPathsPerMap = settings_.photonPathsPerMap;
     for (std::size_t i = 0; i < scene.lightCount(); ++i) state->silentLights += !scene.light(i).hasEmissionSampling();
     return state;
 }
 
-void Sppm::beginSamples(RenderState& renderState, const render::RenderScene& scene, const render::Camera&, std::uint64_t seed,
-                        int firstSample, int count) const {
+void Sppm::beginSamples(RenderState& renderState, const render::RenderScene& scene, const render::Camera&,
+                        std::uint64_t seed, int firstSample, int count) const {
     SppmState& state = static_cast<SppmState&>(renderState);
     state.maps.clear();  // the previous pass's samples are done
     state.firstSample = firstSample;
@@ -194,14 +198,15 @@ void Sppm::beginSamples(RenderState& renderState, const render::RenderScene& sce
     const int chunks = (paths + kPathsPerChunk - 1) / kPathsPerChunk;
     std::vector<PhotonDeposits> chunkPhotons(std::size_t(count) * chunks);
     std::vector<std::uint64_t> chunkRays(chunkPhotons.size(), 0);
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, chunkPhotons.size(), 1), [&](const tbb::blocked_range<std::size_t>& r) {
-        for (std::size_t task = r.begin(); task != r.end(); ++task) {
-            const int map = int(task / chunks), chunk = int(task % chunks);
-            const int first = chunk * kPathsPerChunk, last = std::min(paths, first + kPathsPerChunk);
-            chunkPhotons[task] = tracePhotonPaths(scene, maxDepth_, seed, std::uint64_t(firstSample + map), first, last,
-                                                  paths, chunkRays[task]);
-        }
-    });
+    tbb::parallel_for(
+        tbb::blocked_range<std::size_t>(0, chunkPhotons.size(), 1), [&](const tbb::blocked_range<std::size_t>& r) {
+            for (std::size_t task = r.begin(); task != r.end(); ++task) {
+                const int map = int(task / chunks), chunk = int(task % chunks);
+                const int first = chunk * kPathsPerChunk, last = std::min(paths, first + kPathsPerChunk);
+                chunkPhotons[task] = tracePhotonPaths(scene, maxDepth_, seed, std::uint64_t(firstSample + map), first,
+                                                      last, paths, chunkRays[task]);
+            }
+        });
     for (int map = 0; map < count; ++map) {
         PhotonDeposits photons;
         for (int chunk = 0; chunk < chunks; ++chunk) {
@@ -235,9 +240,9 @@ std::string SppmState::summary() const {
     std::snprintf(line, sizeof line,
                   "sppm: %llu photon maps of %d paths, %.0f photons each on average on surfaces%s, %llu photon rays; "
                   "radius %.4g -> %.4g; photon maps peaked at %.1f MB%s",
-                  static_cast<unsigned long long>(mapsBuilt), photonPathsPerMap, double(photonsStored) / double(mapsBuilt),
-                  volume, static_cast<unsigned long long>(photonRays), double(initialRadius),
-                  double(Sppm::radius(initialRadius, last, 2)), double(mostBytes) / 1e6,
+                  static_cast<unsigned long long>(mapsBuilt), photonPathsPerMap,
+                  double(photonsStored) / double(mapsBuilt), volume, static_cast<unsigned long long>(photonRays),
+                  double(initialRadius), double(Sppm::radius(initialRadius, last, 2)), double(mostBytes) / 1e6,
                   silentLights ? "; cylinder and line lights emit no photons" : "");
     return line;
 }
@@ -277,7 +282,8 @@ FilmSample Sppm::sample(const RenderState& renderState, const render::RenderScen
                 RGB perSigmaS(0.0f);
                 for (int c = 0; c < 3; ++c) perSigmaS[c] = sigmaS[c] > 0.0f ? throughput[c] / sigmaS[c] : 0.0f;
                 throughput = perSigmaS;
-                add(estimateInScattering(maps.volume, media::HenyeyGreenstein(flight.properties.g), flight.p, -ray.direction));
+                add(estimateInScattering(maps.volume, media::HenyeyGreenstein(flight.properties.g), flight.p,
+                                         -ray.direction));
                 break;
             }
         }

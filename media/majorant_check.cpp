@@ -18,7 +18,9 @@ bool exceeds(const RGB& a, const RGB& b) {
     return false;
 }
 
-std::ostream& operator<<(std::ostream& os, const RGB& v) { return os << '(' << v.x << ", " << v.y << ", " << v.z << ')'; }
+std::ostream& operator<<(std::ostream& os, const RGB& v) {
+    return os << '(' << v.x << ", " << v.y << ", " << v.z << ')';
+}
 
 bool finiteAndNonNegative(const RGB& v) { return isFinite(v) && v.x >= 0.0f && v.y >= 0.0f && v.z >= 0.0f; }
 
@@ -63,8 +65,10 @@ public:
             fail(name, ": needs 0 <= sigmaMin ", s.sigmaMin, " <= sigmaMaj ", s.sigmaMaj);
         samplePoints(std::max(s.tMin, 0.0f), std::min(s.tMax, ray_.tMax), [&](float t) {
             RGB sigmaT = sigmaTAt(t);
-            if (exceeds(sigmaT, s.sigmaMaj)) fail(name, ": at t = ", t, " sigmaT = ", sigmaT, " > sigmaMaj = ", s.sigmaMaj);
-            if (exceeds(s.sigmaMin, sigmaT)) fail(name, ": at t = ", t, " sigmaT = ", sigmaT, " < sigmaMin = ", s.sigmaMin);
+            if (exceeds(sigmaT, s.sigmaMaj))
+                fail(name, ": at t = ", t, " sigmaT = ", sigmaT, " > sigmaMaj = ", s.sigmaMaj);
+            if (exceeds(s.sigmaMin, sigmaT))
+                fail(name, ": at t = ", t, " sigmaT = ", sigmaT, " < sigmaMin = ", s.sigmaMin);
         });
     }
 
@@ -78,8 +82,8 @@ public:
         for (std::size_t i = 0; i < segments.size(); ++i) {
             const MajorantSegment& s = segments[i];
             if (s.tMin > s.tMax || exceeds(RGB(covered), RGB(s.tMin)))
-                fail("segment ", i, " [", s.tMin, ", ", s.tMax, ") runs backwards or overlaps the previous one (which ended at ",
-                     covered, ")");
+                fail("segment ", i, " [", s.tMin, ", ", s.tMax,
+                     ") runs backwards or overlaps the previous one (which ended at ", covered, ")");
             checkGap(covered, std::min(s.tMin, ray_.tMax));
             checkSegment(i, s);
             covered = std::max(covered, s.tMax);

@@ -27,9 +27,9 @@
 namespace fluence::media {
 
 struct PhaseSample {
-    Vec3f wi;           // unit, pointing away from the scattering point
-    float p = 0.0f;     // p(wo, wi)
-    float pdf = 0.0f;   // solid-angle density of wi: equal to p
+    Vec3f wi;          // unit, pointing away from the scattering point
+    float p = 0.0f;    // p(wo, wi)
+    float pdf = 0.0f;  // solid-angle density of wi: equal to p
 };
 
 class HenyeyGreenstein {

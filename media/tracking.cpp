@@ -28,8 +28,8 @@ MajorantTransmittance trackMajorants(const Medium& medium, const MediumRay& ray,
         float t = std::max(segment.tMin, 0.0f);
         while (t < end) {
             // An exponential step at the hero's rate (1 - u is in (0, 1], so the log is finite).
-            const float step = heroRate > 0.0f ? -std::log(1.0f - stream.next()) / heroRate
-                                               : std::numeric_limits<float>::infinity();
+            const float step =
+                heroRate > 0.0f ? -std::log(1.0f - stream.next()) / heroRate : std::numeric_limits<float>::infinity();
             if (!(step < end - t)) {
                 sinceLast.tMaj *= transmittance(segment.sigmaMaj, end - t);
                 sinceLast.tResidual *= transmittance(residual, end - t);

@@ -101,8 +101,7 @@ void removeStaleTemporaries(const std::string& finalPath) {
     }
 }
 
-void writeAtomically(const std::string& finalPath,
-                     const std::function<void(const std::string& tempPath)>& write) {
+void writeAtomically(const std::string& finalPath, const std::function<void(const std::string& tempPath)>& write) {
     AtomicFile file(finalPath);
     try {
         write(file.tempPath());

@@ -38,7 +38,9 @@ std::string jsonString(const std::string& text) {
 // The entries of a manifest, {"name":"hex",...}, in order, their JSON escapes kept.
 std::vector<std::pair<std::string, std::string>> manifestEntries(const std::string& json) {
     std::size_t i = 0;
-    const auto fail = [&] { throw std::invalid_argument("not a Cryptomatte manifest (a JSON object of strings): " + json.substr(0, 80)); };
+    const auto fail = [&] {
+        throw std::invalid_argument("not a Cryptomatte manifest (a JSON object of strings): " + json.substr(0, 80));
+    };
     const auto skipSpace = [&] {
         while (i < json.size() && (json[i] == ' ' || json[i] == '\n' || json[i] == '\t' || json[i] == '\r')) ++i;
     };
@@ -79,7 +81,8 @@ std::uint32_t murmurHash3_x86_32(std::string_view data, std::uint32_t seed) {
     std::uint32_t h = seed;
     for (std::size_t i = 0; i < blocks; ++i) {
         const unsigned char* b = bytes + 4 * i;
-        const std::uint32_t k = std::uint32_t(b[0]) | std::uint32_t(b[1]) << 8 | std::uint32_t(b[2]) << 16 | std::uint32_t(b[3]) << 24;
+        const std::uint32_t k =
+            std::uint32_t(b[0]) | std::uint32_t(b[1]) << 8 | std::uint32_t(b[2]) << 16 | std::uint32_t(b[3]) << 24;
         h ^= mixBlock(k);
         h = std::rotl(h, 13) * 5u + 0xe6546b64u;
     }
@@ -123,9 +126,10 @@ std::string mergeCryptomatteManifests(const std::string& a, const std::string& b
 
 std::string cryptomatteKey(std::string_view typeName) { return cryptomatteHex(cryptomatteId(typeName)).substr(0, 7); }
 
-void appendCryptomatte(Image& image, ExrHeader& header, const CryptomatteFilm& film, const std::vector<CryptomatteLayer>& layers,
-                       int depth) {
-    if (layers.size() != film.layers().size()) throw std::invalid_argument("appendCryptomatte: one description per film layer");
+void appendCryptomatte(Image& image, ExrHeader& header, const CryptomatteFilm& film,
+                       const std::vector<CryptomatteLayer>& layers, int depth) {
+    if (layers.size() != film.layers().size())
+        throw std::invalid_argument("appendCryptomatte: one description per film layer");
     if (depth < 1) throw std::invalid_argument("appendCryptomatte: depth must be at least 1");
     if (film.width() != image.width || film.height() != image.height)
         throw std::invalid_argument("appendCryptomatte: the film and the image differ in size");
@@ -160,9 +164,11 @@ void appendCryptomatte(Image& image, ExrHeader& header, const CryptomatteFilm& f
     image = std::move(out);
 
     header.dataChannels.insert(header.dataChannels.end(), added.begin(), added.end());
-    if (!header.channelTypes.empty()) header.channelTypes.insert(header.channelTypes.end(), added.size(), PixelType::Float);
+    if (!header.channelTypes.empty())
+        header.channelTypes.insert(header.channelTypes.end(), added.size(), PixelType::Float);
     const std::string method = header.compression.substr(0, header.compression.find(':'));
-    if (method != "none" && method != "rle" && method != "zips" && method != "zip" && method != "piz") header.compression = "zip";
+    if (method != "none" && method != "rle" && method != "zips" && method != "zip" && method != "piz")
+        header.compression = "zip";
     for (std::size_t l = 0; l < layers.size(); ++l) {
         std::string manifest = "{";
         for (const auto& [name, id] : written[l]) {

@@ -41,8 +41,8 @@ std::string cryptomatteHex(std::uint32_t id);
 std::string cryptomatteKey(std::string_view typeName);
 
 struct CryptomatteLayer {
-    std::string typeName;     // e.g. "CryptoObject"
-    const NameTable* names;   // what the film's name indices of this layer mean
+    std::string typeName;    // e.g. "CryptoObject"
+    const NameTable* names;  // what the film's name indices of this layer mean
 };
 
 // The union of two manifests (tiles of one image each name what they saw): `a`'s entries, then those
@@ -51,7 +51,7 @@ std::string mergeCryptomatteManifests(const std::string& a, const std::string& b
 
 // Appends the channels of every layer of `film` (layers[i] describes the film's layer i) to
 // `image`, `depth` ranks each, and their metadata and data channels to `header`.
-void appendCryptomatte(Image& image, ExrHeader& header, const CryptomatteFilm& film, const std::vector<CryptomatteLayer>& layers,
-                       int depth);
+void appendCryptomatte(Image& image, ExrHeader& header, const CryptomatteFilm& film,
+                       const std::vector<CryptomatteLayer>& layers, int depth);
 
 }  // namespace fluence::output

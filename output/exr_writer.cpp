@@ -18,8 +18,8 @@ namespace {
 
 void checkImage(const std::string& path, const Image& image) {
     if (image.width <= 0 || image.height <= 0)
-        throw outputError(path, "image has no pixels (" + std::to_string(image.width) + "x" +
-                                    std::to_string(image.height) + ")");
+        throw outputError(
+            path, "image has no pixels (" + std::to_string(image.width) + "x" + std::to_string(image.height) + ")");
     if (image.channels.empty()) throw outputError(path, "image has no channels");
     const std::size_t expected =
         static_cast<std::size_t>(image.width) * static_cast<std::size_t>(image.height) * image.channels.size();
@@ -65,7 +65,9 @@ std::vector<unsigned char> nativePixels(const Image& image, const std::vector<Pi
                 at += 4;
                 break;
             case PixelType::Uint: {
-                const std::uint32_t u = !(v > 0.0f) ? 0u : v >= 4294967295.0f ? 4294967295u : std::uint32_t(std::lround(double(v)));
+                const std::uint32_t u = !(v > 0.0f)          ? 0u
+                                        : v >= 4294967295.0f ? 4294967295u
+                                                             : std::uint32_t(std::lround(double(v)));
                 std::memcpy(at, &u, 4);
                 at += 4;
                 break;

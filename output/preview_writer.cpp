@@ -14,8 +14,8 @@ namespace fluence::output {
 void writePreviewPng(const std::string& path, const Image& image, const color::ColorManagement& cm,
                      const std::string& display, const std::string& view) {
     if (image.width <= 0 || image.height <= 0)
-        throw outputError(path, "image has no pixels (" + std::to_string(image.width) + "x" +
-                                    std::to_string(image.height) + ")");
+        throw outputError(
+            path, "image has no pixels (" + std::to_string(image.width) + "x" + std::to_string(image.height) + ")");
     const std::size_t count = static_cast<std::size_t>(image.width) * static_cast<std::size_t>(image.height);
     if (image.pixels.size() != count * image.channels.size())
         throw outputError(path, "image pixel buffer holds " + std::to_string(image.pixels.size()) +

@@ -66,7 +66,8 @@ void assembleTiles(const std::vector<std::string>& tiles, const std::string& pat
             covered.assign(std::size_t(whole.width) * std::size_t(whole.height), 0);
         } else if (window(s) != window(whole) || s.channelnames != whole.channelnames) {
             throw TileMismatchError("tile " + tiles[t] + " is not a part of the same image as " + tiles[0] +
-                                    " (display window " + window(s) + " against " + window(whole) + ", or other channels)");
+                                    " (display window " + window(s) + " against " + window(whole) +
+                                    ", or other channels)");
         } else {
             mergeManifests(whole, s, tiles[t]);
         }
@@ -77,9 +78,10 @@ void assembleTiles(const std::vector<std::string>& tiles, const std::string& pat
                     throw TileMismatchError("tile " + tiles[t] + " reaches outside its display window");
                 const std::size_t at = std::size_t(Y) * std::size_t(whole.width) + std::size_t(X);
                 if (covered[at]++)
-                    throw TileMismatchError("tile " + tiles[t] + " overlaps another at pixel (" + std::to_string(X) + ", " +
-                                            std::to_string(Y) + ")");
-                std::copy_n(tile.pixels.data() + (std::size_t(y) * std::size_t(s.width) + std::size_t(x)) * std::size_t(s.nchannels),
+                    throw TileMismatchError("tile " + tiles[t] + " overlaps another at pixel (" + std::to_string(X) +
+                                            ", " + std::to_string(Y) + ")");
+                std::copy_n(tile.pixels.data() +
+                                (std::size_t(y) * std::size_t(s.width) + std::size_t(x)) * std::size_t(s.nchannels),
                             s.nchannels, pixels.data() + at * std::size_t(whole.nchannels));
             }
     }

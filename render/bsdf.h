@@ -121,7 +121,9 @@ public:
 
     // The BSDF a path carrying `mode` scatters by (TRANSPORT MODE): f(wo, wi) for radiance, the
     // adjoint f(wi, wo) for importance.
-    RGB f(const Vec3f& wo, const Vec3f& wi, Transport mode) const { return mode == Transport::Radiance ? f(wo, wi) : f(wi, wo); }
+    RGB f(const Vec3f& wo, const Vec3f& wi, Transport mode) const {
+        return mode == Transport::Radiance ? f(wo, wi) : f(wi, wo);
+    }
     // sample() for `mode`: the same direction and density, with the sample's f that of `mode`.
     std::optional<BsdfSample> sample(const Vec3f& wo, float uLobe, Vec2f u, Transport mode) const {
         std::optional<BsdfSample> s = sample(wo, uLobe, u);

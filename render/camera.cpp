@@ -9,11 +9,16 @@ namespace fluence::render {
 namespace {
 constexpr float kOrthographicApertureUnit = 0.1f;  // GfCamera::APERTURE_UNIT
 constexpr float kLensUnit = 0.1f;                  // GfCamera::FOCAL_LENGTH_UNIT: tenths of a scene unit
-}
+}  // namespace
 
 Camera::Camera(const CameraDesc& d, int imageWidth, int imageHeight, const ImageFraming& framing)
-    : projection_(d.projection), toWorld_(d.transform), width_(imageWidth), height_(imageHeight),
-      near_(d.nearClip), far_(d.farClip), pixelAspectRatio_(framing.pixelAspectRatio) {
+    : projection_(d.projection),
+      toWorld_(d.transform),
+      width_(imageWidth),
+      height_(imageHeight),
+      near_(d.nearClip),
+      far_(d.farClip),
+      pixelAspectRatio_(framing.pixelAspectRatio) {
     if (imageWidth <= 0 || imageHeight <= 0) throw std::invalid_argument("image resolution must be positive");
     if (!(d.horizontalAperture > 0.0f) || !(d.verticalAperture > 0.0f))
         throw std::invalid_argument("camera " + d.name + ": apertures must be positive");
@@ -22,9 +27,11 @@ Camera::Camera(const CameraDesc& d, int imageWidth, int imageHeight, const Image
     if (!(framing.pixelAspectRatio > 0.0f) || !std::isfinite(framing.pixelAspectRatio))
         throw std::invalid_argument("pixelAspectRatio must be positive");
     if (!(d.fStop >= 0.0f) || !(d.focusDistance >= 0.0f) || d.apertureBlades < 0)
-        throw std::invalid_argument("camera " + d.name + ": fStop, focusDistance and apertureBlades must not be negative");
+        throw std::invalid_argument("camera " + d.name +
+                                    ": fStop, focusDistance and apertureBlades must not be negative");
     if (projection_ == Projection::Perspective && d.fStop > 0.0f && d.focusDistance > 0.0f)
-        lens_ = ThinLens{kLensUnit * d.focalLength / (2.0f * d.fStop), d.focusDistance, d.apertureBlades, d.apertureRotation};
+        lens_ = ThinLens{kLensUnit * d.focalLength / (2.0f * d.fStop), d.focusDistance, d.apertureBlades,
+                         d.apertureRotation};
 
     float hAperture = d.horizontalAperture, vAperture = d.verticalAperture;
     const float apertureAspect = hAperture / vAperture;
@@ -39,15 +46,9 @@ Camera::Camera(const CameraDesc& d, int imageWidth, int imageHeight, const Image
             else
                 vAperture = hAperture / imageAspect;
             break;
-        case ApertureConform::AdjustApertureWidth:
-            hAperture = vAperture * imageAspect;
-            break;
-        case ApertureConform::AdjustApertureHeight:
-            vAperture = hAperture / imageAspect;
-            break;
-        case ApertureConform::AdjustPixelAspectRatio:
-            pixelAspectRatio_ = apertureAspect / pixels;
-            break;
+        case ApertureConform::AdjustApertureWidth: hAperture = vAperture * imageAspect; break;
+        case ApertureConform::AdjustApertureHeight: vAperture = hAperture / imageAspect; break;
+        case ApertureConform::AdjustPixelAspectRatio: pixelAspectRatio_ = apertureAspect / pixels; break;
     }
 
     float scale = projection_ == Projection::Perspective ? 1.0f / d.focalLength : kOrthographicApertureUnit;

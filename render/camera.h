@@ -91,12 +91,13 @@ public:
     std::optional<Vec2f> rasterPosition(const Vec3f& worldPoint) const;
     // A connection from a world point to the pinhole (light tracing).
     struct Connection {
-        Vec2f raster;          // where the point lands on the image, in pixels
-        Vec3f direction;       // unit, from the point towards the pinhole
-        float distance = 0;    // from the point to the pinhole
+        Vec2f raster;            // where the point lands on the image, in pixels
+        Vec3f direction;         // unit, from the point towards the pinhole
+        float distance = 0;      // from the point to the pinhole
         float nearDistance = 0;  // from the pinhole to the near plane along the connection (camera rays start there)
-        float density = 0;     // directionDensity(-direction): the camera's density of its ray towards the point
-        float importance = 0;  // We(-direction) cos(theta) / distance^2: importance reaching the point, per unit area facing it
+        float density = 0;       // directionDensity(-direction): the camera's density of its ray towards the point
+        float importance =
+            0;  // We(-direction) cos(theta) / distance^2: importance reaching the point, per unit area facing it
     };
     std::optional<Connection> connect(const Vec3f& worldPoint) const;
 

@@ -36,7 +36,8 @@ std::optional<Vec2f> Camera::rasterPosition(const Vec3f& worldPoint) const {
     // generateRay's mapping from pixels to the window, inverted.
     const double sx = (local.x / -local.z - centreX_) / halfWidth_, sy = (local.y / -local.z - centreY_) / halfHeight_;
     const auto x = static_cast<float>(0.5 * (sx + 1.0) * width_), y = static_cast<float>(0.5 * (1.0 - sy) * height_);
-    if (!(x >= 0.0f && x < static_cast<float>(width_) && y >= 0.0f && y < static_cast<float>(height_))) return std::nullopt;
+    if (!(x >= 0.0f && x < static_cast<float>(width_) && y >= 0.0f && y < static_cast<float>(height_)))
+        return std::nullopt;
     return Vec2f{x, y};
 }
 

@@ -18,16 +18,20 @@ namespace {
 RTCGeometryType embreeType(CurveBasis basis, CurveStyle style) {
     const bool round = style == CurveStyle::Round, flat = style == CurveStyle::Flat;
     switch (basis) {
-        case CurveBasis::Linear: return round ? RTC_GEOMETRY_TYPE_ROUND_LINEAR_CURVE : RTC_GEOMETRY_TYPE_FLAT_LINEAR_CURVE;
+        case CurveBasis::Linear:
+            return round ? RTC_GEOMETRY_TYPE_ROUND_LINEAR_CURVE : RTC_GEOMETRY_TYPE_FLAT_LINEAR_CURVE;
         case CurveBasis::Bezier:
-            return round ? RTC_GEOMETRY_TYPE_ROUND_BEZIER_CURVE
-                         : flat ? RTC_GEOMETRY_TYPE_FLAT_BEZIER_CURVE : RTC_GEOMETRY_TYPE_NORMAL_ORIENTED_BEZIER_CURVE;
+            return round  ? RTC_GEOMETRY_TYPE_ROUND_BEZIER_CURVE
+                   : flat ? RTC_GEOMETRY_TYPE_FLAT_BEZIER_CURVE
+                          : RTC_GEOMETRY_TYPE_NORMAL_ORIENTED_BEZIER_CURVE;
         case CurveBasis::BSpline:
-            return round ? RTC_GEOMETRY_TYPE_ROUND_BSPLINE_CURVE
-                         : flat ? RTC_GEOMETRY_TYPE_FLAT_BSPLINE_CURVE : RTC_GEOMETRY_TYPE_NORMAL_ORIENTED_BSPLINE_CURVE;
+            return round  ? RTC_GEOMETRY_TYPE_ROUND_BSPLINE_CURVE
+                   : flat ? RTC_GEOMETRY_TYPE_FLAT_BSPLINE_CURVE
+                          : RTC_GEOMETRY_TYPE_NORMAL_ORIENTED_BSPLINE_CURVE;
         case CurveBasis::CatmullRom:
-            return round ? RTC_GEOMETRY_TYPE_ROUND_CATMULL_ROM_CURVE
-                         : flat ? RTC_GEOMETRY_TYPE_FLAT_CATMULL_ROM_CURVE : RTC_GEOMETRY_TYPE_NORMAL_ORIENTED_CATMULL_ROM_CURVE;
+            return round  ? RTC_GEOMETRY_TYPE_ROUND_CATMULL_ROM_CURVE
+                   : flat ? RTC_GEOMETRY_TYPE_FLAT_CATMULL_ROM_CURVE
+                          : RTC_GEOMETRY_TYPE_NORMAL_ORIENTED_CATMULL_ROM_CURVE;
     }
     return RTC_GEOMETRY_TYPE_ROUND_LINEAR_CURVE;
 }
@@ -63,11 +67,13 @@ void validate(const CurvesDesc& desc, std::size_t materials) {
     if (desc.radii.size() != n) throw std::invalid_argument(desc.name + ": expected one radius per control point");
     if (desc.style == CurveStyle::Oriented && desc.normals.size() != n)
         throw std::invalid_argument(desc.name + ": an oriented ribbon needs one normal per control point");
-    if (!desc.colors.empty() && desc.colors.size() != n) throw std::invalid_argument(desc.name + ": expected one colour per control point");
+    if (!desc.colors.empty() && desc.colors.size() != n)
+        throw std::invalid_argument(desc.name + ": expected one colour per control point");
     const std::size_t last = static_cast<std::size_t>(controlPointsPerSegment(desc.basis)) - 1;
     for (std::uint32_t s : desc.segments)
         if (s + last >= n) throw std::invalid_argument(desc.name + ": a segment reads control points past the last");
-    if (desc.material >= static_cast<int>(materials)) throw std::invalid_argument(desc.name + ": material index out of range");
+    if (desc.material >= static_cast<int>(materials))
+        throw std::invalid_argument(desc.name + ": material index out of range");
 }
 
 // Embree filter function of round tubes: drops a hit where the ray leaves the tube (see the header).
@@ -80,7 +86,8 @@ void seenFromOutside(const RTCFilterFunctionNArguments* args) {
 }
 
 template <typename T>
-T* newBuffer(RTCGeometry geom, RTCBufferType type, unsigned slot, RTCFormat format, std::size_t components, std::size_t count) {
+T* newBuffer(RTCGeometry geom, RTCBufferType type, unsigned slot, RTCFormat format, std::size_t components,
+             std::size_t count) {
     return static_cast<T*>(rtcSetNewGeometryBuffer(geom, type, slot, format, components * sizeof(T), count));
 }
 
@@ -102,7 +109,8 @@ CurveGeometry::~CurveGeometry() {
 }
 
 void CurveGeometry::add(RTCDeviceTy* device, RTCSceneTy* scene, unsigned geomID, const CurvesDesc& original,
-                        const std::vector<MaterialDesc>& materials, std::uint32_t objectName, std::uint32_t materialName) {
+                        const std::vector<MaterialDesc>& materials, std::uint32_t objectName,
+                        std::uint32_t materialName) {
     validate(original, materials.size());
     const CurvesDesc desc =
         original.basis == CurveBasis::Linear && original.style == CurveStyle::Oriented ? asBezier(original) : original;
@@ -142,8 +150,9 @@ void CurveGeometry::add(RTCDeviceTy* device, RTCSceneTy* scene, unsigned geomID,
     rtcAttachGeometryByID(scene, geom, geomID);
     curves.geometry = geom;  // the scene holds its own reference; this one is released with us
     curves.style = desc.style;
-    curves.material = desc.material >= 0 ? static_cast<const MaterialParams&>(materials[static_cast<std::size_t>(desc.material)])
-                                         : MaterialParams{};
+    curves.material = desc.material >= 0
+                          ? static_cast<const MaterialParams&>(materials[static_cast<std::size_t>(desc.material)])
+                          : MaterialParams{};
     curves.objectName = objectName;
     curves.materialName = materialName;
     if (byGeomID_.size() <= geomID) byGeomID_.resize(geomID + 1, -1);
@@ -204,7 +213,8 @@ std::optional<SurfaceHit> CurveGeometry::shade(unsigned geomID, unsigned primID,
     HairParams hair = hairFromMaterial(curves.material, colour);
     const float radius = centre[3];
     const Vec3f across = cross(normal, tangent);
-    hair.offset = radius > 0.0f ? std::clamp(dot(hit.point - Vec3f(centre[0], centre[1], centre[2]), across) / radius, -1.0f, 1.0f)
+    hair.offset = radius > 0.0f ? std::clamp(dot(hit.point - Vec3f(centre[0], centre[1], centre[2]), across) / radius,
+                                             -1.0f, 1.0f)
                                 : 0.0f;
     hit.material.hair = hair;
     hit.material.diffuse = colour;

@@ -45,7 +45,8 @@ public:
     bool contains(unsigned geomID) const;
     // The hit of `ray` on segment primID of curve geometry geomID at curve parameter u, distance t,
     // with Embree's geometric normal ng.
-    std::optional<SurfaceHit> shade(unsigned geomID, unsigned primID, float u, const Ray& ray, float t, const Vec3f& ng) const;
+    std::optional<SurfaceHit> shade(unsigned geomID, unsigned primID, float u, const Ray& ray, float t,
+                                    const Vec3f& ng) const;
     // Grows [lo, hi] by every control point's sphere.
     void growBounds(Vec3f& lo, Vec3f& hi) const;
     std::size_t segmentCount() const { return segments_; }

@@ -19,7 +19,8 @@
 
 namespace fluence::render {
 
-inline void storeRay(RTCRay& r, const Vec3f& origin, const Vec3f& direction, float tNear, float tFar, float time = 0.0f) {
+inline void storeRay(RTCRay& r, const Vec3f& origin, const Vec3f& direction, float tNear, float tFar,
+                     float time = 0.0f) {
     static_assert(offsetof(RTCRay, tnear) == 12 && offsetof(RTCRay, time) == 28 && offsetof(RTCRay, flags) == 44);
     _mm_store_ps(&r.org_x, _mm_setr_ps(origin.x, origin.y, origin.z, tNear));
     _mm_store_ps(&r.dir_x, _mm_setr_ps(direction.x, direction.y, direction.z, time));

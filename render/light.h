@@ -70,11 +70,11 @@ struct SceneBounds {
 // (a shaped point light) has theta_o = the cone and theta_e = 0. Each angle is kept as its cosine.
 struct LightBounds {
     Vec3f lo, hi;
-    float phi = 0.0f;             // power, as power() returns it
+    float phi = 0.0f;  // power, as power() returns it
     Vec3f axis{0.0f, 0.0f, 1.0f};
-    float cosThetaO = -1.0f;      // -1: normals in every direction
-    float cosThetaE = 0.0f;       // 0: up to 90 degrees from the normal (a cosine emitter)
-    bool twoSided = false;        // also emits from the back of each normal (emissive triangles)
+    float cosThetaO = -1.0f;  // -1: normals in every direction
+    float cosThetaE = 0.0f;   // 0: up to 90 degrees from the normal (a cosine emitter)
+    bool twoSided = false;    // also emits from the back of each normal (emissive triangles)
 };
 
 // Densities of Light::sampleEmission: of the point, per unit area (per unit area of the disk for
@@ -93,8 +93,8 @@ struct EmissionDensity {
 // intensity towards `direction`.
 struct EmissionSample {
     Vec3f point;
-    Vec3f direction;        // unit, the way light leaves
-    Vec3f normal;           // of the light's surface at `point` (for lights without one, `direction`)
+    Vec3f direction;  // unit, the way light leaves
+    Vec3f normal;     // of the light's surface at `point` (for lights without one, `direction`)
     RGB Le;
     EmissionDensity density;  // with the cosine at the light
     bool delta = false;       // a point light or an angle-0 distant light, which no ray can hit
@@ -108,16 +108,18 @@ class AnalyticLightShape;  // render/light_shape.h
 struct LightSurface {
     enum class Kind { None, Quad, Sphere, Analytic };
     Kind kind = Kind::None;
-    std::array<Vec3f, 4> corners{};              // Quad
-    Vec3f front;                                 // Quad: its emitting direction (rays along it meet its back)
-    Vec3f centre;                                // Sphere
-    float radius = 0.0f;                         // Sphere
-    const AnalyticLightShape* shape = nullptr;   // Analytic
+    std::array<Vec3f, 4> corners{};             // Quad
+    Vec3f front;                                // Quad: its emitting direction (rays along it meet its back)
+    Vec3f centre;                               // Sphere
+    float radius = 0.0f;                        // Sphere
+    const AnalyticLightShape* shape = nullptr;  // Analytic
 
     static LightSurface quad(const std::array<Vec3f, 4>& corners, const Vec3f& front) {
         return {Kind::Quad, corners, front, {}, 0.0f, nullptr};
     }
-    static LightSurface sphere(const Vec3f& centre, float radius) { return {Kind::Sphere, {}, {}, centre, radius, nullptr}; }
+    static LightSurface sphere(const Vec3f& centre, float radius) {
+        return {Kind::Sphere, {}, {}, centre, radius, nullptr};
+    }
     static LightSurface analytic(const AnalyticLightShape& shape) { return {Kind::Analytic, {}, {}, {}, 0.0f, &shape}; }
 };
 

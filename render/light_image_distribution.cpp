@@ -54,12 +54,14 @@ ImageDistribution::ImageDistribution(int width, int height, std::vector<float> w
     if (width <= 0 || height <= 0 || weights_.size() != std::size_t(width) * height)
         throw std::invalid_argument("ImageDistribution: expected width * height weights");
     for (float w : weights_)
-        if (!(w >= 0.0f) || !std::isfinite(w)) throw std::invalid_argument("ImageDistribution: weights must be finite and >= 0");
+        if (!(w >= 0.0f) || !std::isfinite(w))
+            throw std::invalid_argument("ImageDistribution: weights must be finite and >= 0");
     columnCdf_.resize(std::size_t(height) * (width + 1));
     std::vector<float> rowSums(height);
     double total = 0.0;
     for (int y = 0; y < height; ++y) {
-        rowSums[y] = static_cast<float>(buildCdf(&weights_[std::size_t(y) * width], width, &columnCdf_[std::size_t(y) * (width + 1)]));
+        rowSums[y] = static_cast<float>(
+            buildCdf(&weights_[std::size_t(y) * width], width, &columnCdf_[std::size_t(y) * (width + 1)]));
         total += rowSums[y];
     }
     rowCdf_.resize(height + 1);

@@ -32,8 +32,8 @@ private:
     int width_ = 0, height_ = 0;
     std::vector<float> weights_;
     float meanWeight_ = 0.0f;
-    std::vector<float> rowCdf_;     // height + 1 entries, from 0 to 1
-    std::vector<float> columnCdf_;  // height rows of width + 1 entries, each from 0 to 1
+    std::vector<float> rowCdf_;                // height + 1 entries, from 0 to 1
+    std::vector<float> columnCdf_;             // height rows of width + 1 entries, each from 0 to 1
     std::vector<int> rowGuide_, columnGuide_;  // where the search for u starts (one per cell)
 };
 

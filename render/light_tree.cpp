@@ -60,11 +60,14 @@ float orientationMeasure(const LightBounds& b) {
     float thetaW = std::min(thetaO + thetaE, kPi);
     float sinO = std::sin(thetaO);
     return 2.0f * kPi * (1.0f - std::cos(thetaO)) +
-           0.5f * kPi * (2.0f * thetaW * sinO - std::cos(thetaO - 2.0f * thetaW) - 2.0f * thetaO * sinO + std::cos(thetaO));
+           0.5f * kPi *
+               (2.0f * thetaW * sinO - std::cos(thetaO - 2.0f * thetaW) - 2.0f * thetaO * sinO + std::cos(thetaO));
 }
 
 // The bucket a centroid falls in, of kBuckets spanning [lo, lo + span] along an axis.
-int bucketOf(float centroid, float lo, float span) { return std::min(kBuckets - 1, int(kBuckets * (centroid - lo) / span)); }
+int bucketOf(float centroid, float lo, float span) {
+    return std::min(kBuckets - 1, int(kBuckets * (centroid - lo) / span));
+}
 
 float surfaceArea(const Vec3f& lo, const Vec3f& hi, float pad) {
     Vec3f e = hi - lo + Vec3f(2.0f * pad);
@@ -149,7 +152,7 @@ bool LightTree::Node::reaches(const Vec3f& p, const Vec3f& n) const {
         Reach receives = Reach::Yes;
         if (n.x != 0.0f || n.y != 0.0f || n.z != 0.0f)
             receives = std::abs(lengthSquared(n) - 1.0f) <= 1.0f / 64.0f ? beyondPlane(-dot(n, v), radius, slack)
-                                                                        : Reach::Unclear;
+                                                                         : Reach::Unclear;
         if (emits == Reach::No || receives == Reach::No) return false;
         if (emits == Reach::Yes && receives == Reach::Yes) return true;
     }
@@ -217,7 +220,8 @@ int LightTree::build(std::vector<Item>& items, std::size_t begin, std::size_t en
         std::array<LightBounds, kBuckets> below{}, above{};
         std::array<int, kBuckets> belowCount{};
         for (int b = 0, seen = 0; b < kBuckets; ++b) {
-            below[b] = !counts[b] ? (b ? below[b - 1] : LightBounds{}) : (seen ? unite(below[b - 1], buckets[b]) : buckets[b]);
+            below[b] =
+                !counts[b] ? (b ? below[b - 1] : LightBounds{}) : (seen ? unite(below[b - 1], buckets[b]) : buckets[b]);
             seen += counts[b];
             belowCount[b] = seen;
         }
@@ -243,9 +247,10 @@ int LightTree::build(std::vector<Item>& items, std::size_t begin, std::size_t en
     std::size_t middle;
     if (bestAxis >= 0) {
         float lo = centroidLo[bestAxis], span = centroidHi[bestAxis] - lo;
-        middle = std::partition(items.begin() + begin, items.begin() + end, [&](const Item& item) {
-                     return bucketOf(item.centroid[bestAxis], lo, span) < bestBoundary;
-                 }) - items.begin();
+        middle = std::partition(
+                     items.begin() + begin, items.begin() + end,
+                     [&](const Item& item) { return bucketOf(item.centroid[bestAxis], lo, span) < bestBoundary; }) -
+                 items.begin();
     } else {
         // Median split along the widest centroid axis (also when every centroid coincides).
         Vec3f span = centroidHi - centroidLo;

@@ -43,13 +43,16 @@ SpecularLobe specularLobe(const MaterialParams& m) {
     // A black F0 is an index of 1 (what etaFromF0 gives), found without the square roots.
     if (m.specularWorkflow && !(maxComponent(m.specularColor) > 0.0f)) return {RGB(1.0f), RGB(1.0f)};
     if (m.specularWorkflow)  // specularColor is F0: one index per channel, no further tint
-        return {RGB(etaFromF0(m.specularColor.x), etaFromF0(m.specularColor.y), etaFromF0(m.specularColor.z)), RGB(1.0f)};
+        return {RGB(etaFromF0(m.specularColor.x), etaFromF0(m.specularColor.y), etaFromF0(m.specularColor.z)),
+                RGB(1.0f)};
     return {RGB(m.ior), clamp01(m.specularColor * m.specular)};
 }
 
 // The microfacet distribution of the specular, glass and metal lobes; made only by the lobes
 // that are on (a plain diffuse material needs none).
-GgxDistribution specularGgx(const MaterialParams& m) { return GgxDistribution::fromRoughness(m.roughness, m.anisotropy); }
+GgxDistribution specularGgx(const MaterialParams& m) {
+    return GgxDistribution::fromRoughness(m.roughness, m.anisotropy);
+}
 
 // The transmissive dielectric that replaces the opaque base by `transmission`: a solid interface
 // of index ior (the transmission colour split over its two crossings), or a thin sheet.
@@ -65,7 +68,8 @@ const Bsdf& transmissionBsdf(const MaterialParams& m, BsdfArena& arena) {
 const Bsdf& sheenAndSpecular(const Bsdf& base, const MaterialParams& m, BsdfArena& arena) {
     const Bsdf* bsdf = &base;
     const RGB sheen = clamp01(m.sheenColor * m.sheen);
-    if (!isBlack(sheen)) bsdf = &arena.make<LayeredBsdf<CharlieSheenBsdf>>(CharlieSheenBsdf(sheen, m.sheenRoughness), *bsdf);
+    if (!isBlack(sheen))
+        bsdf = &arena.make<LayeredBsdf<CharlieSheenBsdf>>(CharlieSheenBsdf(sheen, m.sheenRoughness), *bsdf);
     if (const SpecularLobe specular = specularLobe(m); specular.reflects())
         bsdf = &arena.make<CoatedBsdf>(*bsdf, specular.eta, specularGgx(m), specular.tint);
     return *bsdf;
@@ -83,15 +87,18 @@ const Bsdf& clearCoat(const Bsdf& under, const MaterialParams& m, BsdfArena& are
 
 const Bsdf& materialBsdf(const MaterialParams& m, BsdfArena& arena) {
     if (m.hair) return arena.make<HairBsdf>(*m.hair);
-    const Bsdf* bsdf = m.diffuseRoughness > 0.0f ? static_cast<const Bsdf*>(&arena.make<OrenNayarBsdf>(m.diffuse, m.diffuseRoughness))
-                                                 : &arena.make<LambertianBsdf>(m.diffuse);
+    const Bsdf* bsdf = m.diffuseRoughness > 0.0f
+                           ? static_cast<const Bsdf*>(&arena.make<OrenNayarBsdf>(m.diffuse, m.diffuseRoughness))
+                           : &arena.make<LambertianBsdf>(m.diffuse);
     if (m.subsurface > 0.0f) {  // a solid's walk inside gives the colour; a thin wall is tinted once
         const RGB transmittance = m.thinWalled ? clamp01(m.subsurfaceColor) : RGB(1.0f);
-        bsdf = &blend(*bsdf, arena.make<LambertianTransmissionBsdf>(transmittance), std::min(m.subsurface, 1.0f), arena);
+        bsdf =
+            &blend(*bsdf, arena.make<LambertianTransmissionBsdf>(transmittance), std::min(m.subsurface, 1.0f), arena);
     }
     bsdf = &sheenAndSpecular(*bsdf, m, arena);
     if (m.transmission > 0.0f) bsdf = &blend(*bsdf, transmissionBsdf(m, arena), m.transmission, arena);
-    if (m.metallic > 0.0f) bsdf = &blend(*bsdf, arena.make<GgxConductorBsdf>(m.diffuse, specularGgx(m)), m.metallic, arena);
+    if (m.metallic > 0.0f)
+        bsdf = &blend(*bsdf, arena.make<GgxConductorBsdf>(m.diffuse, specularGgx(m)), m.metallic, arena);
     return clearCoat(*bsdf, m, arena);
 }
 

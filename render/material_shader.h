@@ -35,10 +35,10 @@ struct Warning {
 
 // A point on a triangle, with what the network needs there.
 struct ShadingPatch {
-    std::size_t corner = 0;       // 3 * triangle index: the first corner's index in CornerPrimvar values
+    std::size_t corner = 0;                 // 3 * triangle index: the first corner's index in CornerPrimvar values
     float b0 = 1.0f, b1 = 0.0f, b2 = 0.0f;  // barycentric weights of the corners
-    Vec3f e1{0.0f}, e2{0.0f};     // the triangle's edges, in the space of the footprint
-    PixelFootprint footprint;     // invalid: point sampling at the finest level
+    Vec3f e1{0.0f}, e2{0.0f};               // the triangle's edges, in the space of the footprint
+    PixelFootprint footprint;               // invalid: point sampling at the finest level
 };
 
 // Writes a driven value (`channels` of v: one replicated into a colour) into the parameter `input`
@@ -79,13 +79,14 @@ private:
         const texture::TextureSystem::Texture* opened;  // nullptr: the fallback, or a primvar
     };
     // The binding's value (4 channels, times its factor) at the patch.
-    void bindingValue(std::size_t binding, const ShadingPatch& patch, const CornerPrimvar* const* primvars, float value[4]) const;
+    void bindingValue(std::size_t binding, const ShadingPatch& patch, const CornerPrimvar* const* primvars,
+                      float value[4]) const;
     // Source s's value (4 channels, before its factor) at the patch; `primvar` is its slot's.
     void sourceValue(std::size_t s, const ShadingPatch& patch, const CornerPrimvar* primvar, float value[4]) const;
 
     const MaterialDesc* material_;
     texture::TextureSystem* textures_;
-    std::vector<Source> sources_;            // in slot order
+    std::vector<Source> sources_;           // in slot order
     std::vector<std::size_t> firstSource_;  // per binding: its (graph's first) source
     std::vector<std::string> slots_;
     int tangentSlot_ = -1;

@@ -34,8 +34,8 @@ Matrix4 transformAt(const std::vector<Matrix4>& steps, float time) {
 namespace {
 
 void fillVertexBuffer(RTCGeometry geom, unsigned slot, const std::vector<Vec3f>& positions) {
-    auto* v = static_cast<float*>(
-        rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, slot, RTC_FORMAT_FLOAT3, 3 * sizeof(float), positions.size()));
+    auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, slot, RTC_FORMAT_FLOAT3,
+                                                          3 * sizeof(float), positions.size()));
     for (std::size_t i = 0; i < positions.size(); ++i) {
         v[3 * i] = positions[i].x;
         v[3 * i + 1] = positions[i].y;
@@ -53,16 +53,18 @@ void setTransform(RTCGeometry instance, unsigned step, const Matrix4& transform)
 }  // namespace
 
 RTCGeometryTy* newTriangleGeometry(RTCDeviceTy* device, const std::vector<Vec3f>& positions,
-                                   const std::vector<std::vector<Vec3f>>& motion, const std::vector<std::uint32_t>& indices) {
+                                   const std::vector<std::vector<Vec3f>>& motion,
+                                   const std::vector<std::uint32_t>& indices) {
     RTCGeometry geom = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
     if (motion.empty()) {
         fillVertexBuffer(geom, 0, positions);
     } else {
         rtcSetGeometryTimeStepCount(geom, static_cast<unsigned>(motion.size()));
-        for (std::size_t step = 0; step < motion.size(); ++step) fillVertexBuffer(geom, static_cast<unsigned>(step), motion[step]);
+        for (std::size_t step = 0; step < motion.size(); ++step)
+            fillVertexBuffer(geom, static_cast<unsigned>(step), motion[step]);
     }
-    auto* index = static_cast<unsigned*>(
-        rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(unsigned), indices.size() / 3));
+    auto* index = static_cast<unsigned*>(rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
+                                                                 3 * sizeof(unsigned), indices.size() / 3));
     std::copy(indices.begin(), indices.end(), index);
     return geom;
 }
@@ -73,10 +75,12 @@ void setInstanceTransforms(RTCGeometryTy* instance, const Matrix4& transform, co
         return;
     }
     rtcSetGeometryTimeStepCount(instance, static_cast<unsigned>(motion.size()));
-    for (std::size_t step = 0; step < motion.size(); ++step) setTransform(instance, static_cast<unsigned>(step), motion[step]);
+    for (std::size_t step = 0; step < motion.size(); ++step)
+        setTransform(instance, static_cast<unsigned>(step), motion[step]);
 }
 
-void checkMotionPositions(const std::string& name, const std::vector<std::vector<Vec3f>>& motion, std::size_t vertices) {
+void checkMotionPositions(const std::string& name, const std::vector<std::vector<Vec3f>>& motion,
+                          std::size_t vertices) {
     if (motion.empty()) return;
     if (motion.size() < 2) throw std::invalid_argument(name + ": motion needs at least two time steps");
     for (const std::vector<Vec3f>& step : motion)

@@ -36,7 +36,8 @@ Matrix4 transformAt(const std::vector<Matrix4>& steps, float time);
 // A triangle geometry (uncommitted) with one vertex buffer per time step: `positions` alone when
 // `motion` is empty, else each of `motion` (its time steps).
 RTCGeometryTy* newTriangleGeometry(RTCDeviceTy* device, const std::vector<Vec3f>& positions,
-                                   const std::vector<std::vector<Vec3f>>& motion, const std::vector<std::uint32_t>& indices);
+                                   const std::vector<std::vector<Vec3f>>& motion,
+                                   const std::vector<std::uint32_t>& indices);
 // Sets an instance's transform: `transform` alone when `motion` is empty, else each of `motion`.
 void setInstanceTransforms(RTCGeometryTy* instance, const Matrix4& transform, const std::vector<Matrix4>& motion);
 

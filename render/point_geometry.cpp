@@ -13,7 +13,8 @@ void validatePoints(const PointsDesc& p) {
     if (p.radii.size() != n) throw std::invalid_argument(p.name + ": expected one radius per point");
     if (p.style == PointStyle::OrientedDisc && p.normals.size() != n)
         throw std::invalid_argument(p.name + ": oriented discs need one normal per point");
-    if (!p.colors.empty() && p.colors.size() != n) throw std::invalid_argument(p.name + ": expected one colour per point");
+    if (!p.colors.empty() && p.colors.size() != n)
+        throw std::invalid_argument(p.name + ": expected one colour per point");
     for (const PointPrimvar& v : p.primvars)
         if (v.components < 1 || v.components > 4 || v.values.size() != n * std::size_t(v.components))
             throw std::invalid_argument(p.name + ": primvar " + v.name + " needs 1 to 4 values per point");
@@ -25,7 +26,8 @@ RTCGeometry pointGeometry(RTCDevice device, const PointsDesc& p) {
                                                                : RTC_GEOMETRY_TYPE_ORIENTED_DISC_POINT;
     RTCGeometry geom = rtcNewGeometry(device, type);
     const std::size_t n = p.positions.size();
-    auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT4, 4 * sizeof(float), n));
+    auto* v = static_cast<float*>(
+        rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT4, 4 * sizeof(float), n));
     for (std::size_t i = 0; i < n; ++i) {
         v[4 * i] = p.positions[i].x;
         v[4 * i + 1] = p.positions[i].y;
@@ -33,8 +35,8 @@ RTCGeometry pointGeometry(RTCDevice device, const PointsDesc& p) {
         v[4 * i + 3] = p.radii[i];
     }
     if (p.style == PointStyle::OrientedDisc) {
-        auto* normals =
-            static_cast<float*>(rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_NORMAL, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), n));
+        auto* normals = static_cast<float*>(
+            rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_NORMAL, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), n));
         for (std::size_t i = 0; i < n; ++i) {
             normals[3 * i] = p.normals[i].x;
             normals[3 * i + 1] = p.normals[i].y;

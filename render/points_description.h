@@ -27,11 +27,11 @@ struct PointPrimvar {
 struct PointsDesc {
     std::string name;  // prim path, for messages
     PointStyle style = PointStyle::Sphere;
-    std::vector<Vec3f> positions;  // world space
-    std::vector<float> radii;      // one per point, world space (half the width)
-    std::vector<Vec3f> normals;    // OrientedDisc: one per point (world space); otherwise empty
-    std::vector<RGB> colors;       // empty, or one per point: diffuse colour (displayColor)
-    int material = -1;             // index into SceneDescription::materials, -1 = default
+    std::vector<Vec3f> positions;        // world space
+    std::vector<float> radii;            // one per point, world space (half the width)
+    std::vector<Vec3f> normals;          // OrientedDisc: one per point (world space); otherwise empty
+    std::vector<RGB> colors;             // empty, or one per point: diffuse colour (displayColor)
+    int material = -1;                   // index into SceneDescription::materials, -1 = default
     std::vector<PointPrimvar> primvars;  // those the material reads
 };
 

@@ -29,12 +29,14 @@ constexpr float kShadowRayShortening = 1e-4f;
 
 void throwOnEmbreeError(RTCDevice device, const char* what) {
     RTCError code = rtcGetDeviceError(device);
-    if (code != RTC_ERROR_NONE) throw std::runtime_error(std::string("Embree error ") + std::to_string(int(code)) + " while " + what);
+    if (code != RTC_ERROR_NONE)
+        throw std::runtime_error(std::string("Embree error ") + std::to_string(int(code)) + " while " + what);
 }
 
 // A committed triangle geometry holding `positions` and `indices` (3 per triangle), with the time
 // steps of `motion` when it moves (render/motion_geometry.h).
-RTCGeometry triangleGeometry(RTCDevice device, const std::vector<Vec3f>& positions, const std::vector<std::uint32_t>& indices,
+RTCGeometry triangleGeometry(RTCDevice device, const std::vector<Vec3f>& positions,
+                             const std::vector<std::uint32_t>& indices,
                              const std::vector<std::vector<Vec3f>>& motion = {}) {
     RTCGeometry geom = newTriangleGeometry(device, positions, motion, indices);
     rtcCommitGeometry(geom);
@@ -53,8 +55,9 @@ void analyticShapeIntersect(const RTCIntersectFunctionNArguments* args) {
     if (args->N != 1 || !args->valid[0]) return;  // the scene is only traced with rtcIntersect1
     auto* rayHit = reinterpret_cast<RTCRayHit*>(args->rayhit);
     RTCRay& r = rayHit->ray;
-    std::optional<ShapeHit> hit = static_cast<const AnalyticLightShape*>(args->geometryUserPtr)
-                                      ->intersect({r.org_x, r.org_y, r.org_z}, {r.dir_x, r.dir_y, r.dir_z}, r.tnear, r.tfar);
+    std::optional<ShapeHit> hit =
+        static_cast<const AnalyticLightShape*>(args->geometryUserPtr)
+            ->intersect({r.org_x, r.org_y, r.org_z}, {r.dir_x, r.dir_y, r.dir_z}, r.tnear, r.tfar);
     if (!hit) return;
     r.tfar = hit->t;
     rayHit->hit.Ng_x = hit->normal.x;
@@ -172,7 +175,8 @@ float hashOfHit(const float (&ray)[6], unsigned geomID, unsigned primID, unsigne
 // LIGHT).
 void frontSideFilter(const RTCFilterFunctionNArguments* args) {
     if (args->N != 1 || !args->valid[0]) return;  // the scenes are only traced one ray at a time
-    const Vec3f direction(RTCRayN_dir_x(args->ray, 1, 0), RTCRayN_dir_y(args->ray, 1, 0), RTCRayN_dir_z(args->ray, 1, 0));
+    const Vec3f direction(RTCRayN_dir_x(args->ray, 1, 0), RTCRayN_dir_y(args->ray, 1, 0),
+                          RTCRayN_dir_z(args->ray, 1, 0));
     if (!meetsFront(direction, *static_cast<const Vec3f*>(args->geometryUserPtr))) args->valid[0] = 0;
 }
 
@@ -200,15 +204,15 @@ void presenceFilter(const RTCFilterFunctionNArguments* args) {
 }  // namespace
 
 struct RenderScene::Prototype {
-    std::vector<int> meshes;           // Embree geometry id in the prototype's scene -> mesh
-    std::vector<int> emissiveMeshes;   // into SceneDescription::prototypes[i].meshes: copied per instance
+    std::vector<int> meshes;          // Embree geometry id in the prototype's scene -> mesh
+    std::vector<int> emissiveMeshes;  // into SceneDescription::prototypes[i].meshes: copied per instance
     Vec3f lo{std::numeric_limits<float>::max()}, hi{-std::numeric_limits<float>::max()};  // bounds
 };
 
 struct RenderScene::Instance {
     int prototype = 0;
     Matrix4 toWorld, normalToWorld;
-    std::uint32_t objectName = kNoName;  // objectNames_
+    std::uint32_t objectName = kNoName;     // objectNames_
     std::vector<Matrix4> motionTransforms;  // InstanceDesc::motionTransforms
 };
 
@@ -271,7 +275,8 @@ RenderScene::RenderScene(const SceneDescription& scene, std::shared_ptr<texture:
         placements.push_back(instance.toWorld);
         for (const Matrix4& placement : placements)
             for (int corner = 0; corner < 8; ++corner) {
-                Vec3d c(corner & 1 ? proto.hi.x : proto.lo.x, corner & 2 ? proto.hi.y : proto.lo.y, corner & 4 ? proto.hi.z : proto.lo.z);
+                Vec3d c(corner & 1 ? proto.hi.x : proto.lo.x, corner & 2 ? proto.hi.y : proto.lo.y,
+                        corner & 4 ? proto.hi.z : proto.lo.z);
                 Vec3f p(placement.transformPoint(c));
                 lo = vmin(lo, p);
                 hi = vmax(hi, p);
@@ -295,7 +300,8 @@ RenderScene::RenderScene(const SceneDescription& scene, std::shared_ptr<texture:
         rtcGetSceneBounds(embree_->lightShapes, &b);
         const Vec3f shapesLo(b.lower_x, b.lower_y, b.lower_z), shapesHi(b.upper_x, b.upper_y, b.upper_z);
         // Far more than the rounding of a hit point on a shape (a few ULPs of its coordinates).
-        const float pad = 1e-4f * (maxComponent(shapesHi - shapesLo) + maxComponent(vmax(shapesHi, -shapesLo))) + 1e-20f;
+        const float pad =
+            1e-4f * (maxComponent(shapesHi - shapesLo) + maxComponent(vmax(shapesHi, -shapesLo))) + 1e-20f;
         embree_->lightShapesLo = shapesLo - Vec3f(pad);
         embree_->lightShapesHi = shapesHi + Vec3f(pad);
     }
@@ -318,9 +324,11 @@ std::vector<RenderScene::SurfaceTriangle> RenderScene::surfaceTriangles() const 
             return instance ? Vec3f(instance->toWorld.transformPoint(Vec3d(mesh.positions[i]))) : mesh.positions[i];
         };
         for (std::size_t c = 0; c + 2 < mesh.indices.size(); c += 3) {
-            RGB albedo = mesh.cornerColors.empty() ? mesh.diffuse
-                                                   : (mesh.cornerColors[c] + mesh.cornerColors[c + 1] + mesh.cornerColors[c + 2]) / 3.0f;
-            out.push_back({world(mesh.indices[c]), world(mesh.indices[c + 1]), world(mesh.indices[c + 2]), albedo, mesh.emission});
+            RGB albedo = mesh.cornerColors.empty()
+                             ? mesh.diffuse
+                             : (mesh.cornerColors[c] + mesh.cornerColors[c + 1] + mesh.cornerColors[c + 2]) / 3.0f;
+            out.push_back({world(mesh.indices[c]), world(mesh.indices[c + 1]), world(mesh.indices[c + 2]), albedo,
+                           mesh.emission});
         }
     };
     for (int m : surfaceMeshes_)
@@ -333,7 +341,8 @@ std::vector<RenderScene::SurfaceTriangle> RenderScene::surfaceTriangles() const 
 void RenderScene::addMaterialShaders() {
     bool textured = std::any_of(materials_.begin(), materials_.end(), [](const MaterialDesc& m) {
         bool reads = false;
-        for (const InputBinding& b : m.bindings) forEachSource(b, [&](const InputBinding& s) { reads = reads || s.texture; });
+        for (const InputBinding& b : m.bindings)
+            forEachSource(b, [&](const InputBinding& s) { reads = reads || s.texture; });
         return reads;
     });
     if (textured && !textures_) textures_ = std::make_shared<texture::TextureSystem>(color::ColorManagement::load());
@@ -348,11 +357,13 @@ void RenderScene::addVolumes(const std::vector<VolumeDesc>& volumes) {
         try {
             volumes::FloatVdbGrid density(v.density->file, v.density->gridName, v.density->gridIndex, v.transform);
             std::optional<volumes::FloatVdbGrid> temperature;
-            if (v.temperature) temperature.emplace(v.temperature->file, v.temperature->gridName, v.temperature->gridIndex, v.transform);
+            if (v.temperature)
+                temperature.emplace(v.temperature->file, v.temperature->gridName, v.temperature->gridIndex,
+                                    v.transform);
             std::optional<volumes::Vec3VdbGrid> color;
             if (v.color) color.emplace(v.color->file, v.color->gridName, v.color->gridIndex, v.transform);
-            media.push_back(
-                std::make_unique<volumes::GridMedium>(std::move(density), v.params, std::move(temperature), std::move(color)));
+            media.push_back(std::make_unique<volumes::GridMedium>(std::move(density), v.params, std::move(temperature),
+                                                                  std::move(color)));
         } catch (const std::exception& e) {
             throw std::invalid_argument(v.name + ": " + e.what());
         }
@@ -368,7 +379,8 @@ void RenderScene::addInteriors() {
         bool valid = isFinite(interior->sigmaA + interior->sigmaS) && std::abs(interior->g) < 1.0f;
         for (int c = 0; c < 3; ++c) valid = valid && interior->sigmaA[c] >= 0.0f && interior->sigmaS[c] >= 0.0f;
         if (!valid)
-            throw std::invalid_argument(materials_[m].name + ": interior medium coefficients must be finite and >= 0, with |g| < 1");
+            throw std::invalid_argument(materials_[m].name +
+                                        ": interior medium coefficients must be finite and >= 0, with |g| < 1");
         materialInterior_[m] = static_cast<int>(interiors_.size());
         interiorMedia_.push_back(std::make_unique<media::HomogeneousMedium>(*interior));
         if (medium_)
@@ -390,7 +402,8 @@ void RenderScene::addPresenceFilter(RTCGeometryTy* geometry, int meshIndex) {
 }
 
 int RenderScene::storeMesh(const MeshDesc& desc, const std::vector<MaterialDesc>& materials, std::uint32_t objectName) {
-    if (desc.indices.size() % 3 != 0) throw std::invalid_argument(desc.name + ": triangle index count is not a multiple of 3");
+    if (desc.indices.size() % 3 != 0)
+        throw std::invalid_argument(desc.name + ": triangle index count is not a multiple of 3");
     for (std::uint32_t i : desc.indices)
         if (i >= desc.positions.size()) throw std::invalid_argument(desc.name + ": triangle index out of range");
     std::size_t triangles = desc.indices.size() / 3;
@@ -398,7 +411,8 @@ int RenderScene::storeMesh(const MeshDesc& desc, const std::vector<MaterialDesc>
         throw std::invalid_argument(desc.name + ": expected one normal per triangle corner");
     if (!desc.cornerColors.empty() && desc.cornerColors.size() != triangles * 3)
         throw std::invalid_argument(desc.name + ": expected one colour per triangle corner");
-    if (desc.material >= static_cast<int>(materials.size())) throw std::invalid_argument(desc.name + ": material index out of range");
+    if (desc.material >= static_cast<int>(materials.size()))
+        throw std::invalid_argument(desc.name + ": material index out of range");
     for (const CornerPrimvar& p : desc.primvars)
         if (p.components < 1 || p.components > 4 || p.values.size() != triangles * 3 * std::size_t(p.components))
             throw std::invalid_argument(desc.name + ": primvar " + p.name + " needs 1 to 4 values per triangle corner");
@@ -442,7 +456,8 @@ void RenderScene::addMesh(const MeshDesc& desc, const std::vector<MaterialDesc>&
                                                               mesh.positions[mesh.indices[3 * t + 2]], mesh.emission));
         stats_.emissiveTriangles += triangles;
         if (!mesh.motionPositions.empty()) {  // its triangles are lights, sampled where they are at the frame
-            warnings_.push_back({desc.name, "an emissive mesh does not move during the shutter (rendered without motion blur)"});
+            warnings_.push_back(
+                {desc.name, "an emissive mesh does not move during the shutter (rendered without motion blur)"});
             mesh.motionPositions.clear();
         }
     }
@@ -520,11 +535,13 @@ void RenderScene::addPrototypes(const SceneDescription& scene) {
     }
     for (const InstanceDesc& desc : scene.instances) {
         if (desc.prototype < 0 || desc.prototype >= static_cast<int>(prototypes_.size()))
-            throw std::invalid_argument("instance of prototype " + std::to_string(desc.prototype) + ": index out of range");
+            throw std::invalid_argument("instance of prototype " + std::to_string(desc.prototype) +
+                                        ": index out of range");
         const Prototype& proto = prototypes_[desc.prototype];
         const std::uint32_t objectName = desc.name.empty() ? kNoName : objectNames_.add(desc.name);
         for (int m : proto.emissiveMeshes)
-            addMesh(transformMesh(scene.prototypes[desc.prototype].meshes[m], desc.transform), scene.materials, objectName);
+            addMesh(transformMesh(scene.prototypes[desc.prototype].meshes[m], desc.transform), scene.materials,
+                    objectName);
         if (proto.meshes.empty()) continue;
         RTCGeometry geom = rtcNewGeometry(embree_->device, RTC_GEOMETRY_TYPE_INSTANCE);
         rtcSetGeometryInstancedScene(geom, embree_->prototypes[desc.prototype]);
@@ -538,7 +555,8 @@ void RenderScene::addPrototypes(const SceneDescription& scene) {
         surfaceMeshes_.push_back(-1);
         surfaceInstances_.push_back(static_cast<int>(instances_.size()));
         surfacePoints_.push_back(-1);
-        instances_.push_back({desc.prototype, desc.transform, normalMatrixOf(desc.transform), objectName, desc.motionTransforms});
+        instances_.push_back(
+            {desc.prototype, desc.transform, normalMatrixOf(desc.transform), objectName, desc.motionTransforms});
         stats_.instances += 1;
         for (int m : proto.meshes) stats_.instancedTriangles += meshes_[m].indices.size() / 3;
     }
@@ -573,34 +591,37 @@ std::optional<SurfaceHit> RenderScene::intersect(const Ray& ray) const {
     rtcIntersect1(embree_->surfaces, &context, &surface);
 
     shape.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-    const bool nearLightShapes = !lightShapeToLight_.empty() && segmentMeetsBox(ray.origin, ray.direction, ray.tMin, surface.ray.tfar,
-                                                                                embree_->lightShapesLo, embree_->lightShapesHi);
+    const bool nearLightShapes =
+        !lightShapeToLight_.empty() && segmentMeetsBox(ray.origin, ray.direction, ray.tMin, surface.ray.tfar,
+                                                       embree_->lightShapesLo, embree_->lightShapesHi);
     if (nearLightShapes) {
         storeRayHit(shape, ray.origin, ray.direction, ray.tMin, surface.ray.tfar, ray.time);
         rtcIntersect1(embree_->lightShapes, &context, &shape);
     }
 
     if (shape.hit.geomID != RTC_INVALID_GEOMETRY_ID)
-        return shadeLightShape(shape.hit.geomID, ray, shape.ray.tfar, Vec3f(shape.hit.Ng_x, shape.hit.Ng_y, shape.hit.Ng_z));
+        return shadeLightShape(shape.hit.geomID, ray, shape.ray.tfar,
+                               Vec3f(shape.hit.Ng_x, shape.hit.Ng_y, shape.hit.Ng_z));
     if (surface.hit.geomID == RTC_INVALID_GEOMETRY_ID) return std::nullopt;
     const float u = surface.hit.u, v = surface.hit.v, t = surface.ray.tfar;
     if (surface.hit.instID[0] == RTC_INVALID_GEOMETRY_ID && curves_.contains(surface.hit.geomID))
         return curves_.shade(surface.hit.geomID, surface.hit.primID, u, ray, t,
                              Vec3f(surface.hit.Ng_x, surface.hit.Ng_y, surface.hit.Ng_z));
     if (surface.hit.instID[0] == RTC_INVALID_GEOMETRY_ID && surfacePoints_[surface.hit.geomID] >= 0) {
-        std::optional<SurfaceHit> hit = shadeMesh(surfacePoints_[surface.hit.geomID], surface.hit.primID, 0.0f, 0.0f, t, -1, ray.time);
+        std::optional<SurfaceHit> hit =
+            shadeMesh(surfacePoints_[surface.hit.geomID], surface.hit.primID, 0.0f, 0.0f, t, -1, ray.time);
         placeOnPoint(*hit, ray, t, Vec3f(surface.hit.Ng_x, surface.hit.Ng_y, surface.hit.Ng_z));
         return hit;
     }
     if (surface.hit.instID[0] == RTC_INVALID_GEOMETRY_ID)
         return shadeMesh(surfaceMeshes_[surface.hit.geomID], surface.hit.primID, u, v, t, -1, ray.time);
     const int instance = surfaceInstances_[surface.hit.instID[0]];
-    return shadeMesh(prototypes_[instances_[instance].prototype].meshes[surface.hit.geomID], surface.hit.primID, u, v, t, instance,
-                     ray.time);
+    return shadeMesh(prototypes_[instances_[instance].prototype].meshes[surface.hit.geomID], surface.hit.primID, u, v,
+                     t, instance, ray.time);
 }
 
-std::optional<SurfaceHit> RenderScene::shadeMesh(int meshIndex, unsigned primID, float u, float v, float t, int instanceIndex,
-                                                 float time) const {
+std::optional<SurfaceHit> RenderScene::shadeMesh(int meshIndex, unsigned primID, float u, float v, float t,
+                                                 int instanceIndex, float time) const {
     const Mesh& mesh = meshes_[meshIndex];
     std::size_t c = 3 * std::size_t(primID);
     const Triangle corners = triangleAt(mesh, primID, time);
@@ -655,7 +676,8 @@ std::optional<SurfaceHit> RenderScene::shadeMesh(int meshIndex, unsigned primID,
         Vec3f mapped = hit.shadingNormal;
         shaders_[mesh.material].evaluate(patch, mesh.slots.data(), hit.material, mapped, hit.tangent);
         // A normal map may not tip the shading normal across the surface.
-        if (dot(mapped, hit.geometricNormal) * dot(hit.shadingNormal, hit.geometricNormal) > 0.0f) hit.shadingNormal = mapped;
+        if (dot(mapped, hit.geometricNormal) * dot(hit.shadingNormal, hit.geometricNormal) > 0.0f)
+            hit.shadingNormal = mapped;
     }
     if (dot(hit.shadingNormal, hit.geometricNormal) < 0.0f) hit.geometricNormal = -hit.geometricNormal;
     hit.emission = mesh.emission;
@@ -673,13 +695,15 @@ int RenderScene::primvarAt(const SurfaceHit& hit, const std::string& name, float
         const std::size_t k = static_cast<std::size_t>(pv.components);
         const float* corner = pv.values.data() + 3 * std::size_t(hit.triangle) * k;
         const float w = 1.0f - hit.b1 - hit.b2;
-        for (std::size_t c = 0; c < k; ++c) out[c] = w * corner[c] + hit.b1 * corner[k + c] + hit.b2 * corner[2 * k + c];
+        for (std::size_t c = 0; c < k; ++c)
+            out[c] = w * corner[c] + hit.b1 * corner[k + c] + hit.b2 * corner[2 * k + c];
         return pv.components;
     }
     return 0;
 }
 
-std::optional<SurfaceHit> RenderScene::shadeLightShape(unsigned geomID, const Ray& ray, float t, const Vec3f& ng) const {
+std::optional<SurfaceHit> RenderScene::shadeLightShape(unsigned geomID, const Ray& ray, float t,
+                                                       const Vec3f& ng) const {
     std::optional<SurfaceHit> result(std::in_place);
     SurfaceHit& hit = *result;
     hit.t = t;
@@ -708,7 +732,8 @@ namespace fluence::render {
 
 RenderScene::Triangle RenderScene::triangleAt(const Mesh& mesh, unsigned triangle, float time) const {
     const std::uint32_t* corner = &mesh.indices[3 * std::size_t(triangle)];
-    if (mesh.motionPositions.empty()) return {mesh.positions[corner[0]], mesh.positions[corner[1]], mesh.positions[corner[2]]};
+    if (mesh.motionPositions.empty())
+        return {mesh.positions[corner[0]], mesh.positions[corner[1]], mesh.positions[corner[2]]};
     return {positionAt(mesh.motionPositions, corner[0], time), positionAt(mesh.motionPositions, corner[1], time),
             positionAt(mesh.motionPositions, corner[2], time)};
 }

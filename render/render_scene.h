@@ -93,8 +93,8 @@ struct SurfaceHit {
     // The material's parameters at this point (a mesh without a material: Lambertian, its
     // displayColor or 18% grey; light shapes: black). material.diffuse is the albedo AOV.
     MaterialParams material = lambertianParams(RGB(0.0f));
-    RGB emission;           // emitted radiance of an emissive surface (both sides)
-    int light = -1;         // index of the light this surface belongs to, or -1
+    RGB emission;             // emitted radiance of an emissive surface (both sides)
+    int light = -1;           // index of the light this surface belongs to, or -1
     bool lightShape = false;  // a light's own shape (rect, disk, sphere, cylinder): emits, does not reflect
     // The interior medium of the surface's material (RenderScene::mediumInside), or -1: the
     // surface bounds no medium.
@@ -105,8 +105,8 @@ struct SurfaceHit {
 
 struct SceneStats {
     std::size_t meshes = 0, triangles = 0;  // stored once (world meshes and prototype meshes)
-    std::size_t instances = 0;             // Embree instances
-    std::size_t instancedTriangles = 0;    // triangles seen through instances (not stored again)
+    std::size_t instances = 0;              // Embree instances
+    std::size_t instancedTriangles = 0;     // triangles seen through instances (not stored again)
     std::size_t lights = 0, emissiveTriangles = 0;
     std::size_t curves = 0, curveSegments = 0;  // CurvesDesc, and their Embree segments
 };
@@ -141,7 +141,9 @@ public:
     // [0, 1). light = -1 when no light can reach p.
     LightChoice chooseLight(const Vec3f& p, const Vec3f& n, float u) const { return lightTree_.choose(p, n, u); }
     // The probability chooseLight(p, n, .) returns `light` with.
-    float lightProbability(const Vec3f& p, const Vec3f& n, int light) const { return lightTree_.probability(p, n, light); }
+    float lightProbability(const Vec3f& p, const Vec3f& n, int light) const {
+        return lightTree_.probability(p, n, light);
+    }
     // Chooses a light for next-event estimation proportionally to its power, wherever p is.
     const DiscreteDistribution& lightSelection() const { return lightSelection_; }
 
@@ -162,7 +164,9 @@ public:
     const media::Medium* medium() const { return medium_.get(); }
     // The medium inside a closed surface whose hits carry SurfaceHit::interior == `interior`: the
     // material's homogeneous interior together with the scene's volumes.
-    const media::Medium* mediumInside(int interior) const { return interiors_[static_cast<std::size_t>(interior)].get(); }
+    const media::Medium* mediumInside(int interior) const {
+        return interiors_[static_cast<std::size_t>(interior)].get();
+    }
     // Whether any ray can travel through a medium: volumes or material interiors.
     bool hasMedia() const { return medium_ || !interiors_.empty(); }
 
@@ -209,7 +213,8 @@ private:
     // (`instance` places a prototype mesh).
     // (Both return the optional intersect() returns, built in place.)
     // `instance`: into instances_, -1 for a world mesh; `time`: the ray's (render::Ray::time).
-    std::optional<SurfaceHit> shadeMesh(int mesh, unsigned primID, float u, float v, float t, int instance, float time) const;
+    std::optional<SurfaceHit> shadeMesh(int mesh, unsigned primID, float u, float v, float t, int instance,
+                                        float time) const;
     // A triangle's corners, and an instance's placement, at a ray's time (render/motion_geometry.h).
     struct Triangle {
         Vec3f p0, p1, p2;
@@ -225,7 +230,7 @@ private:
     std::vector<Mesh> meshes_;
     std::vector<MaterialDesc> materials_;
     std::shared_ptr<texture::TextureSystem> textures_;
-    std::vector<MaterialShader> shaders_;  // one per material
+    std::vector<MaterialShader> shaders_;                       // one per material
     std::vector<std::unique_ptr<MeshPresence>> presenceTests_;  // user data of the filter functions
     std::optional<Camera> filterCamera_;
     std::unique_ptr<media::Medium> medium_;
@@ -238,7 +243,7 @@ private:
     std::vector<int> surfacePoints_;     // Embree geometry id in the surface scene -> a point set's shading mesh, or -1
     std::vector<Prototype> prototypes_;
     std::vector<Instance> instances_;
-    std::vector<int> lightShapeToLight_;       // Embree geometry id in the light scene -> light
+    std::vector<int> lightShapeToLight_;          // Embree geometry id in the light scene -> light
     std::vector<std::uint32_t> lightShapeNames_;  // Embree geometry id in the light scene -> object name
     NameTable objectNames_, materialNames_;
     std::vector<std::unique_ptr<Light>> lights_;

@@ -57,7 +57,7 @@ struct MaterialParams {
     RGB coatColor{1.0f};
     float coatRoughness = 0.01f;
     float coatIor = 1.5f;
-    RGB emission{0.0f};  // emitted radiance, both sides
+    RGB emission{0.0f};             // emitted radiance, both sides
     float opacity = 1.0f;           // < 1: partly transparent (light passes straight through)
     float opacityThreshold = 0.0f;  // > 0: a cut-out mask (opacity below it is fully transparent)
     bool thinWalled = false;
@@ -87,8 +87,21 @@ inline MaterialParams lambertianParams(const RGB& albedo) {
 
 // The parameters a shading network can drive per surface point.
 enum class MaterialInput {
-    Diffuse, Emission, SpecularColor, Specular, Metallic, Roughness, Ior, Coat, CoatColor, CoatRoughness,
-    Transmission, TransmissionColor, Sheen, SheenColor, Opacity,
+    Diffuse,
+    Emission,
+    SpecularColor,
+    Specular,
+    Metallic,
+    Roughness,
+    Ior,
+    Coat,
+    CoatColor,
+    CoatRoughness,
+    Transmission,
+    TransmissionColor,
+    Sheen,
+    SheenColor,
+    Opacity,
     Normal,  // a tangent-space normal in [-1, 1]^3 (after the texture's scale and bias): perturbs the shading normal
 };
 
@@ -111,8 +124,8 @@ struct TextureDesc {
     float scale[4] = {1.0f, 1.0f, 1.0f, 1.0f};
     float bias[4] = {0.0f, 0.0f, 0.0f, 0.0f};
     texture::SourceColorSpace colorSpace = texture::SourceColorSpace::Auto;
-    std::string colorSpaceName;  // a colour space of the OCIO config (MaterialX colorspace); overrides colorSpace
-    std::string uvPrimvar = "st";     // the reader's varname; "" = no reader (uvFallback everywhere)
+    std::string colorSpaceName;    // a colour space of the OCIO config (MaterialX colorspace); overrides colorSpace
+    std::string uvPrimvar = "st";  // the reader's varname; "" = no reader (uvFallback everywhere)
     float uvFallback[2] = {0.0f, 0.0f};  // where the mesh has no such primvar
     UvTransform uvTransform;
     texture::Filter filter = texture::Filter::Linear;  // within a mip level (MaterialX filtertype)
@@ -149,7 +162,7 @@ struct InputBinding {
     int channels = 3;      // 1 or 3
     std::optional<TextureDesc> texture;
     float factor = 1.0f;  // the value is multiplied by it (Standard Surface: base for base_color)
-    std::string primvar;                            // when there is no texture
+    std::string primvar;  // when there is no texture
     float primvarFallback[3] = {0.0f, 0.0f, 0.0f};  // where the mesh has no such primvar
     std::vector<ShadingNode> nodes;                 // at most kMaxShadingNodes
     std::vector<InputBinding> sources;
@@ -217,7 +230,7 @@ struct LightShapingDesc {
 };
 
 struct LightDesc {
-    std::string name;          // prim path
+    std::string name;  // prim path
     LightType type = LightType::Rect;
     Matrix4 transform = Matrix4::identity();  // light-to-world; lights emit along local -Z
     // intensity * 2^exposure * colour (* the colour temperature's tint). Rect, Disk, Sphere and
@@ -297,7 +310,7 @@ struct PrototypeDesc {
 
 // One placement of a prototype.
 struct InstanceDesc {
-    int prototype = 0;                         // index into SceneDescription::prototypes
+    int prototype = 0;                        // index into SceneDescription::prototypes
     Matrix4 transform = Matrix4::identity();  // prototype-to-world
     // What names its hits: the instance prim's path, or a PointInstancer's path and the instance's
     // id, "/World/trees[12]" ("": unnamed).
@@ -309,7 +322,7 @@ struct InstanceDesc {
 
 struct SceneDescription {
     std::vector<MaterialDesc> materials;
-    std::vector<MeshDesc> meshes;  // world space
+    std::vector<MeshDesc> meshes;    // world space
     std::vector<CurvesDesc> curves;  // world space
     std::vector<PointsDesc> points;  // world space (render/points_description.h)
     std::vector<PrototypeDesc> prototypes;

@@ -14,8 +14,8 @@ namespace fluence::render {
 
 // A triangle's edges in world space and the same edges in a 2D texture parameterisation.
 struct TriangleParameterisation {
-    Vec3f e1, e2;            // p1 - p0, p2 - p0
-    float d1[2], d2[2];      // st1 - st0, st2 - st0
+    Vec3f e1, e2;        // p1 - p0, p2 - p0
+    float d1[2], d2[2];  // st1 - st0, st2 - st0
 };
 
 // World-space offsets of one pixel step along the image's x and y, in the surface's plane.

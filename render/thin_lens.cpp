@@ -26,7 +26,8 @@ Vec2f ThinLens::sampleAperture(Vec2f u) const {
     const float s = root * (1.0f - b), t = root * b;
     const float step = 2.0f * kPi / static_cast<float>(blades), start = rotationDegrees * (kPi / 180.0f);
     const float angle0 = start + step * static_cast<float>(k), angle1 = angle0 + step;
-    return {radius * (s * std::cos(angle0) + t * std::cos(angle1)), radius * (s * std::sin(angle0) + t * std::sin(angle1))};
+    return {radius * (s * std::cos(angle0) + t * std::cos(angle1)),
+            radius * (s * std::sin(angle0) + t * std::sin(angle1))};
 }
 
 }  // namespace fluence::render

@@ -42,7 +42,7 @@ std::string anchorAssetPath(const std::string& layerIdentifier, const std::strin
     fs::path asset(path);
     if (asset.is_absolute()) return asset.lexically_normal().generic_string();
     if (auto packaged = splitInnermostPackagePath(layerIdentifier)) {  // a layer inside a USDZ package
-        auto file = splitPackagePath(packaged->package);  // the outer package file of a nested package
+        auto file = splitPackagePath(packaged->package);               // the outer package file of a nested package
         const std::string outerFile = normalizedAbsolutePath(file ? file->package : packaged->package);
         const std::string package = file ? packagePath(outerFile, file->entry) : outerFile;
         auto besideEntry = [&](const std::string& entry) {

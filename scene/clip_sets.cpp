@@ -163,8 +163,8 @@ public:
             auto end = number("templateEndTime");
             if (!stride || !start || !end) return nullptr;
             std::string problem;
-            std::optional<ClipTemplate> derived = deriveClipTemplate(*pattern, anchor.identifier, *start, *end,
-                                                                     *stride, number("templateActiveOffset"), problem);
+            std::optional<ClipTemplate> derived = deriveClipTemplate(*pattern, anchor.identifier, *start, *end, *stride,
+                                                                     number("templateActiveOffset"), problem);
             if (!derived) return reject(name, problem);
             assets = std::move(derived->assets);
             active = std::move(derived->active);

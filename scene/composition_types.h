@@ -68,7 +68,8 @@ public:
             warnings_.push_back({std::move(message), std::move(location), std::move(primPath)});
             return;
         }
-        if (w.prims.size() + w.layers.size() > 1) warnings_[w.index].message = w.message + " (referenced by " + w.sites() + ")";
+        if (w.prims.size() + w.layers.size() > 1)
+            warnings_[w.index].message = w.message + " (referenced by " + w.sites() + ")";
     }
     void unresolvedArc(AssetReference reference) { unresolved_.push_back(std::move(reference)); }
 
@@ -81,7 +82,9 @@ private:
         std::string message;    // as the first site gave it
         std::set<std::string> prims, layers;
         std::string sites() const {
-            auto counted = [](std::size_t n, const char* what) { return std::to_string(n) + " " + what + (n == 1 ? "" : "s"); };
+            auto counted = [](std::size_t n, const char* what) {
+                return std::to_string(n) + " " + what + (n == 1 ? "" : "s");
+            };
             if (layers.empty()) return counted(prims.size(), "prim");
             if (prims.empty()) return counted(layers.size(), "layer");
             return counted(prims.size(), "prim") + " and " + counted(layers.size(), "layer");

@@ -40,7 +40,8 @@ std::vector<char> decompressCrateBuffer(std::span<const char> compressed, std::s
             std::memcpy(&size, rest.data(), sizeof size);
             rest = rest.subspan(sizeof size);
             if (size < 0 || static_cast<std::size_t>(size) > rest.size())
-                throw CrateFormatError("compressed chunk of " + std::to_string(size) + " bytes past the end of its buffer");
+                throw CrateFormatError("compressed chunk of " + std::to_string(size) +
+                                       " bytes past the end of its buffer");
             written += decompressBlock(rest.first(static_cast<std::size_t>(size)), out, written);
             rest = rest.subspan(static_cast<std::size_t>(size));
         }

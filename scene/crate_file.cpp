@@ -139,7 +139,8 @@ void CrateFile::readTokens() {
         auto size = reader.read<std::uint64_t>();
         auto compressedSize = reader.read<std::uint64_t>();
         if (compressedSize > tokens->size) throw CrateFormatError("TOKENS section: compressed size past its end");
-        text = decompressCrateBuffer(reader.take(static_cast<std::size_t>(compressedSize)), static_cast<std::size_t>(size));
+        text = decompressCrateBuffer(reader.take(static_cast<std::size_t>(compressedSize)),
+                                     static_cast<std::size_t>(size));
         if (text.size() != size) throw CrateFormatError("TOKENS section: decompressed size differs from the header");
     } else {
         std::span<const char> plain = reader.take(reader.readCount(1));
@@ -151,8 +152,9 @@ void CrateFile::readTokens() {
     while (tokens_.size() < count) {
         const char* start = text.data() + at;
         const void* end = std::memchr(start, '\0', text.size() - at);
-        if (!end) throw CrateFormatError("TOKENS section: " + std::to_string(count) + " tokens claimed, " +
-                                         std::to_string(tokens_.size()) + " found");
+        if (!end)
+            throw CrateFormatError("TOKENS section: " + std::to_string(count) + " tokens claimed, " +
+                                   std::to_string(tokens_.size()) + " found");
         std::size_t length = static_cast<const char*>(end) - start;
         tokens_.emplace_back(start, length);
         at += length + 1;
@@ -234,7 +236,8 @@ void CrateFile::readPaths() {
 }
 
 void CrateFile::setPath(std::uint32_t index, std::int64_t parent, std::uint64_t element, bool isProperty) {
-    if (index >= paths_.size()) throw CrateFormatError("PATHS section: path index " + std::to_string(index) + " out of range");
+    if (index >= paths_.size())
+        throw CrateFormatError("PATHS section: path index " + std::to_string(index) + " out of range");
     if (!paths_[index].empty()) throw CrateFormatError("PATHS section: the path tree is malformed");
     if (parent < 0) {
         paths_[index] = "/";
@@ -250,7 +253,8 @@ void CrateFile::setPath(std::uint32_t index, std::int64_t parent, std::uint64_t 
     }
     pathTextSize_ += paths_[index].size();
     if (pathTextSize_ > kMaxPathText)
-        throw CrateFormatError("PATHS section: the paths add up to more than " + std::to_string(kMaxPathText) + " bytes");
+        throw CrateFormatError("PATHS section: the paths add up to more than " + std::to_string(kMaxPathText) +
+                               " bytes");
 }
 
 // Before 0.4.0: the tree in pre-order, one header per path (4 bytes of padding in 0.0.1, the path
@@ -278,7 +282,8 @@ void CrateFile::readPathTree(ByteReader& reader, std::uint64_t sectionStart) {
                 auto sibling = reader.read<std::int64_t>();
                 if (sibling < static_cast<std::int64_t>(sectionStart))
                     throw CrateFormatError("PATHS section: a sibling lies outside the section");
-                pending.emplace_back(static_cast<std::size_t>(sibling - static_cast<std::int64_t>(sectionStart)), parent);
+                pending.emplace_back(static_cast<std::size_t>(sibling - static_cast<std::int64_t>(sectionStart)),
+                                     parent);
             }
             if (hasChild) parent = index;
             if (!hasChild && !hasSibling) break;

@@ -55,8 +55,17 @@ struct ValueRep {
 
 // Sdf's spec types, as crate files number them.
 enum class CrateSpecType : std::uint32_t {
-    Attribute = 1, Connection = 2, Expression = 3, Mapper = 4, MapperArg = 5, Prim = 6, PseudoRoot = 7,
-    Relationship = 8, RelationshipTarget = 9, Variant = 10, VariantSet = 11,
+    Attribute = 1,
+    Connection = 2,
+    Expression = 3,
+    Mapper = 4,
+    MapperArg = 5,
+    Prim = 6,
+    PseudoRoot = 7,
+    Relationship = 8,
+    RelationshipTarget = 9,
+    Variant = 10,
+    VariantSet = 11,
 };
 
 struct CrateField {

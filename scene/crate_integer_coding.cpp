@@ -13,8 +13,7 @@ namespace {
 
 template <class T>
 T readAt(std::span<const char> bytes, std::size_t& at) {
-    if (at > bytes.size() || bytes.size() - at < sizeof(T))
-        throw CrateFormatError("compressed integers end early");
+    if (at > bytes.size() || bytes.size() - at < sizeof(T)) throw CrateFormatError("compressed integers end early");
     T value;
     std::memcpy(&value, bytes.data() + at, sizeof(T));
     at += sizeof(T);

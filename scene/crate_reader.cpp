@@ -80,15 +80,22 @@ public:
         Value subLayers, offsets;
         std::vector<std::string> rootPrims;
         for (const auto& [name, rep] : fields) {
-            if (name == "primChildren") rootPrims = names(rep, "/");
-            else if (name == "subLayers") subLayers = values_.value(rep);
-            else if (name == "subLayerOffsets") offsets = values_.value(rep);
-            else if (name == "primOrder") reorder(layer_.metadata, "rootPrims", rep);
-            else addMetadata(layer_.metadata, name, rep);
+            if (name == "primChildren")
+                rootPrims = names(rep, "/");
+            else if (name == "subLayers")
+                subLayers = values_.value(rep);
+            else if (name == "subLayerOffsets")
+                offsets = values_.value(rep);
+            else if (name == "primOrder")
+                reorder(layer_.metadata, "rootPrims", rep);
+            else
+                addMetadata(layer_.metadata, name, rep);
         }
-        if (!subLayers.strings.empty()) layer_.metadata.push_back({"subLayers", ListOpKind::Explicit,
-                                                                   joinSubLayers(subLayers, offsets), location()});
-        for (const std::string& name : rootPrims) layer_.rootPrims.push_back(prim(detail::childPrimPath("/", name), name, 1));
+        if (!subLayers.strings.empty())
+            layer_.metadata.push_back(
+                {"subLayers", ListOpKind::Explicit, joinSubLayers(subLayers, offsets), location()});
+        for (const std::string& name : rootPrims)
+            layer_.rootPrims.push_back(prim(detail::childPrimPath("/", name), name, 1));
     }
 
 private:
@@ -104,7 +111,8 @@ private:
 
     Fields fieldsOf(const CrateSpec& spec) const {
         Fields fields;
-        for (const detail::CrateField* field : file_.fieldsOf(spec)) fields.emplace_back(file_.token(field->token), field->value);
+        for (const detail::CrateField* field : file_.fieldsOf(spec))
+            fields.emplace_back(file_.token(field->token), field->value);
         return fields;
     }
 
@@ -119,7 +127,8 @@ private:
             if (name.empty() || name.find_first_of(forbidden) != std::string::npos)
                 throw CrateFormatError("invalid child name '" + name + "' under <" + owner + ">");
             // Each child spec is read once: a repeated name could otherwise multiply the work.
-            if (!seen.insert(name).second) throw CrateFormatError("child '" + name + "' listed twice under <" + owner + ">");
+            if (!seen.insert(name).second)
+                throw CrateFormatError("child '" + name + "' listed twice under <" + owner + ">");
         }
         return list.strings;
     }
@@ -139,24 +148,30 @@ private:
 
     void reorder(Metadata& out, const char* key, ValueRep rep) const {
         Value order = values_.value(rep);
-        out.push_back({key, ListOpKind::Reorder, Value::string("", ValueKind::String, order.strings, true), location()});
+        out.push_back(
+            {key, ListOpKind::Reorder, Value::string("", ValueKind::String, order.strings, true), location()});
     }
 
     void addMetadata(Metadata& out, const std::string& field, ValueRep authored) {
         std::string key = metadataKey(field);
         const ValueRep rep = values_.unwrapUnregistered(authored);
         if (!detail::isRegisteredMetadataField(key))
-            layer_.warnings.push_back({location(), "unregistered metadata field '" + key + "'; kept, but nothing reads it"});
+            layer_.warnings.push_back(
+                {location(), "unregistered metadata field '" + key + "'; kept, but nothing reads it"});
         if (CrateValues::isListOp(rep)) {
             CrateListOp op = values_.listOp(rep);
-            if (op.isExplicit && op.lists.empty()) out.push_back({key, ListOpKind::Explicit, untyped(Value::string("", ValueKind::String, {}, true)), location()});
+            if (op.isExplicit && op.lists.empty())
+                out.push_back(
+                    {key, ListOpKind::Explicit, untyped(Value::string("", ValueKind::String, {}, true)), location()});
             for (auto& [kind, items] : op.lists) {
-                if (op.isExplicit && kind != ListOpKind::Explicit) continue;  // Sdf ignores edits of an explicit list op
+                if (op.isExplicit && kind != ListOpKind::Explicit)
+                    continue;  // Sdf ignores edits of an explicit list op
                 out.push_back({key, kind, untyped(std::move(items)), location()});
             }
             return;
         }
-        if (CrateValues::isTimeSamples(rep)) throw CrateFormatError("time samples as metadata '" + key + "' are not supported");
+        if (CrateValues::isTimeSamples(rep))
+            throw CrateFormatError("time samples as metadata '" + key + "' are not supported");
         Value value = values_.value(rep);
         if (key == "variants" || key == "permission") {
             out.push_back({key, ListOpKind::Explicit, std::move(value), location()});
@@ -168,7 +183,8 @@ private:
     }
 
     std::unique_ptr<PrimSpec> prim(const std::string& path, const std::string& name, int depth) {
-        if (depth > kMaxNesting) throw CrateFormatError("prims nested more than " + std::to_string(kMaxNesting) + " deep");
+        if (depth > kMaxNesting)
+            throw CrateFormatError("prims nested more than " + std::to_string(kMaxNesting) + " deep");
         const CrateSpec& spec = specAt(path, CrateSpecType::Prim, "prim");
         auto out = std::make_unique<PrimSpec>();
         out->name = name;
@@ -178,7 +194,9 @@ private:
         for (const auto& [field, rep] : fields) {
             if (field == "specifier") {
                 std::string specifier = values_.value(rep).asString().value_or("");
-                out->specifier = specifier == "over" ? Specifier::Over : specifier == "class" ? Specifier::Class : Specifier::Def;
+                out->specifier = specifier == "over"    ? Specifier::Over
+                                 : specifier == "class" ? Specifier::Class
+                                                        : Specifier::Def;
             } else if (field == "typeName") {
                 out->typeName = values_.value(rep).asString().value_or("");
             }
@@ -191,15 +209,22 @@ private:
     void fillBody(const Body& body, const Fields& fields, int depth) {
         std::vector<std::string> children, properties, variantSets;
         for (const auto& [field, rep] : fields) {
-            if (field == "primChildren") children = names(rep, body.path);
-            else if (field == "properties") properties = names(rep, body.path);
-            else if (field == "variantSetChildren") variantSets = names(rep, body.path);
-            else if (field == "primOrder") reorder(*body.metadata, "nameChildren", rep);
-            else if (field == "propertyOrder") reorder(*body.metadata, "properties", rep);
-            else if (!isStructural(field)) addMetadata(*body.metadata, field, rep);
+            if (field == "primChildren")
+                children = names(rep, body.path);
+            else if (field == "properties")
+                properties = names(rep, body.path);
+            else if (field == "variantSetChildren")
+                variantSets = names(rep, body.path);
+            else if (field == "primOrder")
+                reorder(*body.metadata, "nameChildren", rep);
+            else if (field == "propertyOrder")
+                reorder(*body.metadata, "properties", rep);
+            else if (!isStructural(field))
+                addMetadata(*body.metadata, field, rep);
         }
         for (const std::string& name : properties) property(body, name);
-        for (const std::string& name : children) body.children->push_back(prim(detail::childPrimPath(body.path, name), name, depth + 1));
+        for (const std::string& name : children)
+            body.children->push_back(prim(detail::childPrimPath(body.path, name), name, depth + 1));
         for (const std::string& name : variantSets) body.variantSets->push_back(variantSet(body.path, name, depth));
     }
 
@@ -210,14 +235,15 @@ private:
         set.name = name;
         set.location = location();
         for (const auto& [field, rep] : fieldsOf(spec)) {
-            if (field != "variantChildren") throw CrateFormatError("unexpected field '" + field + "' on variant set <" + path + ">");
+            if (field != "variantChildren")
+                throw CrateFormatError("unexpected field '" + field + "' on variant set <" + path + ">");
             for (const std::string& variantName : names(rep, path, "/{}[]=")) {
                 std::string variantPath = owner + "{" + name + "=" + variantName + "}";
                 const CrateSpec& variantSpec = specAt(variantPath, CrateSpecType::Variant, "variant");
                 VariantSpec& variant = set.variants.emplace_back();
                 variant.name = variantName;
-                fillBody({variantPath, &variant.metadata, &variant.attributes, &variant.relationships, &variant.children,
-                          &variant.variantSets},
+                fillBody({variantPath, &variant.metadata, &variant.attributes, &variant.relationships,
+                          &variant.children, &variant.variantSets},
                          fieldsOf(variantSpec), depth + 1);
             }
         }
@@ -229,9 +255,12 @@ private:
         auto it = specAt_.find(path);
         if (it == specAt_.end()) throw CrateFormatError("no property spec at <" + path + ">");
         const CrateSpec& spec = file_.specs()[it->second];
-        if (spec.type == CrateSpecType::Attribute) body.attributes->push_back(attribute(name, fieldsOf(spec)));
-        else if (spec.type == CrateSpecType::Relationship) body.relationships->push_back(relationship(name, fieldsOf(spec)));
-        else throw CrateFormatError("the spec at <" + path + "> is not an attribute or a relationship");
+        if (spec.type == CrateSpecType::Attribute)
+            body.attributes->push_back(attribute(name, fieldsOf(spec)));
+        else if (spec.type == CrateSpecType::Relationship)
+            body.relationships->push_back(relationship(name, fieldsOf(spec)));
+        else
+            throw CrateFormatError("the spec at <" + path + "> is not an attribute or a relationship");
     }
 
     // Value `v` as a value of the declared attribute type (a value block keeps the type too).
@@ -275,13 +304,16 @@ private:
             if (field == "typeName") out.typeName = values_.value(rep).asString().value_or("");
         for (const auto& [field, rep] : fields) {
             if (field == "typeName" || field == "connectionChildren") continue;
-            if (field == "custom") out.custom = values_.value(rep).asDouble().value_or(0.0) != 0.0;
-            else if (field == "variability") out.uniform = values_.value(rep).asString() == "uniform";
+            if (field == "custom")
+                out.custom = values_.value(rep).asDouble().value_or(0.0) != 0.0;
+            else if (field == "variability")
+                out.uniform = values_.value(rep).asString() == "uniform";
             else if (field == "default") {
                 out.defaultValue = typed(values_.value(rep), out.typeName);
                 out.hasDefault = true;
             } else if (field == "timeSamples") {
-                if (!CrateValues::isTimeSamples(rep)) throw CrateFormatError("timeSamples of '" + name + "' are not time samples");
+                if (!CrateValues::isTimeSamples(rep))
+                    throw CrateFormatError("timeSamples of '" + name + "' are not time samples");
                 out.timeSamples = values_.timeSamples(rep);
                 for (auto& sample : out.timeSamples) sample.second = typed(std::move(sample.second), out.typeName);
             } else if (field == "connectionPaths") {
@@ -299,9 +331,12 @@ private:
         out.location = location();
         for (const auto& [field, rep] : fields) {
             if (field == "targetChildren" || field == "variability") continue;
-            if (field == "custom") out.custom = values_.value(rep).asDouble().value_or(0.0) != 0.0;
-            else if (field == "targetPaths") pathEdits(rep, "targetPaths", out.op, out.targets, out.metadata);
-            else addMetadata(out.metadata, field, rep);
+            if (field == "custom")
+                out.custom = values_.value(rep).asDouble().value_or(0.0) != 0.0;
+            else if (field == "targetPaths")
+                pathEdits(rep, "targetPaths", out.op, out.targets, out.metadata);
+            else
+                addMetadata(out.metadata, field, rep);
         }
         return out;
     }

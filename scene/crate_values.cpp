@@ -180,7 +180,8 @@ std::vector<double> decodeNumbers(ByteReader& reader, ValueRep rep, const CrateV
                                                                : static_cast<double>(x));
         } else {
             for (std::int32_t x : readCompressedInts32(reader, count))
-                numbers.push_back(layout.scalar == Scalar::U32 ? static_cast<double>(static_cast<std::uint32_t>(x)) : x);
+                numbers.push_back(layout.scalar == Scalar::U32 ? static_cast<double>(static_cast<std::uint32_t>(x))
+                                                               : x);
         }
         return numbers;
     }
@@ -190,16 +191,19 @@ std::vector<double> decodeNumbers(ByteReader& reader, ValueRep rep, const CrateV
     } else if (code == 't') {
         auto tableSize = reader.read<std::uint32_t>();
         if (tableSize > reader.bytes().size() / bytes)
-            throw CrateFormatError("a lookup table of " + std::to_string(tableSize) + " entries runs past the end of the file");
+            throw CrateFormatError("a lookup table of " + std::to_string(tableSize) +
+                                   " entries runs past the end of the file");
         std::span<const char> table = reader.take(tableSize * bytes);
         numbers.reserve(count);
         for (std::int32_t x : readCompressedInts32(reader, count)) {
             auto at = static_cast<std::uint32_t>(x);
-            if (at >= tableSize) throw CrateFormatError("a compressed array's table index " + std::to_string(at) + " is out of range");
+            if (at >= tableSize)
+                throw CrateFormatError("a compressed array's table index " + std::to_string(at) + " is out of range");
             numbers.push_back(scalarAt(table.data() + at * bytes, layout.scalar));
         }
     } else {
-        throw CrateFormatError("unknown compressed floating-point array code " + std::to_string(static_cast<int>(code)));
+        throw CrateFormatError("unknown compressed floating-point array code " +
+                               std::to_string(static_cast<int>(code)));
     }
     return numbers;
 }
@@ -271,7 +275,8 @@ Value CrateValues::decode(ValueRep rep) const {
     }
     ByteReader reader = file_.readerAt(rep.payload());
     switch (type) {
-        case T::PathExpression: return stringValue("pathExpression", ValueKind::String, file_.string(reader.read<std::uint32_t>()));
+        case T::PathExpression:
+            return stringValue("pathExpression", ValueKind::String, file_.string(reader.read<std::uint32_t>()));
         case T::Dictionary: return dictionary(reader);
         case T::Value:
         case T::UnregisteredValue: return nestedValue(reader);
@@ -302,7 +307,8 @@ Value CrateValues::decode(ValueRep rep) const {
             auto entries = std::make_shared<Dictionary>();
             for (std::size_t i = 0; i < count; ++i) {
                 const std::string& set = file_.string(reader.read<std::uint32_t>());
-                entries->emplace_back(set, stringValue("string", ValueKind::String, file_.string(reader.read<std::uint32_t>())));
+                entries->emplace_back(
+                    set, stringValue("string", ValueKind::String, file_.string(reader.read<std::uint32_t>())));
             }
             Value map;
             map.typeName = "dictionary";
@@ -315,7 +321,8 @@ Value CrateValues::decode(ValueRep rep) const {
             auto entries = std::make_shared<Dictionary>();
             for (std::size_t i = 0; i < count; ++i) {
                 const std::string& source = file_.path(reader.read<std::uint32_t>());
-                entries->emplace_back(source, stringValue("", ValueKind::Path, file_.path(reader.read<std::uint32_t>())));
+                entries->emplace_back(source,
+                                      stringValue("", ValueKind::Path, file_.path(reader.read<std::uint32_t>())));
             }
             Value map;
             map.kind = ValueKind::Dictionary;
@@ -387,21 +394,24 @@ Value CrateValues::numericArray(ValueRep rep, ByteReader& reader) const {
     }
     // Checked now, so that only a damaged compressed array can fail when decoded.
     if (!isCompressedArray(rep, count, file_.version())) checkArrayFits(reader, rep, count);
-    array.numbers = NumberArray::deferred(size, [bytes = file_.sharedBytes(), identifier = file_.identifier(),
-                                                 version = file_.version(), rep, start] {
-        try {
-            ByteReader data(std::span<const char>(bytes->data(), bytes->size()), start);
-            return decodeNumbers(data, rep, version);
-        } catch (const CrateFormatError& e) {
-            throwDamagedCrateFile(identifier, e.what());
-        }
-    });
+    array.numbers = NumberArray::deferred(
+        size, [bytes = file_.sharedBytes(), identifier = file_.identifier(), version = file_.version(), rep, start] {
+            try {
+                ByteReader data(std::span<const char>(bytes->data(), bytes->size()), start);
+                return decodeNumbers(data, rep, version);
+            } catch (const CrateFormatError& e) {
+                throwDamagedCrateFile(identifier, e.what());
+            }
+        });
     return array;
 }
 
 Value CrateValues::stringArray(ValueRep rep) const {
     int type = rep.type();
-    const char* name = type == T::String ? "string[]" : type == T::Token ? "token[]" : type == T::AssetPath ? "asset[]" : "pathExpression[]";
+    const char* name = type == T::String      ? "string[]"
+                       : type == T::Token     ? "token[]"
+                       : type == T::AssetPath ? "asset[]"
+                                              : "pathExpression[]";
     ValueKind kind = type == T::Token ? ValueKind::Token : type == T::AssetPath ? ValueKind::Asset : ValueKind::String;
     std::vector<std::string> strings;
     if (rep.payload() != 0) {
@@ -491,9 +501,11 @@ Value CrateValues::listItems(int type, ByteReader& reader) const {
     };
     switch (type) {
         case T::TokenListOp:
-        case T::TokenVector: return strings("token[]", ValueKind::Token, [&](std::uint32_t i) { return file_.token(i); });
+        case T::TokenVector:
+            return strings("token[]", ValueKind::Token, [&](std::uint32_t i) { return file_.token(i); });
         case T::StringListOp:
-        case T::StringVector: return strings("string[]", ValueKind::String, [&](std::uint32_t i) { return file_.string(i); });
+        case T::StringVector:
+            return strings("string[]", ValueKind::String, [&](std::uint32_t i) { return file_.string(i); });
         case T::PathListOp:
         case T::PathVector: return strings("", ValueKind::Path, [&](std::uint32_t i) { return file_.path(i); });
         case T::IntListOp: return numbers("int[]", std::int32_t{});

@@ -46,13 +46,64 @@ namespace fluence::usd::detail {
 // The crate type enum (OpenUSD crateDataTypes.h).
 namespace crate_type {
 enum : int {
-    Bool = 1, UChar, Int, UInt, Int64, UInt64, Half, Float, Double, String, Token, AssetPath,
-    Matrix2d, Matrix3d, Matrix4d, Quatd, Quatf, Quath, Vec2d, Vec2f, Vec2h, Vec2i, Vec3d, Vec3f, Vec3h,
-    Vec3i, Vec4d, Vec4f, Vec4h, Vec4i, Dictionary, TokenListOp, StringListOp, PathListOp,
-    ReferenceListOp, IntListOp, Int64ListOp, UIntListOp, UInt64ListOp, PathVector, TokenVector,
-    Specifier, Permission, Variability, VariantSelectionMap, TimeSamples, Payload, DoubleVector,
-    LayerOffsetVector, StringVector, ValueBlock, Value, UnregisteredValue, UnregisteredValueListOp,
-    PayloadListOp, TimeCode, PathExpression, Relocates,
+    Bool = 1,
+    UChar,
+    Int,
+    UInt,
+    Int64,
+    UInt64,
+    Half,
+    Float,
+    Double,
+    String,
+    Token,
+    AssetPath,
+    Matrix2d,
+    Matrix3d,
+    Matrix4d,
+    Quatd,
+    Quatf,
+    Quath,
+    Vec2d,
+    Vec2f,
+    Vec2h,
+    Vec2i,
+    Vec3d,
+    Vec3f,
+    Vec3h,
+    Vec3i,
+    Vec4d,
+    Vec4f,
+    Vec4h,
+    Vec4i,
+    Dictionary,
+    TokenListOp,
+    StringListOp,
+    PathListOp,
+    ReferenceListOp,
+    IntListOp,
+    Int64ListOp,
+    UIntListOp,
+    UInt64ListOp,
+    PathVector,
+    TokenVector,
+    Specifier,
+    Permission,
+    Variability,
+    VariantSelectionMap,
+    TimeSamples,
+    Payload,
+    DoubleVector,
+    LayerOffsetVector,
+    StringVector,
+    ValueBlock,
+    Value,
+    UnregisteredValue,
+    UnregisteredValueListOp,
+    PayloadListOp,
+    TimeCode,
+    PathExpression,
+    Relocates,
 };
 }  // namespace crate_type
 
@@ -85,7 +136,7 @@ private:
     Value numericArray(ValueRep rep, ByteReader& reader) const;
     Value stringArray(ValueRep rep) const;
     Value dictionary(ByteReader& reader) const;
-    Value nestedValue(ByteReader& reader) const;  // a VtValue: a relative jump, then its ValueRep
+    Value nestedValue(ByteReader& reader) const;   // a VtValue: a relative jump, then its ValueRep
     ValueRep nestedRep(ByteReader& reader) const;  // the ValueRep of such a VtValue
     Value reference(ByteReader& reader, bool withCustomData) const;
     Value listItems(int listOpType, ByteReader& reader) const;

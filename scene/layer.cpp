@@ -4,9 +4,7 @@
 
 namespace fluence::usd {
 
-std::string SourceLocation::str() const {
-    return file + ":" + std::to_string(line) + ":" + std::to_string(column);
-}
+std::string SourceLocation::str() const { return file + ":" + std::to_string(line) + ":" + std::to_string(column); }
 
 const MetadataEntry* findMetadata(const Metadata& metadata, const std::string& key) {
     for (auto it = metadata.rbegin(); it != metadata.rend(); ++it) {

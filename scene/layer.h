@@ -19,8 +19,8 @@ namespace fluence::usd {
 
 struct SourceLocation {
     std::string file;
-    int line = 0;    // 1-based
-    int column = 0;  // 1-based, in bytes
+    int line = 0;             // 1-based
+    int column = 0;           // 1-based, in bytes
     std::string str() const;  // "file:line:column"
 };
 
@@ -45,11 +45,11 @@ struct AttributeSpec {
     bool custom = false;
     bool uniform = false;  // `uniform` variability
     bool hasDefault = false;
-    Value defaultValue;                               // valid when hasDefault
-    TimeSamples timeSamples;                          // sorted by time, from `name.timeSamples`
-    std::vector<std::string> connections;             // from `name.connect`, prim/property paths
+    Value defaultValue;                    // valid when hasDefault
+    TimeSamples timeSamples;               // sorted by time, from `name.timeSamples`
+    std::vector<std::string> connections;  // from `name.connect`, prim/property paths
     ListOpKind connectionOp = ListOpKind::Explicit;
-    Metadata metadata;                                // interpolation, elementSize, colorSpace, ...
+    Metadata metadata;  // interpolation, elementSize, colorSpace, ...
     SourceLocation location;
 };
 
@@ -85,9 +85,9 @@ struct PrimSpec {
     Specifier specifier = Specifier::Def;
     std::string typeName;  // "Mesh", "Xform", ... (empty for untyped prims)
     std::string name;
-    std::string path;      // absolute prim path, "/World/Box"
-    Metadata metadata;     // kind, apiSchemas, references, variants, instanceable, active, ...
-    std::vector<AttributeSpec> attributes;      // authored order
+    std::string path;                             // absolute prim path, "/World/Box"
+    Metadata metadata;                            // kind, apiSchemas, references, variants, instanceable, active, ...
+    std::vector<AttributeSpec> attributes;        // authored order
     std::vector<RelationshipSpec> relationships;  // authored order
     std::vector<std::unique_ptr<PrimSpec>> children;
     std::vector<VariantSetSpec> variantSets;

@@ -18,7 +18,8 @@ namespace {
 
 std::string lowercaseExtension(const std::string& path) {
     std::string extension = std::filesystem::path(path).extension().string();
-    std::transform(extension.begin(), extension.end(), extension.begin(), [](unsigned char c) { return std::tolower(c); });
+    std::transform(extension.begin(), extension.end(), extension.begin(),
+                   [](unsigned char c) { return std::tolower(c); });
     return extension;
 }
 
@@ -27,7 +28,8 @@ std::string lowercaseExtension(const std::string& path) {
 std::unique_ptr<Layer> readPackagedLayer(const UsdzPackage& package, const std::string& entryName) {
     const std::string identifier = packagePath(package.path(), entryName);
     std::string_view bytes = package.bytes(entryName);
-    if (isCrateHeader(bytes.substr(0, 8))) return readCrateBytes(std::vector<char>(bytes.begin(), bytes.end()), identifier);
+    if (isCrateHeader(bytes.substr(0, 8)))
+        return readCrateBytes(std::vector<char>(bytes.begin(), bytes.end()), identifier);
     if (isMaterialXPath(entryName)) return readMaterialX(std::string(bytes), identifier);
     const std::string extension = lowercaseExtension(entryName);
     if (extension != ".usda" && extension != ".usd")
@@ -46,7 +48,8 @@ std::string missingFormatPlugin(const std::string& path) {
 }
 
 std::string unsupportedFormatMessage(const std::string& path) {
-    return "'" + path + "' needs the " + missingFormatPlugin(path) + " plugin (a USD file format plugin Fluence does not have)";
+    return "'" + path + "' needs the " + missingFormatPlugin(path) +
+           " plugin (a USD file format plugin Fluence does not have)";
 }
 
 std::unique_ptr<Layer> readLayerFile(const std::string& path) {

@@ -151,7 +151,6 @@ const LayerStack* LayerRegistry::stackFor(const std::string& resolvedPath, const
 
 std::vector<std::string> LayerRegistry::files() const { return files_; }
 
-
 const Layer* LayerRegistry::layerFor(const std::string& resolvedPath, const ArcSite& site) {
     auto cached = byPath_.find(resolvedPath);
     std::string problem;
@@ -167,8 +166,8 @@ const Layer* LayerRegistry::layerFor(const std::string& resolvedPath, const ArcS
         byPath_[resolvedPath] = nullptr;
         problems_[resolvedPath] = problem;
     }
-    log_.warnAboutAsset(resolvedPath, std::string(site.arc) + " @" + site.authored + "@ ignored: " + problem, site.location,
-                        site.primPath);
+    log_.warnAboutAsset(resolvedPath, std::string(site.arc) + " @" + site.authored + "@ ignored: " + problem,
+                        site.location, site.primPath);
     std::error_code error;
     log_.unresolvedArc({site.primPath, site.property, site.authored, resolvedPath,
                         fs::is_regular_file(resolvedPath, error), site.location});
@@ -213,9 +212,9 @@ void LayerRegistry::addToStack(LayerStack& stack, const Layer& layer, const Laye
         if (repeat != chain.end()) {
             std::string cycle;
             for (auto it = repeat; it != chain.end(); ++it) cycle += fs::path(*it).filename().string() + " -> ";
-            log_.warn("sublayer cycle: " + cycle + fs::path(resolved).filename().string() + " (@" + authored +
-                          "@ ignored)",
-                      subLayers->location, "");
+            log_.warn(
+                "sublayer cycle: " + cycle + fs::path(resolved).filename().string() + " (@" + authored + "@ ignored)",
+                subLayers->location, "");
             continue;
         }
         const Layer* sub = layerFor(resolved, {"sublayer", "subLayers", authored, subLayers->location, ""});

@@ -40,9 +40,7 @@ struct LayerOffset {
 
     double apply(double time) const { return time * scale + offset; }
     // This offset applied after `inner`: t -> apply(inner.apply(t)).
-    LayerOffset after(const LayerOffset& inner) const {
-        return {offset + inner.offset * scale, scale * inner.scale};
-    }
+    LayerOffset after(const LayerOffset& inner) const { return {offset + inner.offset * scale, scale * inner.scale}; }
     bool isIdentity() const { return offset == 0.0 && scale == 1.0; }
     // The offset authored on a sublayer, reference or payload (identity when none was written).
     static LayerOffset of(const Value& arc);
@@ -66,9 +64,7 @@ struct SpecRef {
     const std::vector<RelationshipSpec>& relationships() const {
         return prim ? prim->relationships : variant->relationships;
     }
-    const std::vector<std::unique_ptr<PrimSpec>>& children() const {
-        return prim ? prim->children : variant->children;
-    }
+    const std::vector<std::unique_ptr<PrimSpec>>& children() const { return prim ? prim->children : variant->children; }
     const std::vector<VariantSetSpec>& variantSets() const { return prim ? prim->variantSets : variant->variantSets; }
 };
 
@@ -90,9 +86,9 @@ struct LayerStack {
         const SpecIndex* specs = nullptr;
         LayerOffset offset;  // this layer's time to the root layer's time
     };
-    std::string identifier;      // the root layer's identifier
-    std::vector<Entry> layers;   // strongest first; layers[0] is the root layer
-    Relocates relocates;         // the relocations the stack's layers author
+    std::string identifier;     // the root layer's identifier
+    std::vector<Entry> layers;  // strongest first; layers[0] is the root layer
+    Relocates relocates;        // the relocations the stack's layers author
 
     const Layer& rootLayer() const { return *layers.front().layer; }
     // The stack's rate: its root layer's (USD's PcpLayerStack::GetTimeCodesPerSecond).
@@ -105,7 +101,7 @@ struct LayerStack {
 
 // Where an arc that needs a layer file was authored, for warnings.
 struct ArcSite {
-    const char* arc;  // "sublayer", "reference", "payload", "clip", "clip manifest"
+    const char* arc;       // "sublayer", "reference", "payload", "clip", "clip manifest"
     const char* property;  // the metadata field: "subLayers", "references", "payload", "clips"
     std::string authored;  // the asset path as written
     SourceLocation location;
@@ -141,14 +137,13 @@ private:
     // Takes ownership of a parsed layer and reports its parse warnings.
     const Layer& keep(std::unique_ptr<Layer> layer);
     const LayerStack& buildStack(const Layer& root);
-    void addToStack(LayerStack& stack, const Layer& layer, const LayerOffset& offset,
-                    std::vector<std::string>& chain);
+    void addToStack(LayerStack& stack, const Layer& layer, const LayerOffset& offset, std::vector<std::string>& chain);
 
     CompositionLog& log_;
     std::vector<std::unique_ptr<Layer>> layers_;
-    std::vector<std::string> files_;                               // in reading order
-    std::map<std::string, const Layer*> byPath_;                   // nullptr: unusable file
-    std::map<std::string, std::string> problems_;                  // why an unusable file is
+    std::vector<std::string> files_;               // in reading order
+    std::map<std::string, const Layer*> byPath_;   // nullptr: unusable file
+    std::map<std::string, std::string> problems_;  // why an unusable file is
     std::map<const Layer*, std::unique_ptr<SpecIndex>> specIndexes_;
     std::size_t specCount_ = 0;
     std::map<const Layer*, std::unique_ptr<LayerStack>> stacks_;

@@ -75,8 +75,8 @@ std::vector<T> composeListEdits(const std::vector<SpecListEdits<T>>& strongestFi
     }
     for (std::size_t i = start; i-- > 0;) {
         const SpecListEdits<T>& edits = strongestFirst[i];
-        for (ListOpKind op : {ListOpKind::Delete, ListOpKind::Add, ListOpKind::Prepend, ListOpKind::Append,
-                              ListOpKind::Reorder}) {
+        for (ListOpKind op :
+             {ListOpKind::Delete, ListOpKind::Add, ListOpKind::Prepend, ListOpKind::Append, ListOpKind::Reorder}) {
             for (const ListEdit<T>& edit : edits) {
                 if (edit.op != op) continue;
                 switch (op) {

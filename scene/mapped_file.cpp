@@ -35,10 +35,11 @@ SharedBytes mapFile(const std::string& path) {
     if (size == 0) return std::make_shared<const std::string_view>();
     void* address = ::mmap(nullptr, size, PROT_READ, MAP_PRIVATE, file.fd, 0);
     if (address == MAP_FAILED) throw FileError("cannot read '" + path + "': " + std::strerror(errno));
-    SharedBytes mapping(new std::string_view(static_cast<const char*>(address), size), [](const std::string_view* view) {
-        ::munmap(const_cast<char*>(view->data()), view->size());
-        delete view;
-    });
+    SharedBytes mapping(new std::string_view(static_cast<const char*>(address), size),
+                        [](const std::string_view* view) {
+                            ::munmap(const_cast<char*>(view->data()), view->size());
+                            delete view;
+                        });
     // Pages past the end of a file that shrank since fstat would fault when read: check again.
     if (::fstat(file.fd, &info) != 0 || static_cast<std::size_t>(info.st_size) < size)
         throw FileError("cannot read '" + path + "': the file shrank while it was being opened (still being written?)");

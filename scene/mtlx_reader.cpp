@@ -27,12 +27,12 @@ struct UsdType {
 // The USD type of a MaterialX type, or nullopt for types with no value (shaders, BSDFs, ...).
 std::optional<UsdType> usdTypeOf(const std::string& type) {
     static const std::vector<std::pair<std::string, UsdType>> types = {
-        {"float", {"float", ValueKind::Numeric, 1}},          {"integer", {"int", ValueKind::Numeric, 1}},
-        {"boolean", {"bool", ValueKind::Numeric, 1}},         {"color3", {"color3f", ValueKind::Numeric, 3}},
-        {"color4", {"color4f", ValueKind::Numeric, 4}},       {"vector2", {"float2", ValueKind::Numeric, 2}},
-        {"vector3", {"vector3f", ValueKind::Numeric, 3}},     {"vector4", {"float4", ValueKind::Numeric, 4}},
-        {"matrix33", {"matrix3d", ValueKind::Numeric, 9}},    {"matrix44", {"matrix4d", ValueKind::Numeric, 16}},
-        {"string", {"string", ValueKind::String, 1}},         {"filename", {"asset", ValueKind::Asset, 1}},
+        {"float", {"float", ValueKind::Numeric, 1}},       {"integer", {"int", ValueKind::Numeric, 1}},
+        {"boolean", {"bool", ValueKind::Numeric, 1}},      {"color3", {"color3f", ValueKind::Numeric, 3}},
+        {"color4", {"color4f", ValueKind::Numeric, 4}},    {"vector2", {"float2", ValueKind::Numeric, 2}},
+        {"vector3", {"vector3f", ValueKind::Numeric, 3}},  {"vector4", {"float4", ValueKind::Numeric, 4}},
+        {"matrix33", {"matrix3d", ValueKind::Numeric, 9}}, {"matrix44", {"matrix4d", ValueKind::Numeric, 16}},
+        {"string", {"string", ValueKind::String, 1}},      {"filename", {"asset", ValueKind::Asset, 1}},
     };
     for (const auto& [mtlx, usd] : types)
         if (mtlx == type) return usd;
@@ -77,10 +77,10 @@ public:
 private:
     // Whether a top-level element is a node (anything but the document's structural elements).
     static bool isNode(pugi::xml_node e) {
-        static const std::set<std::string> structural = {"nodegraph", "nodedef", "look", "lookgroup", "collection",
-                                                         "geominfo", "typedef", "implementation", "materialassign",
-                                                         "propertyset", "variantset", "backdrop", "output", "token",
-                                                         "unittypedef", "targetdef", "member"};
+        static const std::set<std::string> structural = {
+            "nodegraph", "nodedef",        "look",           "lookgroup",   "collection", "geominfo",
+            "typedef",   "implementation", "materialassign", "propertyset", "variantset", "backdrop",
+            "output",    "token",          "unittypedef",    "targetdef",   "member"};
         return e.type() == pugi::node_element && !structural.contains(e.name());
     }
 
@@ -180,7 +180,8 @@ private:
         } else if (pugi::xml_attribute source = input.attribute("nodename")) {
             const std::string scope = graphPath.empty() ? materialPath : graphPath;
             a.connections = {scope + "/" + source.value() + ".outputs:out"};
-            pugi::xml_node sourceNode = graphPath.empty() ? topLevel(source.value()) : graphNode(graphPath, source.value());
+            pugi::xml_node sourceNode =
+                graphPath.empty() ? topLevel(source.value()) : graphNode(graphPath, source.value());
             if (sourceNode) addNode(*primAt(scope), sourceNode, graphPath);
         } else if (pugi::xml_attribute iface = input.attribute("interfacename")) {
             a.connections = {graphPath + ".inputs:" + iface.value()};
@@ -190,8 +191,8 @@ private:
         }
         const bool colour = isColorType(type) || (type == "filename" && isColorType(nodeType));
         if (const std::string space = colorSpaceAt(input); colour && !space.empty())
-            a.metadata.push_back({"colorSpace", ListOpKind::Explicit, Value::string("string", ValueKind::String, {space}, false),
-                                  a.location});
+            a.metadata.push_back({"colorSpace", ListOpKind::Explicit,
+                                  Value::string("string", ValueKind::String, {space}, false), a.location});
         prim.attributes.push_back(std::move(a));
     }
 
@@ -226,7 +227,8 @@ private:
             const std::string source = output.attribute("nodename").value();
             if (!source.empty()) {
                 a.connections = {prim.path + "/" + source + ".outputs:out"};
-                if (pugi::xml_node node = graph.find_child_by_attribute("name", source.c_str())) addNode(prim, node, prim.path);
+                if (pugi::xml_node node = graph.find_child_by_attribute("name", source.c_str()))
+                    addNode(prim, node, prim.path);
             }
             prim.attributes.push_back(std::move(a));
         }

@@ -33,8 +33,7 @@ public:
 
     NumberArray() = default;
     NumberArray(std::vector<double> numbers);  // takes the vector's storage, no copy
-    NumberArray(std::initializer_list<double> numbers)
-        : NumberArray(std::vector<double>(numbers)) {}
+    NumberArray(std::initializer_list<double> numbers) : NumberArray(std::vector<double>(numbers)) {}
 
     // `size` numbers that `decode` returns when first used (it must return exactly `size`).
     static NumberArray deferred(std::size_t size, Decoder decode);

@@ -20,9 +20,9 @@ using Found = std::vector<std::pair<std::string, std::string>>;
 
 // Prim metadata that composition consumes (arcs, variant selections, reorder statements, value
 // clips).
-const std::unordered_set<std::string> kCompositionFields = {
-    "references", "payload",      "payloads",   "inherits",  "specializes", "variantSets",
-    "variants",   "nameChildren", "properties", "relocates", "clips",       "clipSets"};
+const std::unordered_set<std::string> kCompositionFields = {"references",  "payload",     "payloads", "inherits",
+                                                            "specializes", "variantSets", "variants", "nameChildren",
+                                                            "properties",  "relocates",   "clips",    "clipSets"};
 
 bool holdsAsset(const Value& value) {
     switch (value.kind) {
@@ -161,8 +161,8 @@ std::vector<Opinion> opinionsOf(const PrimIndex& index) {
         const IndexNode& node = index.nodes()[order[rank]];
         for (const auto& [layer, spec] : node.specs) {
             const LayerStack::Entry& entry = node.stack->layers[static_cast<std::size_t>(layer)];
-            opinions.push_back({spec, entry.layer, order[rank], static_cast<int>(rank), layer,
-                                node.offset.after(entry.offset)});
+            opinions.push_back(
+                {spec, entry.layer, order[rank], static_cast<int>(rank), layer, node.offset.after(entry.offset)});
         }
     }
     return opinions;
@@ -224,9 +224,7 @@ struct PrimComposer::ClipSource {
     int rank = 0;
     int layerIndex = 0;
 
-    bool strongerThan(const Opinion& o) const {
-        return rank < o.rank || (rank == o.rank && layerIndex < o.layerIndex);
-    }
+    bool strongerThan(const Opinion& o) const { return rank < o.rank || (rank == o.rank && layerIndex < o.layerIndex); }
 };
 
 namespace {
@@ -390,7 +388,8 @@ RelationshipSpec PrimComposer::composeRelationship(const PrimIndex& index,
         else if (!r.targets.empty())
             specEdits.push_back({r.op, pathsInStage(index, *o.opinion, r.targets)});
         for (const MetadataEntry& entry : r.metadata)
-            if (entry.key == "targetPaths") specEdits.push_back({entry.op, pathsInStage(index, *o.opinion, entry.value.strings)});
+            if (entry.key == "targetPaths")
+                specEdits.push_back({entry.op, pathsInStage(index, *o.opinion, entry.value.strings)});
         if (!strongestEdit && !specEdits.empty()) strongestEdit = &r;
         edits.push_back(std::move(specEdits));
         metadata.push_back({&r.metadata, o.opinion->layer});

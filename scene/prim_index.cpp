@@ -136,12 +136,11 @@ struct PrimIndexer::ArcItem {
     std::string asset;  // empty for internal references and class arcs
     std::string path;   // absolute prim path, or empty (a reference to the default prim)
     LayerOffset offset;
-    int layer = 0;      // the authoring layer, in the node's layer stack
+    int layer = 0;  // the authoring layer, in the node's layer stack
     SourceLocation location;
 
     bool operator==(const ArcItem& o) const {
-        return asset == o.asset && path == o.path && offset.offset == o.offset.offset &&
-               offset.scale == o.offset.scale;
+        return asset == o.asset && path == o.path && offset.offset == o.offset.offset && offset.scale == o.offset.scale;
     }
 };
 
@@ -234,8 +233,7 @@ bool PrimIndexer::overflows(const PrimIndex& index, std::size_t adding, const So
     return true;
 }
 
-int PrimIndexer::addNode(PrimIndex& index, IndexNode node, bool checkCycle, const SourceLocation& where,
-                         Work& work) {
+int PrimIndexer::addNode(PrimIndex& index, IndexNode node, bool checkCycle, const SourceLocation& where, Work& work) {
     auto& nodes = index.nodes_;
     if (overflows(index, 1, where, work)) return -1;
     for (int sibling : nodes[node.parent].children)
@@ -271,8 +269,8 @@ int PrimIndexer::addNode(PrimIndex& index, IndexNode node, bool checkCycle, cons
 void PrimIndexer::insertChild(PrimIndex& index, int id) {
     auto& nodes = index.nodes_;
     auto& siblings = nodes[nodes[id].parent].children;
-    auto at = std::find_if(siblings.begin(), siblings.end(),
-                           [&](int s) { return strongerSibling(nodes[id], nodes[s]); });
+    auto at =
+        std::find_if(siblings.begin(), siblings.end(), [&](int s) { return strongerSibling(nodes[id], nodes[s]); });
     siblings.insert(at, id);
 }
 
@@ -360,10 +358,11 @@ void PrimIndexer::addReference(PrimIndex& index, int n, ArcType arc, const ArcIt
         return;
     }
     if (!stack->hasSpecAt(target)) {
-        std::string missing = item.path.empty() ? "the defaultPrim of '" + layerName + "', <" + target + ">,"
-                                                : "<" + target + ">";
-        log_.warn(what + " ignored: " + missing + " does not exist" + (item.path.empty() ? "" : " in '" + layerName + "'"),
-                  item.location, index.path_);
+        std::string missing =
+            item.path.empty() ? "the defaultPrim of '" + layerName + "', <" + target + ">," : "<" + target + ">";
+        log_.warn(
+            what + " ignored: " + missing + " does not exist" + (item.path.empty() ? "" : " in '" + layerName + "'"),
+            item.location, index.path_);
         return;
     }
     IndexNode child;
@@ -405,7 +404,8 @@ void PrimIndexer::implyClass(PrimIndex& index, int classNode, Work& work) {
         int to = nodes[from].parent;
         path = index.mapToParent(from, path);
         const LayerStack* stack = nodes[to].stack;
-        bool exists = std::any_of(nodes.begin(), nodes.end(), [&](const IndexNode& x) { return sameSite(x, stack, path); });
+        bool exists =
+            std::any_of(nodes.begin(), nodes.end(), [&](const IndexNode& x) { return sameSite(x, stack, path); });
         if (!exists) {
             IndexNode implied;
             implied.stack = stack;
@@ -459,12 +459,14 @@ void PrimIndexer::addVariants(PrimIndex& index, int n, Work& work) {
         for (const MetadataEntry& entry : spec.metadata()) {
             if (entry.key != "variantSets") continue;
             listed = true;
-            std::vector<std::string> names = entry.value.isStringLike() ? entry.value.strings : std::vector<std::string>{};
+            std::vector<std::string> names =
+                entry.value.isStringLike() ? entry.value.strings : std::vector<std::string>{};
             specEdits.push_back({entry.op, std::move(names)});
         }
         edits.push_back(std::move(specEdits));
         for (const VariantSetSpec& set : spec.variantSets()) {
-            if (std::find(specified.begin(), specified.end(), set.name) == specified.end()) specified.push_back(set.name);
+            if (std::find(specified.begin(), specified.end(), set.name) == specified.end())
+                specified.push_back(set.name);
             for (const VariantSpec& variant : set.variants) index.variantSets_[set.name].insert(variant.name);
         }
     }

@@ -72,15 +72,15 @@ struct IndexNode {
     std::string path;  // in the stack's namespace; may hold variant selections
     ArcType arc = ArcType::Root;
     int parent = -1;
-    std::vector<int> children;  // strongest first
+    std::vector<int> children;                       // strongest first
     std::shared_ptr<const MapFunction> mapToParent;  // null for the identity (root, variants)
-    LayerOffset offset;       // this node's time codes to the stage's
-    int namespaceDepth = 0;   // depth of the prim on which the arc was authored
-    int siblingNumber = 0;    // position in the composed arc list
-    int impliedRank = 0;      // 0 for arcs authored at the parent; else the order of implication
-    int origin = -1;          // implied arcs: the node they were implied from
-    bool inert = false;       // contributes no opinions and no arcs (relocation sources)
-    std::vector<std::pair<int, SpecRef>> specs;  // (layer in the stack, spec), strongest first
+    LayerOffset offset;                              // this node's time codes to the stage's
+    int namespaceDepth = 0;                          // depth of the prim on which the arc was authored
+    int siblingNumber = 0;                           // position in the composed arc list
+    int impliedRank = 0;                             // 0 for arcs authored at the parent; else the order of implication
+    int origin = -1;                                 // implied arcs: the node they were implied from
+    bool inert = false;                              // contributes no opinions and no arcs (relocation sources)
+    std::vector<std::pair<int, SpecRef>> specs;      // (layer in the stack, spec), strongest first
 };
 
 class PrimIndex {

@@ -28,8 +28,8 @@ void PrimIndexer::addRelocation(PrimIndex& index, int n, Work& work) {
 
     std::pair<const LayerStack*, std::string> site(&stack, relocation->source);
     if (std::find(relocating_.begin(), relocating_.end(), site) != relocating_.end()) {
-        log_.warn("relocation cycle: <" + relocation->source + "> is needed to compose itself (" +
-                      "relocate <" + relocation->source + "> -> <" + relocation->target + "> ignored)",
+        log_.warn("relocation cycle: <" + relocation->source + "> is needed to compose itself (" + "relocate <" +
+                      relocation->source + "> -> <" + relocation->target + "> ignored)",
                   relocation->location, index.path_);
         return;
     }

@@ -95,9 +95,8 @@ bool Stage::setAttribute(const std::string& primPath, const std::string& name, c
 
 void Stage::setVariantSelection(const std::string& primPath, const std::string& variantSet,
                                 const std::string& selection) {
-    std::erase_if(options_.variantSelections, [&](const VariantSelection& v) {
-        return v.primPath == primPath && v.variantSet == variantSet;
-    });
+    std::erase_if(options_.variantSelections,
+                  [&](const VariantSelection& v) { return v.primPath == primPath && v.variantSet == variantSet; });
     options_.variantSelections.push_back({primPath, variantSet, selection});
     auto found = primsByPath_.find(primPath);
     if (found == primsByPath_.end()) return;
@@ -161,7 +160,9 @@ void Stage::traverse(const std::function<bool(const PrimSpec&)>& visit) const {
     for (const auto& prim : composed_->rootPrims) visitPrim(*prim, visit);
 }
 
-void Stage::traverse(const PrimSpec& root, const std::function<bool(const PrimSpec&)>& visit) { visitPrim(root, visit); }
+void Stage::traverse(const PrimSpec& root, const std::function<bool(const PrimSpec&)>& visit) {
+    visitPrim(root, visit);
+}
 
 std::optional<Value> Stage::resolve(const AttributeSpec& attribute, double time) {
     bool fromDefault = std::isnan(time) || attribute.timeSamples.empty();

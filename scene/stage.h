@@ -57,8 +57,8 @@ public:
 
     // Layer metadata, from the root layer (relocates and sublayers are consumed by composition).
     std::string defaultPrim() const;
-    char upAxis() const;             // 'Y' or 'Z'; USD's fallback is 'Y'
-    double metersPerUnit() const;    // USD's fallback is 0.01 (centimetres)
+    char upAxis() const;           // 'Y' or 'Z'; USD's fallback is 'Y'
+    double metersPerUnit() const;  // USD's fallback is 0.01 (centimetres)
     std::optional<double> startTimeCode() const;
     std::optional<double> endTimeCode() const;
 

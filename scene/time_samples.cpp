@@ -11,7 +11,8 @@ bool interpolates(const Value& a, const Value& b) {
     // Integers and bools are held; every floating-point type interpolates (point3f[] among them:
     // its name holds "int", which once held every point array).
     const std::string scalar = a.typeName.substr(0, a.typeName.find('['));
-    const bool integral = scalar.starts_with("int") || scalar.starts_with("uint") || scalar == "uchar" || scalar == "bool";
+    const bool integral =
+        scalar.starts_with("int") || scalar.starts_with("uint") || scalar == "uchar" || scalar == "bool";
     return a.isNumeric() && b.isNumeric() && a.numbers.size() == b.numbers.size() && !integral;
 }
 

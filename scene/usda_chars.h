@@ -23,14 +23,11 @@ inline constexpr std::array<std::uint8_t, 256> kCharClasses = [] {
     for (int c = 'a'; c <= 'z'; ++c) table[c] = kLetter;
     for (int c = 'A'; c <= 'Z'; ++c) table[c] = kLetter;
     table['_'] = kLetter;
-    for (unsigned char c : {'(', ')', '[', ']', '{', '}', '=', ',', ':', ';', '.'})
-        table[c] = kPunct;
+    for (unsigned char c : {'(', ')', '[', ']', '{', '}', '=', ',', ':', ';', '.'}) table[c] = kPunct;
     return table;
 }();
 
 // True when `c` is in one of `classes` (a CharClass or several, or-ed).
-inline bool isIn(char c, unsigned classes) {
-    return kCharClasses[static_cast<unsigned char>(c)] & classes;
-}
+inline bool isIn(char c, unsigned classes) { return kCharClasses[static_cast<unsigned char>(c)] & classes; }
 
 }  // namespace fluence::usd::detail

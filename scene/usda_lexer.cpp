@@ -140,8 +140,8 @@ void Lexer::scan(Token& token) {
     } else if (identifierCharAt(pos_, true)) {
         scanIdentifier(token);
     } else if (isDigit(c) || (c == '.' && isDigit(at(1))) ||
-               (c == '-' && (isDigit(at(1)) || (at(1) == '.' && isDigit(at(2))) ||
-                             text_.substr(pos_ + 1, 3) == "inf"))) {
+               (c == '-' &&
+                (isDigit(at(1)) || (at(1) == '.' && isDigit(at(2))) || text_.substr(pos_ + 1, 3) == "inf"))) {
         scanNumber(token);
     } else if (c == '"' || c == '\'') {
         scanString(token);

@@ -40,9 +40,7 @@ struct Token {
     int column = 0;
 
     bool is(char c) const { return kind == TokenKind::Punct && punct == c; }
-    bool isWord(std::string_view word) const {
-        return kind == TokenKind::Identifier && text == word;
-    }
+    bool isWord(std::string_view word) const { return kind == TokenKind::Identifier && text == word; }
 };
 
 // How a token is named in error messages: "'('", "'foo'", "string \"abc\"", "end of file".
@@ -76,9 +74,7 @@ public:
 
     const std::string& file() const { return file_; }
     [[noreturn]] void fail(int line, int column, const std::string& message) const;
-    [[noreturn]] void fail(const Token& at, const std::string& message) const {
-        fail(at.line, at.column, message);
-    }
+    [[noreturn]] void fail(const Token& at, const std::string& message) const { fail(at.line, at.column, message); }
 
     // The bulk path for numeric lists (most of a geometry layer's text): with no token looked
     // ahead, reads elements of `shape` straight from the text, each followed by ',' or by `close`,
@@ -116,9 +112,7 @@ private:
     void scanPath(Token& token);
     void scanEscape(std::string& out);
     char current() const { return pos_ < text_.size() ? text_[pos_] : '\0'; }
-    char at(std::size_t offset) const {
-        return pos_ + offset < text_.size() ? text_[pos_ + offset] : '\0';
-    }
+    char at(std::size_t offset) const { return pos_ + offset < text_.size() ? text_[pos_ + offset] : '\0'; }
     void newline() { ++line_, lineStart_ = pos_; }  // call with pos_ just past the '\n'
     int column() const { return static_cast<int>(pos_ - lineStart_) + 1; }
 

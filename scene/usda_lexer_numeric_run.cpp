@@ -60,8 +60,7 @@ bool Lexer::scanPlainNumber(const NumericShape& shape, std::vector<double>& out)
     // Only a blank or a separator may follow a plain number ("1.2.3", "1e", "2x" are not).
     char next = number.end < last ? *number.end : ' ';
     if (!isIn(next, kBlank | kNewline) && next != ',' && next != ')' && next != ']') return false;
-    if (shape.integers &&
-        (!number.integral || number.value < shape.min || number.value > shape.max)) {
+    if (shape.integers && (!number.integral || number.value < shape.min || number.value > shape.max)) {
         return false;
     }
     out.push_back(number.value);
@@ -76,8 +75,8 @@ void Lexer::reserveForRun(const NumericShape& shape, char close, std::vector<dou
     const void* found = std::memchr(first, close, text_.size() - pos_);
     if (!found) return;
     const char* last = static_cast<const char*>(found);
-    auto elements = static_cast<std::size_t>(shape.tupleSize ? std::count(first, last, '(')
-                                                             : std::count(first, last, ',') + 1);
+    auto elements =
+        static_cast<std::size_t>(shape.tupleSize ? std::count(first, last, '(') : std::count(first, last, ',') + 1);
     std::size_t shortest = shape.tupleSize ? 2 * shape.tupleSize + 1 : 1;
     elements = std::min(elements, static_cast<std::size_t>(last - first) / shortest + 1);
     out.reserve(elements * static_cast<std::size_t>(std::max(shape.tupleSize, 1)));

@@ -21,8 +21,7 @@ std::string firstProblem(std::string_view text, Visit&& visit) {
 }
 
 bool isPathSyntax(char32_t c) {
-    return c < 0x80 && std::string_view("/.:[]{}=|-").find(static_cast<char>(c)) !=
-                           std::string_view::npos;
+    return c < 0x80 && std::string_view("/.:[]{}=|-").find(static_cast<char>(c)) != std::string_view::npos;
 }
 
 // SdfPath's syntax (pathParser.h): '/' [primElts [propElts]] | '..' ('/' '..')* ['/' pathElts]
@@ -67,9 +66,7 @@ private:
         return pos_ > start;
     }
     bool identifier() {
-        return run([](char32_t c, bool first) {
-            return first ? c == '_' || isXidStart(c) : isXidContinue(c);
-        });
+        return run([](char32_t c, bool first) { return first ? c == '_' || isXidStart(c) : isXidContinue(c); });
     }
     bool variantSelection() {
         if (!eat('{')) return false;
@@ -166,8 +163,7 @@ std::string pathProblem(std::string_view path, const PathRules& rules, int ancho
             if (leading) ++climbs;
         } else {
             leading = false;
-            if (rules.primOnly && element != "." &&
-                element.find_first_of(".[") != std::string_view::npos) {
+            if (rules.primOnly && element != "." && element.find_first_of(".[") != std::string_view::npos) {
                 return quoted + " is not a prim path";
             }
         }

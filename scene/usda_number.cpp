@@ -11,9 +11,8 @@ namespace {
 bool isDigit(const char* p, const char* last) { return p < last && *p >= '0' && *p <= '9'; }
 
 // Every power of ten a double holds exactly.
-constexpr double kExactPowersOfTen[] = {1e0,  1e1,  1e2,  1e3,  1e4,  1e5,  1e6,  1e7,
-                                        1e8,  1e9,  1e10, 1e11, 1e12, 1e13, 1e14, 1e15,
-                                        1e16, 1e17, 1e18, 1e19, 1e20, 1e21, 1e22};
+constexpr double kExactPowersOfTen[] = {1e0,  1e1,  1e2,  1e3,  1e4,  1e5,  1e6,  1e7,  1e8,  1e9,  1e10, 1e11,
+                                        1e12, 1e13, 1e14, 1e15, 1e16, 1e17, 1e18, 1e19, 1e20, 1e21, 1e22};
 constexpr int kMaxExactPower = 22;
 constexpr std::uint64_t kMaxExactInteger = std::uint64_t(1) << 53;
 constexpr int kMaxDigits = 19;  // any 19 digits fit in 64 bits
@@ -61,12 +60,10 @@ ParsedNumber parseNumber(const char* first, const char* last) {
     } else if (count <= kMaxDigits && digits <= kMaxExactInteger && exponent >= -kMaxExactPower &&
                exponent <= kMaxExactPower) {
         double value = static_cast<double>(digits);
-        value = exponent < 0 ? value / kExactPowersOfTen[-exponent]
-                             : value * kExactPowersOfTen[exponent];
+        value = exponent < 0 ? value / kExactPowersOfTen[-exponent] : value * kExactPowersOfTen[exponent];
         number.value = negative ? -value : value;
     } else {
-        number.inRange =
-            std::from_chars(first, p, number.value).ec != std::errc::result_out_of_range;
+        number.inRange = std::from_chars(first, p, number.value).ec != std::errc::result_out_of_range;
     }
     return number;
 }

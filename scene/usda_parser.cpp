@@ -62,9 +62,7 @@
 namespace fluence::usd {
 
 ParseError::ParseError(SourceLocation location, const std::string& message)
-    : std::runtime_error(location.str() + ": " + message),
-      location_(std::move(location)),
-      message_(message) {}
+    : std::runtime_error(location.str() + ": " + message), location_(std::move(location)), message_(message) {}
 
 namespace {
 
@@ -95,8 +93,7 @@ Header readHeader(std::string_view text, const std::string& file) {
         version = line.substr(6);
     else if (line.substr(0, 5) == "#sdf ")
         version = line.substr(5);
-    bool valid =
-        !version.empty() && version.find_first_not_of("0123456789.") == std::string_view::npos;
+    bool valid = !version.empty() && version.find_first_not_of("0123456789.") == std::string_view::npos;
     if (!valid) {
         std::string shown(line.substr(0, 40));
         for (char& c : shown) {
@@ -143,9 +140,7 @@ std::string childPath(const std::string& parent, const std::string& name) {
     return parent + "/" + name;
 }
 
-Value pathArray(std::vector<std::string> paths) {
-    return Value::string("", ValueKind::Path, std::move(paths), true);
-}
+Value pathArray(std::vector<std::string> paths) { return Value::string("", ValueKind::Path, std::move(paths), true); }
 
 // The prim a spec belongs to, for relative paths: its path and its number of prim names.
 struct Anchor {
@@ -189,19 +184,17 @@ public:
 
 private:
     void parsePrim(Body& parent);
-    void parseBody(Body& body, const Token& open, const std::string& what,
-                   const SourceLocation& openedAt);
+    void parseBody(Body& body, const Token& open, const std::string& what, const SourceLocation& openedAt);
     void parseBodyStatement(Body& body);
     void parseReorder(Body& body);
     void parseVariantSet(Body& body);
     void parseProperty(Body& body);
-    void parseAttribute(Body& body, const Token& first, ListOpKind op,
-                        const std::optional<Token>& custom, bool uniform);
+    void parseAttribute(Body& body, const Token& first, ListOpKind op, const std::optional<Token>& custom,
+                        bool uniform);
     void parseRelationship(Body& body, const Token& first, ListOpKind op, bool custom);
-    AttributeSpec& attributeFor(Body& body, const Token& name, const std::string& typeName,
-                                bool custom, bool uniform, const Token& first);
-    RelationshipSpec& relationshipFor(Body& body, const Token& name, bool custom,
-                                      const Token& first);
+    AttributeSpec& attributeFor(Body& body, const Token& name, const std::string& typeName, bool custom, bool uniform,
+                                const Token& first);
+    RelationshipSpec& relationshipFor(Body& body, const Token& name, bool custom, const Token& first);
     std::vector<std::pair<double, Value>> parseTimeSamples(std::string_view type, bool isArray);
     Value parseRelationshipTimeSamples(const Anchor& anchor);
     std::optional<double> parseTime();
@@ -209,11 +202,9 @@ private:
                          bool forbidDuplicates);
     void checkListOp(ListOpKind op, const Targets& targets);
 
-    void parseMetadataBlock(Metadata& out, const Anchor& anchor, const std::string& owner,
-                            SpecKind spec);
+    void parseMetadataBlock(Metadata& out, const Anchor& anchor, const std::string& owner, SpecKind spec);
     void parseMetadataEntry(Metadata& out, const Anchor& anchor, SpecKind spec);
-    Value parseMetadataValue(const std::string& key, ListOpKind op, const Anchor& anchor,
-                             SpecKind spec);
+    Value parseMetadataValue(const std::string& key, ListOpKind op, const Anchor& anchor, SpecKind spec);
     Value parseArcs(const Anchor& anchor);
     Value parseReference(const Anchor& anchor);
     Value parseSubLayers();
@@ -225,9 +216,7 @@ private:
     Token expect(char punct, const std::string& after);
     void expectValueOnSameLine();
     void endStatement(const std::string& what);
-    SourceLocation locate(const Token& token) const {
-        return {identifier_, token.line, token.column};
-    }
+    SourceLocation locate(const Token& token) const { return {identifier_, token.line, token.column}; }
 
     void warn(const Token& at, std::string message) { warnings_.push_back({locate(at), std::move(message)}); }
 
@@ -256,8 +245,7 @@ std::unique_ptr<Layer> Parser::parse() {
         } else if (token.isWord("reorder") && lexer_.peek(1).isWord("rootPrims")) {
             parseReorder(root);
         } else {
-            lexer_.fail(token, "expected 'def', 'over' or 'class' to start a prim, found " +
-                                   describe(token));
+            lexer_.fail(token, "expected 'def', 'over' or 'class' to start a prim, found " + describe(token));
         }
     }
     layer->warnings = std::move(warnings_);
@@ -277,8 +265,8 @@ void Parser::parsePrim(Body& parent) {
     if (lexer_.peek().kind == TokenKind::Identifier && !lexer_.peek().newlineBefore) {
         // Sdf's prim_type_name: identifiers joined by '.' (a Python-qualified name).
         prim->typeName = lexer_.take().text;
-        while (lexer_.peek().is('.') && !lexer_.peek().newlineBefore &&
-               lexer_.peek(1).kind == TokenKind::Identifier && !lexer_.peek(1).newlineBefore) {
+        while (lexer_.peek().is('.') && !lexer_.peek().newlineBefore && lexer_.peek(1).kind == TokenKind::Identifier &&
+               !lexer_.peek(1).newlineBefore) {
             lexer_.skip();
             prim->typeName += "." + std::string(lexer_.take().text);
         }
@@ -286,8 +274,7 @@ void Parser::parsePrim(Body& parent) {
     }
     Token name = lexer_.take();
     if (name.kind != TokenKind::String || name.newlineBefore) {
-        lexer_.fail(name, "expected a prim name (a quoted string) after '" + written + "', found " +
-                              describe(name));
+        lexer_.fail(name, "expected a prim name (a quoted string) after '" + written + "', found " + describe(name));
     }
     if (std::string problem = detail::identifierProblem(name.value); !problem.empty()) {
         lexer_.fail(name, "invalid prim name \"" + name.value + "\": " + problem +
@@ -296,8 +283,8 @@ void Parser::parsePrim(Body& parent) {
     }
     auto [previous, unique] = parent.childNames.emplace(name.value, locate(name));
     if (!unique) {
-        lexer_.fail(name, "duplicate prim \"" + name.value + "\" (already defined at " +
-                              lineColumn(previous->second) + ")");
+        lexer_.fail(name,
+                    "duplicate prim \"" + name.value + "\" (already defined at " + lineColumn(previous->second) + ")");
     }
     prim->name = name.value;
     prim->path = childPath(parent.anchor.path, prim->name);
@@ -320,14 +307,13 @@ void Parser::parsePrim(Body& parent) {
     endStatement(what);
 }
 
-void Parser::parseBody(Body& body, const Token& open, const std::string& what,
-                       const SourceLocation& openedAt) {
+void Parser::parseBody(Body& body, const Token& open, const std::string& what, const SourceLocation& openedAt) {
     NestingGuard guard(lexer_, open);
     while (!lexer_.peek().is('}')) {
         const Token& token = lexer_.peek();
         if (token.kind == TokenKind::End) {
-            lexer_.fail(token, "unexpected end of file, expected '}' to close " + what +
-                                   " opened at " + lineColumn(openedAt));
+            lexer_.fail(token,
+                        "unexpected end of file, expected '}' to close " + what + " opened at " + lineColumn(openedAt));
         }
         parseBodyStatement(body);
     }
@@ -337,8 +323,7 @@ void Parser::parseBody(Body& body, const Token& open, const std::string& what,
 void Parser::parseBodyStatement(Body& body) {
     const Token& token = lexer_.peek();
     if (token.kind != TokenKind::Identifier) {
-        lexer_.fail(token,
-                    "expected a prim, a property, 'variantSet' or '}', found " + describe(token));
+        lexer_.fail(token, "expected a prim, a property, 'variantSet' or '}', found " + describe(token));
     }
     if (token.isWord("def") || token.isWord("over") || token.isWord("class")) {
         parsePrim(body);
@@ -368,9 +353,7 @@ void Parser::parseVariantSet(Body& body) {
     Token keyword = lexer_.take();
     Token name = lexer_.take();
     if (name.kind != TokenKind::String || name.newlineBefore) {
-        lexer_.fail(name,
-                    "expected a variant set name (a quoted string) after 'variantSet', found " +
-                        describe(name));
+        lexer_.fail(name, "expected a variant set name (a quoted string) after 'variantSet', found " + describe(name));
     }
     std::string what = "variantSet \"" + name.value + "\"";
     expect('=', what);
@@ -383,12 +366,12 @@ void Parser::parseVariantSet(Body& body) {
         Token variantName = lexer_.take();
         if (variantName.is('}')) break;
         if (variantName.kind == TokenKind::End) {
-            lexer_.fail(variantName, "unexpected end of file, expected '}' to close " + what +
-                                         " opened at " + lineColumn(set.location));
+            lexer_.fail(variantName, "unexpected end of file, expected '}' to close " + what + " opened at " +
+                                         lineColumn(set.location));
         }
         if (variantName.kind != TokenKind::String) {
-            lexer_.fail(variantName, "expected a variant name (a quoted string) in " + what +
-                                         ", found " + describe(variantName));
+            lexer_.fail(variantName,
+                        "expected a variant name (a quoted string) in " + what + ", found " + describe(variantName));
         }
         if (!detail::isVariantName(variantName.value)) {
             lexer_.fail(variantName, "invalid variant name \"" + variantName.value + "\"");
@@ -397,15 +380,13 @@ void Parser::parseVariantSet(Body& body) {
         variant.name = variantName.value;
         std::string variantWhat = "variant \"" + variant.name + "\" of " + what;
         Body variantBody;
-        variantBody.anchor = {body.anchor.path + "{" + set.name + "=" + variant.name + "}",
-                              body.anchor.depth};
+        variantBody.anchor = {body.anchor.path + "{" + set.name + "=" + variant.name + "}", body.anchor.depth};
         if (lexer_.peek().is('(')) {
             parseMetadataBlock(variant.metadata, variantBody.anchor, variantWhat, SpecKind::Prim);
         }
         Token bodyOpen = lexer_.take();
         if (!bodyOpen.is('{')) {
-            lexer_.fail(bodyOpen, "expected '{' to open the body of " + variantWhat + ", found " +
-                                      describe(bodyOpen));
+            lexer_.fail(bodyOpen, "expected '{' to open the body of " + variantWhat + ", found " + describe(bodyOpen));
         }
         variantBody.metadata = &variant.metadata;
         variantBody.attributes = &variant.attributes;
@@ -437,23 +418,23 @@ void Parser::parseProperty(Body& body) {
     }
     if (lexer_.peek().isWord("rel")) {
         if (variability && !variability->isWord("varying")) {
-            lexer_.fail(*variability,
-                        "relationships cannot be '" + std::string(variability->text) + "'");
+            lexer_.fail(*variability, "relationships cannot be '" + std::string(variability->text) + "'");
         }
         parseRelationship(body, first, op, custom.has_value());
     } else {
         // Sdf's prim_attr_variability: 'uniform' or the legacy 'config' (read as uniform);
         // attributes are varying unless declared uniform, and 'varying' is not written.
         if (variability && variability->isWord("varying")) {
-            lexer_.fail(*variability, "attributes cannot be declared 'varying' (only "
-                                      "relationships; an attribute is varying unless 'uniform')");
+            lexer_.fail(*variability,
+                        "attributes cannot be declared 'varying' (only "
+                        "relationships; an attribute is varying unless 'uniform')");
         }
         parseAttribute(body, first, op, custom, variability.has_value());
     }
 }
 
-void Parser::parseAttribute(Body& body, const Token& first, ListOpKind op,
-                            const std::optional<Token>& custom, bool uniform) {
+void Parser::parseAttribute(Body& body, const Token& first, ListOpKind op, const std::optional<Token>& custom,
+                            bool uniform) {
     Token type = lexer_.take();
     if (type.kind != TokenKind::Identifier) {
         lexer_.fail(type, "expected a property type name or 'rel', found " + describe(type));
@@ -466,8 +447,7 @@ void Parser::parseAttribute(Body& body, const Token& first, ListOpKind op,
     std::string typeName = std::string(type.text) + (isArray ? "[]" : "");
     Token name = lexer_.take();
     if (name.kind != TokenKind::Identifier || name.newlineBefore) {
-        lexer_.fail(name, "expected an attribute name after type '" + typeName + "', found " +
-                              describe(name));
+        lexer_.fail(name, "expected an attribute name after type '" + typeName + "', found " + describe(name));
     }
     checkPropertyName(name, "attribute");
     std::string field;
@@ -475,13 +455,11 @@ void Parser::parseAttribute(Body& body, const Token& first, ListOpKind op,
         lexer_.skip();
         Token fieldToken = lexer_.take();
         field = fieldToken.text;
-        if (fieldToken.kind != TokenKind::Identifier ||
-            (field != "connect" && field != "timeSamples")) {
+        if (fieldToken.kind != TokenKind::Identifier || (field != "connect" && field != "timeSamples")) {
             lexer_.fail(fieldToken, field == "spline"
                                         ? "attribute splines ('.spline') are not supported"
-                                        : "expected 'connect' or 'timeSamples' after '" +
-                                              std::string(name.text) + ".', found " +
-                                              describe(fieldToken));
+                                        : "expected 'connect' or 'timeSamples' after '" + std::string(name.text) +
+                                              ".', found " + describe(fieldToken));
         }
     }
     if (custom && !field.empty()) {
@@ -490,14 +468,12 @@ void Parser::parseAttribute(Body& body, const Token& first, ListOpKind op,
     }
     if (field != "connect" && op != ListOpKind::Explicit) {
         lexer_.fail(first,
-                    "'" + listOpName(op) +
-                        "' can only edit connections (name.connect) and relationship targets");
+                    "'" + listOpName(op) + "' can only edit connections (name.connect) and relationship targets");
     }
     if (!detail::findValueType(type.text))
         warn(type, "unknown value type '" + std::string(type.text) + "' for attribute '" + std::string(name.text) +
                        "'; its value is kept untyped");
-    AttributeSpec& attribute =
-        attributeFor(body, name, typeName, custom.has_value(), uniform, first);
+    AttributeSpec& attribute = attributeFor(body, name, typeName, custom.has_value(), uniform, first);
     std::string what = "attribute '" + attribute.name + "'";
     if (field == "connect") {
         expect('=', "'" + attribute.name + ".connect'");
@@ -505,8 +481,7 @@ void Parser::parseAttribute(Body& body, const Token& first, ListOpKind op,
         Targets targets = parseTargets({}, body.anchor, "the connections of " + what, true);
         checkListOp(op, targets);
         if (op == ListOpKind::Delete || op == ListOpKind::Reorder) {
-            attribute.metadata.push_back(
-                {"connectionPaths", op, pathArray(std::move(targets.paths)), locate(first)});
+            attribute.metadata.push_back({"connectionPaths", op, pathArray(std::move(targets.paths)), locate(first)});
         } else {
             attribute.connections = std::move(targets.paths);
             attribute.connectionOp = op;
@@ -522,10 +497,8 @@ void Parser::parseAttribute(Body& body, const Token& first, ListOpKind op,
             expectValueOnSameLine();
             attribute.defaultValue = values_.parseTyped(type.text, isArray);
             attribute.hasDefault = true;
-        } else if (!next.is('(') && !next.is(';') && !next.newlineBefore &&
-                   next.kind != TokenKind::End) {
-            lexer_.fail(next, "expected '=' after attribute name '" + attribute.name + "', found " +
-                                  describe(next));
+        } else if (!next.is('(') && !next.is(';') && !next.newlineBefore && next.kind != TokenKind::End) {
+            lexer_.fail(next, "expected '=' after attribute name '" + attribute.name + "', found " + describe(next));
         }
         if (lexer_.peek().is('(') && !lexer_.peek().newlineBefore) {
             parseMetadataBlock(attribute.metadata, body.anchor, what, SpecKind::Property);
@@ -546,11 +519,9 @@ void Parser::parseRelationship(Body& body, const Token& first, ListOpKind op, bo
         lexer_.skip();
         Token fieldToken = lexer_.take();
         field = fieldToken.text;
-        if (fieldToken.kind != TokenKind::Identifier ||
-            (field != "default" && field != "timeSamples")) {
-            lexer_.fail(fieldToken, "expected 'default' or 'timeSamples' after '" +
-                                        std::string(name.text) + ".', found " +
-                                        describe(fieldToken));
+        if (fieldToken.kind != TokenKind::Identifier || (field != "default" && field != "timeSamples")) {
+            lexer_.fail(fieldToken, "expected 'default' or 'timeSamples' after '" + std::string(name.text) +
+                                        ".', found " + describe(fieldToken));
         }
     }
     RelationshipSpec& relationship = relationshipFor(body, name, custom, first);
@@ -561,8 +532,8 @@ void Parser::parseRelationship(Body& body, const Token& first, ListOpKind op, bo
         }
         expect('=', "'" + relationship.name + ".timeSamples'");
         expectValueOnSameLine();
-        relationship.metadata.push_back({"timeSamples", ListOpKind::Explicit,
-                                         parseRelationshipTimeSamples(body.anchor), locate(first)});
+        relationship.metadata.push_back(
+            {"timeSamples", ListOpKind::Explicit, parseRelationshipTimeSamples(body.anchor), locate(first)});
         endStatement(what);
         return;
     }
@@ -570,14 +541,13 @@ void Parser::parseRelationship(Body& body, const Token& first, ListOpKind op, bo
     if (assigned) {
         // Sdf's prim_relationship_default: one path, no list op, no metadata.
         if (op != ListOpKind::Explicit) {
-            lexer_.fail(first, "'" + listOpName(op) + "' cannot be used with '" +
-                                   relationship.name + ".default'");
+            lexer_.fail(first, "'" + listOpName(op) + "' cannot be used with '" + relationship.name + ".default'");
         }
         expect('=', "'" + relationship.name + ".default'");
         const Token& value = lexer_.peek();
         if (value.kind != TokenKind::Path && !value.newlineBefore) {
-            lexer_.fail(value, "expected a path <...> for '" + relationship.name +
-                                   ".default', found " + describe(value));
+            lexer_.fail(value,
+                        "expected a path <...> for '" + relationship.name + ".default', found " + describe(value));
         }
     } else if (lexer_.peek().is('=')) {
         lexer_.skip();
@@ -585,8 +555,8 @@ void Parser::parseRelationship(Body& body, const Token& first, ListOpKind op, bo
     } else {
         const Token& next = lexer_.peek();
         if (!next.is('(') && !next.is(';') && !next.newlineBefore && next.kind != TokenKind::End) {
-            lexer_.fail(next, "expected '=' after relationship name '" + relationship.name +
-                                  "', found " + describe(next));
+            lexer_.fail(next,
+                        "expected '=' after relationship name '" + relationship.name + "', found " + describe(next));
         }
     }
     if (assigned) {
@@ -594,8 +564,7 @@ void Parser::parseRelationship(Body& body, const Token& first, ListOpKind op, bo
         Targets targets = parseTargets({}, body.anchor, "the targets of " + what, true);
         checkListOp(op, targets);
         if (op == ListOpKind::Delete || op == ListOpKind::Reorder) {
-            relationship.metadata.push_back(
-                {"targetPaths", op, pathArray(std::move(targets.paths)), locate(first)});
+            relationship.metadata.push_back({"targetPaths", op, pathArray(std::move(targets.paths)), locate(first)});
         } else {
             relationship.op = op;
             relationship.targets = std::move(targets.paths);
@@ -606,16 +575,15 @@ void Parser::parseRelationship(Body& body, const Token& first, ListOpKind op, bo
         // Sdf's prim_relationship: only the explicit statement takes relationship_metadata_list_opt.
         if (op != ListOpKind::Explicit) {
             lexer_.fail(lexer_.peek(), "metadata cannot follow '" + listOpName(op) + "' on " + what +
-                                           " (give it in its own statement: rel " + relationship.name +
-                                           " (...))");
+                                           " (give it in its own statement: rel " + relationship.name + " (...))");
         }
         parseMetadataBlock(relationship.metadata, body.anchor, what, SpecKind::Property);
     }
     endStatement(what);
 }
 
-AttributeSpec& Parser::attributeFor(Body& body, const Token& name, const std::string& typeName,
-                                    bool custom, bool uniform, const Token& first) {
+AttributeSpec& Parser::attributeFor(Body& body, const Token& name, const std::string& typeName, bool custom,
+                                    bool uniform, const Token& first) {
     std::string attributeName(name.text);
     auto [slot, added] = body.attributeIndex.emplace(attributeName, body.attributes->size());
     if (added) {
@@ -629,24 +597,20 @@ AttributeSpec& Parser::attributeFor(Body& body, const Token& name, const std::st
     }
     AttributeSpec& attribute = (*body.attributes)[slot->second];
     if (attribute.typeName != typeName) {
-        lexer_.fail(name, "attribute '" + attribute.name + "' redeclared with type '" + typeName +
-                              "' (declared '" + attribute.typeName + "' at " +
-                              lineColumn(attribute.location) + ")");
+        lexer_.fail(name, "attribute '" + attribute.name + "' redeclared with type '" + typeName + "' (declared '" +
+                              attribute.typeName + "' at " + lineColumn(attribute.location) + ")");
     }
     if (attribute.uniform != uniform) {
-        lexer_.fail(name, "attribute '" + attribute.name +
-                              "' redeclared with a different variability (declared at " +
+        lexer_.fail(name, "attribute '" + attribute.name + "' redeclared with a different variability (declared at " +
                               lineColumn(attribute.location) + ")");
     }
     attribute.custom = attribute.custom || custom;
     return attribute;
 }
 
-RelationshipSpec& Parser::relationshipFor(Body& body, const Token& name, bool custom,
-                                          const Token& first) {
+RelationshipSpec& Parser::relationshipFor(Body& body, const Token& name, bool custom, const Token& first) {
     std::string relationshipName(name.text);
-    auto [slot, added] =
-        body.relationshipIndex.emplace(relationshipName, body.relationships->size());
+    auto [slot, added] = body.relationshipIndex.emplace(relationshipName, body.relationships->size());
     if (added) {
         RelationshipSpec& relationship = body.relationships->emplace_back();
         relationship.name = std::move(relationshipName);
@@ -659,11 +623,9 @@ RelationshipSpec& Parser::relationshipFor(Body& body, const Token& name, bool cu
     return relationship;
 }
 
-std::vector<std::pair<double, Value>> Parser::parseTimeSamples(std::string_view type,
-                                                               bool isArray) {
+std::vector<std::pair<double, Value>> Parser::parseTimeSamples(std::string_view type, bool isArray) {
     Token open = lexer_.take();
-    if (!open.is('{'))
-        lexer_.fail(open, "expected '{' to start time samples, found " + describe(open));
+    if (!open.is('{')) lexer_.fail(open, "expected '{' to start time samples, found " + describe(open));
     NestingGuard guard(lexer_, open);
     std::vector<std::pair<double, Value>> samples;
     values_.parseSeparated(open, '}', "the time samples", [&] {
@@ -672,8 +634,7 @@ std::vector<std::pair<double, Value>> Parser::parseTimeSamples(std::string_view 
         if (time) samples.emplace_back(*time, std::move(value));
     });
     // Sorted by time; a time authored twice keeps its last value.
-    std::stable_sort(samples.begin(), samples.end(),
-                     [](const auto& a, const auto& b) { return a.first < b.first; });
+    std::stable_sort(samples.begin(), samples.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
     std::vector<std::pair<double, Value>> unique;
     unique.reserve(samples.size());
     for (auto& sample : samples) {
@@ -708,8 +669,7 @@ std::optional<double> Parser::parseTime() {
 
 Value Parser::parseRelationshipTimeSamples(const Anchor& anchor) {
     Token open = lexer_.take();
-    if (!open.is('{'))
-        lexer_.fail(open, "expected '{' to start time samples, found " + describe(open));
+    if (!open.is('{')) lexer_.fail(open, "expected '{' to start time samples, found " + describe(open));
     auto samples = std::make_shared<Dictionary>();
     values_.parseSeparated(open, '}', "the time samples", [&] {
         const Token& timeToken = lexer_.peek();
@@ -731,8 +691,8 @@ Value Parser::parseRelationshipTimeSamples(const Anchor& anchor) {
     return dictionary;
 }
 
-Targets Parser::parseTargets(const PathRules& rules, const Anchor& anchor,
-                             const std::string& context, bool forbidDuplicates) {
+Targets Parser::parseTargets(const PathRules& rules, const Anchor& anchor, const std::string& context,
+                             bool forbidDuplicates) {
     Targets targets;
     targets.start = lexer_.take();
     const Token& start = targets.start;
@@ -747,8 +707,7 @@ Targets Parser::parseTargets(const PathRules& rules, const Anchor& anchor,
         values_.parseSeparated(start, ']', context, [&] {
             Token path = lexer_.take();
             if (path.kind != TokenKind::Path) {
-                lexer_.fail(path,
-                            "expected a path <...> in " + context + ", found " + describe(path));
+                lexer_.fail(path, "expected a path <...> in " + context + ", found " + describe(path));
             }
             checkPath(path, rules, anchor);
             if (forbidDuplicates && !seen.insert(path.value).second) {
@@ -757,8 +716,8 @@ Targets Parser::parseTargets(const PathRules& rules, const Anchor& anchor,
             targets.paths.push_back(std::move(path.value));
         });
     } else {
-        lexer_.fail(start, "expected a path <...>, a list of paths or None for " + context +
-                               ", found " + describe(start));
+        lexer_.fail(start,
+                    "expected a path <...>, a list of paths or None for " + context + ", found " + describe(start));
     }
     return targets;
 }
@@ -775,22 +734,19 @@ void Parser::checkListOp(ListOpKind op, const Targets& targets) {
 
 // ---- Metadata ---------------------------------------------------------------------------------
 
-void Parser::parseMetadataBlock(Metadata& out, const Anchor& anchor, const std::string& owner,
-                                SpecKind spec) {
+void Parser::parseMetadataBlock(Metadata& out, const Anchor& anchor, const std::string& owner, SpecKind spec) {
     Token open = lexer_.take();
     while (!lexer_.peek().is(')')) {
         if (lexer_.peek().kind == TokenKind::End) {
-            lexer_.fail(lexer_.peek(),
-                        "unexpected end of file, expected ')' to close the metadata of " + owner +
-                            " opened at " + lineColumn(locate(open)));
+            lexer_.fail(lexer_.peek(), "unexpected end of file, expected ')' to close the metadata of " + owner +
+                                           " opened at " + lineColumn(locate(open)));
         }
         parseMetadataEntry(out, anchor, spec);
         const Token& next = lexer_.peek();
         if (next.is(';')) {
             lexer_.skip();
         } else if (!next.is(')') && !next.newlineBefore && next.kind != TokenKind::End) {
-            lexer_.fail(next, "expected a line break or ';' between metadata entries, found " +
-                                  describe(next));
+            lexer_.fail(next, "expected a line break or ';' between metadata entries, found " + describe(next));
         }
     }
     lexer_.skip();
@@ -800,8 +756,8 @@ void Parser::parseMetadataEntry(Metadata& out, const Anchor& anchor, SpecKind sp
     Token first = lexer_.peek();
     if (first.kind == TokenKind::String) {
         lexer_.skip();
-        out.push_back({"doc", ListOpKind::Explicit,
-                       Value::string("", ValueKind::String, {first.value}, false), locate(first)});
+        out.push_back(
+            {"doc", ListOpKind::Explicit, Value::string("", ValueKind::String, {first.value}, false), locate(first)});
         return;
     }
     ListOpKind op = ListOpKind::Explicit;
@@ -829,8 +785,7 @@ void Parser::parseMetadataEntry(Metadata& out, const Anchor& anchor, SpecKind sp
     out.push_back({std::move(name), op, std::move(value), locate(first)});
 }
 
-Value Parser::parseMetadataValue(const std::string& key, ListOpKind op, const Anchor& anchor,
-                                 SpecKind spec) {
+Value Parser::parseMetadataValue(const std::string& key, ListOpKind op, const Anchor& anchor, SpecKind spec) {
     Token start = lexer_.peek();
     auto failExpecting = [&](const std::string& expected) {
         lexer_.fail(start, "expected " + expected + " for '" + key + "', found " + describe(start));
@@ -844,8 +799,7 @@ Value Parser::parseMetadataValue(const std::string& key, ListOpKind op, const An
     };
     if (isOneOf(key, {"references", "payload", "payloads"})) {
         Value arcs = parseArcs(anchor);
-        if (op != ListOpKind::Explicit && arcs.kind == ValueKind::List && arcs.items.empty())
-            failEmptyListOp();
+        if (op != ListOpKind::Explicit && arcs.kind == ValueKind::List && arcs.items.empty()) failEmptyListOp();
         return arcs;
     }
     if (isOneOf(key, {"inherits", "specializes"})) {
@@ -864,8 +818,7 @@ Value Parser::parseMetadataValue(const std::string& key, ListOpKind op, const An
         return values_.parseDictionary();
     }
     if (op != ListOpKind::Explicit && key != "variantSets" && !start.is('[')) {
-        lexer_.fail(start, "'" + listOpName(op) + " " + key + "' needs a list value [...], found " +
-                               describe(start));
+        lexer_.fail(start, "'" + listOpName(op) + " " + key + "' needs a list value [...], found " + describe(start));
     }
     if (isOneOf(key, {"active", "hidden", "instanceable", "noLoadHint"})) {
         std::optional<bool> flag = detail::boolFromToken(start);
@@ -888,8 +841,7 @@ Value Parser::parseMetadataValue(const std::string& key, ListOpKind op, const An
     if (key == "displayUnit") {
         if (start.kind != TokenKind::Identifier) failExpecting("a unit name");
         if (!detail::isDisplayUnit(start.text)) {
-            lexer_.fail(start, "'" + std::string(start.text) +
-                                   "' is not a valid display unit (one of " +
+            lexer_.fail(start, "'" + std::string(start.text) + "' is not a valid display unit (one of " +
                                    detail::displayUnitNames() + ")");
         }
     }
@@ -909,8 +861,7 @@ Value Parser::parseArcs(const Anchor& anchor) {
     if (!lexer_.peek().is('[')) return parseReference(anchor);
     Token open = lexer_.take();
     Value list = Value::list({});
-    values_.parseSeparated(open, ']', "the reference list",
-                           [&] { list.items.push_back(parseReference(anchor)); });
+    values_.parseSeparated(open, ']', "the reference list", [&] { list.items.push_back(parseReference(anchor)); });
     return list;
 }
 
@@ -924,8 +875,9 @@ Value Parser::parseReference(const Anchor& anchor) {
     reference.strings = {"", ""};
     if (token.kind == TokenKind::Asset) {
         if (token.value.empty()) {
-            lexer_.fail(token, "empty asset path in a reference (an internal reference is a "
-                               "path alone: </Prim>)");
+            lexer_.fail(token,
+                        "empty asset path in a reference (an internal reference is a "
+                        "path alone: </Prim>)");
         }
         reference.strings[0] = token.value;
         if (lexer_.peek().kind == TokenKind::Path && !lexer_.peek().newlineBefore) {
@@ -939,26 +891,22 @@ Value Parser::parseReference(const Anchor& anchor) {
         checkPath(token, internal, anchor);
         reference.strings[1] = token.value;
     } else {
-        lexer_.fail(token, "expected a reference (@asset@, @asset@</prim> or </prim>), found " +
-                               describe(token));
+        lexer_.fail(token, "expected a reference (@asset@, @asset@</prim> or </prim>), found " + describe(token));
     }
-    if (lexer_.peek().is('(') && !lexer_.peek().newlineBefore)
-        values_.parseLayerOffset(reference, true);
+    if (lexer_.peek().is('(') && !lexer_.peek().newlineBefore) values_.parseLayerOffset(reference, true);
     return reference;
 }
 
 Value Parser::parseSubLayers() {
     Token open = lexer_.take();
     if (!open.is('[')) {
-        lexer_.fail(
-            open, "expected a list of asset paths [...] for 'subLayers', found " + describe(open));
+        lexer_.fail(open, "expected a list of asset paths [...] for 'subLayers', found " + describe(open));
     }
     Value list = Value::list({});
     values_.parseSeparated(open, ']', "'subLayers'", [&] {
         Token asset = lexer_.take();
         if (asset.kind != TokenKind::Asset) {
-            lexer_.fail(asset,
-                        "expected an asset path @...@ in 'subLayers', found " + describe(asset));
+            lexer_.fail(asset, "expected an asset path @...@ in 'subLayers', found " + describe(asset));
         }
         if (asset.value.empty()) lexer_.fail(asset, "empty asset path in 'subLayers'");
         Value subLayer;
@@ -975,23 +923,20 @@ Value Parser::parseSubLayers() {
 Value Parser::parseRelocates(const Anchor& anchor) {
     Token open = lexer_.take();
     if (!open.is('{')) {
-        lexer_.fail(open, "expected a map {<source>: <target>, ...} for 'relocates', found " +
-                              describe(open));
+        lexer_.fail(open, "expected a map {<source>: <target>, ...} for 'relocates', found " + describe(open));
     }
     auto entries = std::make_shared<Dictionary>();
     values_.parseSeparated(open, '}', "the 'relocates' map", [&] {
         Token source = lexer_.take();
         if (source.kind != TokenKind::Path) {
-            lexer_.fail(source,
-                        "expected a source path <...> in 'relocates', found " + describe(source));
+            lexer_.fail(source, "expected a source path <...> in 'relocates', found " + describe(source));
         }
         checkPath(source, {}, anchor);
         if (source.value == "/") lexer_.fail(source, "the root path </> cannot be relocated");
         expect(':', "relocates source <" + source.value + ">");
         Token target = lexer_.take();
         if (target.kind != TokenKind::Path) {
-            lexer_.fail(target,
-                        "expected a target path <...> in 'relocates', found " + describe(target));
+            lexer_.fail(target, "expected a target path <...> in 'relocates', found " + describe(target));
         }
         PathRules targetRules;
         targetRules.allowEmpty = true;
@@ -1016,12 +961,12 @@ Value Parser::parseVariantSelections() {
     Value selections = values_.parseDictionary();
     for (const auto& [set, selection] : *selections.dictionary) {
         if (selection.typeName != "string") {
-            lexer_.fail(open, "the selection for variant set '" + set +
-                                  "' must be a string, found a '" + selection.typeName + "' value");
+            lexer_.fail(open, "the selection for variant set '" + set + "' must be a string, found a '" +
+                                  selection.typeName + "' value");
         }
         if (!detail::isVariantSelection(*selection.asString())) {
-            lexer_.fail(open, "invalid variant selection \"" + *selection.asString() +
-                                  "\" for variant set '" + set + "'");
+            lexer_.fail(open,
+                        "invalid variant selection \"" + *selection.asString() + "\" for variant set '" + set + "'");
         }
     }
     return selections;
@@ -1047,8 +992,7 @@ void Parser::checkPropertyName(const Token& name, const std::string& what) {
 Token Parser::expect(char punct, const std::string& after) {
     Token token = lexer_.take();
     if (!token.is(punct)) {
-        lexer_.fail(token, std::string("expected '") + punct + "' after " + after + ", found " +
-                               describe(token));
+        lexer_.fail(token, std::string("expected '") + punct + "' after " + after + ", found " + describe(token));
     }
     return token;
 }

@@ -12,9 +12,7 @@ namespace fluence::usd::detail {
 
 namespace {
 
-std::string location(const Token& token) {
-    return std::to_string(token.line) + ":" + std::to_string(token.column);
-}
+std::string location(const Token& token) { return std::to_string(token.line) + ":" + std::to_string(token.column); }
 
 std::string expectedElement(const ValueType& type) {
     switch (type.element) {
@@ -61,10 +59,10 @@ Value flattenList(std::vector<Value> items) {
         const Value& first = items.front();
         bool sameNumeric = true, sameStrings = true;
         for (const Value& item : items) {
-            sameNumeric = sameNumeric && item.kind == ValueKind::Numeric && !item.isArray &&
-                          item.components == first.components;
-            sameStrings = sameStrings && item.kind == first.kind && item.isStringLike() &&
-                          !item.isArray && item.strings.size() == 1;
+            sameNumeric =
+                sameNumeric && item.kind == ValueKind::Numeric && !item.isArray && item.components == first.components;
+            sameStrings = sameStrings && item.kind == first.kind && item.isStringLike() && !item.isArray &&
+                          item.strings.size() == 1;
         }
         if (sameNumeric) {
             std::vector<double> numbers;
@@ -141,8 +139,7 @@ Value ValueParser::parseNumbers(const ValueType& type, const std::string& typeNa
     } else {
         Token open = lexer_.take();
         if (!open.is('[')) {
-            lexer_.fail(
-                open, "expected '[' to start a '" + typeName + "' array, found " + describe(open));
+            lexer_.fail(open, "expected '[' to start a '" + typeName + "' array, found " + describe(open));
         }
         std::optional<NumericShape> shape = plainShape(type);
         parseSeparated(
@@ -153,8 +150,7 @@ Value ValueParser::parseNumbers(const ValueType& type, const std::string& typeNa
     return Value::numeric(typeName, std::move(numbers), type.components(), isArray);
 }
 
-void ValueParser::parseNumericElement(const ValueType& type, const std::string& typeName,
-                                      std::vector<double>& out) {
+void ValueParser::parseNumericElement(const ValueType& type, const std::string& typeName, std::vector<double>& out) {
     if (type.rank == 0) {
         out.push_back(parseNumber(type, typeName));
     } else if (type.rank == 1) {
@@ -162,8 +158,8 @@ void ValueParser::parseNumericElement(const ValueType& type, const std::string& 
     } else {
         Token open = lexer_.take();
         if (!open.is('(')) {
-            lexer_.fail(open, "expected a tuple of " + std::to_string(type.size) + " rows for '" +
-                                  typeName + "', found " + describe(open));
+            lexer_.fail(open, "expected a tuple of " + std::to_string(type.size) + " rows for '" + typeName +
+                                  "', found " + describe(open));
         }
         std::size_t rows = 0;
         parseSeparated(
@@ -173,8 +169,8 @@ void ValueParser::parseNumericElement(const ValueType& type, const std::string& 
                 ++rows;
             });
         if (rows != static_cast<std::size_t>(type.size)) {
-            lexer_.fail(open, "expected " + std::to_string(type.size) + " rows for '" + typeName +
-                                  "', found " + std::to_string(rows));
+            lexer_.fail(open, "expected " + std::to_string(type.size) + " rows for '" + typeName + "', found " +
+                                  std::to_string(rows));
         }
     }
 }
@@ -183,17 +179,16 @@ void ValueParser::parseTuple(const ValueType& type, const std::string& typeName,
                              std::vector<double>& out) {
     Token open = lexer_.take();
     if (!open.is('(')) {
-        lexer_.fail(open, "expected a tuple of " + std::to_string(type.size) + " numbers for '" +
-                              typeName + "', found " + describe(open));
+        lexer_.fail(open, "expected a tuple of " + std::to_string(type.size) + " numbers for '" + typeName +
+                              "', found " + describe(open));
     }
     std::size_t before = out.size();
     parseSeparated(
-        open, ')', [&] { return "the '" + typeName + "' tuple"; },
-        [&] { out.push_back(parseNumber(type, typeName)); });
+        open, ')', [&] { return "the '" + typeName + "' tuple"; }, [&] { out.push_back(parseNumber(type, typeName)); });
     std::size_t count = out.size() - before;
     if (count != static_cast<std::size_t>(type.size)) {
-        lexer_.fail(open, "expected " + std::to_string(type.size) + " " + what + " for '" +
-                              typeName + "', found " + std::to_string(count));
+        lexer_.fail(open, "expected " + std::to_string(type.size) + " " + what + " for '" + typeName + "', found " +
+                              std::to_string(count));
     }
 }
 
@@ -207,8 +202,7 @@ double ValueParser::parseNumber(const ValueType& type, const std::string& typeNa
         if (token.kind == TokenKind::Number && std::isfinite(token.number)) {
             value = std::trunc(token.number);
             if (*value < type.min || *value > type.max) {
-                lexer_.fail(token, "value " + std::string(token.text) + " is out of range for '" +
-                                       typeName + "'");
+                lexer_.fail(token, "value " + std::string(token.text) + " is out of range for '" + typeName + "'");
             }
         }
     } else if (token.kind == TokenKind::Number) {
@@ -217,8 +211,7 @@ double ValueParser::parseNumber(const ValueType& type, const std::string& typeNa
         value = floatFromWord(token.kind == TokenKind::String ? token.value : token.text);
     }
     if (!value) {
-        lexer_.fail(token, "expected " + expectedElement(type) + " for '" + typeName + "', found " +
-                               describe(token));
+        lexer_.fail(token, "expected " + expectedElement(type) + " for '" + typeName + "', found " + describe(token));
     }
     lexer_.skip();
     return *value;
@@ -231,8 +224,8 @@ Value ValueParser::parseStrings(const ValueType& type, const std::string& typeNa
     auto parseElement = [&] {
         Token token = lexer_.take();
         if (token.kind != TokenKind::String && !(isAsset && token.kind == TokenKind::Asset)) {
-            lexer_.fail(token, "expected " + expectedElement(type) + " for '" + typeName +
-                                   "', found " + describe(token));
+            lexer_.fail(token,
+                        "expected " + expectedElement(type) + " for '" + typeName + "', found " + describe(token));
         }
         strings.push_back(std::move(token.value));
     };
@@ -241,8 +234,7 @@ Value ValueParser::parseStrings(const ValueType& type, const std::string& typeNa
     } else {
         Token open = lexer_.take();
         if (!open.is('[')) {
-            lexer_.fail(
-                open, "expected '[' to start a '" + typeName + "' array, found " + describe(open));
+            lexer_.fail(open, "expected '[' to start a '" + typeName + "' array, found " + describe(open));
         }
         parseSeparated(
             open, ']', [&] { return "the '" + typeName + "' array"; }, parseElement);
@@ -252,8 +244,7 @@ Value ValueParser::parseStrings(const ValueType& type, const std::string& typeNa
 
 Value ValueParser::parseDictionary() {
     Token open = lexer_.take();
-    if (!open.is('{'))
-        lexer_.fail(open, "expected '{' to start a dictionary, found " + describe(open));
+    if (!open.is('{')) lexer_.fail(open, "expected '{' to start a dictionary, found " + describe(open));
     NestingGuard guard(lexer_, open);
     auto entries = std::make_shared<Dictionary>();
     std::unordered_map<std::string, std::size_t> index;
@@ -262,44 +253,36 @@ Value ValueParser::parseDictionary() {
         if (type.is('}')) break;
         if (type.kind == TokenKind::End) {
             lexer_.fail(type,
-                        "unexpected end of file, expected '}' to close the dictionary opened at " +
-                            location(open));
+                        "unexpected end of file, expected '}' to close the dictionary opened at " + location(open));
         }
         if (type.kind != TokenKind::Identifier) {
-            lexer_.fail(type, "expected a value type name to start a dictionary entry, found " +
-                                  describe(type));
+            lexer_.fail(type, "expected a value type name to start a dictionary entry, found " + describe(type));
         }
         // Unlike an attribute's, a dictionary entry's value is built as it is read: Sdf refuses
         // a type it does not know. 'dictionary' is the entry rule of its own (TOK_DICTIONARY key
         // '=' typed_dictionary).
         const bool nested = type.text == "dictionary";
         if (!nested && !findValueType(type.text)) {
-            lexer_.fail(type, "unknown value type '" + std::string(type.text) +
-                                  "' in a dictionary entry");
+            lexer_.fail(type, "unknown value type '" + std::string(type.text) + "' in a dictionary entry");
         }
         bool isArray = false;
         if (lexer_.peek().is('[') && !nested) {
             lexer_.skip();
             Token close = lexer_.take();
-            if (!close.is(']'))
-                lexer_.fail(close,
-                            "expected ']' after '[' in a type name, found " + describe(close));
+            if (!close.is(']')) lexer_.fail(close, "expected ']' after '[' in a type name, found " + describe(close));
             isArray = true;
         }
         Token key = lexer_.take();
-        if ((key.kind != TokenKind::Identifier && key.kind != TokenKind::String) ||
-            key.newlineBefore) {
-            lexer_.fail(key, "expected a dictionary key after type '" + std::string(type.text) +
-                                 "', found " + describe(key));
+        if ((key.kind != TokenKind::Identifier && key.kind != TokenKind::String) || key.newlineBefore) {
+            lexer_.fail(
+                key, "expected a dictionary key after type '" + std::string(type.text) + "', found " + describe(key));
         }
         std::string name = key.kind == TokenKind::String ? key.value : std::string(key.text);
         Token equals = lexer_.take();
         if (!equals.is('=')) {
-            lexer_.fail(equals, "expected '=' after dictionary key '" + name + "', found " +
-                                    describe(equals));
+            lexer_.fail(equals, "expected '=' after dictionary key '" + name + "', found " + describe(equals));
         }
-        if (lexer_.peek().newlineBefore)
-            lexer_.fail(lexer_.peek(), "expected a value after '=' on the same line");
+        if (lexer_.peek().newlineBefore) lexer_.fail(lexer_.peek(), "expected a value after '=' on the same line");
         Value value = nested ? parseDictionary() : parseTyped(type.text, isArray);
         auto [slot, inserted] = index.emplace(name, entries->size());
         if (inserted)
@@ -311,8 +294,7 @@ Value ValueParser::parseDictionary() {
         if (next.is(';'))
             lexer_.skip();
         else if (!next.is('}') && !next.newlineBefore && next.kind != TokenKind::End) {
-            lexer_.fail(next, "expected a line break or ';' between dictionary entries, found " +
-                                  describe(next));
+            lexer_.fail(next, "expected a line break or ';' between dictionary entries, found " + describe(next));
         }
     }
     Value dictionary;
@@ -325,8 +307,7 @@ Value ValueParser::parseDictionary() {
 Value ValueParser::parseNameList(const std::string& context) {
     Token open = lexer_.take();
     if (!open.is('[')) {
-        lexer_.fail(open,
-                    "expected a list of names [...] for " + context + ", found " + describe(open));
+        lexer_.fail(open, "expected a list of names [...] for " + context + ", found " + describe(open));
     }
     std::vector<std::string> names;
     parseSeparated(open, ']', context, [&] {
@@ -347,30 +328,27 @@ void ValueParser::parseLayerOffset(Value& reference, bool allowCustomData) {
         Token field = lexer_.take();
         if (field.is(')')) break;
         if (field.kind == TokenKind::End) {
-            lexer_.fail(
-                field, "unexpected end of file, expected ')' to close the layer offset opened at " +
-                           location(open));
+            lexer_.fail(field,
+                        "unexpected end of file, expected ')' to close the layer offset opened at " + location(open));
         }
         bool isNumber = field.isWord("offset") || field.isWord("scale");
         bool isCustomData = allowCustomData && field.isWord("customData");
         if (!isNumber && !isCustomData) {
             lexer_.fail(field, std::string("expected ") +
-                                   (allowCustomData ? "'offset', 'scale' or 'customData'"
-                                                    : "'offset' or 'scale'") +
+                                   (allowCustomData ? "'offset', 'scale' or 'customData'" : "'offset' or 'scale'") +
                                    " in a layer offset, found " + describe(field));
         }
         Token equals = lexer_.take();
         if (!equals.is('=')) {
-            lexer_.fail(equals, "expected '=' after '" + std::string(field.text) + "', found " +
-                                    describe(equals));
+            lexer_.fail(equals, "expected '=' after '" + std::string(field.text) + "', found " + describe(equals));
         }
         if (isCustomData) {
             reference.dictionary = parseDictionary().dictionary;
         } else {
             Token number = lexer_.take();
             if (number.kind != TokenKind::Number) {
-                lexer_.fail(number, "expected a number for '" + std::string(field.text) +
-                                        "', found " + describe(number));
+                lexer_.fail(number,
+                            "expected a number for '" + std::string(field.text) + "', found " + describe(number));
             }
             (field.isWord("offset") ? offset : scale) = number.number;
             authored = true;
@@ -379,8 +357,7 @@ void ValueParser::parseLayerOffset(Value& reference, bool allowCustomData) {
         if (next.is(';'))
             lexer_.skip();
         else if (!next.is(')') && !next.newlineBefore && next.kind != TokenKind::End) {
-            lexer_.fail(next, "expected a line break or ';' between layer offset fields, found " +
-                                  describe(next));
+            lexer_.fail(next, "expected a line break or ';' between layer offset fields, found " + describe(next));
         }
     }
     if (authored) reference.numbers = {offset, scale};
@@ -397,10 +374,8 @@ Value ValueParser::parseGeneric(bool allowReferences) {
         case TokenKind::Identifier: {
             Token word = lexer_.take();
             if (word.text == "None") return Value{};
-            if (word.text == "true" || word.text == "True")
-                return Value::numeric("", {1.0}, 1, false);
-            if (word.text == "false" || word.text == "False")
-                return Value::numeric("", {0.0}, 1, false);
+            if (word.text == "true" || word.text == "True") return Value::numeric("", {1.0}, 1, false);
+            if (word.text == "false" || word.text == "False") return Value::numeric("", {0.0}, 1, false);
             if (word.text == "inf") {
                 return Value::numeric("", {std::numeric_limits<double>::infinity()}, 1, false);
             }
@@ -423,8 +398,7 @@ Value ValueParser::parseGeneric(bool allowReferences) {
             if (token.is('(')) return parseGenericTuple(allowReferences);
             if (token.is('{')) {
                 TokenKind first = lexer_.peek(1).kind;
-                return first == TokenKind::String || first == TokenKind::Path ? parseMap()
-                                                                              : parseDictionary();
+                return first == TokenKind::String || first == TokenKind::Path ? parseMap() : parseDictionary();
             }
             break;
         case TokenKind::End: break;
@@ -435,8 +409,7 @@ Value ValueParser::parseGeneric(bool allowReferences) {
 Value ValueParser::parseAssetOrReference(bool allowReferences) {
     Token asset = lexer_.take();
     const Token& next = lexer_.peek();
-    bool isReference =
-        allowReferences && !next.newlineBefore && (next.kind == TokenKind::Path || next.is('('));
+    bool isReference = allowReferences && !next.newlineBefore && (next.kind == TokenKind::Path || next.is('('));
     if (!isReference) return Value::string("", ValueKind::Asset, {std::move(asset.value)}, false);
     Value reference;
     reference.kind = ValueKind::Reference;
@@ -463,8 +436,7 @@ Value ValueParser::parseGenericTuple(bool allowReferences) {
     for (const Value& item : items) allNumeric = allNumeric && item.isNumeric() && !item.isArray;
     if (allNumeric) {
         std::vector<double> numbers;
-        for (const Value& item : items)
-            numbers.insert(numbers.end(), item.numbers.begin(), item.numbers.end());
+        for (const Value& item : items) numbers.insert(numbers.end(), item.numbers.begin(), item.numbers.end());
         int components = static_cast<int>(numbers.size());
         return Value::numeric("", std::move(numbers), components, false);
     }
@@ -482,21 +454,16 @@ Value ValueParser::parseMap() {
     auto entries = std::make_shared<Dictionary>();
     parseSeparated(open, '}', paths ? "the path map" : "the string map", [&] {
         Token key = lexer_.take();
-        if (key.kind != kind)
-            lexer_.fail(key,
-                        std::string("expected ") + what + " as map key, found " + describe(key));
+        if (key.kind != kind) lexer_.fail(key, std::string("expected ") + what + " as map key, found " + describe(key));
         if (!paths && key.value.empty()) lexer_.fail(key, "empty key in a string map");
         Token colon = lexer_.take();
-        if (!colon.is(':'))
-            lexer_.fail(colon, "expected ':' after map key, found " + describe(colon));
+        if (!colon.is(':')) lexer_.fail(colon, "expected ':' after map key, found " + describe(colon));
         Token value = lexer_.take();
         if (value.kind != kind) {
-            lexer_.fail(
-                value, std::string("expected ") + what + " as map value, found " + describe(value));
+            lexer_.fail(value, std::string("expected ") + what + " as map value, found " + describe(value));
         }
         ValueKind valueKind = paths ? ValueKind::Path : ValueKind::String;
-        entries->emplace_back(std::move(key.value),
-                              Value::string("", valueKind, {std::move(value.value)}, false));
+        entries->emplace_back(std::move(key.value), Value::string("", valueKind, {std::move(value.value)}, false));
     });
     Value map;
     map.kind = ValueKind::Dictionary;

@@ -65,8 +65,7 @@ public:
     // parseRun may read a run of items and the close at once (Lexer::scanNumericRun), returning
     // true when it did.
     template <class Context, class ParseItem, class ParseRun>
-    void parseSeparated(const Token& open, char close, Context&& context, ParseItem&& parseItem,
-                        ParseRun&& parseRun);
+    void parseSeparated(const Token& open, char close, Context&& context, ParseItem&& parseItem, ParseRun&& parseRun);
     template <class Context, class ParseItem>
     void parseSeparated(const Token& open, char close, Context&& context, ParseItem&& parseItem) {
         parseSeparated(open, close, context, parseItem, [] { return false; });
@@ -75,10 +74,8 @@ public:
 private:
     Value parseNumbers(const ValueType& type, const std::string& typeName, bool isArray);
     Value parseStrings(const ValueType& type, const std::string& typeName, bool isArray);
-    void parseNumericElement(const ValueType& type, const std::string& typeName,
-                             std::vector<double>& out);
-    void parseTuple(const ValueType& type, const std::string& typeName, const char* what,
-                    std::vector<double>& out);
+    void parseNumericElement(const ValueType& type, const std::string& typeName, std::vector<double>& out);
+    void parseTuple(const ValueType& type, const std::string& typeName, const char* what, std::vector<double>& out);
     double parseNumber(const ValueType& type, const std::string& typeName);
     Value parseGenericList(bool allowReferences);
     Value parseGenericTuple(bool allowReferences);
@@ -89,8 +86,8 @@ private:
 };
 
 template <class Context, class ParseItem, class ParseRun>
-void ValueParser::parseSeparated(const Token& open, char close, Context&& context,
-                                 ParseItem&& parseItem, ParseRun&& parseRun) {
+void ValueParser::parseSeparated(const Token& open, char close, Context&& context, ParseItem&& parseItem,
+                                 ParseRun&& parseRun) {
     auto contextText = [&]() -> std::string {
         if constexpr (std::is_invocable_v<Context>)
             return context();
@@ -98,9 +95,8 @@ void ValueParser::parseSeparated(const Token& open, char close, Context&& contex
             return context;
     };
     auto failAtEnd = [&](const Token& end) {
-        lexer_.fail(end, std::string("unexpected end of file, expected '") + close + "' to close " +
-                             contextText() + " opened at " + std::to_string(open.line) + ":" +
-                             std::to_string(open.column));
+        lexer_.fail(end, std::string("unexpected end of file, expected '") + close + "' to close " + contextText() +
+                             " opened at " + std::to_string(open.line) + ":" + std::to_string(open.column));
     };
     while (true) {
         if (parseRun()) return;
@@ -113,8 +109,8 @@ void ValueParser::parseSeparated(const Token& open, char close, Context&& contex
             lexer_.skip();
         } else if (!next.is(close)) {
             if (next.kind == TokenKind::End) failAtEnd(next);
-            lexer_.fail(next, std::string("expected ',' or '") + close + "' in " + contextText() +
-                                  ", found " + describe(next));
+            lexer_.fail(
+                next, std::string("expected ',' or '") + close + "' in " + contextText() + ", found " + describe(next));
         }
     }
     lexer_.skip();

@@ -64,7 +64,8 @@ std::string shortestText(Number number) {
         else if (point >= count)
             text += digits + std::string(static_cast<std::size_t>(point - count), '0');
         else
-            text += digits.substr(0, static_cast<std::size_t>(point)) + "." + digits.substr(static_cast<std::size_t>(point));
+            text += digits.substr(0, static_cast<std::size_t>(point)) + "." +
+                    digits.substr(static_cast<std::size_t>(point));
     } else {
         text += digits.substr(0, 1);
         if (count > 1) text += "." + digits.substr(1);
@@ -109,8 +110,7 @@ void pad(std::string& out, int indent) { out.append(static_cast<std::size_t>(ind
 
 // One element of `components` numbers starting at numbers[first]: a scalar, a tuple, or (for
 // rowSize > 0) a tuple of rows.
-void writeNumericElement(std::string& out, const Value& value, std::size_t first, int rowSize,
-                         const auto& format) {
+void writeNumericElement(std::string& out, const Value& value, std::size_t first, int rowSize, const auto& format) {
     const int components = std::max(value.components, 1);
     if (components == 1) {
         out += format(value.numbers[first]);
@@ -242,7 +242,9 @@ void writeGeneric(std::string& out, const Value& value, int indent, TokenStyle t
             });
             return;
         }
-        case ValueKind::Asset: writeStrings(out, value, [](const std::string& path) { return quoteAssetPath(path); }); return;
+        case ValueKind::Asset:
+            writeStrings(out, value, [](const std::string& path) { return quoteAssetPath(path); });
+            return;
         case ValueKind::Path: writeStrings(out, value, pathText); return;
         case ValueKind::Reference: writeReference(out, value, indent); return;
         case ValueKind::List: writeList(out, value, indent); return;
@@ -261,14 +263,19 @@ std::string entryTypeName(const Value& value) {
         case ValueKind::Token: base = "token"; break;
         case ValueKind::Asset: base = "asset"; break;
         case ValueKind::Numeric:
-            if (value.components == 1) base = "double";
-            else if (value.components >= 2 && value.components <= 4) base = "double" + std::to_string(value.components);
-            else if (value.components == 9) base = "matrix3d";
-            else if (value.components == 16) base = "matrix4d";
+            if (value.components == 1)
+                base = "double";
+            else if (value.components >= 2 && value.components <= 4)
+                base = "double" + std::to_string(value.components);
+            else if (value.components == 9)
+                base = "matrix3d";
+            else if (value.components == 16)
+                base = "matrix4d";
             break;
         default: break;
     }
-    if (base.empty()) throw std::invalid_argument("a dictionary entry holds a value no USD type can hold: " + value.toString());
+    if (base.empty())
+        throw std::invalid_argument("a dictionary entry holds a value no USD type can hold: " + value.toString());
     return value.isArray ? base + "[]" : base;
 }
 
@@ -290,7 +297,8 @@ void writeArcFields(std::string& out, const Value& reference, int indent) {
         const double offset = reference.numbers[0], scale = reference.numbers[1];
         const bool writeScale = !(scale == 1.0);
         // An offset is written unless it is +0 and the scale says the offset was authored.
-        if (!(offset == 0.0 && !std::signbit(offset)) || !writeScale) fields.push_back("offset = " + shortestText(offset));
+        if (!(offset == 0.0 && !std::signbit(offset)) || !writeScale)
+            fields.push_back("offset = " + shortestText(offset));
         if (writeScale) fields.push_back("scale = " + shortestText(scale));
     }
     if (reference.dictionary) {
@@ -311,7 +319,8 @@ void writeArcFields(std::string& out, const Value& reference, int indent) {
 }  // namespace
 
 std::string quoteString(std::string_view text) {
-    const char quote = text.find('"') != std::string_view::npos && text.find('\'') == std::string_view::npos ? '\'' : '"';
+    const char quote =
+        text.find('"') != std::string_view::npos && text.find('\'') == std::string_view::npos ? '\'' : '"';
     const bool triple = text.find('\n') != std::string_view::npos;
     std::string out(triple ? 3 : 1, quote);
     static const char* hex = "0123456789abcdef";

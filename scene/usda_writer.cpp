@@ -196,9 +196,9 @@ private:
             out_ += quoteString(variant.name);
             writeMetadataBlock(blockEntries(variant.metadata), indent + 1);
             out_ += " {\n";
-            writeBody({variant.metadata, variant.attributes, variant.relationships, variant.children,
-                       variant.variantSets},
-                      indent + 2);
+            writeBody(
+                {variant.metadata, variant.attributes, variant.relationships, variant.children, variant.variantSets},
+                indent + 2);
             pad(indent + 1);
             out_ += "}\n";
         }
@@ -284,9 +284,11 @@ private:
             pad(indent);
             if (statement.key == "timeSamples") {
                 out_ += declaration + ".timeSamples = {\n";
-                for (const auto& [time, target] : statement.value.dictionary ? *statement.value.dictionary : Dictionary{}) {
+                for (const auto& [time, target] :
+                     statement.value.dictionary ? *statement.value.dictionary : Dictionary{}) {
                     pad(indent + 1);
-                    out_ += time + ": " + (target.strings.empty() ? "None" : "<" + target.strings.front() + ">") + ",\n";
+                    out_ +=
+                        time + ": " + (target.strings.empty() ? "None" : "<" + target.strings.front() + ">") + ",\n";
                 }
                 pad(indent);
                 out_ += "}\n";

@@ -44,7 +44,8 @@ public:
 
     // The end-of-central-directory record: the last one, searched back over a possible comment.
     std::size_t endOfDirectory() const {
-        if (data_.size() < kEndOfDirectorySize) fail("not a zip archive (too short for an end-of-central-directory record)");
+        if (data_.size() < kEndOfDirectorySize)
+            fail("not a zip archive (too short for an end-of-central-directory record)");
         std::size_t last = data_.size() - kEndOfDirectorySize;
         std::size_t first = last > kMaxCommentSize ? last - kMaxCommentSize : 0;
         for (std::size_t at = last + 1; at-- > first;)
@@ -69,7 +70,8 @@ public:
             fail("damaged zip archive (the central directory lies outside the file)");
         std::vector<UsdzPackage::Entry> result;
         std::size_t at = directoryOffset;
-        for (std::uint32_t i = 0; i < count; ++i) at = readEntry(at, std::size_t(directoryOffset) + directorySize, result);
+        for (std::uint32_t i = 0; i < count; ++i)
+            at = readEntry(at, std::size_t(directoryOffset) + directorySize, result);
         return result;
     }
 
@@ -78,15 +80,18 @@ private:
     // returns where the next one starts.
     std::size_t readEntry(std::size_t at, std::size_t directoryEnd, std::vector<UsdzPackage::Entry>& result) const {
         const char* record = "central directory entry";
-        if (u32(at, record) != kDirectoryEntrySignature) fail("damaged zip archive (bad central directory entry signature)");
-        std::size_t nameSize = u16(at + 28, record), extraSize = u16(at + 30, record), commentSize = u16(at + 32, record);
+        if (u32(at, record) != kDirectoryEntrySignature)
+            fail("damaged zip archive (bad central directory entry signature)");
+        std::size_t nameSize = u16(at + 28, record), extraSize = u16(at + 30, record),
+                    commentSize = u16(at + 32, record);
         std::size_t next = at + kDirectoryEntrySize + nameSize + extraSize + commentSize;
         if (next > directoryEnd) fail("damaged zip archive (a central directory entry runs past the directory)");
         UsdzPackage::Entry entry;
         entry.name.assign(data_.substr(at + kDirectoryEntrySize, nameSize));
         const std::string named = "entry '" + entry.name + "'";
         if (entry.name.empty()) fail("damaged zip archive (an entry has no name)");
-        if (u16(at + 8, record) & 1) entry.unreadable = "encrypted";
+        if (u16(at + 8, record) & 1)
+            entry.unreadable = "encrypted";
         else if (std::uint32_t method = u16(at + 10, record); method != 0)
             entry.unreadable = "compressed (zip method " + std::to_string(method) + ")";
         std::uint32_t storedSize = u32(at + 20, record), size = u32(at + 24, record), local = u32(at + 42, record);
@@ -96,9 +101,11 @@ private:
             fail("damaged zip archive (" + named + " has a stored size unlike its size)");
         if (u32(local, "local file header") != kLocalHeaderSignature)
             fail("damaged zip archive (" + named + " has no local file header)");
-        entry.offset = local + kLocalHeaderSize + u16(local + 26, "local file header") + u16(local + 28, "local file header");
+        entry.offset =
+            local + kLocalHeaderSize + u16(local + 26, "local file header") + u16(local + 28, "local file header");
         entry.size = storedSize;
-        if (!fits(entry.offset, entry.size)) fail("truncated zip archive (" + named + " runs past the end of the file)");
+        if (!fits(entry.offset, entry.size))
+            fail("truncated zip archive (" + named + " runs past the end of the file)");
         result.push_back(std::move(entry));
         return next;
     }
@@ -116,7 +123,8 @@ std::vector<std::string> packagePathParts(const std::string& path) {
     std::string rest = path;
     while (std::optional<PackagePath> split = splitPackagePath(rest)) {
         if (parts.size() == kMaxPackageNesting)
-            throw FileError("'" + path + "': packages nested more than " + std::to_string(kMaxPackageNesting) + " deep");
+            throw FileError("'" + path + "': packages nested more than " + std::to_string(kMaxPackageNesting) +
+                            " deep");
         parts.push_back(std::move(split->package));
         rest = std::move(split->entry);
     }
@@ -171,7 +179,6 @@ std::optional<PackagePath> splitPackagePath(const std::string& path) {
     return PackagePath{path.substr(0, open), path.substr(open + 1, path.size() - open - 2)};
 }
 
-
 std::optional<PackagePath> splitInnermostPackagePath(const std::string& path) {
     std::vector<std::string> parts = packagePathParts(path);
     if (parts.size() < 2) return std::nullopt;
@@ -187,7 +194,8 @@ std::string packagePath(const std::string& package, const std::string& entry) {
 bool isUsdzPath(const std::string& path) {
     std::optional<PackagePath> packaged = splitInnermostPackagePath(path);
     std::string extension = std::filesystem::path(packaged ? packaged->entry : path).extension().string();
-    std::transform(extension.begin(), extension.end(), extension.begin(), [](unsigned char c) { return std::tolower(c); });
+    std::transform(extension.begin(), extension.end(), extension.begin(),
+                   [](unsigned char c) { return std::tolower(c); });
     return extension == ".usdz";
 }
 

@@ -30,10 +30,10 @@ namespace fluence::usd {
 class UsdzPackage {
 public:
     struct Entry {
-        std::string name;         // the path inside the archive
-        std::size_t offset = 0;   // where its bytes start in the package file
+        std::string name;        // the path inside the archive
+        std::size_t offset = 0;  // where its bytes start in the package file
         std::size_t size = 0;
-        std::string unreadable;   // why its bytes cannot be read ("compressed", "encrypted"), or empty
+        std::string unreadable;  // why its bytes cannot be read ("compressed", "encrypted"), or empty
     };
 
     // Opens and indexes the package at `path`, a file or a package-relative path naming a package

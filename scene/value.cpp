@@ -71,8 +71,7 @@ std::string formatReference(const Value& value) {
     if (!value.strings.empty() && !value.strings[0].empty()) out += "@" + value.strings[0] + "@";
     if (value.strings.size() > 1 && !value.strings[1].empty()) out += "<" + value.strings[1] + ">";
     if (value.numbers.size() == 2) {
-        out += " (offset = " + formatNumber(value.numbers[0]) +
-               "; scale = " + formatNumber(value.numbers[1]) + ")";
+        out += " (offset = " + formatNumber(value.numbers[0]) + "; scale = " + formatNumber(value.numbers[1]) + ")";
     }
     return out;
 }
@@ -137,8 +136,7 @@ std::string Value::toString() const {
     return out + (tuple ? ")" : "]");
 }
 
-Value Value::numeric(std::string typeName, std::vector<double> numbers, int components,
-                     bool isArray) {
+Value Value::numeric(std::string typeName, std::vector<double> numbers, int components, bool isArray) {
     Value value;
     value.typeName = std::move(typeName);
     value.kind = ValueKind::Numeric;
@@ -148,8 +146,7 @@ Value Value::numeric(std::string typeName, std::vector<double> numbers, int comp
     return value;
 }
 
-Value Value::string(std::string typeName, ValueKind kind, std::vector<std::string> strings,
-                    bool isArray) {
+Value Value::string(std::string typeName, ValueKind kind, std::vector<std::string> strings, bool isArray) {
     Value value;
     value.typeName = std::move(typeName);
     value.kind = kind;

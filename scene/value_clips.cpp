@@ -48,10 +48,9 @@ double ClipSet::toClipTime(double stageTime) const {
     else if (stageTime >= times.back().stage)
         second = times.size() - 1;
     else
-        second = static_cast<std::size_t>(
-            std::lower_bound(times.begin(), times.end(), stageTime,
-                             [](const TimeMapping& m, double t) { return m.stage < t; }) -
-            times.begin());
+        second = static_cast<std::size_t>(std::lower_bound(times.begin(), times.end(), stageTime,
+                                                           [](const TimeMapping& m, double t) { return m.stage < t; }) -
+                                          times.begin());
     const TimeMapping& first = times[second - 1];
     TimeMapping end = segmentEnd(second);
     return along(stageTime, first.stage, first.clip, end.stage, end.clip);
@@ -115,7 +114,8 @@ std::optional<TimeSamples> ClipSet::samples(const std::string& primPath, const s
     auto declaredEmpty = [&](const Clip& clip) {
         if (!fallback) return false;
         const TimeSamples& marks = fallback->timeSamples;
-        auto at = std::find_if(marks.begin(), marks.end(), [&](const auto& s) { return s.first == clip.authoredStart; });
+        auto at =
+            std::find_if(marks.begin(), marks.end(), [&](const auto& s) { return s.first == clip.authoredStart; });
         return at != marks.end() && at->second.isBlocked();
     };
     // Whether a clip gives values. Without interpolateMissing all do: a clip without samples gives
@@ -134,13 +134,13 @@ std::optional<TimeSamples> ClipSet::samples(const std::string& primPath, const s
     TimeSamples out;
     out.reserve(stageTimes.size());
     for (double t : stageTimes) {
-        const Clip& active = *(std::upper_bound(clips.begin(), clips.end(), t,
-                                                [](double time, const Clip& c) { return time < c.start; }) -
-                               1);
+        const Clip& active = *(
+            std::upper_bound(clips.begin(), clips.end(), t, [](double time, const Clip& c) { return time < c.start; }) -
+            1);
         const AttributeSpec* inActive = inClip(active);
         if (hasSamples(inActive))
-            out.emplace_back(t, anchorAssets(valueAtTime(inActive->timeSamples, toClipTime(t)), *active.layer.layer,
-                                             assets));
+            out.emplace_back(
+                t, anchorAssets(valueAtTime(inActive->timeSamples, toClipTime(t)), *active.layer.layer, assets));
         else if (hasFallback)
             out.emplace_back(t, anchorAssets(fallback->defaultValue, *manifest.layer, assets));
         else

@@ -71,10 +71,10 @@ struct ClipSet {
     int anchorLayer = 0;                // the authoring layer, in `stack`
     std::string clipPrim;               // `primPath`: where sourcePrim's opinions are in the clips
     bool interpolateMissing = false;
-    bool generatedManifest = true;      // no `manifestAssetPath`: declared by the clips' samples
+    bool generatedManifest = true;  // no `manifestAssetPath`: declared by the clips' samples
     ClipLayer manifest;
-    std::vector<Clip> clips;            // by start time; never empty
-    std::vector<TimeMapping> times;     // sorted, with USD's copies of both ends; empty: identity
+    std::vector<Clip> clips;         // by start time; never empty
+    std::vector<TimeMapping> times;  // sorted, with USD's copies of both ends; empty: identity
 
     // The stage-time samples the set gives the attribute `attribute` of the prim `primPath` (at or
     // below sourcePrim, in the anchoring stack's namespace), or std::nullopt when the manifest does

@@ -48,7 +48,8 @@ TextureSystem::~TextureSystem() {
 namespace {
 
 // The colour space the values of a file with `spec` are in, by UsdUVTexture's rules.
-std::string sourceSpace(const OIIO::ImageSpec& spec, SourceColorSpace colorSpace, const color::ColorManagement& colors) {
+std::string sourceSpace(const OIIO::ImageSpec& spec, SourceColorSpace colorSpace,
+                        const color::ColorManagement& colors) {
     if (colorSpace == SourceColorSpace::Raw) return "raw";
     if (colorSpace == SourceColorSpace::SRGB) return "sRGB";
     std::string stated = spec.get_string_attribute("oiio:ColorSpace");
@@ -78,8 +79,8 @@ OIIO::TextureOpt::Wrap oiioWrap(Wrap wrap) {
 
 }  // namespace
 
-const TextureSystem::Texture* TextureSystem::open(const std::string& path, SourceColorSpace colorSpace, std::string& error,
-                                                  const std::string& namedSpace) {
+const TextureSystem::Texture* TextureSystem::open(const std::string& path, SourceColorSpace colorSpace,
+                                                  std::string& error, const std::string& namedSpace) {
     std::lock_guard<std::mutex> lock(impl_->mutex);
     auto key = std::make_tuple(path, colorSpace, namedSpace);
     if (auto it = impl_->opened.find(key); it != impl_->opened.end()) return &it->second;
@@ -137,8 +138,8 @@ bool TextureSystem::lookup(const Texture& texture, float s, float t, const Footp
     float result[4] = {0.0f, 0.0f, 0.0f, 1.0f};
     const int channels = std::min(texture.channels, 4);
     OIIO::TextureSystem::Perthread* thread = impl_->system->get_perthread_info();
-    bool ok = impl_->system->texture(texture.handle, thread, options, s, oiioT, f.dsdx, -f.dtdx, f.dsdy, -f.dtdy, channels,
-                                     result);
+    bool ok = impl_->system->texture(texture.handle, thread, options, s, oiioT, f.dsdx, -f.dtdx, f.dsdy, -f.dtdy,
+                                     channels, result);
     if (!ok) return false;
     if (channels <= 2) {  // grey, or grey and alpha
         float alpha = channels == 2 ? result[1] : 1.0f;

@@ -104,7 +104,8 @@ public:
         double texture = std::clamp(0.4 + 1.4 * detail_.fbm(7.0 * x, 7.0 * y, 7.0 * z, 4), 0.0, 1.3);
         double envelope = smoothstep(0.0, 0.15, y) * (1.0 - smoothstep(0.75 * kHeight, kHeight, y)) * (1.0 - 0.45 * h);
         double density = std::clamp(profile * texture * envelope, 0.0, 1.0);
-        double core = smoothstep(0.9, 0.0, rho) * std::exp(-y / 0.7) * (0.8 + 0.4 * heat_.fbm(4.0 * x, 4.0 * y, 4.0 * z, 3));
+        double core =
+            smoothstep(0.9, 0.0, rho) * std::exp(-y / 0.7) * (0.8 + 0.4 * heat_.fbm(4.0 * x, 4.0 * y, 4.0 * z, 3));
         return {density, std::clamp(core, 0.0, 1.0) * (density > 0.0 ? 1.0 : 0.0)};
     }
 
@@ -127,9 +128,12 @@ int main(int argc, char** argv) {
     for (int i = 2; i < argc; ++i) {
         std::string flag = argv[i];
         if (i + 1 >= argc) return usage();
-        if (flag == "--seed") seed = std::stoull(argv[++i]);
-        else if (flag == "--voxel-size") voxel = std::stod(argv[++i]);
-        else return usage();
+        if (flag == "--seed")
+            seed = std::stoull(argv[++i]);
+        else if (flag == "--voxel-size")
+            voxel = std::stod(argv[++i]);
+        else
+            return usage();
     }
     if (!(voxel > 0.0)) return usage();
 
@@ -139,7 +143,8 @@ int main(int argc, char** argv) {
         grid->setName(name);
         grid->setGridClass(openvdb::GRID_FOG_VOLUME);
         grid->setTransform(openvdb::math::Transform::createLinearTransform(voxel));
-        grid->insertMeta("generator", openvdb::StringMetadata("fluence tools/make_smoke --seed " + std::to_string(seed)));
+        grid->insertMeta("generator",
+                         openvdb::StringMetadata("fluence tools/make_smoke --seed " + std::to_string(seed)));
     }
     Plume plume(seed);
     auto d = density->getAccessor();

@@ -13,7 +13,7 @@ namespace {
 
 constexpr float kLowest = 100.0f, kHighest = 20000.0f, kStep = 5.0f;
 constexpr double kStefanBoltzmann = 5.670374419e-8;  // W m^-2 K^-4
-constexpr double kScale = 1e-6;                       // Cycles' scale (see MODEL)
+constexpr double kScale = 1e-6;                      // Cycles' scale (see MODEL)
 
 const std::vector<RGB>& colourTable() {
     static const std::vector<RGB> table = [] {

@@ -19,7 +19,9 @@ bool inRange(const RGB& c, float lo, float hi) {
     return c.x >= lo && c.x <= hi && c.y >= lo && c.y <= hi && c.z >= lo && c.z <= hi;
 }
 bool finiteNonNegative(float v) { return v >= 0.0f && std::isfinite(v); }
-bool finiteNonNegative(const RGB& c) { return finiteNonNegative(c.x) && finiteNonNegative(c.y) && finiteNonNegative(c.z); }
+bool finiteNonNegative(const RGB& c) {
+    return finiteNonNegative(c.x) && finiteNonNegative(c.y) && finiteNonNegative(c.z);
+}
 
 void validate(const GridMediumParams& p) {
     require(finiteNonNegative(p.densityScale), "densityScale must be finite and >= 0");
@@ -58,7 +60,8 @@ media::MediumProperties GridMedium::at(const Vec3f& p) const {
     m.sigmaA = vmax(RGB(1.0f) - c, RGB(0.0f)) * (RGB(1.0f) - params_.absorptionColor) * d;
     m.emission = params_.emissionColor * params_.emissionScale;
     if (params_.blackbodyIntensity > 0.0f) {
-        float kelvin = params_.temperatureOffset + params_.temperatureScale * (temperature_ ? temperature_->sample(p) : 0.0f);
+        float kelvin =
+            params_.temperatureOffset + params_.temperatureScale * (temperature_ ? temperature_->sample(p) : 0.0f);
         m.emission += blackbodyRadiance(kelvin) * params_.blackbodyIntensity;
     }
     return m;

@@ -19,7 +19,8 @@ MajorantGrid::MajorantGrid(const FloatVdbGrid& grid, const MajorantGridOptions& 
     Vec3d lo, cellSize;  // of the support grown by the margin (see MODEL)
     for (int axis = 0; axis < 3; ++axis) {
         double extent = active.hi[axis] - active.lo[axis] + 2.0;
-        resolution_[axis] = std::clamp(int(std::ceil(extent / options.voxelsPerCell)), 1, std::max(options.maxCellsPerAxis, 1));
+        resolution_[axis] =
+            std::clamp(int(std::ceil(extent / options.voxelsPerCell)), 1, std::max(options.maxCellsPerAxis, 1));
         lo[axis] = active.lo[axis] - 1.0 - kMargin;
         cellSize[axis] = (extent + 2.0 * kMargin) / resolution_[axis];
     }
@@ -46,8 +47,8 @@ MajorantGrid::MajorantGrid(const FloatVdbGrid& grid, const MajorantGridOptions& 
     });
 }
 
-MajorantDda::MajorantDda(const MajorantGrid& grid, const Vec3f& origin, const Vec3f& direction, float tMin,
-                         float tMax, const RGB& scale)
+MajorantDda::MajorantDda(const MajorantGrid& grid, const Vec3f& origin, const Vec3f& direction, float tMin, float tMax,
+                         const RGB& scale)
     : grid_(&grid), scale_(scale) {
     if (grid.empty() || !(tMax > tMin)) return;
     origin_ = grid.worldToCell().transformPoint(Vec3d(origin));

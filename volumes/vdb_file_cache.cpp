@@ -44,7 +44,8 @@ public:
 private:
     std::string listing() {
         std::string names;
-        for (auto it = file_.beginName(); it != file_.endName(); ++it) names += (names.empty() ? "" : ", ") + it.gridName();
+        for (auto it = file_.beginName(); it != file_.endName(); ++it)
+            names += (names.empty() ? "" : ", ") + it.gridName();
         return names.empty() ? " (the file has no grids)" : " (the file has " + names + ")";
     }
 
@@ -61,7 +62,8 @@ public:
         std::string key = std::filesystem::absolute(path).lexically_normal().string();
         std::lock_guard lock(mutex_);
         if (auto it = files_.find(key); it != files_.end()) return it->second;
-        if (!std::filesystem::is_regular_file(key)) throw std::runtime_error(describe(path, name, index) + ": no such file");
+        if (!std::filesystem::is_regular_file(key))
+            throw std::runtime_error(describe(path, name, index) + ": no such file");
         std::shared_ptr<OpenFile> file;
         try {
             file = std::make_shared<OpenFile>(key);

@@ -35,7 +35,8 @@ inline float fresnelDielectric(float cosThetaI, float eta) {
 // reflectance, see etaFromF0); evaluated once when the three indices are equal.
 inline RGB fresnelDielectric(float cosThetaI, const RGB& eta) {
     if (eta.x == eta.y && eta.y == eta.z) return RGB(fresnelDielectric(cosThetaI, eta.x));
-    return {fresnelDielectric(cosThetaI, eta.x), fresnelDielectric(cosThetaI, eta.y), fresnelDielectric(cosThetaI, eta.z)};
+    return {fresnelDielectric(cosThetaI, eta.x), fresnelDielectric(cosThetaI, eta.y),
+            fresnelDielectric(cosThetaI, eta.z)};
 }
 
 // The relative index eta > 1 whose reflectance at normal incidence, ((eta - 1) / (eta + 1))^2, is

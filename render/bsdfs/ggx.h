@@ -67,9 +67,7 @@ public:
     float reflectionTerm(const Vec3f& wo, const Vec3f& wi, const Vec3f& h) const {
         return D(h) * G2(wo, wi) / (4.0f * wo.z * wi.z);
     }
-    float reflectionPdf(const Vec3f& wo, const Vec3f& h) const {
-        return visibleNormalPdf(wo, h) / (4.0f * dot(wo, h));
-    }
+    float reflectionPdf(const Vec3f& wo, const Vec3f& h) const { return visibleNormalPdf(wo, h) / (4.0f * dot(wo, h)); }
 
 private:
     bool smooth_;

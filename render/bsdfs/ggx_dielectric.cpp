@@ -9,7 +9,7 @@
 namespace fluence::render {
 
 std::optional<GgxDielectricBsdf::Configuration> GgxDielectricBsdf::configuration(const Vec3f& wo,
-                                                                                  const Vec3f& wi) const {
+                                                                                 const Vec3f& wi) const {
     if (wo.z == 0.0f || wi.z == 0.0f || isSmooth()) return std::nullopt;
     Configuration c;
     c.eta = relativeEta(wo);

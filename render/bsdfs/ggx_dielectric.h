@@ -58,7 +58,7 @@ private:
     // and the microfacet normal that scatters wo into wi.
     struct Configuration {
         Vec3f wo, wi, h;
-        float eta;      // n(refracted side) / n(wo side)
+        float eta;  // n(refracted side) / n(wo side)
         bool reflected;
         float fresnel;  // F(wo.h)
     };

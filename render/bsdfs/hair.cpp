@@ -62,8 +62,8 @@ FibreAngles anglesOf(const Vec3f& w) {
 struct HairBsdf::Incidence {
     FibreAngles o;
     float gammaT = 0.0f;
-    std::array<RGB, kLobes + 1> attenuation;  // A_p
-    std::array<float, kLobes + 1> probability;  // A_p / sum A, by channel mean
+    std::array<RGB, kLobes + 1> attenuation;             // A_p
+    std::array<float, kLobes + 1> probability;           // A_p / sum A, by channel mean
     std::array<float, kLobes + 1> sinThetaO, cosThetaO;  // theta_o tilted per lobe
 };
 
@@ -97,11 +97,13 @@ HairBsdf::Incidence HairBsdf::incidence(const Vec3f& wo) const {
     in.o = anglesOf(wo);
     const float sinThetaT = in.o.sinTheta / eta_, cosThetaT = safeSqrt(1.0f - sinThetaT * sinThetaT);
     // The index the fibre's cross-section shows to wo (Bravais), and the refracted azimuth.
-    const float etaP = std::sqrt(std::max(eta_ * eta_ - in.o.sinTheta * in.o.sinTheta, 0.0f)) / std::max(in.o.cosTheta, 1e-6f);
+    const float etaP =
+        std::sqrt(std::max(eta_ * eta_ - in.o.sinTheta * in.o.sinTheta, 0.0f)) / std::max(in.o.cosTheta, 1e-6f);
     const float sinGammaT = h_ / etaP, cosGammaT = safeSqrt(1.0f - sinGammaT * sinGammaT);
     in.gammaT = safeAsin(sinGammaT);
     const float length = 2.0f * cosGammaT / std::max(cosThetaT, 1e-6f);
-    const RGB transmittance(std::exp(-sigmaA_.x * length), std::exp(-sigmaA_.y * length), std::exp(-sigmaA_.z * length));
+    const RGB transmittance(std::exp(-sigmaA_.x * length), std::exp(-sigmaA_.y * length),
+                            std::exp(-sigmaA_.z * length));
     const float fresnel = fresnelDielectric(in.o.cosTheta * safeSqrt(1.0f - h_ * h_), eta_);
     in.attenuation[0] = RGB(fresnel);
     in.attenuation[1] = transmittance * ((1.0f - fresnel) * (1.0f - fresnel));
@@ -127,8 +129,9 @@ Weight HairBsdf::lobeSum(const Incidence& in, const Vec3f& wi, const std::array<
     Weight sum(0.0f);
     for (int p = 0; p <= kLobes; ++p) {
         const float m = longitudinal(i.cosTheta, in.cosThetaO[p], i.sinTheta, in.sinThetaO[p], v_[p]);
-        const float n = p < kLobes ? trimmedLogistic(wrapped(phi - (2.0f * p * in.gammaT - 2.0f * gammaO_ + p * kPi)), s_)
-                                   : 1.0f / (2.0f * kPi);
+        const float n = p < kLobes
+                            ? trimmedLogistic(wrapped(phi - (2.0f * p * in.gammaT - 2.0f * gammaO_ + p * kPi)), s_)
+                            : 1.0f / (2.0f * kPi);
         sum += weights[p] * (m * n);
     }
     return sum;
@@ -179,8 +182,8 @@ std::optional<BsdfSample> HairBsdf::sample(const Vec3f& wo, float uLobe, Vec2f u
 
 RGB hairAbsorptionFromColour(const RGB& colour, float azimuthalRoughness) {
     const float b = std::clamp(azimuthalRoughness, 0.01f, 1.0f);
-    const float denominator = 5.969f - 0.215f * b + 2.532f * b * b - 10.73f * std::pow(b, 3.0f) + 5.574f * std::pow(b, 4.0f) +
-                              0.245f * std::pow(b, 5.0f);
+    const float denominator = 5.969f - 0.215f * b + 2.532f * b * b - 10.73f * std::pow(b, 3.0f) +
+                              5.574f * std::pow(b, 4.0f) + 0.245f * std::pow(b, 5.0f);
     auto channel = [&](float c) {
         const float l = std::log(std::clamp(c, 1e-4f, 1.0f)) / denominator;
         return l * l;

@@ -39,7 +39,8 @@ private:
     friend class TwoSidedReflection<OrenNayarBsdf>;
 
     RGB fUpper(const Vec3f& wo, const Vec3f& wi) const {
-        float sinI = std::sqrt(std::max(0.0f, 1.0f - wi.z * wi.z)), sinO = std::sqrt(std::max(0.0f, 1.0f - wo.z * wo.z));
+        float sinI = std::sqrt(std::max(0.0f, 1.0f - wi.z * wi.z)),
+              sinO = std::sqrt(std::max(0.0f, 1.0f - wo.z * wo.z));
         float term = 0.0f;
         if (sinI > 1e-4f && sinO > 1e-4f) {
             float cosDeltaPhi = (wi.x * wo.x + wi.y * wo.y) / (sinI * sinO);

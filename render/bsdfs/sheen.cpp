@@ -67,7 +67,8 @@ float charlieSheenAlbedo(float cosTheta, float roughness) {
            fy * ((1.0f - fx) * table.at(i, j + 1) + fx * table.at(i + 1, j + 1));
 }
 
-CharlieSheenBsdf::CharlieSheenBsdf(const RGB& tint, float roughness) : tint_(tint), roughness_(clampRoughness(roughness)) {
+CharlieSheenBsdf::CharlieSheenBsdf(const RGB& tint, float roughness)
+    : tint_(tint), roughness_(clampRoughness(roughness)) {
     normalization_ = (2.0f + 1.0f / roughness_) / (2.0f * kPi);
     const float t = (1.0f - roughness_) * (1.0f - roughness_);
     std::array<float, 5> k;

@@ -69,7 +69,7 @@ private:
     float roughness_;
     float normalization_;  // (2 + 1/r) / (2 pi)
     float a_, b_, c_, d_, e_;
-    float fitLHalf_;       // L(1/2)
+    float fitLHalf_;  // L(1/2)
 };
 
 }  // namespace fluence::render

@@ -25,8 +25,10 @@ Cylinder cylinderOf(const LightDesc& d) {
 
 void segmentBounds(const Vec3f& centre, const Vec3f& axis, float length, float radius, Vec3f& lo, Vec3f& hi) {
     Vec3f a = centre - axis * (0.5f * length), b = centre + axis * (0.5f * length);
-    Vec3f across = Vec3f(std::sqrt(std::max(0.0f, 1.0f - axis.x * axis.x)), std::sqrt(std::max(0.0f, 1.0f - axis.y * axis.y)),
-                         std::sqrt(std::max(0.0f, 1.0f - axis.z * axis.z))) * radius;
+    Vec3f across =
+        Vec3f(std::sqrt(std::max(0.0f, 1.0f - axis.x * axis.x)), std::sqrt(std::max(0.0f, 1.0f - axis.y * axis.y)),
+              std::sqrt(std::max(0.0f, 1.0f - axis.z * axis.z))) *
+        radius;
     lo = vmin(a, b) - across;
     hi = vmax(a, b) + across;
 }
@@ -91,7 +93,9 @@ float CylinderLight::power(const SceneBounds&) const {
     return luminance(radiance_) * 2.0f * kPi * radius_ * length_ * kPi * shaping_.powerFraction(false);
 }
 
-void CylinderLight::shapeBounds(Vec3f& lo, Vec3f& hi) const { segmentBounds(centre_, frame_.n, length_, radius_, lo, hi); }
+void CylinderLight::shapeBounds(Vec3f& lo, Vec3f& hi) const {
+    segmentBounds(centre_, frame_.n, length_, radius_, lo, hi);
+}
 
 std::optional<LightBounds> CylinderLight::bounds() const {
     LightBounds b;

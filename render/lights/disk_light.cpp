@@ -48,7 +48,8 @@ void DiskLight::shapeBounds(Vec3f& lo, Vec3f& hi) const {
     // A disk reaches r * sqrt(1 - n_i^2) from its centre along axis i.
     const Vec3f& n = frame_.n;
     Vec3f extent = Vec3f(std::sqrt(std::max(0.0f, 1.0f - n.x * n.x)), std::sqrt(std::max(0.0f, 1.0f - n.y * n.y)),
-                         std::sqrt(std::max(0.0f, 1.0f - n.z * n.z))) * radius_;
+                         std::sqrt(std::max(0.0f, 1.0f - n.z * n.z))) *
+                   radius_;
     lo = centre_ - extent;
     hi = centre_ + extent;
 }
@@ -73,7 +74,8 @@ std::optional<ShapeHit> DiskLight::intersect(const Vec3f& o, const Vec3f& d, flo
 std::optional<EmissionSample> DiskLight::sampleEmission(Vec2f uPosition, Vec2f uDirection, const SceneBounds&) const {
     if (area_ == 0.0f) return std::nullopt;
     Vec2f s = sampleUniformDisk(uPosition);
-    EmissionSample e = fromSurface(centre_ + (frame_.s * s.x + frame_.t * s.y) * radius_, frame_.n, 1.0f / area_, uDirection);
+    EmissionSample e =
+        fromSurface(centre_ + (frame_.s * s.x + frame_.t * s.y) * radius_, frame_.n, 1.0f / area_, uDirection);
     e.Le = radiance_ * shaping_.factor(e.direction);
     return e;
 }

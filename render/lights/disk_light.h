@@ -33,8 +33,10 @@ public:
     std::optional<LightBounds> bounds() const override;
     LightSurface surface() const override { return LightSurface::analytic(*this); }
     bool hasEmissionSampling() const override { return true; }
-    std::optional<EmissionSample> sampleEmission(Vec2f uPosition, Vec2f uDirection, const SceneBounds& scene) const override;
-    EmissionDensity emissionDensity(const Vec3f& point, const Vec3f& direction, const SceneBounds& scene) const override;
+    std::optional<EmissionSample> sampleEmission(Vec2f uPosition, Vec2f uDirection,
+                                                 const SceneBounds& scene) const override;
+    EmissionDensity emissionDensity(const Vec3f& point, const Vec3f& direction,
+                                    const SceneBounds& scene) const override;
 
     void shapeBounds(Vec3f& lo, Vec3f& hi) const override;
     std::optional<ShapeHit> intersect(const Vec3f& o, const Vec3f& d, float tMin, float tMax) const override;

@@ -28,9 +28,9 @@ std::optional<LightSample> DistantLight::sample(const Vec3f&, Vec2f u) const {
     double sinTheta = std::sqrt(std::max(0.0, (1.0 - cosTheta) * (1.0 + cosTheta)));
     double phi = 2.0 * std::numbers::pi * u.y;
     FLUENCE_DCHECK(isUnit(towardsLight_) && oneMinusCosMax_ > 0.0);
-    Vec3f wi = normalize(Frame::fromNormal(towardsLight_)
-                             .toWorld(Vec3f(float(sinTheta * std::cos(phi)), float(sinTheta * std::sin(phi)),
-                                            float(cosTheta))));
+    Vec3f wi = normalize(
+        Frame::fromNormal(towardsLight_)
+            .toWorld(Vec3f(float(sinTheta * std::cos(phi)), float(sinTheta * std::sin(phi)), float(cosTheta))));
     return LightSample{value_, wi, std::numeric_limits<float>::infinity(),
                        static_cast<float>(1.0 / (2.0 * std::numbers::pi * oneMinusCosMax_)), false};
 }
@@ -51,7 +51,8 @@ float DistantLight::power(const SceneBounds& b) const {
     return irradiance * kPi * b.radius * b.radius;
 }
 
-std::optional<EmissionSample> DistantLight::sampleEmission(Vec2f uPosition, Vec2f uDirection, const SceneBounds& scene) const {
+std::optional<EmissionSample> DistantLight::sampleEmission(Vec2f uPosition, Vec2f uDirection,
+                                                           const SceneBounds& scene) const {
     std::optional<LightSample> s = sample(scene.centre, uDirection);
     if (!s) return std::nullopt;
     EmissionSample e = fromInfinity(-s->wi, s->pdf, s->Li, uPosition, scene);

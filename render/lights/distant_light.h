@@ -26,8 +26,10 @@ public:
     float pdf(const Vec3f& p, const Vec3f& wi, const LightHit& hit) const override;
     RGB escaped(const Vec3f& direction) const override;
     float power(const SceneBounds& bounds) const override;
-    std::optional<EmissionSample> sampleEmission(Vec2f uPosition, Vec2f uDirection, const SceneBounds& scene) const override;
-    EmissionDensity emissionDensity(const Vec3f& point, const Vec3f& direction, const SceneBounds& scene) const override;
+    std::optional<EmissionSample> sampleEmission(Vec2f uPosition, Vec2f uDirection,
+                                                 const SceneBounds& scene) const override;
+    EmissionDensity emissionDensity(const Vec3f& point, const Vec3f& direction,
+                                    const SceneBounds& scene) const override;
 
     bool isDelta() const { return oneMinusCosMax_ == 0.0; }
 

@@ -24,7 +24,11 @@ Frame rotationOf(const Matrix4& m) {
 }  // namespace
 
 DomeLight::DomeLight(const LightDesc& d)
-    : InfiniteLight(d.name), radiance_(d.radiance), frame_(rotationOf(d.transform)), texture_(d.texture), meanRadiance_(d.radiance) {
+    : InfiniteLight(d.name),
+      radiance_(d.radiance),
+      frame_(rotationOf(d.transform)),
+      texture_(d.texture),
+      meanRadiance_(d.radiance) {
     if (texture_ && texture_->texels.empty()) texture_.reset();
     if (!texture_) return;
     const int w = texture_->width, h = texture_->height;
@@ -81,13 +85,16 @@ float DomeLight::pdf(const Vec3f&, const Vec3f& wi, const LightHit&) const {
     return sinTheta > 0.0f ? distribution_.pdf(imageCoordinates(wi)) / (2.0f * kPi * kPi * sinTheta) : 0.0f;
 }
 
-RGB DomeLight::escaped(const Vec3f& direction) const { return texture_ ? radianceAt(imageCoordinates(direction)) : radiance_; }
+RGB DomeLight::escaped(const Vec3f& direction) const {
+    return texture_ ? radianceAt(imageCoordinates(direction)) : radiance_;
+}
 
 float DomeLight::power(const SceneBounds& b) const {
     return luminance(meanRadiance_) * 4.0f * kPi * kPi * b.radius * b.radius;
 }
 
-std::optional<EmissionSample> DomeLight::sampleEmission(Vec2f uPosition, Vec2f uDirection, const SceneBounds& scene) const {
+std::optional<EmissionSample> DomeLight::sampleEmission(Vec2f uPosition, Vec2f uDirection,
+                                                        const SceneBounds& scene) const {
     std::optional<LightSample> s = sample(scene.centre, uDirection);
     if (!s) return std::nullopt;
     return fromInfinity(-s->wi, s->pdf, s->Li, uPosition, scene);

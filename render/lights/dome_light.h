@@ -44,8 +44,10 @@ public:
     float pdf(const Vec3f& p, const Vec3f& wi, const LightHit& hit) const override;
     RGB escaped(const Vec3f& direction) const override;
     float power(const SceneBounds& bounds) const override;
-    std::optional<EmissionSample> sampleEmission(Vec2f uPosition, Vec2f uDirection, const SceneBounds& scene) const override;
-    EmissionDensity emissionDensity(const Vec3f& point, const Vec3f& direction, const SceneBounds& scene) const override;
+    std::optional<EmissionSample> sampleEmission(Vec2f uPosition, Vec2f uDirection,
+                                                 const SceneBounds& scene) const override;
+    EmissionDensity emissionDensity(const Vec3f& point, const Vec3f& direction,
+                                    const SceneBounds& scene) const override;
 
     // World direction of lat-long image coordinates (u, v), and back (see the top of this file).
     Vec3f direction(Vec2f uv) const;

@@ -35,8 +35,7 @@ bool never(const LightDesc&) { return false; }
 constexpr LightKind kLightKinds[] = {
     {LightType::Rect, make<RectLight>, never},
     {LightType::Disk, make<DiskLight>, never},
-    {LightType::Sphere,
-     [](const LightDesc& d) { return d.treatAsPoint ? make<PointLight>(d) : make<SphereLight>(d); },
+    {LightType::Sphere, [](const LightDesc& d) { return d.treatAsPoint ? make<PointLight>(d) : make<SphereLight>(d); },
      [](const LightDesc& d) { return d.treatAsPoint; }},
     {LightType::Cylinder,
      [](const LightDesc& d) { return d.treatAsLine ? make<LineLight>(d) : make<CylinderLight>(d); },

@@ -35,7 +35,9 @@ std::optional<LightBounds> PointLight::bounds() const {
 
 std::optional<EmissionSample> PointLight::sampleEmission(Vec2f, Vec2f uDirection, const SceneBounds&) const {
     Vec3f direction = sampleUniformSphere(uDirection);
-    return EmissionSample{position_, direction, direction, intensity_ * shaping_.factor(direction), {1.0f, kUniformSpherePdf, 1.0f}, true};
+    return EmissionSample{
+        position_, direction, direction, intensity_ * shaping_.factor(direction), {1.0f, kUniformSpherePdf, 1.0f},
+        true};
 }
 
 EmissionDensity PointLight::emissionDensity(const Vec3f&, const Vec3f&, const SceneBounds&) const {

@@ -72,7 +72,8 @@ std::optional<LightSample> RectLight::sample(const Vec3f& p, Vec2f u) const {
     Vec3f wi = d / dist;
     float cosLight = -dot(normal_, wi);
     if (cosLight <= 0.0f) return std::nullopt;
-    return surfaceSample(uniformRadiance_ ? radiance_ : radianceAt(uv, -wi), wi, dist, areaToSolidAngle(areaPdf, dist2, cosLight));
+    return surfaceSample(uniformRadiance_ ? radiance_ : radianceAt(uv, -wi), wi, dist,
+                         areaToSolidAngle(areaPdf, dist2, cosLight));
 }
 
 float RectLight::pdf(const Vec3f& p, const Vec3f& wi, const LightHit& hit) const {
@@ -85,9 +86,7 @@ RGB RectLight::emitted(const LightHit& hit, const Vec3f& wo) const {
     return dot(normal_, wo) > 0.0f ? radianceAt(textureCoordinates(hit.point), wo) : RGB(0.0f);
 }
 
-float RectLight::power(const SceneBounds&) const {
-    return meanLuminance_ * area_ * kPi * shaping_.powerFraction(true);
-}
+float RectLight::power(const SceneBounds&) const { return meanLuminance_ * area_ * kPi * shaping_.powerFraction(true); }
 
 std::optional<LightBounds> RectLight::bounds() const {
     LightBounds b;

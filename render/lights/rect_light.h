@@ -39,8 +39,10 @@ public:
     std::optional<LightBounds> bounds() const override;
     LightSurface surface() const override;
     bool hasEmissionSampling() const override { return true; }
-    std::optional<EmissionSample> sampleEmission(Vec2f uPosition, Vec2f uDirection, const SceneBounds& scene) const override;
-    EmissionDensity emissionDensity(const Vec3f& point, const Vec3f& direction, const SceneBounds& scene) const override;
+    std::optional<EmissionSample> sampleEmission(Vec2f uPosition, Vec2f uDirection,
+                                                 const SceneBounds& scene) const override;
+    EmissionDensity emissionDensity(const Vec3f& point, const Vec3f& direction,
+                                    const SceneBounds& scene) const override;
 
     // The four world-space corners, from local (-X, -Y) through (+X, -Y), (+X, +Y), (-X, +Y):
     // counter-clockwise seen from behind, so (c1 - c0) x (c3 - c0) points away from the emitting side.
@@ -63,11 +65,11 @@ private:
     RGB radianceAt(Vec2f uv, const Vec3f& wo) const;
 
     Vec3f corner_, edgeU_, edgeV_, normal_;  // corner_: local (-X, -Y); normal_: emitting direction
-    float area_, inverseArea_;  // inverseArea_ = 1 / area_: the uniform density per unit area
+    float area_, inverseArea_;               // inverseArea_ = 1 / area_: the uniform density per unit area
     RGB radiance_;
     std::shared_ptr<const RgbImage> texture_;
     std::optional<ImageDistribution> distribution_;  // over texture coordinates, when the texture's luminance varies
-    float meanLuminance_;  // of the radiance over the rect's area, before shaping
+    float meanLuminance_;                            // of the radiance over the rect's area, before shaping
     LightShaping shaping_;
     bool uniformRadiance_;  // no texture, no shaping: radianceAt is radiance_ everywhere (sample()'s fast path)
 };

@@ -51,8 +51,8 @@ std::optional<LightSample> SphereLight::sample(const Vec3f& p, Vec2f u) const {
     double phi = 2.0 * M_PI * u.y;
     double dist = std::sqrt(d2);
     Frame frame = Frame::fromNormal(Vec3f(Vec3d(toCentre) / dist));
-    Vec3f wi = normalize(frame.toWorld(
-        Vec3f(float(sinTheta * std::cos(phi)), float(sinTheta * std::sin(phi)), float(cosTheta))));
+    Vec3f wi = normalize(
+        frame.toWorld(Vec3f(float(sinTheta * std::cos(phi)), float(sinTheta * std::sin(phi)), float(cosTheta))));
     // Distance to the near intersection of the ray with the sphere.
     double b = dot(Vec3d(toCentre), Vec3d(wi));
     double disc = double(radius_) * radius_ - (d2 - b * b);

@@ -42,8 +42,10 @@ public:
     std::optional<LightBounds> bounds() const override;
     LightSurface surface() const override { return LightSurface::sphere(centre_, radius_); }
     bool hasEmissionSampling() const override { return true; }
-    std::optional<EmissionSample> sampleEmission(Vec2f uPosition, Vec2f uDirection, const SceneBounds& scene) const override;
-    EmissionDensity emissionDensity(const Vec3f& point, const Vec3f& direction, const SceneBounds& scene) const override;
+    std::optional<EmissionSample> sampleEmission(Vec2f uPosition, Vec2f uDirection,
+                                                 const SceneBounds& scene) const override;
+    EmissionDensity emissionDensity(const Vec3f& point, const Vec3f& direction,
+                                    const SceneBounds& scene) const override;
 
     const Vec3f& centre() const { return centre_; }
     float radius() const { return radius_; }

@@ -46,7 +46,8 @@ std::optional<LightBounds> TriangleLight::bounds() const {
     return b;
 }
 
-std::optional<EmissionSample> TriangleLight::sampleEmission(Vec2f uPosition, Vec2f uDirection, const SceneBounds&) const {
+std::optional<EmissionSample> TriangleLight::sampleEmission(Vec2f uPosition, Vec2f uDirection,
+                                                            const SceneBounds&) const {
     if (area_ == 0.0f) return std::nullopt;
     Vec2f b = sampleUniformTriangle(uPosition);
     const bool back = uDirection.x < 0.5f;  // the side, and uDirection.x rescaled to [0, 1) again

@@ -24,8 +24,10 @@ public:
     std::optional<LightBounds> bounds() const override;
     bool isSurfaceEmitter() const override { return true; }
     bool hasEmissionSampling() const override { return true; }
-    std::optional<EmissionSample> sampleEmission(Vec2f uPosition, Vec2f uDirection, const SceneBounds& scene) const override;
-    EmissionDensity emissionDensity(const Vec3f& point, const Vec3f& direction, const SceneBounds& scene) const override;
+    std::optional<EmissionSample> sampleEmission(Vec2f uPosition, Vec2f uDirection,
+                                                 const SceneBounds& scene) const override;
+    EmissionDensity emissionDensity(const Vec3f& point, const Vec3f& direction,
+                                    const SceneBounds& scene) const override;
 
 private:
     Vec3f p0_, p1_, p2_, normal_;

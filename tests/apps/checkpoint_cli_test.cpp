@@ -35,8 +35,8 @@ const std::string kRender = "render " + kScene + " -r 40 40 --spp 1024 --max-dep
 class Child {
 public:
     Child(const std::string& args, const fs::path& dir) {
-        const std::string command = "exec " + std::string(FLUENCE_BINARY) + " " + args + " > " + (dir / "child.txt").string() +
-                                    " 2>&1 < /dev/null";
+        const std::string command = "exec " + std::string(FLUENCE_BINARY) + " " + args + " > " +
+                                    (dir / "child.txt").string() + " 2>&1 < /dev/null";
         pid_ = ::fork();
         if (pid_ == 0) {
             ::execl("/bin/sh", "sh", "-c", command.c_str(), static_cast<char*>(nullptr));
@@ -108,7 +108,8 @@ TEST_F(CheckpointCli, KilledRenderResumesBitIdenticalAndRefusesAnotherRendersChe
     test::RunResult r = test::runFluence(kRender + " --seed 4 --resume -o " + out, tmp_.path());
     EXPECT_EQ(r.exitCode, 2) << r.err;
     EXPECT_NE(r.err.find("seed: 3 in the checkpoint, 4 now"), std::string::npos) << r.err;
-    r = test::runFluence("render " + kScene + " -r 40 30 --spp 1024 --max-depth 4 --seed 3 --resume -o " + out, tmp_.path());
+    r = test::runFluence("render " + kScene + " -r 40 30 --spp 1024 --max-depth 4 --seed 3 --resume -o " + out,
+                         tmp_.path());
     EXPECT_EQ(r.exitCode, 2) << r.err;
     EXPECT_NE(r.err.find("resolution: 40x40 in the checkpoint, 40x30 now"), std::string::npos) << r.err;
     EXPECT_TRUE(exists("out.exr.checkpoint"));
@@ -124,7 +125,8 @@ TEST_F(CheckpointCli, KilledRenderResumesBitIdenticalAndRefusesAnotherRendersChe
     ASSERT_EQ(r.exitCode, 0) << r.err;
     EXPECT_TRUE(samePixels(tmp_.file("reference.exr"), out));
     for (const std::string& name : tmp_.list())
-        EXPECT_TRUE(name == "out.exr" || name == "reference.exr" || name.ends_with(".txt")) << name << " was left behind";
+        EXPECT_TRUE(name == "out.exr" || name == "reference.exr" || name.ends_with(".txt"))
+            << name << " was left behind";
 }
 
 TEST_F(CheckpointCli, CryptomatteCoverageResumesBitIdenticalToo) {
@@ -149,7 +151,8 @@ TEST_F(CheckpointCli, CryptomatteCoverageResumesBitIdenticalToo) {
 }
 
 TEST_F(CheckpointCli, ResumeWithoutACheckpointRendersFromTheStart) {
-    const test::RunResult r = test::runFluence("render " + kScene + " -r 16 16 --spp 4 --resume -o " + tmp_.file("out.exr"), tmp_.path());
+    const test::RunResult r =
+        test::runFluence("render " + kScene + " -r 16 16 --spp 4 --resume -o " + tmp_.file("out.exr"), tmp_.path());
     ASSERT_EQ(r.exitCode, 0) << r.err;
     EXPECT_NE(r.out.find("no checkpoint at"), std::string::npos) << r.out;
     EXPECT_TRUE(exists("out.exr"));
@@ -179,15 +182,17 @@ TEST_F(CheckpointCli, ResumeSkipsTheFramesThisRenderAlreadyWrote) {
 
     r = test::runFluence(render + " --seed 8", tmp_.path());
     ASSERT_EQ(r.exitCode, 0) << r.err;
-    EXPECT_EQ(r.out.find("already rendered"), std::string::npos) << "another seed renders every frame again:\n" << r.out;
+    EXPECT_EQ(r.out.find("already rendered"), std::string::npos) << "another seed renders every frame again:\n"
+                                                                 << r.out;
 }
 
 // The fingerprint covers the asset files a scene reads (by path, size and modification time): an
 // output rendered before its texture was replaced is not "already rendered".
 TEST_F(CheckpointCli, ResumeRendersAgainAfterATextureChanged) {
     auto writeTexture = [&](int seed) {
-        const test::RunResult r = test::runFluence("render " + kScene + " -r 8 8 --spp 1 --seed " + std::to_string(seed) + " -o " +
-                                                       tmp_.file("texture.exr"), tmp_.path());
+        const test::RunResult r = test::runFluence(
+            "render " + kScene + " -r 8 8 --spp 1 --seed " + std::to_string(seed) + " -o " + tmp_.file("texture.exr"),
+            tmp_.path());
         ASSERT_EQ(r.exitCode, 0) << r.err;
     };
     writeTexture(1);
@@ -231,12 +236,14 @@ TEST_F(CheckpointCli, Sigusr1WritesASnapshotBeforeTheOutputExists) {
 }
 
 TEST_F(CheckpointCli, ASuccessfulRenderLeavesNoSnapshotOrCheckpointPerFrame) {
-    const test::RunResult r = test::runFluence("render " + kScene + " -r 16 16 --spp 8 -f 1 -n 2 --checkpoint 0 --snapshot 0 -o '" +
-                                                   tmp_.file("out.$F4.exr") + "'",
-                                               tmp_.path());
+    const test::RunResult r =
+        test::runFluence("render " + kScene + " -r 16 16 --spp 8 -f 1 -n 2 --checkpoint 0 --snapshot 0 -o '" +
+                             tmp_.file("out.$F4.exr") + "'",
+                         tmp_.path());
     ASSERT_EQ(r.exitCode, 0) << r.err;
     for (const std::string& name : tmp_.list())
-        EXPECT_TRUE(name == "out.0001.exr" || name == "out.0002.exr" || name.ends_with(".txt")) << name << " was left behind";
+        EXPECT_TRUE(name == "out.0001.exr" || name == "out.0002.exr" || name.ends_with(".txt"))
+            << name << " was left behind";
 }
 
 TEST_F(CheckpointCli, BadIntervalsAreUsageErrors) {

@@ -143,15 +143,19 @@ TEST_F(CorpusCli, FancyTeapotRendersWithItsTextures) {
     const fs::path hdr = kCorpus / "OpenUSD/pxr/usdImaging/bin/usdrecord/testenv/SmallObjectTest/StinsonBeach.hdr";
     fs::path scene = tmp_.path() / "teapot.usda";
     std::ofstream(scene) << "#usda 1.0\n(\n    upAxis = \"Y\"\n    metersPerUnit = 1\n)\n"
-                            "def \"Teapot\" (\n    references = @" << teapot.string() << "@\n"
+                            "def \"Teapot\" (\n    references = @"
+                         << teapot.string()
+                         << "@\n"
                             "    variants = {\n        string modelVariant = \"Fancy\"\n    }\n)\n{\n}\n"
                             "def Camera \"Cam\"\n{\n    float2 clippingRange = (0.01, 100)\n"
                             "    float horizontalAperture = 36\n    float verticalAperture = 24\n"
                             "    double3 xformOp:translate = (0, 0.12, 0.9)\n"
                             "    uniform token[] xformOpOrder = [\"xformOp:translate\"]\n}\n"
-                            "def DomeLight \"Sky\"\n{\n    asset inputs:texture:file = @" << hdr.string() << "@\n}\n";
+                            "def DomeLight \"Sky\"\n{\n    asset inputs:texture:file = @"
+                         << hdr.string() << "@\n}\n";
     fs::path out = tmp_.path() / "teapot.exr";
-    test::RunResult r = run("render '" + scene.string() + "' -o '" + out.string() + "' -r 48 32 --spp 2 --dicing-rate 4");
+    test::RunResult r =
+        run("render '" + scene.string() + "' -o '" + out.string() + "' -r 48 32 --spp 2 --dicing-rate 4");
     expectFiniteRender(r, out);
     EXPECT_EQ(r.err.find(".jpg"), std::string::npos) << "both maps are read, without a warning: " << r.err;
     // The albedo AOV is the diffuse map (a constant colour, the displayColor fallback, or grey

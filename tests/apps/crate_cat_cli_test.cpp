@@ -50,7 +50,8 @@ protected:
 TEST_F(CrateCatCli, WritesPathExpressionsAndDecodedArrays) {
     test::RunResult cat = test::runFluence("cat " + writeCrate(false), tmp_.path());
     ASSERT_EQ(cat.exitCode, 0) << cat.err;
-    EXPECT_NE(cat.out.find("pathExpression collection:membershipExpression = \"/World/**\"\n"), std::string::npos) << cat.out;
+    EXPECT_NE(cat.out.find("pathExpression collection:membershipExpression = \"/World/**\"\n"), std::string::npos)
+        << cat.out;
     EXPECT_NE(cat.out.find("int[] indices = [0, 1, 2, 3, "), std::string::npos) << cat.out;
 }
 

@@ -132,8 +132,8 @@ protected:
         return path;
     }
     RunResult render(const std::string& scenePath, const std::string& output, const std::string& options) {
-        return test::runFluence("render " + scenePath + " -o " + tmp_.file(output) + " -r 32 16 --spp " + std::to_string(kSpp) + " " +
-                                    options,
+        return test::runFluence("render " + scenePath + " -o " + tmp_.file(output) + " -r 32 16 --spp " +
+                                    std::to_string(kSpp) + " " + options,
                                 tmp_.path());
     }
 };
@@ -152,7 +152,9 @@ std::map<std::string, std::string> manifest(const test::ExrImage& img, const std
     return entries;
 }
 
-std::uint32_t idAt(const test::ExrImage& img, int x, const std::string& channel) { return std::bit_cast<std::uint32_t>(img.at(x, kRow, channel)); }
+std::uint32_t idAt(const test::ExrImage& img, int x, const std::string& channel) {
+    return std::bit_cast<std::uint32_t>(img.at(x, kRow, channel));
+}
 
 TEST_F(CryptomatteCli, ObjectAndMaterialLayersNameWhatEachPixelSees) {
     RunResult r = render(scene(), "out.exr", "--cryptomatte object,material");
@@ -160,7 +162,8 @@ TEST_F(CryptomatteCli, ObjectAndMaterialLayersNameWhatEachPixelSees) {
     const test::ExrImage img = test::readExr(tmp_.file("out.exr"));
     for (const std::string layer : {"CryptoObject", "CryptoMaterial"})
         for (const char* group : {"00", "01", "02"})  // depth 6
-            for (const char* c : {".R", ".G", ".B", ".A"}) ASSERT_GE(img.channel(layer + group + c), 0) << layer << group << c;
+            for (const char* c : {".R", ".G", ".B", ".A"})
+                ASSERT_GE(img.channel(layer + group + c), 0) << layer << group << c;
     EXPECT_LT(img.channel("CryptoObject03.R"), 0);
     EXPECT_EQ(img.spec.get_string_attribute("compression"), "zip");
     const std::string data = img.spec.get_string_attribute("fluence/dataChannels");
@@ -174,7 +177,8 @@ TEST_F(CryptomatteCli, ObjectAndMaterialLayersNameWhatEachPixelSees) {
     for (const char* name : {"/World/Looks/Red", "/World/Looks/Blue"}) ASSERT_TRUE(materials.contains(name)) << name;
 
     // Inside each object: rank 0 is it, with coverage 1, and nothing else.
-    const std::pair<int, const char*> inside[] = {{kLeft, "/World/Left"}, {kRight, "/World/Right"}, {kInstA, "/World/InstA"}, {kInstB, "/World/InstB"}};
+    const std::pair<int, const char*> inside[] = {
+        {kLeft, "/World/Left"}, {kRight, "/World/Right"}, {kInstA, "/World/InstA"}, {kInstB, "/World/InstB"}};
     for (const auto& [x, name] : inside) {
         EXPECT_EQ(idAt(img, x, "CryptoObject00.R"), output::cryptomatteId(name)) << name;
         EXPECT_EQ(img.at(x, kRow, "CryptoObject00.G"), 1.0f) << name;
@@ -208,7 +212,8 @@ TEST_F(CryptomatteCli, TheImageIsTheSameAtAnyThreadCount) {
     const test::ExrImage one = test::readExr(tmp_.file("one.exr")), two = test::readExr(tmp_.file("two.exr"));
     ASSERT_EQ(one.channels, two.channels);
     for (std::size_t i = 0; i < one.pixels.size(); ++i)
-        ASSERT_EQ(std::bit_cast<std::uint32_t>(one.pixels[i]), std::bit_cast<std::uint32_t>(two.pixels[i])) << "value " << i;
+        ASSERT_EQ(std::bit_cast<std::uint32_t>(one.pixels[i]), std::bit_cast<std::uint32_t>(two.pixels[i]))
+            << "value " << i;
     const std::string key = "cryptomatte/" + output::cryptomatteKey("CryptoObject") + "/manifest";
     EXPECT_EQ(one.spec.get_string_attribute(key), two.spec.get_string_attribute(key));
 }
@@ -261,13 +266,16 @@ TEST_F(CryptomatteCli, AssembledTilesMatchTheRenderInOnePiece) {
     ASSERT_EQ(render(path, "whole.exr", "--cryptomatte object").exitCode, 0);
     std::string tiles;
     for (int i = 0; i < 2; ++i) {
-        RunResult r = render(path, "tile" + std::to_string(i) + ".exr", "--cryptomatte object --tile-count 2 1 --tile-suffix '' --tile-index " + std::to_string(i));
+        RunResult r =
+            render(path, "tile" + std::to_string(i) + ".exr",
+                   "--cryptomatte object --tile-count 2 1 --tile-suffix '' --tile-index " + std::to_string(i));
         ASSERT_EQ(r.exitCode, 0) << r.err;
         tiles += " " + tmp_.file("tile" + std::to_string(i) + ".exr");
     }
     RunResult r = test::runFluence("assemble -o " + tmp_.file("assembled.exr") + tiles, tmp_.path());
     ASSERT_EQ(r.exitCode, 0) << r.err;
-    const test::ExrImage whole = test::readExr(tmp_.file("whole.exr")), assembled = test::readExr(tmp_.file("assembled.exr"));
+    const test::ExrImage whole = test::readExr(tmp_.file("whole.exr")),
+                         assembled = test::readExr(tmp_.file("assembled.exr"));
     ASSERT_EQ(assembled.channels, whole.channels);
     EXPECT_TRUE(assembled.pixels == whole.pixels);
     const auto names = manifest(assembled, "CryptoObject");

@@ -54,7 +54,8 @@ protected:
         return p;
     }
     test::RunResult render(const fs::path& scene, const std::string& output, const std::string& options = "") {
-        return test::runFluence("render " + scene.string() + " -o " + (dir_ / output).string() + " -r 64 48 --spp 16 " + options, dir_);
+        return test::runFluence(
+            "render " + scene.string() + " -o " + (dir_ / output).string() + " -r 64 48 --spp 16 " + options, dir_);
     }
 };
 
@@ -84,9 +85,8 @@ TEST_F(DefaultLightCli, UnlitSceneIsLitFromTheCameraWithOneWarning) {
     // Key light: irradiance pi along the view, so albedo x cos(angle to the view); the dome adds
     // 0.1 x albedo over an unoccluded hemisphere.
     const test::MeanEstimate facing = redWhere(img, [](float, float, float z) { return z > 0.999f; });
-    const test::MeanEstimate turned = redWhere(img, [](float x, float, float z) {
-        return std::abs(x - 0.866f) < 0.01f && std::abs(z - 0.5f) < 0.01f;
-    });
+    const test::MeanEstimate turned = redWhere(
+        img, [](float x, float, float z) { return std::abs(x - 0.866f) < 0.01f && std::abs(z - 0.5f) < 0.01f; });
     ASSERT_GT(facing.count(), 50);
     ASSERT_GT(turned.count(), 20);
     EXPECT_NEAR(facing.mean(), 0.5 * (1.0 + 0.1), 5 * facing.standardError() + 0.01);

@@ -54,9 +54,11 @@ TEST_F(FarmCli, AFailedTileIsReportedResumedAndTheMergeIsTheImageRenderedInOnePi
     ASSERT_EQ(r.exitCode, 0) << r.err;
 
     const ScopedEnvironment failTask2("FLUENCE_FARM_FAIL_TASK", "2");  // stays set: it fails the first attempt only
-    r = run("farm submit " + kCornellBox + " --tiles 2 2 --backend local --jobs 2 --output-dir " + farm() + " --" + kRenderArgs);
+    r = run("farm submit " + kCornellBox + " --tiles 2 2 --backend local --jobs 2 --output-dir " + farm() + " --" +
+            kRenderArgs);
     EXPECT_EQ(r.exitCode, 9) << r.out << r.err;  // incomplete
-    for (int tile : {0, 1, 3}) EXPECT_TRUE(fs::exists(farm() + "/tiles/cornell_box_tile" + std::to_string(tile) + ".exr")) << tile;
+    for (int tile : {0, 1, 3})
+        EXPECT_TRUE(fs::exists(farm() + "/tiles/cornell_box_tile" + std::to_string(tile) + ".exr")) << tile;
     EXPECT_FALSE(fs::exists(farm() + "/tiles/cornell_box_tile2.exr"));
     EXPECT_FALSE(fs::exists(farm() + "/cornell_box.exr")) << "merged although a tile is missing";
     EXPECT_NE(test::slurp(farm() + "/logs/task_2.log").find("FLUENCE_FARM_FAIL_TASK"), std::string::npos);
@@ -65,16 +67,19 @@ TEST_F(FarmCli, AFailedTileIsReportedResumedAndTheMergeIsTheImageRenderedInOnePi
     r = run("farm status " + farm());
     EXPECT_EQ(r.exitCode, 9) << r.out;
     EXPECT_NE(r.out.find("task 2     tile 2   failed   exit 1 on attempt 1"), std::string::npos) << r.out;
-    EXPECT_NE(r.out.find("3 done, 0 queued, 0 running, 1 failed, 0 missing; 0 of 1 images done"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("3 done, 0 queued, 0 running, 1 failed, 0 missing; 0 of 1 images done"), std::string::npos)
+        << r.out;
 
     r = run("farm resume " + farm());
     ASSERT_EQ(r.exitCode, 0) << r.out << r.err;
     EXPECT_NE(r.out.find("resubmitting 1 task and the merge"), std::string::npos) << r.out;
     EXPECT_NE(test::slurp(farm() + "/tasks/task_2.json").find("\"attempts\": 2, \"exitCode\": 0"), std::string::npos);
-    EXPECT_NE(test::slurp(farm() + "/tasks/task_0.json").find("\"attempts\": 1,"), std::string::npos) << "task 0 ran again";
+    EXPECT_NE(test::slurp(farm() + "/tasks/task_0.json").find("\"attempts\": 1,"), std::string::npos)
+        << "task 0 ran again";
     expectNoPartialFiles();
 
-    const test::ExrImage whole = test::readExr(tmp_.file("whole.exr")), merged = test::readExr(farm() + "/cornell_box.exr");
+    const test::ExrImage whole = test::readExr(tmp_.file("whole.exr")),
+                         merged = test::readExr(farm() + "/cornell_box.exr");
     ASSERT_EQ(merged.width, whole.width);
     ASSERT_EQ(merged.height, whole.height);
     ASSERT_EQ(merged.channels, whole.channels);
@@ -88,12 +93,14 @@ TEST_F(FarmCli, AFailedTileIsReportedResumedAndTheMergeIsTheImageRenderedInOnePi
 }
 
 TEST_F(FarmCli, FramesAreTasksAndImagesNamedByFrame) {
-    RunResult r = run("farm submit " + kCornellBox + " --frames 1-3x2 --backend local --output-dir " + farm() + " --" + kRenderArgs);
+    RunResult r = run("farm submit " + kCornellBox + " --frames 1-3x2 --backend local --output-dir " + farm() + " --" +
+                      kRenderArgs);
     ASSERT_EQ(r.exitCode, 0) << r.out << r.err;
     EXPECT_TRUE(fs::exists(farm() + "/cornell_box.0001.exr"));
     EXPECT_TRUE(fs::exists(farm() + "/cornell_box.0003.exr"));
     EXPECT_FALSE(fs::exists(farm() + "/cornell_box.0002.exr"));
-    EXPECT_NE(r.out.find("2 done, 0 queued, 0 running, 0 failed, 0 missing; 2 of 2 images done"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("2 done, 0 queued, 0 running, 0 failed, 0 missing; 2 of 2 images done"), std::string::npos)
+        << r.out;
     EXPECT_NE(test::slurp(farm() + "/logs/task_1.log").find("'-f' '3'"), std::string::npos);
 
     // A task whose output is removed is missing, and resume renders it alone.
@@ -121,7 +128,9 @@ TEST_F(FarmCli, BadInputGivesTheDocumentedExitCodes) {
     EXPECT_NE(r.err.find("farm.json"), std::string::npos) << r.err;
     EXPECT_FALSE(fs::exists(farm())) << "nothing is created for refused input";
 
-    ASSERT_EQ(run("farm submit " + kCornellBox + " --backend local --output-dir " + farm() + " --" + kRenderArgs).exitCode, 0);
+    ASSERT_EQ(
+        run("farm submit " + kCornellBox + " --backend local --output-dir " + farm() + " --" + kRenderArgs).exitCode,
+        0);
     r = run("farm submit " + kCornellBox + " --backend local --output-dir " + farm() + " --" + kRenderArgs);
     EXPECT_EQ(r.exitCode, 2) << "a second submit into the same folder";
     EXPECT_NE(r.err.find("farm resume"), std::string::npos) << r.err;

@@ -24,7 +24,8 @@ TEST(FarmFrames, RangesWithStepsAndNegativeFrames) {
     EXPECT_EQ(parseFrameRange("1-5x2"), std::vector<double>({1, 3, 5}));
     EXPECT_EQ(parseFrameRange("1-6x2"), std::vector<double>({1, 3, 5}));
     EXPECT_EQ(parseFrameRange("-3--1"), std::vector<double>({-3, -2, -1}));
-    for (const char* bad : {"", "a", "5-1", "1-3x0", "1x2", "1-", "1-3x"}) EXPECT_THROW(parseFrameRange(bad), UsageError) << bad;
+    for (const char* bad : {"", "a", "5-1", "1-3x0", "1x2", "1-", "1-3x"})
+        EXPECT_THROW(parseFrameRange(bad), UsageError) << bad;
 }
 
 FarmPlan twoFramesTwoTiles(const std::string& folder) {
@@ -102,7 +103,8 @@ TEST(FarmPlan, FileRoundTripAndErrorsNameTheFile) {
         readFarmPlan(tmp.path().string());
         ADD_FAILURE() << "a broken plan was read";
     } catch (const FarmPlanError& e) {
-        EXPECT_NE(std::string(e.what()).find(tmp.file("farm.json") + ": scene must be a string"), std::string::npos) << e.what();
+        EXPECT_NE(std::string(e.what()).find(tmp.file("farm.json") + ": scene must be a string"), std::string::npos)
+            << e.what();
     }
     EXPECT_THROW(readFarmPlan(tmp.file("nowhere")), FarmPlanError);
 }
@@ -150,7 +152,8 @@ TEST(FarmLocalBackend, RunsEveryTaskAndTheDependentJobOnlyAfterSuccess) {
     merge.workDir = tmp.path().string();
 
     const std::string failed = backend.submitArray(array);
-    for (int i : {0, 1, 2}) EXPECT_EQ(test::slurp(tmp.file("out_" + std::to_string(i) + ".txt")), "task " + std::to_string(i) + "\n");
+    for (int i : {0, 1, 2})
+        EXPECT_EQ(test::slurp(tmp.file("out_" + std::to_string(i) + ".txt")), "task " + std::to_string(i) + "\n");
     backend.submitDependent(merge, {{failed}, {}});
     EXPECT_FALSE(fs::exists(tmp.file("merged.txt"))) << "afterok on a failed array must not run";
     EXPECT_TRUE(backend.poll({failed}).empty());

@@ -31,8 +31,8 @@ protected:
     // A stand-in for Slurm's `name`: records its arguments, one per line, in name.args, then runs `body`.
     void fake(const std::string& name, const std::string& body) {
         const std::string file = tmp_.file(name);
-        std::ofstream(file) << "#!/bin/sh\nfor a in \"$@\"; do printf '%s\\n' \"$a\"; done > '" + tmp_.file(name + ".args") + "'\n" +
-                                   body + "\n";
+        std::ofstream(file) << "#!/bin/sh\nfor a in \"$@\"; do printf '%s\\n' \"$a\"; done > '" +
+                                   tmp_.file(name + ".args") + "'\n" + body + "\n";
         ::chmod(file.c_str(), 0755);
     }
     std::vector<std::string> argsOf(const std::string& name) {

@@ -210,8 +210,14 @@ TEST_F(FluenceCli, SameSeedGivesBitIdenticalImagesAtAnyThreadCount) {
     // sample's own stream too.
     for (const char* sample : {"usd_samples/cornell_box.usda", "usd_samples/subsurface/subsurface.usda"}) {
         fs::path scene = fs::path(FLUENCE_SOURCE_DIR) / sample;
-        ASSERT_EQ(run("render " + scene.string() + " -o " + (dir_ / "one.exr").string() + " -r 40 40 --spp 4 -j 1 --seed 7").exitCode, 0);
-        ASSERT_EQ(run("render " + scene.string() + " -o " + (dir_ / "two.exr").string() + " -r 40 40 --spp 4 -j 2 --seed 7").exitCode, 0);
+        ASSERT_EQ(
+            run("render " + scene.string() + " -o " + (dir_ / "one.exr").string() + " -r 40 40 --spp 4 -j 1 --seed 7")
+                .exitCode,
+            0);
+        ASSERT_EQ(
+            run("render " + scene.string() + " -o " + (dir_ / "two.exr").string() + " -r 40 40 --spp 4 -j 2 --seed 7")
+                .exitCode,
+            0);
         ExrImage one = readExr(dir_ / "one.exr"), two = readExr(dir_ / "two.exr");
         ASSERT_EQ(one.pixels.size(), two.pixels.size()) << sample;
         EXPECT_EQ(0, std::memcmp(one.pixels.data(), two.pixels.data(), one.pixels.size() * sizeof(float))) << sample;
@@ -226,7 +232,8 @@ TEST_F(FluenceCli, CornellBoxWritesBeautyAndAovsWithColourMetadata) {
     EXPECT_NE(r.out.find("64 x 64, 8 spp"), std::string::npos) << r.out;
     EXPECT_NE(r.out.find("Mrays/s"), std::string::npos) << r.out;
     ExrImage img = readExr(dir_ / "c.exr");
-    for (const char* c : {"R", "G", "B", "A", "albedo.R", "albedo.G", "albedo.B", "N.X", "N.Y", "N.Z", "Z", "sampleCount"})
+    for (const char* c :
+         {"R", "G", "B", "A", "albedo.R", "albedo.G", "albedo.B", "N.X", "N.Y", "N.Z", "Z", "sampleCount"})
         EXPECT_GE(img.channel(c), 0) << c;
     for (float v : img.pixels) ASSERT_TRUE(std::isfinite(v));
     EXPECT_EQ(img.spec.get_string_attribute("colorSpace"), "lin_rec709");
@@ -275,7 +282,8 @@ TEST_F(FluenceCli, MissingSceneFileExitsWithMissingInput) {
 }
 
 TEST_F(FluenceCli, SyntaxErrorReportsFileLineAndColumn) {
-    fs::path scene = write("bad.usda", "#usda 1.0\n\ndef Xform \"World\"\n{\n    double3 xformOp:translate = (1, 2\n}\n");
+    fs::path scene =
+        write("bad.usda", "#usda 1.0\n\ndef Xform \"World\"\n{\n    double3 xformOp:translate = (1, 2\n}\n");
     RunResult r = run("render " + scene.string() + " -o " + (dir_ / "x.exr").string());
     EXPECT_EQ(r.exitCode, 3);
     EXPECT_NE(r.err.find(scene.string() + ":6:1"), std::string::npos) << r.err;
@@ -291,10 +299,12 @@ TEST_F(FluenceCli, MissingCameraIsASceneError) {
 }
 
 TEST_F(FluenceCli, AMissingVdbFileIsAMissingInputNamingThePrimAndFile) {
-    fs::path scene = write("smoke.usda", "#usda 1.0\ndef Camera \"Cam\"\n{\n}\ndef Volume \"Smoke\"\n{\n"
-                                         "    rel field:density = </Smoke/Density>\n"
-                                         "    def OpenVDBAsset \"Density\"\n    {\n"
-                                         "        asset filePath = @./nowhere.vdb@\n        token fieldName = \"density\"\n    }\n}\n");
+    fs::path scene =
+        write("smoke.usda",
+              "#usda 1.0\ndef Camera \"Cam\"\n{\n}\ndef Volume \"Smoke\"\n{\n"
+              "    rel field:density = </Smoke/Density>\n"
+              "    def OpenVDBAsset \"Density\"\n    {\n"
+              "        asset filePath = @./nowhere.vdb@\n        token fieldName = \"density\"\n    }\n}\n");
     RunResult r = run("render " + scene.string() + " -o " + (dir_ / "x.exr").string() + " --spp 1 -r 8 8");
     EXPECT_EQ(r.exitCode, 4) << r.err;
     EXPECT_NE(r.err.find("/Smoke/Density.filePath: missing asset"), std::string::npos) << r.err;
@@ -312,10 +322,11 @@ TEST_F(FluenceCli, AStageWithoutACameraIsFramedByADefaultOne) {
 
 // A malformed prim is an error under --strict (without it: tests/apps/production_scenes_cli_test.cpp).
 TEST_F(FluenceCli, SemanticErrorNamesThePrim) {
-    fs::path scene = write("badmesh.usda",
-                           "#usda 1.0\ndef Mesh \"Tri\"\n{\n    int[] faceVertexCounts = [3]\n"
-                           "    int[] faceVertexIndices = [0, 1, 7]\n    point3f[] points = [(0,0,0), (1,0,0), (0,1,0)]\n}\n"
-                           "def Camera \"Cam\"\n{\n}\n");
+    fs::path scene =
+        write("badmesh.usda",
+              "#usda 1.0\ndef Mesh \"Tri\"\n{\n    int[] faceVertexCounts = [3]\n"
+              "    int[] faceVertexIndices = [0, 1, 7]\n    point3f[] points = [(0,0,0), (1,0,0), (0,1,0)]\n}\n"
+              "def Camera \"Cam\"\n{\n}\n");
     RunResult r = run("render " + scene.string() + " -o " + (dir_ / "x.exr").string() + " --strict");
     EXPECT_EQ(r.exitCode, 3);
     EXPECT_NE(r.err.find("/Tri"), std::string::npos) << r.err;
@@ -325,11 +336,12 @@ TEST_F(FluenceCli, SemanticErrorNamesThePrim) {
 // `fluence info` lists the malformed prims a render leaves out; with --strict it exits 3, as
 // `render --strict` would, and without it 0.
 TEST_F(FluenceCli, InfoListsMalformedPrimsAndStrictRefusesThem) {
-    fs::path scene = write("malformed.usda",
-                           "#usda 1.0\ndef Mesh \"Tri\"\n{\n    int[] faceVertexCounts = [3]\n"
-                           "    int[] faceVertexIndices = [0, 1, 7]\n    point3f[] points = [(0,0,0), (1,0,0), (0,1,0)]\n}\n"
-                           "def Xform \"Rig\"\n{\n    int visibility = 3\n}\n"
-                           "def Camera \"Cam\"\n{\n    string focalLength = \"long\"\n}\n");
+    fs::path scene =
+        write("malformed.usda",
+              "#usda 1.0\ndef Mesh \"Tri\"\n{\n    int[] faceVertexCounts = [3]\n"
+              "    int[] faceVertexIndices = [0, 1, 7]\n    point3f[] points = [(0,0,0), (1,0,0), (0,1,0)]\n}\n"
+              "def Xform \"Rig\"\n{\n    int visibility = 3\n}\n"
+              "def Camera \"Cam\"\n{\n    string focalLength = \"long\"\n}\n");
     RunResult r = run("info " + scene.string());
     EXPECT_EQ(r.exitCode, 0) << r.err;
     EXPECT_NE(r.out.find("malformed prims (3)\n  /Cam  "), std::string::npos) << r.out;
@@ -370,7 +382,8 @@ TEST_F(FluenceCli, UsageErrors) {
 
 TEST_F(FluenceCli, AutomaticIntegratorSaysWhichAndWhy) {
     fs::path scene = fs::path(FLUENCE_SOURCE_DIR) / "usd_samples/cornell_box.usda";
-    RunResult r = run("render " + scene.string() + " -o " + (dir_ / "auto.exr").string() + " -r 16 16 --spp 1 --integrator auto");
+    RunResult r =
+        run("render " + scene.string() + " -o " + (dir_ / "auto.exr").string() + " -r 16 16 --spp 1 --integrator auto");
     ASSERT_EQ(r.exitCode, 0) << r.err;
     EXPECT_NE(r.out.find("integrator auto: path, the cheapest method that covers"), std::string::npos) << r.out;
     EXPECT_NE(r.out.find("integrator path"), std::string::npos) << r.out;
@@ -393,7 +406,9 @@ TEST_F(FluenceCli, SubsurfaceOptionOverridesEveryMaterialsMethod) {
     // changes the subsurface objects' pixels.
     fs::path scene = fs::path(FLUENCE_SOURCE_DIR) / "usd_samples/subsurface/subsurface.usda";
     auto render = [&](const std::string& name, const std::string& options) {
-        EXPECT_EQ(run("render " + scene.string() + " -o " + (dir_ / name).string() + " -r 32 24 --spp 2" + options).exitCode, 0);
+        EXPECT_EQ(
+            run("render " + scene.string() + " -o " + (dir_ / name).string() + " -r 32 24 --spp 2" + options).exitCode,
+            0);
         return readExr(dir_ / name);
     };
     ExrImage byDefault = render("default.exr", ""), walked = render("walk.exr", " --subsurface randomwalk"),
@@ -417,8 +432,9 @@ TEST_F(FluenceCli, HelpAndVersion) {
 // Payload load rules from the command line: --no-payloads, --load and --unload decide which
 // payloads `info` composes (marking the prims left unloaded) and `render` draws.
 TEST_F(FluenceCli, PayloadLoadRules) {
-    write("ball.usda", "#usda 1.0\n(\n    defaultPrim = \"Ball\"\n)\n\ndef Xform \"Ball\"\n{\n"
-                       "    def Sphere \"Geom\"\n    {\n        double radius = 0.8\n    }\n}\n");
+    write("ball.usda",
+          "#usda 1.0\n(\n    defaultPrim = \"Ball\"\n)\n\ndef Xform \"Ball\"\n{\n"
+          "    def Sphere \"Geom\"\n    {\n        double radius = 0.8\n    }\n}\n");
     fs::path scene = write("payloads.usda", R"(#usda 1.0
 def Camera "Cam"
 {

@@ -41,8 +41,9 @@ protected:
         std::string usda = test::furnaceUsda(0.5);
         const std::string subdiv = "        uniform token subdivisionScheme = \"none\"\n";
         usda.replace(usda.find(subdiv), subdiv.size(),
-                     subdiv + "        double3 xformOp:translate.timeSamples = {1: (-0.6, 0, 0), 4: (0.6, 0, 0)}\n"
-                              "        uniform token[] xformOpOrder = [\"xformOp:translate\"]\n");
+                     subdiv +
+                         "        double3 xformOp:translate.timeSamples = {1: (-0.6, 0, 0), 4: (0.6, 0, 0)}\n"
+                         "        uniform token[] xformOpOrder = [\"xformOp:translate\"]\n");
         const std::string path = tmp_.file("animated.usda");
         std::ofstream(path) << usda;
         return path;
@@ -50,20 +51,25 @@ protected:
     RunResult run(const std::string& args) { return test::runFluence(args, tmp_.path()); }
 };
 
-bool samePixels(const test::ExrImage& a, const test::ExrImage& b) { return a.channels == b.channels && a.pixels == b.pixels; }
+bool samePixels(const test::ExrImage& a, const test::ExrImage& b) {
+    return a.channels == b.channels && a.pixels == b.pixels;
+}
 
 TEST_F(FramesCli, EachFrameIsTheImageOfThatFrameAlone) {
     const std::string scene = animatedScene();
     RunResult r = run("render " + scene + " -r 12 12 --spp 2 -f 1 -n 3 -i 1.5 --make-output-path -o '" +
                       tmp_.file("seq/$F4/img.%03d.exr") + "'");  // quoted: the shell would expand $F4
     ASSERT_EQ(r.exitCode, 0) << r.err;
-    for (const auto& [time, file] : {std::pair{1.0, "seq/0001/img.001.exr"}, {2.5, "seq/0003/img.003.exr"}, {4.0, "seq/0004/img.004.exr"}}) {
+    for (const auto& [time, file] :
+         {std::pair{1.0, "seq/0001/img.001.exr"}, {2.5, "seq/0003/img.003.exr"}, {4.0, "seq/0004/img.004.exr"}}) {
         ASSERT_TRUE(fs::exists(tmp_.file(file))) << file;
-        RunResult single = run("render " + scene + " -r 12 12 --spp 2 -f " + std::to_string(time) + " -o " + tmp_.file("single.exr"));
+        RunResult single =
+            run("render " + scene + " -r 12 12 --spp 2 -f " + std::to_string(time) + " -o " + tmp_.file("single.exr"));
         ASSERT_EQ(single.exitCode, 0) << single.err;
         EXPECT_TRUE(samePixels(test::readExr(tmp_.file(file)), test::readExr(tmp_.file("single.exr")))) << file;
     }
-    EXPECT_FALSE(samePixels(test::readExr(tmp_.file("seq/0001/img.001.exr")), test::readExr(tmp_.file("seq/0004/img.004.exr"))))
+    EXPECT_FALSE(
+        samePixels(test::readExr(tmp_.file("seq/0001/img.001.exr")), test::readExr(tmp_.file("seq/0004/img.004.exr"))))
         << "the sphere moves";
 }
 

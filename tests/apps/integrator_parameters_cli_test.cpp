@@ -23,8 +23,9 @@ class IntegratorParametersCli : public ::testing::Test {
 protected:
     test::TempDir dir_;
     test::RunResult render(const std::string& scene, const std::string& args) {
-        return test::runFluence("render " + scene + " -o " + (dir_.path() / "out.exr").string() + " -r 16 12 --spp 1 -j 2 " + args,
-                                dir_.path());
+        return test::runFluence(
+            "render " + scene + " -o " + (dir_.path() / "out.exr").string() + " -r 16 12 --spp 1 -j 2 " + args,
+            dir_.path());
     }
     // The Cornell box with a RenderSettings prim of its own, /Render/Tuned, holding `attributes`.
     std::string tunedScene(const std::string& attributes) {
@@ -51,7 +52,8 @@ TEST_F(IntegratorParametersCli, RadiosityPatchSizeSetsThePatches) {
     ASSERT_EQ(coarse.exitCode, 0) << coarse.err;
     EXPECT_GT(patches(byDefault.out), 0) << byDefault.out;
     EXPECT_GT(patches(coarse.out), 0) << coarse.out;
-    EXPECT_LT(patches(coarse.out), patches(byDefault.out)) << "one patch per triangle when no edge is longer than the size";
+    EXPECT_LT(patches(coarse.out), patches(byDefault.out))
+        << "one patch per triangle when no edge is longer than the size";
 }
 
 TEST_F(IntegratorParametersCli, SppmPhotonsAndRadiusReachTheIntegrator) {
@@ -62,13 +64,15 @@ TEST_F(IntegratorParametersCli, SppmPhotonsAndRadiusReachTheIntegrator) {
 }
 
 TEST_F(IntegratorParametersCli, RenderSettingsAttributesReachTheIntegratorAndTheOptionWins) {
-    const std::string scene = tunedScene("        int fluence:sppm:photons = 2345\n        float fluence:sppm:radius = 0.125\n"
-                                         "        float fluence:radiosity:patchSize = 1000000");
+    const std::string scene = tunedScene(
+        "        int fluence:sppm:photons = 2345\n        float fluence:sppm:radius = 0.125\n"
+        "        float fluence:radiosity:patchSize = 1000000");
     const test::RunResult fromScene = render(scene, "--integrator sppm");
     ASSERT_EQ(fromScene.exitCode, 0) << fromScene.err;
     EXPECT_NE(fromScene.out.find("photon maps of 2345 paths"), std::string::npos) << fromScene.out;
     EXPECT_NE(fromScene.out.find("radius 0.125 ->"), std::string::npos) << fromScene.out;
-    EXPECT_NE(fromScene.err.find("fluence:radiosity:patchSize: integrator 'sppm' has no such parameter"), std::string::npos)
+    EXPECT_NE(fromScene.err.find("fluence:radiosity:patchSize: integrator 'sppm' has no such parameter"),
+              std::string::npos)
         << fromScene.err;
     const test::RunResult overridden = render(scene, "--integrator sppm --sppm-photons 1234");
     ASSERT_EQ(overridden.exitCode, 0) << overridden.err;

@@ -25,8 +25,9 @@ protected:
         const std::string scene = tmp_.file("furnace.usda");
         std::ofstream(scene) << test::furnaceUsda(0.5);
         const std::string script = std::string(FLUENCE_BINARY) + " render " + scene + " -r 64 64 --spp 1000000 -o " +
-                                   tmp_.file("out.exr") + " > " + tmp_.file("log.txt") + " 2>&1 & pid=$!; sleep 2; kill -" +
-                                   signal + " $pid; wait $pid; echo $? > " + tmp_.file("code.txt");
+                                   tmp_.file("out.exr") + " > " + tmp_.file("log.txt") +
+                                   " 2>&1 & pid=$!; sleep 2; kill -" + signal + " $pid; wait $pid; echo $? > " +
+                                   tmp_.file("code.txt");
         std::system(("sh -c '" + script + "'").c_str());
         return std::stoi(test::slurp(tmp_.file("code.txt")));
     }

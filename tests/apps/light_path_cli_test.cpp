@@ -25,22 +25,25 @@ protected:
     test::TempDir tmp_{"fluence_light_path_cli"};
 
     RunResult render(const std::string& scene, const std::string& extra) {
-        return test::runFluence("render " + scene + " -o " + tmp_.file("out.exr") + " -r 16 12 --spp 4 " + extra, tmp_.path());
+        return test::runFluence("render " + scene + " -o " + tmp_.file("out.exr") + " -r 16 12 --spp 4 " + extra,
+                                tmp_.path());
     }
     // The furnace scene with render settings whose product has `vars` (RenderVar prims under /Render/Vars).
     std::string sceneWithVars(const std::string& varPrims, const std::string& varTargets) {
         const std::string path = tmp_.file("vars.usda");
-        std::ofstream(path) << test::furnaceUsda(0.5) << "def Scope \"Render\"\n{\n"
-                            << "    def RenderSettings \"Settings\"\n    {\n        rel products = </Render/Product>\n    }\n"
-                            << "    def RenderProduct \"Product\"\n    {\n        rel orderedVars = [" << varTargets << "]\n    }\n"
-                            << "    def Scope \"Vars\"\n    {\n" << varPrims << "    }\n}\n";
+        std::ofstream(path)
+            << test::furnaceUsda(0.5) << "def Scope \"Render\"\n{\n"
+            << "    def RenderSettings \"Settings\"\n    {\n        rel products = </Render/Product>\n    }\n"
+            << "    def RenderProduct \"Product\"\n    {\n        rel orderedVars = [" << varTargets << "]\n    }\n"
+            << "    def Scope \"Vars\"\n    {\n"
+            << varPrims << "    }\n}\n";
         return path + " -s /Render/Settings";
     }
 };
 
 std::string lpeVar(const std::string& name, const std::string& expression) {
-    return "        def RenderVar \"" + name + "\"\n        {\n            uniform string sourceName = \"" + expression +
-           "\"\n            uniform token sourceType = \"lpe\"\n        }\n";
+    return "        def RenderVar \"" + name + "\"\n        {\n            uniform string sourceName = \"" +
+           expression + "\"\n            uniform token sourceType = \"lpe\"\n        }\n";
 }
 
 // Every pixel's layers sum to its beauty (they split the paths between them).

@@ -35,7 +35,9 @@ std::string constantLook(const std::string& colour) {
            "            token outputs:mtlx:surface.connect = </World/Looks/M/S.outputs:out>\n"
            "            def Shader \"S\"\n            {\n"
            "                uniform token info:id = \"ND_standard_surface_surfaceshader\"\n"
-           "                color3f inputs:base_color = " + colour + "\n"
+           "                color3f inputs:base_color = " +
+           colour +
+           "\n"
            "                float inputs:specular = 0\n"
            "                token outputs:out\n            }\n        }\n    }\n";
 }
@@ -45,8 +47,8 @@ protected:
     test::ExrImage render(const std::string& name, const std::string& usda) {
         const fs::path scene = dir.path() / (name + ".usda"), out = dir.path() / (name + ".exr");
         std::ofstream(scene) << usda;
-        const test::RunResult r = test::runFluence("render '" + scene.string() + "' -o '" + out.string() + "' -r 32 32 --spp 4",
-                                                   dir.path());
+        const test::RunResult r =
+            test::runFluence("render '" + scene.string() + "' -o '" + out.string() + "' -r 32 32 --spp 4", dir.path());
         EXPECT_EQ(r.exitCode, 0) << r.err;
         EXPECT_EQ(r.err.find("warning"), std::string::npos) << r.err;
         return test::readExr(out);
@@ -88,7 +90,8 @@ TEST_F(MaterialXNodesCli, AMixOfConstantColoursRendersAsTheAuthoredMix) {
   </surfacematerial>
 </materialx>
 )";
-    const std::string referenced = "    def Scope \"Looks\" (\n        references = @./look.mtlx@</MaterialX/Materials>\n    )\n    {\n    }\n";
+    const std::string referenced =
+        "    def Scope \"Looks\" (\n        references = @./look.mtlx@</MaterialX/Materials>\n    )\n    {\n    }\n";
     const test::ExrImage mixed = render("mixed", sphereWith(referenced));
     const test::ExrImage authored = render("authored", sphereWith(constantLook("(0.125, 0.375, 0.25)")));
     EXPECT_TRUE(sameBeauty(mixed, authored)) << "the mix renders as the authored constant";

@@ -40,7 +40,8 @@ protected:
     // The furnace scene with a RenderSettings prim /Render/Settings holding `attributes`.
     std::string sceneWithSettings(const std::string& attributes) {
         const std::string path = tmp_.file("settings.usda");
-        std::ofstream(path) << test::furnaceUsda(0.5) << "def Scope \"Render\"\n{\n    def RenderSettings \"Settings\"\n    {\n        "
+        std::ofstream(path) << test::furnaceUsda(0.5)
+                            << "def Scope \"Render\"\n{\n    def RenderSettings \"Settings\"\n    {\n        "
                             << attributes << "\n    }\n}\n";
         return path + " -s /Render/Settings";
     }
@@ -63,7 +64,8 @@ TEST_F(PathClassCli, InfoListsTheScenesClassesAndWhatEachIntegratorMisses) {
 TEST_F(PathClassCli, RenderWarnsOfTheClassesItsIntegratorMisses) {
     RunResult r = render(kPointLight, "--integrator naive");
     ASSERT_EQ(r.exitCode, 0) << r.err;
-    EXPECT_NE(r.err.find("integrator 'naive' misses: delta lights (light that this scene has)"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("integrator 'naive' misses: delta lights (light that this scene has)"), std::string::npos)
+        << r.err;
 
     r = render(kCornellBox, "--integrator path");
     ASSERT_EQ(r.exitCode, 0) << r.err;

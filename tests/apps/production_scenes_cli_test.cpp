@@ -28,7 +28,8 @@ protected:
         return path;
     }
     RunResult render(const std::string& scene, const std::string& output, const std::string& args = "") {
-        return test::runFluence("render " + scene + " -r 16 16 --spp 2 -o " + tmp_.file(output) + " " + args, tmp_.path());
+        return test::runFluence("render " + scene + " -r 16 16 --spp 2 -o " + tmp_.file(output) + " " + args,
+                                tmp_.path());
     }
 };
 
@@ -48,8 +49,10 @@ TEST_F(ProductionScenesCli, AMalformedPrimIsSkippedWithAWarningUnlessStrict) {
     RunResult r = render(scene, "lenient.exr");
     EXPECT_EQ(r.exitCode, 0) << r.err;
     EXPECT_NE(r.err.find("fluence: warning: /Bad: not rendered: "), std::string::npos) << r.err;
-    EXPECT_NE(r.err.find("faceVertexCounts add up to 8 but faceVertexIndices has 6 entries (--strict makes this an error)"),
-              std::string::npos) << r.err;
+    EXPECT_NE(
+        r.err.find("faceVertexCounts add up to 8 but faceVertexIndices has 6 entries (--strict makes this an error)"),
+        std::string::npos)
+        << r.err;
     EXPECT_TRUE(fs::exists(tmp_.file("lenient.exr")));
 
     r = render(scene, "strict.exr", "--strict");
@@ -65,7 +68,8 @@ TEST_F(ProductionScenesCli, WithoutAFrameTimeSampledAttributesTakeTheirEarliestS
     std::string usda = test::furnaceUsda(0.5);
     const std::string authored = "double3 xformOp:translate = (0, -4, 0)";
     ASSERT_NE(usda.find(authored), std::string::npos);
-    usda.replace(usda.find(authored), authored.size(), "double3 xformOp:translate.timeSamples = { 10: (0, -40, 0), 1: (0, -4, 0) }");
+    usda.replace(usda.find(authored), authored.size(),
+                 "double3 xformOp:translate.timeSamples = { 10: (0, -40, 0), 1: (0, -4, 0) }");
     const std::string scene = write("animated_camera.usda", usda);
     RunResult r = render(scene, "none.exr");
     ASSERT_EQ(r.exitCode, 0) << r.err;
@@ -81,15 +85,17 @@ TEST_F(ProductionScenesCli, MissingAssetsTheRenderNeverReadsDoNotFailIt) {
     usda.insert(usda.find("def Xform \"World\"\n{\n") + std::string("def Xform \"World\"\n{\n").size(),
                 "    asset model:cardTextureXPos = @./no_such_card.png@\n");
     usda += "def SpatialAudio \"Music\"\n{\n    uniform asset filePath = @./no_such_music.wav@\n}\n";
-    usda += "def Xform \"Asset\" (\n    assetInfo = {\n        asset identifier = @./no_such_asset.usd@\n"
-            "        asset[] payloadAssetDependencies = [@./no_such_dependency.png@]\n    }\n)\n{\n}\n";
+    usda +=
+        "def Xform \"Asset\" (\n    assetInfo = {\n        asset identifier = @./no_such_asset.usd@\n"
+        "        asset[] payloadAssetDependencies = [@./no_such_dependency.png@]\n    }\n)\n{\n}\n";
     const std::string scene = write("audio.usda", usda);
     RunResult r = render(scene, "a.exr");
     EXPECT_EQ(r.exitCode, 0) << r.err;
     EXPECT_NE(r.err.find("/World.model:cardTextureXPos: asset not found"), std::string::npos) << r.err;
     EXPECT_NE(r.err.find("/Music.filePath: asset not found"), std::string::npos) << r.err;
     EXPECT_EQ(r.err.find("SpatialAudio"), std::string::npos) << "audio is not a prim type to warn about:\n" << r.err;
-    EXPECT_EQ(r.err.find("no_such_asset.usd"), std::string::npos) << "assetInfo names the asset; nothing reads it:\n" << r.err;
+    EXPECT_EQ(r.err.find("no_such_asset.usd"), std::string::npos) << "assetInfo names the asset; nothing reads it:\n"
+                                                                  << r.err;
     EXPECT_EQ(r.err.find("no_such_dependency.png"), std::string::npos) << r.err;
     EXPECT_TRUE(fs::exists(tmp_.file("a.exr")));
 }

@@ -109,9 +109,9 @@ protected:
             allowMissing = exitCode(last);
         }
         static const std::regex location(":[0-9]+:[0-9]+: ");
-        std::string result = last.exitCode == 0 ? imageClass(exr)
+        std::string result = last.exitCode == 0                      ? imageClass(exr)
                              : std::regex_search(last.err, location) ? "located"
-                                                                      : "unlocated";
+                                                                     : "unlocated";
         return {exitCode(info) + "\t" + exitCode(plain) + "\t" + allowMissing + "\t" + result,
                 firstErrorLine(last.exitCode == 0 ? info.err + plain.err : last.err)};
     }
@@ -121,14 +121,16 @@ TEST(RealCorpusManifest, ListsEveryLayerOfTheCorpusOnce) {
     std::set<std::string> listed, onDisk;
     for (const Row& row : readManifest()) EXPECT_TRUE(listed.insert(row.path).second) << "listed twice: " << row.path;
     for (const auto& entry : fs::recursive_directory_iterator(kCorpus))
-        if (entry.is_regular_file() && isLayer(entry.path())) onDisk.insert(fs::relative(entry.path(), kCorpus).string());
+        if (entry.is_regular_file() && isLayer(entry.path()))
+            onDisk.insert(fs::relative(entry.path(), kCorpus).string());
     for (const std::string& p : onDisk) EXPECT_TRUE(listed.count(p)) << "not in expected.tsv: " << p;
     for (const std::string& p : listed) EXPECT_TRUE(onDisk.count(p)) << "in expected.tsv but not on disk: " << p;
     EXPECT_GE(listed.size(), 300u);
     // An internal error, a crash or a non-finite image is never a correct outcome.
     const std::regex neverRight("(^|\t)(1|signal)(\t|$)|\t(nonfinite|no-image)$");
     for (const Row& row : readManifest()) {
-        EXPECT_TRUE(row.status == "ok" || row.status.starts_with("known-bug: ")) << row.path << ": status " << row.status;
+        EXPECT_TRUE(row.status == "ok" || row.status.starts_with("known-bug: "))
+            << row.path << ": status " << row.status;
         if (std::regex_search(row.outcome, neverRight)) {
             EXPECT_NE(row.status, "ok") << row.path << ": " << row.outcome;
         }
@@ -145,7 +147,8 @@ TEST_P(RealCorpusCli, EveryLayerHasItsRecordedOutcome) {
         ++checked;
         if (outcome == row.outcome) continue;
         mismatches += "observed: " + row.path + "\t" + outcome + "\t" + row.status + "\n    expected: " + row.outcome +
-                      (row.status == "ok" ? "" : "  (" + row.status + ": fixed? update the row)") + "\n    stderr: " + why + "\n";
+                      (row.status == "ok" ? "" : "  (" + row.status + ": fixed? update the row)") +
+                      "\n    stderr: " + why + "\n";
     }
     EXPECT_TRUE(mismatches.empty()) << "outcomes that changed (path, info, render, allow-missing, result, status):\n"
                                     << mismatches;

@@ -58,9 +58,9 @@ def Xform "World"
 
 std::string var(const std::string& name, const std::string& sourceName, const std::string& sourceType,
                 const std::string& dataType, const std::string& extra = "") {
-    return "        def RenderVar \"" + name + "\"\n        {\n            uniform string sourceName = \"" + sourceName +
-           "\"\n            uniform token sourceType = \"" + sourceType + "\"\n            uniform token dataType = \"" + dataType +
-           "\"\n" + extra + "        }\n";
+    return "        def RenderVar \"" + name + "\"\n        {\n            uniform string sourceName = \"" +
+           sourceName + "\"\n            uniform token sourceType = \"" + sourceType +
+           "\"\n            uniform token dataType = \"" + dataType + "\"\n" + extra + "        }\n";
 }
 
 class RenderProductsCli : public ::testing::Test {
@@ -74,12 +74,14 @@ protected:
         std::ofstream(path) << kScene << "def Scope \"Render\"\n{\n    def RenderSettings \"Settings\"\n    {\n"
                             << "        rel camera = </World/Camera>\n        int2 resolution = (8, 8)\n"
                             << "        rel products = [" << productTargets << "]\n    }\n"
-                            << products << "    def Scope \"Vars\"\n    {\n" << vars << "    }\n}\n";
+                            << products << "    def Scope \"Vars\"\n    {\n"
+                            << vars << "    }\n}\n";
         return path + " -s /Render/Settings";
     }
-    std::string product(const std::string& name, const std::string& file, const std::string& varTargets, const std::string& extra = "") {
-        return "    def RenderProduct \"" + name + "\"\n    {\n        token productName = \"" + tmp_.file(file) + "\"\n" +
-               "        rel orderedVars = [" + varTargets + "]\n" + extra + "    }\n";
+    std::string product(const std::string& name, const std::string& file, const std::string& varTargets,
+                        const std::string& extra = "") {
+        return "    def RenderProduct \"" + name + "\"\n    {\n        token productName = \"" + tmp_.file(file) +
+               "\"\n" + "        rel orderedVars = [" + varTargets + "]\n" + extra + "    }\n";
     }
     RunResult render(const std::string& sceneArgs, const std::string& extra = "") {
         return test::runFluence("render " + sceneArgs + " --spp 4 " + extra, tmp_.path());
@@ -108,14 +110,16 @@ std::vector<float> matrix(const OIIO::ImageSpec& spec, const std::string& name) 
 
 TEST_F(RenderProductsCli, EveryProductIsWrittenAndProductsOfOneCameraShareOneRender) {
     const std::string vars = var("depth", "depth", "raw", "float") + var("normal", "N", "raw", "normal3f");
-    const std::string args = scene("</Render/A>, </Render/B>, </Render/C>",
-                                   product("A", "a.exr", "</Render/Vars/depth>") + product("B", "b.exr", "</Render/Vars/normal>") +
-                                       product("C", "c.exr", "</Render/Vars/depth>", "        int2 resolution = (4, 4)\n"),
-                                   vars);
+    const std::string args =
+        scene("</Render/A>, </Render/B>, </Render/C>",
+              product("A", "a.exr", "</Render/Vars/depth>") + product("B", "b.exr", "</Render/Vars/normal>") +
+                  product("C", "c.exr", "</Render/Vars/depth>", "        int2 resolution = (4, 4)\n"),
+              vars);
     RunResult r = render(args);
     ASSERT_EQ(r.exitCode, 0) << r.err;
     EXPECT_EQ(count(r.out, "fluence: rendered"), 2) << r.out;  // A and B share one render; C has its own
-    const test::ExrImage a = test::readExr(tmp_.file("a.exr")), b = test::readExr(tmp_.file("b.exr")), c = test::readExr(tmp_.file("c.exr"));
+    const test::ExrImage a = test::readExr(tmp_.file("a.exr")), b = test::readExr(tmp_.file("b.exr")),
+                         c = test::readExr(tmp_.file("c.exr"));
     EXPECT_EQ(a.channels, (std::vector<std::string>{"R", "G", "B", "A", "Z"}));
     EXPECT_EQ(b.channels, (std::vector<std::string>{"R", "G", "B", "A", "normal.X", "normal.Y", "normal.Z"}));
     EXPECT_EQ(c.width, 4);
@@ -130,7 +134,11 @@ TEST_F(RenderProductsCli, EveryProductIsWrittenAndProductsOfOneCameraShareOneRen
 TEST_F(RenderProductsCli, DataTypesSetThePixelTypes) {
     const std::string vars = var("depth", "depth", "raw", "half") + var("count", "sampleCount", "raw", "int") +
                              var("albedo", "albedo", "raw", "color3h") + var("normal", "N", "raw", "normal3f");
-    RunResult r = render(scene("</Render/P>", product("P", "p.exr", "</Render/Vars/depth>, </Render/Vars/count>, </Render/Vars/albedo>, </Render/Vars/normal>"), vars));
+    RunResult r = render(
+        scene("</Render/P>",
+              product("P", "p.exr",
+                      "</Render/Vars/depth>, </Render/Vars/count>, </Render/Vars/albedo>, </Render/Vars/normal>"),
+              vars));
     ASSERT_EQ(r.exitCode, 0) << r.err;
     auto in = OIIO::ImageInput::open(tmp_.file("p.exr"));
     ASSERT_TRUE(in);
@@ -149,7 +157,8 @@ TEST_F(RenderProductsCli, DataTypesSetThePixelTypes) {
 
 TEST_F(RenderProductsCli, AssembledTilesKeepThePixelTypesAndValues) {
     const std::string vars = var("depth", "depth", "raw", "half") + var("count", "sampleCount", "raw", "int");
-    const std::string args = scene("</Render/P>", product("P", "p.exr", "</Render/Vars/depth>, </Render/Vars/count>"), vars);
+    const std::string args =
+        scene("</Render/P>", product("P", "p.exr", "</Render/Vars/depth>, </Render/Vars/count>"), vars);
     ASSERT_EQ(render(args).exitCode, 0);
     std::string tiles;
     for (int i = 0; i < 4; ++i) {
@@ -159,7 +168,8 @@ TEST_F(RenderProductsCli, AssembledTilesKeepThePixelTypesAndValues) {
     }
     RunResult r = test::runFluence("assemble -o " + tmp_.file("assembled.exr") + tiles, tmp_.path());
     ASSERT_EQ(r.exitCode, 0) << r.err;
-    auto whole = OIIO::ImageInput::open(tmp_.file("p.exr")), assembled = OIIO::ImageInput::open(tmp_.file("assembled.exr"));
+    auto whole = OIIO::ImageInput::open(tmp_.file("p.exr")),
+         assembled = OIIO::ImageInput::open(tmp_.file("assembled.exr"));
     ASSERT_TRUE(whole && assembled);
     EXPECT_EQ(channelType(assembled->spec(), "Z"), OIIO::TypeDesc::HALF);
     EXPECT_EQ(channelType(assembled->spec(), "count"), OIIO::TypeDesc::UINT);
@@ -170,10 +180,14 @@ TEST_F(RenderProductsCli, AssembledTilesKeepThePixelTypesAndValues) {
 }
 
 TEST_F(RenderProductsCli, PrimvarVarsReadTheAuthoredValuesAtTheFirstHit) {
-    const std::string vars = var("st", "primvars:st", "primvar", "float2") + var("colour", "displayColor", "primvar", "color3f") +
-                             var("k", "primvars:k", "primvar", "float") +
-                             var("nearest", "primvars:st", "primvar", "float2", "            uniform token fluence:filter = \"closest\"\n");
-    RunResult r = render(scene("</Render/P>", product("P", "p.exr", "</Render/Vars/st>, </Render/Vars/colour>, </Render/Vars/k>, </Render/Vars/nearest>"), vars));
+    const std::string vars =
+        var("st", "primvars:st", "primvar", "float2") + var("colour", "displayColor", "primvar", "color3f") +
+        var("k", "primvars:k", "primvar", "float") +
+        var("nearest", "primvars:st", "primvar", "float2", "            uniform token fluence:filter = \"closest\"\n");
+    RunResult r = render(scene(
+        "</Render/P>",
+        product("P", "p.exr", "</Render/Vars/st>, </Render/Vars/colour>, </Render/Vars/k>, </Render/Vars/nearest>"),
+        vars));
     ASSERT_EQ(r.exitCode, 0) << r.err;
     const test::ExrImage img = test::readExr(tmp_.file("p.exr"));
     // Pixel (x, y) spans world x in [-2 + x/2, -1.5 + x/2] and y in [1.5 - y/2, 2 - y/2]: its mean st
@@ -193,8 +207,9 @@ TEST_F(RenderProductsCli, PrimvarVarsReadTheAuthoredValuesAtTheFirstHit) {
 }
 
 TEST_F(RenderProductsCli, FirstHitVarsAreTheSameAtAnyThreadCount) {
-    const std::string vars = var("st", "primvars:st", "primvar", "float2") +
-                             var("far", "depth", "raw", "float", "            uniform token fluence:filter = \"max\"\n");
+    const std::string vars =
+        var("st", "primvars:st", "primvar", "float2") +
+        var("far", "depth", "raw", "float", "            uniform token fluence:filter = \"max\"\n");
     const std::string args = scene("</Render/P>", product("P", "p.exr", "</Render/Vars/st>, </Render/Vars/far>"), vars);
     RunResult r = render(args, "-j 1 -o " + tmp_.file("one.exr"));
     ASSERT_EQ(r.exitCode, 0) << r.err;
@@ -206,7 +221,8 @@ TEST_F(RenderProductsCli, FirstHitVarsAreTheSameAtAnyThreadCount) {
 }
 
 TEST_F(RenderProductsCli, HeadersHoldTheCameraMatricesAndTheColourSpace) {
-    RunResult r = render(scene("</Render/P>", product("P", "p.exr", "</Render/Vars/depth>"), var("depth", "depth", "raw", "float")));
+    RunResult r = render(
+        scene("</Render/P>", product("P", "p.exr", "</Render/Vars/depth>"), var("depth", "depth", "raw", "float")));
     ASSERT_EQ(r.exitCode, 0) << r.err;
     const test::ExrImage img = test::readExr(tmp_.file("p.exr"));
     // World to camera (OpenEXR: +z is the viewing direction) for row vectors: z' = 10 - z.
@@ -219,7 +235,9 @@ TEST_F(RenderProductsCli, HeadersHoldTheCameraMatricesAndTheColourSpace) {
     ASSERT_EQ(toNdc.size(), 16u);
     auto project = [&](float x, float y, float z) {
         float out[4];
-        for (int j = 0; j < 4; ++j) out[j] = x * toNdc[std::size_t(j)] + y * toNdc[std::size_t(4 + j)] + z * toNdc[std::size_t(8 + j)] + toNdc[std::size_t(12 + j)];
+        for (int j = 0; j < 4; ++j)
+            out[j] = x * toNdc[std::size_t(j)] + y * toNdc[std::size_t(4 + j)] + z * toNdc[std::size_t(8 + j)] +
+                     toNdc[std::size_t(12 + j)];
         return std::pair<float, float>{out[0] / out[3], out[1] / out[3]};
     };
     const auto centre = project(0, 0, 0), topRight = project(2, 2, 0), lowLeft = project(-1, -1, 5);
@@ -237,7 +255,8 @@ TEST_F(RenderProductsCli, DataChannelsAreCompressedLosslessly) {
     const std::string lossy = "        token driver:parameters:OpenEXR:compression = \"dwaa\"\n";
     const std::string vars = var("depth", "depth", "raw", "float") + var("beauty", "C", "raw", "color3f");
     RunResult r = render(scene("</Render/Data>, </Render/Colour>",
-                               product("Data", "data.exr", "</Render/Vars/depth>", lossy) + product("Colour", "colour.exr", "</Render/Vars/beauty>", lossy),
+                               product("Data", "data.exr", "</Render/Vars/depth>", lossy) +
+                                   product("Colour", "colour.exr", "</Render/Vars/beauty>", lossy),
                                vars));
     ASSERT_EQ(r.exitCode, 0) << r.err;
     EXPECT_EQ(test::readExr(tmp_.file("data.exr")).spec.get_string_attribute("compression"), "zip");
@@ -249,7 +268,8 @@ TEST_F(RenderProductsCli, DataChannelsAreCompressedLosslessly) {
 
 TEST_F(RenderProductsCli, DataWindowIsTheExrDataWindow) {
     const std::string window = "        float4 dataWindowNDC = (0, 0.5, 0.5, 1)\n";  // the top-left quarter
-    RunResult r = render(scene("</Render/P>", product("P", "p.exr", "</Render/Vars/depth>", window), var("depth", "depth", "raw", "float")));
+    RunResult r = render(scene("</Render/P>", product("P", "p.exr", "</Render/Vars/depth>", window),
+                               var("depth", "depth", "raw", "float")));
     ASSERT_EQ(r.exitCode, 0) << r.err;
     const test::ExrImage img = test::readExr(tmp_.file("p.exr"));
     EXPECT_EQ(img.spec.x, 0);
@@ -263,8 +283,9 @@ TEST_F(RenderProductsCli, DataWindowIsTheExrDataWindow) {
 TEST_F(RenderProductsCli, FiltersPickTheSamplesValue) {
     // The farthest hit's depth (a plane facing the camera: 10 everywhere), and an unknown filter
     // warned about and replaced by box.
-    const std::string vars = var("far", "depth", "raw", "float", "            uniform token fluence:filter = \"max\"\n") +
-                             var("odd", "N", "raw", "normal3f", "            uniform token fluence:filter = \"median\"\n");
+    const std::string vars =
+        var("far", "depth", "raw", "float", "            uniform token fluence:filter = \"max\"\n") +
+        var("odd", "N", "raw", "normal3f", "            uniform token fluence:filter = \"median\"\n");
     RunResult r = render(scene("</Render/P>", product("P", "p.exr", "</Render/Vars/far>, </Render/Vars/odd>"), vars));
     ASSERT_EQ(r.exitCode, 0) << r.err;
     EXPECT_NE(r.err.find("/Render/Vars/odd: fluence:filter 'median' is not supported"), std::string::npos) << r.err;
@@ -276,18 +297,24 @@ TEST_F(RenderProductsCli, FiltersPickTheSamplesValue) {
 TEST_F(RenderProductsCli, AOneComponentSourceFillsEveryChannelOfAWiderDataType) {
     // arnold-usd's tests declare depth as color3f: depth (10 everywhere, as above) is written to
     // each channel, from the film (the default min filter) and from the first-hit AOVs (max).
-    const std::string vars = var("zc", "depth", "raw", "color3f") +
-                             var("zfar", "depth", "raw", "float2", "            uniform token fluence:filter = \"max\"\n");
+    const std::string vars =
+        var("zc", "depth", "raw", "color3f") +
+        var("zfar", "depth", "raw", "float2", "            uniform token fluence:filter = \"max\"\n");
     RunResult r = render(scene("</Render/P>", product("P", "p.exr", "</Render/Vars/zc>, </Render/Vars/zfar>"), vars));
     ASSERT_EQ(r.exitCode, 0) << r.err;
-    EXPECT_NE(r.err.find("/Render/Vars/zc: dataType color3f has 3 components; source 'depth' gives 1, which is written to each"),
-              std::string::npos) << r.err;
+    EXPECT_NE(
+        r.err.find(
+            "/Render/Vars/zc: dataType color3f has 3 components; source 'depth' gives 1, which is written to each"),
+        std::string::npos)
+        << r.err;
     const test::ExrImage img = test::readExr(tmp_.file("p.exr"));
-    for (const char* channel : {"zc.R", "zc.G", "zc.B", "zfar.X", "zfar.Y"}) EXPECT_NEAR(img.at(2, 2, channel), 10.0f, 1e-4f) << channel;
+    for (const char* channel : {"zc.R", "zc.G", "zc.B", "zfar.X", "zfar.Y"})
+        EXPECT_NEAR(img.at(2, 2, channel), 10.0f, 1e-4f) << channel;
 }
 
 TEST_F(RenderProductsCli, AVarFluenceCannotProduceIsASceneErrorNamingIt) {
-    RunResult r = render(scene("</Render/P>", product("P", "p.exr", "</Render/Vars/curv>"), var("curv", "curvature", "raw", "float3")));
+    RunResult r = render(
+        scene("</Render/P>", product("P", "p.exr", "</Render/Vars/curv>"), var("curv", "curvature", "raw", "float3")));
     EXPECT_EQ(r.exitCode, 3);
     EXPECT_NE(r.err.find("RenderVar /Render/Vars/curv: raw sourceName 'curvature'"), std::string::npos) << r.err;
     EXPECT_FALSE(fs::exists(tmp_.file("p.exr")));

@@ -53,7 +53,8 @@ TEST_F(SceneMessagesCli, MissingLayerNamedByManyPrimsIsReportedOnceWithTheCount)
               std::string::npos)
         << info.err;
 
-    test::RunResult render = run("render " + scene.string() + " -o " + (dir_ / "many.exr").string() + " -r 8 8 --spp 1");
+    test::RunResult render =
+        run("render " + scene.string() + " -o " + (dir_ / "many.exr").string() + " -r 8 8 --spp 1");
     EXPECT_EQ(render.exitCode, 4) << render.err;
     EXPECT_EQ(occurrences(render.err, "fluence: error:"), 2u) << render.err;
     EXPECT_NE(render.err.find("/P0.references: missing asset " + (dir_ / "gone.usda").string() +
@@ -87,16 +88,24 @@ def Sphere "Ball"
 )");
     test::RunResult r = run("info " + scene.string());
     ASSERT_EQ(r.exitCode, 0) << r.err;
-    EXPECT_NE(r.err.find("metadata.usda:3:5: upAxis \"invalid\" is neither \"Y\" nor \"Z\"; the stage is taken as Y up"), std::string::npos) << r.err;
-    EXPECT_NE(r.err.find("metadata.usda:4:5: framesPerSecond 0 is not a positive number; ignored"), std::string::npos) << r.err;
-    EXPECT_NE(r.err.find("metadata.usda:5:5: timeCodesPerSecond -24 is not a positive number; ignored"), std::string::npos) << r.err;
+    EXPECT_NE(
+        r.err.find("metadata.usda:3:5: upAxis \"invalid\" is neither \"Y\" nor \"Z\"; the stage is taken as Y up"),
+        std::string::npos)
+        << r.err;
+    EXPECT_NE(r.err.find("metadata.usda:4:5: framesPerSecond 0 is not a positive number; ignored"), std::string::npos)
+        << r.err;
+    EXPECT_NE(r.err.find("metadata.usda:5:5: timeCodesPerSecond -24 is not a positive number; ignored"),
+              std::string::npos)
+        << r.err;
     EXPECT_NE(r.err.find("metadata.usda:6:5: startTimeCode 10 is after endTimeCode 1"), std::string::npos) << r.err;
 
-    const fs::path good = write("good.usda", "#usda 1.0\n(\n    upAxis = \"Z\"\n    framesPerSecond = 30\n    startTimeCode = 1\n"
-                                             "    endTimeCode = 1\n)\ndef Sphere \"Ball\"\n{\n}\n");
+    const fs::path good = write("good.usda",
+                                "#usda 1.0\n(\n    upAxis = \"Z\"\n    framesPerSecond = 30\n    startTimeCode = 1\n"
+                                "    endTimeCode = 1\n)\ndef Sphere \"Ball\"\n{\n}\n");
     r = run("info " + good.string());
     ASSERT_EQ(r.exitCode, 0) << r.err;
-    for (const char* key : {"upAxis", "framesPerSecond", "TimeCode"}) EXPECT_EQ(r.err.find(key), std::string::npos) << r.err;
+    for (const char* key : {"upAxis", "framesPerSecond", "TimeCode"})
+        EXPECT_EQ(r.err.find(key), std::string::npos) << r.err;
 }
 
 TEST_F(SceneMessagesCli, ARenderSettingsPrimPathNamingNoPrimIsAWarningAndTheDefaultsAreUsed) {
@@ -112,7 +121,11 @@ def Sphere "Ball"
     const std::string out = " -o " + (dir_ / "settings.exr").string() + " -r 8 8 --spp 1";
     test::RunResult r = run("render " + scene.string() + out);
     ASSERT_EQ(r.exitCode, 0) << r.err;
-    EXPECT_EQ(occurrences(r.err, "renderSettingsPrimPath names /Render/Gone, which is not in the scene; rendering with default settings"), 1u)
+    EXPECT_EQ(
+        occurrences(
+            r.err,
+            "renderSettingsPrimPath names /Render/Gone, which is not in the scene; rendering with default settings"),
+        1u)
         << r.err;
     EXPECT_TRUE(fs::exists(dir_ / "settings.exr"));
     test::RunResult info = run("info " + scene.string());
@@ -123,7 +136,9 @@ def Sphere "Ball"
     fs::remove(dir_ / "settings.exr");
     r = run("render " + scene.string() + out + " --strict");
     EXPECT_EQ(r.exitCode, 3) << r.err;
-    EXPECT_NE(r.err.find("the stage's renderSettingsPrimPath names /Render/Gone, which is not in the scene"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("the stage's renderSettingsPrimPath names /Render/Gone, which is not in the scene"),
+              std::string::npos)
+        << r.err;
     r = run("render " + scene.string() + out + " -s /Render/Other");
     EXPECT_EQ(r.exitCode, 3) << r.err;
     EXPECT_NE(r.err.find("render settings /Render/Other do not exist in the scene"), std::string::npos) << r.err;
@@ -138,14 +153,17 @@ TEST_F(SceneMessagesCli, AlembicAndDracoLayersNeedTheirPlugins) {
 {
 }
 )");
-    test::RunResult render = run("render " + scene.string() + " -o " + (dir_ / "arcs.exr").string() + " -r 8 8 --spp 1");
+    test::RunResult render =
+        run("render " + scene.string() + " -o " + (dir_ / "arcs.exr").string() + " -r 8 8 --spp 1");
     EXPECT_EQ(render.exitCode, 3) << render.err;
     EXPECT_NE(render.err.find("needs the Alembic plugin"), std::string::npos) << render.err;
     EXPECT_NE(render.err.find("needs the Draco plugin"), std::string::npos) << render.err;
-    EXPECT_NE(render.err.find("2 layers need a file format plugin Fluence does not have"), std::string::npos) << render.err;
+    EXPECT_NE(render.err.find("2 layers need a file format plugin Fluence does not have"), std::string::npos)
+        << render.err;
     EXPECT_EQ(render.err.find("missing asset"), std::string::npos) << render.err;
 
-    test::RunResult allowed = run("render " + scene.string() + " -o " + (dir_ / "arcs.exr").string() + " -r 8 8 --spp 1 --allow-missing");
+    test::RunResult allowed =
+        run("render " + scene.string() + " -o " + (dir_ / "arcs.exr").string() + " -r 8 8 --spp 1 --allow-missing");
     EXPECT_EQ(allowed.exitCode, 0) << allowed.err;
     EXPECT_NE(allowed.err.find("needs the Alembic plugin"), std::string::npos) << allowed.err;
 

@@ -77,7 +77,8 @@ TEST_F(SceneControlsCli, SetOverridesAnAuthoredAttributeAsASessionLayerWould) {
 
 TEST_F(SceneControlsCli, SetRefusesWhatItCannotApply) {
     const std::string path = scene("furnace.usda");
-    RunResult r = run("render " + path + " -r 8 8 --spp 1 -o " + tmp_.file("a.exr") + " --set /World/Dome.inputs:intensity=bright");
+    RunResult r = run("render " + path + " -r 8 8 --spp 1 -o " + tmp_.file("a.exr") +
+                      " --set /World/Dome.inputs:intensity=bright");
     EXPECT_EQ(r.exitCode, 2) << r.err;
     EXPECT_NE(r.err.find("is not a float value"), std::string::npos) << r.err;
     r = run("render " + path + " -r 8 8 --spp 1 -o " + tmp_.file("a.exr") + " --set /World/Nothing.x=1");
@@ -86,23 +87,27 @@ TEST_F(SceneControlsCli, SetRefusesWhatItCannotApply) {
     r = run("render " + path + " -r 8 8 --spp 1 -o " + tmp_.file("a.exr") + " --set /World/Dome.inputs:exposure=1");
     EXPECT_EQ(r.exitCode, 3) << r.err;
     EXPECT_NE(r.err.find("has no attribute 'inputs:exposure'; give its type"), std::string::npos) << r.err;
-    r = run("render " + path + " -r 8 8 --spp 1 -o " + tmp_.file("a.exr") + " --set 'flaot /World/Dome.inputs:exposure=1'");
+    r = run("render " + path + " -r 8 8 --spp 1 -o " + tmp_.file("a.exr") +
+            " --set 'flaot /World/Dome.inputs:exposure=1'");
     EXPECT_EQ(r.exitCode, 2) << r.err;
     EXPECT_FALSE(fs::exists(tmp_.file("a.exr")));
 }
 
 TEST_F(SceneControlsCli, PurposesFollowTheCommandLineElseTheRenderSettings) {
     const std::string guide = scene("guide.usda", [](std::string& usda) {
-        insertAfter(usda, "        uniform token subdivisionScheme = \"none\"\n", "        uniform token purpose = \"guide\"\n");
+        insertAfter(usda, "        uniform token subdivisionScheme = \"none\"\n",
+                    "        uniform token purpose = \"guide\"\n");
     });
     EXPECT_EQ(render(guide, "").at(8, 8, "A"), 0.0f) << "guides are left out by default";
     EXPECT_EQ(render(guide, "--purpose default,guide", "g.exr").at(8, 8, "A"), 1.0f);
     EXPECT_EQ(render(guide, "--purpose geometry,render", "r.exr").at(8, 8, "A"), 0.0f);
 
     const std::string proxy = scene("proxy.usda", [](std::string& usda) {
-        insertAfter(usda, "        uniform token subdivisionScheme = \"none\"\n", "        uniform token purpose = \"proxy\"\n");
-        usda += "def Scope \"Render\"\n{\n    def RenderSettings \"Settings\"\n    {\n"
-                "        uniform token[] includedPurposes = [\"default\", \"proxy\"]\n    }\n}\n";
+        insertAfter(usda, "        uniform token subdivisionScheme = \"none\"\n",
+                    "        uniform token purpose = \"proxy\"\n");
+        usda +=
+            "def Scope \"Render\"\n{\n    def RenderSettings \"Settings\"\n    {\n"
+            "        uniform token[] includedPurposes = [\"default\", \"proxy\"]\n    }\n}\n";
     });
     EXPECT_EQ(render(proxy, "").at(8, 8, "A"), 0.0f) << "no settings chosen: USD's default purposes";
     EXPECT_EQ(render(proxy, "-s /Render/Settings", "s.exr").at(8, 8, "A"), 1.0f) << "the settings include proxies";
@@ -144,7 +149,8 @@ TEST_F(SceneControlsCli, ComplexityRefinesSubdivisionSurfacesAsHuskDoes) {
 
 TEST_F(SceneControlsCli, AMissingAssetIsAnErrorUnlessAllowed) {
     const std::string path = scene("missing.usda", [](std::string& usda) {
-        insertAfter(usda, "        float inputs:intensity = 1\n", "        asset inputs:texture:file = @./no_such_sky.exr@\n");
+        insertAfter(usda, "        float inputs:intensity = 1\n",
+                    "        asset inputs:texture:file = @./no_such_sky.exr@\n");
         usda += "def \"Extra\" (\n    references = @./no_such_layer.usda@\n)\n{\n}\n";
     });
     RunResult r = run("render " + path + " -r 8 8 --spp 1 -o " + tmp_.file("m.exr"));
@@ -172,9 +178,11 @@ TEST_F(SceneControlsCli, AnAllowedMissingTextureIsNamedWhereAuthoredAndWhereItsF
     RunResult r = run("render " + path + " -r 8 8 --spp 1 --allow-missing -o " + tmp_.file("t.exr"));
     EXPECT_EQ(r.exitCode, 0) << r.err;
     std::size_t mentions = 0;
-    for (std::size_t at = r.err.find("no_such_texture.png"); at != std::string::npos; at = r.err.find("no_such_texture.png", at + 1))
+    for (std::size_t at = r.err.find("no_such_texture.png"); at != std::string::npos;
+         at = r.err.find("no_such_texture.png", at + 1))
         ++mentions;
-    EXPECT_EQ(mentions, 3u) << "the asset line names it twice (resolved and authored), the fallback line once:\n" << r.err;
+    EXPECT_EQ(mentions, 3u) << "the asset line names it twice (resolved and authored), the fallback line once:\n"
+                            << r.err;
     EXPECT_NE(r.err.find("/World/Mat/Tex.inputs:file: asset not found"), std::string::npos) << r.err;
     EXPECT_NE(r.err.find("/World/Mat/Tex: texture file"), std::string::npos) << r.err;
     EXPECT_EQ(r.err.find("cannot read texture"), std::string::npos) << r.err;
@@ -182,9 +190,10 @@ TEST_F(SceneControlsCli, AnAllowedMissingTextureIsNamedWhereAuthoredAndWhereItsF
 
 TEST_F(SceneControlsCli, AMissingVolumeFileLeavesTheVolumeOutWhenAllowed) {
     const std::string path = scene("volume.usda", [](std::string& usda) {
-        usda += "def Volume \"Smoke\"\n{\n    rel field:density = </Smoke/Density>\n"
-                "    def OpenVDBAsset \"Density\"\n    {\n        asset filePath = @./no_such_smoke.vdb@\n"
-                "        token fieldName = \"density\"\n    }\n}\n";
+        usda +=
+            "def Volume \"Smoke\"\n{\n    rel field:density = </Smoke/Density>\n"
+            "    def OpenVDBAsset \"Density\"\n    {\n        asset filePath = @./no_such_smoke.vdb@\n"
+            "        token fieldName = \"density\"\n    }\n}\n";
     });
     RunResult r = run("render " + path + " -r 8 8 --spp 1 -o " + tmp_.file("v.exr"));
     EXPECT_EQ(r.exitCode, 4) << r.err;

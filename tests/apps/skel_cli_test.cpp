@@ -67,7 +67,8 @@ std::string skinnedScene() {
     for (int f = 0; f < 2; ++f) {
         const double half = kPoses[f].kDegrees * std::numbers::pi / 360.0;
         translations += std::to_string(f + 1) + ": [" + vec(kPoses[f].jTranslate) + ", (1, 0, 0)], ";
-        rotations += std::to_string(f + 1) + ": [(1, 0, 0, 0), (" + number(std::cos(half)) + ", 0, 0, " + number(std::sin(half)) + ")], ";
+        rotations += std::to_string(f + 1) + ": [(1, 0, 0, 0), (" + number(std::cos(half)) + ", 0, 0, " +
+                     number(std::sin(half)) + ")], ";
     }
     return kHeader + R"(
 def SkelRoot "Root"
@@ -81,19 +82,25 @@ def SkelRoot "Root"
         def SkelAnimation "Anim"
         {
             uniform token[] joints = ["J", "J/K"]
-            float3[] translations.timeSamples = {)" + translations + R"(}
-            quatf[] rotations.timeSamples = {)" + rotations + R"(}
+            float3[] translations.timeSamples = {)" +
+           translations + R"(}
+            quatf[] rotations.timeSamples = {)" +
+           rotations + R"(}
             half3[] scales = [(1, 1, 1), (1, 1, 1)]
         }
     }
     def Mesh "Strip" (prepend apiSchemas = ["SkelBindingAPI"])
-    {)" + kTopology + R"(
-        point3f[] points = [)" + points + R"(]
-        int[] primvars:skel:jointIndices = [)" + indices + R"(] (
+    {)" + kTopology +
+           R"(
+        point3f[] points = [)" +
+           points + R"(]
+        int[] primvars:skel:jointIndices = [)" +
+           indices + R"(] (
             interpolation = "vertex"
             elementSize = 2
         )
-        float[] primvars:skel:jointWeights = [)" + weights + R"(] (
+        float[] primvars:skel:jointWeights = [)" +
+           weights + R"(] (
             interpolation = "vertex"
             elementSize = 2
         )
@@ -119,8 +126,10 @@ std::string twinScene() {
     }
     return kHeader + R"(
 def Mesh "Strip"
-{)" + kTopology + R"(
-    point3f[] points.timeSamples = {)" + samples + R"(}
+{)" + kTopology +
+           R"(
+    point3f[] points.timeSamples = {)" +
+           samples + R"(}
 }
 )";
 }
@@ -134,7 +143,8 @@ protected:
         return path;
     }
     void render(const std::string& scene, const std::string& output) {
-        test::RunResult r = test::runFluence("render " + scene + " -r 48 48 --spp 4 -f 1 -n 2 -o '" + tmp_.file(output) + "'", tmp_.path());
+        test::RunResult r = test::runFluence(
+            "render " + scene + " -r 48 48 --spp 4 -f 1 -n 2 -o '" + tmp_.file(output) + "'", tmp_.path());
         ASSERT_EQ(r.exitCode, 0) << r.err;
         EXPECT_EQ(r.err.find("UsdSkel binding not applied"), std::string::npos) << r.err;
     }
@@ -149,7 +159,8 @@ TEST_F(SkelCli, ASkinnedMeshRendersAsItsHandPosedTwinAtEachFrame) {
         const test::ExrImage twin = test::readExr(tmp_.file("twin." + std::to_string(frame) + ".exr"));
         ASSERT_EQ(skinned.pixels.size(), twin.pixels.size());
         double worst = 0.0;
-        for (std::size_t i = 0; i < skinned.pixels.size(); ++i) worst = std::max(worst, double(std::abs(skinned.pixels[i] - twin.pixels[i])));
+        for (std::size_t i = 0; i < skinned.pixels.size(); ++i)
+            worst = std::max(worst, double(std::abs(skinned.pixels[i] - twin.pixels[i])));
         // The poses agree to float rounding (the animation's quaternions are floats): no sample
         // changes side of an edge, so the pixels agree to a rounding of the shading.
         EXPECT_LT(worst, 1e-3) << "frame " << frame;

@@ -186,8 +186,9 @@ TEST_P(StabilityScene, NoMethodMakesANaNOrInfinityAndTheEnergyChecksHold) {
         Rendered r = renderBy(name, ++seed);
         std::uint64_t nonFinitePixels = 0;
         for (float v : r.image.pixels) nonFinitePixels += !std::isfinite(v);
-        std::printf("[ measured ] %-24s %-9s %llu non-finite samples, image mean %.5g (expect %s)\n", GetParam().c_str(),
-                    name.c_str(), static_cast<unsigned long long>(r.stats.counters.nonFiniteSamples), imageMean(r.image),
+        std::printf("[ measured ] %-24s %-9s %llu non-finite samples, image mean %.5g (expect %s)\n",
+                    GetParam().c_str(), name.c_str(),
+                    static_cast<unsigned long long>(r.stats.counters.nonFiniteSamples), imageMean(r.image),
                     h.expect.at(name).c_str());
         EXPECT_EQ(r.stats.counters.nonFiniteSamples, 0u) << name;
         EXPECT_EQ(nonFinitePixels, 0u) << name;
@@ -215,16 +216,19 @@ TEST_P(StabilityScene, NoMethodMakesANaNOrInfinityAndTheEnergyChecksHold) {
         }
     if (!converging.empty())
         for (const std::string& name : missing) {
-            const test::MeanEstimate d = difference(name, images.at(name), converging.front(), images.at(converging.front()));
+            const test::MeanEstimate d =
+                difference(name, images.at(name), converging.front(), images.at(converging.front()));
             EXPECT_LE(d.mean(), kStandardErrors * d.standardError())
                 << name << " misses light yet is brighter than " << converging.front();
         }
     if (converging.size() < 2) {
-        const auto first = std::find_if(h.integrators.begin(), h.integrators.end(),
-                                        [&](const std::string& n) { return pixelIndependent(n) && images.contains(n); });
+        const auto first = std::find_if(h.integrators.begin(), h.integrators.end(), [&](const std::string& n) {
+            return pixelIndependent(n) && images.contains(n);
+        });
         ASSERT_NE(first, h.integrators.end()) << "no unbiased method rendered the scene";
         const Rendered again = renderBy(*first, seed + 1);
-        const test::MeanEstimate d = difference(*first + "(seed 1)", images.at(*first), *first + "(seed 2)", again.image);
+        const test::MeanEstimate d =
+            difference(*first + "(seed 1)", images.at(*first), *first + "(seed 2)", again.image);
         EXPECT_LE(std::abs(d.mean()), kStandardErrors * d.standardError()) << *first << " disagrees with itself";
     }
 }

@@ -39,7 +39,8 @@ TEST_F(TilesCli, AssembledTilesAreTheImageRenderedInOnePiece) {
     }
     r = run("assemble -o " + tmp_.file("assembled.exr") + tiles);
     ASSERT_EQ(r.exitCode, 0) << r.err;
-    const test::ExrImage whole = test::readExr(tmp_.file("whole.exr")), assembled = test::readExr(tmp_.file("assembled.exr"));
+    const test::ExrImage whole = test::readExr(tmp_.file("whole.exr")),
+                         assembled = test::readExr(tmp_.file("assembled.exr"));
     ASSERT_EQ(assembled.width, whole.width);
     ASSERT_EQ(assembled.height, whole.height);
     ASSERT_EQ(assembled.channels, whole.channels);
@@ -49,8 +50,10 @@ TEST_F(TilesCli, AssembledTilesAreTheImageRenderedInOnePiece) {
 
 TEST_F(TilesCli, TilesThatDoNotMakeOneImageAreRefused) {
     for (int i : {0, 1})
-        ASSERT_EQ(run("render " + kCornellBox + " -r 8 8 --spp 1 --tile-count 2 1 --tile-index " + std::to_string(i) + " -o " +
-                      tmp_.file("t.exr")).exitCode, 0);
+        ASSERT_EQ(run("render " + kCornellBox + " -r 8 8 --spp 1 --tile-count 2 1 --tile-index " + std::to_string(i) +
+                      " -o " + tmp_.file("t.exr"))
+                      .exitCode,
+                  0);
     RunResult r = run("assemble -o " + tmp_.file("out.exr") + " " + tmp_.file("t_tile0.exr"));
     EXPECT_EQ(r.exitCode, 3);
     EXPECT_NE(r.err.find("a tile is missing"), std::string::npos) << r.err;

@@ -22,8 +22,10 @@ namespace fs = std::filesystem;
 
 const fs::path kPackage = test::sharedPath("usd_corpus/tinyusdz/models/texture-cat-plane.usdz");
 
-test::RunResult render(const fs::path& scene, const fs::path& out, const test::TempDir& dir, const std::string& options = "") {
-    return test::runFluence("render '" + scene.string() + "' -o '" + out.string() + "' -r 48 32 --spp 4" + options, dir.path());
+test::RunResult render(const fs::path& scene, const fs::path& out, const test::TempDir& dir,
+                       const std::string& options = "") {
+    return test::runFluence("render '" + scene.string() + "' -o '" + out.string() + "' -r 48 32 --spp 4" + options,
+                            dir.path());
 }
 
 // The largest difference between the beauty channels of two renders of one size.
@@ -31,7 +33,8 @@ float largestDifference(const test::ExrImage& a, const test::ExrImage& b) {
     float largest = 0.0f;
     for (int y = 0; y < a.height; ++y)
         for (int x = 0; x < a.width; ++x)
-            for (const char* c : {"R", "G", "B", "A"}) largest = std::max(largest, std::abs(a.at(x, y, c) - b.at(x, y, c)));
+            for (const char* c : {"R", "G", "B", "A"})
+                largest = std::max(largest, std::abs(a.at(x, y, c) - b.at(x, y, c)));
     return largest;
 }
 
@@ -40,10 +43,11 @@ float largestDifference(const test::ExrImage& a, const test::ExrImage& b) {
 // shows.
 fs::path litOver(const fs::path& scene, const test::TempDir& dir, const std::string& name) {
     const fs::path layer = dir.path() / name;
-    std::ofstream(layer) << "#usda 1.0\n(\n    subLayers = [@" << scene.string() << "@]\n)\n"
-                         << "over \"root\" { over \"root\" { over \"lights\" { over \"environment\" {\n"
-                         << "    matrix4d xformOp:transform = ((1, 0, 0, 0), (0, 1, 0, 0), (0, 0, 1, 0), (0, -4, 0, 1))\n"
-                         << "    over \"environment\" {\n        float inputs:radius = 0.5\n    }\n}\n}\n}\n}\n";
+    std::ofstream(layer)
+        << "#usda 1.0\n(\n    subLayers = [@" << scene.string() << "@]\n)\n"
+        << "over \"root\" { over \"root\" { over \"lights\" { over \"environment\" {\n"
+        << "    matrix4d xformOp:transform = ((1, 0, 0, 0), (0, 1, 0, 0), (0, 0, 1, 0), (0, -4, 0, 1))\n"
+        << "    over \"environment\" {\n        float inputs:radius = 0.5\n    }\n}\n}\n}\n}\n";
     return layer;
 }
 
@@ -66,10 +70,12 @@ TEST(UsdzCli, PackageRendersAsItsEntriesDoLoose) {
     EXPECT_EQ(largestDifference(packaged, rendered(looseLayer, "loose.exr")), 0.0f);
 
     test::ExrImage packagedLit = rendered(litOver(kPackage, dir, "packaged_lit.usda"), "packaged_lit.exr");
-    EXPECT_EQ(largestDifference(packagedLit, rendered(litOver(looseLayer, dir, "loose_lit.usda"), "loose_lit.exr")), 0.0f);
+    EXPECT_EQ(largestDifference(packagedLit, rendered(litOver(looseLayer, dir, "loose_lit.usda"), "loose_lit.exr")),
+              0.0f);
     fs::remove(dir.path() / "loose" / "textures" / "texture-cat.jpg");
     const fs::path untexturedScene = litOver(looseLayer, dir, "untextured.usda");
-    EXPECT_EQ(render(untexturedScene, dir.path() / "untextured.exr", dir).exitCode, 4) << "a missing texture is an error";
+    EXPECT_EQ(render(untexturedScene, dir.path() / "untextured.exr", dir).exitCode, 4)
+        << "a missing texture is an error";
     test::RunResult untextured = render(untexturedScene, dir.path() / "untextured.exr", dir, " --allow-missing");
     ASSERT_EQ(untextured.exitCode, 0) << untextured.err;
     EXPECT_GT(largestDifference(packagedLit, test::readExr(dir.path() / "untextured.exr")), 0.01f);
@@ -81,9 +87,9 @@ TEST(UsdzCli, DamagedPackagesFailNamingThem) {
     const std::string bytes = test::slurp(kPackage);
     std::string compressed = bytes;
     compressed[compressed.find("PK\x01\x02") + 10] = 8;  // the root layer's entry marked deflated
-    for (const auto& [name, content, what] :
-         {std::tuple<std::string, std::string, std::string>{"truncated.usdz", bytes.substr(0, bytes.size() / 2), "truncated"},
-          {"compressed.usdz", compressed, "compressed"}}) {
+    for (const auto& [name, content, what] : {std::tuple<std::string, std::string, std::string>{
+                                                  "truncated.usdz", bytes.substr(0, bytes.size() / 2), "truncated"},
+                                              {"compressed.usdz", compressed, "compressed"}}) {
         SCOPED_TRACE(name);
         const fs::path scene = dir.path() / name;
         std::ofstream(scene, std::ios::binary) << content;
@@ -112,7 +118,8 @@ TEST(UsdzCli, ACompressedTextureEntryIsAMissingAssetSayingWhy) {
     std::ofstream(scene, std::ios::binary) << bytes;
     test::RunResult r = render(scene, dir.path() / "out.exr", dir);
     EXPECT_EQ(r.exitCode, 4) << r.err;
-    EXPECT_NE(r.err.find("'" + scene.string() + "': entry '" + entry + "' is compressed (zip method 8); USDZ entries must be stored"),
+    EXPECT_NE(r.err.find("'" + scene.string() + "': entry '" + entry +
+                         "' is compressed (zip method 8); USDZ entries must be stored"),
               std::string::npos)
         << r.err;
     EXPECT_FALSE(fs::exists(dir.path() / "out.exr"));
@@ -153,12 +160,14 @@ TEST(UsdzCli, NestedPackagesOpenAndRender) {
 TEST(UsdzCli, SearchRelativePathsResolveInsideThePackage) {
     test::TempDir dir;
     const fs::path data = fs::path(FLUENCE_SOURCE_DIR "/tests/scene/data/usdz").lexically_normal();
-    const std::string expected = "#usda 1.0\n\ndef \"Model\"\n{\n"
-                                 "    string attr_in_both = \"right_attr_in_both\"\n"  // beside refs/ref.usd, not the root's
-                                 "    string attr_in_root = \"attr_in_root\"\n"        // only beside the root layer
-                                 "    string attr_in_subdir = \"attr_in_subdir\"\n"
-                                 "    string attr_usd = \"usd\"\n}\n";
-    for (const char* package : {"search_refs.usdz", "search_refs_sub.usdz", "nested_search_refs.usdz", "nested_search_refs_sub.usdz"}) {
+    const std::string expected =
+        "#usda 1.0\n\ndef \"Model\"\n{\n"
+        "    string attr_in_both = \"right_attr_in_both\"\n"  // beside refs/ref.usd, not the root's
+        "    string attr_in_root = \"attr_in_root\"\n"        // only beside the root layer
+        "    string attr_in_subdir = \"attr_in_subdir\"\n"
+        "    string attr_usd = \"usd\"\n}\n";
+    for (const char* package :
+         {"search_refs.usdz", "search_refs_sub.usdz", "nested_search_refs.usdz", "nested_search_refs_sub.usdz"}) {
         SCOPED_TRACE(package);
         const test::RunResult r = test::runFluence("cat --flatten '" + (data / package).string() + "'", dir.path());
         EXPECT_EQ(r.exitCode, 0) << r.err;

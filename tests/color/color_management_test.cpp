@@ -26,12 +26,16 @@ class OcioEnv {
 public:
     explicit OcioEnv(const std::optional<std::string>& value) {
         if (const char* old = std::getenv("OCIO")) saved_ = old;
-        if (value) ::setenv("OCIO", value->c_str(), 1);
-        else ::unsetenv("OCIO");
+        if (value)
+            ::setenv("OCIO", value->c_str(), 1);
+        else
+            ::unsetenv("OCIO");
     }
     ~OcioEnv() {
-        if (saved_) ::setenv("OCIO", saved_->c_str(), 1);
-        else ::unsetenv("OCIO");
+        if (saved_)
+            ::setenv("OCIO", saved_->c_str(), 1);
+        else
+            ::unsetenv("OCIO");
     }
     OcioEnv(const OcioEnv&) = delete;
     OcioEnv& operator=(const OcioEnv&) = delete;
@@ -81,8 +85,8 @@ TEST(ColorManagement, EmbeddedConfigLoadsAndValidates) {
     for (const char* space : {"lin_rec709", "srgb_texture", "acescg", "lin_ap0", "acescct", "lin_displayp3", "raw"})
         EXPECT_TRUE(cm.hasColorSpace(space)) << space;
     // Aliases and roles.
-    for (const char* space : {"Linear Rec.709 (sRGB)", "sRGB", "sRGB - Texture", "srgb_tx", "ACEScg",
-                              "ACES2065-1", "scene_linear", "rendering", "data", "color_picking"})
+    for (const char* space : {"Linear Rec.709 (sRGB)", "sRGB", "sRGB - Texture", "srgb_tx", "ACEScg", "ACES2065-1",
+                              "scene_linear", "rendering", "data", "color_picking"})
         EXPECT_TRUE(cm.hasColorSpace(space)) << space;
     EXPECT_FALSE(cm.hasColorSpace("no_such_space"));
     EXPECT_EQ(cm.defaultDisplay(), "sRGB");
@@ -160,7 +164,8 @@ TEST(ColorManagement, AcescgMatchesPublishedMatrices) {
             RGB unit(0.0f);
             unit[col] = 1.0f;
             const RGB out = cm.toRenderingSpace(space, unit);
-            for (int row = 0; row < 3; ++row) EXPECT_NEAR(out[row], m[row][col], 1e-4) << space << " " << row << "," << col;
+            for (int row = 0; row < 3; ++row)
+                EXPECT_NEAR(out[row], m[row][col], 1e-4) << space << " " << row << "," << col;
         }
     }
     // ACES white (equal AP1 RGB) maps to equal Rec.709 RGB (white stays white under Bradford).
@@ -262,9 +267,9 @@ TEST(ColorManagement, OcioEnvOverridesEmbeddedConfig) {
 
 TEST(ColorManagement, DisplayViewSrgbStandard) {
     const ColorManagement cm = builtin();
-    std::vector<float> rgb = {0.0f, 1.0f, 0.18f,  //
-                              4.0f, -0.5f, 1.0001f,  //
-                              0.002f, 0.5f, std::nanf("")};
+    std::vector<float> rgb = {0.0f,   1.0f,  0.18f,    //
+                              4.0f,   -0.5f, 1.0001f,  //
+                              0.002f, 0.5f,  std::nanf("")};
     cm.applyDisplayView("sRGB", "Standard", rgb.data(), 3);
     EXPECT_NEAR(rgb[0], 0.0, 1e-7);
     EXPECT_NEAR(rgb[1], 1.0, 1e-6);

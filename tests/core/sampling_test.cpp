@@ -98,7 +98,8 @@ TEST(Sampling, UniformDiskIsTheConcentricMappingToAFewUlps) {
             double x = 0.0, y = 0.0;
             if (ox != 0.0 || oy != 0.0) {
                 const double r = std::abs(ox) > std::abs(oy) ? ox : oy;
-                const double theta = std::abs(ox) > std::abs(oy) ? M_PI / 4.0 * (oy / ox) : M_PI / 2.0 - M_PI / 4.0 * (ox / oy);
+                const double theta =
+                    std::abs(ox) > std::abs(oy) ? M_PI / 4.0 * (oy / ox) : M_PI / 2.0 - M_PI / 4.0 * (ox / oy);
                 x = r * std::cos(theta);
                 y = r * std::sin(theta);
             }

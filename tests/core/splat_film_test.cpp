@@ -30,7 +30,8 @@ std::vector<Splat> randomSplats(int n, int width, int height, unsigned seed) {
     std::uniform_real_distribution<float> px(0.0f, float(width)), py(0.0f, float(height));
     std::lognormal_distribution<float> value(0.0f, 3.0f);  // values over many orders of magnitude
     std::vector<Splat> splats;
-    for (int i = 0; i < n; ++i) splats.push_back({px(random), py(random), RGB(value(random), value(random), value(random))});
+    for (int i = 0; i < n; ++i)
+        splats.push_back({px(random), py(random), RGB(value(random), value(random), value(random))});
     return splats;
 }
 
@@ -46,7 +47,8 @@ TEST(SplatFilm, SumsDoNotDependOnTheOrderOrTheThreads) {
     std::vector<std::thread> threads;
     for (int t = 0; t < 4; ++t)
         threads.emplace_back([&, t] {
-            for (std::size_t i = std::size_t(t); i < shuffled.size(); i += 4) threaded.add(shuffled[i].x, shuffled[i].y, shuffled[i].value);
+            for (std::size_t i = std::size_t(t); i < shuffled.size(); i += 4)
+                threaded.add(shuffled[i].x, shuffled[i].y, shuffled[i].value);
         });
     for (std::thread& t : threads) t.join();
     EXPECT_EQ(inOrder.fixedSums(), threaded.fixedSums());
@@ -54,12 +56,14 @@ TEST(SplatFilm, SumsDoNotDependOnTheOrderOrTheThreads) {
     // Close to the exact sums: each add rounds by at most half a step of 2^-28.
     std::vector<double> exact(std::size_t(width * height * 3), 0.0);
     for (const Splat& s : splats)
-        for (int c = 0; c < 3; ++c) exact[(std::size_t(s.y) * width + std::size_t(s.x)) * 3 + std::size_t(c)] += s.value[c];
+        for (int c = 0; c < 3; ++c)
+            exact[(std::size_t(s.y) * width + std::size_t(s.x)) * 3 + std::size_t(c)] += s.value[c];
     for (int y = 0; y < height; ++y)
         for (int x = 0; x < width; ++x)
             for (int c = 0; c < 3; ++c) {
                 const double want = exact[(std::size_t(y) * width + std::size_t(x)) * 3 + std::size_t(c)];
-                EXPECT_NEAR(inOrder.sum(x, y)[std::size_t(c)], want, 1e-12 * want + splats.size() * std::ldexp(1.0, -29));
+                EXPECT_NEAR(inOrder.sum(x, y)[std::size_t(c)], want,
+                            1e-12 * want + splats.size() * std::ldexp(1.0, -29));
             }
 }
 
@@ -67,8 +71,8 @@ TEST(SplatFilm, AddsIntoTheWindowOnly) {
     SplatFilm window(4, 3, 10, 20);  // image pixels x 10..13, y 20..22
     EXPECT_TRUE(window.add(10.0f, 20.0f, RGB(1.0f)));
     EXPECT_TRUE(window.add(13.99f, 22.5f, RGB(2.0f, 3.0f, 4.0f)));
-    EXPECT_TRUE(window.add(9.99f, 21.0f, RGB(5.0f)));   // left of the window: dropped
-    EXPECT_TRUE(window.add(12.0f, 23.0f, RGB(5.0f)));   // below: dropped
+    EXPECT_TRUE(window.add(9.99f, 21.0f, RGB(5.0f)));  // left of the window: dropped
+    EXPECT_TRUE(window.add(12.0f, 23.0f, RGB(5.0f)));  // below: dropped
     EXPECT_EQ(window.sum(0, 0)[0], 1.0);
     EXPECT_EQ(window.sum(3, 2)[0], 2.0);
     EXPECT_EQ(window.sum(3, 2)[2], 4.0);
@@ -103,7 +107,7 @@ TEST(SplatFilm, FilmResolvesSplatsPerLightPathOfTheImage) {
     FilmSample a;
     a.radiance = RGB(1.0f, 2.0f, 3.0f);
     for (int i = 0; i < 3; ++i) film.add(0, 0, a);  // pixel 0: 3 samples
-    film.add(1, 0, a);                               // pixel 1: 1 sample; 4 light paths over 2 pixels
+    film.add(1, 0, a);                              // pixel 1: 1 sample; 4 light paths over 2 pixels
     SplatFilm& splats = film.enableSplats();
     EXPECT_EQ(&splats, &film.enableSplats());
     splats.add(1.5f, 0.2f, RGB(4.0f, 0.0f, 8.0f));

@@ -22,7 +22,9 @@ struct Indexed {
         : stage(std::make_unique<usd::Stage>(usd::parseUsdaString(usda, file))) {
         DelegateOptions options;
         options.convertColor = [](const RGB& c, const std::string&) { return c; };
-        options.warn = [this](const std::string& path, const std::string& message) { warnings.push_back(path + ": " + message); };
+        options.warn = [this](const std::string& path, const std::string& message) {
+            warnings.push_back(path + ": " + message);
+        };
         delegate = std::make_unique<SceneDelegate>(*stage, options);
         delegate->sync();
     }
@@ -63,12 +65,14 @@ TEST(Bprims, VolumeFieldsAreFieldBprims) {
     EXPECT_EQ(field.fieldIndex(), 0);
     EXPECT_FALSE(field.fileFound());
     ASSERT_EQ(index.warnings.size(), 1u);
-    EXPECT_NE(index.warnings[0].find("field 'temperature' targets /Smoke/Missing, which does not exist"), std::string::npos);
+    EXPECT_NE(index.warnings[0].find("field 'temperature' targets /Smoke/Missing, which does not exist"),
+              std::string::npos);
     try {
         index.delegate->sceneDescription();
         ADD_FAILURE() << "a missing OpenVDB file must fail the render";
     } catch (const SceneError& e) {
-        EXPECT_NE(std::string(e.what()).find("/Smoke: field 'density': OpenVDB file /data/smoke.vdb not found"), std::string::npos)
+        EXPECT_NE(std::string(e.what()).find("/Smoke: field 'density': OpenVDB file /data/smoke.vdb not found"),
+                  std::string::npos)
             << e.what();
     }
 }
@@ -142,8 +146,9 @@ def Scope "Looks"
     EXPECT_FALSE(index.prim<TextureBprim>("/Looks/Wood/Lost").fileFound());
     EXPECT_EQ(index.prim<MaterialSprim>("/Looks/Wood").textures().size(), 3u);
 
-    index.delegate->setAttribute("/Looks/Wood/Grain", "inputs:file",
-                                 usd::Value::string("asset", usd::ValueKind::Asset, {(dir.path() / "gone.png").string()}, false));
+    index.delegate->setAttribute(
+        "/Looks/Wood/Grain", "inputs:file",
+        usd::Value::string("asset", usd::ValueKind::Asset, {(dir.path() / "gone.png").string()}, false));
     EXPECT_EQ(index.delegate->sync(), 1u) << "only the texture";
     EXPECT_FALSE(grain.fileFound());
     EXPECT_EQ(index.prim<MaterialSprim>("/Looks/Wood").syncCount(), 1);

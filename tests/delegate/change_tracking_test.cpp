@@ -177,12 +177,14 @@ TEST_F(ChangeTracking, ANewTimeResyncsOnlyAnimatedPrims) {
 }
 
 TEST_F(ChangeTracking, HidingASubtreeRemovesItsPrimsAndShowingItBringsThemBack) {
-    delegate_->setAttribute("/World/Group", "visibility", usd::Value::string("token", usd::ValueKind::Token, {"invisible"}, false));
+    delegate_->setAttribute("/World/Group", "visibility",
+                            usd::Value::string("token", usd::ValueKind::Token, {"invisible"}, false));
     delegate_->sync();
     EXPECT_EQ(syncs("/World/Group/A"), -1);
     EXPECT_EQ(syncs("/World/Group/Ball"), -1);
     EXPECT_EQ(syncs("/World/Key"), 1);
-    delegate_->setAttribute("/World/Group", "visibility", usd::Value::string("token", usd::ValueKind::Token, {"inherited"}, false));
+    delegate_->setAttribute("/World/Group", "visibility",
+                            usd::Value::string("token", usd::ValueKind::Token, {"inherited"}, false));
     EXPECT_EQ(delegate_->sync(), 2u);
     EXPECT_EQ(syncs("/World/Group/A"), 1);
 }

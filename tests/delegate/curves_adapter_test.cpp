@@ -33,15 +33,16 @@ TEST(CurvesAdapter, SegmentCountsFollowTheUsdGeomTables) {
         std::size_t segments, controlPoints;
     };
     const Case cases[] = {
-        {"linear", "bezier", "nonperiodic", 5, 4, 5},     {"linear", "bezier", "periodic", 5, 5, 6},
-        {"cubic", "bezier", "nonperiodic", 7, 2, 7},      {"cubic", "bezier", "periodic", 6, 2, 7},
-        {"cubic", "bspline", "nonperiodic", 6, 3, 6},     {"cubic", "bspline", "periodic", 5, 5, 8},
-        {"cubic", "bspline", "pinned", 5, 4, 7},          {"cubic", "catmullRom", "pinned", 2, 1, 4},
-        {"cubic", "catmullRom", "nonperiodic", 4, 1, 4},  {"cubic", "bezier", "pinned", 4, 1, 4},
+        {"linear", "bezier", "nonperiodic", 5, 4, 5},    {"linear", "bezier", "periodic", 5, 5, 6},
+        {"cubic", "bezier", "nonperiodic", 7, 2, 7},     {"cubic", "bezier", "periodic", 6, 2, 7},
+        {"cubic", "bspline", "nonperiodic", 6, 3, 6},    {"cubic", "bspline", "periodic", 5, 5, 8},
+        {"cubic", "bspline", "pinned", 5, 4, 7},         {"cubic", "catmullRom", "pinned", 2, 1, 4},
+        {"cubic", "catmullRom", "nonperiodic", 4, 1, 4}, {"cubic", "bezier", "pinned", 4, 1, 4},
     };
     for (const Case& c : cases) {
         std::string points;
-        for (int i = 0; i < c.vertices; ++i) points += (i ? ", (" : "(") + std::to_string(i) + ", 0, " + std::to_string(i % 2) + ")";
+        for (int i = 0; i < c.vertices; ++i)
+            points += (i ? ", (" : "(") + std::to_string(i) + ", 0, " + std::to_string(i % 2) + ")";
         auto p = populate(curves("    uniform token type = \"" + c.type + "\"\n    uniform token basis = \"" + c.basis +
                                  "\"\n    uniform token wrap = \"" + c.wrap + "\"\n    int[] curveVertexCounts = [" +
                                  std::to_string(c.vertices) + "]\n    point3f[] points = [" + points + "]\n"));
@@ -159,7 +160,8 @@ TEST(CurvesAdapter, ACurveOfInvalidCountIsLeftOutAloneAndOneValueIsConstant) {
     EXPECT_EQ(d->points.front(), Vec3f(0, 1, 0));
     EXPECT_EQ(d->radii, std::vector<float>(4, 0.25f));
     bool named = false;
-    for (const std::string& w : p.warnings) named = named || (w.starts_with("/C: ") && w.find("curve 0 has 5 vertices") != std::string::npos);
+    for (const std::string& w : p.warnings)
+        named = named || (w.starts_with("/C: ") && w.find("curve 0 has 5 vertices") != std::string::npos);
     EXPECT_TRUE(named);
 }
 
@@ -240,7 +242,8 @@ TEST(CurvesAdapter, PublicScenesNoLongerDropCurves) {
         if (entry.path().extension() != ".usda") continue;
         std::ifstream in(entry.path());
         std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-        if (text.find("def BasisCurves") == std::string::npos && text.find("def NurbsCurves") == std::string::npos) continue;
+        if (text.find("def BasisCurves") == std::string::npos && text.find("def NurbsCurves") == std::string::npos)
+            continue;
         ++files;
         std::unique_ptr<usd::Stage> stage;
         try {
@@ -252,7 +255,9 @@ TEST(CurvesAdapter, PublicScenesNoLongerDropCurves) {
         DelegateOptions options;
         options.allowMissing = true;
         options.convertColor = [](const RGB& c, const std::string&) { return c; };
-        options.warn = [&](const std::string& path, const std::string& message) { warnings.push_back(path + ": " + message); };
+        options.warn = [&](const std::string& path, const std::string& message) {
+            warnings.push_back(path + ": " + message);
+        };
         DelegateResult result;
         try {
             result = populateScene(*stage, options);

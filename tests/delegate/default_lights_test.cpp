@@ -22,7 +22,9 @@ Populated populateWithDefaultLight(const std::string& usda, bool defaultLight = 
     DelegateOptions options;
     options.defaultLight = defaultLight;
     options.convertColor = [](const RGB& c, const std::string&) { return c; };
-    options.warn = [&p](const std::string& path, const std::string& message) { p.warnings.push_back(path + ": " + message); };
+    options.warn = [&p](const std::string& path, const std::string& message) {
+        p.warnings.push_back(path + ": " + message);
+    };
     p.result = populateScene(*p.stage, options);
     return p;
 }
@@ -67,8 +69,9 @@ TEST(DefaultLights, OffByOptionOrRenderSettings) {
     const Populated off = populateWithDefaultLight(kTurnedCamera + kCube, false);
     EXPECT_TRUE(off.result.scene.lights.empty());
     EXPECT_EQ(defaultLightWarnings(off), 0u);
-    const Populated settings = populateWithDefaultLight("#usda 1.0\n(\n    renderSettingsPrimPath = \"/Settings\"\n)\n" + kTurnedCamera +
-                                                        kCube + "def RenderSettings \"Settings\"\n{\n    bool fluence:defaultLight = false\n}\n");
+    const Populated settings = populateWithDefaultLight(
+        "#usda 1.0\n(\n    renderSettingsPrimPath = \"/Settings\"\n)\n" + kTurnedCamera + kCube +
+        "def RenderSettings \"Settings\"\n{\n    bool fluence:defaultLight = false\n}\n");
     EXPECT_TRUE(settings.result.scene.lights.empty());
     EXPECT_EQ(defaultLightWarnings(settings), 0u);
 }
@@ -167,7 +170,8 @@ def Mesh "Box"
     ASSERT_NE(limit, nullptr);
     EXPECT_GT(limit->indices.size(), 6u * 2u * 16u) << "diced for the final camera";
     float extent = 0.0f;
-    for (const Vec3f& point : limit->positions) extent = std::max({extent, std::abs(point.x), std::abs(point.y), std::abs(point.z)});
+    for (const Vec3f& point : limit->positions)
+        extent = std::max({extent, std::abs(point.x), std::abs(point.y), std::abs(point.z)});
     const render::CameraDesc lens;
     const double framedRadius = p.result.scene.camera->transform.transformPoint(Vec3d(0.0)).z *
                                 std::sin(std::atan(0.5 * lens.verticalAperture / lens.focalLength));

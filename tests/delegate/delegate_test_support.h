@@ -36,13 +36,15 @@ def Mesh "Quad"
     int[] faceVertexIndices = [0, 1, 2, 3]
     point3f[] points = [(0, 0, 0), (1, 0, 0), (1, 1, 0), (0, 1, 0)]
     rel material:binding = </Looks/M>
-)" + meshLines + R"(
+)" + meshLines +
+           R"(
 }
 def Scope "Looks"
 {
     def Material "M"
     {
-)" + material + R"(
+)" + material +
+           R"(
     }
 }
 )";
@@ -57,7 +59,9 @@ inline std::unique_ptr<usd::Stage> stageFrom(const std::string& usda) {
 inline DelegateOptions testOptions(Populated& p) {
     DelegateOptions options;
     options.convertColor = [](const RGB& c, const std::string&) { return c; };
-    options.warn = [&p](const std::string& path, const std::string& message) { p.warnings.push_back(path + ": " + message); };
+    options.warn = [&p](const std::string& path, const std::string& message) {
+        p.warnings.push_back(path + ": " + message);
+    };
     return options;
 }
 
@@ -74,7 +78,9 @@ inline Populated populateWith(const std::string& usda, const std::string& camera
 }
 
 // As `fluence render` does: a malformed prim is skipped with a warning.
-inline Populated populate(const std::string& usda, const std::string& cameraPath = "") { return populateWith(usda, cameraPath, false); }
+inline Populated populate(const std::string& usda, const std::string& cameraPath = "") {
+    return populateWith(usda, cameraPath, false);
+}
 // As `fluence render --strict` does: a malformed prim raises SceneError.
 inline Populated populateStrict(const std::string& usda) { return populateWith(usda, "", true); }
 

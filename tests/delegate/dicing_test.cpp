@@ -20,7 +20,8 @@ TEST(Dicing, SegmentsFollowPixelLengthAndRate) {
     render::Camera camera = testCamera();
     DicingSettings settings;
     // A 2-unit edge 10 units away (in view) spans 10 pixels; a 2-unit edge at 50 units spans 2.
-    std::vector<std::pair<Vec3f, Vec3f>> edges = {{Vec3f(-1, 0, -10), Vec3f(1, 0, -10)}, {Vec3f(-1, 0, -50), Vec3f(1, 0, -50)}};
+    std::vector<std::pair<Vec3f, Vec3f>> edges = {{Vec3f(-1, 0, -10), Vec3f(1, 0, -10)},
+                                                  {Vec3f(-1, 0, -50), Vec3f(1, 0, -50)}};
     EXPECT_EQ(edgeSegments(camera, settings, 1.0f, edges), (std::vector<int>{10, 2}));
     EXPECT_EQ(edgeSegments(camera, settings, 4.0f, edges), (std::vector<int>{3, 1})) << "ceil(10/4), at least one";
     EXPECT_EQ(edgeSegments(camera, settings, 1.0f, edges, 0.5f), (std::vector<int>{5, 1})) << "budget scale";
@@ -34,7 +35,8 @@ TEST(Dicing, OffscreenEdgesAreCoarserAndCountsAreClamped) {
     EXPECT_EQ(edgeSegments(camera, settings, 1.0f, behind), std::vector<int>{2});
     // An edge whose ends are off-screen but whose middle is in view counts as in view.
     std::vector<std::pair<Vec3f, Vec3f>> across = {{Vec3f(-40, 0, -10), Vec3f(40, 0, -10)}};
-    EXPECT_EQ(edgeSegments(camera, settings, 1.0f, across), std::vector<int>{settings.maxSegments}) << "400 px, clamped";
+    EXPECT_EQ(edgeSegments(camera, settings, 1.0f, across), std::vector<int>{settings.maxSegments})
+        << "400 px, clamped";
     settings.maxSegments = 1000;
     EXPECT_EQ(edgeSegments(camera, settings, 1.0f, across), std::vector<int>{400});
     std::vector<std::pair<Vec3f, Vec3f>> degenerate = {{Vec3f(0, 0, -1), Vec3f(0, 0, -1)}};

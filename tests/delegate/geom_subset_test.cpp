@@ -68,8 +68,8 @@ def Mesh "Box"
     color3f[] primvars:displayColor = [(0, 0, 0.1), (0, 0.1, 0), (0, 0, 0.2), (0, 0.2, 0), (0.1, 0, 0), (0.2, 0, 0)] (
         interpolation = "uniform"
     )
-)" + binding + children +
-           "}\n";
+)" + binding +
+           children + "}\n";
 }
 
 std::string subset(const std::string& name, const std::string& indices, const std::string& material,
@@ -177,18 +177,21 @@ TEST(GeomSubset, OnlyMaterialBindFaceSubsetsCount) {
     EXPECT_EQ(p.result.scene.meshes[0].material, -1);
     EXPECT_EQ(p.result.scene.meshes[0].indices.size(), 36u);
     ASSERT_EQ(p.warnings.size(), 1u) << "the binding on a subset outside materialBind is reported";
-    EXPECT_NE(p.warnings[0].find("/Box/Other has a material binding but its familyName is 'partition'"), std::string::npos)
+    EXPECT_NE(p.warnings[0].find("/Box/Other has a material binding but its familyName is 'partition'"),
+              std::string::npos)
         << p.warnings[0];
 }
 
 TEST(GeomSubset, OverlappingSubsetsWarnAndTheFirstWins) {
-    auto p = populate(kLooks + cube("", subset("Red", "[0, 1]", "/Looks/Red") + subset("Blue", "[1, 2]", "/Looks/Blue")));
+    auto p =
+        populate(kLooks + cube("", subset("Red", "[0, 1]", "/Looks/Red") + subset("Blue", "[1, 2]", "/Looks/Blue")));
     const auto& meshes = p.result.scene.meshes;
     ASSERT_EQ(meshes.size(), 3u);
     EXPECT_EQ(meshes[1].indices.size(), 3u * 4u) << "Red keeps face 1";
     EXPECT_EQ(meshes[2].indices.size(), 3u * 2u);
     ASSERT_EQ(p.warnings.size(), 1u);
-    EXPECT_NE(p.warnings[0].find("/Box/Blue lists 1 face (first: face 1) already in an earlier materialBind subset (/Box/Red)"),
+    EXPECT_NE(p.warnings[0].find(
+                  "/Box/Blue lists 1 face (first: face 1) already in an earlier materialBind subset (/Box/Red)"),
               std::string::npos)
         << p.warnings[0];
 }
@@ -224,7 +227,8 @@ TEST(GeomSubset, OutOfRangeFaceIndicesNameTheSubset) {
     for (const char* indices : {"[0, 6]", "[-1]"}) {
         SCOPED_TRACE(indices);
         try {
-            populateStrict(kLooks + cube("", subset("Red", "[0]", "/Looks/Red") + subset("Bad", indices, "/Looks/Blue")));
+            populateStrict(kLooks +
+                           cube("", subset("Red", "[0]", "/Looks/Red") + subset("Bad", indices, "/Looks/Blue")));
             FAIL() << "expected SceneError";
         } catch (const SceneError& e) {
             std::string what = e.what();

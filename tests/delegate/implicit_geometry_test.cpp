@@ -88,7 +88,10 @@ std::vector<Case> cases() {
     };
 }
 
-std::string label(const Case& c) { return c.shape.type + " r=" + std::to_string(c.shape.radius) + " h=" + std::to_string(c.shape.height) + " axis=" + "XYZ"[c.shape.axis]; }
+std::string label(const Case& c) {
+    return c.shape.type + " r=" + std::to_string(c.shape.radius) + " h=" + std::to_string(c.shape.height) +
+           " axis=" + "XYZ"[c.shape.axis];
+}
 
 TEST(ImplicitGeometry, SegmentCountsFollowFromTheTolerance) {
     EXPECT_EQ(circleSegments(), 72);
@@ -145,7 +148,8 @@ TEST(ImplicitGeometry, NormalsAreUnitAndOutward) {
         for (std::size_t t = 0; t < m.indices.size() / 3; ++t) {
             Vec3d geometric = testing::triangleCross(m, t);
             ASSERT_GT(length(geometric), 0.0) << "degenerate triangle " << t;
-            Vec3d centroid = (testing::corner(m, 3 * t) + testing::corner(m, 3 * t + 1) + testing::corner(m, 3 * t + 2)) / 3.0;
+            Vec3d centroid =
+                (testing::corner(m, 3 * t) + testing::corner(m, 3 * t + 1) + testing::corner(m, 3 * t + 2)) / 3.0;
             ASSERT_GT(dot(geometric, centroid), 0.0) << "triangle " << t << " winds inwards";  // all five are convex
             for (std::size_t k = 3 * t; k < 3 * t + 3; ++k) {
                 Vec3d n(m.cornerNormals[k]);
@@ -231,19 +235,22 @@ def Cylinder "Cylinder"
 {
     double radius = 0.5
     double height = 6
-    uniform token axis = ")") + axis + R"("
+    uniform token axis = ")") +
+                          axis + R"("
 }
 def Cone "Cone"
 {
     double radius = 0.5
     double height = 6
-    uniform token axis = ")" + axis + R"("
+    uniform token axis = ")" +
+                          axis + R"("
 }
 def Capsule "Capsule"
 {
     double radius = 0.5
     double height = 6
-    uniform token axis = ")" + axis + R"("
+    uniform token axis = ")" +
+                          axis + R"("
 }
 )");
         for (const char* name : {"/Cylinder", "/Cone", "/Capsule"}) {
@@ -292,14 +299,17 @@ def Xform "Group"
     ASSERT_NE(sphere, nullptr);
     for (const Vec3f& q : sphere->positions) ASSERT_NEAR(length(Vec3d(q) - centre), 1.0, 1e-6);
     for (std::size_t k = 0; k < sphere->indices.size(); ++k)
-        ASSERT_NEAR(length(Vec3d(sphere->cornerNormals[k]) - normalize(testing::corner(*sphere, k) - centre)), 0.0, 1e-6);
+        ASSERT_NEAR(length(Vec3d(sphere->cornerNormals[k]) - normalize(testing::corner(*sphere, k) - centre)), 0.0,
+                    1e-6);
     EXPECT_NEAR(testing::enclosedVolume(*sphere), 4.0 / 3.0 * kPi, 0.002 * 4.0 / 3.0 * kPi);
 
     // Under a mirroring transform the triangles still wind outwards.
     const render::MeshDesc* cube = p.mesh("/Group/Mirrored");
     ASSERT_NE(cube, nullptr);
     for (std::size_t t = 0; t < cube->indices.size() / 3; ++t) {
-        Vec3d centroid = (testing::corner(*cube, 3 * t) + testing::corner(*cube, 3 * t + 1) + testing::corner(*cube, 3 * t + 2)) / 3.0;
+        Vec3d centroid =
+            (testing::corner(*cube, 3 * t) + testing::corner(*cube, 3 * t + 1) + testing::corner(*cube, 3 * t + 2)) /
+            3.0;
         EXPECT_GT(dot(testing::triangleCross(*cube, t), centroid - centre), 0.0) << "triangle " << t;
         EXPECT_GT(dot(Vec3d(cube->cornerNormals[3 * t]), centroid - centre), 0.0) << "triangle " << t;
     }

@@ -46,7 +46,8 @@ std::string pointInstancer(const std::string& idsLine) {
 def PointInstancer "Scatter"
 {
     int[] protoIndices = [0, 0, 0]
-    )" + idsLine + R"(
+    )" + idsLine +
+           R"(
     int64[] invisibleIds = [1]
     point3f[] positions = [(1, 0, 0), (2, 0, 0), (3, 0, 0)]
     rel prototypes = [</Scatter/Ball>]
@@ -61,7 +62,8 @@ TEST(InstanceNames, PointInstancesAreNamedByTheirIds) {
     EXPECT_EQ(instanceNames(populate(pointInstancer("int64[] ids = [7, 1, 9]")).result.scene),
               (std::vector<std::string>{"/Scatter[7]", "/Scatter[9]"}));
     // Without ids, the index (here 1 is the hidden one).
-    EXPECT_EQ(instanceNames(populate(pointInstancer("")).result.scene), (std::vector<std::string>{"/Scatter[0]", "/Scatter[2]"}));
+    EXPECT_EQ(instanceNames(populate(pointInstancer("")).result.scene),
+              (std::vector<std::string>{"/Scatter[0]", "/Scatter[2]"}));
 }
 
 }  // namespace

@@ -135,7 +135,8 @@ TEST(Instancing, MovingAnInstanceResyncsOnlyThatInstance) {
     auto prototypeReads = [&] {
         int reads = 0;
         for (const auto& [path, prim] : index.prims())
-            if (prim->kind() == RenderPrim::Kind::Prototype) reads += static_cast<const SurfaceRprim&>(*prim).dataReads();
+            if (prim->kind() == RenderPrim::Kind::Prototype)
+                reads += static_cast<const SurfaceRprim&>(*prim).dataReads();
         return reads;
     };
     EXPECT_EQ(prototypeReads(), 2);
@@ -260,7 +261,8 @@ def PointInstancer "Bad"
 )");
     EXPECT_TRUE(p.result.scene.instances.empty());
     ASSERT_FALSE(p.warnings.empty());
-    EXPECT_NE(p.warnings.front().find("'positions' has 1 elements for 2 instances"), std::string::npos) << p.warnings.front();
+    EXPECT_NE(p.warnings.front().find("'positions' has 1 elements for 2 instances"), std::string::npos)
+        << p.warnings.front();
 }
 
 TEST(Instancing, NestedPointInstancersExpandInsideThePrototype) {
@@ -367,10 +369,11 @@ def Xform "Lobby" (
     std::sort(found.begin(), found.end());
     // (A native prototype is read from its first instance, /Hall: its point-instanced dots carry
     // that name in both fixtures.)
-    EXPECT_EQ(found, (std::vector<std::string>{"/Hall/Panel (0 5 0)", "/Hall/Row/Dot (-3 5 0)", "/Hall/Row/Dot (-3 7 0)",
-                                               "/Hall/Row/Dot (3 5 0)", "/Hall/Row/Dot (3 7 0)", "/Lamps/Lamp/Bulb (-2 1.5 1)",
-                                               "/Lamps/Lamp/Bulb (2 1.5 1)", "/Lamps/Pair/Spot (-1 0 10)", "/Lamps/Pair/Spot (1 0 10)",
-                                               "/Lobby/Panel (0 7 0)"}))
+    EXPECT_EQ(found,
+              (std::vector<std::string>{"/Hall/Panel (0 5 0)", "/Hall/Row/Dot (-3 5 0)", "/Hall/Row/Dot (-3 7 0)",
+                                        "/Hall/Row/Dot (3 5 0)", "/Hall/Row/Dot (3 7 0)", "/Lamps/Lamp/Bulb (-2 1.5 1)",
+                                        "/Lamps/Lamp/Bulb (2 1.5 1)", "/Lamps/Pair/Spot (-1 0 10)",
+                                        "/Lamps/Pair/Spot (1 0 10)", "/Lobby/Panel (0 7 0)"}))
         << ::testing::PrintToString(found);
 }
 

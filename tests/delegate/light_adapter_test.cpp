@@ -22,7 +22,8 @@ const render::LightDesc& light(const testing::Populated& p, const std::string& n
 }
 
 bool warned(const testing::Populated& p, const std::string& text) {
-    return std::any_of(p.warnings.begin(), p.warnings.end(), [&](const std::string& w) { return w.find(text) != std::string::npos; });
+    return std::any_of(p.warnings.begin(), p.warnings.end(),
+                       [&](const std::string& w) { return w.find(text) != std::string::npos; });
 }
 
 TEST(LightAdapter, DiskCylinderAndTheirPointAndLineForms) {
@@ -122,8 +123,9 @@ def Shader "Tint"
     EXPECT_EQ(light(p, "/Authored").radiance, RGB(2.0f, 1.0f, 4.0f));
     EXPECT_EQ(light(p, "/Unauthored").radiance, RGB(1.0f));
     for (const char* name : {"/Authored", "/Unauthored"})
-        EXPECT_TRUE(warned(p, std::string(name) + ": inputs:color is connected to </Tint.outputs:out>, a light shader Fluence "
-                                                  "does not evaluate; the input's own value is used"))
+        EXPECT_TRUE(warned(p, std::string(name) +
+                                  ": inputs:color is connected to </Tint.outputs:out>, a light shader Fluence "
+                                  "does not evaluate; the input's own value is used"))
             << name;
     EXPECT_EQ(std::count_if(p.warnings.begin(), p.warnings.end(),
                             [](const std::string& w) { return w.find("is connected to") != std::string::npos; }),
@@ -181,26 +183,31 @@ TEST(LightAdapter, DomeAndRectTexturesAreLoadedOrWarnedAbout) {
     auto p = populate(R"(
 def DomeLight "Sky"
 {
-    asset inputs:texture:file = @)" + dir.file("sky.exr") + R"(@
+    asset inputs:texture:file = @)" +
+                      dir.file("sky.exr") + R"(@
     token inputs:texture:format = "latlong"
 }
 def DomeLight "Lost"
 {
     color3f inputs:color = (0.5, 0.5, 0.5)
-    asset inputs:texture:file = @)" + dir.file("lost.hdr") + R"(@
+    asset inputs:texture:file = @)" +
+                      dir.file("lost.hdr") + R"(@
 }
 def DomeLight "Ball"
 {
-    asset inputs:texture:file = @)" + dir.file("sky.exr") + R"(@
+    asset inputs:texture:file = @)" +
+                      dir.file("sky.exr") + R"(@
     token inputs:texture:format = "mirroredBall"
 }
 def DomeLight "Square"
 {
-    asset texture:file = @)" + dir.file("square.exr") + R"(@
+    asset texture:file = @)" +
+                      dir.file("square.exr") + R"(@
 }
 def RectLight "Panel"
 {
-    asset inputs:texture:file = @)" + dir.file("sky.exr") + R"(@
+    asset inputs:texture:file = @)" +
+                      dir.file("sky.exr") + R"(@
 }
 )");
     const auto& sky1 = light(p, "/Sky");
@@ -244,7 +251,8 @@ def DomeLight "Classic"
     EXPECT_EQ(light(zUp, "/Scene").transform, Matrix4::rotateX(90.0)) << "poleAxis scene follows the stage's upAxis";
     EXPECT_EQ(light(zUp, "/Classic").transform, Matrix4::identity()) << "DomeLight keeps its pole on +Y";
     // Turned +90 degrees about X, the dome's top (+Y) is +Z and its longitude 0 (+Z) is -Y.
-    Vec3d top = light(yUp, "/Z").transform.transformVector({0, 1, 0}), front = light(yUp, "/Z").transform.transformVector({0, 0, 1});
+    Vec3d top = light(yUp, "/Z").transform.transformVector({0, 1, 0}),
+          front = light(yUp, "/Z").transform.transformVector({0, 0, 1});
     EXPECT_NEAR(top.z, 1.0, 1e-12);
     EXPECT_NEAR(front.y, -1.0, 1e-12);
 }

@@ -26,10 +26,12 @@ def Mesh "Good"
 )";
 
 // A mesh /Bad of two quads with `scheme` and `lines` added.
-std::string badMesh(const std::string& scheme, const std::string& counts, const std::string& indices, const std::string& lines = "") {
-    return "def Mesh \"Bad\"\n{\n    uniform token subdivisionScheme = \"" + scheme + "\"\n    int[] faceVertexCounts = " + counts +
-           "\n    int[] faceVertexIndices = " + indices +
-           "\n    point3f[] points = [(0, 0, 1), (1, 0, 1), (1, 1, 1), (0, 1, 1), (2, 0, 1), (2, 1, 1)]\n" + lines + "}\n";
+std::string badMesh(const std::string& scheme, const std::string& counts, const std::string& indices,
+                    const std::string& lines = "") {
+    return "def Mesh \"Bad\"\n{\n    uniform token subdivisionScheme = \"" + scheme +
+           "\"\n    int[] faceVertexCounts = " + counts + "\n    int[] faceVertexIndices = " + indices +
+           "\n    point3f[] points = [(0, 0, 1), (1, 0, 1), (1, 1, 1), (0, 1, 1), (2, 0, 1), (2, 1, 1)]\n" + lines +
+           "}\n";
 }
 
 const std::string kTwoQuads = "[0, 1, 2, 3, 1, 4, 5, 2]";
@@ -44,15 +46,18 @@ std::vector<MalformedCase> malformedCases() {
     return {
         {"face counts that do not match the indices", badMesh("none", "[4, 4]", "[0, 1, 2, 3, 1, 4]"),
          "faceVertexCounts add up to 8 but faceVertexIndices has 6 entries"},
-        {"an index past the points", badMesh("none", "[4, 4]", "[0, 1, 2, 3, 1, 4, 9, 2]"), "faceVertexIndices[6] = 9 is out of range (6 points)"},
+        {"an index past the points", badMesh("none", "[4, 4]", "[0, 1, 2, 3, 1, 4, 9, 2]"),
+         "faceVertexIndices[6] = 9 is out of range (6 points)"},
         {"a GeomSubset index out of range",
          badMesh("none", "[4, 4]", kTwoQuads,
                  "    def GeomSubset \"Far\"\n    {\n        uniform token elementType = \"face\"\n"
                  "        uniform token familyName = \"materialBind\"\n        int[] indices = [1, 5]\n    }\n"),
          "/Bad/Far: indices[1] = 5 is not a face of /Bad (2 faces)"},
-        {"a loop-scheme mesh with quads", badMesh("loop", "[4, 4]", kTwoQuads), "the loop scheme needs triangles, but face 0 has 4 points"},
+        {"a loop-scheme mesh with quads", badMesh("loop", "[4, 4]", kTwoQuads),
+         "the loop scheme needs triangles, but face 0 has 4 points"},
         {"a primvar of the wrong size",
-         badMesh("none", "[4, 4]", kTwoQuads, "    color3f[] primvars:displayColor = [(1, 0, 0), (0, 1, 0)] (interpolation = \"vertex\")\n"),
+         badMesh("none", "[4, 4]", kTwoQuads,
+                 "    color3f[] primvars:displayColor = [(1, 0, 0), (0, 1, 0)] (interpolation = \"vertex\")\n"),
          "'primvars:displayColor' has 2 values but vertex interpolation needs 6"},
     };
 }
@@ -83,17 +88,20 @@ TEST(MalformedPrims, AreSceneErrorsInStrictMode) {
 
 // A well-formed mesh /Rig/Mesh under an Xform whose ops are `ops`.
 std::string rig(const std::string& ops) {
-    return "def Xform \"Rig\"\n{\n" + ops + "    uniform token[] xformOpOrder = [\"xformOp:translate\", \"xformOp:scale\"]\n" +
+    return "def Xform \"Rig\"\n{\n" + ops +
+           "    uniform token[] xformOpOrder = [\"xformOp:translate\", \"xformOp:scale\"]\n" +
            badMesh("none", "[4, 4]", kTwoQuads) + "}\n";
 }
 
 TEST(MalformedPrims, ABadXformOpSkipsThePrimsBelowIt) {
-    testing::Populated p = populate(kGoodQuad + rig("    double xformOp:translate = 5\n    float3 xformOp:scale = (2, 2, 2)\n"));
+    testing::Populated p =
+        populate(kGoodQuad + rig("    double xformOp:translate = 5\n    float3 xformOp:scale = (2, 2, 2)\n"));
     ASSERT_EQ(p.result.scene.meshes.size(), 1u);
     EXPECT_EQ(p.result.scene.meshes[0].name, "/Good");
     ASSERT_EQ(p.warnings.size(), 1u);
     EXPECT_NE(p.warnings[0].find("/Rig/Bad: not rendered: "), std::string::npos) << p.warnings[0];
-    EXPECT_NE(p.warnings[0].find("/Rig: xform op 'xformOp:translate' needs 3 numbers"), std::string::npos) << p.warnings[0];
+    EXPECT_NE(p.warnings[0].find("/Rig: xform op 'xformOp:translate' needs 3 numbers"), std::string::npos)
+        << p.warnings[0];
 }
 
 // As UsdGeomXformable: an op xformOpOrder names without a value is left out, with a warning.
@@ -104,7 +112,8 @@ TEST(MalformedPrims, AnXformOpWithoutAValueIsSkipped) {
     ASSERT_NE(scaled, nullptr);
     EXPECT_EQ(scaled->positions.at(5), Vec3f(4, 2, 2)) << "scaled, not translated";
     ASSERT_EQ(p.warnings.size(), 1u);
-    EXPECT_EQ(p.warnings[0], "/Rig: xformOpOrder names 'xformOp:translate', which has no value; the op is skipped, as USD skips it");
+    EXPECT_EQ(p.warnings[0],
+              "/Rig: xformOpOrder names 'xformOp:translate', which has no value; the op is skipped, as USD skips it");
 }
 
 TEST(MalformedPrims, AFailedPrimIsTriedAgainAfterAnEditAndWarnsOnce) {
@@ -112,7 +121,9 @@ TEST(MalformedPrims, AFailedPrimIsTriedAgainAfterAnEditAndWarnsOnce) {
     std::vector<std::string> warnings;
     DelegateOptions options;
     options.convertColor = [](const RGB& c, const std::string&) { return c; };
-    options.warn = [&](const std::string& path, const std::string& message) { warnings.push_back(path + ": " + message); };
+    options.warn = [&](const std::string& path, const std::string& message) {
+        warnings.push_back(path + ": " + message);
+    };
     SceneDelegate delegate(*stage, options);
     delegate.sync();
     EXPECT_TRUE(delegate.renderIndex().find("/Bad")->failed());
@@ -145,14 +156,17 @@ TEST(MalformedPrims, AMalformedCameraIsSkippedUnlessItIsTheOneAskedFor) {
 // UsdGeomImageable reads a visibility or purpose that is not a token as not authored
 // (UsdAttribute::Get<TfToken> fails): the prim renders, with a warning; under strict, an error.
 TEST(MalformedPrims, AVisibilityOrPurposeThatIsNotATokenIsReadAsNotAuthored) {
-    for (const std::string& attribute : {std::string("int visibility = 3"), std::string("string visibility = \"invisible\""),
-                                         std::string("string purpose = \"guide\"")}) {
+    for (const std::string& attribute :
+         {std::string("int visibility = 3"), std::string("string visibility = \"invisible\""),
+          std::string("string purpose = \"guide\"")}) {
         SCOPED_TRACE(attribute);
-        const std::string scene = kGoodQuad + "def Xform \"Rig\"\n{\n    " + attribute + "\n" + badMesh("none", "[4, 4]", kTwoQuads) + "}\n";
+        const std::string scene =
+            kGoodQuad + "def Xform \"Rig\"\n{\n    " + attribute + "\n" + badMesh("none", "[4, 4]", kTwoQuads) + "}\n";
         testing::Populated p = populate(scene);
         EXPECT_NE(p.mesh("/Rig/Bad"), nullptr) << "rendered, the value read as not authored";
         ASSERT_EQ(p.warnings.size(), 1u);
-        EXPECT_EQ(p.warnings[0].rfind("/Rig: read as not authored, as USD reads it: test.usda:", 0), 0u) << p.warnings[0];
+        EXPECT_EQ(p.warnings[0].rfind("/Rig: read as not authored, as USD reads it: test.usda:", 0), 0u)
+            << p.warnings[0];
         EXPECT_NE(p.warnings[0].find("must be a token, got"), std::string::npos) << p.warnings[0];
         EXPECT_THROW(populateStrict(scene), SceneError);
     }
@@ -169,7 +183,8 @@ def PointInstancer "Instancer"
     point3f[] positions = [(0, 0, 0), (5, 0, 0)]
     def Xform "Protos"
     {
-)" + kGoodQuad + badLines + R"(
+)" + kGoodQuad +
+           badLines + R"(
     }
 }
 )";
@@ -193,7 +208,8 @@ TEST(MalformedPrims, InAPrototypeOnlyTheMalformedPrimIsLeftOut) {
 }
 
 TEST(MalformedPrims, InANativeInstanceOnlyTheMalformedMeshIsLeftOut) {
-    const std::string scene = "def Xform \"Asset\"\n{\n" + kGoodQuad + badMesh("none", "[4, 4]", "[0, 1, 2, 3, 1, 4]") + "}\n" +
+    const std::string scene = "def Xform \"Asset\"\n{\n" + kGoodQuad + badMesh("none", "[4, 4]", "[0, 1, 2, 3, 1, 4]") +
+                              "}\n" +
                               "def \"A\" (instanceable = true\n references = </Asset>)\n{\n}\n"
                               "def \"B\" (instanceable = true\n references = </Asset>)\n{\n}\n";
     testing::Populated p = populate(scene);

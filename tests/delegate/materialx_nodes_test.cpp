@@ -29,14 +29,16 @@ const render::MaterialDesc& onlyMaterial(const testing::Populated& p) {
 }
 
 bool hasBinding(const render::MaterialDesc& m, render::MaterialInput input) {
-    return std::any_of(m.bindings.begin(), m.bindings.end(), [&](const render::InputBinding& b) { return b.input == input; });
+    return std::any_of(m.bindings.begin(), m.bindings.end(),
+                       [&](const render::InputBinding& b) { return b.input == input; });
 }
 
 class MaterialXNodes : public ::testing::Test {
 protected:
     void SetUp() override {
         // Colour: top-left red, top-right green, bottom-left blue, bottom-right white.
-        test::writeImage<float>(dir.file("colour.exr"), 2, 2, 3, OIIO::TypeDesc::FLOAT, {1, 0, 0, 0, 1, 0, 0, 0, 1, 1, 1, 1});
+        test::writeImage<float>(dir.file("colour.exr"), 2, 2, 3, OIIO::TypeDesc::FLOAT,
+                                {1, 0, 0, 0, 1, 0, 0, 0, 1, 1, 1, 1});
         // Mask: top-left 0.25, top-right 0.5, bottom-left 0.75, bottom-right 1.
         test::writeImage<float>(dir.file("mask.exr"), 2, 2, 1, OIIO::TypeDesc::FLOAT, {0.25f, 0.5f, 0.75f, 1.0f});
     }
@@ -51,10 +53,12 @@ def Mesh "Quad"
     int[] faceVertexIndices = [0, 1, 2, 3]
     point3f[] points = [(0, 0, 0), (1, 0, 0), (1, 1, 0), (0, 1, 0)]
     texCoord2f[] primvars:st = [(0, 0), (1, 0), (1, 1), (0, 1)] (interpolation = "vertex")
-    rel material:binding = </Looks/)" + name + R"(>
+    rel material:binding = </Looks/)" +
+                                 name + R"(>
 }
 def Scope "Looks" (
-    references = @)" + dir.file("look.mtlx") + R"(@</MaterialX/Materials>
+    references = @)" + dir.file("look.mtlx") +
+                                 R"(@</MaterialX/Materials>
 )
 {
 }
@@ -196,7 +200,11 @@ TEST_F(MaterialXNodes, ConstantTimesTextureFoldsIntoTheTexture) {
 }
 
 TEST_F(MaterialXNodes, UsdShadeNodesInUsdaEvaluateTheSame) {
-    std::ofstream(dir.file("scene.usda")) << "#usda 1.0\n" << testing::kCamera << testing::quadBoundTo(R"(
+    std::ofstream(dir.file("scene.usda"))
+        << "#usda 1.0\n"
+        << testing::kCamera
+        << testing::quadBoundTo(
+               R"(
         token outputs:mtlx:surface.connect = </Looks/M/S.outputs:out>
         def Shader "S"
         {
@@ -232,7 +240,8 @@ TEST_F(MaterialXNodes, UsdShadeNodesInUsdaEvaluateTheSame) {
             float inputs:mix.connect = </Looks/M/Mask.outputs:out>
             color3f outputs:out
         }
-)", R"(    texCoord2f[] primvars:st = [(0, 0), (1, 0), (1, 1), (0, 1)] (interpolation = "vertex")
+)",
+               R"(    texCoord2f[] primvars:st = [(0, 0), (1, 0), (1, 1), (0, 1)] (interpolation = "vertex")
 )");
     std::unique_ptr<usd::Stage> stage = usd::Stage::open(dir.file("scene.usda"));
     DelegateOptions options;

@@ -29,7 +29,9 @@ Loaded load(const std::string& path) {
     l.stage = usd::Stage::open(path);
     DelegateOptions options;
     options.convertColor = [](const RGB& c, const std::string&) { return c; };
-    options.warn = [&l](const std::string& where, const std::string& message) { l.warnings.push_back(where + ": " + message); };
+    options.warn = [&l](const std::string& where, const std::string& message) {
+        l.warnings.push_back(where + ": " + message);
+    };
     l.result = populateScene(*l.stage, options);
     return l;
 }
@@ -41,7 +43,8 @@ const render::MaterialDesc* material(const Loaded& l, const std::string& name) {
 }
 
 const render::InputBinding* binding(const render::MaterialDesc& m, render::MaterialInput input) {
-    auto it = std::find_if(m.bindings.begin(), m.bindings.end(), [&](const render::InputBinding& b) { return b.input == input; });
+    auto it = std::find_if(m.bindings.begin(), m.bindings.end(),
+                           [&](const render::InputBinding& b) { return b.input == input; });
     return it == m.bindings.end() ? nullptr : &*it;
 }
 
@@ -145,7 +148,8 @@ def Camera "Cam"
 }
 
 TEST(MaterialXChessSet, TheBishopsLooksReachStandardSurfaceWithTheirTextures) {
-    const fs::path bishop = test::sharedPath("usd_corpus/usd-wg-assets/full_assets/OpenChessSet/assets/Bishop/Bishop.usd");
+    const fs::path bishop =
+        test::sharedPath("usd_corpus/usd-wg-assets/full_assets/OpenChessSet/assets/Bishop/Bishop.usd");
     FLUENCE_REQUIRE_SHARED(bishop);
     const Loaded l = load(bishop.string());
     const render::MaterialDesc* m = material(l, "/Bishop/Materials/M_Bishop_B");
@@ -156,7 +160,8 @@ TEST(MaterialXChessSet, TheBishopsLooksReachStandardSurfaceWithTheirTextures) {
     EXPECT_EQ(fs::path(base->texture->file).filename(), "bishop_black_base_color.jpg");
     EXPECT_TRUE(fs::exists(base->texture->file)) << base->texture->file;
     EXPECT_EQ(base->texture->colorSpace, texture::SourceColorSpace::SRGB);
-    for (render::MaterialInput input : {render::MaterialInput::Metallic, render::MaterialInput::Roughness, render::MaterialInput::Normal}) {
+    for (render::MaterialInput input :
+         {render::MaterialInput::Metallic, render::MaterialInput::Roughness, render::MaterialInput::Normal}) {
         const render::InputBinding* b = binding(*m, input);
         ASSERT_NE(b, nullptr) << int(input);
         EXPECT_EQ(b->texture->colorSpace, texture::SourceColorSpace::Raw) << int(input);

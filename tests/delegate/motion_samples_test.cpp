@@ -12,8 +12,8 @@ namespace {
 
 // The camera's shutter opens a quarter frame before the frame and closes a quarter after.
 std::string cameraWithShutter(double open, double close) {
-    return "def Camera \"Cam\"\n{\n    double shutter:open = " + std::to_string(open) + "\n    double shutter:close = " +
-           std::to_string(close) + "\n}\n";
+    return "def Camera \"Cam\"\n{\n    double shutter:open = " + std::to_string(open) +
+           "\n    double shutter:close = " + std::to_string(close) + "\n}\n";
 }
 
 const std::string kQuadBody = R"(
@@ -151,9 +151,11 @@ def Scope "Render"
     }
 }
 )";
-    EXPECT_TRUE(quad(describeAt(settings + cameraWithShutter(-0.25, 0.25) + kTransformed, 1.0)).motionPositions.empty());
+    EXPECT_TRUE(
+        quad(describeAt(settings + cameraWithShutter(-0.25, 0.25) + kTransformed, 1.0)).motionPositions.empty());
     // Without a frame there is nothing for the shutter to open around.
-    EXPECT_TRUE(quad(describeAt(cameraWithShutter(-0.25, 0.25) + kTransformed, usd::kDefaultTime)).motionPositions.empty());
+    EXPECT_TRUE(
+        quad(describeAt(cameraWithShutter(-0.25, 0.25) + kTransformed, usd::kDefaultTime)).motionPositions.empty());
 }
 
 TEST(MotionSamples, PointInstancerVelocitiesAndAngularVelocitiesMoveTheInstances) {

@@ -34,7 +34,8 @@ std::string bilinearPatch(const std::string& name, const std::string& uKnots) {
     int vVertexCount = 2
     int uOrder = 2
     int vOrder = 2
-    double[] uKnots = )" + uKnots + R"(
+    double[] uKnots = )" +
+           uKnots + R"(
     double[] vKnots = [0, 0, 1, 1]
     point3f[] points = [(0, 0, 0), (2, 0, 0), (0, 3, 0), (2, 3, 0)]
 }
@@ -68,10 +69,12 @@ TEST(NurbsPatchPrim, RationalQuadraticDrawsAnExactCircle) {
 }
 
 TEST(NurbsPatchPrim, LeftHandedFlipsAndTrimCurvesWarn) {
-    auto p = populate(kQuarterCylinder + "    uniform token orientation = \"leftHanded\"\n    int[] trimCurve:counts = [1]\n}\n");
+    auto p = populate(kQuarterCylinder +
+                      "    uniform token orientation = \"leftHanded\"\n    int[] trimCurve:counts = [1]\n}\n");
     ASSERT_EQ(p.result.scene.meshes.size(), 1u);
     const render::MeshDesc& m = p.result.scene.meshes[0];
-    EXPECT_LT(m.cornerNormals[0].x * m.positions[m.indices[0]].x + m.cornerNormals[0].y * m.positions[m.indices[0]].y, 0.0);
+    EXPECT_LT(m.cornerNormals[0].x * m.positions[m.indices[0]].x + m.cornerNormals[0].y * m.positions[m.indices[0]].y,
+              0.0);
     const Vec3f& a = m.positions[m.indices[0]];
     EXPECT_LT(testing::triangleCross(m, 0).x * a.x + testing::triangleCross(m, 0).y * a.y, 0.0) << "wound inwards too";
     ASSERT_EQ(p.warnings.size(), 1u);

@@ -27,8 +27,10 @@ TEST(PlanePrim, SpansWidthAndLengthAlongTheAxesUsdGeomNames) {
     };
     for (const Case& c : {Case{"X", 0, 2, 1}, Case{"Y", 1, 0, 2}, Case{"Z", 2, 0, 1}}) {
         SCOPED_TRACE(c.axis);
-        auto p = populate(std::string("def Plane \"P\"\n{\n    double width = 3\n    double length = 0.5\n    uniform token axis = \"") +
-                          c.axis + "\"\n}\n");
+        auto p = populate(
+            std::string(
+                "def Plane \"P\"\n{\n    double width = 3\n    double length = 0.5\n    uniform token axis = \"") +
+            c.axis + "\"\n}\n");
         const render::MeshDesc& m = onlyMesh(p);
         ASSERT_EQ(m.indices.size(), 6u);
         EXPECT_NEAR(testing::surfaceArea(m), 1.5, 1e-6);
@@ -48,8 +50,9 @@ TEST(PlanePrim, SpansWidthAndLengthAlongTheAxesUsdGeomNames) {
 }
 
 TEST(Cylinder1Prim, IsTheFrustumOfItsTwoRadii) {
-    auto p = populate("def Cylinder_1 \"P\"\n{\n    double radiusTop = 0.5\n    double radiusBottom = 1.5\n    double height = 3\n"
-                      "    uniform token axis = \"Y\"\n}\n");
+    auto p = populate(
+        "def Cylinder_1 \"P\"\n{\n    double radiusTop = 0.5\n    double radiusBottom = 1.5\n    double height = 3\n"
+        "    uniform token axis = \"Y\"\n}\n");
     const render::MeshDesc& m = onlyMesh(p);
     const double rt = 0.5, rb = 1.5, h = 3.0;
     const double area = kPi * (rt * rt + rb * rb) + kPi * (rt + rb) * std::hypot(h, rb - rt);
@@ -65,7 +68,8 @@ TEST(Cylinder1Prim, IsTheFrustumOfItsTwoRadii) {
 
 TEST(Capsule1Prim, CapsMeetTheirTangentCone) {
     const double rt = 0.5, rb = 1.0, h = 2.0;
-    auto p = populate("def Capsule_1 \"P\"\n{\n    double radiusTop = 0.5\n    double radiusBottom = 1\n    double height = 2\n}\n");
+    auto p = populate(
+        "def Capsule_1 \"P\"\n{\n    double radiusTop = 0.5\n    double radiusBottom = 1\n    double height = 2\n}\n");
     const render::MeshDesc& m = onlyMesh(p);
     // The cone tangent to both spheres: its normal's axial component s = (rt - rb) / h.
     const double s = (rt - rb) / h, c = std::sqrt(1.0 - s * s);
@@ -76,7 +80,8 @@ TEST(Capsule1Prim, CapsMeetTheirTangentCone) {
     // Every vertex is on one of the spheres or on the cone between the tangent circles.
     for (const Vec3f& v : m.positions) {
         const double rho = std::hypot(double(v.x), double(v.y)), w = v.z;
-        const double onTop = std::abs(std::hypot(rho, w - 0.5 * h) - rt), onBottom = std::abs(std::hypot(rho, w + 0.5 * h) - rb);
+        const double onTop = std::abs(std::hypot(rho, w - 0.5 * h) - rt),
+                     onBottom = std::abs(std::hypot(rho, w + 0.5 * h) - rb);
         const double onCone = std::abs((rho - r1) * s - (w - w1) * c);  // distance to the cone's line, as (rho, w)
         EXPECT_LT(std::min({onTop, onBottom, onCone}), 1e-5) << v.x << " " << v.y << " " << v.z;
     }

@@ -44,8 +44,8 @@ def Xform "Parent"
 )");
     ASSERT_EQ(p.result.scene.meshes.size(), 1u);
     const auto& pts = p.result.scene.meshes[0].positions;
-    expectNear(pts[0], Vec3f(10, 7, 0));   // (1,0,0) -> scale (2,0,0) -> rotZ (0,2,0) -> +(10,5,0)
-    expectNear(pts[1], Vec3f(8, 5, 0));    // (0,1,0) -> (0,2,0) -> (-2,0,0) -> (8,5,0)
+    expectNear(pts[0], Vec3f(10, 7, 0));  // (1,0,0) -> scale (2,0,0) -> rotZ (0,2,0) -> +(10,5,0)
+    expectNear(pts[1], Vec3f(8, 5, 0));   // (0,1,0) -> (0,2,0) -> (-2,0,0) -> (8,5,0)
     expectNear(pts[2], Vec3f(10, 5, 2));
 }
 
@@ -276,7 +276,8 @@ over "NotDefined"
 )");
     EXPECT_TRUE(p.result.scene.meshes.empty());
     ASSERT_EQ(p.warnings.size(), 1u);
-    EXPECT_NE(p.warnings[0].find("'TetMesh' is not supported yet; skipped 2 prims"), std::string::npos) << p.warnings[0];
+    EXPECT_NE(p.warnings[0].find("'TetMesh' is not supported yet; skipped 2 prims"), std::string::npos)
+        << p.warnings[0];
 }
 
 TEST(SceneDelegate, AuthoredColoursGoThroughTheColourConverterWithTheirColourSpace) {
@@ -491,7 +492,8 @@ def Xform "X"
     const usd::PrimSpec* x = p.stage->prim("/X");
     const auto noWarning = [](const std::string& message) { ADD_FAILURE() << message; };
     EXPECT_NEAR(localTransform(PrimReader(*x, usd::kDefaultTime), noWarning).matrix.m[2][3], 3.0, 1e-12);
-    EXPECT_NEAR(localTransform(PrimReader(*x, 5.0), noWarning).matrix.m[2][3], 9.0, 1e-12) << "a frame still reads its own time";
+    EXPECT_NEAR(localTransform(PrimReader(*x, 5.0), noWarning).matrix.m[2][3], 9.0, 1e-12)
+        << "a frame still reads its own time";
 }
 
 }  // namespace

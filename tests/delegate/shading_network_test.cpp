@@ -15,7 +15,8 @@ using testing::populate;
 // The quad of testing::quadBoundTo with a faceVarying st (and a primvar nothing reads) bound to
 // /Looks/M, whose network is `material`; `mesh` adds to the mesh.
 std::string quadWith(const std::string& material, const std::string& mesh = "") {
-    return testing::quadBoundTo(material, R"(    texCoord2f[] primvars:st = [(0, 0), (1, 0), (1, 1), (0, 1)] (interpolation = "faceVarying")
+    return testing::quadBoundTo(
+        material, R"(    texCoord2f[] primvars:st = [(0, 0), (1, 0), (1, 1), (0, 1)] (interpolation = "faceVarying")
     float[] primvars:unused = [1, 2, 3, 4] (interpolation = "vertex")
 )" + mesh);
 }
@@ -82,7 +83,8 @@ const std::string kTexturedPreview = R"(
 )";
 
 const render::InputBinding* bindingFor(const render::MaterialDesc& m, render::MaterialInput input) {
-    auto it = std::find_if(m.bindings.begin(), m.bindings.end(), [&](const render::InputBinding& b) { return b.input == input; });
+    auto it = std::find_if(m.bindings.begin(), m.bindings.end(),
+                           [&](const render::InputBinding& b) { return b.input == input; });
     return it == m.bindings.end() ? nullptr : &*it;
 }
 
@@ -124,9 +126,9 @@ TEST(ShadingNetwork, UsdUVTextureWithReaderAndTransform) {
 
     // Every missing file is named.
     for (const char* file : {"albedo.<UDIM>.png", "arm.png", "normal.png"})
-        EXPECT_TRUE(std::any_of(p.warnings.begin(), p.warnings.end(),
-                                [&](const std::string& w) { return w.find(file) != std::string::npos && w.find("not found") != std::string::npos; }))
-            << file;
+        EXPECT_TRUE(std::any_of(p.warnings.begin(), p.warnings.end(), [&](const std::string& w) {
+            return w.find(file) != std::string::npos && w.find("not found") != std::string::npos;
+        })) << file;
 }
 
 TEST(ShadingNetwork, MeshesCarryTheCornerPrimvarsTheirMaterialReads) {
@@ -176,7 +178,8 @@ TEST(ShadingNetwork, PrimvarReadersFeedInputsDirectly) {
             float3 inputs:fallback = (0.1, 0.2, 0.3)
             float3 outputs:result
         }
-)", R"(    color3f[] primvars:displayColor = [(1, 0, 0)] (interpolation = "constant"))"));
+)",
+                               R"(    color3f[] primvars:displayColor = [(1, 0, 0)] (interpolation = "constant"))"));
     const render::MaterialDesc& m = p.result.scene.materials.at(0);
     ASSERT_EQ(m.bindings.size(), 1u);
     EXPECT_EQ(m.bindings[0].primvar, "displayColor");

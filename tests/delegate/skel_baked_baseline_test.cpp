@@ -17,7 +17,9 @@ render::SceneDescription describeAt(const std::string& file, double time, std::v
     DelegateOptions options;
     options.time = time;
     options.convertColor = [](const RGB& c, const std::string&) { return c; };
-    options.warn = [&warnings](const std::string& path, const std::string& message) { warnings.push_back(path + ": " + message); };
+    options.warn = [&warnings](const std::string& path, const std::string& message) {
+        warnings.push_back(path + ": " + message);
+    };
     return populateScene(*stage, options).scene;
 }
 
@@ -27,7 +29,8 @@ void expectBakedPose(const std::string& skinned, const std::string& baked, int f
         std::vector<std::string> warnings;
         const render::SceneDescription ours = describeAt(skinned, frame, warnings);
         const render::SceneDescription theirs = describeAt(baked, frame, warnings);
-        for (const std::string& w : warnings) EXPECT_TRUE(w.starts_with("/: ") || w.find("not supported yet") != std::string::npos) << w;
+        for (const std::string& w : warnings)
+            EXPECT_TRUE(w.starts_with("/: ") || w.find("not supported yet") != std::string::npos) << w;
         std::size_t compared = 0;
         for (const render::MeshDesc& reference : theirs.meshes) {
             const render::MeshDesc* mesh = nullptr;
@@ -43,7 +46,8 @@ void expectBakedPose(const std::string& skinned, const std::string& baked, int f
             ASSERT_EQ(mesh->cornerNormals.size(), reference.cornerNormals.size());
             double worstNormal = 0.0;
             for (std::size_t i = 0; i < mesh->cornerNormals.size(); ++i)
-                worstNormal = std::max(worstNormal, length(Vec3d(mesh->cornerNormals[i]) - Vec3d(reference.cornerNormals[i])));
+                worstNormal =
+                    std::max(worstNormal, length(Vec3d(mesh->cornerNormals[i]) - Vec3d(reference.cornerNormals[i])));
             EXPECT_LT(worstNormal, 1e-4) << "largest difference of a unit normal from the baked one";
         }
         EXPECT_EQ(compared, meshes) << "frame " << frame;

@@ -57,7 +57,8 @@ std::string armScene(const std::string& meshLines = "", const std::string& skele
         }
     std::string rotations;
     for (int f = 0; f < 2; ++f)
-        rotations += std::to_string(f + 1) + ": [" + quat(kFrames[f].elbowDegrees) + ", " + quat(kFrames[f].rootDegrees) + "], ";
+        rotations +=
+            std::to_string(f + 1) + ": [" + quat(kFrames[f].elbowDegrees) + ", " + quat(kFrames[f].rootDegrees) + "], ";
     return R"(
 def SkelRoot "Char"
 {
@@ -72,13 +73,16 @@ def SkelRoot "Char"
         uniform matrix4d[] bindTransforms = [((1,0,0,0),(0,1,0,0),(0,0,1,0),(0,0,0,1)), ((1,0,0,0),(0,1,0,0),(0,0,1,0),(2,0,0,1))]
         uniform matrix4d[] restTransforms = [((1,0,0,0),(0,1,0,0),(0,0,1,0),(0,0,0,1)), ((1,0,0,0),(0,1,0,0),(0,0,1,0),(2,0,0,1))]
         rel skel:animationSource = </Char/Skel/Anim>
-)" + skeletonLines + R"(
+)" + skeletonLines +
+           R"(
         def SkelAnimation "Anim"
         {
             uniform token[] joints = ["Root/Elbow", "Root"]
-            float3[] translations.timeSamples = {1: [(2, 0, 0), (0, 0, )" + std::to_string(kFrames[0].rootLift) + R"()], 2: [(2, 0, 0), (0, 0, )" +
-           std::to_string(kFrames[1].rootLift) + R"()]}
-            quatf[] rotations.timeSamples = {)" + rotations + R"(}
+            float3[] translations.timeSamples = {1: [(2, 0, 0), (0, 0, )" +
+           std::to_string(kFrames[0].rootLift) + R"()], 2: [(2, 0, 0), (0, 0, )" + std::to_string(kFrames[1].rootLift) +
+           R"()]}
+            quatf[] rotations.timeSamples = {)" +
+           rotations + R"(}
             half3[] scales = [(1, 1, 1), (1, 1, 1)]
         }
     }
@@ -89,11 +93,15 @@ def SkelRoot "Char"
         uniform token subdivisionScheme = "none"
         int[] faceVertexCounts = [4, 4, 4, 4]
         int[] faceVertexIndices = [0, 1, 6, 5, 1, 2, 7, 6, 2, 3, 8, 7, 3, 4, 9, 8]
-        point3f[] points = [)" + points + R"(]
-        int[] primvars:skel:jointIndices = [)" + indices + R"(] (interpolation = "vertex"; elementSize = 2)
-        float[] primvars:skel:jointWeights = [)" + weights + R"(] (interpolation = "vertex"; elementSize = 2)
+        point3f[] points = [)" +
+           points + R"(]
+        int[] primvars:skel:jointIndices = [)" +
+           indices + R"(] (interpolation = "vertex"; elementSize = 2)
+        float[] primvars:skel:jointWeights = [)" +
+           weights + R"(] (interpolation = "vertex"; elementSize = 2)
         matrix4d primvars:skel:geomBindTransform = ((1,0,0,0),(0,1,0,0),(0,0,1,0),(1,0,0,1))
-)" + meshLines + R"(
+)" + meshLines +
+           R"(
     }
 }
 )";
@@ -110,7 +118,8 @@ std::vector<Vec3d> posedArm(const ArmFrame& frame) {
     for (int row = 0; row < 2; ++row)
         for (int i = 0; i < 5; ++i) {
             const Vec3d bound{static_cast<double>(i), row ? 0.5 : -0.5, 0.0};  // geomBindTransform: +1 along x
-            const Vec3d skel = skinning[0].transformPoint(bound) * kRootWeight[i] + skinning[1].transformPoint(bound) * (1.0 - kRootWeight[i]);
+            const Vec3d skel = skinning[0].transformPoint(bound) * kRootWeight[i] +
+                               skinning[1].transformPoint(bound) * (1.0 - kRootWeight[i]);
             out.push_back(skeletonToWorld.transformPoint(skel));
         }
     return out;
@@ -120,8 +129,9 @@ void expectPoints(const render::MeshDesc& mesh, const std::vector<Vec3d>& expect
     ASSERT_EQ(mesh.positions.size(), expected.size());
     for (std::size_t i = 0; i < expected.size(); ++i)
         EXPECT_LT(length(Vec3d(mesh.positions[i]) - expected[i]), tolerance)
-            << "point " << i << " at (" << mesh.positions[i].x << ", " << mesh.positions[i].y << ", " << mesh.positions[i].z << "), expected ("
-            << expected[i].x << ", " << expected[i].y << ", " << expected[i].z << ")";
+            << "point " << i << " at (" << mesh.positions[i].x << ", " << mesh.positions[i].y << ", "
+            << mesh.positions[i].z << "), expected (" << expected[i].x << ", " << expected[i].y << ", " << expected[i].z
+            << ")";
 }
 
 // The delegate over `usda` at frame 1, then moved to frame 2 (as `fluence render -f 1 -n 2` does).
@@ -136,7 +146,9 @@ TwoFrames describeFrames(const std::string& usda) {
     DelegateOptions options;
     options.time = 1.0;
     options.convertColor = [](const RGB& c, const std::string&) { return c; };
-    options.warn = [&out](const std::string& path, const std::string& message) { out.warnings.push_back(path + ": " + message); };
+    options.warn = [&out](const std::string& path, const std::string& message) {
+        out.warnings.push_back(path + ": " + message);
+    };
     SceneDelegate delegate(*stage, options);
     delegate.sync();
     out.first = delegate.sceneDescription();
@@ -193,7 +205,8 @@ def SkelRoot "R"
         normal3f[] normals = [(1, 0, 0), (1, 0, 0), (1, 0, 0)] (interpolation = "vertex")
         int[] primvars:skel:jointIndices = [0, 1] (interpolation = "constant"; elementSize = 2)
         float[] primvars:skel:jointWeights = [0.5, 0.5] (interpolation = "constant"; elementSize = 2)
-        uniform token primvars:skel:skinningMethod = ")" + method + R"("
+        uniform token primvars:skel:skinningMethod = ")" +
+           method + R"("
         rel skel:skeleton = </R/Skel>
     }
 }
@@ -235,7 +248,8 @@ def SkelRoot "R"
         def SkelAnimation "Anim"
         {
             uniform token[] blendShapes = ["other", "lift"]
-            float[] blendShapeWeights.timeSamples = {)" + weights + R"(}
+            float[] blendShapeWeights.timeSamples = {)" +
+           weights + R"(}
         }
     }
     def Mesh "M" (prepend apiSchemas = ["SkelBindingAPI"])
@@ -251,7 +265,8 @@ def SkelRoot "R"
         {
             uniform vector3f[] offsets = [(0, 0, 1)]
             uniform int[] pointIndices = [2]
-            uniform vector3f[] inbetweens:half = [)" + inbetween + R"(
+            uniform vector3f[] inbetweens:half = [)" +
+           inbetween + R"(
         }
     }
 }
@@ -261,7 +276,8 @@ def SkelRoot "R"
 TEST(Skel, BlendShapeWithAnInBetweenAtWeightsZeroHalfAndOne) {
     // weight -> lift of point 2: the in-between exactly at its weight, the shapes at 0 and 1
     // exactly there, linear interpolation between them and beyond (unbounded).
-    for (auto [weight, lift] : {std::pair{0.0, 0.0}, {0.5, 0.8}, {1.0, 1.0}, {0.25, 0.4}, {0.75, 0.9}, {1.5, 1.2}, {-0.25, -0.4}}) {
+    for (auto [weight, lift] :
+         {std::pair{0.0, 0.0}, {0.5, 0.8}, {1.0, 1.0}, {0.25, 0.4}, {0.75, 0.9}, {1.5, 1.2}, {-0.25, -0.4}}) {
         Populated p = populate(blendShapeScene("1: [0.7, " + std::to_string(weight) + "], 2: [0, 0]"));
         for (const std::string& w : primWarnings(p.warnings)) ADD_FAILURE() << w;
         ASSERT_TRUE(p.mesh("/R/M"));
@@ -293,7 +309,8 @@ void expectRestPoseWithOneWarning(const std::string& usda, const std::string& re
     ASSERT_TRUE(arm) << "the mesh still renders";
     EXPECT_LT(length(Vec3d(arm->positions[0]) - Vec3d{-1 + 5, -0.5 + 6, 5}), 1e-6) << "rest pose";
     std::size_t matching = 0;
-    for (const std::string& w : p.warnings) matching += w.starts_with("/Char/Arm: UsdSkel binding not applied") && w.find(reason) != std::string::npos;
+    for (const std::string& w : p.warnings)
+        matching += w.starts_with("/Char/Arm: UsdSkel binding not applied") && w.find(reason) != std::string::npos;
     EXPECT_EQ(matching, 1u) << ::testing::PrintToString(p.warnings);
 }
 
@@ -306,14 +323,17 @@ TEST(Skel, AJointIndexOutOfRangeLeavesTheRestPose) {
 TEST(Skel, WeightsThatDoNotMatchTheIndicesLeaveTheRestPose) {
     std::string usda = armScene();
     usda.replace(usda.find("float[] primvars:skel:jointWeights = [") + 39, 0, "1, ");
-    expectRestPoseWithOneWarning(usda, "primvars:skel:jointIndices has 20 values but primvars:skel:jointWeights has 21");
+    expectRestPoseWithOneWarning(usda,
+                                 "primvars:skel:jointIndices has 20 values but primvars:skel:jointWeights has 21");
 }
 
 TEST(Skel, TooFewInfluencesForThePointsLeaveTheRestPose) {
     std::string usda = armScene();
     usda.replace(usda.find("elementSize = 2)\n        float"), 16, "elementSize = 4)");
     usda.replace(usda.find("elementSize = 2)\n        matrix"), 16, "elementSize = 4)");
-    expectRestPoseWithOneWarning(usda, "the joint influences have 20 values but vertex interpolation with elementSize 4 over 10 points needs 40");
+    expectRestPoseWithOneWarning(
+        usda,
+        "the joint influences have 20 values but vertex interpolation with elementSize 4 over 10 points needs 40");
 }
 
 TEST(Skel, AMissingSkeletonLeavesTheRestPose) {
@@ -338,7 +358,8 @@ TEST(Skel, AnAnimationOfMismatchedArraysFallsBackToTheRestTransforms) {
     EXPECT_LT(length(Vec3d(p.mesh("/Char/Arm")->positions[0]) - Vec3d{0.5, 0.5, 0}), 1e-6);
     const std::vector<std::string> warnings = primWarnings(p.warnings);
     ASSERT_EQ(warnings.size(), 1u) << ::testing::PrintToString(warnings);
-    EXPECT_NE(warnings[0].find("/Char/Skel/Anim animates 2 joints but has 2 translations, 2 rotations and 1 scales"), std::string::npos)
+    EXPECT_NE(warnings[0].find("/Char/Skel/Anim animates 2 joints but has 2 translations, 2 rotations and 1 scales"),
+              std::string::npos)
         << warnings[0];
 }
 

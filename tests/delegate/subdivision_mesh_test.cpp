@@ -51,7 +51,9 @@ Described describe(const std::string& usda, DicingSettings dicing = {}, std::set
     options.dicing = dicing;
     options.aovPrimvars = std::move(aovPrimvars);
     options.convertColor = [](const RGB& c, const std::string&) { return c; };
-    options.warn = [&d](const std::string& path, const std::string& message) { d.warnings.push_back(path + ": " + message); };
+    options.warn = [&d](const std::string& path, const std::string& message) {
+        d.warnings.push_back(path + ": " + message);
+    };
     d.scene = populateScene(*d.stage, options).scene;
     return d;
 }
@@ -157,8 +159,7 @@ def Material "Puffy"
     DicingSettings uniform;
     uniform.uniformLevel = 3;
     float plain = maxRadius(describe(cubeScene(4), uniform).scene.meshes.at(0));
-    Described displaced =
-        describe(cubeScene(4, "    rel material:binding = </Puffy>", material), uniform);
+    Described displaced = describe(cubeScene(4, "    rel material:binding = </Puffy>", material), uniform);
     // Outward along the unit normal by 0.25 everywhere, so the farthest point moves out by 0.25
     // (the corners, where the normal points away from the centre).
     EXPECT_NEAR(maxRadius(displaced.scene.meshes.at(0)), plain + 0.25f, 1e-4f);
@@ -186,7 +187,8 @@ TEST(SubdivisionMesh, DisplayColorIsRefinedWithTheSurface) {
         }
     }
     // Uniform colours: one per face, constant over it.
-    const std::string uniformColors = R"(    color3f[] primvars:displayColor = [(1, 0, 0), (0, 1, 0), (0, 0, 1), (1, 1, 0), (0, 1, 1), (1, 0, 1)] (
+    const std::string uniformColors =
+        R"(    color3f[] primvars:displayColor = [(1, 0, 0), (0, 1, 0), (0, 0, 1), (1, 1, 0), (0, 1, 1), (1, 0, 1)] (
         interpolation = "uniform"
     ))";
     Described perFace = describe(cubeScene(4, uniformColors), uniform);
@@ -209,7 +211,8 @@ TEST(SubdivisionMesh, EditingPointsKeepsTheTopologyAndMovingKeepsEverything) {
     const float radius = maxRadius(delegate.sceneDescription().meshes.at(0));
 
     std::vector<double> bigger;
-    for (double c : {-1, -1, 1, 1, -1, 1, -1, 1, 1, 1, 1, 1, -1, 1, -1, 1, 1, -1, -1, -1, -1, 1, -1, -1}) bigger.push_back(c);
+    for (double c : {-1, -1, 1, 1, -1, 1, -1, 1, 1, 1, 1, 1, -1, 1, -1, 1, 1, -1, -1, -1, -1, 1, -1, -1})
+        bigger.push_back(c);
     delegate.setAttribute("/Cube", "points", usd::Value::numeric("point3f[]", bigger, 3, true));
     delegate.sync();
     EXPECT_EQ(&cube.subdivided().at(0).mesh->surface(), topology) << "points alone do not rebuild the topology";

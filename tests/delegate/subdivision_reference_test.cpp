@@ -83,9 +83,11 @@ std::unique_ptr<Far::TopologyRefiner> farRefiner(const Case& c) {
     desc.numHoles = int(t.holeIndices.size());
     desc.holeIndices = t.holeIndices.data();
     Sdc::Options options;
-    options.SetVtxBoundaryInterpolation(t.interpolateBoundary == "edgeOnly" ? Sdc::Options::VTX_BOUNDARY_EDGE_ONLY
-                                                                             : Sdc::Options::VTX_BOUNDARY_EDGE_AND_CORNER);
-    options.SetTriangleSubdivision(t.triangleSubdivisionRule == "smooth" ? Sdc::Options::TRI_SUB_SMOOTH : Sdc::Options::TRI_SUB_CATMARK);
+    options.SetVtxBoundaryInterpolation(t.interpolateBoundary == "edgeOnly"
+                                            ? Sdc::Options::VTX_BOUNDARY_EDGE_ONLY
+                                            : Sdc::Options::VTX_BOUNDARY_EDGE_AND_CORNER);
+    options.SetTriangleSubdivision(t.triangleSubdivisionRule == "smooth" ? Sdc::Options::TRI_SUB_SMOOTH
+                                                                         : Sdc::Options::TRI_SUB_CATMARK);
     using Factory = Far::TopologyRefinerFactory<Far::TopologyDescriptor>;
     return std::unique_ptr<Far::TopologyRefiner>(Factory::Create(desc, Factory::Options(scheme(t.scheme), options)));
 }
@@ -112,7 +114,8 @@ public:
         ptex_ = std::make_unique<Far::PtexIndices>(*refiner_);
 
         points_.resize(std::size_t(refiner_->GetNumVerticesTotal() + table_->GetNumLocalPoints()));
-        for (std::size_t i = 0; i < c.points.size(); ++i) points_[i].p[0] = c.points[i].x, points_[i].p[1] = c.points[i].y, points_[i].p[2] = c.points[i].z;
+        for (std::size_t i = 0; i < c.points.size(); ++i)
+            points_[i].p[0] = c.points[i].x, points_[i].p[1] = c.points[i].y, points_[i].p[2] = c.points[i].z;
         Far::PrimvarRefinerReal<double> primvars(*refiner_);
         Point* src = points_.data();
         for (int level = 1; level < refiner_->GetNumLevels(); ++level) {
@@ -165,7 +168,8 @@ std::vector<Vec3d> farVertexLimits(const Case& c) {
     uniform.fullTopologyInLastLevel = true;  // limit masks need it
     refiner->RefineUniform(uniform);
     std::vector<Point> points(std::size_t(refiner->GetNumVerticesTotal()));
-    for (std::size_t i = 0; i < c.points.size(); ++i) points[i].p[0] = c.points[i].x, points[i].p[1] = c.points[i].y, points[i].p[2] = c.points[i].z;
+    for (std::size_t i = 0; i < c.points.size(); ++i)
+        points[i].p[0] = c.points[i].x, points[i].p[1] = c.points[i].y, points[i].p[2] = c.points[i].z;
     Far::PrimvarRefinerReal<double> primvars(*refiner);
     Point* src = points.data();
     for (int level = 1; level <= kLevels; ++level) {
@@ -230,7 +234,8 @@ Case mixedPrism() {
     for (int ring = 0; ring < 2; ++ring)
         for (int i = 0; i < 5; ++i) {
             double a = 2.0 * 3.14159265358979 * i / 5.0;
-            c.points.emplace_back(float((1.0 + 0.1 * i) * std::cos(a)), float(std::sin(a)), ring == 0 ? -1.0f : 1.0f + 0.05f * float(i));
+            c.points.emplace_back(float((1.0 + 0.1 * i) * std::cos(a)), float(std::sin(a)),
+                                  ring == 0 ? -1.0f : 1.0f + 0.05f * float(i));
         }
     c.topology.pointCount = 10;
     c.topology.faceVertexCounts = {5, 5};
@@ -254,12 +259,14 @@ Case holedGrid() {
     Case c{"holed grid", {}, {}};
     const int n = 5;
     for (int y = 0; y < n; ++y)
-        for (int x = 0; x < n; ++x) c.points.emplace_back(float(x), float(y), float(0.3 * std::sin(1.3 * x + 0.7 * y * y)));
+        for (int x = 0; x < n; ++x)
+            c.points.emplace_back(float(x), float(y), float(0.3 * std::sin(1.3 * x + 0.7 * y * y)));
     c.topology.pointCount = n * n;
     for (int y = 0; y + 1 < n; ++y)
         for (int x = 0; x + 1 < n; ++x) {
             c.topology.faceVertexCounts.push_back(4);
-            c.topology.faceVertexIndices.insert(c.topology.faceVertexIndices.end(), {y * n + x, y * n + x + 1, (y + 1) * n + x + 1, (y + 1) * n + x});
+            c.topology.faceVertexIndices.insert(c.topology.faceVertexIndices.end(),
+                                                {y * n + x, y * n + x + 1, (y + 1) * n + x + 1, (y + 1) * n + x});
         }
     c.topology.interpolateBoundary = "edgeOnly";
     c.topology.holeIndices = {9};
@@ -270,13 +277,14 @@ Case holedGrid() {
 Case loopIcosahedron() {
     Case c{"loop icosahedron", {}, {}};
     const float g = 1.618034f;
-    c.points = {{-1, g, 0}, {1, g, 0}, {-1, -g, 0}, {1, -g, 0}, {0, -1, g}, {0, 1, g},
-                {0, -1, -g}, {0, 1, -g}, {g, 0, -1}, {g, 0, 1}, {-g, 0, -1}, {-g, 0, 1}};
+    c.points = {{-1, g, 0},  {1, g, 0},  {-1, -g, 0}, {1, -g, 0}, {0, -1, g},  {0, 1, g},
+                {0, -1, -g}, {0, 1, -g}, {g, 0, -1},  {g, 0, 1},  {-g, 0, -1}, {-g, 0, 1}};
     for (std::size_t i = 0; i < c.points.size(); ++i) c.points[i] *= 1.0f + 0.03f * float(i % 4);
     c.topology.scheme = SubdivisionTopology::Scheme::Loop;
     c.topology.pointCount = 12;
-    c.topology.faceVertexIndices = {0, 11, 5, 0, 5, 1, 0, 1, 7, 0, 7, 10, 0, 10, 11, 1, 5, 9, 5, 11, 4, 11, 10, 2, 10, 7, 6, 7, 1, 8,
-                                    3, 9, 4, 3, 4, 2, 3, 2, 6, 3, 6, 8, 3, 8, 9, 4, 9, 5, 2, 4, 11, 6, 2, 10, 8, 6, 7, 9, 8, 1};
+    c.topology.faceVertexIndices = {0, 11, 5,  0, 5,  1, 0, 1, 7, 0, 7,  10, 0, 10, 11, 1, 5, 9, 5, 11,
+                                    4, 11, 10, 2, 10, 7, 6, 7, 1, 8, 3,  9,  4, 3,  4,  2, 3, 2, 6, 3,
+                                    6, 8,  3,  8, 9,  4, 9, 5, 2, 4, 11, 6,  2, 10, 8,  6, 7, 9, 8, 1};
     c.topology.faceVertexCounts.assign(20, 3);
     c.topology.creaseIndices = {0, 11};
     c.topology.creaseLengths = {2};
@@ -284,7 +292,9 @@ Case loopIcosahedron() {
     return c;
 }
 
-std::vector<Case> cases() { return {lumpyCube(), creasedCube(), dartCube(), mixedPrism(), holedGrid(), loopIcosahedron()}; }
+std::vector<Case> cases() {
+    return {lumpyCube(), creasedCube(), dartCube(), mixedPrism(), holedGrid(), loopIcosahedron()};
+}
 
 // Segment counts that differ from edge to edge (1 to 8).
 std::vector<int> variedRates(std::size_t edges) {
@@ -308,19 +318,21 @@ TEST(SubdivisionReference, TessellatedPointsMatchFarPatchTableEvaluation) {
             const auto& sc = result.surfaceCoords[i];
             Vec3d P, dPds, dPdt;
             far.evaluate(int(sc.face), sc.u, sc.v, P, dPds, dPdt);
-            const std::string where = "vertex " + std::to_string(i) + " of face " + std::to_string(sc.face) + " at (u, v) = (" +
-                                      std::to_string(sc.u) + ", " + std::to_string(sc.v) + ")";
+            const std::string where = "vertex " + std::to_string(i) + " of face " + std::to_string(sc.face) +
+                                      " at (u, v) = (" + std::to_string(sc.u) + ", " + std::to_string(sc.v) + ")";
             Vec3d error = Vec3d(result.positions[i]) - P;
             double ratio = maxComponent(vmax(error, -error)) / (0x1p-23 * (scale + length(dPds) + length(dPdt)));
             if (ratio > worstPosition)
-                worstPosition = ratio, wherePosition = where + ": " + to_string(result.positions[i]) + " vs Far " + to_string(P);
+                worstPosition = ratio,
+                wherePosition = where + ": " + to_string(result.positions[i]) + " vs Far " + to_string(P);
             // A normal is as uncertain as its derivatives divided by the sine of their angle: where
             // they are (nearly) parallel, e.g. at an edgeOnly corner, it is undefined.
             Vec3d n = cross(dPds, dPdt);
             double sine = length(n) / (length(dPds) * length(dPdt));
             double normalRatio = length(Vec3d(result.normals[i]) - normalize(n)) / (0x1p-21 / sine);
             if (normalRatio > worstNormal)
-                worstNormal = normalRatio, whereNormal = where + ": " + to_string(result.normals[i]) + " vs Far " + to_string(normalize(n));
+                worstNormal = normalRatio,
+                whereNormal = where + ": " + to_string(result.normals[i]) + " vs Far " + to_string(normalize(n));
         }
         EXPECT_LE(worstPosition, 1.0) << wherePosition;
         EXPECT_LE(worstNormal, 1.0) << whereNormal;
@@ -344,7 +356,8 @@ TEST(SubdivisionReference, BasePointsAreFarVertexLimits) {
         for (int p = 0; p < c.topology.pointCount; ++p) {
             Vec3d error = Vec3d(result.positions[std::size_t(p)]) - limits[std::size_t(p)];
             EXPECT_LE(maxComponent(vmax(error, -error)), tolerance)
-                << "point " << p << ": " << to_string(result.positions[std::size_t(p)]) << " vs Far " << to_string(limits[std::size_t(p)]);
+                << "point " << p << ": " << to_string(result.positions[std::size_t(p)]) << " vs Far "
+                << to_string(limits[std::size_t(p)]);
         }
     }
 }

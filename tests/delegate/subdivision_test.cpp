@@ -50,13 +50,16 @@ Grid grid(int nx, int ny, const std::function<float(int, int)>& height) {
     for (int y = 0; y + 1 < ny; ++y)
         for (int x = 0; x + 1 < nx; ++x) {
             g.topology.faceVertexCounts.push_back(4);
-            g.topology.faceVertexIndices.insert(g.topology.faceVertexIndices.end(),
-                                                {g.point(x, y), g.point(x + 1, y), g.point(x + 1, y + 1), g.point(x, y + 1)});
+            g.topology.faceVertexIndices.insert(
+                g.topology.faceVertexIndices.end(),
+                {g.point(x, y), g.point(x + 1, y), g.point(x + 1, y + 1), g.point(x, y + 1)});
         }
     return g;
 }
 
-float bumps(int x, int y) { return 0.4f * std::sin(1.7f * float(x) + 0.3f) * std::cos(1.1f * float(y) - 0.2f) + 0.05f * float(x * y); }
+float bumps(int x, int y) {
+    return 0.4f * std::sin(1.7f * float(x) + 0.3f) * std::cos(1.1f * float(y) - 0.2f) + 0.05f * float(x * y);
+}
 
 // An axis-aligned cube of side 2 centred at the origin, faces wound counter-clockwise seen from
 // outside.
@@ -79,7 +82,8 @@ double maxAbs(const Vec3d& v) { return maxComponent(vmax(v, -v)); }
 // The uniform cubic B-spline basis functions and their derivatives at t.
 std::array<double, 4> bspline(double t) {
     double s = 1.0 - t;
-    return {s * s * s / 6.0, (3.0 * t * t * t - 6.0 * t * t + 4.0) / 6.0, (-3.0 * t * t * t + 3.0 * t * t + 3.0 * t + 1.0) / 6.0, t * t * t / 6.0};
+    return {s * s * s / 6.0, (3.0 * t * t * t - 6.0 * t * t + 4.0) / 6.0,
+            (-3.0 * t * t * t + 3.0 * t * t + 3.0 * t + 1.0) / 6.0, t * t * t / 6.0};
 }
 std::array<double, 4> bsplineDerivative(double t) {
     double s = 1.0 - t;
@@ -109,14 +113,22 @@ TEST(Subdivision, UsdTokensMapToOpenSubdivOptions) {
         return subdivision_detail::sdcOptions(t);
     };
     const std::map<std::string, Options::VtxBoundaryInterpolation> boundaries = {
-        {"none", Options::VTX_BOUNDARY_NONE}, {"edgeOnly", Options::VTX_BOUNDARY_EDGE_ONLY}, {"edgeAndCorner", Options::VTX_BOUNDARY_EDGE_AND_CORNER}};
-    for (const auto& [token, value] : boundaries) EXPECT_EQ(options(token, "cornersPlus1", "catmullClark").GetVtxBoundaryInterpolation(), value) << token;
+        {"none", Options::VTX_BOUNDARY_NONE},
+        {"edgeOnly", Options::VTX_BOUNDARY_EDGE_ONLY},
+        {"edgeAndCorner", Options::VTX_BOUNDARY_EDGE_AND_CORNER}};
+    for (const auto& [token, value] : boundaries)
+        EXPECT_EQ(options(token, "cornersPlus1", "catmullClark").GetVtxBoundaryInterpolation(), value) << token;
     const std::map<std::string, Options::FVarLinearInterpolation> fvars = {
-        {"none", Options::FVAR_LINEAR_NONE},           {"cornersOnly", Options::FVAR_LINEAR_CORNERS_ONLY},
-        {"cornersPlus1", Options::FVAR_LINEAR_CORNERS_PLUS1}, {"cornersPlus2", Options::FVAR_LINEAR_CORNERS_PLUS2},
-        {"boundaries", Options::FVAR_LINEAR_BOUNDARIES},  {"all", Options::FVAR_LINEAR_ALL}};
-    for (const auto& [token, value] : fvars) EXPECT_EQ(options("edgeAndCorner", token, "catmullClark").GetFVarLinearInterpolation(), value) << token;
-    EXPECT_EQ(options("edgeAndCorner", "cornersPlus1", "catmullClark").GetTriangleSubdivision(), Options::TRI_SUB_CATMARK);
+        {"none", Options::FVAR_LINEAR_NONE},
+        {"cornersOnly", Options::FVAR_LINEAR_CORNERS_ONLY},
+        {"cornersPlus1", Options::FVAR_LINEAR_CORNERS_PLUS1},
+        {"cornersPlus2", Options::FVAR_LINEAR_CORNERS_PLUS2},
+        {"boundaries", Options::FVAR_LINEAR_BOUNDARIES},
+        {"all", Options::FVAR_LINEAR_ALL}};
+    for (const auto& [token, value] : fvars)
+        EXPECT_EQ(options("edgeAndCorner", token, "catmullClark").GetFVarLinearInterpolation(), value) << token;
+    EXPECT_EQ(options("edgeAndCorner", "cornersPlus1", "catmullClark").GetTriangleSubdivision(),
+              Options::TRI_SUB_CATMARK);
     EXPECT_EQ(options("edgeAndCorner", "cornersPlus1", "smooth").GetTriangleSubdivision(), Options::TRI_SUB_SMOOTH);
     EXPECT_EQ(options("edgeAndCorner", "cornersPlus1", "smooth").GetCreasingMethod(), Options::CREASE_UNIFORM);
     EXPECT_EQ(subdivision_detail::sdcScheme(Scheme::CatmullClark), OpenSubdiv::Sdc::SCHEME_CATMARK);
@@ -124,8 +136,10 @@ TEST(Subdivision, UsdTokensMapToOpenSubdivOptions) {
     EXPECT_EQ(subdivision_detail::sdcScheme(Scheme::Bilinear), OpenSubdiv::Sdc::SCHEME_BILINEAR);
     // USD's defaults are the struct's defaults.
     SubdivisionTopology defaults;
-    EXPECT_EQ(subdivision_detail::sdcOptions(defaults).GetVtxBoundaryInterpolation(), Options::VTX_BOUNDARY_EDGE_AND_CORNER);
-    EXPECT_EQ(subdivision_detail::sdcOptions(defaults).GetFVarLinearInterpolation(), Options::FVAR_LINEAR_CORNERS_PLUS1);
+    EXPECT_EQ(subdivision_detail::sdcOptions(defaults).GetVtxBoundaryInterpolation(),
+              Options::VTX_BOUNDARY_EDGE_AND_CORNER);
+    EXPECT_EQ(subdivision_detail::sdcOptions(defaults).GetFVarLinearInterpolation(),
+              Options::FVAR_LINEAR_CORNERS_PLUS1);
 }
 
 TEST(Subdivision, RejectsBadTopologyAndTokensWithClearMessages) {
@@ -134,22 +148,57 @@ TEST(Subdivision, RejectsBadTopologyAndTokensWithClearMessages) {
         std::function<void(SubdivisionTopology&, std::vector<FaceVaryingData>&)> edit;
     };
     const std::vector<BadCase> bad = {
-        {"unknown interpolateBoundary \"edgesAndCorners\"", [](auto& t, auto&) { t.interpolateBoundary = "edgesAndCorners"; }},
-        {"unknown faceVaryingLinearInterpolation \"cornersPlus3\"", [](auto& t, auto&) { t.faceVaryingLinearInterpolation = "cornersPlus3"; }},
+        {"unknown interpolateBoundary \"edgesAndCorners\"",
+         [](auto& t, auto&) { t.interpolateBoundary = "edgesAndCorners"; }},
+        {"unknown faceVaryingLinearInterpolation \"cornersPlus3\"",
+         [](auto& t, auto&) { t.faceVaryingLinearInterpolation = "cornersPlus3"; }},
         {"unknown triangleSubdivisionRule \"loop\"", [](auto& t, auto&) { t.triangleSubdivisionRule = "loop"; }},
-        {"faceVertexCounts[1] is 2", [](auto& t, auto&) { t.faceVertexCounts[1] = 2; t.faceVertexIndices.erase(t.faceVertexIndices.begin() + 4, t.faceVertexIndices.begin() + 6); }},
-        {"faceVertexCounts add up to 24 but faceVertexIndices has 23", [](auto& t, auto&) { t.faceVertexIndices.pop_back(); }},
+        {"faceVertexCounts[1] is 2",
+         [](auto& t, auto&) {
+             t.faceVertexCounts[1] = 2;
+             t.faceVertexIndices.erase(t.faceVertexIndices.begin() + 4, t.faceVertexIndices.begin() + 6);
+         }},
+        {"faceVertexCounts add up to 24 but faceVertexIndices has 23",
+         [](auto& t, auto&) { t.faceVertexIndices.pop_back(); }},
         {"faceVertexIndices[5] = 8 is not a point", [](auto& t, auto&) { t.faceVertexIndices[5] = 8; }},
         {"face 0 uses point 3 twice in a row", [](auto& t, auto&) { t.faceVertexIndices[2] = 3; }},
         {"the loop scheme needs triangles, but face 0 has 4 points", [](auto& t, auto&) { t.scheme = Scheme::Loop; }},
-        {"creaseLengths[0] is 1", [](auto& t, auto&) { t.creaseIndices = {0}; t.creaseLengths = {1}; t.creaseSharpnesses = {1.0f}; }},
-        {"creaseLengths add up to 3 but creaseIndices has 2", [](auto& t, auto&) { t.creaseIndices = {0, 1}; t.creaseLengths = {3}; t.creaseSharpnesses = {1.0f}; }},
+        {"creaseLengths[0] is 1",
+         [](auto& t, auto&) {
+             t.creaseIndices = {0};
+             t.creaseLengths = {1};
+             t.creaseSharpnesses = {1.0f};
+         }},
+        {"creaseLengths add up to 3 but creaseIndices has 2",
+         [](auto& t, auto&) {
+             t.creaseIndices = {0, 1};
+             t.creaseLengths = {3};
+             t.creaseSharpnesses = {1.0f};
+         }},
         {"creaseSharpnesses has 2 entries: expected one per crease (1) or one per crease edge (3)",
-         [](auto& t, auto&) { t.creaseIndices = {0, 1, 2, 3}; t.creaseLengths = {4}; t.creaseSharpnesses = {1.0f, 2.0f}; }},
-        {"crease 0 runs from point 0 to point 6, which is not an edge", [](auto& t, auto&) { t.creaseIndices = {0, 6}; t.creaseLengths = {2}; t.creaseSharpnesses = {1.0f}; }},
-        {"creaseSharpnesses[0] is NaN", [](auto& t, auto&) { t.creaseIndices = {0, 1}; t.creaseLengths = {2}; t.creaseSharpnesses = {std::nanf("")}; }},
+         [](auto& t, auto&) {
+             t.creaseIndices = {0, 1, 2, 3};
+             t.creaseLengths = {4};
+             t.creaseSharpnesses = {1.0f, 2.0f};
+         }},
+        {"crease 0 runs from point 0 to point 6, which is not an edge",
+         [](auto& t, auto&) {
+             t.creaseIndices = {0, 6};
+             t.creaseLengths = {2};
+             t.creaseSharpnesses = {1.0f};
+         }},
+        {"creaseSharpnesses[0] is NaN",
+         [](auto& t, auto&) {
+             t.creaseIndices = {0, 1};
+             t.creaseLengths = {2};
+             t.creaseSharpnesses = {std::nanf("")};
+         }},
         {"cornerIndices has 1 entries but cornerSharpnesses has 0", [](auto& t, auto&) { t.cornerIndices = {0}; }},
-        {"cornerIndices[0] = -1 is not a point", [](auto& t, auto&) { t.cornerIndices = {-1}; t.cornerSharpnesses = {10.0f}; }},
+        {"cornerIndices[0] = -1 is not a point",
+         [](auto& t, auto&) {
+             t.cornerIndices = {-1};
+             t.cornerSharpnesses = {10.0f};
+         }},
         {"holeIndices[0] = 6 is not a face", [](auto& t, auto&) { t.holeIndices = {6}; }},
     };
     for (std::size_t i = 0; i < bad.size(); ++i) {
@@ -157,17 +206,22 @@ TEST(Subdivision, RejectsBadTopologyAndTokensWithClearMessages) {
         std::vector<FaceVaryingData> fvar;
         bad[i].edit(c.topology, fvar);
         std::string message = messageOf([&] { SubdivisionSurface(c.topology, fvar); });
-        EXPECT_NE(message.find(bad[i].expected), std::string::npos) << "expected \"" << bad[i].expected << "\" in \"" << message << "\"";
+        EXPECT_NE(message.find(bad[i].expected), std::string::npos)
+            << "expected \"" << bad[i].expected << "\" in \"" << message << "\"";
     }
 
     // Face-varying channels.
     Cage c = cube();
     FaceVaryingData uv{2, {0, 0, 1, 0, 1, 1, 0, 1}, std::vector<int>(24, 0)};
     EXPECT_NO_THROW(SubdivisionSurface(c.topology, {uv}));
-    auto fvarMessage = [&](FaceVaryingData channel) { return messageOf([&] { SubdivisionSurface(c.topology, {uv, channel}); }); };
+    auto fvarMessage = [&](FaceVaryingData channel) {
+        return messageOf([&] { SubdivisionSurface(c.topology, {uv, channel}); });
+    };
     FaceVaryingData badIndex = uv;
     badIndex.indices[7] = 4;
-    EXPECT_NE(fvarMessage(badIndex).find("face-varying channel 1: indices[7] = 4 is not a value (4 values)"), std::string::npos) << fvarMessage(badIndex);
+    EXPECT_NE(fvarMessage(badIndex).find("face-varying channel 1: indices[7] = 4 is not a value (4 values)"),
+              std::string::npos)
+        << fvarMessage(badIndex);
     FaceVaryingData shortIndices = uv;
     shortIndices.indices.resize(23);
     EXPECT_NE(fvarMessage(shortIndices).find("has 23 indices, but the mesh has 24 face-vertices"), std::string::npos);
@@ -175,7 +229,8 @@ TEST(Subdivision, RejectsBadTopologyAndTokensWithClearMessages) {
     ragged.values.push_back(0.5f);
     EXPECT_NE(fvarMessage(ragged).find("has 9 floats, not a multiple of its 2 components"), std::string::npos);
     FaceVaryingData unindexed{2, std::vector<float>(2 * 23, 0.0f), {}};
-    EXPECT_NE(fvarMessage(unindexed).find("has no indices and 23 values, but the mesh has 24 face-vertices"), std::string::npos);
+    EXPECT_NE(fvarMessage(unindexed).find("has no indices and 23 values, but the mesh has 24 face-vertices"),
+              std::string::npos);
 
     // Tessellation inputs.
     SubdivisionSurface surface(c.topology);
@@ -183,17 +238,21 @@ TEST(Subdivision, RejectsBadTopologyAndTokensWithClearMessages) {
     auto tessMessage = [&](std::span<const Vec3f> points, std::vector<int> r, std::vector<VertexData> data = {}) {
         return messageOf([&] { surface.tessellate(points, r, data); });
     };
-    EXPECT_NE(tessMessage(std::span(c.points).first(7), rates).find("7 points given for 8 control points"), std::string::npos);
-    EXPECT_NE(tessMessage(c.points, std::vector<int>(11, 2)).find("11 edge segment counts given for 12 edges"), std::string::npos);
+    EXPECT_NE(tessMessage(std::span(c.points).first(7), rates).find("7 points given for 8 control points"),
+              std::string::npos);
+    EXPECT_NE(tessMessage(c.points, std::vector<int>(11, 2)).find("11 edge segment counts given for 12 edges"),
+              std::string::npos);
     auto zero = rates;
     zero[3] = 0;
     EXPECT_NE(tessMessage(c.points, zero).find("edge 3 has 0 segments"), std::string::npos);
     auto huge = rates;
     huge[3] = SubdivisionSurface::kMaxEdgeSegments + 1;
     EXPECT_NE(tessMessage(c.points, huge).find("edge 3 has 4097 segments"), std::string::npos);
-    EXPECT_NE(tessMessage(c.points, rates, {VertexData{3, std::vector<float>(23), false}}).find("vertex data channel 0 has 23 floats, expected 3 per point"),
+    EXPECT_NE(tessMessage(c.points, rates, {VertexData{3, std::vector<float>(23), false}})
+                  .find("vertex data channel 0 has 23 floats, expected 3 per point"),
               std::string::npos);
-    EXPECT_NE(messageOf([&] { surface.tessellateUniform(c.points, 13); }).find("uniform level 13 is not in [0, 12]"), std::string::npos);
+    EXPECT_NE(messageOf([&] { surface.tessellateUniform(c.points, 13); }).find("uniform level 13 is not in [0, 12]"),
+              std::string::npos);
     EXPECT_NE(messageOf([&] { surface.tessellateUniform(c.points, -1); }).find("uniform level -1"), std::string::npos);
 }
 
@@ -266,9 +325,12 @@ TEST(Subdivision, RegularInteriorPatchIsTheUniformBicubicBSpline) {
                 Pu += du[a] * bv[b] * cp;
                 Pv += bu[a] * dv[b] * cp;
             }
-        EXPECT_LE(maxAbs(Vec3d(result.positions[i]) - P), 0x1p-23 * 5.0) << "face " << sc.face << " at (" << sc.u << ", " << sc.v << ")";
-        EXPECT_LE(maxAbs(Vec3d(result.dPdu[i]) - Pu), 0x1p-23 * maxAbs(Pu)) << "face " << sc.face << " at (" << sc.u << ", " << sc.v << ")";
-        EXPECT_LE(maxAbs(Vec3d(result.dPdv[i]) - Pv), 0x1p-23 * maxAbs(Pv)) << "face " << sc.face << " at (" << sc.u << ", " << sc.v << ")";
+        EXPECT_LE(maxAbs(Vec3d(result.positions[i]) - P), 0x1p-23 * 5.0)
+            << "face " << sc.face << " at (" << sc.u << ", " << sc.v << ")";
+        EXPECT_LE(maxAbs(Vec3d(result.dPdu[i]) - Pu), 0x1p-23 * maxAbs(Pu))
+            << "face " << sc.face << " at (" << sc.u << ", " << sc.v << ")";
+        EXPECT_LE(maxAbs(Vec3d(result.dPdv[i]) - Pv), 0x1p-23 * maxAbs(Pv))
+            << "face " << sc.face << " at (" << sc.u << ", " << sc.v << ")";
         EXPECT_LE(length(Vec3d(result.normals[i]) - normalize(cross(Pu, Pv))), 0x1p-21);
         ++checked;
     }
@@ -298,7 +360,9 @@ TEST(Subdivision, BilinearSchemeInterpolatesEachQuadBilinearly) {
 // A bumpy 5x5 grid whose middle row (y = 2) is a straight polyline on the x axis at z = 0, and
 // whose rows on either side bulge differently: a smooth surface leaves that line.
 Grid creaseGrid() {
-    return grid(5, 5, [](int x, int y) { return y == 2 ? 0.0f : (y < 2 ? 0.8f + 0.1f * float(x) : -0.5f + 0.2f * float(x % 2)); });
+    return grid(5, 5, [](int x, int y) {
+        return y == 2 ? 0.0f : (y < 2 ? 0.8f + 0.1f * float(x) : -0.5f + 0.2f * float(x % 2));
+    });
 }
 
 // Output vertices on the middle row's edges: the faces below it (y = 1) meet it at v = 1, those
@@ -375,9 +439,11 @@ TEST(Subdivision, CubeWithInfinitelySharpEdgesIsTheCubeWithFaceNormalsPerCorner)
     for (std::size_t t = 0; t < result.triangleFaces.size(); ++t) {
         const int f = int(result.triangleFaces[t]);
         // The face's outward axis: the cube's points of face f all share one coordinate.
-        Vec3f a = c.points[std::size_t(c.topology.faceVertexIndices[4 * f])], b = c.points[std::size_t(c.topology.faceVertexIndices[4 * f + 2])];
+        Vec3f a = c.points[std::size_t(c.topology.faceVertexIndices[4 * f])],
+              b = c.points[std::size_t(c.topology.faceVertexIndices[4 * f + 2])];
         Vec3f axis = (a + b) * 0.5f;
-        for (int k = 0; k < 3; ++k) EXPECT_LE(length(result.cornerNormals[3 * t + k] - axis), 0x1p-22f) << "triangle " << t;
+        for (int k = 0; k < 3; ++k)
+            EXPECT_LE(length(result.cornerNormals[3 * t + k] - axis), 0x1p-22f) << "triangle " << t;
     }
 }
 
@@ -420,8 +486,8 @@ TEST(Subdivision, InterpolateBoundaryNoneDropsBoundaryFaces) {
     auto result = surface.tessellateUniform(g.points, 1);
     // Only the 2x2 faces away from the boundary have a limit surface.
     std::set<std::uint32_t> faces(result.triangleFaces.begin(), result.triangleFaces.end());
-    EXPECT_EQ(faces, (std::set<std::uint32_t>{std::uint32_t(g.face(1, 1)), std::uint32_t(g.face(2, 1)), std::uint32_t(g.face(1, 2)),
-                                              std::uint32_t(g.face(2, 2))}));
+    EXPECT_EQ(faces, (std::set<std::uint32_t>{std::uint32_t(g.face(1, 1)), std::uint32_t(g.face(2, 1)),
+                                              std::uint32_t(g.face(1, 2)), std::uint32_t(g.face(2, 2))}));
     EXPECT_FALSE(surface.faceHasLimitSurface(g.face(0, 0)));
 }
 
@@ -484,7 +550,8 @@ TEST(Subdivision, FaceVaryingIsContinuousAcrossEdgesAndSplitAtSeams) {
                         // A seam stays a seam: different values (the islands are 0.5 apart in u; a
                         // smoothed island corner moves a little), the same v.
                         EXPECT_NE(ia, ib);
-                        EXPECT_GT(std::abs(out.values[2 * ib] - out.values[2 * ia]), 0.25f) << "faces " << fa << " and " << fb;
+                        EXPECT_GT(std::abs(out.values[2 * ib] - out.values[2 * ia]), 0.25f)
+                            << "faces " << fa << " and " << fb;
                         EXPECT_NEAR(out.values[2 * ib + 1], out.values[2 * ia + 1], 0x1p-23f);
                         ++seamPairs;
                     }
@@ -516,8 +583,10 @@ TEST(Subdivision, FaceVaryingLinearAllIsBilinearPerFace) {
         const double w[4] = {(1 - u) * (1 - v), u * (1 - v), u * v, (1 - u) * v};
         for (int c = 0; c < 2; ++c) {
             double expected = 0.0;
-            for (int i = 0; i < 4; ++i) expected += w[i] * uv.values[2 * std::size_t(uv.indices[std::size_t(4 * f + i)]) + std::size_t(c)];
-            EXPECT_NEAR(out.values[2 * std::size_t(out.indices[k]) + std::size_t(c)], expected, 0x1p-23) << "face " << f;
+            for (int i = 0; i < 4; ++i)
+                expected += w[i] * uv.values[2 * std::size_t(uv.indices[std::size_t(4 * f + i)]) + std::size_t(c)];
+            EXPECT_NEAR(out.values[2 * std::size_t(out.indices[k]) + std::size_t(c)], expected, 0x1p-23)
+                << "face " << f;
         }
     }
 }
@@ -530,7 +599,8 @@ TEST(Subdivision, UnindexedFaceVaryingGivesEveryFaceItsOwnValues) {
     auto result = surface.tessellateUniform(g.points, 1);
     // No two faces share a face-varying value.
     std::map<std::uint32_t, std::set<std::uint32_t>> facesOfValue;
-    for (std::size_t k = 0; k < result.indices.size(); ++k) facesOfValue[result.faceVarying[0].indices[k]].insert(result.triangleFaces[k / 3]);
+    for (std::size_t k = 0; k < result.indices.size(); ++k)
+        facesOfValue[result.faceVarying[0].indices[k]].insert(result.triangleFaces[k / 3]);
     for (const auto& [value, faces] : facesOfValue) EXPECT_EQ(faces.size(), 1u) << "value " << value;
 }
 
@@ -539,7 +609,8 @@ TEST(Subdivision, UnindexedFaceVaryingGivesEveryFaceItsOwnValues) {
 
 TEST(Subdivision, VertexDataIsRefinedLikePointsAndVaryingDataLinearly) {
     Cage c = cube();
-    for (std::size_t i = 0; i < c.points.size(); ++i) c.points[i] += Vec3f(0.1f * float(i % 3), -0.07f * float(i % 2), 0.05f * float(i));
+    for (std::size_t i = 0; i < c.points.size(); ++i)
+        c.points[i] += Vec3f(0.1f * float(i % 3), -0.07f * float(i % 2), 0.05f * float(i));
     VertexData asPoints{3, {}, false}, varying{3, {}, true};
     for (const Vec3f& p : c.points) {
         asPoints.values.insert(asPoints.values.end(), {p.x, p.y, p.z});
@@ -558,7 +629,9 @@ TEST(Subdivision, VertexDataIsRefinedLikePointsAndVaryingDataLinearly) {
         double u = sc.u, v = sc.v;
         const double w[4] = {(1 - u) * (1 - v), u * (1 - v), u * v, (1 - u) * v};
         Vec3d expected(0.0);
-        for (int k = 0; k < 4; ++k) expected += w[k] * Vec3d(c.points[std::size_t(c.topology.faceVertexIndices[4 * sc.face + std::uint32_t(k)])]);
+        for (int k = 0; k < 4; ++k)
+            expected +=
+                w[k] * Vec3d(c.points[std::size_t(c.topology.faceVertexIndices[4 * sc.face + std::uint32_t(k)])]);
         Vec3d got(result.vertexData[1][3 * i], result.vertexData[1][3 * i + 1], result.vertexData[1][3 * i + 2]);
         EXPECT_LE(maxAbs(got - expected), 0x1p-23 * 2.0) << "vertex " << i;
     }
@@ -570,15 +643,19 @@ TEST(Subdivision, TrianglesAndNormalsFaceTheWayTheControlFacesDo) {
     for (bool reversed : {false, true}) {
         Cage c = cube();
         if (reversed)
-            for (std::size_t f = 0; f < 6; ++f) std::reverse(c.topology.faceVertexIndices.begin() + 4 * f, c.topology.faceVertexIndices.begin() + 4 * f + 4);
-        auto result = SubdivisionSurface(c.topology).tessellate(c.points, std::vector<int>{1, 2, 3, 4, 5, 6, 7, 8, 1, 2, 3, 4});
+            for (std::size_t f = 0; f < 6; ++f)
+                std::reverse(c.topology.faceVertexIndices.begin() + 4 * f,
+                             c.topology.faceVertexIndices.begin() + 4 * f + 4);
+        auto result =
+            SubdivisionSurface(c.topology).tessellate(c.points, std::vector<int>{1, 2, 3, 4, 5, 6, 7, 8, 1, 2, 3, 4});
         const float sign = reversed ? -1.0f : 1.0f;
         for (std::size_t t = 0; t < result.triangleFaces.size(); ++t) {
             const std::uint32_t* tri = &result.indices[3 * t];
             Vec3f a = result.positions[tri[0]], b = result.positions[tri[1]], d = result.positions[tri[2]];
             Vec3f centroid = (a + b + d) / 3.0f;
             EXPECT_GT(sign * dot(cross(b - a, d - a), centroid), 0.0f) << "triangle " << t;
-            for (int k = 0; k < 3; ++k) EXPECT_GT(sign * dot(result.cornerNormals[3 * t + k], result.positions[tri[k]]), 0.0f);
+            for (int k = 0; k < 3; ++k)
+                EXPECT_GT(sign * dot(result.cornerNormals[3 * t + k], result.positions[tri[k]]), 0.0f);
         }
         for (std::size_t i = 0; i < result.positions.size(); ++i) {
             EXPECT_NEAR(length(result.normals[i]), 1.0f, 0x1p-22f);

@@ -14,7 +14,6 @@
 #include <string>
 #include <vector>
 
-
 #include "core/random.h"
 #include "render/render_scene.h"
 
@@ -83,17 +82,21 @@ Cage icosahedron(Scheme scheme) {
     Cage c;
     c.name = scheme == Scheme::Loop ? "loop icosahedron" : "catmull-clark icosahedron";
     const float g = 1.618034f;
-    c.points = {{-1, g, 0}, {1, g, 0}, {-1, -g, 0}, {1, -g, 0}, {0, -1, g}, {0, 1, g}, {0, -1, -g}, {0, 1, -g}, {g, 0, -1}, {g, 0, 1}, {-g, 0, -1}, {-g, 0, 1}};
+    c.points = {{-1, g, 0},  {1, g, 0},  {-1, -g, 0}, {1, -g, 0}, {0, -1, g},  {0, 1, g},
+                {0, -1, -g}, {0, 1, -g}, {g, 0, -1},  {g, 0, 1},  {-g, 0, -1}, {-g, 0, 1}};
     for (std::size_t i = 0; i < c.points.size(); ++i) c.points[i] *= 1.0f + 0.04f * float(i % 3);
     c.topology.scheme = scheme;
     c.topology.pointCount = 12;
-    c.topology.faceVertexIndices = {0, 11, 5, 0, 5, 1, 0, 1, 7, 0, 7, 10, 0, 10, 11, 1, 5, 9, 5, 11, 4, 11, 10, 2, 10, 7, 6, 7, 1, 8,
-                                    3, 9, 4, 3, 4, 2, 3, 2, 6, 3, 6, 8, 3, 8, 9, 4, 9, 5, 2, 4, 11, 6, 2, 10, 8, 6, 7, 9, 8, 1};
+    c.topology.faceVertexIndices = {0, 11, 5,  0, 5,  1, 0, 1, 7, 0, 7,  10, 0, 10, 11, 1, 5, 9, 5, 11,
+                                    4, 11, 10, 2, 10, 7, 6, 7, 1, 8, 3,  9,  4, 3,  4,  2, 3, 2, 6, 3,
+                                    6, 8,  3,  8, 9,  4, 9, 5, 2, 4, 11, 6,  2, 10, 8,  6, 7, 9, 8, 1};
     c.topology.faceVertexCounts.assign(20, 3);
     return c;
 }
 
-std::vector<Cage> cages() { return {cube(), creasedCube(), mixedPrism(), icosahedron(Scheme::Loop), icosahedron(Scheme::CatmullClark)}; }
+std::vector<Cage> cages() {
+    return {cube(), creasedCube(), mixedPrism(), icosahedron(Scheme::Loop), icosahedron(Scheme::CatmullClark)};
+}
 
 // Segment counts from 1 to 7 that differ between neighbouring edges.
 std::vector<int> variedRates(std::size_t edges) {
@@ -123,13 +126,15 @@ struct Target {
 };
 
 Vec3f triangleNormal(const SubdivisionSurface::Result& r, std::size_t t) {
-    const Vec3f a = r.positions[r.indices[3 * t]], b = r.positions[r.indices[3 * t + 1]], c = r.positions[r.indices[3 * t + 2]];
+    const Vec3f a = r.positions[r.indices[3 * t]], b = r.positions[r.indices[3 * t + 1]],
+                c = r.positions[r.indices[3 * t + 2]];
     return normalize(cross(b - a, c - a));
 }
 
 // Points on the seams: every 4th a shared vertex (a base point or a base-edge point), the others
 // uniformly random along the triangle edges that join two shared vertices.
-std::vector<Target> seamTargets(const SubdivisionSurface::Result& result, std::size_t shared, int count, std::uint64_t seed) {
+std::vector<Target> seamTargets(const SubdivisionSurface::Result& result, std::size_t shared, int count,
+                                std::uint64_t seed) {
     std::map<std::pair<std::uint32_t, std::uint32_t>, std::vector<std::size_t>> seamEdges;  // (a < b) -> its triangles
     std::vector<std::vector<std::size_t>> vertexTriangles(shared);
     for (std::size_t t = 0; t < result.indices.size() / 3; ++t)
@@ -180,7 +185,8 @@ int misses(const std::vector<Target>& targets, Vec3f inside, float insideRadius,
         const Target& t = targets[i];
         Vec3f origin;
         if (i % 2 == 0) {
-            origin = inside + Vec3f(random.next() - 0.5f, random.next() - 0.5f, random.next() - 0.5f) * (insideRadius / 0.8660254f);
+            origin = inside + Vec3f(random.next() - 0.5f, random.next() - 0.5f, random.next() - 0.5f) *
+                                  (insideRadius / 0.8660254f);
         } else {
             Vec3f normal(0.0f);
             for (const Vec3f& n : t.sides) normal += n;
@@ -203,7 +209,8 @@ int misses(const std::vector<Target>& targets, Vec3f inside, float insideRadius,
 // The render scene of one mesh: Embree in robust mode, whose triangle test is watertight along
 // shared edges and vertices, so a crack it falls through is a crack in the mesh.
 struct MeshScene {
-    explicit MeshScene(const std::string& name, const std::vector<Vec3f>& positions, const std::vector<std::uint32_t>& indices)
+    explicit MeshScene(const std::string& name, const std::vector<Vec3f>& positions,
+                       const std::vector<std::uint32_t>& indices)
         : scene(describe(name, positions, indices)) {}
     static render::SceneDescription describe(const std::string& name, const std::vector<Vec3f>& positions,
                                              const std::vector<std::uint32_t>& indices) {
@@ -233,17 +240,19 @@ TEST(SubdivisionWatertight, ClosedCagesGiveClosedConsistentlyOrientedMeshes) {
         for (const auto& [edge, count] : directed) {
             EXPECT_EQ(count, 1) << "edge " << edge.first << "-" << edge.second;
             auto twin = directed.find({edge.second, edge.first});
-            EXPECT_TRUE(twin != directed.end() && twin->second == 1) << "edge " << edge.first << "-" << edge.second << " has no twin";
+            EXPECT_TRUE(twin != directed.end() && twin->second == 1)
+                << "edge " << edge.first << "-" << edge.second << " has no twin";
         }
         // Euler characteristic of a sphere (so every vertex is used, too).
-        const long long V = (long long)result.positions.size(), E = (long long)directed.size() / 2, F = (long long)result.triangleFaces.size();
+        const long long V = (long long)result.positions.size(), E = (long long)directed.size() / 2,
+                        F = (long long)result.triangleFaces.size();
         EXPECT_EQ(V - E + F, 2);
     }
 }
 
-constexpr int kRays = 4000;            // per cage: half from inside, half from outside
-constexpr float kOutside = 6.0f;       // distance of outside origins (the cages fit a radius 2 ball)
-constexpr float kInside = 0.25f;       // inside origins: within this of the centroid (inside every limit surface here)
+constexpr int kRays = 4000;       // per cage: half from inside, half from outside
+constexpr float kOutside = 6.0f;  // distance of outside origins (the cages fit a radius 2 ball)
+constexpr float kInside = 0.25f;  // inside origins: within this of the centroid (inside every limit surface here)
 
 TEST(SubdivisionWatertight, RaysAtTheSeamsAlwaysHitTheRenderScene) {
     for (const Cage& c : cages()) {
@@ -253,7 +262,9 @@ TEST(SubdivisionWatertight, RaysAtTheSeamsAlwaysHitTheRenderScene) {
         auto result = surface.tessellate(c.points, rates);
         MeshScene scene(c.name, result.positions, result.indices);
         auto targets = seamTargets(result, sharedVertexCount(surface, rates), kRays, 0x5eed);
-        EXPECT_EQ(misses(targets, centroid(c.points), kInside, kOutside, [&](const render::Ray& r) { return scene.hits(r); }), 0)
+        EXPECT_EQ(
+            misses(targets, centroid(c.points), kInside, kOutside, [&](const render::Ray& r) { return scene.hits(r); }),
+            0)
             << "of " << kRays << " rays";
     }
 }
@@ -300,13 +311,16 @@ TEST(SubdivisionConvergence, CatmullClarkCubeAreaConvergesQuadratically) {
     Cage c = cube();
     for (Vec3f& p : c.points) p *= 0.5f;
     SubdivisionSurface surface(c.topology);
-    auto areaAt = [&](int rate) { return area(surface.tessellate(c.points, std::vector<int>(surface.edges().size(), rate))); };
+    auto areaAt = [&](int rate) {
+        return area(surface.tessellate(c.points, std::vector<int>(surface.edges().size(), rate)));
+    };
     auto fine = surface.tessellate(c.points, std::vector<int>(surface.edges().size(), 256));
     const double reference = area(fine);
     // The limit surface is convex: its area lies between those of the spheres through its nearest
     // and farthest points from the centre.
     double nearest = 1.0, farthest = 0.0;
-    for (const Vec3f& p : fine.positions) nearest = std::min(nearest, double(length(p))), farthest = std::max(farthest, double(length(p)));
+    for (const Vec3f& p : fine.positions)
+        nearest = std::min(nearest, double(length(p))), farthest = std::max(farthest, double(length(p)));
     EXPECT_GT(reference, 4.0 * 3.14159265358979 * nearest * nearest);
     EXPECT_LT(reference, 4.0 * 3.14159265358979 * farthest * farthest);
     double previousError = std::abs(areaAt(4) - reference);

@@ -16,7 +16,8 @@ namespace {
 
 namespace fs = std::filesystem;
 
-const fs::path kVdbTests = test::sharedPath("usd_corpus/OpenUSD/pxr/usdImaging/usdImagingGL/testenv/testUsdImagingGLVdbVolume");
+const fs::path kVdbTests =
+    test::sharedPath("usd_corpus/OpenUSD/pxr/usdImaging/usdImagingGL/testenv/testUsdImagingGLVdbVolume");
 
 struct Opened {
     std::unique_ptr<usd::Stage> stage;
@@ -30,7 +31,9 @@ Opened open(const fs::path& file, double time) {
     DelegateOptions options;
     options.time = time;
     options.convertColor = [](const RGB& c, const std::string&) { return c; };
-    options.warn = [&o](const std::string& path, const std::string& message) { o.warnings.push_back(path + ": " + message); };
+    options.warn = [&o](const std::string& path, const std::string& message) {
+        o.warnings.push_back(path + ": " + message);
+    };
     o.result = populateScene(*o.stage, options);
     return o;
 }
@@ -82,12 +85,14 @@ def Volume "Plume" (
     rel material:binding = </Looks/Fire>
     def OpenVDBAsset "Density"
     {
-        asset filePath = @)" + (dir.path() / "plume.vdb").string() + R"(@
+        asset filePath = @)" + (dir.path() / "plume.vdb").string() +
+                               R"(@
         token fieldName = "density"
     }
     def OpenVDBAsset "Temperature"
     {
-        asset filePath = @)" + (dir.path() / "plume.vdb").string() + R"(@
+        asset filePath = @)" + (dir.path() / "plume.vdb").string() +
+                               R"(@
         token fieldName = "temperature"
         int fieldIndex = 1
     }

@@ -55,7 +55,8 @@ TEST(BdptMis, WeightsSumToOneOverTheStrategiesOfAPath) {
     for (int trial = 0; trial < 2000; ++trial) {
         const int vertices = 3 + trial % 8;  // x_0 ... x_k, k >= 2
         std::vector<VertexDensity> x(vertices);
-        for (int i = 0; i < vertices; ++i) x[i] = {density(random), density(random), i > 0 && i < vertices - 1 && deltaVertex(random)};
+        for (int i = 0; i < vertices; ++i)
+            x[i] = {density(random), density(random), i > 0 && i < vertices - 1 && deltaVertex(random)};
         if (trial % 5 == 0) x[0].fromLight = 0.0f;  // a light without emission sampling
         // Half the paths with light tracing (t = 1, s = k) among their strategies.
         StrategyPath path{x, density(random), hittable(random), -1, trial % 2 == 1};
@@ -160,7 +161,8 @@ TEST(BdptEmission, SampledDensitiesMatchEmissionDensity) {
     std::vector<std::unique_ptr<render::Light>> lights;
     lights.push_back(std::make_unique<render::RectLight>(desc(render::LightType::Rect)));
     lights.push_back(std::make_unique<render::DiskLight>(desc(render::LightType::Disk)));
-    lights.push_back(std::make_unique<render::TriangleLight>("/mesh", Vec3f(0, 0, 0), Vec3f(1, 0, 0), Vec3f(0, 1, 0.5f), RGB(1.0f)));
+    lights.push_back(
+        std::make_unique<render::TriangleLight>("/mesh", Vec3f(0, 0, 0), Vec3f(1, 0, 0), Vec3f(0, 1, 0.5f), RGB(1.0f)));
     lights.push_back(std::make_unique<render::SphereLight>(desc(render::LightType::Sphere)));
     lights.push_back(std::make_unique<render::PointLight>(spot));
     lights.push_back(std::make_unique<render::DistantLight>(sun));
@@ -218,7 +220,8 @@ Estimates estimates(const Integrator& integrator, const render::SceneDescription
                 e.imageMean[c] += mean / pixels;
                 e.imageVariance[c] += variance / (pixels * pixels);
             }
-            auto [mean, variance] = pixelEstimate(x, y, [](const float* p) { return (double(p[0]) + p[1] + p[2]) / 3.0; });
+            auto [mean, variance] =
+                pixelEstimate(x, y, [](const float* p) { return (double(p[0]) + p[1] + p[2]) / 3.0; });
             const int region = (y / kRegion) * (kSize / kRegion) + x / kRegion;
             e.regionMean[region] += mean / regionPixels;
             e.regionVariance[region] += variance / (regionPixels * regionPixels);
@@ -233,7 +236,8 @@ void expectAgreement(const Estimates& bdpt, const Estimates& path) {
     const double zLimit = test::normalQuantile(0.5 * test::kChi2Alpha);
     for (int c = 0; c < 3; ++c) {
         const double sd = std::sqrt(bdpt.imageVariance[c] + path.imageVariance[c]);
-        std::printf("[ measured ] channel %d: bdpt %.5f, path %.5f, combined sd %.5f\n", c, bdpt.imageMean[c], path.imageMean[c], sd);
+        std::printf("[ measured ] channel %d: bdpt %.5f, path %.5f, combined sd %.5f\n", c, bdpt.imageMean[c],
+                    path.imageMean[c], sd);
         EXPECT_LE(std::abs(bdpt.imageMean[c] - path.imageMean[c]), zLimit * sd)
             << "channel " << c << ": bdpt " << bdpt.imageMean[c] << " path " << path.imageMean[c] << " sd " << sd;
     }
@@ -243,7 +247,8 @@ void expectAgreement(const Estimates& bdpt, const Estimates& path) {
     for (int r = 0; r < kRegions; ++r) {
         const double variance = bdpt.regionVariance[r] + path.regionVariance[r];
         if (variance == 0.0) {
-            EXPECT_NEAR(bdpt.regionMean[r], path.regionMean[r], 1e-5 * std::abs(path.regionMean[r])) << "noiseless region " << r;
+            EXPECT_NEAR(bdpt.regionMean[r], path.regionMean[r], 1e-5 * std::abs(path.regionMean[r]))
+                << "noiseless region " << r;
             continue;
         }
         const double z2 = std::pow(bdpt.regionMean[r] - path.regionMean[r], 2) / variance;
@@ -307,8 +312,8 @@ render::SceneDescription glossyScene() {
     for (Vec3f& p : torus.positions) p += Vec3f(0.8f, -0.2f, -0.5f);
     s.meshes.push_back(torus);
     s.lights.push_back(test::sphereLight("/bulb", 0.3f, RGB(10.0f), {1.2, -1.0, 1.5}));
-    s.lights.push_back(
-        test::diskLight("/disk", 0.5f, RGB(4.0f, 3.0f, 2.0f), Matrix4::translate({-1.5, 0.5, 2.0}) * Matrix4::rotateY(-20)));
+    s.lights.push_back(test::diskLight("/disk", 0.5f, RGB(4.0f, 3.0f, 2.0f),
+                                       Matrix4::translate({-1.5, 0.5, 2.0}) * Matrix4::rotateY(-20)));
     s.lights.push_back(test::domeLight("/dome", RGB(0.1f, 0.15f, 0.3f)));
     s.camera = test::lookAtOriginCamera(5.0f);
     return s;
@@ -330,7 +335,8 @@ render::SceneDescription glassScene() {
     s.meshes.push_back(test::quadMesh("/wall", {{{-3, 1.5f, -1}, {3, 1.5f, -1}, {3, 1.5f, 3}, {-3, 1.5f, 3}}}, 0));
     for (auto [material, centre] : {std::pair(1, Vec3f(-0.8f, 0.0f, -0.4f)), std::pair(2, Vec3f(0.8f, -0.2f, -0.4f))})
         s.meshes.push_back(test::roundSphereMesh(0.6f, 24, 12, material, centre));
-    s.meshes.push_back(test::quadMesh("/sheet", {{{0.2f, 1.0f, -1}, {2.0f, 1.0f, -1}, {2.0f, 1.0f, 1.2f}, {0.2f, 1.0f, 1.2f}}}, 3));
+    s.meshes.push_back(
+        test::quadMesh("/sheet", {{{0.2f, 1.0f, -1}, {2.0f, 1.0f, -1}, {2.0f, 1.0f, 1.2f}, {0.2f, 1.0f, 1.2f}}}, 3));
     // Before the rough sphere, shining through it at the wall (emitting towards +Y): a rough
     // caustic in full view.
     s.lights.push_back(
@@ -355,13 +361,16 @@ render::SceneDescription deltaLightScene() {
     s.meshes.push_back(test::quadMesh("/wall", {{{-3, 1.5f, -1}, {3, 1.5f, -1}, {3, 1.5f, 3}, {-3, 1.5f, 3}}}, 0));
     s.meshes.push_back(test::quadMesh("/ceiling", {{{-3, -3, 2.2f}, {-3, 3, 2.2f}, {3, 3, 2.2f}, {3, -3, 2.2f}}}, 0));
     s.meshes.push_back(test::boxMesh({0.4f, 0.4f, 0.6f}, 0));
-    s.meshes.push_back(test::quadMesh("/panel", {{{-1.8f, 0.5f, -1}, {-1.2f, 1.2f, -1}, {-1.2f, 1.2f, 0.2f}, {-1.8f, 0.5f, 0.2f}}}, 1));
+    s.meshes.push_back(test::quadMesh(
+        "/panel", {{{-1.8f, 0.5f, -1}, {-1.2f, 1.2f, -1}, {-1.2f, 1.2f, 0.2f}, {-1.8f, 0.5f, 0.2f}}}, 1));
     render::LightDesc spot = test::pointLight("/spot", RGB(600.0f), {0.8, -0.5, 1.8});  // emits along -Z, downwards
     spot.radius = 0.1f;
     spot.shaping = render::LightShapingDesc{50.0f, 0.3f};
     s.lights.push_back(spot);
-    s.lights.push_back(test::distantLight("/sun", 0.0f, RGB(1.2f, 1.1f, 0.9f), Matrix4::rotateX(40) * Matrix4::rotateY(-30)));
-    render::LightDesc tube = test::lightDesc("/tube", render::LightType::Cylinder, RGB(8.0f), Matrix4::translate({1.2, 0.8, 0.8}));
+    s.lights.push_back(
+        test::distantLight("/sun", 0.0f, RGB(1.2f, 1.1f, 0.9f), Matrix4::rotateX(40) * Matrix4::rotateY(-30)));
+    render::LightDesc tube =
+        test::lightDesc("/tube", render::LightType::Cylinder, RGB(8.0f), Matrix4::translate({1.2, 0.8, 0.8}));
     tube.radius = 0.05f;
     tube.length = 1.0f;
     s.lights.push_back(tube);
@@ -369,14 +378,17 @@ render::SceneDescription deltaLightScene() {
     return s;
 }
 
-TEST(Bdpt, AgreesWithPathUnderDeltaLightsAnEmissiveMeshAndACylinderLight) { expectAgreement(deltaLightScene(), 256, 256); }
+TEST(Bdpt, AgreesWithPathUnderDeltaLightsAnEmissiveMeshAndACylinderLight) {
+    expectAgreement(deltaLightScene(), 256, 256);
+}
 
 // A white sphere in a white dome reads 1 wherever it is seen (and the dome 1 around it).
 TEST(Bdpt, RendersAWhiteFurnaceAsOne) {
     const Estimates bdpt = expectAgreement(test::furnaceScene(1.0f), 256, 256);
     const double zLimit = test::normalQuantile(0.5 * test::kChi2Alpha);
     for (int c = 0; c < 3; ++c)
-        EXPECT_LE(std::abs(bdpt.imageMean[c] - 1.0), zLimit * std::sqrt(bdpt.imageVariance[c]) + 1e-5) << "channel " << c;
+        EXPECT_LE(std::abs(bdpt.imageMean[c] - 1.0), zLimit * std::sqrt(bdpt.imageVariance[c]) + 1e-5)
+            << "channel " << c;
 }
 
 // Every sample is a function of (seed, pixel, sample index) alone: the image is the same at any
@@ -441,8 +453,9 @@ render::SceneDescription causticOnAFloor(float radius) {
     s.meshes.push_back(test::roundSphereMesh(0.4f, 48, 24, 1, Vec3f(0.0f, 0.0f, -0.5f)));
     const Vec3d at(-1.5, 0.0, 0.0);
     const RGB radiance(15000.0f, 12000.0f, 9000.0f);  // test::pointLight's: a sphere of radius 0.05
-    s.lights.push_back(radius > 0.0f ? test::sphereLight("/bulb", radius, radiance * (0.05f * 0.05f / (radius * radius)), at)
-                                     : test::pointLight("/point", radiance, at));
+    s.lights.push_back(radius > 0.0f
+                           ? test::sphereLight("/bulb", radius, radiance * (0.05f * 0.05f / (radius * radius)), at)
+                           : test::pointLight("/point", radiance, at));
     render::CameraDesc camera;  // looking down -Z from above the caustic, 30 degrees across
     camera.focalLength = 50.0f;
     camera.horizontalAperture = camera.verticalAperture = 26.8f;
@@ -456,8 +469,8 @@ render::SceneDescription causticOnAFloor(float radius) {
 class WithoutLightTracing final : public Integrator {
 public:
     explicit WithoutLightTracing(const Integrator& bdpt) : bdpt_(bdpt) {}
-    std::unique_ptr<RenderState> prepare(const render::RenderScene& scene, const render::Camera& camera, std::uint64_t seed,
-                                         SplatFilm*) const override {
+    std::unique_ptr<RenderState> prepare(const render::RenderScene& scene, const render::Camera& camera,
+                                         std::uint64_t seed, SplatFilm*) const override {
         return bdpt_.prepare(scene, camera, seed, nullptr);
     }
     FilmSample sample(const RenderState& state, const render::RenderScene& scene, const render::Camera& camera,
@@ -483,7 +496,8 @@ TEST(BdptLightTracing, FindsAPointLightsCausticSeenDirectly) {
     const double zLimit = test::normalQuantile(test::kChi2Alpha);
     for (int c = 0; c < 3; ++c) {
         const double sd = std::sqrt(missed.imageVariance[c] + path.imageVariance[c]);
-        std::printf("[ measured ] channel %d: without t = 1 %.5f (path %.5f, sd %.5f)\n", c, missed.imageMean[c], path.imageMean[c], sd);
+        std::printf("[ measured ] channel %d: without t = 1 %.5f (path %.5f, sd %.5f)\n", c, missed.imageMean[c],
+                    path.imageMean[c], sd);
         EXPECT_GT(path.imageMean[c] - missed.imageMean[c], zLimit * sd) << "channel " << c;
     }
 }
@@ -538,18 +552,19 @@ TEST(BdptLightTracing, TilesAndOrthographicCamerasLeaveItOutAndSaySo) {
 
 // ---- Media.
 
-
 // Per channel, bdpt's and `path`'s means along a ray agree within their combined standard error
 // (two-sided, Sidak over the three channels at the suite's level).
 void expectAgreementAlong(const render::SceneDescription& desc, const render::Ray& ray, int n) {
     const render::RenderScene scene(desc);
-    const std::array<test::MeanEstimate, 3> bdpt = test_support::radianceAlong(Bdpt{IntegratorSettings{}}, scene, ray, n, 3);
-    const std::array<test::MeanEstimate, 3> path = test_support::radianceAlong(PathTracer(IntegratorSettings{}), scene, ray, n, 3);
+    const std::array<test::MeanEstimate, 3> bdpt =
+        test_support::radianceAlong(Bdpt{IntegratorSettings{}}, scene, ray, n, 3);
+    const std::array<test::MeanEstimate, 3> path =
+        test_support::radianceAlong(PathTracer(IntegratorSettings{}), scene, ray, n, 3);
     const double zLimit = test::normalQuantile(0.5 * test::sidakAlpha(3));
     for (int c = 0; c < 3; ++c) {
         const double error = std::hypot(bdpt[c].standardError(), path[c].standardError());
-        std::printf("[ measured ] channel %d: bdpt %.5f +- %.5f, path %.5f +- %.5f\n", c, bdpt[c].mean(), bdpt[c].standardError(),
-                    path[c].mean(), path[c].standardError());
+        std::printf("[ measured ] channel %d: bdpt %.5f +- %.5f, path %.5f +- %.5f\n", c, bdpt[c].mean(),
+                    bdpt[c].standardError(), path[c].mean(), path[c].standardError());
         EXPECT_GT(path[c].mean(), 0.0) << "channel " << c;
         EXPECT_NEAR(bdpt[c].mean(), path[c].mean(), zLimit * error) << "channel " << c;
     }
@@ -633,7 +648,8 @@ TEST(BdptMedia, LightSubpathsStartInTheInteriorsHoldingTheirLight) {
     EXPECT_EQ(bdpt::mediaAt(scene, Vec3f(-0.5f, 0.0f, 0.0f), up, counters).medium(), scene.mediumInside(0));
     EXPECT_EQ(bdpt::mediaAt(scene, Vec3f(0.5f, 0.0f, 0.0f), up, counters).medium(), scene.mediumInside(1));
     EXPECT_EQ(bdpt::mediaAt(scene, Vec3f(0.5f, 0.0f, 0.0f), up, counters).depth(), 2);
-    EXPECT_EQ(bdpt::mediaAt(scene, Vec3f(0.45f, 0.05f, -2.0f), up, counters).medium(), nullptr) << "below both, crossing both";
+    EXPECT_EQ(bdpt::mediaAt(scene, Vec3f(0.45f, 0.05f, -2.0f), up, counters).medium(), nullptr)
+        << "below both, crossing both";
 }
 
 // A sphere light inside a rough glass ball whose interior absorbs, over a floor: light subpaths
@@ -683,11 +699,12 @@ TEST(BdptMedia, MatchesBeerLambertThroughAbsorbingGlass) {
     desc.materials[0].interior = media::MediumProperties{sigmaA, RGB(0.0f)};
     desc.meshes[0] = test::boxMesh(Vec3f(side / 2.0f), 0);
     const render::RenderScene scene(desc);
-    const std::array<test::MeanEstimate, 3> e =
-        test_support::radianceAlong(Bdpt{IntegratorSettings{}}, scene, render::Ray{{0.1f, -5.0f, 0.2f}, {0.0f, 1.0f, 0.0f}}, 400000, 5);
+    const std::array<test::MeanEstimate, 3> e = test_support::radianceAlong(
+        Bdpt{IntegratorSettings{}}, scene, render::Ray{{0.1f, -5.0f, 0.2f}, {0.0f, 1.0f, 0.0f}}, 400000, 5);
     for (int c = 0; c < 3; ++c) {
         const double expected = test_support::glassSlabSeenHeadOn(F, std::exp(-sigmaA[c] * side));
-        std::printf("[ measured ] channel %d: %.5f +- %.5f (expected %.5f)\n", c, e[c].mean(), e[c].standardError(), expected);
+        std::printf("[ measured ] channel %d: %.5f +- %.5f (expected %.5f)\n", c, e[c].mean(), e[c].standardError(),
+                    expected);
         EXPECT_NEAR(e[c].mean(), expected, 4.5 * e[c].standardError() + 1e-5) << "channel " << c;
     }
 }
@@ -707,8 +724,8 @@ TEST(BdptMedia, RendersAChromaticAlbedoOneVolumeUnderAWhiteSkyAsOne) {
     desc.lights.push_back(test::domeLight("/Sky", RGB(1.0f)));
     desc.camera = test::lookAtOriginCamera(4.0f);
     const render::RenderScene scene(desc);
-    const std::array<test::MeanEstimate, 3> e =
-        test_support::radianceAlong(Bdpt{IntegratorSettings{}}, scene, render::Ray{{0.05f, -4.0f, 0.1f}, {0.0f, 1.0f, 0.0f}}, 200000, 9);
+    const std::array<test::MeanEstimate, 3> e = test_support::radianceAlong(
+        Bdpt{IntegratorSettings{}}, scene, render::Ray{{0.05f, -4.0f, 0.1f}, {0.0f, 1.0f, 0.0f}}, 200000, 9);
     for (int c = 0; c < 3; ++c) {
         std::printf("[ measured ] channel %d: %.5f +- %.5f\n", c, e[c].mean(), e[c].standardError());
         EXPECT_NEAR(e[c].mean(), 1.0, 4.5 * e[c].standardError() + 1e-5) << "channel " << c;

@@ -76,7 +76,8 @@ TEST(CurvesRender, AStraightCurveCoversItsProjectedBand) {
         const double pixels = double(kSize) * kSize;
         const double fraction = covered / pixels, error = std::sqrt(variance) / pixels;
         const double expected = 2.0 * kRadius * 4.0 / 16.0;  // the band 2r x 4 in the 4 x 4 frame
-        std::printf("[ measured ] %s: covers %.5f of the frame +- %.5f (band: %.5f)\n", c.name, fraction, error, expected);
+        std::printf("[ measured ] %s: covers %.5f of the frame +- %.5f (band: %.5f)\n", c.name, fraction, error,
+                    expected);
         EXPECT_NEAR(fraction, expected, kZ * error + 1e-4) << c.name;
     }
 }
@@ -94,7 +95,8 @@ TEST(CurvesRender, WhiteHairInAWhiteFurnaceShowsTheFurnace) {
         render::CurvesDesc c = straightCurve(render::CurveBasis::BSpline, render::CurveStyle::Round, 0.06f);
         for (std::size_t k = 0; k < c.points.size(); ++k) {
             const float t = float(k) / 3.0f;
-            c.points[k] = Vec3f(-1.5f + 3.0f * t, 0.08f * float(i % 8) - 0.3f + 0.2f * t * t, 0.06f * float(i / 8) - 0.1f * t);
+            c.points[k] =
+                Vec3f(-1.5f + 3.0f * t, 0.08f * float(i % 8) - 0.3f + 0.2f * t * t, 0.06f * float(i / 8) - 0.1f * t);
         }
         c.material = 0;
         s.curves.push_back(c);
@@ -104,7 +106,8 @@ TEST(CurvesRender, WhiteHairInAWhiteFurnaceShowsTheFurnace) {
     const Image image = test_support::renderWith(PathTracer(IntegratorSettings{}), s, 64, 64).image;
     const int a = image.channelIndex("A");
     for (int c = 0; c < 3; ++c) {
-        const test::MeanEstimate hair = test_support::channelMean(image, c, [&](const float* px) { return px[a] == 1.0f; });
+        const test::MeanEstimate hair =
+            test_support::channelMean(image, c, [&](const float* px) { return px[a] == 1.0f; });
         std::printf("[ measured ] channel %d: hair pixels %.5f +- %.5f over %d pixels (expected 1)\n", c, hair.mean(),
                     hair.standardError(), hair.count());
         ASSERT_GT(hair.count(), 100);

@@ -36,9 +36,9 @@ render::SceneDescription defocusedLight(int blades, float rotation) {
 }
 
 struct Moments {
-    double sum = 0.0;        // sum of pixel values: the light's image area, in pixels
-    double second = 0.0;     // mean squared distance from the image's centre, in pixels^2
-    double centre = 0.0;     // the mean value of the pixels within `inner` of the centre
+    double sum = 0.0;     // sum of pixel values: the light's image area, in pixels
+    double second = 0.0;  // mean squared distance from the image's centre, in pixels^2
+    double centre = 0.0;  // the mean value of the pixels within `inner` of the centre
 };
 
 Moments moments(const Image& image, double inner) {

@@ -42,7 +42,9 @@ test::MeanEstimate meanDifference(const Image& a, const Image& b, int c, const s
 bool everyPixel(int, int) { return true; }
 
 // A sphere of radius r at c with smooth shading normals.
-render::MeshDesc roundSphere(float r, const Vec3f& c, int material) { return test::roundSphereMesh(r, 32, 16, material, c); }
+render::MeshDesc roundSphere(float r, const Vec3f& c, int material) {
+    return test::roundSphereMesh(r, 32, 16, material, c);
+}
 
 render::MaterialDesc smoothGlass() {
     render::MaterialDesc m;
@@ -79,12 +81,13 @@ render::SceneDescription everyLightScene() {
     s.meshes.push_back(
         test::quadMesh("/panel", {{{-1.5f, 2, -1}, {1.5f, 2, -1}, {1.5f, 2.5f, 1.5f}, {-1.5f, 2.5f, 1.5f}}}, 4));
 
-    s.lights.push_back(
-        test::rectLight("/rect", 1.5f, 1.0f, RGB(6.0f, 5.0f, 4.0f), Matrix4::translate({1.5, -0.5, 2.5}) * Matrix4::rotateY(30)));
+    s.lights.push_back(test::rectLight("/rect", 1.5f, 1.0f, RGB(6.0f, 5.0f, 4.0f),
+                                       Matrix4::translate({1.5, -0.5, 2.5}) * Matrix4::rotateY(30)));
     s.lights.push_back(test::sphereLight("/bulb", 0.3f, RGB(8.0f), {-1.8, -0.8, 0.5}));
     s.lights.push_back(test::pointLight("/point", RGB(40.0f, 30.0f, 20.0f), {0.5, -1.5, 0.8}));
     s.lights.push_back(test::distantLight("/sun", 0.0f, RGB(0.8f), Matrix4::rotateX(35) * Matrix4::rotateY(-20)));
-    render::LightDesc wideSun = test::distantLight("/wideSun", 20.0f, RGB(0.8f), Matrix4::rotateX(-25) * Matrix4::rotateY(40));
+    render::LightDesc wideSun =
+        test::distantLight("/wideSun", 20.0f, RGB(0.8f), Matrix4::rotateX(-25) * Matrix4::rotateY(40));
     wideSun.normalize = true;
     s.lights.push_back(wideSun);
     s.lights.push_back(test::domeLight("/dome", RGB(0.1f, 0.15f, 0.3f)));
@@ -98,12 +101,14 @@ TEST(DirectLighting, AgreesWithPathAtDepthOneUnderEveryLightKind) {
     // difference over the image is 0 within its noise.
     const render::SceneDescription scene = everyLightScene();
     const Image direct = renderWith(DirectLighting(IntegratorSettings{}), scene, 64, 64, 0, 1).image;
-    const Image path = renderWith(PathTracer(IntegratorSettings{.maxDepth = 1, .parameters = {}, .lightPathAovs = {}}), scene, 64, 64, 0, 2).image;
+    const Image path = renderWith(PathTracer(IntegratorSettings{.maxDepth = 1, .parameters = {}, .lightPathAovs = {}}),
+                                  scene, 64, 64, 0, 2)
+                           .image;
     for (int c = 0; c < 3; ++c) {
         const test::MeanEstimate d = meanDifference(direct, path, c, everyPixel);
         const test::MeanEstimate level = test_support::channelMean(direct, c, [](const float*) { return true; });
-        std::printf("[ measured ] channel %d: direct %.5f, direct - path(depth 1) %+.6f +- %.6f\n", c, level.mean(), d.mean(),
-                    d.standardError());
+        std::printf("[ measured ] channel %d: direct %.5f, direct - path(depth 1) %+.6f +- %.6f\n", c, level.mean(),
+                    d.mean(), d.standardError());
         EXPECT_GT(d.standardError(), 0.0);
         EXPECT_NEAR(d.mean(), 0.0, kTwoSidedZ * d.standardError()) << "channel " << c;
     }
@@ -114,7 +119,8 @@ TEST(DirectLighting, ConvexSphereUnderAUniformDomeReadsItsAlbedo) {
     const test_support::Rendered r = renderWith(DirectLighting(IntegratorSettings{}), test::furnaceScene(0.5f), 48, 16);
     const int a = r.image.channelIndex("A");
     for (int c = 0; c < 3; ++c) {
-        const test::MeanEstimate sphere = test_support::channelMean(r.image, c, [&](const float* p) { return p[a] == 1.0f; });
+        const test::MeanEstimate sphere =
+            test_support::channelMean(r.image, c, [&](const float* p) { return p[a] == 1.0f; });
         std::printf("[ measured ] channel %d: %.5f +- %.5f over %d pixels (expected 0.5)\n", c, sphere.mean(),
                     sphere.standardError(), sphere.count());
         ASSERT_GT(sphere.count(), 500);
@@ -127,7 +133,8 @@ render::SceneDescription closedBox() {
     render::SceneDescription s;
     s.materials.push_back(test::diffuseMaterial("/white", RGB(0.7f, 0.7f, 0.5f)));
     s.meshes.push_back(test::boxMesh(Vec3f(1.0f), 0));
-    s.lights.push_back(test::rectLight("/ceilingLight", 0.6f, 0.6f, RGB(10.0f), Matrix4::translate({0, 0, 0.99})));  // emits down (-Z)
+    s.lights.push_back(
+        test::rectLight("/ceilingLight", 0.6f, 0.6f, RGB(10.0f), Matrix4::translate({0, 0, 0.99})));  // emits down (-Z)
     s.camera = test::lookAtOriginCamera(0.95f);
     return s;
 }
@@ -141,8 +148,9 @@ TEST(DirectLighting, MissesTheIndirectLightOfAClosedBox) {
     for (int c = 0; c < 3; ++c) {
         const test::MeanEstimate missing = meanDifference(path, direct, c, everyPixel);
         const test::MeanEstimate level = test_support::channelMean(path, c, [](const float*) { return true; });
-        std::printf("[ measured ] channel %d: path %.4f, path - direct %.4f +- %.4f (%.0f%% of the light is indirect)\n", c,
-                    level.mean(), missing.mean(), missing.standardError(), 100.0 * missing.mean() / level.mean());
+        std::printf(
+            "[ measured ] channel %d: path %.4f, path - direct %.4f +- %.4f (%.0f%% of the light is indirect)\n", c,
+            level.mean(), missing.mean(), missing.standardError(), 100.0 * missing.mean() / level.mean());
         EXPECT_GT(missing.mean(), kOneSidedZ * missing.standardError()) << "channel " << c;
     }
 }
@@ -184,7 +192,8 @@ TEST(Whitted, MirrorShowsTheCeilingLitDirectlyTimesItsReflectance) {
         s.materials.push_back(metal);
         const float z = mirror ? ceiling : -ceiling;
         s.meshes.push_back(test::quadMesh("/ceiling", {{{-5, -5, z}, {5, -5, z}, {5, 5, z}, {-5, 5, z}}}, 0));
-        if (mirror) s.meshes.push_back(test::quadMesh("/mirror", {{{-5, -5, 0}, {5, -5, 0}, {5, 5, 0}, {-5, 5, 0}}}, 1));
+        if (mirror)
+            s.meshes.push_back(test::quadMesh("/mirror", {{{-5, -5, 0}, {5, -5, 0}, {5, 5, 0}, {-5, 5, 0}}}, 1));
         s.lights.push_back(test::pointLight("/point", RGB(50.0f), {0.3, -0.2, mirror ? lightHeight : -lightHeight}));
         s.camera = lookingDown(1.5f);
         return s;
@@ -198,7 +207,8 @@ TEST(Whitted, MirrorShowsTheCeilingLitDirectlyTimesItsReflectance) {
     // reaches the ceiling up to 2^-16 tan(widest angle) away from the unfolded ray's point, where
     // the light's irradiance h / (r^2 + h^2)^(3/2) changes by at most 3 / (2h) per unit length
     // (relative); and float rounding adds a few ulps (2^-23) per operation over some tens of them.
-    const double slack = std::ldexp(1.0, -16) * tanWidest * 3.0 / (2.0 * (ceiling - lightHeight)) + 64 * std::ldexp(1.0, -23);
+    const double slack =
+        std::ldexp(1.0, -16) * tanWidest * 3.0 / (2.0 * (ceiling - lightHeight)) + 64 * std::ldexp(1.0, -23);
     double worst = 0.0, directMax = 0.0;
     for (int y = 0; y < 16; ++y)
         for (int x = 0; x < 16; ++x)
@@ -271,9 +281,10 @@ TEST(Whitted, MissesTheCausticUnderAGlassSphere) {
             }
     const double umbraMean = umbraSum / umbraPixels, umbraError = std::sqrt(umbraNoise) / umbraPixels;
     const test::MeanEstimate floor = meanDifference(path, whitted, 0, onFloor);
-    std::printf("[ measured ] path in whitted's umbra %.4f +- %.4f over %d pixels; "
-                "path - whitted on the floor %.4f +- %.4f over %d\n",
-                umbraMean, umbraError, umbraPixels, floor.mean(), floor.standardError(), floor.count());
+    std::printf(
+        "[ measured ] path in whitted's umbra %.4f +- %.4f over %d pixels; "
+        "path - whitted on the floor %.4f +- %.4f over %d\n",
+        umbraMean, umbraError, umbraPixels, floor.mean(), floor.standardError(), floor.count());
     ASSERT_GT(umbraPixels, 20);
     EXPECT_GT(umbraMean, kOneSidedZ * umbraError);
     EXPECT_GT(floor.mean(), kOneSidedZ * floor.standardError());
@@ -292,10 +303,12 @@ TEST(Whitted, AbsorbingGlassCubeMatchesItsInternalReflections) {
     s.meshes[0] = test::boxMesh(Vec3f(side / 2.0f), 0);
     const render::RenderScene scene(s);
     const render::Ray ray{{0.1f, -5.0f, 0.2f}, {0.0f, 1.0f, 0.0f}};
-    const std::array<test::MeanEstimate, 3> e = test_support::radianceAlong(Whitted{IntegratorSettings{}}, scene, ray, 50000, 11);
+    const std::array<test::MeanEstimate, 3> e =
+        test_support::radianceAlong(Whitted{IntegratorSettings{}}, scene, ray, 50000, 11);
     for (int c = 0; c < 3; ++c) {
         const double expected = test_support::glassSlabSeenHeadOn(F, std::exp(-sigmaA[c] * side));
-        std::printf("[ measured ] channel %d: %.5f +- %.5f (expected %.5f)\n", c, e[c].mean(), e[c].standardError(), expected);
+        std::printf("[ measured ] channel %d: %.5f +- %.5f (expected %.5f)\n", c, e[c].mean(), e[c].standardError(),
+                    expected);
         EXPECT_NEAR(e[c].mean(), expected, kTwoSidedZ * e[c].standardError()) << "channel " << c;
     }
 }
@@ -314,7 +327,8 @@ TEST(Whitted, ShadowRaysInsideAnAbsorbingInteriorAreAttenuated) {
         s.materials.push_back(test::diffuseMaterial("/plate", RGB(0.6f)));
         s.meshes.push_back(test::boxMesh(Vec3f(1.0f), 0));
         const float h = -0.5f;
-        s.meshes.push_back(test::quadMesh("/plate", {{{-0.8f, -0.8f, h}, {0.8f, -0.8f, h}, {0.8f, 0.8f, h}, {-0.8f, 0.8f, h}}}, 1));
+        s.meshes.push_back(
+            test::quadMesh("/plate", {{{-0.8f, -0.8f, h}, {0.8f, -0.8f, h}, {0.8f, 0.8f, h}, {-0.8f, 0.8f, h}}}, 1));
         s.lights.push_back(test::pointLight("/point", RGB(20.0f), {0.0, 0.0, 0.0}));
         s.camera = lookingDown(5.0f);
         const render::RenderScene scene(s);

@@ -45,7 +45,8 @@ render::SceneDescription inAWhiteSky(render::MeshDesc mesh, render::MaterialDesc
 }
 
 TEST(MediumStack, EntersAgainstTheNormalLeavesAlongItAndNests) {
-    render::SceneDescription desc = inAWhiteSky(test::boxMesh(Vec3f(1.0f), 0), glassWithInterior({RGB(1.0f), RGB(0.0f)}));
+    render::SceneDescription desc =
+        inAWhiteSky(test::boxMesh(Vec3f(1.0f), 0), glassWithInterior({RGB(1.0f), RGB(0.0f)}));
     desc.materials.push_back(glassWithInterior({RGB(2.0f), RGB(0.0f)}));
     render::RenderScene scene(desc);
     ASSERT_TRUE(scene.hasMedia());
@@ -79,7 +80,8 @@ TEST(InteriorMedium, AbsorbingGlassCubeMatchesItsInternalReflections) {
     // Chromatic sigmaA puts the three channels' distances on one hero's draws (spectral MIS).
     const RGB sigmaA(0.2f, 0.5f, 1.0f);
     const float side = 2.0f, F = 0.04f;
-    render::RenderScene scene(inAWhiteSky(test::boxMesh(Vec3f(side / 2.0f), 0), glassWithInterior({sigmaA, RGB(0.0f)})));
+    render::RenderScene scene(
+        inAWhiteSky(test::boxMesh(Vec3f(side / 2.0f), 0), glassWithInterior({sigmaA, RGB(0.0f)})));
     const render::Ray ray{{0.1f, -5.0f, 0.2f}, {0.0f, 1.0f, 0.0f}};
     const PathTracer path{IntegratorSettings{}};
     const NaivePathTracer naive{IntegratorSettings{}};
@@ -87,7 +89,8 @@ TEST(InteriorMedium, AbsorbingGlassCubeMatchesItsInternalReflections) {
         std::array<test::MeanEstimate, 3> e = test_support::radianceAlong(*tracer, scene, ray, 100000, 5);
         for (int c = 0; c < 3; ++c) {
             const double expected = test_support::glassSlabSeenHeadOn(F, std::exp(-sigmaA[c] * side));
-            std::printf("[ measured ] channel %d: %.5f +- %.5f (expected %.5f)\n", c, e[c].mean(), e[c].standardError(), expected);
+            std::printf("[ measured ] channel %d: %.5f +- %.5f (expected %.5f)\n", c, e[c].mean(), e[c].standardError(),
+                        expected);
             EXPECT_NEAR(e[c].mean(), expected, kZ * e[c].standardError() + 1e-5) << "channel " << c;
         }
     }
@@ -103,9 +106,10 @@ TEST(InteriorMedium, AlbedoOneInteriorFurnaceNeitherLosesNorGainsLight) {
     test_support::Rendered r = test_support::renderWith(PathTracer(IntegratorSettings{}), desc, 48, 128);
     const int alpha = r.image.channelIndex("A");
     for (int c = 0; c < 3; ++c) {
-        test::MeanEstimate reading = test_support::channelMean(r.image, c, [&](const float* p) { return p[alpha] == 1.0f; });
-        std::printf("[ measured ] channel %d: %.5f +- %.5f over %d pixels\n", c, reading.mean(), reading.standardError(),
-                    reading.count());
+        test::MeanEstimate reading =
+            test_support::channelMean(r.image, c, [&](const float* p) { return p[alpha] == 1.0f; });
+        std::printf("[ measured ] channel %d: %.5f +- %.5f over %d pixels\n", c, reading.mean(),
+                    reading.standardError(), reading.count());
         ASSERT_GT(reading.count(), 100);
         EXPECT_NEAR(reading.mean(), 1.0, kZ * reading.standardError()) << "channel " << c;
     }
@@ -117,19 +121,22 @@ TEST(InteriorMedium, LightInsideAScatteringInteriorAgreesWithTheNaiveReference) 
     // every light outside) and counts the light hit by phase sampling at full weight, while it
     // still samples the light from the glass surface. `naive` only ever hits it. Both estimate
     // the same radiance along a ray through the ball.
-    render::SceneDescription desc = inAWhiteSky(test::roundSphereMesh(1.0f, 48, 24, 0),
-                                                glassWithInterior({RGB(0.1f, 0.2f, 0.4f), RGB(1.5f, 1.0f, 0.5f), RGB(0.0f), 0.3f}));
+    render::SceneDescription desc =
+        inAWhiteSky(test::roundSphereMesh(1.0f, 48, 24, 0),
+                    glassWithInterior({RGB(0.1f, 0.2f, 0.4f), RGB(1.5f, 1.0f, 0.5f), RGB(0.0f), 0.3f}));
     desc.lights[0].radiance = RGB(0.0f);  // the sky stays dark; only the light inside shines
     desc.lights.push_back(test::sphereLight("/Bulb", 0.2f, RGB(10.0f)));
     render::RenderScene scene(desc);
     const render::Ray ray{{0.3f, -5.0f, 0.1f}, {0.0f, 1.0f, 0.0f}};
-    std::array<test::MeanEstimate, 3> path = test_support::radianceAlong(PathTracer(IntegratorSettings{}), scene, ray, 40000, 5);
-    std::array<test::MeanEstimate, 3> naive = test_support::radianceAlong(NaivePathTracer(IntegratorSettings{}), scene, ray, 40000, 5);
+    std::array<test::MeanEstimate, 3> path =
+        test_support::radianceAlong(PathTracer(IntegratorSettings{}), scene, ray, 40000, 5);
+    std::array<test::MeanEstimate, 3> naive =
+        test_support::radianceAlong(NaivePathTracer(IntegratorSettings{}), scene, ray, 40000, 5);
     for (int c = 0; c < 3; ++c) {
         const double difference = path[c].mean() - naive[c].mean();
         const double error = std::hypot(path[c].standardError(), naive[c].standardError());
-        std::printf("[ measured ] channel %d: path %.5f +- %.5f, naive %.5f +- %.5f\n", c, path[c].mean(), path[c].standardError(),
-                    naive[c].mean(), naive[c].standardError());
+        std::printf("[ measured ] channel %d: path %.5f +- %.5f, naive %.5f +- %.5f\n", c, path[c].mean(),
+                    path[c].standardError(), naive[c].mean(), naive[c].standardError());
         EXPECT_GT(path[c].mean(), 0.0) << "the light inside shines through";
         EXPECT_NEAR(difference, 0.0, kZ * error) << "channel " << c;
     }

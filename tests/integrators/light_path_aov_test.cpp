@@ -90,7 +90,8 @@ render::SceneDescription everyKindOfEvent() {
 
 RGB layerAt(const Image& image, const std::string& layer, int x, int y) {
     const float* p = image.pixel(x, y);
-    return RGB(p[image.channelIndex(layer + ".R")], p[image.channelIndex(layer + ".G")], p[image.channelIndex(layer + ".B")]);
+    return RGB(p[image.channelIndex(layer + ".R")], p[image.channelIndex(layer + ".G")],
+               p[image.channelIndex(layer + ".B")]);
 }
 RGB beautyAt(const Image& image, int x, int y) {
     const float* p = image.pixel(x, y);
@@ -111,7 +112,8 @@ void expectLayersSumToBeauty(const Image& image, const Layers& layers) {
                 layerTotal[l] += luminance(v);
             }
             for (int c = 0; c < 3; ++c)
-                ASSERT_NEAR(sum[c], beauty[c], 1e-5f * beauty[c] + 1e-7f) << "pixel " << x << "," << y << " channel " << c;
+                ASSERT_NEAR(sum[c], beauty[c], 1e-5f * beauty[c] + 1e-7f)
+                    << "pixel " << x << "," << y << " channel " << c;
         }
     for (std::size_t l = 0; l < layers.size(); ++l) EXPECT_GT(layerTotal[l], 0.0) << layers[l].first << " is empty";
 }
@@ -127,7 +129,8 @@ TEST(LightPathAovs, LayersOfADisjointCoverSumToTheBeauty) {
 }
 
 TEST(LightPathAovs, LightLabelsSplitTheBeautyByLight) {
-    const Layers byLight = {{"key", "C.*<L.'key'>"}, {"fill", "C.*<L.'fill'>"}, {"sky", "C.*<L.'sky'>"}, {"panel", "C.*O"}};
+    const Layers byLight = {
+        {"key", "C.*<L.'key'>"}, {"fill", "C.*<L.'fill'>"}, {"sky", "C.*<L.'sky'>"}, {"panel", "C.*O"}};
     expectLayersSumToBeauty(renderLayers(everyKindOfEvent(), byLight, 24, 16), byLight);
 }
 
@@ -154,7 +157,8 @@ TEST(LightPathAovs, DiffuseFirstBounceIsWhatOneBounceAdds) {
     const Image oneBounce = renderLayers(s, {}, 16, 8, 1);
     for (int y = 0; y < full.height; ++y)
         for (int x = 0; x < full.width; ++x) {
-            const RGB expected = beautyAt(oneBounce, x, y), got = layerAt(full, "seen", x, y) + layerAt(full, "bounce", x, y);
+            const RGB expected = beautyAt(oneBounce, x, y),
+                      got = layerAt(full, "seen", x, y) + layerAt(full, "bounce", x, y);
             for (int c = 0; c < 3; ++c) ASSERT_NEAR(got[c], expected[c], 1e-5f * expected[c] + 1e-7f) << x << "," << y;
         }
 }
@@ -211,8 +215,10 @@ TEST(LightPathAovs, DiffuseAndGlossyLayersMatchAPlainLightSamplingEstimate) {
     for (int l = 0; l < 2; ++l)
         for (int c = 0; c < 3; ++c) {
             const double se = std::hypot(tracer[l][c].standardError(), reference[l][c].standardError());
-            EXPECT_GT(reference[l][c].mean(), 10.0 * se) << layers[std::size_t(l)].first << ": too little light to test";
-            EXPECT_NEAR(tracer[l][c].mean(), reference[l][c].mean(), z * se) << layers[std::size_t(l)].first << " channel " << c;
+            EXPECT_GT(reference[l][c].mean(), 10.0 * se)
+                << layers[std::size_t(l)].first << ": too little light to test";
+            EXPECT_NEAR(tracer[l][c].mean(), reference[l][c].mean(), z * se)
+                << layers[std::size_t(l)].first << " channel " << c;
         }
 }
 

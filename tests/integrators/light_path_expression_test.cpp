@@ -35,7 +35,8 @@ Path parsePath(const std::string& text) {
     for (std::string token; in >> token;) {
         Event event{static_cast<EventType>(kTypeLetters.find(token[0]))};
         std::size_t at = 1;
-        if (at < token.size() && token[at] != '\'') event.scattering = static_cast<Scattering>(kScatteringLetters.find(token[at++]));
+        if (at < token.size() && token[at] != '\'')
+            event.scattering = static_cast<Scattering>(kScatteringLetters.find(token[at++]));
         if (at < token.size()) event.label = token.substr(at + 1, token.size() - at - 2);
         path.push_back(event);
     }
@@ -288,7 +289,8 @@ struct ReferenceNode {
             case Kind::Event: return text;
             case Kind::Sequence: {
                 std::string out;
-                for (const ReferenceNode& child : children) out += child.kind == Kind::Alternation ? child.parenthesised() : child.print();
+                for (const ReferenceNode& child : children)
+                    out += child.kind == Kind::Alternation ? child.parenthesised() : child.print();
                 return out;
             }
             case Kind::Alternation: {
@@ -361,7 +363,8 @@ private:
         }
         if (position == 0) {
             const int type = below(7);
-            return {std::string(1, kTypeLetters[static_cast<std::size_t>(type)]), [type](const Event& e) { return static_cast<int>(e.type) == type; }};
+            return {std::string(1, kTypeLetters[static_cast<std::size_t>(type)]),
+                    [type](const Event& e) { return static_cast<int>(e.type) == type; }};
         }
         const int scattering = 1 + below(4);
         return {std::string(1, kScatteringLetters[static_cast<std::size_t>(scattering)]),
@@ -399,11 +402,12 @@ private:
             std::string text = "<";
             std::vector<Test> tests;
             for (int position = 0, n = below(4); position < n; ++position) {
-                if (below(6) == 0) position = 2;  // a label may come early
+                if (below(6) == 0) position = 2;                           // a label may come early
                 const int form = position == 2 ? 1 + below(3) : below(4);  // '.' would not be a label
-                std::pair<std::string, Test> part = form == 0   ? std::pair<std::string, Test>{".", [](const Event&) { return true; }}
-                                                    : form == 1 ? set([this, position] { return item(position); })
-                                                                : item(position);
+                std::pair<std::string, Test> part =
+                    form == 0   ? std::pair<std::string, Test>{".", [](const Event&) { return true; }}
+                    : form == 1 ? set([this, position] { return item(position); })
+                                : item(position);
                 text += (below(2) ? " " : "") + part.first;
                 tests.push_back(part.second);
             }
@@ -454,12 +458,9 @@ TEST(LightPathExpression, AgreesWithAReferenceMatcherOnRandomExpressions) {
 
 // Partitions of "C.*L": every path from a camera to a light must match exactly one expression.
 const std::vector<std::vector<const char*>> kPartitions = {
-    {"CL", "C[DGs].*L", "CS.*L", "C[^DGSs].*L"},
-    {"C.?L", "C.{2}L", "C.{3,5}L", "C.{6,}L"},
-    {"C.*<L'key'>", "C.*<L.[^'key']>"},
-    {"C[^S]*L", "C.*S.*L"},
-    {"C.*'subsurface'.*L", "C[^'subsurface']*L"},
-    {"C<RD>L", "C([^R]|<R[^D]>).*L", "C<RD>.+L", "CL"},
+    {"CL", "C[DGs].*L", "CS.*L", "C[^DGSs].*L"},  {"C.?L", "C.{2}L", "C.{3,5}L", "C.{6,}L"},
+    {"C.*<L'key'>", "C.*<L.[^'key']>"},           {"C[^S]*L", "C.*S.*L"},
+    {"C.*'subsurface'.*L", "C[^'subsurface']*L"}, {"C<RD>L", "C([^R]|<R[^D]>).*L", "C<RD>.+L", "CL"},
 };
 
 TEST(LightPathExpression, PartitionsOfCameraToLightPathsAcceptEachPathOnce) {

@@ -23,7 +23,8 @@ const double kZ = test::normalQuantile(0.5 * test::sidakAlpha(2));
 
 // The green channel's mean over the pixels that see the sphere of furnaceScene(), from `path` and
 // from `other`; `other` must be wrong there: off path's by more than kZ combined standard errors.
-void expectMissedLight(const render::SceneDescription& scene, const Integrator& other, const char* name, unsigned missing) {
+void expectMissedLight(const render::SceneDescription& scene, const Integrator& other, const char* name,
+                       unsigned missing) {
     ASSERT_TRUE(scenePathClasses(scene) & missing) << "the scene must hold the class " << name << " misses";
     const IntegratorInfo* info = findIntegrator(name);
     ASSERT_NE(info, nullptr);
@@ -34,9 +35,10 @@ void expectMissedLight(const render::SceneDescription& scene, const Integrator& 
     };
     test::MeanEstimate path = onSphere(test_support::renderWith(PathTracer(IntegratorSettings{}), scene, 32, 64));
     test::MeanEstimate lacking = onSphere(test_support::renderWith(other, scene, 32, 16));
-    std::printf("[ measured ] %s: %.5f +- %.5f where path reads %.5f +- %.5f\n", name, lacking.mean(), lacking.standardError(),
-                path.mean(), path.standardError());
-    EXPECT_GT(std::abs(path.mean() - lacking.mean()), kZ * std::hypot(path.standardError(), lacking.standardError())) << name;
+    std::printf("[ measured ] %s: %.5f +- %.5f where path reads %.5f +- %.5f\n", name, lacking.mean(),
+                lacking.standardError(), path.mean(), path.standardError());
+    EXPECT_GT(std::abs(path.mean() - lacking.mean()), kZ * std::hypot(path.standardError(), lacking.standardError()))
+        << name;
 }
 
 TEST(MissingPathClasses, RadiositySeesNoClearCoatReflection) {

@@ -23,10 +23,10 @@ using test_support::Rendered;
 using test_support::renderWith;
 
 constexpr int kSize = 64;
-constexpr float kHalfWidth = 1.0f;    // the camera sees x and y in [-1, 1]: 32 pixels per unit
-constexpr float kSquare = 0.5f;       // the square's side
-constexpr float kStart = -0.5f;       // its left edge at the shutter's opening
-constexpr float kTravel = 0.25f;      // how far it moves along +x while the shutter is open
+constexpr float kHalfWidth = 1.0f;  // the camera sees x and y in [-1, 1]: 32 pixels per unit
+constexpr float kSquare = 0.5f;     // the square's side
+constexpr float kStart = -0.5f;     // its left edge at the shutter's opening
+constexpr float kTravel = 0.25f;    // how far it moves along +x while the shutter is open
 constexpr float kDepth = -5.0f;
 
 render::CameraDesc orthographicCamera() {
@@ -42,7 +42,8 @@ render::CameraDesc orthographicCamera() {
 // The square with its left edge at x = left, in the plane z = kDepth.
 std::array<Vec3f, 4> squareAt(float left) {
     const float h = 0.5f * kSquare;
-    return {Vec3f(left, -h, kDepth), Vec3f(left + kSquare, -h, kDepth), Vec3f(left + kSquare, h, kDepth), Vec3f(left, h, kDepth)};
+    return {Vec3f(left, -h, kDepth), Vec3f(left + kSquare, -h, kDepth), Vec3f(left + kSquare, h, kDepth),
+            Vec3f(left, h, kDepth)};
 }
 
 render::SceneDescription sceneWith(render::MeshDesc square) {
@@ -73,7 +74,8 @@ render::SceneDescription translatedSquare() {
     instance.prototype = 0;
     instance.transform = Matrix4::translate({kStart, 0.0, 0.0});
     instance.name = "/instance";
-    instance.motionTransforms = {Matrix4::translate({kStart, 0.0, 0.0}), Matrix4::translate({kStart + kTravel, 0.0, 0.0})};
+    instance.motionTransforms = {Matrix4::translate({kStart, 0.0, 0.0}),
+                                 Matrix4::translate({kStart + kTravel, 0.0, 0.0})};
     s.instances.push_back(instance);
     return s;
 }
@@ -136,8 +138,10 @@ TEST(MotionBlur, DeformationAndTransformationBlurOfTheSameMotionAgree) {
     for (int column = 0; column < kSize; ++column) {
         const double p = expectedAlpha(column), n = 6.0 * kSpp;
         const double sigma = std::sqrt(2.0 * std::max(p * (1.0 - p), 1.0 / n) / n);  // of a difference of two means
-        EXPECT_NEAR(columnAlpha(deformed.image, column), columnAlpha(moved.image, column), 5.0 * sigma + 1e-6) << column;
-        EXPECT_NEAR(columnAlpha(deformed.image, column), columnAlpha(threeSteps.image, column), 5.0 * sigma + 1e-6) << column;
+        EXPECT_NEAR(columnAlpha(deformed.image, column), columnAlpha(moved.image, column), 5.0 * sigma + 1e-6)
+            << column;
+        EXPECT_NEAR(columnAlpha(deformed.image, column), columnAlpha(threeSteps.image, column), 5.0 * sigma + 1e-6)
+            << column;
     }
 }
 
@@ -146,7 +150,8 @@ TEST(MotionBlur, ImagesAreBitIdenticalAcrossThreadCountsAndTiles) {
     const Rendered one = renderWith(tracer(), desc, kSize, 8, 1, 5);
     const Rendered two = renderWith(tracer(), desc, kSize, 8, 2, 5);
     ASSERT_EQ(one.image.pixels.size(), two.image.pixels.size());
-    EXPECT_EQ(0, std::memcmp(one.image.pixels.data(), two.image.pixels.data(), one.image.pixels.size() * sizeof(float)));
+    EXPECT_EQ(0,
+              std::memcmp(one.image.pixels.data(), two.image.pixels.data(), one.image.pixels.size() * sizeof(float)));
 
     // A tile rendered alone: the window (20, 24) of 24 x 16 pixels of the whole image.
     const render::RenderScene scene(desc);
@@ -162,7 +167,8 @@ TEST(MotionBlur, ImagesAreBitIdenticalAcrossThreadCountsAndTiles) {
     const Image tile = film.resolve();
     for (int y = 0; y < 16; ++y)
         for (int x = 0; x < 24; ++x)
-            ASSERT_EQ(0, std::memcmp(tile.pixel(x, y), one.image.pixel(x + 20, y + 24), tile.channelCount() * sizeof(float)))
+            ASSERT_EQ(
+                0, std::memcmp(tile.pixel(x, y), one.image.pixel(x + 20, y + 24), tile.channelCount() * sizeof(float)))
                 << x << "," << y;
 }
 
@@ -196,7 +202,8 @@ TEST(MotionBlur, TheMotionVectorAovIsTheScreenSpaceTravel) {
     settings.samplesPerPixel = 4;
     Film film(kSize, kSize, camera.farClip());
     render(scene, camera, tracer(), settings, film);
-    const Image aov = renderFirstHitAovs(scene, camera, settings, film, {FirstHitAov{FirstHitSource::MotionVector, "", 2, PixelFilter::Max}});
+    const Image aov = renderFirstHitAovs(scene, camera, settings, film,
+                                         {FirstHitAov{FirstHitSource::MotionVector, "", 2, PixelFilter::Max}});
     // Where the square is the whole shutter long (columns 24 to 31, rows inside it): kTravel to the
     // right, in pixels, and nothing vertically; where nothing is, zero.
     const float pixels = kTravel * kSize / (2.0f * kHalfWidth);

@@ -70,7 +70,8 @@ TEST(PathTracer, ImagesAreBitIdenticalAcrossThreadCounts) {
     Rendered one = renderScene(scene, 40, 5, 1, 64, 1234);
     Rendered two = renderScene(scene, 40, 5, 2, 64, 1234);
     ASSERT_EQ(one.image.pixels.size(), two.image.pixels.size());
-    EXPECT_EQ(0, std::memcmp(one.image.pixels.data(), two.image.pixels.data(), one.image.pixels.size() * sizeof(float)));
+    EXPECT_EQ(0,
+              std::memcmp(one.image.pixels.data(), two.image.pixels.data(), one.image.pixels.size() * sizeof(float)));
     Rendered otherSeed = renderScene(scene, 40, 5, 2, 64, 99);
     EXPECT_NE(0, std::memcmp(one.image.pixels.data(), otherSeed.image.pixels.data(),
                              one.image.pixels.size() * sizeof(float)));
@@ -143,7 +144,8 @@ TEST(Renderer, DiscardsAndCountsNonFiniteSamples) {
     EXPECT_EQ(stats.counters.nonFiniteSamples, 4u);  // 12 samples, every third
     Image image = film.resolve();
     for (int x = 0; x < 3; ++x)
-        for (float v : {image.pixel(x, 0)[0], image.pixel(x, 0)[1], image.pixel(x, 0)[2]}) EXPECT_TRUE(std::isfinite(v));
+        for (float v : {image.pixel(x, 0)[0], image.pixel(x, 0)[1], image.pixel(x, 0)[2]})
+            EXPECT_TRUE(std::isfinite(v));
 }
 
 TEST(PathTracer, MaxDepthZeroSeesOnlyEmitters) {

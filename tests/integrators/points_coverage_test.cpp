@@ -52,7 +52,8 @@ void expectCoverage(const render::SceneDescription& s, double expected, const ch
         for (int x = 0; x < kSize; ++x) alpha += image.pixel(x, y)[3];
     const double pixel = kView / kSize;
     const double area = alpha * pixel * pixel;
-    const double outlinePixels = 6.0 * 2.0 * kPi * kRadius / pixel * 2.0;  // generous: two pixels per pixel of perimeter
+    const double outlinePixels =
+        6.0 * 2.0 * kPi * kRadius / pixel * 2.0;  // generous: two pixels per pixel of perimeter
     const double sd = std::sqrt(outlinePixels / (4.0 * kSpp)) * pixel * pixel;
     EXPECT_NEAR(area, expected, 5.0 * sd) << what;
 }

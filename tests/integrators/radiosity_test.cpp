@@ -30,7 +30,8 @@ TEST(Radiosity, ClosedEmissiveBoxIsSolvedExactly) {
     settings.tolerance = 1e-6f;
     Radiosity radiosity(settings);
     test_support::Rendered image = test_support::renderWith(radiosity, desc, 16, 1);
-    const std::unique_ptr<RadiositySolution> solution = radiosity.solve(render::RenderScene(desc), 0);  // the render's (seed 0)
+    const std::unique_ptr<RadiositySolution> solution =
+        radiosity.solve(render::RenderScene(desc), 0);  // the render's (seed 0)
 
     EXPECT_LE(solution->residual, settings.tolerance);
     // The error bound from the residual: rows of F sum to at most 1, so the largest error is at most
@@ -57,7 +58,8 @@ TEST(Radiosity, DeltaLightIsGatheredExactly) {
     constexpr float kAlbedo = 0.5f, kIrradiance = 2.0f, kTiltDegrees = 30.0f;
     render::SceneDescription desc;
     desc.materials.push_back(test::diffuseMaterial("/ground", RGB(kAlbedo)));
-    desc.meshes.push_back(test::quadMesh("/ground", {{{-1, -1, 0}, {1, -1, 0}, {1, 1, 0}, {-1, 1, 0}}}, 0));  // normal +Z
+    desc.meshes.push_back(
+        test::quadMesh("/ground", {{{-1, -1, 0}, {1, -1, 0}, {1, 1, 0}, {-1, 1, 0}}}, 0));  // normal +Z
     render::LightDesc sun;
     sun.name = "/sun";
     sun.type = render::LightType::Distant;  // emits along its local -Z: from above, tilted
@@ -112,11 +114,12 @@ render::SceneDescription cornellRoom() {
 TEST(Radiosity, ApproachesPathTracerAsMeshIsRefined) {
     constexpr int kSize = 48, kPathSpp = 256, kSeeds = 4;
     const render::SceneDescription room = cornellRoom();
-    const test_support::Rendered reference = test_support::renderWith(PathTracer(IntegratorSettings{}), room, kSize, kPathSpp);
+    const test_support::Rendered reference =
+        test_support::renderWith(PathTracer(IntegratorSettings{}), room, kSize, kPathSpp);
     const auto everyPixel = [](const float*) { return true; };
 
-    const float edges[] = {1.0f, 0.4f, 0.15f};  // coarse, medium, fine
-    double error[3][3];                          // [level][channel]: radiosity mean - path mean
+    const float edges[] = {1.0f, 0.4f, 0.15f};                         // coarse, medium, fine
+    double error[3][3];                                                // [level][channel]: radiosity mean - path mean
     const double z = test::normalQuantile(test::sidakAlpha(3) / 2.0);  // two-sided, three channels
     for (int level = 0; level < 3; ++level) {
         test::MeanEstimate means[3];  // per channel, over seeds
@@ -125,7 +128,8 @@ TEST(Radiosity, ApproachesPathTracerAsMeshIsRefined) {
             settings.patchEdge = edges[level];
             Radiosity radiosity(settings);
             const test_support::Rendered image = test_support::renderWith(radiosity, room, kSize, 1, 0, seed);
-            EXPECT_LE(radiosity.solve(render::RenderScene(room), seed)->residual, settings.tolerance) << image.stats.methodSummary;
+            EXPECT_LE(radiosity.solve(render::RenderScene(room), seed)->residual, settings.tolerance)
+                << image.stats.methodSummary;
             if (seed == 0) std::printf("edge %.2f: %s\n", edges[level], image.stats.methodSummary.c_str());
             for (int c = 0; c < 3; ++c) means[c].add(test_support::channelMean(image.image, c, everyPixel).mean());
         }
@@ -133,8 +137,9 @@ TEST(Radiosity, ApproachesPathTracerAsMeshIsRefined) {
             const test::MeanEstimate path = test_support::channelMean(reference.image, c, everyPixel);
             error[level][c] = means[c].mean() - path.mean();
             const double band = z * std::hypot(path.standardError(), means[c].standardError());
-            std::printf("  channel %d: radiosity %.5f +- %.5f, path %.5f +- %.5f, difference %+.5f (band %.5f)\n", c, means[c].mean(),
-                        means[c].standardError(), path.mean(), path.standardError(), error[level][c], band);
+            std::printf("  channel %d: radiosity %.5f +- %.5f, path %.5f +- %.5f, difference %+.5f (band %.5f)\n", c,
+                        means[c].mean(), means[c].standardError(), path.mean(), path.standardError(), error[level][c],
+                        band);
             if (level == 2) {
                 EXPECT_LE(std::abs(error[level][c]), band) << "channel " << c;
             }

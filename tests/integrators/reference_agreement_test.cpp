@@ -28,11 +28,12 @@ render::SceneDescription everyLightScene() {
     s.meshes.push_back(test::quadMesh("/ground", {{{-4, -4, -1}, {4, -4, -1}, {4, 4, -1}, {-4, 4, -1}}}, 0));
     s.meshes.push_back(test::sphereMesh(0.8f, 24, 12, 1));
     // An emissive quad standing behind the sphere.
-    s.meshes.push_back(test::quadMesh("/panel", {{{-1.5f, 2, -1}, {1.5f, 2, -1}, {1.5f, 2.5f, 1.5f}, {-1.5f, 2.5f, 1.5f}}}, 2));
+    s.meshes.push_back(
+        test::quadMesh("/panel", {{{-1.5f, 2, -1}, {1.5f, 2, -1}, {1.5f, 2.5f, 1.5f}, {-1.5f, 2.5f, 1.5f}}}, 2));
 
     // The rect light emits downwards-ish.
-    s.lights.push_back(
-        test::rectLight("/rect", 1.5f, 1.0f, RGB(6.0f, 5.0f, 4.0f), Matrix4::translate({1.5, -0.5, 2.5}) * Matrix4::rotateY(30)));
+    s.lights.push_back(test::rectLight("/rect", 1.5f, 1.0f, RGB(6.0f, 5.0f, 4.0f),
+                                       Matrix4::translate({1.5, -0.5, 2.5}) * Matrix4::rotateY(30)));
     s.lights.push_back(test::sphereLight("/bulb", 0.3f, RGB(8.0f), {-1.8, -0.8, 0.5}));
     render::LightDesc sun = test::distantLight("/sun", 20.0f, RGB(1.5f), Matrix4::rotateX(35) * Matrix4::rotateY(-20));
     sun.normalize = true;
@@ -143,11 +144,12 @@ render::SceneDescription transmissiveScene() {
     s.meshes.push_back(test::quadMesh("/ground", {{{-4, -4, -1}, {4, -4, -1}, {4, 4, -1}, {-4, 4, -1}}}, 0));
     s.meshes.push_back(test::roundSphereMesh(0.7f, 24, 12, 1, {-0.9f, 0.0f, -0.3f}));
     s.meshes.push_back(test::roundSphereMesh(0.6f, 24, 12, 2, {0.9f, 0.0f, -0.4f}));
-    s.meshes.push_back(test::quadMesh("/sheet", {{{0, 1.2f, -1}, {2.5f, 1.2f, -1}, {2.5f, 1.2f, 1.8f}, {0, 1.2f, 1.8f}}}, 3));
+    s.meshes.push_back(
+        test::quadMesh("/sheet", {{{0, 1.2f, -1}, {2.5f, 1.2f, -1}, {2.5f, 1.2f, 1.8f}, {0, 1.2f, 1.8f}}}, 3));
 
     // Emits towards -Y.
-    s.lights.push_back(
-        test::rectLight("/behindSheet", 2.0f, 1.5f, RGB(3.0f), Matrix4::translate({1.2, 2.2, 0.4}) * Matrix4::rotateX(-90)));
+    s.lights.push_back(test::rectLight("/behindSheet", 2.0f, 1.5f, RGB(3.0f),
+                                       Matrix4::translate({1.2, 2.2, 0.4}) * Matrix4::rotateX(-90)));
     // Behind the glass: reached through it from inside.
     s.lights.push_back(test::sphereLight("/backlight", 0.25f, RGB(12.0f), {-1.1, 1.3, 0.1}));
     s.lights.push_back(test::sphereLight("/bulb", 0.3f, RGB(8.0f), {0.4, -2.2, 2.4}));
@@ -173,7 +175,8 @@ TEST(ReferenceAgreement, NaiveMissesDeltaLightsAsItsPathClassSays) {
     s.lights.push_back(sun);
     s.camera = test::lookAtOriginCamera(4.0f);
     IntegratorSettings settings;
-    Image naive = renderImage(NaivePathTracer(settings), s, 8, 4, 1), path = renderImage(PathTracer(settings), s, 8, 4, 1);
+    Image naive = renderImage(NaivePathTracer(settings), s, 8, 4, 1),
+          path = renderImage(PathTracer(settings), s, 8, 4, 1);
     float naiveMax = 0.0f, pathMax = 0.0f;
     for (int y = 0; y < 8; ++y)
         for (int x = 0; x < 8; ++x) {

@@ -98,7 +98,8 @@ TEST(ScenePathClasses, IndirectNeedsTwoSurfacesOrOneThatIsNotFlat) {
 }
 
 TEST(ScenePathClasses, SmoothLobesAreDeltaLobes) {
-    EXPECT_EQ(quadUnderRectLight(mirror()), unsigned(kEmitterSeen | kSpecularSeen)) << "a smooth metal has no other lobe";
+    EXPECT_EQ(quadUnderRectLight(mirror()), unsigned(kEmitterSeen | kSpecularSeen))
+        << "a smooth metal has no other lobe";
     EXPECT_EQ(quadUnderRectLight(glass()), unsigned(kEmitterSeen | kSpecularSeen));
 
     MaterialDesc roughMetal = mirror();
@@ -133,12 +134,13 @@ TEST(ScenePathClasses, CausticsNeedADeltaLobeAReceiverAndALightOfTheirKind) {
     render::LightDesc point = light(LightType::Sphere);
     point.treatAsPoint = true;
     const unsigned underPoint = scenePathClasses(sphereOnFloor(mirror(), {point}));
-    EXPECT_EQ(underPoint & (kCaustics | kDeltaLightCaustics | kDeltaLights), unsigned(kDeltaLightCaustics | kDeltaLights));
+    EXPECT_EQ(underPoint & (kCaustics | kDeltaLightCaustics | kDeltaLights),
+              unsigned(kDeltaLightCaustics | kDeltaLights));
 
     SceneDescription mirrorBesideFloor;
     mirrorBesideFloor.materials = {test::diffuseMaterial("/White", RGB(0.8f)), mirror()};
-    mirrorBesideFloor.meshes = {floorQuad(0), test::quadMesh("/Mirror", {Vec3f(-1, 1, 0), Vec3f(1, 1, 0), Vec3f(1, 1, 2),
-                                                                          Vec3f(-1, 1, 2)}, 1)};
+    mirrorBesideFloor.meshes = {
+        floorQuad(0), test::quadMesh("/Mirror", {Vec3f(-1, 1, 0), Vec3f(1, 1, 0), Vec3f(1, 1, 2), Vec3f(-1, 1, 2)}, 1)};
     mirrorBesideFloor.lights = {light(LightType::Rect)};
     EXPECT_TRUE(scenePathClasses(mirrorBesideFloor) & kCaustics) << "two flat surfaces";
     mirrorBesideFloor.meshes.pop_back();
@@ -153,7 +155,8 @@ TEST(ScenePathClasses, CausticsNeedADeltaLobeAReceiverAndALightOfTheirKind) {
     EXPECT_TRUE(scenePathClasses(glassAlone) & kCaustics) << "a volume receives them";
     EXPECT_TRUE(scenePathClasses(glassAlone) & kDeltaLightCaustics);
 
-    EXPECT_FALSE(scenePathClasses(sphereOnFloor(test::diffuseMaterial("/Red", RGB(0.8f, 0.1f, 0.1f)), {light(LightType::Rect)})) &
+    EXPECT_FALSE(scenePathClasses(
+                     sphereOnFloor(test::diffuseMaterial("/Red", RGB(0.8f, 0.1f, 0.1f)), {light(LightType::Rect)})) &
                  kCaustics)
         << "no delta lobe";
 }
@@ -173,7 +176,8 @@ TEST(ScenePathClasses, DeltaLightsArePointsLinesAndSuns) {
     for (const render::LightDesc& delta : {spot, line, sun}) EXPECT_TRUE(classesOf(delta) & kDeltaLights);
 
     sun.angleDegrees = 0.53f;
-    for (const render::LightDesc& area : {sun, light(LightType::Sphere), light(LightType::Cylinder), light(LightType::Disk)})
+    for (const render::LightDesc& area :
+         {sun, light(LightType::Sphere), light(LightType::Cylinder), light(LightType::Disk)})
         EXPECT_EQ(classesOf(area), unsigned(kEmitterSeen));
 }
 

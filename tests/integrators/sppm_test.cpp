@@ -134,7 +134,8 @@ test::MeanEstimate regionEstimate(const Image& image, const std::vector<bool>& r
     return e;
 }
 
-test::MeanEstimate pathRegionMean(const render::SceneDescription& desc, int size, int spp, const std::vector<bool>& region) {
+test::MeanEstimate pathRegionMean(const render::SceneDescription& desc, int size, int spp,
+                                  const std::vector<bool>& region) {
     return regionEstimate(test_support::renderWith(PathTracer(IntegratorSettings{}), desc, size, spp).image, region);
 }
 
@@ -143,8 +144,10 @@ test::MeanEstimate sppmRegionMean(const render::SceneDescription& desc, const Sp
                                   int renders, const std::vector<bool>& region) {
     test::MeanEstimate e;
     for (int seed = 1; seed <= renders; ++seed)
-        e.add(regionEstimate(test_support::renderWith(Sppm(IntegratorSettings{}, settings), desc, size, spp, 0, seed).image, region)
-                  .mean());
+        e.add(
+            regionEstimate(
+                test_support::renderWith(Sppm(IntegratorSettings{}, settings), desc, size, spp, 0, seed).image, region)
+                .mean());
     return e;
 }
 
@@ -164,8 +167,8 @@ TEST(Sppm, DiffuseSceneAgreesWithPathAndItsErrorFalls) {
     test::MeanEstimate path = pathRegionMean(desc, kSize, 256, region);
     test::MeanEstimate sppm = sppmRegionMean(desc, settings, kSize, 16, 6, region);
     const double sigma = std::hypot(path.standardError(), sppm.standardError());
-    std::printf("diffuse region: path %.5f +- %.5f, sppm %.5f +- %.5f\n", path.mean(), path.standardError(), sppm.mean(),
-                sppm.standardError());
+    std::printf("diffuse region: path %.5f +- %.5f, sppm %.5f +- %.5f\n", path.mean(), path.standardError(),
+                sppm.mean(), sppm.standardError());
     EXPECT_NEAR(sppm.mean(), path.mean(), 4 * sigma);
 
     // Per pixel (where blur bias and photon noise both show), sppm's distance from a converged
@@ -189,8 +192,8 @@ TEST(Sppm, FindsThePointLightCausticThatPathCannot) {
     const std::vector<bool> caustic = floorRegion(desc, kSize, causticCentre(), 0.15f);
     test::MeanEstimate path = pathRegionMean(desc, kSize, 16, caustic);
     test::MeanEstimate sppm = sppmRegionMean(desc, SppmSettings{20000, 0.03f}, kSize, 8, 4, caustic);
-    std::printf("point-light caustic: path %.5f +- %.5f, sppm %.5f +- %.5f\n", path.mean(), path.standardError(), sppm.mean(),
-                sppm.standardError());
+    std::printf("point-light caustic: path %.5f +- %.5f, sppm %.5f +- %.5f\n", path.mean(), path.standardError(),
+                sppm.mean(), sppm.standardError());
     // path sees only the indirect light in the glass sphere's shadow.
     EXPECT_GT(sppm.mean(), 5.0 * path.mean() + 4.0 * sppm.standardError());
 }
@@ -210,10 +213,11 @@ TEST(Sppm, AreaLightCausticConvergesToPathsAndBdpts) {
     test::MeanEstimate path = pathRegionMean(desc, kSize, 2048, region);
     test::MeanEstimate sppm = sppmRegionMean(desc, SppmSettings{20000, 0.03f}, kSize, 16, 6, region);
     const double sigma = std::hypot(path.standardError(), sppm.standardError());
-    std::printf("area-light caustic region (%d pixels): path %.5f +- %.5f, sppm %.5f +- %.5f\n", path.count(), path.mean(),
-                path.standardError(), sppm.mean(), sppm.standardError());
+    std::printf("area-light caustic region (%d pixels): path %.5f +- %.5f, sppm %.5f +- %.5f\n", path.count(),
+                path.mean(), path.standardError(), sppm.mean(), sppm.standardError());
     EXPECT_NEAR(sppm.mean(), path.mean(), 4 * sigma);
-    test::MeanEstimate bdpt = regionEstimate(test_support::renderWith(Bdpt(IntegratorSettings{}), desc, kSize, 1024).image, region);
+    test::MeanEstimate bdpt =
+        regionEstimate(test_support::renderWith(Bdpt(IntegratorSettings{}), desc, kSize, 1024).image, region);
     std::printf("area-light caustic region: bdpt %.5f +- %.5f\n", bdpt.mean(), bdpt.standardError());
     EXPECT_NEAR(sppm.mean(), bdpt.mean(), 4 * std::hypot(bdpt.standardError(), sppm.standardError()));
 }
@@ -224,7 +228,8 @@ TEST(Sppm, ImagesAreBitIdenticalAcrossThreadCounts) {
     Rendered one = test_support::renderWith(sppm, desc, 24, 5, 1, 42);
     Rendered two = test_support::renderWith(sppm, desc, 24, 5, 2, 42);
     ASSERT_EQ(one.image.pixels.size(), two.image.pixels.size());
-    EXPECT_EQ(0, std::memcmp(one.image.pixels.data(), two.image.pixels.data(), one.image.pixels.size() * sizeof(float)));
+    EXPECT_EQ(0,
+              std::memcmp(one.image.pixels.data(), two.image.pixels.data(), one.image.pixels.size() * sizeof(float)));
     Rendered otherSeed = test_support::renderWith(sppm, desc, 24, 5, 2, 43);
     EXPECT_NE(0, std::memcmp(one.image.pixels.data(), otherSeed.image.pixels.data(),
                              one.image.pixels.size() * sizeof(float)));
@@ -285,7 +290,9 @@ double sppmSampleMean(const render::SceneDescription& desc, const SppmSettings& 
     for (int y = 0; y < size; ++y)
         for (int x = 0; x < size; ++x) {
             SampleStream rng(seed, std::uint64_t(y) * size + x, sampleIndex);
-            sum += sppm.sample(*state, scene, camera, camera.generateRay(float(x) + 0.5f, float(y) + 0.5f), rng, counters).radiance.x;
+            sum +=
+                sppm.sample(*state, scene, camera, camera.generateRay(float(x) + 0.5f, float(y) + 0.5f), rng, counters)
+                    .radiance.x;
         }
     return sum / (size * size);
 }
@@ -301,7 +308,8 @@ TEST(SppmMedia, FogUnderAnAreaLightConvergesToPathAsTheBiasFalls) {
     constexpr int kSize = 16;
     test::MeanEstimate path;
     for (int seed = 1; seed <= 4; ++seed)
-        path.add(imageMean(test_support::renderWith(PathTracer(IntegratorSettings{}), desc, kSize, 256, 0, seed).image).mean());
+        path.add(imageMean(test_support::renderWith(PathTracer(IntegratorSettings{}), desc, kSize, 256, 0, seed).image)
+                     .mean());
     const SppmSettings settings{40000, 0.7f};
     double bias[2];
     int i = 0;
@@ -310,9 +318,10 @@ TEST(SppmMedia, FogUnderAnAreaLightConvergesToPathAsTheBiasFalls) {
         for (int seed = 1; seed <= 16; ++seed) sppm.add(sppmSampleMean(desc, settings, kSize, sampleIndex, seed));
         const double sigma = std::hypot(path.standardError(), sppm.standardError());
         bias[i] = sppm.mean() - path.mean();
-        std::printf("fog, sample index %llu (radius %.3f): path %.5f +- %.5f, sppm %.5f +- %.5f: %.1f standard errors\n",
-                    static_cast<unsigned long long>(sampleIndex), Sppm::radius(settings.initialRadius, sampleIndex, 3),
-                    path.mean(), path.standardError(), sppm.mean(), sppm.standardError(), bias[i] / sigma);
+        std::printf(
+            "fog, sample index %llu (radius %.3f): path %.5f +- %.5f, sppm %.5f +- %.5f: %.1f standard errors\n",
+            static_cast<unsigned long long>(sampleIndex), Sppm::radius(settings.initialRadius, sampleIndex, 3),
+            path.mean(), path.standardError(), sppm.mean(), sppm.standardError(), bias[i] / sigma);
         if (i++ == 0)
             EXPECT_GT(std::abs(bias[0]), 4 * sigma) << "the large radius's bias should show";
         else
@@ -382,8 +391,8 @@ TEST(SppmMedia, VolumetricCausticOfAPointLightThatPathCannotFind) {
     const std::vector<bool> beam = beamRegion(desc, kSize, 0.1f, 1.35f, 1.95f);
     test::MeanEstimate path = pathRegionMean(desc, kSize, 64, beam);
     test::MeanEstimate sppm = sppmRegionMean(desc, SppmSettings{40000, 0.15f}, kSize, 8, 6, beam);
-    std::printf("point-light beam: path %.5f +- %.5f, sppm %.5f +- %.5f\n", path.mean(), path.standardError(), sppm.mean(),
-                sppm.standardError());
+    std::printf("point-light beam: path %.5f +- %.5f, sppm %.5f +- %.5f\n", path.mean(), path.standardError(),
+                sppm.mean(), sppm.standardError());
     EXPECT_GT(sppm.mean() - path.mean(), 4 * std::hypot(path.standardError(), sppm.standardError()));
 }
 
@@ -406,13 +415,14 @@ TEST(SppmMedia, RandomWalkSubsurfaceAgreesWithPath) {
         for (int x = 0; x < kSize; ++x) sphere[std::size_t(y) * kSize + x] = pathImage.pixel(x, y)[alpha] == 1.0f;
     const Sppm sppmIntegrator(IntegratorSettings{}, SppmSettings{20000, 0.05f});
     std::vector<Image> sppmImages;
-    for (int seed = 1; seed <= 4; ++seed) sppmImages.push_back(test_support::renderWith(sppmIntegrator, desc, kSize, 4, 0, seed).image);
+    for (int seed = 1; seed <= 4; ++seed)
+        sppmImages.push_back(test_support::renderWith(sppmIntegrator, desc, kSize, 4, 0, seed).image);
     for (int c : {0, 2}) {
         const test::MeanEstimate path = regionEstimate(pathImage, sphere, c);
         test::MeanEstimate sppm;
         for (const Image& image : sppmImages) sppm.add(regionEstimate(image, sphere, c).mean());
-        std::printf("subsurface sphere, channel %d: path %.5f +- %.5f, sppm %.5f +- %.5f\n", c, path.mean(), path.standardError(),
-                    sppm.mean(), sppm.standardError());
+        std::printf("subsurface sphere, channel %d: path %.5f +- %.5f, sppm %.5f +- %.5f\n", c, path.mean(),
+                    path.standardError(), sppm.mean(), sppm.standardError());
         EXPECT_NEAR(sppm.mean(), path.mean(), 4 * std::hypot(path.standardError(), sppm.standardError()));
     }
 }
@@ -436,7 +446,8 @@ TEST(SppmMedia, SampleSmokeRendersWithoutNonFiniteValues) {
     smoke.params.temperatureScale = 2000.0f;
     smoke.params.temperatureOffset = 500.0f;
     desc.volumes.push_back(smoke);
-    render::LightDesc sun = test::distantLight("/sun", 0.53f, RGB(3.0f, 2.85f, 2.64f), Matrix4::rotateY(-50) * Matrix4::rotateX(-25));
+    render::LightDesc sun =
+        test::distantLight("/sun", 0.53f, RGB(3.0f, 2.85f, 2.64f), Matrix4::rotateY(-50) * Matrix4::rotateX(-25));
     sun.normalize = true;
     desc.lights.push_back(sun);
     desc.lights.push_back(test::domeLight("/sky", RGB(0.33f, 0.42f, 0.6f)));
@@ -455,8 +466,8 @@ TEST(SppmMedia, SampleSmokeRendersWithoutNonFiniteValues) {
         EXPECT_TRUE(std::isfinite(p[0]) && std::isfinite(p[1]) && std::isfinite(p[2]));
         return p[alpha] > 0.0f;
     });
-    std::printf("smoke: %d pixels covered, red %.4f +- %.4f; %s\n", covered.count(), covered.mean(), covered.standardError(),
-                r.stats.methodSummary.c_str());
+    std::printf("smoke: %d pixels covered, red %.4f +- %.4f; %s\n", covered.count(), covered.mean(),
+                covered.standardError(), r.stats.methodSummary.c_str());
     EXPECT_GT(covered.mean(), 4 * covered.standardError());
 }
 

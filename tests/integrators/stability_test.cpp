@@ -39,7 +39,8 @@ render::SceneDescription brokenGeometry() {
     degenerate.indices = {0, 1, 2, 3, 4, 5};  // a zero-area triangle and a collinear one
     s.meshes.push_back(degenerate);
     render::MeshDesc insideOut = test::boxMesh(Vec3f(0.4f), 0);
-    for (std::size_t t = 0; t + 2 < insideOut.indices.size(); t += 3) std::swap(insideOut.indices[t + 1], insideOut.indices[t + 2]);
+    for (std::size_t t = 0; t + 2 < insideOut.indices.size(); t += 3)
+        std::swap(insideOut.indices[t + 1], insideOut.indices[t + 2]);
     for (std::uint32_t i : insideOut.indices) insideOut.cornerNormals.push_back(-normalize(insideOut.positions[i]));
     s.meshes.push_back(insideOut);
     s.lights.push_back(test::rectLight("/light", 1.0f, 1.0f, RGB(10.0f), Matrix4::translate({0.0, 0.0, 2.0})));

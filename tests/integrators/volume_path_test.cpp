@@ -105,7 +105,8 @@ TEST(VolumePath, PathAgreesWithTheNaiveReferenceInChromaticSmoke) {
     const render::Ray ray{Vec3f(centre) - d * 5.0f, d};
     test::MeanEstimate path = radianceAlong(scene, ray, 20000);
     test::MeanEstimate naive = radianceAlong(scene, ray, 20000, NaivePathTracer(IntegratorSettings{}));
-    const double se = std::sqrt(path.standardError() * path.standardError() + naive.standardError() * naive.standardError());
+    const double se =
+        std::sqrt(path.standardError() * path.standardError() + naive.standardError() * naive.standardError());
     EXPECT_NEAR(path.mean(), naive.mean(), 4.0 * se) << path.mean() << " vs " << naive.mean();
 }
 

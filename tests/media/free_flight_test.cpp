@@ -122,8 +122,9 @@ TEST(FreeFlight, EscapesASlabWithProbabilityExpMinusSigmaTD) {
 }
 
 // Per channel, the mean of a score of sampleFreeFlight()'s result over flights with a uniform hero.
-void expectChromaticMeans(const Medium& medium, const MediumRay& ray, const std::function<RGB(const FreeFlight&)>& score,
-                          const RGB& expected, std::uint64_t seed, const std::string& what) {
+void expectChromaticMeans(const Medium& medium, const MediumRay& ray,
+                          const std::function<RGB(const FreeFlight&)>& score, const RGB& expected, std::uint64_t seed,
+                          const std::string& what) {
     constexpr int kFlights = 40'000;
     test::MeanEstimate means[3];
     for (int n = 0; n < kFlights; ++n) {
@@ -135,7 +136,8 @@ void expectChromaticMeans(const Medium& medium, const MediumRay& ray, const std:
     for (int c = 0; c < 3; ++c) {
         std::printf("[ measured ] %s, channel %d: %.5f +- %.5f (exact %.5f)\n", what.c_str(), c, means[c].mean(),
                     means[c].standardError(), expected[c]);
-        EXPECT_NEAR(means[c].mean(), expected[c], kZ * means[c].standardError() + kRounding) << what << ", channel " << c;
+        EXPECT_NEAR(means[c].mean(), expected[c], kZ * means[c].standardError() + kRounding)
+            << what << ", channel " << c;
     }
 }
 
@@ -149,9 +151,10 @@ TEST(FreeFlight, TransmittanceIsUnbiasedPerChannelInChromaticMedia) {
     // homogeneous slab whose red channel is empty (the red hero draws no collision at all).
     const float d = 2.0f;
     test::RampMedium ramp(RGB(0.1f, 1.0f, 2.0f), RGB(1.5f, 0.0f, -0.6f), 3.0f, 4, false, RGB(0.3f, 0.9f, 0.5f));
-    expectChromaticMeans(ramp, {Vec3f(0.0f), Vec3f(1.0f, 0.0f, 0.0f), d}, escapeScore,
-                         RGB(std::exp(-(0.1f * d + 0.75f * d * d)), std::exp(-1.0f * d), std::exp(-(2.0f * d - 0.3f * d * d))),
-                         56, "chromatic ramp transmittance");
+    expectChromaticMeans(
+        ramp, {Vec3f(0.0f), Vec3f(1.0f, 0.0f, 0.0f), d}, escapeScore,
+        RGB(std::exp(-(0.1f * d + 0.75f * d * d)), std::exp(-1.0f * d), std::exp(-(2.0f * d - 0.3f * d * d))), 56,
+        "chromatic ramp transmittance");
     HomogeneousMedium slab({RGB(0.0f, 0.2f, 1.0f), RGB(0.0f, 0.6f, 0.5f)});
     expectChromaticMeans(slab, {Vec3f(0.0f), Vec3f(0.0f, -1.0f, 0.0f), d}, escapeScore,
                          RGB(1.0f, std::exp(-0.8f * d), std::exp(-1.5f * d)), 57, "slab with an empty channel");

@@ -24,7 +24,8 @@ public:
     explicit ScriptedMedium(std::vector<MajorantSegment> segments, bool ignoresStop = false)
         : segments_(std::move(segments)), ignoresStop_(ignoresStop) {}
     MediumProperties at(const Vec3f&) const override { return {RGB(0.5f), RGB(0.5f)}; }
-    void majorants(const Vec3f&, const Vec3f&, float, float, FunctionRef<bool(const MajorantSegment&)> visit) const override {
+    void majorants(const Vec3f&, const Vec3f&, float, float,
+                   FunctionRef<bool(const MajorantSegment&)> visit) const override {
         for (const MajorantSegment& s : segments_)
             if (!visit(s) && !ignoresStop_) return;
     }
@@ -45,8 +46,8 @@ TEST(MajorantCheck, AcceptsMediaThatKeepTheContract) {
     test::RampMedium ramp(RGB(0.2f, 1.0f, 2.0f), RGB(0.8f, 0.0f, -0.5f), 3.0f, 7, true, RGB(0.5f));
     test::RescaledBoundsMedium loose(ramp, 1.5f, 0.0f);
     const MediumRay oblique{Vec3f(-1.0f, 0.5f, 0.0f), normalize(Vec3f(1.0f, -0.3f, 0.2f)), 6.0f};
-    for (const Medium* medium : {static_cast<const Medium*>(&fog), static_cast<const Medium*>(&ramp),
-                                 static_cast<const Medium*>(&loose)})
+    for (const Medium* medium :
+         {static_cast<const Medium*>(&fog), static_cast<const Medium*>(&ramp), static_cast<const Medium*>(&loose)})
         for (const MediumRay& ray : {kAlongX, oblique}) {
             MajorantCheck check = majorantsBound(*medium, ray);
             EXPECT_TRUE(check.bound) << check.report;

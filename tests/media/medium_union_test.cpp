@@ -67,7 +67,8 @@ TEST(MediumUnion, TransmittanceIsTheProductOfTheMedias) {
     const double z = test::normalQuantile(0.5 * test::sidakAlpha(3));
     for (int c = 0; c < 3; ++c) {
         const RGB a(0.3f, 0.6f, 0.9f);
-        const double expected = std::exp(-(kInterior.sigmaA[c] + kInterior.sigmaS[c]) * d - (a[c] * d + 0.2 * d * d / 2));
+        const double expected =
+            std::exp(-(kInterior.sigmaA[c] + kInterior.sigmaS[c]) * d - (a[c] * d + 0.2 * d * d / 2));
         EXPECT_NEAR(e[c].mean(), expected, z * e[c].standardError() + 1e-6) << "channel " << c;
     }
 }

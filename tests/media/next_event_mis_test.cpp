@@ -53,11 +53,11 @@ TEST(NextEventMis, CombiningFreeFlightsAndShadowRaysIsUnbiased) {
         }
     }
     for (int c = 0; c < 3; ++c) {
-        std::printf("[ measured ] channel %d: MIS %.5f +- %.5f, flights %.5f +- %.5f, shadow rays %.5f +- %.5f "
-                    "(exact %.5f)\n",
-                    c, combined[c].mean(), combined[c].standardError(), flightsAlone[c].mean(),
-                    flightsAlone[c].standardError(), shadowRaysAlone[c].mean(), shadowRaysAlone[c].standardError(),
-                    exact[c]);
+        std::printf(
+            "[ measured ] channel %d: MIS %.5f +- %.5f, flights %.5f +- %.5f, shadow rays %.5f +- %.5f "
+            "(exact %.5f)\n",
+            c, combined[c].mean(), combined[c].standardError(), flightsAlone[c].mean(), flightsAlone[c].standardError(),
+            shadowRaysAlone[c].mean(), shadowRaysAlone[c].standardError(), exact[c]);
         EXPECT_NEAR(combined[c].mean(), exact[c], kZ * combined[c].standardError()) << "channel " << c;
         EXPECT_NEAR(flightsAlone[c].mean(), exact[c], kZ * flightsAlone[c].standardError()) << "channel " << c;
         EXPECT_NEAR(shadowRaysAlone[c].mean(), exact[c], kZ * shadowRaysAlone[c].standardError()) << "channel " << c;

@@ -143,10 +143,11 @@ TEST(NormalizedDiffusion, PdfRadiusIntegratesToOneAndEverySampleWeighsA) {
                 weight.add(w);
                 radius.add(r);
             }
-            std::printf("[ measured ] A %.2f, l %.2f: pdfRadius integrates to %.9f (bound %.1e); mean weight "
-                        "%.8f +- %.1e; mean r / d %.4f +- %.4f (exact 2.5)\n",
-                        a, m.meanFreePath[c], total.value, total.errorBound, weight.mean(), weight.standardError(),
-                        radius.mean() / d, radius.standardError() / d);
+            std::printf(
+                "[ measured ] A %.2f, l %.2f: pdfRadius integrates to %.9f (bound %.1e); mean weight "
+                "%.8f +- %.1e; mean r / d %.4f +- %.4f (exact 2.5)\n",
+                a, m.meanFreePath[c], total.value, total.errorBound, weight.mean(), weight.standardError(),
+                radius.mean() / d, radius.standardError() / d);
             EXPECT_NEAR(weight.mean(), a, kZ * weight.standardError() + a * kRounding);
             EXPECT_NEAR(radius.mean(), 2.5 * d, kZ * radius.standardError());
         }
@@ -162,8 +163,8 @@ TEST(NormalizedDiffusion, ProfileIntegratesToTheAlbedo) {
             ASSERT_EQ(a, albedo);
             auto integrand = [&](double r) { return profile.profile(float(r))[c] * kTwoPi * float(r); };
             Quadrature total = integrate(integrand, 0.0, farRadius(d), d);
-            std::printf("[ measured ] A %.2f, d %.4f: int R 2 pi r dr = %.9f (bound %.1e)\n", albedo, d,
-                        total.value, a * total.errorBound);
+            std::printf("[ measured ] A %.2f, d %.4f: int R 2 pi r dr = %.9f (bound %.1e)\n", albedo, d, total.value,
+                        a * total.errorBound);
             EXPECT_NEAR(total.value, a, a * (total.errorBound + std::exp(-farRadius(d) / (3.0 * d)) + kRounding));
         }
     }
@@ -182,8 +183,8 @@ TEST(NormalizedDiffusion, MaxRadiusHoldsTheDocumentedEnergyFraction) {
             Quadrature inside =
                 integrate([&](double r) { return double(profile.pdfRadius(c, float(r))); }, 0.0, rMax, d);
             EXPECT_NEAR(inside.value, cdf, inside.errorBound + kRounding);
-            std::printf("[ measured ] d %.4f: maxRadius %.5f = %.4f d, F = %.9f, int_0^maxRadius p = %.9f\n", d,
-                        rMax, rMax / d, cdf, inside.value);
+            std::printf("[ measured ] d %.4f: maxRadius %.5f = %.4f d, F = %.9f, int_0^maxRadius p = %.9f\n", d, rMax,
+                        rMax / d, cdf, inside.value);
         }
     }
 }
@@ -196,8 +197,7 @@ TEST(NormalizedDiffusion, DivergesAsOneOverRAtTheEntryPoint) {
         const float r = float(1e-4 * d);
         EXPECT_NEAR(profile.profile(r)[c], a / (2.0 * kTwoPi * d * r), a / (2.0 * kTwoPi * d * r) * 1e-4);
         EXPECT_NEAR(profile.pdfRadius(c, 0.0f), 0.5 / d, 0.5 / d * kRounding);
-        EXPECT_NEAR(profile.pdfArea(c, r), profile.pdfRadius(c, r) / (kTwoPi * r),
-                    profile.pdfArea(c, r) * kRounding);
+        EXPECT_NEAR(profile.pdfArea(c, r), profile.pdfRadius(c, r) / (kTwoPi * r), profile.pdfArea(c, r) * kRounding);
         // u = 0 and u = 1/4 start each component's inversion at r = 0, where R and pdfArea are
         // held finite with R / pdfArea = A.
         for (float u : {0.0f, 0.25f}) {
@@ -226,9 +226,9 @@ TEST(NormalizedDiffusion, ScalingFollowsTheSearchlightFitAndStaysPositive) {
     // d = l / s(A), with A clamped to [0, 1].
     NormalizedDiffusion profile(RGB(-0.2f, 0.4f, 1.5f), RGB(2.0f, 0.5f, 1.0f));
     EXPECT_EQ(profile.totalReflectance(), RGB(0.0f, 0.4f, 1.0f));
-    EXPECT_EQ(profile.shapeParameter(), RGB(2.0f / normalizedDiffusionScale(0.0f),
-                                            0.5f / normalizedDiffusionScale(0.4f),
-                                            1.0f / normalizedDiffusionScale(1.0f)));
+    EXPECT_EQ(profile.shapeParameter(),
+              RGB(2.0f / normalizedDiffusionScale(0.0f), 0.5f / normalizedDiffusionScale(0.4f),
+                  1.0f / normalizedDiffusionScale(1.0f)));
 }
 
 }  // namespace

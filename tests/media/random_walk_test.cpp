@@ -97,8 +97,8 @@ TEST(RandomWalk, ChromaticAlbedoOneSphereLetsEverythingOut) {
     // estimate varies with the channels' different optical depths.
     HomogeneousMedium fog({RGB(0.0f), RGB(0.5f, 1.0f, 2.0f), RGB(0.0f), 0.5f});
     expectWalkMeans(
-        fog, 1.5f, [](const FreeFlight& f) { return f.event == FlightEvent::Escaped ? RGB(1.0f) : RGB(0.0f); }, RGB(1.0f),
-        63, "chromatic albedo-1 sphere");
+        fog, 1.5f, [](const FreeFlight& f) { return f.event == FlightEvent::Escaped ? RGB(1.0f) : RGB(0.0f); },
+        RGB(1.0f), 63, "chromatic albedo-1 sphere");
 }
 
 TEST(RandomWalk, InfiniteEmittingMediumGlowsWithItsEmission) {
@@ -108,8 +108,8 @@ TEST(RandomWalk, InfiniteEmittingMediumGlowsWithItsEmission) {
     HomogeneousMedium glow({RGB(0.2f, 0.5f, 1.0f), RGB(1.0f, 0.5f, 0.25f), le, -0.3f});
     expectWalkMeans(
         glow, std::numeric_limits<float>::infinity(),
-        [](const FreeFlight& f) { return f.event == FlightEvent::Absorbed ? f.properties.emission : RGB(0.0f); }, le, 64,
-        "infinite emitting medium");
+        [](const FreeFlight& f) { return f.event == FlightEvent::Absorbed ? f.properties.emission : RGB(0.0f); }, le,
+        64, "infinite emitting medium");
 }
 
 }  // namespace

@@ -60,8 +60,10 @@ TEST(RatioTracking, IsExactThroughAHomogeneousMedium) {
     for (float d : {0.5f, 1.7f, 6.0f})
         for (int hero = 0; hero < 3; ++hero) {
             SampleStream rng(41, hero, 0);
-            TransmittanceEstimate e = ratioTrackingTransmittance(medium, {Vec3f(0.0f), Vec3f(0.0f, 0.0f, -1.0f), d}, hero, rng);
-            for (int c = 0; c < 3; ++c) EXPECT_EQ(e.estimate()[c], std::exp(-sigmaT[c] * d)) << "d " << d << ", hero " << hero;
+            TransmittanceEstimate e =
+                ratioTrackingTransmittance(medium, {Vec3f(0.0f), Vec3f(0.0f, 0.0f, -1.0f), d}, hero, rng);
+            for (int c = 0; c < 3; ++c)
+                EXPECT_EQ(e.estimate()[c], std::exp(-sigmaT[c] * d)) << "d " << d << ", hero " << hero;
             EXPECT_EQ(rng.dimension(), 0u);
         }
 }

@@ -46,7 +46,8 @@ public:
         }
         if (!(t0 < t1)) return;
         for (int i = 0; i < segments_; ++i) {
-            float s0 = t0 + (t1 - t0) * i / segments_, s1 = i + 1 == segments_ ? t1 : t0 + (t1 - t0) * (i + 1) / segments_;
+            float s0 = t0 + (t1 - t0) * i / segments_,
+                  s1 = i + 1 == segments_ ? t1 : t0 + (t1 - t0) * (i + 1) / segments_;
             RGB e0 = a_ + b_ * (origin.x + s0 * direction.x), e1 = a_ + b_ * (origin.x + s1 * direction.x);
             if (!visit(MajorantSegment{s0, s1, vmax(e0, e1), minorants_ ? vmin(e0, e1) : RGB(0.0f)})) return;
         }

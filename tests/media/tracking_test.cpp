@@ -97,7 +97,8 @@ TEST(TrackMajorants, StaysWithinSegmentsAndSkipsGaps) {
         // Optical depth of the majorants: each of the 8 pieces of length 1/4 at the larger end.
         for (int c = 0; c < 3; ++c) {
             double depth = 0.0;
-            for (int i = 0; i < 8; ++i) depth += 0.25 * std::max(kA[c] + kB[c] * 0.25 * i, kA[c] + kB[c] * 0.25 * (i + 1));
+            for (int i = 0; i < 8; ++i)
+                depth += 0.25 * std::max(kA[c] + kB[c] * 0.25 * i, kA[c] + kB[c] * 0.25 * (i + 1));
             ASSERT_NEAR(tMaj[c], std::exp(-depth), 2e-6) << "channel " << c;
         }
     }

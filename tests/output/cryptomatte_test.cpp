@@ -46,7 +46,8 @@ TEST(Cryptomatte, MurmurHashMatchesPublishedVectors) {
         {"The quick brown fox jumps over the lazy dog", 0x9747b28cu, 0x2FA826CDu},
     };
     for (const Vector& v : vectors)
-        EXPECT_EQ(murmurHash3_x86_32(v.data, v.seed), v.hash) << "'" << v.data << "' (" << v.data.size() << " bytes), seed " << v.seed;
+        EXPECT_EQ(murmurHash3_x86_32(v.data, v.seed), v.hash)
+            << "'" << v.data << "' (" << v.data.size() << " bytes), seed " << v.seed;
 }
 
 // The ids of Psyop's own tests (nuke/cryptomatte_utilities_tests.py, mm3hash_float), UTF-8 names
@@ -58,9 +59,12 @@ TEST(Cryptomatte, IdsMatchTheReferenceImplementation) {
         {"sphere", 2.79018604383e+15},
         {"plane", 3.66557617593e-11},
         {"\xd1\x80\xd0\xb0\xd0\xb2\xd0\xbd\xd0\xb8\xd0\xbd\xd0\xb0", -1.3192631212399999468e-25},
-        {"m\xc3\xa4" "dchen", 6.2361298211599995797e+25},
+        {"m\xc3\xa4"
+         "dchen",
+         6.2361298211599995797e+25},
     };
-    for (const auto& [name, value] : expected) EXPECT_EQ(cryptomatteIdFloat(cryptomatteId(name)), static_cast<float>(value)) << name;
+    for (const auto& [name, value] : expected)
+        EXPECT_EQ(cryptomatteIdFloat(cryptomatteId(name)), static_cast<float>(value)) << name;
 }
 
 // Every id is a normal float (never zero, denormal, infinite or NaN), and only hashes whose exponent
@@ -114,7 +118,8 @@ TEST(Cryptomatte, AppendWritesRankedChannelsAndMetadata) {
     EXPECT_EQ(at(0, "CryptoObject00.G"), 0.75f);
     EXPECT_EQ(std::bit_cast<std::uint32_t>(at(0, "CryptoObject00.B")), cryptomatteId("/World/a\"quoted\""));
     EXPECT_EQ(at(0, "CryptoObject00.A"), 0.25f);
-    for (const char* c : {"CryptoObject01.R", "CryptoObject01.G", "CryptoObject01.B", "CryptoObject01.A", "CryptoObject00.R"})
+    for (const char* c :
+         {"CryptoObject01.R", "CryptoObject01.G", "CryptoObject01.B", "CryptoObject01.A", "CryptoObject00.R"})
         EXPECT_EQ(at(1, c), 0.0f) << c;
 
     const std::string prefix = "cryptomatte/" + cryptomatteKey("CryptoObject") + "/";
@@ -122,8 +127,9 @@ TEST(Cryptomatte, AppendWritesRankedChannelsAndMetadata) {
     EXPECT_EQ(strings[prefix + "name"], "CryptoObject");
     EXPECT_EQ(strings[prefix + "hash"], "MurmurHash3_32");
     EXPECT_EQ(strings[prefix + "conversion"], "uint32_to_float32");
-    EXPECT_EQ(strings[prefix + "manifest"], "{\"/World/a\\\"quoted\\\"\":\"" + cryptomatteHex(cryptomatteId("/World/a\"quoted\"")) +
-                                                "\",\"/World/b\":\"" + cryptomatteHex(cryptomatteId("/World/b")) + "\"}");
+    EXPECT_EQ(strings[prefix + "manifest"],
+              "{\"/World/a\\\"quoted\\\"\":\"" + cryptomatteHex(cryptomatteId("/World/a\"quoted\"")) +
+                  "\",\"/World/b\":\"" + cryptomatteHex(cryptomatteId("/World/b")) + "\"}");
     EXPECT_EQ(header.dataChannels.size(), 8u);
 }
 
@@ -133,12 +139,14 @@ TEST(Cryptomatte, AppendRejectsMismatchedDescriptions) {
     Image image(1, 1, {"R"});
     ExrHeader header;
     EXPECT_THROW(appendCryptomatte(image, header, film, {{"CryptoObject", &names}}, 6), std::invalid_argument);
-    EXPECT_THROW(appendCryptomatte(image, header, film, {{"CryptoObject", &names}, {"CryptoMaterial", &names}}, 0), std::invalid_argument);
+    EXPECT_THROW(appendCryptomatte(image, header, film, {{"CryptoObject", &names}, {"CryptoMaterial", &names}}, 0),
+                 std::invalid_argument);
 }
 
 // Tiles of one image each list the names they saw; assembled, the manifest holds them all, once.
 TEST(Cryptomatte, ManifestsMergeWithoutRepeats) {
-    EXPECT_EQ(mergeCryptomatteManifests(R"({"/a":"00000001","/q\"x":"00000002"})", R"({ "/b" : "00000003", "/a":"00000001" })"),
+    EXPECT_EQ(mergeCryptomatteManifests(R"({"/a":"00000001","/q\"x":"00000002"})",
+                                        R"({ "/b" : "00000003", "/a":"00000001" })"),
               R"({"/a":"00000001","/q\"x":"00000002","/b":"00000003"})");
     EXPECT_EQ(mergeCryptomatteManifests("{}", R"({"/b":"00000003"})"), R"({"/b":"00000003"})");
     EXPECT_THROW(mergeCryptomatteManifests("{}", R"({"/b":3})"), std::invalid_argument);

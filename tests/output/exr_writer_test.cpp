@@ -37,8 +37,8 @@ std::string readBytes(const std::string& path) {
     return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
 }
 
-const std::vector<std::string> kChannels = {"R",       "G",   "B",   "albedo.R", "albedo.G",   "albedo.B",
-                                            "N.X",     "N.Y", "N.Z", "Z",        "sampleCount"};
+const std::vector<std::string> kChannels = {"R",   "G",   "B",   "albedo.R", "albedo.G",   "albedo.B",
+                                            "N.X", "N.Y", "N.Z", "Z",        "sampleCount"};
 
 // A 5x3 image (odd sizes on purpose) whose every value differs, with special values mixed in.
 Image makeTestImage() {
@@ -113,8 +113,8 @@ TEST(ExrWriter, RoundTripIsBitExactWithMetadata) {
                     << names[c] << " at (" << x << "," << y << "): " << got << " vs " << want;
             }
     }
-    EXPECT_EQ(pixels[0], 1.0f);               // R of the top-left pixel: row 0 is the top
-    EXPECT_EQ(pixels[2 * 5 * nc], 2.0f);      // R of the first pixel of the last row
+    EXPECT_EQ(pixels[0], 1.0f);           // R of the top-left pixel: row 0 is the top
+    EXPECT_EQ(pixels[2 * 5 * nc], 2.0f);  // R of the first pixel of the last row
 
     EXPECT_EQ(spec.get_string_attribute("compression"), "zip");
     const OIIO::ParamValue* chroma = spec.find_attribute("chromaticities");
@@ -133,7 +133,6 @@ TEST(ExrWriter, RoundTripIsBitExactWithMetadata) {
     EXPECT_EQ(spec.get_float_attribute("fluence/spp"), 64.0f);
     EXPECT_EQ(spec.get_string_attribute("fluence/dataChannels"), "N.X,N.Y,N.Z,Z,sampleCount");
     in->close();
-
 }
 
 TEST(ExrWriter, FixedDateTimeGivesIdenticalBytes) {

@@ -69,18 +69,18 @@ TEST(PreviewWriter, TwoByTwoSrgbValuesAndRowOrder) {
         p[image.channelIndex("albedo.R")] = 0.5f;
         p[image.channelIndex("Z")] = 1000.0f;
     };
-    set(0, 0, 0.0f, 0.18f, 1.0f);     // top-left
-    set(1, 0, 5.0f, -1.0f, 0.5f);     // top-right: clipped above and below
+    set(0, 0, 0.0f, 0.18f, 1.0f);       // top-left
+    set(1, 0, 5.0f, -1.0f, 0.5f);       // top-right: clipped above and below
     set(0, 1, 0.0031308f, 0.3f, 0.0f);  // bottom-left: sRGB break point
-    set(1, 1, 0.001f, 0.8f, 0.05f);   // bottom-right
+    set(1, 1, 0.001f, 0.8f, 0.05f);     // bottom-right
 
     // Expected bytes: round(255 * sRGB_OETF(v)), sRGB per IEC 61966-2-1 (no value near a .5 boundary;
     // 0.18 checks rounding rather than truncation):
     //   0 -> 0; 0.18 -> 0.4613561 -> 117.64 -> 118; 1 -> 255; 5 -> 255; -1 -> 0; 0.5 -> 0.7353570 -> 187.52 -> 188
     //   0.0031308 -> 0.04045 -> 10.31 -> 10; 0.3 -> 0.5838315 -> 148.88 -> 149; 0 -> 0
     //   0.001 -> 0.01292 -> 3.29 -> 3; 0.8 -> 0.9063318 -> 231.11 -> 231; 0.05 -> 0.2478005 -> 63.19 -> 63
-    const std::vector<std::uint8_t> expected = {0, 118, 255, 255, 0, 188,  //
-                                                10, 149, 0, 3, 231, 63};
+    const std::vector<std::uint8_t> expected = {0,  118, 255, 255, 0,   188,  //
+                                                10, 149, 0,   3,   231, 63};
 
     TempDir dir("fluence_png_test");
     const std::string path = dir.file("preview.png");

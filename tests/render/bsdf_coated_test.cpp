@@ -21,8 +21,6 @@ namespace {
 
 constexpr int kSamples = 400'000;
 
-
-
 // This file makes 39 statistical checks; each allows z standard errors, for a family-wide
 // false-failure rate of 1%.
 const double kZ = test::normalQuantile(0.5 * test::sidakAlpha(39));
@@ -42,9 +40,10 @@ TEST(CoatedBsdf, SmoothWhitePlasticMatchesItsClosedForm) {
         double F = fresnelDielectric(std::cos(theta * kPi / 180.0f), eta);
         double expected = F + (1.0 - F) * T.value;
         test::MeanEstimate e = test::albedoEstimate(plastic, test::incidentDirection(theta), kSamples, 41);
-        std::printf("[ measured ] white plastic (eta 1.5, smooth coat), theta %2.0f: albedo %.5f +- %.5f, "
-                    "closed form %.5f, energy lost %.5f\n",
-                    theta, e.mean(), e.standardError(), expected, 1.0 - expected);
+        std::printf(
+            "[ measured ] white plastic (eta 1.5, smooth coat), theta %2.0f: albedo %.5f +- %.5f, "
+            "closed form %.5f, energy lost %.5f\n",
+            theta, e.mean(), e.standardError(), expected, 1.0 - expected);
         EXPECT_NEAR(e.mean(), expected, kZ * e.standardError() + T.error) << "theta " << theta;
     }
 }
@@ -54,14 +53,16 @@ TEST(CoatedBsdf, RoughCoatsReflectAtMostAllTheLight) {
     for (float alpha : {0.05f, 0.2f, 0.5f}) {
         arena.reset();
         const Bsdf& plastic = arena.make<CoatedBsdf>(arena.make<LambertianBsdf>(RGB(1.0f)), 1.5f, alpha);
-        const Bsdf& coatedGold = arena.make<CoatedBsdf>(arena.make<GgxConductorBsdf>(RGB(1.0f), GgxDistribution(0.1f)), 1.5f, alpha);
+        const Bsdf& coatedGold =
+            arena.make<CoatedBsdf>(arena.make<GgxConductorBsdf>(RGB(1.0f), GgxDistribution(0.1f)), 1.5f, alpha);
         for (float theta : {0.0f, 60.0f, 85.0f}) {
             const Vec3f wo = test::incidentDirection(theta);
             test::MeanEstimate p = test::albedoEstimate(plastic, wo, kSamples, 42);
             test::MeanEstimate g = test::albedoEstimate(coatedGold, wo, kSamples, 43);
-            std::printf("[ measured ] coat alpha %.2f, theta %2.0f: white plastic %.5f +- %.5f, coated F0=1 metal "
-                        "%.5f +- %.5f\n",
-                        alpha, theta, p.mean(), p.standardError(), g.mean(), g.standardError());
+            std::printf(
+                "[ measured ] coat alpha %.2f, theta %2.0f: white plastic %.5f +- %.5f, coated F0=1 metal "
+                "%.5f +- %.5f\n",
+                alpha, theta, p.mean(), p.standardError(), g.mean(), g.standardError());
             EXPECT_LE(p.mean(), 1.0 + kZ * p.standardError()) << "plastic, alpha " << alpha << ", theta " << theta;
             EXPECT_LE(g.mean(), 1.0 + kZ * g.standardError()) << "metal, alpha " << alpha << ", theta " << theta;
         }
@@ -109,7 +110,8 @@ TEST(CoatedBsdf, ATintedSpecularLayerTakesFromTheBaseOnlyWhatItReflects) {
     // layer with the base losing t_c F in each direction; t = 0 (blue) leaves the white base's 1.
     const RGB tint(1.0f, 0.5f, 0.0f);
     BsdfArena arena;
-    const Bsdf& plastic = arena.make<CoatedBsdf>(arena.make<LambertianBsdf>(RGB(1.0f)), RGB(1.5f), GgxDistribution(0.0f), tint);
+    const Bsdf& plastic =
+        arena.make<CoatedBsdf>(arena.make<LambertianBsdf>(RGB(1.0f)), RGB(1.5f), GgxDistribution(0.0f), tint);
     for (float theta : {0.0f, 70.0f}) {
         const Vec3f wo = test::incidentDirection(theta);
         const double F = fresnelDielectric(wo.z, 1.5f);
@@ -162,7 +164,8 @@ TEST(CoatedBsdf, ACoatOverGlassIsOneSidedAndConservesFlux) {
             auto albedo = fluxAlbedo(coated, test::incidentDirection(theta), kSamples, 46);
             std::printf("[ measured ] coat alpha %.1f over rough glass, theta %3.0f: flux albedo %.5f +- %.5f\n",
                         coatAlpha, theta, albedo[0].mean(), albedo[0].standardError());
-            EXPECT_LE(albedo[0].mean(), 1.0 + kZ * albedo[0].standardError()) << "coat alpha " << coatAlpha << ", theta " << theta;
+            EXPECT_LE(albedo[0].mean(), 1.0 + kZ * albedo[0].standardError())
+                << "coat alpha " << coatAlpha << ", theta " << theta;
         }
     }
 }

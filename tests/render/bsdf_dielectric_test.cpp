@@ -16,7 +16,6 @@
 namespace fluence::render {
 namespace {
 
-
 TEST(BsdfFresnel, NormalIncidenceIsTheSquaredIndexRatio) {
     for (float eta : {1.33f, 1.5f, 2.4f, 1.0f / 1.5f}) {
         float expected = (eta - 1.0f) * (eta - 1.0f) / ((eta + 1.0f) * (eta + 1.0f));
@@ -168,8 +167,9 @@ TEST(GgxDielectricBsdf, TintsSplitFresnelBetweenReflectionAndTransmission) {
         double F = fresnelDielectric(std::abs(wo.z), wo.z > 0.0f ? 1.5f : 1.0f / 1.5f);
         ChannelFlux e = channelFlux(glass, wo, 100'000, 33);
         for (int c = 0; c < 3; ++c) {
-            double expected = F == 1.0 ? tints.reflection[c]
-                                       : tints.reflection[c] * F + tints.transmission[c] * (1.0 - tints.reflection[c] * F);
+            double expected = F == 1.0
+                                  ? tints.reflection[c]
+                                  : tints.reflection[c] * F + tints.transmission[c] * (1.0 - tints.reflection[c] * F);
             EXPECT_NEAR(e.albedo[c].mean(), expected, kTintZ * e.albedo[c].standardError() + 1e-6)
                 << "theta " << theta << ", channel " << c << (F == 1.0 ? " (total internal reflection)" : "");
         }
@@ -211,9 +211,10 @@ TEST(ThinDielectricBsdf, RoughSheetBlursOnlyItsReflectionAndKeepsFluxAtMostOne) 
                     ASSERT_EQ(s->wi, -wo) << "transmitted light keeps its direction";
                 }
             }
-            std::printf("[ measured ] thin sheet eta 1.5, alpha %.1f, theta %3.0f: flux albedo %.5f +- %.5f "
-                        "(straight through %.4f)\n",
-                        alpha, theta, e.albedo[0].mean(), e.albedo[0].standardError(), e.straight.mean());
+            std::printf(
+                "[ measured ] thin sheet eta 1.5, alpha %.1f, theta %3.0f: flux albedo %.5f +- %.5f "
+                "(straight through %.4f)\n",
+                alpha, theta, e.albedo[0].mean(), e.albedo[0].standardError(), e.straight.mean());
             for (int c = 0; c < 3; ++c)
                 EXPECT_LE(e.albedo[c].mean(), 1.0 + kTintZ * e.albedo[c].standardError())
                     << "alpha " << alpha << ", theta " << theta << ", channel " << c;

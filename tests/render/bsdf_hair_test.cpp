@@ -24,8 +24,11 @@ struct HairCase {
 };
 
 std::vector<HairCase> cases() {
-    return {{0.0f, 0.3f, RGB(0.0f)}, {0.6f, 0.2f, RGB(0.0f)}, {-0.9f, 0.5f, RGB(0.0f)},
-            {0.3f, 0.3f, RGB(0.4f, 1.0f, 2.5f)}, {-0.4f, 0.8f, RGB(0.1f)}};
+    return {{0.0f, 0.3f, RGB(0.0f)},
+            {0.6f, 0.2f, RGB(0.0f)},
+            {-0.9f, 0.5f, RGB(0.0f)},
+            {0.3f, 0.3f, RGB(0.4f, 1.0f, 2.5f)},
+            {-0.4f, 0.8f, RGB(0.1f)}};
 }
 
 HairBsdf bsdfOf(const HairCase& c) {
@@ -38,8 +41,8 @@ HairBsdf bsdfOf(const HairCase& c) {
 
 std::string describe(const HairCase& c, const Vec3f& wo) {
     char text[160];
-    std::snprintf(text, sizeof text, "h %.2f roughness %.2f sigma_a (%.2f %.2f %.2f) wo (%.3f %.3f %.3f)", c.h, c.roughness,
-                  c.absorption.x, c.absorption.y, c.absorption.z, wo.x, wo.y, wo.z);
+    std::snprintf(text, sizeof text, "h %.2f roughness %.2f sigma_a (%.2f %.2f %.2f) wo (%.3f %.3f %.3f)", c.h,
+                  c.roughness, c.absorption.x, c.absorption.y, c.absorption.z, wo.x, wo.y, wo.z);
     return text;
 }
 
@@ -91,7 +94,8 @@ TEST(HairBsdf, PdfIntegratesToOne) {
         for (const Vec3f& wo : outgoing()) {
             const HairBsdf b = bsdfOf(c);
             if (wo.z < 1.0f && wo.y > 0.0f) continue;  // two views per case keep the quadrature's time down
-            test::SphereIntegral total = test::integrateOverSphere([&](const Vec3f& wi) { return double(b.pdf(wo, wi)); });
+            test::SphereIntegral total =
+                test::integrateOverSphere([&](const Vec3f& wi) { return double(b.pdf(wo, wi)); });
             EXPECT_NEAR(total.value, 1.0, 1e-3 + total.error) << describe(c, wo);
         }
 }
@@ -106,13 +110,16 @@ TEST(HairBsdf, LongitudinalLobeIsNormalisedAndSymmetric) {
             for (int i = 0; i <= intervals; ++i) {
                 const double theta = -kPi / 2 + kPi * i / intervals;
                 const double weight = (i == 0 || i == intervals) ? 1.0 : (i % 2 ? 4.0 : 2.0);
-                sum += weight * HairBsdf::longitudinal(std::cos(float(theta)), std::cos(thetaO), std::sin(float(theta)),
-                                                       std::sin(thetaO), v) *
+                sum += weight *
+                       HairBsdf::longitudinal(std::cos(float(theta)), std::cos(thetaO), std::sin(float(theta)),
+                                              std::sin(thetaO), v) *
                        std::cos(theta);
             }
             EXPECT_NEAR(sum * kPi / intervals / 3.0, 1.0, 2e-4) << "v " << v << " theta_o " << thetaO;
-            const float a = HairBsdf::longitudinal(std::cos(0.3f), std::cos(thetaO), std::sin(0.3f), std::sin(thetaO), v);
-            const float b = HairBsdf::longitudinal(std::cos(thetaO), std::cos(0.3f), std::sin(thetaO), std::sin(0.3f), v);
+            const float a =
+                HairBsdf::longitudinal(std::cos(0.3f), std::cos(thetaO), std::sin(0.3f), std::sin(thetaO), v);
+            const float b =
+                HairBsdf::longitudinal(std::cos(thetaO), std::cos(0.3f), std::sin(thetaO), std::sin(0.3f), v);
             EXPECT_NEAR(a, b, 1e-5f * a) << "v " << v;
         }
 }

@@ -17,14 +17,15 @@
 namespace fluence::render {
 namespace {
 
-
 TEST(BsdfMicrofacetDistribution, ProjectedAreaIsOne) {
     // The integral of D(h) cos theta_h over the hemisphere is the area of the macro-surface (1).
     for (float a : {0.05f, 0.3f, 1.0f}) {
         GgxDistribution ggx(a);
         BeckmannDistribution beckmann(a);
-        test::SphereIntegral g = test::integrateOverSphere([&](const Vec3f& h) { return double(ggx.D(h)) * std::max(0.0f, h.z); });
-        test::SphereIntegral b = test::integrateOverSphere([&](const Vec3f& h) { return double(beckmann.normalPdf(h)); });
+        test::SphereIntegral g =
+            test::integrateOverSphere([&](const Vec3f& h) { return double(ggx.D(h)) * std::max(0.0f, h.z); });
+        test::SphereIntegral b =
+            test::integrateOverSphere([&](const Vec3f& h) { return double(beckmann.normalPdf(h)); });
         EXPECT_NEAR(g.value, 1.0, g.error + test::kFloatDensityRounding) << "GGX alpha " << a;
         EXPECT_NEAR(b.value, 1.0, b.error + test::kFloatDensityRounding) << "Beckmann m " << a;
     }
@@ -68,7 +69,8 @@ TEST(BsdfMicrofacetDistribution, AnisotropicDistributionsAreNormalised) {
     // different widths along x and y too, at oblique and grazing wo (off both axes).
     for (const GgxDistribution& ggx : kAnisotropic) {
         SCOPED_TRACE(testing::Message() << "alpha (" << ggx.alphaX() << ", " << ggx.alphaY() << ")");
-        test::SphereIntegral area = test::integrateOverSphere([&](const Vec3f& h) { return double(ggx.D(h)) * std::max(0.0f, h.z); });
+        test::SphereIntegral area =
+            test::integrateOverSphere([&](const Vec3f& h) { return double(ggx.D(h)) * std::max(0.0f, h.z); });
         EXPECT_NEAR(area.value, 1.0, area.error + test::kFloatDensityRounding);
         for (float theta : {40.0f, 88.0f}) {
             Vec3f wo = test::incidentDirection(theta, 0.6f, 0.8f);
@@ -85,8 +87,8 @@ TEST(BsdfMicrofacetDistribution, AnisotropicVisibleNormalSamplingMatchesItsDensi
             Vec3f wo = test::incidentDirection(theta, 0.6f, 0.8f);
             auto r = test::chi2SphereTest([&](Vec2f u) { return std::optional(ggx.sampleVisibleNormal(wo, u)); },
                                           [&](const Vec3f& h) { return double(ggx.visibleNormalPdf(wo, h)); }, 400'000);
-            EXPECT_GT(r.pValue, test::sidakAlpha(4)) << "alpha (" << ggx.alphaX() << ", " << ggx.alphaY() << "), theta "
-                                                     << theta << ": " << r.report;
+            EXPECT_GT(r.pValue, test::sidakAlpha(4))
+                << "alpha (" << ggx.alphaX() << ", " << ggx.alphaY() << "), theta " << theta << ": " << r.report;
         }
 }
 
@@ -102,7 +104,8 @@ TEST(BsdfMicrofacetDistribution, RoughnessAndAnisotropyMapAsMaterialXDoes) {
     GgxDistribution full = GgxDistribution::fromRoughness(0.9f, 1.0f);
     EXPECT_FLOAT_EQ(full.alphaX(), 1.0f) << "clamped to 1";
     EXPECT_NEAR(full.alphaY(), 0.81f * std::sqrt(0.02f), 1e-6f);
-    EXPECT_TRUE(GgxDistribution::fromRoughness(0.0f, 0.7f).isSmooth()) << "no roughness: a mirror whatever the anisotropy";
+    EXPECT_TRUE(GgxDistribution::fromRoughness(0.0f, 0.7f).isSmooth())
+        << "no roughness: a mirror whatever the anisotropy";
     // The highlight stretches along x: microfacets tilted along x are likelier than along y.
     Vec3f tiltX = normalize(Vec3f(0.3f, 0.0f, 1.0f)), tiltY = normalize(Vec3f(0.0f, 0.3f, 1.0f));
     EXPECT_GT(half.D(tiltX), 2.0f * half.D(tiltY));
@@ -121,7 +124,8 @@ TEST(GgxConductorBsdf, AnisotropicWhiteFurnaceReflectsAtMostAllTheLight) {
                 [&](const Vec3f& wi) { return double(metal.f(wo, wi).x) * std::max(0.0f, wi.z); });
             std::printf("[ measured ] GGX conductor F0 = 1, alpha (%.3f, %.3f), theta %2.0f: albedo %.5f +- %.5f\n",
                         ggx.alphaX(), ggx.alphaY(), theta, albedo.mean(), albedo.standardError());
-            SCOPED_TRACE(testing::Message() << "alpha (" << ggx.alphaX() << ", " << ggx.alphaY() << "), theta " << theta);
+            SCOPED_TRACE(testing::Message()
+                         << "alpha (" << ggx.alphaX() << ", " << ggx.alphaY() << "), theta " << theta);
             EXPECT_LE(albedo.mean(), 1.0 + z * albedo.standardError());
             EXPECT_NEAR(albedo.mean(), reference.value,
                         z * albedo.standardError() + reference.error + test::kFloatDensityRounding);
@@ -152,9 +156,10 @@ TEST(GgxConductorBsdf, WhiteFurnaceWithF0OfOne) {
             }
             test::SphereIntegral reference = test::integrateOverSphere(
                 [&](const Vec3f& wi) { return double(metal.f(wo, wi).x) * std::max(0.0f, wi.z); });
-            std::printf("[ measured ] GGX conductor F0 = 1, alpha %.2f, theta %2.0f: albedo %.5f +- %.5f "
-                        "(quadrature %.5f), deficit %.5f\n",
-                        a, theta, albedo.mean(), albedo.standardError(), reference.value, 1.0 - albedo.mean());
+            std::printf(
+                "[ measured ] GGX conductor F0 = 1, alpha %.2f, theta %2.0f: albedo %.5f +- %.5f "
+                "(quadrature %.5f), deficit %.5f\n",
+                a, theta, albedo.mean(), albedo.standardError(), reference.value, 1.0 - albedo.mean());
             SCOPED_TRACE(testing::Message() << "alpha " << a << ", theta " << theta);
             EXPECT_LE(albedo.mean(), 1.0 + z * albedo.standardError());
             EXPECT_NEAR(albedo.mean(), reference.value,

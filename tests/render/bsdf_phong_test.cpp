@@ -17,8 +17,6 @@ namespace {
 
 constexpr int kSamples = 400'000;
 
-
-
 // This file makes 43 statistical checks; each allows z standard errors either side, for a
 // family-wide false-failure rate of 1%.
 const double kZ = test::normalQuantile(0.5 * test::sidakAlpha(43));
@@ -30,9 +28,10 @@ TEST(PhongBsdf, FailsTheWhiteFurnace) {
         PhongBsdf phong(RGB(0.0f), RGB(1.0f), n);
         test::MeanEstimate e = test::albedoEstimate(phong, test::incidentDirection(0.0f), kSamples, 11);
         double excess = e.mean() - 1.0, expected = 2.0 * kPi / (n + 2.0) - 1.0;
-        std::printf("[ measured ] original Phong, ks = 1, n = %g, normal incidence: albedo %.4f +- %.4f, "
-                    "excess %.4f (closed form %.4f), %.0f standard errors above 1\n",
-                    n, e.mean(), e.standardError(), excess, expected, excess / e.standardError());
+        std::printf(
+            "[ measured ] original Phong, ks = 1, n = %g, normal incidence: albedo %.4f +- %.4f, "
+            "excess %.4f (closed form %.4f), %.0f standard errors above 1\n",
+            n, e.mean(), e.standardError(), excess, expected, excess / e.standardError());
         RecordProperty("excess_n" + std::to_string(int(n)), std::to_string(excess));
         EXPECT_GT(excess, kZ * e.standardError()) << "n = " << n;
         EXPECT_NEAR(excess, expected, kZ * e.standardError()) << "n = " << n;
@@ -80,7 +79,9 @@ TEST(BlinnPhongBsdf, NormalIncidenceAlbedoMatchesQuadrature) {
             if (wi.z <= 0.0f) return 0.0;
             return std::pow(double(BlinnPhongLobe::cosine(wo, wi)), double(n)) * wi.z;
         });
-        EXPECT_NEAR(BlinnPhongLobe::albedoAtNormalIncidence(n), q.value, q.error + test::kFloatDensityRounding * q.value) << "n = " << n;
+        EXPECT_NEAR(BlinnPhongLobe::albedoAtNormalIncidence(n), q.value,
+                    q.error + test::kFloatDensityRounding * q.value)
+            << "n = " << n;
     }
 }
 

@@ -45,7 +45,7 @@ struct BsdfCase {
     std::string name;
     std::function<const Bsdf&(BsdfArena&)> make;
     bool conservesEnergy = true;
-    bool sidesAlike = false;  // transmits, yet both sides are alike (a thin sheet: straight through, eta 1)
+    bool sidesAlike = false;   // transmits, yet both sides are alike (a thin sheet: straight through, eta 1)
     bool crossesIndex = true;  // its transmission refracts (eta != 1); false for diffuse transmission
 };
 
@@ -59,8 +59,8 @@ std::vector<BsdfCase> allCases() {
         {"OrenNayar_s100", [=](BsdfArena& a) -> const Bsdf& { return a.make<OrenNayarBsdf>(colour, 1.0f); }},
         {"PhongOriginal_n1", [](BsdfArena& a) -> const Bsdf& { return a.make<PhongBsdf>(RGB(0.1f), RGB(0.5f), 1.0f); },
          false},
-        {"PhongOriginal_n20", [](BsdfArena& a) -> const Bsdf& { return a.make<PhongBsdf>(RGB(0.0f), RGB(1.0f), 20.0f); },
-         false},
+        {"PhongOriginal_n20",
+         [](BsdfArena& a) -> const Bsdf& { return a.make<PhongBsdf>(RGB(0.0f), RGB(1.0f), 20.0f); }, false},
     };
     for (float n : {1.0f, 30.0f, 300.0f}) {
         cases.push_back({"ModifiedPhong_n" + std::to_string(int(n)), [=](BsdfArena& a) -> const Bsdf& {
@@ -71,9 +71,8 @@ std::vector<BsdfCase> allCases() {
                          }});
     }
     for (float m : {0.1f, 0.3f, 0.7f})
-        cases.push_back({"CookTorrance_m" + std::to_string(int(m * 100)), [=](BsdfArena& a) -> const Bsdf& {
-                             return a.make<CookTorranceBsdf>(RGB(1.0f), 1.5f, m);
-                         }});
+        cases.push_back({"CookTorrance_m" + std::to_string(int(m * 100)),
+                         [=](BsdfArena& a) -> const Bsdf& { return a.make<CookTorranceBsdf>(RGB(1.0f), 1.5f, m); }});
     for (float alpha : {0.0f, 0.05f, 0.2f, 0.6f})
         cases.push_back({"GgxConductor_a" + std::to_string(int(alpha * 100)), [=](BsdfArena& a) -> const Bsdf& {
                              return a.make<GgxConductorBsdf>(colour, GgxDistribution(alpha));
@@ -95,16 +94,17 @@ std::vector<BsdfCase> allCases() {
     cases.push_back({"GgxDielectricTintedAnisotropic", [=](BsdfArena& a) -> const Bsdf& {
                          return a.make<GgxDielectricBsdf>(1.5f, GgxDistribution(0.4f, 0.1f), tints);
                      }});
-    cases.push_back({"ThinDielectricSmooth", [](BsdfArena& a) -> const Bsdf& {
-                         return a.make<ThinDielectricBsdf>(1.5f, GgxDistribution(0.0f));
-                     }, true, true});
-    cases.push_back({"ThinDielectricTinted_a30", [=](BsdfArena& a) -> const Bsdf& {
-                         return a.make<ThinDielectricBsdf>(1.5f, GgxDistribution(0.3f), tints);
-                     }, true, true});
+    cases.push_back(
+        {"ThinDielectricSmooth",
+         [](BsdfArena& a) -> const Bsdf& { return a.make<ThinDielectricBsdf>(1.5f, GgxDistribution(0.0f)); }, true,
+         true});
+    cases.push_back(
+        {"ThinDielectricTinted_a30",
+         [=](BsdfArena& a) -> const Bsdf& { return a.make<ThinDielectricBsdf>(1.5f, GgxDistribution(0.3f), tints); },
+         true, true});
     for (float r : {0.1f, 0.5f, 1.0f})
-        cases.push_back({"CharlieSheen_r" + std::to_string(int(r * 100)), [=](BsdfArena& a) -> const Bsdf& {
-                             return a.make<CharlieSheenBsdf>(colour, r);
-                         }});
+        cases.push_back({"CharlieSheen_r" + std::to_string(int(r * 100)),
+                         [=](BsdfArena& a) -> const Bsdf& { return a.make<CharlieSheenBsdf>(colour, r); }});
     cases.push_back({"SheenOverLambertian", [=](BsdfArena& a) -> const Bsdf& {
                          return a.make<LayeredBsdf<CharlieSheenBsdf>>(CharlieSheenBsdf(RGB(1.0f, 0.7f, 0.4f), 0.4f),
                                                                       a.make<LambertianBsdf>(colour));
@@ -119,17 +119,22 @@ std::vector<BsdfCase> allCases() {
     cases.push_back({"CoatedTintedFilteredAnisotropic", [=](BsdfArena& a) -> const Bsdf& {
                          // A coloured F0 (one index per channel), a tint and a filter.
                          return a.make<CoatedBsdf>(a.make<LambertianBsdf>(colour), RGB(1.3f, 1.5f, 1.8f),
-                                                   GgxDistribution(0.3f, 0.08f), RGB(1.0f, 0.6f, 0.3f), RGB(0.8f, 0.6f, 0.4f));
+                                                   GgxDistribution(0.3f, 0.08f), RGB(1.0f, 0.6f, 0.3f),
+                                                   RGB(0.8f, 0.6f, 0.4f));
                      }});
     cases.push_back({"CoatedGlass", [](BsdfArena& a) -> const Bsdf& {
                          return a.make<CoatedBsdf>(a.make<GgxDielectricBsdf>(1.5f, GgxDistribution(0.3f)), 1.5f, 0.2f);
                      }});
-    cases.push_back({"LambertianTransmission", [=](BsdfArena& a) -> const Bsdf& { return a.make<LambertianTransmissionBsdf>(colour); },
-                     true, true});
-    cases.push_back({"CoatedSubsurfaceBoundary", [=](BsdfArena& a) -> const Bsdf& {  // Standard Surface subsurface = 0.6
-                         const Bsdf& base = a.make<MixBsdf>(a.make<LambertianBsdf>(colour), a.make<LambertianTransmissionBsdf>(RGB(1.0f)), 0.6f);
+    cases.push_back({"LambertianTransmission",
+                     [=](BsdfArena& a) -> const Bsdf& { return a.make<LambertianTransmissionBsdf>(colour); }, true,
+                     true});
+    cases.push_back({"CoatedSubsurfaceBoundary",
+                     [=](BsdfArena& a) -> const Bsdf& {  // Standard Surface subsurface = 0.6
+                         const Bsdf& base = a.make<MixBsdf>(a.make<LambertianBsdf>(colour),
+                                                            a.make<LambertianTransmissionBsdf>(RGB(1.0f)), 0.6f);
                          return a.make<CoatedBsdf>(base, 1.4f, 0.35f * 0.35f);
-                     }, true, false, false});
+                     },
+                     true, false, false});
     return cases;
 }
 
@@ -151,7 +156,6 @@ double familySize() { return double(allCases().size() * incidentDirections().siz
 // half vector, or evaluated with wo and wi exchanged: a few hundred ulps of the exponents and
 // Fresnel factors involved (float epsilon is 1.2e-7).
 constexpr double kRecomputeTolerance = 1e-4;
-
 
 std::string describe(const Vec3f& w) {
     std::ostringstream os;
@@ -305,7 +309,8 @@ TEST_P(BsdfProperties, ImportanceModeIsTheAdjoint) {
             SampleStream rng(5, 0, n);
             const float uLobe = rng.next();
             const Vec2f u = rng.next2D();
-            const auto radiance = b.sample(wo, uLobe, u, Transport::Radiance), importance = b.sample(wo, uLobe, u, Transport::Importance);
+            const auto radiance = b.sample(wo, uLobe, u, Transport::Radiance),
+                       importance = b.sample(wo, uLobe, u, Transport::Importance);
             ASSERT_EQ(radiance.has_value(), importance.has_value());
             if (!radiance) continue;
             EXPECT_EQ(radiance->f, b.sample(wo, uLobe, u)->f) << "radiance is the models' own f";
@@ -313,7 +318,8 @@ TEST_P(BsdfProperties, ImportanceModeIsTheAdjoint) {
             EXPECT_EQ(importance->pdf, radiance->pdf);
             EXPECT_EQ(importance->specular, radiance->specular);
             EXPECT_EQ(importance->eta, radiance->eta);
-            const RGB expected = radiance->specular ? radiance->f * (radiance->eta * radiance->eta) : b.f(radiance->wi, wo);
+            const RGB expected =
+                radiance->specular ? radiance->f * (radiance->eta * radiance->eta) : b.f(radiance->wi, wo);
             EXPECT_EQ(importance->f, expected) << "wo " << describe(wo) << " wi " << describe(radiance->wi);
             if (!radiance->specular) {
                 EXPECT_EQ(b.f(wo, radiance->wi, Transport::Importance), b.f(radiance->wi, wo));

@@ -84,9 +84,10 @@ TEST(CharlieSheen, ALayerTakesTheSheensAlbedoFromItsBase) {
         double E = t * charlieSheenAlbedo(wo.z, r);
         double expected = E + (1.0 - E) * leaving.value;
         test::MeanEstimate albedo = test::albedoEstimate(cloth, wo, kSamples, 52);
-        std::printf("[ measured ] sheen (t %.1f, r %.1f) over white Lambertian, theta %2.0f: albedo %.5f +- %.5f, "
-                    "closed form %.5f\n",
-                    t, r, theta, albedo.mean(), albedo.standardError(), expected);
+        std::printf(
+            "[ measured ] sheen (t %.1f, r %.1f) over white Lambertian, theta %2.0f: albedo %.5f +- %.5f, "
+            "closed form %.5f\n",
+            t, r, theta, albedo.mean(), albedo.standardError(), expected);
         EXPECT_NEAR(albedo.mean(), expected, kZ * albedo.standardError() + 2.0 * kTableTolerance + leaving.error)
             << "theta " << theta;
         EXPECT_LE(albedo.mean(), 1.0 + kZ * albedo.standardError()) << "theta " << theta;

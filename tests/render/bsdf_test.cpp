@@ -29,7 +29,8 @@ TEST(BsdfArena, BuildsLayeredBsdfsAndIsReusableAfterReset) {
 TEST(BsdfArena, ThrowsWhenFull) {
     BsdfArena arena;
     auto fill = [&] {
-        for (std::size_t i = 0; i <= BsdfArena::kCapacity / sizeof(LambertianBsdf); ++i) arena.make<LambertianBsdf>(RGB(0.5f));
+        for (std::size_t i = 0; i <= BsdfArena::kCapacity / sizeof(LambertianBsdf); ++i)
+            arena.make<LambertianBsdf>(RGB(0.5f));
     };
     EXPECT_THROW(fill(), std::length_error);
     arena.reset();

@@ -40,7 +40,9 @@ std::vector<Case> cameras() {
     offset.verticalApertureOffset = -2.0f;
     CameraDesc scaled = plain;  // the transform stretches the window unevenly (importance follows its Jacobian)
     scaled.transform = Matrix4::translate({-2, 0, 1}) * Matrix4::rotateX(-20) * Matrix4::scale({2.0, 0.5, 1.5});
-    return {{"plain", plain, 48, 48, {}}, {"offset", offset, 64, 36, {1.25f, ApertureConform::ExpandAperture}}, {"scaled", scaled, 40, 30, {}}};
+    return {{"plain", plain, 48, 48, {}},
+            {"offset", offset, 64, 36, {1.25f, ApertureConform::ExpandAperture}},
+            {"scaled", scaled, 40, 30, {}}};
 }
 
 Vec3f rayPoint(const Ray& r, float t) { return r.origin + r.direction * t; }
@@ -50,10 +52,12 @@ Vec3f rayPoint(const Ray& r, float t) { return r.origin + r.direction * t; }
 TEST(CameraImportance, IntegratesToOneOverTheImage) {
     for (const Case& c : cameras()) {
         const Camera camera(c.desc, c.width, c.height, c.framing);
-        const Vec3f forward = camera.generateRay(0.5f * c.width, 0.5f * c.height).direction;  // not the axis with offsets: any pole will do
+        const Vec3f forward = camera.generateRay(0.5f * c.width, 0.5f * c.height)
+                                  .direction;  // not the axis with offsets: any pole will do
         double minCos = 1.0;
         for (float x : {0.0f, float(c.width)})
-            for (float y : {0.0f, float(c.height)}) minCos = std::min(minCos, double(dot(camera.generateRay(x, y).direction, forward)));
+            for (float y : {0.0f, float(c.height)})
+                minCos = std::min(minCos, double(dot(camera.generateRay(x, y).direction, forward)));
         minCos = std::max(-1.0, minCos - 0.05);
         const Vec3f a = normalize(cross(forward, std::abs(forward.x) < 0.9f ? Vec3f(1, 0, 0) : Vec3f(0, 1, 0)));
         const Vec3f b = cross(forward, a);
@@ -64,7 +68,8 @@ TEST(CameraImportance, IntegratesToOneOverTheImage) {
             const double sinTheta = std::sqrt(std::max(0.0, 1.0 - cosTheta * cosTheta));
             for (int j = 0; j < n; ++j) {
                 const double phi = 2.0 * kPi * (j + 0.5) / n;
-                const Vec3f w = normalize(forward * float(cosTheta) + a * float(sinTheta * std::cos(phi)) + b * float(sinTheta * std::sin(phi)));
+                const Vec3f w = normalize(forward * float(cosTheta) + a * float(sinTheta * std::cos(phi)) +
+                                          b * float(sinTheta * std::sin(phi)));
                 sum += camera.directionDensity(w);
             }
         }
@@ -86,13 +91,15 @@ TEST(CameraImportance, DensityIsTheImageShareOfEachPixelsSolidAngle) {
     const float h = 0.25f;
     for (const Case& c : cameras()) {
         const Camera camera(c.desc, c.width, c.height, c.framing);
-        for (auto [x, y] : {std::pair(0.5f, 0.5f), std::pair(0.5f * c.width, 0.5f * c.height), std::pair(c.width - 1.0f, 3.0f),
-                            std::pair(7.3f, c.height - 0.5f)}) {
+        for (auto [x, y] : {std::pair(0.5f, 0.5f), std::pair(0.5f * c.width, 0.5f * c.height),
+                            std::pair(c.width - 1.0f, 3.0f), std::pair(7.3f, c.height - 0.5f)}) {
             auto dir = [&](float dx, float dy) { return camera.generateRay(x + dx, y + dy).direction; };
-            const Vec3f p00 = dir(-h / 2, -h / 2), p10 = dir(h / 2, -h / 2), p11 = dir(h / 2, h / 2), p01 = dir(-h / 2, h / 2);
+            const Vec3f p00 = dir(-h / 2, -h / 2), p10 = dir(h / 2, -h / 2), p11 = dir(h / 2, h / 2),
+                        p01 = dir(-h / 2, h / 2);
             const double omega = solidAngle(p00, p10, p11) + solidAngle(p00, p11, p01);
             const double share = double(h) * h / (double(c.width) * c.height);
-            EXPECT_NEAR(camera.directionDensity(dir(0, 0)) * omega / share, 1.0, 2e-3) << c.name << " at " << x << ", " << y;
+            EXPECT_NEAR(camera.directionDensity(dir(0, 0)) * omega / share, 1.0, 2e-3)
+                << c.name << " at " << x << ", " << y;
         }
     }
 }
@@ -125,7 +132,8 @@ TEST(CameraImportance, RasterPositionInvertsGenerateRay) {
         }
         const Ray centre = camera.generateRay(0.5f * c.width, 0.5f * c.height);
         EXPECT_FALSE(camera.rasterPosition(rayPoint(centre, -5.0f))) << c.name << ": behind the camera";
-        EXPECT_FALSE(camera.rasterPosition(rayPoint(centre, 0.5f * centre.tMin))) << c.name << ": before the near plane";
+        EXPECT_FALSE(camera.rasterPosition(rayPoint(centre, 0.5f * centre.tMin)))
+            << c.name << ": before the near plane";
         EXPECT_FALSE(camera.rasterPosition(rayPoint(centre, 2.0f * centre.tMax))) << c.name << ": beyond the far plane";
         const Ray beyond = camera.generateRay(-0.5f, -0.5f);  // a ray just outside the image
         EXPECT_TRUE(camera.rasterPosition(rayPoint(camera.generateRay(0.5f, 0.5f), 5.0f))) << c.name;

@@ -100,8 +100,8 @@ TEST(Camera, WorldToNdcAndWorldToCameraFollowTheRays) {
                 const Vec3d p(ray.origin + ray.direction * t);
                 double h[4];
                 for (int i = 0; i < 4; ++i)
-                    h[i] = toNdc.m[std::size_t(i)][0] * p.x + toNdc.m[std::size_t(i)][1] * p.y + toNdc.m[std::size_t(i)][2] * p.z +
-                           toNdc.m[std::size_t(i)][3];
+                    h[i] = toNdc.m[std::size_t(i)][0] * p.x + toNdc.m[std::size_t(i)][1] * p.y +
+                           toNdc.m[std::size_t(i)][2] * p.z + toNdc.m[std::size_t(i)][3];
                 EXPECT_NEAR(h[0] / h[3], x / 40.0, 1e-4) << int(projection) << " " << x << "," << y << " t " << t;
                 EXPECT_NEAR(h[1] / h[3], y / 30.0, 1e-4) << int(projection) << " " << x << "," << y << " t " << t;
                 EXPECT_NEAR(toCamera.transformPoint(p).z, cam.viewDepth(Vec3f(p)), 1e-2);
@@ -144,7 +144,8 @@ TEST(Camera, PixelsPerUnitAndVisibilityForDicing) {
     const Vec3f eye = cam.position();
     const float pixelsPerUnitAtOne = 64.0f / (2.0f * 12.5f / 35.0f);
     EXPECT_NEAR(cam.pixelsPerUnitAt(eye + Vec3f(0, 0, 10)), pixelsPerUnitAtOne / 10.0f, 1e-3f);
-    EXPECT_NEAR(cam.pixelsPerUnitAt(eye + Vec3f(0, 0, -10)), pixelsPerUnitAtOne / 10.0f, 1e-3f) << "behind: by distance";
+    EXPECT_NEAR(cam.pixelsPerUnitAt(eye + Vec3f(0, 0, -10)), pixelsPerUnitAtOne / 10.0f, 1e-3f)
+        << "behind: by distance";
     EXPECT_NEAR(cam.pixelsPerUnitAt(eye), pixelsPerUnitAtOne / 10.0f, 1e-3f) << "clamped at the near plane (10)";
     EXPECT_TRUE(cam.sees(eye + Vec3f(0, 0, 100), 0.0f));
     EXPECT_FALSE(cam.sees(eye + Vec3f(0, 0, -100), 0.5f)) << "behind the camera";

@@ -18,10 +18,12 @@ class CryptomatteNames : public ::testing::Test {
 protected:
     void SetUp() override {
         SceneDescription desc;
-        desc.materials = {test::diffuseMaterial("/Looks/Red", RGB(0.8f, 0.1f, 0.1f)), test::diffuseMaterial("/Looks/Blue", RGB(0.1f, 0.1f, 0.8f)),
+        desc.materials = {test::diffuseMaterial("/Looks/Red", RGB(0.8f, 0.1f, 0.1f)),
+                          test::diffuseMaterial("/Looks/Blue", RGB(0.1f, 0.1f, 0.8f)),
                           test::diffuseMaterial("/Looks/Glow", RGB(0.5f), RGB(3.0f))};
         desc.meshes = {quadAt("/World/Mesh", -6, 0), quadAt("/World/Mesh", -5, 1), quadAt("/World/Bare", -4, -1)};
-        desc.prototypes = {{"/World/InstA", {quadAt("/World/InstA/Box", 0, 1)}}, {"/World/LampA", {quadAt("/World/LampA/Bulb", 0, 2)}}};
+        desc.prototypes = {{"/World/InstA", {quadAt("/World/InstA/Box", 0, 1)}},
+                           {"/World/LampA", {quadAt("/World/LampA/Bulb", 0, 2)}}};
         desc.instances = {{0, Matrix4::translate({-2, 0, 0}), "/World/InstA"},
                           {0, Matrix4::translate({-1, 0, 0}), "/World/InstB"},
                           {1, Matrix4::translate({1, 0, 0}), "/World/Trees[7]"}};
@@ -55,8 +57,8 @@ TEST_F(CryptomatteNames, HitsCarryTheirPrimsNames) {
 // instance is named by the instance).
 TEST_F(CryptomatteNames, NamesAreStoredOnce) {
     const std::vector<std::string> objects = scene_->objectNames().names();
-    EXPECT_EQ(objects, (std::vector<std::string>{"/World/Mesh", "/World/Bare", "/World/InstA", "/World/InstB", "/World/Trees[7]",
-                                                 "/World/Light"}));
+    EXPECT_EQ(objects, (std::vector<std::string>{"/World/Mesh", "/World/Bare", "/World/InstA", "/World/InstB",
+                                                 "/World/Trees[7]", "/World/Light"}));
     EXPECT_EQ(scene_->materialNames().size(), 3u);
 }
 

@@ -40,7 +40,8 @@ TEST(EmbreeRay, StoredRaysHitAndMissAsTheyShould) {
     auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(quad, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 12, 4));
     const float corners[12] = {-1, -1, 0, 1, -1, 0, 1, 1, 0, -1, 1, 0};
     std::copy(corners, corners + 12, v);
-    auto* index = static_cast<unsigned*>(rtcSetNewGeometryBuffer(quad, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 12, 2));
+    auto* index =
+        static_cast<unsigned*>(rtcSetNewGeometryBuffer(quad, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 12, 2));
     const unsigned triangles[6] = {0, 1, 2, 0, 2, 3};
     std::copy(triangles, triangles + 6, index);
     rtcCommitGeometry(quad);

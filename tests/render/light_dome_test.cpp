@@ -41,7 +41,8 @@ std::shared_ptr<RgbImage> patchySky() {
 TEST(DomeLight, ImportanceSamplingMatchesPdf) {
     DomeLight light(domeDesc(patchySky(), Matrix4::rotateY(30) * Matrix4::rotateX(10)));
     Vec3f p(0, 0, 0);
-    auto r = test::chi2SphereTest(test::directionsOf(light, p), [&](const Vec3f& wi) { return double(light.pdf(p, wi, LightHit{})); });
+    auto r = test::chi2SphereTest(test::directionsOf(light, p),
+                                  [&](const Vec3f& wi) { return double(light.pdf(p, wi, LightHit{})); });
     EXPECT_GT(r.pValue, test::kChi2Alpha) << r.report;
     for (int n = 0; n < 2000; ++n) {
         auto s = light.sample(p, SampleStream(3, 0, n).next2D());
@@ -60,7 +61,8 @@ TEST(DomeLight, ConstantTextureGivesTheConstantDome) {
         EXPECT_NEAR(e.mean(), kPiD * 0.7, 5.0 * e.standardError()) << light->name();
         EXPECT_EQ(light->escaped(n), RGB(0.7f));
     }
-    EXPECT_NEAR(textured.power({Vec3f(0.0f), 2.0f}), constant.power({Vec3f(0.0f), 2.0f}), 1e-3f * constant.power({Vec3f(0.0f), 2.0f}));
+    EXPECT_NEAR(textured.power({Vec3f(0.0f), 2.0f}), constant.power({Vec3f(0.0f), 2.0f}),
+                1e-3f * constant.power({Vec3f(0.0f), 2.0f}));
 }
 
 TEST(DomeLight, NonFiniteAndNegativeTexelsWeighNothing) {
@@ -122,14 +124,16 @@ TEST(DomeLight, TransformTurnsTheDome) {
 // A small sun 10,000 times brighter than the sky: the irradiance of a surface facing up,
 // estimated with the dome's sampler and with uniform directions.
 TEST(DomeLight, ImportanceSamplingLowersTheVariance) {
-    DomeLight light(domeDesc(image(128, 64, [](int x, int y) { return RGB(x / 2 == 20 && y / 2 == 10 ? 1e4f : 1.0f); })));
+    DomeLight light(
+        domeDesc(image(128, 64, [](int x, int y) { return RGB(x / 2 == 20 && y / 2 == 10 ? 1e4f : 1.0f); })));
     Vec3f n(0, 1, 0);
     test::MeanEstimate importance = test::irradianceEstimate(light, Vec3f(0, 0, 0), n, 100000), uniform;
     for (int i = 0; i < 100000; ++i) {
         Vec3f wi = sampleUniformSphere(SampleStream(11, 0, i).next2D());
         uniform.add(double(light.escaped(wi).x) * std::max(0.0f, dot(n, wi)) / kUniformSpherePdf);
     }
-    EXPECT_NEAR(importance.mean(), uniform.mean(), 5.0 * std::hypot(importance.standardError(), uniform.standardError()));
+    EXPECT_NEAR(importance.mean(), uniform.mean(),
+                5.0 * std::hypot(importance.standardError(), uniform.standardError()));
     EXPECT_LT(importance.standardError() * 10.0, uniform.standardError());
 }
 

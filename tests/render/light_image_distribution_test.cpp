@@ -75,7 +75,8 @@ TEST(ImageDistribution, AllZeroWeightsGiveTheUniformDensity) {
     std::vector<double> counts = cellCounts(d, kWidth, kHeight, std::vector<float>(kWidth * kHeight, 1.0f), kSamples);
     double chi2 = 0.0, expected = double(kSamples) / (kWidth * kHeight);
     for (double c : counts) chi2 += (c - expected) * (c - expected) / expected;
-    EXPECT_GT(test::upperIncompleteGammaQ(0.5 * (kWidth * kHeight - 1), 0.5 * chi2), test::kChi2Alpha) << "chi2 = " << chi2;
+    EXPECT_GT(test::upperIncompleteGammaQ(0.5 * (kWidth * kHeight - 1), 0.5 * chi2), test::kChi2Alpha)
+        << "chi2 = " << chi2;
     EXPECT_EQ(d.pdf({0.3f, 0.9f}), 1.0f);
 }
 

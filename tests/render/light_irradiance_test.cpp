@@ -19,7 +19,8 @@ namespace {
 constexpr double kPiD = 3.14159265358979323846;
 constexpr int kSamples = 200000;
 
-void expectIrradiance(const Light& light, const Vec3f& p, const Vec3f& n, double expected, double referenceError = 0.0) {
+void expectIrradiance(const Light& light, const Vec3f& p, const Vec3f& n, double expected,
+                      double referenceError = 0.0) {
     test::MeanEstimate e = test::irradianceEstimate(light, p, n, kSamples);
     EXPECT_NEAR(e.mean(), expected, 5.0 * e.standardError() + referenceError + 1e-12) << "expected " << expected;
 }
@@ -57,7 +58,8 @@ TEST(LightIrradiance, TexturedRectMatchesLambertsFormulaPerTexel) {
         for (int y = 0; y < texture.height; ++y)
             for (int x = 0; x < texture.width; ++x) {
                 Vec3f o = c[2] + across * float(x) + down * float(y);
-                expected += polygonIrradiance({o, o + across, o + across + down, o + down}, p, n, 3.0 * texture.at(x, y).x);
+                expected +=
+                    polygonIrradiance({o, o + across, o + across + down, o + down}, p, n, 3.0 * texture.at(x, y).x);
             }
         expectIrradiance(light, p, n, expected, 1e-5 * expected);
     }
@@ -103,7 +105,8 @@ TEST(LightIrradiance, LineMatchesItsClosedForm) {
     LineLight light(d);
     Vec3f centre(0.5f, -0.2f, 1.0f), across = normalize(Vec3f(Matrix4::rotateZ(35).transformVector({0, 1, 0})));
     const double h = 0.7, a = 1.0, intensity = 2.0 * 0.1 * 3.0;
-    expectIrradiance(light, centre + across * float(h), -across, intensity * (a / (h * h + a * a) + std::atan(a / h) / h));
+    expectIrradiance(light, centre + across * float(h), -across,
+                     intensity * (a / (h * h + a * a) + std::atan(a / h) / h));
 }
 
 // The cylinder's irradiance by the midpoint rule over its side, 2000 x 1000 points:

@@ -27,9 +27,8 @@ LightDesc tiltedRect(std::shared_ptr<const RgbImage> texture) {
 
 // 8 x 4 texels of varied colours, about 100:1 from the dimmest to the brightest, and one black texel.
 std::shared_ptr<RgbImage> colouredTexture() {
-    return test::image(8, 4, [](int x, int y) {
-        return x == 5 && y == 2 ? RGB(0.0f) : RGB(0.1f + x, 0.5f * y, float((x + y) % 3));
-    });
+    return test::image(
+        8, 4, [](int x, int y) { return x == 5 && y == 2 ? RGB(0.0f) : RGB(0.1f + x, 0.5f * y, float((x + y) % 3)); });
 }
 
 TEST(RectLightTexture, ImportanceSamplingMatchesPdf) {
@@ -141,7 +140,8 @@ TEST(RectLightTexture, BlackAndConstantTexturesAreSampledUniformly) {
             ASSERT_TRUE(hit);
             float uniformPdf = plain.pdf(p, s->wi, *hit);
             EXPECT_NEAR(s->pdf, uniformPdf, 1e-5f * uniformPdf) << "grey " << grey << ", sample " << n;
-            EXPECT_NEAR(light.pdf(p, s->wi, *hit), uniformPdf, 1e-5f * uniformPdf) << "grey " << grey << ", sample " << n;
+            EXPECT_NEAR(light.pdf(p, s->wi, *hit), uniformPdf, 1e-5f * uniformPdf)
+                << "grey " << grey << ", sample " << n;
             EXPECT_EQ(s->Li, RGB(3.0f * grey));
         }
         EXPECT_FLOAT_EQ(light.power({}), grey * plain.power({}));

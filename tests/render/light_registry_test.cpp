@@ -19,7 +19,7 @@ LightDesc descOf(LightType type) {
     d.name = "/light";
     d.type = type;
     d.radiance = RGB(2.0f);
-    d.angleDegrees = 1.0f;  // Distant: a disk, not a delta light
+    d.angleDegrees = 1.0f;                                                      // Distant: a disk, not a delta light
     d.transform = Matrix4::translate({0.0, 3.0, 0.0}) * Matrix4::rotateX(-90);  // emitting downwards (-Y)
     return d;
 }

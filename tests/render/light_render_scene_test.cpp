@@ -93,7 +93,8 @@ TEST(LightRenderScene, ChooseLightIsTheLightTreesChoice) {
     RenderScene scene(sceneWithEveryLight());
     ASSERT_EQ(scene.lightCount(), 5u);
     EXPECT_EQ(scene.lightsAtInfinity(false), std::vector<int>{4});
-    EXPECT_EQ(scene.lightsAtInfinity(true), std::vector<int>{4}) << "a dome is seen by the camera unless marked not to be";
+    EXPECT_EQ(scene.lightsAtInfinity(true), std::vector<int>{4})
+        << "a dome is seen by the camera unless marked not to be";
     Vec3f p(0.5f, 0.0f, 0.5f), n(0, 1, 0);
     double sum = 0.0;
     for (int i = 0; i < 5; ++i) sum += scene.lightProbability(p, n, i);

@@ -117,9 +117,8 @@ TEST(DistantLight, DiskSamplingMatchesPdfAndNormalizeGivesIrradiance) {
     d.radiance = RGB(1.0f);
     d.normalize = true;
     DistantLight light(d);
-    auto r = test::chi2SphereTest(directionsOf(light, Vec3f(0, 0, 0)), [&](const Vec3f& wi) {
-        return double(light.pdf(Vec3f(0, 0, 0), wi, LightHit{}));
-    });
+    auto r = test::chi2SphereTest(directionsOf(light, Vec3f(0, 0, 0)),
+                                  [&](const Vec3f& wi) { return double(light.pdf(Vec3f(0, 0, 0), wi, LightHit{})); });
     EXPECT_GT(r.pValue, test::kChi2Alpha) << r.report;
     // Normalized: the irradiance on a surface facing the light is the authored value, 1.
     constexpr int kN = 100000;

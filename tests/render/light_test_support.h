@@ -96,14 +96,15 @@ inline void expectSamplesMatchPdf(const Light& light, const Vec3f& p, const HitF
         ASSERT_TRUE(h) << "sample " << n << " points away from the light";
         EXPECT_NEAR(length(h->point - p), s->distance, 1e-3f * s->distance) << "sample " << n;
         float cosLight = std::abs(dot(h->normal, s->wi));
-        EXPECT_NEAR(light.pdf(p, s->wi, *h), s->pdf, s->pdf * (2e-3f + 1e-5f / std::max(cosLight, 1e-6f))) << "sample " << n;
+        EXPECT_NEAR(light.pdf(p, s->wi, *h), s->pdf, s->pdf * (2e-3f + 1e-5f / std::max(cosLight, 1e-6f)))
+            << "sample " << n;
     }
     EXPECT_GT(accepted, count / 2);
 }
 
 // Irradiance at p on a surface with unit normal n, estimated from `count` light samples.
 inline MeanEstimate irradianceEstimate(const Light& light, const Vec3f& p, const Vec3f& n, int count,
-                                                      std::uint64_t seed = 11) {
+                                       std::uint64_t seed = 11) {
     MeanEstimate e;
     for (int i = 0; i < count; ++i) {
         auto s = light.sample(p, SampleStream(seed, 0, i).next2D());

@@ -53,7 +53,8 @@ std::vector<std::unique_ptr<Light>> mixedLights(int count, bool withInfinite = t
             case 5: lights.push_back(std::make_unique<LineLight>(d)); break;
             default: {
                 Vec3f a(d.transform.transformPoint({0, 0, 0}));
-                lights.push_back(std::make_unique<TriangleLight>(d.name, a, a + Vec3f(0.5f, 0, 0), a + Vec3f(0, 0.4f, 0.2f), d.radiance));
+                lights.push_back(std::make_unique<TriangleLight>(d.name, a, a + Vec3f(0.5f, 0, 0),
+                                                                 a + Vec3f(0, 0.4f, 0.2f), d.radiance));
             }
         }
     }
@@ -105,7 +106,8 @@ TEST(LightTree, ProbabilitiesSumToOneAndMatchChoose) {
 TEST(LightTree, ChoicesFollowTheProbabilities) {
     auto lights = mixedLights(120);
     LightTree tree(lights, kScene);
-    for (const Query& q : {Query{Vec3f(1.0f, -2.0f, 0.5f), normalize(Vec3f(0.2f, 1.0f, 0.1f))}, Query{Vec3f(-4.0f, 3.0f, 2.0f), Vec3f(0.0f)}}) {
+    for (const Query& q : {Query{Vec3f(1.0f, -2.0f, 0.5f), normalize(Vec3f(0.2f, 1.0f, 0.1f))},
+                           Query{Vec3f(-4.0f, 3.0f, 2.0f), Vec3f(0.0f)}}) {
         constexpr int kN = 1000000;
         std::vector<double> observed(lights.size(), 0.0);
         for (int k = 0; k < kN; ++k) {
@@ -181,7 +183,7 @@ TEST(LightTree, ShapedLightsAreNotChosenOutsideTheirCone) {
     lights.push_back(std::make_unique<PointLight>(d));
     LightTree tree(lights, kScene);
     EXPECT_FLOAT_EQ(tree.probability(Vec3f(0.3f, 0, 0), Vec3f(0, 1, 0), 0), 1.0f);  // 8.5 degrees off the axis
-    EXPECT_EQ(tree.choose(Vec3f(3.0f, 0, 0), Vec3f(0, 1, 0), 0.3f).light, -1);        // 56 degrees off
+    EXPECT_EQ(tree.choose(Vec3f(3.0f, 0, 0), Vec3f(0, 1, 0), 0.3f).light, -1);      // 56 degrees off
 }
 
 // Beside a black sun, which weighs 0, a light takes the general walk, whose choice is that light
@@ -207,7 +209,10 @@ TEST(LightTree, OneLightChoosesAsTheGeneralWalkDoes) {
         [&] { return std::make_unique<RectLight>(shaped); },
         [&] { return std::make_unique<SphereLight>(d); },
         [&] { return std::make_unique<PointLight>(shaped); },
-        [&] { return std::make_unique<TriangleLight>("/tri", Vec3f(0.2f, 1.0f, 0.0f), Vec3f(0.9f, 1.2f, 0.1f), Vec3f(0.3f, 1.1f, 0.8f), RGB(2.0f)); },
+        [&] {
+            return std::make_unique<TriangleLight>("/tri", Vec3f(0.2f, 1.0f, 0.0f), Vec3f(0.9f, 1.2f, 0.1f),
+                                                   Vec3f(0.3f, 1.1f, 0.8f), RGB(2.0f));
+        },
     };
     for (std::size_t kind = 0; kind < kinds.size(); ++kind) {
         std::vector<std::unique_ptr<Light>> alone, besideTheSun;
@@ -231,7 +236,8 @@ TEST(LightTree, OneLightChoosesAsTheGeneralWalkDoes) {
                 case 0: break;
                 case 1: n = Vec3f(0.0f); break;
                 case 2:  // on the emission plane, dot(axis, p - centre) = -radius (1 + e)
-                    p = centre + axisFrame.toWorld(Vec3f(5.0f * rng.next() - 2.5f, 5.0f * rng.next() - 2.5f, -radius * (1.0f + e)));
+                    p = centre + axisFrame.toWorld(
+                                     Vec3f(5.0f * rng.next() - 2.5f, 5.0f * rng.next() - 2.5f, -radius * (1.0f + e)));
                     break;
                 case 3: {  // n on the reception plane's edge, dot(n, p - centre) = radius (1 + e)
                     const Vec3f v = p - centre;

@@ -67,7 +67,8 @@ TEST(MaterialBsdf, AHalfMetalReflectsTheMeanOfItsParts) {
     for (float theta : {10.0f, 60.0f}) {
         Vec3f wo = test::incidentDirection(theta);
         test::MeanEstimate m = test::albedoEstimate(mixed, wo, kSamples, 3);
-        test::MeanEstimate a = test::albedoEstimate(pure, wo, kSamples, 4), b = test::albedoEstimate(matte, wo, kSamples, 5);
+        test::MeanEstimate a = test::albedoEstimate(pure, wo, kSamples, 4),
+                           b = test::albedoEstimate(matte, wo, kSamples, 5);
         double expected = 0.5 * (a.mean() + b.mean());
         double se = std::sqrt(m.standardError() * m.standardError() +
                               0.25 * (a.standardError() * a.standardError() + b.standardError() * b.standardError()));
@@ -141,7 +142,8 @@ std::vector<std::pair<Vec3f, Vec3f>> directionPairs() {
     std::vector<std::pair<Vec3f, Vec3f>> pairs;
     for (float thetaO : {10.0f, 55.0f, 80.0f, 140.0f})
         for (float thetaI : {20.0f, 50.0f, 120.0f, 170.0f})
-            pairs.emplace_back(test::incidentDirection(thetaO, 0.6f, 0.8f), test::incidentDirection(thetaI, -0.8f, 0.6f));
+            pairs.emplace_back(test::incidentDirection(thetaO, 0.6f, 0.8f),
+                               test::incidentDirection(thetaI, -0.8f, 0.6f));
     return pairs;
 }
 
@@ -184,11 +186,13 @@ TEST(MaterialBsdf, EachParameterDrivesItsLayer) {
     a.reset(), b.reset();
     const Bsdf& opaque = b.make<CoatedBsdf>(b.make<LambertianBsdf>(albedo), RGB(1.5f), ggx, RGB(0.7f, 0.35f, 0.14f));
     const DielectricTints solidTints{RGB(0.7f, 0.35f, 0.14f), RGB(0.9f, 0.7f, 0.5f)};
-    expectSameBsdf(bsdfOf(glass, albedo, a), b.make<MixBsdf>(opaque, b.make<GgxDielectricBsdf>(1.5f, ggx, solidTints), 0.6f));
+    expectSameBsdf(bsdfOf(glass, albedo, a),
+                   b.make<MixBsdf>(opaque, b.make<GgxDielectricBsdf>(1.5f, ggx, solidTints), 0.6f));
     glass.thinWalled = true;
     a.reset();
     const DielectricTints sheetTints{RGB(0.7f, 0.35f, 0.14f), glass.transmissionColor};
-    expectSameBsdf(bsdfOf(glass, albedo, a), b.make<MixBsdf>(opaque, b.make<ThinDielectricBsdf>(1.5f, ggx, sheetTints), 0.6f));
+    expectSameBsdf(bsdfOf(glass, albedo, a),
+                   b.make<MixBsdf>(opaque, b.make<ThinDielectricBsdf>(1.5f, ggx, sheetTints), 0.6f));
     // Sheen lies on the diffuse base, beneath the specular lobe; metal by weight; the coat on top,
     // its colour filtering what passes through it.
     MaterialParams all = plastic;
@@ -200,8 +204,8 @@ TEST(MaterialBsdf, EachParameterDrivesItsLayer) {
     all.coatColor = RGB(0.9f, 0.8f, 0.7f);
     all.coatRoughness = 0.2f;
     a.reset(), b.reset();
-    const Bsdf& sheened =
-        b.make<LayeredBsdf<CharlieSheenBsdf>>(CharlieSheenBsdf(RGB(0.5f, 0.4f, 0.3f), 0.4f), b.make<LambertianBsdf>(albedo));
+    const Bsdf& sheened = b.make<LayeredBsdf<CharlieSheenBsdf>>(CharlieSheenBsdf(RGB(0.5f, 0.4f, 0.3f), 0.4f),
+                                                                b.make<LambertianBsdf>(albedo));
     const Bsdf& specular = b.make<CoatedBsdf>(sheened, RGB(1.5f), ggx, RGB(0.7f, 0.35f, 0.14f));
     const Bsdf& metal = b.make<MixBsdf>(specular, b.make<GgxConductorBsdf>(albedo, ggx), 0.25f);
     const Bsdf& coated = b.make<CoatedBsdf>(metal, RGB(1.5f), GgxDistribution(0.04f), RGB(1.0f), all.coatColor);

@@ -79,8 +79,12 @@ TEST_F(ShadingGraph, MixOfATextureAndAConstantByAPrimvarTimesAConstant) {
     b.input = MaterialInput::Diffuse;
     b.factor = 2.0f;
     b.sources = {quadrants(), primvarW()};
-    b.nodes = {sourceNode(0), constantNode(0, 0, 0.5f), sourceNode(1), constantNode(0.5f, 0.5f, 0.5f),
-               opNode(ShadingNode::Op::Multiply, 2, 3), opNode(ShadingNode::Op::Mix, 0, 1, 4)};
+    b.nodes = {sourceNode(0),
+               constantNode(0, 0, 0.5f),
+               sourceNode(1),
+               constantNode(0.5f, 0.5f, 0.5f),
+               opNode(ShadingNode::Op::Multiply, 2, 3),
+               opNode(ShadingNode::Op::Mix, 0, 1, 4)};
     m.bindings.push_back(b);
     RenderScene scene(squareWith(m));
     EXPECT_TRUE(scene.warnings().empty());

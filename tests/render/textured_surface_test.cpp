@@ -102,7 +102,8 @@ TEST_F(TexturedSurface, NormalMapsTiltTheShadingNormalInTheTangentFrame) {
     // scale 2 and bias -1 as UsdPreviewSurface files do.
     const float s = 0.5f, c = std::sqrt(3.0f) / 2.0f;
     MaterialDesc m = test::diffuseMaterial("/m", RGB(0.5f));
-    InputBinding normal = textureBinding(MaterialInput::Normal, constant("normal", {(s + 1) / 2, 0.5f, (c + 1) / 2, 1}));
+    InputBinding normal =
+        textureBinding(MaterialInput::Normal, constant("normal", {(s + 1) / 2, 0.5f, (c + 1) / 2, 1}));
     normal.texture->colorSpace = texture::SourceColorSpace::Raw;
     for (int i = 0; i < 3; ++i) {
         normal.texture->scale[i] = 2.0f;
@@ -128,7 +129,8 @@ TEST_F(TexturedSurface, CutOutsLetEveryRayThroughTheirHoles) {
     m.opacityThreshold = 0.5f;
     m.bindings.push_back(textureBinding(MaterialInput::Opacity, path, 3, 1));
     SceneDescription desc = withMaterial(m);
-    desc.meshes.push_back(test::quadMesh("/floor", {Vec3f(-5, -5, -1), Vec3f(5, -5, -1), Vec3f(5, 5, -1), Vec3f(-5, 5, -1)}, -1));
+    desc.meshes.push_back(
+        test::quadMesh("/floor", {Vec3f(-5, -5, -1), Vec3f(5, -5, -1), Vec3f(5, 5, -1), Vec3f(-5, 5, -1)}, -1));
     RenderScene scene(desc);
     for (float y : {0.1f, 0.5f, 0.9f}) {
         EXPECT_NEAR(hitFromAbove(scene, 0.2f, y)->point.z, -1.0f, 1e-5f) << "through the hole";
@@ -165,7 +167,8 @@ TEST_F(TexturedSurface, PrimvarReadersInterpolateCorners) {
     m.bindings.push_back(tint);
     SceneDescription desc = withMaterial(m);
     CornerPrimvar values{"tint", 3, {}};
-    for (std::uint32_t i : desc.meshes[0].indices) values.values.insert(values.values.end(), {desc.meshes[0].positions[i].x, 0.0f, 1.0f});
+    for (std::uint32_t i : desc.meshes[0].indices)
+        values.values.insert(values.values.end(), {desc.meshes[0].positions[i].x, 0.0f, 1.0f});
     desc.meshes[0].primvars.push_back(values);
     RenderScene scene(desc);
     RGB d = hitFromAbove(scene, 0.3f, 0.6f)->material.diffuse;

@@ -131,8 +131,9 @@ TEST(CompositionClips, AMissingClipFileIsAWarningNamingIt) {
     ASSERT_EQ(stage->warnings().size(), 1u) << allWarnings(*stage);
     const CompositionWarning& w = stage->warnings()[0];
     EXPECT_EQ(w.message, "clip @./no_such_clip.usda@ ignored: cannot find '" + layer("clips/no_such_clip.usda") + "'");
-    EXPECT_EQ(w.location.str(), locate("clips/root.usda", "clips = {\n            dictionary default = {\n"
-                                                          "                asset[] assetPaths = [@./clip1.usda@, @./no"));
+    EXPECT_EQ(w.location.str(), locate("clips/root.usda",
+                                       "clips = {\n            dictionary default = {\n"
+                                       "                asset[] assetPaths = [@./clip1.usda@, @./no"));
     EXPECT_EQ(w.primPath, "/World/Missing");
     // The missing clip gives no samples; the other one still does.
     expectSamples(at(*stage, "/World/Missing"), "a", {{0, 0}, {10, kBlock}});
@@ -213,9 +214,9 @@ def "Parent" (
 )",
                                 layer("clips/inline.usda")));
     EXPECT_TRUE(stage.warnings().empty()) << allWarnings(stage);
-    expectSamples(at(stage, "/ByName"), "a", {{0, 0}, {10, 10}});  // "one" (clip1) before "two"
+    expectSamples(at(stage, "/ByName"), "a", {{0, 0}, {10, 10}});     // "one" (clip1) before "two"
     expectSamples(at(stage, "/Listed"), "a", {{0, 100}, {10, 110}});  // clipSets puts "two" first
-    expectSamples(at(stage, "/Parent/Child"), "b", {{50, 100}});     // its own set, not /Parent's
+    expectSamples(at(stage, "/Parent/Child"), "b", {{50, 100}});      // its own set, not /Parent's
 }
 
 }  // namespace

@@ -61,7 +61,8 @@ std::optional<Value> value(const Stage& stage, const std::string& prim, const st
 
 std::string allWarnings(const Stage& stage) {
     std::string all;
-    for (const CompositionWarning& w : stage.warnings()) all += w.location.str() + " " + w.primPath + ": " + w.message + "\n";
+    for (const CompositionWarning& w : stage.warnings())
+        all += w.location.str() + " " + w.primPath + ": " + w.message + "\n";
     return all;
 }
 
@@ -72,7 +73,8 @@ TEST(CompositionCorpus, EveryValidLayerComposes) {
     for (const auto& entry : fs::recursive_directory_iterator(kCorpus)) {
         std::string extension = entry.path().extension().string();
         if (extension != ".usda" && extension != ".usd" && extension != ".sdf") continue;
-        if (isInvalidOnPurpose(entry.path()) || (isCrate(entry.path()) && entry.path().filename() == "corrupt.usd")) continue;
+        if (isInvalidOnPurpose(entry.path()) || (isCrate(entry.path()) && entry.path().filename() == "corrupt.usd"))
+            continue;
         try {
             auto stage = Stage::open(entry.path().string());
             ++composed;
@@ -139,14 +141,15 @@ TEST(CompositionCorpus, StandardShaderBall) {
     // the selected "OpenPBRSurface" variant of example_materials.usda.
     ASSERT_EQ(stage->warnings().size(), 4u) << allWarnings(*stage);
     for (const char* name : {"plastic", "gold", "glass", "bubblegum"}) {
-        std::string missing = corpusFile(std::string("usd-wg-assets/full_assets/StandardShaderBall/example_materials/") +
-                                         name + "_openpbr.mtlx");
+        std::string missing = corpusFile(
+            std::string("usd-wg-assets/full_assets/StandardShaderBall/example_materials/") + name + "_openpbr.mtlx");
         auto it = std::find_if(stage->warnings().begin(), stage->warnings().end(), [&](const CompositionWarning& w) {
             return w.message.find("cannot find '" + missing + "'") != std::string::npos;
         });
         ASSERT_NE(it, stage->warnings().end()) << missing;
         EXPECT_EQ(it->primPath, "/standard_shader_ball_scene/materials/examples/mtlx");
-        EXPECT_EQ(it->location.file, corpusFile("usd-wg-assets/full_assets/StandardShaderBall/layers/example_materials.usda"));
+        EXPECT_EQ(it->location.file,
+                  corpusFile("usd-wg-assets/full_assets/StandardShaderBall/layers/example_materials.usda"));
     }
     EXPECT_EQ(stage->layerFiles().size(), 6u);  // 4 sublayers and the subdiv geometry
     EXPECT_EQ(stage->metersPerUnit(), 0.01);

@@ -98,7 +98,8 @@ inline std::vector<CompositionWarning> warningsWith(const Stage& stage, const st
 
 inline std::string allWarnings(const Stage& stage) {
     std::string all;
-    for (const CompositionWarning& w : stage.warnings()) all += w.location.str() + " " + w.primPath + ": " + w.message + "\n";
+    for (const CompositionWarning& w : stage.warnings())
+        all += w.location.str() + " " + w.primPath + ": " + w.message + "\n";
     return all;
 }
 

@@ -22,9 +22,9 @@ TEST(CompositionRelocates, APrimMovesOutOfAReferencedNamespace) {
     auto stage = open("relocates/root.usda");
     const PrimSpec& arm = at(*stage, "/World/Arm");
     EXPECT_EQ(arm.specifier, Specifier::Def);
-    EXPECT_EQ(arm.typeName, "Xform");                  // from rig.usda's /Rig/Arm
-    EXPECT_EQ(number(arm, "length"), 1.0);             // the `over` at the source is ignored
-    EXPECT_EQ(number(arm, "extra"), 5.0);              // local opinions at the target apply
+    EXPECT_EQ(arm.typeName, "Xform");       // from rig.usda's /Rig/Arm
+    EXPECT_EQ(number(arm, "length"), 1.0);  // the `over` at the source is ignored
+    EXPECT_EQ(number(arm, "extra"), 5.0);   // local opinions at the target apply
     EXPECT_EQ(arm.location.str(), locate("relocates/rig.usda", "def Xform \"Arm\""));
     EXPECT_EQ(stage->prim("/World/Char/Arm"), nullptr);
     // The source's name leaves its parent (even though root.usda still has an `over` for it);
@@ -89,13 +89,15 @@ TEST(CompositionRelocates, InvalidAndCollidingRelocationsAreWarnings) {
         "source",
         "relocate </World/Char/Hat> -> </World/Char> ignored: the target cannot be an ancestor of its source",
         "relocate </World/Char/Prop> -> </World/Char/Prop> ignored: the target is the source itself",
-        "relocate </World/Other/Arm/Hand> -> </World/OtherHand> ignored: the source lies below </World/Other/Arm>, which "
+        "relocate </World/Other/Arm/Hand> -> </World/OtherHand> ignored: the source lies below </World/Other/Arm>, "
+        "which "
         "is itself relocated",
         "relocate </World/Other/Leg> -> </World/Same> ignored: another relocation moves a prim to the same target",
         "relocate </World/Other/Prop> -> </World/Same> ignored: another relocation moves a prim to the same target",
         "relocate </World/Char/Leg> -> </World/Char/Ghost> ignored: the target is the source of relocate "
         "</World/Char/Ghost>",
-        "relocate </World/Char/Ghost> -> </World/Ghost> ignored: the source is the target of relocate </World/Char/Leg>",
+        "relocate </World/Char/Ghost> -> </World/Ghost> ignored: the source is the target of relocate "
+        "</World/Char/Leg>",
         "relocate </World/Char/Hand> -> </World/Other/Arm/Elbow> ignored: the target lies below </World/Other/Arm>, "
         "which is itself relocated",
     };

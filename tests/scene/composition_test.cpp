@@ -70,14 +70,16 @@ TEST(CompositionSublayers, AssetPathsAnchorAtTheLayerThatAuthoredThem) {
     EXPECT_EQ(text(at(*stage, "/World/FromDeep"), "file"), layer("sublayers/nested/part_texture.png"));
 
     std::vector<AssetReference> assets = stage->assetReferences();
-    auto texture = std::find_if(assets.begin(), assets.end(), [](const AssetReference& a) { return a.property == "texture"; });
+    auto texture =
+        std::find_if(assets.begin(), assets.end(), [](const AssetReference& a) { return a.property == "texture"; });
     ASSERT_NE(texture, assets.end());
     EXPECT_EQ(texture->primPath, "/World");
     EXPECT_EQ(texture->authored, "./textures/wood.<UDIM>.png");
     EXPECT_EQ(texture->resolved, layer("sublayers/nested/textures/wood.<UDIM>.png"));
     EXPECT_FALSE(texture->exists);
     EXPECT_EQ(texture->location.str(), locate("sublayers/nested/deep.usda", "asset texture"));
-    EXPECT_EQ(std::count_if(assets.begin(), assets.end(), [](const AssetReference& a) { return a.property == "maps"; }), 2);
+    EXPECT_EQ(std::count_if(assets.begin(), assets.end(), [](const AssetReference& a) { return a.property == "maps"; }),
+              2);
 
     EXPECT_EQ(stage->layerFiles(),
               (std::vector<std::string>{layer("sublayers/root.usda"), layer("sublayers/strong.usda"),
@@ -92,14 +94,15 @@ TEST(CompositionReferences, DefaultPrimReferenceSitsUnderLocalOpinions) {
     EXPECT_TRUE(stage->warnings().empty()) << allWarnings(*stage);
     const PrimSpec& prim = at(*stage, "/World/ByDefaultPrim");
     EXPECT_EQ(prim.specifier, Specifier::Def);
-    EXPECT_EQ(prim.typeName, "Xform");  // from the asset: the local spec has no type
+    EXPECT_EQ(prim.typeName, "Xform");     // from the asset: the local spec has no type
     EXPECT_EQ(number(prim, "size"), 2.0);  // local beats the reference
     EXPECT_EQ(findMetadata(prim.metadata, "kind")->value.asString(), "component");
     EXPECT_EQ(metadataStrings(prim, "apiSchemas"), (std::vector<std::string>{"LocalAPI", "AssetAPI"}));
     EXPECT_EQ(findMetadata(prim.metadata, "references"), nullptr);  // arcs are consumed
     EXPECT_EQ(childNames(prim), (std::vector<std::string>{"Geom", "Looks", "LocalChild"}));
     EXPECT_EQ(at(*stage, "/World/ByDefaultPrim/Geom").typeName, "Mesh");
-    EXPECT_EQ(at(*stage, "/World/ByDefaultPrim/Geom").location.str(), locate("references/asset.usda", "def Mesh \"Geom\""));
+    EXPECT_EQ(at(*stage, "/World/ByDefaultPrim/Geom").location.str(),
+              locate("references/asset.usda", "def Mesh \"Geom\""));
 }
 
 TEST(CompositionReferences, TargetsAndConnectionsInsideTheAssetAreRemapped) {
@@ -133,7 +136,8 @@ TEST(CompositionReferences, ExternalWithPrimPathAndInternalReferences) {
 
 TEST(CompositionReferences, ReferenceLayerOffsetMovesTimeSamples) {
     auto stage = open("references/root.usda");
-    EXPECT_EQ(samples(at(*stage, "/World/Offset"), "anim"), (std::vector<std::pair<double, double>>{{5, 0}, {25, 100}}));
+    EXPECT_EQ(samples(at(*stage, "/World/Offset"), "anim"),
+              (std::vector<std::pair<double, double>>{{5, 0}, {25, 100}}));
     EXPECT_EQ(samples(at(*stage, "/World/ByDefaultPrim"), "anim"),
               (std::vector<std::pair<double, double>>{{0, 0}, {10, 100}}));
 }
@@ -408,7 +412,8 @@ TEST(CompositionErrors, UnreadableRootLayers) {
             open(root);
             ADD_FAILURE() << root << ": no FileError";
         } catch (const FileError& error) {
-            EXPECT_NE(std::string(error.what()).find("crate_root.usd': damaged or unsupported USD crate file"), std::string::npos)
+            EXPECT_NE(std::string(error.what()).find("crate_root.usd': damaged or unsupported USD crate file"),
+                      std::string::npos)
                 << error.what();
         }
     }
@@ -427,7 +432,7 @@ TEST(CompositionInstancing, InstancesOfOneAssetShareAPrototypeKey) {
     std::string first = prototypeKey(*stage, "/World/First");
     EXPECT_FALSE(first.empty());
     EXPECT_EQ(prototypeKey(*stage, "/World/Second"), first);  // local opinions on the root don't matter
-    EXPECT_NE(prototypeKey(*stage, "/World/Blue"), first);   // another variant selection
+    EXPECT_NE(prototypeKey(*stage, "/World/Blue"), first);    // another variant selection
     EXPECT_EQ(prototypeKey(*stage, "/World/NotInstanced"), "");
     // Instances are full copies.
     EXPECT_EQ(numbers(at(*stage, "/World/First/Geom"), "color"), (std::vector<double>{1, 0, 0}));
@@ -474,7 +479,8 @@ TEST(CompositionEdits, SetAttributeIsTheStrongestOpinion) {
 TEST(CompositionEdits, AVariantSwitchRecomposesOnlyThatSubtree) {
     auto stage = open("variants/root.usda");
     const PrimSpec* referenced = stage->prim("/World/Referenced");
-    ASSERT_TRUE(stage->setAttribute("/World/Plain/Body", "paint", Value::string("token", ValueKind::Token, {"green"}, false)));
+    ASSERT_TRUE(
+        stage->setAttribute("/World/Plain/Body", "paint", Value::string("token", ValueKind::Token, {"green"}, false)));
     stage->setVariantSelection("/World/Plain", "look", "blue");
     EXPECT_EQ(stage->prim("/World/Referenced"), referenced);  // untouched
     EXPECT_EQ(numbers(at(*stage, "/World/Plain"), "color"), (std::vector<double>{0, 0, 1}));
@@ -539,8 +545,7 @@ def "B" (
 }
 )",
                                 "shared.usda"));
-    const NumberArray& authored =
-        stage.rootLayer().primAtPath("/Asset")->attribute("points")->defaultValue.numbers;
+    const NumberArray& authored = stage.rootLayer().primAtPath("/Asset")->attribute("points")->defaultValue.numbers;
     ASSERT_EQ(authored.size(), 9u);
     for (const char* path : {"/Asset", "/A", "/B"}) {
         const AttributeSpec& points = attribute(at(stage, path), "points");

@@ -56,7 +56,8 @@ TEST(CrateCompression, SingleBlock) {
 
 TEST(CrateCompression, Chunks) {
     // Two chunks, each an int32 size and an LZ4 block: "hello" and " world".
-    std::vector<char> in = bytes({2, 6, 0, 0, 0, 80, 104, 101, 108, 108, 111, 7, 0, 0, 0, 96, 32, 119, 111, 114, 108, 100});
+    std::vector<char> in =
+        bytes({2, 6, 0, 0, 0, 80, 104, 101, 108, 108, 111, 7, 0, 0, 0, 96, 32, 119, 111, 114, 108, 100});
     std::vector<char> out = detail::decompressCrateBuffer(in, 64);
     EXPECT_EQ(std::string(out.begin(), out.end()), "hello world");
 }
@@ -82,7 +83,8 @@ TEST(CrateIntegerCoding, Decodes32BitDeltas) {
 
 TEST(CrateIntegerCoding, Decodes64BitDeltas) {
     // 10, 1010, 1010 + 2^40: common delta 0 (unused), codes 1 (int16 10), 2 (int32 1000), 3 (int64 2^40).
-    std::vector<char> encoded = bytes({0, 0, 0, 0, 0, 0, 0, 0, 0b111001, 10, 0, 0xe8, 0x03, 0, 0, 0, 0, 0, 0, 0, 1, 0, 0});
+    std::vector<char> encoded =
+        bytes({0, 0, 0, 0, 0, 0, 0, 0, 0b111001, 10, 0, 0xe8, 0x03, 0, 0, 0, 0, 0, 0, 0, 1, 0, 0});
     std::vector<std::int64_t> values = detail::decodeIntegers64(encoded, 3);
     EXPECT_EQ(values, (std::vector<std::int64_t>{10, 1010, 1010 + (std::int64_t{1} << 40)}));
 }
@@ -154,22 +156,27 @@ private:
                 return differ(where, "size " + x.toString() + " vs " + y.toString());
             for (std::size_t i = 0; i < x.numbers.size(); ++i)
                 if (!sameNumber(x.numbers[i], y.numbers[i], x.typeName))
-                    return differ(where, "element " + std::to_string(i) + ": " + std::to_string(x.numbers[i]) +
-                                             " vs " + std::to_string(y.numbers[i]));
+                    return differ(where, "element " + std::to_string(i) + ": " + std::to_string(x.numbers[i]) + " vs " +
+                                             std::to_string(y.numbers[i]));
         }
         if (x.items.size() != y.items.size()) return differ(where, "items " + x.toString() + " vs " + y.toString());
-        for (std::size_t i = 0; i < x.items.size(); ++i) value(where + "[" + std::to_string(i) + "]", x.items[i], y.items[i], metadata);
+        for (std::size_t i = 0; i < x.items.size(); ++i)
+            value(where + "[" + std::to_string(i) + "]", x.items[i], y.items[i], metadata);
         dictionary(where, x.dictionary, y.dictionary);
     }
 
     void dictionary(const std::string& where, const std::shared_ptr<const Dictionary>& a,
                     const std::shared_ptr<const Dictionary>& b) {
         std::map<std::string, const Value*> x, y;
-        if (a) for (const auto& [k, v] : *a) x[k] = &v;
-        if (b) for (const auto& [k, v] : *b) y[k] = &v;
+        if (a)
+            for (const auto& [k, v] : *a) x[k] = &v;
+        if (b)
+            for (const auto& [k, v] : *b) y[k] = &v;
         for (const auto& [k, v] : x) {
-            if (!y.count(k)) differ(where, "dictionary key '" + k + "' missing from the crate");
-            else value(where + "." + k, *v, *y[k], false);
+            if (!y.count(k))
+                differ(where, "dictionary key '" + k + "' missing from the crate");
+            else
+                value(where + "." + k, *v, *y[k], false);
         }
         for (const auto& [k, v] : y)
             if (!x.count(k)) differ(where, "extra dictionary key '" + k + "' in the crate");
@@ -218,7 +225,8 @@ private:
     static const std::string& nameOf(const RelationshipSpec& spec) { return spec.name; }
     static const std::string& nameOf(const std::unique_ptr<PrimSpec>& spec) { return spec->name; }
 
-    void attributes(const std::string& where, const std::vector<AttributeSpec>& a, const std::vector<AttributeSpec>& b) {
+    void attributes(const std::string& where, const std::vector<AttributeSpec>& a,
+                    const std::vector<AttributeSpec>& b) {
         for (auto [px, py] : byName(where, a, b)) {
             const AttributeSpec& x = *px;
             const AttributeSpec& y = *py;
@@ -226,9 +234,12 @@ private:
             if (x.typeName != y.typeName) differ(at, "typeName " + x.typeName + " vs " + y.typeName);
             if (x.custom != y.custom) differ(at, "custom");
             if (x.uniform != y.uniform) differ(at, "variability");
-            if (x.hasDefault != y.hasDefault) differ(at, "hasDefault");
-            else if (x.hasDefault) value(at + " default", x.defaultValue, y.defaultValue, false);
-            if (x.timeSamples.size() != y.timeSamples.size()) differ(at, "time sample count");
+            if (x.hasDefault != y.hasDefault)
+                differ(at, "hasDefault");
+            else if (x.hasDefault)
+                value(at + " default", x.defaultValue, y.defaultValue, false);
+            if (x.timeSamples.size() != y.timeSamples.size())
+                differ(at, "time sample count");
             else
                 for (std::size_t s = 0; s < x.timeSamples.size(); ++s) {
                     if (x.timeSamples[s].first != y.timeSamples[s].first) differ(at, "sample time");
@@ -260,15 +271,25 @@ private:
         variantSets(at, x.variantSets, y.variantSets);
     }
 
-    void variantSets(const std::string& where, const std::vector<VariantSetSpec>& a, const std::vector<VariantSetSpec>& b) {
+    void variantSets(const std::string& where, const std::vector<VariantSetSpec>& a,
+                     const std::vector<VariantSetSpec>& b) {
         if (a.size() != b.size()) return differ(where, "variant set count");
         for (std::size_t i = 0; i < a.size(); ++i) {
             std::string at = where + "{" + a[i].name + "=}";
-            if (a[i].name != b[i].name) { differ(at, "variant set name vs " + b[i].name); continue; }
-            if (a[i].variants.size() != b[i].variants.size()) { differ(at, "variant count"); continue; }
+            if (a[i].name != b[i].name) {
+                differ(at, "variant set name vs " + b[i].name);
+                continue;
+            }
+            if (a[i].variants.size() != b[i].variants.size()) {
+                differ(at, "variant count");
+                continue;
+            }
             for (std::size_t v = 0; v < a[i].variants.size(); ++v) {
-                if (a[i].variants[v].name != b[i].variants[v].name) differ(at, "variant name");
-                else body(where + "{" + a[i].name + "=" + a[i].variants[v].name + "}", a[i].variants[v], b[i].variants[v]);
+                if (a[i].variants[v].name != b[i].variants[v].name)
+                    differ(at, "variant name");
+                else
+                    body(where + "{" + a[i].name + "=" + a[i].variants[v].name + "}", a[i].variants[v],
+                         b[i].variants[v]);
             }
         }
     }
@@ -563,7 +584,8 @@ TEST(CrateRobustness, TruncatedAndCorruptedFiles) {
     for (const char* name : {"variants.usdc", "top.geom.usd", "v0.0.1/testHasDefiningSpecifier.usdc"}) {
         std::vector<char> good = fileBytes(kData / name);
         ASSERT_FALSE(good.empty()) << name;
-        for (std::size_t size = 0; size < good.size(); size += 5) check(std::vector<char>(good.begin(), good.begin() + size));
+        for (std::size_t size = 0; size < good.size(); size += 5)
+            check(std::vector<char>(good.begin(), good.begin() + size));
         for (std::size_t at = 0; at < good.size(); ++at) {
             for (int flip : {0x01, 0x80, 0xff}) {
                 std::vector<char> data = good;

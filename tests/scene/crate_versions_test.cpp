@@ -105,11 +105,16 @@ std::vector<char> sceneInCrateVersion(detail::CrateVersion version) {
     using ST = detail::CrateSpecType;
     test::CrateWriter w(version);
     auto specifier = [](std::uint32_t s) { return test::CrateWriter::inlined(T::Specifier, s); };  // def, over, class
-    w.spec("/", ST::PseudoRoot, {{"defaultPrim", w.tokenValue("World")}, {"primChildren", w.tokenVector({"World", "Other"})}});
-    w.spec("/World", ST::Prim, {{"specifier", specifier(0)}, {"typeName", w.tokenValue("Xform")},
-                                {"primChildren", w.tokenVector({"Mesh", "Sibling"})}});
-    w.spec("/World/Mesh", ST::Prim, {{"specifier", specifier(0)}, {"typeName", w.tokenValue("Mesh")},
-                                     {"properties", w.tokenVector({"points", "faceVertexCounts", "tags"})}});
+    w.spec("/", ST::PseudoRoot,
+           {{"defaultPrim", w.tokenValue("World")}, {"primChildren", w.tokenVector({"World", "Other"})}});
+    w.spec("/World", ST::Prim,
+           {{"specifier", specifier(0)},
+            {"typeName", w.tokenValue("Xform")},
+            {"primChildren", w.tokenVector({"Mesh", "Sibling"})}});
+    w.spec("/World/Mesh", ST::Prim,
+           {{"specifier", specifier(0)},
+            {"typeName", w.tokenValue("Mesh")},
+            {"properties", w.tokenVector({"points", "faceVertexCounts", "tags"})}});
     w.spec("/World/Mesh.points", ST::Attribute,
            {{"typeName", w.tokenValue("point3f[]")},
             {"default", w.array(T::Vec3f, std::vector<float>{0, 0, 0, 1, 0, 0, 1, 1, 0, 0.5f, -2, 8}, 4)}});
@@ -117,7 +122,8 @@ std::vector<char> sceneInCrateVersion(detail::CrateVersion version) {
                                                   w.array(T::Int, std::vector<std::int32_t>{4}, 1)};
     w.spec("/World/Mesh.faceVertexCounts", ST::Attribute,
            {{"typeName", w.tokenValue("int[]")}, {"timeSamples", w.timeSamples({1.0, 24.0}, counts)}});
-    w.spec("/World/Mesh.tags", ST::Attribute, {{"typeName", w.tokenValue("token[]")}, {"default", w.tokenArray({"a", "b"})}});
+    w.spec("/World/Mesh.tags", ST::Attribute,
+           {{"typeName", w.tokenValue("token[]")}, {"default", w.tokenArray({"a", "b"})}});
     w.spec("/World/Sibling", ST::Prim, {{"specifier", specifier(1)}});
     w.spec("/Other", ST::Prim, {{"specifier", specifier(2)}, {"typeName", w.tokenValue("Scope")}});
     return w.finish();
@@ -126,8 +132,8 @@ std::vector<char> sceneInCrateVersion(detail::CrateVersion version) {
 TEST(CrateVersions, EveryLayoutFromTheSpecificationReadsTheSame) {
     const std::string expected = writeUsda(*readCrateBytes(sceneInCrateVersion({0, 8, 0}), "v080.usdc"));
     for (const char* text : {"def Xform \"World\"", "over \"Sibling\"", "class Scope \"Other\"",
-                             "point3f[] points = [(0, 0, 0), (1, 0, 0), (1, 1, 0), (0.5, -2, 8)]",
-                             "1: [3],", "24: [4],", "token[] tags = [\"a\", \"b\"]"})
+                             "point3f[] points = [(0, 0, 0), (1, 0, 0), (1, 1, 0), (0.5, -2, 8)]", "1: [3],",
+                             "24: [4],", "token[] tags = [\"a\", \"b\"]"})
         EXPECT_NE(expected.find(text), std::string::npos) << text << " not in\n" << expected;
     for (detail::CrateVersion version : std::vector<detail::CrateVersion>{
              {0, 0, 1}, {0, 1, 0}, {0, 2, 0}, {0, 3, 0}, {0, 4, 0}, {0, 5, 0}, {0, 6, 0}, {0, 7, 0}}) {

@@ -81,7 +81,8 @@ protected:
         num("i3", "int3", w.value<std::int32_t>(T::Vec3i, {-1, 2, -3}), {-1, 2, -3}, 3);
         num("i4", "int4", w.value<std::int32_t>(T::Vec4i, {-1, 2, -3, 4}), {-1, 2, -3, 4}, 4);
         num("m2", "matrix2d", w.value<double>(T::Matrix2d, {1, 2, 3, 4}), {1, 2, 3, 4}, 4);
-        num("m3", "matrix3d", w.value<double>(T::Matrix3d, {1, 2, 3, 4, 5, 6, 7, 8, 9}), {1, 2, 3, 4, 5, 6, 7, 8, 9}, 9);
+        num("m3", "matrix3d", w.value<double>(T::Matrix3d, {1, 2, 3, 4, 5, 6, 7, 8, 9}), {1, 2, 3, 4, 5, 6, 7, 8, 9},
+            9);
         std::vector<double> m4;
         for (int k = 0; k < 16; ++k) m4.push_back(k * 0.5);
         num("m4", "matrix4d", w.value(T::Matrix4d, m4), m4, 16);
@@ -106,11 +107,13 @@ protected:
         num("d3a", "double3[]", w.array<double>(T::Vec3d, {0.1, 0.2, 0.3, 0.4, 0.5, 0.6}, 2),
             {0.1, 0.2, 0.3, 0.4, 0.5, 0.6}, 3, true);
         num("i2a", "int2[]", w.array<std::int32_t>(T::Vec2i, {1, 2, 3, 4}, 2), {1, 2, 3, 4}, 2, true);
-        num("qfa", "quatf[]", w.array<float>(T::Quatf, {0, 0, 0, 1, 0.5f, 0, 0, 0.5f}, 2), {1, 0, 0, 0, 0.5, 0.5, 0, 0}, 4, true);
+        num("qfa", "quatf[]", w.array<float>(T::Quatf, {0, 0, 0, 1, 0.5f, 0, 0, 0.5f}, 2), {1, 0, 0, 0, 0.5, 0.5, 0, 0},
+            4, true);
         num("m4a", "matrix4d[]", w.array(T::Matrix4d, m4, 1), m4, 16, true);
         num("emptyA", "float[]", CrateWriter::rep(T::Float, 0, true), {}, 1, true);
 
-        auto str = [&](std::string name, std::string type, Rep rep, ValueKind kind, std::vector<std::string> s, bool a = false) {
+        auto str = [&](std::string name, std::string type, Rep rep, ValueKind kind, std::vector<std::string> s,
+                       bool a = false) {
             strings.push_back({std::move(name), std::move(type), rep, kind, std::move(s), a});
         };
         str("s", "string", w.stringValue("hello world"), ValueKind::String, {"hello world"});
@@ -131,7 +134,8 @@ protected:
         attribute("ts", "float",
                   {{"custom", CrateWriter::inlined(T::Bool, 1)},
                    {"variability", CrateWriter::inlined(T::Variability, 1)},
-                   {"timeSamples", w.timeSamples({24, 1}, {w.value<float>(T::Float, {20}), w.value<float>(T::Float, {10})})}});
+                   {"timeSamples",
+                    w.timeSamples({24, 1}, {w.value<float>(T::Float, {20}), w.value<float>(T::Float, {10})})}});
         properties.push_back("rel");
         w.spec("/Root.rel", ST::Relationship, {{"targetPaths", w.explicitPathListOp({"/Root/Child", "/Root.f"})}});
 
@@ -150,7 +154,8 @@ protected:
                 {"apiSchemas", w.tokenListOp({"SkelBindingAPI"}, {"MaterialBindingAPI", "CollectionAPI"})},
                 {"references", w.prependReferenceListOp({{"./model.usd", "/Model", 5, 2}})},
                 {"variantSelection", w.variantSelection({{"look", "red"}})}});
-        w.spec("/Root/Child", ST::Prim, {{"specifier", CrateWriter::inlined(T::Specifier, 2)}, {"typeName", w.tokenValue("Scope")}});
+        w.spec("/Root/Child", ST::Prim,
+               {{"specifier", CrateWriter::inlined(T::Specifier, 2)}, {"typeName", w.tokenValue("Scope")}});
         w.spec("/Root{look=}", ST::VariantSet, {{"variantChildren", w.tokenVector({"red", "blue"})}});
         w.spec("/Root{look=red}", ST::Variant, {{"properties", w.tokenVector({"color"})}});
         w.spec("/Root{look=red}.color", ST::Attribute,

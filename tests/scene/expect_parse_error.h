@@ -10,14 +10,12 @@
 
 namespace fluence::test {
 
-inline void expectParseError(const std::string& text, int line, int column,
-                             const std::string& message) {
+inline void expectParseError(const std::string& text, int line, int column, const std::string& message) {
     try {
         usd::parseUsdaString(text, "test.usda");
         ADD_FAILURE() << "no error for:\n" << text;
     } catch (const usd::ParseError& error) {
-        std::string prefix =
-            "test.usda:" + std::to_string(line) + ":" + std::to_string(column) + ": ";
+        std::string prefix = "test.usda:" + std::to_string(line) + ":" + std::to_string(column) + ": ";
         EXPECT_EQ(std::string(error.what()).substr(0, prefix.size()), prefix) << error.what();
         EXPECT_EQ(error.location().file, "test.usda");
         EXPECT_EQ(error.location().line, line) << error.what();

@@ -100,9 +100,7 @@ void resolveEverything(const std::vector<std::unique_ptr<PrimSpec>>& prims) {
     std::exit(0);
 }
 
-TEST(FuzzRegressions, TheFolderIsThere) {
-    EXPECT_TRUE(fs::exists(kRegressions / "README.md")) << kRegressions;
-}
+TEST(FuzzRegressions, TheFolderIsThere) { EXPECT_TRUE(fs::exists(kRegressions / "README.md")) << kRegressions; }
 
 TEST(FuzzRegressions, EveryInputParsesOrFailsWithParseError) {
     std::vector<fs::path> inputs = regressionInputs();

@@ -45,14 +45,16 @@ TEST(MaterialXReader, ReadsTheChessSetsLooksAsUsdMtlxLaysThemOut) {
     ASSERT_NE(shader, nullptr);
     EXPECT_EQ(shader->typeName, "Shader");
     EXPECT_EQ(tokenOf(*shader, "info:id"), "ND_standard_surface_surfaceshader");
-    EXPECT_EQ(connectionOf(*shader, "inputs:base_color"), "/MaterialX/Materials/M_Bishop_B/NG_BishopBlack.outputs:base_color_output");
+    EXPECT_EQ(connectionOf(*shader, "inputs:base_color"),
+              "/MaterialX/Materials/M_Bishop_B/NG_BishopBlack.outputs:base_color_output");
     EXPECT_EQ(shader->attribute("inputs:base_color")->typeName, "color3f");
     EXPECT_EQ(shader->attribute("inputs:normal")->typeName, "vector3f");
 
     const PrimSpec* graph = layer->primAtPath("/MaterialX/Materials/M_Bishop_B/NG_BishopBlack");
     ASSERT_NE(graph, nullptr);
     EXPECT_EQ(graph->typeName, "NodeGraph");
-    EXPECT_EQ(connectionOf(*graph, "outputs:normal_output"), "/MaterialX/Materials/M_Bishop_B/NG_BishopBlack/mtlxnormalmap4.outputs:out");
+    EXPECT_EQ(connectionOf(*graph, "outputs:normal_output"),
+              "/MaterialX/Materials/M_Bishop_B/NG_BishopBlack/mtlxnormalmap4.outputs:out");
 
     const PrimSpec* image = graph->child("diffuse2");
     ASSERT_NE(image, nullptr);
@@ -66,7 +68,8 @@ TEST(MaterialXReader, ReadsTheChessSetsLooksAsUsdMtlxLaysThemOut) {
     const PrimSpec* normalMap = graph->child("mtlxnormalmap4");
     ASSERT_NE(normalMap, nullptr);
     EXPECT_EQ(tokenOf(*normalMap, "info:id"), "ND_normalmap");
-    EXPECT_EQ(connectionOf(*normalMap, "inputs:in"), "/MaterialX/Materials/M_Bishop_B/NG_BishopBlack/normal2.outputs:out");
+    EXPECT_EQ(connectionOf(*normalMap, "inputs:in"),
+              "/MaterialX/Materials/M_Bishop_B/NG_BishopBlack/normal2.outputs:out");
 
     // The white look has its own copy of its own graph.
     EXPECT_NE(layer->primAtPath("/MaterialX/Materials/M_Bishop_W/NG_BishopWhite/diffuse3"), nullptr);

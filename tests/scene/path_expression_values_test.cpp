@@ -46,8 +46,9 @@ def "World"
     EXPECT_EQ(patterns->defaultValue.strings, (std::vector<std::string>{"/World/*", "//Light"}));
 
     const std::string text = writeUsda(*layer);
-    EXPECT_NE(text.find("uniform pathExpression collection:lights:membershipExpression = \"/World/** - /World/Debug//*\"\n"),
-              std::string::npos)
+    EXPECT_NE(
+        text.find("uniform pathExpression collection:lights:membershipExpression = \"/World/** - /World/Debug//*\"\n"),
+        std::string::npos)
         << text;
     EXPECT_NE(text.find("pathExpression[] patterns = [\"/World/*\", \"//Light\"]\n"), std::string::npos) << text;
     EXPECT_EQ(writeUsda(*parseUsdaString(text, "written.usda")), text);
@@ -87,7 +88,8 @@ TEST(PathExpressionValues, CrateToValueToText) {
     EXPECT_NE(text.find("pathExpression[] patterns = [\"/A\", \"/B/*\"]\n"), std::string::npos) << text;
     EXPECT_NE(text.find("pathExpression filter = \"//Sphere\"\n"), std::string::npos) << text;
     std::unique_ptr<Layer> again = parseUsdaString(text, "expressions.usda");
-    expectExpression(again->primAtPath("/World")->attribute("collection:membershipExpression")->defaultValue, "/World/**");
+    expectExpression(again->primAtPath("/World")->attribute("collection:membershipExpression")->defaultValue,
+                     "/World/**");
     EXPECT_EQ(writeUsda(*again), text);
 }
 

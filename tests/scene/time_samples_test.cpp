@@ -43,16 +43,19 @@ TEST(TimeSamples, TheDefaultTimeReadsOnlyTheDefaultValue) {
 
 TEST(TimeSamples, TheEarliestTimeReadsTheFirstSampleElseTheDefault) {
     Stage stage(parseUsdaString(kLayer, "t.usda"));
-    EXPECT_EQ(at(stage, "samplesOnly", kEarliestTime), -30.0) << "the sample at -3, the earliest, not the first authored";
+    EXPECT_EQ(at(stage, "samplesOnly", kEarliestTime), -30.0)
+        << "the sample at -3, the earliest, not the first authored";
     EXPECT_EQ(at(stage, "both", kEarliestTime), 20.0) << "samples win over the default at a numeric time";
     EXPECT_EQ(at(stage, "defaultOnly", kEarliestTime), 9.0);
-    EXPECT_EQ(at(stage, "samplesOnly", 0.5), -30.0 + (0.5 + 3.0) / 7.0 * 70.0) << "a numeric time interpolates as before";
+    EXPECT_EQ(at(stage, "samplesOnly", 0.5), -30.0 + (0.5 + 3.0) / 7.0 * 70.0)
+        << "a numeric time interpolates as before";
 }
 
 TEST(TimeSamples, SamplesAtInfiniteTimesHoldTheFiniteNeighbour) {
-    Stage stage(parseUsdaString("#usda 1.0\ndef Xform \"X\"\n{\n"
-                                "    double x.timeSamples = {-inf: 1, 4: 40, 6: 60, inf: 100}\n}\n",
-                                "t.usda"));
+    Stage stage(
+        parseUsdaString("#usda 1.0\ndef Xform \"X\"\n{\n"
+                        "    double x.timeSamples = {-inf: 1, 4: 40, 6: 60, inf: 100}\n}\n",
+                        "t.usda"));
     EXPECT_EQ(at(stage, "x", kEarliestTime), 40.0) << "the earliest time is finite: between -inf and 4";
     EXPECT_EQ(at(stage, "x", 0.0), 40.0) << "between -inf and 4";
     EXPECT_EQ(at(stage, "x", 5.0), 50.0);
@@ -62,14 +65,15 @@ TEST(TimeSamples, SamplesAtInfiniteTimesHoldTheFiniteNeighbour) {
 TEST(TimeSamples, FloatingPointTypesInterpolateAndIntegersAreHeld) {
     // Sdf interpolates every floating-point type linearly (point3f[] too, whose name holds "int")
     // and holds integers and bools.
-    Stage stage(parseUsdaString("#usda 1.0\ndef Xform \"X\"\n{\n"
-                                "    point3f[] p.timeSamples = {0: [(0, 0, 0), (1, 2, 3)], 2: [(2, 0, 0), (3, 2, 5)]}\n"
-                                "    int[] i.timeSamples = {0: [0, 10], 2: [2, 20]}\n"
-                                "    uint u.timeSamples = {0: 0, 2: 2}\n"
-                                "    int64 l.timeSamples = {0: 0, 2: 2}\n"
-                                "    bool b.timeSamples = {0: 0, 2: 1}\n"
-                                "    color3f c.timeSamples = {0: (0, 0, 0), 2: (1, 1, 1)}\n}\n",
-                                "t.usda"));
+    Stage stage(
+        parseUsdaString("#usda 1.0\ndef Xform \"X\"\n{\n"
+                        "    point3f[] p.timeSamples = {0: [(0, 0, 0), (1, 2, 3)], 2: [(2, 0, 0), (3, 2, 5)]}\n"
+                        "    int[] i.timeSamples = {0: [0, 10], 2: [2, 20]}\n"
+                        "    uint u.timeSamples = {0: 0, 2: 2}\n"
+                        "    int64 l.timeSamples = {0: 0, 2: 2}\n"
+                        "    bool b.timeSamples = {0: 0, 2: 1}\n"
+                        "    color3f c.timeSamples = {0: (0, 0, 0), 2: (1, 1, 1)}\n}\n",
+                        "t.usda"));
     auto numbers = [&](const char* name) {
         const NumberArray n = Stage::resolve(*stage.prim("/X")->attribute(name), 1.0)->numbers;
         return std::vector<double>(n.begin(), n.end());

@@ -37,8 +37,7 @@ std::vector<fs::path> layerFiles() {
     std::vector<fs::path> files;
     for (const auto& entry : fs::recursive_directory_iterator(kCorpus)) {
         std::string extension = entry.path().extension().string();
-        if (extension == ".usda" || extension == ".sdf" || extension == ".usd" ||
-            extension == ".usdc") {
+        if (extension == ".usda" || extension == ".sdf" || extension == ".usd" || extension == ".usdc") {
             files.push_back(entry.path());
         }
     }
@@ -110,8 +109,7 @@ TEST(UsdaCorpus, CrateFilesAreNotTakenForText) {
 TEST(UsdaCorpus, SpotChecks) {
     FLUENCE_REQUIRE_SHARED(kCorpus);
     auto pyramids = parseUsdaFile(
-        (kCorpus / "usd-wg-assets/full_assets/SubdivisionSurfaces/Creases_SpinningPyramids.usda")
-            .string());
+        (kCorpus / "usd-wg-assets/full_assets/SubdivisionSurfaces/Creases_SpinningPyramids.usda").string());
     const PrimSpec* pyramid = pyramids->primAtPath("/World/Pyramid_NoCreases");
     ASSERT_NE(pyramid, nullptr);
     const AttributeSpec* spin = pyramid->attribute("xformOp:transform:xform1");
@@ -120,16 +118,14 @@ TEST(UsdaCorpus, SpotChecks) {
     EXPECT_EQ(spin->timeSamples.front().second.components, 16);
     EXPECT_EQ(findMetadata(pyramid->metadata, "instanceable")->value.asDouble(), 1.0);
 
-    auto instancer = parseUsdaFile(
-        (kCorpus / "OpenUSD/pxr/usd/usdGeom/testenv/testUsdGeomSubset/PointInstancer.usda")
-            .string());
+    auto instancer =
+        parseUsdaFile((kCorpus / "OpenUSD/pxr/usd/usdGeom/testenv/testUsdGeomSubset/PointInstancer.usda").string());
     const PrimSpec* sphere = instancer->primAtPath("/Sphere");
     ASSERT_NE(sphere, nullptr);
     EXPECT_EQ(findMetadata(instancer->metadata, "defaultPrim")->value.asString(), "Sphere");
 
     auto motionBlur = parseUsdaFile(
-        (kCorpus / "OpenUSD/pxr/usdImaging/bin/usdrecord/testenv/MotionBlurTest/motionBlur.usda")
-            .string());
+        (kCorpus / "OpenUSD/pxr/usdImaging/bin/usdrecord/testenv/MotionBlurTest/motionBlur.usda").string());
     const PrimSpec* moving = motionBlur->primAtPath("/World/Moving_GlowSphere");
     ASSERT_NE(moving, nullptr);
     const AttributeSpec* translate = moving->attribute("xformOp:translate");

@@ -70,9 +70,7 @@ using test::expectParseError;
 
 // A layer holding `statements` in the body of the prim /P, the first statement on line 3 at
 // column 5.
-std::string inPrim(const std::string& statements) {
-    return "#usda 1.0\ndef \"P\" {\n    " + statements + "\n}\n";
-}
+std::string inPrim(const std::string& statements) { return "#usda 1.0\ndef \"P\" {\n    " + statements + "\n}\n"; }
 
 class UsdaGrammar : public ::testing::Test {
 protected:
@@ -88,8 +86,7 @@ protected:
 const double kInf = std::numeric_limits<double>::infinity();
 
 TEST_F(UsdaGrammar, AssetValuesMayBeQuotedStrings) {
-    const Value& file = attribute("asset inputs:texture:file = \"testImage.png\"", "inputs:texture:file")
-                            .defaultValue;
+    const Value& file = attribute("asset inputs:texture:file = \"testImage.png\"", "inputs:texture:file").defaultValue;
     EXPECT_EQ(file.kind, ValueKind::Asset);
     EXPECT_EQ(file.asString(), "testImage.png");
     const Value& list = attribute("asset[] maps = [\"a.png\", @b.png@]", "maps").defaultValue;
@@ -118,8 +115,7 @@ TEST_F(UsdaGrammar, PathValuesStandForValuesOfAnyType) {
     EXPECT_EQ(entry->kind, ValueKind::Path);
     EXPECT_EQ(entry->asString(), "/M.outputs:x");
     // Written back as the path it was.
-    auto reread = parseUsdaString(writeUsda(*parseUsdaString(inPrim("token x = </M.outputs:o>"), "a.usda")),
-                                  "b.usda");
+    auto reread = parseUsdaString(writeUsda(*parseUsdaString(inPrim("token x = </M.outputs:o>"), "a.usda")), "b.usda");
     const Value& again = reread->primAtPath("/P")->attribute("x")->defaultValue;
     EXPECT_EQ(again.kind, ValueKind::Path);
     EXPECT_EQ(again.asString(), "/M.outputs:o");
@@ -132,8 +128,8 @@ TEST_F(UsdaGrammar, BoolsTakeAnyNumberAndSdfsWords) {
     EXPECT_EQ(attribute("bool b = 0.0", "b").defaultValue.numbers, (std::vector<double>{0}));
     EXPECT_EQ(attribute("bool[] b = [yes, No, TRUE, \"false\", \"1\", -0.5]", "b").defaultValue.numbers,
               (std::vector<double>{1, 0, 1, 0, 1, 1}));
-    auto layer = parseUsdaString("#usda 1.0\ndef \"A\" (\n    active = no\n    instanceable = 1\n)\n{\n}\n",
-                                 "test.usda");
+    auto layer =
+        parseUsdaString("#usda 1.0\ndef \"A\" (\n    active = no\n    instanceable = 1\n)\n{\n}\n", "test.usda");
     const PrimSpec* prim = layer->primAtPath("/A");
     EXPECT_EQ(findMetadata(prim->metadata, "active")->value.asDouble(), 0.0);
     EXPECT_EQ(findMetadata(prim->metadata, "instanceable")->value.asDouble(), 1.0);
@@ -146,8 +142,7 @@ TEST_F(UsdaGrammar, BoolsTakeAnyNumberAndSdfsWords) {
 
 TEST_F(UsdaGrammar, IntegersTakeFiniteNumbersTruncatedTowardZero) {
     EXPECT_EQ(attribute("int i = 1.9", "i").defaultValue.numbers, (std::vector<double>{1}));
-    EXPECT_EQ(attribute("int[] i = [-2.7, 1e3, 3]", "i").defaultValue.numbers,
-              (std::vector<double>{-2, 1000, 3}));
+    EXPECT_EQ(attribute("int[] i = [-2.7, 1e3, 3]", "i").defaultValue.numbers, (std::vector<double>{-2, 1000, 3}));
     EXPECT_EQ(attribute("int3 v = (1.5, 2, 3)", "v").defaultValue.numbers, (std::vector<double>{1, 2, 3}));
     EXPECT_EQ(attribute("uchar c = 255.9", "c").defaultValue.numbers, (std::vector<double>{255}));
     expectParseError(inPrim("uchar c = 256.0"), 3, 15, "value 256.0 is out of range for 'uchar'");
@@ -262,10 +257,10 @@ TEST_F(UsdaGrammar, ListOpsNeedArcsToEdit) {
     auto arcs = [](const std::string& arc) { return "#usda 1.0\ndef \"A\" (\n    " + arc + "\n)\n{\n}\n"; };
     expectParseError(arcs("append references = []"), 3, 25, "an empty list cannot be used with 'append references'");
     expectParseError(arcs("prepend inherits = []"), 3, 24, "an empty list cannot be used with 'prepend inherits'");
-    EXPECT_EQ(findMetadata(parseUsdaString(arcs("references = []"), "test.usda")->primAtPath("/A")->metadata,
-                           "references")
-                  ->value.size(),
-              0u);
+    EXPECT_EQ(
+        findMetadata(parseUsdaString(arcs("references = []"), "test.usda")->primAtPath("/A")->metadata, "references")
+            ->value.size(),
+        0u);
 }
 
 TEST_F(UsdaGrammar, RelationshipDefaultIsOnePath) {
@@ -281,8 +276,7 @@ TEST_F(UsdaGrammar, RelationshipDefaultIsOnePath) {
 TEST_F(UsdaGrammar, TimeSamplesHoldValuesOfTheDeclaredShape) {
     expectParseError(inPrim("float3 x.timeSamples = {1: 5}"), 3, 32,
                      "expected a tuple of 3 numbers for 'float3', found number 5");
-    expectParseError(inPrim("float x.timeSamples = {1: (1, 2)}"), 3, 31,
-                     "expected a number for 'float', found '('");
+    expectParseError(inPrim("float x.timeSamples = {1: (1, 2)}"), 3, 31, "expected a number for 'float', found '('");
     expectParseError(inPrim("float[] x.timeSamples = {1: 1}"), 3, 33,
                      "expected '[' to start a 'float[]' array, found number 1");
     expectParseError(inPrim("int x.timeSamples = {1: \"a\"}"), 3, 29, "expected an integer for 'int'");
@@ -292,8 +286,9 @@ TEST_F(UsdaGrammar, KindIsAQuotedStringOnlyOnPrims) {
     auto prim = [](const std::string& metadata) { return "#usda 1.0\ndef \"A\" (\n    " + metadata + "\n)\n{\n}\n"; };
     expectParseError(prim("kind = None"), 3, 12, "expected a quoted string for 'kind', found 'None'");
     expectParseError(prim("kind = model"), 3, 12, "expected a quoted string for 'kind', found 'model'");
-    expectParseError("#usda 1.0\ndef \"A\" {\n    variantSet \"v\" = {\n        \"a\" (kind = None) {\n        }\n    }\n}\n",
-                     4, 21, "expected a quoted string for 'kind', found 'None'");
+    expectParseError(
+        "#usda 1.0\ndef \"A\" {\n    variantSet \"v\" = {\n        \"a\" (kind = None) {\n        }\n    }\n}\n", 4, 21,
+        "expected a quoted string for 'kind', found 'None'");
     // Not a field of a layer or a property: any value, kept as it is.
     auto layer = parseUsdaString("#usda 1.0\n(\n    kind = None\n)\n", "test.usda");
     EXPECT_TRUE(findMetadata(layer->metadata, "kind")->value.isBlocked());

@@ -16,13 +16,9 @@ namespace {
 
 using detail::parseNumber;
 
-detail::ParsedNumber parse(const std::string& text) {
-    return parseNumber(text.data(), text.data() + text.size());
-}
+detail::ParsedNumber parse(const std::string& text) { return parseNumber(text.data(), text.data() + text.size()); }
 
-std::size_t lengthOf(const std::string& text) {
-    return static_cast<std::size_t>(parse(text).end - text.data());
-}
+std::size_t lengthOf(const std::string& text) { return static_cast<std::size_t>(parse(text).end - text.data()); }
 
 TEST(UsdaNumber, Syntax) {
     EXPECT_EQ(lengthOf("12"), 2u);
@@ -79,9 +75,7 @@ TEST(UsdaNumber, BitIdenticalToFromChars) {
         auto result = std::from_chars(text.data(), text.data() + text.size(), expected);
         ASSERT_EQ(number.inRange, result.ec != std::errc::result_out_of_range) << text;
         if (number.inRange) {
-            ASSERT_EQ(std::bit_cast<std::uint64_t>(number.value),
-                      std::bit_cast<std::uint64_t>(expected))
-                << text;
+            ASSERT_EQ(std::bit_cast<std::uint64_t>(number.value), std::bit_cast<std::uint64_t>(expected)) << text;
         }
     }
 }

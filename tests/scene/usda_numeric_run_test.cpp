@@ -39,8 +39,7 @@ std::vector<std::string> randomElements(int components, bool integers, std::mt19
         for (int c = 0; c < components; ++c) {
             if (c) element += ", ";
             double x = std::uniform_real_distribution<double>(-1e4, 1e4)(random);
-            element += integers ? std::to_string(static_cast<int>(x))
-                                : std::to_string(static_cast<float>(x) / 7.0f);
+            element += integers ? std::to_string(static_cast<int>(x)) : std::to_string(static_cast<float>(x) / 7.0f);
         }
         elements.push_back(element + (components > 1 ? ")" : ""));
     }
@@ -64,8 +63,8 @@ TEST(UsdaNumericRun, SameNumbersAsTheTokenPath) {
                                               {"int2[]", 2, true}}) {
         std::vector<std::string> elements = randomElements(components, integers, random);
         NumberArray bulk = parseArray(std::string(type) + " a = [" + join(elements, ", ") + "]");
-        NumberArray tokens = parseArray(std::string(type) + " a = [# all\n" +
-                                        join(elements, ", # by the token path\n") + "]");
+        NumberArray tokens =
+            parseArray(std::string(type) + " a = [# all\n" + join(elements, ", # by the token path\n") + "]");
         ASSERT_EQ(bulk.size(), elements.size() * components) << type;
         EXPECT_EQ(bits(bulk), bits(tokens)) << type;
     }
@@ -92,21 +91,15 @@ TEST(UsdaNumericRun, LayoutsTheTokenPathAccepts) {
 
 TEST(UsdaNumericRun, ErrorsInsideLongArraysKeepTheirPosition) {
     const std::string head = "#usda 1.0\ndef \"A\" {\n";
-    expectParseError(head + "    int[] a = [1, 2, inf, 4]\n}\n", 3, 22,
-                     "expected an integer for 'int[]', found 'inf'");
-    expectParseError(head + "    uchar[] a = [1, 255, 256]\n}\n", 3, 26,
-                     "value 256 is out of range for 'uchar[]'");
-    expectParseError(
-        head + "    float3[] a = [(1, 2, 3),\n        (4, 5),\n        (7, 8, 9)]\n}\n", 4, 9,
-        "expected 3 components for 'float3[]', found 2");
+    expectParseError(head + "    int[] a = [1, 2, inf, 4]\n}\n", 3, 22, "expected an integer for 'int[]', found 'inf'");
+    expectParseError(head + "    uchar[] a = [1, 255, 256]\n}\n", 3, 26, "value 256 is out of range for 'uchar[]'");
+    expectParseError(head + "    float3[] a = [(1, 2, 3),\n        (4, 5),\n        (7, 8, 9)]\n}\n", 4, 9,
+                     "expected 3 components for 'float3[]', found 2");
     expectParseError(head + "    float[] a = [1, 2,\n        3\n        , 4]\n}\n", 5, 9,
                      "unexpected line break before ','");
-    expectParseError(head + "    float2[] a = [(1, 2), (3\n    , 4)]\n}\n", 4, 5,
-                     "unexpected line break before ','");
-    expectParseError(head + "    float[] a = [1, 2, 2.5.1]\n}\n", 3, 24,
-                     "malformed number '2.5.1'");
-    expectParseError(head + "    double[] a = [1, 2, 1e999]\n}\n", 3, 25,
-                     "number 1e999 is out of range");
+    expectParseError(head + "    float2[] a = [(1, 2), (3\n    , 4)]\n}\n", 4, 5, "unexpected line break before ','");
+    expectParseError(head + "    float[] a = [1, 2, 2.5.1]\n}\n", 3, 24, "malformed number '2.5.1'");
+    expectParseError(head + "    double[] a = [1, 2, 1e999]\n}\n", 3, 25, "number 1e999 is out of range");
     expectParseError(head + "    float[] a = [1, 2 3]\n}\n", 3, 23,
                      "expected ',' or ']' in the 'float[]' array, found number 3");
     expectParseError(head + "    float[] a = [1, 2,\n", 4, 1,

@@ -220,8 +220,7 @@ TEST_F(UsdaSceneTest, PrimMetadata) {
     ASSERT_NE(apiSchemas, nullptr);
     EXPECT_EQ(apiSchemas->op, ListOpKind::Prepend);
     EXPECT_EQ(apiSchemas->value.kind, ValueKind::String);
-    EXPECT_EQ(apiSchemas->value.strings,
-              (std::vector<std::string>{"GeomModelAPI", "MaterialBindingAPI"}));
+    EXPECT_EQ(apiSchemas->value.strings, (std::vector<std::string>{"GeomModelAPI", "MaterialBindingAPI"}));
     EXPECT_EQ(metadata(world->metadata, "customData").find("flag")->asDouble(), 1.0);
 
     const Value& references = metadata(box->metadata, "references");
@@ -266,8 +265,7 @@ TEST_F(UsdaSceneTest, ScalarAndTupleValues) {
     const Value& matrix = attribute("xformOp:transform").defaultValue;
     EXPECT_EQ(matrix.typeName, "matrix4d");
     EXPECT_EQ(matrix.components, 16);
-    EXPECT_EQ(matrix.numbers,
-              (std::vector<double>{1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 5, 6, 7, 1}));
+    EXPECT_EQ(matrix.numbers, (std::vector<double>{1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 5, 6, 7, 1}));
 }
 
 TEST_F(UsdaSceneTest, ArrayValues) {
@@ -402,10 +400,8 @@ def "P" (
     EXPECT_EQ(inherits.kind, ValueKind::Path);
     EXPECT_FALSE(inherits.isArray);
     EXPECT_EQ(inherits.asString(), "/_class");
-    EXPECT_EQ(findMetadata(prim->metadata, "specializes")->value.strings,
-              (std::vector<std::string>{"/S1", "/S2"}));
-    EXPECT_EQ(findMetadata(prim->metadata, "variantSets")->value.strings,
-              (std::vector<std::string>{"x", "y"}));
+    EXPECT_EQ(findMetadata(prim->metadata, "specializes")->value.strings, (std::vector<std::string>{"/S1", "/S2"}));
+    EXPECT_EQ(findMetadata(prim->metadata, "variantSets")->value.strings, (std::vector<std::string>{"x", "y"}));
 }
 
 TEST(UsdaParser, ListEditedTargetsAndConnections) {
@@ -526,8 +522,7 @@ def "P"
     double inf = std::numeric_limits<double>::infinity();
     EXPECT_EQ(prim->attribute("a")->defaultValue.numbers,
               (std::vector<double>{0, -1, 1.5, -0.25, 1000, 0.025, 7, inf, -inf}));
-    EXPECT_EQ(prim->attribute("b")->defaultValue.numbers,
-              (std::vector<double>{18446744073709551615.0}));
+    EXPECT_EQ(prim->attribute("b")->defaultValue.numbers, (std::vector<double>{18446744073709551615.0}));
     EXPECT_EQ(prim->attribute("c")->defaultValue.numbers, (std::vector<double>{1, 0, 1, 0, 1, 0}));
 }
 
@@ -550,8 +545,7 @@ def "P" (
     ASSERT_EQ(relocates.kind, ValueKind::Dictionary);
     EXPECT_EQ(relocates.find("/a")->asString(), "/b");
     EXPECT_EQ(relocates.find("c/d")->asString(), "");
-    const Value& substitutions =
-        findMetadata(layer->primAtPath("/P")->metadata, "prefixSubstitutions")->value;
+    const Value& substitutions = findMetadata(layer->primAtPath("/P")->metadata, "prefixSubstitutions")->value;
     EXPECT_EQ(substitutions.find("$Left")->asString(), "Right");
 }
 
@@ -576,10 +570,8 @@ TEST(UsdaParser, ReadsFiles) {
     auto layer = parseUsdaFile(FLUENCE_SOURCE_DIR "/tests/scene/data/simple.usda");
     EXPECT_EQ(layer->identifier, FLUENCE_SOURCE_DIR "/tests/scene/data/simple.usda");
     ASSERT_NE(layer->primAtPath("/World/Sphere"), nullptr);
-    EXPECT_EQ(layer->primAtPath("/World/Sphere")->attribute("radius")->defaultValue.asDouble(),
-              2.0);
-    EXPECT_THROW(parseUsdaFile(FLUENCE_SOURCE_DIR "/tests/scene/data/does_not_exist.usda"),
-                 FileError);
+    EXPECT_EQ(layer->primAtPath("/World/Sphere")->attribute("radius")->defaultValue.asDouble(), 2.0);
+    EXPECT_THROW(parseUsdaFile(FLUENCE_SOURCE_DIR "/tests/scene/data/does_not_exist.usda"), FileError);
     EXPECT_THROW(parseUsdaFile(FLUENCE_SOURCE_DIR "/tests/scene/data"), FileError);
 }
 

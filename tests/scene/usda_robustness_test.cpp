@@ -59,8 +59,7 @@ TEST(UsdaRobustness, RandomMutationsParseOrFailCleanly) {
     std::string sample = readSample();
     std::mt19937 random(20240611u);
     auto below = [&](std::size_t n) { return static_cast<std::size_t>(random() % n); };
-    const std::string interesting =
-        std::string("\"'@<>()[]{}=,:;.#/*\\-+0123456789eE\n\t ") + '\0' + '\xff';
+    const std::string interesting = std::string("\"'@<>()[]{}=,:;.#/*\\-+0123456789eE\n\t ") + '\0' + '\xff';
     int failures = 0;
     const int kMutants = 600;
     for (int mutant = 0; mutant < kMutants; ++mutant) {

@@ -66,8 +66,7 @@ TEST(UnicodeXid, ClassesFollowUnicode) {
         EXPECT_FALSE(isXidStart(mark)) << std::hex << unsigned(mark);
         EXPECT_TRUE(isXidContinue(mark)) << std::hex << unsigned(mark);
     }
-    for (char32_t other :
-         {U' ', U'-', U'$', U'∫', U'€', U'\u00A0', U'。', U'😀', char32_t(0x10FFFF)}) {
+    for (char32_t other : {U' ', U'-', U'$', U'∫', U'€', U'\u00A0', U'。', U'😀', char32_t(0x10FFFF)}) {
         EXPECT_FALSE(isXidContinue(other)) << std::hex << unsigned(other);
     }
 }
@@ -122,23 +121,18 @@ TEST(UsdaUnicodeNames, InvalidNamesFailAtTheirPosition) {
     expectParseError("#usda 1.0\ndef \"৪\" {\n}\n", 2, 5, "U+09EA '৪' cannot start a name");
     expectParseError("#usda 1.0\ndef \"A\" {\n    double ৪x = 1\n}\n", 3, 12,
                      "invalid character U+09EA '৪' (a name cannot start with it)");
-    expectParseError("#usda 1.0\ndef \"A\" {\n    double x = 1 ∫\n}\n", 3, 18,
-                     "invalid character U+222B '∫'");
+    expectParseError("#usda 1.0\ndef \"A\" {\n    double x = 1 ∫\n}\n", 3, 18, "invalid character U+222B '∫'");
     expectParseError("#usda 1.0\ndef \"A\" {\n    rel r = </A∫>\n}\n", 3, 13,
                      "invalid character U+222B '∫' in path </A∫>");
 }
 
 TEST(UsdaUnicodeNames, MalformedUtf8InNamesFails) {
-    expectParseError("#usda 1.0\ndef \"A\" {\n    double caf\xC3 = 1\n}\n", 3, 15,
-                     "malformed UTF-8 (byte 0xC3)");
-    expectParseError("#usda 1.0\ndef \"A\" {\n    double \xC0\xAF = 1\n}\n", 3, 12,
-                     "malformed UTF-8 (byte 0xC0)");
-    expectParseError("#usda 1.0\ndef \"A\" {\n    double xformOp:\xFF = 1\n}\n", 3, 20,
-                     "malformed UTF-8 (byte 0xFF)");
+    expectParseError("#usda 1.0\ndef \"A\" {\n    double caf\xC3 = 1\n}\n", 3, 15, "malformed UTF-8 (byte 0xC3)");
+    expectParseError("#usda 1.0\ndef \"A\" {\n    double \xC0\xAF = 1\n}\n", 3, 12, "malformed UTF-8 (byte 0xC0)");
+    expectParseError("#usda 1.0\ndef \"A\" {\n    double xformOp:\xFF = 1\n}\n", 3, 20, "malformed UTF-8 (byte 0xFF)");
     expectParseError("#usda 1.0\ndef \"\xED\xA0\x80\" {\n}\n", 2, 5,
                      "invalid prim name \"\xED\xA0\x80\": malformed UTF-8 (byte 0xED)");
-    expectParseError("#usda 1.0\ndef \"A\" {\n    rel r = </A\xFF>\n}\n", 3, 13,
-                     "malformed UTF-8 (byte 0xFF) in path");
+    expectParseError("#usda 1.0\ndef \"A\" {\n    rel r = </A\xFF>\n}\n", 3, 13, "malformed UTF-8 (byte 0xFF) in path");
 }
 
 }  // namespace

@@ -41,9 +41,7 @@ std::string_view baseType(std::string_view typeName) {
     return typeName;
 }
 
-bool isHalfType(std::string_view type) {
-    return type.starts_with("half") || type.ends_with('h');
-}
+bool isHalfType(std::string_view type) { return type.starts_with("half") || type.ends_with('h'); }
 bool isFloatType(std::string_view type) {
     return type.starts_with("float") || type.ends_with('f') || type.ends_with("Float");
 }
@@ -52,7 +50,8 @@ bool sameNumber(double a, double b, std::string_view type) {
     if (std::isnan(a) || std::isnan(b)) return std::isnan(a) && std::isnan(b);
     auto fits = [](double x, double max) { return std::isfinite(x) && std::fabs(x) <= max; };
     if (isHalfType(type) && fits(a, 65504.0) && double(_Float16(a)) == a) {
-        return fits(b, 65519.0) && std::bit_cast<std::uint16_t>(_Float16(a)) == std::bit_cast<std::uint16_t>(_Float16(b));
+        return fits(b, 65519.0) &&
+               std::bit_cast<std::uint16_t>(_Float16(a)) == std::bit_cast<std::uint16_t>(_Float16(b));
     }
     constexpr double kFloatMax = std::numeric_limits<float>::max();
     if (isFloatType(type) && fits(a, kFloatMax) && double(float(a)) == a)
@@ -65,7 +64,8 @@ Difference compare(const Value& a, const Value& b, const std::string& where);
 Difference compareDictionaries(const std::shared_ptr<const Dictionary>& a, const std::shared_ptr<const Dictionary>& b,
                                const std::string& where) {
     if (!a || !b) return bool(a) == bool(b) ? Difference{} : where + ": dictionary present on one side only";
-    if (a->size() != b->size()) return where + ": " + std::to_string(a->size()) + " vs " + std::to_string(b->size()) + " entries";
+    if (a->size() != b->size())
+        return where + ": " + std::to_string(a->size()) + " vs " + std::to_string(b->size()) + " entries";
     for (std::size_t i = 0; i < a->size(); ++i) {
         if ((*a)[i].first != (*b)[i].first) return where + ": key '" + (*a)[i].first + "' vs '" + (*b)[i].first + "'";
         if (auto d = compare((*a)[i].second, (*b)[i].second, where + "." + (*a)[i].first)) return d;
@@ -74,15 +74,16 @@ Difference compareDictionaries(const std::shared_ptr<const Dictionary>& a, const
 }
 
 Difference compare(const Value& a, const Value& b, const std::string& where) {
-    auto differ = [&](const std::string& what) { return where + ": " + what + " (" + a.toString() + " vs " + b.toString() + ")"; };
+    auto differ = [&](const std::string& what) {
+        return where + ": " + what + " (" + a.toString() + " vs " + b.toString() + ")";
+    };
     if (a.typeName != b.typeName) return differ("type '" + a.typeName + "' vs '" + b.typeName + "'");
     if (a.kind != b.kind) return differ("kind");
     if (a.isArray != b.isArray) return differ("isArray");
     if (a.kind == ValueKind::Numeric && a.components != b.components) return differ("components");
     if (a.numbers.size() != b.numbers.size()) return differ("number count");
     for (std::size_t i = 0; i < a.numbers.size(); ++i)
-        if (!sameNumber(a.numbers[i], b.numbers[i], baseType(a.typeName)))
-            return differ("number " + std::to_string(i));
+        if (!sameNumber(a.numbers[i], b.numbers[i], baseType(a.typeName))) return differ("number " + std::to_string(i));
     if (a.strings != b.strings) return differ("strings");
     if (a.items.size() != b.items.size()) return differ("item count");
     for (std::size_t i = 0; i < a.items.size(); ++i)
@@ -91,7 +92,8 @@ Difference compare(const Value& a, const Value& b, const std::string& where) {
 }
 
 Difference compare(const Metadata& a, const Metadata& b, const std::string& where) {
-    if (a.size() != b.size()) return where + ": " + std::to_string(a.size()) + " vs " + std::to_string(b.size()) + " metadata entries";
+    if (a.size() != b.size())
+        return where + ": " + std::to_string(a.size()) + " vs " + std::to_string(b.size()) + " metadata entries";
     for (std::size_t i = 0; i < a.size(); ++i) {
         const std::string at = where + " metadata '" + a[i].key + "'";
         if (a[i].key != b[i].key) return at + " vs '" + b[i].key + "'";
@@ -136,7 +138,8 @@ struct SpecBody {
 Difference compare(const PrimSpec& a, const PrimSpec& b);
 
 template <class T>
-Difference compareEach(const std::vector<T>& a, const std::vector<T>& b, const std::string& where, const auto& compareOne) {
+Difference compareEach(const std::vector<T>& a, const std::vector<T>& b, const std::string& where,
+                       const auto& compareOne) {
     if (a.size() != b.size()) return where + ": " + std::to_string(a.size()) + " vs " + std::to_string(b.size());
     for (std::size_t i = 0; i < a.size(); ++i)
         if (auto d = compareOne(a[i], b[i])) return d;
@@ -173,8 +176,9 @@ Difference compare(const PrimSpec& a, const PrimSpec& b) {
 
 Difference compare(const Layer& a, const Layer& b) {
     if (auto d = compare(a.metadata, b.metadata, "layer")) return d;
-    return compareEach(a.rootPrims, b.rootPrims, "root prims",
-                       [](const std::unique_ptr<PrimSpec>& x, const std::unique_ptr<PrimSpec>& y) { return compare(*x, *y); });
+    return compareEach(
+        a.rootPrims, b.rootPrims, "root prims",
+        [](const std::unique_ptr<PrimSpec>& x, const std::unique_ptr<PrimSpec>& y) { return compare(*x, *y); });
 }
 
 // Writes `layer`, reads the text back and checks the Layer and the text are the same again.
@@ -246,7 +250,8 @@ TEST(UsdaWriter, EveryParsedTextLayerRoundTrips) {
     const fs::path corpus = test::sharedPath("usd_corpus");
     FLUENCE_REQUIRE_SHARED(corpus);
     int roundTripped = 0, unparsed = 0;
-    for (const fs::path& folder : {corpus, fs::path(FLUENCE_SOURCE_DIR) / "usd_samples", fs::path(FLUENCE_SOURCE_DIR) / "tests/scene"}) {
+    for (const fs::path& folder :
+         {corpus, fs::path(FLUENCE_SOURCE_DIR) / "usd_samples", fs::path(FLUENCE_SOURCE_DIR) / "tests/scene"}) {
         for (const fs::path& path : textLayersUnder(folder)) {
             std::unique_ptr<Layer> layer;
             try {
@@ -274,7 +279,8 @@ TEST(UsdaWriter, EveryCrateLayerRoundTrips) {
         std::ifstream file(entry.path(), std::ios::binary);
         char magic[8] = {};
         file.read(magic, sizeof magic);
-        if (!entry.is_regular_file() || !isCrateHeader(std::string_view(magic, static_cast<std::size_t>(file.gcount()))))
+        if (!entry.is_regular_file() ||
+            !isCrateHeader(std::string_view(magic, static_cast<std::size_t>(file.gcount()))))
             continue;
         std::unique_ptr<Layer> layer;
         try {
@@ -619,7 +625,8 @@ TEST(UsdaWriter, ListEditsOfInMemoryLayersAreWrittenAsUsdStatements) {
     auto prim = std::make_unique<PrimSpec>();
     prim->name = "P";
     prim->path = "/P";
-    prim->metadata.push_back({"apiSchemas", ListOpKind::Prepend, Value::string("", ValueKind::String, {"A"}, false), {}});
+    prim->metadata.push_back(
+        {"apiSchemas", ListOpKind::Prepend, Value::string("", ValueKind::String, {"A"}, false), {}});
     RelationshipSpec relationship;
     relationship.name = "r";
     relationship.op = ListOpKind::Prepend;
@@ -633,9 +640,7 @@ TEST(UsdaWriter, ListEditsOfInMemoryLayersAreWrittenAsUsdStatements) {
     EXPECT_NE(text.find("    prepend rel r = </A>\n    append rel r = </B>\n"), std::string::npos) << text;
 }
 
-TEST(UsdaWriter, AnEmptyLayerIsJustTheHeader) {
-    EXPECT_EQ(writeUsda(Layer{}), "#usda 1.0\n");
-}
+TEST(UsdaWriter, AnEmptyLayerIsJustTheHeader) { EXPECT_EQ(writeUsda(Layer{}), "#usda 1.0\n"); }
 
 TEST(UsdaWriter, AValueNoUsdTypeHoldsIsAClearError) {
     Layer layer;

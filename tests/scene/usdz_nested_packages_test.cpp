@@ -33,9 +33,9 @@ TEST(UsdzNestedPackages, ComposeTheStageOfTheirLooseSources) {
     const std::string expected = flattened((kData / "anchored_refs/root.usd").string());
     EXPECT_NE(expected.find("attr_usdc"), std::string::npos);  // every reference was followed
     const std::string nested = (kData / "nested_anchored_refs.usdz").string();
-    for (const std::string& path : {nested, (kData / "nested_anchored_refs_sub.usdz").string(),
-                                    packagePath(nested, "anchored_refs.usdz"),
-                                    packagePath(packagePath(nested, "anchored_refs.usdz"), "root.usd")}) {
+    for (const std::string& path :
+         {nested, (kData / "nested_anchored_refs_sub.usdz").string(), packagePath(nested, "anchored_refs.usdz"),
+          packagePath(packagePath(nested, "anchored_refs.usdz"), "root.usd")}) {
         SCOPED_TRACE(path);
         EXPECT_EQ(flattened(path), expected);
         EXPECT_TRUE(Stage::open(path)->warnings().empty());

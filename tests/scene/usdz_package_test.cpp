@@ -52,11 +52,14 @@ std::string zipOf(const std::vector<std::pair<std::string, std::string>>& files,
         std::uint32_t offset = static_cast<std::uint32_t>(archive.size());
         const std::uint32_t method = std::find(deflated.begin(), deflated.end(), name) != deflated.end() ? 8 : 0;
         put(archive, 0x04034b50, 4), put(archive, 20, 2), put(archive, 0, 2), put(archive, method, 2);
-        put(archive, 0, 4), put(archive, 0, 4), put(archive, std::uint32_t(data.size()), 4), put(archive, std::uint32_t(data.size()), 4);
+        put(archive, 0, 4), put(archive, 0, 4), put(archive, std::uint32_t(data.size()), 4),
+            put(archive, std::uint32_t(data.size()), 4);
         put(archive, std::uint32_t(name.size()), 2), put(archive, 0, 2);
         archive += name + data;
-        put(directory, 0x02014b50, 4), put(directory, 20, 2), put(directory, 20, 2), put(directory, 0, 2), put(directory, method, 2);
-        put(directory, 0, 4), put(directory, 0, 4), put(directory, std::uint32_t(data.size()), 4), put(directory, std::uint32_t(data.size()), 4);
+        put(directory, 0x02014b50, 4), put(directory, 20, 2), put(directory, 20, 2), put(directory, 0, 2),
+            put(directory, method, 2);
+        put(directory, 0, 4), put(directory, 0, 4), put(directory, std::uint32_t(data.size()), 4),
+            put(directory, std::uint32_t(data.size()), 4);
         put(directory, std::uint32_t(name.size()), 2), put(directory, 0, 2), put(directory, 0, 2), put(directory, 0, 2);
         put(directory, 0, 2), put(directory, 0, 4), put(directory, offset, 4);
         directory += name;
@@ -101,7 +104,8 @@ TEST(UsdzPackage, RootLayersReadAsTheirEntriesDoLoose) {
         std::unique_ptr<Layer> packaged = readLayerFile(package);
         EXPECT_EQ(packaged->identifier, packagePath(package, entry));
         EXPECT_FALSE(packaged->rootPrims.empty());
-        std::unique_ptr<Layer> loose = readLayerFile(write(dir, entry, std::string(UsdzPackage::open(package).bytes(entry))));
+        std::unique_ptr<Layer> loose =
+            readLayerFile(write(dir, entry, std::string(UsdzPackage::open(package).bytes(entry))));
         EXPECT_EQ(writeUsda(*packaged), writeUsda(*loose));
         EXPECT_EQ(writeUsda(*readLayerFile(packagePath(package, entry))), writeUsda(*loose));
     }
@@ -133,12 +137,14 @@ TEST(UsdzPackage, TexturePathsResolveInsideThePackageAndExtract) {
 
 TEST(UsdzPackage, NestedLayersLoadFromThePackage) {
     test::TempDir dir;
-    const std::string root = "#usda 1.0\n(\n    subLayers = [@./layers/geom.usda@]\n)\n"
-                             "def Xform \"World\" (references = @./layers/ref.usda@</Thing>)\n{\n}\n";
+    const std::string root =
+        "#usda 1.0\n(\n    subLayers = [@./layers/geom.usda@]\n)\n"
+        "def Xform \"World\" (references = @./layers/ref.usda@</Thing>)\n{\n}\n";
     const std::string geom = "#usda 1.0\ndef Sphere \"Ball\"\n{\n    asset tex = @../tex/a.png@\n}\n";
     const std::string ref = "#usda 1.0\ndef Cube \"Thing\"\n{\n    double size = 3\n}\n";
-    const std::string package = write(dir, "scene.usdz", zipOf({{"root.usda", root}, {"layers/geom.usda", geom},
-                                                                {"layers/ref.usda", ref}, {"tex/a.png", "png"}}));
+    const std::string package =
+        write(dir, "scene.usdz",
+              zipOf({{"root.usda", root}, {"layers/geom.usda", geom}, {"layers/ref.usda", ref}, {"tex/a.png", "png"}}));
     std::unique_ptr<Stage> stage = Stage::open(package);
     ASSERT_NE(stage->prim("/Ball"), nullptr);
     const PrimSpec* world = stage->prim("/World");
@@ -205,12 +211,13 @@ TEST(UsdzPackage, DamagedPackagesAreRejectedNamingThem) {
 // package and the entry, and only that.
 TEST(UsdzPackage, CompressedEntriesFailOnlyWhenRead) {
     test::TempDir dir;
-    const std::string root = "#usda 1.0\ndef Sphere \"Ball\"\n{\n    asset tex = @./tex.png@\n}\n"
-                             "def \"Packed\" (references = @./packed.usda@</Thing>)\n{\n}\n";
-    const std::string package =
-        write(dir, "mixed.usdz", zipOf({{"root.usda", root}, {"tex.png", "\x78\x9c deflated bytes"},
-                                        {"packed.usda", "\x78\x9c deflated bytes"}},
-                                       {"tex.png", "packed.usda"}));
+    const std::string root =
+        "#usda 1.0\ndef Sphere \"Ball\"\n{\n    asset tex = @./tex.png@\n}\n"
+        "def \"Packed\" (references = @./packed.usda@</Thing>)\n{\n}\n";
+    const std::string package = write(
+        dir, "mixed.usdz",
+        zipOf({{"root.usda", root}, {"tex.png", "\x78\x9c deflated bytes"}, {"packed.usda", "\x78\x9c deflated bytes"}},
+              {"tex.png", "packed.usda"}));
     std::unique_ptr<Stage> stage;
     ASSERT_NO_THROW(stage = Stage::open(package));
     ASSERT_NE(stage->prim("/Ball"), nullptr);
@@ -227,7 +234,8 @@ TEST(UsdzPackage, CompressedEntriesFailOnlyWhenRead) {
             ADD_FAILURE() << "the compressed entry " << entry << " was read";
         } catch (const FileError& e) {
             EXPECT_NE(std::string(e.what()).find("'" + package + "'"), std::string::npos) << e.what();
-            EXPECT_NE(std::string(e.what()).find("entry '" + entry + "' is compressed (zip method 8)"), std::string::npos)
+            EXPECT_NE(std::string(e.what()).find("entry '" + entry + "' is compressed (zip method 8)"),
+                      std::string::npos)
                 << e.what();
         }
     };

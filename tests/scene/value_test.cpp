@@ -35,15 +35,12 @@ TEST(Value, ToStringIsCloseToUsdaSyntax) {
     EXPECT_EQ(Value().toString(), "None");
     EXPECT_EQ(Value::numeric("double", {2.5}, 1, false).toString(), "2.5");
     EXPECT_EQ(Value::numeric("float3", {1, -2, 0.125}, 3, false).toString(), "(1, -2, 0.125)");
-    EXPECT_EQ(
-        Value::numeric("double", {-std::numeric_limits<double>::infinity()}, 1, false).toString(),
-        "-inf");
+    EXPECT_EQ(Value::numeric("double", {-std::numeric_limits<double>::infinity()}, 1, false).toString(), "-inf");
     EXPECT_EQ(Value::numeric("matrix2d", {1, 0, 0, 1}, 4, false).toString(), "((1, 0), (0, 1))");
     EXPECT_EQ(Value::numeric("int[]", {1, 2, 3}, 1, true).toString(), "[1, 2, 3]");
     EXPECT_EQ(Value::numeric("int[]", {0, 1, 2, 3, 4, 5, 6, 7, 8, 9}, 1, true).toString(),
               "[0, 1, 2, 3, 4, 5, 6, 7, ... (10 elements)]");
-    EXPECT_EQ(Value::string("string", ValueKind::String, {"say \"hi\"\n"}, false).toString(),
-              "\"say \\\"hi\\\"\\n\"");
+    EXPECT_EQ(Value::string("string", ValueKind::String, {"say \"hi\"\n"}, false).toString(), "\"say \\\"hi\\\"\\n\"");
     EXPECT_EQ(Value::string("asset", ValueKind::Asset, {"a.png"}, false).toString(), "@a.png@");
     EXPECT_EQ(Value::string("", ValueKind::Path, {"/A", "/B"}, true).toString(), "[</A>, </B>]");
 }
@@ -87,10 +84,8 @@ def "P" (
 )",
                                  "a.usda");
     const PrimSpec* prim = layer->primAtPath("/P");
-    EXPECT_EQ(findMetadata(prim->metadata, "references")->value.toString(),
-              "@a.usda@</A> (offset = 1; scale = 2)");
-    EXPECT_EQ(findMetadata(prim->metadata, "customData")->value.toString(),
-              "{ int n = 1, string s = \"x\" }");
+    EXPECT_EQ(findMetadata(prim->metadata, "references")->value.toString(), "@a.usda@</A> (offset = 1; scale = 2)");
+    EXPECT_EQ(findMetadata(prim->metadata, "customData")->value.toString(), "{ int n = 1, string s = \"x\" }");
     EXPECT_EQ(findMetadata(prim->metadata, "tuple")->value.toString(), "(1, \"a\")");
 }
 

@@ -283,8 +283,9 @@ inline Chi2Result chi2SphereTest(const DirectionSampler& sample, const Direction
     }
     result.degreesOfFreedom = std::max(1, cells - 1);
     result.pValue = upperIncompleteGammaQ(0.5 * result.degreesOfFreedom, 0.5 * result.statistic);
-    result.report = "chi2 = " + std::to_string(result.statistic) + ", dof = " + std::to_string(result.degreesOfFreedom) +
-                    ", p = " + std::to_string(result.pValue) + worst.str();
+    result.report = "chi2 = " + std::to_string(result.statistic) +
+                    ", dof = " + std::to_string(result.degreesOfFreedom) + ", p = " + std::to_string(result.pValue) +
+                    worst.str();
     return result;
 }
 

@@ -30,7 +30,8 @@ inline std::string slurp(const std::filesystem::path& p) {
 // Runs `fluence ARGS` with no standard input, capturing its output in files under `dir`.
 inline RunResult runFluence(const std::string& args, const std::filesystem::path& dir) {
     std::filesystem::path out = dir / "stdout.txt", err = dir / "stderr.txt";
-    std::string cmd = std::string(FLUENCE_BINARY) + " " + args + " > " + out.string() + " 2> " + err.string() + " < /dev/null";
+    std::string cmd =
+        std::string(FLUENCE_BINARY) + " " + args + " > " + out.string() + " 2> " + err.string() + " < /dev/null";
     int status = std::system(cmd.c_str());
     RunResult r;
     r.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;

@@ -131,7 +131,9 @@ public:
         put(string(text));
         return rep(crate_type::PathExpression, at);
     }
-    Rep pathExpressionArray(const std::vector<std::string>& items) { return indexList(crate_type::PathExpression, items, true); }
+    Rep pathExpressionArray(const std::vector<std::string>& items) {
+        return indexList(crate_type::PathExpression, items, true);
+    }
     Rep tokenValue(const std::string& s) { return inlined(crate_type::Token, token(s)); }
     Rep stringValue(const std::string& s) { return inlined(crate_type::String, string(s)); }
     Rep assetValue(const std::string& s) { return inlined(crate_type::AssetPath, token(s)); }
@@ -273,7 +275,8 @@ private:
 
         beginSection("FIELDS");
         put<std::uint64_t>(fieldTokens_.size());
-        for (std::size_t i = 0; i < fieldTokens_.size(); ++i) put<std::uint32_t>(0), put(fieldTokens_[i]), put(fieldReps_[i]);
+        for (std::size_t i = 0; i < fieldTokens_.size(); ++i)
+            put<std::uint32_t>(0), put(fieldTokens_[i]), put(fieldReps_[i]);
 
         beginSection("FIELDSETS");
         put<std::uint64_t>(fieldSets_.size());
@@ -333,8 +336,10 @@ private:
     // An array's element count: uint32 before 0.7.0, after a uint32 rank of 1 before 0.5.0.
     void putArraySize(std::size_t count) {
         if (!version_.atLeast(0, 5, 0)) put<std::uint32_t>(1);
-        if (version_.atLeast(0, 7, 0)) put<std::uint64_t>(count);
-        else put<std::uint32_t>(static_cast<std::uint32_t>(count));
+        if (version_.atLeast(0, 7, 0))
+            put<std::uint64_t>(count);
+        else
+            put<std::uint32_t>(static_cast<std::uint32_t>(count));
     }
     template <class T>
     void put(const T& v) {
@@ -346,13 +351,17 @@ private:
     }
     Rep indexList(int type, const std::vector<std::string>& items, bool isArray) {
         std::uint64_t at = data_.size();
-        if (isArray) putArraySize(items.size());
-        else put<std::uint64_t>(items.size());
-        for (const auto& s : items) put(type == crate_type::String || type == crate_type::PathExpression ? string(s) : token(s));
+        if (isArray)
+            putArraySize(items.size());
+        else
+            put<std::uint64_t>(items.size());
+        for (const auto& s : items)
+            put(type == crate_type::String || type == crate_type::PathExpression ? string(s) : token(s));
         return rep(type, at, isArray);
     }
     static std::vector<char> compress(const void* p, std::size_t n) {
-        std::vector<char> out(1 + static_cast<std::size_t>(LZ4_compressBound(static_cast<int>(n))), 0);  // out[0]: 0 chunks
+        std::vector<char> out(1 + static_cast<std::size_t>(LZ4_compressBound(static_cast<int>(n))),
+                              0);  // out[0]: 0 chunks
         int size = LZ4_compress_default(static_cast<const char*>(p), out.data() + 1, static_cast<int>(n),
                                         static_cast<int>(out.size() - 1));
         out.resize(1 + static_cast<std::size_t>(size));

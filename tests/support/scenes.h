@@ -85,7 +85,8 @@ inline render::MaterialDesc glassMaterial(std::string name, float roughness) {
 }
 
 // A thin-walled sheet, partly transmissive, over a diffuse `colour`.
-inline render::MaterialDesc thinSheetMaterial(std::string name, const RGB& colour, float transmission, float roughness) {
+inline render::MaterialDesc thinSheetMaterial(std::string name, const RGB& colour, float transmission,
+                                              float roughness) {
     render::MaterialDesc m;
     m.name = std::move(name);
     m.diffuse = colour;
@@ -118,7 +119,8 @@ inline render::MeshDesc boxMesh(const Vec3f& halfSize, int material) {
             u[(axis + 1) % 3] = 1.0f;
             v[(axis + 2) % 3] = side;  // u x v = n
             auto base = static_cast<std::uint32_t>(m.positions.size());
-            for (auto [a, b] : {std::pair(-1.0f, -1.0f), std::pair(1.0f, -1.0f), std::pair(1.0f, 1.0f), std::pair(-1.0f, 1.0f)})
+            for (auto [a, b] :
+                 {std::pair(-1.0f, -1.0f), std::pair(1.0f, -1.0f), std::pair(1.0f, 1.0f), std::pair(-1.0f, 1.0f)})
                 m.positions.push_back((n + u * a + v * b) * halfSize);
             for (std::uint32_t i : {0u, 1u, 2u, 0u, 2u, 3u}) m.indices.push_back(base + i);
         }
@@ -142,7 +144,8 @@ inline render::MeshDesc torusMesh(float ring, float tube, int segments, int side
     auto index = [&](int i, int j) { return static_cast<std::uint32_t>((i % segments) * sides + j % sides); };
     for (int i = 0; i < segments; ++i)
         for (int j = 0; j < sides; ++j)
-            for (std::uint32_t k : {index(i, j), index(i + 1, j), index(i + 1, j + 1), index(i, j), index(i + 1, j + 1), index(i, j + 1)}) {
+            for (std::uint32_t k : {index(i, j), index(i + 1, j), index(i + 1, j + 1), index(i, j), index(i + 1, j + 1),
+                                    index(i, j + 1)}) {
                 m.indices.push_back(k);
                 m.cornerNormals.push_back(normals[k]);
             }
@@ -179,7 +182,8 @@ inline render::LightDesc lightDesc(std::string name, render::LightType type, con
 }
 
 // A sphere light of the given radius centred at `position`.
-inline render::LightDesc sphereLight(std::string name, float radius, const RGB& radiance, const Vec3d& position = Vec3d(0.0)) {
+inline render::LightDesc sphereLight(std::string name, float radius, const RGB& radiance,
+                                     const Vec3d& position = Vec3d(0.0)) {
     render::LightDesc l = lightDesc(std::move(name), render::LightType::Sphere, radiance, Matrix4::translate(position));
     l.radius = radius;
     return l;
@@ -194,7 +198,8 @@ inline render::LightDesc pointLight(std::string name, const RGB& radiance, const
 }
 
 // A width x height rect light placed by `transform`.
-inline render::LightDesc rectLight(std::string name, float width, float height, const RGB& radiance, const Matrix4& transform) {
+inline render::LightDesc rectLight(std::string name, float width, float height, const RGB& radiance,
+                                   const Matrix4& transform) {
     render::LightDesc l = lightDesc(std::move(name), render::LightType::Rect, radiance, transform);
     l.width = width;
     l.height = height;
@@ -210,7 +215,8 @@ inline render::LightDesc diskLight(std::string name, float radius, const RGB& ra
 
 // A distant light (a sun) of angular diameter `angleDegrees` (0: a delta light), shining along
 // the local -Z of `transform`.
-inline render::LightDesc distantLight(std::string name, float angleDegrees, const RGB& radiance, const Matrix4& transform) {
+inline render::LightDesc distantLight(std::string name, float angleDegrees, const RGB& radiance,
+                                      const Matrix4& transform) {
     render::LightDesc l = lightDesc(std::move(name), render::LightType::Distant, radiance, transform);
     l.angleDegrees = angleDegrees;
     return l;

@@ -14,10 +14,14 @@
 namespace fluence::test {
 
 // FLUENCE_SOURCE_DIR/../shared, normalised.
-inline std::filesystem::path sharedRoot() { return (std::filesystem::path(FLUENCE_SOURCE_DIR) / "../shared").lexically_normal(); }
+inline std::filesystem::path sharedRoot() {
+    return (std::filesystem::path(FLUENCE_SOURCE_DIR) / "../shared").lexically_normal();
+}
 
 // ../shared/<relative>.
-inline std::filesystem::path sharedPath(const std::string& relative) { return (sharedRoot() / relative).lexically_normal(); }
+inline std::filesystem::path sharedPath(const std::string& relative) {
+    return (sharedRoot() / relative).lexically_normal();
+}
 
 // Whether FLUENCE_NO_SHARED=1 says to run without ../shared.
 inline bool sharedOptedOut() {
@@ -38,9 +42,9 @@ inline std::string sharedUnavailable(const std::filesystem::path& path) {
 
 // In a test body (or SetUp): fails the test, or skips it under FLUENCE_NO_SHARED=1, when `path`
 // under ../shared cannot be read.
-#define FLUENCE_REQUIRE_SHARED(path)                                                                    \
+#define FLUENCE_REQUIRE_SHARED(path)                                                                                   \
     if (const std::string fluenceUnavailable = ::fluence::test::sharedUnavailable(path); fluenceUnavailable.empty()) { \
-    } else if (::fluence::test::sharedOptedOut())                                                       \
-        GTEST_SKIP() << fluenceUnavailable;                                                             \
-    else                                                                                                \
+    } else if (::fluence::test::sharedOptedOut())                                                                      \
+        GTEST_SKIP() << fluenceUnavailable;                                                                            \
+    else                                                                                                               \
         FAIL() << fluenceUnavailable

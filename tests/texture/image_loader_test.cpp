@@ -61,7 +61,8 @@ TEST(ImageLoader, RadianceHdrIsLinear) {
     writeImage(dir.file("d.hdr"), 2, 1, 3, OIIO::TypeDesc::FLOAT, pixels);
     Image image = loadImage(dir.file("d.hdr"));
     ASSERT_EQ(image.pixels.size(), pixels.size());
-    for (std::size_t i = 0; i < pixels.size(); ++i) EXPECT_NEAR(image.pixels[i], pixels[i], 0.01f * (i < 3 ? 0.75f : 100.0f)) << i;
+    for (std::size_t i = 0; i < pixels.size(); ++i)
+        EXPECT_NEAR(image.pixels[i], pixels[i], 0.01f * (i < 3 ? 0.75f : 100.0f)) << i;
 }
 
 TEST(ImageLoader, UnreadableFilesNameThemselves) {

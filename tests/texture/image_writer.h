@@ -12,7 +12,8 @@
 namespace fluence::test {
 
 template <typename T>
-void writeImage(const std::string& path, int width, int height, int channels, OIIO::TypeDesc type, const std::vector<T>& pixels) {
+void writeImage(const std::string& path, int width, int height, int channels, OIIO::TypeDesc type,
+                const std::vector<T>& pixels) {
     auto out = OIIO::ImageOutput::create(path);
     ASSERT_TRUE(out) << OIIO::geterror();
     OIIO::ImageSpec spec(width, height, channels, type);

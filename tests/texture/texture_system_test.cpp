@@ -21,8 +21,7 @@ protected:
     // A 2x2 float EXR: top-left red, top-right green, bottom-left blue, bottom-right white.
     std::string quadrants() {
         std::string path = dir.file("quadrants.exr");
-        test::writeImage<float>(path, 2, 2, 3, OIIO::TypeDesc::FLOAT,
-                                {1, 0, 0, 0, 1, 0, 0, 0, 1, 1, 1, 1});
+        test::writeImage<float>(path, 2, 2, 3, OIIO::TypeDesc::FLOAT, {1, 0, 0, 0, 1, 0, 0, 0, 1, 1, 1, 1});
         return path;
     }
     const TextureSystem::Texture& open(const std::string& path, SourceColorSpace space = SourceColorSpace::Auto) {
@@ -68,7 +67,8 @@ TEST_F(TextureSystemTest, EightBitFilesAreSrgbUnlessRaw) {
     EXPECT_NEAR(at(open(path), 0.5f, 0.5f)[0], linear, 1e-3f) << "auto: an 8-bit file is sRGB";
     EXPECT_NEAR(at(open(path, SourceColorSpace::SRGB), 0.5f, 0.5f)[0], linear, 1e-3f);
     EXPECT_NEAR(at(open(path, SourceColorSpace::Raw), 0.5f, 0.5f)[0], encoded, 1e-6f) << "raw: as stored";
-    EXPECT_NEAR(at(open(quadrants(), SourceColorSpace::Auto), 0.25f, 0.75f)[0], 1.0f, 1e-6f) << "auto: floats are linear";
+    EXPECT_NEAR(at(open(quadrants(), SourceColorSpace::Auto), 0.25f, 0.75f)[0], 1.0f, 1e-6f)
+        << "auto: floats are linear";
 }
 
 // A named colour space of the config (a MaterialX colorspace) converts the file's values through

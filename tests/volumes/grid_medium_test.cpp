@@ -40,8 +40,10 @@ protected:
         for (int i = 0; i < 24; ++i)
             for (int j = 0; j < 16; ++j)
                 for (int k = 0; k < 20; ++k) {
-                    double r2 = std::pow((i - 12) / 12.0, 2) + std::pow((j - 8) / 8.0, 2) + std::pow((k - 10) / 10.0, 2);
-                    if (r2 < 1.0) d.setValue({i, j, k}, float(2.0 * (1.0 - r2) * (1.0 + 0.5 * std::sin(i * 0.9 + j * 1.7))));
+                    double r2 =
+                        std::pow((i - 12) / 12.0, 2) + std::pow((j - 8) / 8.0, 2) + std::pow((k - 10) / 10.0, 2);
+                    if (r2 < 1.0)
+                        d.setValue({i, j, k}, float(2.0 * (1.0 - r2) * (1.0 + 0.5 * std::sin(i * 0.9 + j * 1.7))));
                     c.setValue({i, j, k}, openvdb::Vec3s(0.5f + 0.06f * i, 0.9f, 0.3f + 0.02f * k));
                 }
         auto t = temperature->getAccessor();
@@ -67,7 +69,8 @@ protected:
 };
 
 void expectNear(const RGB& a, const RGB& b, float relative, const char* what) {
-    for (int c = 0; c < 3; ++c) EXPECT_NEAR(a[c], b[c], relative * std::max(std::abs(b[c]), 1e-6f)) << what << " channel " << c;
+    for (int c = 0; c < 3; ++c)
+        EXPECT_NEAR(a[c], b[c], relative * std::max(std::abs(b[c]), 1e-6f)) << what << " channel " << c;
 }
 
 TEST_F(GridMediumTest, CoefficientsAreDensityTimesScaleTimesAlbedo) {
@@ -131,7 +134,8 @@ TEST_F(GridMediumTest, BlackbodyEmissionFollowsTheTemperatureGrid) {
         Vec3f x = randomPoint(r);
         if (grid.sample(x) <= 0.0f) continue;
         double kelvin = 300.0 + 2000.0 * t.sample(x);
-        RGB expected = blackbodyRgb(kelvin) * float(1.5 * 5.670374419e-8 / std::numbers::pi * 1e-6 * std::pow(kelvin, 4.0));
+        RGB expected =
+            blackbodyRgb(kelvin) * float(1.5 * 5.670374419e-8 / std::numbers::pi * 1e-6 * std::pow(kelvin, 4.0));
         expectNear(medium.at(x).emission, expected, 2e-3f, "emission");
     }
 }
@@ -182,8 +186,10 @@ TEST_F(GridMediumTest, VisitingStopsWhenTheCallbackSaysSo) {
     Vec3f centre = (b.lo + b.hi) * 0.5f;
     Vec3f from = centre - Vec3f(100.0f, 0.0f, 0.0f);
     int all = 0, some = 0;
-    medium.majorants(from, {1.0f, 0.0f, 0.0f}, 0.0f, INFINITY, [&](const media::MajorantSegment&) { return ++all, true; });
-    medium.majorants(from, {1.0f, 0.0f, 0.0f}, 0.0f, INFINITY, [&](const media::MajorantSegment&) { return ++some < 2; });
+    medium.majorants(from, {1.0f, 0.0f, 0.0f}, 0.0f, INFINITY,
+                     [&](const media::MajorantSegment&) { return ++all, true; });
+    medium.majorants(from, {1.0f, 0.0f, 0.0f}, 0.0f, INFINITY,
+                     [&](const media::MajorantSegment&) { return ++some < 2; });
     EXPECT_GT(all, 2);
     EXPECT_EQ(some, 2);
 }

@@ -111,7 +111,7 @@ std::string writeSparseGrid(const test::TempDir& dir) {
         }
     }
     grid->tree().addTile(1, openvdb::Coord(64, 8, 0), 3.5f, true);  // an 8^3 tile
-    a.setValueOff({-20, 30, 5}, 9.0f);                                // inactive but stored: read by interpolation
+    a.setValueOff({-20, 30, 5}, 9.0f);                              // inactive but stored: read by interpolation
     a.setValueOff({20, 20, 0}, 9.0f);
     test::writeGrids(dir.file("sparse.vdb"), {grid});
     return dir.file("sparse.vdb");
@@ -120,7 +120,8 @@ std::string writeSparseGrid(const test::TempDir& dir) {
 TEST(MajorantGrid, BoundsTheDensityAlongRandomRays) {
     test::TempDir dir("volumes_majorant");
     FloatVdbGrid grid(writeSparseGrid(dir), "density", 0, tiltedObjectToWorld());
-    for (MajorantGridOptions options : {MajorantGridOptions{}, MajorantGridOptions{3.0, 64}, MajorantGridOptions{8.0, 5}}) {
+    for (MajorantGridOptions options :
+         {MajorantGridOptions{}, MajorantGridOptions{3.0, 64}, MajorantGridOptions{8.0, 5}}) {
         MajorantGrid majorants(grid, options);
         WorldBounds b = grid.worldBounds();
         float span = 3.0f * length(b.hi - b.lo);
@@ -154,7 +155,8 @@ TEST(MajorantGrid, EveryCellBoundsTheDensityAroundEveryStoredValue) {
                     Vec3d q;  // from just inside lo - 1 to just inside hi + 1
                     const int step[3] = {x, y, z};
                     for (int axis = 0; axis < 3; ++axis)
-                        q[axis] = box.min()[axis] - 0.999 + (box.max()[axis] - box.min()[axis] + 1.998) * step[axis] / 6.0;
+                        q[axis] =
+                            box.min()[axis] - 0.999 + (box.max()[axis] - box.min()[axis] + 1.998) * step[axis] / 6.0;
                     Vec3f p(grid.indexToWorld().transformPoint(q));
                     float d = grid.sample(p);
                     if (d == 0.0f) continue;

@@ -129,7 +129,8 @@ void expectError(F load, const std::vector<std::string>& parts) {
         load();
         ADD_FAILURE() << "no exception";
     } catch (const std::runtime_error& e) {
-        for (const std::string& part : parts) EXPECT_NE(std::string(e.what()).find(part), std::string::npos) << e.what();
+        for (const std::string& part : parts)
+            EXPECT_NE(std::string(e.what()).find(part), std::string::npos) << e.what();
     }
 }
 
@@ -198,7 +199,9 @@ TEST(VdbGrid, ConcurrentLoadsShareOneOpen) {
     std::vector<float> values(8, -1.0f);
     std::vector<std::thread> threads;
     for (std::size_t n = 0; n < values.size(); ++n)
-        threads.emplace_back([&, n] { values[n] = FloatVdbGrid(dir.file("shared.vdb"), "density").sample({2.0f, 3.0f, 4.0f}); });
+        threads.emplace_back([&, n] {
+            values[n] = FloatVdbGrid(dir.file("shared.vdb"), "density").sample({2.0f, 3.0f, 4.0f});
+        });
     for (std::thread& t : threads) t.join();
     EXPECT_EQ(vdbFilesOpened() - before, 1u);
     for (float v : values) EXPECT_EQ(v, 0.5f);
