@@ -57,9 +57,12 @@ std::unique_ptr<Layer> readLayerFile(const std::string& path) {
     if (isUsdzPath(path)) {  // a package file, or a package inside one: its root layer
         UsdzPackage package = UsdzPackage::open(path);
         if (package.entries().empty()) throw FileError("'" + path + "': the USDZ package holds no layer");
-        // As a packaged path, so that a root layer in a format Fluence has no plugin for (an
-        // Alembic root, as in OpenUSD's usdchecker tests) is named as such.
-        return readLayerFile(packagePath(path, package.entries().front().name));
+        const std::string& root = package.entries().front().name;
+        // A root that is itself a package, or in a format Fluence has no plugin for (an Alembic
+        // root, as in OpenUSD's usdchecker tests), goes through the packaged path, which names it;
+        // any other root is read from the package already open.
+        if (isUsdzPath(root) || !missingFormatPlugin(root).empty()) return readLayerFile(packagePath(path, root));
+        return readPackagedLayer(package, root);
     }
     if (std::optional<PackagePath> packaged = splitInnermostPackagePath(path))
         return readPackagedLayer(UsdzPackage::open(packaged->package), packaged->entry);
