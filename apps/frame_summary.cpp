@@ -49,6 +49,9 @@ void printFrameSummary(const RenderOptions& opt, const std::pair<int, int>& res,
     if (st.curves > 0)
         std::printf("  curves       %s, %s (Embree native curves)\n", counted(st.curves, "curve set").c_str(),
                     counted(st.curveSegments, "segment").c_str());
+    if (st.pointSets > 0)
+        std::printf("  points       %s, %s (Embree points)\n", counted(st.pointSets, "point set").c_str(),
+                    counted(st.points, "point").c_str());
     if (st.instances > 0)
         std::printf("  instancing   %s placing %s (stored once)\n", counted(st.instances, "instance").c_str(),
                     counted(st.instancedTriangles, "triangle").c_str());

@@ -483,6 +483,8 @@ void RenderScene::addPoints(const PointsDesc& desc, const std::vector<MaterialDe
     surfaceMeshes_.push_back(-1);
     surfaceInstances_.push_back(-1);
     surfacePoints_.push_back(index);
+    stats_.pointSets += 1;
+    stats_.points += desc.positions.size();
 }
 
 void RenderScene::addCurves(const CurvesDesc& desc, const std::vector<MaterialDesc>& materials) {

@@ -109,6 +109,7 @@ struct SceneStats {
     std::size_t instancedTriangles = 0;     // triangles seen through instances (not stored again)
     std::size_t lights = 0, emissiveTriangles = 0;
     std::size_t curves = 0, curveSegments = 0;  // CurvesDesc, and their Embree segments
+    std::size_t pointSets = 0, points = 0;      // PointsDesc, and their Embree points
 };
 
 class RenderScene {
