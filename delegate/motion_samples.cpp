@@ -114,7 +114,12 @@ std::optional<InstanceVelocityMotion> instanceVelocityMotion(const usd::Stage& s
     return motion;
 }
 
-void addMotion(usd::Stage& stage, const DelegateOptions& options, const std::string& cameraPath,
+bool movesByVelocities(const usd::PrimSpec& prim) {
+    return (prim.attribute("velocities") || prim.attribute("angularVelocities")) && !timeSampled(prim, "points") &&
+           !timeSampled(prim, "positions");
+}
+
+void addMotion(SceneDelegate& delegate, usd::Stage& stage, const DelegateOptions& options,
                const render::CameraDesc& camera, render::SceneDescription& scene) {
     if (std::isnan(options.time) || !(camera.shutterClose > camera.shutterOpen)) return;
     const std::vector<double> times = motionStepTimes(stage, options.time, camera.shutterOpen, camera.shutterClose);
@@ -122,14 +127,9 @@ void addMotion(usd::Stage& stage, const DelegateOptions& options, const std::str
     std::vector<std::vector<Matrix4>> instanceSteps(scene.instances.size());
     std::vector<bool> meshStill(scene.meshes.size(), false), instanceStill(scene.instances.size(), false);
     for (double time : times) {
-        DelegateOptions at = options;
-        at.time = time;
-        at.velocityFrame = options.time;
-        at.motionBlur = false;
-        at.cameraPath = cameraPath;
-        at.defaultLight = false;
-        at.warn = [](const std::string&, const std::string&) {};  // said once, at the frame
-        const render::SceneDescription step = populateScene(stage, at).scene;
+        delegate.setMotionStep(time, options.time);
+        delegate.sync();
+        const render::SceneDescription step = delegate.sceneDescription();
         for (std::size_t m = 0; m < scene.meshes.size(); ++m) {
             const bool same = m < step.meshes.size() && sameTopology(scene.meshes[m], step.meshes[m]);
             if (!same && !meshStill[m])

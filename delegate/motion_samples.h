@@ -5,8 +5,9 @@
 // spaced steps over it, the first at its opening and the last at its close (Embree interpolates
 // linearly between steps, render/motion_geometry.h): as few steps as put one on every time sample
 // authored strictly inside the shutter, so several segments follow a motion keyed inside it, and
-// at most kMaxMotionSteps. The scene is described at each step by a delegate of its own, and
-// what moved between steps is handed to the render core:
+// at most kMaxMotionSteps. The frame's delegate is moved to each step (SceneDelegate::setMotionStep:
+// only the animated prims are read again) and describes the scene there, and what moved between
+// steps is handed to the render core:
 //   - a world mesh whose positions differ between steps (a time-sampled xform of it or of an
 //     ancestor, time-sampled `points`, skinned points) gets MeshDesc::motionPositions, provided
 //     its triangles stay the same at every step (else it renders still, with a warning);
@@ -34,6 +35,7 @@
 namespace fluence::delegate {
 
 struct DelegateOptions;
+class SceneDelegate;
 
 inline constexpr int kMaxMotionSteps = 33;
 
@@ -56,9 +58,14 @@ struct InstanceVelocityMotion {
 std::optional<InstanceVelocityMotion> instanceVelocityMotion(const usd::Stage& stage, const usd::PrimSpec& instancer,
                                                              double time, double velocityFrame, std::size_t count);
 
-// Adds the motion over `camera`'s shutter to `scene`, described by `options` at the frame (see
-// above). Warns through options.warn what cannot move.
-void addMotion(usd::Stage& stage, const DelegateOptions& options, const std::string& cameraPath,
+// Whether `prim` moves by `velocities` or `angularVelocities` during the shutter (authored, with
+// `points` or `positions` not time-sampled).
+bool movesByVelocities(const usd::PrimSpec& prim);
+
+// Adds the motion over `camera`'s shutter to `scene`, which `delegate` described from `stage` by
+// `options` at the frame (see above); leaves `delegate` at the shutter's close. Warns through
+// options.warn what cannot move.
+void addMotion(SceneDelegate& delegate, usd::Stage& stage, const DelegateOptions& options,
                const render::CameraDesc& camera, render::SceneDescription& scene);
 
 }  // namespace fluence::delegate

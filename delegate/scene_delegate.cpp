@@ -466,6 +466,19 @@ void SceneDelegate::setTime(double time) {
     }
 }
 
+void SceneDelegate::setMotionStep(double time, double velocityFrame) {
+    options_.time = time;
+    options_.velocityFrame = velocityFrame;
+    options_.warn = [](const std::string&, const std::string&) {};
+    for (const auto& [path, prim] : index_.prims()) {
+        if (prim->failed()) prim->markDirty(kAllDirty);
+        if (prim->transformAnimated()) prim->markDirty(kDirtyTransform);
+        const usd::PrimSpec* spec = prim->dataAnimated() ? nullptr : stage_.prim(path);
+        if (prim->dataAnimated() || (spec && movesByVelocities(*spec)))
+            prim->markDirty(kAllDirty & ~std::uint32_t(kDirtyTransform));
+    }
+}
+
 void SceneDelegate::setAttribute(const std::string& primPath, const std::string& name, const usd::Value& value) {
     for (std::string p = primPath; p.size() > 1;) {
         p = parentPath(p);
@@ -536,7 +549,7 @@ DelegateResult populateScene(usd::Stage& stage, const DelegateOptions& options) 
     DelegateResult result{delegate.sceneDescription(), delegate.cameraPath(), delegate.renderSettings(),
                           delegate.resolution(), delegate.framing()};
     if (options.motionBlur && !(result.renderSettings && result.renderSettings->motionBlurDisabled()))
-        addMotion(stage, options, result.cameraPath, *result.scene.camera, result.scene);
+        addMotion(delegate, stage, options, *result.scene.camera, result.scene);
     return result;
 }
 

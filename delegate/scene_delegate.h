@@ -99,6 +99,10 @@ public:
 
     // Edits (see the table above). Each returns after marking; call sync() to pull the changes.
     void setTime(double time);
+    // Moves the index to the motion step at `time` of the frame at `velocityFrame` (motion_samples.h):
+    // what setTime marks, and the point-based prims that move by velocities, are synced again at
+    // `time`, with no warning given (the frame gave them) and the render settings kept. Call sync().
+    void setMotionStep(double time, double velocityFrame);
     void setAttribute(const std::string& primPath, const std::string& name, const usd::Value& value);
     void setVariantSelection(const std::string& primPath, const std::string& variantSet, const std::string& selection);
 
