@@ -1,6 +1,7 @@
 // Light path expression AOVs of bdpt (integrators/bdpt_events.h): every strategy's MIS-weighted
 // light goes to the layers its path matches, light tracing's (t = 1) through the splat film's
-// layers, so the layers of a disjoint cover of every path sum to the beauty; a diffuse-only scene
+// layers, so the layers of a disjoint cover of every path sum to the beauty (a point light's
+// caustic, which only t = 1 draws, included, and absent from a tile); a diffuse-only scene
 // has nothing in a mirror layer; a layer's light agrees with `path`'s within noise; layers do not
 // change the beauty and are bit-identical at any thread count, with splats and in tiles.
 #include <gtest/gtest.h>
@@ -71,6 +72,35 @@ TEST(BdptLightPathAovs, AgreesWithPathWithinNoise) {
             EXPECT_GT(p.mean(), 4.0 * se) << name << c << ": too little light to test";
             EXPECT_NEAR(b.mean(), p.mean(), z * se) << name << c;
         }
+}
+
+// A point light inside a smooth glass ball over a diffuse floor: its caustic on the floor seen
+// directly, C<RD>S+L, only light tracing (t = 1) can draw, so that layer holds light only when the
+// render splats; with the rest of the paths it still sums to the beauty.
+TEST(BdptLightPathAovs, LightTracingsCausticReachesItsLayer) {
+    render::SceneDescription s;
+    s.materials.push_back(test::diffuseMaterial("/floor", RGB(0.8f)));
+    s.materials.push_back(test::glassMaterial("/glass", 0.0f));
+    s.meshes.push_back(test::quadMesh("/floor", {{{-3, -3, -1}, {3, -3, -1}, {3, 3, -1}, {-3, 3, -1}}}, 0));
+    s.meshes.push_back(test::roundSphereMesh(0.4f, 32, 16, 1, Vec3f(0.0f)));
+    s.lights.push_back(test::pointLight("/point", RGB(500.0f)));
+    s.camera = test::lookAtOriginCamera(4.0f);
+    // The rest: lit onward from the caustic. Paths seen through the glass (C[^D].*L) no strategy draws
+    // from a point light (bdpt.h: LS+DS+E), so they hold nothing.
+    const Layers cover = {{"caustic", "C<RD>S+L"}, {"indirect", "C<RD>.*[DG].*L"}};
+    expectLayersSumToBeauty(renderLayers<Bdpt>(s, cover, 24, 8), cover);
+
+    const render::RenderScene scene(s);  // a tile: no splat film, no t = 1, no caustic
+    const render::Camera camera(*s.camera, 24, 24);
+    Film tile(12, 24, camera.farClip(), namesOf(cover));
+    RenderSettings settings;
+    settings.samplesPerPixel = 8;
+    settings.windowX = 12;
+    settings.imageWidth = 24;
+    render(scene, camera, Bdpt(withLayers(cover)), settings, tile);
+    const Image image = tile.resolve();
+    for (int y = 0; y < image.height; ++y)
+        for (int x = 0; x < image.width; ++x) ASSERT_EQ(layerAt(image, "caustic", x, y), RGB(0.0f)) << x << "," << y;
 }
 
 TEST(BdptLightPathAovs, BeautyIsTheSameWithAndWithoutLayers) {
