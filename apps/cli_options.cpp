@@ -426,7 +426,7 @@ std::string usageText() {
            "      --min-spp N         samples every pixel takes before adaptive sampling may stop it (default 16)\n"
            "      --lpe NAME=EXPR     a light path expression AOV: the light of the paths EXPR matches, as the\n"
            "                          EXR layer NAME (repeatable; also RenderVars with sourceType \"lpe\");\n"
-           "                          e.g. --lpe diffuse='C<RD>.*L' --lpe specular='C<R[GS]>.*L'; `path` only\n"
+           "                          e.g. --lpe diffuse='C<RD>.*L' --lpe specular='C<R[GS]>.*L'; path, bdpt\n"
            "      --cryptomatte L,... Cryptomatte ID layers: object (CryptoObject), material (CryptoMaterial);\n"
            "                          also RenderVars with sourceType \"raw\" and sourceName "
            "CryptoObject/CryptoMaterial\n"

@@ -37,7 +37,7 @@ int lightPathAovs(const RenderOptions& opt, const PlannedRender& planned, const 
     aovs = planned.lightPaths;
     if (aovs.empty() || integrator.lightPathExpressions) return kExitOk;
     const std::string why =
-        "integrator '" + integrator.name + "' does not write light path expression AOVs (path does)";
+        "integrator '" + integrator.name + "' does not write light path expression AOVs (path and bdpt do)";
     if (!opt.lightPaths.empty()) {
         printError("--lpe: " + why);
         return kExitUsage;

@@ -54,7 +54,7 @@ std::vector<std::string> Film::channelNames() const {
 std::vector<std::string> Film::dataChannelNames() { return {"N.X", "N.Y", "N.Z", "Z", "sampleCount"}; }
 
 SplatFilm& Film::enableSplats() {
-    if (!splats_) splats_ = std::make_unique<SplatFilm>(width_, height_);
+    if (!splats_) splats_ = std::make_unique<SplatFilm>(width_, height_, 0, 0, int(lightPathLayers_.size()));
     return *splats_;
 }
 
@@ -77,8 +77,12 @@ Image Film::resolve() const {
             out[11] = static_cast<float>(p.samples);
             const double* layers =
                 lightPathSums_.data() + (static_cast<std::size_t>(y) * width_ + x) * lightPathLayers_.size() * 3;
-            for (std::size_t i = 0; i < lightPathLayers_.size() * 3; ++i)
-                out[12 + i] = static_cast<float>(layers[i] * inv);
+            for (std::size_t l = 0; l < lightPathLayers_.size(); ++l) {
+                const std::array<double, 3> layerSplat =
+                    splats_ ? splats_->layerSum(int(l), x, y) : std::array<double, 3>{};
+                for (std::size_t c = 0; c < 3; ++c)
+                    out[12 + 3 * l + c] = static_cast<float>(layers[3 * l + c] * inv + layerSplat[c] * perLightPath);
+            }
         }
     return image;
 }

@@ -82,7 +82,8 @@ public:
     // Light tracing: the splat film (core/splat_film.h) into which integrators that add light to
     // other pixels than their sample's write (bdpt's t = 1), made by enableSplats() (the render
     // loop's, for an integrator that asks for it and a film that is the whole image); null until
-    // then. resolve() adds its sums to the beauty divided by the light paths traced per pixel,
+    // then; it has one layer per light path layer. resolve() adds its sums to the beauty (and its
+    // layers' to the light path layers) divided by the light paths traced per pixel,
     // totalSamples() / (width height): one per camera sample, wherever it was taken.
     SplatFilm& enableSplats();
     const SplatFilm* splats() const { return splats_.get(); }

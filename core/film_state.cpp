@@ -90,7 +90,7 @@ void readFilmState(std::istream& in, Film& film) {
         for (Film::Pixel& p : film.pixels_) readPixel(in, p);
         readBinary(in, film.lightPathSums_.data(), film.lightPathSums_.size());
         if (readBinary<std::uint8_t>(in) != 0) {
-            std::vector<std::int64_t> sums(film.pixels_.size() * 3);
+            std::vector<std::int64_t> sums(film.pixels_.size() * 3 * (film.lightPathLayers_.size() + 1));
             readBinary(in, sums.data(), sums.size());
             film.enableSplats().restore(sums);
         }

@@ -21,22 +21,24 @@ void saturatingAdd(std::atomic<std::int64_t>& sum, std::int64_t v) {
 
 }  // namespace
 
-SplatFilm::SplatFilm(int width, int height, int originX, int originY)
+SplatFilm::SplatFilm(int width, int height, int originX, int originY, int layers)
     : width_(width),
       height_(height),
       originX_(originX),
       originY_(originY),
-      sums_(static_cast<std::size_t>(width > 0 ? width : 0) * static_cast<std::size_t>(height > 0 ? height : 0) * 3) {
+      layers_(layers),
+      sums_(static_cast<std::size_t>(width > 0 ? width : 0) * static_cast<std::size_t>(height > 0 ? height : 0) *
+            static_cast<std::size_t>(layers >= 0 ? layers + 1 : 0) * 3) {
     if (width <= 0 || height <= 0) throw std::invalid_argument("splat film resolution must be positive");
+    if (layers < 0) throw std::invalid_argument("a splat film's layer count must not be negative");
 }
 
-bool SplatFilm::add(float x, float y, const RGB& value) {
+bool SplatFilm::addTo(int slot, float x, float y, const RGB& value) {
     for (int c = 0; c < 3; ++c)
         if (!std::isfinite(value[c]) || value[c] < 0.0f) return false;
     const double px = std::floor(double(x)) - originX_, py = std::floor(double(y)) - originY_;
     if (!(px >= 0.0 && px < width_ && py >= 0.0 && py < height_)) return true;
-    const std::size_t index =
-        (static_cast<std::size_t>(py) * static_cast<std::size_t>(width_) + static_cast<std::size_t>(px)) * 3;
+    const std::size_t index = indexOf(slot, static_cast<std::size_t>(px), static_cast<std::size_t>(py));
     for (int c = 0; c < 3; ++c) {
         if (value[c] == 0.0f) continue;
         const double clamped = std::min(double(value[c]), kMaxValue);
@@ -45,9 +47,8 @@ bool SplatFilm::add(float x, float y, const RGB& value) {
     return true;
 }
 
-std::array<double, 3> SplatFilm::sum(int x, int y) const {
-    const std::size_t index =
-        (static_cast<std::size_t>(y) * static_cast<std::size_t>(width_) + static_cast<std::size_t>(x)) * 3;
+std::array<double, 3> SplatFilm::sumOf(int slot, int x, int y) const {
+    const std::size_t index = indexOf(slot, static_cast<std::size_t>(x), static_cast<std::size_t>(y));
     std::array<double, 3> s;
     for (std::size_t c = 0; c < 3; ++c) s[c] = double(sums_[index + c].load(std::memory_order_relaxed)) / kScale;
     return s;

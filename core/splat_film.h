@@ -15,6 +15,10 @@
 // WINDOW. The film covers the window of the image at (originX, originY), width x height pixels;
 // positions are in the image's pixels, and a splat outside the window is dropped.
 //
+// LAYERS. Besides the beauty, a pixel may keep the sums of light path expression layers (bdpt's
+// t = 1 paths go to the layers whose expressions match them, integrators/bdpt_events.h), each
+// summed as the beauty is, so they too are bit-identical at any thread count.
+//
 // NORMALISATION (Veach's thesis, sec. 10.3.4; pbrt's Film::AddSplat): with the camera's importance
 // normalised over the whole image (render/camera.h) and one light path traced per camera sample,
 // a pixel's light-tracing estimate is its splat sum divided by the number of light paths per
@@ -36,27 +40,43 @@ public:
     static constexpr double kMaxValue = 4294967296.0;  // 2^32: larger values are clamped to it
     // A pixel's sum saturates at the largest int64, 2^35 in the units of the values.
 
-    // The window of the image at (originX, originY), width x height pixels.
-    SplatFilm(int width, int height, int originX = 0, int originY = 0);
+    // The window of the image at (originX, originY), width x height pixels, with `layers` light
+    // path layers besides the beauty.
+    SplatFilm(int width, int height, int originX = 0, int originY = 0, int layers = 0);
 
     int width() const { return width_; }
     int height() const { return height_; }
+    int layers() const { return layers_; }
 
     // Adds `value` to the pixel holding image position (x, y), in pixels (dropped outside the
     // window). False, adding nothing, when a channel of `value` is not finite or is negative.
     // Thread-safe.
-    bool add(float x, float y, const RGB& value);
+    bool add(float x, float y, const RGB& value) { return addTo(0, x, y, value); }
+    // The same for light path layer `layer` (0 <= layer < layers()).
+    bool addToLayer(int layer, float x, float y, const RGB& value) { return addTo(layer + 1, x, y, value); }
 
     // Pixel (x, y) of the window's sums, R G B in the units of the values (read when no add() runs).
-    std::array<double, 3> sum(int x, int y) const;
+    std::array<double, 3> sum(int x, int y) const { return sumOf(0, x, y); }
+    // The same for light path layer `layer`.
+    std::array<double, 3> layerSum(int layer, int x, int y) const { return sumOf(layer + 1, x, y); }
 
     // Every sum in fixed point, pixel by pixel (row by row) and R G B, and their replacement by a
-    // copy of such sums (render checkpoints, core/film_state.h; `sums` must have 3 width height).
+    // copy of such sums (render checkpoints, core/film_state.h; `sums` must have
+    // 3 (1 + layers) width height: per pixel, the beauty then each layer).
     std::vector<std::int64_t> fixedSums() const;
     void restore(const std::vector<std::int64_t>& sums);
 
 private:
-    int width_, height_, originX_, originY_;
+    // Slot 0 is the beauty, slot l + 1 light path layer l.
+    bool addTo(int slot, float x, float y, const RGB& value);
+    std::array<double, 3> sumOf(int slot, int x, int y) const;
+    std::size_t indexOf(int slot, std::size_t x, std::size_t y) const {
+        return ((y * static_cast<std::size_t>(width_) + x) * static_cast<std::size_t>(layers_ + 1) +
+                static_cast<std::size_t>(slot)) *
+               3;
+    }
+
+    int width_, height_, originX_, originY_, layers_;
     std::vector<std::atomic<std::int64_t>> sums_;
 };
 

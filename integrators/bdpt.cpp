@@ -9,10 +9,12 @@
 
 #include "core/frame.h"
 #include "core/sampling.h"
+#include "integrators/bdpt_events.h"
 #include "integrators/bdpt_mis.h"
 #include "integrators/bdpt_vertex.h"
 #include "integrators/emission.h"
 #include "integrators/first_hit.h"
+#include "integrators/path_events.h"
 #include "integrators/russian_roulette.h"
 #include "integrators/surface_frame.h"
 #include "media/free_flight.h"
@@ -127,12 +129,18 @@ struct BdptState final : RenderState {
     DiscreteDistribution emitterChoice;
     std::vector<int> emitters;
     std::vector<float> emitterProbability;
+    // The light path expression AOVs (none: empty) and the events of the scene's lights.
+    std::span<const LightPathAov> aovs;
+    LightEvents lightEvents;
     std::string summary() const override { return lightTracingOff; }
 };
 
 struct LightSubpath {
     LightOrigin origin;
     std::vector<Vertex> vertices;  // y_1, y_2, ...
+    // With light path expression AOVs, the events of each vertex left towards the next one
+    // (bdpt_events.h): those of y_1 ... y_{n-1}, and of y_n when its subpath went on past it.
+    std::vector<VertexEvents> events;
 };
 
 // x_0 ... x_{s-1}: the densities of the light origin and the first s - 1 light subpath vertices,
@@ -165,8 +173,8 @@ void appendCamera(std::vector<VertexDensity>& x, const CameraSubpath& z) {
 // ray's). Empty (origin.light < 0) when no light emits.
 LightSubpath traceLightSubpath(const RenderScene& scene, const std::vector<int>& emitters,
                                const DiscreteDistribution& choice, const std::vector<float>& probability,
-                               int maxBounces, int hero, float time, SampleStream& rng, RenderCounters& counters,
-                               render::BsdfArena& arena) {
+                               int maxBounces, int hero, float time, bool withEvents, SampleStream& rng,
+                               RenderCounters& counters, render::BsdfArena& arena) {
     LightSubpath path;
     const float uChoice = rng.next();
     const Vec2f uPosition = rng.next2D(), uDirection = rng.next2D();
@@ -211,6 +219,7 @@ LightSubpath traceLightSubpath(const RenderScene& scene, const std::vector<int>&
         last = scatter(sh, v, render::Transport::Importance, rng);
         if (last) {
             v.delta = last->delta;
+            if (withEvents) path.events.push_back(scatteringEvents(sh, v, last->wi, v.wo, last->delta));
             // The previous vertex's density as a camera subpath would draw it, through this one.
             if (path.vertices.empty())
                 path.origin.fromCamera = last->delta ? 1.0f : cameraReaches(path.origin, last->pdfReverse, v.point());
@@ -241,10 +250,40 @@ std::optional<media::MediumRay> joinSegment(const RenderScene& scene, const Vert
     return media::MediumRay{from, d / length, length};
 }
 
+// Light path expression AOVs of t = 1 paths: the layers each path C y_{s-1} ... y_1 L matches, which
+// it adds to the splat film's layers where it adds to the beauty.
+class SplatLayers {
+public:
+    explicit SplatLayers(const BdptState& state) : state_(state), tracker_(state.aovs) {}
+    // The path through y = light.vertices[i], joined to the camera along toCamera by `sh`, adds
+    // `value` at `raster`.
+    void add(const LightSubpath& light, std::size_t i, const Shading& sh, const Vec3f& toCamera, const Vec2f& raster,
+             const RGB& value) {
+        if (!tracker_.active()) return;
+        const Vertex& y = light.vertices[i];
+        const VertexEvents joined = scatteringEvents(sh, y, toCamera, y.wo, false);
+        towardsLight({&joined, 1}, std::span(light.events).first(i), path_);
+        layers_.clearLightPaths(state_.aovs.size());
+        tracker_.join(path_, state_.lightEvents[light.origin.light], value, layers_);
+        for (std::size_t l = 0; l < state_.aovs.size(); ++l)
+            state_.splats->addToLayer(int(l), raster.x, raster.y, layers_.lightPath(l));
+    }
+
+private:
+    const BdptState& state_;
+    const LightPathTracker tracker_;  // at the camera
+    std::vector<VertexEvents> path_;
+    FilmSample layers_;
+};
+
 // t = 1 (bdpt.h): each light vertex y_{s-1} (s >= 2) joined to the pinhole, its light splatted
-// into the pixel it lands on, weighted against the path's other strategies.
-void splatToCamera(const RenderScene& scene, const render::Camera& camera, const LightSubpath& light, int hero,
-                   SampleStream& rng, RenderCounters& counters, render::BsdfArena& arena, SplatFilm& splats) {
+// into the pixel it lands on (and its light path layers'), weighted against the path's other
+// strategies.
+void splatToCamera(const BdptState& state, const RenderScene& scene, const render::Camera& camera,
+                   const LightSubpath& light, int hero, SampleStream& rng, RenderCounters& counters,
+                   render::BsdfArena& arena) {
+    SplatFilm& splats = *state.splats;
+    SplatLayers layers(state);
     const media::Medium* cameraMedium = MediumStack(scene).medium();  // the camera is outside every closed surface
     std::vector<VertexDensity> x;
     for (std::size_t i = 0; i < light.vertices.size(); ++i) {
@@ -278,7 +317,10 @@ void splatToCamera(const RenderScene& scene, const render::Camera& camera, const
         const Vec3f toX2 = s >= 3 ? -light.vertices[1].wo : c->direction;
         const StrategyPath path{x, neeDensity(scene, light.origin, light.vertices[0], toX2), !light.origin.delta, hero,
                                 true};
-        if (!splats.add(c->raster.x, c->raster.y, contribution * crossing.tr.throughput * misWeight(path, s)))
+        const RGB value = contribution * crossing.tr.throughput * misWeight(path, s);
+        if (splats.add(c->raster.x, c->raster.y, value))
+            layers.add(light, i, sh, c->direction, c->raster, value);
+        else
             ++counters.nonFiniteSamples;
     }
 }
@@ -289,6 +331,10 @@ std::unique_ptr<RenderState> Bdpt::prepare(const RenderScene& scene, const rende
                                            SplatFilm* splats) const {
     auto state = std::make_unique<BdptState>();
     state->splats = splats && camera.hasImportance() ? splats : nullptr;
+    if (aovs_ && !aovs_->empty()) {
+        state->aovs = *aovs_;
+        state->lightEvents = LightEvents(scene);
+    }
     const std::string why =
         !splats ? "the film is a window of the image (a tile)" : "an orthographic camera or one with depth of field";
     state->lightTracingOff =
@@ -329,9 +375,11 @@ public:
           scene_(scene),
           camera_(camera),
           rng_(rng),
-          counters_(counters) {}
+          counters_(counters),
+          lightPaths_(state.aovs) {}
 
     FilmSample run(const Ray& cameraRay) {
+        out_.clearLightPaths(state_.aovs.size());
         Ray ray = cameraRay;
         for (int depth = 0;; ++depth) {
             const std::optional<Vertex> next = arrive(ray, depth);
@@ -372,15 +420,17 @@ private:
                                    flight.properties.sigmaA + flight.properties.sigmaS, camera_);
         if (flight.event == media::FlightEvent::Absorbed) {
             // Emission in a medium: found by the camera subpath alone (bdpt.h).
-            radiance_ += beta_ * flight.properties.emission / media::channelAverage(pdfRatio_);
+            const RGB emitted = beta_ * flight.properties.emission / media::channelAverage(pdfRatio_);
+            radiance_ += emitted;
+            lightPaths_.reach(PathEvent{EventType::Object}, emitted, out_);
             return std::nullopt;
         }
         const Vec3f start = z_.empty() ? ray.origin : z_.back().point();
         if (flight.event == media::FlightEvent::Escaped && !hit) {
             forEachLightAtInfinity(scene_, ray.direction, depth == 0, [&](int index, const RGB& le) {
-                radiance_ += beta_ * le *
-                             hitLightWeight(index, Vec3f(0.0f), -ray.direction, -ray.direction, lastPdf, lastDelta,
-                                            stretch.edge);
+                reachLight(index, beta_ * le *
+                                      hitLightWeight(index, Vec3f(0.0f), -ray.direction, -ray.direction, lastPdf,
+                                                     lastDelta, stretch.edge));
             });
             return std::nullopt;
         }
@@ -399,9 +449,9 @@ private:
             if (hit->light >= 0) {
                 const RGB le = emittedAtHit(scene_, *hit, v.wo);
                 if (!isBlack(le))
-                    radiance_ +=
-                        beta_ * le *
-                        hitLightWeight(hit->light, hit->point, hit->geometricNormal, v.wo, lastPdf, lastDelta, v.edge);
+                    reachLight(hit->light, beta_ * le *
+                                               hitLightWeight(hit->light, hit->point, hit->geometricNormal, v.wo,
+                                                              lastPdf, lastDelta, v.edge));
             }
             if (hit->lightShape || depth >= maxDepth_) return std::nullopt;
         } else if (v.walking ? ++interiorScatterings_ > kMaxInteriorScatterings : depth >= maxDepth_) {
@@ -409,6 +459,12 @@ private:
         }
         v.bounces = depth + !v.walking;
         return v;
+    }
+
+    // s = 0: the camera subpath reaches light `index`, which adds `value` (MIS-weighted).
+    void reachLight(int index, const RGB& value) {
+        radiance_ += value;
+        if (lightPaths_.active()) lightPaths_.reach(state_.lightEvents[index], value, out_);
     }
 
     // The MIS weight of strategy s for the path whose densities x_ holds.
@@ -467,8 +523,12 @@ private:
         appendCamera(x_, z_);
         x_[1] = densityOf(zt, emittedTowards(scene_, x0, zt), zt.fromOwn, false, crossing.edge);
         setAfterJoin(sh, 2, ls->wi);
-        radiance_ += zt.beta * f * ls->Li * crossing.tr.throughput *
-                     (sh.cosine(ls->wi) / (choice.probability * ls->pdf) * weight(nee, !ls->delta, 1));
+        const RGB value = zt.beta * f * ls->Li * crossing.tr.throughput *
+                          (sh.cosine(ls->wi) / (choice.probability * ls->pdf) * weight(nee, !ls->delta, 1));
+        radiance_ += value;
+        if (lightPaths_.active())
+            lightPaths_.connect(scatteringEvents(sh, zt, zt.wo, ls->wi, false), state_.lightEvents[choice.light], value,
+                                out_);
     }
 
     // s >= 2: y_{s-1} joined to z_{t-1}. False once the joins are over (the path too long).
@@ -507,8 +567,15 @@ private:
         setAfterJoin(sh, s + 1, dir);
         const Vertex& y1 = light_.vertices[0];
         const Vec3f toX2 = s >= 3 ? -light_.vertices[1].wo : -dir;
-        radiance_ += contribution * crossing.tr.throughput *
-                     weight(neeDensity(scene_, light_.origin, y1, toX2), !light_.origin.delta, s);
+        const RGB value = contribution * crossing.tr.throughput *
+                          weight(neeDensity(scene_, light_.origin, y1, toX2), !light_.origin.delta, s);
+        radiance_ += value;
+        if (lightPaths_.active()) {
+            const VertexEvents joined[] = {scatteringEvents(sh, zt, zt.wo, dir, false),
+                                           scatteringEvents(shy, y, -dir, y.wo, false)};
+            towardsLight(joined, std::span(light_.events).first(std::size_t(s - 2)), joinPath_);
+            lightPaths_.join(joinPath_, state_.lightEvents[light_.origin.light], value, out_);
+        }
         return true;
     }
 
@@ -520,6 +587,7 @@ private:
         if (!last_) return false;
         if (m >= 2) z_[m - 2].fromOther = last_->delta ? 1.0f : toArea(last_->pdfReverse, zt.point(), z_[m - 2]);
         z_.back().delta = last_->delta;
+        if (lightPaths_.active()) lightPaths_.scatter(scatteringEvents(sh, zt, zt.wo, last_->wi, last_->delta));
         beta_ *= last_->weight;
         etaScale_ *= last_->eta * last_->eta;
         if (!continueInMedium(beta_, etaScale_, depth, zt.walking, rng_)) return false;
@@ -551,6 +619,10 @@ private:
     float etaScale_ = 1.0f;
     int interiorScatterings_ = 0;
     std::optional<Bounce> last_;  // how the previous vertex was left
+    // The light path expression AOVs: the camera subpath's events so far, and a join's events
+    // towards the light (bdpt_events.h).
+    LightPathTracker lightPaths_;
+    std::vector<VertexEvents> joinPath_;
 };
 
 }  // namespace
@@ -564,10 +636,10 @@ FilmSample Bdpt::sample(const RenderState& renderState, const RenderScene& scene
     const int hero = scene.hasMedia() ? media::sampleHeroChannel(rng.next()) : -1;
     // With light tracing, a light subpath may reach maxDepth vertices (t = 1 joins the last to the
     // camera); without, maxDepth - 1 (every other strategy holds a camera vertex).
-    const LightSubpath light =
-        traceLightSubpath(scene, state.emitters, state.emitterChoice, state.emitterProbability,
-                          lightTracing ? maxDepth_ : maxDepth_ - 1, hero, cameraRay.time, rng, counters, arena);
-    if (lightTracing) splatToCamera(scene, camera, light, hero, rng, counters, joinArena, *state.splats);
+    const LightSubpath light = traceLightSubpath(scene, state.emitters, state.emitterChoice, state.emitterProbability,
+                                                 lightTracing ? maxDepth_ : maxDepth_ - 1, hero, cameraRay.time,
+                                                 !state.aovs.empty(), rng, counters, arena);
+    if (lightTracing) splatToCamera(state, scene, camera, light, hero, rng, counters, joinArena);
     return CameraWalk(state, maxDepth_, light, hero, scene, camera, rng, counters).run(cameraRay);
 }
 

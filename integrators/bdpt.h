@@ -72,6 +72,14 @@
 // as in `path`. Diffusion subsurface materials (SubsurfaceMethod::Diffusion) are rendered by the
 // random walk through their interior medium, not by integrators/diffusion_probe.h's profile.
 //
+// LIGHT PATH EXPRESSIONS (IntegratorSettings::lightPathAovs). Each strategy's path, read from the
+// camera (integrators/bdpt_events.h), is classified as `path` classifies its paths
+// (integrators/light_path_tracker.h): the camera subpath's events are followed vertex by vertex,
+// each join continues through the joined vertices' and the light subpath's recorded events to its
+// light, and the strategy's MIS-weighted light goes to every layer that accepts; t = 1 paths start
+// at the camera and splat into the splat film's layers. Layers of a disjoint cover of every path
+// sum to the beauty; no random number is drawn for them, so the beauty does not change.
+//
 // Paths hold at most maxDepth scattering vertices (s + t - 2, as `path` counts them; walk steps
 // apart); both subpaths play Russian roulette (integrators/russian_roulette.h). Two-sided surfaces are
 // shaded on the side a subpath arrives from, transmissive ones keep their orientation
@@ -80,14 +88,16 @@
 #pragma once
 
 #include <memory>
+#include <vector>
 
 #include "integrators/integrator.h"
+#include "integrators/light_path_tracker.h"
 
 namespace fluence::integrators {
 
 class Bdpt final : public Integrator {
 public:
-    explicit Bdpt(const IntegratorSettings& settings) : maxDepth_(settings.maxDepth) {}
+    explicit Bdpt(const IntegratorSettings& settings) : maxDepth_(settings.maxDepth), aovs_(settings.lightPathAovs) {}
 
     // The per-render state: the choice of light for light subpaths, and light tracing's splat
     // film (t = 1 is left out without one, or with an orthographic camera or depth of field, and the summary says why).
@@ -100,6 +110,7 @@ public:
 
 private:
     int maxDepth_;
+    std::shared_ptr<const std::vector<LightPathAov>> aovs_;  // null: none
 };
 
 }  // namespace fluence::integrators

@@ -76,4 +76,12 @@ void LightPathTracker::connect(const VertexEvents& vertex, const PathEvent& ligh
     }
 }
 
+void LightPathTracker::join(std::span<const VertexEvents> vertices, const PathEvent& light, const RGB& radiance,
+                            FilmSample& out) const {
+    if (entries_.empty()) return;
+    LightPathTracker joined(*this);
+    for (const VertexEvents& vertex : vertices) joined.scatter(vertex);
+    joined.reach(light, radiance, out);
+}
+
 }  // namespace fluence::integrators

@@ -1,5 +1,6 @@
 // LightPathTracker: the light path expression AOVs of one camera sample, followed as an integrator
-// extends the path (`path` does; integrators/path_tracer.cpp).
+// extends the path (`path` does, integrators/path_tracer.cpp; so does bdpt's camera subpath, whose
+// joins go on through the light subpath's events, join(), integrators/bdpt_events.h).
 //
 // A path's throughput is shared among the histories of lobe kinds it could have been labelled
 // with: at a vertex whose BSDF mixes kinds (render/bsdf.h, THE LOBE SPLIT) the part f_D / f of the
@@ -72,6 +73,10 @@ public:
     void reach(const PathEvent& light, const RGB& radiance, FilmSample& out) const;
     // A light sampled from `vertex` (next-event estimation) contributes `radiance` to the beauty.
     void connect(const VertexEvents& vertex, const PathEvent& light, const RGB& radiance, FilmSample& out) const;
+    // The path goes on through `vertices` (a subpath joined to it, integrators/bdpt_events.h) to
+    // `light`, contributing `radiance` to the beauty; this tracker stays where it is.
+    void join(std::span<const VertexEvents> vertices, const PathEvent& light, const RGB& radiance,
+              FilmSample& out) const;
 
 private:
     struct Entry {

@@ -44,7 +44,7 @@ const std::vector<IntegratorInfo>& integratorRegistry() {
          "point-light caustics seen directly (LS+DE) or lit onward, not through glass or mirrors (LS+DS+E); tiles and "
          "orthographic cameras and depth of field leave t = 1 out",
          [](const IntegratorSettings& s) { return std::make_unique<Bdpt>(s); },
-         false,
+         true,
          {}},
         {"sppm",
          "L(S|D|V)*(D|V)S*E, LS*E",

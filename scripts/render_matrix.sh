@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # render_matrix.sh FLUENCE OUTDIR: renders every sample scene of usd_samples/ with every integrator
 # at a small size (64x48, 4 spp, seed 0, 2 threads) into OUTDIR/<scene>--<integrator>.exr, plus the
-# path tracer with two light-path-expression AOVs. Used to show that a refactoring changes no pixel:
+# path tracer with two light-path-expression AOVs. INTEGRATORS="bdpt sppm" renders those methods only. Used to show that a refactoring changes no pixel:
 #   scripts/render_matrix.sh before/fluence /tmp/before
 #   scripts/render_matrix.sh build/apps/fluence /tmp/after
 #   scripts/render_matrix.sh --compare /tmp/before /tmp/after   # idiff -a (every subimage and channel) per image; exit 1 on any difference
@@ -28,7 +28,7 @@ scenes=(cornell_box.usda layered_room/shot.usda material_ball/material_ball.usda
         lights/emissive_mesh.usda lights/dome.usda lights/disk.usda lights/rect_texture.usda
         lights/sphere.usda lights/cylinder.usda lights/color_temperature.usda depth_of_field/chess_bokeh.usda motion/motion_blur.usda
         hair/hair.usda)
-integrators=(path direct whitted bdpt sppm radiosity naive)
+integrators=(${INTEGRATORS:-path direct whitted bdpt sppm radiosity naive})
 for scene in "${scenes[@]}"; do
   [[ -f usd_samples/$scene ]] || { echo "skipping missing usd_samples/$scene"; continue; }
   stem=${scene//\//_}; stem=${stem%.usda}

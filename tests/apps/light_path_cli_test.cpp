@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <filesystem>
+#include <string>
 #include <fstream>
 
 #include "tests/support/cli.h"
@@ -61,9 +62,13 @@ void expectLayersSumToBeauty(const test::ExrImage& img, const std::vector<std::s
 }
 
 TEST_F(LightPathCli, LpeOptionsBecomeLayersThatSumToTheBeauty) {
-    RunResult r = render(kCornellBox, "--lpe 'direct=C<RD>[LO]' --lpe 'indirect=C<RD>.+[LO]' --lpe 'seen=C[LO]'");
-    ASSERT_EQ(r.exitCode, 0) << r.err;
-    expectLayersSumToBeauty(test::readExr(tmp_.file("out.exr")), {"direct", "indirect", "seen"});
+    for (const char* integrator : {"path", "bdpt"}) {
+        RunResult r = render(kCornellBox, std::string("--integrator ") + integrator +
+                                              " --lpe 'direct=C<RD>[LO]' --lpe 'indirect=C<RD>.+[LO]'"
+                                              " --lpe 'seen=C[LO]'");
+        ASSERT_EQ(r.exitCode, 0) << integrator << ": " << r.err;
+        expectLayersSumToBeauty(test::readExr(tmp_.file("out.exr")), {"direct", "indirect", "seen"});
+    }
 }
 
 TEST_F(LightPathCli, LpeRenderVarsBecomeLayersAndTheCommandLineReplacesOne) {
@@ -91,7 +96,7 @@ TEST_F(LightPathCli, BadLpeOptionsAreUsageErrors) {
     EXPECT_EQ(r.exitCode, 2);
     EXPECT_NE(r.err.find("taken by the image's own channels"), std::string::npos) << r.err;
 
-    r = render(kCornellBox, "--integrator bdpt --lpe 'all=C.*L'");
+    r = render(kCornellBox, "--integrator whitted --lpe 'all=C.*L'");
     EXPECT_EQ(r.exitCode, 2);
     EXPECT_NE(r.err.find("does not write light path expression AOVs"), std::string::npos) << r.err;
     EXPECT_FALSE(fs::exists(tmp_.file("out.exr")));

@@ -118,6 +118,45 @@ TEST(SplatFilm, FilmResolvesSplatsPerLightPathOfTheImage) {
     EXPECT_FLOAT_EQ(image.pixel(1, 0)[2], 3.0f + 8.0f / 2.0f);
 }
 
+// Light path layers: each keeps its own sums, apart from the beauty's and the other layers', and
+// the film adds them to its light path layers as it adds the beauty's to the beauty.
+TEST(SplatFilm, LayersKeepTheirOwnSumsAndResolveIntoTheFilmsLayers) {
+    SplatFilm layered(2, 1, 0, 0, 2);
+    EXPECT_EQ(layered.layers(), 2);
+    EXPECT_TRUE(layered.add(0.5f, 0.5f, RGB(1.0f)));
+    EXPECT_TRUE(layered.addToLayer(0, 0.5f, 0.5f, RGB(2.0f)));
+    EXPECT_TRUE(layered.addToLayer(1, 1.5f, 0.5f, RGB(3.0f)));
+    EXPECT_FALSE(layered.addToLayer(1, 1.5f, 0.5f, RGB(-3.0f)));
+    EXPECT_EQ(layered.sum(0, 0)[0], 1.0);
+    EXPECT_EQ(layered.sum(1, 0)[0], 0.0);
+    EXPECT_EQ(layered.layerSum(0, 0, 0)[1], 2.0);
+    EXPECT_EQ(layered.layerSum(1, 0, 0)[1], 0.0);
+    EXPECT_EQ(layered.layerSum(1, 1, 0)[2], 3.0);
+    EXPECT_EQ(layered.fixedSums().size(), std::size_t(2 * 3 * 3));
+
+    Film film(2, 1, 100.0f, {"a", "b"});
+    FilmSample sample;
+    sample.radiance = RGB(1.0f);
+    sample.clearLightPaths(2);
+    sample.addLightPath(1, RGB(0.25f));
+    film.add(0, 0, sample);
+    film.add(1, 0, sample);  // 2 light paths over 2 pixels
+    SplatFilm& splats = film.enableSplats();
+    ASSERT_EQ(splats.layers(), 2);
+    splats.addToLayer(1, 0.5f, 0.5f, RGB(0.5f));
+    const Image image = film.resolve();
+    EXPECT_FLOAT_EQ(image.pixel(0, 0)[image.channelIndex("b.R")], 0.25f + 0.5f);
+    EXPECT_FLOAT_EQ(image.pixel(1, 0)[image.channelIndex("b.R")], 0.25f);
+    EXPECT_FLOAT_EQ(image.pixel(0, 0)[image.channelIndex("a.R")], 0.0f);
+    EXPECT_FLOAT_EQ(image.pixel(0, 0)[0], 1.0f);
+
+    std::stringstream bytes;  // a render checkpoint keeps the layers' splats
+    writeFilmState(film, bytes);
+    Film restored(2, 1, 100.0f, {"a", "b"});
+    readFilmState(bytes, restored);
+    EXPECT_EQ(restored.resolve().pixels, image.pixels);
+}
+
 // A render checkpoint (core/film_state.h) keeps the splats: the film read back resolves the same.
 TEST(SplatFilm, FilmStateKeepsTheSplats) {
     Film film(3, 2, 100.0f);

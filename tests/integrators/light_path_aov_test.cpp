@@ -15,6 +15,7 @@
 #include "media/subsurface_medium.h"
 #include "render/bsdf_arena.h"
 #include "render/material_bsdf.h"
+#include "tests/integrators/light_path_layers.h"
 #include "tests/integrators/render_support.h"
 #include "tests/support/chi2.h"
 #include "tests/support/scenes.h"
@@ -22,125 +23,25 @@
 namespace fluence::integrators {
 namespace {
 
-using Layers = std::vector<std::pair<std::string, std::string>>;  // name, expression
-
-IntegratorSettings withLayers(const Layers& layers, int maxDepth = 64) {
-    auto aovs = std::make_shared<std::vector<LightPathAov>>();
-    for (const auto& [name, expression] : layers) aovs->push_back({name, LightPathExpression(expression)});
-    IntegratorSettings s;
-    s.maxDepth = maxDepth;
-    s.lightPathAovs = std::move(aovs);
-    return s;
-}
-
-std::vector<std::string> namesOf(const Layers& layers) {
-    std::vector<std::string> names;
-    for (const auto& layer : layers) names.push_back(layer.first);
-    return names;
-}
-
-// A size x size render of `desc` with the layers, resolved.
-Image renderLayers(const render::SceneDescription& desc, const Layers& layers, int size, int spp, int maxDepth = 64) {
-    render::RenderScene scene(desc);
-    render::Camera camera(*desc.camera, size, size);
-    Film film(size, size, camera.farClip(), namesOf(layers));
-    PathTracer integrator(withLayers(layers, maxDepth));
-    RenderSettings settings;
-    settings.samplesPerPixel = spp;
-    render(scene, camera, integrator, settings, film);
-    return film.resolve();
-}
-
-render::MaterialDesc plastic(std::string name, const RGB& colour, float roughness) {
-    render::MaterialDesc m = test::diffuseMaterial(std::move(name), colour);
-    m.specular = 1.0f;
-    m.roughness = roughness;
-    return m;
-}
-
-// Every kind of event Fluence labels: a plastic floor (D and G lobes), a rough metal ball (G), a
-// smooth glass ball with a scattering interior (T S, V), a subsurface ball, an emissive panel (O),
-// a rect light, a sphere light and a dome (L).
-render::SceneDescription everyKindOfEvent() {
-    render::SceneDescription s;
-    s.materials.push_back(plastic("/plastic", RGB(0.6f, 0.5f, 0.4f), 0.4f));
-    s.materials.push_back(test::metalMaterial("/metal", RGB(0.9f, 0.7f, 0.5f), 0.3f));
-    render::MaterialDesc murky = test::glassMaterial("/murky", 0.0f);
-    murky.interior = media::MediumProperties{RGB(0.2f), RGB(1.5f, 1.0f, 0.5f), RGB(0.0f), 0.3f};
-    s.materials.push_back(murky);
-    render::MaterialDesc skin;
-    skin.name = "/skin";
-    skin.subsurface = 1.0f;
-    skin.subsurfaceColor = RGB(0.9f, 0.5f, 0.3f);
-    skin.specular = 0.0f;
-    skin.interior = media::subsurfaceMedium(skin.subsurfaceColor, RGB(0.1f), 0.0f);
-    s.materials.push_back(skin);
-    s.materials.push_back(test::diffuseMaterial("/panel", RGB(0.0f), RGB(3.0f, 2.0f, 1.0f)));
-    s.meshes.push_back(test::quadMesh("/floor", {{{-3, -3, -1}, {3, -3, -1}, {3, 3, -1}, {-3, 3, -1}}}, 0));
-    s.meshes.push_back(test::roundSphereMesh(0.4f, 32, 16, 1, Vec3f(-0.6f, 0.0f, -0.55f)));
-    s.meshes.push_back(test::roundSphereMesh(0.4f, 32, 16, 2, Vec3f(0.6f, 0.0f, -0.55f)));
-    s.meshes.push_back(test::roundSphereMesh(0.35f, 32, 16, 3, Vec3f(0.0f, 0.9f, -0.6f)));
-    s.meshes.push_back(test::quadMesh("/panel", {{{-1, 2, -1}, {1, 2, -1}, {1, 2, 0}, {-1, 2, 0}}}, 4));
-    s.lights.push_back(test::rectLight("/lights/key", 1.0f, 1.0f, RGB(8.0f), Matrix4::translate({0.0, 0.0, 2.0})));
-    s.lights.push_back(test::sphereLight("/lights/fill", 0.2f, RGB(10.0f, 10.0f, 12.0f), Vec3d(-2.0, -1.0, 1.0)));
-    s.lights.push_back(test::domeLight("/lights/sky", RGB(0.1f)));
-    s.camera = test::lookAtOriginCamera(4.0f);
-    return s;
-}
-
-RGB layerAt(const Image& image, const std::string& layer, int x, int y) {
-    const float* p = image.pixel(x, y);
-    return RGB(p[image.channelIndex(layer + ".R")], p[image.channelIndex(layer + ".G")],
-               p[image.channelIndex(layer + ".B")]);
-}
-RGB beautyAt(const Image& image, int x, int y) {
-    const float* p = image.pixel(x, y);
-    return RGB(p[image.channelIndex("R")], p[image.channelIndex("G")], p[image.channelIndex("B")]);
-}
-
-// Per pixel and channel, the layers sum to the beauty up to float rounding (each sample's layers
-// are its beauty's terms, split), and every layer holds some light.
-void expectLayersSumToBeauty(const Image& image, const Layers& layers) {
-    std::vector<double> layerTotal(layers.size(), 0.0);
-    for (int y = 0; y < image.height; ++y)
-        for (int x = 0; x < image.width; ++x) {
-            const RGB beauty = beautyAt(image, x, y);
-            RGB sum(0.0f);
-            for (std::size_t l = 0; l < layers.size(); ++l) {
-                const RGB v = layerAt(image, layers[l].first, x, y);
-                sum += v;
-                layerTotal[l] += luminance(v);
-            }
-            for (int c = 0; c < 3; ++c)
-                ASSERT_NEAR(sum[c], beauty[c], 1e-5f * beauty[c] + 1e-7f)
-                    << "pixel " << x << "," << y << " channel " << c;
-        }
-    for (std::size_t l = 0; l < layers.size(); ++l) EXPECT_GT(layerTotal[l], 0.0) << layers[l].first << " is empty";
-}
+using namespace test_support;
 
 TEST(LightPathAovs, LayersOfADisjointCoverSumToTheBeauty) {
-    // Paths through a medium, then the others by their first event.
-    const Layers cover = {{"emission", "C[LO]"},
-                          {"volume", "C.*V.*[LO]"},
-                          {"diffuse", "C<RD>[^V]*[LO]"},
-                          {"glossy", "C<R[GS]>[^V]*[LO]"},
-                          {"transmission", "C<T.>[^V]*[LO]"}};
-    expectLayersSumToBeauty(renderLayers(everyKindOfEvent(), cover, 24, 16), cover);
+    const Layers cover = byFirstEvent();
+    expectLayersSumToBeauty(renderLayers<PathTracer>(everyKindOfEvent(), cover, 24, 16), cover);
 }
 
 TEST(LightPathAovs, LightLabelsSplitTheBeautyByLight) {
-    const Layers byLight = {
-        {"key", "C.*<L.'key'>"}, {"fill", "C.*<L.'fill'>"}, {"sky", "C.*<L.'sky'>"}, {"panel", "C.*O"}};
-    expectLayersSumToBeauty(renderLayers(everyKindOfEvent(), byLight, 24, 16), byLight);
+    const Layers lights = byLight();
+    expectLayersSumToBeauty(renderLayers<PathTracer>(everyKindOfEvent(), lights, 24, 16), lights);
 }
 
 TEST(LightPathAovs, SubsurfaceEventsAreLabelled) {
-    const Layers bySubsurface = {{"subsurface", "C.*'subsurface'.*[LO]"}, {"other", "C[^'subsurface']*[LO]"}};
+    const Layers bySubsurface = bySubsurfaceOrNot();
     render::SceneDescription walk = everyKindOfEvent();
-    expectLayersSumToBeauty(renderLayers(walk, bySubsurface, 24, 16), bySubsurface);
+    expectLayersSumToBeauty(renderLayers<PathTracer>(walk, bySubsurface, 24, 16), bySubsurface);
     render::SceneDescription diffusion = walk;
     diffusion.materials[3].subsurfaceMethod = render::SubsurfaceMethod::Diffusion;
-    expectLayersSumToBeauty(renderLayers(diffusion, bySubsurface, 24, 16), bySubsurface);
+    expectLayersSumToBeauty(renderLayers<PathTracer>(diffusion, bySubsurface, 24, 16), bySubsurface);
 }
 
 // On Lambertian surfaces (one lobe kind), the light that arrives after one diffuse reflection is
@@ -153,8 +54,8 @@ TEST(LightPathAovs, DiffuseFirstBounceIsWhatOneBounceAdds) {
         m = test::diffuseMaterial(m.name, RGB(0.5f), emission);
     }
     const Layers layers = {{"seen", "C[LO]"}, {"bounce", "C<RD>[LO]"}};
-    const Image full = renderLayers(s, layers, 16, 8);
-    const Image oneBounce = renderLayers(s, {}, 16, 8, 1);
+    const Image full = renderLayers<PathTracer>(s, layers, 16, 8);
+    const Image oneBounce = renderLayers<PathTracer>(s, {}, 16, 8, 1);
     for (int y = 0; y < full.height; ++y)
         for (int x = 0; x < full.width; ++x) {
             const RGB expected = beautyAt(oneBounce, x, y),
@@ -224,8 +125,8 @@ TEST(LightPathAovs, DiffuseAndGlossyLayersMatchAPlainLightSamplingEstimate) {
 
 TEST(LightPathAovs, BeautyIsTheSameWithAndWithoutLayers) {
     const render::SceneDescription s = everyKindOfEvent();
-    const Image with = renderLayers(s, {{"diffuse", "C<RD>.*L"}, {"all", "C.*"}}, 16, 4);
-    const Image without = renderLayers(s, {}, 16, 4);
+    const Image with = renderLayers<PathTracer>(s, {{"diffuse", "C<RD>.*L"}, {"all", "C.*"}}, 16, 4);
+    const Image without = renderLayers<PathTracer>(s, {}, 16, 4);
     for (int y = 0; y < with.height; ++y)
         for (int x = 0; x < with.width; ++x) {
             const RGB a = beautyAt(with, x, y), b = beautyAt(without, x, y);
