@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "core/blackbody.h"
+#include "texture/ies_file.h"
 #include "texture/image_loader.h"
 
 namespace fluence::delegate {
@@ -24,13 +25,49 @@ bool authorsShaping(const usd::PrimSpec& prim) {
     });
 }
 
-render::LightShapingDesc shapingOf(const PrimReader& prim) {
+// The IES profile inputs:shaping:ies:file names, read into `shaping`; a file that cannot be read
+// (missing, or not LM-63 as texture/ies_file.h reads it) warns, naming it, and is left out.
+void readIesProfile(const PrimReader& prim, render::LightShapingDesc& shaping, const Warn& warn) {
+    std::string file = prim.token({"inputs:shaping:ies:file", "shaping:ies:file"}, "");
+    if (file.empty()) return;
+    try {
+        shaping.ies = std::make_shared<const texture::IesTable>(texture::readIesFile(file));
+    } catch (const texture::IesFileError& e) {
+        warn(std::string(e.what()) + "; the light is rendered without its IES profile");
+        return;
+    }
+    shaping.iesAngleScale =
+        static_cast<float>(prim.number({"inputs:shaping:ies:angleScale", "shaping:ies:angleScale"}, 0.0));
+    shaping.iesNormalize = prim.boolean({"inputs:shaping:ies:normalize", "shaping:ies:normalize"}, false);
+}
+
+render::LightShapingDesc shapingOf(const PrimReader& prim, const Warn& warn) {
     render::LightShapingDesc s;
+    readIesProfile(prim, s, warn);
     s.coneAngleDegrees = static_cast<float>(prim.number({"inputs:shaping:cone:angle", "shaping:cone:angle"}, 90.0));
     s.coneSoftness = static_cast<float>(prim.number({"inputs:shaping:cone:softness", "shaping:cone:softness"}, 0.0));
     s.focus = static_cast<float>(prim.number({"inputs:shaping:focus", "shaping:focus"}, 0.0));
     s.focusTint = RGB(prim.vec3({"inputs:shaping:focusTint", "shaping:focusTint"}, {0.0, 0.0, 0.0}));
     return s;
+}
+
+// UsdLux's colour temperature tint (OpenUSD PR 3182): the blackbody colour divided by that of
+// 6500 K, so the default temperature is exactly white, then scaled to luminance 1.
+RGB colorTemperatureTint(double kelvin) {
+    RGB ratio = blackbodyRgb(kelvin) / blackbodyRgb(6500.0);
+    return ratio / luminance(ratio);
+}
+
+// inputs:diffuse and inputs:specular scale a light's diffuse and specular reflection separately;
+// Fluence lights every lobe alike, so a value other than 1 warns and is not applied.
+void warnUnsupportedMultipliers(const PrimReader& prim, const Warn& warn) {
+    for (const char* name : {"diffuse", "specular"}) {
+        std::string input = std::string("inputs:") + name;
+        double value = prim.number({input.c_str(), name}, 1.0);
+        if (value != 1.0)
+            warn(input + " = " + std::to_string(value) +
+                 " is not supported (every reflection is lit alike); 1 is used");
+    }
 }
 
 // A light input connected to a shader output (an Arnold or RenderMan light shader, say): Fluence
@@ -116,11 +153,10 @@ std::optional<render::LightDesc> lightFromPrim(const PrimReader& prim, const Mat
             warn("colorTemperature " + std::to_string(kelvin) + " K is outside UsdLux's 1000-10000 K; clamped");
             kelvin = std::clamp(std::isnan(kelvin) ? 6500.0 : kelvin, 1000.0, 10000.0);
         }
-        light.radiance *= blackbodyRgb(kelvin);
+        light.radiance *= colorTemperatureTint(kelvin);
     }
+    warnUnsupportedMultipliers(prim, warn);
     bool shaped = appliesSchema(prim.prim(), "ShapingAPI") || authorsShaping(prim.prim());
-    if (prim.value({"inputs:shaping:ies:file", "shaping:ies:file"}))
-        warn("IES profiles are not supported yet; ignored");
 
     if (type == "RectLight") {
         light.type = render::LightType::Rect;
@@ -170,7 +206,7 @@ std::optional<render::LightDesc> lightFromPrim(const PrimReader& prim, const Mat
         if (light.type == render::LightType::Distant || light.type == render::LightType::Dome)
             warn("shaping is not applied to " + type + "s; ignored");
         else
-            light.shaping = shapingOf(prim);
+            light.shaping = shapingOf(prim, warn);
     }
     return light;
 }

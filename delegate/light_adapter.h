@@ -20,10 +20,14 @@
 // | DomeLight_1   | as DomeLight, and poleAxis (scene)                                           |
 // | ShapingAPI    | shaping:cone:angle (90), shaping:cone:softness (0), shaping:focus (0),        |
 // |               | shaping:focusTint (0,0,0): read on rect, disk, sphere and cylinder lights     |
-// |               | that apply ShapingAPI or author any of them (render/light_shaping.h)          |
+// |               | that apply ShapingAPI or author any of them (render/light_shaping.h);         |
+// |               | shaping:ies:file (none), shaping:ies:angleScale (0), shaping:ies:normalize    |
+// |               | (false): the profile read by texture/ies_file.h (render/ies_profile.h)        |
 //
-// - Colour temperature: color is multiplied by core/blackbody.h's blackbodyRgb (luminance 1, as
-//   UsdLuxBlackbodyTemperatureAsRgb), clamped with a warning to UsdLux's valid 1000-10000 K.
+// - Colour temperature: color is multiplied by core/blackbody.h's blackbodyRgb divided by that of
+//   6500 K and scaled to luminance 1, so 6500 K is exactly white as the clarified UsdLux
+//   documentation (OpenUSD PR 3182) requires; clamped with a warning to UsdLux's valid 1000-10000 K.
+// - inputs:diffuse and inputs:specular other than 1 warn and are not applied.
 // - Textures are read by texture::loadImage (linear; sRGB files decoded; the alpha channel and any
 //   channel past the third are dropped, one channel is grey). A file that cannot be read warns,
 //   naming it, and the light keeps its constant colour.
@@ -37,7 +41,10 @@
 //   render/lights/line_light.h. A normalized sphere of radius 0 is a point light, a normalized
 //   cylinder of radius 0 a line light; unnormalized, they emit nothing and are skipped with a
 //   warning.
-// - Not supported, with one warning each: shaping:ies:*, shaping on dome and distant lights.
+// - An IES file that is missing or cannot be read warns, naming it (file:line for a malformed
+//   one), and the light is rendered without the profile (a missing file is an error before the
+//   render starts unless --allow-missing, as every missing input asset is).
+// - Not supported, with one warning each: shaping on dome and distant lights.
 #pragma once
 
 #include <functional>

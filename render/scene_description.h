@@ -18,6 +18,7 @@
 #include "render/curves_description.h"
 #include "media/medium.h"
 #include "render/points_description.h"
+#include "texture/ies_file.h"
 #include "texture/texture_types.h"
 #include "volumes/grid_medium_params.h"
 
@@ -227,6 +228,11 @@ struct LightShapingDesc {
     float coneSoftness = 0.0f;       // 0: hard edge; 1: fades from the axis to the cone's edge
     float focus = 0.0f;              // off-axis cosine power
     RGB focusTint{0.0f};             // what the focus fades towards off the axis
+    // inputs:shaping:ies:file read by texture::readIesFile (null: none), and how it is applied
+    // (render/ies_profile.h).
+    std::shared_ptr<const texture::IesTable> ies;
+    float iesAngleScale = 0.0f;
+    bool iesNormalize = false;
 };
 
 struct LightDesc {

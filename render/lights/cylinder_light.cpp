@@ -19,7 +19,7 @@ Cylinder cylinderOf(const LightDesc& d) {
     c.radius = d.radius * static_cast<float>(std::sqrt(sectionScale));
     float area = 2.0f * kPi * c.radius * c.length;
     c.radiance = d.normalize && area > 0.0f ? d.radiance / area : d.radiance;
-    if (d.shaping) c.shaping = LightShaping(*d.shaping, normalize(Vec3f(t.transformVector({0.0, 0.0, -1.0}))));
+    if (d.shaping) c.shaping = LightShaping(*d.shaping, normalize(Vec3f(t.transformVector({0.0, 0.0, -1.0}))), t);
     return c;
 }
 

@@ -15,7 +15,7 @@ DiskLight::DiskLight(const LightDesc& d) : Light(d.name), radiance_(d.radiance) 
     radius_ = static_cast<float>(d.radius * std::sqrt(areaScale));
     area_ = kPi * radius_ * radius_;
     if (d.normalize && area_ > 0.0f) radiance_ /= area_;
-    if (d.shaping) shaping_ = LightShaping(*d.shaping, frame_.n);
+    if (d.shaping) shaping_ = LightShaping(*d.shaping, frame_.n, d.transform);
 }
 
 std::optional<LightSample> DiskLight::sample(const Vec3f& p, Vec2f u) const {

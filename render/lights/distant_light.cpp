@@ -16,9 +16,10 @@ DistantLight::DistantLight(const LightDesc& d) : InfiniteLight(d.name), value_(d
     double halfAngle = std::clamp(double(d.angleDegrees), 0.0, 359.999) * 0.5 * std::numbers::pi / 180.0;
     oneMinusCosMax_ = halfAngle > 0.0 ? 2.0 * std::sin(0.5 * halfAngle) * std::sin(0.5 * halfAngle) : 0.0;
     if (!isDelta() && d.normalize) {
-        // Irradiance of a uniform disk on a surface facing it: E = L * pi * sin^2(theta_max).
-        double sinMax = std::sin(std::min(halfAngle, std::numbers::pi / 2));
-        value_ /= static_cast<float>(std::numbers::pi * sinMax * sinMax);
+        // UsdLux's sizeFactor: pi sin^2(theta_max), the irradiance a uniform disk of radiance 1
+        // gives a surface facing it, up to a hemisphere; (2 - sin^2(theta_max)) pi beyond.
+        double sin2 = std::sin(halfAngle) * std::sin(halfAngle);
+        value_ /= static_cast<float>(std::numbers::pi * (halfAngle <= std::numbers::pi / 2 ? sin2 : 2.0 - sin2));
     }
 }
 

@@ -7,8 +7,11 @@
 // | normalize      | bool  | false        | the value is the irradiance of the disk        |
 // | shaping:*      |       |              | ignored (the delegate warns)                   |
 // angle = 0 is a delta light whose value is the irradiance on a surface facing it. For angle > 0
-// the authored radiance is the disk's radiance, unless `normalize` is on, in which case it is the
-// irradiance the whole disk delivers; the disk is sampled uniformly in its cone.
+// the authored radiance is the disk's radiance, unless `normalize` is on, in which case it is
+// divided by UsdLux's sizeFactor, pi sin^2(theta_max) (theta_max half the angle): the value is then
+// the irradiance the whole disk delivers to a surface facing it; past a hemisphere (angle > 180)
+// sizeFactor is (2 - sin^2(theta_max)) pi, as OpenUSD PR 3182 defines it. The disk is sampled
+// uniformly in its cone.
 // Emission sampling: a direction by sample() (towards the light, reversed), and a point on the
 // disk of the scene's bounding radius facing it (emission_at_infinity.h).
 #pragma once

@@ -34,14 +34,21 @@ std::optional<LightBounds> PointLight::bounds() const {
 }
 
 std::optional<EmissionSample> PointLight::sampleEmission(Vec2f, Vec2f uDirection, const SceneBounds&) const {
+    if (shaping_.samplesDirections()) {
+        auto s = shaping_.sampleDirection(uDirection);
+        if (!s) return std::nullopt;
+        return EmissionSample{
+            position_, s->direction, s->direction, intensity_ * shaping_.factor(s->direction), {1.0f, s->pdf, 1.0f},
+            true};
+    }
     Vec3f direction = sampleUniformSphere(uDirection);
     return EmissionSample{
         position_, direction, direction, intensity_ * shaping_.factor(direction), {1.0f, kUniformSpherePdf, 1.0f},
         true};
 }
 
-EmissionDensity PointLight::emissionDensity(const Vec3f&, const Vec3f&, const SceneBounds&) const {
-    return {1.0f, kUniformSpherePdf, 1.0f};
+EmissionDensity PointLight::emissionDensity(const Vec3f&, const Vec3f& direction, const SceneBounds&) const {
+    return {1.0f, shaping_.samplesDirections() ? shaping_.directionPdf(direction) : kUniformSpherePdf, 1.0f};
 }
 
 }  // namespace fluence::render

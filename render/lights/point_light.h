@@ -1,6 +1,7 @@
 // The point light a UsdLux SphereLight with treatAsPoint becomes (sphere_light.h says how bright
 // it is): a delta light, whose sample() returns the irradiance I / d^2 with pdf 1. Emission
-// sampling draws a direction uniformly over the sphere (shaping only weights it).
+// sampling draws a direction uniformly over the sphere (cone and focus only weight it), or, with
+// an IES profile, from the shaping's direction density (render/light_shaping.h).
 #pragma once
 
 #include "render/light.h"

@@ -27,7 +27,7 @@ RectLight::RectLight(const LightDesc& d) : Light(d.name), radiance_(d.radiance),
         if (std::any_of(weights.begin(), weights.end(), [&](float w) { return w != weights[0]; }))
             distribution_.emplace(texture_->width, texture_->height, std::move(weights));
     }
-    if (d.shaping) shaping_ = LightShaping(*d.shaping, normal_);
+    if (d.shaping) shaping_ = LightShaping(*d.shaping, normal_, d.transform);
     uniformRadiance_ = !texture_ && !shaping_.active();
 }
 

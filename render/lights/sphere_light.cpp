@@ -14,8 +14,9 @@ float sphereLightRadius(const LightDesc& d) {
 }
 
 LightShaping sphereLightShaping(const LightDesc& d) {
-    return d.shaping ? LightShaping(*d.shaping, normalize(Vec3f(d.transform.transformVector({0.0, 0.0, -1.0}))))
-                     : LightShaping();
+    return d.shaping
+               ? LightShaping(*d.shaping, normalize(Vec3f(d.transform.transformVector({0.0, 0.0, -1.0}))), d.transform)
+               : LightShaping();
 }
 
 namespace {

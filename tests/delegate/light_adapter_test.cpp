@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <fstream>
 
 #include "core/blackbody.h"
 #include "tests/delegate/delegate_test_support.h"
@@ -90,10 +91,17 @@ def RectLight "Off"
     float inputs:colorTemperature = 3000
 }
 )");
-    RGB warm = blackbodyRgb(3000.0) * 2.0f;
+    // UsdLux (OpenUSD PR 3182): the blackbody colour relative to 6500 K's, which is white, at
+    // luminance 1.
+    auto tint = [](double kelvin) {
+        RGB ratio = blackbodyRgb(kelvin) / blackbodyRgb(6500.0);
+        return ratio / luminance(ratio);
+    };
+    RGB warm = tint(3000.0) * 2.0f;
     EXPECT_NEAR(light(p, "/Warm").radiance.x, warm.x, 1e-5f);
     EXPECT_NEAR(light(p, "/Warm").radiance.z, warm.z, 1e-5f);
-    EXPECT_NEAR(light(p, "/TooCold").radiance.x, blackbodyRgb(1000.0).x, 1e-5f);
+    EXPECT_GT(warm.x, warm.z);
+    EXPECT_NEAR(light(p, "/TooCold").radiance.x, tint(1000.0).x, 1e-5f);
     EXPECT_TRUE(warned(p, "/TooCold: colorTemperature 500"));
     EXPECT_EQ(light(p, "/Off").radiance, RGB(1.0f)) << "only with enableColorTemperature";
 }
@@ -171,7 +179,6 @@ def DomeLight "Dome" (
     EXPECT_FALSE(light(p, "/Plain").shaping);
     EXPECT_FALSE(light(p, "/Dome").shaping);
     EXPECT_TRUE(warned(p, "/Dome: shaping is not applied to DomeLights"));
-    EXPECT_TRUE(warned(p, "/Dome: IES profiles are not supported yet"));
 }
 
 TEST(LightAdapter, DomeAndRectTexturesAreLoadedOrWarnedAbout) {
@@ -224,6 +231,50 @@ def RectLight "Panel"
     EXPECT_TRUE(light(p, "/Square").texture) << "pre-21.05 name";
     EXPECT_TRUE(warned(p, "/Square: texture '" + dir.file("square.exr") + "' is 4x4, not 2:1"));
     EXPECT_TRUE(light(p, "/Panel").texture);
+}
+
+TEST(LightAdapter, IesProfilesAreReadOrWarnedAbout) {
+    test::TempDir dir;
+    std::ofstream(dir.file("lamp.ies")) << "IESNA:LM-63-2002\nTILT=NONE\n1 -1 2 2 1 1 2 0 0 0\n1 1 10\n0 90\n0\n5 3\n";
+    std::ofstream(dir.file("bad.ies")) << "IESNA:LM-63-2002\nTILT=NONE\n1 -1 2 2 1 1 2 0 0 0\n1 1 10\n0 90\n0\n5 x\n";
+    auto p = populate(R"(
+def SphereLight "Lamp"
+{
+    asset inputs:shaping:ies:file = @)" +
+                      dir.file("lamp.ies") + R"(@
+    float inputs:shaping:ies:angleScale = -0.25
+    bool inputs:shaping:ies:normalize = 1
+}
+def DiskLight "Default"
+{
+    asset inputs:shaping:ies:file = @)" +
+                      dir.file("lamp.ies") + R"(@
+}
+def RectLight "Lost"
+{
+    asset inputs:shaping:ies:file = @)" +
+                      dir.file("lost.ies") + R"(@
+}
+def CylinderLight "Bad"
+{
+    asset inputs:shaping:ies:file = @)" +
+                      dir.file("bad.ies") + R"(@
+}
+)");
+    const auto& lamp = *light(p, "/Lamp").shaping;
+    ASSERT_TRUE(lamp.ies);
+    EXPECT_EQ(lamp.ies->candela, (std::vector<float>{10.0f, 6.0f})) << "times the candela multiplier";
+    EXPECT_EQ(lamp.iesAngleScale, -0.25f);
+    EXPECT_TRUE(lamp.iesNormalize);
+    const auto& plain = *light(p, "/Default").shaping;
+    ASSERT_TRUE(plain.ies);
+    EXPECT_EQ(plain.iesAngleScale, 0.0f);
+    EXPECT_FALSE(plain.iesNormalize);
+    EXPECT_EQ(plain.coneAngleDegrees, 90.0f);
+    EXPECT_FALSE(light(p, "/Lost").shaping->ies);
+    EXPECT_TRUE(warned(p, "/Lost: " + dir.file("lost.ies") + ": cannot be opened; the light is rendered without"));
+    EXPECT_FALSE(light(p, "/Bad").shaping->ies);
+    EXPECT_TRUE(warned(p, "/Bad: " + dir.file("bad.ies") + ":7: 'x' is not a number (the candela values)"));
 }
 
 TEST(LightAdapter, DomeLight1PoleAxisTurnsOnlyTheDome) {
