@@ -89,6 +89,14 @@ def Mesh "Plane"
 
 const std::string kBound = "    rel material:binding = </Looks/M>";
 
+// The same scene with the plane's subdivisionScheme `scheme`: "catmullClark" makes it a subdivision
+// surface whose limit is the same flat square (one face, corners interpolated), st following xy.
+std::string withScheme(std::string usda, const std::string& scheme) {
+    return usda.replace(usda.find("\"none\""), 6, "\"" + scheme + "\"");
+}
+
+const std::string kSchemes[] = {"none", "catmullClark"};
+
 float hitDistance(const render::SceneDescription& scene, const Vec3f& origin, const Vec3f& direction) {
     render::RenderScene built(scene);
     render::Ray ray;
@@ -100,19 +108,22 @@ float hitDistance(const render::SceneDescription& scene, const Vec3f& origin, co
 
 TEST(Displacement, PlaneMovesByTheConstantAlongItsNormal) {
     const float d = 0.25f;
-    Described flat = describe(plane(""));
-    Described raised = describe(plane(kBound) + material("            float inputs:displacement = 0.25"));
-    ASSERT_TRUE(raised.warnings.empty()) << raised.warnings.front();
-    const render::MeshDesc& mesh = raised.scene.meshes.at(0);
-    EXPECT_GT(mesh.indices.size(), 6u) << "diced finer than its two triangles";
-    for (const Vec3f& p : mesh.positions) EXPECT_FLOAT_EQ(p.z, d);
-    for (const Vec3f& n : mesh.cornerNormals) EXPECT_NEAR(n.z, 1.0f, 1e-6f);
-    // A ray straight down meets the displaced plane d sooner.
-    for (const Vec3f& origin : {Vec3f(0.3f, 0.6f, 5.0f), Vec3f(0.77f, 0.21f, 5.0f)}) {
-        const float before = hitDistance(flat.scene, origin, Vec3f(0, 0, -1));
-        const float after = hitDistance(raised.scene, origin, Vec3f(0, 0, -1));
-        EXPECT_NEAR(before, 5.0f, 1e-5f);
-        EXPECT_NEAR(before - after, d, 1e-5f);
+    for (const std::string& scheme : kSchemes) {
+        Described flat = describe(withScheme(plane(""), scheme));
+        Described raised =
+            describe(withScheme(plane(kBound), scheme) + material("            float inputs:displacement = 0.25"));
+        ASSERT_TRUE(raised.warnings.empty()) << raised.warnings.front();
+        const render::MeshDesc& mesh = raised.scene.meshes.at(0);
+        EXPECT_GT(mesh.indices.size(), 6u) << scheme << ": diced finer than two triangles";
+        for (const Vec3f& p : mesh.positions) EXPECT_FLOAT_EQ(p.z, d) << scheme;
+        for (const Vec3f& n : mesh.cornerNormals) EXPECT_NEAR(n.z, 1.0f, 1e-6f) << scheme;
+        // A ray straight down meets the displaced plane d sooner.
+        for (const Vec3f& origin : {Vec3f(0.3f, 0.6f, 5.0f), Vec3f(0.77f, 0.21f, 5.0f)}) {
+            const float before = hitDistance(flat.scene, origin, Vec3f(0, 0, -1));
+            const float after = hitDistance(raised.scene, origin, Vec3f(0, 0, -1));
+            EXPECT_NEAR(before, 5.0f, 1e-5f) << scheme;
+            EXPECT_NEAR(before - after, d, 1e-5f) << scheme;
+        }
     }
 }
 
@@ -178,14 +189,18 @@ std::string textured(const std::string& file) {
 }
 
 TEST(Displacement, StepTextureGivesItsHeightField) {
-    // Bilinear between the texel centres s = 1/4 and 3/4, clamped outside: h(s) = 0.5 * ramp + 0.1.
-    Described d = describe(plane(kBound) + material(textured(writeStepTexture())), 3);
-    ASSERT_TRUE(d.warnings.empty()) << d.warnings.front();
-    const render::MeshDesc& mesh = d.scene.meshes.at(0);
-    EXPECT_EQ(mesh.indices.size(), 2u * 64u * 3u) << "--subdiv-level 3: 8 segments per edge";
-    for (const Vec3f& p : mesh.positions) {
-        const float ramp = std::clamp((p.x - 0.25f) / 0.5f, 0.0f, 1.0f);
-        EXPECT_NEAR(p.z, 0.5f * ramp + 0.1f, 1e-4f) << "at s = " << p.x;
+    // Bilinear between the texel centres s = 1/4 and 3/4, clamped outside: h(s) = 0.5 * ramp + 0.1,
+    // at every vertex of the polygon plane and of the subdivision surface (whose st is x there).
+    const std::string file = writeStepTexture();
+    for (const std::string& scheme : kSchemes) {
+        Described d = describe(withScheme(plane(kBound), scheme) + material(textured(file)), 3);
+        ASSERT_TRUE(d.warnings.empty()) << d.warnings.front();
+        const render::MeshDesc& mesh = d.scene.meshes.at(0);
+        if (scheme == "none") EXPECT_EQ(mesh.indices.size(), 2u * 64u * 3u) << "--subdiv-level 3: 8 segments per edge";
+        for (const Vec3f& p : mesh.positions) {
+            const float ramp = std::clamp((p.x - 0.25f) / 0.5f, 0.0f, 1.0f);
+            EXPECT_NEAR(p.z, 0.5f * ramp + 0.1f, 1e-4f) << scheme << " at s = " << p.x;
+        }
     }
 }
 
@@ -198,12 +213,9 @@ TEST(Displacement, MissingTextureIsNamedAndDisplacesNothing) {
 
 TEST(Displacement, MaterialsThatDoNotDisplaceLeaveMeshesBitForBit) {
     const std::string still = material("            float inputs:displacement = 0");
-    for (const std::string& scheme : {"none", "catmullClark"}) {
-        auto withScheme = [&](std::string usda) {
-            return usda.replace(usda.find("\"none\""), 6, "\"" + scheme + "\"");
-        };
-        Described bare = describe(withScheme(plane("")));
-        Described bound = describe(withScheme(plane(kBound) + still));
+    for (const std::string& scheme : kSchemes) {
+        Described bare = describe(withScheme(plane(""), scheme));
+        Described bound = describe(withScheme(plane(kBound), scheme) + still);
         const render::MeshDesc &a = bare.scene.meshes.at(0), &b = bound.scene.meshes.at(0);
         EXPECT_EQ(a.positions.size(), b.positions.size()) << scheme;
         EXPECT_TRUE(std::equal(a.positions.begin(), a.positions.end(), b.positions.begin(), b.positions.end(),
