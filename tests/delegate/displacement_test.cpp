@@ -196,7 +196,9 @@ TEST(Displacement, StepTextureGivesItsHeightField) {
         Described d = describe(withScheme(plane(kBound), scheme) + material(textured(file)), 3);
         ASSERT_TRUE(d.warnings.empty()) << d.warnings.front();
         const render::MeshDesc& mesh = d.scene.meshes.at(0);
-        if (scheme == "none") EXPECT_EQ(mesh.indices.size(), 2u * 64u * 3u) << "--subdiv-level 3: 8 segments per edge";
+        if (scheme == "none") {
+            EXPECT_EQ(mesh.indices.size(), 2u * 64u * 3u) << "--subdiv-level 3: 8 segments per edge";
+        }
         for (const Vec3f& p : mesh.positions) {
             const float ramp = std::clamp((p.x - 0.25f) / 0.5f, 0.0f, 1.0f);
             EXPECT_NEAR(p.z, 0.5f * ramp + 0.1f, 1e-4f) << scheme << " at s = " << p.x;
@@ -240,7 +242,9 @@ TEST(Displacement, DicedTrianglesMeetWhereTheirEdgeCountsDiffer) {
     EXPECT_EQ(diced.mesh.indices.size() / 3, 16u + 1u);
     // Every point of the diced mesh on the diagonal x = y is one of its ends.
     for (const Vec3f& p : diced.mesh.positions)
-        if (std::abs(p.x - p.y) < 1e-6f) EXPECT_TRUE(p.x == 0.0f || p.x == 1.0f) << p.x;
+        if (std::abs(p.x - p.y) < 1e-6f) {
+            EXPECT_TRUE(p.x == 0.0f || p.x == 1.0f) << p.x;
+        }
     EXPECT_EQ(dicedTriangleCount(edges, 2, segments), 17u);
 }
 
