@@ -416,9 +416,11 @@ std::string usageText() {
            "  method parameters (the option wins over the render settings' attribute):\n" +
            integratorParameterUsage() +
            "      --max-depth N       maximum scattering events per path (default 64)\n"
-           "      --dicing-rate PX    subdivision surfaces: target micro-edge length in pixels (default 1)\n"
+           "      --dicing-rate PX    subdivision surfaces and displaced meshes: target micro-edge length in\n"
+           "                          pixels (default 1)\n"
            "      --subdiv-level N    subdivision surfaces: uniform refinement, 4^N triangle pairs per quad,\n"
-           "                          instead of camera-driven dicing (for comparisons)\n"
+           "                          instead of camera-driven dicing (for comparisons); displaced polygon\n"
+           "                          meshes: 2^N segments per edge\n"
            "      --subsurface METHOD subsurface scattering of every material: randomwalk or diffusion\n"
            "                          (default: each material's subsurface_type, else randomwalk)\n"
            "      --time-limit SECS   stop starting new sample passes after SECS seconds (0: no limit)\n"

@@ -30,6 +30,7 @@ delegate::DelegateOptions delegateOptions(const RenderOptions& opt, const color:
     dopt.strict = opt.strict;
     dopt.defaultLight = opt.defaultLight;
     dopt.motionBlur = opt.motionBlur;
+    dopt.textures = std::make_shared<texture::TextureSystem>(colors);  // displacement maps, read when meshes are diced
     dopt.convertColor = [&colors](const RGB& c, const std::string& space) { return colors.toRenderingSpace(space, c); };
     dopt.warn = [&warnings](const std::string& path, const std::string& message) { warnings(path, message); };
     return dopt;

@@ -27,4 +27,28 @@ std::vector<int> edgeSegments(const render::Camera& camera, const DicingSettings
     return segments;
 }
 
+std::vector<int> placedEdgeSegments(const render::Camera& camera, const DicingSettings& settings, float rate,
+                                    const std::vector<Vec3f>& points, const std::vector<std::pair<int, int>>& edges,
+                                    const std::vector<Matrix4>& placements, float scale) {
+    constexpr std::size_t kNearestPlacements = 16;
+    std::vector<int> segments(edges.size(), 1);
+    std::vector<const Matrix4*> nearest;
+    for (const Matrix4& m : placements) nearest.push_back(&m);
+    auto distance = [&](const Matrix4* m) { return length(Vec3f(m->transformPoint({0, 0, 0})) - camera.position()); };
+    if (nearest.size() > kNearestPlacements) {
+        std::partial_sort(nearest.begin(), nearest.begin() + kNearestPlacements, nearest.end(),
+                          [&](const Matrix4* a, const Matrix4* b) { return distance(a) < distance(b); });
+        nearest.resize(kNearestPlacements);
+    }
+    std::vector<std::pair<Vec3f, Vec3f>> world(edges.size());
+    for (const Matrix4* m : nearest) {
+        for (std::size_t e = 0; e < edges.size(); ++e)
+            world[e] = {Vec3f(m->transformPoint(Vec3d(points[static_cast<std::size_t>(edges[e].first)]))),
+                        Vec3f(m->transformPoint(Vec3d(points[static_cast<std::size_t>(edges[e].second)])))};
+        std::vector<int> counts = edgeSegments(camera, settings, rate, world, scale);
+        for (std::size_t e = 0; e < edges.size(); ++e) segments[e] = std::max(segments[e], counts[e]);
+    }
+    return segments;
+}
+
 }  // namespace fluence::delegate

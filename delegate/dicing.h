@@ -22,10 +22,13 @@
 #pragma once
 
 #include <cstddef>
+#include <functional>
 #include <optional>
+#include <string>
 #include <utility>
 #include <vector>
 
+#include "core/matrix.h"
 #include "core/vec.h"
 #include "render/camera.h"
 
@@ -41,9 +44,28 @@ struct DicingSettings {
     std::size_t sceneTriangleBudget = 40'000'000;
 };
 
+class MaterialDisplacement;  // delegate/displacement.h
+
+// Everything a dice needs besides the mesh.
+struct DicingContext {
+    const render::Camera& camera;
+    const DicingSettings& settings;
+    // The material's displacement, or nullptr when it displaces nothing.
+    std::function<const MaterialDisplacement*(const std::string& materialPath)> displacement;
+    std::function<void(const std::string& primPath, const std::string& message)> warn;
+    float scale = 1.0f;  // < 1 when the scene's triangle budget shrinks every rate
+};
+
 // Segments for each world-space edge (endpoints a, b) seen by `camera` at dicing rate `rate`
 // (the mesh's own, or the settings' rate). `scale` (<= 1) shrinks every count, for budgets.
 std::vector<int> edgeSegments(const render::Camera& camera, const DicingSettings& settings, float rate,
                               const std::vector<std::pair<Vec3f, Vec3f>>& edges, float scale = 1.0f);
+
+// Segments for edges between object-space `points` (index pairs) of a mesh that `placements`
+// (object to world) put in the scene several times: per edge the largest count over the
+// placements nearest the camera (at most 16; a prototype's other instances are farther).
+std::vector<int> placedEdgeSegments(const render::Camera& camera, const DicingSettings& settings, float rate,
+                                    const std::vector<Vec3f>& points, const std::vector<std::pair<int, int>>& edges,
+                                    const std::vector<Matrix4>& placements, float scale);
 
 }  // namespace fluence::delegate

@@ -9,6 +9,7 @@
 #include "delegate/light_adapter.h"
 #include "delegate/skel_binding.h"
 #include "delegate/points_rprim.h"
+#include "delegate/polygon_dicing.h"
 #include "delegate/xform.h"
 #include "render/mesh_transform.h"
 #include "scene/asset_path.h"
@@ -140,7 +141,10 @@ std::vector<std::string> SurfaceRprim::materialPaths() const {
 std::vector<MeshRprim::Part> MeshRprim::worldParts(const DicingContext& dicing) const {
     std::vector<Part> out;
     out.reserve(parts_.size());
-    for (const Part& p : parts_) out.push_back({render::transformMesh(p.objectSpace, world()), p.materialPath});
+    for (const Part& p : parts_) {
+        std::optional<render::MeshDesc> displaced = displacedPart(p.objectSpace, p.materialPath, {world()}, dicing);
+        out.push_back({render::transformMesh(displaced ? *displaced : p.objectSpace, world()), p.materialPath});
+    }
     for (const Subdivided& s : subdivided_)
         for (MeshPart& part : s.mesh->tessellate({world() * s.placement}, dicing))
             out.push_back({render::transformMesh(part.mesh, world() * s.placement), std::move(part.materialPath)});

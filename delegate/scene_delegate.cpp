@@ -9,10 +9,12 @@
 #include "delegate/curves_adapter.h"
 #include "delegate/curves_rprim.h"
 #include "delegate/default_lights.h"
+#include "delegate/displacement.h"
 #include "delegate/imageable.h"
 #include "delegate/instancing.h"
 #include "delegate/light_adapter.h"
 #include "delegate/points_rprim.h"
+#include "delegate/polygon_dicing.h"
 #include "delegate/motion_samples.h"
 #include "render/mesh_transform.h"
 
@@ -349,10 +351,11 @@ render::SceneDescription SceneDelegate::describe(const render::Camera& camera, c
         if (inserted) scene.materials.push_back(sprim.material());
         return it->second;
     };
+    MaterialDisplacements displacements(options_.textures.get(), options_.warn);
     DicingContext dicing{camera, dicingSettings,
-                         [&](const std::string& material) {
+                         [&](const std::string& material) -> const MaterialDisplacement* {
                              const auto* sprim = dynamic_cast<const MaterialSprim*>(index_.find(material));
-                             return sprim ? sprim->material().displacement : 0.0f;
+                             return sprim && !sprim->failed() ? displacements.of(sprim->material()) : nullptr;
                          },
                          options_.warn, scale};
     auto countSubdivided = [&](const std::vector<render::MeshDesc>& meshes, std::size_t from) {
@@ -440,8 +443,12 @@ render::SceneDescription SceneDelegate::describe(const render::Camera& camera, c
                 scene.lights.push_back(std::move(light));
             }
         std::vector<render::MeshDesc>& meshes = scene.prototypes[static_cast<std::size_t>(index)].meshes;
-        for (const SurfaceRprim::Part& part : prototype.parts())
-            appendPart(part, meshes, materialFor, scene.materials, options_.aovPrimvars);
+        for (const SurfaceRprim::Part& part : prototype.parts()) {
+            std::optional<render::MeshDesc> displaced =
+                displacedPart(part.objectSpace, part.materialPath, placements[static_cast<std::size_t>(index)], dicing);
+            appendPart(displaced ? SurfaceRprim::Part{std::move(*displaced), part.materialPath} : part, meshes,
+                       materialFor, scene.materials, options_.aovPrimvars);
+        }
         for (const SurfaceRprim::Subdivided& sub : prototype.subdivided()) {
             std::vector<Matrix4> where;
             for (const Matrix4& instance : placements[static_cast<std::size_t>(index)])

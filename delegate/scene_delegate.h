@@ -32,6 +32,7 @@
 
 #include <functional>
 #include <map>
+#include <memory>
 #include <optional>
 #include <set>
 #include <string>
@@ -43,6 +44,10 @@
 #include "delegate/render_settings_adapter.h"
 #include "render/scene_description.h"
 #include "scene/stage.h"
+
+namespace fluence::texture {
+class TextureSystem;
+}
 
 namespace fluence::delegate {
 
@@ -75,6 +80,9 @@ struct DelegateOptions {
     // Set: points and instances with velocities move from this frame to `time` at sync (a motion
     // step, delegate/motion_samples.h); kDefaultTime: they are read as authored.
     double velocityFrame = usd::kDefaultTime;
+    // Where a displacement texture is read when meshes are diced (delegate/displacement.h); null:
+    // a textured displacement takes its texture's fallback.
+    std::shared_ptr<texture::TextureSystem> textures;
 };
 
 class SceneDelegate {

@@ -2,8 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <set>
 #include <stdexcept>
 
+#include "delegate/displacement.h"
 #include "delegate/mesh_adapter.h"
 #include "delegate/primvar.h"
 #include "render/mesh_transform.h"
@@ -11,8 +13,6 @@
 namespace fluence::delegate {
 
 namespace {
-
-constexpr std::size_t kNearestPlacements = 16;
 
 std::vector<int> integers(const PrimReader& prim, const std::string& name) {
     std::vector<int> out;
@@ -182,29 +182,8 @@ std::vector<std::string> SubdivisionMesh::materialPaths() const {
 
 std::vector<int> SubdivisionMesh::segmentsFor(const std::vector<Matrix4>& placements, const DicingContext& context,
                                               float scale) const {
-    const auto& edges = surface_->edges();
-    std::vector<int> segments(edges.size(), 1);
-    // The placements nearest the camera need the finest rates.
-    std::vector<const Matrix4*> nearest;
-    for (const Matrix4& m : placements) nearest.push_back(&m);
-    auto distance = [&](const Matrix4* m) {
-        return length(Vec3f(m->transformPoint({0, 0, 0})) - context.camera.position());
-    };
-    if (nearest.size() > kNearestPlacements) {
-        std::partial_sort(nearest.begin(), nearest.begin() + kNearestPlacements, nearest.end(),
-                          [&](const Matrix4* a, const Matrix4* b) { return distance(a) < distance(b); });
-        nearest.resize(kNearestPlacements);
-    }
     const float rate = dicingRate_ > 0.0f ? dicingRate_ : context.settings.rate;
-    std::vector<std::pair<Vec3f, Vec3f>> world(edges.size());
-    for (const Matrix4* m : nearest) {
-        for (std::size_t e = 0; e < edges.size(); ++e)
-            world[e] = {Vec3f(m->transformPoint(Vec3d(points_[edges[e].first]))),
-                        Vec3f(m->transformPoint(Vec3d(points_[edges[e].second])))};
-        std::vector<int> counts = edgeSegments(context.camera, context.settings, rate, world, scale);
-        for (std::size_t e = 0; e < edges.size(); ++e) segments[e] = std::max(segments[e], counts[e]);
-    }
-    return segments;
+    return placedEdgeSegments(context.camera, context.settings, rate, points_, surface_->edges(), placements, scale);
 }
 
 std::vector<MeshPart> SubdivisionMesh::tessellate(const std::vector<Matrix4>& placements,
@@ -252,19 +231,6 @@ render::MeshDesc SubdivisionMesh::meshFrom(const SubdivisionSurface::Result& res
     mesh.positions = result.positions;
     mesh.indices = result.indices;
     mesh.cornerNormals = result.cornerNormals;
-    // Displacement along the limit normal, by the material of the face that evaluated the point.
-    auto materialOf = [&](std::uint32_t face) -> const std::string& {
-        if (materials_.subsetOfFace.empty()) return materials_.meshMaterial;
-        int subset = materials_.subsetOfFace[face];
-        return subset == MaterialAssignment::kNoSubset
-                   ? materials_.meshMaterial
-                   : materials_.subsets[static_cast<std::size_t>(subset)].materialPath;
-    };
-    for (std::size_t v = 0; v < mesh.positions.size(); ++v) {
-        const std::string& material = materialOf(result.surfaceCoords[v].face);
-        if (float d = material.empty() ? 0.0f : context.displacement(material); d != 0.0f)
-            mesh.positions[v] = mesh.positions[v] + result.normals[v] * d;
-    }
     const std::size_t corners = mesh.indices.size();
     for (std::size_t i = 0; i < primvars_.size(); ++i) {
         const RefinedPrimvar& pv = primvars_[i];
@@ -283,7 +249,31 @@ render::MeshDesc SubdivisionMesh::meshFrom(const SubdivisionSurface::Result& res
             out.values.insert(out.values.end(), v, v + k);
         }
     }
+    displace(mesh, result, context);
     return mesh;
+}
+
+void SubdivisionMesh::displace(render::MeshDesc& mesh, const SubdivisionSurface::Result& result,
+                               const DicingContext& context) const {
+    // Along the limit normal, by the material of the face that evaluated the point.
+    auto materialOf = [&](std::uint32_t face) -> const std::string& {
+        if (materials_.subsetOfFace.empty()) return materials_.meshMaterial;
+        int subset = materials_.subsetOfFace[face];
+        return subset == MaterialAssignment::kNoSubset
+                   ? materials_.meshMaterial
+                   : materials_.subsets[static_cast<std::size_t>(subset)].materialPath;
+    };
+    std::vector<float> amounts(mesh.positions.size(), 0.0f);
+    bool displaced = false;
+    const std::vector<std::string> paths = materialPaths();
+    for (const std::string& material : std::set<std::string>(paths.begin(), paths.end())) {
+        const MaterialDisplacement* displacement = material.empty() ? nullptr : context.displacement(material);
+        if (!displacement) continue;
+        displaced = true;
+        displacement->atVertices(
+            mesh, [&](std::size_t v) { return materialOf(result.surfaceCoords[v].face) == material; }, amounts);
+    }
+    if (displaced) displaceAlongNormals(mesh, result.normals, amounts);
 }
 
 }  // namespace fluence::delegate

@@ -23,8 +23,10 @@
 // (delegate/dicing.h) as the mesh's placements put it in the world, takes the largest count over
 // the placements (a prototype has one per instance; the 16 nearest the camera are used), and
 // evaluates the limit surface: positions, shading normals (the limit normal of each triangle's
-// own face) and displayColor. A material's UsdPreviewSurface `displacement` moves each limit
-// point along its normal by that many object units. The result is split by material like any mesh.
+// own face) and displayColor. A material's UsdPreviewSurface `displacement` (a constant or a
+// texture) moves each limit point along its limit normal by that many object units, and the
+// shading normals become the displaced surface's (delegate/displacement.h). The result is split by
+// material like any mesh.
 #pragma once
 
 #include <cstddef>
@@ -41,15 +43,6 @@
 #include "delegate/subdivision.h"
 
 namespace fluence::delegate {
-
-// Everything a dice needs besides the mesh.
-struct DicingContext {
-    const render::Camera& camera;
-    const DicingSettings& settings;
-    std::function<float(const std::string& materialPath)> displacement;  // the material's displacement
-    std::function<void(const std::string& primPath, const std::string& message)> warn;
-    float scale = 1.0f;  // < 1 when the scene's triangle budget shrinks every rate
-};
 
 class SubdivisionMesh {
 public:
@@ -74,6 +67,8 @@ private:
     std::vector<int> segmentsFor(const std::vector<Matrix4>& placements, const DicingContext& context,
                                  float scale) const;
     render::MeshDesc meshFrom(const SubdivisionSurface::Result& result, const DicingContext& context) const;
+    // Moves the tessellation's points by their materials' displacement (delegate/displacement.h).
+    void displace(render::MeshDesc& mesh, const SubdivisionSurface::Result& result, const DicingContext& context) const;
 
     std::string path_;
     std::shared_ptr<const SubdivisionSurface> surface_;

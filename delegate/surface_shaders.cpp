@@ -19,6 +19,15 @@ void dropDrivenEmission(const ShaderInputs& in, render::MaterialDesc& m) {
                   "emission driven by a texture or primvar is not rendered yet; using its constant value");
 }
 
+// Displacement is geometry: its binding leaves the per-hit bindings for the delegate's dicing.
+void separateDisplacement(render::MaterialDesc& m) {
+    auto displaces = [](const render::InputBinding& b) { return b.input == render::MaterialInput::Displacement; };
+    auto it = std::find_if(m.bindings.begin(), m.bindings.end(), displaces);
+    if (it == m.bindings.end()) return;
+    m.displacementBinding = std::move(*it);
+    m.bindings.erase(it);
+}
+
 }  // namespace
 
 media::MediumProperties transmissionMedium(const RGB& color, const RGB& scatter, float anisotropy, float depth) {
@@ -64,9 +73,11 @@ render::MaterialDesc previewSurface(const ShaderInputs& in, const std::string& m
                   {"clearcoatRoughness", MaterialInput::CoatRoughness, 1},
                   {"opacity", MaterialInput::Opacity, 1},
                   {"ior", MaterialInput::Ior, 1},
-                  {"normal", MaterialInput::Normal, 3}},
+                  {"normal", MaterialInput::Normal, 3},
+                  {"displacement", MaterialInput::Displacement, 1}},
                  m);
     dropDrivenEmission(in, m);
+    separateDisplacement(m);
     return m;
 }
 

@@ -15,7 +15,8 @@
 // | opacity            | 1               | opacity: straight transparency (no refraction)            |
 // | opacityThreshold   | 0               | opacityThreshold: > 0 makes opacity a cut-out mask        |
 // | ior                | 1.5             | ior (of the specular lobe's Fresnel)                      |
-// | displacement       | 0               | displacement (subdivision surfaces)                       |
+// | displacement       | 0               | displacement (displacementBinding when a node drives it), |
+// |                    |                 | applied when meshes are diced (delegate/displacement.h)   |
 // | normal             | —               | only through a texture: a tangent-space normal map        |
 // | occlusion          | —               | ignored, as the specification allows path tracers         |
 // Any input above but emissiveColor may be connected to a UsdUVTexture or primvar reader

@@ -58,6 +58,7 @@ void setMaterialInput(MaterialParams& p, MaterialInput input, const float* v, in
         case MaterialInput::Sheen: p.sheen = v[0]; break;
         case MaterialInput::Opacity: p.opacity = v[0]; break;
         case MaterialInput::Normal: break;  // not a parameter: evaluate() perturbs the normal
+        case MaterialInput::Displacement: p.displacement = v[0]; break;
     }
 }
 

@@ -70,7 +70,8 @@ struct MaterialParams {
     float subsurfaceScale = 1.0f;
     SubsurfaceMethod subsurfaceMethod = SubsurfaceMethod::RandomWalk;
     // UsdPreviewSurface displacement along the normal, in object units. Geometry, not shading:
-    // the delegate applies it when it tessellates a subdivision surface; the render core ignores it.
+    // the delegate applies it when it dices a mesh (delegate/displacement.h); the render core
+    // ignores it.
     float displacement = 0.0f;
     // Set on a curve's hits: the material is the hair BSDF (render/bsdfs/hair.h) with these
     // parameters, derived from the rest by render/hair_material.h; the lobes above are not used.
@@ -104,6 +105,7 @@ enum class MaterialInput {
     SheenColor,
     Opacity,
     Normal,  // a tangent-space normal in [-1, 1]^3 (after the texture's scale and bias): perturbs the shading normal
+    Displacement,  // geometry: only in MaterialDesc::displacementBinding, evaluated by the delegate when it dices
 };
 
 // UsdTransform2d: st' = rotate(st * scale) + translation, rotation counter-clockwise in degrees.
@@ -188,6 +190,9 @@ struct MaterialDesc : MaterialParams {
     std::string name;  // prim path, for messages
     std::vector<InputBinding> bindings;
     std::optional<media::MediumProperties> interior;
+    // What drives `displacement` per surface point (a texture's channel, with its scale and bias),
+    // kept out of `bindings`: the delegate evaluates it when it dices, the render core never does.
+    std::optional<InputBinding> displacementBinding;
 };
 
 // A mesh primvar the render core interpolates for a material: `components` floats per triangle

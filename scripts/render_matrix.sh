@@ -27,7 +27,7 @@ scenes=(cornell_box.usda layered_room/shot.usda material_ball/material_ball.usda
         lights/distant.usda lights/spotlight.usda lights/stage.usda lights/sphere_point.usda
         lights/emissive_mesh.usda lights/dome.usda lights/disk.usda lights/rect_texture.usda
         lights/sphere.usda lights/cylinder.usda lights/color_temperature.usda lights/ies_fixture.usda depth_of_field/chess_bokeh.usda motion/motion_blur.usda
-        hair/hair.usda)
+        hair/hair.usda displacement/displacement.usda)
 integrators=(${INTEGRATORS:-path direct whitted bdpt sppm radiosity naive})
 for scene in "${scenes[@]}"; do
   [[ -f usd_samples/$scene ]] || { echo "skipping missing usd_samples/$scene"; continue; }
