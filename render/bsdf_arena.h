@@ -27,7 +27,7 @@ namespace fluence::render {
 
 class BsdfArena {
 public:
-    static constexpr std::size_t kCapacity = 512;
+    static constexpr std::size_t kCapacity = 1024;
 
     BsdfArena() = default;
     BsdfArena(const BsdfArena&) = delete;

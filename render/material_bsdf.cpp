@@ -2,11 +2,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 
 #include "render/bsdfs/coated.h"
 #include "render/bsdfs/fresnel.h"
 #include "render/bsdfs/ggx_conductor.h"
 #include "render/bsdfs/ggx_dielectric.h"
+#include "render/bsdfs/ggx_multiple_scattering.h"
 #include "render/bsdfs/hair.h"
 #include "render/bsdfs/lambertian.h"
 #include "render/bsdfs/lambertian_transmission.h"
@@ -64,22 +66,26 @@ const Bsdf& transmissionBsdf(const MaterialParams& m, BsdfArena& arena) {
     return arena.make<GgxDielectricBsdf>(m.ior, ggx, DielectricTints{reflection, sqrtOf(colour)});
 }
 
-// The layers over the base, as far as the specular coating: the sheen, then the dielectric lobe.
-const Bsdf& sheenAndSpecular(const Bsdf& base, const MaterialParams& m, BsdfArena& arena) {
+// The layers over the diffuse base, as far as the specular coating: the sheen, then the
+// dielectric lobe, each conserving energy over it (render/bsdfs/layered.h).
+const Bsdf& sheenAndSpecular(const Bsdf& base, const DiffuseBase& diffuse, const MaterialParams& m, BsdfArena& arena) {
     const Bsdf* bsdf = &base;
     const RGB sheen = clamp01(m.sheenColor * m.sheen);
     if (!isBlack(sheen))
-        bsdf = &arena.make<LayeredBsdf<CharlieSheenBsdf>>(CharlieSheenBsdf(sheen, m.sheenRoughness), *bsdf);
+        bsdf = &arena.make<LayeredBsdf<CharlieSheenBsdf>>(CharlieSheenBsdf(sheen, m.sheenRoughness), *bsdf, RGB(1.0f),
+                                                          diffuse);
     if (const SpecularLobe specular = specularLobe(m); specular.reflects())
-        bsdf = &arena.make<CoatedBsdf>(*bsdf, specular.eta, specularGgx(m), specular.tint);
+        bsdf = &arena.make<CoatedBsdf>(*bsdf, specular.eta, specularGgx(m), specular.tint, RGB(1.0f), diffuse);
     return *bsdf;
 }
 
-// The clear coat over everything, by weight `coat`.
-const Bsdf& clearCoat(const Bsdf& under, const MaterialParams& m, BsdfArena& arena) {
+// The clear coat over everything, by weight `coat`; `diffuse` when what lies under it is the
+// diffuse base and its layers alone (no metal, no glass).
+const Bsdf& clearCoat(const Bsdf& under, const std::optional<DiffuseBase>& diffuse, const MaterialParams& m,
+                      BsdfArena& arena) {
     if (!(m.coat > 0.0f && m.coatIor > 1.0f + kMinIndexContrast)) return under;
     const Bsdf& coated = arena.make<CoatedBsdf>(under, RGB(m.coatIor), GgxDistribution::fromRoughness(m.coatRoughness),
-                                                RGB(1.0f), clamp01(m.coatColor));
+                                                RGB(1.0f), clamp01(m.coatColor), diffuse);
     return blend(under, coated, m.coat, arena);
 }
 
@@ -90,21 +96,25 @@ const Bsdf& materialBsdf(const MaterialParams& m, BsdfArena& arena) {
     const Bsdf* bsdf = m.diffuseRoughness > 0.0f
                            ? static_cast<const Bsdf*>(&arena.make<OrenNayarBsdf>(m.diffuse, m.diffuseRoughness))
                            : &arena.make<LambertianBsdf>(m.diffuse);
+    DiffuseBase diffuse;
     if (m.subsurface > 0.0f) {  // a solid's walk inside gives the colour; a thin wall is tinted once
         const RGB transmittance = m.thinWalled ? clamp01(m.subsurfaceColor) : RGB(1.0f);
-        bsdf =
-            &blend(*bsdf, arena.make<LambertianTransmissionBsdf>(transmittance), std::min(m.subsurface, 1.0f), arena);
+        const float weight = std::min(m.subsurface, 1.0f);
+        bsdf = &blend(*bsdf, arena.make<LambertianTransmissionBsdf>(transmittance), weight, arena);
+        diffuse.transmitted = transmittance * weight;
     }
-    bsdf = &sheenAndSpecular(*bsdf, m, arena);
+    bsdf = &sheenAndSpecular(*bsdf, diffuse, m, arena);
     if (m.transmission > 0.0f) bsdf = &blend(*bsdf, transmissionBsdf(m, arena), m.transmission, arena);
     if (m.metallic > 0.0f)
-        bsdf = &blend(*bsdf, arena.make<GgxConductorBsdf>(m.diffuse, specularGgx(m)), m.metallic, arena);
-    return clearCoat(*bsdf, m, arena);
+        bsdf = &blend(*bsdf, energyCompensatedConductor(m.diffuse, specularGgx(m), arena), m.metallic, arena);
+    const bool diffuseUnder = !(m.transmission > 0.0f) && !(m.metallic > 0.0f);
+    return clearCoat(*bsdf, diffuseUnder ? std::optional(diffuse) : std::nullopt, m, arena);
 }
 
 const Bsdf& subsurfaceExitBsdf(const MaterialParams& m, BsdfArena& arena) {
     const Bsdf& boundary = arena.make<LambertianTransmissionBsdf>(RGB(1.0f));
-    return clearCoat(sheenAndSpecular(boundary, m, arena), m, arena);
+    const DiffuseBase diffuse{RGB(1.0f)};
+    return clearCoat(sheenAndSpecular(boundary, diffuse, m, arena), diffuse, m, arena);
 }
 
 }  // namespace fluence::render

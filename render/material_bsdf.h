@@ -10,20 +10,27 @@
 //             (MaterialDesc::interior, from subsurface_color and subsurface_radius) colours it;
 //             a thin wall transmits diffusely, tinted by subsurfaceColor, with no walk
 //   sheen     LayeredBsdf(CharlieSheen(sheen x sheenColor, sheenRoughness), diffuse)   sheen > 0
-//             the base loses the sheen's directional albedo (render/bsdfs/sheen.h, layered.h)
+//             the base loses the sheen's directional albedo and is normalised so that it
+//             returns exactly that (DiffuseBase: render/bsdfs/sheen.h, layered.h)
 //   specular  CoatedBsdf(that, eta, ggx, tint)                  when the dielectric lobe reflects:
 //             metallic workflow: eta = ior, tint = specular x specularColor;
 //             specular workflow: specularColor is F0 itself, one eta per channel (etaFromF0), tint 1;
-//             the base loses tint x F(cos) on each side, exactly what the lobe reflects when smooth
+//             the base loses tint x E(cos), the lobe's albedo, on each side, normalised as a
+//             DiffuseBase (render/bsdfs/layered.h), so that it returns what the lobe does not
+//             reflect; over subsurface the share kept inside is reflected back in
 //   glass     MixBsdf(that, glass, transmission)                 transmission > 0; the glass is
 //             GgxDielectric(ior, ggx, reflection tint, sqrt(transmissionColor)) for a solid, or
 //             ThinDielectric(ior, ggx, reflection tint, transmissionColor) when thinWalled
-//   metal     MixBsdf(that, GgxConductor(F0 = diffuse, ggx), metallic)
-//   coat      MixBsdf(that, CoatedBsdf(that, coatIor, coatRoughness^2, filter = coatColor), coat)
+//   metal     MixBsdf(that, energyCompensatedConductor(F0 = diffuse, ggx), metallic): GGX with
+//             Kulla & Conty's multiple-scattering lobe (render/bsdfs/ggx_multiple_scattering.h)
+//   coat      MixBsdf(that, CoatedBsdf(that, coatIor, coatRoughness^2, filter = coatColor), coat),
+//             a DiffuseBase coat when there is no glass and no metal under it
 //
 // Weights: diffuse (1 - transmission)(1 - metallic), glass transmission (1 - metallic), metal
-// metallic, as in Standard Surface; every mix and layer conserves energy, so the material does
-// (tests/integrators/material_furnace_test.cpp renders the white furnaces). Colours and weights
+// metallic, as in Standard Surface; every mix and layer conserves energy, so the material does:
+// with white inputs, diffuse, plastic, metal, coat, sheen and subsurface reflect all the light,
+// rough glass and a coat over metal or glass at most all of it
+// (tests/render/bsdf_energy_test.cpp, tests/integrators/material_furnace_test.cpp). Colours and weights
 // are clamped to [0, 1] per channel.
 //
 // Transmission. Standard Surface's transmission lobe replaces the diffuse by weight, with the

@@ -22,7 +22,7 @@ if [[ "${1:-}" == "--compare" ]]; then
 fi
 fluence=$(realpath "$1") out=$2
 mkdir -p "$out"
-scenes=(cornell_box.usda layered_room/shot.usda material_ball/material_ball.usda instancing/garden.usda
+scenes=(cornell_box.usda layered_room/shot.usda material_ball/material_ball.usda material_ball/furnace.usda instancing/garden.usda
         smoke/smoke.usda subdivision/creased_cubes.usda subsurface/subsurface.usda chess/chess.usda
         lights/distant.usda lights/spotlight.usda lights/stage.usda lights/sphere_point.usda
         lights/emissive_mesh.usda lights/dome.usda lights/disk.usda lights/rect_texture.usda

@@ -5,8 +5,10 @@
 //   f(wo, wi) = f_coat(wo, wi) + a(wo) a(wi) f_base(wo, wi)
 //   f_coat    = tint F(wo.h) D(h) G2(wo, wi) / (4 cos theta_o cos theta_i)   (GGX, rough), or
 //               a delta mirror of reflectance tint F(cos theta_o)                (smooth)
-//   a(w)      = (1 - tint F(cos theta_w)) sqrt(filter) on the coated side (+z), 1 on the other
+//   a(w)      = (1 - tint E(cos theta_w)) sqrt(filter) on the coated side (+z), 1 on the other
 //   F         = exact dielectric Fresnel of the coat's index eta (render/bsdfs/fresnel.h)
+//   E         = the coat lobe's directional albedo (F-weighted GGX, render/bsdfs/ggx_albedo.h;
+//               F(cos theta) itself, to the table's resolution, for a smooth coat)
 //
 // | parameter | meaning                                                                       |
 // |-----------|-------------------------------------------------------------------------------|
@@ -19,6 +21,8 @@
 // |           | weight x colour); the base then loses only what the tinted coat reflects       |
 // | filter    | per-channel transmittance of the coat in [0, 1] (Standard Surface coat_color): |
 // |           | light returned by the base through the coat is multiplied by it once           |
+// | diffuse   | optional: the base is diffuse; the coat then conserves energy exactly          |
+// |           | (render/bsdfs/layered.h, ENERGY-PRESERVING LAYERING)                           |
 //
 // The seeds' recipe of "ambient + diffuse + specular" (000) made physical: the specular term is
 // the dielectric's Fresnel reflection (Torrance-Sparrow with the Fresnel term, 000), and only the
@@ -33,19 +37,18 @@
 //     would narrow a glossy base's lobe and move it, is ignored (exact for a Lambertian base);
 //   - light the coat reflects back down onto the base (internal reflection, total beyond the
 //     critical angle) is dropped.
-// Energy: the albedo is at most E_coat(wo) + (1 - tint F(cos theta_o)) E_base, which is <= 1 for a
-// smooth coat and, for a rough coat, as long as its single-scattering albedo does not exceed
-// tint F(cos theta_o) by more than the base term loses (tests/render/bsdf_coated_test.cpp checks
-// albedo <= 1 for rough coats up to alpha = 0.5). What is LOST, against a full simulation of the
-// layer (in which a white base returns, after bounces between base and coat, all the light the
-// coat lets in): the light reflected back down by the underside of the coat and its later
-// re-emergence; with a Lambertian base only the cosine-weighted average of (1 - F) leaves per
-// pass, 0.908 for eta = 1.5, so a white plastic (albedo 1, eta 1.5, smooth) reflects
-// F(1) + (1 - F(1)) 0.908 = 0.912 at normal incidence instead of 1. A rough coat further loses
-// its own multiple scattering, like every single-scattering microfacet model.
+// Energy: over a diffuse base (plastic, a coat over diffuse or over subsurface) the base's
+// reflection is divided by 1 - tint Eavg, which returns the light the coat's underside would
+// send back after bounces between base and coat: a white base under any coat, smooth or rough,
+// reflects exactly 1 at every angle (tests/render/bsdf_energy_test.cpp), where the plain albedo
+// scaling reflected F(1) + (1 - F(1)) 0.908 = 0.912 at normal incidence (eta 1.5). Over another
+// base the albedo is at most E_coat(wo) + (1 - tint E(wo)) E_base <= 1, and the light the
+// coat's underside returns is dropped. The coat's own multiple scattering between microfacets
+// is not added to its lobe: over a diffuse base that energy reaches the base and comes back out
+// diffusely instead; over a metal or glass it is lost.
 //
-// Sampling (render/bsdfs/layered.h): the coat with probability lobeProbability(tint F(cos theta_o))
-// (F itself for a clear coat), else the base; a non-delta sample returns the whole f and the
+// Sampling (render/bsdfs/layered.h): the coat with probability lobeProbability(tint E(cos theta_o)),
+// else the base; a non-delta sample returns the whole f and the
 // mixture's pdf. Reciprocal when the base is (generalised reciprocity over a refracting base).
 // Two-sided over a reflecting base, one-sided (coated outside) over a transmitting one. Flags:
 // the coat's reflection and glossy or specular, and the base's. Path-class label: S for a smooth
@@ -63,8 +66,8 @@ public:
     CoatedBsdf(const Bsdf& base, float eta, float alpha)
         : LayeredBsdf(DielectricReflectionBsdf(RGB(eta), GgxDistribution(alpha)), base) {}
     CoatedBsdf(const Bsdf& base, const RGB& eta, const GgxDistribution& ggx, const RGB& tint = RGB(1.0f),
-               const RGB& filter = RGB(1.0f))
-        : LayeredBsdf(DielectricReflectionBsdf(DielectricFresnel(eta, tint), ggx), base, filter) {}
+               const RGB& filter = RGB(1.0f), const std::optional<DiffuseBase>& diffuse = std::nullopt)
+        : LayeredBsdf(DielectricReflectionBsdf(DielectricFresnel(eta, tint), ggx), base, filter, diffuse) {}
 };
 
 }  // namespace fluence::render

@@ -5,7 +5,9 @@
 //   rough:  f = tint F(wo.h) D(h) G2(wo, wi) / (4 cos theta_o cos theta_i),   h = normalize(wo + wi)
 //   smooth: a delta mirror of reflectance tint F(cos theta_o)
 //   F = exact dielectric Fresnel (render/bsdfs/fresnel.h), per channel of eta
-//   reflectance(cos theta) = tint F(cos theta)   (the share a layer keeps from its base)
+//   reflectance(cos theta) = tint E(cos theta, alpha, F0 of eta)   (the share a layer keeps from
+//                            its base: the lobe's directional albedo, render/bsdfs/ggx_albedo.h;
+//                            exactly tint F(cos theta) when smooth)
 //
 // | parameter | meaning                                                                      |
 // |-----------|------------------------------------------------------------------------------|
@@ -24,15 +26,36 @@
 #pragma once
 
 #include "render/bsdfs/fresnel.h"
+#include "render/bsdfs/ggx_albedo.h"
 #include "render/bsdfs/ggx_reflection.h"
 
 namespace fluence::render {
 
-// The tinted Fresnel reflectance of a dielectric of relative index eta (per channel).
+// The tinted Fresnel reflectance of a dielectric of relative index eta (per channel), and the
+// albedo of the GGX lobe it weights. The table is indexed by F0, which an index below 1 shares
+// with its reciprocal: the albedo is that of the interface seen from its denser side's outside.
 struct DielectricFresnel {
-    DielectricFresnel(const RGB& eta, const RGB& tint = RGB(1.0f)) : eta(eta), tint(tint) {}
+    DielectricFresnel(const RGB& eta, const RGB& tint = RGB(1.0f))
+        : eta(eta), tint(tint), f0(normalIncidence(eta.x), normalIncidence(eta.y), normalIncidence(eta.z)) {}
     RGB operator()(float cosTheta) const { return tint * fresnelDielectric(cosTheta, eta); }
-    RGB eta, tint;
+    // A smooth interface (alpha 0) reflects exactly F(cos); a rough one its tabulated albedo.
+    RGB albedo(float cosTheta, float alpha) const {
+        if (alpha == 0.0f) return (*this)(cosTheta);
+        return tint * perChannel([&](float f) { return ggxReflectionAlbedo(cosTheta, alpha, f); });
+    }
+    RGB averageAlbedo(float alpha) const {
+        return tint * perChannel([&](float f) { return ggxReflectionAverageAlbedo(alpha, f); });
+    }
+    RGB eta, tint, f0;
+
+private:
+    static float normalIncidence(float eta) { return ((eta - 1.0f) / (eta + 1.0f)) * ((eta - 1.0f) / (eta + 1.0f)); }
+    // g(F0) per channel, evaluated once when the three are equal.
+    template <typename G>
+    RGB perChannel(G g) const {
+        if (f0.x == f0.y && f0.y == f0.z) return RGB(g(f0.x));
+        return {g(f0.x), g(f0.y), g(f0.z)};
+    }
 };
 
 using DielectricReflectionBsdf = GgxReflectionBsdf<DielectricFresnel>;

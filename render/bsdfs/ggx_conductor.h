@@ -21,21 +21,28 @@
 // scattering: light that would bounce between microfacets more than once is lost, a deficit that
 // grows with alpha (Kulla & Conty 2017); with F0 = 1 the albedo is 1 at alpha -> 0 and below 1
 // otherwise (tests/render/bsdf_microfacet_test.cpp and tests/integrators/furnace_test.cpp measure
-// it). Smooth: a delta mirror, f = F(cos theta_o) / cos theta_i, chosen with probability 1.
+// it); materials add the lost light back (render/bsdfs/ggx_multiple_scattering.h). Smooth: a
+// delta mirror, f = F(cos theta_o) / cos theta_i, chosen with probability 1.
 //
 // Reciprocal; two-sided. Flags: reflection and glossy (rough) or specular (smooth).
 // Path-class label: D (glossy) when rough, S when smooth.
 #pragma once
 
 #include "render/bsdfs/fresnel.h"
+#include "render/bsdfs/ggx_albedo.h"
 #include "render/bsdfs/ggx_reflection.h"
 
 namespace fluence::render {
 
-// Schlick's reflectance of a metal of normal-incidence reflectance f0.
+// Schlick's reflectance of a metal of normal-incidence reflectance f0. Its albedo is the bare
+// microfacet albedo (F = 1): the share of the light that leaves after one bounce whatever the
+// metal, which is what the multiple-scattering lobe takes the rest of
+// (render/bsdfs/ggx_multiple_scattering.h).
 struct SchlickFresnel {
     SchlickFresnel(const RGB& f0) : f0(f0) {}  // implicit: GgxConductorBsdf(f0, ggx) reads as a metal of F0 f0
     RGB operator()(float cosTheta) const { return fresnelSchlick(f0, cosTheta); }
+    RGB albedo(float cosTheta, float alpha) const { return RGB(ggxReflectionAlbedo(cosTheta, alpha, 1.0f)); }
+    RGB averageAlbedo(float alpha) const { return RGB(ggxReflectionAverageAlbedo(alpha, 1.0f)); }
     RGB f0;
 };
 

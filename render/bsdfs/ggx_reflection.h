@@ -7,9 +7,12 @@
 //   D, G2: GGX with height-correlated Smith masking-shadowing (render/bsdfs/ggx.h)
 //
 // Fresnel is a copyable functor RGB operator()(float cosTheta) giving the reflectance, per
-// channel in [0, 1], of a microfacet (or the smooth surface) lit at cosTheta; reflectance() makes
-// it available to layers (render/bsdfs/layered.h) as the share of the light the lobe keeps from
-// what lies beneath.
+// channel in [0, 1], of a microfacet (or the smooth surface) lit at cosTheta, with
+// albedo(cosTheta, alpha) and averageAlbedo(alpha): the lobe's tabulated directional albedo and
+// its cosine-weighted average (render/bsdfs/ggx_albedo.h) at the width alpha the table is read
+// at (0 when smooth, sqrt(ax ay) otherwise). reflectance() and averageReflectance() make them
+// available to layers (render/bsdfs/layered.h) as the share of the light the lobe keeps from what
+// lies beneath.
 //
 // Torrance-Sparrow / Cook-Torrance microfacet reflection (the seeds, 000) with the GGX
 // distribution (Walter et al. 2007). Rough: sampled by the visible normals of wo (Heitz 2018),
@@ -20,6 +23,7 @@
 // (glossy) when rough, S when smooth.
 #pragma once
 
+#include <cmath>
 #include <optional>
 
 #include "render/bsdfs/ggx.h"
@@ -35,8 +39,10 @@ public:
     unsigned flags() const override {
         return kBsdfReflection | (distribution_.isSmooth() ? kBsdfSpecular : kBsdfGlossy);
     }
-    // The share of the light arriving at cosTheta (> 0) that a facet facing it reflects: F(cos).
-    RGB reflectance(float cosTheta) const { return fresnel_(cosTheta); }
+    // The share of the light arriving at cosTheta (> 0) that the lobe keeps from a base, and its
+    // cosine-weighted average over the hemisphere (see Fresnel above).
+    RGB reflectance(float cosTheta) const { return fresnel_.albedo(cosTheta, tableWidth()); }
+    RGB averageReflectance() const { return fresnel_.averageAlbedo(tableWidth()); }
 
 private:
     friend class TwoSidedReflection<GgxReflectionBsdf<Fresnel>>;
@@ -61,6 +67,10 @@ private:
         float p = distribution_.reflectionPdf(wo, h);
         if (!(p > 0.0f)) return std::nullopt;
         return BsdfSample{fresnel_(dot(wo, h)) * distribution_.reflectionTerm(wo, wi, h), wi, p};
+    }
+
+    float tableWidth() const {
+        return distribution_.isSmooth() ? 0.0f : std::sqrt(distribution_.alphaX() * distribution_.alphaY());
     }
 
     Fresnel fresnel_;

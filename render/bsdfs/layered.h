@@ -13,6 +13,8 @@
 // | base      | any Bsdf; it must outlive the layer (both live in the same BsdfArena)          |
 // | filter    | per-channel transmittance of the layer, in [0, 1]: light that reaches the base |
 // |           | and comes back out is multiplied by it once (sqrt(filter) per crossing)         |
+// | diffuse   | optional: the base is diffuse (Lambertian-like, direction-independent), with   |
+// |           | the share `transmitted` of the light it sends to the other side (0 if opaque)  |
 //
 // The "albedo scaling" of layered production models (Kulla & Conty 2017, "Revisiting Physically
 // Based Shading at Imageworks"; the `layer` operator of MaterialX and Autodesk Standard Surface),
@@ -25,12 +27,32 @@
 // light that the top reflects back down onto the base, and the base's inter-reflection with the
 // top's underside, are dropped rather than returned.
 //
+// ENERGY-PRESERVING LAYERING over a diffuse base (Kulla & Conty 2017, section "energy
+// compensation" applied to layering; Tops whose reflectance is the lobe's directional albedo E):
+//
+//   f(wo, wi) = f_top + (1 - A(wo)) (1 - A(wi)) f_base / (1 - Aavg)   wo, wi on the layer's side
+//   f(wo, wi) = T Aavg / pi                                           wo, wi on the other side
+//   Aavg      = 2 integral A(mu) mu dmu (Top::averageReflectance()), T = the base's transmitted share
+//
+// The base's reflection, which is direction-independent, loses 1 - Aavg of its light on the way
+// out; dividing by it returns exactly what the top did not reflect: a base of albedo R and
+// transmittance T gives the flux albedo A(wo) + (1 - A(wo)) (R + T), 1 for a lossless base,
+// at every angle. Seen from the other side (light leaving a subsurface object), the share T Aavg
+// that the layer sends back is reflected diffusely back in (the light a real interface returns by
+// internal reflection), so that R + T (1 - Aavg) + T Aavg = 1 there too. Both terms are
+// symmetric in wo and wi, so the layer stays reciprocal. What it approximates: the returned light
+// leaves as the top's complement, not with the angular shape a simulation of the layer would give.
+// Over a base that is not diffuse (a metal, glass, a blend with them) the division is not made:
+// a glossy base concentrated where A is small could then reflect more than it receives.
+//
 // Sides: over a reflection-only base the layer is two-sided (wo below the surface mirrors both
 // directions, render/bsdf.h "SIDES"); over a transmitting base it is one-sided, on the outside
 // (+z): the top lobe reflects only there, and light that leaves on the inside crosses no layer.
 //
 // Sampling: the top with probability P = lobeProbability(A(cos theta_o)) (render/bsdfs/lobe_choice.h)
-// when wo is on the layer's side, else the base (its uLobe rescaled to [0, 1)). A non-delta sample
+// when wo is on the layer's side, the inner diffuse reflection (cosine-weighted) with probability
+// lobeProbability(T Aavg) when it is on the other side, else the base (its uLobe rescaled to
+// [0, 1)). A non-delta sample
 // returns the whole f and the mixture's pdf, P pdf_top + (1 - P) pdf_base; a delta sample of the
 // top keeps its coefficient with pdf P times its own; a delta sample of the base is multiplied by
 // a(wo) a(wi) with pdf (1 - P) times its own. Flags: the union of both parts'. Path-class label:
@@ -41,26 +63,42 @@
 #include <cmath>
 #include <optional>
 
+#include "core/sampling.h"
 #include "render/bsdf.h"
 #include "render/bsdfs/local_geometry.h"
 #include "render/bsdfs/lobe_choice.h"
 
 namespace fluence::render {
 
+// What a layer may know of its base beyond its Bsdf: that it is diffuse, and the share of the
+// light it transmits diffusely to the other side (per channel; 0 for an opaque base).
+struct DiffuseBase {
+    RGB transmitted = RGB(0.0f);
+};
+
 template <typename Top>
 class LayeredBsdf : public Bsdf {
 public:
-    LayeredBsdf(const Top& top, const Bsdf& base, const RGB& filter = RGB(1.0f))
+    LayeredBsdf(const Top& top, const Bsdf& base, const RGB& filter = RGB(1.0f),
+                const std::optional<DiffuseBase>& diffuse = std::nullopt)
         : top_(top),
           base_(&base),
           sqrtFilter_(std::sqrt(filter.x), std::sqrt(filter.y), std::sqrt(filter.z)),
-          twoSided_(!(base.flags() & kBsdfTransmission)) {}
+          twoSided_(!(base.flags() & kBsdfTransmission)) {
+        if (!diffuse) return;
+        const RGB average = top_.averageReflectance();
+        reflectionScale_ =
+            RGB(1.0f / (1.0f - std::min(average.x, kMaxAverage)), 1.0f / (1.0f - std::min(average.y, kMaxAverage)),
+                1.0f / (1.0f - std::min(average.z, kMaxAverage)));
+        if (!twoSided_) innerReflection_ = diffuse->transmitted * average;
+    }
 
     RGB f(const Vec3f& wo, const Vec3f& wi) const override {
         if (wo.z == 0.0f) return RGB(0.0f);
         if (mirrors(wo)) return f(mirrorZ(wo), mirrorZ(wi));
-        RGB value = base_->f(wo, wi) * (throughput(wo) * throughput(wi));
+        RGB value = base_->f(wo, wi) * baseWeight(wo, wi);
         if (wo.z > 0.0f && wi.z > 0.0f) value += top_.f(wo, wi);
+        if (wo.z < 0.0f && wi.z < 0.0f) value += innerReflection_ * kInvPi;
         return value;
     }
 
@@ -68,23 +106,25 @@ public:
         if (wo.z == 0.0f) return {RGB(0.0f), RGB(0.0f)};
         if (mirrors(wo)) return fByKind(mirrorZ(wo), mirrorZ(wi));
         LobeSplit split = base_->fByKind(wo, wi);
-        const RGB through = throughput(wo) * throughput(wi);
-        split.diffuse *= through;
-        split.glossy *= through;
+        const RGB weight = baseWeight(wo, wi);
+        split.diffuse *= weight;
+        split.glossy *= weight;
         if (wo.z > 0.0f && wi.z > 0.0f) {
             const LobeSplit top = top_.fByKind(wo, wi);
             split.diffuse += top.diffuse;
             split.glossy += top.glossy;
         }
+        if (wo.z < 0.0f && wi.z < 0.0f) split.diffuse += innerReflection_ * kInvPi;
         return split;
     }
 
     float pdf(const Vec3f& wo, const Vec3f& wi) const override {
         if (wo.z == 0.0f) return 0.0f;
         if (mirrors(wo)) return pdf(mirrorZ(wo), mirrorZ(wi));
-        const float pTop = topProbability(wo);
-        float p = (1.0f - pTop) * base_->pdf(wo, wi);
-        if (pTop > 0.0f && wi.z > 0.0f) p += pTop * top_.pdf(wo, wi);
+        const float pOwn = ownProbability(wo);
+        float p = (1.0f - pOwn) * base_->pdf(wo, wi);
+        if (pOwn > 0.0f && wo.z > 0.0f && wi.z > 0.0f) p += pOwn * top_.pdf(wo, wi);
+        if (pOwn > 0.0f && wo.z < 0.0f && wi.z < 0.0f) p += pOwn * cosineHemispherePdf(-wi.z);
         return p;
     }
 
@@ -95,15 +135,17 @@ public:
             if (s) s->wi = mirrorZ(s->wi);
             return s;
         }
-        const float pTop = topProbability(wo);
-        const bool pickTop = uLobe < pTop;
+        const float pOwn = ownProbability(wo);
+        const bool pickOwn = uLobe < pOwn;
         // The chosen part's own lobe number: uLobe rescaled to [0, 1) within the choice.
-        const float uPart = std::min(pickTop ? uLobe / pTop : (uLobe - pTop) / (1.0f - pTop), 0x1.fffffep-1f);
-        std::optional<BsdfSample> s = pickTop ? top_.sample(wo, uPart, u) : base_->sample(wo, uPart, u);
+        const float uPart = std::min(pickOwn ? uLobe / pOwn : (uLobe - pOwn) / (1.0f - pOwn), 0x1.fffffep-1f);
+        std::optional<BsdfSample> s = !pickOwn      ? base_->sample(wo, uPart, u)
+                                      : wo.z > 0.0f ? top_.sample(wo, uPart, u)
+                                                    : innerSample(u);
         if (!s) return std::nullopt;
         if (s->specular) {
-            if (!pickTop) s->f *= throughput(wo) * throughput(s->wi);
-            s->pdf *= pickTop ? pTop : 1.0f - pTop;
+            if (!pickOwn) s->f *= baseWeight(wo, s->wi);
+            s->pdf *= pickOwn ? pOwn : 1.0f - pOwn;
             return s;
         }
         s->pdf = pdf(wo, s->wi);
@@ -115,18 +157,37 @@ public:
     unsigned flags() const override { return base_->flags() | top_.flags(); }
 
 private:
+    // Keeps 1 / (1 - Aavg) finite for a top that reflects (almost) everything.
+    static constexpr float kMaxAverage = 0.999f;
+
     bool mirrors(const Vec3f& wo) const { return twoSided_ && wo.z < 0.0f; }
     // The share of the light crossing the layer at w that is neither reflected by the top nor
     // absorbed by the filter; 1 on the side without the layer.
     RGB throughput(const Vec3f& w) const {
         return w.z > 0.0f ? (RGB(1.0f) - top_.reflectance(w.z)) * sqrtFilter_ : RGB(1.0f);
     }
-    float topProbability(const Vec3f& wo) const { return wo.z > 0.0f ? lobeProbability(top_.reflectance(wo.z)) : 0.0f; }
+    // The factor on the base's f: the throughputs both ways, and the normalisation of a diffuse
+    // base's reflection on the layer's side.
+    RGB baseWeight(const Vec3f& wo, const Vec3f& wi) const {
+        const RGB through = throughput(wo) * throughput(wi);
+        return wo.z > 0.0f && wi.z > 0.0f ? through * reflectionScale_ : through;
+    }
+    // The probability of sampling the layer's own lobe: the top on its side, the inner
+    // reflection on the other.
+    float ownProbability(const Vec3f& wo) const {
+        return lobeProbability(wo.z > 0.0f ? top_.reflectance(wo.z) : innerReflection_);
+    }
+    std::optional<BsdfSample> innerSample(Vec2f u) const {
+        const Vec3f wi = mirrorZ(sampleCosineHemisphere(u));
+        return BsdfSample{innerReflection_ * kInvPi, wi, cosineHemispherePdf(-wi.z)};
+    }
 
     Top top_;
     const Bsdf* base_;
     RGB sqrtFilter_;
     bool twoSided_;
+    RGB reflectionScale_ = RGB(1.0f);
+    RGB innerReflection_ = RGB(0.0f);
 };
 
 }  // namespace fluence::render

@@ -67,6 +67,26 @@ float charlieSheenAlbedo(float cosTheta, float roughness) {
            fy * ((1.0f - fx) * table.at(i, j + 1) + fx * table.at(i + 1, j + 1));
 }
 
+float charlieSheenAverageAlbedo(float roughness) {
+    constexpr int kPoints = 512;
+    static const std::array<float, kRoughnesses> averages = [] {
+        std::array<float, kRoughnesses> a{};
+        for (int j = 0; j < kRoughnesses; ++j) {
+            const float r = kSheenMinRoughness + (1.0f - kSheenMinRoughness) * float(j) / (kRoughnesses - 1);
+            double sum = 0.0;
+            for (int i = 0; i < kPoints; ++i) {
+                const float mu = (i + 0.5f) / kPoints;
+                sum += double(charlieSheenAlbedo(mu, r)) * mu;
+            }
+            a[j] = float(2.0 * sum / kPoints);
+        }
+        return a;
+    }();
+    const float y = (clampRoughness(roughness) - kSheenMinRoughness) / (1.0f - kSheenMinRoughness) * (kRoughnesses - 1);
+    const int j = std::min(int(y), kRoughnesses - 2);
+    return averages[j] + (averages[j + 1] - averages[j]) * (y - float(j));
+}
+
 CharlieSheenBsdf::CharlieSheenBsdf(const RGB& tint, float roughness)
     : tint_(tint), roughness_(clampRoughness(roughness)) {
     normalization_ = (2.0f + 1.0f / roughness_) / (2.0f * kPi);

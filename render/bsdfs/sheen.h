@@ -8,6 +8,7 @@
 //   L(x)      = a / (1 + b x^c) + d x + e, the paper's fit, its five coefficients interpolated
 //               between those fitted at r = 0 and r = 1 by (1 - r)^2
 //   reflectance(cos theta) = tint E(cos theta, r), E the lobe's directional albedo (tabulated)
+//   averageReflectance()   = tint Eavg(r), its cosine-weighted average
 //
 // | parameter | meaning                                                                    |
 // |-----------|----------------------------------------------------------------------------|
@@ -45,6 +46,9 @@ inline constexpr float kSheenMinRoughness = 0.1f;
 // E(cosTheta, roughness): the directional albedo of the untinted Charlie lobe (tabulated; the
 // roughness clamped as the lobe clamps it).
 float charlieSheenAlbedo(float cosTheta, float roughness);
+// Eavg(roughness) = 2 integral_0^1 E(mu) mu dmu, of the tabulated E (by a 512-point midpoint rule
+// at each tabulated roughness, interpolated linearly between them).
+float charlieSheenAverageAlbedo(float roughness);
 
 class CharlieSheenBsdf final : public TwoSidedReflection<CharlieSheenBsdf> {
 public:
@@ -53,6 +57,7 @@ public:
     unsigned flags() const override { return kBsdfReflection | kBsdfGlossy; }
     // The share of the light arriving at cosTheta (> 0) that the lobe reflects: tint E(cos, r).
     RGB reflectance(float cosTheta) const { return tint_ * charlieSheenAlbedo(cosTheta, roughness_); }
+    RGB averageReflectance() const { return tint_ * charlieSheenAverageAlbedo(roughness_); }
 
     float D(const Vec3f& h) const;
     float lambda(float cosTheta) const;

@@ -181,6 +181,7 @@ TEST_F(FluenceCli, EverySampleSceneRendersCleanly) {
         {"subdivision/creased_cubes.usda", ""},
         {"material_ball/material_ball.usda", ""},
         {"material_ball/material_ball.usda", " --variant /World:shading=standardSurface"},
+        {"material_ball/furnace.usda", ""},
         {"lights/rect_texture.usda", ""},
         {"lights/disk.usda", ""},
         {"lights/sphere.usda", ""},

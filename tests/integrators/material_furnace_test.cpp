@@ -19,6 +19,9 @@ namespace fluence::integrators {
 namespace {
 
 constexpr int kChecks = 9;
+// The energy target of the materials that conserve energy: 1 within 1% (render/bsdfs/layered.h,
+// render/bsdfs/ggx_multiple_scattering.h).
+constexpr double kEnergyTolerance = 0.01;
 const double kZ = test::normalQuantile(0.5 * test::sidakAlpha(kChecks));
 
 // The furnace sphere made of `material`, rendered 48 x 48 at 64 samples per pixel; the mean of
@@ -63,50 +66,53 @@ TEST(MaterialFurnace, SmoothGlassSphereVanishes) {
     EXPECT_NEAR(sheet.mean(), 1.0, kZ * sheet.standardError() + 1e-5);
 }
 
-TEST(MaterialFurnace, RoughGlassAndMetalLoseTheirMultipleScattering) {
-    // Single-scattering GGX drops the light that would bounce between microfacets more than once,
-    // more the rougher it is, so these read below 1. Measured: rough glass (roughness 0.5, alpha
-    // 0.25) 0.784 +- 0.004, a loss of 22% over the several interactions of a path through the
-    // sphere (each loses 0.5 to 6%, more from inside: bsdf_dielectric_test.cpp); a metal of F0 = 1
-    // (roughness 0.7, alpha 0.49) 0.700 +- 0.002, a loss of 30%; the same with anisotropy 0.8
-    // (alpha 1 by 0.22) 0.530 +- 0.002, a loss of 47%. (A flat-faceted sphere reads the same
-    // metals within 0.001: the loss is the BSDFs', not the shading normals'.)
+TEST(MaterialFurnace, RoughMetalKeepsItsMultipleScatteringAndRoughGlassLosesIt) {
+    // A metal of F0 = 1 keeps the light its microfacets reflect more than once
+    // (render/bsdfs/ggx_multiple_scattering.h) and reads 1 within 1%; single-scattering rough
+    // glass still drops it, more the rougher it is, so it reads below 1. Measured before the
+    // compensation: the metal (roughness 0.7, alpha 0.49) 0.700 +- 0.002, with anisotropy 0.8
+    // (alpha 1 by 0.22) 0.530 +- 0.002; rough glass (roughness 0.5, alpha 0.25) 0.784 +- 0.004, a
+    // loss of 22% over the several interactions of a path through the sphere (each loses 0.5 to
+    // 6%, more from inside: bsdf_dielectric_test.cpp). The anisotropic metal is compensated at its
+    // geometric-mean width (render/bsdfs/ggx_albedo.h), an approximation checked only to stay
+    // at most 1. Measured with it: the metal 0.998 +- 0.002, the anisotropic one 0.812 +- 0.002.
     test::MeanEstimate roughGlass = furnaceReading("rough glass sphere, roughness 0.5", glass(0.5f));
     EXPECT_LE(roughGlass.mean(), 1.0 + kZ * roughGlass.standardError());
     render::MaterialParams metal = white();
     metal.metallic = 1.0f;
     metal.roughness = 0.7f;
     test::MeanEstimate conductor = furnaceReading("GGX conductor F0 = 1, roughness 0.7", metal);
-    EXPECT_LE(conductor.mean(), 1.0 + kZ * conductor.standardError());
+    EXPECT_NEAR(conductor.mean(), 1.0, kEnergyTolerance + kZ * conductor.standardError());
     metal.anisotropy = 0.8f;
     test::MeanEstimate brushed = furnaceReading("GGX conductor F0 = 1, roughness 0.7, anisotropy 0.8", metal);
     EXPECT_LE(brushed.mean(), 1.0 + kZ * brushed.standardError());
 }
 
-TEST(MaterialFurnace, LayeredMaterialsReflectAtMostAllTheLight) {
-    // Plastic (a dielectric specular layer over white diffuse), a clear coat, a sheen over white
-    // diffuse, and everything at once (glass, metal, sheen, coat, anisotropy): the albedo scaling
-    // of their layers loses light (render/bsdfs/layered.h) but never makes any. Measured: plastic
-    // 0.909 +- 0.001, coat 0.914 +- 0.001 (the light the coat's underside would return, about 9%,
-    // is dropped), sheen 0.862 +- 0.001 (the base loses the sheen's albedo on both sides), every
-    // lobe 0.787 +- 0.002.
+TEST(MaterialFurnace, LayeredMaterialsReflectAllTheLight) {
+    // Plastic (a dielectric specular layer over white diffuse), a clear coat and a sheen over white
+    // diffuse conserve energy (render/bsdfs/layered.h, ENERGY-PRESERVING LAYERING) and read 1
+    // within 1%; everything at once (glass, metal, sheen, coat, anisotropy) still loses rough
+    // glass's multiple scattering and the light a coat over glass returns, and must read at most 1.
+    // Measured before the energy-preserving layering: plastic 0.909 +- 0.001, coat 0.914 +- 0.001,
+    // sheen 0.862 +- 0.001, every lobe 0.787 +- 0.002; with it: plastic 0.998 +- 0.001, coat
+    // 0.998 +- 0.001, sheen 1.000 +- 0.001, every lobe 0.932 +- 0.003.
     render::MaterialParams plastic = white();
     plastic.specular = 1.0f;
     plastic.roughness = 0.3f;
     test::MeanEstimate p = furnaceReading("white plastic, roughness 0.3", plastic);
-    EXPECT_LE(p.mean(), 1.0 + kZ * p.standardError());
+    EXPECT_NEAR(p.mean(), 1.0, kEnergyTolerance + kZ * p.standardError());
 
     render::MaterialParams coated = white();
     coated.coat = 1.0f;
     coated.coatRoughness = 0.1f;
     test::MeanEstimate c = furnaceReading("clear coat over white diffuse", coated);
-    EXPECT_LE(c.mean(), 1.0 + kZ * c.standardError());
+    EXPECT_NEAR(c.mean(), 1.0, kEnergyTolerance + kZ * c.standardError());
 
     render::MaterialParams cloth = white();
     cloth.sheen = 1.0f;
     cloth.sheenRoughness = 0.3f;
     test::MeanEstimate s = furnaceReading("white sheen over white diffuse", cloth);
-    EXPECT_LE(s.mean(), 1.0 + kZ * s.standardError());
+    EXPECT_NEAR(s.mean(), 1.0, kEnergyTolerance + kZ * s.standardError());
 
     render::MaterialParams everything = plastic;
     everything.transmission = 0.4f;

@@ -26,6 +26,7 @@
 #include "render/bsdfs/cook_torrance.h"
 #include "render/bsdfs/ggx_conductor.h"
 #include "render/bsdfs/ggx_dielectric.h"
+#include "render/bsdfs/ggx_multiple_scattering.h"
 #include "render/bsdfs/lambertian.h"
 #include "render/bsdfs/lambertian_transmission.h"
 #include "render/bsdfs/oren_nayar.h"
@@ -77,6 +78,11 @@ std::vector<BsdfCase> allCases() {
         cases.push_back({"GgxConductor_a" + std::to_string(int(alpha * 100)), [=](BsdfArena& a) -> const Bsdf& {
                              return a.make<GgxConductorBsdf>(colour, GgxDistribution(alpha));
                          }});
+    for (float alpha : {0.05f, 0.3f, 1.0f})
+        cases.push_back(
+            {"CompensatedGgxConductor_a" + std::to_string(int(alpha * 100)), [=](BsdfArena& a) -> const Bsdf& {
+                 return energyCompensatedConductor(colour, GgxDistribution(alpha), a);
+             }});
     cases.push_back({"GgxConductorAnisotropic", [=](BsdfArena& a) -> const Bsdf& {
                          return a.make<GgxConductorBsdf>(colour, GgxDistribution(0.4f, 0.05f));
                      }});
@@ -113,6 +119,16 @@ std::vector<BsdfCase> allCases() {
         cases.push_back({"CoatedLambertian_a" + std::to_string(int(alpha * 100)), [=](BsdfArena& a) -> const Bsdf& {
                              return a.make<CoatedBsdf>(a.make<LambertianBsdf>(colour), 1.5f, alpha);
                          }});
+    for (float alpha : {0.0f, 0.3f})
+        cases.push_back({"CoatedDiffuseBase_a" + std::to_string(int(alpha * 100)), [=](BsdfArena& a) -> const Bsdf& {
+                             return a.make<CoatedBsdf>(a.make<LambertianBsdf>(colour), RGB(1.5f),
+                                                       GgxDistribution(alpha), RGB(1.0f), RGB(1.0f), DiffuseBase{});
+                         }});
+    cases.push_back({"SheenOverDiffuseBase", [=](BsdfArena& a) -> const Bsdf& {
+                         return a.make<LayeredBsdf<CharlieSheenBsdf>>(CharlieSheenBsdf(RGB(1.0f, 0.7f, 0.4f), 0.4f),
+                                                                      a.make<LambertianBsdf>(colour), RGB(1.0f),
+                                                                      DiffuseBase{});
+                     }});
     cases.push_back({"CoatedConductor_a20", [=](BsdfArena& a) -> const Bsdf& {
                          return a.make<CoatedBsdf>(a.make<GgxConductorBsdf>(colour, GgxDistribution(0.3f)), 1.5f, 0.2f);
                      }});
@@ -133,6 +149,14 @@ std::vector<BsdfCase> allCases() {
                          const Bsdf& base = a.make<MixBsdf>(a.make<LambertianBsdf>(colour),
                                                             a.make<LambertianTransmissionBsdf>(RGB(1.0f)), 0.6f);
                          return a.make<CoatedBsdf>(base, 1.4f, 0.35f * 0.35f);
+                     },
+                     true, false, false});
+    cases.push_back({"CoatedSubsurfaceDiffuseBase",
+                     [=](BsdfArena& a) -> const Bsdf& {  // subsurface 0.6, and the light the coat returns inside
+                         const Bsdf& base = a.make<MixBsdf>(a.make<LambertianBsdf>(colour),
+                                                            a.make<LambertianTransmissionBsdf>(RGB(1.0f)), 0.6f);
+                         return a.make<CoatedBsdf>(base, RGB(1.4f), GgxDistribution(0.35f * 0.35f), RGB(1.0f),
+                                                   RGB(1.0f), DiffuseBase{RGB(0.6f)});
                      },
                      true, false, false});
     return cases;

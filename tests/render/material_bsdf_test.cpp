@@ -12,6 +12,7 @@
 #include "render/bsdfs/fresnel.h"
 #include "render/bsdfs/ggx_conductor.h"
 #include "render/bsdfs/ggx_dielectric.h"
+#include "render/bsdfs/ggx_multiple_scattering.h"
 #include "render/bsdfs/lambertian.h"
 #include "render/bsdfs/layered.h"
 #include "render/bsdfs/mix.h"
@@ -168,15 +169,17 @@ TEST(MaterialBsdf, EachParameterDrivesItsLayer) {
     plastic.specularColor = RGB(1.0f, 0.5f, 0.2f);
     plastic.roughness = 0.4f;
     plastic.anisotropy = 0.5f;
-    expectSameBsdf(bsdfOf(plastic, albedo, a),
-                   b.make<CoatedBsdf>(b.make<LambertianBsdf>(albedo), RGB(1.5f), ggx, RGB(0.7f, 0.35f, 0.14f)));
+    // Over the diffuse base, every layer conserves energy (DiffuseBase).
+    expectSameBsdf(bsdfOf(plastic, albedo, a), b.make<CoatedBsdf>(b.make<LambertianBsdf>(albedo), RGB(1.5f), ggx,
+                                                                  RGB(0.7f, 0.35f, 0.14f), RGB(1.0f), DiffuseBase{}));
     // The specular workflow: specularColor is F0, one index per channel.
     MaterialParams workflow = plastic;
     workflow.specularWorkflow = true;
     workflow.specularColor = RGB(0.04f, 0.1f, 0.5f);
     a.reset(), b.reset();
     const RGB eta(etaFromF0(0.04f), etaFromF0(0.1f), etaFromF0(0.5f));
-    expectSameBsdf(bsdfOf(workflow, albedo, a), b.make<CoatedBsdf>(b.make<LambertianBsdf>(albedo), eta, ggx));
+    expectSameBsdf(bsdfOf(workflow, albedo, a),
+                   b.make<CoatedBsdf>(b.make<LambertianBsdf>(albedo), eta, ggx, RGB(1.0f), RGB(1.0f), DiffuseBase{}));
     EXPECT_NEAR(fresnelDielectric(1.0f, eta.z), 0.5f, 1e-6f);
     // Transmission replaces the (tinted, plastic) base by weight; its colour is split over the
     // two crossings of a solid; a thin wall filters once.
@@ -184,7 +187,8 @@ TEST(MaterialBsdf, EachParameterDrivesItsLayer) {
     glass.transmission = 0.6f;
     glass.transmissionColor = RGB(0.81f, 0.49f, 0.25f);
     a.reset(), b.reset();
-    const Bsdf& opaque = b.make<CoatedBsdf>(b.make<LambertianBsdf>(albedo), RGB(1.5f), ggx, RGB(0.7f, 0.35f, 0.14f));
+    const Bsdf& opaque = b.make<CoatedBsdf>(b.make<LambertianBsdf>(albedo), RGB(1.5f), ggx, RGB(0.7f, 0.35f, 0.14f),
+                                            RGB(1.0f), DiffuseBase{});
     const DielectricTints solidTints{RGB(0.7f, 0.35f, 0.14f), RGB(0.9f, 0.7f, 0.5f)};
     expectSameBsdf(bsdfOf(glass, albedo, a),
                    b.make<MixBsdf>(opaque, b.make<GgxDielectricBsdf>(1.5f, ggx, solidTints), 0.6f));
@@ -193,8 +197,9 @@ TEST(MaterialBsdf, EachParameterDrivesItsLayer) {
     const DielectricTints sheetTints{RGB(0.7f, 0.35f, 0.14f), glass.transmissionColor};
     expectSameBsdf(bsdfOf(glass, albedo, a),
                    b.make<MixBsdf>(opaque, b.make<ThinDielectricBsdf>(1.5f, ggx, sheetTints), 0.6f));
-    // Sheen lies on the diffuse base, beneath the specular lobe; metal by weight; the coat on top,
-    // its colour filtering what passes through it.
+    // Sheen lies on the diffuse base, beneath the specular lobe; metal (with its multiple
+    // scattering) by weight; the coat on top, its colour filtering what passes through it, over a
+    // base that is no longer diffuse alone.
     MaterialParams all = plastic;
     all.sheen = 0.5f;
     all.sheenColor = RGB(1.0f, 0.8f, 0.6f);
@@ -204,10 +209,11 @@ TEST(MaterialBsdf, EachParameterDrivesItsLayer) {
     all.coatColor = RGB(0.9f, 0.8f, 0.7f);
     all.coatRoughness = 0.2f;
     a.reset(), b.reset();
-    const Bsdf& sheened = b.make<LayeredBsdf<CharlieSheenBsdf>>(CharlieSheenBsdf(RGB(0.5f, 0.4f, 0.3f), 0.4f),
-                                                                b.make<LambertianBsdf>(albedo));
-    const Bsdf& specular = b.make<CoatedBsdf>(sheened, RGB(1.5f), ggx, RGB(0.7f, 0.35f, 0.14f));
-    const Bsdf& metal = b.make<MixBsdf>(specular, b.make<GgxConductorBsdf>(albedo, ggx), 0.25f);
+    const Bsdf& sheened = b.make<LayeredBsdf<CharlieSheenBsdf>>(
+        CharlieSheenBsdf(RGB(0.5f, 0.4f, 0.3f), 0.4f), b.make<LambertianBsdf>(albedo), RGB(1.0f), DiffuseBase{});
+    const Bsdf& specular =
+        b.make<CoatedBsdf>(sheened, RGB(1.5f), ggx, RGB(0.7f, 0.35f, 0.14f), RGB(1.0f), DiffuseBase{});
+    const Bsdf& metal = b.make<MixBsdf>(specular, energyCompensatedConductor(albedo, ggx, b), 0.25f);
     const Bsdf& coated = b.make<CoatedBsdf>(metal, RGB(1.5f), GgxDistribution(0.04f), RGB(1.0f), all.coatColor);
     expectSameBsdf(bsdfOf(all, albedo, a), b.make<MixBsdf>(metal, coated, 0.8f));
 }

@@ -1,0 +1,34 @@
+// The directional albedo of single-scattering GGX reflection, tabulated: what energy-preserving
+// layers and the multiple-scattering compensation of rough metals need (Kulla & Conty 2017,
+// "Revisiting Physically Based Shading at Imageworks").
+//
+//   E(mu, alpha, f0) = integral over the hemisphere of F(wo.h) D(h) G2(wo, wi) / (4 mu) dwi,
+//                      mu = cos theta_o, h = normalize(wo + wi)
+//   Eavg(alpha, f0)  = 2 integral_0^1 E(mu, alpha, f0) mu dmu   (the cosine-weighted average)
+//   F: the exact Fresnel reflectance of the dielectric whose normal-incidence reflectance is f0
+//      (index etaFromF0(f0), render/bsdfs/fresnel.h); f0 = 1 stands for F = 1, the bare
+//      microfacet albedo (the "E(mu)" of Kulla & Conty)
+//   D, G2: isotropic GGX with height-correlated Smith masking-shadowing (render/bsdfs/ggx.h)
+//
+// The table holds 32 values of mu in [0, 1] (mu = 0 as seen at 1e-4) by 32 values of
+// sqrt(alpha) (a material's roughness) in [0, 1] by 33 values of sqrt(f0) in [0, 1], all evenly
+// spaced, each integrated by a 32 x 32-point quadrature over the visible normals of wo (Heitz
+// 2018), its points crowded towards GGX's long tail. A slice of one f0 is computed on first use
+// (a material needs the two around its index; metals the slice F = 1), and the table is
+// interpolated linearly in each of the three (tests/render/bsdf_energy_test.cpp measures the
+// cost and holds the table to an independent Monte Carlo estimate). Eavg is integrated exactly
+// from the same piecewise-linear E, so that a lobe weighted by 1 - E(mu) has exactly the
+// cosine-weighted average 1 - Eavg: the normalisation of render/bsdfs/layered.h's diffuse bases
+// then conserves energy whatever the table's own error against the true albedo.
+//
+// An anisotropic distribution is looked up at its geometric-mean width sqrt(ax ay), an
+// approximation (the albedo of a stretched GGX depends on the azimuth of wo, which the table
+// does not resolve). Widths above 1 are clamped to 1.
+#pragma once
+
+namespace fluence::render {
+
+float ggxReflectionAlbedo(float cosTheta, float alpha, float f0);
+float ggxReflectionAverageAlbedo(float alpha, float f0);
+
+}  // namespace fluence::render
