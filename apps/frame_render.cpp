@@ -1,6 +1,7 @@
 #include "apps/frame_render.h"
 
 #include <algorithm>
+#include <stdexcept>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -201,10 +202,13 @@ int renderFrameImage(const RenderOptions& opt, const usd::Stage& stage, const co
     if (frame.alreadyWritten) return kExitOk;
     if (int code = startPasses(opt, outputs.files.front(), fingerprint, warnings, frame); code != kExitOk) return code;
     integrators::RenderProgress progress;
-    {
+    try {
         ProgressReporter reporter(progress, opt.progress);
         frame.stats =
             integrators::render(*built.scene, *frame.camera, *frame.integrator, frame.settings, *frame.film, &progress);
+    } catch (const std::invalid_argument& e) {  // an integrator refusing the scene (radiosity and light links)
+        printError(e.what());
+        return kExitScene;
     }
     if (frame.stats.interrupted) {
         printError("interrupted by a signal after " + std::to_string(frame.stats.samples) +

@@ -37,6 +37,7 @@ std::vector<render::LightDesc> defaultLights(const render::CameraDesc& camera) {
     key.type = render::LightType::Distant;
     key.transform = camera.transform;           // the camera and a distant light both look down local -Z
     key.radiance = RGB(kDefaultKeyIrradiance);  // a point-like (0 degree) distant light: the irradiance
+    key.castsShadows = false;  // as usdview's camera light: a camera inside a closed shape still sees it lit
     render::LightDesc dome;
     dome.name = "(default dome)";
     dome.type = render::LightType::Dome;

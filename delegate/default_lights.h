@@ -6,7 +6,8 @@
 // scene emits: no UsdLux light, no surface whose material emits (a constant emission or one a
 // texture or primvar drives), no volume with emission or blackbody emission. The key light's
 // irradiance on a surface facing the camera is pi, so a Lambertian surface facing the camera
-// shows its albedo; the dome adds kDefaultDomeRadiance times the albedo where the sky is unoccluded.
+// shows its albedo; like usdview's camera light it casts no shadows (LightDesc::castsShadows), so
+// a camera inside a closed shape (usdchecker's test files) still sees it lit; the dome adds kDefaultDomeRadiance times the albedo where the sky is unoccluded.
 // As in usdview, the dome does not paint the background: a camera ray that leaves the scene sees
 // black with alpha 0 (the dome still lights the scene and shows in reflections).
 #pragma once

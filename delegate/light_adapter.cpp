@@ -147,6 +147,7 @@ std::optional<render::LightDesc> lightFromPrim(const PrimReader& prim, const Mat
     Vec3d color = prim.vec3({"inputs:color", "color"}, {1.0, 1.0, 1.0});
     light.radiance = RGB(color * (intensity * std::exp2(exposure)));
     light.normalize = prim.boolean({"inputs:normalize", "normalize"}, false);
+    light.castsShadows = prim.boolean({"inputs:shadow:enable", "shadow:enable"}, true);  // UsdLux ShadowAPI
     if (prim.boolean({"inputs:enableColorTemperature", "enableColorTemperature"}, false)) {
         double kelvin = prim.number({"inputs:colorTemperature", "colorTemperature"}, 6500.0);
         if (!(kelvin >= 1000.0 && kelvin <= 10000.0)) {

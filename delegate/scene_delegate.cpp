@@ -10,6 +10,7 @@
 #include "delegate/curves_rprim.h"
 #include "delegate/default_lights.h"
 #include "delegate/displacement.h"
+#include "delegate/light_links.h"
 #include "delegate/imageable.h"
 #include "delegate/instancing.h"
 #include "delegate/light_adapter.h"
@@ -297,6 +298,7 @@ render::SceneDescription SceneDelegate::sceneDescription() const {
                       "distant light from the camera and a dim dome, as usdview does (--no-default-light, or "
                       "fluence:defaultLight = false on the render settings, turns them off)");
     }
+    resolveLightLinks(stage_, options_.time, scene, options_.warn);
     return scene;
 }
 

@@ -202,6 +202,8 @@ LightSubpath traceLightSubpath(const RenderScene& scene, const std::vector<int>&
         if (event == media::FlightEvent::Escaped && (!hit || hit->lightShape)) break;
         Vertex v = event == media::FlightEvent::Scattered ? mediumVertex(stretch.flight, ray, beta, media)
                                                           : Vertex{*hit, -ray.direction, beta, media};
+        // The light's first segment lands only on geometry it is linked to (render/light_links.h).
+        if (!last && !scene.lightReaches(index, v.hit.linkGroup)) break;
         if (v.walking ? ++interiorScatterings > kMaxInteriorScatterings : bounces >= maxBounces) break;
         v.bounces = bounces += !v.walking;
         v.edge = stretch.edge;
@@ -426,11 +428,14 @@ private:
             return std::nullopt;
         }
         const Vec3f start = z_.empty() ? ray.origin : z_.back().point();
+        // Light reaching the vertex the ray left counts where that vertex is linked to it (camera: every light).
+        const int fromLinkGroup = z_.empty() ? 0 : z_.back().hit.linkGroup;
         if (flight.event == media::FlightEvent::Escaped && !hit) {
             forEachLightAtInfinity(scene_, ray.direction, depth == 0, [&](int index, const RGB& le) {
-                reachLight(index, beta_ * le *
-                                      hitLightWeight(index, Vec3f(0.0f), -ray.direction, -ray.direction, lastPdf,
-                                                     lastDelta, stretch.edge));
+                if (scene_.lightReaches(index, fromLinkGroup))
+                    reachLight(index, beta_ * le *
+                                          hitLightWeight(index, Vec3f(0.0f), -ray.direction, -ray.direction, lastPdf,
+                                                         lastDelta, stretch.edge));
             });
             return std::nullopt;
         }
@@ -446,7 +451,7 @@ private:
         }
         if (!v.inMedium) {
             if (depth == 0) recordFirstHit(out_, *hit, v.wo, camera_);
-            if (hit->light >= 0) {
+            if (hit->light >= 0 && scene_.lightReaches(hit->light, fromLinkGroup)) {
                 const RGB le = emittedAtHit(scene_, *hit, v.wo);
                 if (!isBlack(le))
                     reachLight(hit->light, beta_ * le *
@@ -505,13 +510,18 @@ private:
         auto [from, normal] = gatherPoint(zt, zt.wo);
         render::LightChoice choice = scene_.chooseLight(from, normal, uLight);
         std::optional<render::LightSample> ls;
-        if (choice.light >= 0 && choice.probability > 0.0f) ls = scene_.light(choice.light).sample(from, uPoint);
+        if (choice.light >= 0 && choice.probability > 0.0f && scene_.lightReaches(choice.light, zt.hit.linkGroup))
+            ls = scene_.light(choice.light).sample(from, uPoint);
         if (!ls || !(ls->pdf > 0.0f) || isBlack(ls->Li)) return;
         const Scattered toLight = sh.evaluate(zt.wo, ls->wi);
         const RGB& f = toLight.f;
         const float pdfCamera = toLight.pdf;
         const Vec3f shadowFrom = zt.transmissive ? zt.leaving(ls->wi) : from;
-        if (isBlack(f) || (++counters_.shadow, scene_.occluded(shadowFrom, ls->wi, ls->distance, zt.hit.time))) return;
+        if (isBlack(f)) return;
+        ++counters_.shadow;
+        const render::ShadowTest shadow =
+            scene_.shadowTest(choice.light, shadowFrom, ls->wi, ls->distance, zt.hit.time);
+        if (shadow == render::ShadowTest::Blocked) return;
         const Crossing crossing = cross(zt.mediumTowards(ls->wi), {shadowFrom, ls->wi, ls->distance}, tracked_, rng_);
         const Vec3f point = from + ls->wi * ls->distance;
         LightOrigin x0 = originAt(scene_, choice.light, point, Vec3f(0.0f), -ls->wi, ls->delta,
@@ -524,7 +534,9 @@ private:
         x_[1] = densityOf(zt, emittedTowards(scene_, x0, zt), zt.fromOwn, false, crossing.edge);
         setAfterJoin(sh, 2, ls->wi);
         const RGB value = zt.beta * f * ls->Li * crossing.tr.throughput *
-                          (sh.cosine(ls->wi) / (choice.probability * ls->pdf) * weight(nee, !ls->delta, 1));
+                          (sh.cosine(ls->wi) / (choice.probability * ls->pdf) *
+                           // Light that passed surfaces (render/shadow_rays.cpp) only this strategy finds.
+                           (shadow == render::ShadowTest::PassedThrough ? 1.0f : weight(nee, !ls->delta, 1)));
         radiance_ += value;
         if (lightPaths_.active())
             lightPaths_.connect(scatteringEvents(sh, zt, zt.wo, ls->wi, false), state_.lightEvents[choice.light], value,

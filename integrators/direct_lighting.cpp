@@ -51,7 +51,9 @@ FilmSample directLightingThroughDeltaLobes(const render::RenderScene& scene, con
     bool unique = true;
     float bsdfPdf = 0.0f;
     Vec3f from(0.0f), fromNormal(0.0f);
+    int fromLinkGroup = 0;  // of the geometry `ray` left (render/light_links.h); camera rays see every light
     auto emitterWeight = [&](int light, const LightHit& lh) {
+        if (!scene.lightReaches(light, fromLinkGroup)) return 0.0f;
         if (unique) return 1.0f;
         return powerHeuristic(bsdfPdf, lightStrategyPdf(scene, light, from, fromNormal, ray.direction, lh));
     };
@@ -95,6 +97,7 @@ FilmSample directLightingThroughDeltaLobes(const render::RenderScene& scene, con
             const Vec2f uPoint = rng.next2D();
             const render::LightChoice choice = scene.chooseLight(lightFrom, lightNormal, uLight);
             if (choice.light < 0 || choice.probability <= 0.0f) return RGB(0.0f);
+            if (!scene.lightReaches(choice.light, hit->linkGroup)) return RGB(0.0f);  // linked away
             const std::optional<render::LightSample> ls = scene.light(choice.light).sample(lightFrom, uPoint);
             if (!ls || ls->pdf <= 0.0f || isBlack(ls->Li)) return RGB(0.0f);
             const Vec3f wiLocal = surface.frame.toLocal(ls->wi);
@@ -103,9 +106,13 @@ FilmSample directLightingThroughDeltaLobes(const render::RenderScene& scene, con
             if (isBlack(f)) return RGB(0.0f);
             ++counters.shadow;
             const Vec3f shadowOrigin = transmissive ? spawnOrigin(hit->point, ng, ls->wi) : lightFrom;
-            if (scene.occluded(shadowOrigin, ls->wi, ls->distance, ray.time)) return RGB(0.0f);
+            const render::ShadowTest shadow =
+                scene.shadowTest(choice.light, shadowOrigin, ls->wi, ls->distance, ray.time);
+            if (shadow == render::ShadowTest::Blocked) return RGB(0.0f);
             const float lightPdf = choice.probability * ls->pdf;
-            const float weight = ls->delta ? 1.0f : powerHeuristic(lightPdf, bsdf.pdf(woLocal, wiLocal));
+            // Light that passed surfaces (render/shadow_rays.cpp) no BSDF-sampled ray finds: weight 1.
+            const bool onlyStrategy = ls->delta || shadow == render::ShadowTest::PassedThrough;
+            const float weight = onlyStrategy ? 1.0f : powerHeuristic(lightPdf, bsdf.pdf(woLocal, wiLocal));
             const RGB tr =
                 transmittance(inside.after(*hit, wo, ls->wi).medium(), shadowOrigin, ls->wi, ls->distance, rng);
             return f * ls->Li * tr * (weight / lightPdf);
@@ -128,6 +135,7 @@ FilmSample directLightingThroughDeltaLobes(const render::RenderScene& scene, con
         bsdfPdf = bs->pdf;
         from = lightFrom;
         fromNormal = lightNormal;
+        fromLinkGroup = hit->linkGroup;
         ray = Ray{spawnOrigin(hit->point, ng, wi), wi, 0.0f, std::numeric_limits<float>::infinity(), ray.time};
     }
     out.radiance = radiance;

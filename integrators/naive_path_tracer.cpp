@@ -33,6 +33,7 @@ FilmSample NaivePathTracer::sample(const RenderState&, const render::RenderScene
     auto weighted = [&](const RGB& le) { return spectral ? le / media::channelAverage(rU) : le; };
     int interiorScatterings = 0;
     std::optional<render::SurfaceHit> diffusionExit;  // as in path_tracer.cpp
+    int fromLinkGroup = 0;  // of the geometry `ray` left (render/light_links.h); camera rays see every light
     for (int depth = 0;; ++depth) {
         const bool exiting = diffusionExit.has_value();
         std::optional<render::SurfaceHit> hit = std::exchange(diffusionExit, std::nullopt);
@@ -61,18 +62,21 @@ FilmSample NaivePathTracer::sample(const RenderState&, const render::RenderScene
                 throughput *= ps.p / ps.pdf;
                 if (!continueInMedium(throughput, etaScale, depth, walking, rng)) break;
                 ray = render::Ray{flight.p, ps.wi, 0.0f, std::numeric_limits<float>::infinity(), ray.time};
+                fromLinkGroup = 0;
                 depth -= walking;  // not a bounce
                 continue;
             }
         }
         if (!hit) {
-            forEachLightAtInfinity(scene, ray.direction, depth == 0,
-                                   [&](int, const RGB& le) { radiance += throughput * weighted(le); });
+            forEachLightAtInfinity(scene, ray.direction, depth == 0, [&](int index, const RGB& le) {
+                if (scene.lightReaches(index, fromLinkGroup)) radiance += throughput * weighted(le);
+            });
             break;
         }
         const Vec3f wo = exiting ? -hit->shadingNormal : -ray.direction;
         if (depth == 0) recordFirstHit(out, *hit, wo, camera);
-        if (!exiting && hit->light >= 0) radiance += throughput * weighted(emittedAtHit(scene, *hit, wo));
+        if (!exiting && hit->light >= 0 && scene.lightReaches(hit->light, fromLinkGroup))
+            radiance += throughput * weighted(emittedAtHit(scene, *hit, wo));
         if (hit->lightShape || depth >= maxDepth_) break;
 
         arena.reset();
@@ -93,6 +97,7 @@ FilmSample NaivePathTracer::sample(const RenderState&, const render::RenderScene
         if (step == DiffusionStep::Lost) break;
         if (step == DiffusionStep::Exited) continue;
         inside = inside.after(*hit, wo, wi);
+        fromLinkGroup = hit->linkGroup;
         ray = render::Ray{spawnOrigin(hit->point, surface.geometricNormal, wi), wi, 0.0f,
                           std::numeric_limits<float>::infinity(), ray.time};
     }

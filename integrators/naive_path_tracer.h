@@ -1,5 +1,7 @@
 // `naive`: the reference estimator beside `path`. Covers L(S|D)*E except paths whose light
-// vertex is a delta light (a DistantLight of angle 0), which no BSDF sample can hit.
+// vertex is a delta light (a DistantLight of angle 0), which no BSDF sample can hit. It honours
+// light links (render/light_links.h), but, with no shadow rays, not shadow:enable = false or
+// shadow links: light that passes surfaces (render/shadow_rays.cpp) only next-event estimation finds.
 //
 // It continues every path by sampling the BSDF (and, in volumes, by delta-tracked free flights and
 // phase-function sampling) and counts emission only where a path happens to hit an emitter or is

@@ -199,7 +199,8 @@ private:
         // point blocks every shadow ray but those to lights inside it, which phase sampling
         // still finds, then weighted as the only strategy (as after a delta lobe).
         sampleLight(
-            haveLights_ && !walking, flight.p, Vec3f(0.0f), [&](const Vec3f&) { return std::pair(flight.p, &medium); },
+            haveLights_ && !walking, flight.p, Vec3f(0.0f), 0,
+            [&](const Vec3f&) { return std::pair(flight.p, &medium); },
             [&](const Vec3f& wi) {
                 float p = phase.p(wo, wi);
                 return std::pair(RGB(p), p);
@@ -214,6 +215,7 @@ private:
         specularBounce_ = walking;  // no light strategy at this vertex
         previousPoint_ = flight.p;
         previousNormal_ = Vec3f(0.0f);
+        previousLinkGroup_ = 0;
         ray_ = Ray{flight.p, ps.wi, 0.0f, std::numeric_limits<float>::infinity(), ray_.time};
         depth -= walking;  // not a bounce
         return Step::Next;
@@ -249,7 +251,7 @@ private:
                              kMedia ? inside_.after(v.hit, v.wo, wi).medium() : nullptr);
         };
         sampleLight(
-            haveLights_ && v.connectable, v.lightFrom, v.lightNormal, shadowFrom,
+            haveLights_ && v.connectable, v.lightFrom, v.lightNormal, v.hit.linkGroup, shadowFrom,
             [&](const Vec3f& wi) {
                 Vec3f wiLocal = frame.toLocal(wi);
                 bool agree = sidesAgree(v.wo, wi, ng, v.woLocal.z, wiLocal.z);
@@ -287,36 +289,43 @@ private:
         specularBounce_ = bs->specular;
         previousPoint_ = v.lightFrom;
         previousNormal_ = v.lightNormal;
+        previousLinkGroup_ = v.hit.linkGroup;
         ray_ = Ray{spawnOrigin(v.hit.point, ng, wi), wi, 0.0f, std::numeric_limits<float>::infinity(), ray_.time};
         return Step::Next;
     }
 
-    // Next-event estimation from `from` (with `fromNormal` for the light tree): one light, its
+    // Next-event estimation from `from` (with `fromNormal` for the light tree), on geometry of link
+    // group `linkGroup` (render/light_links.h; 0 in a medium): one light, its
     // shadow ray (from shadowFrom(wi), a point and the medium the ray starts in) through the
     // surfaces and the medium, weighted against the
     // scattering strategy; scatter(wi) gives the BSDF or phase value (cosine included) and its density,
     // and vertexEvents(wi) the vertex's events for the light path expressions.
     // Its random numbers are drawn even when it is not `enabled`, so that every vertex uses as many.
     template <class ShadowFrom, class Scatter, class Events>
-    void sampleLight(bool enabled, const Vec3f& from, const Vec3f& fromNormal, ShadowFrom&& shadowFrom,
+    void sampleLight(bool enabled, const Vec3f& from, const Vec3f& fromNormal, int linkGroup, ShadowFrom&& shadowFrom,
                      Scatter&& scatter, Events&& vertexEvents) {
         float uLight = rng_.next();
         Vec2f uPoint = rng_.next2D();
         if (!enabled) return;
         render::LightChoice choice = scene_.chooseLight(from, fromNormal, uLight);
         if (choice.light < 0 || choice.probability <= 0.0f) return;
+        if (!scene_.lightReaches(choice.light, linkGroup)) return;  // linked away: chosen, contributes nothing
         std::optional<render::LightSample> ls = scene_.light(choice.light).sample(from, uPoint);
         if (!ls || ls->pdf <= 0.0f || isBlack(ls->Li)) return;
         auto [f, scatterPdf] = scatter(ls->wi);
         if (isBlack(f)) return;
         ++counters_.shadow;
         const auto [shadowOrigin, shadowMedium] = shadowFrom(ls->wi);
-        if (scene_.occluded(shadowOrigin, ls->wi, ls->distance, ray_.time)) return;
+        const render::ShadowTest shadow =
+            scene_.shadowTest(choice.light, shadowOrigin, ls->wi, ls->distance, ray_.time);
+        if (shadow == render::ShadowTest::Blocked) return;
         media::TransmittanceEstimate tr;
         if (kMedia && shadowMedium)
             tr = media::ratioTrackingTransmittance(*shadowMedium, {shadowOrigin, ls->wi, ls->distance}, hero_, rng_);
+        // Light that passed surfaces (render/shadow_rays.cpp) no BSDF-sampled ray finds: weight 1.
+        const bool onlyStrategy = ls->delta || shadow == render::ShadowTest::PassedThrough;
         const RGB contribution = throughput_ * f * ls->Li *
-                                 mis_.lightSample(choice.probability * ls->pdf, ls->delta ? 0.0f : scatterPdf, tr);
+                                 mis_.lightSample(choice.probability * ls->pdf, onlyStrategy ? 0.0f : scatterPdf, tr);
         radiance_ += contribution;
         if (lightPaths_.active())
             lightPaths_.connect(vertexEvents(ls->wi), lightEvents_[choice.light], contribution, out_);
@@ -325,6 +334,7 @@ private:
     // Emission `le` of light `index` reached by the ray (at `lh` on its shape, if it has one),
     // weighted against the light strategy unless only this path could have found it.
     void addEmitted(const RGB& le, int index, const LightHit& lh, int depth) {
+        if (!scene_.lightReaches(index, previousLinkGroup_)) return;  // group 0 for camera rays: every light
         const bool unique = depth == 0 || specularBounce_;
         float weight = mis_.emitter(
             unique ? 0.0f : lightStrategyPdf(scene_, index, previousPoint_, previousNormal_, ray_.direction, lh),
@@ -349,6 +359,7 @@ private:
     float etaScale_ = 1.0f;        // product of eta^2 over the refractions so far (Russian roulette)
     render::BsdfArena arena_;
     Vec3f previousPoint_, previousNormal_{0.0f};
+    int previousLinkGroup_ = 0;  // of the geometry the ray left (render/light_links.h); 0: lit by every light
     const bool haveLights_;
     LightPathTracker lightPaths_;
     int interiorScatterings_ = 0;

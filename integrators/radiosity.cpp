@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <stdexcept>
 
 #include "core/frame.h"
 #include "core/sampling.h"
@@ -93,7 +94,10 @@ RGB directLight(const render::RenderScene& scene, const ExternalLights& external
         std::optional<render::LightSample> ls = scene.light(external.lights[chosen]).sample(from, u);
         if (!ls || ls->pdf <= 0.0f || isBlack(ls->Li)) continue;
         const float cosine = dot(ls->wi, n);
-        if (cosine <= 0.0f || scene.occluded(from, ls->wi, ls->distance)) continue;
+        if (cosine <= 0.0f) continue;
+        // Light sampling alone: light that passes surfaces (render/shadow_rays.cpp) counts in full.
+        const int light = external.lights[chosen];
+        if (scene.shadowTest(light, from, ls->wi, ls->distance) == render::ShadowTest::Blocked) continue;
         sum += ls->Li * (cosine / (ls->pdf * choicePdf));
     }
     return sum * (kInvPi / float(samples));
@@ -163,6 +167,11 @@ std::unique_ptr<RadiositySolution> Radiosity::solve(const render::RenderScene& s
 
 std::unique_ptr<RenderState> Radiosity::prepare(const render::RenderScene& scene, const render::Camera&,
                                                 std::uint64_t seed, SplatFilm*) const {
+    // Patches are not geometry: they do not know which lights reach them (shadow links they honour).
+    if (scene.lightLinks().excludesAnything())
+        throw std::invalid_argument(
+            "integrator 'radiosity' cannot render light links that exclude geometry (collection:lightLink); "
+            "render with 'path', 'bdpt', 'sppm', 'direct' or 'whitted'");
     return solve(scene, seed);
 }
 

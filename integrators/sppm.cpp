@@ -9,6 +9,7 @@
 #include <cstdio>
 #include <limits>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "integrators/emission.h"
@@ -43,6 +44,28 @@ struct PhotonDeposits {
 // follow delta lobes only, so through a delta transmission (see "Media" in sppm.h).
 bool eyeCanEnter(unsigned flags) { return (flags & render::kBsdfSpecular) && (flags & render::kBsdfTransmission); }
 
+// The first segment of a photon path leaving `light`, whose light passes surfaces
+// (render/shadow_rays.cpp): every surface it reaches receives the photon, of `flux`, and the path
+// goes on from one of them, chosen uniformly, which is returned with `spread` set to their number.
+// Surfaces the light does not light (render/light_links.h) receive nothing.
+// The photons on the others are appended to `photons` here (on non-delta surfaces).
+std::optional<render::SurfaceHit> passSurfaces(const render::RenderScene& scene, int light, const Ray& ray,
+                                               const RGB& flux, SampleStream& rng, render::BsdfArena& arena,
+                                               std::vector<Photon>& photons, float& spread) {
+    std::vector<render::SurfaceHit> reached = scene.surfacesReached(light, ray);
+    std::erase_if(reached, [&](const render::SurfaceHit& hit) { return !scene.lightReaches(light, hit.linkGroup); });
+    const float uChosen = rng.next();
+    if (reached.empty()) return std::nullopt;
+    const std::size_t chosen = std::min(reached.size() - 1, std::size_t(uChosen * float(reached.size())));
+    for (std::size_t i = 0; i < reached.size(); ++i) {
+        arena.reset();
+        if (i != chosen && (render::materialBsdf(reached[i].material, arena).flags() & kNonDelta))
+            photons.push_back({reached[i].point, -ray.direction, flux});
+    }
+    spread = float(reached.size());
+    return std::move(reached[chosen]);
+}
+
 // Traces one photon path with the stream `rng`, appending a surface photon at each surface vertex
 // with a diffuse or glossy lobe and a volume photon at each scattering in a medium. `scale`
 // divides the emitted flux among the map's paths.
@@ -70,9 +93,13 @@ void tracePhotonPath(const render::RenderScene& scene, int maxDepth, float scale
     Ray ray{render::offsetRayOrigin(emitted->point, emitted->normal), emitted->direction, 0.0f, kInfinity,
             rng.shutterTime()};
     render::BsdfArena arena;
+    float spread = 1.0f;  // the number of surfaces the first segment deposited on, the path going on from one
     for (int depth = 0; depth < maxDepth; ++depth) {
         ++rays;
-        std::optional<render::SurfaceHit> hit = scene.intersect(ray);
+        std::optional<render::SurfaceHit> hit =
+            depth == 0 && scene.lightPassesSurfaces(int(index)) && !inside.medium()
+                ? passSurfaces(scene, int(index), ray, flux(), rng, arena, deposits.surface, spread)
+                : scene.intersect(ray);
         if (const media::Medium* medium = inside.medium()) {
             const media::FreeFlight flight =
                 media::sampleFreeFlight(*medium, {ray.origin, ray.direction, hit ? hit->t : kInfinity}, hero, rng);
@@ -94,6 +121,8 @@ void tracePhotonPath(const render::RenderScene& scene, int maxDepth, float scale
             }
         }
         if (!hit || hit->lightShape) return;
+        // The first segment's light lands only on geometry the light is linked to (render/light_links.h).
+        if (depth == 0 && !scene.lightReaches(int(index), hit->linkGroup)) return;
         arena.reset();
         const render::Bsdf& bsdf = render::materialBsdf(hit->material, arena);
         const Vec3f wo = -ray.direction;
@@ -101,6 +130,7 @@ void tracePhotonPath(const render::RenderScene& scene, int maxDepth, float scale
         const Vec3f woLocal = surface.frame.toLocal(wo);
         const RGB power = flux();
         if (bsdf.flags() & kNonDelta) deposits.surface.push_back({hit->point, wo, power});
+        beta *= std::exchange(spread, 1.0f);
 
         const float uLobe = rng.next();
         const Vec2f u = rng.next2D();
@@ -261,6 +291,7 @@ FilmSample Sppm::sample(const RenderState& renderState, const render::RenderScen
     render::BsdfArena arena;
     const SppmState::SampleMaps& maps = state.maps[rng.sampleIndex() - std::uint64_t(state.firstSample)];
     auto add = [&](const RGB& estimate) { radiance += throughput * estimate / media::channelAverage(pdfRatio); };
+    int fromLinkGroup = 0;  // of the geometry `ray` left (render/light_links.h); camera rays see every light
     for (int depth = 0;; ++depth) {
         ++(depth == 0 ? counters.camera : counters.bounce);
         std::optional<render::SurfaceHit> hit = scene.intersect(ray);
@@ -288,12 +319,14 @@ FilmSample Sppm::sample(const RenderState& renderState, const render::RenderScen
             }
         }
         if (!hit) {
-            forEachLightAtInfinity(scene, ray.direction, depth == 0, [&](int, const RGB& le) { add(le); });
+            forEachLightAtInfinity(scene, ray.direction, depth == 0, [&](int index, const RGB& le) {
+                if (scene.lightReaches(index, fromLinkGroup)) add(le);
+            });
             break;
         }
         const Vec3f wo = -ray.direction;
         if (depth == 0) recordFirstHit(out, *hit, wo, camera);
-        if (hit->light >= 0) add(emittedAtHit(scene, *hit, wo));
+        if (hit->light >= 0 && scene.lightReaches(hit->light, fromLinkGroup)) add(emittedAtHit(scene, *hit, wo));
         if (hit->lightShape || depth >= maxDepth_) break;
 
         arena.reset();
@@ -313,6 +346,7 @@ FilmSample Sppm::sample(const RenderState& renderState, const render::RenderScen
         etaScale *= bs->eta * bs->eta;
         if (!continuePath(throughput, etaScale, depth, rng)) break;
         inside = inside.after(*hit, wo, wi);
+        fromLinkGroup = hit->linkGroup;
         ray = Ray{spawnOrigin(hit->point, surface.geometricNormal, wi), wi, 0.0f, kInfinity, ray.time};
     }
     out.radiance = radiance;

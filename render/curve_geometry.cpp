@@ -100,6 +100,7 @@ struct CurveGeometry::Curves {
     MaterialParams material;
     Vec3f boundsLo{std::numeric_limits<float>::max()}, boundsHi{-std::numeric_limits<float>::max()};
     std::uint32_t objectName = kNoName, materialName = kNoName;
+    int linkGroup = 0;  // CurvesDesc::linkGroup
 };
 
 CurveGeometry::CurveGeometry() = default;
@@ -155,6 +156,7 @@ void CurveGeometry::add(RTCDeviceTy* device, RTCSceneTy* scene, unsigned geomID,
                           : MaterialParams{};
     curves.objectName = objectName;
     curves.materialName = materialName;
+    curves.linkGroup = desc.linkGroup;
     if (byGeomID_.size() <= geomID) byGeomID_.resize(geomID + 1, -1);
     byGeomID_[geomID] = static_cast<int>(curves_.size());
     curves_.push_back(std::move(curves));
@@ -220,6 +222,7 @@ std::optional<SurfaceHit> CurveGeometry::shade(unsigned geomID, unsigned primID,
     hit.material.diffuse = colour;
     hit.objectName = curves.objectName;
     hit.materialName = curves.materialName;
+    hit.linkGroup = curves.linkGroup;
     return result;
 }
 

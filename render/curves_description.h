@@ -44,6 +44,7 @@ struct CurvesDesc {
     std::vector<RGB> colors;              // empty, or one per control point: displayColor
     std::vector<std::uint32_t> segments;  // each segment's first control point
     int material = -1;                    // index into SceneDescription::materials, -1 = default
+    int linkGroup = 0;                    // its light and shadow links (render/light_links.h)
 };
 
 }  // namespace fluence::render

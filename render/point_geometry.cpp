@@ -52,6 +52,7 @@ MeshDesc pointShadingMesh(const PointsDesc& p) {
     m.name = p.name;
     m.positions = p.positions;
     m.material = p.material;
+    m.linkGroup = p.linkGroup;
     const std::size_t n = p.positions.size();
     m.indices.reserve(3 * n);
     for (std::size_t i = 0; i < n; ++i) m.indices.insert(m.indices.end(), 3, static_cast<std::uint32_t>(i));

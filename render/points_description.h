@@ -33,6 +33,7 @@ struct PointsDesc {
     std::vector<RGB> colors;             // empty, or one per point: diffuse colour (displayColor)
     int material = -1;                   // index into SceneDescription::materials, -1 = default
     std::vector<PointPrimvar> primvars;  // those the material reads
+    int linkGroup = 0;                   // its light and shadow links (render/light_links.h)
 };
 
 }  // namespace fluence::render

@@ -23,10 +23,6 @@ namespace fluence::render {
 
 namespace {
 
-// Shadow rays stop this fraction short of the light sample, so a sample on an emissive surface
-// is not occluded by that surface itself.
-constexpr float kShadowRayShortening = 1e-4f;
-
 void throwOnEmbreeError(RTCDevice device, const char* what) {
     RTCError code = rtcGetDeviceError(device);
     if (code != RTC_ERROR_NONE)
@@ -153,6 +149,7 @@ struct RenderScene::Mesh {
     int material = -1;  // into materials_, -1 = the default (Lambertian) material
     int firstLight = -1;
     std::uint32_t objectName = kNoName, materialName = kNoName;  // objectNames_, materialNames_
+    int linkGroup = 0;                                           // MeshDesc::linkGroup
 };
 
 // What a presence filter needs to know of its mesh (the user data of its Embree geometry).
@@ -214,6 +211,7 @@ struct RenderScene::Instance {
     Matrix4 toWorld, normalToWorld;
     std::uint32_t objectName = kNoName;     // objectNames_
     std::vector<Matrix4> motionTransforms;  // InstanceDesc::motionTransforms
+    int linkGroup = 0;                      // InstanceDesc::linkGroup
 };
 
 struct RenderScene::EmbreeState {
@@ -235,6 +233,7 @@ struct RenderScene::EmbreeState {
 RenderScene::RenderScene(const SceneDescription& scene, std::shared_ptr<texture::TextureSystem> textures)
     : embree_(std::make_unique<EmbreeState>()), materials_(scene.materials), textures_(std::move(textures)) {
     addMaterialShaders();
+    checkLinkGroups(scene);
     embree_->device = rtcNewDevice(nullptr);
     if (!embree_->device) throw std::runtime_error("cannot create the Embree device");
     embree_->surfaces = rtcNewScene(embree_->device);
@@ -248,7 +247,12 @@ RenderScene::RenderScene(const SceneDescription& scene, std::shared_ptr<texture:
     for (const CurvesDesc& curves : scene.curves) addCurves(curves, scene.materials);
     for (const PointsDesc& points : scene.points) addPoints(points, scene.materials);
     addPrototypes(scene);
-    for (const LightDesc& light : scene.lights) addLight(light);
+    std::vector<int> lightOfDesc;
+    for (const LightDesc& light : scene.lights) {
+        lightOfDesc.push_back(static_cast<int>(lights_.size()));
+        addLight(light);
+    }
+    links_ = LightLinkTable(scene.lightLinkGroups, lightOfDesc, lights_.size());
     addVolumes(scene.volumes);
     addInteriors();
 
@@ -438,6 +442,7 @@ int RenderScene::storeMesh(const MeshDesc& desc, const std::vector<MaterialDesc>
     mesh.materialName = desc.material >= 0 ? materialNames_.add(material.name) : kNoName;
     mesh.diffuse = material.diffuse;
     mesh.emission = material.emission;
+    mesh.linkGroup = desc.linkGroup;
     stats_.meshes += 1;
     stats_.triangles += triangles;
     meshes_.push_back(std::move(mesh));
@@ -541,9 +546,11 @@ void RenderScene::addPrototypes(const SceneDescription& scene) {
                                         ": index out of range");
         const Prototype& proto = prototypes_[desc.prototype];
         const std::uint32_t objectName = desc.name.empty() ? kNoName : objectNames_.add(desc.name);
-        for (int m : proto.emissiveMeshes)
-            addMesh(transformMesh(scene.prototypes[desc.prototype].meshes[m], desc.transform), scene.materials,
-                    objectName);
+        for (int m : proto.emissiveMeshes) {
+            MeshDesc placed = transformMesh(scene.prototypes[desc.prototype].meshes[m], desc.transform);
+            if (desc.linkGroup != 0) placed.linkGroup = desc.linkGroup;
+            addMesh(placed, scene.materials, objectName);
+        }
         if (proto.meshes.empty()) continue;
         RTCGeometry geom = rtcNewGeometry(embree_->device, RTC_GEOMETRY_TYPE_INSTANCE);
         rtcSetGeometryInstancedScene(geom, embree_->prototypes[desc.prototype]);
@@ -557,8 +564,8 @@ void RenderScene::addPrototypes(const SceneDescription& scene) {
         surfaceMeshes_.push_back(-1);
         surfaceInstances_.push_back(static_cast<int>(instances_.size()));
         surfacePoints_.push_back(-1);
-        instances_.push_back(
-            {desc.prototype, desc.transform, normalMatrixOf(desc.transform), objectName, desc.motionTransforms});
+        instances_.push_back({desc.prototype, desc.transform, normalMatrixOf(desc.transform), objectName,
+                              desc.motionTransforms, desc.linkGroup});
         stats_.instances += 1;
         for (int m : proto.meshes) stats_.instancedTriangles += meshes_[m].indices.size() / 3;
     }
@@ -570,6 +577,10 @@ void RenderScene::addLight(const LightDesc& desc) {
     const Light& light = *lights_.back();
     if (light.atInfinity()) lightsAtInfinity_.push_back(index);
     if (light.atInfinity() && desc.visibleToCamera) lightsAtInfinitySeenByCamera_.push_back(index);
+    if (!desc.castsShadows) {
+        shadowless_.resize(lights_.size());
+        shadowless_[std::size_t(index)] = true;
+    }
     const LightSurface surface = light.surface();
     RTCGeometry shape = lightSurfaceGeometry(embree_->device, surface);  // committed
     if (!shape) return;
@@ -644,6 +655,7 @@ std::optional<SurfaceHit> RenderScene::shadeMesh(int meshIndex, unsigned primID,
     hit.time = time;
     hit.mesh = meshIndex;
     hit.instance = instanceIndex;
+    hit.linkGroup = instance && instance->linkGroup != 0 ? instance->linkGroup : mesh.linkGroup;
     hit.triangle = primID;
     hit.b1 = u;
     hit.b2 = v;
@@ -745,7 +757,8 @@ const RenderScene::Instance* RenderScene::instanceAt(int index, float time, std:
     const Instance& instance = instances_[static_cast<std::size_t>(index)];
     if (instance.motionTransforms.empty()) return &instance;
     const Matrix4 toWorld = transformAt(instance.motionTransforms, time);
-    moved.emplace(Instance{instance.prototype, toWorld, normalMatrixOf(toWorld), instance.objectName, {}});
+    moved.emplace(
+        Instance{instance.prototype, toWorld, normalMatrixOf(toWorld), instance.objectName, {}, instance.linkGroup});
     return &*moved;
 }
 

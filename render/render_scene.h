@@ -53,6 +53,7 @@
 #include "render/camera.h"
 #include "render/curve_geometry.h"
 #include "render/light.h"
+#include "render/light_links.h"
 #include "render/light_tree.h"
 #include "render/material_shader.h"
 #include "render/ray.h"
@@ -101,6 +102,14 @@ struct SurfaceHit {
     int interior = -1;
     // Its names for Cryptomatte (RenderScene::objectNames, materialNames), kNoName where none.
     std::uint32_t objectName = kNoName, materialName = kNoName;
+    int linkGroup = 0;  // the hit geometry's light and shadow links (render/light_links.h)
+};
+
+// What a shadow ray towards a light meets (RenderScene::shadowTest).
+enum class ShadowTest {
+    Clear,          // no surface: BSDF sampling could have reached the light along it too
+    PassedThrough,  // only surfaces the light casts no shadow of: next-event estimation alone reaches it
+    Blocked,
 };
 
 struct SceneStats {
@@ -125,6 +134,29 @@ public:
     // True when a surface blocks the segment from `origin` along unit `direction` for `distance`,
     // at `time` in the shutter interval (render::Ray::time).
     bool occluded(const Vec3f& origin, const Vec3f& direction, float distance, float time = 0.0f) const;
+    // The shadow ray from `origin` along unit `direction` to light `light` at `distance`: whether a
+    // surface blocks it, as occluded() says, unless every surface on it is one the light casts no
+    // shadow of (LightDesc::castsShadows false: none) (render/shadow_rays.cpp).
+    ShadowTest shadowTest(int light, const Vec3f& origin, const Vec3f& direction, float distance,
+                          float time = 0.0f) const;
+    // Whether some surface can be passed through by light `light`'s shadow rays (its shadows are
+    // off, or shadow-linked away from some geometry).
+    bool lightPassesSurfaces(int light) const {
+        return (static_cast<std::size_t>(light) < shadowless_.size() && shadowless_[std::size_t(light)]) ||
+               links_.passesSomething(light);
+    }
+    // Whether light `light` lights geometry of link group `linkGroup` (SurfaceHit::linkGroup; 0 for
+    // points in media and the camera), and the whole table (render/light_links.h).
+    bool lightReaches(int light, int linkGroup) const { return links_.lights(light, linkGroup); }
+    const LightLinkTable& lightLinks() const { return links_; }
+    // The surfaces `ray`, leaving light `light`, reaches: the first surface it hits and, for a light
+    // that passes surfaces, every surface after it that the light's shadow rays would pass, up to and
+    // including the first that blocks them (at most kMaxSurfacesPassed). Light shapes are skipped.
+    std::vector<SurfaceHit> surfacesReached(int light, const Ray& ray) const;
+    static constexpr int kMaxSurfacesPassed = 64;
+    // Shadow rays stop this fraction short of the light sample, so a sample on an emissive surface
+    // is not occluded by that surface itself.
+    static constexpr float kShadowRayShortening = 1e-4f;
     // Where the surface point of `hit` is at `time` in the shutter interval: the same point of the
     // same triangle, moved with its mesh and instance (the hit's own point for a light shape).
     Vec3f pointAt(const SurfaceHit& hit, float time) const;
@@ -249,6 +281,10 @@ private:
     NameTable objectNames_, materialNames_;
     std::vector<std::unique_ptr<Light>> lights_;
     std::vector<int> lightsAtInfinity_, lightsAtInfinitySeenByCamera_;
+    std::vector<bool> shadowless_;  // per light, true where it casts no shadows (lightPassesSurfaces)
+    LightLinkTable links_;
+    // Whether `hit`'s surface blocks light `light`'s shadow rays (render/shadow_rays.cpp).
+    bool blocksShadowsOf(int light, const SurfaceHit& hit) const;
     std::deque<Vec3f> quadLightFronts_;  // each quad light's emitting direction, its Embree filter's user data
     DiscreteDistribution lightSelection_;
     LightTree lightTree_;

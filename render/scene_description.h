@@ -16,6 +16,7 @@
 #include "core/matrix.h"
 #include "core/rgb.h"
 #include "render/curves_description.h"
+#include "render/light_links.h"
 #include "media/medium.h"
 #include "render/points_description.h"
 #include "texture/ies_file.h"
@@ -215,6 +216,7 @@ struct MeshDesc {
     // opening and the last at its close (render/motion_geometry.h), each indexed like `positions`;
     // empty: the mesh does not move while the shutter is open. `positions` stays the frame's.
     std::vector<std::vector<Vec3f>> motionPositions{};
+    int linkGroup = 0;  // its light and shadow links (render/light_links.h); 0: every light
 };
 
 enum class LightType { Rect, Disk, Sphere, Cylinder, Distant, Dome };
@@ -263,6 +265,9 @@ struct LightDesc {
     // Dome: whether a camera ray that leaves the scene sees it (false: the background is black with
     // alpha 0, while the dome still lights the scene and shows in reflections).
     bool visibleToCamera = true;
+    // UsdLux ShadowAPI inputs:shadow:enable: false, and no surface blocks this light's shadow rays
+    // (render/shadow_rays.cpp).
+    bool castsShadows = true;
 };
 
 // One grid of an OpenVDB file (a UsdVol OpenVDBAsset).
@@ -329,6 +334,9 @@ struct InstanceDesc {
     // Transformation blur: prototype-to-world at evenly spaced times over the shutter, as
     // MeshDesc::motionPositions; empty: the instance does not move. `transform` stays the frame's.
     std::vector<Matrix4> motionTransforms{};
+    // Its light and shadow links (render/light_links.h), for every mesh of its prototype; 0: those
+    // of the prototype's meshes.
+    int linkGroup = 0;
 };
 
 struct SceneDescription {
@@ -341,6 +349,7 @@ struct SceneDescription {
     std::vector<LightDesc> lights;
     std::vector<VolumeDesc> volumes;
     std::optional<CameraDesc> camera;
+    std::vector<LightLinkGroup> lightLinkGroups;  // group g > 0 of render/light_links.h is [g - 1]
 };
 
 }  // namespace fluence::render

@@ -26,15 +26,17 @@ scenes=(cornell_box.usda layered_room/shot.usda material_ball/material_ball.usda
         smoke/smoke.usda subdivision/creased_cubes.usda subsurface/subsurface.usda chess/chess.usda
         lights/distant.usda lights/spotlight.usda lights/stage.usda lights/sphere_point.usda
         lights/emissive_mesh.usda lights/dome.usda lights/disk.usda lights/rect_texture.usda
-        lights/sphere.usda lights/cylinder.usda lights/color_temperature.usda lights/ies_fixture.usda depth_of_field/chess_bokeh.usda motion/motion_blur.usda
+        lights/sphere.usda lights/cylinder.usda lights/color_temperature.usda lights/ies_fixture.usda lights/linked_lights.usda depth_of_field/chess_bokeh.usda motion/motion_blur.usda
         hair/hair.usda displacement/displacement.usda)
 integrators=(${INTEGRATORS:-path direct whitted bdpt sppm radiosity naive})
 for scene in "${scenes[@]}"; do
   [[ -f usd_samples/$scene ]] || { echo "skipping missing usd_samples/$scene"; continue; }
   stem=${scene//\//_}; stem=${stem%.usda}
   for integ in "${integrators[@]}"; do
-    # Radiosity meshes every instance of the garden and every chess piece into patches: minutes per frame, left out.
-    [[ $stem--$integ == instancing_garden--radiosity || $stem--$integ == chess_chess--radiosity ]] && continue
+    # Radiosity meshes every instance of the garden and every chess piece into patches: minutes per frame, left out;
+    # it refuses light links (linked_lights).
+    [[ $stem--$integ == instancing_garden--radiosity || $stem--$integ == chess_chess--radiosity ||
+       $stem--$integ == lights_linked_lights--radiosity ]] && continue
     extra=()
     [[ $integ == path ]] && extra=(--lpe diffuse='C<RD>.*L' --lpe specular='C<R[GS]>.*L')
     "$fluence" render "usd_samples/$scene" -o "$out/$stem--$integ.exr" -r 64 48 --spp 4 --seed 0 -j 2 \

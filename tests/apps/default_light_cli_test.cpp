@@ -1,6 +1,6 @@
 // End-to-end tests of the default lights (delegate/default_lights.h): a scene in which nothing
 // emits is lit by a distant light along the camera's view and a dim dome, with one warning;
-// --no-default-light renders it black; a lit scene is unchanged.
+// --no-default-light renders it black; a lit scene is unchanged; the key light casts no shadow.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -94,6 +94,29 @@ TEST_F(DefaultLightCli, UnlitSceneIsLitFromTheCameraWithOneWarning) {
     // The dome lights the quads but, as in usdview, is not the background: a camera ray that
     // escapes sees black, with alpha 0.
     for (const char* c : {"R", "G", "B", "A"}) EXPECT_EQ(img.at(32, 2, c), 0.0f) << c;
+}
+
+// usdchecker's clean.usdz: the camera inside a closed shape. As usdview's camera light, the key
+// light casts no shadow, so the inside wall the camera faces shows its albedo (irradiance pi along
+// the view) in direct light (--max-depth 1: the walls' interreflection left out); the dome, shut
+// out by the box, adds nothing (its light samples, chosen beside the key light's, make the noise).
+TEST_F(DefaultLightCli, CameraInsideAClosedBoxSeesItLit) {
+    const fs::path scene = write("inside.usda", R"(#usda 1.0
+def Camera "Cam"
+{
+}
+def Cube "Box"
+{
+    double size = 10
+    color3f[] primvars:displayColor = [(0.5, 0.5, 0.5)]
+}
+)");
+    test::RunResult r = render(scene, "inside.exr", "--max-depth 1");
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    const test::ExrImage img = test::readExr(dir_ / "inside.exr");
+    const test::MeanEstimate back = redWhere(img, [](float, float, float z) { return std::abs(z) > 0.999f; });
+    ASSERT_GT(back.count(), 100);
+    EXPECT_NEAR(back.mean(), 0.5, 5 * back.standardError() + 0.01);
 }
 
 TEST_F(DefaultLightCli, NoDefaultLightRendersBlack) {

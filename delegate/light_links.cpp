@@ -1,0 +1,175 @@
+#include "delegate/light_links.h"
+
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "delegate/prim_reader.h"
+
+namespace fluence::delegate {
+
+namespace {
+
+// One UsdCollectionAPI collection of a light, as membership needs it.
+struct Collection {
+    bool includeRoot = true;
+    bool explicitOnly = false;
+    std::vector<std::string> includes, excludes;
+
+    // Whether it holds every prim (nothing to resolve).
+    bool holdsEverything() const { return !explicitOnly && includeRoot && excludes.empty(); }
+};
+
+bool isAncestorOrSelf(const std::string& ancestor, const std::string& path) {
+    if (ancestor == "/") return true;
+    return path.starts_with(ancestor) && (path.size() == ancestor.size() || path[ancestor.size()] == '/');
+}
+
+bool contains(const Collection& c, const std::string& path) {
+    if (c.explicitOnly) {
+        bool included = false;
+        for (const std::string& p : c.includes) included = included || p == path;
+        for (const std::string& p : c.excludes) included = included && p != path;
+        return included;
+    }
+    // The nearest named ancestor-or-self decides; at equal depth an exclude wins.
+    std::size_t nearest = 0;
+    std::optional<bool> decided;
+    for (const std::string& p : c.includes)
+        if (isAncestorOrSelf(p, path) && (!decided || p.size() > nearest)) {
+            nearest = p.size();
+            decided = true;
+        }
+    for (const std::string& p : c.excludes)
+        if (isAncestorOrSelf(p, path) && (!decided || p.size() >= nearest)) {
+            nearest = p.size();
+            decided = false;
+        }
+    return decided.value_or(c.includeRoot);
+}
+
+// The targets of relationship `name` of `prim` that are prim paths (collections named by path are
+// warned about and left out).
+std::vector<std::string> primTargets(const usd::PrimSpec& prim, const std::string& name, const Warn& warn) {
+    std::vector<std::string> targets;
+    const usd::RelationshipSpec* rel = prim.relationship(name);
+    if (!rel || rel->blocked) return targets;
+    for (const std::string& t : rel->targets) {
+        if (t.empty() || t[0] != '/' || t.find('.') != std::string::npos) {
+            warn(prim.path, name + ": target <" + t +
+                                "> is not an absolute prim path (collections of collections "
+                                "are not followed); left out");
+            continue;
+        }
+        targets.push_back(t);
+    }
+    return targets;
+}
+
+Collection readCollection(const usd::PrimSpec& prim, double time, const std::string& name, const Warn& warn) {
+    const std::string base = "collection:" + name + ":";
+    PrimReader reader(prim, time);
+    Collection c;
+    c.includeRoot = reader.boolean({(base + "includeRoot").c_str()}, true);
+    const std::string rule = reader.token({(base + "expansionRule").c_str()}, "expandPrims");
+    if (rule != "expandPrims" && rule != "expandPrimsAndProperties" && rule != "explicitOnly")
+        warn(prim.path, base + "expansionRule '" + rule + "' is not one of UsdCollectionAPI's; read as expandPrims");
+    c.explicitOnly = rule == "explicitOnly";
+    c.includes = primTargets(prim, base + "includes", warn);
+    c.excludes = primTargets(prim, base + "excludes", warn);
+    return c;
+}
+
+// A light whose collections do not hold everything: its index in SceneDescription::lights.
+struct LinkedLight {
+    int index;
+    Collection light, shadow;
+};
+
+// Per linked light, whether it lights and is shadowed by a prim at `path`: the key of its group.
+using Membership = std::vector<bool>;
+
+Membership membershipOf(const std::vector<LinkedLight>& lights, const std::string& path) {
+    Membership m;
+    for (const LinkedLight& l : lights) {
+        m.push_back(!contains(l.light, path));
+        m.push_back(!contains(l.shadow, path));
+    }
+    return m;
+}
+
+// Link group numbers, one per distinct membership (0: every light lights and is shadowed).
+class Groups {
+public:
+    Groups(const std::vector<LinkedLight>& lights, render::SceneDescription& scene) : lights_(lights), scene_(scene) {}
+
+    int of(const Membership& m) {
+        bool linkedToAll = true;
+        for (bool excluded : m) linkedToAll = linkedToAll && !excluded;
+        if (linkedToAll) return 0;
+        auto [it, added] = numbers_.try_emplace(m, int(scene_.lightLinkGroups.size()) + 1);
+        if (added) {
+            render::LightLinkGroup& g = scene_.lightLinkGroups.emplace_back();
+            for (std::size_t i = 0; i < lights_.size(); ++i) {
+                if (m[2 * i]) g.unlit.push_back(lights_[i].index);
+                if (m[2 * i + 1]) g.unshadowed.push_back(lights_[i].index);
+            }
+        }
+        return it->second;
+    }
+
+private:
+    const std::vector<LinkedLight>& lights_;
+    render::SceneDescription& scene_;
+    std::map<Membership, int> numbers_;
+};
+
+// The group of an instance: its meshes' memberships at their instance-proxy paths (a
+// PointInstancer's instance: at their prototype paths), which must agree.
+int instanceGroup(const std::vector<LinkedLight>& lights, const render::InstanceDesc& instance,
+                  const render::PrototypeDesc& prototype, Groups& groups, const Warn& warn) {
+    const bool pointInstance = instance.name.find('[') != std::string::npos;
+    std::optional<Membership> shared;
+    bool differ = false;
+    for (const render::MeshDesc& mesh : prototype.meshes) {
+        const bool inside = isAncestorOrSelf(prototype.name, mesh.name);
+        const std::string path =
+            pointInstance || !inside ? mesh.name : instance.name + mesh.name.substr(prototype.name.size());
+        const Membership m = membershipOf(lights, path);
+        differ = differ || (shared && *shared != m);
+        if (!shared) shared = m;
+    }
+    if (differ || !shared) {
+        if (differ)
+            warn(instance.name,
+                 "light or shadow links name prims inside this instance differently; the instance "
+                 "takes the links of its own prim");
+        const std::string own = pointInstance ? instance.name.substr(0, instance.name.find('[')) : instance.name;
+        return groups.of(membershipOf(lights, own));
+    }
+    return groups.of(*shared);
+}
+
+}  // namespace
+
+void resolveLightLinks(const usd::Stage& stage, double time, render::SceneDescription& scene, const Warn& warn) {
+    std::vector<LinkedLight> lights;
+    for (std::size_t i = 0; i < scene.lights.size(); ++i) {
+        const usd::PrimSpec* prim = stage.prim(scene.lights[i].name);
+        if (!prim) continue;  // the default lights
+        LinkedLight l{int(i), readCollection(*prim, time, "lightLink", warn),
+                      readCollection(*prim, time, "shadowLink", warn)};
+        if (!l.light.holdsEverything() || !l.shadow.holdsEverything()) lights.push_back(std::move(l));
+    }
+    if (lights.empty()) return;
+    Groups groups(lights, scene);
+    for (render::MeshDesc& m : scene.meshes) m.linkGroup = groups.of(membershipOf(lights, m.name));
+    for (render::CurvesDesc& c : scene.curves) c.linkGroup = groups.of(membershipOf(lights, c.name));
+    for (render::PointsDesc& p : scene.points) p.linkGroup = groups.of(membershipOf(lights, p.name));
+    for (render::InstanceDesc& instance : scene.instances)
+        instance.linkGroup =
+            instanceGroup(lights, instance, scene.prototypes[std::size_t(instance.prototype)], groups, warn);
+}
+
+}  // namespace fluence::delegate
