@@ -43,7 +43,8 @@ IesProfile::IesProfile(const texture::IesTable& table, float angleScale, bool no
     for (std::size_t h = 0; h < angles.size(); ++h)
         columns.emplace_back(table.candela.begin() + h * nv, table.candela.begin() + (h + 1) * nv);
     if (angles.size() == 1) {
-        angles.push_back(360.0f);
+        const float only = angles.front();
+        angles = {only, 360.0f};
         columns.push_back(columns[0]);
     } else if (angles.back() == 90.0f) {
         mirror(angles, columns, 90.0f);

@@ -46,6 +46,14 @@
 namespace fluence::integrators {
 namespace {
 
+// A cone of `angle` degrees and `softness`, unfocused, with no IES profile.
+render::LightShapingDesc spotCone(float angle, float softness) {
+    render::LightShapingDesc shaping;
+    shaping.coneAngleDegrees = angle;
+    shaping.coneSoftness = softness;
+    return shaping;
+}
+
 // ---- MIS weights.
 
 TEST(BdptMis, WeightsSumToOneOverTheStrategiesOfAPath) {
@@ -155,7 +163,7 @@ TEST(BdptEmission, SampledDensitiesMatchEmissionDensity) {
     };
     render::LightDesc spot = desc(render::LightType::Sphere);
     spot.treatAsPoint = true;
-    spot.shaping = render::LightShapingDesc{40.0f, 0.5f};
+    spot.shaping = spotCone(40.0f, 0.5f);
     render::LightDesc sun = desc(render::LightType::Distant);
     sun.angleDegrees = 5.0f;
     std::vector<std::unique_ptr<render::Light>> lights;
@@ -365,7 +373,7 @@ render::SceneDescription deltaLightScene() {
         "/panel", {{{-1.8f, 0.5f, -1}, {-1.2f, 1.2f, -1}, {-1.2f, 1.2f, 0.2f}, {-1.8f, 0.5f, 0.2f}}}, 1));
     render::LightDesc spot = test::pointLight("/spot", RGB(600.0f), {0.8, -0.5, 1.8});  // emits along -Z, downwards
     spot.radius = 0.1f;
-    spot.shaping = render::LightShapingDesc{50.0f, 0.3f};
+    spot.shaping = spotCone(50.0f, 0.3f);
     s.lights.push_back(spot);
     s.lights.push_back(
         test::distantLight("/sun", 0.0f, RGB(1.2f, 1.1f, 0.9f), Matrix4::rotateX(40) * Matrix4::rotateY(-30)));

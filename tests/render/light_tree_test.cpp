@@ -26,6 +26,14 @@
 namespace fluence::render {
 namespace {
 
+// A cone of `angle` degrees and `softness`, unfocused, with no IES profile.
+LightShapingDesc spotCone(float angle, float softness) {
+    LightShapingDesc shaping;
+    shaping.coneAngleDegrees = angle;
+    shaping.coneSoftness = softness;
+    return shaping;
+}
+
 const SceneBounds kScene{Vec3f(0.0f), 10.0f};
 
 // A mix of every kind of light scattered in a 10-unit box, with random sizes, turns and powers,
@@ -43,7 +51,7 @@ std::vector<std::unique_ptr<Light>> mixedLights(int count, bool withInfinite = t
         d.width = 0.1f + rng.next();
         d.height = 0.1f + rng.next();
         d.length = 0.2f + 2.0f * rng.next();
-        if (i % 5 == 0) d.shaping = LightShapingDesc{20.0f + 60.0f * rng.next(), 0.3f, 0.0f, RGB(0.0f)};
+        if (i % 5 == 0) d.shaping = spotCone(20.0f + 60.0f * rng.next(), 0.3f);
         switch (i % 7) {
             case 0: lights.push_back(std::make_unique<RectLight>(d)); break;
             case 1: lights.push_back(std::make_unique<DiskLight>(d)); break;
@@ -177,7 +185,7 @@ TEST(LightTree, FavoursTheLightsNearAndFacingThePoint) {
 TEST(LightTree, ShapedLightsAreNotChosenOutsideTheirCone) {
     LightDesc d;
     d.radius = 0.1f;
-    d.shaping = LightShapingDesc{30.0f, 0.0f, 0.0f, RGB(0.0f)};
+    d.shaping = spotCone(30.0f, 0.0f);
     d.transform = Matrix4::translate({0, 2, 0}) * Matrix4::rotateX(-90);  // a spot pointing down -Y
     std::vector<std::unique_ptr<Light>> lights;
     lights.push_back(std::make_unique<PointLight>(d));
@@ -202,7 +210,7 @@ TEST(LightTree, OneLightChoosesAsTheGeneralWalkDoes) {
     d.height = 0.5f;
     d.radius = 0.3f;
     LightDesc shaped = d;
-    shaped.shaping = LightShapingDesc{40.0f, 0.2f, 0.0f, RGB(0.0f)};
+    shaped.shaping = spotCone(40.0f, 0.2f);
     std::vector<std::function<std::unique_ptr<Light>()>> kinds = {
         [&] { return std::make_unique<RectLight>(d); },
         [&] { return std::make_unique<DiskLight>(d); },
