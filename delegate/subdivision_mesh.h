@@ -16,8 +16,8 @@
 // | primvars:displayColor            | none            | any interpolation, indexed or not        |
 // | normals, primvars:normals        | —               | ignored, as USD says for subdivision     |
 // |                                  |                 | surfaces: the limit normals shade        |
-// Face-varying primvars such as `st` are refined by SubdivisionSurface, but the render core has
-// no UV channel until textures arrive (issue #6), so they are not read here yet.
+// | other primvars (st, ...)         | none            | every interpolation; face-varying ones   |
+// |                                  |                 | refined by SubdivisionSurface            |
 //
 // Tessellating (whenever the scene is described) dices every base edge for the camera
 // (delegate/dicing.h) as the mesh's placements put it in the world, takes the largest count over
