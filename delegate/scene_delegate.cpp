@@ -468,10 +468,16 @@ render::SceneDescription SceneDelegate::describe(const render::Camera& camera, c
 void SceneDelegate::setTime(double time) {
     options_.time = time;
     renderSettings_ = renderSettingsFromStage(stage_, options_.settingsPath, time, settingsWarning(options_));
+    markTimeDependent(false);
+}
+
+void SceneDelegate::markTimeDependent(bool byVelocities) {
     for (const auto& [path, prim] : index_.prims()) {
         if (prim->failed()) prim->markDirty(kAllDirty);  // it may be well formed at this time
         if (prim->transformAnimated()) prim->markDirty(kDirtyTransform);
-        if (prim->dataAnimated()) prim->markDirty(kAllDirty & ~std::uint32_t(kDirtyTransform));
+        const usd::PrimSpec* spec = byVelocities && !prim->dataAnimated() ? stage_.prim(path) : nullptr;
+        if (prim->dataAnimated() || (spec && movesByVelocities(*spec)))
+            prim->markDirty(kAllDirty & ~std::uint32_t(kDirtyTransform));
     }
 }
 
@@ -479,13 +485,7 @@ void SceneDelegate::setMotionStep(double time, double velocityFrame) {
     options_.time = time;
     options_.velocityFrame = velocityFrame;
     options_.warn = [](const std::string&, const std::string&) {};
-    for (const auto& [path, prim] : index_.prims()) {
-        if (prim->failed()) prim->markDirty(kAllDirty);
-        if (prim->transformAnimated()) prim->markDirty(kDirtyTransform);
-        const usd::PrimSpec* spec = prim->dataAnimated() ? nullptr : stage_.prim(path);
-        if (prim->dataAnimated() || (spec && movesByVelocities(*spec)))
-            prim->markDirty(kAllDirty & ~std::uint32_t(kDirtyTransform));
-    }
+    markTimeDependent(true);
 }
 
 void SceneDelegate::setAttribute(const std::string& primPath, const std::string& name, const usd::Value& value) {

@@ -116,6 +116,9 @@ public:
 
 private:
     void populate(const std::string& root);
+    // Marks what a change of time changes: failed prims (all), animated transforms and data, and,
+    // with `byVelocities`, the prims that move by velocities (motion_samples.h).
+    void markTimeDependent(bool byVelocities);
     void repopulate(const std::string& primPath);
     // Creates, re-sources or removes prototypes so that every instance's prototype exists.
     void reconcilePrototypes();
