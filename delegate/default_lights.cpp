@@ -4,13 +4,13 @@
 
 namespace fluence::delegate {
 
-namespace {
-
 bool materialEmits(const render::MaterialDesc& m) {
     return !isBlack(m.emission) || std::any_of(m.bindings.begin(), m.bindings.end(), [](const render::InputBinding& b) {
         return b.input == render::MaterialInput::Emission;
     });
 }
+
+namespace {
 
 bool volumeEmits(const render::VolumeDesc& v) {
     return (v.params.emissionScale > 0.0f && !isBlack(v.params.emissionColor)) ||

@@ -5,86 +5,21 @@
 #include <string>
 #include <vector>
 
-#include "delegate/prim_reader.h"
+#include "delegate/collection_membership.h"
 
 namespace fluence::delegate {
 
 namespace {
-
-// One UsdCollectionAPI collection of a light, as membership needs it.
-struct Collection {
-    bool includeRoot = true;
-    bool explicitOnly = false;
-    std::vector<std::string> includes, excludes;
-
-    // Whether it holds every prim (nothing to resolve).
-    bool holdsEverything() const { return !explicitOnly && includeRoot && excludes.empty(); }
-};
 
 bool isAncestorOrSelf(const std::string& ancestor, const std::string& path) {
     if (ancestor == "/") return true;
     return path.starts_with(ancestor) && (path.size() == ancestor.size() || path[ancestor.size()] == '/');
 }
 
-bool contains(const Collection& c, const std::string& path) {
-    if (c.explicitOnly) {
-        bool included = false;
-        for (const std::string& p : c.includes) included = included || p == path;
-        for (const std::string& p : c.excludes) included = included && p != path;
-        return included;
-    }
-    // The nearest named ancestor-or-self decides; at equal depth an exclude wins.
-    std::size_t nearest = 0;
-    std::optional<bool> decided;
-    for (const std::string& p : c.includes)
-        if (isAncestorOrSelf(p, path) && (!decided || p.size() > nearest)) {
-            nearest = p.size();
-            decided = true;
-        }
-    for (const std::string& p : c.excludes)
-        if (isAncestorOrSelf(p, path) && (!decided || p.size() >= nearest)) {
-            nearest = p.size();
-            decided = false;
-        }
-    return decided.value_or(c.includeRoot);
-}
-
-// The targets of relationship `name` of `prim` that are prim paths (collections named by path are
-// warned about and left out).
-std::vector<std::string> primTargets(const usd::PrimSpec& prim, const std::string& name, const Warn& warn) {
-    std::vector<std::string> targets;
-    const usd::RelationshipSpec* rel = prim.relationship(name);
-    if (!rel || rel->blocked) return targets;
-    for (const std::string& t : rel->targets) {
-        if (t.empty() || t[0] != '/' || t.find('.') != std::string::npos) {
-            warn(prim.path, name + ": target <" + t +
-                                "> is not an absolute prim path (collections of collections "
-                                "are not followed); left out");
-            continue;
-        }
-        targets.push_back(t);
-    }
-    return targets;
-}
-
-Collection readCollection(const usd::PrimSpec& prim, double time, const std::string& name, const Warn& warn) {
-    const std::string base = "collection:" + name + ":";
-    PrimReader reader(prim, time);
-    Collection c;
-    c.includeRoot = reader.boolean({(base + "includeRoot").c_str()}, true);
-    const std::string rule = reader.token({(base + "expansionRule").c_str()}, "expandPrims");
-    if (rule != "expandPrims" && rule != "expandPrimsAndProperties" && rule != "explicitOnly")
-        warn(prim.path, base + "expansionRule '" + rule + "' is not one of UsdCollectionAPI's; read as expandPrims");
-    c.explicitOnly = rule == "explicitOnly";
-    c.includes = primTargets(prim, base + "includes", warn);
-    c.excludes = primTargets(prim, base + "excludes", warn);
-    return c;
-}
-
 // A light whose collections do not hold everything: its index in SceneDescription::lights.
 struct LinkedLight {
     int index;
-    Collection light, shadow;
+    CollectionMembership light, shadow;
 };
 
 // Per linked light, whether it lights and is shadowed by a prim at `path`: the key of its group.
@@ -93,8 +28,8 @@ using Membership = std::vector<bool>;
 Membership membershipOf(const std::vector<LinkedLight>& lights, const std::string& path) {
     Membership m;
     for (const LinkedLight& l : lights) {
-        m.push_back(!contains(l.light, path));
-        m.push_back(!contains(l.shadow, path));
+        m.push_back(!l.light.contains(path));
+        m.push_back(!l.shadow.contains(path));
     }
     return m;
 }
@@ -158,8 +93,8 @@ void resolveLightLinks(const usd::Stage& stage, double time, render::SceneDescri
     for (std::size_t i = 0; i < scene.lights.size(); ++i) {
         const usd::PrimSpec* prim = stage.prim(scene.lights[i].name);
         if (!prim) continue;  // the default lights
-        LinkedLight l{int(i), readCollection(*prim, time, "lightLink", warn),
-                      readCollection(*prim, time, "shadowLink", warn)};
+        LinkedLight l{int(i), CollectionMembership::read(stage, *prim, "lightLink", true, time, warn),
+                      CollectionMembership::read(stage, *prim, "shadowLink", true, time, warn)};
         if (!l.light.holdsEverything() || !l.shadow.holdsEverything()) lights.push_back(std::move(l));
     }
     if (lights.empty()) return;

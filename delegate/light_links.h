@@ -2,16 +2,13 @@
 // collection:shadowLink (UsdCollectionAPI) resolved into the link groups of the scene's geometry
 // (render/light_links.h), so the render core never sees a collection or a prim path.
 //
-// Membership follows UsdCollectionAPI (OpenUSD pxr/usd/usd/collectionAPI.h, collectionMembershipQuery):
-// a prim belongs to the collection when the nearest of its ancestors-or-self that `includes` or
-// `excludes` names is included (an exclude wins over an include of the same path), or, when none
-// is named, when `includeRoot` is true (UsdLux's fallback for both collections, so an unauthored
-// collection holds everything). expansionRule `explicitOnly` keeps only the paths `includes` names
-// itself; `expandPrims` (the fallback) and `expandPrimsAndProperties` their whole subtrees.
+// Membership follows UsdCollectionAPI (delegate/collection_membership.h), with includeRoot's fallback
+// true for both collections (UsdLux's, so an unauthored collection holds everything); collections
+// named in `includes` are merged in.
 // Geometry inside a native instance is judged at its instance-proxy path (the instance's path and
 // the prim's path inside the prototype); an instance whose meshes would differ takes its own
 // prim's membership, with a warning. A PointInstancer's instances are judged at their prototypes'
-// paths. Collections named inside `includes` (a `.collection:` path) are not followed (warned).
+// paths.
 #pragma once
 
 #include "delegate/material_adapter.h"  // Warn

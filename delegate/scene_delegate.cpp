@@ -10,6 +10,7 @@
 #include "delegate/curves_rprim.h"
 #include "delegate/default_lights.h"
 #include "delegate/displacement.h"
+#include "delegate/light_groups.h"
 #include "delegate/light_links.h"
 #include "delegate/imageable.h"
 #include "delegate/instancing.h"
@@ -299,6 +300,7 @@ render::SceneDescription SceneDelegate::sceneDescription() const {
                       "fluence:defaultLight = false on the render settings, turns them off)");
     }
     resolveLightLinks(stage_, options_.time, scene, options_.warn);
+    resolveLightGroups(stage_, options_.time, scene, options_.warn);
     return scene;
 }
 

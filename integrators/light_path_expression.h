@@ -16,8 +16,9 @@
 //      singular (a delta lobe: mirror, clear glass)
 //   V  scattering in a participating medium, with scattering D; labelled 'subsurface' inside a
 //      subsurface material (and for the jump of diffusion subsurface scattering)
-//   L  a light, dome lights included, labelled with the light's name
-//   O  an emissive surface (object) or emitting volume
+//   L  a light, dome lights included, labelled with its light group (delegate/light_groups.h)
+//      or else its prim's name
+//   O  an emissive surface (object) or emitting volume, an emissive mesh labelled like a light
 // The language also has B (background) and s (straight: passing through unchanged) from OSL;
 // Fluence produces neither (its environment is a dome light).
 //

@@ -5,7 +5,10 @@
 namespace fluence::integrators {
 
 LightEvents::LightEvents(const render::RenderScene& scene) {
-    for (std::size_t i = 0; i < scene.lightCount(); ++i) labels_.push_back(primName(scene.light(i).name()));
+    for (std::size_t i = 0; i < scene.lightCount(); ++i) {
+        const std::string* group = scene.lightGroup(scene.light(i).name());
+        labels_.push_back(group ? *group : primName(scene.light(i).name()));
+    }
     for (std::size_t i = 0; i < scene.lightCount(); ++i) {
         const bool surface = scene.light(i).isSurfaceEmitter();
         events_.push_back(PathEvent{surface ? EventType::Object : EventType::Light, Scattering::None, labels_[i]});

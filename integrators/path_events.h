@@ -14,8 +14,9 @@
 
 namespace fluence::integrators {
 
-// Per light of a scene, its event: <L . 'name'> labelled with its prim's name, or <O> for an
-// emissive triangle. Built once per render (it belongs in a per-render state, integrators/
+// Per light of a scene, its event: <L . 'label'> for a UsdLux light, <O . 'label'> for an emissive
+// triangle, labelled with the light group of the light or mesh (delegate/light_groups.h) or else
+// its prim's name. Built once per render (it belongs in a per-render state, integrators/
 // integrator.h). Its events' labels point into its own strings: a move keeps them where they are
 // (a vector's move hands over its buffer), a copy would not, so there is none.
 class LightEvents {
@@ -30,7 +31,7 @@ public:
     const PathEvent& operator[](int light) const { return events_[std::size_t(light)]; }
 
 private:
-    std::vector<std::string> labels_;  // per light: its prim's name
+    std::vector<std::string> labels_;  // per light: its light group or prim's name
     std::vector<PathEvent> events_;
 };
 

@@ -253,6 +253,7 @@ RenderScene::RenderScene(const SceneDescription& scene, std::shared_ptr<texture:
         addLight(light);
     }
     links_ = LightLinkTable(scene.lightLinkGroups, lightOfDesc, lights_.size());
+    lightGroups_ = scene.lightGroups;
     addVolumes(scene.volumes);
     addInteriors();
 

@@ -43,6 +43,7 @@
 #pragma once
 
 #include <deque>
+#include <map>
 #include <memory>
 #include <optional>
 #include <string>
@@ -163,6 +164,12 @@ public:
 
     std::size_t lightCount() const { return lights_.size(); }
     const Light& light(std::size_t i) const { return *lights_[i]; }
+    // The light group of the light or emissive mesh at prim path `name` (SceneDescription::
+    // lightGroups), or null when it has none.
+    const std::string* lightGroup(const std::string& name) const {
+        auto found = lightGroups_.find(name);
+        return found == lightGroups_.end() ? nullptr : &found->second;
+    }
     // Lights at infinity (dome, distant), seen by rays that leave the scene.
     // The lights at infinity a ray that leaves the scene sees: all of them, but for a camera ray
     // (straight from the camera) those a LightDesc marks invisible to the camera.
@@ -283,6 +290,7 @@ private:
     std::vector<int> lightsAtInfinity_, lightsAtInfinitySeenByCamera_;
     std::vector<bool> shadowless_;  // per light, true where it casts no shadows (lightPassesSurfaces)
     LightLinkTable links_;
+    std::map<std::string, std::string> lightGroups_;
     // Whether `hit`'s surface blocks light `light`'s shadow rays (render/shadow_rays.cpp).
     bool blocksShadowsOf(int light, const SurfaceHit& hit) const;
     std::deque<Vec3f> quadLightFronts_;  // each quad light's emitting direction, its Embree filter's user data

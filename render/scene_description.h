@@ -8,6 +8,7 @@
 #pragma once
 
 #include <cstdint>
+#include <map>
 #include <memory>
 #include <optional>
 #include <string>
@@ -350,6 +351,9 @@ struct SceneDescription {
     std::vector<VolumeDesc> volumes;
     std::optional<CameraDesc> camera;
     std::vector<LightLinkGroup> lightLinkGroups;  // group g > 0 of render/light_links.h is [g - 1]
+    // Light groups (delegate/light_groups.h): the prim path of a light or emissive mesh -> the label
+    // its event carries in light path expressions instead of its prim's name.
+    std::map<std::string, std::string> lightGroups;
 };
 
 }  // namespace fluence::render

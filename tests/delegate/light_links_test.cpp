@@ -1,5 +1,6 @@
 // Light and shadow links read from UsdLux collections (delegate/light_links.h): UsdCollectionAPI's
-// membership rules (nearest named ancestor, exclude over include, includeRoot, explicitOnly),
+// membership rules (nearest named ancestor, exclude over include, includeRoot, explicitOnly,
+// collections included in collections),
 // instance proxies, and a scene without links left in group 0.
 #include <gtest/gtest.h>
 
@@ -115,6 +116,107 @@ def SphereLight "Narrow"
     EXPECT_FALSE(lit(p, "/World/A", "/Key"));
     EXPECT_TRUE(lit(p, "/World/A", "/Narrow"));
     EXPECT_FALSE(lit(p, "/World/B/Inner", "/Narrow"));  // not expanded below /World/B
+}
+
+TEST(LightLinksDelegate, IncludedCollectionsMergeTheirRulesAndLaterOnesWin) {
+    // Key includes the Scope's collection "set" (A and B but B/Inner), then excludes B/Kept; Fill
+    // includes "set" then the whole of B again, which overrides set's exclude of B/Inner.
+    const Populated p = populate(kCubes + R"(
+def Scope "Sets" (prepend apiSchemas = ["CollectionAPI:set"])
+{
+    rel collection:set:includes = [</World/A>, </World/B>]
+    rel collection:set:excludes = </World/B/Inner>
+}
+def SphereLight "Key"
+{
+    bool collection:lightLink:includeRoot = 0
+    rel collection:lightLink:includes = </Sets.collection:set>
+    rel collection:lightLink:excludes = </World/B/Kept>
+}
+def SphereLight "Fill"
+{
+    bool collection:lightLink:includeRoot = 0
+    rel collection:lightLink:includes = [</Sets.collection:set>, </World/B/Inner>]
+}
+)");
+    EXPECT_TRUE(lit(p, "/World/A", "/Key"));
+    EXPECT_FALSE(lit(p, "/World/B/Inner", "/Key"));
+    EXPECT_FALSE(lit(p, "/World/B/Kept", "/Key"));
+    EXPECT_FALSE(lit(p, "/World/Blocker", "/Key"));  // the included collection's includeRoot is false
+    EXPECT_TRUE(lit(p, "/World/B/Inner", "/Fill"));
+    EXPECT_TRUE(lit(p, "/World/B/Kept", "/Fill"));
+    EXPECT_FALSE(lit(p, "/World/Blocker", "/Fill"));
+    EXPECT_TRUE(p.warnings.empty()) << p.warnings.front();
+}
+
+TEST(LightLinksDelegate, ACycleOfCollectionsAndAMissingOneAreWarnedAbout) {
+    const Populated p = populate(kCubes + R"(
+def Scope "Sets" (prepend apiSchemas = ["CollectionAPI:one", "CollectionAPI:two"])
+{
+    rel collection:one:includes = [</World/A>, </Sets.collection:two>]
+    rel collection:two:includes = [</World/Blocker>, </Sets.collection:one>]
+}
+def SphereLight "Key"
+{
+    bool collection:lightLink:includeRoot = 0
+    rel collection:lightLink:includes = [</Sets.collection:one>, </Nowhere.collection:x>]
+}
+)");
+    EXPECT_TRUE(lit(p, "/World/A", "/Key"));
+    EXPECT_TRUE(lit(p, "/World/Blocker", "/Key"));
+    EXPECT_FALSE(lit(p, "/World/B/Inner", "/Key"));
+    auto warned = [&](const std::string& what) {
+        return std::any_of(p.warnings.begin(), p.warnings.end(),
+                           [&](const std::string& w) { return w.find(what) != std::string::npos; });
+    };
+    EXPECT_TRUE(warned("cycle")) << ::testing::PrintToString(p.warnings);
+    EXPECT_TRUE(warned("</Nowhere.collection:x>")) << ::testing::PrintToString(p.warnings);
+}
+
+TEST(LightLinksDelegate, MembershipExpressionsDecideInExpressionMode) {
+    // Expression mode needs an empty rule map: includeRoot off and no includes or excludes.
+    const Populated p = populate(kCubes + R"(
+def Scope "Sets" (prepend apiSchemas = ["CollectionAPI:blockers"])
+{
+    rel collection:blockers:includes = </World/Blocker>
+}
+def SphereLight "Children"
+{
+    bool collection:lightLink:includeRoot = 0
+    uniform pathExpression collection:lightLink:membershipExpression = "/World/*"
+}
+def SphereLight "Cubes"
+{
+    bool collection:lightLink:includeRoot = 0
+    uniform pathExpression collection:lightLink:membershipExpression = "//{isa:Gprim} - %/Sets:blockers - /World/B/K*"
+}
+def SphereLight "Ignored"
+{
+    rel collection:lightLink:includes = </World/A>
+    bool collection:lightLink:includeRoot = 0
+    uniform pathExpression collection:lightLink:membershipExpression = "/World//"
+}
+def SphereLight "Broken"
+{
+    bool collection:lightLink:includeRoot = 0
+    uniform pathExpression collection:lightLink:membershipExpression = "/World/{isa:Mesh"
+}
+)");
+    EXPECT_TRUE(lit(p, "/World/A", "/Children"));
+    EXPECT_TRUE(lit(p, "/World/Blocker", "/Children"));
+    EXPECT_FALSE(lit(p, "/World/B/Inner", "/Children"));  // not expanded below what matches
+    EXPECT_TRUE(lit(p, "/World/A", "/Cubes"));
+    EXPECT_TRUE(lit(p, "/World/B/Inner", "/Cubes"));
+    EXPECT_FALSE(lit(p, "/World/B/Kept", "/Cubes"));
+    EXPECT_FALSE(lit(p, "/World/Blocker", "/Cubes"));
+    EXPECT_TRUE(lit(p, "/World/A", "/Ignored"));  // relationship mode: the expression is ignored
+    EXPECT_FALSE(lit(p, "/World/B/Inner", "/Ignored"));
+    for (const char* mesh : {"/World/A", "/World/B/Inner", "/World/Blocker"})
+        EXPECT_FALSE(lit(p, mesh, "/Broken")) << mesh;
+    ASSERT_EQ(p.warnings.size(), 1u) << ::testing::PrintToString(p.warnings);
+    EXPECT_NE(p.warnings[0].find("/Broken: collection:lightLink:membershipExpression"), std::string::npos)
+        << p.warnings[0];
+    EXPECT_NE(p.warnings[0].find("column 17"), std::string::npos) << p.warnings[0];
 }
 
 TEST(LightLinksDelegate, InstanceProxiesAreJudgedAtTheirOwnPaths) {
