@@ -2,6 +2,7 @@
 
 #include <fnmatch.h>
 
+#include <cstdint>
 #include <optional>
 #include <utility>
 
@@ -75,8 +76,18 @@ public:
     }
 
 private:
+    // Parentheses, braces and `not`s nest at most this deep (deeper input is an error, not a stack
+    // overflow).
+    static constexpr int kMaxDepth = 200;
+    // And an expression holds at most this many atoms, a pattern this many elements (the tree is
+    // evaluated and freed recursively).
+    static constexpr int kMaxAtoms = 10000;
+    static constexpr std::size_t kMaxElements = 1000;
+
     std::string_view s_;
     std::size_t i_ = 0;
+    int depth_ = 0;
+    int atoms_ = 0;
     std::string anchor_;
     std::vector<PathExpression::Reference>& references_;
 
@@ -90,6 +101,17 @@ private:
         while (!end() && (peek() == ' ' || peek() == '\t')) ++i_;
         return i_ > start;
     }
+    // Counts one level of nesting for as long as it lives.
+    struct Nested {
+        Parser& parser;
+        explicit Nested(Parser& p) : parser(p) {
+            if (++parser.depth_ > kMaxDepth) parser.fail("nested more than " + std::to_string(kMaxDepth) + " deep");
+        }
+        ~Nested() { --parser.depth_; }
+        Nested(const Nested&) = delete;
+        Nested& operator=(const Nested&) = delete;
+    };
+
     void expect(char c) {
         if (peek() != c) fail(std::string("expected '") + c + "'");
         ++i_;
@@ -97,6 +119,7 @@ private:
 
     // ---- Set expressions.
     std::unique_ptr<Node> expression() {
+        const Nested nested(*this);
         std::vector<Node::Op> ops;
         std::vector<std::unique_ptr<Node>> operands;
         auto reduce = [&] {
@@ -140,6 +163,7 @@ private:
 
     std::unique_ptr<Node> atom() {
         if (end()) fail("expected a path pattern, a reference or '('");
+        if (++atoms_ > kMaxAtoms) fail("more than " + std::to_string(kMaxAtoms) + " patterns and references");
         if (peek() == '(') {
             ++i_;
             auto inner = expression();
@@ -229,6 +253,8 @@ private:
                 ++i_;
                 needElement = true;
             } else if (elementStart()) {
+                if (p.elements.size() >= kMaxElements)
+                    fail("a pattern of more than " + std::to_string(kMaxElements) + " elements");
                 p.elements.push_back(element());
                 needElement = false;
                 if (peek() == '.' && isIdentifierChar(peek(1))) {  // a property: no prim matches
@@ -276,6 +302,7 @@ private:
     }
 
     Predicate orPredicate() {
+        const Nested nested(*this);
         Predicate first = andPredicate();
         if (!keyword("or")) return first;
         Predicate p{Predicate::Op::Or, {}, {std::move(first)}};
@@ -303,6 +330,7 @@ private:
     }
 
     Predicate unaryPredicate() {
+        const Nested nested(*this);
         if (keyword("not")) {
             i_ += 3;
             blanks();
@@ -390,21 +418,43 @@ bool satisfies(const Predicate& p, const Stage& stage, const std::string& path) 
     return false;
 }
 
-// Whether pattern elements [j, end) match path components [i, end); prefixes[i + 1] is the path
-// of component i.
-bool matchFrom(const Pattern& p, std::size_t j, const std::vector<std::string>& parts,
-               const std::vector<std::string>& prefixes, std::size_t i, const Stage& stage) {
-    if (j == p.elements.size()) return i == parts.size();
-    const Element& e = p.elements[j];
-    if (e.stretch) {
-        for (std::size_t k = i; k <= parts.size(); ++k)
-            if (matchFrom(p, j + 1, parts, prefixes, k, stage)) return true;
-        return false;
+// Whether a pattern matches a path: elements against components, each (element, component)
+// pair decided once (stretches would otherwise backtrack exponentially).
+class PatternMatch {
+public:
+    PatternMatch(const Pattern& p, const std::vector<std::string>& parts, const std::vector<std::string>& prefixes,
+                 const Stage& stage)
+        : p_(p),
+          parts_(parts),
+          prefixes_(prefixes),
+          stage_(stage),
+          memo_((p.elements.size() + 1) * (parts.size() + 1), Unknown) {}
+
+    bool operator()() { return from(0, 0); }
+
+private:
+    enum : std::int8_t { Unknown = -1, No = 0, Yes = 1 };
+    const Pattern& p_;
+    const std::vector<std::string>& parts_;
+    const std::vector<std::string>& prefixes_;  // prefixes_[i + 1]: the path of component i
+    const Stage& stage_;
+    std::vector<std::int8_t> memo_;
+
+    // Whether elements [j, end) match components [i, end).
+    bool from(std::size_t j, std::size_t i) {
+        std::int8_t& known = memo_[j * (parts_.size() + 1) + i];
+        if (known == Unknown) known = decide(j, i) ? Yes : No;
+        return known == Yes;
     }
-    if (i == parts.size() || fnmatch(e.glob.c_str(), parts[i].c_str(), 0) != 0) return false;
-    if (e.predicate && !satisfies(*e.predicate, stage, prefixes[i + 1])) return false;
-    return matchFrom(p, j + 1, parts, prefixes, i + 1, stage);
-}
+    bool decide(std::size_t j, std::size_t i) {
+        if (j == p_.elements.size()) return i == parts_.size();
+        const Element& e = p_.elements[j];
+        if (e.stretch) return from(j + 1, i) || (i < parts_.size() && from(j, i + 1));
+        if (i == parts_.size() || fnmatch(e.glob.c_str(), parts_[i].c_str(), 0) != 0) return false;
+        if (e.predicate && !satisfies(*e.predicate, stage_, prefixes_[i + 1])) return false;
+        return from(j + 1, i + 1);
+    }
+};
 
 bool evaluate(const Node& n, const std::string& path, const std::vector<std::string>& parts,
               const std::vector<std::string>& prefixes, const Stage& stage,
@@ -413,7 +463,7 @@ bool evaluate(const Node& n, const std::string& path, const std::vector<std::str
         return evaluate(*child, path, parts, prefixes, stage, membership);
     };
     switch (n.op) {
-        case Node::Op::Pattern: return !n.pattern.property && matchFrom(n.pattern, 0, parts, prefixes, 0, stage);
+        case Node::Op::Pattern: return !n.pattern.property && PatternMatch(n.pattern, parts, prefixes, stage)();
         case Node::Op::Reference: return membership(n.reference, path);
         case Node::Op::Nothing: return false;
         case Node::Op::Complement: return !sub(n.right);

@@ -151,6 +151,19 @@ TEST_F(PathExpressionTest, SyntaxErrorsNameTheirColumn) {
     EXPECT_EQ(error("//{specifier:dif}"), "column 4: predicate 'specifier': 'dif' is not def, over or class");
     EXPECT_EQ(error("%/World"), "column 1: a reference is %<prim path>:<collection name>");
     EXPECT_EQ(error("/World +"), "column 9: expected a path pattern, a reference or '('");
+    EXPECT_EQ(error(std::string(300, '(') + "/World" + std::string(300, ')')), "column 201: nested more than 200 deep");
+    EXPECT_NE(error("//{" + std::string(300, '(') + "isa:Mesh" + std::string(300, ')') + "}")
+                  .find("nested more than 200 deep"),
+              std::string::npos);
+}
+
+TEST_F(PathExpressionTest, StretchesDoNotBacktrackExponentially) {
+    // 40 stretches against a 30-level path that does not match: every (element, level) pair once.
+    std::string deep, pattern;
+    for (int i = 0; i < 30; ++i) deep += "/a";
+    for (int i = 0; i < 40; ++i) pattern += "//a";
+    EXPECT_FALSE(match(pattern + "/b", deep));
+    EXPECT_TRUE(match(pattern.substr(0, 3 * 30), deep));
 }
 
 }  // namespace
