@@ -7,7 +7,9 @@
 // prim spec (including over/class prims and prims inside variants, which the traversal skips)
 // resolved through Stage::resolve at the default time and at times around each authored sample.
 // Each resolved Value is read in full (numbers summed, strings measured, toString), so a bad
-// payload shows up as a sanitizer report here rather than in the delegate later.
+// payload shows up as a sanitizer report here rather than in the delegate later. Every
+// pathExpression value of the composed stage is parsed as a collection's membershipExpression and
+// matched against its prims (scene/path_expression.h): only a PathExpressionError may come out.
 //
 // Built by fuzz/CMakeLists.txt with clang -fsanitize=fuzzer,address,undefined; run by
 // scripts/fuzz_smoke.sh. See fuzz/README.md.
@@ -24,6 +26,7 @@
 #include <string_view>
 #include <vector>
 
+#include "scene/path_expression.h"
 #include "scene/stage.h"
 #include "scene/usda_parser.h"
 
@@ -160,6 +163,36 @@ void touchVariant(const Layer& layer, const Variant& variant, int depth) {
     }
 }
 
+// Every composed prim's path, and every pathExpression value with the prim that holds it.
+void collectExpressions(const PrimSpec& prim, std::vector<std::string>& paths,
+                        std::vector<std::pair<std::string, std::string>>& expressions) {
+    paths.push_back(prim.path);
+    for (const AttributeSpec& attribute : prim.attributes)
+        if (attribute.hasDefault && attribute.defaultValue.typeName == "pathExpression")
+            for (const std::string& text : attribute.defaultValue.strings) expressions.emplace_back(prim.path, text);
+    for (const auto& child : prim.children) collectExpressions(*child, paths, expressions);
+}
+
+// Each pathExpression parsed (anchored at its prim) and, when it parses, matched against the
+// first prims of the stage, as a collection's membershipExpression is (scene/path_expression.h).
+template <class S>
+void touchExpressions(const S& stage) {
+    if constexpr (requires { stage.composedLayer(); }) {
+        std::vector<std::string> paths;
+        std::vector<std::pair<std::string, std::string>> expressions;
+        for (const auto& prim : stage.composedLayer().rootPrims) collectExpressions(*prim, paths, expressions);
+        for (const auto& [anchor, text] : expressions) {
+            try {
+                PathExpression expression(text, anchor);
+                for (std::size_t i = 0; i < paths.size() && i < 64; ++i)
+                    gSink = gSink + expression.matches(paths[i], stage, [](const auto&, const auto&) { return true; });
+            } catch (const PathExpressionError& error) {
+                if (!std::string_view(error.what()).starts_with("column ")) std::abort();
+            }
+        }
+    }
+}
+
 // Once the Stage composes (composedLayer, warnings, asset references), the composed result is
 // read back the same way; the `requires` tests keep this building against a Stage without them.
 template <class S>
@@ -212,6 +245,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
         gSink = gSink + static_cast<double>(stage.defaultPrim().size()) + stage.upAxis() + stage.metersPerUnit() +
                 stage.startTimeCode().value_or(0.0) + stage.endTimeCode().value_or(0.0);
         touchComposition(stage);
+        touchExpressions(stage);
         stage.traverse([&](const PrimSpec& prim) {
             if (stage.prim(prim.path) == nullptr && prim.path.find('{') == std::string::npos) {
                 // A traversed prim must be reachable by its path.
