@@ -218,6 +218,22 @@ TEST(MaterialBsdf, EachParameterDrivesItsLayer) {
     expectSameBsdf(bsdfOf(all, albedo, a), b.make<MixBsdf>(metal, coated, 0.8f));
 }
 
+// A rough metal's multiple-scattering lobe is light its microfacets reflect: glossy, never
+// diffuse, so a light path expression counts it as RG (render/bsdfs/ggx_multiple_scattering.h).
+TEST(MaterialBsdf, CompensatedMetalsMultipleScatteringIsGlossy) {
+    BsdfArena arena;
+    const Bsdf& metal = energyCompensatedConductor(RGB(0.9f, 0.6f, 0.3f), GgxDistribution(0.6f), arena);
+    EXPECT_FALSE(metal.flags() & kBsdfDiffuse);
+    EXPECT_TRUE(metal.flags() & kBsdfGlossy);
+    const Vec3f wo = normalize(Vec3f(0.3f, 0.1f, 0.9f)), wi = normalize(Vec3f(-0.8f, 0.2f, 0.3f));
+    const LobeSplit split = metal.fByKind(wo, wi);
+    EXPECT_TRUE(isBlack(split.diffuse));
+    const RGB f = metal.f(wo, wi);
+    for (int c = 0; c < 3; ++c) EXPECT_FLOAT_EQ(split.glossy[c], f[c]) << "channel " << c;
+    const GgxConductorBsdf single(RGB(0.9f, 0.6f, 0.3f), GgxDistribution(0.6f));
+    EXPECT_GT(f.x, single.f(wo, wi).x) << "the multiple-scattering lobe adds to the single-scattering one";
+}
+
 // Glass (thin or solid), metal, sheen, a tinted anisotropic specular lobe and a coloured coat at
 // once: it fits in the arena, its samples follow its pdf (chi-square, from outside for the sheet
 // and from inside for the solid) and agree with f and pdf.
