@@ -8,22 +8,16 @@
 #include <utility>
 
 #include "integrators/path_tracer.h"
-#include "media/subsurface_medium.h"
 #include "tests/integrators/render_support.h"
 #include "tests/support/chi2.h"
 #include "tests/support/scenes.h"
+#include "tests/support/subsurface_material.h"
 
 namespace fluence::integrators {
 namespace {
 
 render::MaterialDesc subsurfaceMaterial() {
-    render::MaterialDesc m;
-    m.name = "/Skin";
-    m.subsurface = 1.0f;
-    m.subsurfaceColor = RGB(0.8f, 0.4f, 0.2f);
-    m.roughness = 0.3f;
-    m.interior = media::subsurfaceMedium(m.subsurfaceColor, RGB(0.2f, 0.1f, 0.05f), 0.0f);
-    return m;
+    return test::subsurfaceMaterial("/Skin", RGB(0.8f, 0.4f, 0.2f), RGB(0.2f, 0.1f, 0.05f));
 }
 
 render::MaterialDesc tintedGlassMaterial() {
