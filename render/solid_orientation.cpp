@@ -72,12 +72,17 @@ bool isClosed(const std::vector<Vec3f>& positions, const std::vector<std::uint32
     const std::vector<std::uint32_t> welded = weldedIndices(positions);
     std::unordered_map<std::uint64_t, int> edgeUses;
     edgeUses.reserve(indices.size());
-    for (std::size_t c = 0; c + 2 < indices.size(); c += 3)
+    for (std::size_t c = 0; c + 2 < indices.size(); c += 3) {
+        const std::uint32_t corner[3] = {welded[indices[c]], welded[indices[c + 1]], welded[indices[c + 2]]};
+        // A triangle with two corners at one point (a quad's half at a UV sphere's pole) bounds
+        // nothing: its edges are not counted.
+        if (corner[0] == corner[1] || corner[1] == corner[2] || corner[2] == corner[0]) continue;
         for (std::size_t k = 0; k < 3; ++k) {
-            const std::uint32_t a = welded[indices[c + k]], b = welded[indices[c + (k + 1) % 3]];
-            if (a == b) return false;  // a degenerate triangle: no solid is bounded cleanly
+            const std::uint32_t a = corner[k], b = corner[(k + 1) % 3];
             edgeUses[(std::uint64_t(std::min(a, b)) << 32) | std::max(a, b)] += 1;
         }
+    }
+    if (edgeUses.empty()) return false;
     return std::all_of(edgeUses.begin(), edgeUses.end(), [](const auto& e) { return e.second == 2; });
 }
 

@@ -12,7 +12,8 @@
 // that then point inward overall (authored with the inward winding) are turned outward too.
 //
 // A mesh is closed when every edge is shared by exactly two of its triangles, its corners welded
-// by position (to a millionth of the mesh's extent), so a seam where the points are split joins.
+// by position (to a millionth of the mesh's extent), so a seam where the points are split joins;
+// triangles with two corners at one point (a UV sphere's quads at its poles) are left out.
 #pragma once
 
 #include <cstdint>

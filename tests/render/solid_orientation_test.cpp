@@ -31,6 +31,15 @@ TEST(SolidOrientation, ASphereWhosePolesAndSeamAreComputedTwiceIsClosed) {
     EXPECT_TRUE(isClosed(sphere.positions, sphere.indices));
 }
 
+TEST(SolidOrientation, TrianglesWithTwoCornersAtOnePointDoNotOpenAMesh) {
+    // As the triangulated quads at a UV sphere's poles give: one half of each quad is degenerate.
+    MeshDesc box = test::boxMesh(Vec3f(1.0f), 0);
+    box.positions.push_back(box.positions[0]);  // a second point where the first is
+    const auto twin = static_cast<std::uint32_t>(box.positions.size() - 1);
+    box.indices.insert(box.indices.end(), {0u, twin, 1u, 2u, 2u, 3u});
+    EXPECT_TRUE(isClosed(box.positions, box.indices));
+}
+
 TEST(SolidOrientation, SignedVolumeIsPositiveWoundOutwardAndNegativeWoundInward) {
     MeshDesc box = test::boxMesh(Vec3f(1.0f, 2.0f, 0.5f), 0);
     EXPECT_NEAR(signedVolume(box.positions, box.indices), 8.0, 1e-9);
