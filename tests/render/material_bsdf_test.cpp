@@ -12,6 +12,7 @@
 #include "render/bsdfs/fresnel.h"
 #include "render/bsdfs/ggx_conductor.h"
 #include "render/bsdfs/ggx_dielectric.h"
+#include "render/bsdfs/ggx_dielectric_multiple_scattering.h"
 #include "render/bsdfs/ggx_multiple_scattering.h"
 #include "render/bsdfs/lambertian.h"
 #include "render/bsdfs/layered.h"
@@ -182,7 +183,7 @@ TEST(MaterialBsdf, EachParameterDrivesItsLayer) {
                    b.make<CoatedBsdf>(b.make<LambertianBsdf>(albedo), eta, ggx, RGB(1.0f), RGB(1.0f), DiffuseBase{}));
     EXPECT_NEAR(fresnelDielectric(1.0f, eta.z), 0.5f, 1e-6f);
     // Transmission replaces the (tinted, plastic) base by weight; its colour is split over the
-    // two crossings of a solid; a thin wall filters once.
+    // two crossings of a solid, which keeps its multiple scattering; a thin wall filters once.
     MaterialParams glass = plastic;
     glass.transmission = 0.6f;
     glass.transmissionColor = RGB(0.81f, 0.49f, 0.25f);
@@ -191,7 +192,7 @@ TEST(MaterialBsdf, EachParameterDrivesItsLayer) {
                                             RGB(1.0f), DiffuseBase{});
     const DielectricTints solidTints{RGB(0.7f, 0.35f, 0.14f), RGB(0.9f, 0.7f, 0.5f)};
     expectSameBsdf(bsdfOf(glass, albedo, a),
-                   b.make<MixBsdf>(opaque, b.make<GgxDielectricBsdf>(1.5f, ggx, solidTints), 0.6f));
+                   b.make<MixBsdf>(opaque, b.make<CompensatedGgxDielectricBsdf>(1.5f, ggx, solidTints), 0.6f));
     glass.thinWalled = true;
     a.reset();
     const DielectricTints sheetTints{RGB(0.7f, 0.35f, 0.14f), glass.transmissionColor};
