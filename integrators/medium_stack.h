@@ -4,8 +4,9 @@
 // A path starts outside every closed surface (a camera inside glass or liquid is not detected).
 // When it crosses a surface whose hit has an interior (SurfaceHit::interior >= 0), that is, when
 // the direction it leaves by is on the other side of the geometric normal from the one it came
-// from, it enters the interior if it leaves against the normal (closed meshes face outwards) and
-// leaves it otherwise. Interiors nest, as a stack (an ice cube in a drink): the innermost one,
+// from, it enters the interior if it leaves against the normal and leaves it otherwise. Closed
+// meshes face outwards: the render scene turns those wound inward (or mirrored) outward by their
+// signed volume (render/solid_orientation.h). Interiors nest, as a stack (an ice cube in a drink): the innermost one,
 // together with the volumes, fills the space the path is in. Leaving removes the innermost entry
 // of that interior wherever it is in the stack, so surfaces that intersect (a liquid whose surface
 // pokes through its glass) still come out right when the path leaves both. Crossings of surfaces

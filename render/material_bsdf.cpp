@@ -7,7 +7,7 @@
 #include "render/bsdfs/coated.h"
 #include "render/bsdfs/fresnel.h"
 #include "render/bsdfs/ggx_conductor.h"
-#include "render/bsdfs/ggx_dielectric.h"
+#include "render/bsdfs/ggx_dielectric_multiple_scattering.h"
 #include "render/bsdfs/ggx_multiple_scattering.h"
 #include "render/bsdfs/hair.h"
 #include "render/bsdfs/lambertian.h"
@@ -57,13 +57,14 @@ GgxDistribution specularGgx(const MaterialParams& m) {
 }
 
 // The transmissive dielectric that replaces the opaque base by `transmission`: a solid interface
-// of index ior (the transmission colour split over its two crossings), or a thin sheet.
+// of index ior (the transmission colour split over its two crossings; rough, it keeps its
+// multiple scattering), or a thin sheet.
 const Bsdf& transmissionBsdf(const MaterialParams& m, BsdfArena& arena) {
     const GgxDistribution ggx = specularGgx(m);
     const RGB colour = clamp01(m.transmissionColor);
     const RGB reflection = m.specularWorkflow ? RGB(1.0f) : clamp01(m.specularColor * m.specular);
     if (m.thinWalled) return arena.make<ThinDielectricBsdf>(m.ior, ggx, DielectricTints{reflection, colour});
-    return arena.make<GgxDielectricBsdf>(m.ior, ggx, DielectricTints{reflection, sqrtOf(colour)});
+    return energyCompensatedDielectric(m.ior, ggx, DielectricTints{reflection, sqrtOf(colour)}, arena);
 }
 
 // The layers over the diffuse base, as far as the specular coating: the sheen, then the

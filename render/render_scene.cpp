@@ -16,6 +16,7 @@
 #include "render/lights/triangle_light.h"
 #include "render/mesh_transform.h"
 #include "render/point_geometry.h"
+#include "render/solid_orientation.h"
 #include "render/motion_geometry.h"
 #include "volumes/grid_medium.h"
 
@@ -450,9 +451,22 @@ int RenderScene::storeMesh(const MeshDesc& desc, const std::vector<MaterialDesc>
     return static_cast<int>(meshes_.size()) - 1;
 }
 
+void RenderScene::orientSolid(Mesh& mesh) {
+    if (mesh.material < 0) return;
+    const MaterialDesc& material = materials_[static_cast<std::size_t>(mesh.material)];
+    if (!fillsItsInside(material) ||
+        orientClosedMeshOutward(mesh.positions, {mesh.indices, mesh.cornerNormals, mesh.cornerColors, mesh.primvars}))
+        return;
+    if (material.subsurface > 0.0f)
+        warnings_.push_back({mesh.name,
+                             "subsurface on a mesh that is not closed: it has no inside for light to "
+                             "scatter in, so walks leave through its open edges"});
+}
+
 void RenderScene::addMesh(const MeshDesc& desc, const std::vector<MaterialDesc>& materials, std::uint32_t objectName) {
     int index = storeMesh(desc, materials, objectName);
     Mesh& mesh = meshes_[index];
+    orientSolid(mesh);
     if (!isBlack(mesh.emission)) {
         std::size_t triangles = mesh.indices.size() / 3;
         mesh.firstLight = static_cast<int>(lights_.size());
@@ -521,6 +535,7 @@ void RenderScene::addPrototypes(const SceneDescription& scene) {
                 continue;
             }
             int index = storeMesh(meshDesc, scene.materials, kNoName);  // hits are named by their instance
+            orientSolid(meshes_[index]);
             const Mesh& mesh = meshes_[index];
             for (const Vec3f& p : mesh.positions) {
                 proto.lo = vmin(proto.lo, p);

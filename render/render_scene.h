@@ -239,6 +239,9 @@ private:
     struct Instance;
     // Validates `desc`, stores it and returns its index in meshes_ (`objectName`: its hits' name).
     int storeMesh(const MeshDesc& desc, const std::vector<MaterialDesc>& materials, std::uint32_t objectName);
+    // Turns a closed mesh of a solid material outward (render/solid_orientation.h); warns when a
+    // subsurface mesh is not closed.
+    void orientSolid(Mesh& mesh);
     void addMesh(const MeshDesc& mesh, const std::vector<MaterialDesc>& materials, std::uint32_t objectName);
     void addCurves(const CurvesDesc& curves, const std::vector<MaterialDesc>& materials);
     // A point set (render/point_geometry.h): Embree points, shaded through a mesh of its own.

@@ -10,7 +10,7 @@
 //      microfacet albedo (the "E(mu)" of Kulla & Conty)
 //   D, G2: isotropic GGX with height-correlated Smith masking-shadowing (render/bsdfs/ggx.h)
 //
-// The table holds 32 values of mu in [0, 1] (mu = 0 as seen at 1e-4) by 32 values of
+// The table (render/bsdfs/albedo_table.h, shared with the dielectric's) holds 32 values of mu in [0, 1] (mu = 0 as seen at 1e-4) by 32 values of
 // sqrt(alpha) (a material's roughness) in [0, 1] by 33 values of sqrt(f0) in [0, 1], all evenly
 // spaced, each integrated by a 32 x 32-point quadrature over the visible normals of wo (Heitz
 // 2018), its points crowded towards GGX's long tail. A slice of one f0 is computed on first use

@@ -15,7 +15,8 @@
 // bidirectional transport and the property tests (tests/render/bsdf_properties_test.cpp) require.
 // The lobe is the diffuse base of a LayeredBsdf (render/bsdfs/layered.h: a Lambertian of albedo
 // Fms, weighted by 1 - E both ways and normalised by 1 - Eavg), sampled cosine-weighted with
-// probability 1 - E(mu_o); it is reported as diffuse in fByKind. A smooth metal (alpha below
+// probability 1 - E(mu_o); it is light the microfacets reflect, so it is reported as glossy
+// (flags and fByKind: a light path expression counts it as RG, not RD). A smooth metal (alpha below
 // kGgxSmoothAlpha) scatters once and is returned as the single-scattering mirror.
 #pragma once
 
@@ -34,7 +35,8 @@ inline const Bsdf& energyCompensatedConductor(const RGB& f0, const GgxDistributi
     const float eAvg = single.averageReflectance().x;
     const RGB fAvg = (f0 * 20.0f + RGB(1.0f)) * (1.0f / 21.0f);
     const RGB fMs = fAvg * fAvg * eAvg / (RGB(1.0f) - fAvg * (1.0f - eAvg));
-    return arena.make<CompensatedGgxConductorBsdf>(single, arena.make<LambertianBsdf>(fMs), RGB(1.0f), DiffuseBase{});
+    return arena.make<CompensatedGgxConductorBsdf>(single, arena.make<LambertianBsdf>(fMs, kBsdfGlossy), RGB(1.0f),
+                                                   DiffuseBase{});
 }
 
 }  // namespace fluence::render

@@ -2,13 +2,17 @@
 //
 //   f = albedo / pi        (wo and wi on the same side; two-sided)
 //
-// | parameter | meaning                                                  |
-// |-----------|----------------------------------------------------------|
-// | albedo    | hemispherical reflectance, per channel in [0, 1]         |
+// | parameter | meaning                                                               |
+// |-----------|-----------------------------------------------------------------------|
+// | albedo    | hemispherical reflectance, per channel in [0, 1]                      |
+// | kind      | the lobe kind it reports: kBsdfDiffuse, or kBsdfGlossy for a lobe that |
+// |           | stands in for glossy light (a metal's multiple scattering,             |
+// |           | render/bsdfs/ggx_multiple_scattering.h)                               |
 //
 // The seeds' diffuse BRDF rho_d / pi (003, "diffuse BRDF"); it reflects exactly `albedo` at
 // every incident angle. Sampling is cosine-weighted (core/sampling.h), so f |cos| / pdf equals
-// the albedo for every sample. Flags: reflection, diffuse. Path-class label: D.
+// the albedo for every sample. Flags: reflection and `kind` (diffuse by default). Path-class
+// label: D.
 #pragma once
 
 #include <optional>
@@ -20,9 +24,9 @@ namespace fluence::render {
 
 class LambertianBsdf final : public TwoSidedReflection<LambertianBsdf> {
 public:
-    explicit LambertianBsdf(const RGB& albedo) : albedo_(albedo) {}
+    explicit LambertianBsdf(const RGB& albedo, unsigned kind = kBsdfDiffuse) : albedo_(albedo), kind_(kind) {}
 
-    unsigned flags() const override { return kBsdfReflection | kBsdfDiffuse; }
+    unsigned flags() const override { return kBsdfReflection | kind_; }
 
 private:
     friend class TwoSidedReflection<LambertianBsdf>;
@@ -37,6 +41,7 @@ private:
     }
 
     RGB albedo_;
+    unsigned kind_;
 };
 
 }  // namespace fluence::render

@@ -29,7 +29,6 @@
 #include "integrators/bdpt_mis.h"
 #include "integrators/bdpt_vertex.h"
 #include "integrators/path_tracer.h"
-#include "media/subsurface_medium.h"
 #include "render/lights/disk_light.h"
 #include "render/lights/distant_light.h"
 #include "render/lights/dome_light.h"
@@ -40,6 +39,7 @@
 #include "tests/integrators/render_support.h"
 #include "tests/support/chi2.h"
 #include "tests/support/scenes.h"
+#include "tests/support/subsurface_material.h"
 #include "tests/support/temp_dir.h"
 #include "tests/volumes/vdb_test_files.h"
 
@@ -682,13 +682,7 @@ TEST(BdptMedia, AgreesWithPathAroundALightInsideAnAbsorbingRoughGlassBall) {
 TEST(BdptMedia, AgreesWithPathOnASubsurfaceRandomWalk) {
     render::SceneDescription s;
     s.materials.push_back(test::diffuseMaterial("/grey", RGB(0.6f)));
-    render::MaterialDesc skin;
-    skin.name = "/Skin";
-    skin.subsurface = 1.0f;
-    skin.subsurfaceColor = RGB(0.8f, 0.5f, 0.3f);
-    skin.specular = 0.0f;
-    skin.interior = media::subsurfaceMedium(skin.subsurfaceColor, RGB(0.2f, 0.1f, 0.05f), 0.0f);
-    s.materials.push_back(skin);
+    s.materials.push_back(test::subsurfaceMaterial("/Skin", RGB(0.8f, 0.5f, 0.3f), RGB(0.2f, 0.1f, 0.05f)));
     s.meshes.push_back(test::quadMesh("/floor", {{{-3, -3, -1}, {3, -3, -1}, {3, 3, -1}, {-3, 3, -1}}}, 0));
     s.meshes.push_back(test::roundSphereMesh(0.7f, 32, 16, 1, Vec3f(0.0f, 0.0f, -0.3f)));
     s.lights.push_back(test::rectLight("/light", 1.0f, 1.0f, RGB(6.0f), Matrix4::translate({0.8, -0.5, 1.5})));

@@ -66,18 +66,18 @@ TEST(MaterialFurnace, SmoothGlassSphereVanishes) {
     EXPECT_NEAR(sheet.mean(), 1.0, kZ * sheet.standardError() + 1e-5);
 }
 
-TEST(MaterialFurnace, RoughMetalKeepsItsMultipleScatteringAndRoughGlassLosesIt) {
+TEST(MaterialFurnace, RoughMetalAndRoughGlassKeepTheirMultipleScattering) {
     // A metal of F0 = 1 keeps the light its microfacets reflect more than once
-    // (render/bsdfs/ggx_multiple_scattering.h) and reads 1 within 1%; single-scattering rough
-    // glass still drops it, more the rougher it is, so it reads below 1. Measured before the
-    // compensation: the metal (roughness 0.7, alpha 0.49) 0.700 +- 0.002, with anisotropy 0.8
+    // (render/bsdfs/ggx_multiple_scattering.h) and so does rough glass
+    // (render/bsdfs/ggx_dielectric_multiple_scattering.h): both read 1 within 1%. Measured before
+    // the compensation: the metal (roughness 0.7, alpha 0.49) 0.700 +- 0.002, with anisotropy 0.8
     // (alpha 1 by 0.22) 0.530 +- 0.002; rough glass (roughness 0.5, alpha 0.25) 0.784 +- 0.004, a
-    // loss of 22% over the several interactions of a path through the sphere (each loses 0.5 to
-    // 6%, more from inside: bsdf_dielectric_test.cpp). The anisotropic metal is compensated at its
-    // geometric-mean width (render/bsdfs/ggx_albedo.h), an approximation checked only to stay
-    // at most 1. Measured with it: the metal 0.998 +- 0.002, the anisotropic one 0.812 +- 0.002.
+    // loss of 22% over the several interactions of a path through the sphere. The anisotropic
+    // metal is compensated at its geometric-mean width (render/bsdfs/ggx_albedo.h), an
+    // approximation checked only to stay at most 1. Measured with the compensations: the metal
+    // 0.998 +- 0.002, the anisotropic one 0.812 +- 0.002, the glass 0.996 +- 0.004.
     test::MeanEstimate roughGlass = furnaceReading("rough glass sphere, roughness 0.5", glass(0.5f));
-    EXPECT_LE(roughGlass.mean(), 1.0 + kZ * roughGlass.standardError());
+    EXPECT_NEAR(roughGlass.mean(), 1.0, kEnergyTolerance + kZ * roughGlass.standardError());
     render::MaterialParams metal = white();
     metal.metallic = 1.0f;
     metal.roughness = 0.7f;
@@ -91,11 +91,12 @@ TEST(MaterialFurnace, RoughMetalKeepsItsMultipleScatteringAndRoughGlassLosesIt) 
 TEST(MaterialFurnace, LayeredMaterialsReflectAllTheLight) {
     // Plastic (a dielectric specular layer over white diffuse), a clear coat and a sheen over white
     // diffuse conserve energy (render/bsdfs/layered.h, ENERGY-PRESERVING LAYERING) and read 1
-    // within 1%; everything at once (glass, metal, sheen, coat, anisotropy) still loses rough
-    // glass's multiple scattering and the light a coat over glass returns, and must read at most 1.
+    // within 1%; everything at once (glass, metal, sheen, coat, anisotropy) still loses the
+    // anisotropic metal's and the light a coat over glass or metal returns, and must read at most 1.
     // Measured before the energy-preserving layering: plastic 0.909 +- 0.001, coat 0.914 +- 0.001,
     // sheen 0.862 +- 0.001, every lobe 0.787 +- 0.002; with it: plastic 0.998 +- 0.001, coat
-    // 0.998 +- 0.001, sheen 1.000 +- 0.001, every lobe 0.932 +- 0.003.
+    // 0.998 +- 0.001, sheen 1.000 +- 0.001, every lobe 0.932 +- 0.003 (0.946 +- 0.003 with rough
+    // glass compensated).
     render::MaterialParams plastic = white();
     plastic.specular = 1.0f;
     plastic.roughness = 0.3f;

@@ -26,6 +26,7 @@
 #include "render/bsdfs/cook_torrance.h"
 #include "render/bsdfs/ggx_conductor.h"
 #include "render/bsdfs/ggx_dielectric.h"
+#include "render/bsdfs/ggx_dielectric_multiple_scattering.h"
 #include "render/bsdfs/ggx_multiple_scattering.h"
 #include "render/bsdfs/lambertian.h"
 #include "render/bsdfs/lambertian_transmission.h"
@@ -94,6 +95,17 @@ std::vector<BsdfCase> allCases() {
                          return a.make<GgxDielectricBsdf>(1.0f / 1.33f, GgxDistribution(0.3f));
                      }});
     const DielectricTints tints{RGB(1.0f, 0.5f, 0.2f), RGB(0.9f, 0.6f, 0.3f)};
+    for (float alpha : {0.2f, 0.5f})
+        cases.push_back(
+            {"CompensatedGgxDielectric_a" + std::to_string(int(alpha * 100)), [=](BsdfArena& a) -> const Bsdf& {
+                 return a.make<CompensatedGgxDielectricBsdf>(1.5f, GgxDistribution(alpha));
+             }});
+    cases.push_back({"CompensatedGgxDielectricInverted_a30", [](BsdfArena& a) -> const Bsdf& {
+                         return a.make<CompensatedGgxDielectricBsdf>(1.0f / 1.33f, GgxDistribution(0.3f));
+                     }});
+    cases.push_back({"CompensatedGgxDielectricTintedAnisotropic", [=](BsdfArena& a) -> const Bsdf& {
+                         return a.make<CompensatedGgxDielectricBsdf>(1.5f, GgxDistribution(0.4f, 0.1f), tints);
+                     }});
     cases.push_back({"GgxDielectricTintedSmooth", [=](BsdfArena& a) -> const Bsdf& {
                          return a.make<GgxDielectricBsdf>(1.5f, GgxDistribution(0.0f), tints);
                      }});

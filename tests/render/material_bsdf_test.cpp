@@ -12,6 +12,7 @@
 #include "render/bsdfs/fresnel.h"
 #include "render/bsdfs/ggx_conductor.h"
 #include "render/bsdfs/ggx_dielectric.h"
+#include "render/bsdfs/ggx_dielectric_multiple_scattering.h"
 #include "render/bsdfs/ggx_multiple_scattering.h"
 #include "render/bsdfs/lambertian.h"
 #include "render/bsdfs/layered.h"
@@ -182,7 +183,7 @@ TEST(MaterialBsdf, EachParameterDrivesItsLayer) {
                    b.make<CoatedBsdf>(b.make<LambertianBsdf>(albedo), eta, ggx, RGB(1.0f), RGB(1.0f), DiffuseBase{}));
     EXPECT_NEAR(fresnelDielectric(1.0f, eta.z), 0.5f, 1e-6f);
     // Transmission replaces the (tinted, plastic) base by weight; its colour is split over the
-    // two crossings of a solid; a thin wall filters once.
+    // two crossings of a solid, which keeps its multiple scattering; a thin wall filters once.
     MaterialParams glass = plastic;
     glass.transmission = 0.6f;
     glass.transmissionColor = RGB(0.81f, 0.49f, 0.25f);
@@ -191,7 +192,7 @@ TEST(MaterialBsdf, EachParameterDrivesItsLayer) {
                                             RGB(1.0f), DiffuseBase{});
     const DielectricTints solidTints{RGB(0.7f, 0.35f, 0.14f), RGB(0.9f, 0.7f, 0.5f)};
     expectSameBsdf(bsdfOf(glass, albedo, a),
-                   b.make<MixBsdf>(opaque, b.make<GgxDielectricBsdf>(1.5f, ggx, solidTints), 0.6f));
+                   b.make<MixBsdf>(opaque, b.make<CompensatedGgxDielectricBsdf>(1.5f, ggx, solidTints), 0.6f));
     glass.thinWalled = true;
     a.reset();
     const DielectricTints sheetTints{RGB(0.7f, 0.35f, 0.14f), glass.transmissionColor};
@@ -216,6 +217,22 @@ TEST(MaterialBsdf, EachParameterDrivesItsLayer) {
     const Bsdf& metal = b.make<MixBsdf>(specular, energyCompensatedConductor(albedo, ggx, b), 0.25f);
     const Bsdf& coated = b.make<CoatedBsdf>(metal, RGB(1.5f), GgxDistribution(0.04f), RGB(1.0f), all.coatColor);
     expectSameBsdf(bsdfOf(all, albedo, a), b.make<MixBsdf>(metal, coated, 0.8f));
+}
+
+// A rough metal's multiple-scattering lobe is light its microfacets reflect: glossy, never
+// diffuse, so a light path expression counts it as RG (render/bsdfs/ggx_multiple_scattering.h).
+TEST(MaterialBsdf, CompensatedMetalsMultipleScatteringIsGlossy) {
+    BsdfArena arena;
+    const Bsdf& metal = energyCompensatedConductor(RGB(0.9f, 0.6f, 0.3f), GgxDistribution(0.6f), arena);
+    EXPECT_FALSE(metal.flags() & kBsdfDiffuse);
+    EXPECT_TRUE(metal.flags() & kBsdfGlossy);
+    const Vec3f wo = normalize(Vec3f(0.3f, 0.1f, 0.9f)), wi = normalize(Vec3f(-0.8f, 0.2f, 0.3f));
+    const LobeSplit split = metal.fByKind(wo, wi);
+    EXPECT_TRUE(isBlack(split.diffuse));
+    const RGB f = metal.f(wo, wi);
+    for (int c = 0; c < 3; ++c) EXPECT_FLOAT_EQ(split.glossy[c], f[c]) << "channel " << c;
+    const GgxConductorBsdf single(RGB(0.9f, 0.6f, 0.3f), GgxDistribution(0.6f));
+    EXPECT_GT(f.x, single.f(wo, wi).x) << "the multiple-scattering lobe adds to the single-scattering one";
 }
 
 // Glass (thin or solid), metal, sheen, a tinted anisotropic specular lobe and a coloured coat at

@@ -1,0 +1,134 @@
+// A directional albedo of GGX microfacets, tabulated over (mu, alpha, f0) and interpolated: the
+// machinery behind render/bsdfs/ggx_albedo.h (reflection) and ggx_dielectric_albedo.h
+// (reflection and transmission through an interface).
+//
+// The table holds 32 values of mu in [0, 1] (mu = 0 as seen at 1e-4) by 32 values of
+// sqrt(alpha) (a material's roughness) in [0, 1] by 33 values of sqrt(f0) in [0, 1], all evenly
+// spaced. A slice of one f0 is computed on first use by `Albedo(ggx, mu, f0)` at each of its
+// (mu, alpha) nodes, and the table is interpolated linearly in each of the three. Eavg is
+// integrated exactly from the same piecewise-linear E, so that a lobe weighted by 1 - E(mu) has
+// exactly the cosine-weighted average 1 - Eavg whatever the table's own error against the true
+// albedo. Widths above 1 are clamped to 1.
+//
+// visibleNormalQuadrature(ggx, wo, weight) is the quadrature the albedos use: the mean of
+// weight(h) over GGX's visible normals of wo (Heitz 2018), by a 32 x 32-point midpoint rule with
+// u.x = 1 - (1 - t)^4, so that the points crowd towards u.x = 1, where GGX's long tail sends the
+// light below the horizon (1% of the visible normals at alpha 0.1, which evenly spaced points
+// would step over).
+#pragma once
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <mutex>
+#include <optional>
+
+#include "render/bsdfs/ggx.h"
+
+namespace fluence::render {
+
+namespace albedo_table {
+
+inline constexpr int kCosines = 32, kWidths = 32, kF0s = 33;
+inline constexpr int kQuadrature = 32;      // points per dimension
+inline constexpr float kMinCosine = 1e-4f;  // where the mu = 0 node is evaluated
+
+inline float cosineAt(int i) { return std::max(float(i) / (kCosines - 1), kMinCosine); }
+inline float f0At(int k) {
+    const float s = float(k) / (kF0s - 1);
+    return s * s;
+}
+
+// A position on an evenly spaced axis of n nodes over [0, 1]: the node below and the fraction.
+struct AxisPosition {
+    int node;
+    float fraction;
+};
+inline AxisPosition positionOf(float x, int n) {
+    const float scaled = std::clamp(x, 0.0f, 1.0f) * float(n - 1);
+    const int node = std::min(int(scaled), n - 2);
+    return {node, scaled - float(node)};
+}
+
+inline float lerp(float a, float b, float t) { return a + (b - a) * t; }
+
+}  // namespace albedo_table
+
+// The mean of weight(h) (a double) over the visible normals h of wo (wo.z > 0), by the
+// quadrature above.
+template <typename Weight>
+float visibleNormalQuadrature(const GgxDistribution& ggx, const Vec3f& wo, Weight weight) {
+    using albedo_table::kQuadrature;
+    double sum = 0.0;
+    for (int a = 0; a < kQuadrature; ++a) {
+        const float t = 1.0f - (a + 0.5f) / kQuadrature;  // 1 - t of the comment above
+        const float ux = 1.0f - t * t * t * t, jacobian = 4.0f * t * t * t;
+        for (int b = 0; b < kQuadrature; ++b)
+            sum += weight(ggx.sampleVisibleNormal(wo, Vec2f(ux, (b + 0.5f) / kQuadrature))) * jacobian;
+    }
+    return float(sum / (double(kQuadrature) * kQuadrature));
+}
+
+template <float (*Albedo)(const GgxDistribution&, float mu, float f0)>
+class AlbedoTable {
+public:
+    static float albedo(float cosTheta, float alpha, float f0) {
+        const albedo_table::AxisPosition c = albedo_table::positionOf(cosTheta, albedo_table::kCosines);
+        return interpolated(alpha, f0, [&](const Slice& s, int j) {
+            return albedo_table::lerp(s.at(c.node, j), s.at(c.node + 1, j), c.fraction);
+        });
+    }
+    static float average(float alpha, float f0) {
+        return interpolated(alpha, f0, [](const Slice& s, int j) { return s.average[j]; });
+    }
+
+private:
+    // The table of one f0: E at every (mu, alpha) node, and Eavg at every alpha node.
+    struct Slice {
+        std::array<float, albedo_table::kWidths * albedo_table::kCosines> albedo;
+        std::array<float, albedo_table::kWidths> average;
+
+        explicit Slice(float f0) {
+            using namespace albedo_table;
+            for (int j = 0; j < kWidths; ++j) {
+                const float r = float(j) / (kWidths - 1);
+                const GgxDistribution ggx(std::max(r * r, kGgxSmoothAlpha));
+                for (int i = 0; i < kCosines; ++i) albedo[std::size_t(j) * kCosines + i] = Albedo(ggx, cosineAt(i), f0);
+                average[j] = averageOf(j);
+            }
+        }
+        float at(int i, int j) const { return albedo[std::size_t(j) * albedo_table::kCosines + i]; }
+
+        // 2 integral E mu dmu of the piecewise-linear E through the nodes (exact for it), with the
+        // first node's value taken down to mu = 0.
+        float averageOf(int j) const {
+            using albedo_table::kCosines;
+            double sum = 0.0;
+            for (int i = 0; i + 1 < kCosines; ++i) {
+                const double a = double(i) / (kCosines - 1), b = double(i + 1) / (kCosines - 1);
+                sum += (b - a) * (at(i, j) * (2.0 * a + b) + at(i + 1, j) * (a + 2.0 * b)) / 6.0;
+            }
+            return float(2.0 * sum);
+        }
+    };
+
+    static const Slice& slice(int k) {
+        static std::array<std::once_flag, albedo_table::kF0s> made;
+        static std::array<std::optional<Slice>, albedo_table::kF0s> slices;
+        std::call_once(made[k], [k] { slices[k].emplace(albedo_table::f0At(k)); });
+        return *slices[k];
+    }
+
+    // g(slice, width node) interpolated linearly in width and in sqrt(f0).
+    template <typename G>
+    static float interpolated(float alpha, float f0, G g) {
+        using namespace albedo_table;
+        const AxisPosition w = positionOf(std::sqrt(std::max(alpha, 0.0f)), kWidths),
+                           f = positionOf(std::sqrt(std::max(f0, 0.0f)), kF0s);
+        const Slice &below = slice(f.node), &above = slice(f.node + 1);
+        return lerp(lerp(g(below, w.node), g(below, w.node + 1), w.fraction),
+                    lerp(g(above, w.node), g(above, w.node + 1), w.fraction), f.fraction);
+    }
+};
+
+}  // namespace fluence::render
