@@ -2,15 +2,11 @@
 
 #include <algorithm>
 
+#include "render/textured_emission.h"
+
 namespace fluence::delegate {
 
 namespace {
-
-bool materialEmits(const render::MaterialDesc& m) {
-    return !isBlack(m.emission) || std::any_of(m.bindings.begin(), m.bindings.end(), [](const render::InputBinding& b) {
-        return b.input == render::MaterialInput::Emission;
-    });
-}
 
 bool volumeEmits(const render::VolumeDesc& v) {
     return (v.params.emissionScale > 0.0f && !isBlack(v.params.emissionColor)) ||
@@ -23,7 +19,7 @@ bool emitsLight(const render::SceneDescription& scene) {
     if (!scene.lights.empty() || std::any_of(scene.volumes.begin(), scene.volumes.end(), volumeEmits)) return true;
     auto meshEmits = [&](const render::MeshDesc& mesh) {
         return mesh.material >= 0 && mesh.material < static_cast<int>(scene.materials.size()) &&
-               materialEmits(scene.materials[static_cast<std::size_t>(mesh.material)]);
+               render::mayEmit(scene.materials[static_cast<std::size_t>(mesh.material)]);
     };
     if (std::any_of(scene.meshes.begin(), scene.meshes.end(), meshEmits)) return true;
     return std::any_of(scene.prototypes.begin(), scene.prototypes.end(), [&](const render::PrototypeDesc& p) {
