@@ -14,8 +14,8 @@ TexturedEmission::TexturedEmission(const MaterialShader& shader, const std::vect
                                    const std::vector<std::uint32_t>& indices, const CornerPrimvar* const* primvars,
                                    const std::optional<Camera>& filterCamera)
     : shader_(shader),
-      positions_(positions),
-      indices_(indices),
+      positions_(positions.data()),
+      indices_(indices.data()),
       primvars_(primvars),
       filterCamera_(filterCamera),
       subdivisions_(indices.size() / 3 > kFinePowerTriangles ? 2 : kPowerSubdivisions) {}

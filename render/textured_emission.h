@@ -37,7 +37,8 @@ public:
 
     // The mesh's world-space triangles (`indices` into `positions`), its material's shader and the
     // primvar of each of the shader's slots (MaterialShader::primvarSlots); `filterCamera` is read
-    // at each evaluation. All are kept by reference and must outlive this object.
+    // at each evaluation. The vectors' buffers (not the vectors themselves: a mesh may be moved
+    // with them) and the rest are kept by reference and must outlive this object.
     TexturedEmission(const MaterialShader& shader, const std::vector<Vec3f>& positions,
                      const std::vector<std::uint32_t>& indices, const CornerPrimvar* const* primvars,
                      const std::optional<Camera>& filterCamera);
@@ -50,8 +51,8 @@ public:
 
 private:
     const MaterialShader& shader_;
-    const std::vector<Vec3f>& positions_;
-    const std::vector<std::uint32_t>& indices_;
+    const Vec3f* positions_;
+    const std::uint32_t* indices_;
     const CornerPrimvar* const* primvars_;
     const std::optional<Camera>& filterCamera_;
     int subdivisions_;

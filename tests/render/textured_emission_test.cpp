@@ -5,6 +5,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <functional>
+#include <string>
 
 #include "core/frame.h"
 #include "core/random.h"
@@ -171,6 +173,22 @@ TEST_F(TexturedEmission, IrradianceIsTheWhiteHalfsByLightSamplingAndByBsdfSampli
     EXPECT_NEAR(byLights.mean(), expected, 5.0 * byLights.standardError());
     EXPECT_NEAR(byBsdf.mean(), expected, 5.0 * byBsdf.standardError());
     EXPECT_LT(byLights.standardError(), byBsdf.standardError()) << "light sampling is the better strategy here";
+}
+
+// The emitter's triangles keep reading its mesh when the meshes stored after it move it in memory.
+TEST_F(TexturedEmission, SurvivesTheMeshesStoredAfterIt) {
+    SceneDescription s = sceneWith(emitter(1), emissionFromTexture(checkerboard()));
+    for (int i = 0; i < 40; ++i)
+        s.meshes.push_back(test::quadMesh("/Far" + std::to_string(i),
+                                          {Vec3f(float(i), 0, -5), Vec3f(float(i) + 0.5f, 0, -5),
+                                           Vec3f(float(i) + 0.5f, 0.5f, -5), Vec3f(float(i), 0.5f, -5)},
+                                          -1));
+    RenderScene scene(s);
+    EXPECT_EQ(scene.intersect(Ray{{-0.875f, 0.875f, 0.0f}, {0.0f, 0.0f, 1.0f}})->emission,
+              RGB(checkAt(-0.875f, 0.875f)));
+    EXPECT_EQ(scene.intersect(Ray{{-0.625f, 0.875f, 0.0f}, {0.0f, 0.0f, 1.0f}})->emission,
+              RGB(checkAt(-0.625f, 0.875f)));
+    EXPECT_GT(scene.light(0).power(scene.bounds()), 0.0f);
 }
 
 // Per-triangle power: with the screen's halves as separate quads, the black half's triangles are
