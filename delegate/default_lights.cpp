@@ -2,13 +2,9 @@
 
 #include <algorithm>
 
-namespace fluence::delegate {
+#include "render/textured_emission.h"
 
-bool materialEmits(const render::MaterialDesc& m) {
-    return !isBlack(m.emission) || std::any_of(m.bindings.begin(), m.bindings.end(), [](const render::InputBinding& b) {
-        return b.input == render::MaterialInput::Emission;
-    });
-}
+namespace fluence::delegate {
 
 namespace {
 
@@ -23,7 +19,7 @@ bool emitsLight(const render::SceneDescription& scene) {
     if (!scene.lights.empty() || std::any_of(scene.volumes.begin(), scene.volumes.end(), volumeEmits)) return true;
     auto meshEmits = [&](const render::MeshDesc& mesh) {
         return mesh.material >= 0 && mesh.material < static_cast<int>(scene.materials.size()) &&
-               materialEmits(scene.materials[static_cast<std::size_t>(mesh.material)]);
+               render::mayEmit(scene.materials[static_cast<std::size_t>(mesh.material)]);
     };
     if (std::any_of(scene.meshes.begin(), scene.meshes.end(), meshEmits)) return true;
     return std::any_of(scene.prototypes.begin(), scene.prototypes.end(), [&](const render::PrototypeDesc& p) {

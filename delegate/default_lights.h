@@ -22,9 +22,6 @@ namespace fluence::delegate {
 inline constexpr float kDefaultKeyIrradiance = kPi;
 inline constexpr float kDefaultDomeRadiance = 0.1f;
 
-// Whether a surface with material `m` emits (a constant emission, or one a texture or primvar drives).
-bool materialEmits(const render::MaterialDesc& m);
-
 // Whether anything in `scene` emits light: a light, an emissive surface material that a mesh uses,
 // or a volume with (blackbody) emission.
 bool emitsLight(const render::SceneDescription& scene);

@@ -3,8 +3,8 @@
 #include <optional>
 #include <string>
 
-#include "delegate/default_lights.h"
 #include "delegate/prim_reader.h"
+#include "render/textured_emission.h"
 
 namespace fluence::delegate {
 
@@ -43,7 +43,7 @@ void resolveLightGroups(const usd::Stage& stage, double time, render::SceneDescr
     for (const render::MeshDesc& mesh : scene.meshes) {
         const render::MaterialDesc* material =
             mesh.material >= 0 ? &scene.materials[std::size_t(mesh.material)] : nullptr;
-        if (!material || !materialEmits(*material)) continue;
+        if (!material || !render::mayEmit(*material)) continue;
         std::optional<std::string> group = inheritedGroup(stage, mesh.name, time, warn);
         if (!group)
             if (const usd::PrimSpec* prim = stage.prim(material->name)) group = authoredGroup(*prim, time, warn);

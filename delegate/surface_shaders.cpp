@@ -10,15 +10,6 @@ namespace fluence::delegate {
 
 namespace {
 
-// Emission is a light only as a constant: an emissive mesh's triangles are sampled as lights with
-// one radiance each, so a node driving emission is dropped, with a warning.
-void dropDrivenEmission(const ShaderInputs& in, render::MaterialDesc& m) {
-    auto driven = [](const render::InputBinding& b) { return b.input == render::MaterialInput::Emission; };
-    if (std::erase_if(m.bindings, driven) > 0)
-        in.warn()(in.shader().path,
-                  "emission driven by a texture or primvar is not rendered yet; using its constant value");
-}
-
 // Displacement is geometry: its binding leaves the per-hit bindings for the delegate's dicing.
 void separateDisplacement(render::MaterialDesc& m) {
     auto displaces = [](const render::InputBinding& b) { return b.input == render::MaterialInput::Displacement; };
@@ -76,7 +67,6 @@ render::MaterialDesc previewSurface(const ShaderInputs& in, const std::string& m
                   {"normal", MaterialInput::Normal, 3},
                   {"displacement", MaterialInput::Displacement, 1}},
                  m);
-    dropDrivenEmission(in, m);
     separateDisplacement(m);
     return m;
 }
@@ -154,7 +144,6 @@ render::MaterialDesc standardSurface(const ShaderInputs& in, const std::string& 
         in.warn()(in.shader().path,
                   "transmission_color driven by a node with transmission_depth > 0: the interior medium uses its "
                   "constant value");
-    dropDrivenEmission(in, m);
     return m;
 }
 

@@ -19,8 +19,9 @@
 // |                    |                 | applied when meshes are diced (delegate/displacement.h)   |
 // | normal             | —               | only through a texture: a tangent-space normal map        |
 // | occlusion          | —               | ignored, as the specification allows path tracers         |
-// Any input above but emissiveColor may be connected to a UsdUVTexture or primvar reader
-// (delegate/shading_network.h): the node then drives it per surface point.
+// Any input above may be connected to a UsdUVTexture or primvar reader
+// (delegate/shading_network.h): the node then drives it per surface point (emissiveColor too: the
+// mesh's triangles are then lights of textured radiance, render/textured_emission.h).
 //
 // MaterialX Standard Surface (info:id "ND_standard_surface_surfaceshader"), with MaterialX's
 // fallbacks: diffuse = base (0.8) * base_color (1); diffuse_roughness (0); metallic = metalness
@@ -48,9 +49,8 @@
 // MaterialX image, tiledimage, constant, multiply and mix nodes (base_color keeps base as its
 // factor, emission_color emission), normal by a MaterialX normalmap (delegate/shading_network.h);
 // nodes computing a constant set the parameter itself, before the interior media are made from
-// it; subsurface inputs take their own values. Emission stays constant in both shaders: a node
-// driving it per point is dropped with a warning (emissive triangles are lights of one radiance
-// each).
+// it; subsurface inputs take their own values. A node driving emission_color (times emission)
+// makes the emission textured, seen by rays and sampled as light (render/textured_emission.h).
 #pragma once
 
 #include <string>

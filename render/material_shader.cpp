@@ -106,11 +106,7 @@ MaterialShader::MaterialShader(const MaterialDesc& material, texture::TextureSys
     }
 }
 
-bool MaterialShader::mayBeTransparent() const {
-    if (material_->opacity < 1.0f) return true;
-    return std::any_of(material_->bindings.begin(), material_->bindings.end(),
-                       [](const InputBinding& b) { return b.input == MaterialInput::Opacity; });
-}
+bool MaterialShader::mayBeTransparent() const { return material_->opacity < 1.0f || drives(MaterialInput::Opacity); }
 
 void MaterialShader::bindingValue(std::size_t i, const ShadingPatch& patch, const CornerPrimvar* const* primvars,
                                   float value[4]) const {
@@ -227,17 +223,40 @@ void MaterialShader::evaluate(const ShadingPatch& patch, const CornerPrimvar* co
     if (lengthSquared(tangent) > 0.0f) tangent = perpendicularTo(tangent, shadingNormal);
 }
 
-float MaterialShader::presence(const ShadingPatch& patch, const CornerPrimvar* const* primvars) const {
-    float opacity = material_->opacity;
+const InputBinding* MaterialShader::drivenValue(MaterialInput input, const ShadingPatch& patch,
+                                                const CornerPrimvar* const* primvars, float value[4]) const {
+    const InputBinding* driving = nullptr;
     for (std::size_t i = 0; i < material_->bindings.size(); ++i) {
         const InputBinding& b = material_->bindings[i];
-        if (b.input != MaterialInput::Opacity) continue;
-        float value[4];
-        bindingValue(i, patch, primvars, value);
-        opacity = value[std::clamp(b.nodes.empty() ? b.firstChannel : 0, 0, 3)];
+        if (b.input != input) continue;
+        float all[4];
+        bindingValue(i, patch, primvars, all);
+        const int first = std::clamp(b.nodes.empty() ? b.firstChannel : 0, 0, 4 - b.channels);
+        for (int c = 0; c < 4; ++c) value[c] = first + c < 4 ? all[first + c] : 0.0f;
+        driving = &b;
     }
+    return driving;
+}
+
+float MaterialShader::presence(const ShadingPatch& patch, const CornerPrimvar* const* primvars) const {
+    float value[4];
+    const float opacity = drivenValue(MaterialInput::Opacity, patch, primvars, value) ? value[0] : material_->opacity;
     if (material_->opacityThreshold > 0.0f) return opacity >= material_->opacityThreshold ? 1.0f : 0.0f;
     return std::clamp(opacity, 0.0f, 1.0f);
+}
+
+bool MaterialShader::drives(MaterialInput input) const {
+    return std::any_of(material_->bindings.begin(), material_->bindings.end(),
+                       [input](const InputBinding& b) { return b.input == input; });
+}
+
+RGB MaterialShader::emission(const ShadingPatch& patch, const CornerPrimvar* const* primvars) const {
+    float value[4];
+    const InputBinding* driving = drivenValue(MaterialInput::Emission, patch, primvars, value);
+    if (!driving) return material_->emission;
+    MaterialParams p;
+    setMaterialInput(p, MaterialInput::Emission, value, driving->channels);
+    return p.emission;
 }
 
 }  // namespace fluence::render

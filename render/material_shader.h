@@ -71,6 +71,11 @@ public:
     // The surface's presence at `patch` (1 = opaque, 0 = a hole): opacity, or with a cut-out
     // threshold 0 or 1. Point-sampled.
     float presence(const ShadingPatch& patch, const CornerPrimvar* const* primvars) const;
+    // Whether a binding drives `input` per point (Emission: render/textured_emission.h).
+    bool drives(MaterialInput input) const;
+    // The emitted radiance at `patch`: the emission binding's value there, as evaluate() writes it
+    // into MaterialParams::emission, without evaluating the other bindings.
+    RGB emission(const ShadingPatch& patch, const CornerPrimvar* const* primvars) const;
 
 private:
     // A texture lookup or primvar read: a binding without a graph, or a source of a graph.
@@ -83,6 +88,10 @@ private:
                       float value[4]) const;
     // Source s's value (4 channels, before its factor) at the patch; `primvar` is its slot's.
     void sourceValue(std::size_t s, const ShadingPatch& patch, const CornerPrimvar* primvar, float value[4]) const;
+    // The value of the last binding driving `input` at the patch (4 channels, the binding's first
+    // channel first), or nullptr and `value` untouched when no binding drives it.
+    const InputBinding* drivenValue(MaterialInput input, const ShadingPatch& patch,
+                                    const CornerPrimvar* const* primvars, float value[4]) const;
 
     const MaterialDesc* material_;
     texture::TextureSystem* textures_;

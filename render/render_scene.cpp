@@ -102,7 +102,7 @@ RTCGeometry lightSurfaceGeometry(RTCDevice device, const LightSurface& surface) 
 
 bool emits(const MeshDesc& mesh, const std::vector<MaterialDesc>& materials) {
     return mesh.material >= 0 && mesh.material < static_cast<int>(materials.size()) &&
-           !isBlack(materials[mesh.material].emission);
+           mayEmit(materials[mesh.material]);
 }
 
 // Whether the segment [tMin, tMax] of the ray from o along d meets the box [lo, hi]. Conservative:
@@ -147,7 +147,8 @@ struct RenderScene::Mesh {
     std::vector<const CornerPrimvar*> slots;
     RGB diffuse;
     RGB emission;
-    int material = -1;  // into materials_, -1 = the default (Lambertian) material
+    std::unique_ptr<TexturedEmission> texturedEmission;  // where a node drives the emission, else null
+    int material = -1;                                   // into materials_, -1 = the default (Lambertian) material
     int firstLight = -1;
     std::uint32_t objectName = kNoName, materialName = kNoName;  // objectNames_, materialNames_
     int linkGroup = 0;                                           // MeshDesc::linkGroup
@@ -333,8 +334,10 @@ std::vector<RenderScene::SurfaceTriangle> RenderScene::surfaceTriangles() const 
             RGB albedo = mesh.cornerColors.empty()
                              ? mesh.diffuse
                              : (mesh.cornerColors[c] + mesh.cornerColors[c + 1] + mesh.cornerColors[c + 2]) / 3.0f;
-            out.push_back({world(mesh.indices[c]), world(mesh.indices[c + 1]), world(mesh.indices[c + 2]), albedo,
-                           mesh.emission});
+            const RGB emission =
+                mesh.texturedEmission ? mesh.texturedEmission->mean(static_cast<unsigned>(c / 3)) : mesh.emission;
+            out.push_back(
+                {world(mesh.indices[c]), world(mesh.indices[c + 1]), world(mesh.indices[c + 2]), albedo, emission});
         }
     };
     for (int m : surfaceMeshes_)
@@ -467,13 +470,21 @@ void RenderScene::addMesh(const MeshDesc& desc, const std::vector<MaterialDesc>&
     int index = storeMesh(desc, materials, objectName);
     Mesh& mesh = meshes_[index];
     orientSolid(mesh);
-    if (!isBlack(mesh.emission)) {
+    if (mesh.material >= 0 && shaders_[mesh.material].drives(MaterialInput::Emission))
+        mesh.texturedEmission = std::make_unique<TexturedEmission>(shaders_[mesh.material], mesh.positions,
+                                                                   mesh.indices, mesh.slots.data(), filterCamera_);
+    if (!isBlack(mesh.emission) || mesh.texturedEmission) {
         std::size_t triangles = mesh.indices.size() / 3;
         mesh.firstLight = static_cast<int>(lights_.size());
-        for (std::size_t t = 0; t < triangles; ++t)
-            lights_.push_back(std::make_unique<TriangleLight>(desc.name, mesh.positions[mesh.indices[3 * t]],
-                                                              mesh.positions[mesh.indices[3 * t + 1]],
-                                                              mesh.positions[mesh.indices[3 * t + 2]], mesh.emission));
+        for (std::size_t t = 0; t < triangles; ++t) {
+            const Vec3f &p0 = mesh.positions[mesh.indices[3 * t]], &p1 = mesh.positions[mesh.indices[3 * t + 1]],
+                        &p2 = mesh.positions[mesh.indices[3 * t + 2]];
+            if (mesh.texturedEmission)
+                lights_.push_back(std::make_unique<TriangleLight>(desc.name, p0, p1, p2, *mesh.texturedEmission,
+                                                                  static_cast<unsigned>(t)));
+            else
+                lights_.push_back(std::make_unique<TriangleLight>(desc.name, p0, p1, p2, mesh.emission));
+        }
         stats_.emissiveTriangles += triangles;
         if (!mesh.motionPositions.empty()) {  // its triangles are lights, sampled where they are at the frame
             warnings_.push_back(
@@ -710,7 +721,7 @@ std::optional<SurfaceHit> RenderScene::shadeMesh(int meshIndex, unsigned primID,
             hit.shadingNormal = mapped;
     }
     if (dot(hit.shadingNormal, hit.geometricNormal) < 0.0f) hit.geometricNormal = -hit.geometricNormal;
-    hit.emission = mesh.emission;
+    hit.emission = mesh.texturedEmission ? mesh.texturedEmission->at(primID, u, v) : mesh.emission;
     hit.interior = mesh.material >= 0 ? materialInterior_[static_cast<std::size_t>(mesh.material)] : -1;
     hit.light = mesh.firstLight >= 0 ? mesh.firstLight + static_cast<int>(primID) : -1;
     hit.objectName = instance ? instance->objectName : mesh.objectName;

@@ -14,6 +14,26 @@ TriangleLight::TriangleLight(std::string meshName, const Vec3f& p0, const Vec3f&
     normal_ = area_ > 0.0f ? normalize(n) : Vec3f(0, 0, 1);
 }
 
+TriangleLight::TriangleLight(std::string meshName, const Vec3f& p0, const Vec3f& p1, const Vec3f& p2,
+                             const TexturedEmission& emission, unsigned triangle)
+    : TriangleLight(std::move(meshName), p0, p1, p2, emission.mean(triangle)) {
+    textured_ = &emission;
+    triangle_ = triangle;
+}
+
+RGB TriangleLight::radianceAt(Vec2f b) const {
+    return textured_ ? textured_->at(triangle_, b.y, 1.0f - b.x - b.y) : radiance_;
+}
+
+RGB TriangleLight::emitted(const LightHit& hit, const Vec3f&) const {
+    if (!textured_ || area_ == 0.0f) return radiance_;
+    // The hit's barycentric weights of p0 and p1: sub-triangle areas over the whole.
+    const Vec3f twiceArea = normal_ * (2.0f * area_);
+    const float b0 = dot(cross(p1_ - hit.point, p2_ - hit.point), twiceArea) / lengthSquared(twiceArea);
+    const float b1 = dot(cross(p2_ - hit.point, p0_ - hit.point), twiceArea) / lengthSquared(twiceArea);
+    return radianceAt({b0, b1});
+}
+
 std::optional<LightSample> TriangleLight::sample(const Vec3f& p, Vec2f u) const {
     if (area_ == 0.0f) return std::nullopt;
     Vec2f b = sampleUniformTriangle(u);
@@ -25,7 +45,7 @@ std::optional<LightSample> TriangleLight::sample(const Vec3f& p, Vec2f u) const 
     Vec3f wi = d / dist;
     float pdf = areaToSolidAngle(1.0f / area_, dist2, std::abs(dot(normal_, wi)));
     if (pdf == 0.0f) return std::nullopt;
-    return surfaceSample(radiance_, wi, dist, pdf);
+    return surfaceSample(radianceAt(b), wi, dist, pdf);
 }
 
 float TriangleLight::pdf(const Vec3f& p, const Vec3f& wi, const LightHit& hit) const {
@@ -55,7 +75,7 @@ std::optional<EmissionSample> TriangleLight::sampleEmission(Vec2f uPosition, Vec
     EmissionSample e = fromSurface(p0_ * b.x + p1_ * b.y + p2_ * (1.0f - b.x - b.y), back ? -normal_ : normal_,
                                    1.0f / area_, uDirection);
     e.density.direction *= 0.5f;
-    e.Le = radiance_;
+    e.Le = radianceAt(b);
     return e;
 }
 

@@ -4,22 +4,30 @@
 // light has no surface of its own (isSurfaceEmitter).
 // Sampled uniformly by area. Emission sampling draws a point by area, a side with probability 1/2
 // and a cosine-weighted direction on that side: direction density |cos| / (2 pi).
+// A triangle of a mesh whose emission a texture or primvar drives (render/textured_emission.h)
+// emits that function's radiance at each point, and its power is that of its mean radiance, so
+// light selection and the light tree choose it by its textured power; within it, points are still
+// drawn uniformly by area.
 #pragma once
 
 #include <optional>
 #include <string>
 
 #include "render/light.h"
+#include "render/textured_emission.h"
 
 namespace fluence::render {
 
 class TriangleLight final : public Light {
 public:
     TriangleLight(std::string meshName, const Vec3f& p0, const Vec3f& p1, const Vec3f& p2, const RGB& radiance);
+    // Triangle `triangle` of a mesh with textured emission (kept by reference).
+    TriangleLight(std::string meshName, const Vec3f& p0, const Vec3f& p1, const Vec3f& p2,
+                  const TexturedEmission& emission, unsigned triangle);
 
     std::optional<LightSample> sample(const Vec3f& p, Vec2f u) const override;
     float pdf(const Vec3f& p, const Vec3f& wi, const LightHit& hit) const override;
-    RGB emitted(const LightHit& hit, const Vec3f& wo) const override { return radiance_; }
+    RGB emitted(const LightHit& hit, const Vec3f& wo) const override;
     float power(const SceneBounds& bounds) const override;
     std::optional<LightBounds> bounds() const override;
     bool isSurfaceEmitter() const override { return true; }
@@ -30,9 +38,14 @@ public:
                                     const SceneBounds& scene) const override;
 
 private:
+    // The radiance at the point with barycentric weights b of p0 and p1 (sampleUniformTriangle's).
+    RGB radianceAt(Vec2f b) const;
+
     Vec3f p0_, p1_, p2_, normal_;
     float area_;
-    RGB radiance_;
+    RGB radiance_;  // constant, or the textured emission's mean over the triangle
+    const TexturedEmission* textured_ = nullptr;
+    unsigned triangle_ = 0;
 };
 
 }  // namespace fluence::render

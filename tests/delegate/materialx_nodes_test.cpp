@@ -316,5 +316,40 @@ TEST_F(MaterialXNodes, ConstantMixesFoldIntoTheParameters) {
     EXPECT_EQ(m.emission, RGB(0.25f, 0.75f, 0.5f) * 4.0f * 2.0f) << "times emission: a constant is a light";
 }
 
+// emission_color from a graph over an image, times emission: textured emission, which rays see
+// (and the emitter's triangles sample) at each point.
+TEST_F(MaterialXNodes, EmissionColorFromAGraphOverAnImageIsTexturedEmission) {
+    const testing::Populated p = quadWithLook(R"(<?xml version="1.0"?>
+<materialx version="1.38" colorspace="lin_rec709">
+  <nodegraph name="NG">
+    <image name="colour" type="color3">
+      <input name="file" type="filename" value="colour.exr" />
+    </image>
+    <multiply name="glow" type="color3">
+      <input name="in1" type="color3" nodename="colour" />
+      <input name="in2" type="float" value="3" />
+    </multiply>
+    <output name="glow" type="color3" nodename="glow" />
+  </nodegraph>
+  <standard_surface name="S" type="surfaceshader">
+    <input name="base" type="float" value="0" />
+    <input name="emission" type="float" value="2" />
+    <input name="emission_color" type="color3" nodegraph="NG" output="glow" />
+  </standard_surface>
+  <surfacematerial name="M" type="material">
+    <input name="surfaceshader" type="surfaceshader" nodename="S" />
+  </surfacematerial>
+</materialx>
+)");
+    for (const std::string& w : p.warnings) ADD_FAILURE() << w;
+    EXPECT_TRUE(hasBinding(onlyMaterial(p), render::MaterialInput::Emission));
+    render::RenderScene scene(p.result.scene);
+    auto emissionAt = [&](float s, float t) {
+        return scene.intersect(render::Ray{{s, t, 1.0f}, {0.0f, 0.0f, -1.0f}})->emission;
+    };
+    EXPECT_EQ(emissionAt(0.25f, 0.75f), RGB(6, 0, 0)) << "red x 3 x emission";
+    EXPECT_EQ(emissionAt(0.75f, 0.25f), RGB(6, 6, 6)) << "white x 3 x emission";
+}
+
 }  // namespace
 }  // namespace fluence::delegate

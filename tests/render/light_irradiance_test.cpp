@@ -25,21 +25,10 @@ void expectIrradiance(const Light& light, const Vec3f& p, const Vec3f& n, double
     EXPECT_NEAR(e.mean(), expected, 5.0 * e.standardError() + referenceError + 1e-12) << "expected " << expected;
 }
 
-// Lambert's formula for a polygon of uniform radiance L above p's tangent plane:
-// E = L / 2 * |sum_i angle(R_i, R_i+1) * n . normalize(R_i x R_i+1)|, R_i = vertex_i - p.
-double polygonIrradiance(const std::array<Vec3f, 4>& corners, const Vec3f& p, const Vec3f& n, double radiance) {
-    double sum = 0.0;
-    for (int i = 0; i < 4; ++i) {
-        Vec3d a = normalize(Vec3d(corners[i] - p)), b = normalize(Vec3d(corners[(i + 1) % 4] - p));
-        sum += std::acos(std::clamp(dot(a, b), -1.0, 1.0)) * dot(Vec3d(n), normalize(cross(a, b)));
-    }
-    return 0.5 * radiance * std::abs(sum);
-}
-
 TEST(LightIrradiance, RectMatchesLambertsPolygonFormula) {
     RectLight light(test::tiltedRectDesc());
     Vec3f p(0.1f, 0.0f, 0.2f), n = normalize(Vec3f(0.2f, 1.0f, -0.1f));
-    expectIrradiance(light, p, n, polygonIrradiance(light.corners(), p, n, 3.0));
+    expectIrradiance(light, p, n, test::polygonIrradiance(light.corners(), p, n, 3.0));
 }
 
 // A textured rect is a grid of uniform rects, one per texel, so the sum of Lambert's formula over
@@ -58,8 +47,8 @@ TEST(LightIrradiance, TexturedRectMatchesLambertsFormulaPerTexel) {
         for (int y = 0; y < texture.height; ++y)
             for (int x = 0; x < texture.width; ++x) {
                 Vec3f o = c[2] + across * float(x) + down * float(y);
-                expected +=
-                    polygonIrradiance({o, o + across, o + across + down, o + down}, p, n, 3.0 * texture.at(x, y).x);
+                expected += test::polygonIrradiance({o, o + across, o + across + down, o + down}, p, n,
+                                                    3.0 * texture.at(x, y).x);
             }
         expectIrradiance(light, p, n, expected, 1e-5 * expected);
     }

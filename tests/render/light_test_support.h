@@ -5,6 +5,8 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <functional>
 #include <memory>
@@ -48,6 +50,17 @@ inline std::shared_ptr<render::RgbImage> windowTexture() {
     return image(32, 16, [](int x, int y) {
         return x >= 20 && x < 24 && y >= 3 && y < 6 ? RGB(40.0f, 30.0f, 20.0f) : RGB(0.02f);
     });
+}
+
+// Lambert's formula for a polygon of uniform radiance L above p's tangent plane:
+// E = L / 2 * |sum_i angle(R_i, R_i+1) * n . normalize(R_i x R_i+1)|, R_i = vertex_i - p.
+inline double polygonIrradiance(const std::array<Vec3f, 4>& corners, const Vec3f& p, const Vec3f& n, double radiance) {
+    double sum = 0.0;
+    for (int i = 0; i < 4; ++i) {
+        Vec3d a = normalize(Vec3d(corners[i] - p)), b = normalize(Vec3d(corners[(i + 1) % 4] - p));
+        sum += std::acos(std::clamp(dot(a, b), -1.0, 1.0)) * dot(Vec3d(n), normalize(cross(a, b)));
+    }
+    return 0.5 * radiance * std::abs(sum);
 }
 
 // Where the ray p + t wi meets the rect light, if it does: the point and the rect's normal.
