@@ -4,6 +4,7 @@
 #include <cmath>
 #include <set>
 
+#include "delegate/motion_steps.h"
 #include "delegate/scene_delegate.h"
 #include "scene/layer_stack.h"
 
@@ -28,16 +29,6 @@ std::optional<std::vector<double>> vectorsOf(const usd::PrimSpec& prim, double t
     std::optional<std::vector<double>> values = PrimReader(prim, time).numbers(name, 3);
     if (!values || values->size() != 3 * count) return std::nullopt;
     return values;
-}
-
-// Whether `b` holds other values than `a` (both the same size).
-bool moved(const std::vector<Vec3f>& a, const std::vector<Vec3f>& b) {
-    return !std::equal(a.begin(), a.end(), b.begin());
-}
-
-// Whether two descriptions of a mesh have the same triangles.
-bool sameTopology(const render::MeshDesc& a, const render::MeshDesc& b) {
-    return a.name == b.name && a.positions.size() == b.positions.size() && a.indices == b.indices;
 }
 
 }  // namespace
@@ -123,21 +114,18 @@ void addMotion(SceneDelegate& delegate, usd::Stage& stage, const DelegateOptions
                const render::CameraDesc& camera, render::SceneDescription& scene) {
     if (std::isnan(options.time) || !(camera.shutterClose > camera.shutterOpen)) return;
     const std::vector<double> times = motionStepTimes(stage, options.time, camera.shutterOpen, camera.shutterClose);
-    std::vector<std::vector<std::vector<Vec3f>>> meshSteps(scene.meshes.size());
+    MotionSteps<render::MeshDesc> meshSteps(scene.meshes.size());
+    MotionSteps<render::CurvesDesc> curveSteps(scene.curves.size());
+    MotionSteps<render::PointsDesc> pointSteps(scene.points.size());
     std::vector<std::vector<Matrix4>> instanceSteps(scene.instances.size());
-    std::vector<bool> meshStill(scene.meshes.size(), false), instanceStill(scene.instances.size(), false);
+    std::vector<bool> instanceStill(scene.instances.size(), false);
     for (double time : times) {
         delegate.setMotionStep(time, options.time);
         delegate.sync();
         const render::SceneDescription step = delegate.sceneDescription();
-        for (std::size_t m = 0; m < scene.meshes.size(); ++m) {
-            const bool same = m < step.meshes.size() && sameTopology(scene.meshes[m], step.meshes[m]);
-            if (!same && !meshStill[m])
-                options.warn(scene.meshes[m].name,
-                             "its triangles change during the shutter; rendered without motion blur");
-            meshStill[m] = meshStill[m] || !same;
-            if (!meshStill[m]) meshSteps[m].push_back(step.meshes[m].positions);
-        }
+        meshSteps.add(scene.meshes, step.meshes, options.warn);
+        curveSteps.add(scene.curves, step.curves, options.warn);
+        pointSteps.add(scene.points, step.points, options.warn);
         for (std::size_t i = 0; i < scene.instances.size(); ++i) {
             const bool same = i < step.instances.size() && step.instances[i].name == scene.instances[i].name &&
                               step.instances[i].prototype == scene.instances[i].prototype;
@@ -148,13 +136,9 @@ void addMotion(SceneDelegate& delegate, usd::Stage& stage, const DelegateOptions
             if (!instanceStill[i]) instanceSteps[i].push_back(step.instances[i].transform);
         }
     }
-    for (std::size_t m = 0; m < scene.meshes.size(); ++m) {
-        std::vector<std::vector<Vec3f>>& steps = meshSteps[m];
-        if (meshStill[m] ||
-            std::none_of(steps.begin(), steps.end(), [&](const auto& s) { return moved(steps.front(), s); }))
-            continue;
-        scene.meshes[m].motionPositions = std::move(steps);
-    }
+    meshSteps.store(scene.meshes);
+    curveSteps.store(scene.curves);
+    pointSteps.store(scene.points);
     for (std::size_t i = 0; i < scene.instances.size(); ++i) {
         std::vector<Matrix4>& steps = instanceSteps[i];
         if (instanceStill[i] ||

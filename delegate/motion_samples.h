@@ -11,9 +11,13 @@
 //   - a world mesh whose positions differ between steps (a time-sampled xform of it or of an
 //     ancestor, time-sampled `points`, skinned points) gets MeshDesc::motionPositions, provided
 //     its triangles stay the same at every step (else it renders still, with a warning);
+//   - curves (BasisCurves, NurbsCurves) and points whose control points, positions or widths
+//     differ between steps get CurvesDesc::motionPoints / PointsDesc::motionPositions (and
+//     motionRadii where the widths change), provided their segments or point count stay the same
+//     (gathered by delegate/motion_steps.h);
 //   - an instance (native, or of a PointInstancer) whose transform differs gets
 //     InstanceDesc::motionTransforms;
-//   - points that are not time-sampled move by their `velocities` (units per second) and
+//   - a Mesh's or Points' points that are not time-sampled move by their `velocities` (units per second) and
 //     `accelerations`, as UsdGeomPointBased::ComputePointsAtTime moves them, and PointInstancer
 //     instances by `velocities` and `angularVelocities` (degrees per second) (applied at sync
 //     when DelegateOptions::velocityFrame is set: moveByVelocities, instanceVelocityMotion).

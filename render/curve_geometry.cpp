@@ -9,6 +9,7 @@
 
 #include "core/frame.h"
 #include "render/hair_material.h"
+#include "render/motion_geometry.h"
 #include "render/render_scene.h"
 
 namespace fluence::render {
@@ -38,27 +39,35 @@ RTCGeometryType embreeType(CurveBasis basis, CurveStyle style) {
 
 int controlPointsPerSegment(CurveBasis basis) { return basis == CurveBasis::Linear ? 2 : 4; }
 
+// `values` of linear segments at the four control points of the same segments as Bezier curves:
+// at thirds of the way along each.
+template <typename T>
+std::vector<T> atThirds(const std::vector<T>& values, const std::vector<std::uint32_t>& segments) {
+    std::vector<T> out;
+    if (values.empty()) return out;
+    for (std::uint32_t s : segments)
+        for (int k = 0; k < 4; ++k) {
+            const float w = k / 3.0f;
+            out.push_back(values[s] * (1.0f - w) + values[s + 1] * w);
+        }
+    return out;
+}
+
 // Linear segments as Bezier segments with their control points at thirds (Embree has no
 // normal-oriented linear curve): the same straight pieces, with radii and normals varying linearly.
 CurvesDesc asBezier(const CurvesDesc& linear) {
     CurvesDesc out = linear;
     out.basis = CurveBasis::Bezier;
-    out.points.clear();
-    out.radii.clear();
-    out.normals.clear();
-    out.colors.clear();
+    out.points = atThirds(linear.points, linear.segments);
+    out.radii = atThirds(linear.radii, linear.segments);
+    out.normals = atThirds(linear.normals, linear.segments);
+    out.colors = atThirds(linear.colors, linear.segments);
+    for (std::size_t step = 0; step < linear.motionPoints.size(); ++step)
+        out.motionPoints[step] = atThirds(linear.motionPoints[step], linear.segments);
+    for (std::size_t step = 0; step < linear.motionRadii.size(); ++step)
+        out.motionRadii[step] = atThirds(linear.motionRadii[step], linear.segments);
     out.segments.clear();
-    for (std::uint32_t s : linear.segments) {
-        out.segments.push_back(static_cast<std::uint32_t>(out.points.size()));
-        for (int k = 0; k < 4; ++k) {
-            const float w = k / 3.0f;
-            auto lerp = [&](const auto& values) { return values[s] * (1.0f - w) + values[s + 1] * w; };
-            out.points.push_back(lerp(linear.points));
-            out.radii.push_back(lerp(linear.radii));
-            out.normals.push_back(lerp(linear.normals));
-            if (!linear.colors.empty()) out.colors.push_back(lerp(linear.colors));
-        }
-    }
+    for (std::size_t s = 0; s < linear.segments.size(); ++s) out.segments.push_back(static_cast<std::uint32_t>(4 * s));
     return out;
 }
 
@@ -74,6 +83,8 @@ void validate(const CurvesDesc& desc, std::size_t materials) {
         if (s + last >= n) throw std::invalid_argument(desc.name + ": a segment reads control points past the last");
     if (desc.material >= static_cast<int>(materials))
         throw std::invalid_argument(desc.name + ": material index out of range");
+    checkMotionPositions(desc.name, desc.motionPoints, n);
+    checkMotionRadii(desc.name, desc.motionRadii, desc.motionPoints, n);
 }
 
 // Embree filter function of round tubes: drops a hit where the ray leaves the tube (see the header).
@@ -95,6 +106,7 @@ T* newBuffer(RTCGeometry geom, RTCBufferType type, unsigned slot, RTCFormat form
 
 struct CurveGeometry::Curves {
     RTCGeometry geometry = nullptr;  // retained, for rtcInterpolate
+    std::size_t steps = 1;           // time steps of its vertex buffers (CurvesDesc::motionPoints)
     CurveStyle style = CurveStyle::Round;
     bool colored = false;  // displayColor as vertex attribute 0
     MaterialParams material;
@@ -117,25 +129,19 @@ void CurveGeometry::add(RTCDeviceTy* device, RTCSceneTy* scene, unsigned geomID,
         original.basis == CurveBasis::Linear && original.style == CurveStyle::Oriented ? asBezier(original) : original;
     const std::size_t n = desc.points.size();
     RTCGeometry geom = rtcNewGeometry(device, embreeType(desc.basis, desc.style));
-    float* vertices = newBuffer<float>(geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT4, 4, n);
+    setPointRadiusBuffers(geom, desc.points, desc.radii, desc.motionPoints, desc.motionRadii,
+                          desc.style == CurveStyle::Oriented ? desc.normals : std::vector<Vec3f>{});
     Curves curves;
-    for (std::size_t i = 0; i < n; ++i) {
-        const Vec3f& p = desc.points[i];
-        const float r = std::max(desc.radii[i], 0.0f);
-        vertices[4 * i] = p.x;
-        vertices[4 * i + 1] = p.y;
-        vertices[4 * i + 2] = p.z;
-        vertices[4 * i + 3] = r;
-        curves.boundsLo = vmin(curves.boundsLo, p - Vec3f(r));
-        curves.boundsHi = vmax(curves.boundsHi, p + Vec3f(r));
-    }
+    curves.steps = std::max<std::size_t>(desc.motionPoints.size(), 1);
+    for (std::size_t step = 0; step < curves.steps; ++step)
+        for (std::size_t i = 0; i < n; ++i) {
+            const Vec3f& p = desc.motionPoints.empty() ? desc.points[i] : desc.motionPoints[step][i];
+            const float r = std::max(desc.motionRadii.empty() ? desc.radii[i] : desc.motionRadii[step][i], 0.0f);
+            curves.boundsLo = vmin(curves.boundsLo, p - Vec3f(r));
+            curves.boundsHi = vmax(curves.boundsHi, p + Vec3f(r));
+        }
     unsigned* index = newBuffer<unsigned>(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT, 1, desc.segments.size());
     std::copy(desc.segments.begin(), desc.segments.end(), index);
-    if (desc.style == CurveStyle::Oriented) {
-        float* normals = newBuffer<float>(geom, RTC_BUFFER_TYPE_NORMAL, 0, RTC_FORMAT_FLOAT3, 3, n);
-        for (std::size_t i = 0; i < n; ++i)
-            for (int k = 0; k < 3; ++k) normals[3 * i + k] = desc.normals[i][k];
-    }
     curves.colored = !desc.colors.empty() && desc.material < 0;
     if (curves.colored) {
         rtcSetGeometryVertexAttributeCount(geom, 1);
@@ -172,25 +178,56 @@ void CurveGeometry::growBounds(Vec3f& lo, Vec3f& hi) const {
     }
 }
 
-std::optional<SurfaceHit> CurveGeometry::shade(unsigned geomID, unsigned primID, float u, const Ray& ray, float t,
-                                               const Vec3f& ng) const {
-    const Curves& curves = curves_[static_cast<std::size_t>(byGeomID_[geomID])];
-    float centre[4], derivative[4];
+void CurveGeometry::interpolate(const Curves& curves, unsigned primID, float u, float time, float centre[4],
+                                float derivative[4]) {
     RTCInterpolateArguments args{};
     args.geometry = curves.geometry;
     args.primID = primID;
     args.u = u;
     args.bufferType = RTC_BUFFER_TYPE_VERTEX;
-    args.bufferSlot = 0;
     args.P = centre;
     args.dPdu = derivative;
     args.valueCount = 4;
+    if (curves.steps < 2) {
+        rtcInterpolate(&args);
+        return;
+    }
+    // Embree moves the control points linearly between time steps; the curve is linear in them.
+    const MotionSegment segment = motionSegment(curves.steps, time);
+    float nextCentre[4], nextDerivative[4];
+    args.bufferSlot = static_cast<unsigned>(segment.step);
     rtcInterpolate(&args);
+    args.bufferSlot += 1;
+    args.P = nextCentre;
+    args.dPdu = nextDerivative;
+    rtcInterpolate(&args);
+    const float f = segment.fraction;
+    for (int k = 0; k < 4; ++k) {
+        centre[k] = centre[k] * (1.0f - f) + nextCentre[k] * f;
+        derivative[k] = derivative[k] * (1.0f - f) + nextDerivative[k] * f;
+    }
+}
+
+Vec3f CurveGeometry::centreAt(unsigned geomID, unsigned primID, float u, float time) const {
+    float centre[4], derivative[4];
+    interpolate(curves_[static_cast<std::size_t>(byGeomID_[geomID])], primID, u, time, centre, derivative);
+    return Vec3f(centre[0], centre[1], centre[2]);
+}
+
+std::optional<SurfaceHit> CurveGeometry::shade(unsigned geomID, unsigned primID, float u, const Ray& ray, float t,
+                                               const Vec3f& ng) const {
+    const Curves& curves = curves_[static_cast<std::size_t>(byGeomID_[geomID])];
+    float centre[4], derivative[4];
+    interpolate(curves, primID, u, ray.time, centre, derivative);
 
     std::optional<SurfaceHit> result(std::in_place, curves.material);
     SurfaceHit& hit = *result;
     hit.t = t;
+    hit.time = ray.time;
     hit.point = ray.origin + ray.direction * t;
+    hit.curveGeometry = static_cast<int>(geomID);
+    hit.triangle = primID;
+    hit.b1 = u;
     const Vec3f wo = -ray.direction;
     Vec3f tangent(derivative[0], derivative[1], derivative[2]);
     tangent = lengthSquared(tangent) > 0.0f ? normalize(tangent) : Frame::fromNormal(wo).s;
@@ -205,9 +242,13 @@ std::optional<SurfaceHit> CurveGeometry::shade(unsigned geomID, unsigned primID,
     RGB colour = curves.material.diffuse;
     if (curves.colored) {
         float c[3];
+        RTCInterpolateArguments args{};
+        args.geometry = curves.geometry;
+        args.primID = primID;
+        args.u = u;
         args.bufferType = RTC_BUFFER_TYPE_VERTEX_ATTRIBUTE;
+        args.bufferSlot = 0;
         args.P = c;
-        args.dPdu = nullptr;
         args.valueCount = 3;
         rtcInterpolate(&args);
         colour = RGB(c[0], c[1], c[2]);

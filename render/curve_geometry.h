@@ -1,6 +1,8 @@
 // Curves in the render scene: each CurvesDesc one Embree native curve geometry (round tubes,
 // flat ribbons facing the ray, or normal-oriented ribbons; linear, Bezier, B-spline or
 // Catmull-Rom segments; render/curves_description.h), and the SurfaceHit of a ray that meets one.
+// Moving curves (CurvesDesc::motionPoints) have a vertex buffer per time step; a hit is shaded
+// where the curve is at the ray's time.
 //
 // A hit's frame follows the fibre: the tangent is the curve's derivative at the hit, and the
 // shading and geometric normals are the normal of the ribbon that faces the ray (an oriented
@@ -47,12 +49,19 @@ public:
     // with Embree's geometric normal ng.
     std::optional<SurfaceHit> shade(unsigned geomID, unsigned primID, float u, const Ray& ray, float t,
                                     const Vec3f& ng) const;
-    // Grows [lo, hi] by every control point's sphere.
+    // The point on the axis of segment primID of curve geometry geomID at curve parameter u, at
+    // `time` in the shutter (render/motion_geometry.h).
+    Vec3f centreAt(unsigned geomID, unsigned primID, float u, float time) const;
+    // Grows [lo, hi] by every control point's sphere, at every time step.
     void growBounds(Vec3f& lo, Vec3f& hi) const;
     std::size_t segmentCount() const { return segments_; }
 
 private:
     struct Curves;
+    // The axis point (and radius) and its derivative along the curve at `time`: Embree's vertex
+    // buffers interpolated at u, then between the two time steps around `time`.
+    static void interpolate(const Curves& curves, unsigned primID, float u, float time, float centre[4],
+                            float derivative[4]);
     std::vector<Curves> curves_;
     std::vector<int> byGeomID_;  // Embree geometry id -> into curves_, or -1
     std::size_t segments_ = 0;

@@ -43,8 +43,14 @@ struct CurvesDesc {
     std::vector<Vec3f> normals;           // Oriented: one per control point; else empty
     std::vector<RGB> colors;              // empty, or one per control point: displayColor
     std::vector<std::uint32_t> segments;  // each segment's first control point
-    int material = -1;                    // index into SceneDescription::materials, -1 = default
-    int linkGroup = 0;                    // its light and shadow links (render/light_links.h)
+    // Motion blur (render/motion_geometry.h): the control points at evenly spaced times over the
+    // shutter, the first at its opening and the last at its close, each indexed like `points`
+    // (empty: the curves do not move; `points` stays the frame's), and their radii at the same
+    // steps (empty: `radii` at every step).
+    std::vector<std::vector<Vec3f>> motionPoints{};
+    std::vector<std::vector<float>> motionRadii{};
+    int material = -1;  // index into SceneDescription::materials, -1 = default
+    int linkGroup = 0;  // its light and shadow links (render/light_links.h)
 };
 
 }  // namespace fluence::render

@@ -43,6 +43,25 @@ void fillVertexBuffer(RTCGeometry geom, unsigned slot, const std::vector<Vec3f>&
     }
 }
 
+void fillPointRadiusBuffer(RTCGeometry geom, unsigned slot, const std::vector<Vec3f>& points,
+                           const std::vector<float>& radii) {
+    auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, slot, RTC_FORMAT_FLOAT4,
+                                                          4 * sizeof(float), points.size()));
+    for (std::size_t i = 0; i < points.size(); ++i) {
+        v[4 * i] = points[i].x;
+        v[4 * i + 1] = points[i].y;
+        v[4 * i + 2] = points[i].z;
+        v[4 * i + 3] = std::max(radii[i], 0.0f);
+    }
+}
+
+void fillNormalBuffer(RTCGeometry geom, unsigned slot, const std::vector<Vec3f>& normals) {
+    auto* n = static_cast<float*>(rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_NORMAL, slot, RTC_FORMAT_FLOAT3,
+                                                          3 * sizeof(float), normals.size()));
+    for (std::size_t i = 0; i < normals.size(); ++i)
+        for (int k = 0; k < 3; ++k) n[3 * i + k] = normals[i][k];
+}
+
 void setTransform(RTCGeometry instance, unsigned step, const Matrix4& transform) {
     float xfm[12];
     for (int column = 0; column < 4; ++column)
@@ -69,6 +88,19 @@ RTCGeometryTy* newTriangleGeometry(RTCDeviceTy* device, const std::vector<Vec3f>
     return geom;
 }
 
+void setPointRadiusBuffers(RTCGeometryTy* geom, const std::vector<Vec3f>& points, const std::vector<float>& radii,
+                           const std::vector<std::vector<Vec3f>>& motionPoints,
+                           const std::vector<std::vector<float>>& motionRadii, const std::vector<Vec3f>& normals) {
+    const std::size_t steps = std::max<std::size_t>(motionPoints.size(), 1);
+    if (!motionPoints.empty()) rtcSetGeometryTimeStepCount(geom, static_cast<unsigned>(steps));
+    for (std::size_t step = 0; step < steps; ++step) {
+        const auto slot = static_cast<unsigned>(step);
+        fillPointRadiusBuffer(geom, slot, motionPoints.empty() ? points : motionPoints[step],
+                              motionRadii.empty() ? radii : motionRadii[step]);
+        if (!normals.empty()) fillNormalBuffer(geom, slot, normals);
+    }
+}
+
 void setInstanceTransforms(RTCGeometryTy* instance, const Matrix4& transform, const std::vector<Matrix4>& motion) {
     if (motion.empty()) {
         setTransform(instance, 0, transform);
@@ -86,6 +118,17 @@ void checkMotionPositions(const std::string& name, const std::vector<std::vector
     for (const std::vector<Vec3f>& step : motion)
         if (step.size() != vertices)
             throw std::invalid_argument(name + ": every motion time step needs one position per vertex (" +
+                                        std::to_string(vertices) + ")");
+}
+
+void checkMotionRadii(const std::string& name, const std::vector<std::vector<float>>& radii,
+                      const std::vector<std::vector<Vec3f>>& motion, std::size_t vertices) {
+    if (radii.empty()) return;
+    if (radii.size() != motion.size())
+        throw std::invalid_argument(name + ": motion radii need one set per time step of the positions");
+    for (const std::vector<float>& step : radii)
+        if (step.size() != vertices)
+            throw std::invalid_argument(name + ": every motion time step needs one radius per vertex (" +
                                         std::to_string(vertices) + ")");
 }
 

@@ -38,11 +38,22 @@ Matrix4 transformAt(const std::vector<Matrix4>& steps, float time);
 RTCGeometryTy* newTriangleGeometry(RTCDeviceTy* device, const std::vector<Vec3f>& positions,
                                    const std::vector<std::vector<Vec3f>>& motion,
                                    const std::vector<std::uint32_t>& indices);
+// Fills the vertex buffers of a curve or point geometry with (x, y, z, radius) per vertex (radii
+// below 0 read as 0): `points` and `radii` alone when `motionPoints` is empty, else one buffer per
+// time step, its radii from `motionRadii` (or `radii` when that is empty); and, when `normals` is
+// not empty, the same normals at every time step (oriented ribbons and discs keep the frame's).
+void setPointRadiusBuffers(RTCGeometryTy* geom, const std::vector<Vec3f>& points, const std::vector<float>& radii,
+                           const std::vector<std::vector<Vec3f>>& motionPoints,
+                           const std::vector<std::vector<float>>& motionRadii, const std::vector<Vec3f>& normals);
 // Sets an instance's transform: `transform` alone when `motion` is empty, else each of `motion`.
 void setInstanceTransforms(RTCGeometryTy* instance, const Matrix4& transform, const std::vector<Matrix4>& motion);
 
 // Throws std::invalid_argument, naming `name`, unless `motion` is empty or holds at least two
 // position sets of `vertices` positions each.
 void checkMotionPositions(const std::string& name, const std::vector<std::vector<Vec3f>>& motion, std::size_t vertices);
+// Throws std::invalid_argument, naming `name`, unless `radii` is empty or holds one set of
+// `vertices` radii per time step of `motion`.
+void checkMotionRadii(const std::string& name, const std::vector<std::vector<float>>& radii,
+                      const std::vector<std::vector<Vec3f>>& motion, std::size_t vertices);
 
 }  // namespace fluence::render

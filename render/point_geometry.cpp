@@ -4,6 +4,7 @@
 
 #include <stdexcept>
 
+#include "render/motion_geometry.h"
 #include "render/render_scene.h"
 
 namespace fluence::render {
@@ -18,6 +19,8 @@ void validatePoints(const PointsDesc& p) {
     for (const PointPrimvar& v : p.primvars)
         if (v.components < 1 || v.components > 4 || v.values.size() != n * std::size_t(v.components))
             throw std::invalid_argument(p.name + ": primvar " + v.name + " needs 1 to 4 values per point");
+    checkMotionPositions(p.name, p.motionPositions, n);
+    checkMotionRadii(p.name, p.motionRadii, p.motionPositions, n);
 }
 
 RTCGeometry pointGeometry(RTCDevice device, const PointsDesc& p) {
@@ -25,24 +28,8 @@ RTCGeometry pointGeometry(RTCDevice device, const PointsDesc& p) {
                                  : p.style == PointStyle::Disc ? RTC_GEOMETRY_TYPE_DISC_POINT
                                                                : RTC_GEOMETRY_TYPE_ORIENTED_DISC_POINT;
     RTCGeometry geom = rtcNewGeometry(device, type);
-    const std::size_t n = p.positions.size();
-    auto* v = static_cast<float*>(
-        rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT4, 4 * sizeof(float), n));
-    for (std::size_t i = 0; i < n; ++i) {
-        v[4 * i] = p.positions[i].x;
-        v[4 * i + 1] = p.positions[i].y;
-        v[4 * i + 2] = p.positions[i].z;
-        v[4 * i + 3] = p.radii[i];
-    }
-    if (p.style == PointStyle::OrientedDisc) {
-        auto* normals = static_cast<float*>(
-            rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_NORMAL, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), n));
-        for (std::size_t i = 0; i < n; ++i) {
-            normals[3 * i] = p.normals[i].x;
-            normals[3 * i + 1] = p.normals[i].y;
-            normals[3 * i + 2] = p.normals[i].z;
-        }
-    }
+    setPointRadiusBuffers(geom, p.positions, p.radii, p.motionPositions, p.motionRadii,
+                          p.style == PointStyle::OrientedDisc ? p.normals : std::vector<Vec3f>{});
     rtcCommitGeometry(geom);
     return geom;
 }
@@ -51,6 +38,7 @@ MeshDesc pointShadingMesh(const PointsDesc& p) {
     MeshDesc m;
     m.name = p.name;
     m.positions = p.positions;
+    m.motionPositions = p.motionPositions;
     m.material = p.material;
     m.linkGroup = p.linkGroup;
     const std::size_t n = p.positions.size();

@@ -6,7 +6,9 @@
 // materials, their primvar bindings and RenderScene::primvarAt read a point exactly as they read
 // a triangle. A hit shades through that mesh and is then placed on the primitive itself
 // (placeOnPoint): its position on the sphere or disc and its normal. Normal maps and texture
-// filtering by footprint see no surface tangents on points.
+// filtering by footprint see no surface tangents on points. Moving points (PointsDesc::motionPositions)
+// are Embree geometry with a buffer per time step, and their shading mesh moves with them, so a
+// hit and its motion vector (RenderScene::pointAt: the centre's motion) follow the ray's time.
 #pragma once
 
 #include "render/points_description.h"
@@ -21,7 +23,7 @@ namespace fluence::render {
 struct SurfaceHit;
 
 // Validates `points` (one radius per point, one normal per point for oriented discs, colours and
-// primvars per point) and throws std::invalid_argument naming it otherwise.
+// primvars per point, motion steps of one position and radius per point) and throws std::invalid_argument naming it otherwise.
 void validatePoints(const PointsDesc& points);
 // The committed Embree geometry of `points`.
 RTCGeometryTy* pointGeometry(RTCDeviceTy* device, const PointsDesc& points);

@@ -27,10 +27,15 @@ struct PointPrimvar {
 struct PointsDesc {
     std::string name;  // prim path, for messages
     PointStyle style = PointStyle::Sphere;
-    std::vector<Vec3f> positions;        // world space
-    std::vector<float> radii;            // one per point, world space (half the width)
-    std::vector<Vec3f> normals;          // OrientedDisc: one per point (world space); otherwise empty
-    std::vector<RGB> colors;             // empty, or one per point: diffuse colour (displayColor)
+    std::vector<Vec3f> positions;  // world space
+    std::vector<float> radii;      // one per point, world space (half the width)
+    std::vector<Vec3f> normals;    // OrientedDisc: one per point (world space); otherwise empty
+    std::vector<RGB> colors;       // empty, or one per point: diffuse colour (displayColor)
+    // Motion blur (render/motion_geometry.h): the positions at evenly spaced times over the
+    // shutter, the first at its opening and the last at its close (empty: the points do not move;
+    // `positions` stays the frame's), and their radii at the same steps (empty: `radii` throughout).
+    std::vector<std::vector<Vec3f>> motionPositions{};
+    std::vector<std::vector<float>> motionRadii{};
     int material = -1;                   // index into SceneDescription::materials, -1 = default
     std::vector<PointPrimvar> primvars;  // those the material reads
     int linkGroup = 0;                   // its light and shadow links (render/light_links.h)

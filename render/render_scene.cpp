@@ -790,6 +790,11 @@ const RenderScene::Instance* RenderScene::instanceAt(int index, float time, std:
 }
 
 Vec3f RenderScene::pointAt(const SurfaceHit& hit, float time) const {
+    if (hit.curveGeometry >= 0) {
+        const auto geomID = static_cast<unsigned>(hit.curveGeometry);
+        return hit.point + curves_.centreAt(geomID, hit.triangle, hit.b1, time) -
+               curves_.centreAt(geomID, hit.triangle, hit.b1, hit.time);
+    }
     if (hit.mesh < 0) return hit.point;
     const Triangle corners = triangleAt(meshes_[static_cast<std::size_t>(hit.mesh)], hit.triangle, time);
     const Vec3f p = corners.p0 * (1.0f - hit.b1 - hit.b2) + corners.p1 * hit.b1 + corners.p2 * hit.b2;

@@ -92,6 +92,9 @@ struct SurfaceHit {
     int instance = -1;  // the instance placing the mesh, -1 for a world mesh (RenderScene's own numbering)
     unsigned triangle = 0;
     float b1 = 0.0f, b2 = 0.0f;
+    // A hit on curves: their Embree geometry (triangle is then the segment, b1 the curve parameter
+    // along it); -1 otherwise.
+    int curveGeometry = -1;
     // The material's parameters at this point (a mesh without a material: Lambertian, its
     // displayColor or 18% grey; light shapes: black). material.diffuse is the albedo AOV.
     MaterialParams material = lambertianParams(RGB(0.0f));
@@ -159,7 +162,8 @@ public:
     // is not occluded by that surface itself.
     static constexpr float kShadowRayShortening = 1e-4f;
     // Where the surface point of `hit` is at `time` in the shutter interval: the same point of the
-    // same triangle, moved with its mesh and instance (the hit's own point for a light shape).
+    // same triangle, moved with its mesh and instance (the hit's own point for a light shape; on
+    // curves, the hit moved as the curve's axis moves there; on points, the point's centre).
     Vec3f pointAt(const SurfaceHit& hit, float time) const;
 
     std::size_t lightCount() const { return lights_.size(); }

@@ -91,6 +91,71 @@ TEST(MotionSamples, TransformDeformationAndVelocityBlurOfTheSameMotionAgree) {
     }
 }
 
+TEST(MotionSamples, CurvesAndPointsMoveByTheirSampledPointsWidthsAndVelocities) {
+    // Over [0.75, 1.25]: the hair's points move a quarter unit either side and its widths grow
+    // from 0.175 to 0.225; the sparks, not time-sampled, move by their velocities.
+    const Described d = describeAt(cameraWithShutter(-0.25, 0.25) + R"(
+def BasisCurves "Hair"
+{
+    uniform token type = "linear"
+    int[] curveVertexCounts = [2]
+    point3f[] points.timeSamples = { 0: [(0, 0, 0), (0, 1, 0)], 2: [(2, 0, 0), (2, 1, 0)] }
+    float[] widths.timeSamples = { 0: [0.1, 0.1], 2: [0.3, 0.3] }
+    uniform token widths:interpolation = "vertex"
+}
+def Points "Sparks"
+{
+    point3f[] points = [(1, 0, 0), (1, 2, 0)]
+    vector3f[] velocities = [(24, 0, 0), (0, 24, 0)]
+    float[] widths = [0.1, 0.1]
+}
+def Points "Still"
+{
+    point3f[] points = [(5, 0, 0)]
+}
+)",
+                                   1.0);
+    ASSERT_EQ(d.result.scene.curves.size(), 1u);
+    const render::CurvesDesc& hair = d.result.scene.curves.front();
+    ASSERT_EQ(hair.motionPoints.size(), 2u);
+    ASSERT_EQ(hair.motionRadii.size(), 2u);
+    for (std::size_t i = 0; i < hair.points.size(); ++i) {
+        EXPECT_NEAR(hair.motionPoints[0][i].x, hair.points[i].x - 0.25f, 1e-5f);
+        EXPECT_NEAR(hair.motionPoints[1][i].x, hair.points[i].x + 0.25f, 1e-5f);
+        EXPECT_NEAR(hair.motionRadii[0][i], 0.0875f, 1e-6f);
+        EXPECT_NEAR(hair.motionRadii[1][i], 0.1125f, 1e-6f);
+    }
+    ASSERT_EQ(d.result.scene.points.size(), 2u);
+    const render::PointsDesc& sparks = d.result.scene.points[0];
+    ASSERT_EQ(sparks.motionPositions.size(), 2u);
+    EXPECT_TRUE(sparks.motionRadii.empty());  // the widths do not change
+    EXPECT_NEAR(sparks.motionPositions[0][0].x, 0.75f, 1e-5f);
+    EXPECT_NEAR(sparks.motionPositions[1][0].x, 1.25f, 1e-5f);
+    EXPECT_NEAR(sparks.motionPositions[0][1].y, 1.75f, 1e-5f);
+    EXPECT_NEAR(sparks.motionPositions[1][1].y, 2.25f, 1e-5f);
+    EXPECT_EQ(sparks.positions[0].x, 1.0f);  // the frame's
+    EXPECT_TRUE(d.result.scene.points[1].motionPositions.empty());
+    EXPECT_TRUE(d.warnings.empty()) << d.warnings.front();
+}
+
+TEST(MotionSamples, CurvesWhoseCountChangesRenderStillWithAWarning) {
+    const Described d = describeAt(cameraWithShutter(-0.25, 0.25) + R"(
+def BasisCurves "Hair"
+{
+    uniform token type = "linear"
+    int[] curveVertexCounts.timeSamples = { 0: [2], 1.1: [3] }
+    point3f[] points.timeSamples = { 0: [(0, 0, 0), (0, 1, 0)], 1.1: [(0, 0, 0), (0, 1, 0), (0, 2, 0)] }
+    float[] widths = [0.1]
+    uniform token widths:interpolation = "constant"
+}
+)",
+                                   1.0);
+    ASSERT_EQ(d.result.scene.curves.size(), 1u);
+    EXPECT_TRUE(d.result.scene.curves.front().motionPoints.empty());
+    ASSERT_EQ(d.warnings.size(), 1u);
+    EXPECT_NE(d.warnings.front().find("its curves change during the shutter"), std::string::npos) << d.warnings.front();
+}
+
 TEST(MotionSamples, MotionKeyedInsideTheShutterGetsAStepOnEachKey) {
     // Right until the frame, then up: the key at time 1 lies inside [0.5, 1.5].
     const Described d = describeAt(cameraWithShutter(-0.5, 0.5) + R"(
