@@ -67,9 +67,14 @@ render::CameraDesc framingCamera(const render::SceneDescription& scene, char upA
     for (const render::PointsDesc& points : scene.points)
         for (const Vec3f& p : points.positions) world.add(Vec3d(p));
     std::vector<Bounds> prototypes(scene.prototypes.size());
-    for (std::size_t i = 0; i < scene.prototypes.size(); ++i)
+    for (std::size_t i = 0; i < scene.prototypes.size(); ++i) {
         for (const render::MeshDesc& m : scene.prototypes[i].meshes)
             for (const Vec3f& p : m.positions) prototypes[i].add(Vec3d(p));
+        for (const render::CurvesDesc& c : scene.prototypes[i].curves)
+            for (const Vec3f& p : c.points) prototypes[i].add(Vec3d(p));
+        for (const render::PointsDesc& points : scene.prototypes[i].points)
+            for (const Vec3f& p : points.positions) prototypes[i].add(Vec3d(p));
+    }
     for (const render::InstanceDesc& instance : scene.instances) {
         const Bounds& b = prototypes.at(static_cast<std::size_t>(instance.prototype));
         if (b.empty()) continue;

@@ -369,14 +369,58 @@ render::CurvesDesc nurbsCurvesFromPrim(const PrimReader& prim, const ColorConver
     return unrolled(prim, Topology{CurveBasis::CatmullRom, Wrap::Pinned}, sampled, data, primvars, convertColor);
 }
 
+render::CurvesDesc hermiteCurvesFromPrim(const PrimReader& prim, const ColorConverter& convertColor,
+                                         const std::function<void(const std::string&)>& warn) {
+    const Values points = prim.numbers("points", 3).value_or(Values{});
+    const Values tangents = prim.numbers("tangents", 3).value_or(Values{});
+    const std::size_t n = points.size() / 3;
+    if (tangents.size() != points.size())
+        prim.fail("tangents has " + std::to_string(tangents.size() / 3) + " values for " + std::to_string(n) +
+                  " points");
+    const std::vector<Curve> curves = curvesOf(prim, n);
+    CurvePrimvars primvars = readCurvePrimvars(prim);
+    checkCounts(prim, primvars, curves.size(), n, n);  // varying: one value per vertex, as vertex
+    for (std::optional<Primvar>* pv : {&primvars.widths, &primvars.normals, &primvars.colors})
+        if (*pv && (*pv)->interpolation == "vertex") (*pv)->interpolation = "varying";
+
+    // Each curve as the Bezier control points of its segments, primvars linear along each segment.
+    VertexData data;
+    std::vector<Curve> bezier;
+    std::size_t tooShort = 0;
+    for (std::size_t i = 0; i < curves.size(); ++i) {
+        const Curve& c = curves[i];
+        if (c.count < 2) {
+            ++tooShort;
+            continue;
+        }
+        bezier.push_back({data.points.size() / 3, 3 * (c.count - 1) + 1});
+        for (std::size_t b = 0; b < bezier.back().count; ++b) {
+            const std::size_t j = c.first + (b + 1) / 3;  // the Hermite vertex it starts from
+            const double side = b % 3 == 1 ? 1.0 / 3.0 : b % 3 == 2 ? -1.0 / 3.0 : 0.0;  // along T_j
+            for (std::size_t a = 0; a < 3; ++a) data.points.push_back(points[3 * j + a] + side * tangents[3 * j + a]);
+            const double position = static_cast<double>(b) / 3.0;
+            if (primvars.widths) appendAlong(*primvars.widths, i, c.first, c.count, position, false, data.widths);
+            if (primvars.normals) appendAlong(*primvars.normals, i, c.first, c.count, position, false, data.normals);
+            if (primvars.colors) appendAlong(*primvars.colors, i, c.first, c.count, position, false, data.colors);
+        }
+    }
+    if (tooShort > 0)
+        warn(std::to_string(tooShort) + " of its " + std::to_string(curves.size()) +
+             " curves have fewer than 2 vertices; left out");
+    return unrolled(prim, Topology{CurveBasis::Bezier, Wrap::Nonperiodic}, bezier, data, primvars, convertColor);
+}
+
 }  // namespace
 
-bool isCurvesType(const std::string& typeName) { return typeName == "BasisCurves" || typeName == "NurbsCurves"; }
+bool isCurvesType(const std::string& typeName) {
+    return typeName == "BasisCurves" || typeName == "NurbsCurves" || typeName == "HermiteCurves";
+}
 
 render::CurvesDesc curvesFromPrim(const PrimReader& prim, const ColorConverter& convertColor,
                                   const std::function<void(const std::string&)>& warn) {
-    return prim.prim().typeName == "NurbsCurves" ? nurbsCurvesFromPrim(prim, convertColor)
-                                                 : basisCurvesFromPrim(prim, convertColor, warn);
+    if (prim.prim().typeName == "NurbsCurves") return nurbsCurvesFromPrim(prim, convertColor);
+    if (prim.prim().typeName == "HermiteCurves") return hermiteCurvesFromPrim(prim, convertColor, warn);
+    return basisCurvesFromPrim(prim, convertColor, warn);
 }
 
 render::CurvesDesc transformCurves(render::CurvesDesc curves, const Matrix4& toWorld) {

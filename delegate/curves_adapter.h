@@ -1,4 +1,4 @@
-// UsdGeomBasisCurves and UsdGeomNurbsCurves as the render core's CurvesDesc
+// UsdGeomBasisCurves, UsdGeomNurbsCurves and UsdGeomHermiteCurves as the render core's CurvesDesc
 // (render/curves_description.h), in the prim's object space.
 //
 // BasisCurves: `type` linear or cubic, `basis` bezier, bspline or catmullRom, `wrap` nonperiodic,
@@ -17,6 +17,13 @@
 // homogeneous coordinates for the weights) at 8 points per knot span and drawn as the Catmull-Rom
 // curve through them (pinned: it starts and ends where the NURBS curve does). Vertex widths and
 // colours are evaluated with the same basis; constant, uniform and varying ones as for BasisCurves.
+//
+// HermiteCurves (`points`, `tangents`, one per point): each segment from P_i to P_i+1 with tangents
+// T_i and T_i+1 is exactly the cubic Bezier segment P_i, P_i + T_i / 3, P_i+1 - T_i+1 / 3, P_i+1,
+// and the batch is drawn as those Bezier segments (Embree's native Bezier curves, every style).
+// Widths, normals and displayColor are per vertex (vertex and varying alike), per curve or
+// constant, and vary linearly along each segment. A curve of fewer than 2 vertices is left out
+// with a warning.
 //
 // A curve whose vertex count fits no row of the tables is left out alone, with a warning (as Hydra
 // draws the batch's valid curves); counts that do not add up to the points, a primvar with too few

@@ -4,10 +4,12 @@
 #include <map>
 #include <set>
 
+#include "delegate/curves_adapter.h"
 #include "delegate/imageable.h"
 #include "delegate/implicit_geometry.h"
 #include "delegate/light_adapter.h"
 #include "delegate/motion_samples.h"
+#include "delegate/points_adapter.h"
 #include "delegate/xform.h"
 #include "render/mesh_transform.h"
 
@@ -149,6 +151,13 @@ bool addToPrototype(const SyncContext& context, const usd::PrimSpec& prim, const
     } else if (isImplicitType(prim.typeName)) {
         parts.push_back({implicitMeshFromPrim(PrimReader(prim, time), space, context.convertColor, warnHere),
                          boundMaterialPath(stage, prim)});
+    } else if (isCurvesType(prim.typeName)) {
+        contents.curves.push_back(
+            {transformCurves(curvesFromPrim(PrimReader(prim, time), context.convertColor, warnHere), space),
+             boundMaterialPath(stage, prim)});
+    } else if (prim.typeName == "Points") {
+        contents.points.push_back({pointsToWorld(pointsFromPrim(PrimReader(prim, time), context.convertColor), space),
+                                   boundMaterialPath(stage, prim)});
     } else if (isLightType(prim.typeName)) {
         // (A native instance's own lights are instance proxies, which the render index holds
         // as lights of their own; only a point instancer places its prototypes' lights.)
@@ -174,6 +183,10 @@ bool addToPrototype(const SyncContext& context, const usd::PrimSpec& prim, const
                 parts.push_back({render::transformMesh(part.mesh, placement), part.materialPath});
             for (const PrototypeContents::Subdivided& sub : inner.subdivided)
                 contents.subdivided.push_back({sub.mesh, placement * sub.placement});
+            for (const PrototypeCurves& c : inner.curves)
+                contents.curves.push_back({transformCurves(c.curves, placement), c.materialPath});
+            for (const PrototypePoints& p : inner.points)
+                contents.points.push_back({pointsToWorld(p.points, placement), p.materialPath});
             for (render::LightDesc light : inner.lights) {
                 light.transform = placement * light.transform;
                 contents.lights.push_back(std::move(light));

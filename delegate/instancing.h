@@ -27,8 +27,8 @@
 //    places nothing; a bad orientations or scales array is ignored. Everything below a
 //    PointInstancer is rendered only through it. Velocities (motion blur) are not read.
 //
-// A prototype holds meshes (subdivision surfaces among them), implicit surfaces and lights (each
-// instance places its own copy of each light). A PointInstancer nested inside a prototype is
+// A prototype holds meshes (subdivision surfaces among them), implicit surfaces, BasisCurves,
+// NurbsCurves and Points, and lights (each instance places its own copy of each light). A PointInstancer nested inside a prototype is
 // expanded into copies there (Embree is built with one instance level); nesting deeper than
 // kMaxPrototypeNesting is cut with a warning.
 #pragma once
@@ -43,11 +43,24 @@
 #include "delegate/prim_reader.h"
 #include "delegate/subdivision_mesh.h"
 #include "delegate/sync_context.h"
+#include "render/curves_description.h"
+#include "render/points_description.h"
 #include "scene/stage.h"
 
 namespace fluence::delegate {
 
 inline constexpr int kMaxPrototypeNesting = 8;
+
+// A prototype's curve set or point set, in the prototype root's space, and its bound material
+// ("" for none).
+struct PrototypeCurves {
+    render::CurvesDesc curves;
+    std::string materialPath;
+};
+struct PrototypePoints {
+    render::PointsDesc points;
+    std::string materialPath;
+};
 
 // The native-instancing prototype key of an instance prim, "" when the prim is not an instance.
 std::string instancePrototypeKey(const usd::PrimSpec& prim);
@@ -70,7 +83,7 @@ struct PointInstances {
 PointInstances pointInstancesFromPrim(const PrimReader& instancer, const std::function<void(const std::string&)>& warn,
                                       const SyncContext* motion = nullptr);
 
-// Every mesh, implicit surface and UsdLux light at or below `root` (defined, active and imaged),
+// Every mesh, implicit surface, curve set, point set and UsdLux light at or below `root` (defined, active and imaged),
 // in the root's space; with `includeRootTransform`, the root's own local transform applies too.
 // Subdivision meshes are kept unTessellated, with their placement in the root's space: they are
 // diced for the camera when the scene is described. Lights are placed once per instance (a
@@ -85,6 +98,8 @@ struct PrototypeContents {
     };
     std::vector<MeshPart> parts;
     std::vector<Subdivided> subdivided;
+    std::vector<PrototypeCurves> curves;
+    std::vector<PrototypePoints> points;
     std::vector<render::LightDesc> lights;  // transform: light space -> prototype root space
     std::vector<MalformedPrim> malformed;   // left out, each with one warning (an error when strict)
 };

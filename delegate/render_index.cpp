@@ -134,6 +134,8 @@ std::vector<std::string> SurfaceRprim::materialPaths() const {
     for (const Part& p : parts_) paths.insert(p.materialPath);
     for (const Subdivided& s : subdivided_)
         for (const std::string& m : s.mesh->materialPaths()) paths.insert(m);
+    for (const PrototypeCurves& c : curves_) paths.insert(c.materialPath);
+    for (const PrototypePoints& p : points_) paths.insert(p.materialPath);
     paths.erase("");
     return {paths.begin(), paths.end()};
 }
@@ -159,6 +161,8 @@ void PrototypeRprim::syncData(const SyncContext& context, const usd::PrimSpec*, 
     for (MeshPart& part : contents.parts) parts_.push_back({std::move(part.mesh), std::move(part.materialPath)});
     for (PrototypeContents::Subdivided& s : contents.subdivided)
         subdivided_.push_back({std::move(s.mesh), s.placement});
+    curves_ = std::move(contents.curves);
+    points_ = std::move(contents.points);
     lights_ = std::move(contents.lights);
     malformed_ = std::move(contents.malformed);
 }

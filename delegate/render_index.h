@@ -114,7 +114,8 @@ private:
     std::string failure_;
 };
 
-// Geometry split into one part per bound material: a mesh's or a prototype's. Polygon meshes
+// Geometry split into one part per bound material: a mesh's or a prototype's (a prototype's
+// curves and point sets too). Polygon meshes
 // and implicit surfaces are triangulated at sync; subdivision surfaces are read at sync and
 // diced for the camera when the scene is described (delegate/subdivision_mesh.h).
 class SurfaceRprim : public RenderPrim {
@@ -129,7 +130,9 @@ public:
     };
     const std::vector<Part>& parts() const { return parts_; }
     const std::vector<Subdivided>& subdivided() const { return subdivided_; }
-    // The materials the geometry binds (parts' and subdivision meshes').
+    const std::vector<PrototypeCurves>& curves() const { return curves_; }  // a prototype's; in its space
+    const std::vector<PrototypePoints>& points() const { return points_; }  // a prototype's; in its space
+    // The materials the geometry binds (parts', subdivision meshes', curves' and points').
     std::vector<std::string> materialPaths() const;
     // How many syncs read (and triangulated or tessellated) the geometry; transform-only syncs
     // do not.
@@ -139,6 +142,8 @@ protected:
     using RenderPrim::RenderPrim;
     std::vector<Part> parts_;
     std::vector<Subdivided> subdivided_;
+    std::vector<PrototypeCurves> curves_;
+    std::vector<PrototypePoints> points_;
     int dataReads_ = 0;
 };
 

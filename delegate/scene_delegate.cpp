@@ -8,6 +8,7 @@
 #include "delegate/camera_adapter.h"
 #include "delegate/curves_adapter.h"
 #include "delegate/curves_rprim.h"
+#include "delegate/shape_material.h"
 #include "delegate/default_lights.h"
 #include "delegate/displacement.h"
 #include "delegate/light_groups.h"
@@ -145,11 +146,13 @@ void SceneDelegate::populate(const std::string& root) {
                 return false;  // what lies below renders only through the instancer
             }
             index_.insert(std::make_unique<MeshRprim>(prim.path));
-        } else if (isCurvesType(type) && instanceRoot.empty())
-            index_.insert(std::make_unique<CurvesRprim>(prim.path));
-        else if (type == "Points" && instanceRoot.empty())
-            index_.insert(std::make_unique<PointsRprim>(prim.path));
-        else if (type == "Volume")
+        } else if (isCurvesType(type) || type == "Points") {
+            if (!instanceRoot.empty()) return true;  // the prototype holds them
+            if (type == "Points")
+                index_.insert(std::make_unique<PointsRprim>(prim.path));
+            else
+                index_.insert(std::make_unique<CurvesRprim>(prim.path));
+        } else if (type == "Volume")
             index_.insert(std::make_unique<VolumeRprim>(prim.path));
         else if (isFieldAssetType(type))
             index_.insert(std::make_unique<FieldBprim>(prim.path));
@@ -414,17 +417,13 @@ render::SceneDescription SceneDelegate::describe(const render::Camera& camera, c
             }
             case RenderPrim::Kind::Curves: {
                 const auto& curves = static_cast<const CurvesRprim&>(*prim);
-                render::CurvesDesc desc = curves.worldCurves();
-                if (!curves.materialPath().empty()) desc.material = materialFor(curves.materialPath());
-                if (desc.material >= 0) desc.colors.clear();  // a bound material replaces displayColor
+                render::CurvesDesc desc = withBoundMaterial(curves.worldCurves(), curves.materialPath(), materialFor);
                 if (!desc.segments.empty()) scene.curves.push_back(std::move(desc));
                 break;
             }
             case RenderPrim::Kind::Points: {
                 const auto& points = static_cast<const PointsRprim&>(*prim);
-                render::PointsDesc& desc = scene.points.emplace_back(points.worldPoints());
-                if (!points.materialPath().empty() && (desc.material = materialFor(points.materialPath())) >= 0)
-                    desc.colors.clear();
+                scene.points.push_back(withBoundMaterial(points.worldPoints(), points.materialPath(), materialFor));
                 break;
             }
             case RenderPrim::Kind::Volume:
@@ -446,7 +445,13 @@ render::SceneDescription SceneDelegate::describe(const render::Camera& camera, c
                 light.transform = instance * light.transform;
                 scene.lights.push_back(std::move(light));
             }
-        std::vector<render::MeshDesc>& meshes = scene.prototypes[static_cast<std::size_t>(index)].meshes;
+        render::PrototypeDesc& desc = scene.prototypes[static_cast<std::size_t>(index)];
+        for (const PrototypeCurves& c : prototype.curves())
+            if (!c.curves.segments.empty())
+                desc.curves.push_back(withBoundMaterial(c.curves, c.materialPath, materialFor));
+        for (const PrototypePoints& p : prototype.points())
+            desc.points.push_back(withBoundMaterial(p.points, p.materialPath, materialFor));
+        std::vector<render::MeshDesc>& meshes = desc.meshes;
         for (const SurfaceRprim::Part& part : prototype.parts()) {
             std::optional<render::MeshDesc> displaced =
                 displacedPart(part.objectSpace, part.materialPath, placements[static_cast<std::size_t>(index)], dicing);

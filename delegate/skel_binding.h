@@ -20,7 +20,7 @@
 // their points; others are dropped, and the render core shades the triangles' geometric normals.
 //
 // Not skinned: meshes inside native instances and point-instancer prototypes (they render in
-// their rest pose), and curves and points (not rendered yet).
+// their rest pose), and curves and points (they render as authored).
 //
 // A binding that cannot apply (no skeleton, a skeleton or influences that are malformed, sizes
 // that do not match) leaves the mesh in its rest pose with one warning naming the prim, as Hydra

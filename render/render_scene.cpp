@@ -203,7 +203,9 @@ void presenceFilter(const RTCFilterFunctionNArguments* args) {
 }  // namespace
 
 struct RenderScene::Prototype {
-    std::vector<int> meshes;          // Embree geometry id in the prototype's scene -> mesh
+    std::vector<int> meshes;  // Embree geometry id in the prototype's scene -> mesh, or -1
+    std::vector<int> points;  // Embree geometry id in the prototype's scene -> a point set's shading mesh, or -1
+    std::unique_ptr<CurveGeometry> curves = std::make_unique<CurveGeometry>();  // its curve geometries
     std::vector<int> emissiveMeshes;  // into SceneDescription::prototypes[i].meshes: copied per instance
     Vec3f lo{std::numeric_limits<float>::max()}, hi{-std::numeric_limits<float>::max()};  // bounds
 };
@@ -343,7 +345,8 @@ std::vector<RenderScene::SurfaceTriangle> RenderScene::surfaceTriangles() const 
     for (int m : surfaceMeshes_)
         if (m >= 0) addMesh(meshes_[m], nullptr);
     for (const Instance& instance : instances_)
-        for (int m : prototypes_[instance.prototype].meshes) addMesh(meshes_[m], &instance);
+        for (int m : prototypes_[instance.prototype].meshes)
+            if (m >= 0) addMesh(meshes_[m], &instance);
     return out;
 }
 
@@ -502,34 +505,47 @@ void RenderScene::addMesh(const MeshDesc& desc, const std::vector<MaterialDesc>&
     surfacePoints_.push_back(-1);
 }
 
-void RenderScene::addPoints(const PointsDesc& desc, const std::vector<MaterialDesc>& materials) {
+int RenderScene::storePoints(const PointsDesc& desc, const std::vector<MaterialDesc>& materials,
+                             std::uint32_t objectName, RTCSceneTy* scene, unsigned geomID) {
     validatePoints(desc);
-    const int index = storeMesh(pointShadingMesh(desc), materials, objectNames_.add(desc.name));
+    const int index = storeMesh(pointShadingMesh(desc), materials, objectName);
     stats_.meshes -= 1;  // its shading mesh is not a surface
     stats_.triangles -= desc.positions.size();
     RTCGeometry geom = pointGeometry(embree_->device, desc);
-    rtcAttachGeometryByID(embree_->surfaces, geom, static_cast<unsigned>(surfaceMeshes_.size()));
+    rtcAttachGeometryByID(scene, geom, geomID);
     rtcReleaseGeometry(geom);
     throwOnEmbreeError(embree_->device, ("adding points " + desc.name).c_str());
+    stats_.pointSets += 1;
+    stats_.points += desc.positions.size();
+    return index;
+}
+
+void RenderScene::addPoints(const PointsDesc& desc, const std::vector<MaterialDesc>& materials) {
+    const auto geomID = static_cast<unsigned>(surfaceMeshes_.size());
+    const int index = storePoints(desc, materials, objectNames_.add(desc.name), embree_->surfaces, geomID);
     surfaceMeshes_.push_back(-1);
     surfaceInstances_.push_back(-1);
     surfacePoints_.push_back(index);
-    stats_.pointSets += 1;
-    stats_.points += desc.positions.size();
 }
 
-void RenderScene::addCurves(const CurvesDesc& desc, const std::vector<MaterialDesc>& materials) {
-    const auto geomID = static_cast<unsigned>(surfaceMeshes_.size());
+void RenderScene::storeCurves(CurveGeometry& geometry, const CurvesDesc& desc,
+                              const std::vector<MaterialDesc>& materials, std::uint32_t objectName, RTCSceneTy* scene,
+                              unsigned geomID) {
     const std::uint32_t materialName = desc.material >= 0 && desc.material < static_cast<int>(materials.size())
                                            ? materialNames_.add(materials[static_cast<std::size_t>(desc.material)].name)
                                            : kNoName;
-    curves_.add(embree_->device, embree_->surfaces, geomID, desc, materials, objectNames_.add(desc.name), materialName);
+    geometry.add(embree_->device, scene, geomID, desc, materials, objectName, materialName);
     throwOnEmbreeError(embree_->device, ("adding curves " + desc.name).c_str());
+    stats_.curves += 1;
+    stats_.curveSegments += desc.segments.size();
+}
+
+void RenderScene::addCurves(const CurvesDesc& desc, const std::vector<MaterialDesc>& materials) {
+    storeCurves(curves_, desc, materials, objectNames_.add(desc.name), embree_->surfaces,
+                static_cast<unsigned>(surfaceMeshes_.size()));
     surfaceMeshes_.push_back(-1);
     surfaceInstances_.push_back(-1);
     surfacePoints_.push_back(-1);
-    stats_.curves += 1;
-    stats_.curveSegments += desc.segments.size();
 }
 
 void RenderScene::addPrototypes(const SceneDescription& scene) {
@@ -562,6 +578,26 @@ void RenderScene::addPrototypes(const SceneDescription& scene) {
             rtcAttachGeometryByID(rtcScene, geom, static_cast<unsigned>(proto.meshes.size()));
             rtcReleaseGeometry(geom);
             proto.meshes.push_back(index);
+            proto.points.push_back(-1);
+        }
+        // Hits on curves and points are named by their instance, as hits on meshes are.
+        for (const CurvesDesc& curves : desc.curves) {
+            storeCurves(*proto.curves, curves, scene.materials, kNoName, rtcScene,
+                        static_cast<unsigned>(proto.meshes.size()));
+            proto.meshes.push_back(-1);
+            proto.points.push_back(-1);
+        }
+        proto.curves->growBounds(proto.lo, proto.hi);
+        for (const PointsDesc& points : desc.points) {
+            const int index =
+                storePoints(points, scene.materials, kNoName, rtcScene, static_cast<unsigned>(proto.meshes.size()));
+            for (std::size_t i = 0; i < points.positions.size(); ++i) {
+                const Vec3f r(points.radii.empty() ? 0.0f : points.radii[i]);
+                proto.lo = vmin(proto.lo, points.positions[i] - r);
+                proto.hi = vmax(proto.hi, points.positions[i] + r);
+            }
+            proto.meshes.push_back(-1);
+            proto.points.push_back(index);
         }
         rtcCommitScene(rtcScene);
         throwOnEmbreeError(embree_->device, ("building prototype " + desc.name).c_str());
@@ -594,7 +630,8 @@ void RenderScene::addPrototypes(const SceneDescription& scene) {
         instances_.push_back({desc.prototype, desc.transform, normalMatrixOf(desc.transform), objectName,
                               desc.motionTransforms, desc.linkGroup});
         stats_.instances += 1;
-        for (int m : proto.meshes) stats_.instancedTriangles += meshes_[m].indices.size() / 3;
+        for (int m : proto.meshes)
+            if (m >= 0) stats_.instancedTriangles += meshes_[m].indices.size() / 3;
     }
 }
 
@@ -656,8 +693,49 @@ std::optional<SurfaceHit> RenderScene::intersect(const Ray& ray) const {
     if (surface.hit.instID[0] == RTC_INVALID_GEOMETRY_ID)
         return shadeMesh(surfaceMeshes_[surface.hit.geomID], surface.hit.primID, u, v, t, -1, ray.time);
     const int instance = surfaceInstances_[surface.hit.instID[0]];
-    return shadeMesh(prototypes_[instances_[instance].prototype].meshes[surface.hit.geomID], surface.hit.primID, u, v,
-                     t, instance, ray.time);
+    const Prototype& proto = prototypes_[instances_[instance].prototype];
+    // Embree gives an instanced geometry's normal in the prototype's space.
+    const Vec3f ng(surface.hit.Ng_x, surface.hit.Ng_y, surface.hit.Ng_z);
+    if (proto.curves->contains(surface.hit.geomID))
+        return shadeInstancedCurve(*proto.curves, instance, surface.hit.geomID, surface.hit.primID, u, ray, t, ng);
+    if (const int points = proto.points[surface.hit.geomID]; points >= 0) {
+        std::optional<SurfaceHit> hit = shadeMesh(points, surface.hit.primID, 0.0f, 0.0f, t, instance, ray.time);
+        std::optional<Instance> moved;
+        placeOnPoint(*hit, ray, t,
+                     Vec3f(instanceAt(instance, ray.time, moved)->normalToWorld.transformVector(Vec3d(ng))));
+        return hit;
+    }
+    return shadeMesh(proto.meshes[surface.hit.geomID], surface.hit.primID, u, v, t, instance, ray.time);
+}
+
+std::optional<SurfaceHit> RenderScene::shadeInstancedCurve(const CurveGeometry& curves, int instanceIndex,
+                                                           unsigned geomID, unsigned primID, float u, const Ray& ray,
+                                                           float t, const Vec3f& ng) const {
+    std::optional<Instance> moved;
+    const Instance& instance = *instanceAt(instanceIndex, ray.time, moved);
+    // Shaded on the prototype's curve with the ray in prototype space (its direction not
+    // normalised, so that t stays the world ray's), then moved to world space.
+    const std::optional<Matrix4> toPrototype = instance.toWorld.inverse();
+    if (!toPrototype) return std::nullopt;
+    Ray local = ray;
+    local.origin = Vec3f(toPrototype->transformPoint(Vec3d(ray.origin)));
+    local.direction = Vec3f(toPrototype->transformVector(Vec3d(ray.direction)));
+    std::optional<SurfaceHit> hit = curves.shade(geomID, primID, u, local, t, ng);
+    auto normalToWorld = [&](const Vec3f& n) {
+        const Vec3f world(instance.normalToWorld.transformVector(Vec3d(n)));
+        return lengthSquared(world) > 0.0f ? normalize(world) : n;
+    };
+    hit->point = ray.origin + ray.direction * t;
+    hit->geometricNormal = hit->shadingNormal = normalToWorld(hit->geometricNormal);
+    const Vec3f tangent(instance.toWorld.transformVector(Vec3d(hit->tangent)));
+    if (lengthSquared(tangent) > 0.0f) hit->tangent = normalize(tangent);
+    // The side of the axis the ray met, measured in world space: a mirroring placement flips it.
+    if (instance.toWorld.determinant3x3() < 0.0) hit->material.hair->offset = -hit->material.hair->offset;
+    hit->time = ray.time;
+    hit->instance = instanceIndex;
+    hit->objectName = instance.objectName;
+    if (instance.linkGroup != 0) hit->linkGroup = instance.linkGroup;
+    return hit;
 }
 
 std::optional<SurfaceHit> RenderScene::shadeMesh(int meshIndex, unsigned primID, float u, float v, float t,

@@ -17,9 +17,10 @@
 // lightSelection(), the older choice proportional to power alone, remains as the baseline the
 // many-lights benchmark compares the tree against.
 //
-// Instancing: each prototype is one Embree scene, built once, and each instance an Embree
-// instance of it (one level), so N instances of a mesh cost its triangles once plus one
-// transform each. A hit inside an instance is shaded in prototype space and moved to world space.
+// Instancing: each prototype is one Embree scene (its meshes, curves and points), built once, and
+// each instance an Embree instance of it (one level), so N instances of a mesh cost its triangles
+// once plus one transform each. A hit inside an instance is shaded in prototype space and moved to
+// world space (a curve's with the ray taken into prototype space).
 // Emissive prototype meshes are the exception: every emitting triangle is a light that next-event
 // estimation samples in world space, so they are copied into world space per instance.
 //
@@ -248,8 +249,15 @@ private:
     void orientSolid(Mesh& mesh);
     void addMesh(const MeshDesc& mesh, const std::vector<MaterialDesc>& materials, std::uint32_t objectName);
     void addCurves(const CurvesDesc& curves, const std::vector<MaterialDesc>& materials);
+    // Adds `curves` to `geometry` and attaches them to `scene` (the surfaces' or a prototype's) as `geomID`.
+    void storeCurves(CurveGeometry& geometry, const CurvesDesc& curves, const std::vector<MaterialDesc>& materials,
+                     std::uint32_t objectName, RTCSceneTy* scene, unsigned geomID);
     // A point set (render/point_geometry.h): Embree points, shaded through a mesh of its own.
     void addPoints(const PointsDesc& points, const std::vector<MaterialDesc>& materials);
+    // Stores the shading mesh of `points` (returning its index in meshes_) and attaches their
+    // Embree points to `scene` (the surfaces' or a prototype's) as `geomID`.
+    int storePoints(const PointsDesc& points, const std::vector<MaterialDesc>& materials, std::uint32_t objectName,
+                    RTCSceneTy* scene, unsigned geomID);
     void addPrototypes(const SceneDescription& scene);
     void addLight(const LightDesc& light);
     void addVolumes(const std::vector<VolumeDesc>& volumes);
@@ -269,6 +277,10 @@ private:
     Triangle triangleAt(const Mesh& mesh, unsigned triangle, float time) const;
     // The instance at `index` (nullptr for -1), or, when it moves, its copy placed at `time` in `moved`.
     const Instance* instanceAt(int index, float time, std::optional<Instance>& moved) const;
+    // The hit on curve geomID of an instance's prototype (`curves`), in world space.
+    std::optional<SurfaceHit> shadeInstancedCurve(const CurveGeometry& curves, int instance, unsigned geomID,
+                                                  unsigned primID, float u, const Ray& ray, float t,
+                                                  const Vec3f& ng) const;
     std::optional<SurfaceHit> shadeLightShape(unsigned geomID, const Ray& ray, float t, const Vec3f& ng) const;
 
     struct EmbreeState;

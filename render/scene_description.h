@@ -319,10 +319,13 @@ struct CameraDesc {
     double shutterOpen = 0.0, shutterClose = 0.0;
 };
 
-// Geometry shared by instances: its meshes in the prototype's own space, stored once.
+// Geometry shared by instances: its meshes, curves and points in the prototype's own space,
+// stored once.
 struct PrototypeDesc {
-    std::string name;              // the prim it was read from, for messages
-    std::vector<MeshDesc> meshes;  // prototype space
+    std::string name;                  // the prim it was read from, for messages
+    std::vector<MeshDesc> meshes;      // prototype space
+    std::vector<CurvesDesc> curves{};  // prototype space
+    std::vector<PointsDesc> points{};  // prototype space
 };
 
 // One placement of a prototype.
