@@ -12,7 +12,9 @@
 #include <string>
 #include <vector>
 
+#include "core/random.h"
 #include "integrators/path_tracer.h"
+#include "integrators/photon_light_paths.h"
 #include "integrators/sppm.h"
 #include "tests/integrators/light_path_layers.h"
 #include "tests/integrators/render_support.h"
@@ -29,6 +31,48 @@ const SppmSettings kFewPhotons{5000};
 Image sppmLayers(const render::SceneDescription& desc, const Layers& layers, int size, int spp, int threads = 0,
                  std::uint64_t seed = 0, const SppmSettings& sppm = kFewPhotons) {
     return renderLayers<Sppm>(desc, layers, size, spp, 64, threads, seed, sppm);
+}
+
+// A photon's state set is exactly the states from which its events, read back to its light, are
+// accepted: checked against running the automaton forward from every state, over event strings
+// drawn at random (a fixed seed) from the events Fluence produces.
+TEST(SppmLightPathAovs, PhotonStateSetsAreTheStatesThatAcceptTheReversedEvents) {
+    const Layers layers = {{"a", "C<RD>.*[LO]"},
+                           {"b", "C.*<L.'key'>"},
+                           {"c", "C(D|G){2}<TS>?L"},
+                           {"d", "C[^S]*<V>.*L"},
+                           {"e", "C<R.>.*G.*[LO]"}};
+    const IntegratorSettings settings = withLayers(layers);
+    const std::vector<PathEvent> events = {
+        {EventType::Reflection, Scattering::Diffuse},   {EventType::Reflection, Scattering::Glossy},
+        {EventType::Reflection, Scattering::Singular},  {EventType::Transmission, Scattering::Singular},
+        {EventType::Transmission, Scattering::Diffuse}, {EventType::Volume, Scattering::Diffuse}};
+    const std::vector<PathEvent> lights = {{EventType::Light, Scattering::None, "key"},
+                                           {EventType::Light, Scattering::None, "fill"},
+                                           {EventType::Object, Scattering::None, ""}};
+    SampleStream rng(7, 0, 0);
+    for (int trial = 0; trial < 300; ++trial) {
+        const PathEvent& light = lights[std::size_t(rng.next() * float(lights.size())) % lights.size()];
+        PhotonLightPaths photon(*settings.lightPathAovs, light);
+        std::vector<PathEvent> drawn;  // light first
+        const int n = int(rng.next() * 5.0f);
+        for (int i = 0; i < n; ++i) {
+            drawn.push_back(events[std::size_t(rng.next() * float(events.size())) % events.size()]);
+            photon.scatter(VertexEvents(drawn.back()));
+        }
+        for (int aov = 0; aov < int(layers.size()); ++aov) {
+            const LightPathExpression& e = (*settings.lightPathAovs)[std::size_t(aov)].expression;
+            std::uint64_t states = 0;
+            for (const PhotonHistory& h : photon.histories())
+                if (h.aov == aov) states |= h.states;
+            for (int q = 0; q < e.stateCount(); ++q) {
+                int state = q;
+                for (auto it = drawn.rbegin(); it != drawn.rend(); ++it) state = e.next(state, *it);
+                ASSERT_EQ(e.accepts(e.next(state, light)), ((states >> q) & 1u) != 0)
+                    << layers[std::size_t(aov)].second << " trial " << trial << " state " << q;
+            }
+        }
+    }
 }
 
 TEST(SppmLightPathAovs, LayersOfADisjointCoverSumToTheBeauty) {
