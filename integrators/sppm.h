@@ -94,7 +94,9 @@
 // integrators/renderer.h) and are freed when the next pass begins (the last pass's when the
 // render ends): at most 64 pairs of maps of the
 // photons N paths leave, 44 bytes per photon at most (integrators/photon_map.h); the Cornell box
-// (about 1.7 photons per path) peaks at 230 MB with the default N. In a medium of albedo near 1 a
+// (about 1.7 photons per path) peaks at 230 MB with the default N. With light path expression
+// AOVs a photon also keeps its index in its map (4 bytes) and its histories (24 bytes each, one or
+// a few per expression: integrators/photon_light_paths.h). In a medium of albedo near 1 a
 // photon path stores up to maxDepth volume photons, so thick bright media cost more. Photons are
 // traced in chunks of paths on oneTBB's default arena, so on every core whatever the render's thread count
 // (beginSamples() runs outside the renderer's arena); chunks are concatenated in order, so maps
