@@ -32,13 +32,26 @@ bool alreadyRendered(const std::vector<std::string>& outputs, const std::string&
 }
 
 // The planned light path AOVs the integrator writes: all, or none (warned) when it writes none.
-// Returns the exit code: --lpe asking one of an integrator that writes none is a usage error.
+// Returns the exit code: --lpe asking one of an integrator that writes none is a usage error, an
+// expression it cannot write (IntegratorInfo::lightPathProblem) an error naming it.
 int lightPathAovs(const RenderOptions& opt, const PlannedRender& planned, const integrators::IntegratorInfo& integrator,
                   WarningLog& warnings, std::vector<integrators::LightPathAov>& aovs) {
     aovs = planned.lightPaths;
-    if (aovs.empty() || integrator.lightPathExpressions) return kExitOk;
+    if (aovs.empty()) return kExitOk;
+    if (integrator.lightPathExpressions) {
+        for (const integrators::LightPathAov& aov : aovs) {
+            const std::string problem = integrator.lightPathProblem ? integrator.lightPathProblem(aov.expression) : "";
+            if (problem.empty()) continue;
+            const bool option = std::any_of(opt.lightPaths.begin(), opt.lightPaths.end(),
+                                            [&](const LightPathOption& o) { return o.name == aov.name; });
+            printError(std::string(option ? "--lpe " : "lpe RenderVar ") + aov.name + ": integrator '" +
+                       integrator.name + "' cannot write it: " + problem);
+            return option ? kExitUsage : kExitScene;
+        }
+        return kExitOk;
+    }
     const std::string why =
-        "integrator '" + integrator.name + "' does not write light path expression AOVs (path and bdpt do)";
+        "integrator '" + integrator.name + "' does not write light path expression AOVs (path, bdpt and sppm do)";
     if (!opt.lightPaths.empty()) {
         printError("--lpe: " + why);
         return kExitUsage;

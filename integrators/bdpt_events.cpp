@@ -8,10 +8,7 @@ VertexEvents scatteringEvents(const Shading& sh, const Vertex& v, const Vec3f& t
                               bool delta) {
     if (!sh.bsdf()) return VertexEvents(volumeEvent(v.media.inSubsurface()));
     const Frame& frame = sh.surface().frame;
-    const Vec3f woLocal = frame.toLocal(toCamera), wiLocal = frame.toLocal(toLight);
-    if (!delta) return joinedEvents(*sh.bsdf(), woLocal, wiLocal);
-    const bool transmitted = woLocal.z * wiLocal.z < 0.0f;
-    return VertexEvents(PathEvent{transmitted ? EventType::Transmission : EventType::Reflection, Scattering::Singular});
+    return surfaceEvents(*sh.bsdf(), frame.toLocal(toCamera), frame.toLocal(toLight), delta);
 }
 
 void towardsLight(std::span<const VertexEvents> joined, std::span<const VertexEvents> drawn,

@@ -40,7 +40,8 @@ struct RenderCounters {
     }
 };
 
-struct LightPathAov;  // integrators/light_path_tracker.h
+struct LightPathAov;        // integrators/light_path_tracker.h
+class LightPathExpression;  // integrators/light_path_expression.h
 
 struct IntegratorSettings {
     int maxDepth = 64;  // maximum number of scattering events along a path
@@ -116,6 +117,8 @@ struct IntegratorInfo {
     std::function<std::unique_ptr<Integrator>(const IntegratorSettings&)> create;
     bool lightPathExpressions = false;  // writes IntegratorSettings::lightPathAovs into FilmSample::lightPaths
     std::vector<IntegratorParameter> parameters;  // read by create() from IntegratorSettings::parameters
+    // Why it cannot write an expression that parses ("" when it can); null: it writes every one.
+    std::function<std::string(const LightPathExpression&)> lightPathProblem = {};
 };
 
 // Every integrator Fluence offers, in the order `fluence --help` lists them.

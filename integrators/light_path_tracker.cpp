@@ -40,23 +40,10 @@ LightPathTracker::LightPathTracker(std::span<const LightPathAov> aovs) : aovs_(a
 
 void LightPathTracker::scatter(const VertexEvents& vertex) {
     if (entries_.empty()) return;
-    next_.clear();
-    for (const Entry& entry : entries_) {
-        const LightPathExpression& e = aovs_[std::size_t(entry.aov)].expression;
-        for (int k = 0; k < vertex.size(); ++k) {
-            const int state = e.next(entry.state, vertex.event(k));
-            const RGB share = entry.share * vertex.share(k);
-            if (state == LightPathExpression::kDead || isBlack(share)) continue;
-            Entry* same = nullptr;
-            for (Entry& n : next_)
-                if (n.aov == entry.aov && n.state == state) same = &n;
-            if (same)
-                same->share += share;
-            else
-                next_.push_back({entry.aov, state, share});
-        }
-    }
-    entries_.swap(next_);
+    scatterHistories(
+        aovs_, vertex, &Entry::state, LightPathExpression::kDead,
+        [](const LightPathExpression& e, int state, const PathEvent& event) { return e.next(state, event); }, entries_,
+        next_);
 }
 
 void LightPathTracker::reach(const PathEvent& light, const RGB& radiance, FilmSample& out) const {

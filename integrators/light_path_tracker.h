@@ -1,6 +1,8 @@
 // LightPathTracker: the light path expression AOVs of one camera sample, followed as an integrator
 // extends the path (`path` does, integrators/path_tracer.cpp; so does bdpt's camera subpath, whose
-// joins go on through the light subpath's events, join(), integrators/bdpt_events.h).
+// joins go on through the light subpath's events, join(), integrators/bdpt_events.h; and sppm's
+// eye path, whose gathers join photons that carry their own events' summary, gather(),
+// integrators/photon_light_paths.h).
 //
 // A path's throughput is shared among the histories of lobe kinds it could have been labelled
 // with: at a vertex whose BSDF mixes kinds (render/bsdf.h, THE LOBE SPLIT) the part f_D / f of the
@@ -61,6 +63,38 @@ private:
     int count_;
 };
 
+// One vertex's step of a set of histories, each an expression `aov`, a key (what the automaton
+// knows of it) and the `share` of the throughput that went that way: per event k of the vertex, a
+// history goes to key step(expression, key, event k) with share * vertex.share(k); histories that
+// reach the same key merge, those reaching `dead` or left with no share are dropped. `next` is
+// scratch space. Shared by the tracker (the key: an automaton state) and by photons (a set of
+// states, integrators/photon_light_paths.h).
+template <class History, class Key, class Step>
+void scatterHistories(std::span<const LightPathAov> aovs, const VertexEvents& vertex, Key History::*key, Key dead,
+                      Step&& step, std::vector<History>& histories, std::vector<History>& next) {
+    next.clear();
+    for (const History& history : histories) {
+        const LightPathExpression& e = aovs[std::size_t(history.aov)].expression;
+        for (int k = 0; k < vertex.size(); ++k) {
+            const Key to = step(e, history.*key, vertex.event(k));
+            const RGB share = history.share * vertex.share(k);
+            if (to == dead || isBlack(share)) continue;
+            History* same = nullptr;
+            for (History& n : next)
+                if (n.aov == history.aov && n.*key == to) same = &n;
+            if (same) {
+                same->share += share;
+            } else {
+                History added = history;
+                added.*key = to;
+                added.share = share;
+                next.push_back(added);
+            }
+        }
+    }
+    histories.swap(next);
+}
+
 class LightPathTracker {
 public:
     // Starts at the camera event. No AOVs: every call does nothing.
@@ -77,6 +111,21 @@ public:
     // `light`, contributing `radiance` to the beauty; this tracker stays where it is.
     void join(std::span<const VertexEvents> vertices, const PathEvent& light, const RGB& radiance,
               FilmSample& out) const;
+    // The path ends at `vertex`, joined to light whose own events (a photon's, integrators/
+    // photon_light_paths.h) the caller knows only through accepted(aov, state): the fraction (RGB)
+    // of that light expression `aov` accepts from `state`, the state after the vertex's event.
+    // Calls add(aov, fraction) with the fraction of the joined light each expression collects.
+    template <class Accepted, class Add>
+    void gather(const VertexEvents& vertex, Accepted&& accepted, Add&& add) const {
+        for (const Entry& entry : entries_) {
+            const LightPathExpression& e = aovs_[std::size_t(entry.aov)].expression;
+            for (int k = 0; k < vertex.size(); ++k) {
+                const int state = e.next(entry.state, vertex.event(k));
+                if (state != LightPathExpression::kDead)
+                    add(entry.aov, entry.share * vertex.share(k) * accepted(entry.aov, state));
+            }
+        }
+    }
 
 private:
     struct Entry {

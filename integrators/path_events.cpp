@@ -23,10 +23,15 @@ VertexEvents joinedEvents(const render::Bsdf& bsdf, const Vec3f& woLocal, const 
     return VertexEvents(woLocal.z * wiLocal.z < 0.0f, bsdf.fByKind(woLocal, wiLocal));
 }
 
-VertexEvents sampledEvents(const render::Bsdf& bsdf, const Vec3f& woLocal, const render::BsdfSample& bs) {
-    if (!bs.specular) return joinedEvents(bsdf, woLocal, bs.wi);
-    const bool transmitted = woLocal.z * bs.wi.z < 0.0f;
+VertexEvents surfaceEvents(const render::Bsdf& bsdf, const Vec3f& toCameraLocal, const Vec3f& toLightLocal,
+                           bool delta) {
+    if (!delta) return joinedEvents(bsdf, toCameraLocal, toLightLocal);
+    const bool transmitted = toCameraLocal.z * toLightLocal.z < 0.0f;
     return VertexEvents(PathEvent{transmitted ? EventType::Transmission : EventType::Reflection, Scattering::Singular});
+}
+
+VertexEvents sampledEvents(const render::Bsdf& bsdf, const Vec3f& woLocal, const render::BsdfSample& bs) {
+    return surfaceEvents(bsdf, woLocal, bs.wi, bs.specular);
 }
 
 }  // namespace fluence::integrators

@@ -42,6 +42,10 @@ PathEvent volumeEvent(bool subsurface);
 // lobes for that direction.
 VertexEvents joinedEvents(const render::Bsdf& bsdf, const Vec3f& woLocal, const Vec3f& wiLocal);
 
+// A surface vertex between toCamera and toLight (local, in the radiance view): a delta lobe's
+// single singular event (`delta`; R or T by the sides), or joinedEvents.
+VertexEvents surfaceEvents(const render::Bsdf& bsdf, const Vec3f& toCameraLocal, const Vec3f& toLightLocal, bool delta);
+
 // A surface vertex left along the BSDF sample bs: a delta lobe's single event, or joinedEvents.
 VertexEvents sampledEvents(const render::Bsdf& bsdf, const Vec3f& woLocal, const render::BsdfSample& bs);
 

@@ -5,7 +5,8 @@
 
 namespace fluence::integrators {
 
-PhotonMap::PhotonMap(std::vector<Photon> photons, float radius) : radius_(radius), cellSize_(2.0f * radius) {
+PhotonMap::PhotonMap(std::vector<Photon> photons, float radius, bool keepIndices)
+    : radius_(radius), cellSize_(2.0f * radius) {
     const std::size_t slots = std::bit_ceil(std::max<std::size_t>(photons.size(), 1));
     slotStart_.assign(slots + 1, 0);
     std::vector<std::uint32_t> slotOfPhoton(photons.size());
@@ -16,7 +17,12 @@ PhotonMap::PhotonMap(std::vector<Photon> photons, float radius) : radius_(radius
     for (std::size_t s = 0; s < slots; ++s) slotStart_[s + 1] += slotStart_[s];
     photons_.resize(photons.size());
     std::vector<std::uint32_t> next(slotStart_.begin(), slotStart_.end() - 1);
-    for (std::size_t i = 0; i < photons.size(); ++i) photons_[next[slotOfPhoton[i]]++] = photons[i];
+    if (keepIndices) indices_.resize(photons.size());
+    for (std::size_t i = 0; i < photons.size(); ++i) {
+        const std::uint32_t place = next[slotOfPhoton[i]]++;
+        photons_[place] = photons[i];
+        if (keepIndices) indices_[place] = std::uint32_t(i);
+    }
 }
 
 std::array<int, 3> PhotonMap::cellOf(const Vec3f& p) const {

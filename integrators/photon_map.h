@@ -12,7 +12,7 @@
 // exactly the photons within r (tests/integrators/sppm_test.cpp checks it against brute force).
 //
 // Memory: 36 bytes per photon (position, incoming direction, power as floats) plus 4 bytes per
-// table slot (at most 2 per photon): at most 44 bytes per photon.
+// table slot (at most 2 per photon): at most 44 bytes per photon (48 with the indices kept).
 //
 // Conventions: `wi` is the unit direction the photon arrived from (pointing away from the
 // surface or scattering point, towards the previous vertex of its path: the `wi` of render/bsdf.h
@@ -23,6 +23,7 @@
 #include <algorithm>
 #include <array>
 #include <cstdint>
+#include <type_traits>
 #include <vector>
 
 #include "core/rgb.h"
@@ -38,13 +39,21 @@ struct Photon {
 
 class PhotonMap {
 public:
-    PhotonMap(std::vector<Photon> photons, float radius);
+    // `keepIndices`: the map also keeps each photon's index in `photons` (indexAt), for what is kept
+    // beside the photons in that order (integrators/photon_light_paths.h).
+    PhotonMap(std::vector<Photon> photons, float radius, bool keepIndices = false);
 
     float radius() const { return radius_; }
     std::size_t size() const { return photons_.size(); }
-    std::size_t bytes() const { return photons_.size() * sizeof(Photon) + slotStart_.size() * sizeof(std::uint32_t); }
+    // The index in the constructor's vector of the photon at `position` in the map; only if the map
+    // keeps indices.
+    std::uint32_t indexAt(std::uint32_t position) const { return indices_[position]; }
+    std::size_t bytes() const {
+        return photons_.size() * sizeof(Photon) + (slotStart_.size() + indices_.size()) * sizeof(std::uint32_t);
+    }
 
-    // Calls visit(photon) for every photon at distance <= radius() from p.
+    // Calls visit(photon) for every photon at distance <= radius() from p, or visit(photon,
+    // position), position its place in the map (see indexAt).
     template <class Visit>
     void forEachWithin(const Vec3f& p, Visit&& visit) const {
         if (photons_.empty()) return;
@@ -59,7 +68,12 @@ public:
         for (int i = 0; i < count; ++i) {
             if (i > 0 && slots[i] == slots[i - 1]) continue;
             for (std::uint32_t j = slotStart_[slots[i]]; j < slotStart_[slots[i] + 1]; ++j)
-                if (lengthSquared(photons_[j].position - p) <= r2) visit(photons_[j]);
+                if (lengthSquared(photons_[j].position - p) <= r2) {
+                    if constexpr (std::is_invocable_v<Visit, const Photon&, std::uint32_t>)
+                        visit(photons_[j], j);
+                    else
+                        visit(photons_[j]);
+                }
         }
     }
 
@@ -70,6 +84,7 @@ private:
     float radius_, cellSize_;
     std::vector<Photon> photons_;           // sorted by slot
     std::vector<std::uint32_t> slotStart_;  // photons of slot s: [slotStart_[s], slotStart_[s + 1])
+    std::vector<std::uint32_t> indices_;    // per photon (if kept): its index in the constructor's vector
 };
 
 }  // namespace fluence::integrators

@@ -3,6 +3,7 @@
 #include "integrators/integrator.h"
 #include "integrators/naive_path_tracer.h"
 #include "integrators/path_tracer.h"
+#include "integrators/photon_light_paths.h"
 #include "integrators/radiosity.h"
 #include "integrators/sppm.h"
 #include "integrators/whitted.h"
@@ -51,17 +52,19 @@ const std::vector<IntegratorInfo>& integratorRegistry() {
          kEmitterSeen | kDirect | kSpecularSeen | kIndirect | kCaustics | kDeltaLightCaustics | kDeltaLights |
              kVolumes | kSubsurface,
          "probabilistic progressive photon mapping: caustics, also from point lights, and volumetric caustics; "
-         "subsurface by random walk; emissive media light nothing",
+         "subsurface by random walk; emissive media light nothing; light path expressions of at most 64 automaton "
+         "states (each photon carries its own events' summary)",
          [](const IntegratorSettings& s) {
              SppmSettings sppm;
              sppm.photonPathsPerMap = static_cast<int>(s.parameter("sppm-photons", sppm.photonPathsPerMap));
              sppm.initialRadius = static_cast<float>(s.parameter("sppm-radius", sppm.initialRadius));
              return std::make_unique<Sppm>(s, sppm);
          },
-         false,
+         true,
          {{"sppm-photons", "fluence:sppm:photons", "photon paths traced per sample index (default 50000)", true, 1e7},
           {"sppm-radius", "fluence:sppm:radius",
-           "the first sample's gather radius in scene units (default: 1.5 pixels' footprint at the scene's centre)"}}},
+           "the first sample's gather radius in scene units (default: 1.5 pixels' footprint at the scene's centre)"}},
+         photonLightPathProblem},
         {"radiosity",
          "LD*E",
          kEmitterSeen | kDirect | kIndirect | kDeltaLights,

@@ -66,6 +66,17 @@
 // sample index), as integrators/integrator.h requires, because map k depends only on (seed, k)
 // and the sample reads map k, found from SampleStream::sampleIndex().
 //
+// Light path expression AOVs (integrators/light_path_expression.h): the eye path's events are
+// followed forward as `path` follows them (C, its delta bounces, emission it reaches); each photon
+// carries, per expression, the automaton states from which its own events read back to its light
+// are accepted (integrators/photon_light_paths.h), so a gather knows exactly which expressions
+// the joined path (eye events)(the gather vertex's kind: <R|T D|G> by the BSDF's split for the
+// photon's direction, or <V D>)(photon events reversed) matches, and adds the photon's term to
+// those layers. A layer's sample is its share of the beauty's sample, with the same radius r_k (the
+// radius depends on the sample index only, never on which photons a layer counts), so the layers
+// of a disjoint cover sum to the beauty and each converges as the beauty does. Expressions whose
+// automaton has more than kMaxPhotonLpeStates (64) states are refused.
+//
 // r_1 is kInitialRadiusPixels pixels wide at the scene's bounding-sphere centre (the camera's
 // footprint there), unless SppmSettings::initialRadius sets it in scene units; the volume
 // radius starts from the same r_1.
@@ -83,7 +94,9 @@
 // integrators/renderer.h) and are freed when the next pass begins (the last pass's when the
 // render ends): at most 64 pairs of maps of the
 // photons N paths leave, 44 bytes per photon at most (integrators/photon_map.h); the Cornell box
-// (about 1.7 photons per path) peaks at 230 MB with the default N. In a medium of albedo near 1 a
+// (about 1.7 photons per path) peaks at 230 MB with the default N. With light path expression
+// AOVs a photon also keeps its index in its map (4 bytes) and its histories (24 bytes each, one or
+// a few per expression: integrators/photon_light_paths.h). In a medium of albedo near 1 a
 // photon path stores up to maxDepth volume photons, so thick bright media cost more. Photons are
 // traced in chunks of paths on oneTBB's default arena, so on every core whatever the render's thread count
 // (beginSamples() runs outside the renderer's arena); chunks are concatenated in order, so maps
@@ -96,9 +109,11 @@
 
 #include <cstdint>
 #include <memory>
+#include <span>
 #include <vector>
 
 #include "integrators/integrator.h"
+#include "integrators/light_path_tracker.h"
 
 namespace fluence::integrators {
 
@@ -112,8 +127,9 @@ public:
     static constexpr float kInitialRadiusPixels = 1.5f;
     static constexpr double kAlpha = 2.0 / 3.0;  // the radius's shrink rate, in (0, 1)
 
-    explicit Sppm(const IntegratorSettings& settings, const SppmSettings& sppm = {})
-        : maxDepth_(settings.maxDepth), settings_(sppm) {}
+    // Throws std::invalid_argument, naming the expression, for a light path expression AOV whose
+    // automaton photons cannot carry (integrators/photon_light_paths.h).
+    explicit Sppm(const IntegratorSettings& settings, const SppmSettings& sppm = {});
 
     // The per-render state: the initial radius; then, from beginSamples(), the photon maps of the
     // pass's sample indices, and the counts the summary reports.
@@ -129,8 +145,13 @@ public:
     static float radius(float initialRadius, std::uint64_t sampleIndex, int dimensions);
 
 private:
+    std::span<const LightPathAov> aovs() const {
+        return aovs_ ? std::span<const LightPathAov>(*aovs_) : std::span<const LightPathAov>();
+    }
+
     int maxDepth_;
     SppmSettings settings_;
+    std::shared_ptr<const std::vector<LightPathAov>> aovs_;  // null: none
 };
 
 }  // namespace fluence::integrators

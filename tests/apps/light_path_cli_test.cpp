@@ -62,7 +62,7 @@ void expectLayersSumToBeauty(const test::ExrImage& img, const std::vector<std::s
 }
 
 TEST_F(LightPathCli, LpeOptionsBecomeLayersThatSumToTheBeauty) {
-    for (const char* integrator : {"path", "bdpt"}) {
+    for (const char* integrator : {"path", "bdpt", "sppm"}) {
         RunResult r = render(kCornellBox, std::string("--integrator ") + integrator +
                                               " --lpe 'direct=C<RD>[LO]' --lpe 'indirect=C<RD>.+[LO]'"
                                               " --lpe 'seen=C[LO]'");
@@ -99,6 +99,20 @@ TEST_F(LightPathCli, BadLpeOptionsAreUsageErrors) {
     r = render(kCornellBox, "--integrator whitted --lpe 'all=C.*L'");
     EXPECT_EQ(r.exitCode, 2);
     EXPECT_NE(r.err.find("does not write light path expression AOVs"), std::string::npos) << r.err;
+    EXPECT_FALSE(fs::exists(tmp_.file("out.exr")));
+}
+
+// sppm's photons carry expressions of at most 64 automaton states: a longer one is refused by name.
+TEST_F(LightPathCli, SppmRefusesAnExpressionItsPhotonsCannotCarry) {
+    RunResult r = render(kCornellBox, "--integrator sppm --lpe 'long=C.{70}L' --lpe 'all=C.*L'");
+    EXPECT_EQ(r.exitCode, 2);
+    EXPECT_NE(r.err.find("--lpe long: integrator 'sppm' cannot write it"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("C.{70}L"), std::string::npos) << r.err;
+    EXPECT_FALSE(fs::exists(tmp_.file("out.exr")));
+
+    r = render(sceneWithVars(lpeVar("long", "C.{70}L"), "</Render/Vars/long>"), "--integrator sppm");
+    EXPECT_EQ(r.exitCode, 3);
+    EXPECT_NE(r.err.find("lpe RenderVar long"), std::string::npos) << r.err;
     EXPECT_FALSE(fs::exists(tmp_.file("out.exr")));
 }
 

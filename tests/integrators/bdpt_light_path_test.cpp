@@ -37,18 +37,11 @@ TEST(BdptLightPathAovs, SubsurfaceEventsAreLabelled) {
     expectLayersSumToBeauty(renderLayers<Bdpt>(everyKindOfEvent(), bySubsurface, 24, 8), bySubsurface);
 }
 
-// A diffuse floor and back wall lit by a rect light and a point light: no path has a singular
-// event, so the mirror layer is black and the diffuse one is the whole beauty less the light seen.
+// In diffuseOnly() no path has a singular event, so the mirror layer is black and the diffuse one
+// is the whole beauty less the light seen.
 TEST(BdptLightPathAovs, ADiffuseOnlySceneHasNothingSeenInMirrors) {
-    render::SceneDescription s;
-    s.materials.push_back(test::diffuseMaterial("/white", RGB(0.7f, 0.6f, 0.5f)));
-    s.meshes.push_back(test::quadMesh("/floor", {{{-3, -3, -1}, {3, -3, -1}, {3, 3, -1}, {-3, 3, -1}}}, 0));
-    s.meshes.push_back(test::quadMesh("/back", {{{-3, 1, -1}, {3, 1, -1}, {3, 1, 3}, {-3, 1, 3}}}, 0));
-    s.lights.push_back(test::rectLight("/key", 1.0f, 1.0f, RGB(8.0f), Matrix4::translate({0.0, 0.0, 1.5})));
-    s.lights.push_back(test::pointLight("/point", RGB(20.0f), Vec3d(1.0, -0.5, 0.5)));
-    s.camera = test::lookAtOriginCamera(4.0f);
     const Layers layers = {{"mirror", "C<RS>.*L"}, {"diffuse", "C<RD>.*L"}, {"seen", "CL"}};
-    const Image image = renderLayers<Bdpt>(s, layers, 16, 8);
+    const Image image = renderLayers<Bdpt>(diffuseOnly(), layers, 16, 8);
     for (int y = 0; y < image.height; ++y)
         for (int x = 0; x < image.width; ++x) ASSERT_EQ(layerAt(image, "mirror", x, y), RGB(0.0f)) << x << "," << y;
     expectLayersSumToBeauty(image, {{"diffuse", "C<RD>.*L"}, {"seen", "CL"}});

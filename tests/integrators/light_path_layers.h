@@ -3,6 +3,7 @@
 // the check that the layers of a disjoint cover of every path sum to the beauty.
 #pragma once
 
+#include <cstdint>
 #include <memory>
 #include <string>
 #include <utility>
@@ -37,18 +38,19 @@ inline std::vector<std::string> namesOf(const Layers& layers) {
     return names;
 }
 
-// A size x size render of `desc` by Method with the layers, resolved; `threads` as
-// RenderSettings::threads.
-template <class Method>
+// A size x size render of `desc` by Method (constructed from the settings and `extra`) with the
+// layers, resolved; `threads` and `seed` as RenderSettings's.
+template <class Method, class... Extra>
 Image renderLayers(const render::SceneDescription& desc, const Layers& layers, int size, int spp, int maxDepth = 64,
-                   int threads = 0) {
+                   int threads = 0, std::uint64_t seed = 0, const Extra&... extra) {
     render::RenderScene scene(desc);
     render::Camera camera(*desc.camera, size, size);
     Film film(size, size, camera.farClip(), namesOf(layers));
-    Method integrator(withLayers(layers, maxDepth));
+    Method integrator(withLayers(layers, maxDepth), extra...);
     RenderSettings settings;
     settings.samplesPerPixel = spp;
     settings.threads = threads;
+    settings.seed = seed;
     render(scene, camera, integrator, settings, film);
     return film.resolve();
 }
@@ -86,6 +88,18 @@ inline render::SceneDescription everyKindOfEvent() {
     s.lights.push_back(test::rectLight("/lights/key", 1.0f, 1.0f, RGB(8.0f), Matrix4::translate({0.0, 0.0, 2.0})));
     s.lights.push_back(test::sphereLight("/lights/fill", 0.2f, RGB(10.0f, 10.0f, 12.0f), Vec3d(-2.0, -1.0, 1.0)));
     s.lights.push_back(test::domeLight("/lights/sky", RGB(0.1f)));
+    s.camera = test::lookAtOriginCamera(4.0f);
+    return s;
+}
+
+// A diffuse floor and back wall lit by a rect light and a point light: no path has a singular event.
+inline render::SceneDescription diffuseOnly() {
+    render::SceneDescription s;
+    s.materials.push_back(test::diffuseMaterial("/white", RGB(0.7f, 0.6f, 0.5f)));
+    s.meshes.push_back(test::quadMesh("/floor", {{{-3, -3, -1}, {3, -3, -1}, {3, 3, -1}, {-3, 3, -1}}}, 0));
+    s.meshes.push_back(test::quadMesh("/back", {{{-3, 1, -1}, {3, 1, -1}, {3, 1, 3}, {-3, 1, 3}}}, 0));
+    s.lights.push_back(test::rectLight("/key", 1.0f, 1.0f, RGB(8.0f), Matrix4::translate({0.0, 0.0, 1.5})));
+    s.lights.push_back(test::pointLight("/point", RGB(20.0f), Vec3d(1.0, -0.5, 0.5)));
     s.camera = test::lookAtOriginCamera(4.0f);
     return s;
 }
