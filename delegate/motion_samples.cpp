@@ -119,6 +119,7 @@ void addMotion(SceneDelegate& delegate, usd::Stage& stage, const DelegateOptions
     MotionSteps<render::PointsDesc> pointSteps(scene.points.size());
     std::vector<std::vector<Matrix4>> instanceSteps(scene.instances.size());
     std::vector<bool> instanceStill(scene.instances.size(), false);
+    std::vector<Matrix4> cameraSteps;
     for (double time : times) {
         delegate.setMotionStep(time, options.time);
         delegate.sync();
@@ -126,6 +127,8 @@ void addMotion(SceneDelegate& delegate, usd::Stage& stage, const DelegateOptions
         meshSteps.add(scene.meshes, step.meshes, options.warn);
         curveSteps.add(scene.curves, step.curves, options.warn);
         pointSteps.add(scene.points, step.points, options.warn);
+        if (step.camera && scene.camera && step.camera->name == scene.camera->name)
+            cameraSteps.push_back(step.camera->transform);
         for (std::size_t i = 0; i < scene.instances.size(); ++i) {
             const bool same = i < step.instances.size() && step.instances[i].name == scene.instances[i].name &&
                               step.instances[i].prototype == scene.instances[i].prototype;
@@ -139,6 +142,10 @@ void addMotion(SceneDelegate& delegate, usd::Stage& stage, const DelegateOptions
     meshSteps.store(scene.meshes);
     curveSteps.store(scene.curves);
     pointSteps.store(scene.points);
+    if (scene.camera && cameraSteps.size() == times.size() &&
+        std::any_of(cameraSteps.begin(), cameraSteps.end(),
+                    [&](const Matrix4& s) { return s.m != cameraSteps.front().m; }))
+        scene.camera->motionTransforms = std::move(cameraSteps);
     for (std::size_t i = 0; i < scene.instances.size(); ++i) {
         std::vector<Matrix4>& steps = instanceSteps[i];
         if (instanceStill[i] ||

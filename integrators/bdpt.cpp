@@ -337,8 +337,9 @@ std::unique_ptr<RenderState> Bdpt::prepare(const RenderScene& scene, const rende
         state->aovs = *aovs_;
         state->lightEvents = LightEvents(scene);
     }
-    const std::string why =
-        !splats ? "the film is a window of the image (a tile)" : "an orthographic camera or one with depth of field";
+    const std::string why = !splats          ? "the film is a window of the image (a tile)"
+                            : camera.moves() ? "the camera moves during the shutter"
+                                             : "an orthographic camera or one with depth of field";
     state->lightTracingOff =
         state->splats ? "" : "light tracing (t = 1) off: " + why + "; point-light caustics seen directly are missed";
     std::vector<double> weights;

@@ -93,8 +93,9 @@ struct RenderStats {
 // motion blur change no other random number of the sample.
 inline render::Ray cameraSampleRay(const render::Camera& camera, SampleStream& rng, int imageX, int imageY) {
     const Vec2f jitter = rng.next2D();
-    render::Ray ray = camera.generateRay(float(imageX) + jitter.x, float(imageY) + jitter.y, rng.lens());
-    ray.time = rng.shutterTime();
+    const float time = rng.shutterTime();
+    render::Ray ray = camera.generateRay(float(imageX) + jitter.x, float(imageY) + jitter.y, rng.lens(), time);
+    ray.time = time;
     return ray;
 }
 

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "render/camera_motion.h"
+
 namespace fluence::render {
 
 namespace {
@@ -60,14 +62,28 @@ Camera::Camera(const CameraDesc& d, int imageWidth, int imageHeight, const Image
     std::optional<Matrix4> toCamera = toWorld_.inverse();
     if (!toCamera) throw std::invalid_argument("camera " + d.name + ": its transform is singular");
     toCamera_ = *toCamera;
-    position_ = Vec3f(toWorld_.transformPoint({0, 0, 0}));
-    forward_ = normalize(Vec3f(toWorld_.transformVector({0, 0, -1})));
-    axisX_ = Vec3f(toWorld_.transformVector({1, 0, 0}));
-    axisY_ = Vec3f(toWorld_.transformVector({0, 1, 0}));
-    axisZ_ = Vec3f(toWorld_.transformVector({0, 0, 1}));
+    place(toWorld_);
+    if (!d.motionTransforms.empty() && d.motionTransforms.size() < 2)
+        throw std::invalid_argument("camera " + d.name + ": motion needs at least two time steps");
+    if (!d.motionTransforms.empty()) motion_ = std::make_shared<const std::vector<Matrix4>>(d.motionTransforms);
 }
 
-Ray Camera::generateRay(float x, float y, Vec2f lens) const {
+void Camera::place(const Matrix4& toWorld) {
+    toWorld_ = toWorld;
+    position_ = Vec3f(toWorld.transformPoint({0, 0, 0}));
+    forward_ = normalize(Vec3f(toWorld.transformVector({0, 0, -1})));
+    axisX_ = Vec3f(toWorld.transformVector({1, 0, 0}));
+    axisY_ = Vec3f(toWorld.transformVector({0, 1, 0}));
+    axisZ_ = Vec3f(toWorld.transformVector({0, 0, 1}));
+}
+
+Ray Camera::generateRay(float x, float y, Vec2f lens, float time) const {
+    if (motion_) {  // a still copy, placed where the camera is at `time`
+        Camera still = *this;
+        still.motion_.reset();
+        still.place(cameraTransformAt(*motion_, time));
+        return still.generateRay(x, y, lens);
+    }
     float sx = 2.0f * x / static_cast<float>(width_) - 1.0f;   // -1 left .. 1 right
     float sy = 1.0f - 2.0f * y / static_cast<float>(height_);  // 1 top .. -1 bottom
     float wx = centreX_ + sx * halfWidth_, wy = centreY_ + sy * halfHeight_;

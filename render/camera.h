@@ -9,7 +9,9 @@
 // the far one (planes perpendicular to the view axis, not spheres).
 #pragma once
 
+#include <memory>
 #include <optional>
+#include <vector>
 
 #include "core/matrix.h"
 #include "render/ray.h"
@@ -44,7 +46,10 @@ public:
     // (width, height) the bottom-right. A perspective camera with depth of field starts it at the
     // aperture point `lens` (uniform in [0, 1)^2; the default is the lens's centre) picks
     // (render/thin_lens.h); a pinhole or orthographic camera ignores `lens`.
-    Ray generateRay(float x, float y, Vec2f lens = {0.5f, 0.5f}) const;
+    // A moving camera (CameraDesc::motionTransforms) starts it from where the camera is at `time`
+    // in the shutter (render/camera_motion.h); a still camera ignores `time`.
+    Ray generateRay(float x, float y, Vec2f lens = {0.5f, 0.5f}, float time = 0.0f) const;
+    bool moves() const { return motion_ != nullptr; }
     // The thin lens (a pinhole when CameraDesc's fStop or focusDistance is 0, or for an
     // orthographic camera): aperture radius focalLength / (2 fStop), the focal length converted from
     // tenths of a scene unit as UsdGeomCamera measures it.
@@ -80,7 +85,9 @@ public:
     // delta in position: its positional density is 1 (the same for every strategy, so it cancels
     // in MIS). Exact for any affine camera transform (scaled or sheared), through the Jacobian
     // from the image to directions.
-    bool hasImportance() const { return projection_ == Projection::Perspective && lens_.isPinhole(); }
+    // A moving camera has no importance either: light paths would have to meet it where it is at
+    // their own time; bdpt leaves its t = 1 strategy out for it, as for a lens.
+    bool hasImportance() const { return projection_ == Projection::Perspective && lens_.isPinhole() && !moves(); }
     // We(w) cos(theta): the density, per unit solid angle, of camera rays along w; 0 outside the image.
     float directionDensity(const Vec3f& w) const;
     // We(w); 0 outside the image.
@@ -124,6 +131,12 @@ private:
     float near_, far_;
     float pixelAspectRatio_;
     ThinLens lens_;
+    // CameraDesc::motionTransforms (null for a still camera), shared by the still copies
+    // generateRay makes of a moving camera.
+    std::shared_ptr<const std::vector<Matrix4>> motion_;
+
+    // Places the camera by `toWorld` (what generating a ray reads of its transform).
+    void place(const Matrix4& toWorld);
 };
 
 }  // namespace fluence::render

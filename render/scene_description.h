@@ -317,6 +317,10 @@ struct CameraDesc {
     // no motion blur. The render core only needs to know that a ray's time 0 is the opening and
     // 1 the close (render::Ray::time); the delegate samples the motion over this interval.
     double shutterOpen = 0.0, shutterClose = 0.0;
+    // A moving camera: camera-to-world at evenly spaced times over the shutter (the first at its
+    // opening, the last at its close; interpolated as render/camera_motion.h says); empty: it
+    // stays at `transform`, the frame's.
+    std::vector<Matrix4> motionTransforms{};
 };
 
 // Geometry shared by instances: its meshes, curves and points in the prototype's own space,

@@ -138,6 +138,28 @@ def Points "Still"
     EXPECT_TRUE(d.warnings.empty()) << d.warnings.front();
 }
 
+TEST(MotionSamples, ATimeSampledCameraGetsItsTransformAtEachStep) {
+    const Described d = describeAt(R"(
+def Camera "Cam"
+{
+    double shutter:open = -0.25
+    double shutter:close = 0.25
+    double3 xformOp:translate.timeSamples = { 0: (0, 0, 5), 2: (2, 0, 5) }
+    uniform token[] xformOpOrder = ["xformOp:translate"]
+}
+)" + kDeformed,
+                                   1.0);
+    ASSERT_TRUE(d.result.scene.camera);
+    const render::CameraDesc& camera = *d.result.scene.camera;
+    ASSERT_EQ(camera.motionTransforms.size(), 2u);
+    EXPECT_NEAR(camera.motionTransforms[0].m[0][3], 0.75, 1e-9);
+    EXPECT_NEAR(camera.motionTransforms[1].m[0][3], 1.25, 1e-9);
+    EXPECT_NEAR(camera.transform.m[0][3], 1.0, 1e-9);  // the frame's
+    // A still camera gets none.
+    EXPECT_TRUE(
+        describeAt(cameraWithShutter(-0.25, 0.25) + kDeformed, 1.0).result.scene.camera->motionTransforms.empty());
+}
+
 TEST(MotionSamples, CurvesWhoseCountChangesRenderStillWithAWarning) {
     const Described d = describeAt(cameraWithShutter(-0.25, 0.25) + R"(
 def BasisCurves "Hair"
