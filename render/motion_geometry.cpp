@@ -33,14 +33,12 @@ Matrix4 transformAt(const std::vector<Matrix4>& steps, float time) {
 
 namespace {
 
-void fillVertexBuffer(RTCGeometry geom, unsigned slot, const std::vector<Vec3f>& positions) {
-    auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, slot, RTC_FORMAT_FLOAT3,
-                                                          3 * sizeof(float), positions.size()));
-    for (std::size_t i = 0; i < positions.size(); ++i) {
-        v[3 * i] = positions[i].x;
-        v[3 * i + 1] = positions[i].y;
-        v[3 * i + 2] = positions[i].z;
-    }
+// A buffer of 3-float vectors (`type`: vertex positions or curve normals) in `slot`.
+void fillFloat3Buffer(RTCGeometry geom, RTCBufferType type, unsigned slot, const std::vector<Vec3f>& vectors) {
+    auto* v = static_cast<float*>(
+        rtcSetNewGeometryBuffer(geom, type, slot, RTC_FORMAT_FLOAT3, 3 * sizeof(float), vectors.size()));
+    for (std::size_t i = 0; i < vectors.size(); ++i)
+        for (int k = 0; k < 3; ++k) v[3 * i + k] = vectors[i][k];
 }
 
 void fillPointRadiusBuffer(RTCGeometry geom, unsigned slot, const std::vector<Vec3f>& points,
@@ -53,13 +51,6 @@ void fillPointRadiusBuffer(RTCGeometry geom, unsigned slot, const std::vector<Ve
         v[4 * i + 2] = points[i].z;
         v[4 * i + 3] = std::max(radii[i], 0.0f);
     }
-}
-
-void fillNormalBuffer(RTCGeometry geom, unsigned slot, const std::vector<Vec3f>& normals) {
-    auto* n = static_cast<float*>(rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_NORMAL, slot, RTC_FORMAT_FLOAT3,
-                                                          3 * sizeof(float), normals.size()));
-    for (std::size_t i = 0; i < normals.size(); ++i)
-        for (int k = 0; k < 3; ++k) n[3 * i + k] = normals[i][k];
 }
 
 void setTransform(RTCGeometry instance, unsigned step, const Matrix4& transform) {
@@ -76,11 +67,11 @@ RTCGeometryTy* newTriangleGeometry(RTCDeviceTy* device, const std::vector<Vec3f>
                                    const std::vector<std::uint32_t>& indices) {
     RTCGeometry geom = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
     if (motion.empty()) {
-        fillVertexBuffer(geom, 0, positions);
+        fillFloat3Buffer(geom, RTC_BUFFER_TYPE_VERTEX, 0, positions);
     } else {
         rtcSetGeometryTimeStepCount(geom, static_cast<unsigned>(motion.size()));
         for (std::size_t step = 0; step < motion.size(); ++step)
-            fillVertexBuffer(geom, static_cast<unsigned>(step), motion[step]);
+            fillFloat3Buffer(geom, RTC_BUFFER_TYPE_VERTEX, static_cast<unsigned>(step), motion[step]);
     }
     auto* index = static_cast<unsigned*>(rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
                                                                  3 * sizeof(unsigned), indices.size() / 3));
@@ -97,7 +88,7 @@ void setPointRadiusBuffers(RTCGeometryTy* geom, const std::vector<Vec3f>& points
         const auto slot = static_cast<unsigned>(step);
         fillPointRadiusBuffer(geom, slot, motionPoints.empty() ? points : motionPoints[step],
                               motionRadii.empty() ? radii : motionRadii[step]);
-        if (!normals.empty()) fillNormalBuffer(geom, slot, normals);
+        if (!normals.empty()) fillFloat3Buffer(geom, RTC_BUFFER_TYPE_NORMAL, slot, normals);
     }
 }
 
