@@ -13,11 +13,6 @@ using RuleMap = std::map<std::string, Rule>;
 
 constexpr std::string_view kCollectionTag = ".collection:";
 
-std::string parentOf(const std::string& path) {
-    const std::size_t slash = path.find_last_of('/');
-    return slash == 0 ? "/" : path.substr(0, slash);
-}
-
 // Merges collection `name` of `prim` into `rules`; `chain` holds the collections being read
 // (prim path + ".collection:" + name), to break cycles.
 void merge(const usd::Stage& stage, const usd::PrimSpec& prim, const std::string& name, bool includeRootFallback,
@@ -113,7 +108,7 @@ bool CollectionMembership::contains(const std::string& path) const {
             auto found = references_->find(collectionPath(r.prim, r.name));
             return found != references_->end() && found->second.contains(p);
         });
-    for (std::string p = path;; p = parentOf(p)) {
+    for (std::string p = path;; p = parentPath(p)) {
         auto found = rules_.find(p);
         if (found != rules_.end() && (found->second != Rule::ExplicitOnly || p == path))
             return found->second != Rule::Exclude;

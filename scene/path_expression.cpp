@@ -33,11 +33,6 @@ bool isIdentifierChar(char c) {
            static_cast<unsigned char>(c) >= 0x80;
 }
 
-std::string parentOf(const std::string& path) {
-    const std::size_t slash = path.find_last_of('/');
-    return slash == 0 ? "/" : path.substr(0, slash);
-}
-
 std::vector<std::string> componentsOf(const std::string& path) {
     std::vector<std::string> parts;
     for (std::size_t start = 1; start < path.size();) {
@@ -187,7 +182,7 @@ private:
         for (const std::string& part : componentsOf("/" + relative)) {
             if (part == "..") {
                 if (path == "/") fail("'..' goes above the root", at);
-                path = parentOf(path);
+                path = parentPrimPath(path);
             } else if (part != ".") {
                 path = (path == "/" ? "" : path) + "/" + part;
             }

@@ -115,15 +115,10 @@ std::vector<std::string> appliedSchemas(const PrimSpec& prim) {
     return e && e->op != ListOpKind::Delete ? e->value.strings : std::vector<std::string>{};
 }
 
-std::string parentOf(const std::string& path) {
-    const std::size_t slash = path.find_last_of('/');
-    return slash == 0 ? "/" : path.substr(0, slash);
-}
-
 // Whether some prim on the path from `path` up to the root satisfies `test`.
 template <class Test>
 bool anyAncestorOrSelf(const Stage& stage, std::string path, Test test) {
-    for (; path != "/"; path = parentOf(path))
+    for (; path != "/"; path = parentPrimPath(path))
         if (const PrimSpec* prim = stage.prim(path); prim && test(*prim)) return true;
     return false;
 }

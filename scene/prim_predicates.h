@@ -37,6 +37,12 @@ public:
     using std::runtime_error::runtime_error;
 };
 
+// The parent of an absolute prim path ("/" for a root prim), for walks up the namespace.
+inline std::string parentPrimPath(const std::string& path) {
+    const std::size_t slash = path.find_last_of('/');
+    return slash == 0 ? "/" : path.substr(0, slash);
+}
+
 // Throws PredicateError unless `call` is a function of the library with valid arguments.
 void checkPredicate(const PredicateCall& call);
 
