@@ -55,9 +55,16 @@ def _cell(text):
 
 
 def _by_method(rows):
+    """Each method's ladder, a rung whose sample count repeats an earlier rung's left out: a method
+    that reaches the same spp at two budgets (its rate too low for the larger one to add a sample,
+    or a render the time limit cut at the same place) rendered the same image twice, and counting
+    it twice bends the fitted slope (a flat step of zero error change)."""
     lines = {}
     for r in rows:
-        lines.setdefault(r["method"], []).append(r)
+        ladder = lines.setdefault(r["method"], [])
+        if r["status"] == "ok" and any(q["status"] == "ok" and q["spp"] == r["spp"] for q in ladder):
+            continue
+        ladder.append(r)
     return lines
 
 
@@ -98,11 +105,15 @@ def figures_markdown(rows, slopes, chart_link):
                                                                           _cell(ladder[-1]["misses"])))
                 continue
             top = ok[-1]
-            t = metrics.time_to_error([r["render_s"] for r in ok], [r["relmse"] for r in ok], target)
+            # A method whose image mean is significantly off the reference cannot converge to the
+            # target however long it runs: it gets no time ("biased"), however low its error dips.
+            biased = bool(top.get("bias_significant"))
+            t = "biased" if biased else _fmt(
+                metrics.time_to_error([r["render_s"] for r in ok], [r["relmse"] for r in ok], target))
             out.append("| %s | %s | %d spp | %s | %s | %s | %s ± %s | %s | %s | %.0f | %s | %s |" % (
                 name, _fmt(slopes.get(scene.name, {}).get(name), "%+.2f"), top["spp"], _fmt(top["render_s"]),
                 _fmt(top["relmse"]), _fmt(top["mare"]), _fmt(top["bias"], "%+.2g"), _fmt(top["bias_se"], "%.1g"),
-                _fmt(top["msamples_per_s"]), _fmt(top["mrays_per_s"]), top["peak_mib"], _fmt(t), _cell(top["misses"])))
+                _fmt(top["msamples_per_s"]), _fmt(top["mrays_per_s"]), top["peak_mib"], t, _cell(top["misses"])))
         top_ref = ladders[scene.methods[0]][-1]
         out += ["", "Reference's own noise (subtracted above): relMSE %s, MARE %s." % (
             _fmt(top_ref.get("ref_relmse")), _fmt(top_ref.get("ref_mare"))), ""]
