@@ -74,10 +74,11 @@ def _cycles_render_time(exr):
     return float("nan")
 
 
-def cycles(peer, peer_scene, spp, seed, res, out):
-    """Renders the peer's scene PEER_SCENE with Cycles at SPP and SEED on 2 threads into OUT."""
+def cycles(peer, peer_scene, spp, seed, res, out, peer_args=()):
+    """Renders the peer's scene PEER_SCENE with Cycles at SPP and SEED on 2 threads into OUT
+    (PEER_ARGS: more of scenes.py's options)."""
     cmd = ["blender", "-b", "--factory-startup", "-P", str(peer / "scenes.py"), "--", "--scene", peer_scene, "--spp", str(spp),
-           "--seed", str(seed), "--out", str(out), "--res", str(res[0]), str(res[1]), "--threads", "2"]
+           "--seed", str(seed), "--out", str(out), "--res", str(res[0]), str(res[1]), "--threads", "2", *peer_args]
     if os.path.exists(out):
         os.remove(out)
     code, wall, rss, _ = run_logged(cmd, str(out) + ".log", cwd=peer)

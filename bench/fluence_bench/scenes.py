@@ -46,6 +46,7 @@ class FigureScene:
     methods: tuple
     extra: tuple = ()  # flags every fluence render of this scene takes
     peer: str = ""  # the Cycles peer's scene name (shared/peers/cycles/scenes.py), if it has this scene
+    peer_args: tuple = ()  # flags every Cycles render of this scene takes (scenes.py's options)
     note: str = ""
 
 
@@ -63,8 +64,9 @@ FIGURE_SCENES = (
     FigureScene("subsurface", "usd_samples/subsurface/subsurface.usda", (160, 120), "path", 1024,
                 ("path", "path+diffusion", "bdpt", "sppm"), note="random-walk against diffusion subsurface"),
     FigureScene("subsurface_peer", "bench/peer_scenes/cycles_sss.usda", (128, 128), "path", 1024,
-                ("path",), extra=("--subdiv-level", "4"), peer="sss",
-                note="the Cycles peer's scene c (subdivision level 4, Cycles' render level)"),
+                ("path",), extra=("--subdiv-level", "4"), peer="sss", peer_args=("--sss-mfp",),
+                note="the Cycles peer's scene c (subdivision level 4, Cycles' render level; Cycles' fixed-radius "
+                "walk given the mean free path Standard Surface reads, `scenes.py --sss-mfp`)"),
     FigureScene("caustic_glass", "bench/scenes/caustic_glass.usda", (128, 96), "sppm", 512,
                 ("path", "bdpt", "sppm", "whitted"),
                 note="glass ball and a small sphere light; sppm reference (path's is firefly-ridden)"),

@@ -21,7 +21,8 @@ from . import metrics, rendering, scenes
 
 ROW_FIELDS = ("suite", "scene", "method", "renderer", "res", "budget_s", "spp", "seed", "status", "exit_code", "wall_s", "render_s",
               "msamples_per_s", "mrays_per_s", "peak_mib", "nonfinite_samples", "nonfinite_pixels", "relmse",
-              "relmse_uncorrected", "mare", "ref_spp", "ref_relmse", "ref_mare", "bias", "bias_se", "bias_significant", "misses")
+              "relmse_uncorrected", "mare", "ref_spp", "ref_relmse", "ref_mare", "bias", "bias_se", "bias_significant", "misses",
+              "relmse_vs_peer")
 
 
 class Context:
@@ -97,8 +98,11 @@ def _row(suite, scene, method_name, result, reference, misses):
     return row
 
 
-def _ladder(ctx, suite, scene_name, rungs, runners, rows):
-    """RUNNERS maps a method name to (render(rung, out) -> result, reference, misses)."""
+def _ladder(ctx, suite, scene_name, rungs, runners, rows, peer_reference=None):
+    """RUNNERS maps a method name to (render(rung, out) -> result, reference, misses). With
+    PEER_REFERENCE (Cycles' own reference of the scene), every Fluence image's relMSE against it is
+    kept too (`relmse_vs_peer`), so that the two renderers can be timed to the same error against
+    the same reference."""
     work = ctx.cache / scene_name / "runs"
     work.mkdir(parents=True, exist_ok=True)
     stopped = set()
@@ -109,6 +113,8 @@ def _ladder(ctx, suite, scene_name, rungs, runners, rows):
             out = work / ("%s_%s_rung%d.exr" % (suite, name.replace("+", "_"), i))
             result = dict(render(rung, out), image=out)
             row = _row(suite, scene_name, name, result, reference, misses)
+            if peer_reference is not None and name != "cycles" and row["status"] == "ok":
+                row["relmse_vs_peer"] = peer_reference.error(out)["relmse"]
             del row["image"]
             rows.append(row)
             _log("  %-16s %-15s %6d spp  %-7s render %7.2f s  relMSE %s" % (
@@ -124,12 +130,12 @@ def _time_limited(ctx, scene, m, res):
     return render
 
 
-def _cycles_in_budget(peer, peer_scene, res):
+def _cycles_in_budget(peer, peer_scene, res, peer_args):
     seconds_per_spp = []
 
     def render(budget, out):
         spp = max(1, round(budget / seconds_per_spp[-1])) if seconds_per_spp else CYCLES_FIRST_SPP
-        result = rendering.cycles(peer, peer_scene, spp, 0, res, out)
+        result = rendering.cycles(peer, peer_scene, spp, 0, res, out, peer_args)
         if result["render_s"] > 0:
             seconds_per_spp.append(result["render_s"] / spp)
         return dict(result, budget_s=budget)
@@ -147,12 +153,14 @@ def figures(ctx, selected):
         misses = missed_classes(ctx.binary, scene.path)
         runners = {name: (_time_limited(ctx, scene, scenes.method(name), res), reference,
                           misses.get(scenes.method(name).integrator, "")) for name in scene.methods}
+        peer_ref = None
         if scene.peer and ctx.cycles:
             peer = rendering.peer_dir(ctx.cache)
-            peer_ref = _reference(ctx, scene.name, ref_spp, ("cycles", scene.peer, ref_spp, res), lambda seed, out: rendering.cycles(
-                peer, scene.peer, ref_spp // 2, seed, res, out))
-            runners["cycles"] = (_cycles_in_budget(peer, scene.peer, res), peer_ref, "")
-        _ladder(ctx, "figures", scene.name, ctx.budgets, runners, rows)
+            peer_ref = _reference(ctx, scene.name, ref_spp, ("cycles", scene.peer, ref_spp, res, scene.peer_args),
+                                  lambda seed, out: rendering.cycles(peer, scene.peer, ref_spp // 2, seed, res, out,
+                                                                     scene.peer_args))
+            runners["cycles"] = (_cycles_in_budget(peer, scene.peer, res, scene.peer_args), peer_ref, "")
+        _ladder(ctx, "figures", scene.name, ctx.budgets, runners, rows, peer_ref)
     return rows
 
 
