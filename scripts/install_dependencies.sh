@@ -13,6 +13,7 @@ packages=(
   libpugixml-dev
   liblz4-dev
   clang-16 libclang-rt-16-dev llvm-16
+  libcpp-httplib-dev  # fluence review: its HTTP server
   clang-format-14  # make format-check (part of make test): the tree follows .clang-format
   slurm-wlm munge openimageio-tools  # tests/farm/slurm_farm_test.sh: a one-node Slurm cluster; oiiotool
 )
