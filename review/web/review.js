@@ -72,7 +72,14 @@ class Review {
     if (!this.gl) throw new Error('this browser has no WebGL2');
     this.gl.getExtension('OES_texture_float_linear');
     this.zoom = 1; this.origin = [0, 0];
-    this.layers = {}; this.textures = {};
+    this.layers = {};
+    this.pending = Promise.resolve();
+  }
+
+  // Runs an update after the ones in flight; `pending` settles when all have (tests wait on it).
+  track(work) {
+    this.pending = this.pending.then(work).catch((e) => this.status(String(e.message || e)));
+    return this.pending;
   }
 
   status(text) { $('status').textContent = text; }
@@ -85,11 +92,12 @@ class Review {
     }
     $('compare').add(new Option('(none)', ''), 0);
     $('compare').value = '';
-    for (const id of ['display', 'view', 'look']) $(id).onchange = () => this.update(id);
+    for (const id of ['display', 'view', 'look']) $(id).onchange = () => this.track(() => this.update(id));
     for (const id of ['exposure', 'gamma', 'channel', 'wipe']) $(id).oninput = () => this.draw();
-    $('layer').onchange = () => this.loadLayer();
-    $('file').onchange = () => this.loadFile();
-    $('compare').onchange = () => this.loadLayer();
+    $('channel').onchange = () => this.draw();
+    $('layer').onchange = () => this.track(() => this.loadLayer());
+    $('file').onchange = () => this.track(() => this.loadFile());
+    $('compare').onchange = () => this.track(() => this.loadLayer());
     $('actual').onclick = () => { this.zoom = 1; this.origin = [0, 0]; this.draw(); };
     $('fit').onclick = () => this.fit();
     this.canvas.onmousemove = (e) => this.showPixel(e);

@@ -1,0 +1,139 @@
+// `fluence review` in headless Chromium (puppeteer-core): the page's pixels must equal OCIO's CPU
+// transform of the same EXR (review_reference) within 1/255 for several views, exposures and
+// gammas, the A/B wipe must show image A left of the wipe and image B right of it, and the static
+// export must open from disk (file://) and show the same pixels.
+//   node review_browser_test.mjs FLUENCE REVIEW_REFERENCE CHROMIUM WORK_DIR
+import { spawn, execFileSync } from 'node:child_process';
+import { createRequire } from 'node:module';
+import { mkdtempSync, rmSync } from 'node:fs';
+import { join } from 'node:path';
+import { pathToFileURL } from 'node:url';
+
+const [fluence, reference, chromium, work] = process.argv.slice(2);
+const puppeteer = createRequire(join(work, 'package.json'))('puppeteer-core');
+const scratch = mkdtempSync(join(work, 'run-'));
+const sourceDir = new URL('../..', import.meta.url).pathname;
+let failures = 0;
+
+function check(ok, what) {
+  console.log((ok ? 'ok      ' : 'FAILED  ') + what);
+  if (!ok) failures += 1;
+}
+
+function render(name, extra) {
+  const out = join(scratch, name);
+  execFileSync(fluence, ['render', join(sourceDir, 'usd_samples/cornell_box.usda'), '-o', out, '-r', '48', '36',
+                         '--spp', '4', ...extra], { stdio: 'pipe' });
+  return out;
+}
+
+function referencePixels(exr, display, view, look, exposure, gamma) {
+  return new Uint8Array(execFileSync(reference, [exr, display, view, look, String(exposure), String(gamma)],
+                                     { maxBuffer: 1 << 28 }));
+}
+
+// The largest difference of the RGB of `shown` and `expected`, over the pixel columns [x0, x1).
+function maxDifference(shown, expected, width, x0 = 0, x1 = width) {
+  let worst = 0;
+  for (let i = 0; i < expected.length; i += 4) {
+    const x = (i / 4) % width;
+    if (x < x0 || x >= x1) continue;
+    for (let c = 0; c < 3; ++c) worst = Math.max(worst, Math.abs(shown[i + c] - expected[i + c]));
+  }
+  return worst;
+}
+
+function startServer(files) {
+  return new Promise((resolve, reject) => {
+    const server = spawn(fluence, ['review', ...files], { stdio: ['ignore', 'pipe', 'inherit'] });
+    let text = '';
+    server.stdout.on('data', (chunk) => {
+      text += chunk;
+      const url = text.match(/http:\/\/\S+\//);
+      if (url) resolve({ server, url: url[0] });
+    });
+    server.on('exit', (code) => reject(new Error('fluence review exited with ' + code)));
+  });
+}
+
+async function choose(page, id, value) {
+  await page.evaluate(async (id, value) => {
+    const element = document.getElementById(id);
+    element.value = value;
+    element.dispatchEvent(new Event(id === 'exposure' || id === 'gamma' || id === 'wipe' ? 'input' : 'change'));
+    await new Promise((r) => setTimeout(r, 0));
+  }, id, String(value));
+}
+
+async function openPage(browser, url) {
+  const page = await browser.newPage();
+  await page.setViewport({ width: 900, height: 600 });
+  page.on('pageerror', (e) => console.log('page error: ' + e.message));
+  await page.goto(url);
+  await page.evaluate(() => window.fluenceReviewReady);
+  return page;
+}
+
+async function shown(page) {
+  await page.evaluate(() => window.fluenceReview.pending);
+  return new Uint8Array(await page.evaluate(() => Array.from(window.fluenceReview.displayedPixels())));
+}
+
+const settings = [
+  ['sRGB', 'Standard', '', 0, 1],
+  ['sRGB', 'Standard', '', 1.5, 1],
+  ['sRGB', 'Raw', '', -1, 1],
+  ['sRGB', 'Standard', '', -0.5, 2.2],
+];
+
+async function checkViews(page, exr, where) {
+  for (const [display, view, look, exposure, gamma] of settings) {
+    await choose(page, 'display', display);
+    await choose(page, 'view', view);
+    await choose(page, 'look', look);
+    await choose(page, 'exposure', exposure);
+    await choose(page, 'gamma', gamma);
+    const width = await page.evaluate(() => window.fluenceReview.image.width);
+    const d = maxDifference(await shown(page), referencePixels(exr, display, view, look, exposure, gamma), width);
+    check(d <= 1, `${where}: ${display}/${view} exposure ${exposure} gamma ${gamma}: largest difference ${d}/255`);
+  }
+}
+
+const a = render('a.exr', ['--seed', '1']);
+const b = render('b.exr', ['--seed', '2', '--spp', '1']);
+const { server, url } = await startServer([a, b]);
+const browser = await puppeteer.launch({
+  executablePath: chromium, headless: true,
+  args: ['--no-sandbox', '--use-angle=swiftshader', '--enable-unsafe-swiftshader', '--allow-file-access-from-files'],
+});
+try {
+  const page = await openPage(browser, url);
+  await checkViews(page, a, 'server');
+
+  // A/B wipe at the middle: A's pixels left of it, B's right of it.
+  await choose(page, 'exposure', 0);
+  await choose(page, 'gamma', 1);
+  await choose(page, 'view', 'Standard');
+  await choose(page, 'compare', 'b.exr');
+  await choose(page, 'wipe', 0.5);
+  const width = await page.evaluate(() => window.fluenceReview.image.width);
+  const wiped = await shown(page);
+  const left = maxDifference(wiped, referencePixels(a, 'sRGB', 'Standard', '', 0, 1), width, 0, width / 2);
+  const right = maxDifference(wiped, referencePixels(b, 'sRGB', 'Standard', '', 0, 1), width, width / 2, width);
+  const bothDiffer = maxDifference(referencePixels(a, 'sRGB', 'Standard', '', 0, 1),
+                                   referencePixels(b, 'sRGB', 'Standard', '', 0, 1), width, width / 2, width);
+  check(left <= 1 && right <= 1 && bothDiffer > 1,
+        `A/B wipe: A left (${left}/255), B right (${right}/255), A and B differ there (${bothDiffer}/255)`);
+
+  // The static export, opened from disk.
+  const exported = join(scratch, 'static');
+  execFileSync(fluence, ['review', a, '--static', exported], { stdio: 'pipe' });
+  const staticPage = await openPage(browser, pathToFileURL(join(exported, 'index.html')).href);
+  await checkViews(staticPage, a, 'static export (file://)');
+} finally {
+  await browser.close();
+  server.kill('SIGTERM');
+  rmSync(scratch, { recursive: true, force: true });
+}
+console.log(failures ? `${failures} check(s) failed` : 'all checks passed');
+process.exit(failures ? 1 : 0);
