@@ -99,7 +99,7 @@ async function checkViews(page, exr, where) {
   }
 }
 
-const a = render('a.exr', ['--seed', '1']);
+const a = render('a.exr', ['--seed', '1', '--cryptomatte', 'object']);
 const b = render('b.exr', ['--seed', '2', '--spp', '1']);
 const { server, url } = await startServer([a, b]);
 const browser = await puppeteer.launch({
@@ -124,6 +124,29 @@ try {
                                    referencePixels(b, 'sRGB', 'Standard', '', 0, 1), width, width / 2, width);
   check(left <= 1 && right <= 1 && bothDiffer > 1,
         `A/B wipe: A left (${left}/255), B right (${right}/255), A and B differ there (${bothDiffer}/255)`);
+
+  // A Cryptomatte click at 1:1 selects the prim under the pointer: the floor at the bottom middle,
+  // the left wall near the left edge, the ceiling at the top middle.
+  await choose(page, 'compare', '');
+  await page.evaluate(() => { window.fluenceReview.zoom = 1; window.fluenceReview.origin = [0, 0]; });
+  const box = await page.evaluate(() => { const r = document.getElementById('canvas').getBoundingClientRect();
+                                          return [r.left, r.top]; });
+  for (const [x, y, prim] of [[24, 34, '/CornellBox/Geometry/Floor'], [8, 18, '/CornellBox/Geometry/LeftWall'],
+                              [24, 1, '/CornellBox/Geometry/Ceiling']]) {
+    await page.mouse.click(box[0] + x + 0.5, box[1] + y + 0.5);
+    await page.evaluate(() => window.fluenceReview.pending);
+    const picked = await page.evaluate(() => document.getElementById('matte').textContent);
+    check(picked === 'CryptoObject: ' + prim, `Cryptomatte click at ${x},${y}: '${picked}'`);
+  }
+  const overlaid = await shown(page);
+  const plain = referencePixels(a, 'sRGB', 'Standard', '', 0, 1);
+  check(maxDifference(overlaid, plain, width) > 20, 'the picked matte is drawn over the image');
+
+  // relMSE against a reference: b (1 spp) against a (4 spp) is listed with a positive error.
+  await choose(page, 'reference', 'a.exr');
+  await page.evaluate(() => window.fluenceReview.pending);
+  const errors = await page.evaluate(() => document.getElementById('errors').textContent);
+  check(/^b\.exr\d/.test(errors) && Number(errors.slice(5)) > 0, `relMSE of b.exr against a.exr: '${errors}'`);
 
   // The static export, opened from disk.
   const exported = join(scratch, 'static');
