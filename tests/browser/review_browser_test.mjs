@@ -5,7 +5,7 @@
 //   node review_browser_test.mjs FLUENCE REVIEW_REFERENCE CHROMIUM WORK_DIR
 import { spawn, execFileSync } from 'node:child_process';
 import { createRequire } from 'node:module';
-import { mkdtempSync, rmSync } from 'node:fs';
+import { copyFileSync, mkdirSync, mkdtempSync, rmSync } from 'node:fs';
 import { join } from 'node:path';
 import { pathToFileURL } from 'node:url';
 
@@ -101,7 +101,12 @@ async function checkViews(page, exr, where) {
 
 const a = render('a.exr', ['--seed', '1', '--cryptomatte', 'object']);
 const b = render('b.exr', ['--seed', '2', '--spp', '1']);
-const { server, url } = await startServer([a, b]);
+// A folder holding a two-frame sequence, for the flipbook.
+const shots = join(scratch, 'shots');
+mkdirSync(shots);
+copyFileSync(a, join(shots, 'seq.0001.exr'));
+copyFileSync(b, join(shots, 'seq.0002.exr'));
+const { server, url } = await startServer([a, b, shots]);
 const browser = await puppeteer.launch({
   executablePath: chromium, headless: true,
   args: ['--no-sandbox', '--use-angle=swiftshader', '--enable-unsafe-swiftshader', '--allow-file-access-from-files'],
@@ -142,11 +147,30 @@ try {
   const plain = referencePixels(a, 'sRGB', 'Standard', '', 0, 1);
   check(maxDifference(overlaid, plain, width) > 20, 'the picked matte is drawn over the image');
 
-  // relMSE against a reference: b (1 spp) against a (4 spp) is listed with a positive error.
+  // relMSE against a reference: b (1 spp) against a (4 spp) is positive, a copy of a is 0.
   await choose(page, 'reference', 'a.exr');
   await page.evaluate(() => window.fluenceReview.pending);
-  const errors = await page.evaluate(() => document.getElementById('errors').textContent);
-  check(/^b\.exr\d/.test(errors) && Number(errors.slice(5)) > 0, `relMSE of b.exr against a.exr: '${errors}'`);
+  const errors = Object.fromEntries(await page.evaluate(() => Array.from(
+      document.getElementById('errors').rows, (r) => [r.cells[0].textContent, Number(r.cells[1].textContent)])));
+  check(errors['b.exr'] > 0 && errors['shots/seq.0001.exr'] === 0,
+        `relMSE against a.exr: b.exr ${errors['b.exr']}, its copy shots/seq.0001.exr ${errors['shots/seq.0001.exr']}`);
+
+  // The flipbook plays the folder's sequence: both frames are shown within a second at 24 fps.
+  await page.evaluate(() => window.fluenceReview.show('shots/seq.0001.exr'));
+  await page.evaluate(() => window.fluenceReview.pending);
+  const seen = await page.evaluate(async () => {
+    const frames = new Set();
+    document.getElementById('play').click();
+    const end = performance.now() + 1000;
+    while (performance.now() < end) {
+      frames.add(document.getElementById('status').textContent);
+      await new Promise((r) => setTimeout(r, 10));
+    }
+    document.getElementById('play').click();
+    return [...frames].filter((t) => t.startsWith('frame ')).sort();
+  });
+  check(seen.length === 2 && seen[0] === 'frame 1 (24 fps)' && seen[1] === 'frame 2 (24 fps)',
+        `flipbook over shots/seq.####.exr shows both frames: ${JSON.stringify(seen)}`);
 
   // The static export, opened from disk.
   const exported = join(scratch, 'static');
