@@ -106,7 +106,9 @@ const shots = join(scratch, 'shots');
 mkdirSync(shots);
 copyFileSync(a, join(shots, 'seq.0001.exr'));
 copyFileSync(b, join(shots, 'seq.0002.exr'));
-const { server, url } = await startServer([a, b, shots]);
+const aHalf = join(scratch, 'a_half.exr');
+execFileSync('oiiotool', [a, '-d', 'half', '-o', aHalf]);
+const { server, url } = await startServer([a, b, aHalf, shots]);
 const browser = await puppeteer.launch({
   executablePath: chromium, headless: true,
   args: ['--no-sandbox', '--use-angle=swiftshader', '--enable-unsafe-swiftshader', '--allow-file-access-from-files'],
@@ -114,6 +116,33 @@ const browser = await puppeteer.launch({
 try {
   const page = await openPage(browser, url);
   await checkViews(page, a, 'server');
+
+  // A half-float EXR reaches the page losslessly: its pixels too equal OCIO's CPU transform.
+  await choose(page, 'file', 'a_half.exr');
+  const halfFormat = await page.evaluate(() => window.fluenceReview.pending.then(
+      () => window.fluenceReview.image.layers.find((l) => l.name === 'rgba').format));
+  check(halfFormat === 'half', `a_half.exr's beauty arrives as ${halfFormat}`);
+  await checkViews(page, aHalf, 'half-float EXR');
+
+  // Pixel values under the pointer, and the wheel zooming by 2 about the pointer.
+  await page.evaluate(() => { window.fluenceReview.zoom = 1; window.fluenceReview.origin = [0, 0]; });
+  await choose(page, 'exposure', 0);
+  await choose(page, 'gamma', 1);
+  const corner = await page.evaluate(() => { const r = document.getElementById('canvas').getBoundingClientRect();
+                                             return [r.left, r.top]; });
+  const halfReference = referencePixels(aHalf, 'sRGB', 'Standard', '', 0, 1);
+  const at = (x, y) => Array.from(halfReference.subarray((y * 48 + x) * 4, (y * 48 + x) * 4 + 3)).join(' ');
+  await page.mouse.move(corner[0] + 20.5, corner[1] + 10.5);
+  const readout = await page.evaluate(() => document.getElementById('pixel').textContent);
+  check(readout.startsWith('x 20 y 10\nlinear   R ') && readout.endsWith('displayed ' + at(20, 10)),
+        `pixel readout at 20,10: ${JSON.stringify(readout)}`);
+  await page.mouse.wheel({ deltaY: -100 });
+  await page.mouse.move(corner[0] + 20.5 + 8, corner[1] + 10.5 + 6);  // 4, 3 image pixels further at zoom 2
+  const zoomed = await page.evaluate(() => document.getElementById('pixel').textContent);
+  check(zoomed.startsWith('x 24 y 13\n') && zoomed.endsWith('displayed ' + at(24, 13)),
+        `after zooming in about 20,10, 8,6 screen pixels further: ${JSON.stringify(zoomed)}`);
+  await choose(page, 'file', 'a.exr');
+  await page.evaluate(() => window.fluenceReview.pending);
 
   // A/B wipe at the middle: A's pixels left of it, B's right of it.
   await choose(page, 'exposure', 0);
