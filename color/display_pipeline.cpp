@@ -1,5 +1,6 @@
 #include "color/display_pipeline.h"
 
+#include <algorithm>
 #include <cmath>
 #include <mutex>
 
@@ -63,6 +64,17 @@ OCIO::ConstProcessorRcPtr buildProcessor(const OCIO::ConstConfigRcPtr& config, c
     return pipeline->getProcessor(config, config->getCurrentContext());
 }
 
+// The shader of `gpu`, textures at most `maxWidth` wide (0: OCIO's default).
+OCIO::GpuShaderDescRcPtr extractShader(const OCIO::ConstGPUProcessorRcPtr& gpu, unsigned maxWidth) {
+    auto desc = OCIO::GpuShaderDesc::CreateShaderDesc();
+    desc->setLanguage(OCIO::GPU_LANGUAGE_GLSL_ES_3_0);
+    desc->setFunctionName("ocioDisplay");
+    desc->setResourcePrefix("ocio");
+    if (maxWidth) desc->setTextureMaxWidth(maxWidth);
+    gpu->extractGpuShaderInfo(desc);
+    return desc;
+}
+
 void setDynamic(OCIO::DynamicPropertyRcPtr property, double value) {
     OCIO::DynamicPropertyValue::AsDouble(property)->setValue(value);
 }
@@ -116,11 +128,25 @@ GpuDisplayShader DisplayPipeline::gpuShader(const std::string& inputSpace, const
     } catch (const OCIO::Exception& e) {
         throw ColorError(std::string("OCIO: ") + e.what());
     }
-    auto desc = OCIO::GpuShaderDesc::CreateShaderDesc();
-    desc->setLanguage(OCIO::GPU_LANGUAGE_GLSL_ES_3_0);
-    desc->setFunctionName("ocioDisplay");
-    desc->setResourcePrefix("ocio");
-    gpu->extractGpuShaderInfo(desc);
+    // OCIO 2.1's GLSL ES code packs a 1D LUT of N entries into an N x 1 texture but looks the last
+    // entry (an input >= 1) up in row 1, which does not exist, and so reads entry 0: narrower rows
+    // (the texture then two rows high) put the last entry where the lookup goes. Each pass narrows
+    // the widest one-row texture, so the loop ends.
+    OCIO::GpuShaderDescRcPtr desc;
+    for (unsigned maxWidth = 0;;) {
+        desc = extractShader(gpu, maxWidth);
+        unsigned narrower = 0;
+        for (unsigned i = 0; i < desc->getNumTextures(); ++i) {
+            const char *texture = nullptr, *sampler = nullptr;
+            unsigned width = 0, height = 0;
+            OCIO::GpuShaderDesc::TextureType channel{};
+            OCIO::Interpolation interpolation{};
+            desc->getTexture(i, texture, sampler, width, height, channel, interpolation);
+            if (height == 1 && width > 2) narrower = narrower ? std::min(narrower, width - 1) : width - 1;
+        }
+        if (narrower == 0) break;
+        maxWidth = narrower;
+    }
 
     GpuDisplayShader shader;
     shader.functionName = "ocioDisplay";

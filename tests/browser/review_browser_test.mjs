@@ -5,7 +5,7 @@
 //   node review_browser_test.mjs FLUENCE REVIEW_REFERENCE CHROMIUM WORK_DIR
 import { spawn, execFileSync } from 'node:child_process';
 import { createRequire } from 'node:module';
-import { copyFileSync, mkdirSync, mkdtempSync, rmSync } from 'node:fs';
+import { copyFileSync, mkdirSync, mkdtempSync, rmSync, writeFileSync } from 'node:fs';
 import { join } from 'node:path';
 import { pathToFileURL } from 'node:url';
 
@@ -20,16 +20,59 @@ function check(ok, what) {
   if (!ok) failures += 1;
 }
 
-function render(name, extra) {
+function render(name, extra, env = process.env) {
   const out = join(scratch, name);
   execFileSync(fluence, ['render', join(sourceDir, 'usd_samples/cornell_box.usda'), '-o', out, '-r', '48', '36',
-                         '--spp', '4', ...extra], { stdio: 'pipe' });
+                         '--spp', '4', ...extra], { stdio: 'pipe', env });
   return out;
 }
 
-function referencePixels(exr, display, view, look, exposure, gamma) {
+function referencePixels(exr, display, view, look, exposure, gamma, env = process.env) {
   return new Uint8Array(execFileSync(reference, [exr, display, view, look, String(exposure), String(gamma)],
-                                     { maxBuffer: 1 << 28 }));
+                                     { maxBuffer: 1 << 28, env }));
+}
+
+// An OCIO config whose views are LUTs (a 17^3 .cube, trilinear; a 1D .spi1d, linear) and which has a
+// look (a CDL), so that the shader's LUT textures and the look menu are exercised.
+function writeLutConfig(dir) {
+  mkdirSync(dir);
+  const n = 17;
+  let cube = `LUT_3D_SIZE ${n}\n`;
+  for (let b = 0; b < n; ++b)
+    for (let g = 0; g < n; ++g)
+      for (let r = 0; r < n; ++r) {
+        const [x, y, z] = [r / (n - 1), g / (n - 1), b / (n - 1)];
+        cube += `${Math.sqrt(x).toFixed(6)} ${(0.7 * y + 0.3 * z * z).toFixed(6)} ${Math.sqrt(z * x).toFixed(6)}\n`;
+      }
+  writeFileSync(join(dir, 'view.cube'), cube);
+  const values = Array.from({ length: 64 }, (_, i) => Math.pow(i / 63, 1 / 2.6).toFixed(6));
+  writeFileSync(join(dir, 'curve.spi1d'),
+                `Version 1\nFrom 0.0 1.0\nLength 64\nComponents 1\n{\n${values.join('\n')}\n}\n`);
+  writeFileSync(join(dir, 'lut.ocio'), `ocio_profile_version: 2
+search_path: "."
+roles:
+  default: lin_rec709
+  scene_linear: lin_rec709
+file_rules:
+  - !<Rule> {name: Default, colorspace: lin_rec709}
+displays:
+  Projector:
+    - !<View> {name: Cube, colorspace: cube_display}
+    - !<View> {name: Curve, colorspace: curve_display}
+active_displays: []
+active_views: []
+looks:
+  - !<Look> {name: Warm, process_space: lin_rec709, transform: !<CDLTransform> {slope: [1.2, 1.0, 0.8]}}
+colorspaces:
+  - !<ColorSpace> {name: lin_rec709, isdata: false}
+  - !<ColorSpace>
+    name: cube_display
+    from_reference: !<FileTransform> {src: view.cube, interpolation: linear}
+  - !<ColorSpace>
+    name: curve_display
+    from_reference: !<FileTransform> {src: curve.spi1d, interpolation: linear}
+`);
+  return join(dir, 'lut.ocio');
 }
 
 // The largest difference of the RGB of `shown` and `expected`, over the pixel columns [x0, x1).
@@ -86,15 +129,15 @@ const settings = [
   ['sRGB', 'Standard', '', -0.5, 2.2],
 ];
 
-async function checkViews(page, exr, where) {
-  for (const [display, view, look, exposure, gamma] of settings) {
+async function checkViews(page, exr, where, cases = settings, env = process.env) {
+  for (const [display, view, look, exposure, gamma] of cases) {
     await choose(page, 'display', display);
     await choose(page, 'view', view);
     await choose(page, 'look', look);
     await choose(page, 'exposure', exposure);
     await choose(page, 'gamma', gamma);
     const width = await page.evaluate(() => window.fluenceReview.image.width);
-    const d = maxDifference(await shown(page), referencePixels(exr, display, view, look, exposure, gamma), width);
+    const d = maxDifference(await shown(page), referencePixels(exr, display, view, look, exposure, gamma, env), width);
     check(d <= 1, `${where}: ${display}/${view} exposure ${exposure} gamma ${gamma}: largest difference ${d}/255`);
   }
 }
@@ -108,7 +151,9 @@ copyFileSync(a, join(shots, 'seq.0001.exr'));
 copyFileSync(b, join(shots, 'seq.0002.exr'));
 const aHalf = join(scratch, 'a_half.exr');
 execFileSync('oiiotool', [a, '-d', 'half', '-o', aHalf]);
-const { server, url } = await startServer([a, b, aHalf, shots]);
+const lutEnv = { ...process.env, OCIO: writeLutConfig(join(scratch, 'ocio')) };
+const lut = render('lut.exr', ['--seed', '3'], lutEnv);
+const { server, url } = await startServer([a, b, aHalf, lut, shots]);
 const browser = await puppeteer.launch({
   executablePath: chromium, headless: true,
   args: ['--no-sandbox', '--use-angle=swiftshader', '--enable-unsafe-swiftshader', '--allow-file-access-from-files'],
@@ -124,7 +169,21 @@ try {
   check(halfFormat === 'half', `a_half.exr's beauty arrives as ${halfFormat}`);
   await checkViews(page, aHalf, 'half-float EXR');
 
+  // An image rendered under another config ($OCIO, named in its header): that config's menus, its
+  // 3D and 1D LUTs uploaded as textures with their interpolation, and its look.
+  await choose(page, 'file', 'lut.exr');
+  await page.evaluate(() => window.fluenceReview.pending);
+  const menus = await page.evaluate(() => [document.getElementById('display').textContent,
+                                           document.getElementById('look').textContent]);
+  check(menus[0] === 'Projector' && menus[1] === '(none)Warm', `lut.exr's menus: ${JSON.stringify(menus)}`);
+  await checkViews(page, lut, 'LUT config', [['Projector', 'Cube', '', 0, 1], ['Projector', 'Curve', '', 0.5, 1],
+                                             ['Projector', 'Cube', 'Warm', -0.5, 1.5]], lutEnv);
+  const luts = await page.evaluate(() => window.fluenceReview.ocio.textures.map((t) => [t.depth, t.linear]));
+  check(luts.length === 1 && luts[0][0] === 17 && luts[0][1], `the Cube view's shader has its 17^3 LUT: ${luts}`);
+
   // Pixel values under the pointer, and the wheel zooming by 2 about the pointer.
+  await choose(page, 'file', 'a_half.exr');
+  await page.evaluate(() => window.fluenceReview.pending);
   await page.evaluate(() => { window.fluenceReview.zoom = 1; window.fluenceReview.origin = [0, 0]; });
   await choose(page, 'exposure', 0);
   await choose(page, 'gamma', 1);
