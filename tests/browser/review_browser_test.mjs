@@ -218,6 +218,17 @@ try {
   check(left <= 1 && right <= 1 && bothDiffer > 1,
         `A/B wipe: A left (${left}/255), B right (${right}/255), A and B differ there (${bothDiffer}/255)`);
 
+  // The difference view in false colour: against an identical copy every pixel shows 0 (dark
+  // blue, 0 0 128); against b the differences show.
+  await choose(page, 'mode', 3);
+  await choose(page, 'compare', 'shots/seq.0001.exr');
+  const same = await shown(page);
+  const zero = new Uint8Array(same.length).map((_, i) => [0, 0, 128, 255][i % 4]);
+  check(maxDifference(same, zero, width) <= 1, 'difference of an image and its copy is 0 everywhere');
+  await choose(page, 'compare', 'b.exr');
+  check(maxDifference(await shown(page), zero, width) > 50, 'difference of a and b shows where they differ');
+  await choose(page, 'mode', 1);
+
   // A Cryptomatte click at 1:1 selects the prim under the pointer: the floor at the bottom middle,
   // the left wall near the left edge, the ceiling at the top middle.
   await choose(page, 'compare', '');
