@@ -9,6 +9,7 @@
 #include "apps/farm_command.h"
 #include "apps/info_command.h"
 #include "apps/render_command.h"
+#include "apps/review_command.h"
 #include "apps/scene_loading.h"
 #include "scene/usda_parser.h"
 #include "version.h"
@@ -29,7 +30,8 @@ int runCommandLine(std::vector<std::string> args) {
         return kExitOk;
     }
     const std::string command = args[0];
-    if (command != "render" && command != "info" && command != "cat" && command != "assemble" && command != "farm") {
+    if (command != "render" && command != "info" && command != "cat" && command != "assemble" && command != "farm" &&
+        command != "review") {
         std::fprintf(stderr, "fluence: error: unknown command '%s' (try 'fluence --help')\n", command.c_str());
         return kExitUsage;
     }
@@ -43,6 +45,7 @@ int runCommandLine(std::vector<std::string> args) {
         if (command == "cat") return runCat(parseCatOptions(args));
         if (command == "assemble") return runAssemble(parseAssembleOptions(args));
         if (command == "farm") return runFarm(args);
+        if (command == "review") return runReview(parseReviewOptions(args));
         return command == "info" ? runInfo(parseInfoOptions(args)) : runRender(parseRenderOptions(args));
     } catch (const UsageError& e) {
         std::fprintf(stderr, "fluence: error: %s\n(try 'fluence --help')\n", e.what());

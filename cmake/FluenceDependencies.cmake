@@ -15,6 +15,8 @@ pkg_check_modules(OIIO REQUIRED IMPORTED_TARGET OpenImageIO)
 
 # OpenColorIO 2.1 ships no CMake config.
 pkg_check_modules(OCIO REQUIRED IMPORTED_TARGET OpenColorIO)
+# cpp-httplib 0.11 (libcpp-httplib-dev): the HTTP server of `fluence review` (apps/review_server.h).
+pkg_check_modules(HTTPLIB REQUIRED IMPORTED_TARGET cpp-httplib)
 
 # OpenSubdiv 3.5 (subdivision surfaces, delegate/subdivision*): Debian's OpenSubdivConfig.cmake
 # names a libosdCPU.a the package does not ship (shared/notes/debian-build.md), so the library and

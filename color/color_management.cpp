@@ -1,28 +1,20 @@
 #include "color/color_management.h"
 
+#include "color/ocio_config.h"
+
 #include <OpenColorIO/OpenColorIO.h>
 
 #include <algorithm>
 #include <cmath>
-#include <cstdlib>
-#include <filesystem>
 #include <map>
 #include <mutex>
-#include <sstream>
 #include <utility>
 
 namespace OCIO = OCIO_NAMESPACE;
 
 namespace fluence::color {
 
-namespace detail {
-// The text of config/ocio/fluence.ocio, generated at build time (see color/CMakeLists.txt).
-extern const char kEmbeddedConfigText[];
-}  // namespace detail
-
 namespace {
-
-constexpr const char* kBuiltinDescription = "Fluence built-in config";
 
 // OCIO converts packed RGB through an RGBA scratch line as wide as the image: apply in chunks so
 // the scratch memory stays small however many triples are passed.
@@ -118,37 +110,10 @@ struct ColorManagement::Impl {
 ColorManagement::ColorManagement(std::shared_ptr<const Impl> impl) : impl_(std::move(impl)) {}
 
 ColorManagement ColorManagement::load(const std::string& configPath) {
-    std::string path = configPath;
-    std::string where;
-    if (!path.empty()) {
-        where = path;
-    } else if (const char* env = std::getenv("OCIO"); env != nullptr && *env != '\0') {
-        path = env;
-        where = path + " (from $OCIO)";
-    }
-
     auto impl = std::make_shared<Impl>();
-    try {
-        if (path.empty()) {
-            std::istringstream in{std::string(detail::kEmbeddedConfigText)};
-            impl->config = OCIO::Config::CreateFromStream(in);
-            impl->description = kBuiltinDescription;
-        } else {
-            std::error_code ec;
-            if (!std::filesystem::exists(path, ec))
-                throw ColorError("cannot load OCIO config " + where + ": file does not exist");
-            if (std::filesystem::is_directory(path, ec))
-                throw ColorError("cannot load OCIO config " + where + ": is a directory");
-            impl->config = OCIO::Config::CreateFromFile(path.c_str());
-            impl->description = where;
-        }
-        impl->config->validate();
-    } catch (const ColorError&) {
-        throw;
-    } catch (const std::exception& e) {
-        throw ColorError("cannot load OCIO config " + (path.empty() ? std::string(kBuiltinDescription) : where) + ": " +
-                         e.what());
-    }
+    detail::LoadedConfig loaded = detail::loadOcioConfig(configPath);
+    impl->config = std::move(loaded.config);
+    impl->description = std::move(loaded.description);
 
     const char* rendering = impl->config->getCanonicalName(kRenderingSpace);
     if (rendering == nullptr || *rendering == '\0')

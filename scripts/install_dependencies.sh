@@ -13,9 +13,14 @@ packages=(
   libpugixml-dev
   liblz4-dev
   clang-16 libclang-rt-16-dev llvm-16
+  libcpp-httplib-dev  # fluence review: its HTTP server
+  chromium  # tests/browser: the review page in headless Chromium
   clang-format-14  # make format-check (part of make test): the tree follows .clang-format
   slurm-wlm munge openimageio-tools  # tests/farm/slurm_farm_test.sh: a one-node Slurm cluster; oiiotool
 )
+# tests/browser drives Chromium with puppeteer-core from npm (installed into the build folder by the
+# test itself): Debian's nodejs and npm, unless a Node.js with npm is installed some other way.
+command -v npm >/dev/null || packages+=(nodejs npm)
 # `install_dependencies.sh bench` adds what bench/run.py (make figures) runs with, under /usr/bin/python3.
 [[ "${1:-}" == bench ]] && packages+=(python3-numpy python3-openimageio python3-matplotlib)
 
