@@ -52,6 +52,18 @@ inline AxisPosition positionOf(float x, int n) {
 
 inline float lerp(float a, float b, float t) { return a + (b - a) * t; }
 
+// 2 integral E mu dmu of the piecewise-linear E through the kCosines nodes E(i) = at(i) (exact
+// for it), with the first node's value taken down to mu = 0.
+template <typename At>
+float cosineWeightedAverage(At at) {
+    double sum = 0.0;
+    for (int i = 0; i + 1 < kCosines; ++i) {
+        const double a = double(i) / (kCosines - 1), b = double(i + 1) / (kCosines - 1);
+        sum += (b - a) * (at(i) * (2.0 * a + b) + at(i + 1) * (a + 2.0 * b)) / 6.0;
+    }
+    return float(2.0 * sum);
+}
+
 }  // namespace albedo_table
 
 // The mean of weight(h) (a double) over the visible normals h of wo (wo.z > 0), by the
@@ -99,16 +111,8 @@ private:
         }
         float at(int i, int j) const { return albedo[std::size_t(j) * albedo_table::kCosines + i]; }
 
-        // 2 integral E mu dmu of the piecewise-linear E through the nodes (exact for it), with the
-        // first node's value taken down to mu = 0.
         float averageOf(int j) const {
-            using albedo_table::kCosines;
-            double sum = 0.0;
-            for (int i = 0; i + 1 < kCosines; ++i) {
-                const double a = double(i) / (kCosines - 1), b = double(i + 1) / (kCosines - 1);
-                sum += (b - a) * (at(i, j) * (2.0 * a + b) + at(i + 1, j) * (a + 2.0 * b)) / 6.0;
-            }
-            return float(2.0 * sum);
+            return albedo_table::cosineWeightedAverage([&](int i) { return at(i, j); });
         }
     };
 

@@ -17,9 +17,17 @@ float reflectanceOf(float cosTheta, float f0) {
     return fresnelDielectric(cosTheta, etaFromF0(f0));
 }
 
-// E at (mu, alpha) for the reflectance f0: f cos / pdf of the reflection off each visible normal.
+// E at (mu, alpha) for the reflectance f0, wo in the xz plane.
 float quadratureAlbedo(const GgxDistribution& ggx, float mu, float f0) {
-    const Vec3f wo(std::sqrt(std::max(0.0f, 1.0f - mu * mu)), 0.0f, mu);
+    return ggxReflectionQuadrature(ggx, Vec3f(std::sqrt(std::max(0.0f, 1.0f - mu * mu)), 0.0f, mu), f0);
+}
+
+using ReflectionTable = AlbedoTable<quadratureAlbedo>;
+
+}  // namespace
+
+// f cos / pdf of the reflection off each visible normal of wo, averaged.
+float ggxReflectionQuadrature(const GgxDistribution& ggx, const Vec3f& wo, float f0) {
     return visibleNormalQuadrature(ggx, wo, [&](const Vec3f& h) {
         const Vec3f wi = reflect(wo, h);
         if (wi.z <= 0.0f) return 0.0;
@@ -28,10 +36,6 @@ float quadratureAlbedo(const GgxDistribution& ggx, float mu, float f0) {
         return double(reflectanceOf(dot(wo, h), f0)) * ggx.reflectionTerm(wo, wi, h) * wi.z / pdf;
     });
 }
-
-using ReflectionTable = AlbedoTable<quadratureAlbedo>;
-
-}  // namespace
 
 float ggxReflectionAlbedo(float cosTheta, float alpha, float f0) {
     return ReflectionTable::albedo(cosTheta, alpha, f0);

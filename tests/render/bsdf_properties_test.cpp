@@ -87,6 +87,9 @@ std::vector<BsdfCase> allCases() {
     cases.push_back({"GgxConductorAnisotropic", [=](BsdfArena& a) -> const Bsdf& {
                          return a.make<GgxConductorBsdf>(colour, GgxDistribution(0.4f, 0.05f));
                      }});
+    cases.push_back({"CompensatedGgxConductorAnisotropic", [=](BsdfArena& a) -> const Bsdf& {
+                         return energyCompensatedConductor(colour, GgxDistribution(0.8f, 0.1f), a);
+                     }});
     for (float alpha : {0.0f, 0.05f, 0.2f, 0.5f})
         cases.push_back({"GgxDielectric_a" + std::to_string(int(alpha * 100)), [=](BsdfArena& a) -> const Bsdf& {
                              return a.make<GgxDielectricBsdf>(1.5f, GgxDistribution(alpha));
