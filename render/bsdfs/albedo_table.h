@@ -66,18 +66,26 @@ float cosineWeightedAverage(At at) {
 
 }  // namespace albedo_table
 
+// Calls visit(h, w) at each point of the quadrature above: the visible normals h of wo (wo.z > 0)
+// with their weights w (float), which sum to kQuadrature^2.
+template <typename Visit>
+void forEachVisibleNormal(const GgxDistribution& ggx, const Vec3f& wo, Visit visit) {
+    using albedo_table::kQuadrature;
+    for (int a = 0; a < kQuadrature; ++a) {
+        const float t = 1.0f - (a + 0.5f) / kQuadrature;  // 1 - t of the comment above
+        const float ux = 1.0f - t * t * t * t, jacobian = 4.0f * t * t * t;
+        for (int b = 0; b < kQuadrature; ++b)
+            visit(ggx.sampleVisibleNormal(wo, Vec2f(ux, (b + 0.5f) / kQuadrature)), jacobian);
+    }
+}
+
 // The mean of weight(h) (a double) over the visible normals h of wo (wo.z > 0), by the
 // quadrature above.
 template <typename Weight>
 float visibleNormalQuadrature(const GgxDistribution& ggx, const Vec3f& wo, Weight weight) {
     using albedo_table::kQuadrature;
     double sum = 0.0;
-    for (int a = 0; a < kQuadrature; ++a) {
-        const float t = 1.0f - (a + 0.5f) / kQuadrature;  // 1 - t of the comment above
-        const float ux = 1.0f - t * t * t * t, jacobian = 4.0f * t * t * t;
-        for (int b = 0; b < kQuadrature; ++b)
-            sum += weight(ggx.sampleVisibleNormal(wo, Vec2f(ux, (b + 0.5f) / kQuadrature))) * jacobian;
-    }
+    forEachVisibleNormal(ggx, wo, [&](const Vec3f& h, float jacobian) { sum += weight(h) * jacobian; });
     return float(sum / (double(kQuadrature) * kQuadrature));
 }
 

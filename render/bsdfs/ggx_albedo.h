@@ -39,5 +39,7 @@ class GgxDistribution;
 float ggxReflectionAlbedo(float cosTheta, float alpha, float f0);
 float ggxReflectionAverageAlbedo(float alpha, float f0);
 float ggxReflectionQuadrature(const GgxDistribution& ggx, const Vec3f& wo, float f0);
+// F(cos) of a facet of the dielectric of normal-incidence reflectance f0; 1 for f0 = 1.
+float ggxFacetReflectance(float cosTheta, float f0);
 
 }  // namespace fluence::render

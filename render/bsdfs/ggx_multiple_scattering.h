@@ -29,12 +29,17 @@ namespace fluence::render {
 
 using CompensatedGgxConductorBsdf = LayeredBsdf<GgxConductorBsdf>;
 
+// Fms of the metal of normal-incidence reflectance f0 whose bare albedo averages eAvg.
+inline RGB multipleScatteringAlbedo(const RGB& f0, float eAvg) {
+    const RGB fAvg = (f0 * 20.0f + RGB(1.0f)) * (1.0f / 21.0f);
+    return fAvg * fAvg * eAvg / (RGB(1.0f) - fAvg * (1.0f - eAvg));
+}
+
 inline const Bsdf& energyCompensatedConductor(const RGB& f0, const GgxDistribution& ggx, BsdfArena& arena) {
     const GgxConductorBsdf single(f0, ggx);
     if (ggx.isSmooth()) return arena.make<GgxConductorBsdf>(single);
     const float eAvg = single.averageReflectance().x;
-    const RGB fAvg = (f0 * 20.0f + RGB(1.0f)) * (1.0f / 21.0f);
-    const RGB fMs = fAvg * fAvg * eAvg / (RGB(1.0f) - fAvg * (1.0f - eAvg));
+    const RGB fMs = multipleScatteringAlbedo(f0, eAvg);
     return arena.make<CompensatedGgxConductorBsdf>(single, arena.make<LambertianBsdf>(fMs, kBsdfGlossy), RGB(1.0f),
                                                    DiffuseBase{});
 }
