@@ -4,7 +4,8 @@
 //
 //   f = f_ss(wo, wi) + Fms (1 - E(mu_o)) (1 - E(mu_i)) / (pi (1 - Eavg))
 //   E, Eavg: the bare (F = 1) microfacet albedo and its cosine-weighted average
-//            (render/bsdfs/ggx_albedo.h, at the width sqrt(ax ay))
+//            (render/bsdfs/ggx_albedo.h; over the view azimuth when anisotropic,
+//            render/bsdfs/ggx_anisotropic_albedo.h)
 //   Fms  = Favg^2 Eavg / (1 - Favg (1 - Eavg)),   Favg = (20 F0 + 1) / 21 (Schlick's average)
 //
 // Fms sums the light that bounces k = 2, 3, ... times, each bounce losing 1 - Favg; for F0 = 1
