@@ -1,6 +1,7 @@
 #include "render/material_bsdf.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <optional>
 
@@ -128,6 +129,46 @@ std::optional<CoatReturn> coatReturn(const MaterialParams& m, const DielectricRe
     return coatReturn;
 }
 
+// coatReturn(m, coat), remembered: it costs some 30 microseconds (a few thousand table reads),
+// and neighbouring hits of one object share their parameters, so each thread keeps the last
+// four profiles by the parameters they depend on. A pure function of those: the images do not
+// depend on what a thread has seen.
+const std::optional<CoatReturn>& rememberedCoatReturn(const MaterialParams& m, const DielectricReflectionBsdf& coat) {
+    using Key = std::array<float, 20>;
+    const Key key = {m.coatIor,
+                     m.coatRoughness,
+                     m.ior,
+                     m.specular,
+                     m.specularColor.x,
+                     m.specularColor.y,
+                     m.specularColor.z,
+                     m.roughness,
+                     m.anisotropy,
+                     m.metallic,
+                     m.diffuse.x,
+                     m.diffuse.y,
+                     m.diffuse.z,
+                     m.transmission,
+                     m.subsurface,
+                     float(m.specularWorkflow),
+                     m.sheen,
+                     m.thinWalled ? 1.0f : 0.0f,
+                     m.sheenRoughness,
+                     0.0f};
+    struct Entry {
+        Key key;
+        std::optional<CoatReturn> value;
+    };
+    thread_local std::array<std::optional<Entry>, 4> entries;
+    thread_local std::size_t next = 0;
+    for (const std::optional<Entry>& e : entries)
+        if (e && e->key == key) return e->value;
+    std::optional<Entry>& slot = entries[next];
+    next = (next + 1) % entries.size();
+    slot.emplace(Entry{key, coatReturn(m, coat)});
+    return slot->value;
+}
+
 // The clear coat over everything, by weight `coat`; `diffuse` when what lies under it is the
 // diffuse base and its layers alone (no metal, no glass). Over a glossy base the light the coat
 // returns is added back (render/bsdfs/coat_return.h).
@@ -136,7 +177,7 @@ const Bsdf& clearCoat(const Bsdf& under, const std::optional<DiffuseBase>& diffu
     if (!(m.coat > 0.0f && m.coatIor > 1.0f + kMinIndexContrast)) return under;
     const GgxDistribution ggx = GgxDistribution::fromRoughness(m.coatRoughness);
     const RGB filter = clamp01(m.coatColor);
-    const std::optional<CoatReturn> returned = coatReturn(m, DielectricReflectionBsdf(RGB(m.coatIor), ggx));
+    const std::optional<CoatReturn>& returned = rememberedCoatReturn(m, DielectricReflectionBsdf(RGB(m.coatIor), ggx));
     const Bsdf& coated =
         arena.make<CoatedBsdf>(under, RGB(m.coatIor), ggx, RGB(1.0f), filter, returned ? std::nullopt : diffuse);
     return blend(under, returned ? returned->compensate(coated, filter, arena) : coated, m.coat, arena);

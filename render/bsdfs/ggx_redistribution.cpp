@@ -56,13 +56,11 @@ const Slice& slice(int j, int f) {
 ElevationWeights ggxReflectionSpread(int i, float alpha, float f0) {
     const AxisPosition w = positionOf(std::sqrt(std::max(alpha, 0.0f)), kWidths),
                        f = positionOf(std::sqrt(std::max(f0, 0.0f)), kF0s);
-    const auto at = [&](int dw, int df) -> const ElevationWeights& {
-        return slice(w.node + dw, f.node + df).spread[i];
-    };
+    const ElevationWeights &a = slice(w.node, f.node).spread[i], &b = slice(w.node + 1, f.node).spread[i],
+                           &c = slice(w.node, f.node + 1).spread[i], &d = slice(w.node + 1, f.node + 1).spread[i];
     ElevationWeights spread;
     for (int k = 0; k < kCosines; ++k)
-        spread[k] =
-            lerp(lerp(at(0, 0)[k], at(1, 0)[k], w.fraction), lerp(at(0, 1)[k], at(1, 1)[k], w.fraction), f.fraction);
+        spread[k] = lerp(lerp(a[k], b[k], w.fraction), lerp(c[k], d[k], w.fraction), f.fraction);
     return spread;
 }
 
