@@ -27,7 +27,7 @@ namespace fluence::render {
 
 class BsdfArena {
 public:
-    static constexpr std::size_t kCapacity = 1024;
+    static constexpr std::size_t kCapacity = 2048;
 
     BsdfArena() = default;
     BsdfArena(const BsdfArena&) = delete;

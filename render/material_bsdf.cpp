@@ -1,11 +1,15 @@
 #include "render/material_bsdf.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <optional>
 
+#include "render/bsdfs/albedo_table.h"
+#include "render/bsdfs/coat_return.h"
 #include "render/bsdfs/coated.h"
 #include "render/bsdfs/fresnel.h"
+#include "render/bsdfs/ggx_albedo.h"
 #include "render/bsdfs/ggx_conductor.h"
 #include "render/bsdfs/ggx_dielectric_multiple_scattering.h"
 #include "render/bsdfs/ggx_multiple_scattering.h"
@@ -80,14 +84,103 @@ const Bsdf& sheenAndSpecular(const Bsdf& base, const DiffuseBase& diffuse, const
     return *bsdf;
 }
 
+// A direction at the mu node i of the albedo tables, in the xz plane.
+Vec3f nodeDirection(int i) {
+    const float mu = albedo_table::cosineAt(i);
+    return {std::sqrt(std::max(0.0f, 1.0f - mu * mu)), 0.0f, mu};
+}
+
+// What the clear coat's underside returns to an opaque base with a glossy part (a plastic's
+// specular layer, a metal; render/bsdfs/coat_return.h), or nothing when the base is diffuse (the
+// layer's normalisation returns it) or transmits (subsurface, glass: not modelled).
+std::optional<CoatReturn> coatReturn(const MaterialParams& m, const DielectricReflectionBsdf& coat) {
+    const SpecularLobe specular = specularLobe(m);
+    const bool glossy = specular.reflects() || m.metallic > 0.0f;
+    if (!glossy || m.transmission > 0.0f || m.subsurface > 0.0f) return std::nullopt;
+    std::array<float, albedo_table::kCosines> coatAlbedo;
+    for (int i = 0; i < albedo_table::kCosines; ++i) coatAlbedo[i] = coat.reflectance(nodeDirection(i)).x;
+    CoatReturn coatReturn(coatAlbedo);
+    const GgxDistribution ggx = specularGgx(m);
+    const float alpha = ggx.isSmooth() ? 0.0f : std::sqrt(ggx.alphaX() * ggx.alphaY());
+    const float metallic = std::min(m.metallic, 1.0f);
+    CoatReturn::NodeValues lobe, complement;
+    if (metallic < 1.0f) {  // the plastic: its specular layer over the diffuse albedo
+        const DielectricFresnel fresnel(specular.eta, specular.tint);
+        const DielectricReflectionBsdf layer(fresnel, ggx);
+        for (int i = 0; i < albedo_table::kCosines; ++i) {
+            lobe[i] = specular.reflects() ? layer.reflectance(nodeDirection(i)) : RGB(0.0f);
+            complement[i] = RGB(1.0f) - lobe[i];
+        }
+        const RGB average = specular.reflects() ? layer.averageReflectance() : RGB(0.0f);
+        coatReturn.addPart(1.0f - metallic, alpha, fresnel.f0.x, lobe, complement,
+                           clamp01(m.diffuse) / (RGB(1.0f) - average));
+    }
+    if (metallic > 0.0f) {  // the metal: its single scattering and its multiple-scattering lobe
+        const RGB f0 = m.diffuse, fAvg = (f0 * 20.0f + RGB(1.0f)) * (1.0f / 21.0f);
+        for (int i = 0; i < albedo_table::kCosines; ++i) {
+            const float bare = ggxReflectionAlbedo(albedo_table::cosineAt(i), alpha, 1.0f);
+            lobe[i] = fAvg * bare;
+            complement[i] = RGB(1.0f - bare);
+        }
+        const float eAvg = ggxReflectionAverageAlbedo(alpha, 1.0f);
+        coatReturn.addPart(metallic, alpha, 1.0f, lobe, complement,
+                           ggx.isSmooth() ? RGB(0.0f) : multipleScatteringAlbedo(f0, eAvg) / (1.0f - eAvg));
+    }
+    return coatReturn;
+}
+
+// coatReturn(m, coat), remembered: it costs some 30 microseconds (a few thousand table reads),
+// and neighbouring hits of one object share their parameters, so each thread keeps the last
+// four profiles by the parameters they depend on. A pure function of those: the images do not
+// depend on what a thread has seen.
+const std::optional<CoatReturn>& rememberedCoatReturn(const MaterialParams& m, const DielectricReflectionBsdf& coat) {
+    using Key = std::array<float, 20>;
+    const Key key = {m.coatIor,
+                     m.coatRoughness,
+                     m.ior,
+                     m.specular,
+                     m.specularColor.x,
+                     m.specularColor.y,
+                     m.specularColor.z,
+                     m.roughness,
+                     m.anisotropy,
+                     m.metallic,
+                     m.diffuse.x,
+                     m.diffuse.y,
+                     m.diffuse.z,
+                     m.transmission,
+                     m.subsurface,
+                     float(m.specularWorkflow),
+                     m.sheen,
+                     m.thinWalled ? 1.0f : 0.0f,
+                     m.sheenRoughness,
+                     0.0f};
+    struct Entry {
+        Key key;
+        std::optional<CoatReturn> value;
+    };
+    thread_local std::array<std::optional<Entry>, 4> entries;
+    thread_local std::size_t next = 0;
+    for (const std::optional<Entry>& e : entries)
+        if (e && e->key == key) return e->value;
+    std::optional<Entry>& slot = entries[next];
+    next = (next + 1) % entries.size();
+    slot.emplace(Entry{key, coatReturn(m, coat)});
+    return slot->value;
+}
+
 // The clear coat over everything, by weight `coat`; `diffuse` when what lies under it is the
-// diffuse base and its layers alone (no metal, no glass).
+// diffuse base and its layers alone (no metal, no glass). Over a glossy base the light the coat
+// returns is added back (render/bsdfs/coat_return.h).
 const Bsdf& clearCoat(const Bsdf& under, const std::optional<DiffuseBase>& diffuse, const MaterialParams& m,
                       BsdfArena& arena) {
     if (!(m.coat > 0.0f && m.coatIor > 1.0f + kMinIndexContrast)) return under;
-    const Bsdf& coated = arena.make<CoatedBsdf>(under, RGB(m.coatIor), GgxDistribution::fromRoughness(m.coatRoughness),
-                                                RGB(1.0f), clamp01(m.coatColor), diffuse);
-    return blend(under, coated, m.coat, arena);
+    const GgxDistribution ggx = GgxDistribution::fromRoughness(m.coatRoughness);
+    const RGB filter = clamp01(m.coatColor);
+    const std::optional<CoatReturn>& returned = rememberedCoatReturn(m, DielectricReflectionBsdf(RGB(m.coatIor), ggx));
+    const Bsdf& coated =
+        arena.make<CoatedBsdf>(under, RGB(m.coatIor), ggx, RGB(1.0f), filter, returned ? std::nullopt : diffuse);
+    return blend(under, returned ? returned->compensate(coated, filter, arena) : coated, m.coat, arena);
 }
 
 }  // namespace

@@ -24,7 +24,8 @@
 //   metal     MixBsdf(that, energyCompensatedConductor(F0 = diffuse, ggx), metallic): GGX with
 //             Kulla & Conty's multiple-scattering lobe (render/bsdfs/ggx_multiple_scattering.h)
 //   coat      MixBsdf(that, CoatedBsdf(that, coatIor, coatRoughness^2, filter = coatColor), coat),
-//             a DiffuseBase coat when there is no glass and no metal under it
+//             a DiffuseBase coat when the diffuse base alone is under it; over a plastic or a
+//             metal the light its underside sends back down is returned (render/bsdfs/coat_return.h)
 //
 // Weights: diffuse (1 - transmission)(1 - metallic), glass transmission (1 - metallic), metal
 // metallic, as in Standard Surface; every mix and layer conserves energy, so the material does:

@@ -52,7 +52,32 @@ inline AxisPosition positionOf(float x, int n) {
 
 inline float lerp(float a, float b, float t) { return a + (b - a) * t; }
 
+// 2 integral E mu dmu of the piecewise-linear E through the kCosines nodes E(i) = at(i) (exact
+// for it), with the first node's value taken down to mu = 0.
+template <typename At>
+float cosineWeightedAverage(At at) {
+    double sum = 0.0;
+    for (int i = 0; i + 1 < kCosines; ++i) {
+        const double a = double(i) / (kCosines - 1), b = double(i + 1) / (kCosines - 1);
+        sum += (b - a) * (at(i) * (2.0 * a + b) + at(i + 1) * (a + 2.0 * b)) / 6.0;
+    }
+    return float(2.0 * sum);
+}
+
 }  // namespace albedo_table
+
+// Calls visit(h, w) at each point of the quadrature above: the visible normals h of wo (wo.z > 0)
+// with their weights w (float), which sum to kQuadrature^2.
+template <typename Visit>
+void forEachVisibleNormal(const GgxDistribution& ggx, const Vec3f& wo, Visit visit) {
+    using albedo_table::kQuadrature;
+    for (int a = 0; a < kQuadrature; ++a) {
+        const float t = 1.0f - (a + 0.5f) / kQuadrature;  // 1 - t of the comment above
+        const float ux = 1.0f - t * t * t * t, jacobian = 4.0f * t * t * t;
+        for (int b = 0; b < kQuadrature; ++b)
+            visit(ggx.sampleVisibleNormal(wo, Vec2f(ux, (b + 0.5f) / kQuadrature)), jacobian);
+    }
+}
 
 // The mean of weight(h) (a double) over the visible normals h of wo (wo.z > 0), by the
 // quadrature above.
@@ -60,12 +85,7 @@ template <typename Weight>
 float visibleNormalQuadrature(const GgxDistribution& ggx, const Vec3f& wo, Weight weight) {
     using albedo_table::kQuadrature;
     double sum = 0.0;
-    for (int a = 0; a < kQuadrature; ++a) {
-        const float t = 1.0f - (a + 0.5f) / kQuadrature;  // 1 - t of the comment above
-        const float ux = 1.0f - t * t * t * t, jacobian = 4.0f * t * t * t;
-        for (int b = 0; b < kQuadrature; ++b)
-            sum += weight(ggx.sampleVisibleNormal(wo, Vec2f(ux, (b + 0.5f) / kQuadrature))) * jacobian;
-    }
+    forEachVisibleNormal(ggx, wo, [&](const Vec3f& h, float jacobian) { sum += weight(h) * jacobian; });
     return float(sum / (double(kQuadrature) * kQuadrature));
 }
 
@@ -99,16 +119,8 @@ private:
         }
         float at(int i, int j) const { return albedo[std::size_t(j) * albedo_table::kCosines + i]; }
 
-        // 2 integral E mu dmu of the piecewise-linear E through the nodes (exact for it), with the
-        // first node's value taken down to mu = 0.
         float averageOf(int j) const {
-            using albedo_table::kCosines;
-            double sum = 0.0;
-            for (int i = 0; i + 1 < kCosines; ++i) {
-                const double a = double(i) / (kCosines - 1), b = double(i + 1) / (kCosines - 1);
-                sum += (b - a) * (at(i, j) * (2.0 * a + b) + at(i + 1, j) * (a + 2.0 * b)) / 6.0;
-            }
-            return float(2.0 * sum);
+            return albedo_table::cosineWeightedAverage([&](int i) { return at(i, j); });
         }
     };
 

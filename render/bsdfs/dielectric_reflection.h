@@ -5,7 +5,7 @@
 //   rough:  f = tint F(wo.h) D(h) G2(wo, wi) / (4 cos theta_o cos theta_i),   h = normalize(wo + wi)
 //   smooth: a delta mirror of reflectance tint F(cos theta_o)
 //   F = exact dielectric Fresnel (render/bsdfs/fresnel.h), per channel of eta
-//   reflectance(cos theta) = tint E(cos theta, alpha, F0 of eta)   (the share a layer keeps from
+//   reflectance(w)         = tint E(cos theta_w, alpha, F0 of eta)   (the share a layer keeps from
 //                            its base: the lobe's directional albedo, render/bsdfs/ggx_albedo.h;
 //                            exactly tint F(cos theta) when smooth)
 //
@@ -25,6 +25,8 @@
 // label: D (glossy) when rough, S when smooth.
 #pragma once
 
+#include <cmath>
+
 #include "render/bsdfs/fresnel.h"
 #include "render/bsdfs/ggx_albedo.h"
 #include "render/bsdfs/ggx_reflection.h"
@@ -38,17 +40,21 @@ struct DielectricFresnel {
     DielectricFresnel(const RGB& eta, const RGB& tint = RGB(1.0f))
         : eta(eta), tint(tint), f0(normalIncidence(eta.x), normalIncidence(eta.y), normalIncidence(eta.z)) {}
     RGB operator()(float cosTheta) const { return tint * fresnelDielectric(cosTheta, eta); }
-    // A smooth interface (alpha 0) reflects exactly F(cos); a rough one its tabulated albedo.
-    RGB albedo(float cosTheta, float alpha) const {
-        if (alpha == 0.0f) return (*this)(cosTheta);
-        return tint * perChannel([&](float f) { return ggxReflectionAlbedo(cosTheta, alpha, f); });
+    // A smooth interface reflects exactly F(cos); a rough one its tabulated albedo, at the
+    // geometric-mean width when anisotropic (render/bsdfs/ggx_albedo.h).
+    RGB albedo(const Vec3f& w, const GgxDistribution& ggx) const {
+        if (ggx.isSmooth()) return (*this)(w.z);
+        return tint * perChannel([&](float f) { return ggxReflectionAlbedo(w.z, tableWidth(ggx), f); });
     }
-    RGB averageAlbedo(float alpha) const {
-        return tint * perChannel([&](float f) { return ggxReflectionAverageAlbedo(alpha, f); });
+    RGB averageAlbedo(const GgxDistribution& ggx) const {
+        return tint * perChannel([&](float f) { return ggxReflectionAverageAlbedo(tableWidth(ggx), f); });
     }
     RGB eta, tint, f0;
 
 private:
+    static float tableWidth(const GgxDistribution& ggx) {
+        return ggx.isSmooth() ? 0.0f : std::sqrt(ggx.alphaX() * ggx.alphaY());
+    }
     static float normalIncidence(float eta) { return ((eta - 1.0f) / (eta + 1.0f)) * ((eta - 1.0f) / (eta + 1.0f)); }
     // g(F0) per channel, evaluated once when the three are equal.
     template <typename G>

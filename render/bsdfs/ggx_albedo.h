@@ -21,14 +21,25 @@
 // cosine-weighted average 1 - Eavg: the normalisation of render/bsdfs/layered.h's diffuse bases
 // then conserves energy whatever the table's own error against the true albedo.
 //
-// An anisotropic distribution is looked up at its geometric-mean width sqrt(ax ay), an
-// approximation (the albedo of a stretched GGX depends on the azimuth of wo, which the table
-// does not resolve). Widths above 1 are clamped to 1.
+// The table is isotropic. The albedo of a stretched GGX depends on the azimuth of wo as well
+// (the bare, F = 1 one is tabulated over it by render/bsdfs/ggx_anisotropic_albedo.h, for
+// metals); a dielectric lobe with anisotropic widths is looked up at its geometric-mean width
+// sqrt(ax ay), an approximation. Widths above 1 are clamped to 1.
+//
+// ggxReflectionQuadrature is the albedo at one direction wo (wo.z > 0, any azimuth, any widths)
+// by the table's quadrature: what each table's nodes hold.
 #pragma once
+
+#include "core/vec.h"
 
 namespace fluence::render {
 
+class GgxDistribution;
+
 float ggxReflectionAlbedo(float cosTheta, float alpha, float f0);
 float ggxReflectionAverageAlbedo(float alpha, float f0);
+float ggxReflectionQuadrature(const GgxDistribution& ggx, const Vec3f& wo, float f0);
+// F(cos) of a facet of the dielectric of normal-incidence reflectance f0; 1 for f0 = 1.
+float ggxFacetReflectance(float cosTheta, float f0);
 
 }  // namespace fluence::render

@@ -29,7 +29,7 @@
 #pragma once
 
 #include "render/bsdfs/fresnel.h"
-#include "render/bsdfs/ggx_albedo.h"
+#include "render/bsdfs/ggx_anisotropic_albedo.h"
 #include "render/bsdfs/ggx_reflection.h"
 
 namespace fluence::render {
@@ -41,8 +41,8 @@ namespace fluence::render {
 struct SchlickFresnel {
     SchlickFresnel(const RGB& f0) : f0(f0) {}  // implicit: GgxConductorBsdf(f0, ggx) reads as a metal of F0 f0
     RGB operator()(float cosTheta) const { return fresnelSchlick(f0, cosTheta); }
-    RGB albedo(float cosTheta, float alpha) const { return RGB(ggxReflectionAlbedo(cosTheta, alpha, 1.0f)); }
-    RGB averageAlbedo(float alpha) const { return RGB(ggxReflectionAverageAlbedo(alpha, 1.0f)); }
+    RGB albedo(const Vec3f& w, const GgxDistribution& ggx) const { return RGB(ggxBareAlbedo(w, ggx)); }
+    RGB averageAlbedo(const GgxDistribution& ggx) const { return RGB(ggxBareAverageAlbedo(ggx)); }
     RGB f0;
 };
 

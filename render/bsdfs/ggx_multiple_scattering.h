@@ -4,7 +4,8 @@
 //
 //   f = f_ss(wo, wi) + Fms (1 - E(mu_o)) (1 - E(mu_i)) / (pi (1 - Eavg))
 //   E, Eavg: the bare (F = 1) microfacet albedo and its cosine-weighted average
-//            (render/bsdfs/ggx_albedo.h, at the width sqrt(ax ay))
+//            (render/bsdfs/ggx_albedo.h; over the view azimuth when anisotropic,
+//            render/bsdfs/ggx_anisotropic_albedo.h)
 //   Fms  = Favg^2 Eavg / (1 - Favg (1 - Eavg)),   Favg = (20 F0 + 1) / 21 (Schlick's average)
 //
 // Fms sums the light that bounces k = 2, 3, ... times, each bounce losing 1 - Favg; for F0 = 1
@@ -29,12 +30,17 @@ namespace fluence::render {
 
 using CompensatedGgxConductorBsdf = LayeredBsdf<GgxConductorBsdf>;
 
+// Fms of the metal of normal-incidence reflectance f0 whose bare albedo averages eAvg.
+inline RGB multipleScatteringAlbedo(const RGB& f0, float eAvg) {
+    const RGB fAvg = (f0 * 20.0f + RGB(1.0f)) * (1.0f / 21.0f);
+    return fAvg * fAvg * eAvg / (RGB(1.0f) - fAvg * (1.0f - eAvg));
+}
+
 inline const Bsdf& energyCompensatedConductor(const RGB& f0, const GgxDistribution& ggx, BsdfArena& arena) {
     const GgxConductorBsdf single(f0, ggx);
     if (ggx.isSmooth()) return arena.make<GgxConductorBsdf>(single);
     const float eAvg = single.averageReflectance().x;
-    const RGB fAvg = (f0 * 20.0f + RGB(1.0f)) * (1.0f / 21.0f);
-    const RGB fMs = fAvg * fAvg * eAvg / (RGB(1.0f) - fAvg * (1.0f - eAvg));
+    const RGB fMs = multipleScatteringAlbedo(f0, eAvg);
     return arena.make<CompensatedGgxConductorBsdf>(single, arena.make<LambertianBsdf>(fMs, kBsdfGlossy), RGB(1.0f),
                                                    DiffuseBase{});
 }

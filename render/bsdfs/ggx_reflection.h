@@ -8,9 +8,9 @@
 //
 // Fresnel is a copyable functor RGB operator()(float cosTheta) giving the reflectance, per
 // channel in [0, 1], of a microfacet (or the smooth surface) lit at cosTheta, with
-// albedo(cosTheta, alpha) and averageAlbedo(alpha): the lobe's tabulated directional albedo and
-// its cosine-weighted average (render/bsdfs/ggx_albedo.h) at the width alpha the table is read
-// at (0 when smooth, sqrt(ax ay) otherwise). reflectance() and averageReflectance() make them
+// albedo(w, ggx) and averageAlbedo(ggx): the lobe's tabulated directional albedo at w (w.z > 0,
+// in the distribution's frame: an anisotropic albedo depends on w's azimuth) and its
+// cosine-weighted average (render/bsdfs/ggx_albedo.h, ggx_anisotropic_albedo.h). reflectance() and averageReflectance() make them
 // available to layers (render/bsdfs/layered.h) as the share of the light the lobe keeps from what
 // lies beneath.
 //
@@ -39,10 +39,10 @@ public:
     unsigned flags() const override {
         return kBsdfReflection | (distribution_.isSmooth() ? kBsdfSpecular : kBsdfGlossy);
     }
-    // The share of the light arriving at cosTheta (> 0) that the lobe keeps from a base, and its
+    // The share of the light arriving from w (w.z > 0) that the lobe keeps from a base, and its
     // cosine-weighted average over the hemisphere (see Fresnel above).
-    RGB reflectance(float cosTheta) const { return fresnel_.albedo(cosTheta, tableWidth()); }
-    RGB averageReflectance() const { return fresnel_.averageAlbedo(tableWidth()); }
+    RGB reflectance(const Vec3f& w) const { return fresnel_.albedo(w, distribution_); }
+    RGB averageReflectance() const { return fresnel_.averageAlbedo(distribution_); }
 
 private:
     friend class TwoSidedReflection<GgxReflectionBsdf<Fresnel>>;
@@ -67,10 +67,6 @@ private:
         float p = distribution_.reflectionPdf(wo, h);
         if (!(p > 0.0f)) return std::nullopt;
         return BsdfSample{fresnel_(dot(wo, h)) * distribution_.reflectionTerm(wo, wi, h), wi, p};
-    }
-
-    float tableWidth() const {
-        return distribution_.isSmooth() ? 0.0f : std::sqrt(distribution_.alphaX() * distribution_.alphaY());
     }
 
     Fresnel fresnel_;

@@ -2,14 +2,14 @@
 // and returns, only the light the top lobe does not reflect.
 //
 //   f(wo, wi) = f_top(wo, wi) + a(wo) a(wi) f_base(wo, wi)
-//   a(w)      = (1 - A(cos theta_w)) sqrt(filter)   for w on the layer's side (w.z > 0)
+//   a(w)      = (1 - A(w)) sqrt(filter)           for w on the layer's side (w.z > 0)
 //             = 1                                  for w on the other side (a transmitting base)
-//   A(cos)    = Top::reflectance(cos): the share of the light arriving at cos that the top
+//   A(w)      = Top::reflectance(w): the share of the light arriving from w that the top
 //               reflects (per channel, in [0, 1]), or a stand-in for it (see each Top)
 //
 // | parameter | meaning                                                                        |
 // |-----------|--------------------------------------------------------------------------------|
-// | top       | a reflection-only, two-sided model with reflectance(cos) (copied into the layer)|
+// | top       | a reflection-only, two-sided model with reflectance(w) (copied into the layer)  |
 // | base      | any Bsdf; it must outlive the layer (both live in the same BsdfArena)          |
 // | filter    | per-channel transmittance of the layer, in [0, 1]: light that reaches the base |
 // |           | and comes back out is multiplied by it once (sqrt(filter) per crossing)         |
@@ -22,7 +22,7 @@
 // base is reciprocal, and the generalised reciprocity of a refracting base is kept because the
 // factors depend on the two directions symmetrically. Energy: the flux albedo at wo is at most
 // E_top(wo) + (1 - A(wo)) E_base <= 1 whenever the top's own albedo E_top(wo) does not exceed
-// A(cos theta_o) (exactly so for a smooth top, whose A is its reflectance), because the base is
+// A(wo) (exactly so for a smooth top, whose A is its reflectance), because the base is
 // weighted by (1 - A(wo)) and by a(wi) <= 1. What it gives up against a simulation of the layer:
 // light that the top reflects back down onto the base, and the base's inter-reflection with the
 // top's underside, are dropped rather than returned.
@@ -32,7 +32,7 @@
 //
 //   f(wo, wi) = f_top + (1 - A(wo)) (1 - A(wi)) f_base / (1 - Aavg)   wo, wi on the layer's side
 //   f(wo, wi) = T Aavg / pi                                           wo, wi on the other side
-//   Aavg      = 2 integral A(mu) mu dmu (Top::averageReflectance()), T = the base's transmitted share
+//   Aavg      = 1/pi integral A(w) cos theta dw (Top::averageReflectance()), T = the base's transmitted share
 //
 // The base's reflection, which is direction-independent, loses 1 - Aavg of its light on the way
 // out; dividing by it returns exactly what the top did not reflect: a base of albedo R and
@@ -49,7 +49,7 @@
 // directions, render/bsdf.h "SIDES"); over a transmitting base it is one-sided, on the outside
 // (+z): the top lobe reflects only there, and light that leaves on the inside crosses no layer.
 //
-// Sampling: the top with probability P = lobeProbability(A(cos theta_o)) (render/bsdfs/lobe_choice.h)
+// Sampling: the top with probability P = lobeProbability(A(wo)) (render/bsdfs/lobe_choice.h)
 // when wo is on the layer's side, the inner diffuse reflection (cosine-weighted) with probability
 // lobeProbability(T Aavg) when it is on the other side, else the base (its uLobe rescaled to
 // [0, 1)). A non-delta sample
@@ -164,7 +164,7 @@ private:
     // The share of the light crossing the layer at w that is neither reflected by the top nor
     // absorbed by the filter; 1 on the side without the layer.
     RGB throughput(const Vec3f& w) const {
-        return w.z > 0.0f ? (RGB(1.0f) - top_.reflectance(w.z)) * sqrtFilter_ : RGB(1.0f);
+        return w.z > 0.0f ? (RGB(1.0f) - top_.reflectance(w)) * sqrtFilter_ : RGB(1.0f);
     }
     // The factor on the base's f: the throughputs both ways, and the normalisation of a diffuse
     // base's reflection on the layer's side.
@@ -175,7 +175,7 @@ private:
     // The probability of sampling the layer's own lobe: the top on its side, the inner
     // reflection on the other.
     float ownProbability(const Vec3f& wo) const {
-        return lobeProbability(wo.z > 0.0f ? top_.reflectance(wo.z) : innerReflection_);
+        return lobeProbability(wo.z > 0.0f ? top_.reflectance(wo) : innerReflection_);
     }
     std::optional<BsdfSample> innerSample(Vec2f u) const {
         const Vec3f wi = mirrorZ(sampleCosineHemisphere(u));

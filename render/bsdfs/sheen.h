@@ -7,7 +7,7 @@
 //   Lambda(c) = exp(L(c)) for c < 1/2, exp(2 L(1/2) - L(1 - c)) otherwise,
 //   L(x)      = a / (1 + b x^c) + d x + e, the paper's fit, its five coefficients interpolated
 //               between those fitted at r = 0 and r = 1 by (1 - r)^2
-//   reflectance(cos theta) = tint E(cos theta, r), E the lobe's directional albedo (tabulated)
+//   reflectance(w)         = tint E(cos theta_w, r), E the lobe's directional albedo (tabulated)
 //   averageReflectance()   = tint Eavg(r), its cosine-weighted average
 //
 // | parameter | meaning                                                                    |
@@ -56,7 +56,7 @@ public:
 
     unsigned flags() const override { return kBsdfReflection | kBsdfGlossy; }
     // The share of the light arriving at cosTheta (> 0) that the lobe reflects: tint E(cos, r).
-    RGB reflectance(float cosTheta) const { return tint_ * charlieSheenAlbedo(cosTheta, roughness_); }
+    RGB reflectance(const Vec3f& w) const { return tint_ * charlieSheenAlbedo(w.z, roughness_); }
     RGB averageReflectance() const { return tint_ * charlieSheenAverageAlbedo(roughness_); }
 
     float D(const Vec3f& h) const;

@@ -158,7 +158,7 @@ TEST(CoatedBsdf, ACoatOverGlassIsOneSidedAndConservesFlux) {
         const Vec3f outside = test::incidentDirection(20.0f, -1.0f, 0.0f);
         // What the coat keeps from crossing light: its albedo (its Fresnel reflectance when smooth).
         const float E =
-            DielectricReflectionBsdf(DielectricFresnel(RGB(1.5f)), GgxDistribution(coatAlpha)).reflectance(outside.z).x;
+            DielectricReflectionBsdf(DielectricFresnel(RGB(1.5f)), GgxDistribution(coatAlpha)).reflectance(outside).x;
         const RGB expected = glass.f(inside, outside) * (1.0f - E);
         ASSERT_GT(expected.x, 0.0f) << "a refraction the rough glass makes";
         for (int c = 0; c < 3; ++c) EXPECT_NEAR(coated.f(inside, outside)[c], expected[c], 1e-6f * expected[c]);

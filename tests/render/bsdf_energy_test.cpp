@@ -1,11 +1,13 @@
-// Energy preservation of the materials' BSDFs (render/bsdfs/ggx_albedo.h, the energy-preserving
-// layering of render/bsdfs/layered.h, the multiple-scattering metal of
-// render/bsdfs/ggx_multiple_scattering.h): the albedo table against independent Monte Carlo
-// estimates, and the white furnace of every configuration a UsdPreviewSurface or Standard Surface
+// Energy preservation of the materials' BSDFs (render/bsdfs/ggx_albedo.h and
+// ggx_anisotropic_albedo.h, the energy-preserving layering of render/bsdfs/layered.h, the
+// multiple-scattering metal of render/bsdfs/ggx_multiple_scattering.h, the coat's returned light
+// of render/bsdfs/coat_return.h): the albedo tables against independent Monte Carlo estimates,
+// and the white furnace grid of every configuration a UsdPreviewSurface or Standard Surface
 // material with white inputs and no absorption builds, at the roughnesses 0, 0.1, 0.3, 0.6 and 1
-// and incident angles from normal to grazing: each must reflect (and transmit) all the light it
+// and incident angles from 0 to 85 degrees: each must reflect (and transmit) all the light it
 // receives to within 1%, plus the estimate's own z standard errors (Sidak-corrected over this
-// file's checks for a family-wide false-failure rate of 1%).
+// file's checks for a family-wide false-failure rate of 1%), except the four named in
+// configurations(), held to their measured ranges.
 #include <gtest/gtest.h>
 
 #include <chrono>
@@ -16,6 +18,7 @@
 #include "render/bsdf_arena.h"
 #include "render/bsdfs/dielectric_reflection.h"
 #include "render/bsdfs/ggx_albedo.h"
+#include "render/bsdfs/ggx_anisotropic_albedo.h"
 #include "render/bsdfs/ggx_conductor.h"
 #include "render/bsdfs/local_geometry.h"
 #include "render/material_bsdf.h"
@@ -27,10 +30,14 @@ namespace {
 
 constexpr int kSamples = 40'000;
 const std::vector<float> kRoughnesses = {0.0f, 0.1f, 0.3f, 0.6f, 1.0f};
-const std::vector<float> kAngles = {0.0f, 30.0f, 60.0f, 80.0f};
-// Table checks: 3 f0 x 4 widths x 4 angles; furnace checks: 9 configurations x 5 roughnesses x
-// 4 angles, and the subsurface boundary's inside.
-constexpr int kChecks = 48 + 9 * 20 + 20;
+const std::vector<float> kAngles = {0.0f, 30.0f, 60.0f, 80.0f, 85.0f};
+// (roughness, anisotropy) pairs of the anisotropic table's check.
+const std::vector<std::pair<float, float>> kAnisotropicWidths = {{0.3f, 1.0f}, {0.6f, 0.8f}, {1.0f, 0.5f}};
+// Table checks: 3 f0 x 4 widths x 5 angles, 3 anisotropic widths x 5 angles x 5 azimuths;
+// furnace checks: 21 configurations x 5 roughnesses x 5 angles, and the subsurface boundary's
+// inside.
+constexpr int kConfigurations = 21;
+constexpr int kChecks = 60 + 75 + kConfigurations * 25 + 25;
 const double kZ = test::normalQuantile(0.5 * test::sidakAlpha(kChecks));
 // The stated energy target: a furnace reads 1 within 1%.
 constexpr double kEnergyTolerance = 0.01;
@@ -61,80 +68,151 @@ TEST(BsdfEnergy, AlbedoTableMatchesMonteCarlo) {
             }
 }
 
+TEST(BsdfEnergy, AnisotropicAlbedoTableMatchesMonteCarlo) {
+    // The bare albedo of a stretched GGX depends on the azimuth of wo (render/bsdfs/
+    // ggx_anisotropic_albedo.h): the table against Monte Carlo at five azimuths, from the wide
+    // axis to the narrow one, for Standard Surface's anisotropies 0.5, 0.8 and 1.
+    const auto start = std::chrono::steady_clock::now();
+    const float first = ggxAnisotropicAlbedo(Vec3f(0.6f, 0.0f, 0.8f), 0.5f, 0.1f);
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    std::printf("[ measured ] anisotropic GGX albedo slices around (0.5, 0.1) built in %.3f s (E = %.5f)\n", seconds,
+                first);
+    std::uint64_t seed = 3000;
+    for (const auto& [roughness, anisotropy] : kAnisotropicWidths) {
+        const GgxDistribution ggx = GgxDistribution::fromRoughness(roughness, anisotropy);
+        const GgxConductorBsdf bare(RGB(1.0f), ggx);
+        for (float angle : kAngles)
+            for (float phi : {0.0f, 20.0f, 45.0f, 70.0f, 90.0f}) {
+                const float p = phi * kPi / 180.0f;
+                const Vec3f wo = test::incidentDirection(angle, std::cos(p), std::sin(p));
+                const test::MeanEstimate e = test::albedoEstimate(bare, wo, kSamples, seed++);
+                EXPECT_NEAR(e.mean(), ggxBareAlbedo(wo, ggx), kTableTolerance + kZ * e.standardError())
+                    << "roughness " << roughness << ", anisotropy " << anisotropy << ", angle " << angle << ", phi "
+                    << phi;
+            }
+    }
+}
+
+// How much of the light a configuration keeps: all of it within 1% (conserved), or, for the
+// models that do not yet conserve energy, the range measured (held so that it does not get
+// worse; docs/USER_GUIDE.md says why each is off).
+struct EnergyRange {
+    bool conserved = true;
+    double low = 1.0, high = 1.0;
+};
+
 struct Configuration {
     std::string name;
     MaterialParams material;
+    EnergyRange energy = {};
 };
 
 MaterialParams white() { return lambertianParams(RGB(1.0f)); }
 
-// Every white, non-absorbing configuration at perceptual roughness r.
+MaterialParams withCoat(MaterialParams m, float coatRoughness) {
+    m.coat = 1.0f;
+    m.coatRoughness = coatRoughness;
+    return m;
+}
+
+// Every white, non-absorbing configuration of UsdPreviewSurface and Standard Surface at
+// perceptual roughness r: r is the specular (or diffuse, sheen, coat) roughness of the lobe the
+// configuration is about; a coat over a glossy base is taken both ways (coat r over a base of
+// 0.3, and coat 0.1 over a base of r).
 std::vector<Configuration> configurations(float r) {
     std::vector<Configuration> all;
+    MaterialParams diffuse = white();
+    all.push_back({"diffuse", diffuse});
     MaterialParams metal = white();
     metal.metallic = 1.0f;
     metal.roughness = r;
     all.push_back({"metal", metal});
+    for (float anisotropy : {0.5f, 1.0f}) {
+        MaterialParams brushed = metal;
+        brushed.anisotropy = anisotropy;
+        all.push_back({"metal anisotropy " + std::to_string(anisotropy), brushed});
+    }
+    MaterialParams plastic = white();
+    plastic.specular = 1.0f;
+    plastic.roughness = r;
     for (float ior : {1.3f, 1.5f, 2.0f}) {
-        MaterialParams plastic = white();
-        plastic.specular = 1.0f;
-        plastic.ior = ior;
-        plastic.roughness = r;
-        all.push_back({"plastic ior " + std::to_string(ior), plastic});
+        MaterialParams p = plastic;
+        p.ior = ior;
+        all.push_back({"plastic ior " + std::to_string(ior), p});
     }
     MaterialParams workflow = white();  // UsdPreviewSurface's specular workflow, F0 0.04
     workflow.specularWorkflow = true;
     workflow.specularColor = RGB(0.04f);
     workflow.roughness = r;
     all.push_back({"specular workflow F0 0.04", workflow});
-    MaterialParams coat = white();
-    coat.coat = 1.0f;
-    coat.coatRoughness = r;
-    all.push_back({"coat over diffuse", coat});
-    MaterialParams coatedPlastic = coat;
-    coatedPlastic.specular = 1.0f;
-    coatedPlastic.roughness = 0.3f;
-    all.push_back({"coat over plastic", coatedPlastic});
+    MaterialParams glass = plastic;
+    glass.transmission = 1.0f;
+    all.push_back({"glass", glass});
+    MaterialParams sheet = glass;
+    sheet.thinWalled = true;
     MaterialParams cloth = white();
     cloth.sheen = 1.0f;
     cloth.sheenRoughness = r;
     all.push_back({"sheen over diffuse", cloth});
-    MaterialParams skin = white();
+    MaterialParams skin = plastic;
     skin.subsurface = 1.0f;
-    skin.specular = 1.0f;
-    skin.roughness = r;
     all.push_back({"subsurface boundary", skin});
+    MaterialParams leaf = skin;
+    leaf.thinWalled = true;
+    all.push_back({"thin-walled subsurface", leaf});
+    MaterialParams plastic03 = plastic, metal03 = metal;
+    plastic03.roughness = metal03.roughness = 0.3f;
+    all.push_back({"coat over diffuse", withCoat(diffuse, r)});
+    all.push_back({"coat over plastic 0.3", withCoat(plastic03, r)});
+    all.push_back({"coat 0.1 over plastic", withCoat(plastic, 0.1f)});
+    all.push_back({"coat over metal 0.3", withCoat(metal03, r)});
+    all.push_back({"coat 0.1 over metal", withCoat(metal, 0.1f)});
+    // Not yet energy-preserving (docs/USER_GUIDE.md), measured 0 to 85 degrees: the sheen under a
+    // coat is normalised as if it were diffuse (1.015 at normal incidence, 0.963 at 85); the
+    // light a coat's underside sends back into a subsurface or glass base is dropped (0.862 and
+    // 0.857 at 85 degrees); a rough thin sheet loses its reflection's multiple scattering (0.869
+    // at normal incidence, roughness 1).
+    all.push_back({"coat over sheen", withCoat(cloth, r), {false, 0.95, 1.02}});
+    all.push_back({"coat over subsurface", withCoat(skin, r), {false, 0.85, 1.01}});
+    all.push_back({"coat over glass", withCoat(glass, r), {false, 0.85, 1.0}});
+    all.push_back({"thin-walled glass", sheet, {false, 0.86, 1.0}});
     return all;
 }
 
 void expectWhiteFurnace(const Bsdf& bsdf, const Vec3f& wo, std::uint64_t seed, const std::string& what) {
-    const test::MeanEstimate e = test::albedoEstimate(bsdf, wo, kSamples, seed);
+    const test::MeanEstimate e = test::fluxAlbedoEstimate(bsdf, wo, kSamples, seed);
     EXPECT_NEAR(e.mean(), 1.0, kEnergyTolerance + kZ * e.standardError()) << what;
 }
 
 TEST(BsdfEnergy, WhiteMaterialsReflectAllTheLightAtEveryRoughness) {
+    ASSERT_EQ(configurations(0.0f).size(), std::size_t(kConfigurations)) << "the family size of kZ";
     std::uint64_t seed = 1000;
     BsdfArena arena;
     for (float r : kRoughnesses)
-        for (const Configuration& c : configurations(r))
+        for (const Configuration& c : configurations(r)) {
+            std::string readings;
             for (float angle : kAngles) {
                 arena.reset();
                 const Bsdf& bsdf = materialBsdf(c.material, arena);
-                const Vec3f wo = test::incidentDirection(angle);
+                const test::MeanEstimate e =
+                    test::fluxAlbedoEstimate(bsdf, test::incidentDirection(angle), kSamples, seed++);
                 const std::string what =
                     c.name + ", roughness " + std::to_string(r) + ", angle " + std::to_string(angle);
-                if (c.name == "coat over plastic" && angle > 60.0f) {
-                    // The coat's normalisation assumes a diffuse base; the plastic under it sends
-                    // its specular reflection towards grazing, where the coat reflects most, so
-                    // at 80 degrees 3 to 4.5% is lost (measured 0.955 to 0.970): at most 1, at
-                    // least 0.94.
-                    const test::MeanEstimate e = test::albedoEstimate(bsdf, wo, kSamples, seed++);
-                    EXPECT_LE(e.mean(), 1.0 + kZ * e.standardError()) << what;
-                    EXPECT_GE(e.mean(), 0.94 - kZ * e.standardError()) << what;
-                    continue;
+                // Float rounding lets a deterministic (smooth) estimate read 1 + 1e-7.
+                const double slack = kZ * e.standardError() + 1e-5;
+                if (c.energy.conserved) {
+                    EXPECT_NEAR(e.mean(), 1.0, kEnergyTolerance + slack) << what;
+                } else {
+                    EXPECT_GE(e.mean(), c.energy.low - slack) << what;
+                    EXPECT_LE(e.mean(), c.energy.high + slack) << what;
                 }
-                expectWhiteFurnace(bsdf, wo, seed++, what);
+                char reading[16];
+                std::snprintf(reading, sizeof reading, " %.4f", e.mean());
+                readings += reading;
             }
+            std::printf("[ measured ] %-26s roughness %.1f, 0/30/60/80/85 degrees:%s\n", c.name.c_str(), r,
+                        readings.c_str());
+        }
 }
 
 TEST(BsdfEnergy, SubsurfaceBoundaryReturnsWhatItDoesNotLetOut) {

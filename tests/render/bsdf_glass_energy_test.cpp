@@ -35,17 +35,8 @@ constexpr double kEnergyTolerance = 0.01;
 // What the table may be off the true albedo: its quadrature and linear interpolation.
 constexpr double kTableTolerance = 0.004;
 
-// The flux albedo at wo: the mean weight of the importance mode's samples (render/bsdf.h,
-// TRANSPORT MODE: the adjoint carries flux, so a refracted sample's 1 / eta^2 is undone).
 test::MeanEstimate fluxAlbedo(const Bsdf& bsdf, const Vec3f& wo, std::uint64_t seed) {
-    test::MeanEstimate e;
-    for (int n = 0; n < kSamples; ++n) {
-        SampleStream rng(seed, 0, static_cast<std::uint64_t>(n));
-        const float uLobe = rng.next();
-        const std::optional<BsdfSample> s = bsdf.sample(wo, uLobe, rng.next2D(), Transport::Importance);
-        e.add(s ? s->f.x * std::abs(s->wi.z) / s->pdf : 0.0);
-    }
-    return e;
+    return test::fluxAlbedoEstimate(bsdf, wo, kSamples, seed);
 }
 
 // wo at `angle` degrees from the normal, on the outside or (mirrored) the inside.

@@ -37,6 +37,7 @@
 #include "render/bsdfs/phong.h"
 #include "render/bsdfs/sheen.h"
 #include "render/bsdfs/thin_dielectric.h"
+#include "render/material_bsdf.h"
 #include "tests/support/chi2.h"
 #include "tests/support/statistics.h"
 
@@ -86,6 +87,9 @@ std::vector<BsdfCase> allCases() {
              }});
     cases.push_back({"GgxConductorAnisotropic", [=](BsdfArena& a) -> const Bsdf& {
                          return a.make<GgxConductorBsdf>(colour, GgxDistribution(0.4f, 0.05f));
+                     }});
+    cases.push_back({"CompensatedGgxConductorAnisotropic", [=](BsdfArena& a) -> const Bsdf& {
+                         return energyCompensatedConductor(colour, GgxDistribution(0.8f, 0.1f), a);
                      }});
     for (float alpha : {0.0f, 0.05f, 0.2f, 0.5f})
         cases.push_back({"GgxDielectric_a" + std::to_string(int(alpha * 100)), [=](BsdfArena& a) -> const Bsdf& {
@@ -150,6 +154,18 @@ std::vector<BsdfCase> allCases() {
                                                    GgxDistribution(0.3f, 0.08f), RGB(1.0f, 0.6f, 0.3f),
                                                    RGB(0.8f, 0.6f, 0.4f));
                      }});
+    for (float metallic : {0.0f, 0.4f, 1.0f})  // a coat returning what its underside sends back (coat_return.h)
+        cases.push_back(
+            {"CoatReturnedOverGlossy_metallic" + std::to_string(int(metallic * 100)), [=](BsdfArena& a) -> const Bsdf& {
+                 MaterialParams m = lambertianParams(colour);
+                 m.specular = 1.0f;
+                 m.roughness = 0.4f;
+                 m.metallic = metallic;
+                 m.coat = 1.0f;
+                 m.coatRoughness = 0.3f;
+                 m.coatColor = RGB(0.9f, 0.8f, 0.7f);
+                 return materialBsdf(m, a);
+             }});
     cases.push_back({"CoatedGlass", [](BsdfArena& a) -> const Bsdf& {
                          return a.make<CoatedBsdf>(a.make<GgxDielectricBsdf>(1.5f, GgxDistribution(0.3f)), 1.5f, 0.2f);
                      }});

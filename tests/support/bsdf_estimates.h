@@ -30,4 +30,18 @@ inline MeanEstimate albedoEstimate(const render::Bsdf& bsdf, const Vec3f& wo, in
     return e;
 }
 
+// The flux albedo (first channel) at wo: the mean weight of the importance mode's samples
+// (render/bsdf.h, TRANSPORT MODE: the adjoint carries flux, so a refracted sample's 1 / eta^2 is
+// undone), failures counting 0.
+inline MeanEstimate fluxAlbedoEstimate(const render::Bsdf& bsdf, const Vec3f& wo, int samples, std::uint64_t seed) {
+    MeanEstimate e;
+    for (int n = 0; n < samples; ++n) {
+        SampleStream rng(seed, 0, static_cast<std::uint64_t>(n));
+        const float uLobe = rng.next();
+        const auto s = bsdf.sample(wo, uLobe, rng.next2D(), render::Transport::Importance);
+        e.add(s ? s->f.x * std::abs(s->wi.z) / s->pdf : 0.0);
+    }
+    return e;
+}
+
 }  // namespace fluence::test

@@ -1,0 +1,67 @@
+#include "render/bsdfs/ggx_redistribution.h"
+
+#include <cmath>
+#include <memory>
+#include <mutex>
+
+#include "render/bsdfs/ggx_albedo.h"
+#include "render/bsdfs/local_geometry.h"
+
+namespace fluence::render {
+
+namespace {
+
+using namespace albedo_table;
+
+// The spreads of one (width, f0) node: kCosines x kCosines weights.
+struct Slice {
+    std::array<ElevationWeights, kCosines> spread{};
+
+    Slice(int j, int f) {
+        const float r = float(j) / (kWidths - 1);
+        const GgxDistribution ggx(std::max(r * r, kGgxSmoothAlpha));
+        for (int i = 0; i < kCosines; ++i) {
+            const float mu = cosineAt(i);
+            const Vec3f wo(std::sqrt(std::max(0.0f, 1.0f - mu * mu)), 0.0f, mu);
+            std::array<double, kCosines> sum{};
+            forEachVisibleNormal(ggx, wo, [&](const Vec3f& h, float jacobian) {
+                const Vec3f wi = reflect(wo, h);
+                if (wi.z <= 0.0f) return;
+                const float pdf = ggx.reflectionPdf(wo, h);
+                if (!(pdf > 0.0f)) return;
+                const double weight = double(ggxFacetReflectance(dot(wo, h), f0At(f))) * ggx.reflectionTerm(wo, wi, h) *
+                                      wi.z / pdf * jacobian;
+                const AxisPosition p = positionOf(wi.z, kCosines);
+                sum[p.node] += weight * (1.0f - p.fraction);
+                sum[p.node + 1] += weight * p.fraction;
+            });
+            double total = 0.0;
+            for (double s : sum) total += s;
+            for (int k = 0; k < kCosines; ++k)
+                spread[i][k] = total > 0.0 ? float(sum[k] / total) : (k == i ? 1.0f : 0.0f);
+        }
+    }
+};
+
+const Slice& slice(int j, int f) {
+    static std::array<std::once_flag, kWidths * kF0s> made;
+    static std::array<std::unique_ptr<Slice>, kWidths * kF0s> slices;
+    const int k = j * kF0s + f;
+    std::call_once(made[k], [&] { slices[k] = std::make_unique<Slice>(j, f); });
+    return *slices[k];
+}
+
+}  // namespace
+
+ElevationWeights ggxReflectionSpread(int i, float alpha, float f0) {
+    const AxisPosition w = positionOf(std::sqrt(std::max(alpha, 0.0f)), kWidths),
+                       f = positionOf(std::sqrt(std::max(f0, 0.0f)), kF0s);
+    const ElevationWeights &a = slice(w.node, f.node).spread[i], &b = slice(w.node + 1, f.node).spread[i],
+                           &c = slice(w.node, f.node + 1).spread[i], &d = slice(w.node + 1, f.node + 1).spread[i];
+    ElevationWeights spread;
+    for (int k = 0; k < kCosines; ++k)
+        spread[k] = lerp(lerp(a[k], b[k], w.fraction), lerp(c[k], d[k], w.fraction), f.fraction);
+    return spread;
+}
+
+}  // namespace fluence::render
