@@ -6,6 +6,7 @@
 #include "apps/assemble_command.h"
 #include "apps/cat_command.h"
 #include "apps/cli_options.h"
+#include "apps/denoise_command.h"
 #include "apps/farm_command.h"
 #include "apps/info_command.h"
 #include "apps/render_command.h"
@@ -29,7 +30,8 @@ int runCommandLine(std::vector<std::string> args) {
         return kExitOk;
     }
     const std::string command = args[0];
-    if (command != "render" && command != "info" && command != "cat" && command != "assemble" && command != "farm") {
+    if (command != "render" && command != "info" && command != "cat" && command != "assemble" && command != "farm" &&
+        command != "denoise") {
         std::fprintf(stderr, "fluence: error: unknown command '%s' (try 'fluence --help')\n", command.c_str());
         return kExitUsage;
     }
@@ -43,6 +45,7 @@ int runCommandLine(std::vector<std::string> args) {
         if (command == "cat") return runCat(parseCatOptions(args));
         if (command == "assemble") return runAssemble(parseAssembleOptions(args));
         if (command == "farm") return runFarm(args);
+        if (command == "denoise") return runDenoise(parseDenoiseOptions(args));
         return command == "info" ? runInfo(parseInfoOptions(args)) : runRender(parseRenderOptions(args));
     } catch (const UsageError& e) {
         std::fprintf(stderr, "fluence: error: %s\n(try 'fluence --help')\n", e.what());

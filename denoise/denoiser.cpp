@@ -62,7 +62,8 @@ void checkInput(const DenoiseBuffers& in, const DenoiseSettings& settings) {
 }
 
 // The fit's features of pixel j, centred on pixel i's.
-void features(const DenoiseBuffers& in, std::size_t i, std::size_t j, float x[kFeatures]) {
+[[gnu::always_inline]] inline void features(const DenoiseBuffers& in, std::size_t i, std::size_t j,
+                                            float x[kFeatures]) {
     x[0] = 1.0f;
     for (int c = 0; c < 3; ++c) {
         x[1 + c] = in.albedo[3 * j + c] - in.albedo[3 * i + c];
@@ -73,7 +74,7 @@ void features(const DenoiseBuffers& in, std::size_t i, std::size_t j, float x[kF
 }
 
 // The NL-means weight of pixel j for pixel i (see denoiser.h).
-float colourWeight(const Guide& guide, std::size_t i, std::size_t j, float k2) {
+[[gnu::always_inline]] inline float colourWeight(const Guide& guide, std::size_t i, std::size_t j, float k2) {
     float distance = 0.0f;
     for (int c = 0; c < 3; ++c) {
         const float ui = guide.colour[3 * i + c], uj = guide.colour[3 * j + c];
@@ -85,8 +86,8 @@ float colourWeight(const Guide& guide, std::size_t i, std::size_t j, float k2) {
 
 // Solves a x = b for `outputs` right-hand sides (a symmetric positive definite, by Cholesky) and
 // writes each solution's constant term. False when a is not positive definite.
-bool constantTerms(const float a[kFeatures][kFeatures], const float b[kFeatures][kMaxOutputs], int outputs,
-                   float* out) {
+template <int Columns>
+bool constantTerms(const float a[kFeatures][kFeatures], const float b[kFeatures][Columns], int outputs, float* out) {
     double l[kFeatures][kFeatures] = {};
     for (int r = 0; r < kFeatures; ++r) {
         for (int c = 0; c <= r; ++c) {
@@ -126,7 +127,8 @@ void fitPixel(const DenoiseBuffers& in, const DenoiseSettings& settings, const G
     const int outputs = Outputs > 0 ? Outputs : 3 * int(in.layers.size() + 1);
     const std::size_t i = std::size_t(y) * in.width + x;
     const float k2 = settings.k * settings.k;
-    float a[kFeatures][kFeatures] = {}, b[kFeatures][kMaxOutputs] = {};
+    constexpr int kColumns = Outputs > 0 ? Outputs : kMaxOutputs;
+    float a[kFeatures][kFeatures] = {}, b[kFeatures][kColumns] = {};
     float weightSum = 0.0f;
     const int r = settings.radius / settings.stride * settings.stride;
     for (int yy = std::max(y - r, y % settings.stride); yy <= std::min(y + r, in.height - 1); yy += settings.stride)
@@ -135,7 +137,7 @@ void fitPixel(const DenoiseBuffers& in, const DenoiseSettings& settings, const G
             const std::size_t j = std::size_t(yy) * in.width + xx;
             const float w = colourWeight(guide, i, j, k2);
             if (w < kNegligibleWeight) continue;
-            float f[kFeatures], values[kMaxOutputs];
+            float f[kFeatures], values[kColumns];
             features(in, i, j, f);
             for (int c = 0; c < 3; ++c) values[c] = in.halves[half][3 * j + c];
             for (int l = 0; 3 + 3 * l < outputs; ++l)
@@ -148,8 +150,8 @@ void fitPixel(const DenoiseBuffers& in, const DenoiseSettings& settings, const G
             }
         }
     for (int p = 1; p < kFeatures; ++p) a[p][p] += settings.ridge * weightSum;
-    float fitted[kMaxOutputs];
-    if (!constantTerms(a, b, outputs, fitted))  // not met with the ridge; the weighted mean then
+    float fitted[kColumns];
+    if (!constantTerms<kColumns>(a, b, outputs, fitted))  // not met with the ridge; the weighted mean then
         for (int o = 0; o < outputs; ++o) fitted[o] = b[0][o] / a[0][0];
     for (int o = 0; o < outputs; ++o) sums[o] += std::isfinite(fitted[o]) ? std::max(0.0f, fitted[o]) : 0.0f;
 }

@@ -125,13 +125,16 @@ TEST(Denoiser, EdgeBetweenAlbedoRegionsStaysSharp) {
 TEST(Denoiser, PureNoiseVarianceIsReducedAsTheWindowAllows) {
     const DenoiseBuffers b = render({[](int, int) { return 1.0f; }}, 8, 1.0f, 3);
     const Stats before = stats(noisyImage(b), everywhere), after = stats(denoise(b).beauty, everywhere);
-    // The default window holds 9 x 9 neighbours: no estimate averages more than 81 pixels, so the
-    // variance cannot fall below 1/81 of the noisy one (less the error of a variance measured over
-    // about 64² / 81 independent windows: 3 x sqrt(2 / 50) ~ 0.6 of it). NL-means weights near 1 on
-    // pure noise make it fall close to that bound: by 20 times at least.
+    // No estimate averages more than the window's n neighbours of each half, so the variance cannot
+    // fall below 1/n of the noisy one, less twice the relative error of a variance measured over
+    // about 64² / 13² = 24 independent windows (2 sqrt(2 / 24) ~ 0.6). NL-means weights near 1 on
+    // pure noise bring it within 2 times of that bound.
+    const DenoiseSettings settings;
+    const int side = 2 * (settings.radius / settings.stride) + 1;
+    const double neighbours = double(side) * side;
     const double ratio = after.variance / before.variance;
-    EXPECT_GT(ratio, (1.0 / 81.0) * (1.0 - 0.6));
-    EXPECT_LT(ratio, 1.0 / 20.0);
+    EXPECT_GT(ratio, (1.0 / neighbours) * (1.0 - 0.6));
+    EXPECT_LT(ratio, 2.0 / neighbours);
 }
 
 TEST(Denoiser, CausticOnDiffuseFloorIsNotErased) {
