@@ -79,7 +79,8 @@ void checkInput(const DenoiseBuffers& in, const DenoiseSettings& settings) {
     for (int c = 0; c < 3; ++c) {
         const float ui = guide.colour[3 * i + c], uj = guide.colour[3 * j + c];
         const float vi = guide.variance[3 * i + c], vj = guide.variance[3 * j + c];
-        distance += ((ui - uj) * (ui - uj) - (vi + std::min(vi, vj))) / (kEpsilon + k2 * (vi + vj));
+        const float shared = vi + std::min(vi, vj);
+        distance += ((ui - uj) * (ui - uj) - shared) / (kEpsilon + k2 * shared);
     }
     return std::exp(-std::max(0.0f, distance / 3.0f));
 }

@@ -12,8 +12,9 @@
 // The features explain what changes with the geometry and the textures (so an edge between
 // albedos stays sharp), the weights keep out what they do not explain (a caustic, a shadow edge).
 // The weight of j is an NL-means weight on colour: with u the 3x3 box-filtered colour and v its
-// variance, d² = mean over R G B of ((u_i - u_j)² - (v_i + min(v_i, v_j))) / (ε + k²(v_i + v_j)),
-// w = exp(-max(0, d²)).
+// variance, d² = mean over R G B of ((u_i - u_j)² - s) / (ε + k² s), s = v_i + min(v_i, v_j),
+// w = exp(-max(0, d²)). (Rousselle et al. divide by v_i + v_j: the minimum keeps a firefly, whose
+// own variance is large, from excusing its distance to the dark pixels around it.)
 //
 // Cross-filtering: half 0 is fitted with the weights of half 1's colour and half 1 with half 0's,
 // so the noise of the weights is independent of the noise they average; the result is the mean of
