@@ -172,6 +172,31 @@ AssembleOptions parseAssembleOptions(const std::vector<std::string>& args) {
     return o;
 }
 
+DenoiseOptions parseDenoiseOptions(const std::vector<std::string>& args) {
+    DenoiseOptions o;
+    ArgCursor cur(args);
+    while (!cur.done()) {
+        const std::string arg = cur.next();
+        if (arg == "-o" || arg == "--output") {
+            o.output = cur.value(arg);
+        } else if (arg == "--denoise-layers") {
+            o.layers = true;
+        } else if (arg == "-j" || arg == "--threads") {
+            o.threads = parseNumber<int>(arg, cur.value(arg));
+            if (o.threads < 0) throw UsageError(arg + " must be 0 (all cores) or more");
+        } else if (arg.starts_with("-")) {
+            throw UsageError("unknown option '" + arg + "' for denoise");
+        } else if (o.input.empty()) {
+            o.input = arg;
+        } else {
+            throw UsageError("denoise takes one image (got '" + o.input + "' and '" + arg + "')");
+        }
+    }
+    if (o.input.empty()) throw UsageError("denoise needs the image to denoise");
+    if (o.output.empty()) throw UsageError("denoise needs -o OUT.exr");
+    return o;
+}
+
 RenderOptions parseRenderOptions(const std::vector<std::string>& args) {
     RenderOptions o;
     ArgCursor cur(args);
@@ -230,6 +255,12 @@ RenderOptions parseRenderOptions(const std::vector<std::string>& args) {
             o.subdivLevel = parseNumber<int>(arg, cur.value(arg));
             if (*o.subdivLevel < 0 || *o.subdivLevel > kMaxSubdivLevel)
                 throw UsageError("--subdiv-level must be between 0 and " + std::to_string(kMaxSubdivLevel));
+        } else if (arg == "--denoise") {
+            o.denoise = true;
+        } else if (arg == "--denoise-layers") {
+            o.denoise = o.denoiseLayers = true;
+        } else if (arg == "--denoise-buffers") {
+            o.denoiseBuffers = true;
         } else if (arg == "--lpe") {
             o.lightPaths.push_back(parseLightPathOption(cur.value(arg)));
         } else if (arg == "--cryptomatte") {
@@ -331,6 +362,10 @@ std::string usageText() {
            "                               the layer as USDA text (stdout without -o); --flatten: the composed\n"
            "                               stage as one layer, like usdcat --flatten\n"
            "       fluence assemble -o OUT.exr TILE.exr...   merge tiles into the image rendered in one piece\n"
+           "       fluence denoise IN.exr -o OUT.exr [--denoise-layers] [-j N]\n"
+           "                               denoise an image rendered with --denoise or --denoise-buffers (or\n"
+           "                               assembled from such tiles): RGB denoised, the noisy beauty kept\n"
+           "                               as noisy.R/G/B\n"
            "       fluence farm submit SCENE [--frames A-B[xK]] [--tiles X Y] [--backend slurm|local]\n"
            "                               [--output-dir DIR] [--jobs N] [-j N] [-- RENDER OPTIONS...]\n"
            "                               one task per frame and tile, run by Slurm (default when sbatch is in\n"
@@ -437,6 +472,12 @@ std::string usageText() {
            "                          EXR layer NAME (repeatable; also RenderVars with sourceType \"lpe\");\n"
            "                          e.g. --lpe diffuse='C<RD>.*L' --lpe specular='C<R[GS]>.*L'; path, bdpt,\n"
            "                          sppm (expressions of at most 64 automaton states)\n"
+           "      --denoise           denoise the beauty (feature-guided regression on the albedo, N and Z\n"
+           "                          AOVs and the two half images): RGB denoised, the noisy beauty kept as\n"
+           "                          noisy.R/G/B, the half images half0/half1 and variance.R/G/B written too;\n"
+           "                          a tile keeps only the buffers (denoise the assembled image)\n"
+           "      --denoise-layers    --denoise, and each --lpe layer denoised on its own (NAME_noisy kept)\n"
+           "      --denoise-buffers   write half0, half1 and variance only, for 'fluence denoise' later\n"
            "      --cryptomatte L,... Cryptomatte ID layers: object (CryptoObject), material (CryptoMaterial);\n"
            "                          also RenderVars with sourceType \"raw\" and sourceName "
            "CryptoObject/CryptoMaterial\n"

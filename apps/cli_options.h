@@ -66,6 +66,17 @@ struct RenderOptions {
     bool allowMissing = false;  // --allow-missing: render without missing layers, textures and VDBs (warnings)
     bool strict = false;        // --strict: a malformed prim is an error (exit 3), not a warning and skipped
     std::optional<std::vector<std::string>> purposes;  // --purpose a,b: else the render settings' includedPurposes
+    bool denoise = false;  // --denoise: RGBA denoised, the noisy beauty kept as noisy.R/G/B (apps/frame_denoise.h)
+    bool denoiseLayers = false;   // --denoise-layers: with --denoise, the light path layers denoised too
+    bool denoiseBuffers = false;  // --denoise-buffers: the half images and variance written, nothing denoised
+};
+
+// Options of `fluence denoise`.
+struct DenoiseOptions {
+    std::string input;    // IN.exr
+    std::string output;   // -o/--output OUT.exr
+    bool layers = false;  // --denoise-layers: the light path layers too
+    int threads = 0;      // -j/--threads N
 };
 
 // Options of `fluence assemble`.
@@ -92,6 +103,7 @@ inline constexpr const char* kDefaultIntegrator = "path";
 RenderOptions parseRenderOptions(const std::vector<std::string>& args);
 InfoOptions parseInfoOptions(const std::vector<std::string>& args);
 AssembleOptions parseAssembleOptions(const std::vector<std::string>& args);
+DenoiseOptions parseDenoiseOptions(const std::vector<std::string>& args);
 // Parses "/Prim/Path:set=selection".
 usd::VariantSelection parseVariantSelection(const std::string& text);
 

@@ -6,6 +6,7 @@
 #include "apps/assemble_command.h"
 #include "apps/cat_command.h"
 #include "apps/cli_options.h"
+#include "apps/denoise_command.h"
 #include "apps/farm_command.h"
 #include "apps/info_command.h"
 #include "apps/render_command.h"
@@ -31,7 +32,7 @@ int runCommandLine(std::vector<std::string> args) {
     }
     const std::string command = args[0];
     if (command != "render" && command != "info" && command != "cat" && command != "assemble" && command != "farm" &&
-        command != "review") {
+        command != "review" && command != "denoise") {
         std::fprintf(stderr, "fluence: error: unknown command '%s' (try 'fluence --help')\n", command.c_str());
         return kExitUsage;
     }
@@ -46,6 +47,7 @@ int runCommandLine(std::vector<std::string> args) {
         if (command == "assemble") return runAssemble(parseAssembleOptions(args));
         if (command == "farm") return runFarm(args);
         if (command == "review") return runReview(parseReviewOptions(args));
+        if (command == "denoise") return runDenoise(parseDenoiseOptions(args));
         return command == "info" ? runInfo(parseInfoOptions(args)) : runRender(parseRenderOptions(args));
     } catch (const UsageError& e) {
         std::fprintf(stderr, "fluence: error: %s\n(try 'fluence --help')\n", e.what());

@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <filesystem>
 
+#include "apps/frame_denoise.h"
 #include "apps/frame_summary.h"
 #include "apps/progress_reporter.h"
 #include "apps/render_checkpoint.h"
@@ -195,6 +196,7 @@ int renderFrameImage(const RenderOptions& opt, const usd::Stage& stage, const co
     for (const integrators::LightPathAov& aov : aovs) layers.push_back(aov.name);
     frame.settings = renderSettings(opt, window, res.first);
     frame.film = std::make_unique<Film>(window.width(), window.height(), frame.camera->farClip(), layers);
+    if (keepsDenoiseBuffers(opt)) frame.film->enableDenoiseBuffers();
     frame.cryptomatte = cryptomatteFilm(frame.cryptomatteRequests, window.width(), window.height());
     frame.settings.cryptomatte = frame.cryptomatte.get();
     const std::string& cameraPath = built.populated->cameraPath;

@@ -1,5 +1,6 @@
 #include "apps/frame_write.h"
 
+#include "apps/frame_denoise.h"
 #include "apps/scene_loading.h"
 #include "output/atomic_file.h"
 #include "output/preview_writer.h"
@@ -28,6 +29,13 @@ void writeProduct(const RenderOptions& opt, const PlannedRender& planned, std::s
                                     opt.cryptomatteDepth);
         else
             warnings(product.path, "Cryptomatte layers need the product's data window to be its render's; left out");
+    }
+    if (p == 0 && keepsDenoiseBuffers(opt)) {
+        if (written == outputs.window)
+            addDenoiseOutputs(opt, *frame.film, productImg, productHeader, warnings, outputs.files[p]);
+        else
+            warnings(product.path,
+                     "the denoiser's buffers need the product's data window to be its render's; left out");
     }
     output::writeExr(outputs.files[p], productImg, productHeader);
 }

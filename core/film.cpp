@@ -10,6 +10,12 @@
 
 namespace fluence {
 
+namespace {
+
+constexpr std::size_t kDenoiseSumsPerPixel = 6;
+
+}  // namespace
+
 Film::Film(int width, int height, float farDepth, std::vector<std::string> lightPathLayers)
     : width_(width),
       height_(height),
@@ -28,6 +34,13 @@ void Film::add(int x, int y, const FilmSample& s) {
     double* layers = lightPathSums_.data() + index * lightPathLayers_.size() * 3;
     for (std::size_t l = 0; l < lightPathLayers_.size(); ++l)
         for (std::size_t c = 0; c < 3; ++c) layers[3 * l + c] += s.lightPaths[3 * l + c];
+    if (!denoiseSums_.empty()) {
+        double* sums = denoiseSums_.data() + index * kDenoiseSumsPerPixel;
+        for (int c = 0; c < 3; ++c) {
+            if (p.samples % 2 == 0) sums[c] += s.radiance[c];
+            sums[3 + c] += double(s.radiance[c]) * s.radiance[c];
+        }
+    }
     const double brightness = luminance(s.radiance);
     p.luminance += brightness;
     p.luminanceSquared += brightness * brightness;
@@ -56,6 +69,41 @@ std::vector<std::string> Film::dataChannelNames() { return {"N.X", "N.Y", "N.Z",
 SplatFilm& Film::enableSplats() {
     if (!splats_) splats_ = std::make_unique<SplatFilm>(width_, height_, 0, 0, int(lightPathLayers_.size()));
     return *splats_;
+}
+
+void Film::enableDenoiseBuffers() {
+    if (denoiseSums_.empty()) denoiseSums_.assign(pixels_.size() * kDenoiseSumsPerPixel, 0.0);
+}
+
+std::vector<std::string> Film::denoiseBufferChannelNames() {
+    return {"half0.R", "half0.G", "half0.B", "half1.R", "half1.G", "half1.B", "variance.R", "variance.G", "variance.B"};
+}
+
+Image Film::resolveDenoiseBuffers() const {
+    if (denoiseSums_.empty()) throw std::logic_error("Film::resolveDenoiseBuffers: the buffers are not enabled");
+    Image image(width_, height_, denoiseBufferChannelNames());
+    const std::uint64_t samples = totalSamples();
+    const double perLightPath = samples > 0 ? double(width_) * double(height_) / double(samples) : 0.0;
+    for (int y = 0; y < height_; ++y)
+        for (int x = 0; x < width_; ++x) {
+            const std::size_t index = static_cast<std::size_t>(y) * width_ + x;
+            const Pixel& p = pixels_[index];
+            const double* sums = denoiseSums_.data() + index * kDenoiseSumsPerPixel;
+            const double n = p.samples, even = (p.samples + 1) / 2, odd = p.samples / 2;
+            const std::array<double, 3> splat = splats_ ? splats_->sum(x, y) : std::array<double, 3>{};
+            float* out = image.pixel(x, y);
+            for (int c = 0; c < 3; ++c) {
+                const double total = p.radiance[c], evenSum = sums[c], added = splat[std::size_t(c)] * perLightPath;
+                const double mean = n > 0 ? total / n : 0.0;
+                const double evenMean = even > 0 ? evenSum / even : 0.0;
+                const double oddMean = odd > 0 ? (total - evenSum) / odd : evenMean;
+                out[c] = static_cast<float>(evenMean + added);
+                out[3 + c] = static_cast<float>(oddMean + added);
+                const double variance = n > 1 ? std::max(0.0, (sums[3 + c] - n * mean * mean) / (n - 1.0)) / n : 0.0;
+                out[6 + c] = static_cast<float>(variance);
+            }
+        }
+    return image;
 }
 
 Image Film::resolve() const {

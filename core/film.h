@@ -15,6 +15,15 @@
 //   sampleCount  number of samples taken in the pixel
 //   NAME.R/G/B   one layer per light path expression AOV (integrators/light_path_tracker.h), in the
 //                order given to the constructor: the part of the beauty whose paths it matches
+//
+// The denoiser's buffers (denoise/), kept once enableDenoiseBuffers() is called and resolved apart
+// by resolveDenoiseBuffers():
+//   half0.R/G/B     the mean of the pixel's even-indexed samples, half1.R/G/B of its odd ones:
+//                   two independent estimates of the beauty (a sample's index is the count of
+//                   samples before it in its pixel, so the split is the same at any thread count,
+//                   tile division or checkpoint)
+//   variance.R/G/B  the variance of the beauty's mean (the samples' variance over their count)
+// Light tracing's splats (enableSplats) are added to both halves alike and not to the variance.
 #pragma once
 
 #include <algorithm>
@@ -88,6 +97,13 @@ public:
     SplatFilm& enableSplats();
     const SplatFilm* splats() const { return splats_.get(); }
 
+    // The denoiser's buffers (see the top of this file): from the next sample on; call before any.
+    void enableDenoiseBuffers();
+    bool hasDenoiseBuffers() const { return !denoiseSums_.empty(); }
+    static std::vector<std::string> denoiseBufferChannelNames();
+    // The half images and variance, in denoiseBufferChannelNames() order. Requires the buffers.
+    Image resolveDenoiseBuffers() const;
+
     // The samples taken in pixel (x, y) so far.
     std::uint32_t samples(int x, int y) const { return pixel(x, y).samples; }
     // The relative standard error of the pixel's mean luminance: sqrt(variance / n) / (mean +
@@ -120,6 +136,9 @@ private:
     std::vector<Pixel> pixels_;
     std::vector<std::string> lightPathLayers_;
     std::vector<double> lightPathSums_;  // per pixel, per layer, R G B
+    // With the denoiser's buffers, per pixel: the even-indexed samples' radiance sums R G B, then
+    // every sample's squared radiance sums R G B; empty without them.
+    std::vector<double> denoiseSums_;
     std::unique_ptr<SplatFilm> splats_;
 };
 

@@ -45,7 +45,7 @@ void writeFilmState(const Film& film, std::ostream& out) {
     // A field added to Film or Film::Pixel changes these sizes: save it here and in readFilmState,
     // bump kFilmStateVersion, and update the size.
     static_assert(sizeof(Film::Pixel) == 112, "Film::Pixel changed: write and read the new field in film_state.cpp");
-    static_assert(sizeof(Film) == 96, "Film changed: write and read the new state in film_state.cpp");
+    static_assert(sizeof(Film) == 120, "Film changed: write and read the new state in film_state.cpp");
     writeBinary(out, kFilmStateVersion);
     writeBinary(out, static_cast<std::int32_t>(film.width_));
     writeBinary(out, static_cast<std::int32_t>(film.height_));
@@ -60,6 +60,9 @@ void writeFilmState(const Film& film, std::ostream& out) {
         const std::vector<std::int64_t> sums = film.splats_->fixedSums();
         writeBinary(out, sums.data(), sums.size());
     }
+    // The denoiser's buffers (version 3), when the render keeps them.
+    writeBinary(out, static_cast<std::uint8_t>(film.hasDenoiseBuffers()));
+    writeBinary(out, film.denoiseSums_.data(), film.denoiseSums_.size());
 }
 
 void readFilmState(std::istream& in, Film& film) {
@@ -94,6 +97,13 @@ void readFilmState(std::istream& in, Film& film) {
             readBinary(in, sums.data(), sums.size());
             film.enableSplats().restore(sums);
         }
+        const bool savedBuffers = readBinary<std::uint8_t>(in) != 0;
+        if (savedBuffers != film.hasDenoiseBuffers())
+            throw FilmStateError(savedBuffers
+                                     ? "the saved film keeps the denoiser's buffers, this one does not"
+                                     : "the saved film has no denoiser's buffers (rendered without --denoise), "
+                                       "this one needs them");
+        readBinary(in, film.denoiseSums_.data(), film.denoiseSums_.size());
     } catch (const BinaryReadError& e) {
         throw FilmStateError("damaged film state: " + std::string(e.what()));
     }

@@ -1,0 +1,87 @@
+// End-to-end: `fluence render --denoise` writes the denoised beauty as RGB and keeps the noisy one
+// (noisy.R/G/B, bit-identical to a render without --denoise); `fluence denoise` on a render with
+// --denoise-buffers, or on tiles assembled by `fluence assemble`, gives the same image (so tiles
+// leave no seam); an image without the buffers is refused, naming what is missing.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+
+#include "tests/support/cli.h"
+#include "tests/support/temp_dir.h"
+
+namespace fs = std::filesystem;
+
+namespace fluence {
+namespace {
+
+using test::RunResult;
+
+const std::string kCornellBox = (fs::path(FLUENCE_SOURCE_DIR) / "usd_samples/cornell_box.usda").string();
+const std::string kOptions = " -r 24 18 --spp 8 --lpe 'direct=C<RD>L' ";
+
+class DenoiseCli : public ::testing::Test {
+protected:
+    test::TempDir tmp_{"fluence_denoise_cli"};
+    RunResult run(const std::string& args) { return test::runFluence(args, tmp_.path()); }
+};
+
+std::vector<float> channels(const test::ExrImage& image, const std::vector<std::string>& names) {
+    std::vector<float> out;
+    for (int y = 0; y < image.height; ++y)
+        for (int x = 0; x < image.width; ++x)
+            for (const std::string& name : names) out.push_back(image.at(x, y, name));
+    return out;
+}
+
+TEST_F(DenoiseCli, RenderDenoiseKeepsTheNoisyBeauty) {
+    RunResult r = run("render " + kCornellBox + kOptions + "-o " + tmp_.file("noisy.exr"));
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    r = run("render " + kCornellBox + kOptions + "--denoise-layers -o " + tmp_.file("denoised.exr"));
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    const test::ExrImage noisy = test::readExr(tmp_.file("noisy.exr")),
+                         denoised = test::readExr(tmp_.file("denoised.exr"));
+    for (const char* name : {"half0.R", "half1.B", "variance.G", "noisy.R", "direct.R", "direct_noisy.R"})
+        EXPECT_GE(denoised.channel(name), 0) << name;
+    EXPECT_EQ(channels(denoised, {"noisy.R", "noisy.G", "noisy.B"}), channels(noisy, {"R", "G", "B"}));
+    EXPECT_EQ(channels(denoised, {"direct_noisy.R"}), channels(noisy, {"direct.R"}));
+    EXPECT_NE(channels(denoised, {"R", "G", "B"}), channels(noisy, {"R", "G", "B"}));
+    EXPECT_NE(channels(denoised, {"direct.R"}), channels(noisy, {"direct.R"}));
+}
+
+TEST_F(DenoiseCli, DenoiseCommandOnBuffersAndOnAssembledTilesIsTheRendersDenoise) {
+    RunResult r = run("render " + kCornellBox + kOptions + "--denoise -o " + tmp_.file("whole.exr"));
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    r = run("render " + kCornellBox + kOptions + "--denoise-buffers -o " + tmp_.file("buffers.exr"));
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    r = run("denoise " + tmp_.file("buffers.exr") + " -j 1 -o " + tmp_.file("later.exr"));
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    std::string tiles;
+    for (int i = 0; i < 2; ++i) {
+        r = run("render " + kCornellBox + kOptions + "--denoise --tile-count 1 2 --tile-index " + std::to_string(i) +
+                " -o " + tmp_.file("part.exr"));
+        ASSERT_EQ(r.exitCode, 0) << r.err;
+        EXPECT_NE(r.err.find("a tile is not denoised"), std::string::npos) << r.err;
+        tiles += " " + tmp_.file("part_tile" + std::to_string(i) + ".exr");
+    }
+    ASSERT_EQ(run("assemble -o " + tmp_.file("assembled.exr") + tiles).exitCode, 0);
+    r = run("denoise " + tmp_.file("assembled.exr") + " -o " + tmp_.file("assembled_denoised.exr"));
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    const std::vector<std::string> rgb{"R", "G", "B", "noisy.R", "noisy.G", "noisy.B"};
+    const std::vector<float> whole = channels(test::readExr(tmp_.file("whole.exr")), rgb);
+    EXPECT_EQ(channels(test::readExr(tmp_.file("later.exr")), rgb), whole);
+    EXPECT_EQ(channels(test::readExr(tmp_.file("assembled_denoised.exr")), rgb), whole) << "seams between tiles";
+}
+
+TEST_F(DenoiseCli, ImageWithoutTheBuffersIsRefused) {
+    ASSERT_EQ(run("render " + kCornellBox + " -r 8 8 --spp 2 -o " + tmp_.file("plain.exr")).exitCode, 0);
+    RunResult r = run("denoise " + tmp_.file("plain.exr") + " -o " + tmp_.file("out.exr"));
+    EXPECT_EQ(r.exitCode, 4);
+    EXPECT_NE(r.err.find("half0.R"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("--denoise"), std::string::npos) << r.err;
+    EXPECT_FALSE(fs::exists(tmp_.file("out.exr")));
+    EXPECT_EQ(run("denoise " + tmp_.file("nope.exr") + " -o " + tmp_.file("out.exr")).exitCode, 4);
+    EXPECT_EQ(run("denoise " + tmp_.file("plain.exr")).exitCode, 2) << "no -o";
+}
+
+}  // namespace
+}  // namespace fluence
