@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "apps/integrator_parameters.h"
+#include "core/sampler_names.h"
 #include "delegate/imageable.h"
 #include "integrators/automatic_choice.h"
 #include "integrators/integrator.h"
@@ -228,6 +229,11 @@ RenderOptions parseRenderOptions(const std::vector<std::string>& args) {
             if (o.threads < 0) throw UsageError(arg + " must be 0 (all cores) or more");
         } else if (arg == "--seed") {
             o.seed = parseNumber<std::uint64_t>(arg, cur.value(arg));
+        } else if (arg == "--sampler") {
+            const std::string name = cur.value(arg);
+            o.sampler = samplerNamed(name);
+            if (!o.sampler)
+                throw UsageError("unknown sampler '" + name + "' (available: " + std::string(kSamplerNames) + ")");
         } else if (arg == "--integrator") {
             o.integrator = cur.value(arg);
             if (o.integrator != integrators::kAutomaticIntegrator && !integrators::findIntegrator(o.integrator))
@@ -449,6 +455,9 @@ std::string usageText() {
            "      --tile-suffix FMT   _tile$T, $T the index) before its extension; `fluence assemble` merges them\n"
            "  -j, --threads N         worker threads (default 0: every core)\n"
            "      --seed S            random seed (default 0); same seed and spp give a bit-identical image\n"
+           "      --sampler NAME      the camera samples' random numbers (default: the render settings'\n"
+           "                          fluence:sampler, else sobol): sobol (Owen-scrambled Sobol, each pixel's\n"
+           "                          samples stratified: less noise at the same spp) or independent (hashed)\n"
            "      --integrator NAME   solution method (default: the render settings' fluence:integrator, else\n"
            "                          " +
            std::string(kDefaultIntegrator) + "):\n" + integratorList +

@@ -13,6 +13,7 @@
 #include "apps/cryptomatte_layers.h"
 #include "apps/light_path_aovs.h"
 #include "apps/progress_reporter.h"
+#include "core/random.h"
 #include "scene/stage.h"
 
 namespace fluence::app {
@@ -31,6 +32,7 @@ struct RenderOptions {
     std::string camera;                             // -c/--camera /Prim/Path
     int threads = 0;                                // -j/--threads N (0: all cores)
     std::uint64_t seed = 0;                         // --seed S
+    std::optional<SamplerKind> sampler;             // --sampler NAME (else fluence:sampler, else sobol)
     std::string integrator;  // --integrator NAME ("": the render settings' fluence:integrator, else path)
     std::map<std::string, double> integratorParameters;  // --sppm-photons N, ... (apps/integrator_parameters.h)
     double timeLimit = 0.0;                              // --time-limit SECONDS (0: none)

@@ -3,6 +3,7 @@
 #include <cstdio>
 
 #include "apps/integrator_parameters.h"
+#include "apps/sampler_choice.h"
 #include "apps/scene_loading.h"
 #include "apps/stopwatch.h"
 #include "integrators/automatic_choice.h"
@@ -69,6 +70,7 @@ unsigned populate(const RenderOptions& opt, usd::Stage& stage, const color::Colo
     built.populated = delegate::populateScene(stage, dopt);
     const unsigned sceneClasses = integrators::scenePathClasses(built.populated->scene);
     built.integrator = &chosenIntegrator(opt, *built.populated, sceneClasses);
+    built.sampler = chosenSampler(opt, built.populated->renderSettings);
     built.parameters =
         integratorParameters(opt.integratorParameters, built.populated->renderSettings, *built.integrator, warnings);
     overrideSubsurface(opt.subsurface, built.populated->scene);

@@ -24,6 +24,7 @@ struct BuiltFrame {
     std::unique_ptr<render::RenderScene> scene;
     const integrators::IntegratorInfo* integrator = nullptr;  // --integrator, else fluence:integrator, else path
     std::map<std::string, double> parameters;                 // its parameters (apps/integrator_parameters.h)
+    SamplerKind sampler = SamplerKind::Sobol;                 // apps/sampler_choice.h
     double seconds = 0.0;                                     // the build's time
 };
 

@@ -13,6 +13,7 @@
 #include "apps/render_fingerprint.h"
 #include "apps/scene_loading.h"
 #include "apps/stop_signals.h"
+#include "core/sampler_names.h"
 #include "output/exr_attributes.h"
 #include "version.h"
 
@@ -195,12 +196,14 @@ int renderFrameImage(const RenderOptions& opt, const usd::Stage& stage, const co
     std::vector<std::string> layers;
     for (const integrators::LightPathAov& aov : aovs) layers.push_back(aov.name);
     frame.settings = renderSettings(opt, window, res.first);
+    frame.settings.sampler = built.sampler;
     frame.film = std::make_unique<Film>(window.width(), window.height(), frame.camera->farClip(), layers);
     if (keepsDenoiseBuffers(opt)) frame.film->enableDenoiseBuffers();
     frame.cryptomatte = cryptomatteFilm(frame.cryptomatteRequests, window.width(), window.height());
     frame.settings.cryptomatte = frame.cryptomatte.get();
     const std::string& cameraPath = built.populated->cameraPath;
     frame.header = frameHeader(opt, colors, *frame.camera, window, res, cameraPath, built.integrator->name, time);
+    frame.header.strings.push_back({"fluence/sampler", std::string(samplerName(built.sampler))});
     const ResolvedRender resolved{cameraPath,
                                   res.first,
                                   res.second,
@@ -212,7 +215,8 @@ int renderFrameImage(const RenderOptions& opt, const usd::Stage& stage, const co
                                   built.integrator->name,
                                   built.parameters,
                                   frame.settings.samplesPerPixel,
-                                  aovs};
+                                  aovs,
+                                  std::string(samplerName(built.sampler))};
     const CheckpointFingerprint fingerprint = fingerprintRender(opt, stage, resolved, outputs, frame);
     if (frame.alreadyWritten) return kExitOk;
     if (int code = startPasses(opt, outputs.files.front(), fingerprint, warnings, frame); code != kExitOk) return code;

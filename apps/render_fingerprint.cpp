@@ -94,6 +94,7 @@ CheckpointFingerprint renderFingerprint(const RenderOptions& o, const usd::Stage
         {"frame", std::isnan(r.time) ? "default" : exact(r.time)},
         {"seed", std::to_string(o.seed)},
         {"integrator", r.integrator},
+        {"sampler", r.sampler},
         {"integrator parameters",
          joined(r.integratorParameters, [](const auto& p) { return p.first + "=" + exact(p.second); })},
         {"samples per pixel", std::to_string(r.samplesPerPixel)},

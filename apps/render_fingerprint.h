@@ -34,6 +34,7 @@ struct ResolvedRender {
     std::map<std::string, double> integratorParameters;  // by option
     int samplesPerPixel = 0;
     std::vector<integrators::LightPathAov> lightPathLayers;
+    std::string sampler;
 };
 
 CheckpointFingerprint renderFingerprint(const RenderOptions& options, const usd::Stage& stage,

@@ -1,6 +1,15 @@
 // Counter-based random numbers: every sample value is a pure function of
 // (seed, pixel, sample index, dimension).
 //
+// Two samplers draw them (SamplerKind). Independent: each value hashed from the four counters.
+// Sobol (the renderer's default): each call of next() or next2D() takes the next "slot" of the
+// sample, and a slot's values over a pixel's sample indices are an Owen-scrambled Sobol sequence
+// (core/owen_sobol.h) with a scramble hashed from (seed, pixel, slot): the samples of one pixel
+// stratify every 1D and 2D decision that lands in the same slot, different pixels and slots are
+// decorrelated. The integrators draw in a fixed order, so the slots follow the path: the pixel
+// position, the hero wavelength, then per bounce the light choice and light point, the BSDF lobe
+// and direction, Russian roulette and the medium events (docs/USER_GUIDE.md, "Sampling").
+//
 // Nothing is carried between pixels or threads, so an image is bit-identical at any thread count
 // and any tile can be re-rendered alone (farm splits, checkpoints). The hash is SplitMix64's
 // finaliser (Steele, Lea & Flood 2014), applied to a key built from the four counters; its
@@ -9,6 +18,7 @@
 
 #include <cstdint>
 
+#include "core/owen_sobol.h"
 #include "core/vec.h"
 
 namespace fluence {
@@ -23,16 +33,30 @@ constexpr std::uint64_t mix64(std::uint64_t z) {
 // A uniform float in [0, 1) from the top 24 bits (every value exactly representable).
 constexpr float toUnitFloat(std::uint64_t bits) { return static_cast<float>(bits >> 40) * 0x1p-24f; }
 
+enum class SamplerKind { Independent, Sobol };
+
 // The random stream of one camera sample. Dimensions are consumed in order; the same
-// (seed, pixel, sample) always yields the same sequence.
+// (seed, pixel, sample) always yields the same sequence. A 2D decision draws next2D() (one
+// stratified pair under Sobol), never next() twice.
 class SampleStream {
 public:
-    constexpr SampleStream(std::uint64_t seed, std::uint64_t pixelIndex, std::uint64_t sampleIndex)
-        : key_(mix64(mix64(seed ^ 0x5851f42d4c957f2dull) ^ pixelIndex) ^ mix64(sampleIndex + 0x14057b7ef767814full)),
-          sampleIndex_(sampleIndex) {}
+    constexpr SampleStream(std::uint64_t seed, std::uint64_t pixelIndex, std::uint64_t sampleIndex,
+                           SamplerKind kind = SamplerKind::Independent)
+        : pixelKey_(mix64(mix64(seed ^ 0x5851f42d4c957f2dull) ^ pixelIndex)),
+          key_(pixelKey_ ^ mix64(sampleIndex + 0x14057b7ef767814full)),
+          sampleIndex_(sampleIndex),
+          kind_(kind) {}
 
-    constexpr float next() { return toUnitFloat(mix64(key_ + 0x632be59bd9b4e019ull * ++dimension_)); }
+    constexpr float next() {
+        ++dimension_;
+        if (kind_ == SamplerKind::Sobol) return owenSobol1D(sobolIndex(), slotSeed(dimension_));
+        return toUnitFloat(mix64(key_ + 0x632be59bd9b4e019ull * dimension_));
+    }
     constexpr Vec2f next2D() {
+        if (kind_ == SamplerKind::Sobol) {
+            ++dimension_;
+            return owenSobol2D(sobolIndex(), slotSeed(dimension_), mix64(slotSeed(dimension_)));
+        }
         float a = next();
         return {a, next()};
     }
@@ -40,19 +64,36 @@ public:
     // The point of the camera's aperture (render/thin_lens.h): two values of their own, outside the
     // sequence next() walks, so depth of field changes no other dimension of a sample (a pinhole
     // camera's images stay as they were) and a tile draws the same lens point on any thread.
+    // Under Sobol the lens point is a stratified pair of its own (slot kLensSlot).
     constexpr Vec2f lens() const {
+        if (kind_ == SamplerKind::Sobol)
+            return owenSobol2D(sobolIndex(), slotSeed(kLensSlot), mix64(slotSeed(kLensSlot)));
         return {toUnitFloat(mix64(key_ ^ 0xa0761d6478bd642full)), toUnitFloat(mix64(key_ ^ 0xe7037ed1a0b428dbull))};
     }
     // The sample's time in the shutter interval, uniform in [0, 1): its own dimension (0, which
-    // next() never draws), so drawing it or not changes no other value of the stream.
-    constexpr float shutterTime() const { return toUnitFloat(mix64(key_)); }
+    // next() never draws), so drawing it or not changes no other value of the stream; under Sobol
+    // stratified over the pixel's samples.
+    constexpr float shutterTime() const {
+        if (kind_ == SamplerKind::Sobol) return owenSobol1D(sobolIndex(), slotSeed(0));
+        return toUnitFloat(mix64(key_));
+    }
     // The sample index the stream was made for: methods that keep per-sample-index state (the
     // photon map of each sample index, integrators/sppm.h) look theirs up by it.
     constexpr std::uint64_t sampleIndex() const { return sampleIndex_; }
 
 private:
-    std::uint64_t key_;
+    // Slot 0 is the shutter time's, slots 1, 2, ... next()'s and next2D()'s, and the lens its own.
+    static constexpr std::uint32_t kLensSlot = 0xffffffffu;
+    // The scramble of one slot of this pixel's Sobol sequences.
+    constexpr std::uint64_t slotSeed(std::uint32_t slot) const {
+        return mix64(pixelKey_ + 0x9fb21c651e98df25ull * (std::uint64_t(slot) + 1));
+    }
+    constexpr std::uint32_t sobolIndex() const { return static_cast<std::uint32_t>(sampleIndex_); }
+
+    std::uint64_t pixelKey_;  // (seed, pixel)
+    std::uint64_t key_;       // (seed, pixel, sample index)
     std::uint64_t sampleIndex_;
+    SamplerKind kind_;
     std::uint32_t dimension_ = 0;
 };
 

@@ -122,6 +122,7 @@ std::optional<RenderSettingsDesc> renderSettingsFromStage(
     s.framing = framingOf(reader, s.framing);
     if (auto purposes = reader.strings("includedPurposes")) s.includedPurposes = *purposes;
     s.integrator = reader.token({"fluence:integrator"}, "");
+    s.sampler = reader.token({"fluence:sampler"}, "");
     s.defaultLight = reader.boolean({"fluence:defaultLight"}, true);
     s.disableMotionBlur = reader.boolean({"disableMotionBlur", "instantaneousShutter"}, false);
     for (const usd::AttributeSpec& attribute : prim->attributes)

@@ -68,6 +68,7 @@ struct RenderSettingsDesc {
     render::ImageFraming framing;
     std::vector<std::string> includedPurposes{"default", "render"};
     std::string integrator;    // fluence:integrator, "" when not authored
+    std::string sampler;       // fluence:sampler, "" when not authored
     bool defaultLight = true;  // fluence:defaultLight (delegate/default_lights.h)
     // UsdRenderSettingsBase disableMotionBlur (or its deprecated instantaneousShutter): every
     // camera's shutter is closed to an instant (husk reads it so too).

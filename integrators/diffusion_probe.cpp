@@ -34,7 +34,9 @@ std::optional<DiffusionExit> sampleDiffusionExit(const render::RenderScene& scen
                                                  SampleStream& rng, RenderCounters& counters) {
     const render::MaterialParams& m = entry.material;
     const media::NormalizedDiffusion profile(m.subsurfaceColor, m.subsurfaceRadius * m.subsurfaceScale);
-    const float uAxis = rng.next(), uChannel = rng.next(), uRadius = rng.next(), uAngle = rng.next(), uHit = rng.next();
+    const float uAxis = rng.next(), uChannel = rng.next();
+    const Vec2f uDisk = rng.next2D();  // the probe's radius and angle
+    const float uRadius = uDisk.x, uAngle = uDisk.y, uHit = rng.next();
 
     const std::array<Vec3f, 3> axes = probeAxes(entry);
     const int axis = uAxis < kAxisProbability[0] ? 0 : uAxis < kAxisProbability[0] + kAxisProbability[1] ? 1 : 2;

@@ -119,7 +119,7 @@ Image renderFirstHitAovs(const render::RenderScene& scene, const render::Camera&
                     const std::uint64_t pixelIndex = std::uint64_t(imageY) * imageWidth + std::uint64_t(imageX);
                     const std::uint32_t samples = film.samples(x, y);
                     for (std::uint32_t s = 0; s < samples; ++s) {
-                        SampleStream rng(settings.seed, pixelIndex, std::uint64_t(s));
+                        SampleStream rng(settings.seed, pixelIndex, std::uint64_t(s), settings.sampler);
                         const render::Ray ray = cameraSampleRay(camera, rng, imageX, imageY);  // the renderer's
                         const std::optional<render::SurfaceHit> hit = scene.intersect(ray);
                         const float depth = hit ? camera.viewDepth(hit->point) : camera.farClip();

@@ -67,7 +67,7 @@ void renderPass(const render::RenderScene& scene, const render::Camera& camera, 
                         for (int s = pass.first; s < pass.first + pass.count; ++s) {
                             if (film.samples(x, y) != std::uint32_t(s) || converged(film, x, y, settings)) break;
                             ++taken;
-                            SampleStream rng(settings.seed, pixelIndex, std::uint64_t(s));
+                            SampleStream rng(settings.seed, pixelIndex, std::uint64_t(s), settings.sampler);
                             const render::Ray ray = cameraSampleRay(camera, rng, imageX, imageY);
                             FilmSample sample = integrator.sample(state, scene, camera, ray, rng, local);
                             if (!finite(sample, film.lightPathLayers().size())) {

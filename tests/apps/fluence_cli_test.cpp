@@ -208,21 +208,18 @@ TEST_F(FluenceCli, EverySampleSceneRendersCleanly) {
 
 TEST_F(FluenceCli, SameSeedGivesBitIdenticalImagesAtAnyThreadCount) {
     // Surfaces only, and media: volumes, subsurface walks and interiors draw every number from the
-    // sample's own stream too.
-    for (const char* sample : {"usd_samples/cornell_box.usda", "usd_samples/subsurface/subsurface.usda"}) {
-        fs::path scene = fs::path(FLUENCE_SOURCE_DIR) / sample;
-        ASSERT_EQ(
-            run("render " + scene.string() + " -o " + (dir_ / "one.exr").string() + " -r 40 40 --spp 4 -j 1 --seed 7")
-                .exitCode,
-            0);
-        ASSERT_EQ(
-            run("render " + scene.string() + " -o " + (dir_ / "two.exr").string() + " -r 40 40 --spp 4 -j 2 --seed 7")
-                .exitCode,
-            0);
-        ExrImage one = readExr(dir_ / "one.exr"), two = readExr(dir_ / "two.exr");
-        ASSERT_EQ(one.pixels.size(), two.pixels.size()) << sample;
-        EXPECT_EQ(0, std::memcmp(one.pixels.data(), two.pixels.data(), one.pixels.size() * sizeof(float))) << sample;
-    }
+    // sample's own stream too; under either sampler.
+    for (const char* sampler : {"sobol", "independent"})
+        for (const char* sample : {"usd_samples/cornell_box.usda", "usd_samples/subsurface/subsurface.usda"}) {
+            const std::string render = "render " + (fs::path(FLUENCE_SOURCE_DIR) / sample).string() +
+                                       " -r 40 40 --spp 4 --seed 7 --sampler " + sampler + " -o ";
+            ASSERT_EQ(run(render + (dir_ / "one.exr").string() + " -j 1").exitCode, 0);
+            ASSERT_EQ(run(render + (dir_ / "two.exr").string() + " -j 2").exitCode, 0);
+            ExrImage one = readExr(dir_ / "one.exr"), two = readExr(dir_ / "two.exr");
+            ASSERT_EQ(one.pixels.size(), two.pixels.size()) << sample;
+            EXPECT_EQ(0, std::memcmp(one.pixels.data(), two.pixels.data(), one.pixels.size() * sizeof(float)))
+                << sample << " " << sampler;
+        }
 }
 
 TEST_F(FluenceCli, CornellBoxWritesBeautyAndAovsWithColourMetadata) {

@@ -1,6 +1,6 @@
 // End-to-end: the classes of light paths a scene can produce, as `fluence info` lists them and
 // `fluence render` warns of those its integrator misses; and the integrator a scene's
-// RenderSettings choose (fluence:integrator).
+// RenderSettings choose (fluence:integrator), and the sampler (fluence:sampler, --sampler).
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -85,6 +85,28 @@ TEST_F(PathClassCli, RenderSettingsChooseTheIntegratorUnlessTheCommandLineDoes) 
     r = render(sceneWithSettings(""));
     ASSERT_EQ(r.exitCode, 0) << r.err;
     EXPECT_NE(r.out.find("integrator path,"), std::string::npos) << "the default: " << r.out;
+}
+
+TEST_F(PathClassCli, RenderSettingsChooseTheSamplerUnlessTheCommandLineDoes) {
+    const auto sampler = [&](const std::string& scene, const std::string& extra) {
+        const RunResult r = render(scene, "--spp 4 " + extra);
+        EXPECT_EQ(r.exitCode, 0) << r.err;
+        return test::readExr(tmp_.file("out.exr")).spec.get_string_attribute("fluence/sampler");
+    };
+    const std::string independent = sceneWithSettings("uniform token fluence:sampler = \"independent\"");
+    EXPECT_EQ(sampler(independent, ""), "independent");
+    EXPECT_EQ(sampler(independent, "--sampler sobol"), "sobol");
+    EXPECT_EQ(sampler(sceneWithSettings(""), ""), "sobol") << "the default";
+    EXPECT_EQ(sampler(kCornellBox, "--sampler independent"), "independent");
+
+    RunResult r = render(sceneWithSettings("uniform token fluence:sampler = \"halton\""));
+    EXPECT_EQ(r.exitCode, 3);
+    EXPECT_NE(r.err.find("/Render/Settings: fluence:sampler 'halton' is not a sampler (available: sobol, independent)"),
+              std::string::npos)
+        << r.err;
+    r = render(kCornellBox, "--sampler halton");
+    EXPECT_EQ(r.exitCode, 2);
+    EXPECT_NE(r.err.find("unknown sampler 'halton' (available: sobol, independent)"), std::string::npos) << r.err;
 }
 
 TEST_F(PathClassCli, AnUnknownIntegratorInRenderSettingsIsASceneError) {

@@ -18,8 +18,9 @@ namespace {
 constexpr int kSize = 24, kMaxSpp = 256, kMinSpp = 8;
 constexpr double kTarget = 0.03;
 
-test_support::RenderedFilm renderAdaptively(double targetError, int threads) {
+test_support::RenderedFilm renderAdaptively(double targetError, int threads, SamplerKind sampler = SamplerKind::Sobol) {
     RenderSettings settings;
+    settings.sampler = sampler;
     settings.samplesPerPixel = kMaxSpp;
     settings.targetError = targetError;
     settings.minSamples = kMinSpp;
@@ -51,9 +52,12 @@ TEST(AdaptiveSampling, EasyPixelsStopEarlyAndEveryStoppedPixelReachedTheTarget) 
 }
 
 TEST(AdaptiveSampling, IsTheSameForAnyThreadCount) {
-    const Image one = renderAdaptively(kTarget, 1).film.resolve(), two = renderAdaptively(kTarget, 2).film.resolve();
-    ASSERT_EQ(one.pixels.size(), two.pixels.size());
-    EXPECT_EQ(0, std::memcmp(one.pixels.data(), two.pixels.data(), one.pixels.size() * sizeof(float)));
+    for (SamplerKind sampler : test_support::kSamplers) {
+        const Image one = renderAdaptively(kTarget, 1, sampler).film.resolve();
+        const Image two = renderAdaptively(kTarget, 2, sampler).film.resolve();
+        ASSERT_EQ(one.pixels.size(), two.pixels.size());
+        EXPECT_EQ(0, std::memcmp(one.pixels.data(), two.pixels.data(), one.pixels.size() * sizeof(float)));
+    }
 }
 
 TEST(AdaptiveSampling, WithoutATargetEveryPixelTakesEverySample) {

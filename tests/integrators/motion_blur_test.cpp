@@ -145,10 +145,11 @@ TEST(MotionBlur, DeformationAndTransformationBlurOfTheSameMotionAgree) {
     }
 }
 
-TEST(MotionBlur, ImagesAreBitIdenticalAcrossThreadCountsAndTiles) {
+// Under `sampler`, an image rendered on 1 and 2 threads, and a tile of it rendered alone, agree bit for bit.
+void expectBitIdenticalAcrossThreadCountsAndTiles(SamplerKind sampler) {
     const render::SceneDescription desc = translatedSquare();
-    const Rendered one = renderWith(tracer(), desc, kSize, 8, 1, 5);
-    const Rendered two = renderWith(tracer(), desc, kSize, 8, 2, 5);
+    const Rendered one = renderWith(tracer(), desc, kSize, 8, 1, 5, sampler);
+    const Rendered two = renderWith(tracer(), desc, kSize, 8, 2, 5, sampler);
     ASSERT_EQ(one.image.pixels.size(), two.image.pixels.size());
     EXPECT_EQ(0,
               std::memcmp(one.image.pixels.data(), two.image.pixels.data(), one.image.pixels.size() * sizeof(float)));
@@ -159,6 +160,7 @@ TEST(MotionBlur, ImagesAreBitIdenticalAcrossThreadCountsAndTiles) {
     RenderSettings settings;
     settings.samplesPerPixel = 8;
     settings.seed = 5;
+    settings.sampler = sampler;
     settings.windowX = 20;
     settings.windowY = 24;
     settings.imageWidth = kSize;
@@ -170,6 +172,10 @@ TEST(MotionBlur, ImagesAreBitIdenticalAcrossThreadCountsAndTiles) {
             ASSERT_EQ(
                 0, std::memcmp(tile.pixel(x, y), one.image.pixel(x + 20, y + 24), tile.channelCount() * sizeof(float)))
                 << x << "," << y;
+}
+
+TEST(MotionBlur, ImagesAreBitIdenticalAcrossThreadCountsAndTiles) {
+    for (SamplerKind sampler : test_support::kSamplers) expectBitIdenticalAcrossThreadCountsAndTiles(sampler);
 }
 
 TEST(MotionBlur, HitsAreShadedWhereTheRayTimePutsThem) {

@@ -16,9 +16,9 @@ using test_support::channelMean;
 using test_support::Rendered;
 
 Rendered renderScene(const render::SceneDescription& desc, int size, int spp, int threads = 0, int maxDepth = 64,
-                     std::uint64_t seed = 0) {
+                     std::uint64_t seed = 0, SamplerKind sampler = SamplerKind::Sobol) {
     const PathTracer tracer(IntegratorSettings{.maxDepth = maxDepth, .parameters = {}, .lightPathAovs = {}});
-    return test_support::renderWith(tracer, desc, size, spp, threads, seed);
+    return test_support::renderWith(tracer, desc, size, spp, threads, seed, sampler);
 }
 
 TEST(PathTracer, WhiteFurnaceSphereVanishes) {
@@ -67,14 +67,22 @@ TEST(PathTracer, DiffusePlaneUnderADistantLightMatchesRhoEOverPi) {
 
 TEST(PathTracer, ImagesAreBitIdenticalAcrossThreadCounts) {
     auto scene = test::furnaceScene(0.7f);
-    Rendered one = renderScene(scene, 40, 5, 1, 64, 1234);
-    Rendered two = renderScene(scene, 40, 5, 2, 64, 1234);
-    ASSERT_EQ(one.image.pixels.size(), two.image.pixels.size());
-    EXPECT_EQ(0,
-              std::memcmp(one.image.pixels.data(), two.image.pixels.data(), one.image.pixels.size() * sizeof(float)));
-    Rendered otherSeed = renderScene(scene, 40, 5, 2, 64, 99);
-    EXPECT_NE(0, std::memcmp(one.image.pixels.data(), otherSeed.image.pixels.data(),
-                             one.image.pixels.size() * sizeof(float)));
+    for (SamplerKind sampler : test_support::kSamplers) {
+        Rendered one = renderScene(scene, 40, 5, 1, 64, 1234, sampler);
+        Rendered two = renderScene(scene, 40, 5, 2, 64, 1234, sampler);
+        ASSERT_EQ(one.image.pixels.size(), two.image.pixels.size());
+        EXPECT_EQ(
+            0, std::memcmp(one.image.pixels.data(), two.image.pixels.data(), one.image.pixels.size() * sizeof(float)));
+        Rendered otherSeed = renderScene(scene, 40, 5, 2, 64, 99, sampler);
+        EXPECT_NE(0, std::memcmp(one.image.pixels.data(), otherSeed.image.pixels.data(),
+                                 one.image.pixels.size() * sizeof(float)));
+    }
+    // The samplers draw different numbers (the sphere's pixels differ; the dome's are exactly 1).
+    const Rendered sobol = renderScene(scene, 40, 5, 2, 64, 1234, SamplerKind::Sobol);
+    const Rendered independent = renderScene(scene, 40, 5, 2, 64, 1234, SamplerKind::Independent);
+    ASSERT_EQ(sobol.image.pixels.size(), independent.image.pixels.size());
+    EXPECT_NE(0, std::memcmp(sobol.image.pixels.data(), independent.image.pixels.data(),
+                             sobol.image.pixels.size() * sizeof(float)));
 }
 
 // A scene without media pays for none of their machinery: the tracer without it gives the same

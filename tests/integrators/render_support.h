@@ -36,13 +36,17 @@ inline RenderedFilm renderFilm(const Integrator& integrator, const render::Scene
     return {std::move(film), stats};
 }
 
+// The samplers (core/random.h), for tests that hold for each.
+inline constexpr SamplerKind kSamplers[] = {SamplerKind::Sobol, SamplerKind::Independent};
+
 // A size x size render of `desc` through its camera, `spp` samples per pixel.
 inline Rendered renderWith(const Integrator& integrator, const render::SceneDescription& desc, int size, int spp,
-                           int threads = 0, std::uint64_t seed = 0) {
+                           int threads = 0, std::uint64_t seed = 0, SamplerKind sampler = SamplerKind::Sobol) {
     RenderSettings settings;
     settings.samplesPerPixel = spp;
     settings.threads = threads;
     settings.seed = seed;
+    settings.sampler = sampler;
     RenderedFilm r = renderFilm(integrator, desc, size, settings);
     return {r.film.resolve(), r.stats};
 }

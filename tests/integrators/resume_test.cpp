@@ -26,7 +26,7 @@ constexpr int kSize = 20;
 // Renders uninterrupted, then again stopping after the pass that reaches `stopAt` samples per pixel
 // (saving the film there, as a checkpoint does), then resumed from the saved film; expects the
 // resumed image to equal the uninterrupted one bit for bit.
-void expectResumedEqualsUninterrupted(const Integrator& integrator, RenderSettings settings, int stopAt) {
+void expectResumedEqualsUninterruptedWith(const Integrator& integrator, RenderSettings settings, int stopAt) {
     const render::SceneDescription desc = test::litSphereUnderASky();
     const test_support::RenderedFilm whole = test_support::renderFilm(integrator, desc, kSize, settings);
 
@@ -59,6 +59,15 @@ void expectResumedEqualsUninterrupted(const Integrator& integrator, RenderSettin
     ASSERT_EQ(a.pixels.size(), b.pixels.size());
     EXPECT_EQ(std::memcmp(a.pixels.data(), b.pixels.data(), a.pixels.size() * sizeof(float)), 0);
     EXPECT_EQ(whole.film.totalSamples(), film.totalSamples());
+}
+
+// The same, under each sampler.
+void expectResumedEqualsUninterrupted(const Integrator& integrator, RenderSettings settings, int stopAt) {
+    for (SamplerKind sampler : test_support::kSamplers) {
+        SCOPED_TRACE(sampler == SamplerKind::Sobol ? "sobol" : "independent");
+        settings.sampler = sampler;
+        expectResumedEqualsUninterruptedWith(integrator, settings, stopAt);
+    }
 }
 
 TEST(Resume, EveryPixelEverySample) {
