@@ -1,12 +1,16 @@
 #include "delegate/curves_rprim.h"
 
 #include "delegate/curves_adapter.h"
+#include "delegate/motion_samples.h"
 
 namespace fluence::delegate {
 
 void CurvesRprim::syncData(const SyncContext& context, const usd::PrimSpec* prim, std::uint32_t bits) {
     if (!prim || (bits & ~std::uint32_t(kDirtyTransform)) == 0) return;  // a move keeps the object-space curves
-    objectSpace_ = curvesFromPrim(PrimReader(*prim, context.time), context.convertColor,
+    // Points that are not time-sampled move by their velocities at a motion step, as a mesh's do.
+    const std::unique_ptr<usd::PrimSpec> moved =
+        withPointsMovedByVelocities(context.stage, *prim, context.time, context.velocityFrame);
+    objectSpace_ = curvesFromPrim(PrimReader(moved ? *moved : *prim, context.time), context.convertColor,
                                   [&](const std::string& message) { context.warn(prim->path, message); });
     materialPath_ = boundMaterialPath(context.stage, *prim);
 }

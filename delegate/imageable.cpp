@@ -54,6 +54,8 @@ bool isImaged(const usd::PrimSpec& prim, double time, const IncludedPurposes& pu
     return purposes.includes(imageableToken(reader, "purpose", "default", ignored));
 }
 
-bool isGeometryType(const std::string& typeName) { return typeName == "Mesh" || isImplicitType(typeName); }
+bool isGeometryType(const std::string& typeName) {
+    return typeName == "Mesh" || typeName == "TetMesh" || isImplicitType(typeName);
+}
 
 }  // namespace fluence::delegate

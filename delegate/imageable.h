@@ -32,7 +32,8 @@ bool isImaged(const usd::PrimSpec& prim, double time, const IncludedPurposes& pu
 // What is done with such a value (the consequence a warning about it names).
 inline constexpr const char* kReadAsNotAuthored = "read as not authored, as USD reads it";
 
-// A Mesh or an implicit surface (Sphere, Cube, Cylinder, Cone, Capsule).
+// A Mesh, a TetMesh (its boundary surface, delegate/tet_mesh.h) or an implicit surface (Sphere,
+// Cube, Cylinder, Cone, Capsule, ...).
 bool isGeometryType(const std::string& typeName);
 
 }  // namespace fluence::delegate

@@ -10,6 +10,7 @@
 #include "delegate/light_adapter.h"
 #include "delegate/motion_samples.h"
 #include "delegate/points_adapter.h"
+#include "delegate/mesh_source.h"
 #include "delegate/xform.h"
 #include "render/mesh_transform.h"
 
@@ -142,15 +143,22 @@ bool addToPrototype(const SyncContext& context, const usd::PrimSpec& prim, const
                                                             : spaces.at(parentPath(prim.path)) * local.matrix;
     }
     spaces[prim.path] = space;
-    if (prim.typeName == "Mesh" && SubdivisionMesh::isSubdivided(prim, time)) {
+    // A skinned mesh here poses alike in every instance (delegate/skinned_instances.h): posed once.
+    const MeshSource source = meshSource(stage, prim, time, context.warn);
+    const usd::PrimSpec& mesh = source.prim(prim);
+    if (mesh.typeName == "Mesh" && SubdivisionMesh::isSubdivided(mesh, time)) {
         contents.subdivided.push_back(
-            {std::make_shared<const SubdivisionMesh>(stage, prim, time, context.convertColor, warnHere), space});
-    } else if (prim.typeName == "Mesh") {
-        for (MeshPart& part : meshPartsFromPrim(stage, prim, time, space, context.convertColor, warnHere))
+            {std::make_shared<const SubdivisionMesh>(stage, mesh, time, context.convertColor, warnHere), space});
+    } else if (mesh.typeName == "Mesh") {
+        for (MeshPart& part : meshPartsFromPrim(stage, mesh, time, space, context.convertColor, warnHere))
             parts.push_back(std::move(part));
     } else if (isImplicitType(prim.typeName)) {
-        parts.push_back({implicitMeshFromPrim(PrimReader(prim, time), space, context.convertColor, warnHere),
-                         boundMaterialPath(stage, prim)});
+        const bool skinned = isSkelDeformed(stage, prim);  // posed in its own space, then placed
+        render::MeshDesc surface = implicitMeshFromPrim(PrimReader(prim, time), skinned ? Matrix4::identity() : space,
+                                                        context.convertColor, warnHere);
+        if (skinned && skinSurface(stage, prim, time, context.warn, surface))
+            surface = render::transformMesh(surface, space);
+        parts.push_back({std::move(surface), boundMaterialPath(stage, prim)});
     } else if (isCurvesType(prim.typeName)) {
         contents.curves.push_back(
             {transformCurves(curvesFromPrim(PrimReader(prim, time), context.convertColor, warnHere), space),

@@ -5,6 +5,7 @@
 #include <set>
 
 #include "delegate/motion_steps.h"
+#include "delegate/prim_copy.h"
 #include "delegate/scene_delegate.h"
 #include "scene/layer_stack.h"
 
@@ -72,6 +73,23 @@ void moveByVelocities(const usd::Stage& stage, const usd::PrimSpec& prim, double
                               (0.5 * dt * dt);
         positions[i] = Vec3f(Vec3d(positions[i]) + toWorld.transformVector(step));
     }
+}
+
+std::unique_ptr<usd::PrimSpec> withPointsMovedByVelocities(const usd::Stage& stage, const usd::PrimSpec& prim,
+                                                           double time, double velocityFrame) {
+    if (std::isnan(velocityFrame) || !movesByVelocities(prim)) return nullptr;
+    const std::optional<std::vector<double>> points = PrimReader(prim, time).numbers("points", 3);
+    if (!points) return nullptr;
+    std::vector<Vec3f> positions;
+    for (std::size_t i = 0; i + 2 < points->size(); i += 3)
+        positions.push_back(Vec3f(Vec3d((*points)[i], (*points)[i + 1], (*points)[i + 2])));
+    moveByVelocities(stage, prim, time, velocityFrame, Matrix4::identity(), positions);
+    std::vector<double> moved;
+    moved.reserve(points->size());
+    for (const Vec3f& p : positions) moved.insert(moved.end(), {p.x, p.y, p.z});
+    std::unique_ptr<usd::PrimSpec> copy = copyPrim(prim);
+    setArray(*copy, "points", "point3f[]", std::move(moved), 3);
+    return copy;
 }
 
 std::optional<InstanceVelocityMotion> instanceVelocityMotion(const usd::Stage& stage, const usd::PrimSpec& instancer,

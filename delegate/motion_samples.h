@@ -17,7 +17,7 @@
 //     (gathered by delegate/motion_steps.h);
 //   - an instance (native, or of a PointInstancer) whose transform differs gets
 //     InstanceDesc::motionTransforms;
-//   - a Mesh's or Points' points that are not time-sampled move by their `velocities` (units per second) and
+//   - a Mesh's, Points' or curves' points that are not time-sampled move by their `velocities` (units per second) and
 //     `accelerations`, as UsdGeomPointBased::ComputePointsAtTime moves them, and PointInstancer
 //     instances by `velocities` and `angularVelocities` (degrees per second) (applied at sync
 //     when DelegateOptions::velocityFrame is set: moveByVelocities, instanceVelocityMotion).
@@ -28,6 +28,7 @@
 #pragma once
 
 #include <functional>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -53,6 +54,12 @@ std::vector<double> motionStepTimes(const usd::Stage& stage, double frame, doubl
 // `points` are not time-sampled and the velocities have one entry per point (else nothing moves).
 void moveByVelocities(const usd::Stage& stage, const usd::PrimSpec& prim, double time, double velocityFrame,
                       const Matrix4& toWorld, std::vector<Vec3f>& positions);
+
+// `prim` with its `points` moved from the `velocityFrame` to `time` as moveByVelocities moves
+// them (a copy, for the adapters that read points they process further: curves); nullptr when
+// they do not move.
+std::unique_ptr<usd::PrimSpec> withPointsMovedByVelocities(const usd::Stage& stage, const usd::PrimSpec& prim,
+                                                           double time, double velocityFrame);
 
 // A PointInstancer's instances moved from `velocityFrame` to `time`: for instance i, the offset
 // of its position and the rotation applied before its orientation. Nullopt when `positions` are

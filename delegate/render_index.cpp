@@ -7,6 +7,7 @@
 #include "delegate/geom_subset.h"
 #include "delegate/implicit_geometry.h"
 #include "delegate/light_adapter.h"
+#include "delegate/mesh_source.h"
 #include "delegate/skel_binding.h"
 #include "delegate/points_rprim.h"
 #include "delegate/polygon_dicing.h"
@@ -92,12 +93,10 @@ void MeshRprim::syncData(const SyncContext& context, const usd::PrimSpec* spec, 
     // A moved mesh keeps its object-space data, unless it is skinned: its points are placed by its
     // skeleton, whatever its own transform.
     if (!spec || ((bits & ~std::uint32_t(kDirtyTransform)) == 0 && !skinned_)) return;
-    const std::optional<SkinnedPose> pose =
-        spec->typeName == "Mesh" ? skinnedPose(context.stage, *spec, context.time, context.warn) : std::nullopt;
-    skinned_ = pose.has_value();
-    skinAnimated_ = pose && pose->animated;
-    const std::unique_ptr<usd::PrimSpec> posed = pose ? posedMeshSpec(*spec, *pose) : nullptr;
-    const usd::PrimSpec& prim = posed ? *posed : *spec;
+    const MeshSource source = meshSource(context.stage, *spec, context.time, context.warn);
+    skinned_ = source.pose.has_value();
+    skinAnimated_ = source.pose && source.pose->animated;
+    const usd::PrimSpec& prim = source.prim(*spec);
     ++dataReads_;
     auto warn = [&](const std::string& message) { context.warn(prim.path, message); };
     if ((bits & ~std::uint32_t(kDirtyTransform | kDirtyPoints)) == 0 && subdivided_.size() == 1) {

@@ -18,6 +18,7 @@
 #include "delegate/light_adapter.h"
 #include "delegate/points_rprim.h"
 #include "delegate/polygon_dicing.h"
+#include "delegate/skinned_instances.h"
 #include "delegate/motion_samples.h"
 #include "render/mesh_transform.h"
 
@@ -133,9 +134,14 @@ void SceneDelegate::populate(const std::string& root) {
         // not a native instance of geometry.
         if (instanceRoot.empty() && !isGeometryType(type) && type != "Material" &&
             !instancePrototypeKey(prim).empty()) {
-            index_.insert(std::make_unique<InstanceRprim>(prim.path));
-            instanceRoot = prim.path;  // its geometry is the prototype's; lights and cameras stay per prim
-            return true;
+            const std::optional<PerInstancePose> posed = perInstancePose(stage_, prim);
+            if (!posed) {
+                index_.insert(std::make_unique<InstanceRprim>(prim.path));
+                instanceRoot = prim.path;  // its geometry is the prototype's; lights and cameras stay per prim
+                return true;
+            }
+            // Posed per instance (delegate/skinned_instances.h): its prims are prims of their own.
+            options_.warn(prim.path, deinstancedWarning(*posed));
         }
         if (isGeometryType(type) || type == "PointInstancer") {
             // In an instance, the prototype holds them; a point instancer's prototypes, lights

@@ -1,7 +1,9 @@
 #include "delegate/skel_binding.h"
 
+#include <algorithm>
 #include <map>
 
+#include "delegate/prim_copy.h"
 #include "delegate/primvar.h"
 #include "delegate/render_index.h"
 #include "delegate/skel_blend_shapes.h"
@@ -144,27 +146,60 @@ struct Deformable {
     bool perPointNormals = false;
 };
 
+// The nearest prim from `path` up to `root` authoring attribute `name`.
+const usd::PrimSpec* nearestAuthoring(const usd::Stage& stage, const std::string& path, const std::string& root,
+                                      const char* name) {
+    return nearest(stage, path, root, [name](const usd::PrimSpec& p) { return p.attribute(name) != nullptr; });
+}
+
+// The prims a prim's UsdSkel binding below its SkelRoot reads: each binding attribute's nearest
+// owner, the skeleton and its animation (nullptr where there is none).
+struct BindingSources {
+    const usd::PrimSpec* indices = nullptr;  // primvars:skel:jointIndices
+    const usd::PrimSpec* weights = nullptr;  // primvars:skel:jointWeights
+    const usd::PrimSpec* joints = nullptr;   // skel:joints
+    const usd::PrimSpec* geomBind = nullptr;
+    const usd::PrimSpec* method = nullptr;  // primvars:skel:skinningMethod
+    const usd::PrimSpec* skeletonOwner = nullptr;
+    const usd::PrimSpec* skeleton = nullptr;
+    const usd::PrimSpec* animationOwner = nullptr;
+    const usd::PrimSpec* animation = nullptr;
+};
+
+// `prim`'s binding below `root`, or nullopt when nothing of UsdSkel deforms it; raises SceneError
+// when its skeleton or animation cannot be found.
+std::optional<BindingSources> bindingSources(const usd::Stage& stage, const usd::PrimSpec& prim,
+                                             const std::string& root) {
+    BindingSources s;
+    s.indices = nearestAuthoring(stage, prim.path, root, kJointIndices);
+    if (!s.indices && !hasTargets(prim, "skel:blendShapeTargets")) return std::nullopt;
+    s.skeletonOwner =
+        nearest(stage, prim.path, root, [](const usd::PrimSpec& p) { return hasTargets(p, "skel:skeleton"); });
+    if (!s.skeletonOwner)
+        PrimReader(prim, 0.0).fail(
+            "has joint influences or blend shapes but no skel:skeleton is bound to it or above it in " + root);
+    s.skeleton = &target(stage, *s.skeletonOwner, "skel:skeleton", "Skeleton");
+    s.animationOwner = nearest(stage, s.skeleton->path, "/",
+                               [](const usd::PrimSpec& p) { return hasTargets(p, "skel:animationSource"); });
+    if (s.animationOwner) s.animation = &target(stage, *s.animationOwner, "skel:animationSource", "SkelAnimation");
+    s.weights = nearestAuthoring(stage, prim.path, root, kJointWeights);
+    s.joints = nearestAuthoring(stage, prim.path, root, "skel:joints");
+    s.geomBind = nearestAuthoring(stage, prim.path, root, "primvars:skel:geomBindTransform");
+    s.method = nearestAuthoring(stage, prim.path, root, "primvars:skel:skinningMethod");
+    return s;
+}
+
 // Poses `shape`, the geometry of `prim`, by the prim's UsdSkel binding below `root`, into the
 // prim's own space. False when nothing of UsdSkel deforms the prim; raises SceneError when its
 // binding cannot apply. `animated`: whether the pose changes with time.
 bool deform(const usd::Stage& stage, const usd::PrimSpec& prim, const std::string& root, double time, const Warn& warn,
             Deformable& shape, bool& animated) {
-    const PrimReader reader(prim, time);
-    const usd::PrimSpec* indicesOwner =
-        nearest(stage, prim.path, root, [](const usd::PrimSpec& p) { return p.attribute(kJointIndices) != nullptr; });
-    const bool shaped = hasTargets(prim, "skel:blendShapeTargets");
-    if (!indicesOwner && !shaped) return false;  // nothing of UsdSkel deforms it
-    const usd::PrimSpec* skelOwner =
-        nearest(stage, prim.path, root, [](const usd::PrimSpec& p) { return hasTargets(p, "skel:skeleton"); });
-    if (!skelOwner)
-        reader.fail("has joint influences or blend shapes but no skel:skeleton is bound to it or above it in " + root);
-    const usd::PrimSpec& skeletonPrim = target(stage, *skelOwner, "skel:skeleton", "Skeleton");
+    const std::optional<BindingSources> sources = bindingSources(stage, prim, root);
+    if (!sources) return false;  // nothing of UsdSkel deforms it
+    const usd::PrimSpec& skeletonPrim = *sources->skeleton;
+    const usd::PrimSpec* animation = sources->animation;
     auto warnAt = [&](const std::string& path) { return [&warn, path](const std::string& m) { warn(path, m); }; };
     const Skeleton skeleton = readSkeleton(PrimReader(skeletonPrim, time), warnAt(skeletonPrim.path));
-    const usd::PrimSpec* animOwner = nearest(
-        stage, skeletonPrim.path, "/", [](const usd::PrimSpec& p) { return hasTargets(p, "skel:animationSource"); });
-    const usd::PrimSpec* animation =
-        animOwner ? &target(stage, *animOwner, "skel:animationSource", "SkelAnimation") : nullptr;
     const std::optional<PrimReader> animationReader =
         animation ? std::optional<PrimReader>(std::in_place, *animation, time) : std::nullopt;
     const SkeletonPose skeletonPose =
@@ -174,15 +209,11 @@ bool deform(const usd::Stage& stage, const usd::PrimSpec& prim, const std::strin
     animated = applyBlendShapes(stage, prim, time, skeletonPose, warn, shape.points,
                                 shape.perPointNormals ? &shape.normals : nullptr) ||
                animated;
-    if (!indicesOwner) return true;  // blend shapes alone: the prim's own space
+    if (!sources->indices) return true;  // blend shapes alone: the prim's own space
 
-    const JointInfluences influences = readInfluences(
-        *indicesOwner,
-        nearest(stage, prim.path, root, [](const usd::PrimSpec& p) { return p.attribute(kJointWeights) != nullptr; }),
-        time);
+    const JointInfluences influences = readInfluences(*sources->indices, sources->weights, time);
     std::vector<Matrix4> skinning = skeletonPose.skinning;
-    if (const usd::PrimSpec* jointsOwner = nearest(
-            stage, prim.path, root, [](const usd::PrimSpec& p) { return p.attribute("skel:joints") != nullptr; })) {
+    if (const usd::PrimSpec* jointsOwner = sources->joints) {
         std::map<std::string, std::size_t> index;
         for (std::size_t j = 0; j < skeleton.joints.size(); ++j) index.emplace(skeleton.joints[j], j);
         skinning.clear();
@@ -193,17 +224,13 @@ bool deform(const usd::Stage& stage, const usd::PrimSpec& prim, const std::strin
         }
     }
     if (std::optional<std::string> problem = influences.problem(shape.points.size(), skinning.size()))
-        PrimReader(*indicesOwner, time).fail(*problem);
+        PrimReader(*sources->indices, time).fail(*problem);
     Matrix4 geomBind = Matrix4::identity();
-    if (const usd::PrimSpec* owner = nearest(stage, prim.path, root, [](const usd::PrimSpec& p) {
-            return p.attribute("primvars:skel:geomBindTransform") != nullptr;
-        }))
+    if (const usd::PrimSpec* owner = sources->geomBind)
         if (auto m = PrimReader(*owner, time).numbers("primvars:skel:geomBindTransform", 16); m && m->size() == 16)
             geomBind = Matrix4::fromUsdRowMajor(m->data());
     SkinningMethod method = SkinningMethod::ClassicLinear;
-    if (const usd::PrimSpec* owner = nearest(stage, prim.path, root, [](const usd::PrimSpec& p) {
-            return p.attribute("primvars:skel:skinningMethod") != nullptr;
-        })) {
+    if (const usd::PrimSpec* owner = sources->method) {
         const std::string name = PrimReader(*owner, time).token({"primvars:skel:skinningMethod"}, "classicLinear");
         if (name == "dualQuaternion")
             method = SkinningMethod::DualQuaternion;
@@ -214,7 +241,8 @@ bool deform(const usd::Stage& stage, const usd::PrimSpec& prim, const std::strin
     skinPoints(method, geomBind, skinning, influences, shape.points);
     skinNormals(method, geomBind, skinning, influences, shape.normalPoint, shape.normals);
     const std::optional<Matrix4> fromWorld = worldTransformOf(stage, prim.path, time, warn).matrix.inverse();
-    if (!fromWorld) reader.fail("its transform is not invertible, so its skinned points cannot be placed");
+    if (!fromWorld)
+        PrimReader(prim, time).fail("its transform is not invertible, so its skinned points cannot be placed");
     const Matrix4 toPrim =
         *fromWorld * worldTransformOf(stage, skeletonPrim.path, time, warn).matrix;  // skeleton space -> the prim's
     for (Vec3d& p : shape.points) p = toPrim.transformPoint(p);
@@ -258,37 +286,13 @@ auto warnedPose(const usd::PrimSpec& prim, const Warn& warn, Pose&& pose) -> dec
     }
 }
 
-std::unique_ptr<usd::PrimSpec> clone(const usd::PrimSpec& prim) {
-    auto copy = std::make_unique<usd::PrimSpec>();
-    copy->specifier = prim.specifier;
-    copy->typeName = prim.typeName;
-    copy->name = prim.name;
-    copy->path = prim.path;
-    copy->metadata = prim.metadata;
-    copy->attributes = prim.attributes;
-    copy->relationships = prim.relationships;
-    copy->location = prim.location;
-    for (const auto& child : prim.children) copy->children.push_back(clone(*child));
-    return copy;
-}
-
-// Sets `name` to the array `values` for every time (no time samples).
-void setArray(usd::PrimSpec& prim, const std::string& name, const std::string& typeName, std::vector<double> values) {
-    for (usd::AttributeSpec& a : prim.attributes)
-        if (a.name == name) {
-            a.timeSamples = {};
-            a.hasDefault = true;
-            a.defaultValue = usd::Value::numeric(typeName, std::move(values), 3, true);
-            return;
-        }
-}
-
 }  // namespace
 
 std::optional<SkinnedPose> skinnedPose(const usd::Stage& stage, const usd::PrimSpec& mesh, double time,
                                        const Warn& warn) {
+    // Bindings outside a SkelRoot mean nothing; an unbound mesh's points are not read here.
+    if (!isSkelDeformed(stage, mesh)) return std::nullopt;
     const std::string root = skelRootAbove(stage, mesh.path);
-    if (root.empty()) return std::nullopt;  // bindings outside a SkelRoot mean nothing
     return warnedPose(mesh, warn, [&] { return meshPose(stage, mesh, root, time, warn); });
 }
 
@@ -312,15 +316,45 @@ std::optional<bool> skinSurface(const usd::Stage& stage, const usd::PrimSpec& pr
     });
 }
 
+bool isSkelDeformed(const usd::Stage& stage, const usd::PrimSpec& prim) {
+    const std::string root = skelRootAbove(stage, prim.path);
+    return !root.empty() &&
+           (hasTargets(prim, "skel:blendShapeTargets") || nearestAuthoring(stage, prim.path, root, kJointIndices));
+}
+
+std::vector<std::string> skelInputsOutside(const usd::Stage& stage, const usd::PrimSpec& prim,
+                                           const std::string& subtree) {
+    const std::string root = skelRootAbove(stage, prim.path);
+    if (root.empty()) return {};
+    std::optional<BindingSources> sources;
+    try {
+        sources = bindingSources(stage, prim, root);
+    } catch (const SceneError&) {
+        return {};  // the binding cannot apply: the prim renders in its rest pose wherever it is
+    }
+    if (!sources) return {};
+    std::vector<std::string> read;
+    for (const usd::PrimSpec* p :
+         {sources->indices, sources->weights, sources->joints, sources->geomBind, sources->method,
+          sources->skeletonOwner, sources->skeleton, sources->animationOwner, sources->animation})
+        if (p) read.push_back(p->path);
+    if (const usd::RelationshipSpec* shapes = prim.relationship("skel:blendShapeTargets"))
+        for (const std::string& t : shapes->targets) read.push_back(resolveTargetPath(prim.path, t));
+    std::erase_if(read, [&](const std::string& path) { return isAtOrBelow(path, subtree); });
+    std::sort(read.begin(), read.end());
+    read.erase(std::unique(read.begin(), read.end()), read.end());
+    return read;
+}
+
 std::unique_ptr<usd::PrimSpec> posedMeshSpec(const usd::PrimSpec& mesh, const SkinnedPose& pose) {
-    std::unique_ptr<usd::PrimSpec> posed = clone(mesh);
+    std::unique_ptr<usd::PrimSpec> posed = copyPrim(mesh);
     std::erase_if(posed->attributes, [&](const usd::AttributeSpec& a) {
         if (a.name.starts_with("primvars:skel:")) return true;
         const bool normals = a.name == "normals" || a.name.starts_with("primvars:normals");
         return normals && (!pose.normals || a.name != pose.normalsName);
     });
-    setArray(*posed, "points", "point3f[]", pose.points);
-    if (pose.normals) setArray(*posed, pose.normalsName, "normal3f[]", *pose.normals);
+    setArray(*posed, "points", "point3f[]", pose.points, 3);
+    if (pose.normals) setArray(*posed, pose.normalsName, "normal3f[]", *pose.normals, 3);
     return posed;
 }
 

@@ -19,8 +19,12 @@
 // its own space. Authored normals (vertex, varying or faceVarying, not indexed) are skinned like
 // their points; others are dropped, and the render core shades the triangles' geometric normals.
 //
-// Not skinned: meshes inside native instances and point-instancer prototypes (they render in
-// their rest pose), and curves and points (they render as authored).
+// Inside native instances: a skinned prim whose pose reads nothing outside its instance
+// (skelInputsOutside is empty) is posed once, in the shared prototype; an instance holding one
+// that does (an animation bound above the instanceable prim, as crowds do) cannot share a
+// prototype, and the delegate de-instances it (delegate/skinned_instances.h). Not skinned:
+// meshes inside point-instancer prototypes (they render in their rest pose), and curves and
+// points (they render as authored).
 //
 // A binding that cannot apply (no skeleton, a skeleton or influences that are malformed, sizes
 // that do not match) leaves the mesh in its rest pose with one warning naming the prim, as Hydra
@@ -57,6 +61,17 @@ std::optional<SkinnedPose> skinnedPose(const usd::Stage& stage, const usd::PrimS
 // not skinned (or its binding is malformed: warned); else whether the pose is animated.
 std::optional<bool> skinSurface(const usd::Stage& stage, const usd::PrimSpec& prim, double time, const Warn& warn,
                                 render::MeshDesc& surface);
+
+// Whether UsdSkel deforms `prim`: it lies below a SkelRoot and has joint influences (its own or
+// inherited) or blend shapes. Whether its binding can apply is for skinnedPose to find.
+bool isSkelDeformed(const usd::Stage& stage, const usd::PrimSpec& prim);
+
+// The prims outside `subtree` (a path) that the UsdSkel pose of `prim` reads: the nearest owners
+// of its binding attributes and of `skel:skeleton`, the Skeleton, the prim binding its
+// `skel:animationSource` and that SkelAnimation, and its BlendShapes; sorted, each once. Empty
+// when the prim is not skinned or its binding cannot apply (it renders in its rest pose).
+std::vector<std::string> skelInputsOutside(const usd::Stage& stage, const usd::PrimSpec& prim,
+                                           const std::string& subtree);
 
 // A copy of the mesh's prim spec (children included) holding `pose` as its points and normals,
 // with UsdSkel's primvars removed: what the mesh adapters read for a skinned mesh.

@@ -244,10 +244,10 @@ def Xform "Strong"
 
 TEST(SceneDelegate, SkipsInvisibleGuidesAndWarnsOncePerUnsupportedType) {
     auto p = populate(R"(
-def TetMesh "A"
+def Hypersphere "A"
 {
 }
-def TetMesh "B"
+def Hypersphere "B"
 {
 }
 def Mesh "Hidden"
@@ -276,7 +276,7 @@ over "NotDefined"
 )");
     EXPECT_TRUE(p.result.scene.meshes.empty());
     ASSERT_EQ(p.warnings.size(), 1u);
-    EXPECT_NE(p.warnings[0].find("'TetMesh' is not supported yet; skipped 2 prims"), std::string::npos)
+    EXPECT_NE(p.warnings[0].find("'Hypersphere' is not supported yet; skipped 2 prims"), std::string::npos)
         << p.warnings[0];
 }
 
