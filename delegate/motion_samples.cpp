@@ -138,6 +138,7 @@ void addMotion(SceneDelegate& delegate, usd::Stage& stage, const DelegateOptions
     std::vector<std::vector<Matrix4>> instanceSteps(scene.instances.size());
     std::vector<bool> instanceStill(scene.instances.size(), false);
     std::vector<Matrix4> cameraSteps;
+    std::vector<render::CameraLensStep> lensSteps;
     for (double time : times) {
         delegate.setMotionStep(time, options.time);
         delegate.sync();
@@ -145,8 +146,10 @@ void addMotion(SceneDelegate& delegate, usd::Stage& stage, const DelegateOptions
         meshSteps.add(scene.meshes, step.meshes, options.warn);
         curveSteps.add(scene.curves, step.curves, options.warn);
         pointSteps.add(scene.points, step.points, options.warn);
-        if (step.camera && scene.camera && step.camera->name == scene.camera->name)
+        if (step.camera && scene.camera && step.camera->name == scene.camera->name) {
             cameraSteps.push_back(step.camera->transform);
+            lensSteps.push_back({step.camera->focalLength, step.camera->fStop, step.camera->focusDistance});
+        }
         for (std::size_t i = 0; i < scene.instances.size(); ++i) {
             const bool same = i < step.instances.size() && step.instances[i].name == scene.instances[i].name &&
                               step.instances[i].prototype == scene.instances[i].prototype;
@@ -164,6 +167,12 @@ void addMotion(SceneDelegate& delegate, usd::Stage& stage, const DelegateOptions
         std::any_of(cameraSteps.begin(), cameraSteps.end(),
                     [&](const Matrix4& s) { return s.m != cameraSteps.front().m; }))
         scene.camera->motionTransforms = std::move(cameraSteps);
+    auto sameLens = [&](const render::CameraLensStep& l) {
+        const render::CameraLensStep& first = lensSteps.front();
+        return l.focalLength == first.focalLength && l.fStop == first.fStop && l.focusDistance == first.focusDistance;
+    };
+    if (scene.camera && lensSteps.size() == times.size() && !std::all_of(lensSteps.begin(), lensSteps.end(), sameLens))
+        scene.camera->motionLenses = std::move(lensSteps);
     for (std::size_t i = 0; i < scene.instances.size(); ++i) {
         std::vector<Matrix4>& steps = instanceSteps[i];
         if (instanceStill[i] ||

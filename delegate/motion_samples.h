@@ -21,8 +21,9 @@
 //     `accelerations`, as UsdGeomPointBased::ComputePointsAtTime moves them, and PointInstancer
 //     instances by `velocities` and `angularVelocities` (degrees per second) (applied at sync
 //     when DelegateOptions::velocityFrame is set: moveByVelocities, instanceVelocityMotion).
-//   - the camera, when its transform differs between steps, gets CameraDesc::motionTransforms
-//     (render/camera_motion.h; its focal length and focus distance stay the frame's).
+//   - the camera, when its transform differs between steps, gets CameraDesc::motionTransforms,
+//     and when its focalLength, fStop or focusDistance does (a zoom, a focus pull),
+//     CameraDesc::motionLenses (render/camera_motion.h).
 // The lights stay where they are at the frame; so do emissive meshes (their triangles are
 // lights) and meshes inside prototypes.
 #pragma once

@@ -291,8 +291,10 @@ void splatToCamera(const BdptState& state, const RenderScene& scene, const rende
     for (std::size_t i = 0; i < light.vertices.size(); ++i) {
         const Vertex& y = light.vertices[i];
         const int s = static_cast<int>(i) + 2;
+        // The aperture point it joins, drawn as camera rays draw theirs (render/camera.h, Importance).
+        const Vec2f aperture = camera.lens().isPinhole() ? Vec2f(0.0f) : camera.lens().sampleAperture(rng.next2D());
         if (y.walking) continue;
-        const std::optional<render::Camera::Connection> c = camera.connect(y.point());
+        const std::optional<render::Camera::Connection> c = camera.connect(y.point(), aperture);
         if (!c) continue;
         arena.reset();
         const Shading sh(y, arena);
@@ -303,14 +305,15 @@ void splatToCamera(const BdptState& state, const RenderScene& scene, const rende
         // Visible as a camera ray sees it: from the near plane on, hidden by surfaces and by lights'
         // shapes (which camera rays stop at, and RenderScene::occluded passes through).
         ++counters.shadow;
-        const Ray look{camera.position(), -c->direction, c->nearDistance, c->distance * (1.0f - kLookShortening)};
+        const Ray look{c->lensPoint, -c->direction, c->nearDistance, c->distance * (1.0f - kLookShortening),
+                       y.hit.time};
         if (!(look.tMax > look.tMin) || scene.intersect(look)) continue;
         // Media fill the whole way to the pinhole, as for the camera subpath's first flight.
         const Crossing crossing =
             cross(cameraMedium, {y.leaving(c->direction), c->direction, c->distance}, std::max(hero, 0), rng);
         if (isBlack(crossing.tr.throughput)) continue;
         setLightDensities(x, light, s);
-        x[s - 1].fromCamera = toArea(c->density, camera.position(), y);
+        x[s - 1].fromCamera = toArea(c->density, c->lensPoint, y);
         x[s - 1].delta = false;
         const float pdfBack = toCamera.pdfReverse;  // y_{s-2} drawn from the camera side
         x[s - 2].fromCamera = s == 2 ? cameraReaches(light.origin, pdfBack, y.point())
@@ -332,14 +335,12 @@ void splatToCamera(const BdptState& state, const RenderScene& scene, const rende
 std::unique_ptr<RenderState> Bdpt::prepare(const RenderScene& scene, const render::Camera& camera, std::uint64_t,
                                            SplatFilm* splats) const {
     auto state = std::make_unique<BdptState>();
-    state->splats = splats && camera.hasImportance() ? splats : nullptr;
+    state->splats = splats && camera.at(0.0f).hasImportance() ? splats : nullptr;
     if (aovs_ && !aovs_->empty()) {
         state->aovs = *aovs_;
         state->lightEvents = LightEvents(scene);
     }
-    const std::string why = !splats          ? "the film is a window of the image (a tile)"
-                            : camera.moves() ? "the camera moves during the shutter"
-                                             : "an orthographic camera or one with depth of field";
+    const std::string why = !splats ? "the film is a window of the image (a tile)" : "an orthographic camera";
     state->lightTracingOff =
         state->splats ? "" : "light tracing (t = 1) off: " + why + "; point-light caustics seen directly are missed";
     std::vector<double> weights;
@@ -446,9 +447,11 @@ private:
         if (!z_.empty()) {
             v.fromOwn = lastDelta ? 1.0f : toArea(lastPdf, start, v);
         } else if (state_.splats) {  // z_1: drawn by the camera with its density over the whole image (bdpt_mis.h)
-            const std::optional<render::Camera::Connection> c = camera_.connect(v.point());
+            // (from the aperture point the ray left, render/camera.h)
+            const std::optional<render::Camera::Connection> c =
+                camera_.connect(v.point(), camera_.apertureOf(ray.origin));
             cameraJoins_ = c.has_value();
-            if (c) v.fromOwn = toArea(c->density, camera_.position(), v);
+            if (c) v.fromOwn = toArea(c->density, c->lensPoint, v);
         }
         if (!v.inMedium) {
             if (depth == 0) recordFirstHit(out_, *hit, v.wo, camera_);
@@ -652,8 +655,11 @@ FilmSample Bdpt::sample(const RenderState& renderState, const RenderScene& scene
     const LightSubpath light = traceLightSubpath(scene, state.emitters, state.emitterChoice, state.emitterProbability,
                                                  lightTracing ? maxDepth_ : maxDepth_ - 1, hero, cameraRay.time,
                                                  !state.aovs.empty(), rng, counters, arena);
-    if (lightTracing) splatToCamera(state, scene, camera, light, hero, rng, counters, joinArena);
-    return CameraWalk(state, maxDepth_, light, hero, scene, camera, rng, counters).run(cameraRay);
+    // Both subpaths meet the camera where it is at the sample's time.
+    std::optional<render::Camera> moved;
+    const render::Camera& still = camera.moves() ? moved.emplace(camera.at(cameraRay.time)) : camera;
+    if (lightTracing) splatToCamera(state, scene, still, light, hero, rng, counters, joinArena);
+    return CameraWalk(state, maxDepth_, light, hero, scene, still, rng, counters).run(cameraRay);
 }
 
 }  // namespace fluence::integrators

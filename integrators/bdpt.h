@@ -20,14 +20,17 @@
 //   s = 1   next-event estimation at z_{t-1}: a light chosen by the light tree and sampled by
 //           its own sampler (exactly `path`'s), with a shadow ray;
 //   s >= 2  y_{s-1} joined to z_{t-1} by a shadow ray, both non-delta;
-//   t = 1   light tracing: y_{s-1} (s >= 2, non-delta) joined to the pinhole
-//           (render::Camera::connect), its light splatted into whichever pixel it lands on
+//   t = 1   light tracing: y_{s-1} (s >= 2, non-delta) joined to the pinhole, or to a point of a
+//           thin lens's aperture drawn per vertex as camera rays draw theirs
+//           (render::Camera::connect), with the camera where it is at the sample's time (a moving
+//           camera's still copy, Camera::at, which the camera subpath's densities use too), its
+//           light splatted into whichever pixel it lands on
 //           (core/splat_film.h: fixed-point sums, bit-identical at any thread count), and the
 //           splat sums divided by the light paths per pixel (one per camera sample) when the film
 //           resolves. The light subpath may then hold maxDepth scattering vertices.
 // t = 0 (a light subpath hitting the camera) does not exist: the pinhole cannot be hit.
-// LIMITS OF t = 1. It needs the render loop's splat film and a pinhole: a tile of the image (its
-// film a window, integrators/renderer.h) and an orthographic camera or one with depth of field leave it out, and say so in
+// LIMITS OF t = 1. It needs the render loop's splat film and a perspective camera: a tile of the
+// image (its film a window, integrators/renderer.h) and an orthographic camera leave it out, and say so in
 // the render summary (and `fluence render` warns for tiles); the MIS weights then exclude it
 // (bdpt_mis.h, StrategyPath::lightTracing) and the estimator stays unbiased for every path the
 // other strategies can draw, as before t = 1 was added. A light seen directly is left to s = 0
@@ -100,7 +103,7 @@ public:
     explicit Bdpt(const IntegratorSettings& settings) : maxDepth_(settings.maxDepth), aovs_(settings.lightPathAovs) {}
 
     // The per-render state: the choice of light for light subpaths, and light tracing's splat
-    // film (t = 1 is left out without one, or with an orthographic camera or depth of field, and the summary says why).
+    // film (t = 1 is left out without one, or with an orthographic camera, and the summary says why).
     std::unique_ptr<RenderState> prepare(const render::RenderScene& scene, const render::Camera& camera,
                                          std::uint64_t seed, SplatFilm* splats) const override;
     FilmSample sample(const RenderState& state, const render::RenderScene& scene, const render::Camera& camera,

@@ -7,7 +7,7 @@
 // x_0 ... x_{s-1} by the light subpath and x_s ... x_k by the camera subpath, and joins x_{s-1}
 // to x_s (s = 0: the camera subpath hits the light itself). Strategy s = k (t = 1) is light
 // tracing: the light subpath's x_{k-1} joined to the camera x_k, splatting into the pixel it lands
-// on; it exists only when StrategyPath::lightTracing says the render uses it (a pinhole camera and
+// on; it exists only when StrategyPath::lightTracing says the render uses it (a perspective camera and
 // a film that is the whole image, integrators/bdpt.h), and for k >= 2 (a light seen directly is
 // left to s = 0). t = 0 (a light subpath hitting the camera) never exists. The weights sum to one
 // over the strategies that exist.
@@ -19,9 +19,10 @@
 // the density of its neighbours drawn through it a Dirac delta, which is stored as 1 on both
 // sides (the same delta, so it cancels between the strategies that hold it, and any strategy that
 // would join a path at x_i is excluded). The camera x_k is a pinhole, a delta in position for every
-// strategy alike, so it enters no ratio (its densities are stored as 1); x_{k-1}.fromCamera is the
-// camera's density of its ray towards x_{k-1} over the whole image (render/camera.h,
-// directionDensity), as an area density: one light path is traced per camera sample, so light
+// strategy alike, or a point of a thin lens's aperture, drawn uniformly over it by every strategy
+// alike (camera rays and light tracing's joins), so it enters no ratio (its densities are stored
+// as 1); x_{k-1}.fromCamera is the camera's density of its ray from x_k towards x_{k-1} over the
+// whole image (render/camera.h, directionDensity), as an area density: one light path is traced per camera sample, so light
 // tracing draws as many paths per pixel as the camera does, and the two densities compare. Strategy 1 is next-event estimation, which chooses the
 // light with the light tree and samples it by its own sampler: x_0's density under it,
 // `neeOrigin`, takes the place of x_0.fromLight for s = 1 alone.

@@ -16,7 +16,11 @@ namespace {
 
 using Value = std::array<float, 4>;
 
-// One AOV's value for one camera sample (`hit` null: a miss).
+// The camera's worldToNdc at the shutter's opening and close (the same for a still camera).
+struct Projections {
+    Matrix4 open, close;
+};
+
 // Where a world point lands on the image, in pixels from its top-left corner (`toNdc`: the camera's
 // worldToNdc).
 Vec2f rasterOf(const render::Camera& camera, const Matrix4& toNdc, const Vec3f& p) {
@@ -26,8 +30,9 @@ Vec2f rasterOf(const render::Camera& camera, const Matrix4& toNdc, const Vec3f& 
     return {float(x / w * camera.imageWidth()), float(y / w * camera.imageHeight())};
 }
 
+// One AOV's value for one camera sample (`hit` null: a miss).
 Value sampleValue(const FirstHitAov& aov, const render::RenderScene& scene, const render::Camera& camera,
-                  const Matrix4& toNdc, const render::Ray& ray, const render::SurfaceHit* hit) {
+                  const Projections& toNdc, const render::Ray& ray, const render::SurfaceHit* hit) {
     Value v{0.0f, 0.0f, 0.0f, 0.0f};
     if (!hit) {
         if (aov.source == FirstHitSource::Depth) v[0] = camera.farClip();
@@ -51,8 +56,9 @@ Value sampleValue(const FirstHitAov& aov, const render::RenderScene& scene, cons
             break;
         }
         case FirstHitSource::MotionVector: {
-            const Vec2f open = rasterOf(camera, toNdc, scene.pointAt(*hit, 0.0f));
-            const Vec2f close = rasterOf(camera, toNdc, scene.pointAt(*hit, 1.0f));
+            // Where the point is at each end of the shutter, seen by the camera where it is then.
+            const Vec2f open = rasterOf(camera, toNdc.open, scene.pointAt(*hit, 0.0f));
+            const Vec2f close = rasterOf(camera, toNdc.close, scene.pointAt(*hit, 1.0f));
             v = {close.x - open.x, open.y - close.y, 0.0f, 0.0f};  // raster y grows downwards
             break;
         }
@@ -100,7 +106,7 @@ Image renderFirstHitAovs(const render::RenderScene& scene, const render::Camera&
     Image image(film.width(), film.height(), channels);
     if (aovs.empty()) return image;
     const std::uint64_t imageWidth = std::uint64_t(settings.imageWidth > 0 ? settings.imageWidth : film.width());
-    const Matrix4 toNdc = camera.worldToNdc();
+    const Projections toNdc{camera.at(0.0f).worldToNdc(), camera.at(1.0f).worldToNdc()};
     const std::vector<Value> missValues = [&] {
         std::vector<Value> values;
         for (const FirstHitAov& aov : aovs)

@@ -4,8 +4,6 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "render/camera_motion.h"
-
 namespace fluence::render {
 
 namespace {
@@ -16,6 +14,10 @@ constexpr float kLensUnit = 0.1f;                  // GfCamera::FOCAL_LENGTH_UNI
 Camera::Camera(const CameraDesc& d, int imageWidth, int imageHeight, const ImageFraming& framing)
     : projection_(d.projection),
       toWorld_(d.transform),
+      hOffset_(d.horizontalApertureOffset),
+      vOffset_(d.verticalApertureOffset),
+      apertureBlades_(d.apertureBlades),
+      apertureRotation_(d.apertureRotation),
       width_(imageWidth),
       height_(imageHeight),
       near_(d.nearClip),
@@ -24,16 +26,17 @@ Camera::Camera(const CameraDesc& d, int imageWidth, int imageHeight, const Image
     if (imageWidth <= 0 || imageHeight <= 0) throw std::invalid_argument("image resolution must be positive");
     if (!(d.horizontalAperture > 0.0f) || !(d.verticalAperture > 0.0f))
         throw std::invalid_argument("camera " + d.name + ": apertures must be positive");
-    if (projection_ == Projection::Perspective && !(d.focalLength > 0.0f))
-        throw std::invalid_argument("camera " + d.name + ": focalLength must be positive");
     if (!(framing.pixelAspectRatio > 0.0f) || !std::isfinite(framing.pixelAspectRatio))
         throw std::invalid_argument("pixelAspectRatio must be positive");
-    if (!(d.fStop >= 0.0f) || !(d.focusDistance >= 0.0f) || d.apertureBlades < 0)
-        throw std::invalid_argument("camera " + d.name +
-                                    ": fStop, focusDistance and apertureBlades must not be negative");
-    if (projection_ == Projection::Perspective && d.fStop > 0.0f && d.focusDistance > 0.0f)
-        lens_ = ThinLens{kLensUnit * d.focalLength / (2.0f * d.fStop), d.focusDistance, d.apertureBlades,
-                         d.apertureRotation};
+    if (d.apertureBlades < 0) throw std::invalid_argument("camera " + d.name + ": apertureBlades must not be negative");
+    const CameraLensStep frameLens{d.focalLength, d.fStop, d.focusDistance};
+    for (const CameraLensStep& lens :
+         d.motionLenses.empty() ? std::vector<CameraLensStep>{frameLens} : d.motionLenses) {
+        if (projection_ == Projection::Perspective && !(lens.focalLength > 0.0f))
+            throw std::invalid_argument("camera " + d.name + ": focalLength must be positive");
+        if (!(lens.fStop >= 0.0f) || !(lens.focusDistance >= 0.0f))
+            throw std::invalid_argument("camera " + d.name + ": fStop and focusDistance must not be negative");
+    }
 
     float hAperture = d.horizontalAperture, vAperture = d.verticalAperture;
     const float apertureAspect = hAperture / vAperture;
@@ -52,20 +55,31 @@ Camera::Camera(const CameraDesc& d, int imageWidth, int imageHeight, const Image
         case ApertureConform::AdjustApertureHeight: vAperture = hAperture / imageAspect; break;
         case ApertureConform::AdjustPixelAspectRatio: pixelAspectRatio_ = apertureAspect / pixels; break;
     }
-
-    float scale = projection_ == Projection::Perspective ? 1.0f / d.focalLength : kOrthographicApertureUnit;
-    halfWidth_ = 0.5f * hAperture * scale;
-    halfHeight_ = 0.5f * vAperture * scale;
-    centreX_ = d.horizontalApertureOffset * scale;
-    centreY_ = d.verticalApertureOffset * scale;
+    hAperture_ = hAperture;
+    vAperture_ = vAperture;
+    setLens(frameLens);
 
     std::optional<Matrix4> toCamera = toWorld_.inverse();
     if (!toCamera) throw std::invalid_argument("camera " + d.name + ": its transform is singular");
     toCamera_ = *toCamera;
     place(toWorld_);
-    if (!d.motionTransforms.empty() && d.motionTransforms.size() < 2)
+    if ((!d.motionTransforms.empty() && d.motionTransforms.size() < 2) ||
+        (!d.motionLenses.empty() && d.motionLenses.size() < 2))
         throw std::invalid_argument("camera " + d.name + ": motion needs at least two time steps");
-    if (!d.motionTransforms.empty()) motion_ = std::make_shared<const std::vector<Matrix4>>(d.motionTransforms);
+    if (!d.motionTransforms.empty() || !d.motionLenses.empty())
+        motion_ = std::make_shared<const CameraMotion>(CameraMotion{d.motionTransforms, d.motionLenses});
+}
+
+void Camera::setLens(const CameraLensStep& lens) {
+    float scale = projection_ == Projection::Perspective ? 1.0f / lens.focalLength : kOrthographicApertureUnit;
+    halfWidth_ = 0.5f * hAperture_ * scale;
+    halfHeight_ = 0.5f * vAperture_ * scale;
+    centreX_ = hOffset_ * scale;
+    centreY_ = vOffset_ * scale;
+    lens_ = ThinLens{};
+    if (projection_ == Projection::Perspective && lens.fStop > 0.0f && lens.focusDistance > 0.0f)
+        lens_ = ThinLens{kLensUnit * lens.focalLength / (2.0f * lens.fStop), lens.focusDistance, apertureBlades_,
+                         apertureRotation_};
 }
 
 void Camera::place(const Matrix4& toWorld) {
@@ -77,13 +91,21 @@ void Camera::place(const Matrix4& toWorld) {
     axisZ_ = Vec3f(toWorld.transformVector({0, 0, 1}));
 }
 
-Ray Camera::generateRay(float x, float y, Vec2f lens, float time) const {
-    if (motion_) {  // a still copy, placed where the camera is at `time`
-        Camera still = *this;
-        still.motion_.reset();
-        still.place(cameraTransformAt(*motion_, time));
-        return still.generateRay(x, y, lens);
+Camera Camera::at(float time) const {
+    Camera still = *this;
+    if (!motion_) return still;
+    still.motion_.reset();
+    if (!motion_->transforms.empty()) {
+        still.place(cameraTransformAt(motion_->transforms, time));
+        // Left as the frame's where the interpolated transform is singular (a scale through 0).
+        if (std::optional<Matrix4> toCamera = still.toWorld_.inverse()) still.toCamera_ = *toCamera;
     }
+    if (!motion_->lenses.empty()) still.setLens(cameraLensAt(motion_->lenses, time));
+    return still;
+}
+
+Ray Camera::generateRay(float x, float y, Vec2f lens, float time) const {
+    if (motion_) return at(time).generateRay(x, y, lens);
     float sx = 2.0f * x / static_cast<float>(width_) - 1.0f;   // -1 left .. 1 right
     float sy = 1.0f - 2.0f * y / static_cast<float>(height_);  // 1 top .. -1 bottom
     float wx = centreX_ + sx * halfWidth_, wy = centreY_ + sy * halfHeight_;

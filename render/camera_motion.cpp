@@ -90,4 +90,12 @@ Matrix4 cameraTransformAt(const std::vector<Matrix4>& steps, float time) {
            Matrix4::fromQuaternion(q.w, q.x, q.y, q.z) * Matrix4::scale(a.scale * (1.0 - f) + b.scale * f);
 }
 
+CameraLensStep cameraLensAt(const std::vector<CameraLensStep>& steps, float time) {
+    const MotionSegment segment = motionSegment(steps.size(), time);
+    const CameraLensStep &a = steps[segment.step], &b = steps[segment.step + 1];
+    const float f = segment.fraction;
+    auto mix = [f](float x, float y) { return x * (1.0f - f) + y * f; };
+    return {mix(a.focalLength, b.focalLength), mix(a.fStop, b.fStop), mix(a.focusDistance, b.focusDistance)};
+}
+
 }  // namespace fluence::render

@@ -297,6 +297,11 @@ enum class Projection { Perspective, Orthographic };
 // USD camera semantics: focal length and apertures in the same unit (tenths of a scene unit by
 // USD convention; only their ratios matter for perspective), camera looks along local -Z with +Y
 // up, clipping range in scene units.
+// UsdGeomCamera's lens at one motion step (CameraDesc::motionLenses).
+struct CameraLensStep {
+    float focalLength = 50.0f, fStop = 0.0f, focusDistance = 0.0f;
+};
+
 struct CameraDesc {
     std::string name;
     Matrix4 transform = Matrix4::identity();  // camera-to-world
@@ -321,6 +326,9 @@ struct CameraDesc {
     // opening, the last at its close; interpolated as render/camera_motion.h says); empty: it
     // stays at `transform`, the frame's.
     std::vector<Matrix4> motionTransforms{};
+    // A zoom or a focus pull: focalLength, fStop and focusDistance at the same evenly spaced times
+    // (each linear between steps, as USD interpolates them); empty: the frame's at every time.
+    std::vector<CameraLensStep> motionLenses{};
 };
 
 // Geometry shared by instances: its meshes, curves and points in the prototype's own space,

@@ -160,6 +160,32 @@ def Camera "Cam"
         describeAt(cameraWithShutter(-0.25, 0.25) + kDeformed, 1.0).result.scene.camera->motionTransforms.empty());
 }
 
+// A zoom and a focus pull during the shutter: the lens at each step, interpolated as USD reads it.
+TEST(MotionSamples, ATimeSampledLensGetsItsValuesAtEachStep) {
+    const Described d = describeAt(R"(
+def Camera "Cam"
+{
+    double shutter:open = -0.25
+    double shutter:close = 0.25
+    float focalLength.timeSamples = { 0: 30, 2: 70 }
+    float focusDistance.timeSamples = { 0: 2, 2: 6 }
+    float fStop = 4
+}
+)" + kDeformed,
+                                   1.0);
+    ASSERT_TRUE(d.result.scene.camera);
+    const render::CameraDesc& camera = *d.result.scene.camera;
+    EXPECT_TRUE(camera.motionTransforms.empty());  // it does not move
+    ASSERT_EQ(camera.motionLenses.size(), 2u);
+    EXPECT_NEAR(camera.motionLenses[0].focalLength, 45.0f, 1e-4f);
+    EXPECT_NEAR(camera.motionLenses[1].focalLength, 55.0f, 1e-4f);
+    EXPECT_NEAR(camera.motionLenses[0].focusDistance, 3.5f, 1e-5f);
+    EXPECT_NEAR(camera.motionLenses[1].focusDistance, 4.5f, 1e-5f);
+    EXPECT_EQ(camera.motionLenses[1].fStop, 4.0f);
+    EXPECT_NEAR(camera.focalLength, 50.0f, 1e-4f);  // the frame's
+    EXPECT_TRUE(describeAt(cameraWithShutter(-0.25, 0.25) + kDeformed, 1.0).result.scene.camera->motionLenses.empty());
+}
+
 TEST(MotionSamples, CurvesWhoseCountChangesRenderStillWithAWarning) {
     const Described d = describeAt(cameraWithShutter(-0.25, 0.25) + R"(
 def BasisCurves "Hair"

@@ -1,10 +1,11 @@
-// The pinhole camera's importance (render/camera.h, "Importance"; render/camera_importance.cpp):
+// The perspective camera's importance (render/camera.h, "Importance"; render/camera_importance.cpp):
 // its direction density integrates to one over the sphere (a quadrature independent of the
 // formula's Jacobian), equals the share of the image a small patch of pixels covers divided by the
 // patch's solid angle (from generateRay's own rays), raster positions invert generateRay, points
 // outside the image or the clipping range land nowhere, connections point at the pinhole, and an
 // orthographic camera has no importance. Under a plain, an offset, non-square one with a pixel
-// aspect ratio, and a non-uniformly scaled transform.
+// aspect ratio, and a non-uniformly scaled transform; and through a thin lens, from each aperture
+// point.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -159,6 +160,63 @@ TEST(CameraImportance, ConnectionsPointAtThePinhole) {
         EXPECT_NEAR(k->importance, k->density / 49.0f, 1e-6f * k->density) << c.name;
         EXPECT_FALSE(camera.connect(rayPoint(r, -1.0f))) << c.name;
     }
+}
+
+// Through a thin lens (a hexagonal aperture, a scaled transform): from the aperture point a camera
+// ray left, the raster position inverts generateRay, the connection ends at the ray's origin along
+// it, and the direction density is the image share of a patch of pixels over its solid angle (rays
+// from one aperture point); a point on the plane of focus lands at the same pixel from every
+// aperture point, one off it does not.
+TEST(CameraImportance, ThroughAThinLensFromEachAperturePoint) {
+    Case c = cameras().back();
+    c.desc.fStop = 1.4f;
+    c.desc.focusDistance = 4.0f;
+    c.desc.apertureBlades = 6;
+    const Camera camera(c.desc, c.width, c.height, c.framing);
+    ASSERT_FALSE(camera.lens().isPinhole());
+    ASSERT_TRUE(camera.hasImportance());
+    std::mt19937 random(5);
+    std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+    for (int i = 0; i < 200; ++i) {
+        const float x = unit(random) * c.width, y = unit(random) * c.height;
+        const Vec2f u{unit(random), unit(random)};
+        const Ray r = camera.generateRay(x, y, u);
+        const Vec2f a = camera.apertureOf(r.origin);
+        const Vec2f sampled = camera.lens().sampleAperture(u);
+        EXPECT_NEAR(a.x, sampled.x, 1e-5f);
+        EXPECT_NEAR(a.y, sampled.y, 1e-5f);
+        const float t = r.tMin + 0.5f + 20.0f * unit(random);
+        const std::optional<Camera::Connection> k = camera.connect(rayPoint(r, t), a);
+        ASSERT_TRUE(k.has_value());
+        EXPECT_NEAR(k->raster.x, x, 2e-3f * c.width);
+        EXPECT_NEAR(k->raster.y, y, 2e-3f * c.height);
+        EXPECT_NEAR(length(k->lensPoint - r.origin), 0.0f, 1e-5f);
+        EXPECT_NEAR(length(k->direction + r.direction), 0.0f, 1e-4f);
+        EXPECT_NEAR(k->distance, t, 1e-3f * t);
+        EXPECT_NEAR(k->nearDistance, r.tMin, 1e-3f * r.tMin);
+        EXPECT_NEAR(k->density, camera.directionDensity(r.direction, a), 1e-3f * k->density);
+        EXPECT_NEAR(k->importance, k->density / (k->distance * k->distance), 1e-5f * k->importance);
+    }
+    const float h = 0.25f;
+    for (const Vec2f u : {Vec2f{0.1f, 0.2f}, Vec2f{0.9f, 0.6f}}) {
+        const Vec2f a = camera.lens().sampleAperture(u);
+        for (auto [x, y] : {std::pair(0.5f * c.width, 0.5f * c.height), std::pair(3.0f, c.height - 2.0f)}) {
+            auto dir = [&](float dx, float dy) { return camera.generateRay(x + dx, y + dy, u).direction; };
+            const Vec3f p00 = dir(-h / 2, -h / 2), p10 = dir(h / 2, -h / 2), p11 = dir(h / 2, h / 2),
+                        p01 = dir(-h / 2, h / 2);
+            const double omega = solidAngle(p00, p10, p11) + solidAngle(p00, p11, p01);
+            const double share = double(h) * h / (double(c.width) * c.height);
+            EXPECT_NEAR(camera.directionDensity(dir(0, 0), a) * omega / share, 1.0, 2e-3) << x << ", " << y;
+        }
+    }
+    // The plane of focus, 4 along the view axis in camera space: the ray's point there, and one
+    // twice as far.
+    const Ray centre = camera.generateRay(0.3f * c.width, 0.4f * c.height);
+    const auto toFocus = float(4.0 / camera.worldToCamera().transformPoint(Vec3d(rayPoint(centre, 1.0f))).z);
+    const Vec3f sharp = rayPoint(centre, toFocus), blurred = rayPoint(centre, 2.0f * toFocus);
+    const Vec2f left = camera.lens().sampleAperture({0.5f, 0.0f}), right = camera.lens().sampleAperture({0.0f, 0.5f});
+    EXPECT_NEAR(length(*camera.rasterPosition(sharp, left) - *camera.rasterPosition(sharp, right)), 0.0f, 1e-2f);
+    EXPECT_GT(length(*camera.rasterPosition(blurred, left) - *camera.rasterPosition(blurred, right)), 1.0f);
 }
 
 TEST(CameraImportance, OrthographicCamerasHaveNone) {
