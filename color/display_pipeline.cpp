@@ -79,6 +79,19 @@ void setDynamic(OCIO::DynamicPropertyRcPtr property, double value) {
     OCIO::DynamicPropertyValue::AsDouble(property)->setValue(value);
 }
 
+// `use` applied to the processor of these settings, built under the config's lock; OCIO's
+// exceptions become ColorErrors.
+template <class Use>
+auto withProcessor(std::mutex& mutex, const OCIO::ConstConfigRcPtr& config, const std::string& inputSpace,
+                   const DisplaySettings& settings, Use&& use) {
+    try {
+        std::lock_guard lock(mutex);
+        return use(buildProcessor(config, inputSpace, settings));
+    } catch (const OCIO::Exception& e) {
+        throw ColorError(std::string("OCIO: ") + e.what());
+    }
+}
+
 }  // namespace
 
 DisplayPipeline DisplayPipeline::open(const std::string& configPath) {
@@ -121,13 +134,9 @@ std::string DisplayPipeline::inputSpace(const std::string& space) const {
 }
 
 GpuDisplayShader DisplayPipeline::gpuShader(const std::string& inputSpace, const DisplaySettings& settings) const {
-    OCIO::ConstGPUProcessorRcPtr gpu;
-    try {
-        std::lock_guard lock(impl_->mutex);
-        gpu = buildProcessor(impl_->config, inputSpace, settings)->getDefaultGPUProcessor();
-    } catch (const OCIO::Exception& e) {
-        throw ColorError(std::string("OCIO: ") + e.what());
-    }
+    const OCIO::ConstGPUProcessorRcPtr gpu =
+        withProcessor(impl_->mutex, impl_->config, inputSpace, settings,
+                      [](const OCIO::ConstProcessorRcPtr& p) { return p->getDefaultGPUProcessor(); });
     // OCIO 2.1's GLSL ES code packs a 1D LUT of N entries into an N x 1 texture but looks the last
     // entry (an input >= 1) up in row 1, which does not exist, and so reads entry 0: narrower rows
     // (the texture then two rows high) put the last entry where the lookup goes. Each pass narrows
@@ -203,13 +212,9 @@ GpuDisplayShader DisplayPipeline::gpuShader(const std::string& inputSpace, const
 
 void DisplayPipeline::applyCpu(const std::string& inputSpace, const DisplaySettings& settings, float* rgba,
                                std::size_t count) const {
-    OCIO::ConstCPUProcessorRcPtr cpu;
-    try {
-        std::lock_guard lock(impl_->mutex);
-        cpu = buildProcessor(impl_->config, inputSpace, settings)->getDefaultCPUProcessor();
-    } catch (const OCIO::Exception& e) {
-        throw ColorError(std::string("OCIO: ") + e.what());
-    }
+    const OCIO::ConstCPUProcessorRcPtr cpu =
+        withProcessor(impl_->mutex, impl_->config, inputSpace, settings,
+                      [](const OCIO::ConstProcessorRcPtr& p) { return p->getDefaultCPUProcessor(); });
     setDynamic(cpu->getDynamicProperty(OCIO::DYNAMIC_PROPERTY_EXPOSURE), settings.exposureStops);
     setDynamic(cpu->getDynamicProperty(OCIO::DYNAMIC_PROPERTY_GAMMA), 1.0 / settings.gamma);
     OCIO::PackedImageDesc image(rgba, static_cast<long>(count), 1, 4);
