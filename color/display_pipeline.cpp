@@ -79,6 +79,21 @@ void setDynamic(OCIO::DynamicPropertyRcPtr property, double value) {
     OCIO::DynamicPropertyValue::AsDouble(property)->setValue(value);
 }
 
+// One of a GPU shader's 1D/2D LUT textures, as OCIO describes it.
+struct TextureInfo {
+    const char* name = nullptr;
+    const char* sampler = nullptr;
+    unsigned width = 0, height = 0;
+    OCIO::GpuShaderDesc::TextureType channel{};
+    OCIO::Interpolation interpolation{};
+};
+
+TextureInfo textureInfo(const OCIO::GpuShaderDescRcPtr& desc, unsigned i) {
+    TextureInfo t;
+    desc->getTexture(i, t.name, t.sampler, t.width, t.height, t.channel, t.interpolation);
+    return t;
+}
+
 // `use` applied to the processor of these settings, built under the config's lock; OCIO's
 // exceptions become ColorErrors.
 template <class Use>
@@ -146,12 +161,8 @@ GpuDisplayShader DisplayPipeline::gpuShader(const std::string& inputSpace, const
         desc = extractShader(gpu, maxWidth);
         unsigned narrower = 0;
         for (unsigned i = 0; i < desc->getNumTextures(); ++i) {
-            const char *texture = nullptr, *sampler = nullptr;
-            unsigned width = 0, height = 0;
-            OCIO::GpuShaderDesc::TextureType channel{};
-            OCIO::Interpolation interpolation{};
-            desc->getTexture(i, texture, sampler, width, height, channel, interpolation);
-            if (height == 1 && width > 2) narrower = narrower ? std::min(narrower, width - 1) : width - 1;
+            const TextureInfo t = textureInfo(desc, i);
+            if (t.height == 1 && t.width > 2) narrower = narrower ? std::min(narrower, t.width - 1) : t.width - 1;
         }
         if (narrower == 0) break;
         maxWidth = narrower;
@@ -161,22 +172,18 @@ GpuDisplayShader DisplayPipeline::gpuShader(const std::string& inputSpace, const
     shader.functionName = "ocioDisplay";
     shader.text = desc->getShaderText();
     for (unsigned i = 0; i < desc->getNumTextures(); ++i) {
-        const char *texture = nullptr, *sampler = nullptr;
-        unsigned width = 0, height = 0;
-        OCIO::GpuShaderDesc::TextureType channel{};
-        OCIO::Interpolation interpolation{};
-        desc->getTexture(i, texture, sampler, width, height, channel, interpolation);
+        const TextureInfo t = textureInfo(desc, i);
         const float* values = nullptr;
         desc->getTextureValues(i, values);
-        GpuLutTexture lut{texture,
-                          sampler,
-                          int(width),
-                          int(height),
+        GpuLutTexture lut{t.name,
+                          t.sampler,
+                          int(t.width),
+                          int(t.height),
                           0,
-                          channel == OCIO::GpuShaderDesc::TEXTURE_RED_CHANNEL ? 1 : 3,
-                          interpolation != OCIO::INTERP_NEAREST,
+                          t.channel == OCIO::GpuShaderDesc::TEXTURE_RED_CHANNEL ? 1 : 3,
+                          t.interpolation != OCIO::INTERP_NEAREST,
                           {}};
-        lut.values.assign(values, values + std::size_t(width) * height * lut.channels);
+        lut.values.assign(values, values + std::size_t(t.width) * t.height * lut.channels);
         shader.textures.push_back(std::move(lut));
     }
     for (unsigned i = 0; i < desc->getNum3DTextures(); ++i) {

@@ -20,8 +20,8 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <memory>
 #include <mutex>
-#include <optional>
 
 #include "render/bsdfs/ggx.h"
 
@@ -37,6 +37,22 @@ inline float cosineAt(int i) { return std::max(float(i) / (kCosines - 1), kMinCo
 inline float f0At(int k) {
     const float s = float(k) / (kF0s - 1);
     return s * s;
+}
+
+// The storage of a table of N slices of type Slice: one per Slice type.
+template <typename Slice, int N>
+struct SliceStore {
+    static inline std::array<std::once_flag, N> made;
+    static inline std::array<std::unique_ptr<Slice>, N> slices;
+};
+
+// Slice k of a table of N, built as Slice(args...) on first use, once, by whichever thread asks
+// first; later calls return it without taking a lock.
+template <typename Slice, int N, typename... Args>
+const Slice& sliceBuiltOnce(int k, const Args&... args) {
+    using Store = SliceStore<Slice, N>;
+    std::call_once(Store::made[k], [&] { Store::slices[k] = std::make_unique<Slice>(args...); });
+    return *Store::slices[k];
 }
 
 // A position on an evenly spaced axis of n nodes over [0, 1]: the node below and the fraction.
@@ -125,10 +141,7 @@ private:
     };
 
     static const Slice& slice(int k) {
-        static std::array<std::once_flag, albedo_table::kF0s> made;
-        static std::array<std::optional<Slice>, albedo_table::kF0s> slices;
-        std::call_once(made[k], [k] { slices[k].emplace(albedo_table::f0At(k)); });
-        return *slices[k];
+        return albedo_table::sliceBuiltOnce<Slice, albedo_table::kF0s>(k, albedo_table::f0At(k));
     }
 
     // g(slice, width node) interpolated linearly in width and in sqrt(f0).

@@ -3,8 +3,6 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <memory>
-#include <mutex>
 
 #include "core/sampling.h"
 #include "render/bsdfs/albedo_table.h"
@@ -51,11 +49,7 @@ struct Slice {
 };
 
 const Slice& slice(int jx, int jy) {
-    static std::array<std::once_flag, kWidths * kWidths> made;
-    static std::array<std::unique_ptr<Slice>, kWidths * kWidths> slices;
-    const int k = jx * kWidths + jy;
-    std::call_once(made[k], [&] { slices[k] = std::make_unique<Slice>(jx, jy); });
-    return *slices[k];
+    return albedo_table::sliceBuiltOnce<Slice, kWidths * kWidths>(jx * kWidths + jy, jx, jy);
 }
 
 // g(slice) interpolated bilinearly in sqrt(ax) and sqrt(ay).

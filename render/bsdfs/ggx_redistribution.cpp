@@ -1,9 +1,8 @@
 #include "render/bsdfs/ggx_redistribution.h"
 
 #include <cmath>
-#include <memory>
-#include <mutex>
 
+#include "render/bsdfs/albedo_table.h"
 #include "render/bsdfs/ggx_albedo.h"
 #include "render/bsdfs/local_geometry.h"
 
@@ -43,13 +42,7 @@ struct Slice {
     }
 };
 
-const Slice& slice(int j, int f) {
-    static std::array<std::once_flag, kWidths * kF0s> made;
-    static std::array<std::unique_ptr<Slice>, kWidths * kF0s> slices;
-    const int k = j * kF0s + f;
-    std::call_once(made[k], [&] { slices[k] = std::make_unique<Slice>(j, f); });
-    return *slices[k];
-}
+const Slice& slice(int j, int f) { return albedo_table::sliceBuiltOnce<Slice, kWidths * kF0s>(j * kF0s + f, j, f); }
 
 }  // namespace
 
