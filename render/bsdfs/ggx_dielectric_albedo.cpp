@@ -40,20 +40,15 @@ float leavingAlbedo(const GgxDistribution& ggx, float mu, float f0) {
 using EnteringTable = AlbedoTable<enteringAlbedo>;
 using LeavingTable = AlbedoTable<leavingAlbedo>;
 
-float f0Of(float eta) {
-    const float r = (eta - 1.0f) / (eta + 1.0f);
-    return r * r;
-}
-
 }  // namespace
 
 float ggxDielectricAlbedo(float cosTheta, float alpha, float eta) {
-    return eta >= 1.0f ? EnteringTable::albedo(cosTheta, alpha, f0Of(eta))
-                       : LeavingTable::albedo(cosTheta, alpha, f0Of(eta));
+    return eta >= 1.0f ? EnteringTable::albedo(cosTheta, alpha, f0FromEta(eta))
+                       : LeavingTable::albedo(cosTheta, alpha, f0FromEta(eta));
 }
 
 float ggxDielectricAverageAlbedo(float alpha, float eta) {
-    return eta >= 1.0f ? EnteringTable::average(alpha, f0Of(eta)) : LeavingTable::average(alpha, f0Of(eta));
+    return eta >= 1.0f ? EnteringTable::average(alpha, f0FromEta(eta)) : LeavingTable::average(alpha, f0FromEta(eta));
 }
 
 }  // namespace fluence::render

@@ -5,6 +5,7 @@
 
 #include "core/sampling.h"
 #include "render/bsdfs/bsdf_checks.h"
+#include "render/bsdfs/fresnel.h"
 #include "render/bsdfs/ggx_albedo.h"
 #include "render/bsdfs/ggx_dielectric_albedo.h"
 #include "render/bsdfs/local_geometry.h"
@@ -15,11 +16,6 @@ namespace {
 
 // Keeps 1 / (1 - A) finite where a side scatters (almost) everything once.
 constexpr float kMinLoss = 1e-4f;
-
-float f0Of(float eta) {
-    const float r = (eta - 1.0f) / (eta + 1.0f);
-    return r * r;
-}
 
 }  // namespace
 
@@ -32,7 +28,7 @@ CompensatedGgxDielectricBsdf::CompensatedGgxDielectricBsdf(float eta, const GgxD
                 lossIn = std::max(1.0f - inside_.average, kMinLoss);
     const float n2 = eta_ * eta_;
     // From the side of the lower index, 1 - Favg of the light crosses.
-    const float crossing = 1.0f - ggxReflectionAverageAlbedo(0.0f, f0Of(eta_));
+    const float crossing = 1.0f - ggxReflectionAverageAlbedo(0.0f, f0FromEta(eta_));
     float c = eta_ >= 1.0f ? crossing / (n2 * lossIn) : crossing / lossOut;
     c = std::min({c, 1.0f / (n2 * lossIn), 1.0f / lossOut});
     outside_.transmitted = c * n2 * lossIn;
@@ -41,6 +37,10 @@ CompensatedGgxDielectricBsdf::CompensatedGgxDielectricBsdf(float eta, const GgxD
     inside_.reflected = 1.0f - inside_.transmitted;
     outside_.crossing = c;
     inside_.crossing = c * n2;
+}
+
+float CompensatedGgxDielectricBsdf::outsideReflectionScale() const {
+    return outside_.reflected / std::max(1.0f - outside_.average, kMinLoss);
 }
 
 float CompensatedGgxDielectricBsdf::albedo(const Vec3f& w) const {

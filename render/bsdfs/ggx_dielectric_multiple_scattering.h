@@ -45,6 +45,9 @@ public:
     float pdf(const Vec3f& wo, const Vec3f& wi) const override;
     std::optional<BsdfSample> sample(const Vec3f& wo, float uLobe, Vec2f u) const override;
     unsigned flags() const override { return single_.flags(); }
+    // The multiple-scattering lobe's reflection seen from outside as K (1 - E_out(wo))
+    // (1 - E_out(wi)) / pi: K = r_out / (1 - A_out), untinted.
+    float outsideReflectionScale() const;
 
 private:
     // One side of the interface: its albedo average, the shares of the multiple-scattering light
