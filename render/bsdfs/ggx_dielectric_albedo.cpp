@@ -15,11 +15,7 @@ constexpr float kMirrorF0 = 0.9996f;
 
 // E at (mu, alpha) from the side whose relative index is `eta`.
 float interfaceAlbedo(const GgxDistribution& ggx, float mu, float eta) {
-    const Vec3f wo(std::sqrt(std::max(0.0f, 1.0f - mu * mu)), 0.0f, mu);
-    const float g1 = ggx.G1(wo);
-    return visibleNormalQuadrature(ggx, wo, [&](const Vec3f& h) {
-        const float cosO = dot(wo, h);
-        if (!(cosO > 0.0f)) return 0.0;
+    return facetQuadrature(ggx, mu, [&](const Vec3f& wo, const Vec3f& h, float cosO, float g1) {
         const float F = eta > 0.0f ? fresnelDielectric(cosO, eta) : 1.0f;
         double weight = 0.0;
         if (const Vec3f r = reflect(wo, h); r.z > 0.0f) weight += double(F) * ggx.G2(wo, r) / g1;

@@ -19,13 +19,9 @@ using SheetTable = AlbedoTable<tableAlbedo>;
 }  // namespace
 
 float thinSheetQuadrature(const GgxDistribution& ggx, float mu, float eta) {
-    const Vec3f wo(std::sqrt(std::max(0.0f, 1.0f - mu * mu)), 0.0f, mu);
-    const float g1 = ggx.G1(wo);
-    return visibleNormalQuadrature(ggx, wo, [&](const Vec3f& h) {
-        const float cosO = dot(wo, h);
-        if (!(cosO > 0.0f)) return 0.0;
+    return facetQuadrature(ggx, mu, [&](const Vec3f& wo, const Vec3f& h, float cosO, float g1) {
         const float F = fresnelDielectric(cosO, eta), slab = 2.0f * F / (1.0f + F);
-        double weight = 1.0 - slab;
+        double weight = 1.0 - slab;  // straight through: never masked
         if (const Vec3f r = reflect(wo, h); r.z > 0.0f) weight += double(slab) * ggx.G2(wo, r) / g1;
         return weight;
     });

@@ -22,7 +22,8 @@
 // simulation of the microsurface would give, and the transmitted part of it is diffuse, not
 // straight through.
 //
-// Sampling: the multiple-scattering lobe with probability 1 - E(wo) (cosine-weighted, on wo's
+// Sampling (render/bsdfs/multiple_scattering_mixture.h): the multiple-scattering lobe with
+// probability 1 - E(wo) (cosine-weighted, on wo's
 // side with probability lobeProbability(R(k)) / (lobeProbability(R(k)) + lobeProbability(T(k))),
 // else on the other), else the single-scattering sheet's own sampling; a non-delta sample returns
 // the whole f and the mixture's pdf, the straight-through delta keeps its coefficient with its
@@ -31,26 +32,25 @@
 // scatters once and is returned as the single-scattering sheet by energyCompensatedThinDielectric.
 #pragma once
 
-#include <optional>
-
 #include "render/bsdf_arena.h"
+#include "render/bsdfs/multiple_scattering_mixture.h"
 #include "render/bsdfs/thin_dielectric.h"
 
 namespace fluence::render {
 
-class CompensatedThinDielectricBsdf final : public Bsdf {
+class CompensatedThinDielectricBsdf final : public MultipleScatteringMixture<CompensatedThinDielectricBsdf> {
 public:
     CompensatedThinDielectricBsdf(float eta, const GgxDistribution& ggx, const DielectricTints& tints = {});
 
-    RGB f(const Vec3f& wo, const Vec3f& wi) const override;
-    float pdf(const Vec3f& wo, const Vec3f& wi) const override;
-    std::optional<BsdfSample> sample(const Vec3f& wo, float uLobe, Vec2f u) const override;
-    unsigned flags() const override { return single_.flags(); }
-
 private:
-    float loss(const Vec3f& w) const;  // 1 - E at w's angle, either side
+    friend class MultipleScatteringMixture<CompensatedThinDielectricBsdf>;
+
+    const Bsdf& single() const { return single_; }
     RGB multipleScattering(const Vec3f& wo, const Vec3f& wi) const;
+    float multipleScatteringProbability(const Vec3f& wo) const;  // 1 - E at wo's angle, either side
+    float reflectedShare(const Vec3f&) const { return pReflected_; }
     float multipleScatteringPdf(const Vec3f& wo, const Vec3f& wi) const;
+    float crossingEta(const Vec3f&) const { return 1.0f; }  // the same medium on both sides
 
     ThinDielectricBsdf single_;
     float eta_, alpha_;
