@@ -11,7 +11,9 @@
 #include "render/bsdfs/fresnel.h"
 #include "render/bsdfs/ggx_albedo.h"
 #include "render/bsdfs/ggx_conductor.h"
+#include "render/bsdfs/ggx_dielectric_albedo.h"
 #include "render/bsdfs/ggx_dielectric_multiple_scattering.h"
+#include "render/bsdfs/ggx_redistribution.h"
 #include "render/bsdfs/ggx_multiple_scattering.h"
 #include "render/bsdfs/hair.h"
 #include "render/bsdfs/lambertian.h"
@@ -20,7 +22,8 @@
 #include "render/bsdfs/layered.h"
 #include "render/bsdfs/mix.h"
 #include "render/bsdfs/sheen.h"
-#include "render/bsdfs/thin_dielectric.h"
+#include "render/bsdfs/sheen_redistribution.h"
+#include "render/bsdfs/thin_dielectric_multiple_scattering.h"
 
 namespace fluence::render {
 
@@ -67,7 +70,7 @@ const Bsdf& transmissionBsdf(const MaterialParams& m, BsdfArena& arena) {
     const GgxDistribution ggx = specularGgx(m);
     const RGB colour = clamp01(m.transmissionColor);
     const RGB reflection = m.specularWorkflow ? RGB(1.0f) : clamp01(m.specularColor * m.specular);
-    if (m.thinWalled) return arena.make<ThinDielectricBsdf>(m.ior, ggx, DielectricTints{reflection, colour});
+    if (m.thinWalled) return energyCompensatedThinDielectric(m.ior, ggx, DielectricTints{reflection, colour}, arena);
     return energyCompensatedDielectric(m.ior, ggx, DielectricTints{reflection, sqrtOf(colour)}, arena);
 }
 
@@ -90,42 +93,94 @@ Vec3f nodeDirection(int i) {
     return {std::sqrt(std::max(0.0f, 1.0f - mu * mu)), 0.0f, mu};
 }
 
-// What the clear coat's underside returns to an opaque base with a glossy part (a plastic's
-// specular layer, a metal; render/bsdfs/coat_return.h), or nothing when the base is diffuse (the
-// layer's normalisation returns it) or transmits (subsurface, glass: not modelled).
-std::optional<CoatReturn> coatReturn(const MaterialParams& m, const DielectricReflectionBsdf& coat) {
+// The albedo at each mu node of a reflecting lobe with reflectance(w), and its complement.
+template <typename Lobe>
+void nodeAlbedos(const Lobe& lobe, CoatReturn::NodeValues& albedo, CoatReturn::NodeValues& complement) {
+    for (int i = 0; i < albedo_table::kCosines; ++i) {
+        albedo[i] = lobe.reflectance(nodeDirection(i));
+        complement[i] = RGB(1.0f) - albedo[i];
+    }
+}
+
+// The opaque base's part (render/bsdfs/coat_return.h): the diffuse base's reflection (the share
+// subsurface does not transmit) under the specular layer, or under the sheen when no specular
+// layer reflects, or alone.
+void addLayeredDiffusePart(CoatReturn& coatReturn, float weight, const MaterialParams& m, float alpha) {
+    const RGB reflected = clamp01(m.diffuse) * (1.0f - std::min(m.subsurface, 1.0f));
     const SpecularLobe specular = specularLobe(m);
-    const bool glossy = specular.reflects() || m.metallic > 0.0f;
-    if (!glossy || m.transmission > 0.0f || m.subsurface > 0.0f) return std::nullopt;
+    const RGB sheen = clamp01(m.sheenColor * m.sheen);
+    CoatReturn::NodeValues lobe, complement;
+    if (specular.reflects()) {
+        const DielectricFresnel fresnel(specular.eta, specular.tint);
+        const DielectricReflectionBsdf layer(fresnel, specularGgx(m));
+        nodeAlbedos(layer, lobe, complement);
+        coatReturn.addPart(
+            weight, [&](int i) { return ggxReflectionSpread(i, alpha, fresnel.f0.x); }, lobe, complement,
+            reflected / (RGB(1.0f) - layer.averageReflectance()));
+    } else if (!isBlack(sheen)) {
+        const CharlieSheenBsdf layer(sheen, m.sheenRoughness);
+        nodeAlbedos(layer, lobe, complement);
+        coatReturn.addPart(
+            weight, [&](int i) { return sheenReflectionSpread(i, m.sheenRoughness); }, lobe, complement,
+            reflected / (RGB(1.0f) - layer.averageReflectance()));
+    } else {
+        lobe.fill(RGB(0.0f));
+        complement.fill(RGB(1.0f));
+        coatReturn.addPart(
+            weight, [](int) { return ElevationWeights{}; }, lobe, complement, reflected);
+    }
+}
+
+// Solid glass's part: its reflection from outside, single-scattering and, rough, the reflected
+// part of its multiple-scattering lobe (render/bsdfs/ggx_dielectric_multiple_scattering.h).
+void addGlassPart(CoatReturn& coatReturn, float weight, const MaterialParams& m, float alpha) {
+    const GgxDistribution ggx = specularGgx(m);
+    const RGB reflection = m.specularWorkflow ? RGB(1.0f) : clamp01(m.specularColor * m.specular);
+    const DielectricFresnel fresnel(RGB(m.ior), reflection);
+    CoatReturn::NodeValues lobe, complement;
+    nodeAlbedos(DielectricReflectionBsdf(fresnel, ggx), lobe, complement);
+    RGB scale(0.0f);
+    if (!ggx.isSmooth() && m.ior != 1.0f) {
+        scale = reflection * CompensatedGgxDielectricBsdf(m.ior, ggx).outsideReflectionScale();
+        for (int i = 0; i < albedo_table::kCosines; ++i)
+            complement[i] = RGB(1.0f - ggxDielectricAlbedo(albedo_table::cosineAt(i), alpha, m.ior));
+    }
+    coatReturn.addPart(
+        weight, [&](int i) { return ggxReflectionSpread(i, alpha, fresnel.f0.x); }, lobe, complement, scale);
+}
+
+// The metal's part: its single scattering and its multiple-scattering lobe.
+void addMetalPart(CoatReturn& coatReturn, float weight, const MaterialParams& m, float alpha, bool smooth) {
+    const RGB f0 = m.diffuse, fAvg = (f0 * 20.0f + RGB(1.0f)) * (1.0f / 21.0f);
+    CoatReturn::NodeValues lobe, complement;
+    for (int i = 0; i < albedo_table::kCosines; ++i) {
+        const float bare = ggxReflectionAlbedo(albedo_table::cosineAt(i), alpha, 1.0f);
+        lobe[i] = fAvg * bare;
+        complement[i] = RGB(1.0f - bare);
+    }
+    const float eAvg = ggxReflectionAverageAlbedo(alpha, 1.0f);
+    coatReturn.addPart(
+        weight, [&](int i) { return ggxReflectionSpread(i, alpha, 1.0f); }, lobe, complement,
+        smooth ? RGB(0.0f) : multipleScatteringAlbedo(f0, eAvg) / (1.0f - eAvg));
+}
+
+// What the clear coat's underside returns to a base with a glossy part (a plastic's specular
+// layer, a sheen, a metal, solid glass; render/bsdfs/coat_return.h), or nothing when the base is
+// diffuse (the layer's normalisation returns it) or a thin-walled sheet (not modelled).
+std::optional<CoatReturn> coatReturn(const MaterialParams& m, const DielectricReflectionBsdf& coat) {
+    const bool layer = specularLobe(m).reflects() || !isBlack(clamp01(m.sheenColor * m.sheen));
+    const float metallic = std::min(m.metallic, 1.0f), transmission = std::min(m.transmission, 1.0f);
+    if (!layer && !(metallic > 0.0f) && !(transmission > 0.0f)) return std::nullopt;
+    if (transmission > 0.0f && m.thinWalled) return std::nullopt;
     std::array<float, albedo_table::kCosines> coatAlbedo;
     for (int i = 0; i < albedo_table::kCosines; ++i) coatAlbedo[i] = coat.reflectance(nodeDirection(i)).x;
     CoatReturn coatReturn(coatAlbedo);
     const GgxDistribution ggx = specularGgx(m);
     const float alpha = ggx.isSmooth() ? 0.0f : std::sqrt(ggx.alphaX() * ggx.alphaY());
-    const float metallic = std::min(m.metallic, 1.0f);
-    CoatReturn::NodeValues lobe, complement;
-    if (metallic < 1.0f) {  // the plastic: its specular layer over the diffuse albedo
-        const DielectricFresnel fresnel(specular.eta, specular.tint);
-        const DielectricReflectionBsdf layer(fresnel, ggx);
-        for (int i = 0; i < albedo_table::kCosines; ++i) {
-            lobe[i] = specular.reflects() ? layer.reflectance(nodeDirection(i)) : RGB(0.0f);
-            complement[i] = RGB(1.0f) - lobe[i];
-        }
-        const RGB average = specular.reflects() ? layer.averageReflectance() : RGB(0.0f);
-        coatReturn.addPart(1.0f - metallic, alpha, fresnel.f0.x, lobe, complement,
-                           clamp01(m.diffuse) / (RGB(1.0f) - average));
-    }
-    if (metallic > 0.0f) {  // the metal: its single scattering and its multiple-scattering lobe
-        const RGB f0 = m.diffuse, fAvg = (f0 * 20.0f + RGB(1.0f)) * (1.0f / 21.0f);
-        for (int i = 0; i < albedo_table::kCosines; ++i) {
-            const float bare = ggxReflectionAlbedo(albedo_table::cosineAt(i), alpha, 1.0f);
-            lobe[i] = fAvg * bare;
-            complement[i] = RGB(1.0f - bare);
-        }
-        const float eAvg = ggxReflectionAverageAlbedo(alpha, 1.0f);
-        coatReturn.addPart(metallic, alpha, 1.0f, lobe, complement,
-                           ggx.isSmooth() ? RGB(0.0f) : multipleScatteringAlbedo(f0, eAvg) / (1.0f - eAvg));
-    }
+    const float opaque = (1.0f - metallic) * (1.0f - transmission), glass = (1.0f - metallic) * transmission;
+    if (opaque > 0.0f) addLayeredDiffusePart(coatReturn, opaque, m, alpha);
+    if (glass > 0.0f) addGlassPart(coatReturn, glass, m, alpha);
+    if (metallic > 0.0f) addMetalPart(coatReturn, metallic, m, alpha, ggx.isSmooth());
     return coatReturn;
 }
 
@@ -170,16 +225,19 @@ const std::optional<CoatReturn>& rememberedCoatReturn(const MaterialParams& m, c
 }
 
 // The clear coat over everything, by weight `coat`; `diffuse` when what lies under it is the
-// diffuse base and its layers alone (no metal, no glass). Over a glossy base the light the coat
-// returns is added back (render/bsdfs/coat_return.h).
+// diffuse base and its layers alone (no metal, no glass). Over a glossy base (a specular layer, a
+// sheen, a metal, solid glass) the light the coat returns is added back
+// (render/bsdfs/coat_return.h).
 const Bsdf& clearCoat(const Bsdf& under, const std::optional<DiffuseBase>& diffuse, const MaterialParams& m,
                       BsdfArena& arena) {
     if (!(m.coat > 0.0f && m.coatIor > 1.0f + kMinIndexContrast)) return under;
     const GgxDistribution ggx = GgxDistribution::fromRoughness(m.coatRoughness);
     const RGB filter = clamp01(m.coatColor);
     const std::optional<CoatReturn>& returned = rememberedCoatReturn(m, DielectricReflectionBsdf(RGB(m.coatIor), ggx));
-    const Bsdf& coated =
-        arena.make<CoatedBsdf>(under, RGB(m.coatIor), ggx, RGB(1.0f), filter, returned ? std::nullopt : diffuse);
+    // With the light returned, a diffuse base keeps only the coat's inner reflection.
+    std::optional<DiffuseBase> layer = diffuse;
+    if (layer && returned) layer->reflectsDiffusely = false;
+    const Bsdf& coated = arena.make<CoatedBsdf>(under, RGB(m.coatIor), ggx, RGB(1.0f), filter, layer);
     return blend(under, returned ? returned->compensate(coated, filter, arena) : coated, m.coat, arena);
 }
 

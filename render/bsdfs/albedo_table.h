@@ -105,6 +105,19 @@ float visibleNormalQuadrature(const GgxDistribution& ggx, const Vec3f& wo, Weigh
     return float(sum / (double(kQuadrature) * kQuadrature));
 }
 
+// The mean over the visible normals h of wo = (sqrt(1 - mu^2), 0, mu) of
+// weight(wo, h, wo.h, G1(wo)) (a double), counting 0 where wo.h <= 0: the quadrature of an
+// interface's albedo at one node.
+template <typename Weight>
+float facetQuadrature(const GgxDistribution& ggx, float mu, Weight weight) {
+    const Vec3f wo(std::sqrt(std::max(0.0f, 1.0f - mu * mu)), 0.0f, mu);
+    const float g1 = ggx.G1(wo);
+    return visibleNormalQuadrature(ggx, wo, [&](const Vec3f& h) {
+        const float cosO = dot(wo, h);
+        return cosO > 0.0f ? weight(wo, h, cosO, g1) : 0.0;
+    });
+}
+
 template <float (*Albedo)(const GgxDistribution&, float mu, float f0)>
 class AlbedoTable {
 public:

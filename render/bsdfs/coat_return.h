@@ -11,38 +11,55 @@
 // (layered.h, ENERGY-PRESERVING LAYERING). Over a plastic or a metal the base sends its glossy
 // reflection towards grazing directions when lit at grazing angles, where A is largest: a coat
 // over a white plastic read 0.956 at 80 degrees and 1.008 at normal incidence with that
-// normalisation, a coat over a white metal 0.84 at 80 degrees without it. Here the lost light
-// comes back as a lobe symmetric in wo and wi,
+// normalisation, a coat over a white metal 0.84 at 80 degrees without it; the same holds of a
+// sheen (a coat over white sheen read 1.011 at normal incidence and 0.961 at 85 degrees), of the
+// specular layer over subsurface (0.863 at 85 degrees: the light the layer reflects towards
+// grazing angles is sent back down by the coat, and dropped) and of glass's reflection (0.853).
+// Here the lost light comes back as a lobe symmetric in wo and wi,
 //
 //   f = f_coated(wo, wi) + filter loss(wo) loss(wi) / (pi Lavg),   Lavg = 1/pi integral loss cos
 //
-// whose albedo is loss(wo) exactly: a white stack reflects 1 at every angle, and the result stays
-// reciprocal. It is built as a LayeredBsdf whose top is the coated stack with reflectance
-// 1 - loss and whose base is a Lambertian of albedo filter (the coat's colour filters what
-// crosses it), so the layer's sampling picks the returned lobe with probability loss(wo).
+// on the coated side (+z; mirrored below when the stack is two-sided), whose albedo is loss(wo)
+// exactly: a white stack reflects 1 at every angle, and the result stays reciprocal. Over a base
+// that transmits (subsurface, glass) the light that crosses is the stack's own (it is not part
+// of the loss: what goes in comes out in the interior), and the inside of the stack is left as
+// it is. The returned lobe is sampled, cosine-weighted, with probability lobeProbability(loss(wo)),
+// else the stack; a non-delta sample returns the whole f and the mixture's pdf, a delta one of the
+// stack its coefficient with its probability times 1 - lobeProbability(loss(wo)).
 //
-// B is computed for a base made of parts, each a GGX lobe of albedo E(mu) and width alpha plus
-// a diffuse-shaped lobe K g(wo) g(wi) / pi (a plastic: the specular layer over its diffuse base,
-// g = 1 - E, K = the diffuse albedo / (1 - Eavg); a metal: its single scattering and its
-// multiple-scattering lobe, g = 1 - E, K = Fms / (1 - Eavg)), mixed by weights:
+// B is computed for a base made of parts, each a glossy lobe of albedo E(mu) plus a
+// diffuse-shaped lobe K g(wo) g(wi) / pi, mixed by weights:
+//   - a plastic: the specular layer (GGX) over its diffuse base, g = 1 - E, K = the albedo the
+//     base reflects (diffuse x (1 - subsurface): subsurface transmits) / (1 - Eavg);
+//   - a sheen over the diffuse base (when no specular layer reflects): the Charlie lobe, g = 1 - E,
+//     K likewise;
+//   - a metal: its single scattering and its multiple-scattering lobe, g = 1 - E,
+//     K = Fms / (1 - Eavg);
+//   - solid glass: its single-scattering GGX reflection from outside, and the multiple-scattering
+//     lobe's reflected part, g = 1 - E_glass (render/bsdfs/ggx_dielectric_multiple_scattering.h);
 //
-//   B(mu) = sum over parts  weight (E(mu) sum_k A(mu_k) spread_k(mu, alpha) + K g(mu) G)
+//   B(mu) = sum over parts  weight (E(mu) sum_k A(mu_k) spread_k(mu) + K g(mu) G)
 //   G     = 2 integral A(nu) g(nu) nu dnu
 //
-// spread (render/bsdfs/ggx_redistribution.h) says where the GGX lobe sends the light; the
-// loss is tabulated at the 32 mu nodes of render/bsdfs/albedo_table.h and interpolated
-// linearly, and Lavg integrated exactly from the same interpolant. Approximations: the base is
-// isotropic (an anisotropic lobe spreads as its geometric-mean width), a coloured specular
-// layer spreads as the one of its first channel's index, a coloured metal as its bare lobe; the returned lobe has the shape the symmetric form gives it, not
-// that of a simulation of the layers; light returned to a coloured base is not coloured again.
+// spread (render/bsdfs/ggx_redistribution.h, sheen_redistribution.h) says where the glossy lobe
+// sends the light; the loss is tabulated at the 32 mu nodes of render/bsdfs/albedo_table.h and
+// interpolated linearly, and Lavg integrated exactly from the same interpolant. Approximations:
+// the base is isotropic (an anisotropic lobe spreads as its geometric-mean width), a coloured
+// specular layer spreads as the one of its first channel's index, a coloured metal as its bare
+// lobe; a sheen under a specular layer counts as diffuse; a thin-walled sheet under a coat is not
+// compensated; the returned lobe has the shape the symmetric form gives it, not that of a
+// simulation of the layers, and it leaves by reflection even where a real coat would send part of
+// it into a transmitting base; light returned to a coloured base is not coloured again.
 #pragma once
 
 #include <array>
 
+#include "core/function_ref.h"
 #include "core/rgb.h"
 #include "render/bsdf.h"
 #include "render/bsdf_arena.h"
 #include "render/bsdfs/albedo_table.h"
+#include "render/bsdfs/ggx_redistribution.h"
 
 namespace fluence::render {
 
@@ -53,10 +70,11 @@ public:
     // coatAlbedo: the coat's directional albedo A at each mu node (cosineAt(i)).
     explicit CoatReturn(const std::array<float, albedo_table::kCosines>& coatAlbedo);
 
-    // A part of the base of mix weight `weight`: a GGX lobe of width alpha, Fresnel reflectance
-    // f0 (1 for a metal's bare lobe) and albedo lobe[i] at the mu nodes, and the diffuse-shaped
-    // lobe scale g(wo) g(wi) / pi.
-    void addPart(float weight, float alpha, float f0, const NodeValues& lobe, const NodeValues& g, const RGB& scale);
+    // A part of the base of mix weight `weight`: a lobe of albedo lobe[i] at the mu nodes that
+    // spreads the light arriving at node i as spreadFrom(i) does (render/bsdfs/ggx_redistribution.h,
+    // sheen_redistribution.h), and the diffuse-shaped lobe scale g(wo) g(wi) / pi.
+    void addPart(float weight, FunctionRef<ElevationWeights(int)> spreadFrom, const NodeValues& lobe,
+                 const NodeValues& g, const RGB& scale);
 
     // `coated` (the coat over the base, reflection only) with the light it loses returned,
     // through the coat's filter.

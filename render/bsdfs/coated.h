@@ -43,8 +43,8 @@
 // reflects exactly 1 at every angle (tests/render/bsdf_energy_test.cpp), where the plain albedo
 // scaling reflected F(1) + (1 - F(1)) 0.908 = 0.912 at normal incidence (eta 1.5). Over another
 // base the albedo is at most E_coat(wo) + (1 - tint E(wo)) E_base <= 1, and the light the
-// coat's underside returns is dropped here (materials return it over a plastic or a metal:
-// render/bsdfs/coat_return.h). The coat's own multiple scattering between microfacets
+// coat's underside returns is dropped here (materials return it over a plastic, a sheen, a
+// metal, subsurface under a specular layer or solid glass: render/bsdfs/coat_return.h). The coat's own multiple scattering between microfacets
 // is not added to its lobe: over a diffuse base that energy reaches the base and comes back out
 // diffusely instead; over a metal or glass it is lost.
 //

@@ -46,6 +46,13 @@ inline float etaFromF0(float f0) {
     return (1.0f + s) / (1.0f - s);
 }
 
+// The reflectance at normal incidence of the relative index eta, ((eta - 1) / (eta + 1))^2 (the
+// same for eta and 1 / eta): the inverse of etaFromF0.
+inline float f0FromEta(float eta) {
+    const float r = (eta - 1.0f) / (eta + 1.0f);
+    return r * r;
+}
+
 // Schlick's approximation F0 + (1 - F0)(1 - cos)^5 (Schlick 1994), per channel: the reflectance
 // at normal incidence F0 is the artist's "specular colour" of a metal. F0 = 1 gives F = 1.
 inline RGB fresnelSchlick(const RGB& f0, float cosTheta) {

@@ -15,11 +15,7 @@ constexpr float kMirrorF0 = 0.9996f;
 
 // E at (mu, alpha) from the side whose relative index is `eta`.
 float interfaceAlbedo(const GgxDistribution& ggx, float mu, float eta) {
-    const Vec3f wo(std::sqrt(std::max(0.0f, 1.0f - mu * mu)), 0.0f, mu);
-    const float g1 = ggx.G1(wo);
-    return visibleNormalQuadrature(ggx, wo, [&](const Vec3f& h) {
-        const float cosO = dot(wo, h);
-        if (!(cosO > 0.0f)) return 0.0;
+    return facetQuadrature(ggx, mu, [&](const Vec3f& wo, const Vec3f& h, float cosO, float g1) {
         const float F = eta > 0.0f ? fresnelDielectric(cosO, eta) : 1.0f;
         double weight = 0.0;
         if (const Vec3f r = reflect(wo, h); r.z > 0.0f) weight += double(F) * ggx.G2(wo, r) / g1;
@@ -40,20 +36,15 @@ float leavingAlbedo(const GgxDistribution& ggx, float mu, float f0) {
 using EnteringTable = AlbedoTable<enteringAlbedo>;
 using LeavingTable = AlbedoTable<leavingAlbedo>;
 
-float f0Of(float eta) {
-    const float r = (eta - 1.0f) / (eta + 1.0f);
-    return r * r;
-}
-
 }  // namespace
 
 float ggxDielectricAlbedo(float cosTheta, float alpha, float eta) {
-    return eta >= 1.0f ? EnteringTable::albedo(cosTheta, alpha, f0Of(eta))
-                       : LeavingTable::albedo(cosTheta, alpha, f0Of(eta));
+    return eta >= 1.0f ? EnteringTable::albedo(cosTheta, alpha, f0FromEta(eta))
+                       : LeavingTable::albedo(cosTheta, alpha, f0FromEta(eta));
 }
 
 float ggxDielectricAverageAlbedo(float alpha, float eta) {
-    return eta >= 1.0f ? EnteringTable::average(alpha, f0Of(eta)) : LeavingTable::average(alpha, f0Of(eta));
+    return eta >= 1.0f ? EnteringTable::average(alpha, f0FromEta(eta)) : LeavingTable::average(alpha, f0FromEta(eta));
 }
 
 }  // namespace fluence::render

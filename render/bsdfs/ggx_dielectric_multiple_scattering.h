@@ -23,30 +23,33 @@
 // accuracy; tests/render/bsdf_energy_test.cpp). What it approximates: the returned light leaves
 // with a cosine distribution instead of the shape a simulation of the microsurface would give.
 //
-// Sampling: the multiple-scattering lobe with probability 1 - E_s(wo) (cosine-weighted, on the
-// reflected side with probability r_s, else on the other), else the single-scattering BSDF's
-// own sampling; every sample returns the whole f and the mixture's pdf. Flags: reflection,
+// Sampling (render/bsdfs/multiple_scattering_mixture.h): the multiple-scattering lobe with
+// probability 1 - E_s(wo) (cosine-weighted, on the reflected side with probability r_s, else on
+// the other), else the single-scattering BSDF's own sampling; every sample returns the whole f and
+// the mixture's pdf. Flags: reflection,
 // transmission, glossy. Path-class label: D. A smooth interface (or n = 1) scatters once and is
 // returned as the single-scattering BSDF by energyCompensatedDielectric.
 #pragma once
 
-#include <optional>
+#include <algorithm>
 
 #include "render/bsdf_arena.h"
 #include "render/bsdfs/ggx_dielectric.h"
+#include "render/bsdfs/multiple_scattering_mixture.h"
 
 namespace fluence::render {
 
-class CompensatedGgxDielectricBsdf final : public Bsdf {
+class CompensatedGgxDielectricBsdf final : public MultipleScatteringMixture<CompensatedGgxDielectricBsdf> {
 public:
     CompensatedGgxDielectricBsdf(float eta, const GgxDistribution& ggx, const DielectricTints& tints = {});
 
-    RGB f(const Vec3f& wo, const Vec3f& wi) const override;
-    float pdf(const Vec3f& wo, const Vec3f& wi) const override;
-    std::optional<BsdfSample> sample(const Vec3f& wo, float uLobe, Vec2f u) const override;
-    unsigned flags() const override { return single_.flags(); }
+    // The multiple-scattering lobe's reflection seen from outside as K (1 - E_out(wo))
+    // (1 - E_out(wi)) / pi: K = r_out / (1 - A_out), untinted.
+    float outsideReflectionScale() const;
 
 private:
+    friend class MultipleScatteringMixture<CompensatedGgxDielectricBsdf>;
+
     // One side of the interface: its albedo average, the shares of the multiple-scattering light
     // it reflects and lets through, and the coefficient on the crossing lobe that starts there.
     struct Side {
@@ -54,8 +57,12 @@ private:
     };
     const Side& sideOf(const Vec3f& w) const { return w.z > 0.0f ? outside_ : inside_; }
     float albedo(const Vec3f& w) const;  // E on w's side at its angle
+    const Bsdf& single() const { return single_; }
     RGB multipleScattering(const Vec3f& wo, const Vec3f& wi) const;
+    float multipleScatteringProbability(const Vec3f& wo) const { return std::clamp(1.0f - albedo(wo), 0.0f, 1.0f); }
+    float reflectedShare(const Vec3f& wo) const { return sideOf(wo).reflected; }
     float multipleScatteringPdf(const Vec3f& wo, const Vec3f& wi) const;
+    float crossingEta(const Vec3f& wo) const { return wo.z > 0.0f ? eta_ : 1.0f / eta_; }
 
     GgxDielectricBsdf single_;
     float eta_, alpha_;

@@ -22,22 +22,16 @@ struct Slice {
         for (int i = 0; i < kCosines; ++i) {
             const float mu = cosineAt(i);
             const Vec3f wo(std::sqrt(std::max(0.0f, 1.0f - mu * mu)), 0.0f, mu);
-            std::array<double, kCosines> sum{};
+            ElevationBins bins;
             forEachVisibleNormal(ggx, wo, [&](const Vec3f& h, float jacobian) {
                 const Vec3f wi = reflect(wo, h);
                 if (wi.z <= 0.0f) return;
                 const float pdf = ggx.reflectionPdf(wo, h);
                 if (!(pdf > 0.0f)) return;
-                const double weight = double(ggxFacetReflectance(dot(wo, h), f0At(f))) * ggx.reflectionTerm(wo, wi, h) *
-                                      wi.z / pdf * jacobian;
-                const AxisPosition p = positionOf(wi.z, kCosines);
-                sum[p.node] += weight * (1.0f - p.fraction);
-                sum[p.node + 1] += weight * p.fraction;
+                bins.add(wi.z, double(ggxFacetReflectance(dot(wo, h), f0At(f))) * ggx.reflectionTerm(wo, wi, h) * wi.z /
+                                   pdf * jacobian);
             });
-            double total = 0.0;
-            for (double s : sum) total += s;
-            for (int k = 0; k < kCosines; ++k)
-                spread[i][k] = total > 0.0 ? float(sum[k] / total) : (k == i ? 1.0f : 0.0f);
+            spread[i] = bins.spread(i);
         }
     }
 };

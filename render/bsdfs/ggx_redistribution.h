@@ -26,6 +26,28 @@ namespace fluence::render {
 
 using ElevationWeights = std::array<float, albedo_table::kCosines>;
 
+// The light a lobe reflects from one direction, summed into the hats of the mu nodes as a
+// quadrature visits it; normalised, the spread.
+struct ElevationBins {
+    std::array<double, albedo_table::kCosines> sum{};
+
+    void add(float mu, double reflected) {
+        const albedo_table::AxisPosition p = albedo_table::positionOf(mu, albedo_table::kCosines);
+        sum[p.node] += reflected * (1.0f - p.fraction);
+        sum[p.node + 1] += reflected * p.fraction;
+    }
+    // The shares of the total in each hat; all at `from` (the incident node) if nothing was
+    // reflected.
+    ElevationWeights spread(int from) const {
+        double total = 0.0;
+        for (double s : sum) total += s;
+        ElevationWeights shares;
+        for (int k = 0; k < albedo_table::kCosines; ++k)
+            shares[k] = total > 0.0 ? float(sum[k] / total) : (k == from ? 1.0f : 0.0f);
+        return shares;
+    }
+};
+
 // The spread from the mu node i (wo at cosineAt(i)) at the width alpha and reflectance f0; sums
 // to 1.
 ElevationWeights ggxReflectionSpread(int i, float alpha, float f0);

@@ -74,6 +74,11 @@ namespace fluence::render {
 // light it transmits diffusely to the other side (per channel; 0 for an opaque base).
 struct DiffuseBase {
     RGB transmitted = RGB(0.0f);
+    // false when the base's reflection on the layer's side is not diffuse (a glossy layer lies
+    // over the diffuse base, and the light lost to it is returned another way,
+    // render/bsdfs/coat_return.h): the layer then keeps only the inner reflection of the
+    // transmitted share, and does not normalise the reflection.
+    bool reflectsDiffusely = true;
 };
 
 template <typename Top>
@@ -87,9 +92,10 @@ public:
           twoSided_(!(base.flags() & kBsdfTransmission)) {
         if (!diffuse) return;
         const RGB average = top_.averageReflectance();
-        reflectionScale_ =
-            RGB(1.0f / (1.0f - std::min(average.x, kMaxAverage)), 1.0f / (1.0f - std::min(average.y, kMaxAverage)),
-                1.0f / (1.0f - std::min(average.z, kMaxAverage)));
+        if (diffuse->reflectsDiffusely)
+            reflectionScale_ =
+                RGB(1.0f / (1.0f - std::min(average.x, kMaxAverage)), 1.0f / (1.0f - std::min(average.y, kMaxAverage)),
+                    1.0f / (1.0f - std::min(average.z, kMaxAverage)));
         if (!twoSided_) innerReflection_ = diffuse->transmitted * average;
     }
 

@@ -16,26 +16,18 @@ constexpr std::array<float, 5> kFitR1 = {21.5473f, 3.82987f, 0.19823f, -1.97760f
 
 float clampRoughness(float r) { return std::clamp(r, kSheenMinRoughness, 1.0f); }
 
-// The albedo table: kCosines values of x = cbrt(cos theta) in [0, 1] by kRoughnesses values of r
-// in [kSheenMinRoughness, 1], both evenly spaced.
-constexpr int kCosines = 32, kRoughnesses = 24;
-constexpr int kQuadrature = 32;  // points per dimension
+// The albedo table: kCosines values of x = cbrt(cos theta) in [0, 1] by kSheenRoughnesses values
+// of r (sheenRoughnessAt), both evenly spaced.
+constexpr int kCosines = 32, kRoughnesses = kSheenRoughnesses;
 
 // E(cos theta_o) of the untinted lobe: the integral of f cos theta_i over the hemisphere, by the
-// midpoint rule in (t, phi) with cos theta_i = t^2 (points crowd towards the horizon, where the
-// lobe's grazing peak is) over phi in [0, pi] (the lobe is symmetric about the plane of incidence).
+// tables' quadrature (forEachSheenQuadraturePoint).
 float quadratureAlbedo(const CharlieSheenBsdf& lobe, float cosO) {
     const Vec3f wo(std::sqrt(std::max(0.0f, 1.0f - cosO * cosO)), 0.0f, cosO);
     double sum = 0.0;
-    for (int i = 0; i < kQuadrature; ++i) {
-        float t = (i + 0.5f) / kQuadrature, z = t * t, s = std::sqrt(std::max(0.0f, 1.0f - z * z));
-        for (int j = 0; j < kQuadrature; ++j) {
-            float phi = kPi * (j + 0.5f) / kQuadrature;
-            Vec3f wi(s * std::cos(phi), s * std::sin(phi), z);
-            sum += double(lobe.f(wo, wi).x) * z * (2.0f * t);  // dz = 2 t dt
-        }
-    }
-    return float(sum * 2.0 * kPi / (double(kQuadrature) * kQuadrature));
+    forEachSheenQuadraturePoint(
+        [&](const Vec3f& wi, float weight) { sum += double(lobe.f(wo, wi).x) * wi.z * weight; });
+    return float(sum * 2.0 * kPi / (double(kSheenQuadrature) * kSheenQuadrature));
 }
 
 struct AlbedoTable {
@@ -43,8 +35,7 @@ struct AlbedoTable {
 
     AlbedoTable() {
         for (int j = 0; j < kRoughnesses; ++j) {
-            float r = kSheenMinRoughness + (1.0f - kSheenMinRoughness) * float(j) / (kRoughnesses - 1);
-            CharlieSheenBsdf lobe(RGB(1.0f), r);
+            CharlieSheenBsdf lobe(RGB(1.0f), sheenRoughnessAt(j));
             for (int i = 0; i < kCosines; ++i) {
                 float x = float(i) / (kCosines - 1);
                 // cos theta = 0 scatters nothing; its node holds the limit as seen at 1e-5.
@@ -72,7 +63,7 @@ float charlieSheenAverageAlbedo(float roughness) {
     static const std::array<float, kRoughnesses> averages = [] {
         std::array<float, kRoughnesses> a{};
         for (int j = 0; j < kRoughnesses; ++j) {
-            const float r = kSheenMinRoughness + (1.0f - kSheenMinRoughness) * float(j) / (kRoughnesses - 1);
+            const float r = sheenRoughnessAt(j);
             double sum = 0.0;
             for (int i = 0; i < kPoints; ++i) {
                 const float mu = (i + 0.5f) / kPoints;

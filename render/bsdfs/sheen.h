@@ -34,14 +34,40 @@
 // base.
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 #include <optional>
 
+#include "core/sampling.h"
 #include "render/bsdfs/two_sided.h"
 
 namespace fluence::render {
 
 inline constexpr float kSheenMinRoughness = 0.1f;
+
+// The tables' roughness axis: kSheenRoughnesses values of r evenly spaced over
+// [kSheenMinRoughness, 1].
+inline constexpr int kSheenRoughnesses = 24;
+inline float sheenRoughnessAt(int j) {
+    return kSheenMinRoughness + (1.0f - kSheenMinRoughness) * float(j) / (kSheenRoughnesses - 1);
+}
+
+// Calls visit(wi, weight) at the points of the tables' quadrature over the upper hemisphere, for
+// a lobe symmetric about the plane of wo (in the xz plane): the midpoint rule in (t, phi) with
+// cos theta_i = t^2 (points crowd towards the horizon, where the lobe's grazing peak is) over phi
+// in [0, pi]. The integral of g over the hemisphere is 2 pi / kSheenQuadrature^2 times the sum of
+// weight g(wi).
+inline constexpr int kSheenQuadrature = 32;  // points per dimension
+template <typename Visit>
+void forEachSheenQuadraturePoint(Visit visit) {
+    for (int i = 0; i < kSheenQuadrature; ++i) {
+        float t = (i + 0.5f) / kSheenQuadrature, z = t * t, s = std::sqrt(std::max(0.0f, 1.0f - z * z));
+        for (int j = 0; j < kSheenQuadrature; ++j) {
+            float phi = kPi * (j + 0.5f) / kSheenQuadrature;
+            visit(Vec3f(s * std::cos(phi), s * std::sin(phi), z), 2.0f * t);  // dz = 2 t dt
+        }
+    }
+}
 
 // E(cosTheta, roughness): the directional albedo of the untinted Charlie lobe (tabulated; the
 // roughness clamped as the lobe clamps it).

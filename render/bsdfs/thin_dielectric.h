@@ -27,7 +27,9 @@
 // weight (its expectation is the transmitted share of the light hitting visible microfacets),
 // which is all an integrator does with a delta sample. pdf(wo, wi) of the reflection is
 // P(h) D_wo(h) / (4 wo.h). Energy: reflected + transmitted <= 1 for every microfacet, so the albedo
-// is at most 1, exactly 1 when smooth and untinted.
+// is at most 1, exactly 1 when smooth and untinted; rough, what the microfacets reflect into
+// one another is lost here, and returned by render/bsdfs/thin_dielectric_multiple_scattering.h
+// (which materials use).
 //
 // Symmetric: both sides of the sheet are alike, so the model is written for wo.z > 0 and mirrored
 // by TwoSidedReflection (render/bsdfs/two_sided.h): its non-delta part only reflects, and the

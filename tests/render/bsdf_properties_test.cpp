@@ -37,6 +37,7 @@
 #include "render/bsdfs/phong.h"
 #include "render/bsdfs/sheen.h"
 #include "render/bsdfs/thin_dielectric.h"
+#include "render/bsdfs/thin_dielectric_multiple_scattering.h"
 #include "render/material_bsdf.h"
 #include "tests/support/chi2.h"
 #include "tests/support/statistics.h"
@@ -124,6 +125,17 @@ std::vector<BsdfCase> allCases() {
         {"ThinDielectricTinted_a30",
          [=](BsdfArena& a) -> const Bsdf& { return a.make<ThinDielectricBsdf>(1.5f, GgxDistribution(0.3f), tints); },
          true, true});
+    for (float alpha : {0.3f, 1.0f})
+        cases.push_back({"CompensatedThinDielectric_a" + std::to_string(int(alpha * 100)),
+                         [=](BsdfArena& a) -> const Bsdf& {
+                             return a.make<CompensatedThinDielectricBsdf>(1.5f, GgxDistribution(alpha));
+                         },
+                         true, true});
+    cases.push_back({"CompensatedThinDielectricTintedAnisotropic",
+                     [=](BsdfArena& a) -> const Bsdf& {
+                         return a.make<CompensatedThinDielectricBsdf>(1.5f, GgxDistribution(0.6f, 0.2f), tints);
+                     },
+                     true, true});
     for (float r : {0.1f, 0.5f, 1.0f})
         cases.push_back({"CharlieSheen_r" + std::to_string(int(r * 100)),
                          [=](BsdfArena& a) -> const Bsdf& { return a.make<CharlieSheenBsdf>(colour, r); }});
@@ -166,6 +178,33 @@ std::vector<BsdfCase> allCases() {
                  m.coatColor = RGB(0.9f, 0.8f, 0.7f);
                  return materialBsdf(m, a);
              }});
+    // A coat returning its underside's light over a sheen, a subsurface base and solid glass.
+    const auto coatedMaterial = [=](MaterialParams m) {
+        m.coat = 1.0f;
+        m.coatRoughness = 0.3f;
+        m.coatColor = RGB(0.9f, 0.8f, 0.7f);
+        return m;
+    };
+    MaterialParams cloth = lambertianParams(colour);
+    cloth.sheen = 1.0f;
+    cloth.sheenColor = RGB(0.9f, 0.7f, 0.5f);
+    cloth.sheenRoughness = 0.4f;
+    cases.push_back(
+        {"CoatReturnedOverSheen", [=](BsdfArena& a) -> const Bsdf& { return materialBsdf(coatedMaterial(cloth), a); }});
+    MaterialParams skin = lambertianParams(colour);
+    skin.specular = 1.0f;
+    skin.roughness = 0.3f;
+    skin.subsurface = 0.6f;
+    cases.push_back({"CoatReturnedOverSubsurface",
+                     [=](BsdfArena& a) -> const Bsdf& { return materialBsdf(coatedMaterial(skin), a); }, true, false,
+                     false});
+    MaterialParams glass = lambertianParams(colour);
+    glass.specular = 1.0f;
+    glass.roughness = 0.4f;
+    glass.transmission = 1.0f;
+    glass.transmissionColor = RGB(0.9f, 0.8f, 0.6f);
+    cases.push_back(
+        {"CoatReturnedOverGlass", [=](BsdfArena& a) -> const Bsdf& { return materialBsdf(coatedMaterial(glass), a); }});
     cases.push_back({"CoatedGlass", [](BsdfArena& a) -> const Bsdf& {
                          return a.make<CoatedBsdf>(a.make<GgxDielectricBsdf>(1.5f, GgxDistribution(0.3f)), 1.5f, 0.2f);
                      }});

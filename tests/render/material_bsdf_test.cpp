@@ -18,7 +18,7 @@
 #include "render/bsdfs/layered.h"
 #include "render/bsdfs/mix.h"
 #include "render/bsdfs/sheen.h"
-#include "render/bsdfs/thin_dielectric.h"
+#include "render/bsdfs/thin_dielectric_multiple_scattering.h"
 #include "tests/support/bsdf_estimates.h"
 #include "tests/support/chi2.h"
 
@@ -183,7 +183,8 @@ TEST(MaterialBsdf, EachParameterDrivesItsLayer) {
                    b.make<CoatedBsdf>(b.make<LambertianBsdf>(albedo), eta, ggx, RGB(1.0f), RGB(1.0f), DiffuseBase{}));
     EXPECT_NEAR(fresnelDielectric(1.0f, eta.z), 0.5f, 1e-6f);
     // Transmission replaces the (tinted, plastic) base by weight; its colour is split over the
-    // two crossings of a solid, which keeps its multiple scattering; a thin wall filters once.
+    // two crossings of a solid, which keeps its multiple scattering; a thin wall filters once, and
+    // keeps its multiple scattering too.
     MaterialParams glass = plastic;
     glass.transmission = 0.6f;
     glass.transmissionColor = RGB(0.81f, 0.49f, 0.25f);
@@ -197,7 +198,7 @@ TEST(MaterialBsdf, EachParameterDrivesItsLayer) {
     a.reset();
     const DielectricTints sheetTints{RGB(0.7f, 0.35f, 0.14f), glass.transmissionColor};
     expectSameBsdf(bsdfOf(glass, albedo, a),
-                   b.make<MixBsdf>(opaque, b.make<ThinDielectricBsdf>(1.5f, ggx, sheetTints), 0.6f));
+                   b.make<MixBsdf>(opaque, b.make<CompensatedThinDielectricBsdf>(1.5f, ggx, sheetTints), 0.6f));
     // Sheen lies on the diffuse base, beneath the specular lobe; metal (with its multiple
     // scattering) by weight; the coat on top, its colour filtering what passes through it, over a
     // base that is no longer diffuse alone.
