@@ -1,13 +1,13 @@
 #!/usr/bin/python3
 """Adaptive against uniform sampling at equal CPU time, on the Cornell box, the smoke and the subsurface scene.
 
-  bench/adaptive_compare.py FLUENCE OUT_DIR [--res N] [--ref-spp N] [--spp N ...] [--scenes A,B]
+  bench/adaptive_compare.py FLUENCE OUT_DIR [--res N] [--ref-spp N] [--spp N ...] [--uniform-spp N ...] [--scenes A,B]
                             [--sampler NAME] [--min-spp N] [--repeat N]
 
 For each scene: a reference made of two uniform renders of REF_SPP / 2 samples (seeds 1 and 2,
 kept in OUT_DIR if present), whose own noise is subtracted from every error (relMSE, eps 0.01, as
-bench/fluence_bench/metrics.py computes it); then, at each SPP rung (seed 0), the uniform render
-(`--spp N`) and the adaptive one (`--mean-spp N`: the same samples on average, spread by the
+bench/fluence_bench/metrics.py computes it); then, at each rung (seed 0), the uniform render
+(`--spp N`, at the UNIFORM_SPP rungs, default the SPP ones) and the adaptive one (`--mean-spp N`, at the SPP rungs: the same samples on average, spread by the
 budget rule of integrators/adaptive_sampling.h), alternating so that the machine's load falls on
 both alike. Each render's CPU time (user + system of the fluence process, scene loading included)
 is taken from the kernel (RUSAGE_CHILDREN), the least of REPEAT renders (default 2, interleaved
@@ -103,6 +103,8 @@ def main():
     p.add_argument("--res", type=int, default=256)
     p.add_argument("--ref-spp", type=int, default=2048)
     p.add_argument("--spp", type=int, nargs="+", default=[16, 32, 64, 128])
+    p.add_argument("--uniform-spp", type=int, nargs="+", default=None,
+                   help="the uniform rungs (default: the --spp ones); they should reach past the adaptive renders' CPU time")
     p.add_argument("--scenes", default="cornell,smoke,sss")
     p.add_argument("--sampler", default=None, help="--sampler for every render (default: fluence's)")
     p.add_argument("--min-spp", type=int, default=16)
@@ -122,15 +124,17 @@ def main():
         reference = metrics.Reference(halves[0], halves[1], args.ref_spp)
         print("%s reference: relMSE of its own %.3g" % (scene, reference.noise()["ref_relmse"]), flush=True)
         rows = []
-        for n in args.spp:
-            images = {mode: out / ("%s_%s_%d.exr" % (scene, mode, n)) for mode in ("uniform", "adaptive")}
+        rungs = sorted(set(args.spp) | set(args.uniform_spp or args.spp))
+        for n in rungs:
+            modes = [m for m, spps in (("uniform", args.uniform_spp or args.spp), ("adaptive", args.spp)) if n in spps]
+            images = {mode: out / ("%s_%s_%d.exr" % (scene, mode, n)) for mode in modes}
             options = {"uniform": ["--spp", str(n), "--seed", "0"],
                        "adaptive": ["--mean-spp", str(n), "--min-spp", str(min(args.min_spp, n)), "--seed", "0"]}
-            cpus = {"uniform": [], "adaptive": []}
+            cpus = {mode: [] for mode in modes}
             for _ in range(args.repeat):  # the same image each time: the least CPU time is the least disturbed
-                for mode in ("uniform", "adaptive"):
+                for mode in modes:
                     cpus[mode].append(render(binary, scene, args, images[mode], options[mode]))
-            for mode in ("uniform", "adaptive"):
+            for mode in modes:
                 e = reference.error(images[mode])
                 row = {"scene": scene, "mode": mode, "spp": n, "mean_spp": mean_spp(images[mode]) or n,
                        "cpu_s": round(min(cpus[mode]), 2), "cpu_runs": " ".join("%.2f" % c for c in cpus[mode]),

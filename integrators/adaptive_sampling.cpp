@@ -86,11 +86,12 @@ std::vector<double> AdaptiveSampling::neighbourhoodVariances(const Film& film, i
             int counted = 0;
             for (int v = y0; v < y1; ++v)
                 for (int u = x0; u < x1; ++u)
-                    if (film.samples(u, v) >= std::uint32_t(kMinSamplesForHalves)) {
+                    if ((u != x || v != y) && film.samples(u, v) >= std::uint32_t(kMinSamplesForHalves)) {
                         sum += own[std::size_t(v) * width + u];
                         ++counted;
                     }
-            filtered[std::size_t(y) * width + x] = counted > 0 ? sum / counted : 0.0;
+            const std::size_t i = std::size_t(y) * width + x;
+            filtered[i] = counted > 0 ? sum / counted : own[i];
         }
     }
     return filtered;
