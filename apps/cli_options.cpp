@@ -246,6 +246,9 @@ RenderOptions parseRenderOptions(const std::vector<std::string>& args) {
             o.targetError = parseNumber<double>(arg, cur.value(arg));
             if (!(o.targetError >= 0.0) || !std::isfinite(o.targetError))
                 throw UsageError("--target-error must be >= 0");
+        } else if (arg == "--mean-spp") {
+            o.meanSpp = parseNumber<double>(arg, cur.value(arg));
+            if (!(o.meanSpp >= 1.0) || !std::isfinite(o.meanSpp)) throw UsageError("--mean-spp must be at least 1");
         } else if (arg == "--min-spp") {
             o.minSpp = parseNumber<int>(arg, cur.value(arg));
             if (o.minSpp < 2) throw UsageError("--min-spp must be at least 2");
@@ -345,6 +348,11 @@ RenderOptions parseRenderOptions(const std::vector<std::string>& args) {
         throw UsageError("--tile-index must be from 0 to " +
                          std::to_string(o.tileCount->first * o.tileCount->second - 1));
     if (!o.tileCount && o.tileIndex != 0) throw UsageError("--tile-index needs --tile-count");
+    if (o.meanSpp > 0.0 && o.targetError > 0.0) throw UsageError("--mean-spp and --target-error: choose one");
+    if (o.meanSpp > 0.0 && o.tileCount)
+        throw UsageError(
+            "--mean-spp spreads one budget over the whole image: it cannot render a tile (use --target-error)");
+    if (o.meanSpp > 0.0 && o.spp && *o.spp < o.meanSpp) throw UsageError("--mean-spp must be at most --spp");
     if (o.scene.empty()) throw UsageError("no scene file given");
     o.loadRules = load.rules();
     return o;
@@ -475,8 +483,14 @@ std::string usageText() {
            "      --subsurface METHOD subsurface scattering of every material: randomwalk or diffusion\n"
            "                          (default: each material's subsurface_type, else randomwalk)\n"
            "      --time-limit SECS   stop starting new sample passes after SECS seconds (0: no limit)\n"
-           "      --target-error E    adaptive sampling: each pixel stops once the relative standard error of\n"
-           "                          its mean is at most E (e.g. 0.01), after --min-spp and at most --spp samples\n"
+           "      --target-error E    adaptive sampling to a noise level: each pixel stops once the relative\n"
+           "                          standard error of its mean (estimated from its even and odd samples over\n"
+           "                          its 3x3 neighbourhood) is at most E (e.g. 0.02), after --min-spp and at\n"
+           "                          most --spp samples; tiles then have edges on multiples of 8 pixels\n"
+           "      --mean-spp N        adaptive sampling to a budget: N samples per pixel on average, each\n"
+           "                          pixel's share chosen to lower the image's relative error most for the\n"
+           "                          samples (noisy pixels' samples may cost more than the average); at most\n"
+           "                          --spp per pixel (default 8 N); not with tiles\n"
            "      --min-spp N         samples every pixel takes before adaptive sampling may stop it (default 16)\n"
            "      --lpe NAME=EXPR     a light path expression AOV: the light of the paths EXPR matches, as the\n"
            "                          EXR layer NAME (repeatable; also RenderVars with sourceType \"lpe\");\n"

@@ -37,6 +37,7 @@ struct RenderOptions {
     std::map<std::string, double> integratorParameters;  // --sppm-photons N, ... (apps/integrator_parameters.h)
     double timeLimit = 0.0;                              // --time-limit SECONDS (0: none)
     double targetError = 0.0;        // --target-error E: adaptive sampling's relative error per pixel (0: off)
+    double meanSpp = 0.0;            // --mean-spp N: adaptive sampling to a budget of N spp on average (0: off)
     int minSpp = 16;                 // --min-spp N: samples every pixel takes before it may stop
     int maxDepth = 64;               // --max-depth N
     double dicingRate = 1.0;         // --dicing-rate PIXELS: micro-edge length of subdivision surfaces

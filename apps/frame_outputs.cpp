@@ -4,19 +4,26 @@
 
 #include "apps/frame_tokens.h"
 #include "apps/scene_loading.h"
+#include "integrators/adaptive_sampling.h"
 
 namespace fluence::app {
 
 namespace {
 
-// The part of the image a render takes: the whole, or tile --tile-index of --tile-count.
+// The part of the image a render takes: the whole, or tile --tile-index of --tile-count. With
+// adaptive sampling the tiles' edges are moved to the nearest multiple of its block size, where its
+// decisions are independent (integrators/adaptive_sampling.h), so the tiles assemble into the
+// one-piece render.
 PixelWindow tileWindow(const RenderOptions& opt, std::pair<int, int> res) {
     if (!opt.tileCount) return {0, 0, res.first, res.second};
     const auto [columns, rows] = *opt.tileCount;
+    const int step = opt.targetError > 0.0 ? integrators::AdaptiveSampling::kBlockSize : 1;
+    auto edge = [step](int size, int i, int count) {
+        return std::min(size, (size * i / count + step / 2) / step * step);
+    };
     const int column = opt.tileIndex % columns, row = opt.tileIndex / columns;
-    const int x0 = res.first * column / columns, x1 = res.first * (column + 1) / columns;
-    const int y0 = res.second * row / rows, y1 = res.second * (row + 1) / rows;
-    return {x0, y0, x1, y1};
+    return {edge(res.first, column, columns), edge(res.second, row, rows), edge(res.first, column + 1, columns),
+            edge(res.second, row + 1, rows)};
 }
 
 // `path` with the tile suffix ($T: the tile's index) before its extension.

@@ -12,6 +12,7 @@
 #include "apps/render_checkpoint.h"
 #include "apps/render_fingerprint.h"
 #include "apps/scene_loading.h"
+#include "integrators/adaptive_sampling.h"
 #include "apps/stop_signals.h"
 #include "core/sampler_names.h"
 #include "output/exr_attributes.h"
@@ -65,11 +66,12 @@ int lightPathAovs(const RenderOptions& opt, const PlannedRender& planned, const 
 
 integrators::RenderSettings renderSettings(const RenderOptions& opt, const PixelWindow& window, int imageWidth) {
     integrators::RenderSettings rs;
-    rs.samplesPerPixel = opt.spp.value_or(kDefaultSpp);
+    rs.samplesPerPixel = opt.spp.value_or(opt.meanSpp > 0.0 ? int(std::ceil(8.0 * opt.meanSpp)) : kDefaultSpp);
     rs.seed = opt.seed;
     rs.threads = opt.threads;
     rs.timeLimitSeconds = opt.timeLimit;
     rs.targetError = opt.targetError;
+    rs.meanSamplesPerPixel = opt.meanSpp;
     rs.minSamples = opt.minSpp;
     rs.stop = &StopSignals::flag();
     rs.windowX = window.x0;
@@ -198,7 +200,9 @@ int renderFrameImage(const RenderOptions& opt, const usd::Stage& stage, const co
     frame.settings = renderSettings(opt, window, res.first);
     frame.settings.sampler = built.sampler;
     frame.film = std::make_unique<Film>(window.width(), window.height(), frame.camera->farClip(), layers);
-    if (keepsDenoiseBuffers(opt)) frame.film->enableDenoiseBuffers();
+    // Adaptive sampling reads the half buffers too: enabled before a checkpoint is read into the film.
+    if (keepsDenoiseBuffers(opt) || integrators::AdaptiveSampling::enabled(frame.settings))
+        frame.film->enableDenoiseBuffers();
     frame.cryptomatte = cryptomatteFilm(frame.cryptomatteRequests, window.width(), window.height());
     frame.settings.cryptomatte = frame.cryptomatte.get();
     const std::string& cameraPath = built.populated->cameraPath;

@@ -4,6 +4,8 @@
 #include <cstdio>
 #include <thread>
 
+#include "integrators/adaptive_sampling.h"
+
 namespace fluence::app {
 
 namespace {
@@ -42,8 +44,10 @@ void printFrameSummary(const RenderOptions& opt, const std::pair<int, int>& res,
                 counted(st.triangles, "triangle").c_str(), counted(st.lights, "light").c_str(),
                 counted(st.emissiveTriangles, "emissive triangle").c_str(),
                 counted(warnings.count(), "warning").c_str());
-    if (rs.targetError > 0.0)
-        std::printf("  adaptive     target error %g: %.1f spp on average (%d to %d per pixel)\n", rs.targetError,
+    if (integrators::AdaptiveSampling::enabled(rs))
+        std::printf("  adaptive     %s %g: %.1f spp on average (%d to %d per pixel)\n",
+                    rs.targetError > 0.0 ? "target error" : "mean spp",
+                    rs.targetError > 0.0 ? rs.targetError : rs.meanSamplesPerPixel,
                     double(stats.samples) / (double(res.first) * res.second),
                     std::min(rs.minSamples, stats.samplesPerPixel), stats.samplesPerPixel);
     if (st.curves > 0)

@@ -99,6 +99,7 @@ CheckpointFingerprint renderFingerprint(const RenderOptions& o, const usd::Stage
          joined(r.integratorParameters, [](const auto& p) { return p.first + "=" + exact(p.second); })},
         {"samples per pixel", std::to_string(r.samplesPerPixel)},
         {"target error", exact(o.targetError)},
+        {"mean spp", exact(o.meanSpp)},
         {"min spp", std::to_string(o.minSpp)},
         {"max depth", std::to_string(o.maxDepth)},
         {"light path layers",

@@ -89,21 +89,34 @@ Image Film::resolveDenoiseBuffers() const {
             const std::size_t index = static_cast<std::size_t>(y) * width_ + x;
             const Pixel& p = pixels_[index];
             const double* sums = denoiseSums_.data() + index * kDenoiseSumsPerPixel;
-            const double n = p.samples, even = (p.samples + 1) / 2, odd = p.samples / 2;
+            const double n = p.samples;
             const std::array<double, 3> splat = splats_ ? splats_->sum(x, y) : std::array<double, 3>{};
+            const HalfMeans halves = halfMeans(x, y);
             float* out = image.pixel(x, y);
             for (int c = 0; c < 3; ++c) {
-                const double total = p.radiance[c], evenSum = sums[c], added = splat[std::size_t(c)] * perLightPath;
-                const double mean = n > 0 ? total / n : 0.0;
-                const double evenMean = even > 0 ? evenSum / even : 0.0;
-                const double oddMean = odd > 0 ? (total - evenSum) / odd : evenMean;
-                out[c] = static_cast<float>(evenMean + added);
-                out[3 + c] = static_cast<float>(oddMean + added);
+                const double added = splat[std::size_t(c)] * perLightPath;
+                const double mean = n > 0 ? p.radiance[c] / n : 0.0;
+                out[c] = static_cast<float>(halves.even[std::size_t(c)] + added);
+                out[3 + c] = static_cast<float>(halves.odd[std::size_t(c)] + added);
                 const double variance = n > 1 ? std::max(0.0, (sums[3 + c] - n * mean * mean) / (n - 1.0)) / n : 0.0;
                 out[6 + c] = static_cast<float>(variance);
             }
         }
     return image;
+}
+
+Film::HalfMeans Film::halfMeans(int x, int y) const {
+    if (denoiseSums_.empty()) throw std::logic_error("Film::halfMeans: the denoiser's buffers are not enabled");
+    const std::size_t index = static_cast<std::size_t>(y) * width_ + x;
+    const Pixel& p = pixels_[index];
+    const double* evenSums = denoiseSums_.data() + index * kDenoiseSumsPerPixel;
+    const double even = (p.samples + 1) / 2, odd = p.samples / 2;
+    HalfMeans h{};
+    for (std::size_t c = 0; c < 3; ++c) {
+        h.even[c] = even > 0 ? evenSums[c] / even : 0.0;
+        h.odd[c] = odd > 0 ? (p.radiance[c] - evenSums[c]) / odd : h.even[c];
+    }
+    return h;
 }
 
 Image Film::resolve() const {

@@ -27,6 +27,7 @@
 #pragma once
 
 #include <algorithm>
+#include <array>
 #include <cstdint>
 #include <iosfwd>
 #include <memory>
@@ -103,6 +104,13 @@ public:
     static std::vector<std::string> denoiseBufferChannelNames();
     // The half images and variance, in denoiseBufferChannelNames() order. Requires the buffers.
     Image resolveDenoiseBuffers() const;
+    // The means of pixel (x, y)'s even- and odd-indexed samples, R G B, without light tracing's
+    // splats (0 for a half with no sample; the odd half of a one-sample pixel reads the even one's).
+    // Requires the buffers. Adaptive sampling's error estimate (integrators/adaptive_sampling.h).
+    struct HalfMeans {
+        std::array<double, 3> even, odd;
+    };
+    HalfMeans halfMeans(int x, int y) const;
 
     // The samples taken in pixel (x, y) so far.
     std::uint32_t samples(int x, int y) const { return pixel(x, y).samples; }

@@ -7,32 +7,23 @@
 
 #include <algorithm>
 #include <chrono>
+#include <stdexcept>
+#include <vector>
+
+#include "integrators/adaptive_sampling.h"
 
 namespace fluence::integrators {
 
 namespace {
 
-constexpr int kTileSize = 32;
+// Tiles of adaptive sampling are smaller: late passes have few pixels left, and small tiles spread
+// them over the threads.
+constexpr int kTileSize = 32, kAdaptiveTileSize = 8;
 constexpr int kMaxPassSamples = 64;
 
 struct PassRange {
     int first, count;
 };
-
-// Whether pixel (x, y) has stopped by adaptive sampling (see renderer.h).
-bool converged(const Film& film, int x, int y, const RenderSettings& settings) {
-    return settings.targetError > 0.0 && film.samples(x, y) >= std::uint32_t(std::max(settings.minSamples, 2)) &&
-           film.relativeError(x, y) <= settings.targetError;
-}
-
-// Whether every pixel has stopped (then no further pass is needed).
-bool allConverged(const Film& film, const RenderSettings& settings) {
-    if (settings.targetError <= 0.0) return false;
-    for (int y = 0; y < film.height(); ++y)
-        for (int x = 0; x < film.width(); ++x)
-            if (!converged(film, x, y, settings)) return false;
-    return true;
-}
 
 bool stopped(const RenderSettings& settings) { return settings.stop && settings.stop->load(std::memory_order_relaxed); }
 
@@ -45,17 +36,19 @@ bool finite(const FilmSample& sample, std::size_t layers) {
 
 void renderPass(const render::RenderScene& scene, const render::Camera& camera, const Integrator& integrator,
                 const RenderState& state, const RenderSettings& settings, Film& film, PassRange pass,
-                tbb::combinable<RenderCounters>& counters, RenderProgress* progress) {
+                const std::vector<std::uint32_t>& plan, tbb::combinable<RenderCounters>& counters,
+                RenderProgress* progress) {
     const int width = film.width(), height = film.height();
-    const int tilesX = (width + kTileSize - 1) / kTileSize, tilesY = (height + kTileSize - 1) / kTileSize;
+    const int size = AdaptiveSampling::enabled(settings) ? kAdaptiveTileSize : kTileSize;
+    const int tilesX = (width + size - 1) / size, tilesY = (height + size - 1) / size;
     tbb::parallel_for(
         tbb::blocked_range<int>(0, tilesX * tilesY, 1),
         [&](const tbb::blocked_range<int>& tiles) {
             RenderCounters& local = counters.local();
             for (int tile = tiles.begin(); tile != tiles.end(); ++tile) {
                 if (stopped(settings)) return;
-                int x0 = (tile % tilesX) * kTileSize, y0 = (tile / tilesX) * kTileSize;
-                int x1 = std::min(x0 + kTileSize, width), y1 = std::min(y0 + kTileSize, height);
+                int x0 = (tile % tilesX) * size, y0 = (tile / tilesX) * size;
+                int x1 = std::min(x0 + size, width), y1 = std::min(y0 + size, height);
                 std::uint64_t taken = 0;
                 for (int y = y0; y < y1; ++y)
                     for (int x = x0; x < x1; ++x) {
@@ -64,8 +57,8 @@ void renderPass(const render::RenderScene& scene, const render::Camera& camera, 
                             std::uint64_t(imageY) *
                                 std::uint64_t(settings.imageWidth > 0 ? settings.imageWidth : width) +
                             std::uint64_t(imageX);
-                        for (int s = pass.first; s < pass.first + pass.count; ++s) {
-                            if (film.samples(x, y) != std::uint32_t(s) || converged(film, x, y, settings)) break;
+                        const int last = pass.first + int(plan[std::size_t(y) * std::size_t(width) + std::size_t(x)]);
+                        for (int s = pass.first; s < last; ++s) {
                             ++taken;
                             SampleStream rng(settings.seed, pixelIndex, std::uint64_t(s), settings.sampler);
                             const render::Ray ray = cameraSampleRay(camera, rng, imageX, imageY);
@@ -107,11 +100,20 @@ RenderStats render(const render::RenderScene& scene, const render::Camera& camer
     std::unique_ptr<RenderState> state;  // the integrator's per-render state (integrators/integrator.h)
     arena.execute(
         [&] { state = integrator.prepare(scene, camera, settings.seed, splats); });  // within the thread limit
-    // Resumed, the passes go on as the uninterrupted render's would have (1, 2, 4, ... doubled).
-    int done = settings.firstSample, passSize = std::clamp(done + 1, 1, kMaxPassSamples);
+    const bool adaptive = AdaptiveSampling::enabled(settings);
+    if (adaptive && !film.hasDenoiseBuffers()) {  // its error estimate reads the half buffers
+        if (film.totalSamples() > 0)
+            throw std::logic_error("render: adaptive sampling resumed on a film without the half buffers");
+        film.enableDenoiseBuffers();
+    }
+    // Each pass doubles the samples of the pixels still going (1, 2, 4, ...; at most
+    // kMaxPassSamples), so a resumed render's passes go on as the uninterrupted render's would have.
+    // Adaptive sampling ends a pass at minSamples, where its rules start.
+    int done = settings.firstSample;
     double secondsPerSample = 0.0;  // per sample per pixel over the whole image, measured
-    while (done < settings.samplesPerPixel && !stopped(settings) && !allConverged(film, settings)) {
-        int count = std::min(passSize, settings.samplesPerPixel - done);
+    while (done < settings.samplesPerPixel && !stopped(settings)) {
+        int count = std::min(std::clamp(done + 1, 1, kMaxPassSamples), settings.samplesPerPixel - done);
+        if (adaptive && done < settings.minSamples) count = std::min(count, settings.minSamples - done);
         if (settings.timeLimitSeconds > 0.0 && stats.passes > 0) {
             double left = settings.timeLimitSeconds - elapsed();
             int fits = secondsPerSample > 0.0 ? static_cast<int>(left / secondsPerSample) : count;
@@ -119,13 +121,14 @@ RenderStats render(const render::RenderScene& scene, const render::Camera& camer
             if (count <= 0) break;
         }
         double passStart = elapsed();
+        const std::vector<std::uint32_t> plan = AdaptiveSampling::planPass(film, settings, done, count);
+        if (std::all_of(plan.begin(), plan.end(), [](std::uint32_t n) { return n == 0; })) break;
         arena.execute([&] {
             integrator.beginSamples(*state, scene, camera, settings.seed, done, count);
-            renderPass(scene, camera, integrator, *state, settings, film, {done, count}, counters, progress);
+            renderPass(scene, camera, integrator, *state, settings, film, {done, count}, plan, counters, progress);
         });
         secondsPerSample = (elapsed() - passStart) / count;
         done += count;
-        passSize = std::min(2 * passSize, kMaxPassSamples);
         ++stats.passes;
         if (settings.onPass && !stopped(settings)) settings.onPass(done);
     }

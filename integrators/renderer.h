@@ -8,13 +8,14 @@
 // count. A sample whose radiance (or a light path layer) is not finite is counted and replaced by zero, so one bad
 // sample cannot poison a pixel.
 //
-// Adaptive sampling (RenderSettings::targetError): before each sample index past minSamples, a
-// pixel whose relative error has reached the target stops, for good; the decision reads only the
-// pixel's own samples, so it too is the same for any thread count and pass division. A pixel that
-// stopped is skipped by later passes, and the render ends when every pixel has. Stopping on an
-// estimate of the error biases the pixel slightly (the estimate and the mean are correlated), as in
-// every adaptive sampler; minSamples keeps the estimate meaningful. Since a pixel's samples depend
-// only on (seed, pixel, sample index), a render resumed from a pass boundary's film
+// Adaptive sampling (RenderSettings::targetError or meanSamplesPerPixel,
+// integrators/adaptive_sampling.h): before each pass, from the film's half buffers, each pixel is
+// told how many of the pass's samples it takes; one that takes fewer has stopped, for good, and is
+// skipped by later passes; the render ends when every pixel has. The decisions read the film between
+// passes only, so they too are the same for any thread count. Stopping on an estimate of the error
+// biases a pixel slightly (the estimate and the mean are correlated), as in every adaptive sampler;
+// the neighbourhood filter and minSamples keep it small. Since a pixel's samples depend only on
+// (seed, pixel, sample index), a render resumed from a pass boundary's film
 // (RenderSettings::firstSample) finishes bit-identical to one never stopped. The integrator's prepare() runs before the first pass and its
 // beginSamples() before each (integrators/integrator.h), within the render's thread limit (their
 // own parallel loops use its arena); the time they take counts towards the time limit.
@@ -42,10 +43,14 @@ namespace fluence::integrators {
 
 struct RenderSettings {
     int samplesPerPixel = 64;  // the most any pixel takes
-    // Adaptive sampling: > 0 stops each pixel once it has minSamples and the relative standard
-    // error of its mean luminance (Film::relativeError) is at most targetError; 0 takes
-    // samplesPerPixel everywhere.
+    // Adaptive sampling (integrators/adaptive_sampling.h), one rule or neither (0: samplesPerPixel
+    // everywhere). targetError > 0: each pixel stops once it has minSamples and the relative
+    // standard error of its mean is at most targetError. meanSamplesPerPixel > 0: the image takes
+    // that many samples per pixel on average, each pixel's count chosen to lower the image's
+    // relative MSE most. The film then keeps the half buffers (Film::enableDenoiseBuffers; render()
+    // enables them on an empty film, a film to resume needs them before readFilmState).
     double targetError = 0.0;
+    double meanSamplesPerPixel = 0.0;
     int minSamples = 16;
     std::uint64_t seed = 0;
     // The camera samples' random numbers (core/random.h): Sobol stratifies each pixel's samples,

@@ -11,6 +11,7 @@
 #include <sstream>
 
 #include "core/film_state.h"
+#include "integrators/adaptive_sampling.h"
 #include "integrators/bdpt.h"
 #include "integrators/path_tracer.h"
 #include "integrators/renderer.h"
@@ -42,13 +43,14 @@ void expectResumedEqualsUninterruptedWith(const Integrator& integrator, RenderSe
         stop = true;  // the next pass never starts, as if the process were killed here
     };
     const test_support::RenderedFilm stopped = test_support::renderFilm(integrator, desc, kSize, first);
-    ASSERT_EQ(savedAt, stopAt) << "pass boundaries are 1, 3, 7, 15, 31, ...";
+    ASSERT_EQ(savedAt, stopAt) << "pass boundaries are 1, 3, 7, 15, 31, ... (adaptive: minSamples among them)";
     EXPECT_TRUE(stopped.stats.interrupted);
     writeFilmState(stopped.film, saved);
 
     render::RenderScene renderScene(desc);
     render::Camera camera(*desc.camera, kSize, kSize);
     Film film(kSize, kSize, camera.farClip());
+    if (AdaptiveSampling::enabled(settings)) film.enableDenoiseBuffers();  // what adaptive sampling reads
     readFilmState(saved, film);
     RenderSettings resumed = settings;
     resumed.firstSample = savedAt;
@@ -91,7 +93,15 @@ TEST(Resume, AdaptiveSamplingGoesOnFromEachPixelsOwnCount) {
         }
     ASSERT_LT(least, 31u);
     ASSERT_GT(most, 63u);
-    expectResumedEqualsUninterrupted(PathTracer(IntegratorSettings{}), settings, 31);
+    expectResumedEqualsUninterrupted(PathTracer(IntegratorSettings{}), settings, 35);
+}
+
+TEST(Resume, AdaptiveSamplingToABudgetToo) {
+    RenderSettings settings;
+    settings.samplesPerPixel = 200;
+    settings.meanSamplesPerPixel = 40;
+    settings.minSamples = 8;
+    expectResumedEqualsUninterrupted(PathTracer(IntegratorSettings{}), settings, 35);
 }
 
 TEST(Resume, PhotonMappingKeepsItsPerSampleState) {

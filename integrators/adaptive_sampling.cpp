@@ -1,0 +1,138 @@
+#include "integrators/adaptive_sampling.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "integrators/renderer.h"
+
+namespace fluence::integrators {
+
+namespace {
+
+// The samples every pixel takes before a rule applies.
+int leastSamples(const RenderSettings& settings) { return std::max(settings.minSamples, kMinSamplesForHalves); }
+
+// Pixel (x, y)'s own relative variance per sample (see the header); 0 below kMinSamplesForHalves.
+double pixelVariance(const Film& film, int x, int y) {
+    const std::uint32_t n = film.samples(x, y);
+    if (n < std::uint32_t(kMinSamplesForHalves)) return 0.0;
+    const Film::HalfMeans h = film.halfMeans(x, y);
+    const double evenCount = (n + 1) / 2, oddCount = n / 2;
+    double sum = 0.0;
+    for (std::size_t c = 0; c < 3; ++c) {
+        const double mean = (evenCount * h.even[c] + oddCount * h.odd[c]) / n, difference = h.even[c] - h.odd[c];
+        sum += difference * difference * evenCount * oddCount / n / (mean * mean + AdaptiveSampling::kRelativeFloor);
+    }
+    return sum / 3.0;
+}
+
+// The first coordinate of the film's range [first, last) on an axis that shares a block with
+// `coordinate`, and the last; image coordinate = film coordinate + offset.
+int blockStart(int coordinate, int offset) {
+    const int image = coordinate + offset;
+    return std::max(0, image - image % AdaptiveSampling::kBlockSize - offset);
+}
+int blockEnd(int coordinate, int offset, int size) {
+    const int image = coordinate + offset;
+    return std::min(size, image - image % AdaptiveSampling::kBlockSize + AdaptiveSampling::kBlockSize - offset);
+}
+
+// The sample count each active pixel ends with when the budget rule's factor is t: sqrt(a) t,
+// between what it has and `most`.
+double budgetCount(double deviation, double t, int done, int most) {
+    return std::clamp(deviation * t, double(done), double(most));
+}
+
+// The budget rule's factor t (counts sqrt(a) t) that spends `budget` samples over the film, given
+// the active pixels' deviations sqrt(a) and the samples already fixed (stopped pixels'); 0 when the
+// budget is spent, infinite when every active pixel may go to `most`.
+double budgetFactor(const std::vector<double>& deviations, double fixed, double budget, int done, int most) {
+    auto total = [&](double t) {
+        double sum = fixed;
+        for (double d : deviations) sum += budgetCount(d, t, done, most);
+        return sum;
+    };
+    double smallest = 0.0;
+    for (double d : deviations)
+        if (d > 0.0 && (smallest == 0.0 || d < smallest)) smallest = d;
+    if (smallest == 0.0 || total(0.0) >= budget) return 0.0;
+    double hi = most / smallest;
+    if (total(hi) <= budget) return INFINITY;
+    double lo = hi * 1e-12;
+    for (int i = 0; i < 48; ++i) {  // bisection in the logarithm: the same steps on any machine
+        const double mid = std::sqrt(lo * hi);
+        (total(mid) > budget ? hi : lo) = mid;
+    }
+    return lo;
+}
+
+}  // namespace
+
+bool AdaptiveSampling::enabled(const RenderSettings& settings) {
+    return settings.targetError > 0.0 || settings.meanSamplesPerPixel > 0.0;
+}
+
+std::vector<double> AdaptiveSampling::neighbourhoodVariances(const Film& film, int windowX, int windowY) {
+    const int width = film.width(), height = film.height();
+    std::vector<double> own(std::size_t(width) * std::size_t(height));
+    for (int y = 0; y < height; ++y)
+        for (int x = 0; x < width; ++x) own[std::size_t(y) * width + x] = pixelVariance(film, x, y);
+    std::vector<double> filtered(own.size(), 0.0);
+    for (int y = 0; y < height; ++y) {
+        const int y0 = std::max(y - 1, blockStart(y, windowY)), y1 = std::min(y + 2, blockEnd(y, windowY, height));
+        for (int x = 0; x < width; ++x) {
+            const int x0 = std::max(x - 1, blockStart(x, windowX)), x1 = std::min(x + 2, blockEnd(x, windowX, width));
+            double sum = 0.0;
+            int counted = 0;
+            for (int v = y0; v < y1; ++v)
+                for (int u = x0; u < x1; ++u)
+                    if ((u != x || v != y) && film.samples(u, v) >= std::uint32_t(kMinSamplesForHalves)) {
+                        sum += own[std::size_t(v) * width + u];
+                        ++counted;
+                    }
+            const std::size_t i = std::size_t(y) * width + x;
+            filtered[i] = counted > 0 ? sum / counted : own[i];
+        }
+    }
+    return filtered;
+}
+
+std::vector<std::uint32_t> AdaptiveSampling::planPass(const Film& film, const RenderSettings& settings, int done,
+                                                      int count) {
+    const int width = film.width(), height = film.height();
+    std::vector<std::uint32_t> plan(std::size_t(width) * std::size_t(height), 0);
+    auto active = [&](std::size_t i) { return film.samples(int(i % width), int(i / width)) == std::uint32_t(done); };
+    const bool ruled = enabled(settings) && done >= leastSamples(settings);
+    if (!ruled) {
+        for (std::size_t i = 0; i < plan.size(); ++i) plan[i] = active(i) ? std::uint32_t(count) : 0;
+        return plan;
+    }
+    const std::vector<double> variances = neighbourhoodVariances(film, settings.windowX, settings.windowY);
+    if (settings.targetError > 0.0) {
+        const double target = settings.targetError * settings.targetError;
+        for (std::size_t i = 0; i < plan.size(); ++i)
+            plan[i] = active(i) && variances[i] / done > target ? std::uint32_t(count) : 0;
+        return plan;
+    }
+    std::vector<double> deviations;
+    double fixed = 0.0;
+    for (std::size_t i = 0; i < plan.size(); ++i) {
+        if (active(i))
+            deviations.push_back(std::sqrt(variances[i]));
+        else
+            fixed += film.samples(int(i % width), int(i / width));
+    }
+    const double budget = settings.meanSamplesPerPixel * double(plan.size());
+    const int most = settings.samplesPerPixel;
+    const double t = budgetFactor(deviations, fixed, budget, done, most);
+    std::size_t next = 0;
+    for (std::size_t i = 0; i < plan.size(); ++i) {
+        if (!active(i)) continue;
+        const double deviation = deviations[next++];
+        const double wanted = std::isinf(t) ? most : std::round(budgetCount(deviation, t, done, most));
+        plan[i] = std::uint32_t(std::clamp(wanted - done, 0.0, double(count)));
+    }
+    return plan;
+}
+
+}  // namespace fluence::integrators

@@ -1,0 +1,66 @@
+// Adaptive sampling's decisions (RenderSettings::targetError, meanSamplesPerPixel): before each
+// pass of the render loop (integrators/renderer.h), how many of the pass's samples each pixel takes.
+//
+// The error estimate. A pixel's relative variance per sample, a = mean over R G B of
+// sigma_c^2 / (mean_c^2 + kRelativeFloor), where sigma_c^2 is estimated from the difference of the
+// means of its even- and odd-indexed samples (the film's half buffers, core/film.h):
+// (even_c - odd_c)^2 n_even n_odd / n. The halves are two independent estimates of the pixel, so
+// their difference measures the error the pixel's mean actually has, under the Sobol sampler's
+// stratification too (where the samples' own spread overstates it). One difference is a noisy
+// estimate, so a is averaged over the pixel's 3x3 neighbourhood, the pixel itself left out: a pixel
+// whose own halves agree by luck amid noisy neighbours does not stop, the neighbours of a lone noisy
+// pixel go on, and a pixel's decisions do not read its own samples, so a heavy-tailed pixel that
+// has not yet drawn its rare bright samples (a low mean and a low spread together) is not stopped
+// for it, which biased the image low (by 0.2-0.4% on the subsurface scene when the pixel counted).
+// The neighbourhood is clipped to the pixel's kBlockSize x kBlockSize block of the image (blocks
+// aligned to the image's origin), so a pixel's decisions depend on its block's pixels only: tiles
+// whose edges fall on block edges (apps/frame_outputs.cpp) assemble into the one-piece render.
+// The floor (in the relMSE metric too, bench/) keeps near-black pixels from sampling forever.
+//
+// The rules. A pixel's relative standard error is e = sqrt(a / n) after n samples.
+//  - Target (targetError E > 0): a pixel stops once e <= E. Every pixel ends near the same
+//    relative noise: an even-looking image.
+//  - Budget (meanSamplesPerPixel N > 0): the samples go where they lower the image's relative MSE
+//    most. For a sum of a_p / n_p over the pixels with sum n_p fixed, the best counts are
+//    n_p proportional to sqrt(a_p) (not to a_p, which equalising e gives, and which spends exactly
+//    as well as uniform sampling when every sample costs the same). Before each pass the factor is
+//    solved so that the counts add up to N per pixel over the image, with stopped pixels at their
+//    counts and the rest between what they have and samplesPerPixel; each pixel then takes the
+//    pass's samples up to its count.
+// Every pixel takes minSamples (at least kMinSamplesForHalves) before either rule applies. A pixel
+// that takes fewer samples than the pass offers has stopped, for good. The decisions read the film
+// between passes only, so they are the same at any thread count, and a render resumed from a pass
+// boundary's film decides as the uninterrupted one did.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "core/film.h"
+
+namespace fluence::integrators {
+
+struct RenderSettings;
+
+// The samples a pixel needs before its halves estimate anything (two in each).
+inline constexpr int kMinSamplesForHalves = 4;
+
+class AdaptiveSampling {
+public:
+    static constexpr int kBlockSize = 8;
+    static constexpr double kRelativeFloor = 0.01;
+
+    // Whether `settings` asks for adaptive sampling (either rule).
+    static bool enabled(const RenderSettings& settings);
+
+    // Per pixel of the film, row by row: the relative variance per sample a, averaged over the
+    // neighbourhood (see the top of this file); 0 below kMinSamplesForHalves samples. The film is
+    // the window at (windowX, windowY) of the image, and must keep the half buffers.
+    static std::vector<double> neighbourhoodVariances(const Film& film, int windowX, int windowY);
+
+    // Per pixel of the film, row by row: how many of the pass's samples [done, done + count) it
+    // takes. Without adaptive sampling, count everywhere (a pixel that stopped before takes none).
+    static std::vector<std::uint32_t> planPass(const Film& film, const RenderSettings& settings, int done, int count);
+};
+
+}  // namespace fluence::integrators

@@ -1,0 +1,132 @@
+// Adaptive sampling's decisions on synthetic films (integrators/adaptive_sampling.h): samples added
+// by hand, flat (every sample the same) or noisy (two values in a hashed order), then the plan of
+// the next pass read. A flat region stops and a noisy one goes on; a pixel whose own halves agree
+// by luck amid noisy neighbours goes on; the neighbours of a lone noisy pixel in a flat area go on
+// (it is judged by them, not by its own samples), up to the edge of its block; the budget rule gives the
+// noisier region more.
+#include <gtest/gtest.h>
+
+#include <cstdint>
+#include <functional>
+#include <vector>
+
+#include "core/film.h"
+#include "integrators/adaptive_sampling.h"
+#include "integrators/renderer.h"
+
+namespace fluence::integrators {
+namespace {
+
+constexpr int kWidth = 16, kHeight = 8, kDone = 16, kCount = 17;
+
+// A value of pixel (x, y)'s sample i: `level`, plus or minus `spread` in a hashed order.
+float sampleValue(int x, int y, int i, float level, float spread) {
+    std::uint32_t h = std::uint32_t(x) * 73856093u ^ std::uint32_t(y) * 19349663u ^ std::uint32_t(i) * 83492791u;
+    h ^= h >> 13;
+    h *= 0x5bd1e995u;
+    h ^= h >> 15;
+    return level + ((h & 1u) ? spread : -spread);
+}
+
+// A film of kDone samples per pixel, pixel (x, y) spreading its samples by spread(x, y) about 0.5.
+Film syntheticFilm(const std::function<float(int, int)>& spread) {
+    Film film(kWidth, kHeight, 100.0f);
+    film.enableDenoiseBuffers();
+    for (int y = 0; y < kHeight; ++y)
+        for (int x = 0; x < kWidth; ++x)
+            for (int i = 0; i < kDone; ++i) {
+                FilmSample s{};
+                s.radiance = RGB(sampleValue(x, y, i, 0.5f, spread(x, y)));
+                film.add(x, y, s);
+            }
+    return film;
+}
+
+RenderSettings targetSettings() {
+    RenderSettings settings;
+    settings.samplesPerPixel = 1024;
+    settings.targetError = 0.05;
+    settings.minSamples = kDone;
+    return settings;
+}
+
+std::uint32_t planned(const std::vector<std::uint32_t>& plan, int x, int y) {
+    return plan[std::size_t(y) * kWidth + x];
+}
+
+TEST(AdaptiveStoppingRule, AFlatRegionStopsAndANoisyOneGoesOn) {
+    const Film film = syntheticFilm([](int x, int) { return x < 8 ? 0.0f : 0.4f; });
+    const std::vector<std::uint32_t> plan = AdaptiveSampling::planPass(film, targetSettings(), kDone, kCount);
+    for (int y = 0; y < kHeight; ++y)
+        for (int x = 0; x < kWidth; ++x)
+            EXPECT_EQ(planned(plan, x, y), x < 8 ? 0u : std::uint32_t(kCount)) << x << ", " << y;
+}
+
+TEST(AdaptiveStoppingRule, BeforeMinSamplesEveryPixelGoesOn) {
+    const Film film = syntheticFilm([](int, int) { return 0.0f; });
+    RenderSettings settings = targetSettings();
+    settings.minSamples = 32;
+    for (std::uint32_t n : AdaptiveSampling::planPass(film, settings, kDone, kCount))
+        EXPECT_EQ(n, std::uint32_t(kCount));
+}
+
+TEST(AdaptiveStoppingRule, APixelWhoseHalvesAgreeByLuckAmidNoiseGoesOn) {
+    const Film film = syntheticFilm([](int x, int y) { return x == 11 && y == 3 ? 0.0f : 0.4f; });
+    EXPECT_EQ(AdaptiveSampling::neighbourhoodVariances(film, 0, 0).size(), std::size_t(kWidth * kHeight));
+    const std::vector<std::uint32_t> plan = AdaptiveSampling::planPass(film, targetSettings(), kDone, kCount);
+    EXPECT_EQ(planned(plan, 11, 3), std::uint32_t(kCount));
+}
+
+TEST(AdaptiveStoppingRule, ALoneNoisyPixelKeepsItsNeighbourhoodGoingWithinItsBlock) {
+    // Pixel (3, 3) noisy in a flat image, and (7, 5) at its block's right edge.
+    const Film film =
+        syntheticFilm([](int x, int y) { return (x == 3 && y == 3) || (x == 7 && y == 5) ? 0.4f : 0.0f; });
+    const std::vector<std::uint32_t> plan = AdaptiveSampling::planPass(film, targetSettings(), kDone, kCount);
+    for (int y = 2; y <= 4; ++y)
+        for (int x = 2; x <= 4; ++x)
+            if (x != 3 || y != 3) {
+                EXPECT_EQ(planned(plan, x, y), std::uint32_t(kCount)) << x << ", " << y;
+            }
+    EXPECT_EQ(planned(plan, 3, 3), 0u) << "its own decision reads its neighbours only (no bias from its own mean)";
+    EXPECT_EQ(planned(plan, 0, 0), 0u) << "away from it, the flat image stops";
+    EXPECT_EQ(planned(plan, 6, 5), std::uint32_t(kCount));
+    EXPECT_EQ(planned(plan, 8, 5), 0u) << "the next block decides on its own pixels";
+    // Seen as a window of the image starting 1 pixel further right, the blocks move: (7, 5) is then
+    // image pixel 8, the first of its block, and (6, 5) is in the block before it.
+    RenderSettings window = targetSettings();
+    window.windowX = 1;
+    window.imageWidth = kWidth + 1;
+    const std::vector<std::uint32_t> moved = AdaptiveSampling::planPass(film, window, kDone, kCount);
+    EXPECT_EQ(planned(moved, 6, 5), 0u);
+    EXPECT_EQ(planned(moved, 8, 5), std::uint32_t(kCount));
+}
+
+TEST(AdaptiveStoppingRule, ABudgetGoesToTheNoisierPixelsAndStopsTheFlatOnes) {
+    // Left flat, middle a little noisy, right very noisy; a budget between what the pixels have
+    // and every pixel going on.
+    const Film film = syntheticFilm([](int x, int) { return x < 6 ? 0.0f : x < 11 ? 0.05f : 0.4f; });
+    RenderSettings settings = targetSettings();
+    settings.targetError = 0.0;
+    settings.meanSamplesPerPixel = 24.0;
+    settings.samplesPerPixel = kDone + kCount;  // so that this pass can spend the whole budget
+    const std::vector<std::uint32_t> plan = AdaptiveSampling::planPass(film, settings, kDone, kCount);
+    std::uint64_t total = 0;
+    for (int y = 0; y < kHeight; ++y)
+        for (int x = 0; x < kWidth; ++x) {
+            total += kDone + planned(plan, x, y);
+            if (x < 5) {
+                EXPECT_EQ(planned(plan, x, y), 0u) << x << ", " << y;
+            }
+            if (x == 8 || x >= 12) {
+                EXPECT_LE(planned(plan, 8, y), planned(plan, x, y)) << x << ", " << y;
+            }
+        }
+    EXPECT_GT(planned(plan, 13, 4), planned(plan, 8, 4));
+    const double mean = double(total) / (kWidth * kHeight);
+    EXPECT_NEAR(mean, settings.meanSamplesPerPixel, 1.0) << "the budget is spent, per pixel rounded";
+    settings.meanSamplesPerPixel = kDone;
+    for (std::uint32_t n : AdaptiveSampling::planPass(film, settings, kDone, kCount)) EXPECT_EQ(n, 0u) << "spent";
+}
+
+}  // namespace
+}  // namespace fluence::integrators
