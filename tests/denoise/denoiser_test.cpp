@@ -130,7 +130,7 @@ TEST(Denoiser, PureNoiseVarianceIsReducedAsTheWindowAllows) {
     // about 64² / 13² = 24 independent windows (2 sqrt(2 / 24) ~ 0.6). NL-means weights near 1 on
     // pure noise bring it within 2 times of that bound.
     const DenoiseSettings settings;
-    const int side = 2 * (settings.radius / settings.stride) + 1;
+    const int side = 2 * (settings.radius) + 1;
     const double neighbours = double(side) * side;
     const double ratio = after.variance / before.variance;
     EXPECT_GT(ratio, (1.0 / neighbours) * (1.0 - 0.6));
