@@ -63,7 +63,7 @@ struct DenoiseBuffers {
 
 struct DenoiseSettings {
     int radius = 4;               // the fit's window spans (2 radius + 1)² pixels (at most 8)
-    int fitStride = 2;            // fits at every fitStride-th pixel in x and y
+    int fitStride = 3;            // fits at every fitStride-th pixel in x and y
     float k = 0.6f;               // NL-means colour sensitivity: larger blurs more
     float ridge = 1e-3f;          // ridge on the feature coefficients, relative to the weights' sum
     float fireflyRatio = 8.0f;    // a neighbour's variance above this times its window's is cut
