@@ -18,6 +18,8 @@ constexpr int kSize = 64;
 struct Field {
     std::function<float(int x, int y)> colour;
     std::function<float(int x, int y)> albedo = [](int, int) { return 0.5f; };
+    // The samples' standard deviation at (x, y), relative to render()'s `sigma`.
+    std::function<float(int x, int y)> noise = [](int, int) { return 1.0f; };
 };
 
 // `samples` samples per pixel of standard deviation `sigma` around the field's colour, split
@@ -39,7 +41,7 @@ DenoiseBuffers render(const Field& field, int samples, float sigma, unsigned see
             for (int c = 0; c < 3; ++c) {
                 double sums[2] = {0, 0}, all = 0, squares = 0;
                 for (int s = 0; s < samples; ++s) {
-                    const double v = field.colour(x, y) + noise(rng);
+                    const double v = field.colour(x, y) + field.noise(x, y) * noise(rng);
                     sums[s % 2] += v;
                     all += v;
                     squares += v * v;
@@ -150,17 +152,35 @@ TEST(Denoiser, CausticOnDiffuseFloorIsNotErased) {
 }
 
 TEST(Denoiser, SmallHighlightAtHighSampleCountIsKept) {
-    // A one-pixel and a 2x2 highlight ten times brighter than the floor, at 64 samples: the pixels'
-    // noise (1 / 8) is far below the step, so the denoised highlight must stay within its noise of
-    // the truth; a filter that lets the darker neighbours in pulls it towards 0.3.
+    // A one-pixel and a 2x2 highlight ten times brighter than the floor, whose samples are noisier
+    // (as a highlight reached by few samples is: standard deviation 2 against the floor's 0.25), at
+    // 256 samples: the denoised highlight must stay within its noise of the truth, where a filter
+    // whose weights the highlight's own variance widens lets the darker neighbours in.
     const auto single = [](int x, int y) { return x == 20 && y == 20; };
     const auto block = [](int x, int y) { return (x == 40 || x == 41) && (y == 40 || y == 41); };
-    const DenoiseBuffers b =
-        render({[&](int x, int y) { return single(x, y) || block(x, y) ? 3.0f : 0.3f; }}, 64, 1.0f, 8);
-    const std::vector<float> out = denoise(b).beauty;
-    // 4 standard deviations of the noisy mean: 4 / 8 for one pixel, 4 / 16 for the block's four.
+    Field field{[&](int x, int y) { return single(x, y) || block(x, y) ? 3.0f : 0.3f; }};
+    field.noise = [&](int x, int y) { return single(x, y) || block(x, y) ? 8.0f : 1.0f; };
+    const std::vector<float> out = denoise(render(field, 256, 0.25f, 8)).beauty;
+    // 4 standard deviations of the noisy mean: 4 x 2 / 16 = 0.5 for one pixel, 0.25 for the block's four.
     EXPECT_NEAR(stats(out, single).mean, 3.0, 0.5);
     EXPECT_NEAR(stats(out, block).mean, 3.0, 0.25);
+}
+
+TEST(Denoiser, FireflyAtHighSampleCountIsNotSpread) {
+    // One sample of 200 among a pixel's 64 on a floor of 0.3 (noise 0.25 per sample): its half
+    // image jumps by 200 / 32 and its variance by about 200² / 64². The pixels around it must stay
+    // at the floor: their mean averages some 17² pixels of noise 0.25 / 8, so 0.0018, and 0.005 is
+    // three of those (the first version of the denoiser, which let the firefly in, read 0.313).
+    DenoiseBuffers b = render({[](int, int) { return 0.3f; }}, 64, 0.25f, 9);
+    const std::size_t firefly = std::size_t(30) * kSize + 30;
+    for (int c = 0; c < 3; ++c) {
+        b.halves[0][3 * firefly + std::size_t(c)] += 200.0f / 32.0f;
+        b.variance[3 * firefly + std::size_t(c)] += 200.0f * 200.0f / (64.0f * 64.0f);
+    }
+    const auto around = [](int x, int y) {
+        return std::abs(x - 30) <= 4 && std::abs(y - 30) <= 4 && (x != 30 || y != 30);
+    };
+    EXPECT_NEAR(stats(denoise(b).beauty, around).mean, 0.3, 0.005);
 }
 
 TEST(Denoiser, BitIdenticalAtAnyThreadCount) {
