@@ -9,35 +9,14 @@
 #include <cstddef>
 #include <string>
 
+#include "denoise/denoise_planes.h"
+#include "denoise/local_fit.h"
+
 namespace fluence::denoise {
 
 namespace {
 
-constexpr int kFeatures = 8;         // the constant, albedo R G B, normal X Y Z, relative depth
-constexpr int kMaxOutputs = 3 * 17;  // the beauty and up to 16 layers, R G B each
-constexpr float kEpsilon = 1e-10f;   // keeps the NL-means distance finite where the variance is 0
-constexpr float kNegligibleWeight = 1e-4f;
-
-// The 3x3 box filter of an interleaved R G B image, times `scale` (at the borders, over the
-// pixels inside the image).
-std::vector<float> boxFilter(const std::vector<float>& image, int width, int height, float scale) {
-    std::vector<float> out(image.size());
-    for (int y = 0; y < height; ++y)
-        for (int x = 0; x < width; ++x) {
-            float sum[3] = {0, 0, 0};
-            int count = 0;
-            for (int yy = std::max(0, y - 1); yy <= std::min(height - 1, y + 1); ++yy)
-                for (int xx = std::max(0, x - 1); xx <= std::min(width - 1, x + 1); ++xx, ++count)
-                    for (int c = 0; c < 3; ++c) sum[c] += image[(std::size_t(yy) * width + xx) * 3 + c];
-            for (int c = 0; c < 3; ++c) out[(std::size_t(y) * width + x) * 3 + c] = sum[c] * scale / float(count);
-        }
-    return out;
-}
-
-// The colour the weights compare, and its variance.
-struct Guide {
-    std::vector<float> colour, variance;
-};
+constexpr int kBandCentreRows = 16;  // centre rows whose pixels one task reconstructs
 
 void checkSize(const std::vector<float>& v, std::size_t expected, const char* what) {
     if (v.size() != expected)
@@ -57,129 +36,128 @@ void checkInput(const DenoiseBuffers& in, const DenoiseSettings& settings) {
     for (const std::vector<float>& layer : in.layers) checkSize(layer, 3 * pixels, "layer");
     if (3 * (in.layers.size() + 1) > std::size_t(kMaxOutputs))
         throw DenoiseError("denoise: at most " + std::to_string(kMaxOutputs / 3 - 1) + " layers");
-    if (settings.radius < 0 || settings.stride < 1 || !(settings.k > 0.0f) || !(settings.ridge >= 0.0f))
+    if (settings.radius < 0 || settings.radius > kMaxRadius || settings.fitStride < 1 || !(settings.k > 0.0f) ||
+        !(settings.ridge >= 0.0f) || !(settings.fireflyRatio > 0.0f) || !(settings.minSupport >= 0.0f) ||
+        !(settings.keepThreshold >= 0.0f))
         throw DenoiseError("denoise: settings out of range");
 }
 
-// The fit's features of pixel j, centred on pixel i's.
-[[gnu::always_inline]] inline void features(const DenoiseBuffers& in, std::size_t i, std::size_t j,
-                                            float x[kFeatures]) {
-    x[0] = 1.0f;
-    for (int c = 0; c < 3; ++c) {
-        x[1 + c] = in.albedo[3 * j + c] - in.albedo[3 * i + c];
-        x[4 + c] = in.normal[3 * j + c] - in.normal[3 * i + c];
+// The centres' fits for the pixel rows [rowBegin, rowEnd): the centre rows within fitStride of
+// them, every centre column; coefficients per centre, per half, outputs x kFeatures.
+class BandFits {
+public:
+    BandFits(const DenoisePlanes& planes, const DenoiseSettings& settings, int rowBegin, int rowEnd)
+        : stride_(settings.fitStride),
+          columns_((planes.width - 1) / stride_ + 1),
+          perHalf_(std::size_t(planes.outputs()) * kFeatures) {
+        const int lastRow = (planes.height - 1) / stride_;
+        first_ = std::max(0, (rowBegin - stride_ + stride_ - 1) / stride_);
+        const int last = std::min(lastRow, (rowEnd - 1 + stride_) / stride_);
+        coefficients_.resize(std::size_t(last - first_ + 1) * std::size_t(columns_) * 2 * perHalf_);
+        for (int row = first_; row <= last; ++row)
+            for (int column = 0; column < columns_; ++column) {
+                float* halves[2] = {coefficients_.data() + offset(column, row, 0),
+                                    coefficients_.data() + offset(column, row, 1)};
+                fitCentre(planes, settings, column * stride_, row * stride_, halves);
+            }
     }
-    const float depth = std::max(in.depth[i], 1e-6f);
-    x[7] = std::clamp((in.depth[j] - depth) / depth, -1.0f, 1.0f);
-}
 
-// The NL-means weight of pixel j for pixel i (see denoiser.h).
-[[gnu::always_inline]] inline float colourWeight(const Guide& guide, std::size_t i, std::size_t j, float k2) {
-    float distance = 0.0f;
-    for (int c = 0; c < 3; ++c) {
-        const float ui = guide.colour[3 * i + c], uj = guide.colour[3 * j + c];
-        const float vi = guide.variance[3 * i + c], vj = guide.variance[3 * j + c];
-        const float shared = vi + std::min(vi, vj);
-        distance += ((ui - uj) * (ui - uj) - shared) / (kEpsilon + k2 * shared);
+    // Centre (column, row)'s coefficients for half h.
+    const float* at(int column, int row, int h) const { return coefficients_.data() + offset(column, row, h); }
+
+private:
+    std::size_t offset(int column, int row, int h) const {
+        return ((std::size_t(row - first_) * std::size_t(columns_) + std::size_t(column)) * 2 + std::size_t(h)) *
+               perHalf_;
     }
-    return std::exp(-std::max(0.0f, distance / 3.0f));
-}
 
-// Solves a x = b for `outputs` right-hand sides (a symmetric positive definite, by Cholesky) and
-// writes each solution's constant term. False when a is not positive definite.
-template <int Columns>
-bool constantTerms(const float a[kFeatures][kFeatures], const float b[kFeatures][Columns], int outputs, float* out) {
-    double l[kFeatures][kFeatures] = {};
-    for (int r = 0; r < kFeatures; ++r) {
-        for (int c = 0; c <= r; ++c) {
-            double s = a[c][r];
-            for (int p = 0; p < c; ++p) s -= l[r][p] * l[c][p];
-            if (r == c) {
-                if (!(s > 0.0)) return false;
-                l[r][r] = std::sqrt(s);
-            } else {
-                l[r][c] = s / l[c][c];
+    int stride_, columns_, first_ = 0;
+    std::size_t perHalf_;
+    std::vector<float> coefficients_;
+};
+
+float tent(int distance, int stride) { return 1.0f - float(std::abs(distance)) / float(stride + 1); }
+
+// Pixel (x, y) of both halves, every output, from the centres' models (see denoiser.h): the mean
+// of the two halves into `out`.
+void reconstruct(const DenoisePlanes& planes, const DenoiseSettings& settings, const BandFits& fits, int x, int y,
+                 float* out) {
+    const int stride = settings.fitStride, outputs = planes.outputs();
+    const std::size_t p = std::size_t(y) * planes.width + x;
+    const float k2 = settings.k * settings.k;
+    float sums[2][kMaxOutputs] = {}, weightSums[2] = {0.0f, 0.0f}, tentSum = 0.0f;
+    const int columns = (planes.width - 1) / stride + 1, rows = (planes.height - 1) / stride + 1;
+    for (int row = std::max(0, (y - 1) / stride); row <= std::min(rows - 1, (y + stride) / stride); ++row)
+        for (int column = std::max(0, (x - 1) / stride); column <= std::min(columns - 1, (x + stride) / stride);
+             ++column) {
+            const int cx = column * stride, cy = row * stride;
+            if (std::abs(cx - x) > stride || std::abs(cy - y) > stride) continue;
+            const std::size_t c = std::size_t(cy) * planes.width + cx;
+            const float t =
+                tent(cx - x, stride) * tent(cy - y, stride) * fireflyWeight(planes, p, c, settings.fireflyRatio);
+            float f[kFeatures];
+            centredFeatures(planes, c, p, f);
+            tentSum += t;
+            for (int h = 0; h < 2; ++h) {
+                const float w = t * colourWeight(planes, 1 - h, c, p, k2);
+                const float* coefficients = fits.at(column, row, h);
+                for (int o = 0; o < outputs; ++o) {
+                    float value = 0.0f;
+                    for (int q = 0; q < kFeatures; ++q) value += coefficients[o * kFeatures + q] * f[q];
+                    sums[h][o] += w * value;
+                }
+                weightSums[h] += w;
             }
         }
+    float own[2][kMaxOutputs * kFeatures];
+    const bool alone = weightSums[0] < settings.minSupport * tentSum || weightSums[1] < settings.minSupport * tentSum;
+    if (alone) {
+        float* halves[2] = {own[0], own[1]};
+        fitCentre(planes, settings, x, y, halves);
     }
     for (int o = 0; o < outputs; ++o) {
-        double y[kFeatures], x[kFeatures];
-        for (int r = 0; r < kFeatures; ++r) {
-            double s = b[r][o];
-            for (int p = 0; p < r; ++p) s -= l[r][p] * y[p];
-            y[r] = s / l[r][r];
-        }
-        for (int r = kFeatures - 1; r >= 0; --r) {
-            double s = y[r];
-            for (int p = r + 1; p < kFeatures; ++p) s -= l[p][r] * x[p];
-            x[r] = s / l[r][r];
-        }
-        out[o] = static_cast<float>(x[0]);
+        float value = 0.0f;
+        for (int h = 0; h < 2; ++h) value += 0.5f * (alone ? own[h][o * kFeatures] : sums[h][o] / weightSums[h]);
+        out[o] = std::isfinite(value) ? std::max(0.0f, value) : 0.0f;
     }
-    return true;
 }
 
-// Pixel (x, y) of half `half` and of every layer, fitted with the weights of `guide`: the
-// constant terms, added to `sums` (R G B of the half, then of each layer). `Outputs` is their
-// count when known at compile time (the beauty alone), else 0.
-template <int Outputs>
-void fitPixel(const DenoiseBuffers& in, const DenoiseSettings& settings, const Guide& guide, int half, int x, int y,
-              float* sums) {
-    const int outputs = Outputs > 0 ? Outputs : 3 * int(in.layers.size() + 1);
-    const std::size_t i = std::size_t(y) * in.width + x;
-    const float k2 = settings.k * settings.k;
-    constexpr int kColumns = Outputs > 0 ? Outputs : kMaxOutputs;
-    float a[kFeatures][kFeatures] = {}, b[kFeatures][kColumns] = {};
-    float weightSum = 0.0f;
-    const int r = settings.radius / settings.stride * settings.stride;
-    for (int yy = std::max(y - r, y % settings.stride); yy <= std::min(y + r, in.height - 1); yy += settings.stride)
-        for (int xx = std::max(x - r, x % settings.stride); xx <= std::min(x + r, in.width - 1);
-             xx += settings.stride) {
-            const std::size_t j = std::size_t(yy) * in.width + xx;
-            const float w = colourWeight(guide, i, j, k2);
-            if (w < kNegligibleWeight) continue;
-            float f[kFeatures], values[kColumns];
-            features(in, i, j, f);
-            for (int c = 0; c < 3; ++c) values[c] = in.halves[half][3 * j + c];
-            for (int l = 0; 3 + 3 * l < outputs; ++l)
-                for (int c = 0; c < 3; ++c) values[3 + 3 * l + c] = in.layers[std::size_t(l)][3 * j + c];
-            weightSum += w;
-            for (int p = 0; p < kFeatures; ++p) {
-                const float wp = w * f[p];
-                for (int q = p; q < kFeatures; ++q) a[p][q] += wp * f[q];
-                for (int o = 0; o < outputs; ++o) b[p][o] += wp * values[o];
-            }
-        }
-    for (int p = 1; p < kFeatures; ++p) a[p][p] += settings.ridge * weightSum;
-    float fitted[kColumns];
-    if (!constantTerms<kColumns>(a, b, outputs, fitted))  // not met with the ridge; the weighted mean then
-        for (int o = 0; o < outputs; ++o) fitted[o] = b[0][o] / a[0][0];
-    for (int o = 0; o < outputs; ++o) sums[o] += std::isfinite(fitted[o]) ? std::max(0.0f, fitted[o]) : 0.0f;
+// The selection step (see denoiser.h): pixel p's denoised outputs `out` drawn towards the noisy
+// ones where their difference shows a bias.
+void keepWhatTheFitLost(const DenoisePlanes& planes, const DenoiseSettings& settings, std::size_t p, float* out) {
+    float blend[3];
+    for (std::size_t c = 0; c < 3; ++c) {
+        const float variance = std::max(planes.variance[c][p], planes.smoothVariance[c][p]);
+        const float d = out[c] - planes.noisy[c][p];
+        const float bias = std::max(0.0f, d * d - settings.keepThreshold * variance);
+        blend[c] = bias > 0.0f ? bias / (bias + variance) : 0.0f;
+    }
+    for (int o = 0; o < planes.outputs(); ++o) out[o] += blend[o % 3] * (planes.noisy[std::size_t(o)][p] - out[o]);
 }
 
 }  // namespace
 
 Denoised denoise(const DenoiseBuffers& in, const DenoiseSettings& settings) {
     checkInput(in, settings);
-    // The guides: a half's mean has twice the variance of the beauty's, and the box filter divides
-    // the variance of independent pixels by 9.
-    Guide guides[2];
-    const std::vector<float> variance = boxFilter(in.variance, in.width, in.height, 2.0f / 9.0f);
-    for (int h = 0; h < 2; ++h) guides[h] = {boxFilter(in.halves[h], in.width, in.height, 1.0f), variance};
-
+    const DenoisePlanes planes = makePlanes(in, settings.radius);
     const std::size_t pixels = std::size_t(in.width) * std::size_t(in.height);
-    const int outputs = 3 * int(in.layers.size() + 1);
-    std::vector<float> sums(pixels * std::size_t(outputs), 0.0f);
-    const auto fit = in.layers.empty() ? fitPixel<3> : fitPixel<0>;
+    const int outputs = planes.outputs(), bandRows = kBandCentreRows * settings.fitStride;
+    std::vector<float> result(pixels * std::size_t(outputs));
     tbb::task_arena arena(settings.threads > 0 ? settings.threads : tbb::task_arena::automatic);
     arena.execute([&] {
-        tbb::parallel_for(tbb::blocked_range<int>(0, in.height), [&](const tbb::blocked_range<int>& rows) {
-            for (int y = rows.begin(); y < rows.end(); ++y)
-                for (int x = 0; x < in.width; ++x) {
-                    float* pixelSums = sums.data() + (std::size_t(y) * in.width + x) * std::size_t(outputs);
-                    fit(in, settings, guides[1], 0, x, y, pixelSums);  // half 0 with half 1's weights
-                    fit(in, settings, guides[0], 1, x, y, pixelSums);  // and the other way round
-                }
+        const int bands = (in.height + bandRows - 1) / bandRows;
+        tbb::parallel_for(tbb::blocked_range<int>(0, bands, 1), [&](const tbb::blocked_range<int>& range) {
+            for (int band = range.begin(); band < range.end(); ++band) {
+                const int rowBegin = band * bandRows, rowEnd = std::min(in.height, rowBegin + bandRows);
+                const BandFits fits(planes, settings, rowBegin, rowEnd);
+                for (int y = rowBegin; y < rowEnd; ++y)
+                    for (int x = 0; x < in.width; ++x) {
+                        const std::size_t p = std::size_t(y) * in.width + x;
+                        float* out = result.data() + p * std::size_t(outputs);
+                        reconstruct(planes, settings, fits, x, y, out);
+                        keepWhatTheFitLost(planes, settings, p, out);
+                    }
+            }
         });
     });
 
@@ -188,9 +166,9 @@ Denoised denoise(const DenoiseBuffers& in, const DenoiseSettings& settings) {
     out.layers.assign(in.layers.size(), std::vector<float>(3 * pixels));
     for (std::size_t p = 0; p < pixels; ++p)
         for (int c = 0; c < 3; ++c) {
-            out.beauty[3 * p + c] = 0.5f * sums[p * outputs + c];
+            out.beauty[3 * p + std::size_t(c)] = result[p * std::size_t(outputs) + std::size_t(c)];
             for (std::size_t l = 0; l < in.layers.size(); ++l)
-                out.layers[l][3 * p + c] = 0.5f * sums[p * outputs + 3 + 3 * l + c];
+                out.layers[l][3 * p + std::size_t(c)] = result[p * std::size_t(outputs) + 3 + 3 * l + std::size_t(c)];
         }
     return out;
 }

@@ -6,25 +6,43 @@
 // independent estimates of the beauty), the variance of the beauty's mean, and the first-hit
 // features: albedo, shading normal and depth (core/film.h).
 //
-// Each pixel i is estimated by a weighted least-squares fit, over a window of neighbours j, of the
-// colour as a linear function of the features centred on i's: x_j = (1, albedo_j - albedo_i,
-// normal_j - normal_i, (depth_j - depth_i) / depth_i); the fit's constant term is the estimate.
+// The fit (denoise/local_fit.h): around a centre pixel i, over the (2 radius + 1)² window of
+// neighbours j, a weighted least-squares fit of the colour as a linear function of the features
+// centred on i's: x_j = (1, albedo_j - albedo_i, normal_j - normal_i, (depth_j - depth_i) / depth_i).
 // The features explain what changes with the geometry and the textures (so an edge between
 // albedos stays sharp), the weights keep out what they do not explain (a caustic, a shadow edge).
 // The weight of j is an NL-means weight on colour: with u the 3x3 box-filtered colour and v its
 // variance, d² = mean over R G B of ((u_i - u_j)² - s) / (ε + k² s), s = v_i + min(v_i, v_j),
-// w = exp(-max(0, d²)). (Rousselle et al. divide by v_i + v_j: the minimum keeps a firefly, whose
-// own variance is large, from excusing its distance to the dark pixels around it.)
+// w = exp(-max(0, d²)) (Rousselle et al. divide by v_i + v_j: the minimum keeps a firefly, whose
+// own variance is large, from excusing its distance to the dark pixels around it); times, for a
+// neighbour whose variance is more than `fireflyRatio` times the mean over i's window, that ratio
+// over its own, squared (so a firefly is not spread over its neighbours; its own pixel keeps it).
+// The window's variance level is the mean of its pixels' variances each clamped to their mean
+// (so one firefly hardly raises it).
 //
 // Cross-filtering: half 0 is fitted with the weights of half 1's colour and half 1 with half 0's,
 // so the noise of the weights is independent of the noise they average; the result is the mean of
-// the two fits. Extra layers (light path expression AOVs) are fitted with the same weights, each
-// on its own colour, in both passes.
+// the two. Extra layers (light path expression AOVs) are fitted with the same weights, each on its
+// own colour.
 //
-// Speed: the window is (2 radius / stride + 1)² neighbours, `stride` pixels apart, and the fit's
-// 8x8 normal equations are solved by Cholesky with a ridge on the feature terms. Rows run on
-// oneTBB; every pixel is computed alone by the same operations, so the output is bit-identical at
-// any thread count.
+// Reconstruction: the fits are made at every `fitStride`-th pixel in x and y (the centres), and
+// each pixel p is the mean of the fitted models of the centres within fitStride of it, evaluated
+// at p's features, weighted by a tent (1 - |dx| / (fitStride + 1)) (1 - |dy| / ...) times the
+// colour weight of p in that centre's fit (so a model is not carried across a colour edge the
+// features do not explain) and the firefly weight of the centre for p (so a firefly's own model
+// is not carried to its neighbours). Where those weights are below `minSupport` of the tent's (a pixel
+// unlike every centre near it: a small highlight), p is fitted as a centre of its own.
+//
+// Selection: the denoised value d is then compared with the noisy one n, which is unbiased: where
+// (d - n)² exceeds `keepThreshold` times n's variance V (the larger of the pixel's and its 3x3
+// mean), the excess B² estimates d's squared bias, and the pixel becomes d + B² / (B² + V) (n - d),
+// the blend of the two that minimises the expected error for that bias (a highlight the fit
+// darkened comes back; noise alone rarely reaches the threshold). Layers take the beauty's blend.
+//
+// Speed: the fits' sums run four neighbours at a time (SSE) and are solved by Cholesky with a
+// ridge on the feature terms; image rows are cut into bands on oneTBB. Every pixel is computed by
+// the same operations whatever the band or thread, so the output is bit-identical at any thread
+// count.
 #pragma once
 
 #include <stdexcept>
@@ -44,11 +62,14 @@ struct DenoiseBuffers {
 };
 
 struct DenoiseSettings {
-    int radius = 8;       // the window spans (2 radius + 1)² pixels
-    int stride = 2;       // every stride-th pixel of it is a neighbour
-    float k = 0.6f;       // NL-means colour sensitivity: larger blurs more
-    float ridge = 1e-3f;  // ridge on the feature coefficients, relative to the weights' sum
-    int threads = 0;      // 0: oneTBB's default
+    int radius = 4;               // the fit's window spans (2 radius + 1)² pixels (at most 8)
+    int fitStride = 3;            // fits at every fitStride-th pixel in x and y
+    float k = 0.6f;               // NL-means colour sensitivity: larger blurs more
+    float ridge = 1e-3f;          // ridge on the feature coefficients, relative to the weights' sum
+    float fireflyRatio = 8.0f;    // a neighbour's variance above this times its window's is cut
+    float minSupport = 0.25f;     // below this share of the tent's weight, a pixel is fitted alone
+    float keepThreshold = 16.0f;  // (denoised - noisy)² above this times the variance is bias
+    int threads = 0;              // 0: oneTBB's default
 };
 
 struct Denoised {

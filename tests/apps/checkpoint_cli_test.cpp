@@ -3,8 +3,9 @@
 // A render checkpointing every pass is killed with SIGKILL once its first checkpoint exists;
 // resuming it with another seed or resolution is refused (exit 2, naming what differs), and
 // resuming it as it was finishes bit-identical to a render never stopped, leaving no checkpoint or
-// temporary file. SIGUSR1 writes a snapshot beside an output that does not exist yet. Nothing here
-// depends on timing but generous timeouts: the test waits for files, never for durations.
+// temporary file; so does a render with --denoise, its denoised image included. SIGUSR1 writes a
+// snapshot beside an output that does not exist yet. Nothing here depends on timing but generous
+// timeouts: the test waits for files, never for durations.
 #include <gtest/gtest.h>
 #include <signal.h>
 #include <sys/wait.h>
@@ -87,6 +88,14 @@ class CheckpointCli : public ::testing::Test {
 protected:
     test::TempDir tmp_{"fluence_checkpoint_cli"};
     bool exists(const std::string& name) const { return fs::exists(tmp_.path() / name); }
+    // Runs `fluence ARGS` (which writes out.exr with checkpoints) and kills it once its first
+    // checkpoint exists.
+    void killAtFirstCheckpoint(const std::string& args) {
+        Child child(args, tmp_.path());
+        ASSERT_TRUE(child.waitFor([&] { return exists("out.exr.checkpoint"); })) << test::slurp(tmp_.file("child.txt"));
+        child.signal(SIGKILL);
+        ASSERT_EQ(child.wait(), -SIGKILL) << "the render finished before it was killed; make it longer";
+    }
     std::string entries() const {
         std::string list;
         for (const std::string& name : tmp_.list()) list += name + " ";
@@ -96,12 +105,7 @@ protected:
 
 TEST_F(CheckpointCli, KilledRenderResumesBitIdenticalAndRefusesAnotherRendersCheckpoint) {
     const std::string out = tmp_.file("out.exr");
-    {
-        Child child(kRender + " -j 1 --checkpoint 0 -o " + out, tmp_.path());
-        ASSERT_TRUE(child.waitFor([&] { return exists("out.exr.checkpoint"); })) << test::slurp(tmp_.file("child.txt"));
-        child.signal(SIGKILL);
-        ASSERT_EQ(child.wait(), -SIGKILL) << "the render finished before it was killed; make it longer";
-    }
+    ASSERT_NO_FATAL_FAILURE(killAtFirstCheckpoint(kRender + " -j 1 --checkpoint 0 -o " + out));
     ASSERT_FALSE(exists("out.exr"));
 
     // Another render's checkpoint is refused, and kept.
@@ -134,12 +138,7 @@ TEST_F(CheckpointCli, KilledRenderResumesBitIdenticalAndRefusesAnotherRendersChe
 
 TEST_F(CheckpointCli, CryptomatteCoverageResumesBitIdenticalToo) {
     const std::string out = tmp_.file("out.exr"), crypto = " --cryptomatte object,material";
-    {
-        Child child(kRender + crypto + " -j 1 --checkpoint 0 -o " + out, tmp_.path());
-        ASSERT_TRUE(child.waitFor([&] { return exists("out.exr.checkpoint"); })) << test::slurp(tmp_.file("child.txt"));
-        child.signal(SIGKILL);
-        ASSERT_EQ(child.wait(), -SIGKILL) << "the render finished before it was killed; make it longer";
-    }
+    ASSERT_NO_FATAL_FAILURE(killAtFirstCheckpoint(kRender + crypto + " -j 1 --checkpoint 0 -o " + out));
     test::RunResult r = test::runFluence(kRender + " --resume -o " + out, tmp_.path());
     EXPECT_EQ(r.exitCode, 2) << "a render without the layers refuses the checkpoint: " << r.err;
     EXPECT_NE(r.err.find("cryptomatte: object material in the checkpoint,  now"), std::string::npos) << r.err;
@@ -150,6 +149,23 @@ TEST_F(CheckpointCli, CryptomatteCoverageResumesBitIdenticalToo) {
     ASSERT_EQ(r.exitCode, 0) << r.err;
     const test::ExrImage resumed = test::readExr(out);
     ASSERT_NE(resumed.channel("CryptoObject00.R"), -1);
+    EXPECT_TRUE(samePixels(tmp_.file("reference.exr"), out));
+}
+
+TEST_F(CheckpointCli, DenoisedRenderResumesBitIdenticalToo) {
+    // The half images and variance are in the checkpoint, so the denoised beauty (RGB), the noisy one
+    // and the buffers of a resumed render are those of a render never stopped.
+    const std::string out = tmp_.file("out.exr"), denoise = " --denoise";
+    ASSERT_NO_FATAL_FAILURE(killAtFirstCheckpoint(kRender + denoise + " -j 1 --checkpoint 0 -o " + out));
+    test::RunResult r = test::runFluence(kRender + denoise + " --resume -o " + out, tmp_.path());
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_EQ(r.out.find("at 0 samples"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("denoised"), std::string::npos) << r.out;
+    r = test::runFluence(kRender + denoise + " -o " + tmp_.file("reference.exr"), tmp_.path());
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    const test::ExrImage resumed = test::readExr(out);
+    ASSERT_NE(resumed.channel("noisy.R"), -1);
+    ASSERT_NE(resumed.channel("half0.R"), -1);
     EXPECT_TRUE(samePixels(tmp_.file("reference.exr"), out));
 }
 
