@@ -10,6 +10,7 @@
 #include "delegate/imageable.h"
 #include "integrators/automatic_choice.h"
 #include "integrators/integrator.h"
+#include "render/subsurface_method.h"
 
 namespace fluence::app {
 
@@ -280,8 +281,8 @@ RenderOptions parseRenderOptions(const std::vector<std::string>& args) {
                 throw UsageError("--cryptomatte-depth must be between 1 and " + std::to_string(kMaxCryptomatteDepth));
         } else if (arg == "--subsurface") {
             o.subsurface = cur.value(arg);
-            if (o.subsurface != "randomwalk" && o.subsurface != "diffusion")
-                throw UsageError("--subsurface must be randomwalk or diffusion");
+            if (!render::subsurfaceMethodNamed(o.subsurface))
+                throw UsageError("--subsurface must be " + std::string(render::kSubsurfaceMethodNames));
         } else if (arg == "-f" || arg == "--frame") {
             o.frame = parseNumber<double>(arg, cur.value(arg));
             if (!std::isfinite(*o.frame)) throw UsageError(arg + " must be a finite time code");
@@ -480,7 +481,8 @@ std::string usageText() {
            "      --subdiv-level N    subdivision surfaces: uniform refinement, 4^N triangle pairs per quad,\n"
            "                          instead of camera-driven dicing (for comparisons); displaced polygon\n"
            "                          meshes: 2^N segments per edge\n"
-           "      --subsurface METHOD subsurface scattering of every material: randomwalk or diffusion\n"
+           "      --subsurface METHOD subsurface scattering of every material: randomwalk, randomwalk_guided\n"
+           "                          (the walk with steps guided to the surface: less noise) or diffusion\n"
            "                          (default: each material's subsurface_type, else randomwalk)\n"
            "      --time-limit SECS   stop starting new sample passes after SECS seconds (0: no limit)\n"
            "      --target-error E    adaptive sampling to a noise level: each pixel stops once the relative\n"

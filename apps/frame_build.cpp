@@ -6,6 +6,7 @@
 #include "apps/sampler_choice.h"
 #include "apps/scene_loading.h"
 #include "apps/stopwatch.h"
+#include "render/subsurface_method.h"
 #include "integrators/automatic_choice.h"
 #include "integrators/scene_path_classes.h"
 #include "texture/texture_system.h"
@@ -59,9 +60,8 @@ const integrators::IntegratorInfo& chosenIntegrator(const RenderOptions& opt, co
 // --subsurface: every material's subsurface method.
 void overrideSubsurface(const std::string& method, render::SceneDescription& scene) {
     if (method.empty()) return;
-    for (render::MaterialDesc& m : scene.materials)
-        m.subsurfaceMethod =
-            method == "diffusion" ? render::SubsurfaceMethod::Diffusion : render::SubsurfaceMethod::RandomWalk;
+    const render::SubsurfaceMethod chosen = *render::subsurfaceMethodNamed(method);  // checked by the CLI
+    for (render::MaterialDesc& m : scene.materials) m.subsurfaceMethod = chosen;
 }
 
 // The delegate's and the render scene's work; returns the light paths the scene can produce.

@@ -2,6 +2,7 @@
 
 #include "delegate/shading_network.h"
 #include "media/subsurface_medium.h"
+#include "render/subsurface_method.h"
 
 #include <algorithm>
 #include <cmath>
@@ -129,11 +130,11 @@ render::MaterialDesc standardSurface(const ShaderInputs& in, const std::string& 
         m.transmissionColor = RGB(1.0f);
     }
     const std::string method = in.text("subsurface_type", "randomwalk");
-    if (method == "diffusion")
-        m.subsurfaceMethod = render::SubsurfaceMethod::Diffusion;
-    else if (method != "randomwalk" && method != "randomwalk_v2")
-        in.warn()(in.shader().path,
-                  "subsurface_type '" + method + "' is not diffusion or randomwalk; using randomwalk");
+    if (const std::optional<render::SubsurfaceMethod> named = render::subsurfaceMethodNamed(method))
+        m.subsurfaceMethod = *named;
+    else if (method != "randomwalk_v2")
+        in.warn()(in.shader().path, "subsurface_type '" + method + "' is not " +
+                                        std::string(render::kSubsurfaceMethodNames) + "; using randomwalk");
     if (m.subsurface > 0.0f && !m.thinWalled &&
         !m.interior)  // the random walk's medium (diffusion: the probes' material)
         m.interior = media::subsurfaceMedium(m.subsurfaceColor, m.subsurfaceRadius * m.subsurfaceScale,

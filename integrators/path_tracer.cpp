@@ -15,6 +15,7 @@
 #include "integrators/russian_roulette.h"
 #include "integrators/surface_frame.h"
 #include "media/free_flight.h"
+#include "media/guided_walk.h"
 #include "media/phase.h"
 #include "media/ratio_tracking.h"
 #include "render/bsdf_arena.h"
@@ -170,8 +171,11 @@ private:
     // The stretch of medium up to the surface hit (or out of the scene): a free flight that passes
     // (Reached), is absorbed (its emission; End), or scatters (scatterInMedium).
     Step throughMedium(const media::Medium& medium, const std::optional<SurfaceHit>& hit, int& depth) {
-        media::FreeFlight flight = media::sampleFreeFlight(
-            medium, {ray_.origin, ray_.direction, hit ? hit->t : std::numeric_limits<float>::infinity()}, hero_, rng_);
+        const float tBoundary = hit ? hit->t : std::numeric_limits<float>::infinity();
+        if (guidedWalk_ && walkStep_.first && hit) guidedWalk_->sawFarSide(ray_.direction, hit->t);
+        media::FreeFlight flight =
+            guidedWalk_ ? guidedWalk_->fly(walkStep_, tBoundary, hero_, rng_)
+                        : media::sampleFreeFlight(medium, {ray_.origin, ray_.direction, tBoundary}, hero_, rng_);
         throughput_ *= flight.throughput;
         mis_.rU *= flight.pdfRatio;
         mis_.rL *= flight.lightPdfRatio;
@@ -206,7 +210,14 @@ private:
                 return std::pair(RGB(p), p);
             },
             [&](const Vec3f&) { return event; });
-        media::PhaseSample ps = phase.sample(wo, rng_.next2D());
+        media::PhaseSample ps;
+        if (guidedWalk_) {  // the step's phase value and density weigh its flight (media/guided_walk.h)
+            const float uStrategy = rng_.next();
+            walkStep_ = guidedWalk_->sampleStep(flight.p, wo, hero_, uStrategy, rng_.next2D());
+            ps = {walkStep_.wi, 1.0f, 1.0f};
+        } else {
+            ps = phase.sample(wo, rng_.next2D());
+        }
         if (ps.pdf <= 0.0f) return Step::End;
         throughput_ *= ps.p / ps.pdf;
         if (!continueInMedium(throughput_, etaScale_, depth, walking, rng_)) return Step::End;
@@ -284,7 +295,9 @@ private:
                 lightPaths_.scatter(VertexEvents(volumeEvent(true)));
                 return Step::Next;
             }
+            const int depthBefore = inside_.depth();
             inside_ = inside_.after(v.hit, v.wo, wi);
+            followGuidedWalk(v.hit, depthBefore, spawnOrigin(v.hit.point, ng, wi), wi);
         }
         specularBounce_ = bs->specular;
         previousPoint_ = v.lightFrom;
@@ -292,6 +305,18 @@ private:
         previousLinkGroup_ = v.hit.linkGroup;
         ray_ = Ray{spawnOrigin(v.hit.point, ng, wi), wi, 0.0f, std::numeric_limits<float>::infinity(), ray_.time};
         return Step::Next;
+    }
+
+    // After a surface sent the path from `origin` along wi (the medium stack was `depthBefore`
+    // deep): a guided walk starts when the path entered a guided subsurface interior and no
+    // volume shares it, ends when the path left or went deeper, and otherwise (a reflection back
+    // inside) goes on from there with a step whose direction the surface chose.
+    void followGuidedWalk(const SurfaceHit& hit, int depthBefore, const Vec3f& origin, const Vec3f& wi) {
+        if (inside_.depth() != depthBefore) guidedWalk_.reset();
+        if (inside_.depth() > depthBefore && inside_.inSubsurface() && !scene_.medium() &&
+            hit.material.subsurfaceMethod == render::SubsurfaceMethod::RandomWalkGuided)
+            guidedWalk_.emplace(hit.point, hit.geometricNormal, inside_.medium()->at(hit.point));
+        if (guidedWalk_) walkStep_ = media::WalkStep{origin, Vec3f(0.0f), wi, true};
     }
 
     // Next-event estimation from `from` (with `fromNormal` for the light tree), on geometry of link
@@ -363,7 +388,9 @@ private:
     const bool haveLights_;
     LightPathTracker lightPaths_;
     int interiorScatterings_ = 0;
-    std::optional<SurfaceHit> diffusionExit_;  // where diffusion subsurface scattering brings the path out
+    std::optional<SurfaceHit> diffusionExit_;      // where diffusion subsurface scattering brings the path out
+    std::optional<media::GuidedWalk> guidedWalk_;  // in a guided subsurface interior (followGuidedWalk)
+    media::WalkStep walkStep_;                     // its next step
 };
 
 }  // namespace

@@ -29,8 +29,10 @@ namespace fluence::render {
 // How light that enters a subsurface material finds where it leaves: by a random walk in the
 // object's interior medium (unbiased; MaterialDesc::interior), or by the normalized diffusion
 // profile of a flat, semi-infinite medium, sampled with probe rays (fast, approximate:
-// integrators/diffusion_probe.h).
-enum class SubsurfaceMethod { RandomWalk, Diffusion };
+// integrators/diffusion_probe.h). RandomWalkGuided walks too, with steps guided towards the
+// surface and combined with the classic ones by MIS (media/guided_walk.h): the same image, with
+// less noise in dense, bright media.
+enum class SubsurfaceMethod { RandomWalk, Diffusion, RandomWalkGuided };
 
 // A surface material's parameters at one surface point: one layered "principled" parameter set
 // that both UsdPreviewSurface and MaterialX Standard Surface map onto (delegate/surface_shaders.h

@@ -374,7 +374,7 @@ TEST_F(FluenceCli, UsageErrors) {
     EXPECT_EQ(run("render scene.usda --min-spp 1").exitCode, 2);
     r = run("render scene.usda --subsurface dipole");
     EXPECT_EQ(r.exitCode, 2);
-    EXPECT_NE(r.err.find("randomwalk or diffusion"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("randomwalk, randomwalk_guided or diffusion"), std::string::npos) << r.err;
     EXPECT_EQ(run("frobnicate").exitCode, 2);
 }
 
@@ -400,8 +400,8 @@ TEST_F(FluenceCli, TargetErrorSamplesAdaptivelyAndSaysSo) {
 }
 
 TEST_F(FluenceCli, SubsurfaceOptionOverridesEveryMaterialsMethod) {
-    // The sample's materials walk by default: --subsurface randomwalk changes nothing, diffusion
-    // changes the subsurface objects' pixels.
+    // The sample's materials walk by default: --subsurface randomwalk changes nothing, a guided
+    // walk or diffusion changes the subsurface objects' pixels.
     fs::path scene = fs::path(FLUENCE_SOURCE_DIR) / "usd_samples/subsurface/subsurface.usda";
     auto render = [&](const std::string& name, const std::string& options) {
         EXPECT_EQ(
@@ -410,11 +410,14 @@ TEST_F(FluenceCli, SubsurfaceOptionOverridesEveryMaterialsMethod) {
         return readExr(dir_ / name);
     };
     ExrImage byDefault = render("default.exr", ""), walked = render("walk.exr", " --subsurface randomwalk"),
-             diffused = render("diffusion.exr", " --subsurface diffusion");
+             diffused = render("diffusion.exr", " --subsurface diffusion"),
+             guided = render("guided.exr", " --subsurface randomwalk_guided");
     ASSERT_EQ(byDefault.pixels.size(), walked.pixels.size());
     ASSERT_EQ(byDefault.pixels.size(), diffused.pixels.size());
     EXPECT_EQ(0, std::memcmp(byDefault.pixels.data(), walked.pixels.data(), byDefault.pixels.size() * sizeof(float)));
     EXPECT_NE(0, std::memcmp(byDefault.pixels.data(), diffused.pixels.data(), byDefault.pixels.size() * sizeof(float)));
+    ASSERT_EQ(byDefault.pixels.size(), guided.pixels.size());
+    EXPECT_NE(0, std::memcmp(byDefault.pixels.data(), guided.pixels.data(), byDefault.pixels.size() * sizeof(float)));
 }
 
 TEST_F(FluenceCli, HelpAndVersion) {

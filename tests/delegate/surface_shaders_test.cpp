@@ -182,6 +182,9 @@ TEST(SurfaceShaders, SubsurfaceMakesARandomWalkInteriorOrDiffusionByItsType) {
 
     auto diffusion = shader(R"(uniform token inputs:subsurface_type = "diffusion")");
     EXPECT_EQ(theMaterial(diffusion).subsurfaceMethod, render::SubsurfaceMethod::Diffusion);
+    auto guided = shader(R"(uniform token inputs:subsurface_type = "randomwalk_guided")");
+    EXPECT_EQ(theMaterial(guided).subsurfaceMethod, render::SubsurfaceMethod::RandomWalkGuided);
+    EXPECT_TRUE(guided.warnings.empty());
     auto unknown = shader(R"(uniform token inputs:subsurface_type = "dipole")");
     EXPECT_EQ(theMaterial(unknown).subsurfaceMethod, render::SubsurfaceMethod::RandomWalk);
     ASSERT_EQ(unknown.warnings.size(), 1u);

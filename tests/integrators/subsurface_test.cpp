@@ -16,9 +16,17 @@
 namespace fluence::integrators {
 namespace {
 
-// 2 methods x 3 channels (slab) + 3 objects x 3 channels (furnaces) + the specular-layer furnace,
-// family-wide 1%.
-const double kZ = test::normalQuantile(0.5 * test::sidakAlpha(16));
+// 3 methods x 3 channels (slab) + 2 methods x 3 objects x 3 channels (furnaces) + the
+// specular-layer furnace, family-wide 1%.
+const double kZ = test::normalQuantile(0.5 * test::sidakAlpha(28));
+// Guided against classic walks: 2 slabs x 3 channels, family-wide 1%.
+const double kWelchAlpha = test::sidakAlpha(6);
+
+constexpr render::SubsurfaceMethod kWalks[] = {render::SubsurfaceMethod::RandomWalk,
+                                               render::SubsurfaceMethod::RandomWalkGuided};
+const char* walkName(render::SubsurfaceMethod m) {
+    return m == render::SubsurfaceMethod::RandomWalk ? "classic" : "guided";
+}
 
 // Standard Surface subsurface = 1 with no specular layer: the boundary is index-matched and
 // lossless, as in the slab the albedo inversion was fitted to.
@@ -57,17 +65,54 @@ TEST(Subsurface, DeepSlabUnderAWhiteSkyShowsItsSubsurfaceColour) {
     // semi-infinite slab for every walk. Under a sky of radiance 1 its face reads the slab's total
     // diffuse reflectance, which the albedo inversion makes the colour asked for to within its fit
     // error, 0.0020 (measured against the exact solution in tests/media/subsurface_medium_test.cpp).
+    // Classic and guided walks alike.
     constexpr double kFitError = 0.0020;
     const RGB colour(0.8f, 0.5f, 0.2f);
     render::MeshDesc slab = test::boxMesh(Vec3f(20.0f, 10.0f, 20.0f), 0);
-    render::SceneDescription scene =
-        underAWhiteSky(slab, subsurfaceMaterial(colour, RGB(0.1f)), Vec3f(0.0f, -15.0f, 0.0f));
-    std::array<test::MeanEstimate, 3> means = objectMeans(scene, 24, 512);
-    for (int c = 0; c < 3; ++c) {
-        std::printf("[ measured ] slab, channel %d: %.5f +- %.5f (colour %.2f)\n", c, means[c].mean(),
-                    means[c].standardError(), colour[c]);
-        ASSERT_EQ(means[c].count(), 24 * 24) << "the slab fills the frame";
-        EXPECT_NEAR(means[c].mean(), colour[c], kFitError + kZ * means[c].standardError()) << "channel " << c;
+    for (render::SubsurfaceMethod walk : kWalks) {
+        render::SceneDescription scene =
+            underAWhiteSky(slab, subsurfaceMaterial(colour, RGB(0.1f), walk), Vec3f(0.0f, -15.0f, 0.0f));
+        std::array<test::MeanEstimate, 3> means = objectMeans(scene, 24, 512);
+        for (int c = 0; c < 3; ++c) {
+            std::printf("[ measured ] %s slab, channel %d: %.5f +- %.5f (colour %.2f)\n", walkName(walk), c,
+                        means[c].mean(), means[c].standardError(), colour[c]);
+            ASSERT_EQ(means[c].count(), 24 * 24) << "the slab fills the frame";
+            EXPECT_NEAR(means[c].mean(), colour[c], kFitError + kZ * means[c].standardError())
+                << walkName(walk) << ", channel " << c;
+        }
+    }
+}
+
+TEST(Subsurface, GuidedAndClassicWalksAgreeOnDeepAndThinSlabs) {
+    // Single-scattering albedos 0.3, 0.8 and 0.99 in the three channels (sigmaT 10, 20, 40):
+    // under a white sky, a deep slab reflects, and a tile 0.2 thick (2 to 8 mean free paths)
+    // also lets the sky behind it through. The walks' pixel means agree within Welch's band.
+    render::MaterialDesc material = subsurfaceMaterial(RGB(0.5f), RGB(0.1f));
+    const RGB sigmaT(10.0f, 20.0f, 40.0f), albedo(0.3f, 0.8f, 0.99f);
+    material.interior->sigmaS = sigmaT * albedo;
+    material.interior->sigmaA = sigmaT - material.interior->sigmaS;
+    struct Case {
+        const char* name;
+        render::MeshDesc mesh;
+        Vec3f eye;
+        int size;
+    };
+    for (const Case& slab : {Case{"deep slab", test::boxMesh(Vec3f(20.0f, 10.0f, 20.0f), 0), Vec3f(0, -15, 0), 16},
+                             Case{"thin slab", test::boxMesh(Vec3f(1.0f, 0.1f, 1.0f), 0), Vec3f(0, -1.2f, 0), 16}}) {
+        std::array<std::array<test::MeanEstimate, 3>, 2> means;
+        for (int w = 0; w < 2; ++w) {
+            render::MaterialDesc walked = material;
+            walked.subsurfaceMethod = kWalks[w];
+            means[w] = objectMeans(underAWhiteSky(slab.mesh, walked, slab.eye), slab.size, 256);
+        }
+        for (int c = 0; c < 3; ++c) {
+            const double band = test::welchBand(means[0][c], means[1][c], kWelchAlpha);
+            std::printf("[ measured ] %s, albedo %.2f: classic %.5f +- %.5f, guided %.5f +- %.5f (band %.5f)\n",
+                        slab.name, albedo[c], means[0][c].mean(), means[0][c].standardError(), means[1][c].mean(),
+                        means[1][c].standardError(), band);
+            ASSERT_EQ(means[0][c].count(), slab.size * slab.size) << slab.name << " fills the frame";
+            EXPECT_NEAR(means[1][c].mean(), means[0][c].mean(), band) << slab.name << ", channel " << c;
+        }
     }
 }
 
@@ -115,19 +160,21 @@ TEST(Subsurface, WhiteObjectsBehindALosslessBoundaryNeitherLoseNorGainLight) {
         render::MeshDesc mesh;
         RGB meanFreePath;
     };
-    for (const Case& object : {Case{"sphere", sphere, RGB(0.1f, 0.3f, 1.0f)},
-                               Case{"thin tile", test::boxMesh(Vec3f(1.0f, 0.02f, 1.0f), 0), RGB(0.4f)},
-                               Case{"torus", test::torusMesh(0.8f, 0.3f, 128, 64, 0), RGB(0.05f, 0.2f, 0.6f)}}) {
-        render::SceneDescription scene =
-            underAWhiteSky(object.mesh, subsurfaceMaterial(RGB(1.0f), object.meanFreePath), Vec3f(0.0f, -4.0f, 0.0f));
-        std::array<test::MeanEstimate, 3> means = objectMeans(scene, 48, 128);
-        for (int c = 0; c < 3; ++c) {
-            std::printf("[ measured ] %s, channel %d: %.5f +- %.5f over %d pixels\n", object.name, c, means[c].mean(),
-                        means[c].standardError(), means[c].count());
-            ASSERT_GT(means[c].count(), 100) << object.name;
-            EXPECT_NEAR(means[c].mean(), 1.0, kZ * means[c].standardError()) << object.name << ", channel " << c;
+    for (render::SubsurfaceMethod walk : kWalks)
+        for (const Case& object : {Case{"sphere", sphere, RGB(0.1f, 0.3f, 1.0f)},
+                                   Case{"thin tile", test::boxMesh(Vec3f(1.0f, 0.02f, 1.0f), 0), RGB(0.4f)},
+                                   Case{"torus", test::torusMesh(0.8f, 0.3f, 128, 64, 0), RGB(0.05f, 0.2f, 0.6f)}}) {
+            render::SceneDescription scene = underAWhiteSky(
+                object.mesh, subsurfaceMaterial(RGB(1.0f), object.meanFreePath, walk), Vec3f(0.0f, -4.0f, 0.0f));
+            std::array<test::MeanEstimate, 3> means = objectMeans(scene, 48, 128);
+            for (int c = 0; c < 3; ++c) {
+                std::printf("[ measured ] %s %s, channel %d: %.5f +- %.5f over %d pixels\n", walkName(walk),
+                            object.name, c, means[c].mean(), means[c].standardError(), means[c].count());
+                ASSERT_GT(means[c].count(), 100) << object.name;
+                EXPECT_NEAR(means[c].mean(), 1.0, kZ * means[c].standardError())
+                    << walkName(walk) << " " << object.name << ", channel " << c;
+            }
         }
-    }
 }
 
 TEST(Subsurface, WhiteSphereUnderASpecularLayerReflectsAllTheLight) {

@@ -1,0 +1,145 @@
+// Guided random-walk steps (media/guided_walk.h): the Dwivedi eigenvalue against its defining
+// equation, the guided cosines' mean, the directions each step draws against the density stepPdf says (chi-square over the
+// sphere), stepPdf's normalisation over directions and lengths, and the step's expected weight
+// against its closed form, which checks that fly() draws lengths with the density it divides by.
+#include "media/guided_walk.h"
+
+#include <gtest/gtest.h>
+
+#include <array>
+#include <cmath>
+#include <cstdio>
+
+#include "tests/support/chi2.h"
+#include "tests/support/statistics.h"
+
+namespace fluence::media {
+namespace {
+
+const Vec3f kEntry(0.0f, 0.0f, 0.0f), kNormal(0.0f, 0.0f, 1.0f);
+const Vec3f kWo = normalize(Vec3f(0.3f, -0.5f, 0.8f));
+
+// A medium of single-scattering albedo (0.3, 0.8, 0.99) and sigmaT (1, 2, 4).
+MediumProperties chromaticMedium(float g = 0.0f) {
+    MediumProperties m;
+    const RGB sigmaT(1.0f, 2.0f, 4.0f), albedo(0.3f, 0.8f, 0.99f);
+    m.sigmaS = sigmaT * albedo;
+    m.sigmaA = sigmaT - m.sigmaS;
+    m.g = g;
+    return m;
+}
+
+// A walk whose entry ray reached the far side 1.5 below the entry: backward guiding is in play.
+GuidedWalk thinWalk(const MediumProperties& m) {
+    GuidedWalk walk(kEntry, kNormal, m);
+    walk.sawFarSide(Vec3f(0.0f, 0.0f, -1.0f), 1.5f);
+    return walk;
+}
+
+TEST(GuidedWalk, DwivediNuSolvesTheEigenvalueEquation) {
+    // nu is the root above 1 of alpha nu / 2 ln((nu + 1) / (nu - 1)) = 1; the fit is good to a few
+    // tenths of a percent (d'Eon & Krivanek 2020), which is all guiding needs.
+    for (double albedo : {0.3, 0.5, 0.8, 0.95, 0.99}) {
+        const double nu = dwivediNu(albedo);
+        const double residual = albedo * nu / 2.0 * std::log((nu + 1.0) / (nu - 1.0));
+        std::printf("[ measured ] albedo %.2f: nu %.5f, eigen equation %.5f\n", albedo, nu, residual);
+        EXPECT_NEAR(residual, 1.0, 0.01) << albedo;
+    }
+    EXPECT_EQ(dwivediNu(0.0), kMinNu);
+    EXPECT_EQ(dwivediNu(1.0), kMaxNu);
+}
+
+TEST(GuidedWalk, GuidedCosinesHaveTheirDensitysMean) {
+    // The mean of mu under 1 / ((nu - mu) ln((nu + 1) / (nu - 1))) is nu - 2 / ln((nu + 1) / (nu - 1));
+    // the sampled cosines (stratified u) have it, from nearly all towards the axis to nearly uniform.
+    for (double nu : {kMinNu, dwivediNu(0.3), dwivediNu(0.99), kMaxNu}) {
+        constexpr int kN = 200000;
+        double mean = 0.0;
+        for (int i = 0; i < kN; ++i) mean += sampleDwivediCosine(nu, (i + 0.5) / kN) / kN;
+        const double expected = nu - 2.0 / std::log((nu + 1.0) / (nu - 1.0));
+        std::printf("[ measured ] nu %.5f: mean cosine %.5f (exact %.5f)\n", nu, mean, expected);
+        EXPECT_NEAR(mean, expected, 1e-4) << "nu " << nu;
+    }
+}
+
+TEST(GuidedWalk, StepDirectionsMatchTheirDensity) {
+    // The direction a step takes has the density of the strategies' mixture.
+    for (float g : {0.0f, 0.6f})
+        for (int hero = 0; hero < 3; ++hero) {
+            const MediumProperties m = chromaticMedium(g);
+            const GuidedWalk walk = thinWalk(m);
+            const Vec3f p(0.1f, 0.0f, -1.0f);  // deep in the thin slab: guided both ways
+            auto marginal = [&](const Vec3f& wi) {
+                // reaching t = 0 has probability 1 under every strategy: the directions' mixture
+                WalkStep step{p, kWo, wi, false, WalkStrategy::Classic};
+                return double(walk.stepPdf(step, 0.0f, false)[hero]);
+            };
+            test::Chi2Result r = test::chi2SphereTest(
+                [&](SampleStream& rng) {
+                    const float u = rng.next();
+                    return std::optional(walk.sampleStep(p, kWo, hero, u, rng.next2D()).wi);
+                },
+                marginal);
+            std::printf("[ measured ] g %.1f, hero %d: %s\n", g, hero, r.report.c_str());
+            EXPECT_GT(r.pValue, test::kChi2Alpha) << "g " << g << ", hero " << hero << ": " << r.report;
+        }
+}
+
+TEST(GuidedWalk, StepPdfIntegratesToOneOverDirectionsAndLengths) {
+    // Collisions before a boundary 0.7 away in every direction, plus reaching it: per channel,
+    // lengths by Simpson's rule (the densities are smooth exponentials), directions adaptively.
+    constexpr float kBoundary = 0.7f;
+    constexpr int kIntervals = 16;
+    const GuidedWalk walk = thinWalk(chromaticMedium());
+    const Vec3f p(0.1f, 0.0f, -0.4f);
+    for (int c = 0; c < 3; ++c) {
+        auto overLengths = [&](const Vec3f& wi) {
+            WalkStep step{p, kWo, wi, false, WalkStrategy::Classic};
+            const double h = kBoundary / kIntervals;
+            double collisions = 0.0;
+            for (int i = 0; i <= kIntervals; ++i) {
+                const double weight = i == 0 || i == kIntervals ? 1.0 : i % 2 ? 4.0 : 2.0;
+                collisions += weight * walk.stepPdf(step, float(i * h), true)[c];
+            }
+            return collisions * h / 3.0 + walk.stepPdf(step, kBoundary, false)[c];
+        };
+        test::SphereIntegral total = test::integrateOverSphere(overLengths, 1e-3);
+        std::printf("[ measured ] channel %d: integral %.7f +- %.1e\n", c, total.value, total.error);
+        EXPECT_NEAR(total.value, 1.0, total.error + 2e-4) << "channel " << c;
+    }
+}
+
+TEST(GuidedWalk, StepWeightsAverageTheirClosedForm) {
+    // A step from p towards a boundary tB away in every direction, weighted as the path tracer
+    // weighs it (throughput / channelAverage(pdfRatio): the balance heuristic over channels), has
+    // the expected value of an isotropic step's value: per channel,
+    //   alpha (1 - exp(-sigmaT tB)) + exp(-sigmaT tB)
+    // (collisions, then reaching the boundary), Russian roulette included.
+    constexpr float kBoundary = 0.7f;
+    constexpr int kN = 400000;
+    const MediumProperties m = chromaticMedium();
+    const GuidedWalk walk = thinWalk(m);
+    const Vec3f p(0.1f, 0.0f, -0.4f);
+    std::array<test::MeanEstimate, 3> weights;
+    for (int n = 0; n < kN; ++n) {
+        SampleStream rng(11, 0, std::uint64_t(n));
+        const int hero = sampleHeroChannel(rng.next());
+        const float u = rng.next();
+        const WalkStep step = walk.sampleStep(p, kWo, hero, u, rng.next2D());
+        const FreeFlight flight = walk.fly(step, kBoundary, hero, rng);
+        const RGB weight =
+            flight.event == FlightEvent::Absorbed ? RGB(0.0f) : flight.throughput / channelAverage(flight.pdfRatio);
+        for (int c = 0; c < 3; ++c) weights[c].add(weight[c]);
+    }
+    const double z = test::normalQuantile(0.5 * test::sidakAlpha(3));
+    for (int c = 0; c < 3; ++c) {
+        const double sigmaT = m.sigmaA[c] + m.sigmaS[c], albedo = m.sigmaS[c] / sigmaT;
+        const double reach = std::exp(-sigmaT * kBoundary), expected = albedo * (1.0 - reach) + reach;
+        std::printf("[ measured ] channel %d: %.5f +- %.5f (exact %.5f)\n", c, weights[c].mean(),
+                    weights[c].standardError(), expected);
+        EXPECT_NEAR(weights[c].mean(), expected, z * weights[c].standardError()) << "channel " << c;
+    }
+}
+
+}  // namespace
+}  // namespace fluence::media
