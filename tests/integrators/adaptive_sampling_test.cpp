@@ -18,8 +18,7 @@ namespace {
 constexpr int kSize = 24, kMaxSpp = 256, kMinSpp = 8;
 constexpr double kTarget = 0.03;
 
-test_support::RenderedFilm renderAdaptively(double targetError, int threads,
-                                            SamplerKind sampler = SamplerKind::Independent) {
+test_support::RenderedFilm renderAdaptively(double targetError, int threads, SamplerKind sampler = SamplerKind::Sobol) {
     RenderSettings settings;
     settings.sampler = sampler;
     settings.samplesPerPixel = kMaxSpp;
