@@ -465,9 +465,8 @@ std::string usageText() {
            "  -j, --threads N         worker threads (default 0: every core)\n"
            "      --seed S            random seed (default 0); same seed and spp give a bit-identical image\n"
            "      --sampler NAME      the camera samples' random numbers (default: the render settings'\n"
-           "                          fluence:sampler, else independent): independent (hashed) or sobol\n"
-           "                          (Owen-scrambled Sobol, each pixel's samples stratified: less noise at\n"
-           "                          the same spp; experimental, see the user guide)\n"
+           "                          fluence:sampler, else sobol): sobol (Owen-scrambled Sobol, each pixel's\n"
+           "                          samples stratified: less noise at the same spp) or independent (hashed)\n"
            "      --integrator NAME   solution method (default: the render settings' fluence:integrator, else\n"
            "                          " +
            std::string(kDefaultIntegrator) + "):\n" + integratorList +

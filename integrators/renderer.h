@@ -54,9 +54,8 @@ struct RenderSettings {
     int minSamples = 16;
     std::uint64_t seed = 0;
     // The camera samples' random numbers (core/random.h): Sobol stratifies each pixel's samples,
-    // Independent hashes every value apart. Independent stays the default until the two
-    // statistical tests that fail under Sobol are understood (docs/USER_GUIDE.md, Sampling).
-    SamplerKind sampler = SamplerKind::Independent;
+    // Independent hashes every value apart.
+    SamplerKind sampler = SamplerKind::Sobol;
     int threads = 0;                // 0: every core
     double timeLimitSeconds = 0.0;  // 0: none
     // Set (from another thread or a signal handler) to stop: no tile starts after it is seen, and

@@ -4,6 +4,7 @@
 
 #include <bit>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 #include <string>
 
@@ -843,6 +844,26 @@ bool RenderScene::occluded(const Vec3f& origin, const Vec3f& direction, float di
     storeRay(r, origin, direction, 0.0f, distance * (1.0f - kShadowRayShortening), time);
     rtcOccluded1(embree_->surfaces, &context, &r);
     return r.tfar < 0.0f;
+}
+
+bool RenderScene::meetsOtherLightShape(int light, const Vec3f& origin, const Vec3f& direction, float distance,
+                                       float time) const {
+    const float end = distance * (1.0f - kShadowRayShortening);
+    if (lightShapeToLight_.empty() ||
+        !segmentMeetsBox(origin, direction, 0.0f, end, embree_->lightShapesLo, embree_->lightShapesHi))
+        return false;
+    RTCIntersectContext context;
+    rtcInitIntersectContext(&context);
+    // `light`'s own shape is stepped over (a ray meets a closed shape at most twice).
+    for (float start = 0.0f; start < end;) {
+        RTCRayHit shape;
+        storeRayHit(shape, origin, direction, start, end, time);
+        rtcIntersect1(embree_->lightShapes, &context, &shape);
+        if (shape.hit.geomID == RTC_INVALID_GEOMETRY_ID) return false;
+        if (lightShapeToLight_[shape.hit.geomID] != light) return true;
+        start = std::nextafter(shape.ray.tfar, std::numeric_limits<float>::infinity());
+    }
+    return false;
 }
 
 }  // namespace fluence::render

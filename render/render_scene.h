@@ -139,6 +139,11 @@ public:
     // True when a surface blocks the segment from `origin` along unit `direction` for `distance`,
     // at `time` in the shutter interval (render::Ray::time).
     bool occluded(const Vec3f& origin, const Vec3f& direction, float distance, float time = 0.0f) const;
+    // True when the same segment meets the shape (rect, disk, sphere, cylinder) of a light other than
+    // `light`: a shape emits and does not reflect, so a ray that meets it ends there (intersect()),
+    // and no light reaches past it.
+    bool meetsOtherLightShape(int light, const Vec3f& origin, const Vec3f& direction, float distance,
+                              float time = 0.0f) const;
     // The shadow ray from `origin` along unit `direction` to light `light` at `distance`: whether a
     // surface blocks it, as occluded() says, unless every surface on it is one the light casts no
     // shadow of (LightDesc::castsShadows false: none) (render/shadow_rays.cpp).
@@ -146,10 +151,7 @@ public:
                           float time = 0.0f) const;
     // Whether some surface can be passed through by light `light`'s shadow rays (its shadows are
     // off, or shadow-linked away from some geometry).
-    bool lightPassesSurfaces(int light) const {
-        return (static_cast<std::size_t>(light) < shadowless_.size() && shadowless_[std::size_t(light)]) ||
-               links_.passesSomething(light);
-    }
+    bool lightPassesSurfaces(int light) const { return shadowless(light) || links_.passesSomething(light); }
     // Whether light `light` lights geometry of link group `linkGroup` (SurfaceHit::linkGroup; 0 for
     // points in media and the camera), and the whole table (render/light_links.h).
     bool lightReaches(int light, int linkGroup) const { return links_.lights(light, linkGroup); }
@@ -312,6 +314,7 @@ private:
     std::map<std::string, std::string> lightGroups_;
     // Whether `hit`'s surface blocks light `light`'s shadow rays (render/shadow_rays.cpp).
     bool blocksShadowsOf(int light, const SurfaceHit& hit) const;
+    bool shadowless(int light) const;    // LightDesc::castsShadows false
     std::deque<Vec3f> quadLightFronts_;  // each quad light's emitting direction, its Embree filter's user data
     DiscreteDistribution lightSelection_;
     LightTree lightTree_;

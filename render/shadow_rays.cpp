@@ -22,8 +22,13 @@ namespace fluence::render {
 
 ShadowTest RenderScene::shadowTest(int light, const Vec3f& origin, const Vec3f& direction, float distance,
                                    float time) const {
-    if (!occluded(origin, direction, distance, time)) return ShadowTest::Clear;
-    if (!lightPassesSurfaces(light)) return ShadowTest::Blocked;
+    const bool surfaceInTheWay = occluded(origin, direction, distance, time);
+    if (surfaceInTheWay && !lightPassesSurfaces(light)) return ShadowTest::Blocked;
+    // Another light's shape ends a BSDF-sampled ray as a surface does: it blocks the shadow ray too,
+    // unless the light casts no shadows at all (then only next-event estimation reaches past it).
+    const bool shapeInTheWay = meetsOtherLightShape(light, origin, direction, distance, time);
+    if (shapeInTheWay && !shadowless(light)) return ShadowTest::Blocked;
+    if (!surfaceInTheWay) return shapeInTheWay ? ShadowTest::PassedThrough : ShadowTest::Clear;
     // The surfaces on the way, as far as the first that blocks this light (every one, at most
     // kMaxSurfacesPassed: more than that counts as blocked).
     const Ray segment{origin, direction, 0.0f, distance * (1.0f - kShadowRayShortening), time};
@@ -32,9 +37,12 @@ ShadowTest RenderScene::shadowTest(int light, const Vec3f& origin, const Vec3f& 
     return !reached.empty() && blocksShadowsOf(light, reached.back()) ? ShadowTest::Blocked : ShadowTest::PassedThrough;
 }
 
+bool RenderScene::shadowless(int light) const {
+    return static_cast<std::size_t>(light) < shadowless_.size() && shadowless_[std::size_t(light)];
+}
+
 bool RenderScene::blocksShadowsOf(int light, const SurfaceHit& hit) const {
-    return !(static_cast<std::size_t>(light) < shadowless_.size() && shadowless_[std::size_t(light)]) &&
-           links_.shadows(light, hit.linkGroup);
+    return !shadowless(light) && links_.shadows(light, hit.linkGroup);
 }
 
 std::vector<SurfaceHit> RenderScene::surfacesReached(int light, const Ray& ray) const {

@@ -93,11 +93,11 @@ TEST_F(PathClassCli, RenderSettingsChooseTheSamplerUnlessTheCommandLineDoes) {
         EXPECT_EQ(r.exitCode, 0) << r.err;
         return test::readExr(tmp_.file("out.exr")).spec.get_string_attribute("fluence/sampler");
     };
-    const std::string sobol = sceneWithSettings("uniform token fluence:sampler = \"sobol\"");
-    EXPECT_EQ(sampler(sobol, ""), "sobol");
-    EXPECT_EQ(sampler(sobol, "--sampler independent"), "independent");
-    EXPECT_EQ(sampler(sceneWithSettings(""), ""), "independent") << "the default";
-    EXPECT_EQ(sampler(kCornellBox, "--sampler sobol"), "sobol");
+    const std::string independent = sceneWithSettings("uniform token fluence:sampler = \"independent\"");
+    EXPECT_EQ(sampler(independent, ""), "independent");
+    EXPECT_EQ(sampler(independent, "--sampler sobol"), "sobol");
+    EXPECT_EQ(sampler(sceneWithSettings(""), ""), "sobol") << "the default";
+    EXPECT_EQ(sampler(kCornellBox, "--sampler independent"), "independent");
 
     RunResult r = render(sceneWithSettings("uniform token fluence:sampler = \"halton\""));
     EXPECT_EQ(r.exitCode, 3);

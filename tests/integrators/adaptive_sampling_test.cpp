@@ -33,8 +33,8 @@ RenderSettings adaptiveSettings(double targetError, double meanSpp, int threads,
     return settings;
 }
 
-test_support::RenderedFilm renderAdaptively(double targetError, int threads,
-                                            SamplerKind sampler = SamplerKind::Independent, double meanSpp = 0.0) {
+test_support::RenderedFilm renderAdaptively(double targetError, int threads, SamplerKind sampler = SamplerKind::Sobol,
+                                            double meanSpp = 0.0) {
     return test_support::renderFilm(PathTracer(IntegratorSettings{}), test::litSphereUnderASky(), kSize,
                                     adaptiveSettings(targetError, meanSpp, threads, sampler));
 }

@@ -16,7 +16,7 @@ using test_support::channelMean;
 using test_support::Rendered;
 
 Rendered renderScene(const render::SceneDescription& desc, int size, int spp, int threads = 0, int maxDepth = 64,
-                     std::uint64_t seed = 0, SamplerKind sampler = SamplerKind::Independent) {
+                     std::uint64_t seed = 0, SamplerKind sampler = SamplerKind::Sobol) {
     const PathTracer tracer(IntegratorSettings{.maxDepth = maxDepth, .parameters = {}, .lightPathAovs = {}});
     return test_support::renderWith(tracer, desc, size, spp, threads, seed, sampler);
 }

@@ -41,7 +41,7 @@ inline constexpr SamplerKind kSamplers[] = {SamplerKind::Sobol, SamplerKind::Ind
 
 // A size x size render of `desc` through its camera, `spp` samples per pixel.
 inline Rendered renderWith(const Integrator& integrator, const render::SceneDescription& desc, int size, int spp,
-                           int threads = 0, std::uint64_t seed = 0, SamplerKind sampler = SamplerKind::Independent) {
+                           int threads = 0, std::uint64_t seed = 0, SamplerKind sampler = SamplerKind::Sobol) {
     RenderSettings settings;
     settings.samplesPerPixel = spp;
     settings.threads = threads;
