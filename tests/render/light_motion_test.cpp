@@ -58,12 +58,17 @@ TEST(LightMotion, ALightWithSeveralStepsFollowsEachSegment) {
         down.time = time;
         EXPECT_FALSE(scene.intersect(down)) << "time " << time;
     }
-    // And its emission there is what next-event estimation's density expects.
-    down.time = 0.5f;
-    const LightAtTime atMid = scene.lightAt(0, 0.5f);
-    const float pdf = atMid.pdf(down.origin, down.direction, {hit->point, hit->geometricNormal});
-    EXPECT_GT(pdf, 0.0f);
-    EXPECT_EQ(scene.lightAt(0, 0.0f).pdf(down.origin, down.direction, {hit->point, hit->geometricNormal}), 0.0f);
+    // Next-event estimation's density for that ray is the sphere's where it is then: uniform over
+    // the cone it subtends from 3 units away (from sqrt(10) at the opening, a smaller cone).
+    auto coneDensity = [](double distance) {
+        const double sine = 0.1 / distance;
+        return 1.0 / (2.0 * M_PI * (1.0 - std::sqrt(1.0 - sine * sine)));
+    };
+    const LightHit onTop{hit->point, hit->geometricNormal};
+    EXPECT_NEAR(scene.lightAt(0, 0.5f).pdf(down.origin, down.direction, onTop), coneDensity(3.0),
+                1e-3 * coneDensity(3.0));
+    EXPECT_NEAR(scene.lightAt(0, 0.0f).pdf(down.origin, down.direction, onTop), coneDensity(std::sqrt(10.0)),
+                1e-3 * coneDensity(std::sqrt(10.0)));
 }
 
 TEST(LightMotion, ItsBoundsHoldItOverTheWholeShutter) {
