@@ -32,6 +32,40 @@ std::optional<std::vector<double>> vectorsOf(const usd::PrimSpec& prim, double t
     return values;
 }
 
+// The transforms at each motion step of the frame's instances or lights (each has a name, a
+// transform and motionTransforms), matched to the step's by index and by `same`; one that does not
+// match at some step renders still, with one warning.
+template <class Item>
+class TransformSteps {
+public:
+    TransformSteps(std::size_t count, const char* changed) : steps_(count), still_(count, false), changed_(changed) {}
+
+    template <class Same>
+    void add(const std::vector<Item>& frame, const std::vector<Item>& step, Same&& same, const Warn& warn) {
+        for (std::size_t i = 0; i < frame.size(); ++i) {
+            const bool matches = i < step.size() && step[i].name == frame[i].name && same(step[i], frame[i]);
+            if (!matches && !still_[i]) warn(frame[i].name, changed_);
+            still_[i] = still_[i] || !matches;
+            if (!still_[i]) steps_[i].push_back(step[i].transform);
+        }
+    }
+    // Gives each item that moved (its transform differs between steps) its motionTransforms.
+    void store(std::vector<Item>& frame) {
+        for (std::size_t i = 0; i < frame.size(); ++i) {
+            std::vector<Matrix4>& steps = steps_[i];
+            if (still_[i] ||
+                std::all_of(steps.begin(), steps.end(), [&](const Matrix4& s) { return s.m == steps.front().m; }))
+                continue;
+            frame[i].motionTransforms = std::move(steps);
+        }
+    }
+
+private:
+    std::vector<std::vector<Matrix4>> steps_;
+    std::vector<bool> still_;
+    const char* changed_;
+};
+
 }  // namespace
 
 std::vector<double> motionStepTimes(const usd::Stage& stage, double frame, double open, double close) {
@@ -135,8 +169,10 @@ void addMotion(SceneDelegate& delegate, usd::Stage& stage, const DelegateOptions
     MotionSteps<render::MeshDesc> meshSteps(scene.meshes.size());
     MotionSteps<render::CurvesDesc> curveSteps(scene.curves.size());
     MotionSteps<render::PointsDesc> pointSteps(scene.points.size());
-    std::vector<std::vector<Matrix4>> instanceSteps(scene.instances.size());
-    std::vector<bool> instanceStill(scene.instances.size(), false);
+    TransformSteps<render::InstanceDesc> instanceSteps(
+        scene.instances.size(), "the instances change during the shutter; rendered without motion blur");
+    TransformSteps<render::LightDesc> lightSteps(scene.lights.size(),
+                                                 "the lights change during the shutter; rendered without motion blur");
     std::vector<Matrix4> cameraSteps;
     std::vector<render::CameraLensStep> lensSteps;
     for (double time : times) {
@@ -150,15 +186,13 @@ void addMotion(SceneDelegate& delegate, usd::Stage& stage, const DelegateOptions
             cameraSteps.push_back(step.camera->transform);
             lensSteps.push_back({step.camera->focalLength, step.camera->fStop, step.camera->focusDistance});
         }
-        for (std::size_t i = 0; i < scene.instances.size(); ++i) {
-            const bool same = i < step.instances.size() && step.instances[i].name == scene.instances[i].name &&
-                              step.instances[i].prototype == scene.instances[i].prototype;
-            if (!same && !instanceStill[i])
-                options.warn(scene.instances[i].name,
-                             "the instances change during the shutter; rendered without motion blur");
-            instanceStill[i] = instanceStill[i] || !same;
-            if (!instanceStill[i]) instanceSteps[i].push_back(step.instances[i].transform);
-        }
+        instanceSteps.add(
+            scene.instances, step.instances,
+            [](const render::InstanceDesc& a, const render::InstanceDesc& b) { return a.prototype == b.prototype; },
+            options.warn);
+        lightSteps.add(
+            scene.lights, step.lights,
+            [](const render::LightDesc& a, const render::LightDesc& b) { return a.type == b.type; }, options.warn);
     }
     meshSteps.store(scene.meshes);
     curveSteps.store(scene.curves);
@@ -173,13 +207,8 @@ void addMotion(SceneDelegate& delegate, usd::Stage& stage, const DelegateOptions
     };
     if (scene.camera && lensSteps.size() == times.size() && !std::all_of(lensSteps.begin(), lensSteps.end(), sameLens))
         scene.camera->motionLenses = std::move(lensSteps);
-    for (std::size_t i = 0; i < scene.instances.size(); ++i) {
-        std::vector<Matrix4>& steps = instanceSteps[i];
-        if (instanceStill[i] ||
-            std::all_of(steps.begin(), steps.end(), [&](const Matrix4& s) { return s.m == steps.front().m; }))
-            continue;
-        scene.instances[i].motionTransforms = std::move(steps);
-    }
+    instanceSteps.store(scene.instances);
+    lightSteps.store(scene.lights);
 }
 
 }  // namespace fluence::delegate

@@ -24,8 +24,11 @@
 //   - the camera, when its transform differs between steps, gets CameraDesc::motionTransforms,
 //     and when its focalLength, fStop or focusDistance does (a zoom, a focus pull),
 //     CameraDesc::motionLenses (render/camera_motion.h).
-// The lights stay where they are at the frame; so do emissive meshes (their triangles are
-// lights) and meshes inside prototypes.
+//   - a UsdLux light whose transform differs gets LightDesc::motionTransforms (its time-sampled
+//     xform or an ancestor's; the render core moves it rigidly, render/light_motion.h); an
+//     emissive mesh moves as any world mesh does, and its triangles are sampled where they are at
+//     a ray's time.
+// Meshes inside prototypes stay still (their instances move).
 #pragma once
 
 #include <functional>

@@ -180,9 +180,10 @@ LightSubpath traceLightSubpath(const RenderScene& scene, const std::vector<int>&
     const Vec2f uPosition = rng.next2D(), uDirection = rng.next2D();
     if (emitters.empty()) return path;
     const int index = emitters[choice.sample(uChoice)];
-    std::optional<render::EmissionSample> es = scene.light(index).sampleEmission(uPosition, uDirection, scene.bounds());
+    std::optional<render::EmissionSample> es =
+        scene.lightAt(index, time).sampleEmission(uPosition, uDirection, scene.bounds());
     if (!es || !(es->density.position > 0.0f) || !(es->density.direction > 0.0f) || isBlack(es->Le)) return path;
-    path.origin = originAt(scene, index, es->point, es->normal, es->direction, es->delta, probability[index]);
+    path.origin = originAt(scene, index, es->point, es->normal, es->direction, es->delta, probability[index], time);
     RGB beta = es->Le * (es->density.cosine / (probability[index] * es->density.position * es->density.direction));
     const bool onSurface = !path.origin.atInfinity && !path.origin.delta;
     Ray ray{onSurface ? spawnOrigin(es->point, es->normal, es->direction) : es->point, es->direction, 0.0f, kInfinity,
@@ -433,11 +434,11 @@ private:
         // Light reaching the vertex the ray left counts where that vertex is linked to it (camera: every light).
         const int fromLinkGroup = z_.empty() ? 0 : z_.back().hit.linkGroup;
         if (flight.event == media::FlightEvent::Escaped && !hit) {
-            forEachLightAtInfinity(scene_, ray.direction, depth == 0, [&](int index, const RGB& le) {
+            forEachLightAtInfinity(scene_, ray.direction, ray.time, depth == 0, [&](int index, const RGB& le) {
                 if (scene_.lightReaches(index, fromLinkGroup))
                     reachLight(index, beta_ * le *
                                           hitLightWeight(index, Vec3f(0.0f), -ray.direction, -ray.direction, lastPdf,
-                                                         lastDelta, stretch.edge));
+                                                         lastDelta, stretch.edge, ray.time));
             });
             return std::nullopt;
         }
@@ -460,7 +461,7 @@ private:
                 if (!isBlack(le))
                     reachLight(hit->light, beta_ * le *
                                                hitLightWeight(hit->light, hit->point, hit->geometricNormal, v.wo,
-                                                              lastPdf, lastDelta, v.edge));
+                                                              lastPdf, lastDelta, v.edge, hit->time));
             }
             if (hit->lightShape || depth >= maxDepth_) return std::nullopt;
         } else if (v.walking ? ++interiorScatterings_ > kMaxInteriorScatterings : depth >= maxDepth_) {
@@ -482,10 +483,12 @@ private:
     }
 
     // s = 0: the camera subpath reaches light `index` over `edge`, leaving it from `point` along
-    // `direction` (towards z_.back()), having drawn its last direction with density `pdf` (`delta`).
+    // `direction` (towards z_.back()), having drawn its last direction with density `pdf` (`delta`),
+    // at `time`.
     float hitLightWeight(int index, const Vec3f& point, const Vec3f& normal, const Vec3f& direction, float pdf,
-                         bool delta, const EdgeMedia& edge) {
-        LightOrigin x0 = originAt(scene_, index, point, normal, direction, false, state_.emitterProbability[index]);
+                         bool delta, const EdgeMedia& edge, float time) {
+        LightOrigin x0 =
+            originAt(scene_, index, point, normal, direction, false, state_.emitterProbability[index], time);
         x_.clear();
         if (z_.empty()) {  // seen by the camera: the only strategy (with media, still weighted over heroes)
             x_.push_back({x0.fromLight, 1.0f, false});
@@ -515,7 +518,7 @@ private:
         render::LightChoice choice = scene_.chooseLight(from, normal, uLight);
         std::optional<render::LightSample> ls;
         if (choice.light >= 0 && choice.probability > 0.0f && scene_.lightReaches(choice.light, zt.hit.linkGroup))
-            ls = scene_.light(choice.light).sample(from, uPoint);
+            ls = scene_.lightAt(choice.light, zt.hit.time).sample(from, uPoint);
         if (!ls || !(ls->pdf > 0.0f) || isBlack(ls->Li)) return;
         const Scattered toLight = sh.evaluate(zt.wo, ls->wi);
         const RGB& f = toLight.f;
@@ -529,7 +532,7 @@ private:
         const Crossing crossing = cross(zt.mediumTowards(ls->wi), {shadowFrom, ls->wi, ls->distance}, tracked_, rng_);
         const Vec3f point = from + ls->wi * ls->distance;
         LightOrigin x0 = originAt(scene_, choice.light, point, Vec3f(0.0f), -ls->wi, ls->delta,
-                                  state_.emitterProbability[choice.light]);
+                                  state_.emitterProbability[choice.light], zt.hit.time);
         float nee = choice.probability *
                     (ls->delta || x0.atInfinity ? ls->pdf : ls->pdf * x0.cosine / (ls->distance * ls->distance));
         x_.clear();

@@ -47,7 +47,7 @@ float neeDensity(const RenderScene& scene, const LightOrigin& x0, const Vertex& 
     auto [from, normal] = gatherPoint(x1, toX2);
     float choice = scene.lightProbability(from, normal, x0.light);
     if (x0.delta) return choice;
-    const render::Light& light = scene.light(x0.light);
+    const render::LightAtTime light = scene.lightAt(x0.light, x0.time);
     if (x0.atInfinity) return choice * light.pdf(from, -x0.direction, {});
     Vec3f d = x0.point - from;
     float d2 = lengthSquared(d);
@@ -55,16 +55,16 @@ float neeDensity(const RenderScene& scene, const LightOrigin& x0, const Vertex& 
 }
 
 LightOrigin originAt(const RenderScene& scene, int light, const Vec3f& point, const Vec3f& normal,
-                     const Vec3f& direction, bool delta, float choice) {
-    const render::Light& l = scene.light(light);
-    render::EmissionDensity density = l.emissionDensity(point, direction, scene.bounds());
-    LightOrigin o{light, point, normal, direction, l.atInfinity(), delta, density.cosine};
+                     const Vec3f& direction, bool delta, float choice, float time) {
+    render::EmissionDensity density = scene.lightAt(light, time).emissionDensity(point, direction, scene.bounds());
+    LightOrigin o{light, point, normal, direction, scene.light(light).atInfinity(), delta, density.cosine, time};
     o.fromLight = choice * (o.atInfinity ? density.direction : density.position);
     return o;
 }
 
 float emittedTowards(const RenderScene& scene, const LightOrigin& x0, const Vertex& x1) {
-    render::EmissionDensity density = scene.light(x0.light).emissionDensity(x0.point, x0.direction, scene.bounds());
+    render::EmissionDensity density =
+        scene.lightAt(x0.light, x0.time).emissionDensity(x0.point, x0.direction, scene.bounds());
     if (x0.atInfinity) return density.position * x1.cosine(x0.direction);
     return toArea(density.direction, x0.point, x1);
 }

@@ -37,6 +37,7 @@ struct LightOrigin {
     Vec3f direction;  // unit, the way light leaves x_0 towards x_1
     bool atInfinity = false, delta = false;
     float cosine = 1.0f;      // at the light, between its normal and `direction`
+    float time = 0.0f;        // the path's time in the shutter: the light is where it is then
     float fromLight = 0.0f;   // density as a light subpath's origin (bdpt_mis.h)
     float fromCamera = 0.0f;  // density as drawn by a camera subpath
 };
@@ -122,9 +123,9 @@ std::pair<Vec3f, Vec3f> gatherPoint(const Vertex& x1, const Vec3f& toX2);
 float neeDensity(const render::RenderScene& scene, const LightOrigin& x0, const Vertex& x1, const Vec3f& toX2);
 
 // x_0 completed by its emission densities: `light` at `point` (normal `normal`) sending light
-// along `direction`; `choice`: the probability light subpaths start on it.
+// along `direction` at `time`; `choice`: the probability light subpaths start on it.
 LightOrigin originAt(const render::RenderScene& scene, int light, const Vec3f& point, const Vec3f& normal,
-                     const Vec3f& direction, bool delta, float choice);
+                     const Vec3f& direction, bool delta, float choice, float time);
 
 // Density of x_1 drawn from the origin by emission sampling.
 float emittedTowards(const render::RenderScene& scene, const LightOrigin& x0, const Vertex& x1);

@@ -55,7 +55,7 @@ FilmSample directLightingThroughDeltaLobes(const render::RenderScene& scene, con
     auto emitterWeight = [&](int light, const LightHit& lh) {
         if (!scene.lightReaches(light, fromLinkGroup)) return 0.0f;
         if (unique) return 1.0f;
-        return powerHeuristic(bsdfPdf, lightStrategyPdf(scene, light, from, fromNormal, ray.direction, lh));
+        return powerHeuristic(bsdfPdf, lightStrategyPdf(scene, light, from, fromNormal, ray.direction, lh, ray.time));
     };
 
     for (int depth = 0;; ++depth) {
@@ -64,7 +64,7 @@ FilmSample directLightingThroughDeltaLobes(const render::RenderScene& scene, con
         throughput *= transmittance(inside.medium(), ray.origin, ray.direction,
                                     hit ? hit->t : std::numeric_limits<float>::infinity(), rng);
         if (!hit) {
-            forEachLightAtInfinity(scene, ray.direction, depth == 0, [&](int index, const RGB& le) {
+            forEachLightAtInfinity(scene, ray.direction, ray.time, depth == 0, [&](int index, const RGB& le) {
                 radiance += throughput * le * emitterWeight(index, LightHit{});
             });
             break;
@@ -98,7 +98,8 @@ FilmSample directLightingThroughDeltaLobes(const render::RenderScene& scene, con
             const render::LightChoice choice = scene.chooseLight(lightFrom, lightNormal, uLight);
             if (choice.light < 0 || choice.probability <= 0.0f) return RGB(0.0f);
             if (!scene.lightReaches(choice.light, hit->linkGroup)) return RGB(0.0f);  // linked away
-            const std::optional<render::LightSample> ls = scene.light(choice.light).sample(lightFrom, uPoint);
+            const std::optional<render::LightSample> ls =
+                scene.lightAt(choice.light, ray.time).sample(lightFrom, uPoint);
             if (!ls || ls->pdf <= 0.0f || isBlack(ls->Li)) return RGB(0.0f);
             const Vec3f wiLocal = surface.frame.toLocal(ls->wi);
             if (!sidesAgree(wo, ls->wi, ng, woLocal.z, wiLocal.z)) return RGB(0.0f);

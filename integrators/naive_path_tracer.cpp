@@ -68,7 +68,7 @@ FilmSample NaivePathTracer::sample(const RenderState&, const render::RenderScene
             }
         }
         if (!hit) {
-            forEachLightAtInfinity(scene, ray.direction, depth == 0, [&](int index, const RGB& le) {
+            forEachLightAtInfinity(scene, ray.direction, ray.time, depth == 0, [&](int index, const RGB& le) {
                 if (scene.lightReaches(index, fromLinkGroup)) radiance += throughput * weighted(le);
             });
             break;

@@ -157,7 +157,7 @@ public:
                 if (step == Step::Next) continue;
             }
             if (!hit) {
-                forEachLightAtInfinity(scene_, ray_.direction, depth == 0,
+                forEachLightAtInfinity(scene_, ray_.direction, ray_.time, depth == 0,
                                        [&](int index, const RGB& le) { addEmitted(le, index, LightHit{}, depth); });
                 break;
             }
@@ -335,7 +335,7 @@ private:
         render::LightChoice choice = scene_.chooseLight(from, fromNormal, uLight);
         if (choice.light < 0 || choice.probability <= 0.0f) return;
         if (!scene_.lightReaches(choice.light, linkGroup)) return;  // linked away: chosen, contributes nothing
-        std::optional<render::LightSample> ls = scene_.light(choice.light).sample(from, uPoint);
+        std::optional<render::LightSample> ls = scene_.lightAt(choice.light, ray_.time).sample(from, uPoint);
         if (!ls || ls->pdf <= 0.0f || isBlack(ls->Li)) return;
         auto [f, scatterPdf] = scatter(ls->wi);
         if (isBlack(f)) return;
@@ -362,7 +362,8 @@ private:
         if (!scene_.lightReaches(index, previousLinkGroup_)) return;  // group 0 for camera rays: every light
         const bool unique = depth == 0 || specularBounce_;
         float weight = mis_.emitter(
-            unique ? 0.0f : lightStrategyPdf(scene_, index, previousPoint_, previousNormal_, ray_.direction, lh),
+            unique ? 0.0f
+                   : lightStrategyPdf(scene_, index, previousPoint_, previousNormal_, ray_.direction, lh, ray_.time),
             unique);
         radiance_ += throughput_ * le * weight;
         if (lightPaths_.active()) lightPaths_.reach(lightEvents_[index], throughput_ * le * weight, out_);

@@ -189,7 +189,7 @@ FilmSample Radiosity::sample(const RenderState& state, const render::RenderScene
     ++counters.camera;
     std::optional<render::SurfaceHit> hit = scene.intersect(ray);
     if (!hit) {
-        forEachLightAtInfinity(scene, ray.direction, true, [&](int, const RGB& le) { out.radiance += le; });
+        forEachLightAtInfinity(scene, ray.direction, ray.time, true, [&](int, const RGB& le) { out.radiance += le; });
         return out;
     }
     const Vec3f wo = -ray.direction;

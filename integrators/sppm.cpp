@@ -94,8 +94,11 @@ void tracePhotonPath(const render::RenderScene& scene, int maxDepth, float scale
     const float uLight = rng.next();
     const Vec2f uPoint = rng.next2D(), uDirection = rng.next2D();
     const std::size_t index = scene.lightSelection().sample(uLight);
+    // Each photon path at its own time in the shutter (its stream's own dimension), the light where
+    // it is then: gathered by camera paths of every time, the photons blur what moves.
+    const float time = rng.shutterTime();
     std::optional<render::EmissionSample> emitted =
-        scene.light(index).sampleEmission(uPoint, uDirection, scene.bounds());
+        scene.lightAt(index, time).sampleEmission(uPoint, uDirection, scene.bounds());
     if (!emitted) return;
     const render::EmissionDensity& density = emitted->density;
     const float pdf = density.position * density.direction * scene.lightSelection().pmf(index);
@@ -109,10 +112,7 @@ void tracePhotonPath(const render::RenderScene& scene, int maxDepth, float scale
     MediumStack inside(scene);
     std::array<bool, MediumStack::kDepth + 1> keepVolumePhotons{};  // per interior depth (index 0: unused)
     int interiorScatterings = 0;
-    // Each photon path at its own time in the shutter (its stream's own dimension): gathered by
-    // camera paths of every time, the photons blur what moves.
-    Ray ray{render::offsetRayOrigin(emitted->point, emitted->normal), emitted->direction, 0.0f, kInfinity,
-            rng.shutterTime()};
+    Ray ray{render::offsetRayOrigin(emitted->point, emitted->normal), emitted->direction, 0.0f, kInfinity, time};
     render::BsdfArena arena;
     float spread = 1.0f;  // the number of surfaces the first segment deposited on, the path going on from one
     for (int depth = 0; depth < maxDepth; ++depth) {
@@ -418,7 +418,7 @@ FilmSample Sppm::sample(const RenderState& renderState, const render::RenderScen
             }
         }
         if (!hit) {
-            forEachLightAtInfinity(scene, ray.direction, depth == 0, [&](int index, const RGB& le) {
+            forEachLightAtInfinity(scene, ray.direction, ray.time, depth == 0, [&](int index, const RGB& le) {
                 if (!scene.lightReaches(index, fromLinkGroup)) return;
                 const RGB added = add(le);
                 if (lightPaths.active()) lightPaths.reach(state.lightEvents[index], added, out);

@@ -34,4 +34,18 @@ inline void storeRayHit(RTCRayHit& h, const Vec3f& origin, const Vec3f& directio
     h.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
 }
 
+// An Embree user geometry's intersect callback reporting its hit at distance t with geometric
+// normal `normal` (u and v 0, the callback's primitive, geometry and instance ids).
+inline void storeUserHit(const RTCIntersectFunctionNArguments* args, float t, const Vec3f& normal) {
+    auto* rayHit = reinterpret_cast<RTCRayHit*>(args->rayhit);
+    rayHit->ray.tfar = t;
+    rayHit->hit.Ng_x = normal.x;
+    rayHit->hit.Ng_y = normal.y;
+    rayHit->hit.Ng_z = normal.z;
+    rayHit->hit.u = rayHit->hit.v = 0.0f;
+    rayHit->hit.primID = args->primID;
+    rayHit->hit.geomID = args->geomID;
+    rayHit->hit.instID[0] = args->context->instID[0];
+}
+
 }  // namespace fluence::render

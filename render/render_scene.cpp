@@ -14,6 +14,7 @@
 #include "render/embree_ray.h"
 #include "render/light_shape.h"
 #include "render/lights/light_registry.h"
+#include "render/lights/swept_light.h"
 #include "render/lights/triangle_light.h"
 #include "render/mesh_transform.h"
 #include "render/point_geometry.h"
@@ -51,20 +52,11 @@ void analyticShapeBounds(const RTCBoundsFunctionArguments* args) {
 
 void analyticShapeIntersect(const RTCIntersectFunctionNArguments* args) {
     if (args->N != 1 || !args->valid[0]) return;  // the scene is only traced with rtcIntersect1
-    auto* rayHit = reinterpret_cast<RTCRayHit*>(args->rayhit);
-    RTCRay& r = rayHit->ray;
+    const RTCRay& r = reinterpret_cast<const RTCRayHit*>(args->rayhit)->ray;
     std::optional<ShapeHit> hit =
         static_cast<const AnalyticLightShape*>(args->geometryUserPtr)
             ->intersect({r.org_x, r.org_y, r.org_z}, {r.dir_x, r.dir_y, r.dir_z}, r.tnear, r.tfar);
-    if (!hit) return;
-    r.tfar = hit->t;
-    rayHit->hit.Ng_x = hit->normal.x;
-    rayHit->hit.Ng_y = hit->normal.y;
-    rayHit->hit.Ng_z = hit->normal.z;
-    rayHit->hit.u = rayHit->hit.v = 0.0f;
-    rayHit->hit.primID = args->primID;
-    rayHit->hit.geomID = args->geomID;
-    rayHit->hit.instID[0] = args->context->instID[0];
+    if (hit) storeUserHit(args, hit->t, hit->normal);
 }
 
 RTCGeometry analyticGeometry(RTCDevice device, const AnalyticLightShape& shape) {
@@ -481,20 +473,18 @@ void RenderScene::addMesh(const MeshDesc& desc, const std::vector<MaterialDesc>&
         std::size_t triangles = mesh.indices.size() / 3;
         mesh.firstLight = static_cast<int>(lights_.size());
         for (std::size_t t = 0; t < triangles; ++t) {
-            const Vec3f &p0 = mesh.positions[mesh.indices[3 * t]], &p1 = mesh.positions[mesh.indices[3 * t + 1]],
-                        &p2 = mesh.positions[mesh.indices[3 * t + 2]];
-            if (mesh.texturedEmission)
-                lights_.push_back(std::make_unique<TriangleLight>(desc.name, p0, p1, p2, *mesh.texturedEmission,
-                                                                  static_cast<unsigned>(t)));
-            else
-                lights_.push_back(std::make_unique<TriangleLight>(desc.name, p0, p1, p2, mesh.emission));
+            std::unique_ptr<Light> light = triangleLight(mesh, mesh.positions, static_cast<unsigned>(t));
+            if (!mesh.motionPositions.empty()) {  // sampled where it is at a ray's time (lightAt)
+                std::vector<LightBounds> places;
+                for (const std::vector<Vec3f>& step : mesh.motionPositions)
+                    places.push_back(*triangleLight(mesh, step, static_cast<unsigned>(t))->bounds());
+                light = std::make_unique<SweptLight>(std::move(light), unionOfLightBounds(places));
+                movingLights_.resize(lights_.size() + 1);
+                movingLights_.back().mesh = index;
+            }
+            lights_.push_back(std::move(light));
         }
         stats_.emissiveTriangles += triangles;
-        if (!mesh.motionPositions.empty()) {  // its triangles are lights, sampled where they are at the frame
-            warnings_.push_back(
-                {desc.name, "an emissive mesh does not move during the shutter (rendered without motion blur)"});
-            mesh.motionPositions.clear();
-        }
     }
     RTCGeometry geom = triangleGeometry(embree_->device, mesh.positions, mesh.indices, mesh.motionPositions);
     addPresenceFilter(geom, index);
@@ -611,7 +601,10 @@ void RenderScene::addPrototypes(const SceneDescription& scene) {
         const Prototype& proto = prototypes_[desc.prototype];
         const std::uint32_t objectName = desc.name.empty() ? kNoName : objectNames_.add(desc.name);
         for (int m : proto.emissiveMeshes) {
-            MeshDesc placed = transformMesh(scene.prototypes[desc.prototype].meshes[m], desc.transform);
+            const MeshDesc& local = scene.prototypes[desc.prototype].meshes[m];
+            MeshDesc placed = transformMesh(local, desc.transform);
+            for (const Matrix4& step : desc.motionTransforms)  // a moving instance: its copy moves with it
+                placed.motionPositions.push_back(transformMesh(local, step).positions);
             if (desc.linkGroup != 0) placed.linkGroup = desc.linkGroup;
             addMesh(placed, scene.materials, objectName);
         }
@@ -638,7 +631,18 @@ void RenderScene::addPrototypes(const SceneDescription& scene) {
 
 void RenderScene::addLight(const LightDesc& desc) {
     int index = static_cast<int>(lights_.size());
-    lights_.push_back(makeLight(desc));
+    std::unique_ptr<Light> made = makeLight(desc);
+    const LightMotion* motion = nullptr;
+    if (!desc.motionTransforms.empty()) {  // sampled where it is at a ray's time (lightAt)
+        if (desc.motionTransforms.size() < 2)
+            throw std::invalid_argument(desc.name + ": motion needs at least two time steps");
+        motion = &lightMotions_.emplace_back(desc.transform, desc.motionTransforms);
+        movingLights_.resize(lights_.size() + 1);
+        movingLights_.back() = {made.get(), motion, -1};
+        const std::optional<LightBounds> still = made->bounds();
+        made = std::make_unique<SweptLight>(std::move(made), still ? motion->sweptBounds(*still) : LightBounds{});
+    }
+    lights_.push_back(std::move(made));
     const Light& light = *lights_.back();
     if (light.atInfinity()) lightsAtInfinity_.push_back(index);
     if (light.atInfinity() && desc.visibleToCamera) lightsAtInfinitySeenByCamera_.push_back(index);
@@ -647,9 +651,11 @@ void RenderScene::addLight(const LightDesc& desc) {
         shadowless_[std::size_t(index)] = true;
     }
     const LightSurface surface = light.surface();
-    RTCGeometry shape = lightSurfaceGeometry(embree_->device, surface);  // committed
+    RTCGeometry shape = motion && surface.kind != LightSurface::Kind::None
+                            ? movingShapes_.emplace_back(surface, *motion).newGeometry(embree_->device)
+                            : lightSurfaceGeometry(embree_->device, surface);  // committed
     if (!shape) return;
-    if (surface.kind == LightSurface::Kind::Quad) {
+    if (surface.kind == LightSurface::Kind::Quad && !motion) {
         rtcSetGeometryUserData(shape, &quadLightFronts_.emplace_back(surface.front));
         rtcSetGeometryIntersectFilterFunction(shape, frontSideFilter);
         rtcCommitGeometry(shape);
@@ -876,6 +882,29 @@ RenderScene::Triangle RenderScene::triangleAt(const Mesh& mesh, unsigned triangl
         return {mesh.positions[corner[0]], mesh.positions[corner[1]], mesh.positions[corner[2]]};
     return {positionAt(mesh.motionPositions, corner[0], time), positionAt(mesh.motionPositions, corner[1], time),
             positionAt(mesh.motionPositions, corner[2], time)};
+}
+
+std::unique_ptr<TriangleLight> RenderScene::triangleLight(const Mesh& mesh, const std::vector<Vec3f>& positions,
+                                                          unsigned triangle) const {
+    const std::uint32_t* corner = &mesh.indices[3 * std::size_t(triangle)];
+    const Vec3f &p0 = positions[corner[0]], &p1 = positions[corner[1]], &p2 = positions[corner[2]];
+    if (mesh.texturedEmission)
+        return std::make_unique<TriangleLight>(mesh.name, p0, p1, p2, *mesh.texturedEmission, triangle);
+    return std::make_unique<TriangleLight>(mesh.name, p0, p1, p2, mesh.emission);
+}
+
+LightAtTime RenderScene::lightAt(std::size_t i, float time) const {
+    if (i >= movingLights_.size()) return LightAtTime(*lights_[i]);
+    const MovingLight& moving = movingLights_[i];
+    if (moving.motion) return LightAtTime(*moving.frame, moving.motion->at(time));
+    if (moving.mesh < 0) return LightAtTime(*lights_[i]);
+    // The triangle where its mesh is at `time`, made for the call (unnamed: the scene's light(i) has the name).
+    const Mesh& mesh = meshes_[static_cast<std::size_t>(moving.mesh)];
+    const auto triangle = static_cast<unsigned>(static_cast<int>(i) - mesh.firstLight);
+    const Triangle c = triangleAt(mesh, triangle, time);
+    if (mesh.texturedEmission)
+        return LightAtTime(TriangleLight({}, c.p0, c.p1, c.p2, *mesh.texturedEmission, triangle));
+    return LightAtTime(TriangleLight({}, c.p0, c.p1, c.p2, mesh.emission));
 }
 
 const RenderScene::Instance* RenderScene::instanceAt(int index, float time, std::optional<Instance>& moved) const {

@@ -35,7 +35,11 @@
 //
 // Motion blur: a mesh with MeshDesc::motionPositions and an instance with motionTransforms get
 // Embree time steps (render/motion_geometry.h); rays are intersected at Ray::time and hits shaded
-// where the geometry is at that time.
+// where the geometry is at that time. Lights move too (lightAt): a light with
+// LightDesc::motionTransforms (render/light_motion.h), its shape a render/moving_light_shape.h,
+// and the triangles of a moving emissive mesh (world meshes, and emissive prototype meshes copied
+// per instance, with the instance's motion); the light tree bounds each over the whole shutter
+// (render/lights/swept_light.h).
 //
 // Opacity: a mesh whose material may be less than opaque gets Embree filter functions, so every
 // ray (camera, BSDF and shadow) passes through its holes. A cut-out (opacityThreshold > 0) is a
@@ -55,9 +59,12 @@
 #include "render/camera.h"
 #include "render/curve_geometry.h"
 #include "render/light.h"
+#include "render/light_at_time.h"
+#include "render/light_motion.h"
 #include "render/light_links.h"
 #include "render/light_tree.h"
 #include "render/material_shader.h"
+#include "render/moving_light_shape.h"
 #include "render/ray.h"
 #include "media/medium.h"
 #include "render/scene_description.h"
@@ -170,7 +177,12 @@ public:
     Vec3f pointAt(const SurfaceHit& hit, float time) const;
 
     std::size_t lightCount() const { return lights_.size(); }
+    // Light i as the light tree sees it (a moving light: at the frame, its bounds() over the shutter).
     const Light& light(std::size_t i) const { return *lights_[i]; }
+    // Light i where it is at `time` in the shutter (render::Ray::time): what next-event estimation
+    // samples, what a hit on its shape emits, what light subpaths and photons leave from
+    // (render/light_at_time.h). The light itself when it does not move.
+    LightAtTime lightAt(std::size_t i, float time) const;
     // The light group of the light or emissive mesh at prim path `name` (SceneDescription::
     // lightGroups), or null when it has none.
     const std::string* lightGroup(const std::string& name) const {
@@ -277,6 +289,9 @@ private:
         Vec3f p0, p1, p2;
     };
     Triangle triangleAt(const Mesh& mesh, unsigned triangle, float time) const;
+    // The light of triangle `triangle` of an emissive mesh, its corners taken from `positions`.
+    std::unique_ptr<TriangleLight> triangleLight(const Mesh& mesh, const std::vector<Vec3f>& positions,
+                                                 unsigned triangle) const;
     // The instance at `index` (nullptr for -1), or, when it moves, its copy placed at `time` in `moved`.
     const Instance* instanceAt(int index, float time, std::optional<Instance>& moved) const;
     // The hit on curve geomID of an instance's prototype (`curves`), in world space.
@@ -314,8 +329,18 @@ private:
     std::map<std::string, std::string> lightGroups_;
     // Whether `hit`'s surface blocks light `light`'s shadow rays (render/shadow_rays.cpp).
     bool blocksShadowsOf(int light, const SurfaceHit& hit) const;
-    bool shadowless(int light) const;    // LightDesc::castsShadows false
-    std::deque<Vec3f> quadLightFronts_;  // each quad light's emitting direction, its Embree filter's user data
+    bool shadowless(int light) const;  // LightDesc::castsShadows false
+    // What moves among the lights, by light index (shorter than lights_: the rest stay still): a
+    // UsdLux light's frame light and motion, or the world mesh whose triangle it is.
+    struct MovingLight {
+        const Light* frame = nullptr;
+        const LightMotion* motion = nullptr;
+        int mesh = -1;
+    };
+    std::vector<MovingLight> movingLights_;
+    std::deque<LightMotion> lightMotions_;       // stable addresses, for movingLights_ and the shapes
+    std::deque<MovingLightShape> movingShapes_;  // the user data of moving lights' Embree shapes
+    std::deque<Vec3f> quadLightFronts_;          // each quad light's emitting direction, its Embree filter's user data
     DiscreteDistribution lightSelection_;
     LightTree lightTree_;
     SceneBounds bounds_;

@@ -271,6 +271,9 @@ struct LightDesc {
     // UsdLux ShadowAPI inputs:shadow:enable: false, and no surface blocks this light's shadow rays
     // (render/shadow_rays.cpp).
     bool castsShadows = true;
+    // A moving light: light-to-world at evenly spaced times over the shutter, as
+    // InstanceDesc::motionTransforms (render/light_motion.h); empty: it stays at `transform`.
+    std::vector<Matrix4> motionTransforms{};
 };
 
 // One grid of an OpenVDB file (a UsdVol OpenVDBAsset).

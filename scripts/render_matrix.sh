@@ -26,7 +26,7 @@ scenes=(cornell_box.usda layered_room/shot.usda material_ball/material_ball.usda
         smoke/smoke.usda subdivision/creased_cubes.usda subsurface/subsurface.usda chess/chess.usda
         lights/distant.usda lights/spotlight.usda lights/stage.usda lights/sphere_point.usda
         lights/emissive_mesh.usda lights/dome.usda lights/disk.usda lights/rect_texture.usda
-        lights/sphere.usda lights/cylinder.usda lights/color_temperature.usda lights/ies_fixture.usda lights/linked_lights.usda lights/textured_screen.usda depth_of_field/chess_bokeh.usda motion/motion_blur.usda motion/moving_hair.usda
+        lights/sphere.usda lights/cylinder.usda lights/color_temperature.usda lights/ies_fixture.usda lights/linked_lights.usda lights/textured_screen.usda depth_of_field/chess_bokeh.usda motion/motion_blur.usda motion/moving_hair.usda motion/moving_lights.usda
         hair/hair.usda displacement/displacement.usda)
 integrators=(${INTEGRATORS:-path direct whitted bdpt sppm radiosity naive})
 for scene in "${scenes[@]}"; do

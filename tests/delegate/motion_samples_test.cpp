@@ -303,5 +303,39 @@ def PointInstancer "Spray"
     EXPECT_NEAR(close.y, 1.0 + r, 1e-9);
 }
 
+// A UsdLux light under a time-sampled xform keyed inside the shutter gets its light-to-world at
+// each step (a step on the key: right, then back), and a still light none.
+TEST(MotionSamples, ALightGetsItsTransformAtEachStep) {
+    const Described d = describeAt(cameraWithShutter(-0.5, 0.5) + R"(
+def Xform "Rig"
+{
+    double3 xformOp:translate.timeSamples = { 0: (0, 0, 3), 1: (1, 0, 3), 2: (0, 0, 3) }
+    uniform token[] xformOpOrder = ["xformOp:translate"]
+    def SphereLight "Bulb"
+    {
+        float inputs:radius = 0.1
+    }
+}
+def RectLight "Still"
+{
+}
+)",
+                                   1.0);
+    const render::LightDesc* bulb = nullptr;
+    const render::LightDesc* still = nullptr;
+    for (const render::LightDesc& light : d.result.scene.lights) {
+        if (light.name == "/Rig/Bulb") bulb = &light;
+        if (light.name == "/Still") still = &light;
+    }
+    ASSERT_NE(bulb, nullptr);
+    ASSERT_NE(still, nullptr);
+    ASSERT_EQ(bulb->motionTransforms.size(), 3u);
+    EXPECT_NEAR(bulb->motionTransforms[0].m[0][3], 0.5, 1e-9);
+    EXPECT_NEAR(bulb->motionTransforms[1].m[0][3], 1.0, 1e-9);  // the key inside the shutter, exactly
+    EXPECT_NEAR(bulb->motionTransforms[2].m[0][3], 0.5, 1e-9);
+    EXPECT_NEAR(bulb->transform.m[0][3], 1.0, 1e-9);  // the frame's
+    EXPECT_TRUE(still->motionTransforms.empty());
+}
+
 }  // namespace
 }  // namespace fluence::delegate

@@ -145,37 +145,9 @@ TEST(MotionBlur, DeformationAndTransformationBlurOfTheSameMotionAgree) {
     }
 }
 
-// Under `sampler`, an image rendered on 1 and 2 threads, and a tile of it rendered alone, agree bit for bit.
-void expectBitIdenticalAcrossThreadCountsAndTiles(SamplerKind sampler) {
-    const render::SceneDescription desc = translatedSquare();
-    const Rendered one = renderWith(tracer(), desc, kSize, 8, 1, 5, sampler);
-    const Rendered two = renderWith(tracer(), desc, kSize, 8, 2, 5, sampler);
-    ASSERT_EQ(one.image.pixels.size(), two.image.pixels.size());
-    EXPECT_EQ(0,
-              std::memcmp(one.image.pixels.data(), two.image.pixels.data(), one.image.pixels.size() * sizeof(float)));
-
-    // A tile rendered alone: the window (20, 24) of 24 x 16 pixels of the whole image.
-    const render::RenderScene scene(desc);
-    const render::Camera camera(*desc.camera, kSize, kSize);
-    RenderSettings settings;
-    settings.samplesPerPixel = 8;
-    settings.seed = 5;
-    settings.sampler = sampler;
-    settings.windowX = 20;
-    settings.windowY = 24;
-    settings.imageWidth = kSize;
-    Film film(24, 16, camera.farClip());
-    render(scene, camera, tracer(), settings, film);
-    const Image tile = film.resolve();
-    for (int y = 0; y < 16; ++y)
-        for (int x = 0; x < 24; ++x)
-            ASSERT_EQ(
-                0, std::memcmp(tile.pixel(x, y), one.image.pixel(x + 20, y + 24), tile.channelCount() * sizeof(float)))
-                << x << "," << y;
-}
-
 TEST(MotionBlur, ImagesAreBitIdenticalAcrossThreadCountsAndTiles) {
-    for (SamplerKind sampler : test_support::kSamplers) expectBitIdenticalAcrossThreadCountsAndTiles(sampler);
+    for (SamplerKind sampler : test_support::kSamplers)
+        test_support::expectBitIdenticalAcrossThreadCountsAndTiles(tracer(), translatedSquare(), kSize, sampler);
 }
 
 TEST(MotionBlur, HitsAreShadedWhereTheRayTimePutsThem) {

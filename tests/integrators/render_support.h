@@ -2,8 +2,11 @@
 // average a channel over selected pixels with its standard error.
 #pragma once
 
+#include <gtest/gtest.h>
+
 #include <array>
 #include <cstdint>
+#include <cstring>
 #include <functional>
 #include <utility>
 
@@ -49,6 +52,36 @@ inline Rendered renderWith(const Integrator& integrator, const render::SceneDesc
     settings.sampler = sampler;
     RenderedFilm r = renderFilm(integrator, desc, size, settings);
     return {r.film.resolve(), r.stats};
+}
+
+// Under `sampler`, `desc` rendered (size x size, 8 samples per pixel, seed 5) on 1 and 2 threads,
+// and the tile at (20, 24) of 24 x 16 pixels rendered alone, agree bit for bit.
+inline void expectBitIdenticalAcrossThreadCountsAndTiles(const Integrator& integrator,
+                                                         const render::SceneDescription& desc, int size,
+                                                         SamplerKind sampler) {
+    const Rendered one = renderWith(integrator, desc, size, 8, 1, 5, sampler);
+    const Rendered two = renderWith(integrator, desc, size, 8, 2, 5, sampler);
+    ASSERT_EQ(one.image.pixels.size(), two.image.pixels.size());
+    EXPECT_EQ(0,
+              std::memcmp(one.image.pixels.data(), two.image.pixels.data(), one.image.pixels.size() * sizeof(float)));
+
+    const render::RenderScene scene(desc);
+    const render::Camera camera(*desc.camera, size, size);
+    RenderSettings settings;
+    settings.samplesPerPixel = 8;
+    settings.seed = 5;
+    settings.sampler = sampler;
+    settings.windowX = 20;
+    settings.windowY = 24;
+    settings.imageWidth = size;
+    Film film(24, 16, camera.farClip());
+    render(scene, camera, integrator, settings, film);
+    const Image tile = film.resolve();
+    for (int y = 0; y < 16; ++y)
+        for (int x = 0; x < 24; ++x)
+            ASSERT_EQ(
+                0, std::memcmp(tile.pixel(x, y), one.image.pixel(x + 20, y + 24), tile.channelCount() * sizeof(float)))
+                << x << "," << y;
 }
 
 // Per channel, the mean radiance of n samples of `integrator` along `ray`, sample i drawing from the
