@@ -24,8 +24,11 @@
 //   - the camera, when its transform differs between steps, gets CameraDesc::motionTransforms,
 //     and when its focalLength, fStop or focusDistance does (a zoom, a focus pull),
 //     CameraDesc::motionLenses (render/camera_motion.h).
+//   - the meshes, curves and points of a shared prototype that deform (skinned, time-sampled or
+//     velocity-moved points, moved inside the prototype) get the same time steps, in prototype
+//     space (PrototypeMotionSteps): every instance of the prototype deforms alike.
 // The lights stay where they are at the frame; so do emissive meshes (their triangles are
-// lights) and meshes inside prototypes.
+// lights), in prototypes too.
 #pragma once
 
 #include <functional>
@@ -75,6 +78,8 @@ std::optional<InstanceVelocityMotion> instanceVelocityMotion(const usd::Stage& s
 // Whether `prim` moves by `velocities` or `angularVelocities` during the shutter (authored, with
 // `points` or `positions` not time-sampled).
 bool movesByVelocities(const usd::PrimSpec& prim);
+// Whether `root` or a prim below it moves so (a prototype's contents).
+bool movesByVelocitiesAtOrBelow(const usd::PrimSpec& root);
 
 // Adds the motion over `camera`'s shutter to `scene`, which `delegate` described from `stage` by
 // `options` at the frame (see above); leaves `delegate` at the shutter's close. Warns through
