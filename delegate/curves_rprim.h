@@ -10,6 +10,10 @@
 
 namespace fluence::delegate {
 
+// The curves of `prim` in its own space at context.time: points that are not time-sampled moved by
+// their velocities at a motion step (context.velocityFrame), as a mesh's are.
+render::CurvesDesc objectSpaceCurves(const SyncContext& context, const usd::PrimSpec& prim);
+
 class CurvesRprim final : public RenderPrim {
 public:
     explicit CurvesRprim(std::string path) : RenderPrim(Kind::Curves, std::move(path)) {}

@@ -6,6 +6,7 @@
 #include <map>
 #include <utility>
 
+#include "delegate/material_binding.h"
 #include "delegate/material_adapter.h"
 #include "delegate/mesh_adapter.h"
 #include "delegate/motion_samples.h"

@@ -4,12 +4,15 @@
 #include <map>
 #include <set>
 
+#include "delegate/material_binding.h"
 #include "delegate/curves_adapter.h"
+#include "delegate/curves_rprim.h"
 #include "delegate/imageable.h"
 #include "delegate/implicit_geometry.h"
 #include "delegate/light_adapter.h"
 #include "delegate/motion_samples.h"
 #include "delegate/points_adapter.h"
+#include "delegate/points_rprim.h"
 #include "delegate/mesh_source.h"
 #include "delegate/xform.h"
 #include "render/mesh_transform.h"
@@ -145,27 +148,31 @@ bool addToPrototype(const SyncContext& context, const usd::PrimSpec& prim, const
     spaces[prim.path] = space;
     // A skinned mesh here poses alike in every instance (delegate/skinned_instances.h): posed once.
     const MeshSource source = meshSource(stage, prim, time, context.warn);
+    contents.posedByAnimation = contents.posedByAnimation || (source.pose && source.pose->animated);
     const usd::PrimSpec& mesh = source.prim(prim);
     if (mesh.typeName == "Mesh" && SubdivisionMesh::isSubdivided(mesh, time)) {
         contents.subdivided.push_back(
             {std::make_shared<const SubdivisionMesh>(stage, mesh, time, context.convertColor, warnHere), space});
     } else if (mesh.typeName == "Mesh") {
-        for (MeshPart& part : meshPartsFromPrim(stage, mesh, time, space, context.convertColor, warnHere))
+        for (MeshPart& part :
+             meshPartsFromPrim(stage, mesh, time, space, context.convertColor, warnHere, context.velocityFrame))
             parts.push_back(std::move(part));
     } else if (isImplicitType(prim.typeName)) {
         const bool skinned = isSkelDeformed(stage, prim);  // posed in its own space, then placed
         render::MeshDesc surface = implicitMeshFromPrim(PrimReader(prim, time), skinned ? Matrix4::identity() : space,
                                                         context.convertColor, warnHere);
-        if (skinned && skinSurface(stage, prim, time, context.warn, surface))
+        if (const std::optional<bool> animated =
+                skinned ? skinSurface(stage, prim, time, context.warn, surface) : std::nullopt) {
             surface = render::transformMesh(surface, space);
+            contents.posedByAnimation = contents.posedByAnimation || *animated;
+        }
         parts.push_back({std::move(surface), boundMaterialPath(stage, prim)});
     } else if (isCurvesType(prim.typeName)) {
         contents.curves.push_back(
-            {transformCurves(curvesFromPrim(PrimReader(prim, time), context.convertColor, warnHere), space),
-             boundMaterialPath(stage, prim)});
+            {transformCurves(objectSpaceCurves(context, prim), space), boundMaterialPath(stage, prim)});
     } else if (prim.typeName == "Points") {
-        contents.points.push_back({pointsToWorld(pointsFromPrim(PrimReader(prim, time), context.convertColor), space),
-                                   boundMaterialPath(stage, prim)});
+        contents.points.push_back(
+            {pointsToWorld(objectSpacePoints(context, prim), space), boundMaterialPath(stage, prim)});
     } else if (isLightType(prim.typeName)) {
         // (A native instance's own lights are instance proxies, which the render index holds
         // as lights of their own; only a point instancer places its prototypes' lights.)
@@ -178,11 +185,12 @@ bool addToPrototype(const SyncContext& context, const usd::PrimSpec& prim, const
             warnHere("point instancers nest deeper than " + std::to_string(kMaxPrototypeNesting) + " levels; cut here");
             return false;
         }
-        PointInstances nested = pointInstancesFromPrim(PrimReader(prim, time), warnHere);
+        PointInstances nested = pointInstancesFromPrim(PrimReader(prim, time), warnHere, &context);
         std::vector<PrototypeContents> nestedContents;
         for (const std::string& path : nested.prototypes) {
             nestedContents.push_back(prototypeContents(context, path, true, nesting + 1));
             for (MalformedPrim& m : nestedContents.back().malformed) contents.malformed.push_back(std::move(m));
+            contents.posedByAnimation = contents.posedByAnimation || nestedContents.back().posedByAnimation;
         }
         for (const PointInstances::Instance& instance : nested.instances) {
             const PrototypeContents& inner = nestedContents[instance.prototype];

@@ -25,12 +25,17 @@
 //    | inactiveIds    | metadata | int64 list op: deactivated instances, as invisibleIds        |
 //    Arrays of the wrong length are warned about: without usable positions the instancer
 //    places nothing; a bad orientations or scales array is ignored. Everything below a
-//    PointInstancer is rendered only through it. Velocities (motion blur) are not read.
+//    PointInstancer is rendered only through it. `velocities`, `accelerations` and
+//    `angularVelocities` move the instances at a motion step (delegate/motion_samples.h).
 //
 // A prototype holds meshes (subdivision surfaces among them), implicit surfaces, BasisCurves,
 // NurbsCurves and Points, and lights (each instance places its own copy of each light). A PointInstancer nested inside a prototype is
 // expanded into copies there (Embree is built with one instance level); nesting deeper than
-// kMaxPrototypeNesting is cut with a warning.
+// kMaxPrototypeNesting is cut with a warning. Read at a motion step (SyncContext::velocityFrame
+// set), its points that are not time-sampled move by their velocities, as outside prototypes: a
+// prototype deforms alike in all its instances (skinned, time-sampled or velocity-moved points,
+// transforms or a point instancer inside it) and stays shared, its time steps gathered by
+// delegate/motion_steps.h.
 #pragma once
 
 #include <memory>
@@ -102,6 +107,7 @@ struct PrototypeContents {
     std::vector<PrototypePoints> points;
     std::vector<render::LightDesc> lights;  // transform: light space -> prototype root space
     std::vector<MalformedPrim> malformed;   // left out, each with one warning (an error when strict)
+    bool posedByAnimation = false;          // a skinned prim's pose changes over time (its animation may lie outside)
 };
 PrototypeContents prototypeContents(const SyncContext& context, const std::string& root, bool includeRootTransform,
                                     int nesting = 0);

@@ -6,21 +6,6 @@
 
 namespace fluence::delegate {
 
-namespace {
-
-const usd::RelationshipSpec* bindingOf(const usd::PrimSpec& prim) {
-    const usd::RelationshipSpec* r = prim.relationship("material:binding:full");
-    if (!r || r->targets.empty()) r = prim.relationship("material:binding");
-    return r && !r->targets.empty() && !r->blocked ? r : nullptr;
-}
-
-bool strongerThanDescendants(const usd::RelationshipSpec& rel) {
-    const usd::MetadataEntry* e = usd::findMetadata(rel.metadata, "bindMaterialAs");
-    return e && e->value.asString().value_or("") == "strongerThanDescendants";
-}
-
-}  // namespace
-
 std::pair<std::string, std::string> splitPropertyPath(const std::string& path) {
     auto slash = path.rfind('/');
     auto dot = path.find('.', slash == std::string::npos ? 0 : slash);
@@ -52,21 +37,6 @@ std::string resolveTargetPath(const std::string& anchor, const std::string& targ
     if (rest.empty()) return base;
     if (rest.starts_with(".")) return base + rest;  // a property of the anchor
     return (base == "/" ? "" : base) + "/" + rest;
-}
-
-std::string boundMaterialPath(const usd::Stage& stage, const usd::PrimSpec& prim) {
-    // Walk upwards: the closest binding wins, unless a higher one is stronger than descendants
-    // (the highest such one wins, being visited last).
-    std::string bound;
-    for (std::string path = prim.path; !path.empty() && path != "/"; path = parentPath(path)) {
-        const usd::PrimSpec* p = stage.prim(path);
-        const usd::RelationshipSpec* rel = p ? bindingOf(*p) : nullptr;
-        if (rel && (bound.empty() || strongerThanDescendants(*rel)))
-            bound = resolveTargetPath(path, rel->targets.front());
-    }
-    // A target that exists but is not a Material binds nothing (UsdShade's ComputeBoundMaterial).
-    const usd::PrimSpec* target = bound.empty() ? nullptr : stage.prim(bound);
-    return target && target->typeName != "Material" ? "" : bound;
 }
 
 namespace {

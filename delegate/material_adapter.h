@@ -1,9 +1,5 @@
-// UsdShade materials -> render::MaterialDesc, and material binding resolution.
-//
-// Binding: the `material:binding:full` or `material:binding` relationship on the prim, else on
-// its closest ancestor — unless an ancestor's binding carries bindMaterialAs =
-// "strongerThanDescendants", in which case the highest such ancestor wins (UsdShade rules). A
-// target prim that is not a Material binds nothing; a missing one is warned about when read.
+// UsdShade materials -> render::MaterialDesc (which material a prim binds:
+// delegate/material_binding.h).
 //
 // Material: the Material's `outputs:mtlx:surface` (then `outputs:surface`) is followed, through
 // NodeGraph outputs, to a Shader whose info:id is UsdPreviewSurface or
@@ -24,9 +20,6 @@ namespace fluence::delegate {
 
 using ColorConverter = std::function<RGB(const RGB&, const std::string&)>;
 using Warn = std::function<void(const std::string& primPath, const std::string& message)>;
-
-// Path of the material bound to `prim`, or "" when none.
-std::string boundMaterialPath(const usd::Stage& stage, const usd::PrimSpec& prim);
 
 render::MaterialDesc materialFromPath(const usd::Stage& stage, const std::string& materialPath, double time,
                                       const ColorConverter& convertColor, const Warn& warn);

@@ -162,6 +162,15 @@ bool movesByVelocities(const usd::PrimSpec& prim) {
            !timeSampled(prim, "positions");
 }
 
+bool movesByVelocitiesAtOrBelow(const usd::PrimSpec& root) {
+    bool moves = false;
+    usd::Stage::traverse(root, [&](const usd::PrimSpec& prim) {
+        moves = moves || movesByVelocities(prim);
+        return !moves;
+    });
+    return moves;
+}
+
 void addMotion(SceneDelegate& delegate, usd::Stage& stage, const DelegateOptions& options,
                const render::CameraDesc& camera, render::SceneDescription& scene) {
     if (std::isnan(options.time) || !(camera.shutterClose > camera.shutterOpen)) return;
@@ -169,6 +178,7 @@ void addMotion(SceneDelegate& delegate, usd::Stage& stage, const DelegateOptions
     MotionSteps<render::MeshDesc> meshSteps(scene.meshes.size());
     MotionSteps<render::CurvesDesc> curveSteps(scene.curves.size());
     MotionSteps<render::PointsDesc> pointSteps(scene.points.size());
+    PrototypeMotionSteps prototypeSteps(scene.prototypes);
     TransformSteps<render::InstanceDesc> instanceSteps(
         scene.instances.size(), "the instances change during the shutter; rendered without motion blur");
     TransformSteps<render::LightDesc> lightSteps(scene.lights.size(),
@@ -182,6 +192,7 @@ void addMotion(SceneDelegate& delegate, usd::Stage& stage, const DelegateOptions
         meshSteps.add(scene.meshes, step.meshes, options.warn);
         curveSteps.add(scene.curves, step.curves, options.warn);
         pointSteps.add(scene.points, step.points, options.warn);
+        prototypeSteps.add(scene.prototypes, step.prototypes, options.warn);
         if (step.camera && scene.camera && step.camera->name == scene.camera->name) {
             cameraSteps.push_back(step.camera->transform);
             lensSteps.push_back({step.camera->focalLength, step.camera->fStop, step.camera->focusDistance});
@@ -197,6 +208,7 @@ void addMotion(SceneDelegate& delegate, usd::Stage& stage, const DelegateOptions
     meshSteps.store(scene.meshes);
     curveSteps.store(scene.curves);
     pointSteps.store(scene.points);
+    prototypeSteps.store(scene.prototypes);
     if (scene.camera && cameraSteps.size() == times.size() &&
         std::any_of(cameraSteps.begin(), cameraSteps.end(),
                     [&](const Matrix4& s) { return s.m != cameraSteps.front().m; }))

@@ -28,7 +28,9 @@
 //     xform or an ancestor's; the render core moves it rigidly, render/light_motion.h); an
 //     emissive mesh moves as any world mesh does, and its triangles are sampled where they are at
 //     a ray's time.
-// Meshes inside prototypes stay still (their instances move).
+//   - the meshes, curves and points of a shared prototype that deform (skinned, time-sampled or
+//     velocity-moved points, moved inside the prototype) get the same time steps, in prototype
+//     space (PrototypeMotionSteps): every instance of the prototype deforms alike.
 #pragma once
 
 #include <functional>
@@ -78,6 +80,8 @@ std::optional<InstanceVelocityMotion> instanceVelocityMotion(const usd::Stage& s
 // Whether `prim` moves by `velocities` or `angularVelocities` during the shutter (authored, with
 // `points` or `positions` not time-sampled).
 bool movesByVelocities(const usd::PrimSpec& prim);
+// Whether `root` or a prim below it moves so (a prototype's contents).
+bool movesByVelocitiesAtOrBelow(const usd::PrimSpec& root);
 
 // Adds the motion over `camera`'s shutter to `scene`, which `delegate` described from `stage` by
 // `options` at the frame (see above); leaves `delegate` at the shutter's close. Warns through

@@ -71,6 +71,35 @@ void MotionSteps<Desc>::store(std::vector<Desc>& frame) {
     }
 }
 
+PrototypeMotionSteps::PrototypeMotionSteps(const std::vector<render::PrototypeDesc>& frame) {
+    for (const render::PrototypeDesc& p : frame)
+        steps_.push_back({MotionSteps<render::MeshDesc>(p.meshes.size()),
+                          MotionSteps<render::CurvesDesc>(p.curves.size()),
+                          MotionSteps<render::PointsDesc>(p.points.size())});
+}
+
+void PrototypeMotionSteps::add(const std::vector<render::PrototypeDesc>& frame,
+                               const std::vector<render::PrototypeDesc>& step, const Warn& warn) {
+    static const render::PrototypeDesc kMissing;
+    for (std::size_t i = 0; i < frame.size(); ++i) {
+        const render::PrototypeDesc* match = i < step.size() && step[i].name == frame[i].name ? &step[i] : nullptr;
+        for (std::size_t j = 0; !match && j < step.size(); ++j)
+            if (step[j].name == frame[i].name) match = &step[j];
+        const render::PrototypeDesc& s = match ? *match : kMissing;
+        steps_[i].meshes.add(frame[i].meshes, s.meshes, warn);
+        steps_[i].curves.add(frame[i].curves, s.curves, warn);
+        steps_[i].points.add(frame[i].points, s.points, warn);
+    }
+}
+
+void PrototypeMotionSteps::store(std::vector<render::PrototypeDesc>& frame) {
+    for (std::size_t i = 0; i < frame.size(); ++i) {
+        steps_[i].meshes.store(frame[i].meshes);
+        steps_[i].curves.store(frame[i].curves);
+        steps_[i].points.store(frame[i].points);
+    }
+}
+
 template class MotionSteps<render::MeshDesc>;
 template class MotionSteps<render::CurvesDesc>;
 template class MotionSteps<render::PointsDesc>;

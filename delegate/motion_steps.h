@@ -30,6 +30,25 @@ private:
     std::vector<bool> still_;
 };
 
+// MotionSteps for the meshes, curves and points of each prototype of the frame's description.
+class PrototypeMotionSteps {
+public:
+    explicit PrototypeMotionSteps(const std::vector<render::PrototypeDesc>& frame);
+    // Adds the step `step` of the prototypes `frame` describes at the frame (matched by name: a
+    // prototype missing from the step renders still, with a warning).
+    void add(const std::vector<render::PrototypeDesc>& frame, const std::vector<render::PrototypeDesc>& step,
+             const Warn& warn);
+    void store(std::vector<render::PrototypeDesc>& frame);
+
+private:
+    struct Steps {
+        MotionSteps<render::MeshDesc> meshes;
+        MotionSteps<render::CurvesDesc> curves;
+        MotionSteps<render::PointsDesc> points;
+    };
+    std::vector<Steps> steps_;
+};
+
 extern template class MotionSteps<render::MeshDesc>;
 extern template class MotionSteps<render::CurvesDesc>;
 extern template class MotionSteps<render::PointsDesc>;

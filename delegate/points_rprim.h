@@ -9,6 +9,10 @@
 
 namespace fluence::delegate {
 
+// The points of `prim` in its own space at context.time, moved by their velocities at a motion
+// step (context.velocityFrame) when their positions are not time-sampled.
+render::PointsDesc objectSpacePoints(const SyncContext& context, const usd::PrimSpec& prim);
+
 class PointsRprim final : public RenderPrim {
 public:
     explicit PointsRprim(std::string path) : RenderPrim(Kind::Points, std::move(path)) {}

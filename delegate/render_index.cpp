@@ -2,6 +2,7 @@
 
 #include <set>
 
+#include "delegate/material_binding.h"
 #include "delegate/camera_adapter.h"
 #include "delegate/curves_rprim.h"
 #include "delegate/geom_subset.h"
@@ -164,11 +165,14 @@ void PrototypeRprim::syncData(const SyncContext& context, const usd::PrimSpec*, 
     points_ = std::move(contents.points);
     lights_ = std::move(contents.lights);
     malformed_ = std::move(contents.malformed);
+    posedByAnimation_ = contents.posedByAnimation;
 }
 
 bool PrototypeRprim::readsAnimatedData(const usd::PrimSpec& source) const {
     // Transforms below the source move geometry inside the prototype; the source's own does
-    // only when it is included.
+    // only when it is included. A skinned prim's animation may lie outside (a point-instancer
+    // prototype bound to a shared SkelAnimation).
+    if (posedByAnimation_) return true;
     for (const auto& child : source.children)
         if (hasAnimatedData(*child, true, true)) return true;
     return hasAnimatedData(source, false, includeSourceTransform_);

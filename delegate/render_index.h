@@ -188,6 +188,7 @@ private:
     bool includeSourceTransform_;
     std::vector<render::LightDesc> lights_;
     std::vector<MalformedPrim> malformed_;
+    bool posedByAnimation_ = false;  // PrototypeContents::posedByAnimation
 };
 
 // A native instance: an instanceable prim placing the prototype its key names at world().

@@ -16,6 +16,7 @@
 #include "delegate/imageable.h"
 #include "delegate/instancing.h"
 #include "delegate/light_adapter.h"
+#include "delegate/material_binding.h"
 #include "delegate/points_rprim.h"
 #include "delegate/polygon_dicing.h"
 #include "delegate/skinned_instances.h"
@@ -128,6 +129,7 @@ void SceneDelegate::populate(const std::string& root) {
     stage_.traverse([&](const usd::PrimSpec& prim) {
         if (!isAtOrBelow(prim.path, root)) return isAtOrBelow(root, prim.path) && imaged(prim);
         if (!imaged(prim)) return false;
+        warnUnusableBindings(stage_, prim, options_.warn);
         const std::string& type = prim.typeName;
         if (!instanceRoot.empty() && !isAtOrBelow(prim.path, instanceRoot)) instanceRoot.clear();
         // An instanceable Material is a material like any other (its path is what meshes bind),
@@ -488,8 +490,13 @@ void SceneDelegate::markTimeDependent(bool byVelocities) {
     for (const auto& [path, prim] : index_.prims()) {
         if (prim->failed()) prim->markDirty(kAllDirty);  // it may be well formed at this time
         if (prim->transformAnimated()) prim->markDirty(kDirtyTransform);
-        const usd::PrimSpec* spec = byVelocities && !prim->dataAnimated() ? stage_.prim(path) : nullptr;
-        if (prim->dataAnimated() || (spec && movesByVelocities(*spec)))
+        const bool prototype = prim->kind() == RenderPrim::Kind::Prototype;  // its contents move by theirs
+        const usd::PrimSpec* spec =
+            !byVelocities || prim->dataAnimated()
+                ? nullptr
+                : stage_.prim(prototype ? static_cast<const PrototypeRprim&>(*prim).source() : path);
+        if (prim->dataAnimated() ||
+            (spec && (prototype ? movesByVelocitiesAtOrBelow(*spec) : movesByVelocities(*spec))))
             prim->markDirty(kAllDirty & ~std::uint32_t(kDirtyTransform));
     }
 }

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 
+#include "delegate/material_binding.h"
 #include "delegate/prim_reader.h"
 #include "delegate/shader_inputs.h"
 

@@ -582,10 +582,16 @@ void RenderScene::addPrototypes(const SceneDescription& scene) {
         for (const PointsDesc& points : desc.points) {
             const int index =
                 storePoints(points, scene.materials, kNoName, rtcScene, static_cast<unsigned>(proto.meshes.size()));
-            for (std::size_t i = 0; i < points.positions.size(); ++i) {
-                const Vec3f r(points.radii.empty() ? 0.0f : points.radii[i]);
-                proto.lo = vmin(proto.lo, points.positions[i] - r);
-                proto.hi = vmax(proto.hi, points.positions[i] + r);
+            // Where the points are at the frame and at each motion step (deforming inside the prototype).
+            for (std::size_t s = 0; s <= points.motionPositions.size(); ++s) {
+                const std::vector<Vec3f>& at = s == 0 ? points.positions : points.motionPositions[s - 1];
+                const std::vector<float>& radii =
+                    s == 0 || points.motionRadii.empty() ? points.radii : points.motionRadii[s - 1];
+                for (std::size_t i = 0; i < at.size(); ++i) {
+                    const Vec3f r(radii.empty() ? 0.0f : radii[i]);
+                    proto.lo = vmin(proto.lo, at[i] - r);
+                    proto.hi = vmax(proto.hi, at[i] + r);
+                }
             }
             proto.meshes.push_back(-1);
             proto.points.push_back(index);

@@ -7,42 +7,14 @@
 #include <algorithm>
 
 #include "tests/delegate/delegate_test_support.h"
+#include "tests/delegate/skel_agent.h"
 
 namespace fluence::delegate {
 namespace {
 
+using testing::agentClass;
 using testing::populate;
 using testing::Populated;
-
-// A one-joint agent: a unit quad in z = 0 rigidly bound to joint Root (bind and rest identity).
-// `skeletonLines` adds to its Skeleton.
-std::string agentClass(const std::string& skeletonLines = "", const std::string& insideLines = "") {
-    return R"(
-class SkelRoot "Agent"
-{
-    def Skeleton "Skel"
-    {
-        uniform token[] joints = ["Root"]
-        uniform matrix4d[] bindTransforms = [((1,0,0,0),(0,1,0,0),(0,0,1,0),(0,0,0,1))]
-        uniform matrix4d[] restTransforms = [((1,0,0,0),(0,1,0,0),(0,0,1,0),(0,0,0,1))]
-)" + skeletonLines +
-           R"(
-    }
-    def Mesh "Quad" (prepend apiSchemas = ["SkelBindingAPI"])
-    {
-        uniform token subdivisionScheme = "none"
-        int[] faceVertexCounts = [4]
-        int[] faceVertexIndices = [0, 1, 2, 3]
-        point3f[] points = [(0, 0, 0), (1, 0, 0), (1, 1, 0), (0, 1, 0)]
-        int[] primvars:skel:jointIndices = [0] (interpolation = "constant"; elementSize = 1)
-        float[] primvars:skel:jointWeights = [1] (interpolation = "constant"; elementSize = 1)
-        rel skel:skeleton = </Agent/Skel>
-    }
-)" + insideLines +
-           R"(
-}
-)";
-}
 
 // An animation of joint Root: a translation and a turn about +z by a quarter (`quarterTurn`).
 std::string animation(const std::string& name, const std::string& translation, bool quarterTurn) {
