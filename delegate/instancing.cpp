@@ -164,8 +164,9 @@ bool addToPrototype(const SyncContext& context, const usd::PrimSpec& prim, const
             {transformCurves(curvesFromPrim(PrimReader(prim, time), context.convertColor, warnHere), space),
              boundMaterialPath(stage, prim)});
     } else if (prim.typeName == "Points") {
-        contents.points.push_back({pointsToWorld(pointsFromPrim(PrimReader(prim, time), context.convertColor), space),
-                                   boundMaterialPath(stage, prim)});
+        contents.points.push_back(
+            {pointsToWorld(pointsFromPrim(PrimReader(prim, time), context.convertColor, warnHere), space),
+             boundMaterialPath(stage, prim)});
     } else if (isLightType(prim.typeName)) {
         // (A native instance's own lights are instance proxies, which the render index holds
         // as lights of their own; only a point instancer places its prototypes' lights.)

@@ -8,7 +8,8 @@ namespace fluence::delegate {
 
 void PointsRprim::syncData(const SyncContext& context, const usd::PrimSpec* prim, std::uint32_t bits) {
     if (!prim || (bits & ~std::uint32_t(kDirtyTransform)) == 0) return;  // moved points keep their object-space data
-    objectSpace_ = pointsFromPrim(PrimReader(*prim, context.time), context.convertColor);
+    objectSpace_ = pointsFromPrim(PrimReader(*prim, context.time), context.convertColor,
+                                  [&](const std::string& message) { context.warn(prim->path, message); });
     moveByVelocities(context.stage, *prim, context.time, context.velocityFrame, Matrix4::identity(),
                      objectSpace_.positions);
     materialPath_ = boundMaterialPath(context.stage, *prim);
