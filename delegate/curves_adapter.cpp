@@ -166,13 +166,14 @@ void checkCounts(const PrimReader& prim, CurvePrimvars& p, std::size_t curves, s
                  std::size_t vertices, const std::function<void(const std::string&)>& warn) {
     for (std::optional<Primvar>* pv : {&p.widths, &p.normals})
         if (*pv) checkCount(prim, **pv, curves, varying, vertices);
-    auto keeps = [&](Primvar& pv) {
+    auto keeps = [&](Primvar& pv, bool quiet) {
         const std::string problem = countProblem(pv, curves, varying, vertices);
-        if (!problem.empty()) warn(problem + "; it is ignored");
+        if (!problem.empty() && !quiet) warn(problem + "; it is ignored");
         return problem.empty();
     };
-    if (p.colors && !keeps(*p.colors)) p.colors.reset();
-    std::erase_if(p.shading, [&](Primvar& pv) { return !keeps(pv); });
+    if (p.colors && !keeps(*p.colors, false)) p.colors.reset();
+    // displayColor is a shading primvar too: its warning is said once.
+    std::erase_if(p.shading, [&](Primvar& pv) { return !keeps(pv, pv.name == "displayColor"); });
 }
 
 // A shading primvar carried per vertex (or per evaluated sample), as `Values` are.

@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <string>
 
 #include "render/bsdfs/hair.h"
@@ -290,6 +291,7 @@ TEST(CurvePrimvars, APrimvarOfTheWrongLengthIsIgnoredWithAWarningNamingThePrim) 
 )" + looks("tint"));
     ASSERT_EQ(p.result.scene.curves.size(), 1u);
     ASSERT_EQ(p.result.scene.points.size(), 1u);
+    for (const std::string& w : p.warnings) std::printf("[ warning  ] %s\n", w.c_str());
     ASSERT_EQ(p.warnings.size(), 3u);
     EXPECT_NE(p.warnings[0].find("/C"), std::string::npos) << p.warnings[0];
     EXPECT_NE(p.warnings[0].find("displayColor"), std::string::npos) << p.warnings[0];
