@@ -112,8 +112,8 @@ void appendAlong(const Primvar& pv, std::size_t c, std::size_t firstVarying, std
     for (std::size_t i = 0; i < k; ++i) out.push_back(a[i] * (1.0 - w) + b[i] * w);
 }
 
-// Raises SceneError unless `pv` has the values its interpolation needs.
-void checkCount(const PrimReader& prim, Primvar& pv, std::size_t curves, std::size_t varying, std::size_t vertices) {
+// What keeps `pv` from having the values its interpolation needs ("" when nothing does).
+std::string countProblem(Primvar& pv, std::size_t curves, std::size_t varying, std::size_t vertices) {
     if (pv.elementCount() == 1)
         pv.interpolation = "constant";  // one value can only mean the whole prim (as Hydra reads it)
     std::size_t need = 0;
@@ -126,16 +126,24 @@ void checkCount(const PrimReader& prim, Primvar& pv, std::size_t curves, std::si
     else if (pv.interpolation == "vertex")
         need = vertices;
     else
-        prim.fail("'" + pv.name + "' has interpolation '" + pv.interpolation + "', which curves do not take");
+        return "'" + pv.name + "' has interpolation '" + pv.interpolation + "', which curves do not take";
     if (pv.elementCount() < need)
-        prim.fail("'" + pv.name + "' has " + std::to_string(pv.elementCount()) + " values but " + pv.interpolation +
-                  " interpolation needs " + std::to_string(need));
+        return "'" + pv.name + "' has " + std::to_string(pv.elementCount()) + " values but " + pv.interpolation +
+               " interpolation needs " + std::to_string(need);
+    return "";
 }
 
-// The primvars a curve batch carries, read and checked.
+// Raises SceneError unless `pv` has the values its interpolation needs.
+void checkCount(const PrimReader& prim, Primvar& pv, std::size_t curves, std::size_t varying, std::size_t vertices) {
+    if (const std::string problem = countProblem(pv, curves, varying, vertices); !problem.empty()) prim.fail(problem);
+}
+
+// The primvars a curve batch carries, read and checked: its geometry's, displayColor, and the
+// shading primvars a material may read (delegate/primvar.h).
 struct CurvePrimvars {
     std::optional<Primvar> widths, normals, colors;
     std::string colorSpace;
+    std::vector<Primvar> shading;
 };
 
 CurvePrimvars readCurvePrimvars(const PrimReader& prim) {
@@ -146,19 +154,40 @@ CurvePrimvars readCurvePrimvars(const PrimReader& prim) {
     if (!p.normals) p.normals = readPrimvar(prim, "normals", "vertex");
     p.colors = readPrimvar(prim, "primvars:displayColor", "constant");
     if (p.colors) p.colorSpace = prim.attributeMetadata("primvars:displayColor", "colorSpace").value_or("");
+    for (Primvar& pv : readShadingPrimvars(prim))
+        if (pv.name != "widths" && pv.elementCount() > 0) p.shading.push_back(std::move(pv));
     return p;
 }
 
+// Widths and normals of the wrong length make the prim malformed (SceneError); a colour or shading
+// primvar of the wrong length is dropped with a warning, and what reads it falls back to its
+// constant value (the material's colour, a primvar reader's fallback).
 void checkCounts(const PrimReader& prim, CurvePrimvars& p, std::size_t curves, std::size_t varying,
-                 std::size_t vertices) {
-    for (std::optional<Primvar>* pv : {&p.widths, &p.normals, &p.colors})
+                 std::size_t vertices, const std::function<void(const std::string&)>& warn) {
+    for (std::optional<Primvar>* pv : {&p.widths, &p.normals})
         if (*pv) checkCount(prim, **pv, curves, varying, vertices);
+    auto keeps = [&](Primvar& pv, bool quiet) {
+        const std::string problem = countProblem(pv, curves, varying, vertices);
+        if (!problem.empty() && !quiet) warn(problem + "; it is ignored");
+        return problem.empty();
+    };
+    if (p.colors && !keeps(*p.colors, false)) p.colors.reset();
+    // displayColor is a shading primvar too: its warning is said once.
+    std::erase_if(p.shading, [&](Primvar& pv) { return !keeps(pv, pv.name == "displayColor"); });
 }
+
+// A shading primvar carried per vertex (or per evaluated sample), as `Values` are.
+struct PerVertexPrimvar {
+    std::string name;
+    int components = 1;
+    Values values;
+};
 
 // Per-vertex values of every primvar, the way a batch of BasisCurves lays them out: points,
 // widths, normals and colours, one entry per authored vertex (or per evaluated sample).
 struct VertexData {
     Values points, widths, normals, colors;
+    std::vector<PerVertexPrimvar> shading;
 };
 
 render::CurveStyle styleOf(const PrimReader& prim, bool hasNormals) {
@@ -181,6 +210,7 @@ render::CurvesDesc unrolled(const PrimReader& prim, const Topology& topo, const 
     desc.basis = topo.basis;
     desc.style = styleOf(prim, !data.normals.empty());
     auto vec3 = [](const Values& v, std::size_t i) { return Vec3f(Vec3d(v[3 * i], v[3 * i + 1], v[3 * i + 2])); };
+    for (const PerVertexPrimvar& pv : data.shading) desc.primvars.push_back({pv.name, pv.components, false, {}});
     // Control point from vertex `a`, or the phantom 2 a - b.
     auto push = [&](std::size_t a, std::optional<std::size_t> b) {
         auto extrapolated = [&](auto value) { return b ? value(a) * 2.0f - value(*b) : value(a); };
@@ -193,6 +223,12 @@ render::CurvesDesc unrolled(const PrimReader& prim, const Topology& topo, const 
         if (!data.colors.empty())
             desc.colors.push_back(convertColor(RGB(extrapolated([&](std::size_t i) { return vec3(data.colors, i); })),
                                                primvars.colorSpace));
+        for (std::size_t v = 0; v < data.shading.size(); ++v) {
+            const auto k = static_cast<std::size_t>(data.shading[v].components);
+            for (std::size_t c = 0; c < k; ++c)
+                desc.primvars[v].values.push_back(
+                    static_cast<float>(extrapolated([&](std::size_t i) { return data.shading[v].values[i * k + c]; })));
+        }
     };
     for (const Curve& c : curves) {
         const auto base = static_cast<std::uint32_t>(desc.points.size());
@@ -207,6 +243,29 @@ render::CurvesDesc unrolled(const PrimReader& prim, const Topology& topo, const 
             desc.segments.push_back(base + static_cast<std::uint32_t>(s * topo.vstep()));
     }
     return desc;
+}
+
+// A varying, uniform or constant primvar of a BasisCurves batch at the two ends of each segment of
+// its valid curves, in the order of their segments: varying values linear between segment ends, as
+// UsdGeomBasisCurves defines them, whatever the basis.
+render::CurvePrimvar atSegmentEnds(const Primvar& pv, const Topology& topo, const std::vector<Curve>& curves) {
+    render::CurvePrimvar out{pv.name, pv.components, true, {}};
+    std::size_t firstVarying = 0;
+    for (std::size_t i = 0; i < curves.size(); ++i) {
+        const std::size_t segments = topo.segments(curves[i].count);
+        if (segments == 0) continue;  // a curve left out (its varying values count none)
+        const std::size_t m = topo.varying(curves[i].count);
+        for (std::size_t s = 0; s < segments; ++s)
+            for (std::size_t end : {s, topo.periodic() ? (s + 1) % m : s + 1}) {
+                const std::size_t e = pv.interpolation == "varying"   ? firstVarying + end
+                                      : pv.interpolation == "uniform" ? i
+                                                                      : 0;
+                const double* v = pv.element(e);
+                for (int c = 0; c < pv.components; ++c) out.values.push_back(static_cast<float>(v[c]));
+            }
+        firstVarying += m;
+    }
+    return out;
 }
 
 render::CurvesDesc basisCurvesFromPrim(const PrimReader& prim, const ColorConverter& convertColor,
@@ -233,30 +292,34 @@ render::CurvesDesc basisCurvesFromPrim(const PrimReader& prim, const ColorConver
         warn(std::to_string(invalid) + " of its " + std::to_string(curves.size()) +
              " curves are left out for their vertex counts");
     CurvePrimvars primvars = readCurvePrimvars(prim);
-    checkCounts(prim, primvars, curves.size(), varying, data.points.size() / 3);
-    auto expand = [&](const std::optional<Primvar>& pv, Values& out) {
-        if (!pv) return;
+    checkCounts(prim, primvars, curves.size(), varying, data.points.size() / 3, warn);
+    auto expand = [&](const Primvar& pv, Values& out) {
         std::size_t firstVarying = 0;
         for (std::size_t i = 0; i < curves.size(); ++i) {
             const Curve& c = curves[i];
             const std::size_t m = topo.segments(c.count) == 0 ? 0 : topo.varying(c.count);
             for (std::size_t j = 0; j < c.count; ++j) {
-                if (pv->interpolation == "vertex") {
-                    const double* v = pv->element(c.first + j);
-                    out.insert(out.end(), v, v + pv->components);
-                } else if (pv->interpolation == "varying" && m == 0) {
-                    out.insert(out.end(), static_cast<std::size_t>(pv->components), 0.0);  // a curve left out
+                if (pv.interpolation == "vertex") {
+                    const double* v = pv.element(c.first + j);
+                    out.insert(out.end(), v, v + pv.components);
+                } else if (pv.interpolation == "varying" && m == 0) {
+                    out.insert(out.end(), static_cast<std::size_t>(pv.components), 0.0);  // a curve left out
                 } else {
-                    appendAlong(*pv, i, firstVarying, m, topo.varyingPosition(j, c.count), topo.periodic(), out);
+                    appendAlong(pv, i, firstVarying, m, topo.varyingPosition(j, c.count), topo.periodic(), out);
                 }
             }
             firstVarying += m;
         }
     };
-    expand(primvars.widths, data.widths);
-    expand(primvars.normals, data.normals);
-    expand(primvars.colors, data.colors);
-    return unrolled(prim, topo, valid, data, primvars, convertColor);
+    if (primvars.widths) expand(*primvars.widths, data.widths);
+    if (primvars.normals) expand(*primvars.normals, data.normals);
+    if (primvars.colors) expand(*primvars.colors, data.colors);
+    for (const Primvar& pv : primvars.shading)
+        if (pv.interpolation == "vertex") expand(pv, data.shading.emplace_back(pv.name, pv.components).values);
+    render::CurvesDesc desc = unrolled(prim, topo, valid, data, primvars, convertColor);
+    for (const Primvar& pv : primvars.shading)
+        if (pv.interpolation != "vertex") desc.primvars.push_back(atSegmentEnds(pv, topo, curves));
+    return desc;
 }
 
 // The B-spline basis functions of degree p that are non-zero at t in knot span `span`
@@ -282,7 +345,8 @@ std::vector<double> basisFunctions(const double* knots, std::size_t span, int p,
 // Samples per knot span of an evaluated NURBS curve.
 constexpr std::size_t kSamplesPerSpan = 8;
 
-render::CurvesDesc nurbsCurvesFromPrim(const PrimReader& prim, const ColorConverter& convertColor) {
+render::CurvesDesc nurbsCurvesFromPrim(const PrimReader& prim, const ColorConverter& convertColor,
+                                       const std::function<void(const std::string&)>& warn) {
     const Values points = prim.numbers("points", 3).value_or(Values{});
     const std::vector<Curve> curves = curvesOf(prim, points.size() / 3);
     const Values orders = prim.numbers("order", 1).value_or(Values(curves.size(), 4.0));
@@ -314,10 +378,11 @@ render::CurvesDesc nurbsCurvesFromPrim(const PrimReader& prim, const ColorConver
     for (std::size_t i = 1; i < knots.size(); ++i)
         if (knots[i] < knots[i - 1]) prim.fail("knots decrease at index " + std::to_string(i));
     CurvePrimvars primvars = readCurvePrimvars(prim);
-    checkCounts(prim, primvars, curves.size(), varying, points.size() / 3);
+    checkCounts(prim, primvars, curves.size(), varying, points.size() / 3, warn);
 
-    // Each curve sampled, as the vertices of a pinned Catmull-Rom batch.
+    // Each curve sampled, as the vertices of a pinned Catmull-Rom batch; its primvars per sample.
     VertexData data;
+    for (const Primvar& pv : primvars.shading) data.shading.emplace_back(pv.name, pv.components);
     std::vector<Curve> sampled;
     std::size_t firstKnot = 0, firstVarying = 0;
     for (std::size_t i = 0; i < curves.size(); ++i) {
@@ -348,20 +413,21 @@ render::CurvesDesc nurbsCurvesFromPrim(const PrimReader& prim, const ColorConver
                 for (double v : sum) out.push_back(w != 0.0 ? v / w : v);
             };
             evaluate(points, 3, data.points);
-            auto along = [&](const std::optional<Primvar>& pv, Values& out) {
-                if (!pv) return;
-                if (pv->interpolation == "vertex") {
+            auto along = [&](const Primvar& pv, Values& out) {
+                if (pv.interpolation == "vertex") {
                     Values flat;
                     for (std::size_t e = 0; e < points.size() / 3; ++e)
-                        flat.insert(flat.end(), pv->element(e), pv->element(e) + pv->components);
-                    evaluate(flat, static_cast<std::size_t>(pv->components), out);
+                        flat.insert(flat.end(), pv.element(e), pv.element(e) + pv.components);
+                    evaluate(flat, static_cast<std::size_t>(pv.components), out);
                 } else {
-                    appendAlong(*pv, i, firstVarying, m, fraction * static_cast<double>(m - 1), false, out);
+                    appendAlong(pv, i, firstVarying, m, fraction * static_cast<double>(m - 1), false, out);
                 }
             };
-            along(primvars.widths, data.widths);
-            along(primvars.normals, data.normals);
-            along(primvars.colors, data.colors);
+            if (primvars.widths) along(*primvars.widths, data.widths);
+            if (primvars.normals) along(*primvars.normals, data.normals);
+            if (primvars.colors) along(*primvars.colors, data.colors);
+            for (std::size_t v = 0; v < primvars.shading.size(); ++v)
+                along(primvars.shading[v], data.shading[v].values);
         }
         firstKnot += c.count + static_cast<std::size_t>(p) + 1;
         firstVarying += m;
@@ -379,12 +445,15 @@ render::CurvesDesc hermiteCurvesFromPrim(const PrimReader& prim, const ColorConv
                   " points");
     const std::vector<Curve> curves = curvesOf(prim, n);
     CurvePrimvars primvars = readCurvePrimvars(prim);
-    checkCounts(prim, primvars, curves.size(), n, n);  // varying: one value per vertex, as vertex
+    checkCounts(prim, primvars, curves.size(), n, n, warn);  // varying: one value per vertex, as vertex
     for (std::optional<Primvar>* pv : {&primvars.widths, &primvars.normals, &primvars.colors})
         if (*pv && (*pv)->interpolation == "vertex") (*pv)->interpolation = "varying";
+    for (Primvar& pv : primvars.shading)
+        if (pv.interpolation == "vertex") pv.interpolation = "varying";
 
     // Each curve as the Bezier control points of its segments, primvars linear along each segment.
     VertexData data;
+    for (const Primvar& pv : primvars.shading) data.shading.emplace_back(pv.name, pv.components);
     std::vector<Curve> bezier;
     std::size_t tooShort = 0;
     for (std::size_t i = 0; i < curves.size(); ++i) {
@@ -402,6 +471,8 @@ render::CurvesDesc hermiteCurvesFromPrim(const PrimReader& prim, const ColorConv
             if (primvars.widths) appendAlong(*primvars.widths, i, c.first, c.count, position, false, data.widths);
             if (primvars.normals) appendAlong(*primvars.normals, i, c.first, c.count, position, false, data.normals);
             if (primvars.colors) appendAlong(*primvars.colors, i, c.first, c.count, position, false, data.colors);
+            for (std::size_t v = 0; v < primvars.shading.size(); ++v)
+                appendAlong(primvars.shading[v], i, c.first, c.count, position, false, data.shading[v].values);
         }
     }
     if (tooShort > 0)
@@ -418,7 +489,7 @@ bool isCurvesType(const std::string& typeName) {
 
 render::CurvesDesc curvesFromPrim(const PrimReader& prim, const ColorConverter& convertColor,
                                   const std::function<void(const std::string&)>& warn) {
-    if (prim.prim().typeName == "NurbsCurves") return nurbsCurvesFromPrim(prim, convertColor);
+    if (prim.prim().typeName == "NurbsCurves") return nurbsCurvesFromPrim(prim, convertColor, warn);
     if (prim.prim().typeName == "HermiteCurves") return hermiteCurvesFromPrim(prim, convertColor, warn);
     return basisCurvesFromPrim(prim, convertColor, warn);
 }

@@ -20,6 +20,16 @@ std::size_t elementFor(const PrimReader& prim, const Primvar& pv, std::size_t co
     return i;
 }
 
+// Whether a colour or shading primvar has a value for each of `count` points (or one for them all);
+// if not, it is ignored with a warning, and what reads it falls back to its constant value.
+bool perPointOrDropped(const Primvar& pv, std::size_t count, const std::function<void(const std::string&)>& warn) {
+    const std::size_t n = pv.elementCount();
+    if (n == 1 || pv.interpolation == "constant" || pv.interpolation == "uniform" || n == count) return n > 0;
+    warn("'" + pv.name + "' has " + std::to_string(n) + " values for " + std::to_string(count) +
+         " points; it is ignored");
+    return false;
+}
+
 std::optional<Primvar> widthsOf(const PrimReader& prim) {
     if (std::optional<Primvar> pv = readPrimvar(prim, "primvars:widths", "vertex", 1)) return pv;
     return readPrimvar(prim, "widths", "vertex", 1);
@@ -41,7 +51,8 @@ render::PointStyle styleOf(const PrimReader& prim, bool hasNormals) {
 }  // namespace
 
 render::PointsDesc pointsFromPrim(const PrimReader& prim,
-                                  const std::function<RGB(const RGB&, const std::string&)>& convertColor) {
+                                  const std::function<RGB(const RGB&, const std::string&)>& convertColor,
+                                  const std::function<void(const std::string&)>& warn) {
     render::PointsDesc p;
     p.name = prim.path();
     if (std::optional<std::vector<double>> points = prim.numbers("points", 3))
@@ -65,13 +76,13 @@ render::PointsDesc pointsFromPrim(const PrimReader& prim,
         for (std::size_t i = 0; i < n; ++i) p.normals.emplace_back(normals->at(elementFor(prim, *normals, n, i)));
 
     if (std::optional<Primvar> color = readPrimvar(prim, "primvars:displayColor", "constant");
-        color && color->elementCount() > 0) {
+        color && perPointOrDropped(*color, n, warn)) {
         const std::string space = prim.attributeMetadata("primvars:displayColor", "colorSpace").value_or("");
         for (std::size_t i = 0; i < n; ++i)
             p.colors.push_back(convertColor(RGB(color->at(elementFor(prim, *color, n, i))), space));
     }
     for (const Primvar& pv : readShadingPrimvars(prim)) {
-        if (pv.elementCount() == 0) continue;
+        if (!perPointOrDropped(pv, n, warn)) continue;
         render::PointPrimvar& out = p.primvars.emplace_back(render::PointPrimvar{pv.name, pv.components, {}});
         for (std::size_t i = 0; i < n; ++i) {
             const double* v = pv.element(elementFor(prim, pv, n, i));

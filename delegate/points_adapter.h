@@ -9,10 +9,13 @@
 // | primvars:fluence:pointStyle    | token: "sphere" (default), "disc" (facing the ray), or          |
 // |                                | "orientedDisc" (along `normals`; "disc" without normals)        |
 // | primvars:displayColor          | diffuse colour, constant or one per point (indices honoured)    |
-// | primvars:*                     | shading primvars a material reads, constant or one per point    |
+// | primvars:*                     | shading primvars a material reads (UsdPrimvarReader, a          |
+// |                                | texture's st), constant or one per point (vertex, varying)      |
 // | material:binding               | resolved as for meshes                                          |
-// Per-point data whose count is not the number of points, an unknown pointStyle, or a negative
-// width raise SceneError naming the prim (it is skipped with a warning, or fails with --strict).
+// Widths or normals whose count is not the number of points, an unknown pointStyle, or a negative
+// width raise SceneError naming the prim (it is skipped with a warning, or fails with --strict); a
+// displayColor or shading primvar of the wrong count is ignored with a warning (`warn`), and what
+// reads it falls back to its constant value.
 #pragma once
 
 #include <functional>
@@ -26,7 +29,8 @@ namespace fluence::delegate {
 
 // The points in object space (widths as radii; normals unnormalised).
 render::PointsDesc pointsFromPrim(const PrimReader& prim,
-                                  const std::function<RGB(const RGB&, const std::string&)>& convertColor);
+                                  const std::function<RGB(const RGB&, const std::string&)>& convertColor,
+                                  const std::function<void(const std::string&)>& warn);
 
 // `points` moved into world space by `toWorld`: centres transformed, radii scaled by the cube
 // root of the transform's volume scale (a sphere stays a sphere), normals as normals.

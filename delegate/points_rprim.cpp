@@ -8,7 +8,8 @@
 namespace fluence::delegate {
 
 render::PointsDesc objectSpacePoints(const SyncContext& context, const usd::PrimSpec& prim) {
-    render::PointsDesc points = pointsFromPrim(PrimReader(prim, context.time), context.convertColor);
+    render::PointsDesc points = pointsFromPrim(PrimReader(prim, context.time), context.convertColor,
+                                               [&](const std::string& message) { context.warn(prim.path, message); });
     moveByVelocities(context.stage, prim, context.time, context.velocityFrame, Matrix4::identity(), points.positions);
     return points;
 }

@@ -4,10 +4,12 @@
 
 #include <algorithm>
 #include <limits>
+#include <memory>
 #include <stdexcept>
 #include <string>
 
 #include "core/frame.h"
+#include "render/curve_primvars.h"
 #include "render/hair_material.h"
 #include "render/motion_geometry.h"
 #include "render/render_scene.h"
@@ -39,16 +41,17 @@ RTCGeometryType embreeType(CurveBasis basis, CurveStyle style) {
 
 int controlPointsPerSegment(CurveBasis basis) { return basis == CurveBasis::Linear ? 2 : 4; }
 
-// `values` of linear segments at the four control points of the same segments as Bezier curves:
-// at thirds of the way along each.
+// `values` of linear segments (`k` per control point) at the four control points of the same
+// segments as Bezier curves: at thirds of the way along each.
 template <typename T>
-std::vector<T> atThirds(const std::vector<T>& values, const std::vector<std::uint32_t>& segments) {
+std::vector<T> atThirds(const std::vector<T>& values, const std::vector<std::uint32_t>& segments, std::size_t k = 1) {
     std::vector<T> out;
     if (values.empty()) return out;
     for (std::uint32_t s : segments)
-        for (int k = 0; k < 4; ++k) {
-            const float w = k / 3.0f;
-            out.push_back(values[s] * (1.0f - w) + values[s + 1] * w);
+        for (int j = 0; j < 4; ++j) {
+            const float w = j / 3.0f;
+            for (std::size_t c = 0; c < k; ++c)
+                out.push_back(values[s * k + c] * (1.0f - w) + values[(s + 1) * k + c] * w);
         }
     return out;
 }
@@ -62,6 +65,8 @@ CurvesDesc asBezier(const CurvesDesc& linear) {
     out.radii = atThirds(linear.radii, linear.segments);
     out.normals = atThirds(linear.normals, linear.segments);
     out.colors = atThirds(linear.colors, linear.segments);
+    for (CurvePrimvar& pv : out.primvars)
+        if (!pv.perSegment) pv.values = atThirds(pv.values, linear.segments, static_cast<std::size_t>(pv.components));
     for (std::size_t step = 0; step < linear.motionPoints.size(); ++step)
         out.motionPoints[step] = atThirds(linear.motionPoints[step], linear.segments);
     for (std::size_t step = 0; step < linear.motionRadii.size(); ++step)
@@ -81,6 +86,7 @@ void validate(const CurvesDesc& desc, std::size_t materials) {
     const std::size_t last = static_cast<std::size_t>(controlPointsPerSegment(desc.basis)) - 1;
     for (std::uint32_t s : desc.segments)
         if (s + last >= n) throw std::invalid_argument(desc.name + ": a segment reads control points past the last");
+    validateCurvePrimvars(desc, n, desc.segments.size());
     if (desc.material >= static_cast<int>(materials))
         throw std::invalid_argument(desc.name + ": material index out of range");
     checkMotionPositions(desc.name, desc.motionPoints, n);
@@ -108,7 +114,8 @@ struct CurveGeometry::Curves {
     RTCGeometry geometry = nullptr;  // retained, for rtcInterpolate
     std::size_t steps = 1;           // time steps of its vertex buffers (CurvesDesc::motionPoints)
     CurveStyle style = CurveStyle::Round;
-    bool colored = false;  // displayColor as vertex attribute 0
+    bool colored = false;                   // displayColor as vertex attribute 0
+    std::unique_ptr<CurveShading> shading;  // the material's primvars, when it reads any
     MaterialParams material;
     Vec3f boundsLo{std::numeric_limits<float>::max()}, boundsHi{-std::numeric_limits<float>::max()};
     std::uint32_t objectName = kNoName, materialName = kNoName;
@@ -122,8 +129,8 @@ CurveGeometry::~CurveGeometry() {
 }
 
 void CurveGeometry::add(RTCDeviceTy* device, RTCSceneTy* scene, unsigned geomID, const CurvesDesc& original,
-                        const std::vector<MaterialDesc>& materials, std::uint32_t objectName,
-                        std::uint32_t materialName) {
+                        const std::vector<MaterialDesc>& materials, const std::vector<MaterialShader>& shaders,
+                        std::uint32_t objectName, std::uint32_t materialName) {
     validate(original, materials.size());
     const CurvesDesc desc =
         original.basis == CurveBasis::Linear && original.style == CurveStyle::Oriented ? asBezier(original) : original;
@@ -143,8 +150,13 @@ void CurveGeometry::add(RTCDeviceTy* device, RTCSceneTy* scene, unsigned geomID,
     unsigned* index = newBuffer<unsigned>(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT, 1, desc.segments.size());
     std::copy(desc.segments.begin(), desc.segments.end(), index);
     curves.colored = !desc.colors.empty() && desc.material < 0;
+    if (desc.material >= 0 && shaders[static_cast<std::size_t>(desc.material)].hasBindings())
+        curves.shading = std::make_unique<CurveShading>(desc, shaders[static_cast<std::size_t>(desc.material)],
+                                                        curves.colored ? 1u : 0u);
+    const unsigned attributes = (curves.colored ? 1u : 0u) + (curves.shading ? curves.shading->attributeCount() : 0u);
+    if (attributes > 0) rtcSetGeometryVertexAttributeCount(geom, attributes);
+    if (curves.shading) curves.shading->setAttributes(geom);
     if (curves.colored) {
-        rtcSetGeometryVertexAttributeCount(geom, 1);
         float* colors = newBuffer<float>(geom, RTC_BUFFER_TYPE_VERTEX_ATTRIBUTE, 0, RTC_FORMAT_FLOAT3, 3, n);
         for (std::size_t i = 0; i < n; ++i)
             for (int k = 0; k < 3; ++k) colors[3 * i + k] = desc.colors[i][k];
@@ -239,7 +251,8 @@ std::optional<SurfaceHit> CurveGeometry::shade(unsigned geomID, unsigned primID,
     hit.geometricNormal = hit.shadingNormal = normal;
     hit.tangent = tangent;
 
-    RGB colour = curves.material.diffuse;
+    if (curves.shading) curves.shading->evaluate(curves.geometry, primID, u, hit.material);
+    RGB colour = hit.material.diffuse;
     if (curves.colored) {
         float c[3];
         RTCInterpolateArguments args{};
@@ -253,7 +266,7 @@ std::optional<SurfaceHit> CurveGeometry::shade(unsigned geomID, unsigned primID,
         rtcInterpolate(&args);
         colour = RGB(c[0], c[1], c[2]);
     }
-    HairParams hair = hairFromMaterial(curves.material, colour);
+    HairParams hair = hairFromMaterial(hit.material, colour);
     const float radius = centre[3];
     const Vec3f across = cross(normal, tangent);
     hair.offset = radius > 0.0f ? std::clamp(dot(hit.point - Vec3f(centre[0], centre[1], centre[2]), across) / radius,

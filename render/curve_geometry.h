@@ -8,9 +8,10 @@
 // shading and geometric normals are the normal of the ribbon that faces the ray (an oriented
 // ribbon's own normal), perpendicular to the tangent, on the ray's side. Across the curve, the
 // hit's offset from the axis in radii (HairParams::offset) is measured along normal x tangent.
-// The hit's material is the hair BSDF (render/hair_material.h) of its material, its colour the
-// material's diffuse, or the curve's displayColor interpolated with the curve's own basis where no
-// material is bound. Materials' textures and emission are not evaluated on curves.
+// The hit's material is the hair BSDF (render/hair_material.h) of its material evaluated at the hit
+// (its primvar readers and textures reading the curve's primvars at u, render/curve_primvars.h),
+// its colour the material's diffuse there, or the curve's displayColor interpolated with the
+// curve's own basis where no material is bound. Materials' emission is not evaluated on curves.
 //
 // A round tube is seen from outside only: a ray that meets one from inside (one that went through
 // the fibre, the hair BSDF's transmission) passes out through it (an Embree filter drops the hit
@@ -21,6 +22,7 @@
 #include <optional>
 #include <vector>
 
+#include "render/material_shader.h"
 #include "render/ray.h"
 #include "render/scene_description.h"
 
@@ -42,7 +44,8 @@ public:
     // Validates `desc` (std::invalid_argument naming it when its arrays disagree), makes its Embree
     // geometry and attaches it to `scene` as `geomID`.
     void add(RTCDeviceTy* device, RTCSceneTy* scene, unsigned geomID, const CurvesDesc& desc,
-             const std::vector<MaterialDesc>& materials, std::uint32_t objectName, std::uint32_t materialName);
+             const std::vector<MaterialDesc>& materials, const std::vector<MaterialShader>& shaders,
+             std::uint32_t objectName, std::uint32_t materialName);
     // Whether the surface geometry `geomID` is one of these curves.
     bool contains(unsigned geomID) const;
     // The hit of `ray` on segment primID of curve geometry geomID at curve parameter u, distance t,

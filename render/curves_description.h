@@ -34,6 +34,18 @@ struct HairParams {
     float offset = 0.0f;  // h: signed distance of the hit from the fibre's axis, in radii
 };
 
+// A primvar a curve's material reads (UsdPrimvarReader, a texture's st; render/material_shader.h),
+// `components` (1 to 4) floats per value, evaluated at a hit's curve parameter u: per control
+// point, interpolated with the curve's basis as its points are (USD's vertex interpolation), or
+// per segment, its values at the segment's two ends, linear between them (varying; uniform and
+// constant ones have both ends equal).
+struct CurvePrimvar {
+    std::string name;
+    int components = 1;
+    bool perSegment = false;
+    std::vector<float> values;  // control points * components, or segments * 2 * components
+};
+
 struct CurvesDesc {
     std::string name;  // prim path, for messages
     CurveBasis basis = CurveBasis::Linear;
@@ -51,6 +63,8 @@ struct CurvesDesc {
     std::vector<std::vector<float>> motionRadii{};
     int material = -1;  // index into SceneDescription::materials, -1 = default
     int linkGroup = 0;  // its light and shadow links (render/light_links.h)
+    // The primvars its material may read.
+    std::vector<CurvePrimvar> primvars{};
 };
 
 }  // namespace fluence::render

@@ -23,6 +23,14 @@ namespace {
 
 bool isTextureSlot(const InputBinding& b) { return b.texture.has_value(); }
 
+// Slot `slot`'s primvar at the patch: evaluated already (curves), or interpolated over the corners.
+void primvarAtPatch(const CornerPrimvar& primvar, const ShadingPatch& patch, std::size_t slot, float* out) {
+    if (patch.atPoint)
+        std::copy(patch.atPoint[slot], patch.atPoint[slot] + primvar.components, out);
+    else
+        interpolateCorners(primvar, patch, out);
+}
+
 // UsdTransform2d's linear part (scale, then rotation) applied to a 2-vector.
 void transformLinear(const UvTransform& x, float v[2]) {
     float a = x.rotationDegrees * std::numbers::pi_v<float> / 180.0f;
@@ -153,7 +161,7 @@ void MaterialShader::sourceValue(std::size_t s, const ShadingPatch& patch, const
             std::copy(b.primvarFallback, b.primvarFallback + 3, value);
             return;
         }
-        interpolateCorners(*primvar, patch, value);
+        primvarAtPatch(*primvar, patch, s, value);
         for (int c = primvar->components; c < 3; ++c) value[c] = primvar->components == 1 ? value[0] : 0.0f;
         return;
     }
@@ -164,12 +172,12 @@ void MaterialShader::sourceValue(std::size_t s, const ShadingPatch& patch, const
     if (opened) {
         const bool hasSt = primvar && primvar->components == 2;
         float st[2] = {t.uvFallback[0], t.uvFallback[1]};
-        if (hasSt) interpolateCorners(*primvar, patch, st);
+        if (hasSt) primvarAtPatch(*primvar, patch, s, st);
         transformLinear(t.uvTransform, st);
         st[0] += t.uvTransform.translation[0];
         st[1] += t.uvTransform.translation[1];
         texture::Footprint f;
-        if (hasSt && patch.footprint.valid) {
+        if (hasSt && patch.footprint.valid && !patch.atPoint) {
             TriangleParameterisation tri = stParameterisation(*primvar, patch);
             float dx[2], dy[2];
             stAlong(tri, patch.footprint.dpdx, dx);
@@ -199,7 +207,7 @@ void MaterialShader::evaluate(const ShadingPatch& patch, const CornerPrimvar* co
     tangent = Vec3f(0.0f);
     Vec3f bitangent(0.0f);
     const CornerPrimvar* tangentSt = tangentSlot_ >= 0 ? primvars[tangentSlot_] : nullptr;
-    if (tangentSt && tangentSt->components == 2) {
+    if (tangentSt && tangentSt->components == 2 && !patch.atPoint) {
         TriangleParameterisation tri = stParameterisation(*tangentSt, patch);
         tangent = perpendicularTo(dpds(tri), shadingNormal);
         bitangent = dpdt(tri);

@@ -39,6 +39,11 @@ struct ShadingPatch {
     float b0 = 1.0f, b1 = 0.0f, b2 = 0.0f;  // barycentric weights of the corners
     Vec3f e1{0.0f}, e2{0.0f};               // the triangle's edges, in the space of the footprint
     PixelFootprint footprint;               // invalid: point sampling at the finest level
+    // Curves (render/curve_primvars.h): each slot's primvar already evaluated at the point, 4 floats
+    // per slot (its first CornerPrimvar::components meaningful), read in place of the corners; the
+    // corner, weights and edges are then unused, and there is no st parameterisation (no footprint,
+    // no tangent frame).
+    const float (*atPoint)[4] = nullptr;
 };
 
 // Writes a driven value (`channels` of v: one replicated into a colour) into the parameter `input`

@@ -525,7 +525,7 @@ void RenderScene::storeCurves(CurveGeometry& geometry, const CurvesDesc& desc,
     const std::uint32_t materialName = desc.material >= 0 && desc.material < static_cast<int>(materials.size())
                                            ? materialNames_.add(materials[static_cast<std::size_t>(desc.material)].name)
                                            : kNoName;
-    geometry.add(embree_->device, scene, geomID, desc, materials, objectName, materialName);
+    geometry.add(embree_->device, scene, geomID, desc, materials, shaders_, objectName, materialName);
     throwOnEmbreeError(embree_->device, ("adding curves " + desc.name).c_str());
     stats_.curves += 1;
     stats_.curveSegments += desc.segments.size();

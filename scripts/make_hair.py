@@ -5,7 +5,9 @@ Run from the repository root: python3 scripts/make_hair.py
 A sphere "scalp" carries 3,000 cubic B-spline strands (pinned, 6 vertices each) rooted on its
 upper half, combed back and down by gravity, tapering from root to tip; a few hundred are
 flyaways. Render settings ask for 640 x 360. The strands bind a UsdPreviewSurface whose diffuseColor is the hair's colour (Fluence
-turns it into the hair BSDF's absorption) and whose roughness is the fibre's. Deterministic: the
+turns it into the hair BSDF's absorption), read by a UsdPrimvarReader_float3 from the vertex
+primvar hairColor: dark at the root, sun-bleached towards the tip, each strand a little lighter or
+darker than the next; its roughness is the fibre's. Deterministic: the
 same file every run (a fixed-seed generator).
 """
 import math
@@ -19,6 +21,8 @@ RADIUS = 1.0       # the scalp
 LENGTH = 1.6       # a strand, before gravity bends it
 ROOT_WIDTH = 0.012
 TIP_WIDTH = 0.003
+ROOT_COLOUR = (0.16, 0.07, 0.03)  # hairColor at the root and at the tip, before each strand's shade
+TIP_COLOUR = (0.70, 0.45, 0.20)
 
 
 def strand(rng):
@@ -55,18 +59,30 @@ def strand(rng):
     return points, widths
 
 
+def colours(rng, vertices):
+    """The hairColor of a strand's vertices: root to tip, times the strand's own shade."""
+    shade = rng.uniform(0.75, 1.2)
+    out = []
+    for i in range(vertices):
+        t = (i / (vertices - 1)) ** 1.5
+        out.append(tuple(min(1.0, shade * (r + (tip - r) * t)) for r, tip in zip(ROOT_COLOUR, TIP_COLOUR)))
+    return out
+
+
 def fmt(v):
     return "(" + ", ".join("%.5f" % c for c in v) + ")"
 
 
 def main():
     rng = random.Random(23)
-    counts, points, widths = [], [], []
+    shades = random.Random(2323)  # its own stream: the strands' shapes stay those of its first version
+    counts, points, widths, hair_colours = [], [], [], []
     for _ in range(STRANDS):
         p, w = strand(rng)
         counts.append(len(p))
         points.extend(p)
         widths.extend(w)
+        hair_colours.extend(colours(shades, len(p)))
     os.makedirs(OUT, exist_ok=True)
     with open(os.path.join(OUT, "hair.usda"), "w") as f:
         f.write("""#usda 1.0
@@ -105,6 +121,9 @@ def Xform "World"
         float[] widths = [%(widths)s] (
             interpolation = "vertex"
         )
+        color3f[] primvars:hairColor = [%(colours)s] (
+            interpolation = "vertex"
+        )
         rel material:binding = </World/Looks/Hair>
     }
 
@@ -125,9 +144,16 @@ def Xform "World"
             def Shader "Surface"
             {
                 uniform token info:id = "UsdPreviewSurface"
-                color3f inputs:diffuseColor = (0.45, 0.22, 0.08)
+                color3f inputs:diffuseColor.connect = </World/Looks/Hair/HairColor.outputs:result>
                 float inputs:roughness = 0.3
                 token outputs:surface
+            }
+            def Shader "HairColor"
+            {
+                uniform token info:id = "UsdPrimvarReader_float3"
+                string inputs:varname = "hairColor"
+                float3 inputs:fallback = (0.45, 0.22, 0.08)
+                float3 outputs:result
             }
         }
         def Material "Skin"
@@ -168,7 +194,7 @@ def Xform "World"
     }
 }
 """ % {"radius": RADIUS, "counts": ", ".join(map(str, counts)), "points": ", ".join(fmt(p) for p in points),
-       "widths": ", ".join("%.5f" % w for w in widths)})
+       "widths": ", ".join("%.5f" % w for w in widths), "colours": ", ".join(fmt(c) for c in hair_colours)})
 
 
 if __name__ == "__main__":

@@ -123,12 +123,6 @@ TEST(CurvesAdapter, BadCountsSkipThePrimWithAWarningNamingIt) {
     point3f[] points = [(0, 0, 0), (1, 0, 0), (0, 1, 0), (1, 1, 0)]
     float[] widths = [1, 2, 3] (interpolation = "varying")
 )",
-        // Uniform colours need one per curve.
-        R"(    uniform token type = "linear"
-    int[] curveVertexCounts = [2, 2, 2]
-    point3f[] points = [(0, 0, 0), (1, 0, 0), (0, 1, 0), (1, 1, 0), (0, 2, 0), (1, 2, 0)]
-    color3f[] primvars:displayColor = [(1, 0, 0), (0, 1, 0)] (interpolation = "uniform")
-)",
         R"(    uniform token type = "linear"
     uniform token basis = "hermite"
     uniform token wrap = "sideways"
