@@ -242,14 +242,17 @@ LightSubpath traceLightSubpath(const RenderScene& scene, const std::vector<int>&
 }
 
 // The shadow segment joining a to b (`dir`, unit, from a to b), each left on its side, or nothing
-// when a surface blocks it.
+// when a surface or a light's shape blocks it (both subpaths end at a light's shape, so a join
+// through one is a path neither could make; -1: no light's own shape is stepped over).
 std::optional<media::MediumRay> joinSegment(const RenderScene& scene, const Vertex& a, const Vertex& b,
                                             const Vec3f& dir, RenderCounters& counters) {
     ++counters.shadow;
     const Vec3f from = a.leaving(dir), to = b.leaving(-dir);
     const Vec3f d = to - from;
     const float length = std::sqrt(lengthSquared(d));
-    if (!(length > 0.0f) || scene.occluded(from, d / length, length, a.hit.time)) return std::nullopt;
+    if (!(length > 0.0f) || scene.occluded(from, d / length, length, a.hit.time) ||
+        scene.meetsOtherLightShape(-1, from, d / length, length, a.hit.time))
+        return std::nullopt;
     return media::MediumRay{from, d / length, length};
 }
 

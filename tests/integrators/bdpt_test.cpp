@@ -290,6 +290,22 @@ TEST(Bdpt, AgreesWithPathUnderDeltaLightsAnEmissiveMeshAndACylinderLight) {
     expectAgreement(deltaLightScene(), 256, 256);
 }
 
+// A sphere light hanging before a wall over a floor under the sun: much of the light goes between
+// floor and wall by paths whose joins would cross the sphere's shape, which every subpath ends at
+// (bdpt's joins once passed it, as path's shadow rays did: light_shape_shadow_test.cpp).
+render::SceneDescription lightShapeInTheWay() {
+    render::SceneDescription s;
+    s.materials.push_back(test::diffuseMaterial("/grey", RGB(0.7f)));
+    s.meshes.push_back(test::quadMesh("/floor", {{{-3, -3, -1}, {3, -3, -1}, {3, 3, -1}, {-3, 3, -1}}}, 0));
+    s.meshes.push_back(test::quadMesh("/wall", {{{-3, 1.5f, -1}, {3, 1.5f, -1}, {3, 1.5f, 3}, {-3, 1.5f, 3}}}, 0));
+    s.lights.push_back(test::sphereLight("/bulb", 0.6f, RGB(3.0f), {0.2f, 0.4f, 0.0f}));
+    s.lights.push_back(test::distantLight("/sun", 0.0f, RGB(2.0f), Matrix4::rotateX(-60)));
+    s.camera = test::lookAtOriginCamera(5.0f);
+    return s;
+}
+
+TEST(Bdpt, AgreesWithPathWhereALightsShapeStandsInTheWay) { expectAgreement(lightShapeInTheWay(), 256, 256); }
+
 // A white sphere in a white dome reads 1 wherever it is seen (and the dome 1 around it).
 TEST(Bdpt, RendersAWhiteFurnaceAsOne) {
     const Estimates bdpt = expectAgreement(test::furnaceScene(1.0f), 256, 256);
