@@ -81,12 +81,7 @@ RGB emissionAt(const render::RenderScene& scene, float x, float y) {
 
 class TexturedEmissionFromUsd : public ::testing::Test {
 protected:
-    // Left half (s < 1/2) green 0.5, right half white 4 (2 x 1 texels: exact at their centres).
-    std::string halves() {
-        const std::string path = dir.file("halves.exr");
-        test::writeImage<float>(path, 2, 1, 3, OIIO::TypeDesc::FLOAT, {0, 0.5f, 0, 4, 4, 4});
-        return path;
-    }
+    std::string halves() { return test::writeHalvesTexture(dir.file("halves.exr")); }
     test::TempDir dir{"fluence_textured_emission_usd"};
 };
 

@@ -31,4 +31,11 @@ inline void writeTexelChecker(const std::string& path, int n) {
     writeImage<float>(path, n, n, 1, OIIO::TypeDesc::FLOAT, pixels);
 }
 
+// A 2 x 1 RGB float image at `path`, returned: left half (s < 1/2) green 0.5, right half white 4
+// (exact at the texel centres).
+inline std::string writeHalvesTexture(const std::string& path) {
+    writeImage<float>(path, 2, 1, 3, OIIO::TypeDesc::FLOAT, {0, 0.5f, 0, 4, 4, 4});
+    return path;
+}
+
 }  // namespace fluence::test
