@@ -57,16 +57,8 @@ def Scope "Looks"
             string inputs:varname = "st"
             float2 outputs:result
         }
-        def Shader "Tex"
-        {
-            uniform token info:id = "UsdUVTexture"
-            asset inputs:file = @)" +
-           file + R"(@
-            token inputs:sourceColorSpace = "raw"
-            float2 inputs:st.connect = </Looks/M/St.outputs:result>
-            float3 outputs:rgb
-        }
-    }
+        )" +
+           testing::rawTextureAtSt(file) + R"(    }
 }
 )";
 }

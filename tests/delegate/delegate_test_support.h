@@ -50,6 +50,22 @@ def Scope "Looks"
 )";
 }
 
+// A Shader "Tex" of /Looks/M: a UsdUVTexture reading `file` as raw data at the st of the
+// Shader "St" beside it.
+inline std::string rawTextureAtSt(const std::string& file) {
+    return R"(
+        def Shader "Tex"
+        {
+            uniform token info:id = "UsdUVTexture"
+            asset inputs:file = @)" +
+           file + R"(@
+            token inputs:sourceColorSpace = "raw"
+            float2 inputs:st.connect = </Looks/M/St.outputs:result>
+            float3 outputs:rgb
+        }
+)";
+}
+
 inline std::unique_ptr<usd::Stage> stageFrom(const std::string& usda) {
     return std::make_unique<usd::Stage>(
         usd::parseUsdaString(usda.starts_with("#") ? usda : "#usda 1.0\n" + usda, "test.usda"));

@@ -54,16 +54,8 @@ std::string texturedSurface(const std::string& file, const std::string& id, cons
            R"(
             token outputs:surface
         }
-        def Shader "Tex"
-        {
-            uniform token info:id = "UsdUVTexture"
-            asset inputs:file = @)" +
-           file + R"(@
-            token inputs:sourceColorSpace = "raw"
-            float2 inputs:st.connect = </Looks/M/St.outputs:result>
-            float3 outputs:rgb
-        }
-        def Shader "St"
+        )" +
+           testing::rawTextureAtSt(file) + R"(        def Shader "St"
         {
             uniform token info:id = "UsdPrimvarReader_float2"
             string inputs:varname = "st"
