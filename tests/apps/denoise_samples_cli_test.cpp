@@ -19,6 +19,7 @@
 #include <vector>
 
 #include "tests/support/cli.h"
+#include "tests/support/exr_values.h"
 #include "tests/support/temp_dir.h"
 
 namespace fs = std::filesystem;
@@ -53,15 +54,6 @@ std::vector<fs::path> sampleScenes() {
             scenes.push_back(files[f]);
     std::sort(scenes.begin(), scenes.end());
     return scenes;
-}
-
-// Channels `names` of every pixel, interleaved.
-std::vector<float> channels(const test::ExrImage& image, const std::vector<std::string>& names) {
-    std::vector<float> out;
-    for (int y = 0; y < image.height; ++y)
-        for (int x = 0; x < image.width; ++x)
-            for (const std::string& name : names) out.push_back(image.at(x, y, name));
-    return out;
 }
 
 const std::vector<std::string> kRGB{"R", "G", "B"}, kNoisy{"noisy.R", "noisy.G", "noisy.B"};
@@ -109,15 +101,16 @@ TEST(DenoiseSamplesCli, EverySampleSceneRendersDenoisedAndDenoisesFromTiles) {
                              denoised = test::readExr(tmp.file("denoised.exr")),
                              later = test::readExr(tmp.file("later.exr"));
         ASSERT_GE(denoised.channel("noisy.B"), 0) << "no noisy beauty kept";
-        const std::vector<float> rgb = channels(denoised, kRGB);
+        const std::vector<float> rgb = test::channelValues(denoised, kRGB);
         EXPECT_TRUE(std::all_of(rgb.begin(), rgb.end(), [](float v) { return std::isfinite(v); }));
-        EXPECT_EQ(channels(denoised, kNoisy), channels(plain, kRGB)) << "the noisy beauty is not the plain render's";
-        EXPECT_EQ(channels(later, kRGB), rgb) << "fluence denoise on the assembled tiles differs";
-        EXPECT_EQ(channels(later, kNoisy), channels(denoised, kNoisy));
+        EXPECT_EQ(test::channelValues(denoised, kNoisy), test::channelValues(plain, kRGB))
+            << "the noisy beauty is not the plain render's";
+        EXPECT_EQ(test::channelValues(later, kRGB), rgb) << "fluence denoise on the assembled tiles differs";
+        EXPECT_EQ(test::channelValues(later, kNoisy), test::channelValues(denoised, kNoisy));
         for (const auto& [layer, noisyLayer] : denoisedLayers(denoised)) {
             SCOPED_TRACE(layer.front());
-            EXPECT_EQ(channels(denoised, noisyLayer), channels(plain, layer));
-            EXPECT_EQ(channels(later, layer), channels(denoised, layer));
+            EXPECT_EQ(test::channelValues(denoised, noisyLayer), test::channelValues(plain, layer));
+            EXPECT_EQ(test::channelValues(later, layer), test::channelValues(denoised, layer));
         }
     }
 }
