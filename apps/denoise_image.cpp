@@ -22,15 +22,8 @@ std::vector<float> gather(const Image& image, const std::vector<std::string>& na
     return out;
 }
 
-// Sets channels `names` (added when missing) from `values`, interleaved.
+// Sets channels `names` of `image` from `values`, interleaved.
 void scatter(Image& image, const std::vector<std::string>& names, const std::vector<float>& values) {
-    Image added(image.width, image.height, {});
-    for (const std::string& name : names)
-        if (image.channelIndex(name) < 0) added.channels.push_back(name);
-    if (!added.channels.empty()) {
-        added.pixels.assign(std::size_t(image.width) * image.height * added.channels.size(), 0.0f);
-        image = withChannels(image, added);
-    }
     for (std::size_t n = 0; n < names.size(); ++n) {
         const std::size_t c = std::size_t(image.channelIndex(names[n]));
         for (std::size_t p = 0; p < std::size_t(image.width) * image.height; ++p)
@@ -38,13 +31,34 @@ void scatter(Image& image, const std::vector<std::string>& names, const std::vec
     }
 }
 
-// Keeps the noisy colour of `layer` as `noisyLayer` (unless already kept) and writes the denoised one.
-void replaceColour(Image& image, const std::string& layer, const std::string& noisyLayer,
-                   const std::vector<float>& denoised) {
-    const std::vector<std::string> channels =
-        layer.empty() ? std::vector<std::string>{"R", "G", "B"} : colourChannels(layer);
-    if (image.channelIndex(noisyLayer + ".R") < 0) scatter(image, colourChannels(noisyLayer), gather(image, channels));
-    scatter(image, channels, denoised);
+// A colour denoised: its channels, and those of the noisy copy kept beside it.
+struct DenoisedColour {
+    std::vector<std::string> channels, noisy;
+};
+
+// Writes each colour's denoised values over it, keeping its noisy values first in the noisy copy's
+// channels unless the image already has them (an image denoised before). The channels missing
+// are added at once, so the image is copied once whatever the number of layers.
+void replaceColours(Image& image, const std::vector<DenoisedColour>& colours,
+                    const std::vector<const std::vector<float>*>& denoised) {
+    Image added(image.width, image.height, {});
+    std::vector<bool> keep;
+    for (const DenoisedColour& colour : colours) {
+        keep.push_back(image.channelIndex(colour.noisy.front()) < 0);
+        if (keep.back()) added.channels.insert(added.channels.end(), colour.noisy.begin(), colour.noisy.end());
+    }
+    if (!added.channels.empty()) {
+        added.pixels.assign(std::size_t(image.width) * image.height * added.channels.size(), 0.0f);
+        image = withChannels(image, added);
+    }
+    const std::size_t pixels = std::size_t(image.width) * image.height, stride = image.channelCount();
+    for (std::size_t i = 0; i < colours.size(); ++i)
+        for (std::size_t c = 0; c < 3 && keep[i]; ++c) {
+            const std::size_t from = std::size_t(image.channelIndex(colours[i].channels[c])),
+                              to = std::size_t(image.channelIndex(colours[i].noisy[c]));
+            for (std::size_t p = 0; p < pixels; ++p) image.pixels[p * stride + to] = image.pixels[p * stride + from];
+        }
+    for (std::size_t i = 0; i < colours.size(); ++i) scatter(image, colours[i].channels, *denoised[i]);
 }
 
 }  // namespace
@@ -94,9 +108,13 @@ void denoiseImage(Image& image, const std::vector<std::string>& layers, int thre
     denoise::DenoiseSettings settings;
     settings.threads = threads;
     const denoise::Denoised denoised = denoise::denoise(buffers, settings);
-    replaceColour(image, "", "noisy", denoised.beauty);
-    for (std::size_t l = 0; l < layers.size(); ++l)
-        replaceColour(image, layers[l], layers[l] + "_noisy", denoised.layers[l]);
+    std::vector<DenoisedColour> colours{{{"R", "G", "B"}, colourChannels("noisy")}};
+    std::vector<const std::vector<float>*> values{&denoised.beauty};
+    for (std::size_t l = 0; l < layers.size(); ++l) {
+        colours.push_back({colourChannels(layers[l]), colourChannels(layers[l] + "_noisy")});
+        values.push_back(&denoised.layers[l]);
+    }
+    replaceColours(image, colours, values);
 }
 
 Image withChannels(const Image& image, const Image& extra) {

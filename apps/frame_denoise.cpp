@@ -3,6 +3,7 @@
 #include "apps/denoise_image.h"
 #include "apps/stopwatch.h"
 
+#include <algorithm>
 #include <cstdio>
 #include <ctime>
 
@@ -10,11 +11,55 @@ namespace fluence::app {
 
 bool keepsDenoiseBuffers(const RenderOptions& opt) { return opt.denoise || opt.denoiseBuffers; }
 
-void addDenoiseOutputs(const RenderOptions& opt, const Film& film, Image& image, output::ExrHeader& header,
-                       WarningLog& warnings, const std::string& path) {
+namespace {
+
+// The channels of `resolved` among the denoiser's features (denoiseInputChannels) that `image` lacks.
+Image missingFeatures(const Image& resolved, const Image& image) {
+    const std::vector<std::string> buffers = Film::denoiseBufferChannelNames();
+    std::vector<std::string> names;
+    for (const std::string& name : denoiseInputChannels({}))
+        if (image.channelIndex(name) < 0 && resolved.channelIndex(name) >= 0 &&
+            std::find(buffers.begin(), buffers.end(), name) == buffers.end())
+            names.push_back(name);
+    Image features(image.width, image.height, names);
+    for (std::size_t c = 0; c < names.size(); ++c) {
+        const std::size_t from = std::size_t(resolved.channelIndex(names[c]));
+        for (std::size_t p = 0; p < std::size_t(image.width) * image.height; ++p)
+            features.pixels[p * names.size() + c] = resolved.pixels[p * resolved.channelCount() + from];
+    }
+    return features;
+}
+
+// The channel a noisy copy keeps (noisy.X: X; NAME_noisy.X: NAME.X), or "" for another channel.
+std::string copiedChannel(const std::string& name) {
+    if (name.starts_with("noisy.")) return name.substr(6);
+    const std::size_t at = name.find("_noisy.");
+    return at == std::string::npos ? std::string() : name.substr(0, at) + name.substr(at + 6);
+}
+
+// The header's channel types (when it sets them) for the channels `image` gained after the first
+// `before`: 32-bit float, but a noisy copy the type of the channel it copies.
+void typeAddedChannels(const Image& image, std::size_t before, output::ExrHeader& header) {
+    if (header.channelTypes.empty()) return;
+    for (std::size_t c = before; c < image.channelCount(); ++c) {
+        const std::string copied = copiedChannel(image.channels[c]);
+        const int source = copied.empty() ? -1 : image.channelIndex(copied);
+        header.channelTypes.push_back(source >= 0 && std::size_t(source) < before
+                                          ? header.channelTypes[std::size_t(source)]
+                                          : output::PixelType::Float);
+    }
+}
+
+}  // namespace
+
+void addDenoiseOutputs(const RenderOptions& opt, const Film& film, const Image& resolved, Image& image,
+                       output::ExrHeader& header, WarningLog& warnings, const std::string& path) {
     if (!keepsDenoiseBuffers(opt)) return;
     const std::size_t before = image.channelCount();
-    image = withChannels(image, film.resolveDenoiseBuffers());
+    const Image features = missingFeatures(resolved, image);
+    for (const std::string& name : features.channels)
+        if (name.starts_with("N.") || name == "Z") header.dataChannels.push_back(name);
+    image = withChannels(withChannels(image, film.resolveDenoiseBuffers()), features);
     if (opt.denoise && opt.tileCount) {
         warnings(path,
                  "a tile is not denoised (its neighbours are in other tiles): denoise the assembled image "
@@ -31,9 +76,7 @@ void addDenoiseOutputs(const RenderOptions& opt, const Film& film, Image& image,
             warnings(path, std::string("not denoised: ") + e.what());
         }
     }
-    if (!header.channelTypes.empty())
-        header.channelTypes.resize(header.channelTypes.size() + image.channelCount() - before,
-                                   output::PixelType::Float);
+    typeAddedChannels(image, before, header);
 }
 
 }  // namespace fluence::app

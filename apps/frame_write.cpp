@@ -32,7 +32,7 @@ void writeProduct(const RenderOptions& opt, const PlannedRender& planned, std::s
     }
     if (p == 0 && keepsDenoiseBuffers(opt)) {
         if (written == outputs.window)
-            addDenoiseOutputs(opt, *frame.film, productImg, productHeader, warnings, outputs.files[p]);
+            addDenoiseOutputs(opt, *frame.film, image, productImg, productHeader, warnings, outputs.files[p]);
         else
             warnings(product.path,
                      "the denoiser's buffers need the product's data window to be its render's; left out");
