@@ -94,18 +94,19 @@ Vec3f nodeDirection(int i) {
 // layers together send back T minus what they all let out, however many they are.
 class LightFromBelow {
 public:
-    explicit LightFromBelow(const DiffuseBase& base) : base_(base) { reaching_.fill(RGB(1.0f)); }
+    explicit LightFromBelow(const DiffuseBase& base) : base_(base) {}
 
     // The DiffuseBase of the layer `top` laid next; what it lets through reaches the next one.
     template <typename Top>
     DiffuseBase under(const Top& top) {
         DiffuseBase layer = base_;
         if (isBlack(base_.transmitted)) return layer;
+        if (!reaching_) reaching_.emplace().fill(RGB(1.0f));  // made only over a transmitting base
         std::array<RGB, albedo_table::kCosines> reflected;
         for (int i = 0; i < albedo_table::kCosines; ++i) {
             const RGB a = top.reflectance(nodeDirection(i));
-            reflected[i] = reaching_[i] * a;
-            reaching_[i] *= RGB(1.0f) - a;
+            reflected[i] = (*reaching_)[i] * a;
+            (*reaching_)[i] *= RGB(1.0f) - a;
         }
         layer.reachingAverage = albedo_table::rgbCosineWeightedAverage(reflected);
         return layer;
@@ -113,7 +114,7 @@ public:
 
 private:
     DiffuseBase base_;
-    std::array<RGB, albedo_table::kCosines> reaching_;
+    std::optional<std::array<RGB, albedo_table::kCosines>> reaching_;
 };
 
 // The layers over the diffuse base, as far as the specular coating: the sheen, then the

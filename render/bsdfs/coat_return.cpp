@@ -14,14 +14,7 @@ namespace {
 
 using namespace albedo_table;
 
-// The returned light's lobes (coat_return.h): the loss on each side, side 0 the coated one (+z),
-// side 1 the other, and the couplings c_same per side and c_crossed, times filter / pi.
-struct ReturnedLobes {
-    std::array<CoatReturn::NodeValues, 2> loss;
-    std::array<RGB, 2> same;
-    RGB crossed;
-    std::array<float, 2> crossingProbability;  // the share of the returned light that changes side
-};
+using ReturnedLobes = CoatReturn::Lobes;
 
 // The coated stack with the light it loses returned as lobes symmetric in wo and wi; what the
 // stack transmits is the stack's own, and the inside of a stack over an interior is left as is.
@@ -113,6 +106,7 @@ void CoatReturn::addPart(float weight, FunctionRef<ElevationWeights(int)> spread
     addMeetingCoat(returned_, weight, spreadFrom, lobe, g, scale);
     const RGB gAverage = rgbCosineWeightedAverage(g);
     reflectance_ += (rgbCosineWeightedAverage(lobe) + scale * gAverage * gAverage) * weight;
+    updateLobes();
 }
 
 void CoatReturn::addSheetPart(float weight, FunctionRef<ElevationWeights(int)> spreadFrom, const NodeValues& reflected,
@@ -127,24 +121,29 @@ void CoatReturn::addSheetPart(float weight, FunctionRef<ElevationWeights(int)> s
     addMeetingCoat(returnedBelow_, weight, atItsOwnElevation, straight, g, transmittedScale);
     const RGB gAverage = rgbCosineWeightedAverage(g);
     transmittance_ += (rgbCosineWeightedAverage(straight) + transmittedScale * gAverage * gAverage) * weight;
+    updateLobes();
 }
 
-const Bsdf& CoatReturn::compensate(const Bsdf& coated, const RGB& filter, BsdfArena& arena) const {
+void CoatReturn::updateLobes() {
     // Keeps 1 / L finite for a side that loses (almost) nothing.
     constexpr float kMinAverage = 0.001f;
-    ReturnedLobes lobes;
-    for (int i = 0; i < kCosines; ++i) lobes.loss[0][i] = returned_[i] * (1.0f - coatAlbedo_[i]);
-    lobes.loss[1] = returnedBelow_;
-    const RGB front = rgbCosineWeightedAverage(lobes.loss[0]), back = rgbCosineWeightedAverage(lobes.loss[1]);
+    for (int i = 0; i < kCosines; ++i) lobes_.loss[0][i] = returned_[i] * (1.0f - coatAlbedo_[i]);
+    lobes_.loss[1] = returnedBelow_;
+    const RGB front = rgbCosineWeightedAverage(lobes_.loss[0]), back = rgbCosineWeightedAverage(lobes_.loss[1]);
     const float coatAverage = cosineWeightedAverage([&](int i) { return coatAlbedo_[i]; });
     const RGB exchanged = vmin(vmin(front * transmittance_ / (RGB(1.0f) - reflectance_ * coatAverage), front), back);
     const RGB l0 = vmax(front, RGB(kMinAverage)), l1 = vmax(back, RGB(kMinAverage));
-    // c_same = (1 - X / L) / L and c_crossed = X / (L L'), times filter / pi.
-    lobes.same = {filter * ((RGB(1.0f) - exchanged / l0) / l0) * kInvPi,
-                  filter * ((RGB(1.0f) - exchanged / l1) / l1) * kInvPi};
-    lobes.crossed = filter * (exchanged / (l0 * l1)) * kInvPi;
-    lobes.crossingProbability = {std::clamp(lobeProbability(exchanged / l0), 0.0f, 1.0f),
-                                 std::clamp(lobeProbability(exchanged / l1), 0.0f, 1.0f)};
+    // c_same = (1 - X / L) / L and c_crossed = X / (L L').
+    lobes_.same = {(RGB(1.0f) - exchanged / l0) / l0, (RGB(1.0f) - exchanged / l1) / l1};
+    lobes_.crossed = exchanged / (l0 * l1);
+    lobes_.crossingProbability = {std::clamp(lobeProbability(exchanged / l0), 0.0f, 1.0f),
+                                  std::clamp(lobeProbability(exchanged / l1), 0.0f, 1.0f)};
+}
+
+const Bsdf& CoatReturn::compensate(const Bsdf& coated, const RGB& filter, BsdfArena& arena) const {
+    ReturnedLobes lobes = lobes_;
+    for (RGB& c : lobes.same) c = filter * c * kInvPi;
+    lobes.crossed = filter * lobes.crossed * kInvPi;
     return arena.make<ReturnedLightBsdf>(coated, lobes);
 }
 

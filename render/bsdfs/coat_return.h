@@ -113,15 +113,27 @@ public:
     // through the coat's filter.
     const Bsdf& compensate(const Bsdf& coated, const RGB& filter, BsdfArena& arena) const;
 
+    // The returned lobes: the loss on each side, side 0 the coated one (+z), side 1 the other, and
+    // the couplings c_same per side and c_crossed, before the filter and 1 / pi.
+    struct Lobes {
+        std::array<NodeValues, 2> loss{};
+        std::array<RGB, 2> same{};
+        RGB crossed{0.0f};
+        std::array<float, 2> crossingProbability{};  // the share of the returned light that changes side
+    };
+
 private:
     // Adds the light a part sends into the coat, per unit of the light it receives, to into[i].
     void addMeetingCoat(NodeValues& into, float weight, FunctionRef<ElevationWeights(int)> spreadFrom,
                         const NodeValues& lobe, const NodeValues& g, const RGB& scale) const;
+    // The lobes from the parts added so far.
+    void updateLobes();
 
     std::array<float, albedo_table::kCosines> coatAlbedo_;
     NodeValues returned_{};                        // B at the mu nodes
     NodeValues returnedBelow_{};                   // what the sheet lets through into the coat from its other side
     RGB reflectance_{0.0f}, transmittance_{0.0f};  // the base's cosine-weighted Ravg and Tavg
+    Lobes lobes_;
 };
 
 }  // namespace fluence::render
