@@ -14,13 +14,11 @@ namespace {
 
 using namespace albedo_table;
 
-using ReturnedLobes = CoatReturn::Lobes;
-
 // The coated stack with the light it loses returned as lobes symmetric in wo and wi; what the
 // stack transmits is the stack's own, and the inside of a stack over an interior is left as is.
 class ReturnedLightBsdf final : public Bsdf {
 public:
-    ReturnedLightBsdf(const Bsdf& stack, const ReturnedLobes& lobes)
+    ReturnedLightBsdf(const Bsdf& stack, const CoatReturn::Lobes& lobes)
         : stack_(&stack), lobes_(lobes), twoSided_(!(stack.flags() & kBsdfTransmission)) {}
 
     unsigned flags() const override { return stack_->flags() | kBsdfReflection | kBsdfDiffuse; }
@@ -80,7 +78,7 @@ private:
     }
 
     const Bsdf* stack_;
-    ReturnedLobes lobes_;
+    CoatReturn::Lobes lobes_;
     bool twoSided_;
 };
 
@@ -105,7 +103,7 @@ void CoatReturn::addPart(float weight, FunctionRef<ElevationWeights(int)> spread
                          const NodeValues& g, const RGB& scale) {
     addMeetingCoat(returned_, weight, spreadFrom, lobe, g, scale);
     const RGB gAverage = rgbCosineWeightedAverage(g);
-    reflectance_ += (rgbCosineWeightedAverage(lobe) + scale * gAverage * gAverage) * weight;
+    for (int i = 0; i < kCosines; ++i) reflectance_[i] += (lobe[i] + scale * g[i] * gAverage) * weight;
     updateLobes();
 }
 
@@ -120,7 +118,7 @@ void CoatReturn::addSheetPart(float weight, FunctionRef<ElevationWeights(int)> s
     };
     addMeetingCoat(returnedBelow_, weight, atItsOwnElevation, straight, g, transmittedScale);
     const RGB gAverage = rgbCosineWeightedAverage(g);
-    transmittance_ += (rgbCosineWeightedAverage(straight) + transmittedScale * gAverage * gAverage) * weight;
+    for (int i = 0; i < kCosines; ++i) transmittance_[i] += (straight[i] + transmittedScale * g[i] * gAverage) * weight;
     updateLobes();
 }
 
@@ -129,9 +127,11 @@ void CoatReturn::updateLobes() {
     constexpr float kMinAverage = 0.001f;
     for (int i = 0; i < kCosines; ++i) lobes_.loss[0][i] = returned_[i] * (1.0f - coatAlbedo_[i]);
     lobes_.loss[1] = returnedBelow_;
+    NodeValues crossing;  // the front loss that leaves through the sheet, at each elevation
+    for (int i = 0; i < kCosines; ++i)
+        crossing[i] = lobes_.loss[0][i] * transmittance_[i] / (RGB(1.0f) - reflectance_[i] * coatAlbedo_[i]);
     const RGB front = rgbCosineWeightedAverage(lobes_.loss[0]), back = rgbCosineWeightedAverage(lobes_.loss[1]);
-    const float coatAverage = cosineWeightedAverage([&](int i) { return coatAlbedo_[i]; });
-    const RGB exchanged = vmin(vmin(front * transmittance_ / (RGB(1.0f) - reflectance_ * coatAverage), front), back);
+    const RGB exchanged = vmin(vmin(rgbCosineWeightedAverage(crossing), front), back);
     const RGB l0 = vmax(front, RGB(kMinAverage)), l1 = vmax(back, RGB(kMinAverage));
     // c_same = (1 - X / L) / L and c_crossed = X / (L L').
     lobes_.same = {(RGB(1.0f) - exchanged / l0) / l0, (RGB(1.0f) - exchanged / l1) / l1};
@@ -141,7 +141,7 @@ void CoatReturn::updateLobes() {
 }
 
 const Bsdf& CoatReturn::compensate(const Bsdf& coated, const RGB& filter, BsdfArena& arena) const {
-    ReturnedLobes lobes = lobes_;
+    CoatReturn::Lobes lobes = lobes_;
     for (RGB& c : lobes.same) c = filter * c * kInvPi;
     lobes.crossed = filter * lobes.crossed * kInvPi;
     return arena.make<ReturnedLightBsdf>(coated, lobes);

@@ -64,10 +64,17 @@
 //
 // with L, L' the two losses' cosine-weighted averages and X the light exchanged between the sides,
 // symmetric, so the lobes stay reciprocal and each side's albedo is its loss exactly, whatever X
-// in [0, min(L, L')]. X is what the front loss sends through the sheet if it met it as averages
-// do: X = L Tavg / (1 - Ravg Aavg) (the geometric series of bounces between the sheet, of
-// cosine-weighted reflectance Ravg and transmittance Tavg, and the coat's underside), clamped to
-// min(L, L').
+// in [0, min(L, L')]. X is what the front loss sends through the sheet if it bounced between the
+// sheet and the coat's underside at its own elevation (the geometric series of the two),
+//
+//   X = 2 integral loss(mu) t(mu) / (1 - r(mu) A(mu)) mu dmu,   clamped to min(L, L')
+//
+// with r and t the base's and the sheet's directional reflectance and transmittance (the lobes'
+// albedos, E and S, plus their diffuse-shaped lobes'); in total exact for a smooth coat over a
+// smooth sheet, where the light keeps its elevation (by Fresnel's equations, a cosine-weighted
+// average of the sheet's transmittance instead puts 0.857 of the front loss through a sheet of
+// index 1.5 under a coat of 1.5, where the series puts 0.682: the loss lies at grazing angles,
+// where the sheet reflects most).
 //
 // Approximations: the base is isotropic (an anisotropic lobe spreads as its geometric-mean
 // width), a coloured specular layer spreads as the one of its first channel's index, a coloured
@@ -130,9 +137,9 @@ private:
     void updateLobes();
 
     std::array<float, albedo_table::kCosines> coatAlbedo_;
-    NodeValues returned_{};                        // B at the mu nodes
-    NodeValues returnedBelow_{};                   // what the sheet lets through into the coat from its other side
-    RGB reflectance_{0.0f}, transmittance_{0.0f};  // the base's cosine-weighted Ravg and Tavg
+    NodeValues returned_{};                       // B at the mu nodes
+    NodeValues returnedBelow_{};                  // what the sheet lets through into the coat from its other side
+    NodeValues reflectance_{}, transmittance_{};  // the base's r(mu) and the sheets' t(mu)
     Lobes lobes_;
 };
 

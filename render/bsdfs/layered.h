@@ -42,9 +42,9 @@
 // internal reflection), so that R + T (1 - Aavg) + T Aavg = 1 there too. Over other layers
 // (a coat over the specular lobe over subsurface) only what they let through reaches the layer,
 // and it sends back T times its reflectance averaged over that light
-// (DiffuseBase::reachingAverage), not T Aavg: the layers then reflected 1.019 of the light from
-// inside at roughness 0 and 0.1. Both terms are
-// symmetric in wo and wi, so the layer stays reciprocal. What it approximates: the returned light
+// (DiffuseBase::reachingAverage): with T Aavg each, a specular lobe and a coat reflected up to
+// 1.020 of the light from inside, 1.048 with a sheen beneath them. Both terms are symmetric in
+// wo and wi, so the layer stays reciprocal. What it approximates: the returned light
 // leaves as the top's complement, not with the angular shape a simulation of the layer would give.
 // Over a base that is not diffuse (a metal, glass, a blend with them) the division is not made:
 // a glossy base concentrated where A is small could then reflect more than it receives.
