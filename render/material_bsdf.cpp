@@ -23,6 +23,8 @@
 #include "render/bsdfs/mix.h"
 #include "render/bsdfs/sheen.h"
 #include "render/bsdfs/sheen_redistribution.h"
+#include "render/bsdfs/thin_dielectric.h"
+#include "render/bsdfs/thin_dielectric_albedo.h"
 #include "render/bsdfs/thin_dielectric_multiple_scattering.h"
 
 namespace fluence::render {
@@ -63,34 +65,74 @@ GgxDistribution specularGgx(const MaterialParams& m) {
     return GgxDistribution::fromRoughness(m.roughness, m.anisotropy);
 }
 
+// The tint on the glass's reflection: the specular lobe's (none in the specular workflow).
+RGB glassReflectionTint(const MaterialParams& m) {
+    return m.specularWorkflow ? RGB(1.0f) : clamp01(m.specularColor * m.specular);
+}
+
 // The transmissive dielectric that replaces the opaque base by `transmission`: a solid interface
 // of index ior (the transmission colour split over its two crossings; rough, it keeps its
 // multiple scattering), or a thin sheet.
 const Bsdf& transmissionBsdf(const MaterialParams& m, BsdfArena& arena) {
     const GgxDistribution ggx = specularGgx(m);
     const RGB colour = clamp01(m.transmissionColor);
-    const RGB reflection = m.specularWorkflow ? RGB(1.0f) : clamp01(m.specularColor * m.specular);
+    const RGB reflection = glassReflectionTint(m);
     if (m.thinWalled) return energyCompensatedThinDielectric(m.ior, ggx, DielectricTints{reflection, colour}, arena);
     return energyCompensatedDielectric(m.ior, ggx, DielectricTints{reflection, sqrtOf(colour)}, arena);
-}
-
-// The layers over the diffuse base, as far as the specular coating: the sheen, then the
-// dielectric lobe, each conserving energy over it (render/bsdfs/layered.h).
-const Bsdf& sheenAndSpecular(const Bsdf& base, const DiffuseBase& diffuse, const MaterialParams& m, BsdfArena& arena) {
-    const Bsdf* bsdf = &base;
-    const RGB sheen = clamp01(m.sheenColor * m.sheen);
-    if (!isBlack(sheen))
-        bsdf = &arena.make<LayeredBsdf<CharlieSheenBsdf>>(CharlieSheenBsdf(sheen, m.sheenRoughness), *bsdf, RGB(1.0f),
-                                                          diffuse);
-    if (const SpecularLobe specular = specularLobe(m); specular.reflects())
-        bsdf = &arena.make<CoatedBsdf>(*bsdf, specular.eta, specularGgx(m), specular.tint, RGB(1.0f), diffuse);
-    return *bsdf;
 }
 
 // A direction at the mu node i of the albedo tables, in the xz plane.
 Vec3f nodeDirection(int i) {
     const float mu = albedo_table::cosineAt(i);
     return {std::sqrt(std::max(0.0f, 1.0f - mu * mu)), 0.0f, mu};
+}
+
+// The light the diffuse base lets through to the other side (subsurface), as the layers laid over
+// it see it (render/bsdfs/layered.h, DiffuseBase::reachingAverage): it leaves the base
+// diffusely, and each layer passes on, at each mu node, the share 1 - A(mu) it does not reflect.
+// Each layer sends back in T times its reflectance averaged over what reaches it, so that the
+// layers together send back T minus what they all let out, however many they are.
+class LightFromBelow {
+public:
+    explicit LightFromBelow(const DiffuseBase& base) : base_(base) {}
+
+    // The DiffuseBase of the layer `top` laid next; what it lets through reaches the next one.
+    template <typename Top>
+    DiffuseBase under(const Top& top) {
+        DiffuseBase layer = base_;
+        if (isBlack(base_.transmitted)) return layer;
+        if (!reaching_) reaching_.emplace().fill(RGB(1.0f));  // made only over a transmitting base
+        std::array<RGB, albedo_table::kCosines> reflected;
+        for (int i = 0; i < albedo_table::kCosines; ++i) {
+            const RGB a = top.reflectance(nodeDirection(i));
+            reflected[i] = (*reaching_)[i] * a;
+            (*reaching_)[i] *= RGB(1.0f) - a;
+        }
+        layer.reachingAverage = albedo_table::rgbCosineWeightedAverage(reflected);
+        return layer;
+    }
+
+private:
+    DiffuseBase base_;
+    std::optional<std::array<RGB, albedo_table::kCosines>> reaching_;
+};
+
+// The layers over the diffuse base, as far as the specular coating: the sheen, then the
+// dielectric lobe, each conserving energy over it (render/bsdfs/layered.h).
+const Bsdf& sheenAndSpecular(const Bsdf& base, LightFromBelow& light, const MaterialParams& m, BsdfArena& arena) {
+    const Bsdf* bsdf = &base;
+    const RGB sheen = clamp01(m.sheenColor * m.sheen);
+    if (!isBlack(sheen)) {
+        const CharlieSheenBsdf top(sheen, m.sheenRoughness);
+        bsdf = &arena.make<LayeredBsdf<CharlieSheenBsdf>>(top, *bsdf, RGB(1.0f), light.under(top));
+    }
+    if (const SpecularLobe specular = specularLobe(m); specular.reflects()) {
+        const GgxDistribution ggx = specularGgx(m);
+        const DiffuseBase layer =
+            light.under(DielectricReflectionBsdf(DielectricFresnel(specular.eta, specular.tint), ggx));
+        bsdf = &arena.make<CoatedBsdf>(*bsdf, specular.eta, ggx, specular.tint, RGB(1.0f), layer);
+    }
+    return *bsdf;
 }
 
 // The albedo at each mu node of a reflecting lobe with reflectance(w), and its complement.
@@ -135,7 +177,7 @@ void addLayeredDiffusePart(CoatReturn& coatReturn, float weight, const MaterialP
 // part of its multiple-scattering lobe (render/bsdfs/ggx_dielectric_multiple_scattering.h).
 void addGlassPart(CoatReturn& coatReturn, float weight, const MaterialParams& m, float alpha) {
     const GgxDistribution ggx = specularGgx(m);
-    const RGB reflection = m.specularWorkflow ? RGB(1.0f) : clamp01(m.specularColor * m.specular);
+    const RGB reflection = glassReflectionTint(m);
     const DielectricFresnel fresnel(RGB(m.ior), reflection);
     CoatReturn::NodeValues lobe, complement;
     nodeAlbedos(DielectricReflectionBsdf(fresnel, ggx), lobe, complement);
@@ -147,6 +189,29 @@ void addGlassPart(CoatReturn& coatReturn, float weight, const MaterialParams& m,
     }
     coatReturn.addPart(
         weight, [&](int i) { return ggxReflectionSpread(i, alpha, fresnel.f0.x); }, lobe, complement, scale);
+}
+
+// A thin-walled sheet's part: its reflection, single-scattering and, rough, the reflected part of
+// its multiple-scattering lobe, and what it lets through from its other side, straight and, rough,
+// by the transmitted part of that lobe (render/bsdfs/thin_dielectric_multiple_scattering.h).
+void addSheetPart(CoatReturn& coatReturn, float weight, const MaterialParams& m, float alpha) {
+    const bool smooth = specularGgx(m).isSmooth() || m.ior == 1.0f;
+    const DielectricTints tints{glassReflectionTint(m), clamp01(m.transmissionColor)};
+    CoatReturn::NodeValues reflected, straight, g;
+    for (int i = 0; i < albedo_table::kCosines; ++i) {
+        const float mu = albedo_table::cosineAt(i);
+        // S and E (render/bsdfs/thin_dielectric_albedo.h); a smooth sheet scatters once, by R_s.
+        const float through = smooth ? 1.0f - slabReflectance(mu, m.ior) : thinSheetStraightThrough(mu, alpha, m.ior);
+        const float single = smooth ? 1.0f : thinSheetAlbedo(mu, alpha, m.ior);
+        reflected[i] = tints.reflection * (single - through);
+        straight[i] = tints.transmission * (RGB(1.0f) - tints.reflection * (1.0f - through));
+        g[i] = RGB(1.0f - single);
+    }
+    const ThinSheetMultipleScattering lobe =
+        smooth ? ThinSheetMultipleScattering{RGB(0.0f), RGB(0.0f)} : thinSheetMultipleScattering(m.ior, alpha, tints);
+    coatReturn.addSheetPart(
+        weight, [&](int i) { return ggxReflectionSpread(i, alpha, f0FromEta(m.ior)); }, reflected, straight, g,
+        lobe.reflected, lobe.transmitted);
 }
 
 // The metal's part: its single scattering and its multiple-scattering lobe.
@@ -165,13 +230,12 @@ void addMetalPart(CoatReturn& coatReturn, float weight, const MaterialParams& m,
 }
 
 // What the clear coat's underside returns to a base with a glossy part (a plastic's specular
-// layer, a sheen, a metal, solid glass; render/bsdfs/coat_return.h), or nothing when the base is
-// diffuse (the layer's normalisation returns it) or a thin-walled sheet (not modelled).
+// layer, a sheen, a metal, solid glass or a thin-walled sheet; render/bsdfs/coat_return.h), or
+// nothing when the base is diffuse (the layer's normalisation returns it).
 std::optional<CoatReturn> coatReturn(const MaterialParams& m, const DielectricReflectionBsdf& coat) {
     const bool layer = specularLobe(m).reflects() || !isBlack(clamp01(m.sheenColor * m.sheen));
     const float metallic = std::min(m.metallic, 1.0f), transmission = std::min(m.transmission, 1.0f);
     if (!layer && !(metallic > 0.0f) && !(transmission > 0.0f)) return std::nullopt;
-    if (transmission > 0.0f && m.thinWalled) return std::nullopt;
     std::array<float, albedo_table::kCosines> coatAlbedo;
     for (int i = 0; i < albedo_table::kCosines; ++i) coatAlbedo[i] = coat.reflectance(nodeDirection(i)).x;
     CoatReturn coatReturn(coatAlbedo);
@@ -179,7 +243,8 @@ std::optional<CoatReturn> coatReturn(const MaterialParams& m, const DielectricRe
     const float alpha = ggx.isSmooth() ? 0.0f : std::sqrt(ggx.alphaX() * ggx.alphaY());
     const float opaque = (1.0f - metallic) * (1.0f - transmission), glass = (1.0f - metallic) * transmission;
     if (opaque > 0.0f) addLayeredDiffusePart(coatReturn, opaque, m, alpha);
-    if (glass > 0.0f) addGlassPart(coatReturn, glass, m, alpha);
+    if (glass > 0.0f && m.thinWalled) addSheetPart(coatReturn, glass, m, alpha);
+    if (glass > 0.0f && !m.thinWalled) addGlassPart(coatReturn, glass, m, alpha);
     if (metallic > 0.0f) addMetalPart(coatReturn, metallic, m, alpha, ggx.isSmooth());
     return coatReturn;
 }
@@ -189,7 +254,7 @@ std::optional<CoatReturn> coatReturn(const MaterialParams& m, const DielectricRe
 // four profiles by the parameters they depend on. A pure function of those: the images do not
 // depend on what a thread has seen.
 const std::optional<CoatReturn>& rememberedCoatReturn(const MaterialParams& m, const DielectricReflectionBsdf& coat) {
-    using Key = std::array<float, 20>;
+    using Key = std::array<float, 25>;
     const Key key = {m.coatIor,
                      m.coatRoughness,
                      m.ior,
@@ -207,9 +272,14 @@ const std::optional<CoatReturn>& rememberedCoatReturn(const MaterialParams& m, c
                      m.subsurface,
                      float(m.specularWorkflow),
                      m.sheen,
+                     m.sheenColor.x,
+                     m.sheenColor.y,
+                     m.sheenColor.z,
                      m.thinWalled ? 1.0f : 0.0f,
                      m.sheenRoughness,
-                     0.0f};
+                     m.transmissionColor.x,
+                     m.transmissionColor.y,
+                     m.transmissionColor.z};
     struct Entry {
         Key key;
         std::optional<CoatReturn> value;
@@ -224,18 +294,18 @@ const std::optional<CoatReturn>& rememberedCoatReturn(const MaterialParams& m, c
     return slot->value;
 }
 
-// The clear coat over everything, by weight `coat`; `diffuse` when what lies under it is the
+// The clear coat over everything, by weight `coat`; `light` when what lies under it is the
 // diffuse base and its layers alone (no metal, no glass). Over a glossy base (a specular layer, a
-// sheen, a metal, solid glass) the light the coat returns is added back
-// (render/bsdfs/coat_return.h).
-const Bsdf& clearCoat(const Bsdf& under, const std::optional<DiffuseBase>& diffuse, const MaterialParams& m,
-                      BsdfArena& arena) {
+// sheen, a metal, glass) the light the coat returns is added back (render/bsdfs/coat_return.h).
+const Bsdf& clearCoat(const Bsdf& under, LightFromBelow* light, const MaterialParams& m, BsdfArena& arena) {
     if (!(m.coat > 0.0f && m.coatIor > 1.0f + kMinIndexContrast)) return under;
     const GgxDistribution ggx = GgxDistribution::fromRoughness(m.coatRoughness);
     const RGB filter = clamp01(m.coatColor);
-    const std::optional<CoatReturn>& returned = rememberedCoatReturn(m, DielectricReflectionBsdf(RGB(m.coatIor), ggx));
+    const DielectricReflectionBsdf coat(RGB(m.coatIor), ggx);
+    const std::optional<CoatReturn>& returned = rememberedCoatReturn(m, coat);
+    std::optional<DiffuseBase> layer;
+    if (light) layer = light->under(coat);
     // With the light returned, a diffuse base keeps only the coat's inner reflection.
-    std::optional<DiffuseBase> layer = diffuse;
     if (layer && returned) layer->reflectsDiffusely = false;
     const Bsdf& coated = arena.make<CoatedBsdf>(under, RGB(m.coatIor), ggx, RGB(1.0f), filter, layer);
     return blend(under, returned ? returned->compensate(coated, filter, arena) : coated, m.coat, arena);
@@ -255,18 +325,19 @@ const Bsdf& materialBsdf(const MaterialParams& m, BsdfArena& arena) {
         bsdf = &blend(*bsdf, arena.make<LambertianTransmissionBsdf>(transmittance), weight, arena);
         diffuse.transmitted = transmittance * weight;
     }
-    bsdf = &sheenAndSpecular(*bsdf, diffuse, m, arena);
+    LightFromBelow light(diffuse);
+    bsdf = &sheenAndSpecular(*bsdf, light, m, arena);
     if (m.transmission > 0.0f) bsdf = &blend(*bsdf, transmissionBsdf(m, arena), m.transmission, arena);
     if (m.metallic > 0.0f)
         bsdf = &blend(*bsdf, energyCompensatedConductor(m.diffuse, specularGgx(m), arena), m.metallic, arena);
     const bool diffuseUnder = !(m.transmission > 0.0f) && !(m.metallic > 0.0f);
-    return clearCoat(*bsdf, diffuseUnder ? std::optional(diffuse) : std::nullopt, m, arena);
+    return clearCoat(*bsdf, diffuseUnder ? &light : nullptr, m, arena);
 }
 
 const Bsdf& subsurfaceExitBsdf(const MaterialParams& m, BsdfArena& arena) {
     const Bsdf& boundary = arena.make<LambertianTransmissionBsdf>(RGB(1.0f));
-    const DiffuseBase diffuse{RGB(1.0f)};
-    return clearCoat(sheenAndSpecular(boundary, diffuse, m, arena), diffuse, m, arena);
+    LightFromBelow light(DiffuseBase{RGB(1.0f)});
+    return clearCoat(sheenAndSpecular(boundary, light, m, arena), &light, m, arena);
 }
 
 }  // namespace fluence::render

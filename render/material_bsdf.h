@@ -17,15 +17,17 @@
 //             specular workflow: specularColor is F0 itself, one eta per channel (etaFromF0), tint 1;
 //             the base loses tint x E(cos), the lobe's albedo, on each side, normalised as a
 //             DiffuseBase (render/bsdfs/layered.h), so that it returns what the lobe does not
-//             reflect; over subsurface the share kept inside is reflected back in
+//             reflect; over subsurface the share kept inside is reflected back in (each layer
+//             its share of what the layers below it let out)
 //   glass     MixBsdf(that, glass, transmission)                 transmission > 0; the glass is
 //             GgxDielectric(ior, ggx, reflection tint, sqrt(transmissionColor)) for a solid, or
 //             ThinDielectric(ior, ggx, reflection tint, transmissionColor) when thinWalled
 //   metal     MixBsdf(that, energyCompensatedConductor(F0 = diffuse, ggx), metallic): GGX with
 //             Kulla & Conty's multiple-scattering lobe (render/bsdfs/ggx_multiple_scattering.h)
 //   coat      MixBsdf(that, CoatedBsdf(that, coatIor, coatRoughness^2, filter = coatColor), coat),
-//             a DiffuseBase coat when the diffuse base alone is under it; over a plastic or a
-//             metal the light its underside sends back down is returned (render/bsdfs/coat_return.h)
+//             a DiffuseBase coat when the diffuse base alone is under it; over a plastic, a
+//             sheen, a metal or glass (solid or a thin-walled sheet) the light its underside sends
+//             back down is returned (render/bsdfs/coat_return.h)
 //
 // Weights: diffuse (1 - transmission)(1 - metallic), glass transmission (1 - metallic), metal
 // metallic, as in Standard Surface; every mix and layer conserves energy, so the material does:

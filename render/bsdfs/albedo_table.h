@@ -23,6 +23,7 @@
 #include <memory>
 #include <mutex>
 
+#include "core/rgb.h"
 #include "render/bsdfs/ggx.h"
 
 namespace fluence::render {
@@ -78,6 +79,12 @@ float cosineWeightedAverage(At at) {
         sum += (b - a) * (at(i) * (2.0 * a + b) + at(i + 1) * (a + 2.0 * b)) / 6.0;
     }
     return float(2.0 * sum);
+}
+
+// The same per channel, of RGB values at the nodes.
+inline RGB rgbCosineWeightedAverage(const std::array<RGB, kCosines>& v) {
+    return {cosineWeightedAverage([&](int i) { return v[i].x; }), cosineWeightedAverage([&](int i) { return v[i].y; }),
+            cosineWeightedAverage([&](int i) { return v[i].z; })};
 }
 
 }  // namespace albedo_table

@@ -14,25 +14,12 @@ namespace {
 
 using namespace albedo_table;
 
-// 2 integral v(mu) mu dmu of the piecewise-linear v through the nodes, per channel.
-RGB averageOf(const CoatReturn::NodeValues& v) {
-    return {cosineWeightedAverage([&](int i) { return v[i].x; }), cosineWeightedAverage([&](int i) { return v[i].y; }),
-            cosineWeightedAverage([&](int i) { return v[i].z; })};
-}
-
-// The coated stack with the light it loses returned as a lobe symmetric in wo and wi, on the
-// coated side (+z, and its mirror when the stack is two-sided); what the stack transmits, and
-// the inside of a transmitting stack, are the stack's alone.
+// The coated stack with the light it loses returned as lobes symmetric in wo and wi; what the
+// stack transmits is the stack's own, and the inside of a stack over an interior is left as is.
 class ReturnedLightBsdf final : public Bsdf {
 public:
-    ReturnedLightBsdf(const Bsdf& stack, const CoatReturn::NodeValues& loss, const RGB& filter)
-        : stack_(&stack), loss_(loss), twoSided_(!(stack.flags() & kBsdfTransmission)) {
-        const RGB average = averageOf(loss);
-        scale_ = filter *
-                 RGB(1.0f / std::max(average.x, kMinAverage), 1.0f / std::max(average.y, kMinAverage),
-                     1.0f / std::max(average.z, kMinAverage)) *
-                 kInvPi;
-    }
+    ReturnedLightBsdf(const Bsdf& stack, const CoatReturn::Lobes& lobes)
+        : stack_(&stack), lobes_(lobes), twoSided_(!(stack.flags() & kBsdfTransmission)) {}
 
     unsigned flags() const override { return stack_->flags() | kBsdfReflection | kBsdfDiffuse; }
     RGB f(const Vec3f& wo, const Vec3f& wi) const override { return stack_->f(wo, wi) + returned(wo, wi); }
@@ -43,8 +30,10 @@ public:
     }
     float pdf(const Vec3f& wo, const Vec3f& wi) const override {
         const float p = returnProbability(wo);
-        const Vec3f up = upper(wo, wi);
-        return (1.0f - p) * stack_->pdf(wo, wi) + (up.z > 0.0f ? p * cosineHemispherePdf(up.z) : 0.0f);
+        const float stack = (1.0f - p) * stack_->pdf(wo, wi);
+        if (wo.z == 0.0f || wi.z == 0.0f || (twoSided_ && wo.z * wi.z < 0.0f)) return stack;
+        const float crossing = lobes_.crossingProbability[sideOf(wo)];
+        return stack + p * (wo.z * wi.z > 0.0f ? 1.0f - crossing : crossing) * cosineHemispherePdf(std::abs(wi.z));
     }
     std::optional<BsdfSample> sample(const Vec3f& wo, float uLobe, Vec2f u) const override {
         if (wo.z == 0.0f) return std::nullopt;
@@ -58,31 +47,30 @@ public:
             }
             return whole(wo, s->wi, s->eta);
         }
+        // On wo's side, or (a sheet's returned light) on the other with the crossing probability.
+        const bool crosses = uLobe / p < lobes_.crossingProbability[sideOf(wo)];
         const Vec3f wi = sampleCosineHemisphere(u);
-        return whole(wo, wo.z > 0.0f ? wi : mirrorZ(wi), 1.0f);
+        return whole(wo, (wo.z > 0.0f) != crosses ? wi : mirrorZ(wi), 1.0f);
     }
 
 private:
-    // Keeps 1 / Lavg finite for a stack that loses (almost) nothing.
-    static constexpr float kMinAverage = 0.001f;
-
-    // wi seen from wo's side: mirrored when wo is below a two-sided stack; (0, 0, -1) when the
-    // pair has no returned light (wo or wi on the uncoated side, or on different sides).
-    Vec3f upper(const Vec3f& wo, const Vec3f& wi) const {
-        const float sign = wo.z < 0.0f && twoSided_ ? -1.0f : 1.0f;
-        return wo.z * sign > 0.0f && wi.z * sign > 0.0f ? Vec3f(wi.x, wi.y, wi.z * sign) : Vec3f(0.0f, 0.0f, -1.0f);
-    }
-    RGB lossAt(float mu) const {
+    // The side of the stack w is on, as the returned lobes see it: 0 on the coat's side (+z, and
+    // both sides of a two-sided stack), 1 on the other.
+    int sideOf(const Vec3f& w) const { return w.z > 0.0f || twoSided_ ? 0 : 1; }
+    RGB lossAt(int side, float mu) const {
+        const CoatReturn::NodeValues& loss = lobes_.loss[side];
         const AxisPosition p = positionOf(mu, kCosines);
-        return loss_[p.node] + (loss_[p.node + 1] - loss_[p.node]) * p.fraction;
+        return loss[p.node] + (loss[p.node + 1] - loss[p.node]) * p.fraction;
     }
     RGB returned(const Vec3f& wo, const Vec3f& wi) const {
-        if (!(upper(wo, wi).z > 0.0f)) return RGB(0.0f);
-        return scale_ * lossAt(std::abs(wo.z)) * lossAt(std::abs(wi.z));
+        if (wo.z == 0.0f || wi.z == 0.0f) return RGB(0.0f);
+        const bool sameSide = wo.z * wi.z > 0.0f;
+        if (twoSided_ && !sameSide) return RGB(0.0f);
+        const int side = sideOf(wo), exit = sameSide ? side : 1 - side;
+        return (sameSide ? lobes_.same[side] : lobes_.crossed) * lossAt(side, std::abs(wo.z)) *
+               lossAt(exit, std::abs(wi.z));
     }
-    float returnProbability(const Vec3f& wo) const {
-        return wo.z > 0.0f || twoSided_ ? lobeProbability(lossAt(std::abs(wo.z))) : 0.0f;
-    }
+    float returnProbability(const Vec3f& wo) const { return lobeProbability(lossAt(sideOf(wo), std::abs(wo.z))); }
     std::optional<BsdfSample> whole(const Vec3f& wo, const Vec3f& wi, float eta) const {
         const float density = pdf(wo, wi);
         if (!(density > 0.0f)) return std::nullopt;
@@ -90,32 +78,73 @@ private:
     }
 
     const Bsdf* stack_;
-    CoatReturn::NodeValues loss_;
+    CoatReturn::Lobes lobes_;
     bool twoSided_;
-    RGB scale_;  // filter / (pi Lavg)
 };
 
 }  // namespace
 
 CoatReturn::CoatReturn(const std::array<float, kCosines>& coatAlbedo) : coatAlbedo_(coatAlbedo) {}
 
-void CoatReturn::addPart(float weight, FunctionRef<ElevationWeights(int)> spreadFrom, const NodeValues& lobe,
-                         const NodeValues& g, const RGB& scale) {
+void CoatReturn::addMeetingCoat(NodeValues& into, float weight, FunctionRef<ElevationWeights(int)> spreadFrom,
+                                const NodeValues& lobe, const NodeValues& g, const RGB& scale) const {
     NodeValues coatTimesG;
     for (int i = 0; i < kCosines; ++i) coatTimesG[i] = g[i] * coatAlbedo_[i];
-    const RGB diffuseShare = scale * averageOf(coatTimesG);
+    const RGB diffuseShare = scale * rgbCosineWeightedAverage(coatTimesG);
     for (int i = 0; i < kCosines; ++i) {
         const ElevationWeights spread = spreadFrom(i);
         float meetsCoat = 0.0f;
         for (int k = 0; k < kCosines; ++k) meetsCoat += spread[k] * coatAlbedo_[k];
-        returned_[i] += (lobe[i] * meetsCoat + g[i] * diffuseShare) * weight;
+        into[i] += (lobe[i] * meetsCoat + g[i] * diffuseShare) * weight;
     }
 }
 
+void CoatReturn::addPart(float weight, FunctionRef<ElevationWeights(int)> spreadFrom, const NodeValues& lobe,
+                         const NodeValues& g, const RGB& scale) {
+    addMeetingCoat(returned_, weight, spreadFrom, lobe, g, scale);
+    const RGB gAverage = rgbCosineWeightedAverage(g);
+    for (int i = 0; i < kCosines; ++i) reflectance_[i] += (lobe[i] + scale * g[i] * gAverage) * weight;
+    updateLobes();
+}
+
+void CoatReturn::addSheetPart(float weight, FunctionRef<ElevationWeights(int)> spreadFrom, const NodeValues& reflected,
+                              const NodeValues& straight, const NodeValues& g, const RGB& reflectedScale,
+                              const RGB& transmittedScale) {
+    addPart(weight, spreadFrom, reflected, g, reflectedScale);
+    const auto atItsOwnElevation = [](int i) {
+        ElevationWeights spread{};
+        spread[i] = 1.0f;
+        return spread;
+    };
+    addMeetingCoat(returnedBelow_, weight, atItsOwnElevation, straight, g, transmittedScale);
+    const RGB gAverage = rgbCosineWeightedAverage(g);
+    for (int i = 0; i < kCosines; ++i) transmittance_[i] += (straight[i] + transmittedScale * g[i] * gAverage) * weight;
+    updateLobes();
+}
+
+void CoatReturn::updateLobes() {
+    // Keeps 1 / L finite for a side that loses (almost) nothing.
+    constexpr float kMinAverage = 0.001f;
+    for (int i = 0; i < kCosines; ++i) lobes_.loss[0][i] = returned_[i] * (1.0f - coatAlbedo_[i]);
+    lobes_.loss[1] = returnedBelow_;
+    NodeValues crossing;  // the front loss that leaves through the sheet, at each elevation
+    for (int i = 0; i < kCosines; ++i)
+        crossing[i] = lobes_.loss[0][i] * transmittance_[i] / (RGB(1.0f) - reflectance_[i] * coatAlbedo_[i]);
+    const RGB front = rgbCosineWeightedAverage(lobes_.loss[0]), back = rgbCosineWeightedAverage(lobes_.loss[1]);
+    const RGB exchanged = vmin(vmin(rgbCosineWeightedAverage(crossing), front), back);
+    const RGB l0 = vmax(front, RGB(kMinAverage)), l1 = vmax(back, RGB(kMinAverage));
+    // c_same = (1 - X / L) / L and c_crossed = X / (L L').
+    lobes_.same = {(RGB(1.0f) - exchanged / l0) / l0, (RGB(1.0f) - exchanged / l1) / l1};
+    lobes_.crossed = exchanged / (l0 * l1);
+    lobes_.crossingProbability = {std::clamp(lobeProbability(exchanged / l0), 0.0f, 1.0f),
+                                  std::clamp(lobeProbability(exchanged / l1), 0.0f, 1.0f)};
+}
+
 const Bsdf& CoatReturn::compensate(const Bsdf& coated, const RGB& filter, BsdfArena& arena) const {
-    NodeValues loss;
-    for (int i = 0; i < kCosines; ++i) loss[i] = returned_[i] * (1.0f - coatAlbedo_[i]);
-    return arena.make<ReturnedLightBsdf>(coated, loss, filter);
+    CoatReturn::Lobes lobes = lobes_;
+    for (RGB& c : lobes.same) c = filter * c * kInvPi;
+    lobes.crossed = filter * lobes.crossed * kInvPi;
+    return arena.make<ReturnedLightBsdf>(coated, lobes);
 }
 
 }  // namespace fluence::render

@@ -39,8 +39,12 @@
 // transmittance T gives the flux albedo A(wo) + (1 - A(wo)) (R + T), 1 for a lossless base,
 // at every angle. Seen from the other side (light leaving a subsurface object), the share T Aavg
 // that the layer sends back is reflected diffusely back in (the light a real interface returns by
-// internal reflection), so that R + T (1 - Aavg) + T Aavg = 1 there too. Both terms are
-// symmetric in wo and wi, so the layer stays reciprocal. What it approximates: the returned light
+// internal reflection), so that R + T (1 - Aavg) + T Aavg = 1 there too. Over other layers
+// (a coat over the specular lobe over subsurface) only what they let through reaches the layer,
+// and it sends back T times its reflectance averaged over that light
+// (DiffuseBase::reachingAverage): with T Aavg each, a specular lobe and a coat reflected up to
+// 1.020 of the light from inside, 1.048 with a sheen beneath them. Both terms are symmetric in
+// wo and wi, so the layer stays reciprocal. What it approximates: the returned light
 // leaves as the top's complement, not with the angular shape a simulation of the layer would give.
 // Over a base that is not diffuse (a metal, glass, a blend with them) the division is not made:
 // a glossy base concentrated where A is small could then reflect more than it receives.
@@ -79,6 +83,11 @@ struct DiffuseBase {
     // render/bsdfs/coat_return.h): the layer then keeps only the inner reflection of the
     // transmitted share, and does not normalise the reflection.
     bool reflectsDiffusely = true;
+    // The top's reflectance averaged over the light that reaches it from the other side, per unit
+    // of `transmitted`: unset when the base lets that light out diffusely (Aavg); over other
+    // layers, the average weighted by what they let through (render/material_bsdf.cpp), so that
+    // the layers together send back in exactly what none of them lets out.
+    std::optional<RGB> reachingAverage = std::nullopt;
 };
 
 template <typename Top>
@@ -96,7 +105,7 @@ public:
             reflectionScale_ =
                 RGB(1.0f / (1.0f - std::min(average.x, kMaxAverage)), 1.0f / (1.0f - std::min(average.y, kMaxAverage)),
                     1.0f / (1.0f - std::min(average.z, kMaxAverage)));
-        if (!twoSided_) innerReflection_ = diffuse->transmitted * average;
+        if (!twoSided_) innerReflection_ = diffuse->transmitted * diffuse->reachingAverage.value_or(average);
     }
 
     RGB f(const Vec3f& wo, const Vec3f& wi) const override {

@@ -1,24 +1,17 @@
 #include "render/bsdfs/thin_dielectric.h"
 
-#include "render/bsdfs/fresnel.h"
-
 namespace fluence::render {
-
-float ThinDielectricBsdf::slabReflectance(float cosTheta) const {
-    float F = fresnelDielectric(cosTheta, eta_);
-    return 2.0f * F / (1.0f + F);
-}
 
 RGB ThinDielectricBsdf::fUpper(const Vec3f& wo, const Vec3f& wi) const {
     if (distribution_.isSmooth()) return RGB(0.0f);
     Vec3f h = normalize(wo + wi);
-    return tints_.reflected(slabReflectance(dot(wo, h))) * distribution_.reflectionTerm(wo, wi, h);
+    return tints_.reflected(slabReflectance(dot(wo, h), eta_)) * distribution_.reflectionTerm(wo, wi, h);
 }
 
 float ThinDielectricBsdf::pdfUpper(const Vec3f& wo, const Vec3f& wi) const {
     if (distribution_.isSmooth()) return 0.0f;
     Vec3f h = normalize(wo + wi);
-    return tints_.reflectProbability(slabReflectance(dot(wo, h))) * distribution_.reflectionPdf(wo, h);
+    return tints_.reflectProbability(slabReflectance(dot(wo, h), eta_)) * distribution_.reflectionPdf(wo, h);
 }
 
 std::optional<BsdfSample> ThinDielectricBsdf::sampleUpper(const Vec3f& wo, float uLobe, Vec2f u) const {
@@ -26,7 +19,7 @@ std::optional<BsdfSample> ThinDielectricBsdf::sampleUpper(const Vec3f& wo, float
     const Vec3f h = smooth ? Vec3f(0.0f, 0.0f, 1.0f) : distribution_.sampleVisibleNormal(wo, u);
     const float cosO = dot(wo, h);
     if (cosO <= 0.0f) return std::nullopt;
-    const float slab = slabReflectance(cosO);
+    const float slab = slabReflectance(cosO, eta_);
     const float pReflect = tints_.reflectProbability(slab);
     if (uLobe >= pReflect)  // straight through
         return BsdfSample{tints_.transmitted(slab) / wo.z, -wo, 1.0f - pReflect, true, 1.0f};

@@ -42,10 +42,17 @@
 #include <optional>
 
 #include "render/bsdfs/dielectric_tints.h"
+#include "render/bsdfs/fresnel.h"
 #include "render/bsdfs/ggx.h"
 #include "render/bsdfs/two_sided.h"
 
 namespace fluence::render {
+
+// R_s: the reflectance of a slab of index eta lit at cosTheta, 2F / (1 + F) (Stokes' sum).
+inline float slabReflectance(float cosTheta, float eta) {
+    const float F = fresnelDielectric(cosTheta, eta);
+    return 2.0f * F / (1.0f + F);
+}
 
 class ThinDielectricBsdf final : public TwoSidedReflection<ThinDielectricBsdf> {
 public:
@@ -62,8 +69,6 @@ private:
     RGB fUpper(const Vec3f& wo, const Vec3f& wi) const;
     float pdfUpper(const Vec3f& wo, const Vec3f& wi) const;
     std::optional<BsdfSample> sampleUpper(const Vec3f& wo, float uLobe, Vec2f u) const;
-    // R_s: the reflectance of a slab lit at cosTheta.
-    float slabReflectance(float cosTheta) const;
 
     float eta_;
     GgxDistribution distribution_;

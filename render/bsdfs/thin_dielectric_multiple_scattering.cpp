@@ -11,14 +11,29 @@
 
 namespace fluence::render {
 
+namespace {
+
+// k = 2 Favg / (1 + Favg): the share of diffuse light a smooth slab of index eta reflects.
+float thinSheetDiffuseReflectance(float eta) {
+    const float fAvg = ggxReflectionAverageAlbedo(0.0f, f0FromEta(eta));
+    return 2.0f * fAvg / (1.0f + fAvg);
+}
+
+}  // namespace
+
+ThinSheetMultipleScattering thinSheetMultipleScattering(float eta, float alpha, const DielectricTints& tints) {
+    const float k = thinSheetDiffuseReflectance(eta);
+    const float scale = 1.0f / std::max(1.0f - thinSheetAverageAlbedo(alpha, eta), kMinMultipleScatteringLoss);
+    return {tints.reflected(k) * scale, tints.transmitted(k) * scale};
+}
+
 CompensatedThinDielectricBsdf::CompensatedThinDielectricBsdf(float eta, const GgxDistribution& ggx,
                                                              const DielectricTints& tints)
     : single_(eta, ggx, tints), eta_(eta), alpha_(std::sqrt(ggx.alphaX() * ggx.alphaY())) {
-    const float fAvg = ggxReflectionAverageAlbedo(0.0f, f0FromEta(eta_));
-    const float k = 2.0f * fAvg / (1.0f + fAvg);
-    const float scale = kInvPi / std::max(1.0f - thinSheetAverageAlbedo(alpha_, eta_), kMinMultipleScatteringLoss);
-    reflected_ = tints.reflected(k) * scale;
-    transmitted_ = tints.transmitted(k) * scale;
+    const ThinSheetMultipleScattering lobe = thinSheetMultipleScattering(eta_, alpha_, tints);
+    reflected_ = lobe.reflected * kInvPi;
+    transmitted_ = lobe.transmitted * kInvPi;
+    const float k = thinSheetDiffuseReflectance(eta_);
     const float r = lobeProbability(tints.reflected(k)), t = lobeProbability(tints.transmitted(k));
     pReflected_ = r + t > 0.0f ? r / (r + t) : 1.0f;
 }

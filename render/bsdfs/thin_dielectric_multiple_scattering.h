@@ -38,6 +38,13 @@
 
 namespace fluence::render {
 
+// The multiple-scattering lobe's weights, per unit of (1 - E(wo)) (1 - E(wi)) / pi: R(k) and
+// T(k), each divided by 1 - Eavg (its albedo at wo is then R(k) (1 - E(wo)), or T(k) (1 - E(wo))).
+struct ThinSheetMultipleScattering {
+    RGB reflected, transmitted;
+};
+ThinSheetMultipleScattering thinSheetMultipleScattering(float eta, float alpha, const DielectricTints& tints);
+
 class CompensatedThinDielectricBsdf final : public MultipleScatteringMixture<CompensatedThinDielectricBsdf> {
 public:
     CompensatedThinDielectricBsdf(float eta, const GgxDistribution& ggx, const DielectricTints& tints = {});

@@ -205,6 +205,22 @@ std::vector<BsdfCase> allCases() {
     glass.transmissionColor = RGB(0.9f, 0.8f, 0.6f);
     cases.push_back(
         {"CoatReturnedOverGlass", [=](BsdfArena& a) -> const Bsdf& { return materialBsdf(coatedMaterial(glass), a); }});
+    // Over a thin-walled sheet, rough and smooth, and a thin wall of subsurface: the light the coat
+    // returns leaves on either side of the sheet (the same medium on both: no index crossed).
+    for (float roughness : {0.0f, 0.4f}) {
+        MaterialParams sheet = glass;
+        sheet.thinWalled = true;
+        sheet.roughness = roughness;
+        cases.push_back({"CoatReturnedOverThinSheet_r" + std::to_string(int(roughness * 100)),
+                         [=](BsdfArena& a) -> const Bsdf& { return materialBsdf(coatedMaterial(sheet), a); }, true,
+                         false, false});
+    }
+    MaterialParams leaf = skin;
+    leaf.thinWalled = true;
+    leaf.subsurfaceColor = RGB(0.7f, 0.9f, 0.5f);
+    cases.push_back({"CoatReturnedOverThinSubsurface",
+                     [=](BsdfArena& a) -> const Bsdf& { return materialBsdf(coatedMaterial(leaf), a); }, true, false,
+                     false});
     cases.push_back({"CoatedGlass", [](BsdfArena& a) -> const Bsdf& {
                          return a.make<CoatedBsdf>(a.make<GgxDielectricBsdf>(1.5f, GgxDistribution(0.3f)), 1.5f, 0.2f);
                      }});
