@@ -31,8 +31,8 @@
 //
 // Weights: diffuse (1 - transmission)(1 - metallic), glass transmission (1 - metallic), metal
 // metallic, as in Standard Surface; every mix and layer conserves energy, so the material does:
-// with white inputs, diffuse, plastic, metal, coat, sheen and subsurface reflect all the light,
-// rough glass and a coat over metal or glass at most all of it
+// with white inputs, every configuration (diffuse, plastic, metal, sheen, subsurface, solid and
+// thin-walled glass, and a coat over each) reflects and transmits all the light within 1%
 // (tests/render/bsdf_energy_test.cpp, tests/integrators/material_furnace_test.cpp). Colours and weights
 // are clamped to [0, 1] per channel.
 //
