@@ -1,7 +1,6 @@
 #include "integrators/path_tracer.h"
 
 #include <algorithm>
-#include <array>
 #include <limits>
 #include <optional>
 #include <span>
@@ -15,7 +14,6 @@
 #include "integrators/medium_stack.h"
 #include "integrators/russian_roulette.h"
 #include "integrators/surface_frame.h"
-#include "media/forced_collisions.h"
 #include "media/free_flight.h"
 #include "media/guided_walk.h"
 #include "media/phase.h"
@@ -88,13 +86,6 @@ enum class Step {
     Reached,  // through the medium to the surface the ray hit (or out of the scene)
     End,      // the path ends
 };
-
-// Which lights a next-event estimate takes: a light of another kind, once chosen, contributes
-// nothing (its light is estimated elsewhere: delta lights along a stretch of medium).
-enum class LightKinds { All, Delta, NonDelta };
-
-// Forced collisions per stretch of medium at which delta lights are sampled (media/forced_collisions.h).
-constexpr int kForcedCollisions = 1;
 
 // A surface vertex of the path, as next-event estimation and BSDF sampling see it.
 struct SurfaceVertex {
@@ -182,10 +173,6 @@ private:
     Step throughMedium(const media::Medium& medium, const std::optional<SurfaceHit>& hit, int& depth) {
         const float tBoundary = hit ? hit->t : std::numeric_limits<float>::infinity();
         if (guidedWalk_ && walkStep_.first && hit) guidedWalk_->sawFarSide(ray_.direction, hit->t);
-        // Delta lights are estimated along the whole stretch, wherever a scattering here could
-        // sample lights (scatterInMedium); that scattering then samples the other lights only.
-        deltaLightsAlong_ = haveLights_ && scene_.hasDeltaLights() && inside_.depth() == 0 && depth < maxDepth_;
-        if (deltaLightsAlong_) sampleDeltaLightsAlong(medium, tBoundary);
         media::FreeFlight flight =
             guidedWalk_ ? guidedWalk_->fly(walkStep_, tBoundary, hero_, rng_)
                         : media::sampleFreeFlight(medium, {ray_.origin, ray_.direction, tBoundary}, hero_, rng_);
@@ -216,8 +203,8 @@ private:
         // point blocks every shadow ray but those to lights inside it, which phase sampling
         // still finds, then weighted as the only strategy (as after a delta lobe).
         sampleLight(
-            haveLights_ && !walking, deltaLightsAlong_ ? LightKinds::NonDelta : LightKinds::All, {}, flight.p,
-            Vec3f(0.0f), 0, [&](const Vec3f&) { return std::pair(flight.p, &medium); },
+            haveLights_ && !walking, flight.p, Vec3f(0.0f), 0,
+            [&](const Vec3f&) { return std::pair(flight.p, &medium); },
             [&](const Vec3f& wi) {
                 float p = phase.p(wo, wi);
                 return std::pair(RGB(p), p);
@@ -243,44 +230,6 @@ private:
         ray_ = Ray{flight.p, ps.wi, 0.0f, std::numeric_limits<float>::infinity(), ray_.time};
         depth -= walking;  // not a bounce
         return Step::Next;
-    }
-
-    // Next-event estimation of the delta lights scattered towards the ray's origin along its stretch
-    // of medium up to tBoundary, at kForcedCollisions forced collisions (media/forced_collisions.h):
-    // at each point t, sigmaS(t) weight(t) times the phase function, and the transmittance to it
-    // by ratio tracking over the stretches between consecutive points, whose spectral-MIS ratios
-    // multiply the shadow ray's (media/tracking.h). The free flight along the same stretch then
-    // samples the path's next vertex, as if no light had been sampled here.
-    void sampleDeltaLightsAlong(const media::Medium& medium, float tBoundary) {
-        std::array<float, kForcedCollisions> u;
-        for (float& x : u) x = rng_.next();
-        std::array<media::ForcedCollision, kForcedCollisions> points;
-        const media::MediumRay ray{ray_.origin, ray_.direction, tBoundary};
-        const int count = media::sampleForcedCollisions(medium, ray, u, points);
-        const Vec3f wo = -ray_.direction;
-        const VertexEvents event(volumeEvent(inside_.inSubsurface()));
-        media::TransmittanceEstimate toPoint;  // from the ray's origin to the current point
-        float previous = 0.0f;
-        for (int k = 0; k < count; ++k) {
-            const media::ForcedCollision& point = points[static_cast<std::size_t>(k)];
-            const media::TransmittanceEstimate stretch = media::ratioTrackingTransmittance(
-                medium, {ray.at(previous), ray.direction, point.t - previous}, hero_, rng_);
-            toPoint.throughput *= stretch.throughput;
-            toPoint.pdfRatio *= stretch.pdfRatio;
-            previous = point.t;
-            const Vec3f p = ray.at(point.t);
-            const media::MediumProperties m = medium.at(p);
-            const RGB weight = m.sigmaS * point.weight;
-            const media::HenyeyGreenstein phase(m.g);
-            sampleLight(
-                !isBlack(weight) && !isBlack(toPoint.throughput), LightKinds::Delta, toPoint, p, Vec3f(0.0f), 0,
-                [&](const Vec3f&) { return std::pair(p, &medium); },
-                [&](const Vec3f& wi) {
-                    float v = phase.p(wo, wi);
-                    return std::pair(weight * v, v);
-                },
-                [&](const Vec3f&) { return event; });
-        }
     }
 
     // A surface vertex (or, `exiting`, the exit of a diffusion step): its emission, then
@@ -313,7 +262,7 @@ private:
                              kMedia ? inside_.after(v.hit, v.wo, wi).medium() : nullptr);
         };
         sampleLight(
-            haveLights_ && v.connectable, LightKinds::All, {}, v.lightFrom, v.lightNormal, v.hit.linkGroup, shadowFrom,
+            haveLights_ && v.connectable, v.lightFrom, v.lightNormal, v.hit.linkGroup, shadowFrom,
             [&](const Vec3f& wi) {
                 Vec3f wiLocal = frame.toLocal(wi);
                 bool agree = sidesAgree(v.wo, wi, ng, v.woLocal.z, wiLocal.z);
@@ -371,17 +320,15 @@ private:
     }
 
     // Next-event estimation from `from` (with `fromNormal` for the light tree), on geometry of link
-    // group `linkGroup` (render/light_links.h; 0 in a medium): one light, if of `kinds`, its
+    // group `linkGroup` (render/light_links.h; 0 in a medium): one light, its
     // shadow ray (from shadowFrom(wi), a point and the medium the ray starts in) through the
     // surfaces and the medium, weighted against the
     // scattering strategy; scatter(wi) gives the BSDF or phase value (cosine included) and its density,
-    // and vertexEvents(wi) the vertex's events for the light path expressions. `along` is the
-    // transmittance estimate that reached `from` since the path's last vertex (forced collisions).
+    // and vertexEvents(wi) the vertex's events for the light path expressions.
     // Its random numbers are drawn even when it is not `enabled`, so that every vertex uses as many.
     template <class ShadowFrom, class Scatter, class Events>
-    void sampleLight(bool enabled, LightKinds kinds, const media::TransmittanceEstimate& along, const Vec3f& from,
-                     const Vec3f& fromNormal, int linkGroup, ShadowFrom&& shadowFrom, Scatter&& scatter,
-                     Events&& vertexEvents) {
+    void sampleLight(bool enabled, const Vec3f& from, const Vec3f& fromNormal, int linkGroup, ShadowFrom&& shadowFrom,
+                     Scatter&& scatter, Events&& vertexEvents) {
         float uLight = rng_.next();
         Vec2f uPoint = rng_.next2D();
         if (!enabled) return;
@@ -390,7 +337,6 @@ private:
         if (!scene_.lightReaches(choice.light, linkGroup)) return;  // linked away: chosen, contributes nothing
         std::optional<render::LightSample> ls = scene_.lightAt(choice.light, ray_.time).sample(from, uPoint);
         if (!ls || ls->pdf <= 0.0f || isBlack(ls->Li)) return;
-        if (kinds != LightKinds::All && ls->delta != (kinds == LightKinds::Delta)) return;
         auto [f, scatterPdf] = scatter(ls->wi);
         if (isBlack(f)) return;
         ++counters_.shadow;
@@ -401,8 +347,6 @@ private:
         media::TransmittanceEstimate tr;
         if (kMedia && shadowMedium)
             tr = media::ratioTrackingTransmittance(*shadowMedium, {shadowOrigin, ls->wi, ls->distance}, hero_, rng_);
-        tr.throughput *= along.throughput;
-        tr.pdfRatio *= along.pdfRatio;
         // Light that passed surfaces (render/shadow_rays.cpp) no BSDF-sampled ray finds: weight 1.
         const bool onlyStrategy = ls->delta || shadow == render::ShadowTest::PassedThrough;
         const RGB contribution = throughput_ * f * ls->Li *
@@ -445,7 +389,6 @@ private:
     const bool haveLights_;
     LightPathTracker lightPaths_;
     int interiorScatterings_ = 0;
-    bool deltaLightsAlong_ = false;                // the current stretch of medium sampled the delta lights along it
     std::optional<SurfaceHit> diffusionExit_;      // where diffusion subsurface scattering brings the path out
     std::optional<media::GuidedWalk> guidedWalk_;  // in a guided subsurface interior (followGuidedWalk)
     media::WalkStep walkStep_;                     // its next step

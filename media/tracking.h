@@ -88,11 +88,6 @@
 //       scattering: rL *= lightPdf (the light's solid-angle density for this direction) and
 //       L += beta * Le / channelAverage(rU + rL); seen from the camera or after a delta
 //       (specular) event, which light sampling cannot produce: L += beta * Le / channelAverage(rU).
-//   Delta lights, which phase sampling cannot reach, may instead be sampled along the whole stretch
-//   up to tHit (integrators/path_tracer.cpp): at points drawn by media/forced_collisions.h, whose
-//   density is the same in every channel, each weighed by sigmaS(t) / (count p(t)) and the ratio-
-//   tracked transmittance to it (its throughput and pdfRatio multiply the shadow ray's), and the
-//   scattering the flight then reaches samples the other lights only.
 //   A shadow ray or a flight that crosses several media (or several stretches of one) makes one
 //   call per stretch, and multiplies the ratios. Everything is drawn from the path's SampleStream, so the estimate is a
 //   pure function of (seed, pixel, sample).

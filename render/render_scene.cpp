@@ -649,7 +649,6 @@ void RenderScene::addLight(const LightDesc& desc) {
         made = std::make_unique<SweptLight>(std::move(made), still ? motion->sweptBounds(*still) : LightBounds{});
     }
     lights_.push_back(std::move(made));
-    hasDeltaLights_ = hasDeltaLights_ || isDeltaLight(desc);
     const Light& light = *lights_.back();
     if (light.atInfinity()) lightsAtInfinity_.push_back(index);
     if (light.atInfinity() && desc.visibleToCamera) lightsAtInfinitySeenByCamera_.push_back(index);

@@ -195,9 +195,6 @@ public:
     const std::vector<int>& lightsAtInfinity(bool cameraRay) const {
         return cameraRay ? lightsAtInfinitySeenByCamera_ : lightsAtInfinity_;
     }
-    // Whether some light is a delta light (point, or distant of angle 0: render/lights/light_registry.h),
-    // which only next-event estimation reaches.
-    bool hasDeltaLights() const { return hasDeltaLights_; }
     // Chooses a light for next-event estimation at point p with normal n (the geometric normal on
     // the side the light is gathered from; a zero vector where there is no surface) from u in
     // [0, 1). light = -1 when no light can reach p.
@@ -327,7 +324,6 @@ private:
     NameTable objectNames_, materialNames_;
     std::vector<std::unique_ptr<Light>> lights_;
     std::vector<int> lightsAtInfinity_, lightsAtInfinitySeenByCamera_;
-    bool hasDeltaLights_ = false;
     std::vector<bool> shadowless_;  // per light, true where it casts no shadows (lightPassesSurfaces)
     LightLinkTable links_;
     std::map<std::string, std::string> lightGroups_;

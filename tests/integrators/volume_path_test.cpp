@@ -1,7 +1,7 @@
 // The path tracer through OpenVDB volumes (media/ tracking, volumes/ GridMedium): Beer-Lambert
 // through a pure absorber against its closed form, a white furnace of albedo-1 smoke that
 // neither loses nor gains light, with next-event estimation and MIS at every scattering event,
-// and a delta sun's single scattering, sampled at forced collisions, against quadrature.
+// and a delta sun's single scattering against quadrature.
 #include <gtest/gtest.h>
 
 #include <openvdb/openvdb.h>
@@ -114,8 +114,8 @@ TEST(VolumePath, PathAgreesWithTheNaiveReferenceInChromaticSmoke) {
     EXPECT_NEAR(path.mean(), naive.mean(), 4.0 * se) << path.mean() << " vs " << naive.mean();
 }
 
-// A delta sun's light scattered once (maxDepth 1) in chromatic smoke, which the path tracer
-// estimates at forced collisions along the camera ray (media/forced_collisions.h), against
+// A delta sun's light scattered once (maxDepth 1) in chromatic smoke, which only next-event
+// estimation at the free flights' scatterings reaches (ratio-tracked shadow rays), against
 //     L_c = integral T_c(0, t) sigmaS_c(t) E_c / (4 pi) T_c(t -> sun) dt,
 // both transmittances and the integral by the midpoint rule on the medium's own coefficients.
 // The tolerance is 4 standard errors of the mean plus the quadrature's error, estimated as the

@@ -58,9 +58,7 @@ bool aboveMinorant(float d, float minorant) { return d >= minorant * (1.0f - med
 
 // Checks the DDA's contract along `ray` against the grid's density (see the file comment), and that
 // each segment is one cell's.
-// Counts in `minorantPoints` the points checked under a positive minorant.
-void checkRay(const FloatVdbGrid& grid, const MajorantGrid& majorants, const Ray& ray, float span, int& points,
-              int& minorantPoints) {
+void checkRay(const FloatVdbGrid& grid, const MajorantGrid& majorants, const Ray& ray, float span, int& points) {
     std::vector<media::MajorantSegment> segments = segmentsOf(majorants, ray);
     float previous = ray.tMin;
     for (const media::MajorantSegment& s : segments) {
@@ -93,7 +91,6 @@ void checkRay(const FloatVdbGrid& grid, const MajorantGrid& majorants, const Ray
                 lower = std::max(lower, s.sigmaMin.x);
             }
         ++points;
-        minorantPoints += lower > 0.0f;
         if (bound < 0.0f)
             EXPECT_EQ(d, 0.0f) << "outside every segment, t = " << t;
         else
@@ -133,13 +130,6 @@ std::string writeSparseGrid(const test::TempDir& dir) {
 TEST(MajorantGrid, BoundsTheDensityAlongRandomRays) {
     test::TempDir dir("volumes_majorant");
     FloatVdbGrid grid(writeSparseGrid(dir), "density", 0, tiltedObjectToWorld());
-    WorldBounds tile{Vec3f(INFINITY), Vec3f(-INFINITY)};  // around the 8^3 tile (writeSparseGrid), where
-    for (int corner = 0; corner < 8; ++corner) {          // small cells have positive minorants
-        Vec3f p(
-            grid.indexToWorld().transformPoint(Vec3d(corner & 1 ? 71 : 64, corner & 2 ? 15 : 8, corner & 4 ? 7 : 0)));
-        tile = {vmin(tile.lo, p), vmax(tile.hi, p)};
-    }
-    int minorantPoints = 0;
     for (MajorantGridOptions options :
          {MajorantGridOptions{}, MajorantGridOptions{3.0, 64}, MajorantGridOptions{8.0, 5}}) {
         MajorantGrid majorants(grid, options);
@@ -147,14 +137,12 @@ TEST(MajorantGrid, BoundsTheDensityAlongRandomRays) {
         float span = 3.0f * length(b.hi - b.lo);
         int points = 0, nonEmpty = 0;
         for (const Ray& ray : randomRays(b, 300, 11)) {
-            checkRay(grid, majorants, ray, span, points, minorantPoints);
+            checkRay(grid, majorants, ray, span, points);
             nonEmpty += !segmentsOf(majorants, ray).empty();
         }
         EXPECT_GT(nonEmpty, 75);  // the test is not vacuous: many rays meet the clusters
-        for (const Ray& ray : randomRays(tile, 100, 12)) checkRay(grid, majorants, ray, span, points, minorantPoints);
         if (HasFailure()) return;
     }
-    EXPECT_GT(minorantPoints, 100);  // nor for the minorants: cells of 3 voxels fit inside the tile
 }
 
 // Around every positive stored value (read from the file by OpenVDB itself), on a lattice over the
