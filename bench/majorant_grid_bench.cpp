@@ -14,6 +14,8 @@
 //     collisions ratio tracking draws to cross the volume (a shadow ray's transmittance), and its
 //     ratio to the mean optical depth tau (the real collisions' share; 1 would be a perfect
 //     majorant);
+//   - residual/ray: the same sum over sigmaMaj - sigmaMin, with the grid's minorants as the
+//     control: the tentative collisions residual ratio tracking draws, and its ratio to tau;
 //   - ns/ray: the DDA alone (one thread), and the grid's build time and size; and, to weigh them,
 //     the time of one density lookup (what each tentative collision costs), at random points.
 // tau is integrated along each ray by the midpoint rule at a quarter of a voxel.
@@ -86,8 +88,8 @@ void run(const char* title, const FloatVdbGrid& grid, float densityScale, const 
     gSink = sink;
     std::printf("  %d rays meet the support; mean optical depth tau %.4f; a density lookup takes %.1f ns\n\n", hits,
                 tauSum / hits, lookupNs);
-    std::printf("  %-18s %-10s %9s %8s %10s %13s %15s %9s %9s\n", "majorant", "cells", "build ms", "KB", "cells/ray",
-                "segments/ray", "collisions/ray", "/ tau", "ns/ray");
+    std::printf("  %-18s %-10s %9s %8s %10s %13s %15s %9s %13s %9s %9s\n", "majorant", "cells", "build ms", "KB",
+                "cells/ray", "segments/ray", "collisions/ray", "/ tau", "residual/ray", "/ tau", "ns/ray");
 
     const Config configs[] = {{"global (1 cell)", {8.0, 1}},
                               {"16 voxels/cell", {16.0, 1024}},
@@ -99,29 +101,31 @@ void run(const char* title, const FloatVdbGrid& grid, float densityScale, const 
         MajorantGrid majorants(grid, config.options);
         double buildMs = std::chrono::duration<double, std::milli>(Clock::now() - start).count();
         const Vec3i& n = majorants.resolution();
-        double cells = 0.0, segments = 0.0, collisions = 0.0;
+        double cells = 0.0, segments = 0.0, collisions = 0.0, residual = 0.0;
         for (std::size_t r = 0; r < rays.size(); ++r) {
             if (tau[r] < 0.0) continue;
-            MajorantDda dda(majorants, rays[r].origin, rays[r].direction, 0.0f, INFINITY, RGB(densityScale));
+            MajorantDda dda(majorants, rays[r].origin, rays[r].direction, 0.0f, INFINITY, RGB(densityScale),
+                            RGB(densityScale));
             while (std::optional<media::MajorantSegment> s = dda.next()) {
                 segments += 1.0;
                 collisions += double(s->sigmaMaj.x) * (s->tMax - s->tMin);
+                residual += double(s->sigmaMaj.x - s->sigmaMin.x) * (s->tMax - s->tMin);
             }
             cells += dda.cellsVisited();
         }
         // The DDA alone, timed over every ray (misses included, as a renderer would see them).
         start = Clock::now();
         for (const Ray& ray : rays) {
-            MajorantDda dda(majorants, ray.origin, ray.direction, 0.0f, INFINITY, RGB(densityScale));
-            while (std::optional<media::MajorantSegment> s = dda.next()) sink += s->tMax;
+            MajorantDda dda(majorants, ray.origin, ray.direction, 0.0f, INFINITY, RGB(densityScale), RGB(densityScale));
+            while (std::optional<media::MajorantSegment> s = dda.next()) sink += s->tMax + s->sigmaMin.x;
         }
         double ns = std::chrono::duration<double, std::nano>(Clock::now() - start).count() / double(rays.size());
         gSink = sink;
         char resolution[32];
         std::snprintf(resolution, sizeof resolution, "%dx%dx%d", n.x, n.y, n.z);
-        std::printf("  %-18s %-10s %9.2f %8.1f %10.2f %13.2f %15.3f %9.3f %9.1f\n", config.name, resolution, buildMs,
-                    double(n.x) * n.y * n.z * sizeof(float) / 1024.0, cells / hits, segments / hits, collisions / hits,
-                    collisions / tauSum, ns);
+        std::printf("  %-18s %-10s %9.2f %8.1f %10.2f %13.2f %15.3f %9.3f %13.3f %9.3f %9.1f\n", config.name,
+                    resolution, buildMs, double(n.x) * n.y * n.z * 2 * sizeof(float) / 1024.0, cells / hits,
+                    segments / hits, collisions / hits, collisions / tauSum, residual / hits, residual / tauSum, ns);
     }
 }
 

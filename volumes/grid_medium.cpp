@@ -47,6 +47,8 @@ GridMedium::GridMedium(FloatVdbGrid density, const GridMediumParams& params, std
     majorantGrid_ = MajorantGrid(density_, majorantOptions);
     RGB largestColour = params_.albedo * (color_ ? vmax(color_->maxValue(), RGB(0.0f)) : RGB(1.0f));
     majorantScale_ = extinctionFactor(largestColour, params_.absorptionColor) * params_.densityScale;
+    RGB smallestColour = color_ ? RGB(0.0f) : params_.albedo;
+    minorantScale_ = extinctionFactor(smallestColour, params_.absorptionColor) * params_.densityScale;
 }
 
 media::MediumProperties GridMedium::at(const Vec3f& p) const {
@@ -69,7 +71,7 @@ media::MediumProperties GridMedium::at(const Vec3f& p) const {
 
 void GridMedium::majorants(const Vec3f& origin, const Vec3f& direction, float tMin, float tMax,
                            FunctionRef<bool(const media::MajorantSegment&)> visit) const {
-    MajorantDda dda(majorantGrid_, origin, direction, tMin, tMax, majorantScale_);
+    MajorantDda dda(majorantGrid_, origin, direction, tMin, tMax, majorantScale_, minorantScale_);
     while (std::optional<media::MajorantSegment> segment = dda.next())
         if (!visit(*segment)) return;
 }

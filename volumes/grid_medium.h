@@ -36,7 +36,9 @@
 //
 // MAJORANTS come from a MajorantGrid over the density grid, scaled by densityScale times the
 // largest extinction factor c + max(1 - c, 0) (1 - a) any point can have, per channel: that factor
-// grows with c, so its largest value is at the colour grid's maximum.
+// grows with c, so its largest value is at the colour grid's maximum. The grid's minorants are
+// scaled by densityScale times the smallest factor: the albedo's without a colour grid, 1 - a (that
+// of c = 0) with one.
 #pragma once
 
 #include <optional>
@@ -62,6 +64,8 @@ public:
     const MajorantGrid& majorantGrid() const { return majorantGrid_; }
     // sigmaMaj of a majorant-grid cell of value v is v * majorantScale().
     const RGB& majorantScale() const { return majorantScale_; }
+    // sigmaMin of a cell of minorant v is v * minorantScale().
+    const RGB& minorantScale() const { return minorantScale_; }
 
 private:
     FloatVdbGrid density_;
@@ -69,7 +73,7 @@ private:
     std::optional<Vec3VdbGrid> color_;
     GridMediumParams params_;
     MajorantGrid majorantGrid_;
-    RGB majorantScale_;
+    RGB majorantScale_, minorantScale_;
 };
 
 }  // namespace fluence::volumes

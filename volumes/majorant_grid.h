@@ -1,5 +1,5 @@
-// A coarse grid of per-cell maxima of a density grid, and the 3D-DDA that walks a ray through it,
-// yielding the majorant segments of media/medium.h (MAJORANTS).
+// A coarse grid of per-cell maxima and minima of a density grid, and the 3D-DDA that walks a ray
+// through it, yielding the majorant segments of media/medium.h (MAJORANTS, MINORANTS).
 //
 // MODEL. The support of the density grid (the index box [lo - 1, hi + 1] around its active voxels,
 // volumes/vdb_grid.h), grown by a margin of 1e-3 voxel, is divided into nx x ny x nz equal cells;
@@ -13,6 +13,18 @@
 // crossed in double, but never by 1e-3 voxel, so it still lies under a cell that counted every
 // value reaching it, and a point just past the grid's box lies outside the support, where the
 // density is exactly 0.
+//
+// MINORANTS. A cell also holds the smallest value the trilinear reconstruction can take inside it
+// (grown by the margin): the minimum, clamped at 0, over every lattice point that interpolation
+// reads for a point of the cell (floor(q) and floor(q) + 1 on each axis, q in index space), stored
+// or the background where nothing is stored; 0 for a cell that reaches beyond the support, where
+// the density is 0. Interpolation is a convex combination, so cell minimum <= value(p) (up to
+// float rounding, far inside media/majorant_check.h's tolerance). They are the control extinction
+// of residual ratio tracking (media/ratio_tracking.h): where a cell is dense throughout, tracking
+// draws tentative collisions only at the rate of the difference, and in a cell of constant density
+// none at all. Found with the maxima in one visit of the stored values: each counts towards the
+// cells whose lattice reaches it, and a cell whose lattice points are not all stored also takes
+// the background.
 //
 // RESOLUTION. Cells are `voxelsPerCell` voxels on a side (8 by default: an OpenVDB leaf node, so a
 // cell spans about one leaf), at most `maxCellsPerAxis` per axis (64; larger grids get larger cells),
@@ -51,6 +63,8 @@ public:
     bool empty() const { return cells_.empty(); }
     const Vec3i& resolution() const { return resolution_; }
     float cell(const Vec3i& c) const { return cells_[index(c)]; }
+    // The smallest value the reconstruction takes in cell c (see MINORANTS).
+    float minorant(const Vec3i& c) const { return minorants_[index(c)]; }
     // World space to cell coordinates: cell (i, j, k) is the box [i, i + 1] x [j, j + 1] x [k, k + 1].
     const Matrix4& worldToCell() const { return worldToCell_; }
 
@@ -61,17 +75,18 @@ private:
     }
 
     Vec3i resolution_{0};
-    std::vector<float> cells_;
+    std::vector<float> cells_, minorants_;
     Matrix4 worldToCell_ = Matrix4::identity();
 };
 
 // The cells of a MajorantGrid that the ray origin + t direction crosses within [tMin, tMax), in
-// order, as majorant segments with sigmaMaj = cell value * scale (sigmaMin is left 0). Cells of
-// value 0 are skipped. The grid must outlive the walk.
+// order, as majorant segments with sigmaMaj = cell value * scale and sigmaMin = cell minorant *
+// minorantScale (0 by default: no control). Cells of value 0 are skipped. The grid must outlive
+// the walk.
 class MajorantDda {
 public:
     MajorantDda(const MajorantGrid& grid, const Vec3f& origin, const Vec3f& direction, float tMin, float tMax,
-                const RGB& scale);
+                const RGB& scale, const RGB& minorantScale = RGB(0.0f));
 
     // The next segment with a non-zero majorant; nullopt once the ray has left the grid or tMax.
     std::optional<media::MajorantSegment> next();
@@ -80,7 +95,7 @@ public:
 
 private:
     const MajorantGrid* grid_;
-    RGB scale_;
+    RGB scale_, minorantScale_;
     Vec3d origin_, invDirection_;  // in cell coordinates
     Vec3i cell_{0}, step_{0};
     double t_ = 0.0, tEnd_ = 0.0;  // the walk is at t_ in cell_ and stops at tEnd_

@@ -1,16 +1,20 @@
 // The path tracer through OpenVDB volumes (media/ tracking, volumes/ GridMedium): Beer-Lambert
-// through a pure absorber against its closed form, and a white furnace of albedo-1 smoke that
-// neither loses nor gains light, with next-event estimation and MIS at every scattering event.
+// through a pure absorber against its closed form, a white furnace of albedo-1 smoke that
+// neither loses nor gains light, with next-event estimation and MIS at every scattering event,
+// and a delta sun's single scattering against quadrature.
 #include <gtest/gtest.h>
 
 #include <openvdb/openvdb.h>
 
 #include <cmath>
+#include <cstdio>
+#include <numbers>
 
 #include "integrators/naive_path_tracer.h"
 #include "integrators/path_tracer.h"
 #include "render/camera.h"
 #include "render/render_scene.h"
+#include "tests/support/scenes.h"
 #include "tests/support/statistics.h"
 #include "tests/support/temp_dir.h"
 
@@ -108,6 +112,60 @@ TEST(VolumePath, PathAgreesWithTheNaiveReferenceInChromaticSmoke) {
     const double se =
         std::sqrt(path.standardError() * path.standardError() + naive.standardError() * naive.standardError());
     EXPECT_NEAR(path.mean(), naive.mean(), 4.0 * se) << path.mean() << " vs " << naive.mean();
+}
+
+// A delta sun's light scattered once (maxDepth 1) in chromatic smoke, which only next-event
+// estimation at the free flights' scatterings reaches (ratio-tracked shadow rays), against
+//     L_c = integral T_c(0, t) sigmaS_c(t) E_c / (4 pi) T_c(t -> sun) dt,
+// both transmittances and the integral by the midpoint rule on the medium's own coefficients.
+// The tolerance is 4 standard errors of the mean plus the quadrature's error, estimated as the
+// difference between the rule at steps h and 2h.
+TEST(VolumePath, ADeltaSunsSingleScatteringMatchesQuadrature) {
+    test::TempDir dir{"fluence_volume_path"};
+    render::SceneDescription desc = smokeUnderAWhiteSky(writeCube(dir), 1.5f, RGB(0.8f, 0.6f, 0.4f));
+    const Matrix4 sunTransform = Matrix4::rotateY(35.0) * Matrix4::rotateX(-25.0);
+    desc.lights = {test::lightDesc("/Sun", render::LightType::Distant, RGB(3.0f, 2.0f, 1.0f), sunTransform)};
+    render::RenderScene scene(desc);
+    const media::Medium& medium = *scene.medium();
+    const Vec3f toSun = normalize(Vec3f(sunTransform.transformVector({0.0, 0.0, 1.0})));
+    const float centre = 20 * kVoxel;
+    const Vec3f d = normalize(Vec3f(1.0f, 0.3f, 0.2f));
+    const render::Ray ray{Vec3f(centre) - d * 5.0f, d};
+
+    auto quadrature = [&](int steps) {  // over t in [0, 10], the sun's ray over 4 units
+        auto depth = [&](const Vec3f& o, const Vec3f& w, double length, int n) {
+            Vec3d tau(0.0);
+            for (int i = 0; i < n; ++i) {
+                const media::MediumProperties m = medium.at(o + w * float(length * (i + 0.5) / n));
+                tau += Vec3d(m.sigmaA + m.sigmaS) * (length / n);
+            }
+            return tau;
+        };
+        Vec3d sum(0.0), tau(0.0);
+        const double h = 10.0 / steps;
+        for (int i = 0; i < steps; ++i) {
+            const Vec3f p = ray.origin + d * float(h * (i + 0.5));
+            const media::MediumProperties m = medium.at(p);
+            const Vec3d sigmaT(m.sigmaA + m.sigmaS);
+            const Vec3d halfStep = sigmaT * (0.5 * h);
+            if (m.sigmaS.x > 0.0f) {
+                const Vec3d sunDepth = depth(p, toSun, 4.0, steps * 2 / 5);
+                for (int c = 0; c < 3; ++c)
+                    sum[c] += std::exp(-(tau[c] + halfStep[c])) * m.sigmaS[c] * std::exp(-sunDepth[c]) * h;
+            }
+            tau += sigmaT * h;
+        }
+        const Vec3d sun(3.0, 2.0, 1.0);
+        return (sum.x * sun.x + sum.y * sun.y + sum.z * sun.z) / (3.0 * 4.0 * std::numbers::pi);
+    };
+    const double exact = quadrature(2000), quadratureError = std::abs(exact - quadrature(1000));
+    IntegratorSettings singleScattering;
+    singleScattering.maxDepth = 1;
+    const test::MeanEstimate e = radianceAlong(scene, ray, 20000, PathTracer(singleScattering));
+    std::printf("[ measured ] single scattering %.5f +- %.5f, quadrature %.5f (error %.1e)\n", e.mean(),
+                e.standardError(), exact, quadratureError);
+    EXPECT_GT(exact, 0.01);
+    EXPECT_NEAR(e.mean(), exact, 4.0 * e.standardError() + quadratureError);
 }
 
 }  // namespace

@@ -226,20 +226,32 @@ TEST_F(GridMediumTest, PassesTheMediaMajorantCheck) {
     p.densityScale = 4.0f;
     p.albedo = RGB(0.7f, 1.0f, 0.4f);
     p.absorptionColor = RGB(0.1f, 0.0f, 0.6f);
+    // Cells of 3 voxels: the bump (22 x 14 x 18 active voxels) then has inner cells, whose minorants are
+    // positive, as well as the default's.
     GridMedium medium(density(), p, std::nullopt, color());
+    GridMedium smallCells(density(), p, std::nullopt, color(), {3.0, 64});
     Vec3f centre = (bounds_.lo + bounds_.hi) * 0.5f, size = bounds_.hi - bounds_.lo;
-    for (int n = 0; n < 50; ++n) {
+    int withMinorant = 0;  // rays that cross a cell with a positive minorant
+    for (int n = 0; n < 100; ++n) {
         SampleStream r(8, 0, std::uint64_t(n));
         Vec3f o = centre + Vec3f(r.next() - 0.5f, r.next() - 0.5f, r.next() - 0.5f) * size * 2.0f;
         Vec3f d = normalize(randomPoint(r) - o);
-        media::MajorantCheck check = media::majorantsBound(medium, media::MediumRay{o, d, 4.0f * length(size)});
+        const GridMedium& m = n % 2 ? smallCells : medium;
+        media::MajorantCheck check = media::majorantsBound(m, media::MediumRay{o, d, 4.0f * length(size)});
         EXPECT_TRUE(check.bound) << "ray " << n << "\n" << check.report;
+        bool positive = false;
+        m.majorants(o, d, 0.0f, INFINITY, [&](const media::MajorantSegment& s) {
+            positive = positive || s.sigmaMin.x > 0.0f;
+            return true;
+        });
+        withMinorant += positive;
     }
+    EXPECT_GT(withMinorant, 5);
 }
 
 // The one tracking routine of media/ (ratio tracking, media/ratio_tracking.h) over GridMedium's
 // majorants estimates the transmittance; a gap in the segments where the density is not 0, or a
-// majorant below sigmaT, would bias it. The reference is exp(-optical depth) per channel, the depth
+// majorant below sigmaT (or a minorant above it), would bias it. The reference is exp(-optical depth) per channel, the depth
 // integrated by the midpoint rule on 20000 steps (its error is far below the estimate's); the
 // medium is coloured, so the three channels differ.
 TEST_F(GridMediumTest, RatioTrackingOverTheMajorantsGivesTheTransmittance) {
@@ -247,7 +259,7 @@ TEST_F(GridMediumTest, RatioTrackingOverTheMajorantsGivesTheTransmittance) {
     p.densityScale = 1.5f;
     p.albedo = RGB(0.9f, 0.6f, 0.3f);
     p.absorptionColor = RGB(0.0f, 0.5f, 0.8f);
-    GridMedium medium(density(), p);
+    GridMedium medium(density(), p, std::nullopt, std::nullopt, {3.0, 64});  // inner cells with minorants
     Vec3f centre = (bounds_.lo + bounds_.hi) * 0.5f;
     const Vec3f directions[] = {normalize(Vec3f(1.0f, 0.2f, 0.1f)), normalize(Vec3f(-0.3f, 1.0f, 0.4f)),
                                 normalize(Vec3f(0.2f, -0.5f, 1.0f))};

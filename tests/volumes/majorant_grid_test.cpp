@@ -1,6 +1,7 @@
 // The majorant grid and its DDA: conservative for trilinear interpolation along many random rays
 // through a sparse grid of voxels, tiles and inactive values (every point of every segment, densely
-// sampled, lies under its segment's majorant, and every point outside the segments has density 0);
+// sampled, lies between its segment's minorant and majorant, and every point outside the segments
+// has density 0); minorants tight inside a block of constant density and 0 at its border;
 // segments ordered and non-overlapping; on a grid with no empty cell, contiguous and covering
 // exactly the ray's overlap with the support; resolution by voxelsPerCell and maxCellsPerAxis.
 #include <gtest/gtest.h>
@@ -10,6 +11,7 @@
 #include <vector>
 
 #include "core/random.h"
+#include "media/majorant_check.h"
 #include "tests/support/temp_dir.h"
 #include "tests/volumes/vdb_test_files.h"
 #include "volumes/majorant_grid.h"
@@ -46,10 +48,13 @@ std::vector<Ray> randomRays(const WorldBounds& b, int count, std::uint64_t seed)
 
 std::vector<media::MajorantSegment> segmentsOf(const MajorantGrid& grid, const Ray& ray) {
     std::vector<media::MajorantSegment> segments;
-    MajorantDda dda(grid, ray.origin, ray.direction, ray.tMin, ray.tMax, RGB(1.0f));
+    MajorantDda dda(grid, ray.origin, ray.direction, ray.tMin, ray.tMax, RGB(1.0f), RGB(1.0f));
     while (auto s = dda.next()) segments.push_back(*s);
     return segments;
 }
+
+// d >= minorant up to the float rounding of the interpolation (media/majorant_check.h's tolerance).
+bool aboveMinorant(float d, float minorant) { return d >= minorant * (1.0f - media::kMajorantTolerance); }
 
 // Checks the DDA's contract along `ray` against the grid's density (see the file comment), and that
 // each segment is one cell's.
@@ -71,6 +76,7 @@ void checkRay(const FloatVdbGrid& grid, const MajorantGrid& majorants, const Ray
     for (const media::MajorantSegment& s : segments) {
         Vec3i middle = cellAt(0.5f * (s.tMin + s.tMax));
         EXPECT_EQ(majorants.cell(middle), s.sigmaMaj.x);
+        EXPECT_EQ(majorants.minorant(middle), s.sigmaMin.x);
         if (s.tMax - s.tMin > 1e-3f * std::max(1.0f, s.tMax)) {
             EXPECT_EQ(cellAt(s.tMin + 1e-3f * (s.tMax - s.tMin)), middle);
             EXPECT_EQ(cellAt(s.tMax - 1e-3f * (s.tMax - s.tMin)), middle);
@@ -78,14 +84,18 @@ void checkRay(const FloatVdbGrid& grid, const MajorantGrid& majorants, const Ray
     }
     auto check = [&](float t) {
         float d = grid.sample(ray.origin + ray.direction * t);
-        float bound = -1.0f;  // no segment
+        float bound = -1.0f, lower = 0.0f;  // no segment
         for (const media::MajorantSegment& s : segments)
-            if (t >= s.tMin && t < s.tMax) bound = std::max(bound, s.sigmaMaj.x);  // [tMin, tMax)
+            if (t >= s.tMin && t < s.tMax) {  // [tMin, tMax)
+                bound = std::max(bound, s.sigmaMaj.x);
+                lower = std::max(lower, s.sigmaMin.x);
+            }
         ++points;
         if (bound < 0.0f)
             EXPECT_EQ(d, 0.0f) << "outside every segment, t = " << t;
         else
             EXPECT_LE(d, bound) << "t = " << t;
+        EXPECT_TRUE(aboveMinorant(d, lower)) << "t = " << t << ": density " << d << " below the minorant " << lower;
     };
     for (const media::MajorantSegment& s : segments)  // densely inside each segment, most densely at its ends
         for (int k = 0; k <= 16; ++k) {
@@ -169,6 +179,66 @@ TEST(MajorantGrid, EveryCellBoundsTheDensityAroundEveryStoredValue) {
                 }
     }
     EXPECT_GT(points, 100000);
+}
+
+// On a lattice of 7^3 points over every cell with a positive minorant (its faces included), on a
+// dense block placed by a tilted transform and on the sparse grid's tile, the density is never
+// below the cell's minorant. The block's values fall along every axis (plus a little noise), so a
+// cell's least values lie on its lattice's upper rows: leaving out the row a face's points read
+// raises the minorant above the density there.
+TEST(MajorantGrid, EveryCellsMinorantLiesBelowTheDensityThroughoutIt) {
+    test::TempDir dir("volumes_minorant_cells");
+    auto block = makeGrid<openvdb::FloatGrid>("density", 0.5, {1.0, -2.0, 0.5});
+    auto a = block->getAccessor();
+    SampleStream r(13, 0, 0);
+    for (int x = 0; x < 40; ++x)
+        for (int y = 0; y < 30; ++y)
+            for (int z = 0; z < 20; ++z) a.setValue({x, y, z}, 2.5f - 0.02f * float(x + y + z) + 0.01f * r.next());
+    test::writeGrids(dir.file("block.vdb"), {block});
+    const FloatVdbGrid blockGrid(dir.file("block.vdb"), "density", 0, tiltedObjectToWorld());
+    const FloatVdbGrid sparseGrid(writeSparseGrid(dir), "density", 0, tiltedObjectToWorld());
+    int positive = 0;
+    for (const FloatVdbGrid* grid : {&blockGrid, &sparseGrid})
+        for (MajorantGridOptions options : {MajorantGridOptions{}, MajorantGridOptions{3.0, 64}}) {
+            MajorantGrid majorants(*grid, options);
+            const Matrix4 cellToWorld = *majorants.worldToCell().inverse();
+            const Vec3i& n = majorants.resolution();
+            for (int z = 0; z < n.z; ++z)
+                for (int y = 0; y < n.y; ++y)
+                    for (int x = 0; x < n.x; ++x) {
+                        const float minorant = majorants.minorant({x, y, z});
+                        ASSERT_LE(minorant, majorants.cell({x, y, z}));
+                        if (minorant == 0.0f) continue;
+                        ++positive;
+                        for (int k = 0; k < 343; ++k) {
+                            Vec3d c(x + (k % 7) / 6.0, y + (k / 7 % 7) / 6.0, z + (k / 49) / 6.0);
+                            float d = grid->sample(Vec3f(cellToWorld.transformPoint(c)));
+                            ASSERT_TRUE(aboveMinorant(d, minorant))
+                                << "cell " << x << " " << y << " " << z << " at " << to_string(c) << ": density " << d
+                                << " below " << minorant;
+                        }
+                    }
+        }
+    EXPECT_GT(positive, 100);
+}
+
+// Minorants are tight where the density is constant: a block of density 1 gives its inner cells a
+// minorant of exactly 1 (residual ratio tracking draws no collision there) and the cells at the
+// support's border, which reach beyond the block's ramp, 0.
+TEST(MajorantGrid, ABlockOfConstantDensityIsItsOwnMinorantInside) {
+    test::TempDir dir("volumes_minorant_constant");
+    auto dense = makeGrid<openvdb::FloatGrid>("density", 0.5, {1.0, -2.0, 0.5});
+    dense->fill(openvdb::CoordBBox({0, 0, 0}, {37, 29, 29}), 1.0f, true);
+    test::writeGrids(dir.file("constant.vdb"), {dense});
+    MajorantGrid majorants(FloatVdbGrid(dir.file("constant.vdb"), "density"));
+    const Vec3i& n = majorants.resolution();
+    EXPECT_EQ(n, Vec3i(5, 4, 4));  // a support of 39 x 31 x 31 voxels, 8 per cell
+    for (int z = 0; z < n.z; ++z)
+        for (int y = 0; y < n.y; ++y)
+            for (int x = 0; x < n.x; ++x) {
+                const bool border = x == 0 || y == 0 || z == 0 || x == n.x - 1 || y == n.y - 1 || z == n.z - 1;
+                EXPECT_EQ(majorants.minorant({x, y, z}), border ? 0.0f : 1.0f) << x << " " << y << " " << z;
+            }
 }
 
 TEST(MajorantGrid, SkipsEmptyCellsAndStaysFarBelowTheGlobalMaximumThere) {
