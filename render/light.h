@@ -70,7 +70,8 @@ struct SceneBounds {
 // (a shaped point light) has theta_o = the cone and theta_e = 0. Each angle is kept as its cosine.
 struct LightBounds {
     Vec3f lo, hi;
-    float phi = 0.0f;  // power, as power() returns it
+    float phi = 0.0f;  // power, as power() returns it; a shaped light's unshaped power times the
+                       // shaping's peak factor (LightShaping::narrow)
     Vec3f axis{0.0f, 0.0f, 1.0f};
     float cosThetaO = -1.0f;  // -1: normals in every direction
     float cosThetaE = 0.0f;   // 0: up to 90 degrees from the normal (a cosine emitter)

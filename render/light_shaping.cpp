@@ -26,6 +26,9 @@ LightShaping::LightShaping(const LightShapingDesc& desc, const Vec3f& axis, cons
     cutoff_ = std::clamp(desc.coneAngleDegrees, 0.0f, 180.0f) * kPi / 180.0f;
     cosCutoff_ = std::cos(cutoff_);
     softStart_ = (1.0f - std::clamp(desc.coneSoftness, 0.0f, 1.0f)) * cutoff_;
+    // The cone is at most 1 and the focus lerp(f, focusTint, 1) at most max(1, focusTint), both
+    // reached on the axis or towards the cone's edge; luminance is linear, so this bounds it.
+    if (focus_ > 0.0f) peak_ = std::max(1.0f, luminance(focusTint_));
     if (!desc.ies) return;
     Frame frame = Frame::fromNormal(axis_);
     xAxis_ = orthogonalTo(Vec3f(lightToWorld.transformVector({1.0, 0.0, 0.0})), axis_, Vec3f(0.0f), frame.s);
@@ -50,6 +53,7 @@ void LightShaping::buildDirections() {
     std::vector<float> weights(std::size_t(kThetaCells) * kPhiCells);
     const float dTheta = kPi / kThetaCells, dPhi = 2.0f * kPi / kPhiCells;
     double iesIntegral = 0.0;
+    peak_ = 0.0f;
     for (int i = 0; i < kThetaCells; ++i)
         for (int j = 0; j < kPhiCells; ++j) {
             float largest = 0.0f;
@@ -59,6 +63,7 @@ void LightShaping::buildDirections() {
                         std::max(largest, luminance(factor(direction((i + 0.5f * a) * dTheta, (j + 0.5f * b) * dPhi))));
             float theta = (i + 0.5f) * dTheta;
             weights[std::size_t(i) * kPhiCells + j] = largest * std::sin(theta);
+            peak_ = std::max(peak_, largest);
             iesIntegral += iesFactor(direction(theta, (j + 0.5f) * dPhi)) * std::sin(theta) * dTheta * dPhi;
         }
     iesMean_ = static_cast<float>(iesIntegral / (4.0 * kPi));
@@ -103,7 +108,7 @@ float LightShaping::powerFraction(bool oneSided) const {
 
 LightBounds LightShaping::narrow(LightBounds b, bool oneSided) const {
     if (!active_) return b;
-    b.phi *= powerFraction(oneSided);
+    b.phi *= peak_;
     if (oneSided) {
         b.cosThetaE = std::max(b.cosThetaE, cosCutoff_);
     } else {

@@ -59,7 +59,11 @@ public:
     float powerFraction(bool oneSided) const;
     // Tightens the emission bounds of a light whose unshaped bounds are `bounds`: a one-sided
     // light emits no further than the cone from its normal; any other light emits within the cone
-    // around the axis.
+    // around the axis. The power is scaled by the factor's peak (1 for a cone, which only takes
+    // light away), not by powerFraction: the cone itself already keeps the light tree's importance
+    // at 0 outside it, and inside it the light delivers its unshaped irradiance, which the
+    // importance must still bound (scaling by the cone's share as well made a narrow spot light
+    // beside a dome hundreds of times less likely to be chosen than its light warrants).
     LightBounds narrow(LightBounds bounds, bool oneSided) const;
 
     // Whether emission directions are drawn by sampleDirection (a light with an IES profile).
@@ -83,6 +87,7 @@ private:
     RGB focusTint_;
     std::shared_ptr<const IesProfile> ies_;
     float iesMean_ = 1.0f;  // the profile's mean factor over the sphere
+    float peak_ = 1.0f;     // the largest luminance of factor() over the directions
     ImageDistribution directions_;
 };
 
