@@ -222,7 +222,8 @@ struct RenderScene::EmbreeState {
     Vec3f lightShapesLo, lightShapesHi;
     // The light every shape in lightShapes belongs to (-1: none, or shapes of several lights): a
     // shadow ray towards it can meet no other light's shape, so none is looked for (one rect light,
-    // as in the Cornell box, saved a light-shape trace per shadow ray: 6% of its render).
+    // as in the Cornell box, saved a light-shape trace per shadow ray: 6% of its render). A query
+    // for any light's shape (light -1, bdpt's joins) still looks.
     int lightOfEveryShape = -1;
     ~EmbreeState() {
         for (RTCScene s : prototypes) rtcReleaseScene(s);
@@ -869,7 +870,7 @@ bool RenderScene::occluded(const Vec3f& origin, const Vec3f& direction, float di
 bool RenderScene::meetsOtherLightShape(int light, const Vec3f& origin, const Vec3f& direction, float distance,
                                        float time) const {
     const float end = distance * (1.0f - kShadowRayShortening);
-    if (lightShapeToLight_.empty() || light == embree_->lightOfEveryShape ||
+    if (lightShapeToLight_.empty() || (light >= 0 && light == embree_->lightOfEveryShape) ||
         !segmentMeetsBox(origin, direction, 0.0f, end, embree_->lightShapesLo, embree_->lightShapesHi))
         return false;
     RTCIntersectContext context;
