@@ -1,7 +1,8 @@
 // Throughput against the limit (issue #10 item 4): how close the renderer's rays/s come to
 // Embree's raw ray-casting rate on the same scene, on this machine.
 //
-//   embree_throughput_bench [--spp N] [--threads N] [--repeat N] [--scale S] [--minimal] [SCENE.usda ...]
+//   embree_throughput_bench [--spp N] [--threads N] [--repeat N] [--scale S] [--sampler NAME] [--minimal]
+//                           [SCENE.usda ...]
 //
 // Each scene is loaded as `fluence render` loads it (stage, delegate, colour management,
 // render::RenderScene, the camera at the scene's resolution times --scale). Then:
@@ -17,12 +18,15 @@
 //   raw, uniform: as many rays with origins uniform in the scene's bounding sphere and uniform
 //     directions, through rtcIntersect1.
 //   renderer: integrators::render() with the `path` integrator, --spp samples per pixel (default
-//     16), seed 0, and RenderCounters' rays (camera + bounce + shadow), the count `fluence render`
-//     prints. Free-flight and transmittance tracking in media (smoke, subsurface walks) cost time
-//     but cast no counted rays: those scenes' ratios include that cost.
+//     16), seed 0, the sampler --sampler names (default the renderer's, sobol), and RenderCounters'
+//     rays (camera + bounce + shadow), the count `fluence render` prints. Free-flight and
+//     transmittance tracking in media (smoke, subsurface walks) cost time but cast no counted rays:
+//     those scenes' ratios include that cost.
+//   own cost: beside each ratio, the path tracer's CPU time per ray and per path (camera sample)
+//     outside Embree: its time per ray less bare Embree's at the renderer's mix.
 //   minimal (--minimal): the ceiling, bench/minimal_path_tracer.h, the leanest honest path tracer
 //     with next-event estimation for Lambertian meshes and one rect light (the Cornell box), on
-//     the same Embree scene, --spp samples per pixel, seed 1; its ratio to the same raw rate says
+//     the same Embree scene, --spp samples per pixel, seed 1, independent samples; its ratio to the same raw rate says
 //     what share of the raw rate any such path tracer keeps once it shades its hits. Its image's
 //     mean luminance is printed beside the renderer's (seed 0), with their difference in standard
 //     errors (from each pixel's sample variance), to show it renders the same image.
@@ -52,6 +56,7 @@
 #include "core/film.h"
 #include "core/frame.h"
 #include "core/random.h"
+#include "core/sampler_names.h"
 #include "core/sampling.h"
 #include "delegate/scene_delegate.h"
 #include "integrators/integrator.h"
@@ -71,6 +76,7 @@ struct Options {
     int spp = 16, threads = 2, repeat = 3;
     double scale = 0.5;
     bool minimal = false;  // also run bench/minimal_path_tracer.h
+    SamplerKind sampler = integrators::RenderSettings{}.sampler;
     std::vector<std::string> scenes;
 };
 
@@ -175,6 +181,16 @@ double trace(tbb::task_arena& arena, RTCScene scene, const std::vector<StoredRay
     return cpuSeconds() - start;
 }
 
+// A path tracer's own cost (issue #25 item 5): its CPU time per ray less bare Embree's at the same
+// mix of ray kinds, i.e. what it spends outside Embree, per ray and per path (one per camera ray).
+std::string ownCost(double mraysPerCpuSecond, double rawMraysPerCpuSecond, double rays, double paths) {
+    const double perRay = 1e3 / mraysPerCpuSecond - 1e3 / rawMraysPerCpuSecond;  // ns
+    char text[160];
+    std::snprintf(text, sizeof text, "outside Embree %.1f ns per ray, %.0f ns per path (%.2f rays per path)", perRay,
+                  perRay * rays / paths, rays / paths);
+    return text;
+}
+
 template <typename F>
 double best(int repeat, F&& f) {
     double b = f();
@@ -203,9 +219,9 @@ void measureMinimal(const render::RenderScene& scene, const render::Camera& came
     }
     std::printf(
         "  minimal path tracer: rays camera/bounce/shadow %llu/%llu/%llu  Mrays per CPU-s %.2f  ratio %.3f "
-        "(renderer's %.3f)\n",
+        "(renderer's %.3f)\n  minimal's own cost: %s\n",
         (unsigned long long)m.camera, (unsigned long long)m.bounce, (unsigned long long)m.shadow, minimal,
-        minimal / raw, renderer / raw);
+        minimal / raw, renderer / raw, ownCost(minimal, raw, double(m.rays()), double(m.camera)).c_str());
     std::printf(
         "  image mean luminance: renderer %.6f +- %.6f  minimal %.6f +- %.6f  difference %.2f standard errors"
         "  (RGB renderer %.5f %.5f %.5f, minimal %.5f %.5f %.5f; non-finite samples %llu/%llu)\n\n",
@@ -249,6 +265,7 @@ void measure(const std::string& path, const Options& opt, color::ColorManagement
     for (int i = 0; i < opt.repeat; ++i) {
         integrators::RenderSettings settings;
         settings.samplesPerPixel = opt.spp;
+        settings.sampler = opt.sampler;
         settings.threads = opt.threads;
         Film film(width, height, camera.farClip());
         const double start = cpuSeconds();
@@ -261,8 +278,9 @@ void measure(const std::string& path, const Options& opt, color::ColorManagement
     const double n = double(c.rays());
     // Bare Embree's rate on the renderer's mix: the time per ray of each kind, weighted by its share.
     const double raw = 1.0 / (c.camera / n / rCamera + c.bounce / n / rBounce + c.shadow / n / rShadow);
-    std::printf("%s  (%dx%d, %d spp, %zu triangles, %zu instances, %d threads)\n", path.c_str(), width, height, opt.spp,
-                scene.stats().triangles, scene.stats().instances, opt.threads);
+    std::printf("%s  (%dx%d, %d spp, %zu triangles, %zu instances, %d threads, renderer's sampler %s)\n", path.c_str(),
+                width, height, opt.spp, scene.stats().triangles, scene.stats().instances, opt.threads,
+                std::string(samplerName(opt.sampler)).c_str());
     std::printf("  rays camera/bounce/shadow  generated %zu/%zu/%zu  renderer %llu/%llu/%llu\n", rays.camera.size(),
                 rays.bounce.size(), rays.shadow.size(), (unsigned long long)c.camera, (unsigned long long)c.bounce,
                 (unsigned long long)c.shadow);
@@ -270,8 +288,8 @@ void measure(const std::string& path, const Options& opt, color::ColorManagement
                 rBounce, rShadow, rUniform);
     std::printf(
         "  Mrays per CPU-s: raw at the renderer's mix %.2f  renderer %.2f  ratio %.3f   (renderer wall-clock %.2f "
-        "Mrays/s)\n\n",
-        raw, renderer, renderer / raw, rendererWall);
+        "Mrays/s)\n  renderer's own cost: %s; Embree %.1f ns per ray\n\n",
+        raw, renderer, renderer / raw, rendererWall, ownCost(renderer, raw, n, double(c.camera)).c_str(), 1e3 / raw);
     if (opt.minimal) measureMinimal(scene, camera, width, height, opt, arena, raw, renderer, rendererMean, c);
 }
 
@@ -292,12 +310,14 @@ int main(int argc, char** argv) {
             opt.scale = std::max(0.01, number());
         else if (arg == "--minimal")
             opt.minimal = true;
+        else if (arg == "--sampler" && i + 1 < argc && samplerNamed(argv[i + 1]))
+            opt.sampler = *samplerNamed(argv[++i]);
         else if (!arg.empty() && arg[0] != '-')
             opt.scenes.push_back(arg);
         else {
             std::fprintf(stderr,
-                         "usage: embree_throughput_bench [--spp N] [--threads N] [--repeat N] [--scale S] [--minimal] "
-                         "[SCENE.usda ...]\n");
+                         "usage: embree_throughput_bench [--spp N] [--threads N] [--repeat N] [--scale S] "
+                         "[--sampler sobol|independent] [--minimal] [SCENE.usda ...]\n");
             return 2;
         }
     }

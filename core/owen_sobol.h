@@ -48,30 +48,55 @@ constexpr std::uint32_t nestedUniformScramble(std::uint32_t x, std::uint32_t see
 
 constexpr std::uint32_t sobolDimension0(std::uint32_t index) { return reverseBits32(index); }
 
-constexpr std::uint32_t sobolDimension1(std::uint32_t index) {
-    std::uint32_t x = 0;
-    for (std::uint32_t v = 1u << 31; index != 0; index >>= 1, v ^= v >> 1)
-        if (index & 1u) x ^= v;
-    return x;
+// Dimension 1 with its bits reversed (bit j the digit of 2^-(j+1)), without a loop over the index's
+// bits. Reversed, the direction numbers v_{k+1} = v_k ^ (v_k >> 1) read w_{k+1} = w_k ^ (w_k << 1),
+// the polynomial (1 + x)^k over GF(2): bit j of w_{k+1} is C(k, j) mod 2, which is 1 exactly when
+// the bits of j are a subset of those of k (Lucas' theorem). So bit j of the result is the parity of
+// the index's bits k whose positions are supersets of j's: the superset-sum transform over GF(2),
+// one shift-and-xor per bit of the position.
+constexpr std::uint32_t sobolDimension1Reversed(std::uint32_t index) {
+    index ^= (index >> 1) & 0x55555555u;
+    index ^= (index >> 2) & 0x33333333u;
+    index ^= (index >> 4) & 0x0f0f0f0fu;
+    index ^= (index >> 8) & 0x00ff00ffu;
+    index ^= (index >> 16) & 0x0000ffffu;
+    return index;
 }
+
+constexpr std::uint32_t sobolDimension1(std::uint32_t index) { return reverseBits32(sobolDimension1Reversed(index)); }
 
 // A 32-bit binary fraction as a float in [0, 1): its top 24 bits, so every elementary interval of
 // up to 2^-24 keeps its points.
 constexpr float fractionToFloat(std::uint32_t bits) { return static_cast<float>(bits >> 8) * 0x1p-24f; }
 
-// Point `index` of a 2D Owen-scrambled Sobol sequence. The scramble is chosen by two 64-bit hashes:
-// `seed`'s low half shuffles the index and its high half scrambles x; `ySeed`'s low half scrambles y.
-constexpr Vec2f owenSobol2D(std::uint32_t index, std::uint64_t seed, std::uint64_t ySeed) {
-    const std::uint32_t shuffled = nestedUniformScramble(index, static_cast<std::uint32_t>(seed));
-    return {fractionToFloat(nestedUniformScramble(sobolDimension0(shuffled), static_cast<std::uint32_t>(seed >> 32))),
-            fractionToFloat(nestedUniformScramble(sobolDimension1(shuffled), static_cast<std::uint32_t>(ySeed)))};
+// The draws below take the sample index with its bits reversed (reverseBits32(index)), which a
+// sample's stream computes once for all its draws. Each scramble is written as
+// nestedUniformScramble(x) = reverse(LK(reverse(x))) with the reversals that cancel left out:
+// dimension 0 is reverse(shuffled), so its scrambled value is reverse(LK(shuffled)), and dimension
+// 1's is reverse(LK(sobolDimension1Reversed(shuffled))). The values are those of the definition
+// bit for bit (tests/core/owen_sobol_test.cpp).
+
+// The index's Owen shuffle (Burley §4), from the reversed index.
+constexpr std::uint32_t shuffledSobolIndex(std::uint32_t reversedIndex, std::uint32_t seed) {
+    return reverseBits32(laineKarrasPermutation(reversedIndex, seed));
 }
 
-// Point `index` of a 1D Owen-scrambled van der Corput sequence (stratified for any power-of-two
-// prefix, as above); `seed`'s halves shuffle the index and scramble the value.
-constexpr float owenSobol1D(std::uint32_t index, std::uint64_t seed) {
-    const std::uint32_t shuffled = nestedUniformScramble(index, static_cast<std::uint32_t>(seed));
-    return fractionToFloat(nestedUniformScramble(sobolDimension0(shuffled), static_cast<std::uint32_t>(seed >> 32)));
+// Point `index` (given as reverseBits32(index)) of a 2D Owen-scrambled Sobol sequence. The
+// scramble is chosen by two 64-bit hashes: `seed`'s low half shuffles the index and its high half
+// scrambles x; `ySeed`'s low half scrambles y.
+constexpr Vec2f owenSobol2D(std::uint32_t reversedIndex, std::uint64_t seed, std::uint64_t ySeed) {
+    const std::uint32_t shuffled = shuffledSobolIndex(reversedIndex, static_cast<std::uint32_t>(seed));
+    return {fractionToFloat(reverseBits32(laineKarrasPermutation(shuffled, static_cast<std::uint32_t>(seed >> 32)))),
+            fractionToFloat(reverseBits32(
+                laineKarrasPermutation(sobolDimension1Reversed(shuffled), static_cast<std::uint32_t>(ySeed))))};
+}
+
+// Point `index` (given reversed, as above) of a 1D Owen-scrambled van der Corput sequence
+// (stratified for any power-of-two prefix, as above); `seed`'s halves shuffle the index and
+// scramble the value.
+constexpr float owenSobol1D(std::uint32_t reversedIndex, std::uint64_t seed) {
+    const std::uint32_t shuffled = shuffledSobolIndex(reversedIndex, static_cast<std::uint32_t>(seed));
+    return fractionToFloat(reverseBits32(laineKarrasPermutation(shuffled, static_cast<std::uint32_t>(seed >> 32))));
 }
 
 }  // namespace fluence

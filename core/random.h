@@ -45,17 +45,18 @@ public:
         : pixelKey_(mix64(mix64(seed ^ 0x5851f42d4c957f2dull) ^ pixelIndex)),
           key_(pixelKey_ ^ mix64(sampleIndex + 0x14057b7ef767814full)),
           sampleIndex_(sampleIndex),
+          reversedSobolIndex_(reverseBits32(static_cast<std::uint32_t>(sampleIndex))),
           kind_(kind) {}
 
     constexpr float next() {
         ++dimension_;
-        if (kind_ == SamplerKind::Sobol) return owenSobol1D(sobolIndex(), slotSeed(dimension_));
+        if (kind_ == SamplerKind::Sobol) return owenSobol1D(reversedSobolIndex_, slotSeed(dimension_));
         return toUnitFloat(mix64(key_ + 0x632be59bd9b4e019ull * dimension_));
     }
     constexpr Vec2f next2D() {
         if (kind_ == SamplerKind::Sobol) {
             ++dimension_;
-            return owenSobol2D(sobolIndex(), slotSeed(dimension_), mix64(slotSeed(dimension_)));
+            return owenSobol2D(reversedSobolIndex_, slotSeed(dimension_), mix64(slotSeed(dimension_)));
         }
         float a = next();
         return {a, next()};
@@ -67,14 +68,14 @@ public:
     // Under Sobol the lens point is a stratified pair of its own (slot kLensSlot).
     constexpr Vec2f lens() const {
         if (kind_ == SamplerKind::Sobol)
-            return owenSobol2D(sobolIndex(), slotSeed(kLensSlot), mix64(slotSeed(kLensSlot)));
+            return owenSobol2D(reversedSobolIndex_, slotSeed(kLensSlot), mix64(slotSeed(kLensSlot)));
         return {toUnitFloat(mix64(key_ ^ 0xa0761d6478bd642full)), toUnitFloat(mix64(key_ ^ 0xe7037ed1a0b428dbull))};
     }
     // The sample's time in the shutter interval, uniform in [0, 1): its own dimension (0, which
     // next() never draws), so drawing it or not changes no other value of the stream; under Sobol
     // stratified over the pixel's samples.
     constexpr float shutterTime() const {
-        if (kind_ == SamplerKind::Sobol) return owenSobol1D(sobolIndex(), slotSeed(0));
+        if (kind_ == SamplerKind::Sobol) return owenSobol1D(reversedSobolIndex_, slotSeed(0));
         return toUnitFloat(mix64(key_));
     }
     // The sample index the stream was made for: methods that keep per-sample-index state (the
@@ -88,11 +89,10 @@ private:
     constexpr std::uint64_t slotSeed(std::uint32_t slot) const {
         return mix64(pixelKey_ + 0x9fb21c651e98df25ull * (std::uint64_t(slot) + 1));
     }
-    constexpr std::uint32_t sobolIndex() const { return static_cast<std::uint32_t>(sampleIndex_); }
-
     std::uint64_t pixelKey_;  // (seed, pixel)
     std::uint64_t key_;       // (seed, pixel, sample index)
     std::uint64_t sampleIndex_;
+    std::uint32_t reversedSobolIndex_;  // the Sobol index (the sample index's low 32 bits), bits reversed
     SamplerKind kind_;
     std::uint32_t dimension_ = 0;
 };

@@ -2,6 +2,7 @@
 
 #include <embree3/rtcore.h>
 
+#include <algorithm>
 #include <bit>
 #include <cmath>
 #include <limits>
@@ -219,6 +220,11 @@ struct RenderScene::EmbreeState {
     // The light shapes' bounds, padded (set when there are any): a ray that misses them is not
     // traced through lightShapes.
     Vec3f lightShapesLo, lightShapesHi;
+    // The light every shape in lightShapes belongs to (-1: none, or shapes of several lights): a
+    // shadow ray towards it can meet no other light's shape, so none is looked for (one rect light,
+    // as in the Cornell box, saved a light-shape trace per shadow ray: 6% of its render). A query
+    // for any light's shape (light -1, bdpt's joins) still looks.
+    int lightOfEveryShape = -1;
     ~EmbreeState() {
         for (RTCScene s : prototypes) rtcReleaseScene(s);
         if (surfaces) rtcReleaseScene(surfaces);
@@ -306,6 +312,9 @@ RenderScene::RenderScene(const SceneDescription& scene, std::shared_ptr<texture:
             1e-4f * (maxComponent(shapesHi - shapesLo) + maxComponent(vmax(shapesHi, -shapesLo))) + 1e-20f;
         embree_->lightShapesLo = shapesLo - Vec3f(pad);
         embree_->lightShapesHi = shapesHi + Vec3f(pad);
+        const int first = lightShapeToLight_.front();
+        if (std::all_of(lightShapeToLight_.begin(), lightShapeToLight_.end(), [&](int l) { return l == first; }))
+            embree_->lightOfEveryShape = first;
     }
 
     std::vector<double> powers;
@@ -861,7 +870,7 @@ bool RenderScene::occluded(const Vec3f& origin, const Vec3f& direction, float di
 bool RenderScene::meetsOtherLightShape(int light, const Vec3f& origin, const Vec3f& direction, float distance,
                                        float time) const {
     const float end = distance * (1.0f - kShadowRayShortening);
-    if (lightShapeToLight_.empty() ||
+    if (lightShapeToLight_.empty() || (light >= 0 && light == embree_->lightOfEveryShape) ||
         !segmentMeetsBox(origin, direction, 0.0f, end, embree_->lightShapesLo, embree_->lightShapesHi))
         return false;
     RTCIntersectContext context;

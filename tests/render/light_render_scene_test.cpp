@@ -89,6 +89,23 @@ TEST(LightRenderScene, RaysPassThroughTheBackOfRectAndDiskLights) {
     }
 }
 
+// A segment through the disk's front (light 0) meets another light's shape for every light but the
+// disk, and for "any light" (-1, bdpt's joins); with the disk the only light that has a shape, the
+// disk's own query skips the search (render_scene.cpp) and the others still find it.
+TEST(LightRenderScene, ASegmentMeetsTheShapesOfLightsOtherThanItsOwn) {
+    const Vec3f below(0.1f, 0.0f, 0.1f), up(0, 1, 0);
+    RenderScene everyLight(sceneWithEveryLight());  // the disk's and the tube's shapes
+    EXPECT_FALSE(everyLight.meetsOtherLightShape(0, below, up, 3.0f, 0.0f));
+    EXPECT_TRUE(everyLight.meetsOtherLightShape(1, below, up, 3.0f, 0.0f));
+    EXPECT_TRUE(everyLight.meetsOtherLightShape(-1, below, up, 3.0f, 0.0f));
+    EXPECT_FALSE(everyLight.meetsOtherLightShape(-1, below, up, 1.5f, 0.0f)) << "short of the disk";
+    SceneDescription desc = sceneWithEveryLight();
+    desc.lights.resize(1);
+    RenderScene diskOnly(desc);
+    EXPECT_FALSE(diskOnly.meetsOtherLightShape(0, below, up, 3.0f, 0.0f));
+    EXPECT_TRUE(diskOnly.meetsOtherLightShape(-1, below, up, 3.0f, 0.0f));
+}
+
 TEST(LightRenderScene, ChooseLightIsTheLightTreesChoice) {
     RenderScene scene(sceneWithEveryLight());
     ASSERT_EQ(scene.lightCount(), 5u);
