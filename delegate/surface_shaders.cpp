@@ -129,12 +129,13 @@ render::MaterialDesc standardSurface(const ShaderInputs& in, const std::string& 
                                         in.number("transmission_scatter_anisotropy", 0.0f), depth);
         m.transmissionColor = RGB(1.0f);
     }
-    const std::string method = in.text("subsurface_type", "randomwalk");
-    if (const std::optional<render::SubsurfaceMethod> named = render::subsurfaceMethodNamed(method))
-        m.subsurfaceMethod = *named;
-    else if (method != "randomwalk_v2")
+    const std::string method = in.text("subsurface_type", "randomwalk_guided");
+    const std::optional<render::SubsurfaceMethod> named =
+        render::subsurfaceMethodNamed(method == "randomwalk_v2" ? "randomwalk" : method);
+    if (!named)
         in.warn()(in.shader().path, "subsurface_type '" + method + "' is not " +
-                                        std::string(render::kSubsurfaceMethodNames) + "; using randomwalk");
+                                        std::string(render::kSubsurfaceMethodNames) + "; using randomwalk_guided");
+    m.subsurfaceMethod = named.value_or(render::SubsurfaceMethod::RandomWalkGuided);
     if (m.subsurface > 0.0f && !m.thinWalled &&
         !m.interior)  // the random walk's medium (diffusion: the probes' material)
         m.interior = media::subsurfaceMedium(m.subsurfaceColor, m.subsurfaceRadius * m.subsurfaceScale,

@@ -41,9 +41,10 @@
 // subsurface_anisotropy (0); light enters and leaves it diffusely (render/material_bsdf.h). On a
 // thin wall, subsurface is diffuse transmission tinted by subsurface_color. The method is chosen
 // per material by the token input subsurface_type, as Arnold's standard_surface names it:
-// "randomwalk" (the fallback; "randomwalk_v2" is read as the same), "randomwalk_guided" (Fluence's
-// own: the walk guided towards the surface, media/guided_walk.h) or "diffusion" (the
-// Christensen-Burley profile, integrators/diffusion_probe.h); another value warns and walks.
+// "randomwalk" (the classic walk; "randomwalk_v2" is read as the same), "randomwalk_guided" (the
+// fallback, Fluence's own: the walk guided towards the surface, media/guided_walk.h) or
+// "diffusion" (the Christensen-Burley profile, integrators/diffusion_probe.h); another value warns
+// and takes the guided walk.
 // Inputs not listed (specular_rotation, transmission_dispersion/extra_roughness, thin_film_*,
 // coat_anisotropy/affect_*, tangent) are not read; normal only through a normal map. The colour,
 // weight and roughness inputs may be driven by UsdUVTexture / primvar-reader nodes and by

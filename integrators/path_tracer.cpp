@@ -149,6 +149,7 @@ public:
             // (Initialised in place from either: a SurfaceHit is large, and copying it showed in profiles.)
             const bool exiting = kMedia && diffusionExit_.has_value();
             if (!exiting) ++(depth == 0 ? counters_.camera : counters_.bounce);
+            if (kMedia && guidedWalk_ && !exiting) startWalkStep();
             std::optional<SurfaceHit> hit =
                 exiting ? std::exchange(diffusionExit_, std::nullopt) : scene_.intersect(ray_);
             if (const media::Medium* medium = !kMedia || exiting ? nullptr : inside_.medium()) {
@@ -174,7 +175,7 @@ private:
         const float tBoundary = hit ? hit->t : std::numeric_limits<float>::infinity();
         if (guidedWalk_ && walkStep_.first && hit) guidedWalk_->sawFarSide(ray_.direction, hit->t);
         media::FreeFlight flight =
-            guidedWalk_ ? guidedWalk_->fly(walkStep_, tBoundary, hero_, rng_)
+            guidedWalk_ ? guidedWalk_->fly(walkStep_, walkLength_, tBoundary, rng_)
                         : media::sampleFreeFlight(medium, {ray_.origin, ray_.direction, tBoundary}, hero_, rng_);
         throughput_ *= flight.throughput;
         mis_.rU *= flight.pdfRatio;
@@ -190,6 +191,14 @@ private:
         }
         if (flight.event == media::FlightEvent::Scattered) return scatterInMedium(flight, medium, depth);
         return Step::Reached;
+    }
+
+    // A guided walk's step draws its length first, and its ray is traced only that far: no surface
+    // is shaded unless the walk leaves (media/guided_walk.h, THE COST OF A STEP). The entry's step
+    // is traced on to the far side, for backward guiding.
+    void startWalkStep() {
+        walkLength_ = guidedWalk_->sampleLength(walkStep_, rng_.next());
+        if (!walkStep_.first) ray_.tMax = walkLength_;
     }
 
     // A scattering in a medium: next-event estimation, then phase sampling.
@@ -212,8 +221,9 @@ private:
             [&](const Vec3f&) { return event; });
         media::PhaseSample ps;
         if (guidedWalk_) {  // the step's phase value and density weigh its flight (media/guided_walk.h)
+            const int channel = guidedWalk_->sampleChannel(rng_.next());
             const float uStrategy = rng_.next();
-            walkStep_ = guidedWalk_->sampleStep(flight.p, wo, hero_, uStrategy, rng_.next2D());
+            walkStep_ = guidedWalk_->sampleStep(flight.p, wo, channel, uStrategy, rng_.next2D());
             ps = {walkStep_.wi, 1.0f, 1.0f};
         } else {
             ps = phase.sample(wo, rng_.next2D());
@@ -316,7 +326,7 @@ private:
         if (inside_.depth() > depthBefore && inside_.inSubsurface() && !scene_.medium() &&
             hit.material.subsurfaceMethod == render::SubsurfaceMethod::RandomWalkGuided)
             guidedWalk_.emplace(hit.point, hit.geometricNormal, inside_.medium()->at(hit.point));
-        if (guidedWalk_) walkStep_ = media::WalkStep{origin, Vec3f(0.0f), wi, true};
+        if (guidedWalk_) walkStep_ = guidedWalk_->firstStep(origin, wi, guidedWalk_->sampleChannel(rng_.next()));
     }
 
     // Next-event estimation from `from` (with `fromNormal` for the light tree), on geometry of link
@@ -392,6 +402,7 @@ private:
     std::optional<SurfaceHit> diffusionExit_;      // where diffusion subsurface scattering brings the path out
     std::optional<media::GuidedWalk> guidedWalk_;  // in a guided subsurface interior (followGuidedWalk)
     media::WalkStep walkStep_;                     // its next step
+    float walkLength_ = 0.0f;                      // and that step's length (startWalkStep)
 };
 
 }  // namespace

@@ -18,8 +18,11 @@ double lengthPdf(double sigma, double t, bool collided) {
     return collided ? sigma * transmittance : transmittance;
 }
 
-// The guided direction's solid-angle density, and the stretch of its rate, for mu = dot(wi, axis).
-double guidedDirectionPdf(double nu, double mu) { return dwivediCosinePdf(nu, mu) / kTwoPi; }
+// The density of the guided cosine mu in [-1, 1], given lnRatio = ln((nu + 1) / (nu - 1)) (which a
+// walk keeps per channel), and the guided direction's solid-angle density.
+double cosinePdf(double nu, double lnRatio, double mu) { return 1.0 / ((nu - mu) * lnRatio); }
+double guidedDirectionPdf(double nu, double lnRatio, double mu) { return cosinePdf(nu, lnRatio, mu) / kTwoPi; }
+// The stretch of the guided length's rate, for mu = dot(wi, axis).
 double stretch(double nu, double mu) { return 1.0 - mu / nu; }
 
 }  // namespace
@@ -33,7 +36,7 @@ double dwivediNu(double albedo) {
 
 double dwivediCosinePdf(double nu, double mu) {
     if (mu < -1.0 || mu > 1.0) return 0.0;
-    return 1.0 / ((nu - mu) * std::log1p(2.0 / (nu - 1.0)));
+    return cosinePdf(nu, std::log1p(2.0 / (nu - 1.0)), mu);
 }
 
 double sampleDwivediCosine(double nu, double u) {
@@ -44,14 +47,28 @@ double sampleDwivediCosine(double nu, double u) {
 }
 
 GuidedWalk::GuidedWalk(const Vec3f& entry, const Vec3f& outwardNormal, const MediumProperties& m)
-    : entry_(entry), axis_(outwardNormal), medium_(m), sigmaT_(m.sigmaA + m.sigmaS) {
-    survival_ = 0.0f;
+    : entry_(entry), axis_(outwardNormal), medium_(m), sigmaT_(m.sigmaA + m.sigmaS), albedo_(0.0f) {
     for (int c = 0; c < 3; ++c) {
-        const double albedo = sigmaT_[c] > 0.0f ? double(m.sigmaS[c]) / sigmaT_[c] : 0.0;
-        nu_[c] = dwivediNu(albedo);
-        survival_ = std::max(survival_, static_cast<float>(std::min(albedo, 1.0)));
+        albedo_[c] = sigmaT_[c] > 0.0f ? std::min(m.sigmaS[c] / sigmaT_[c], 1.0f) : 0.0f;
+        nu_[c] = dwivediNu(albedo_[c]);
+        lnRatio_[c] = std::log1p(2.0 / (nu_[c] - 1.0));
     }
     guidedFraction_ = kGuidedFraction * (1.0f - std::abs(m.g));
+}
+
+RGB GuidedWalk::channelProbabilities() const {
+    const RGB weight = albedo_ * throughput_;
+    const float total = weight[0] + weight[1] + weight[2];
+    return total > 0.0f && std::isfinite(total) ? weight / total : RGB(1.0f / 3.0f);
+}
+
+int GuidedWalk::sampleChannel(float u) const {
+    const RGB p = channelProbabilities();
+    return u < p[0] ? 0 : u < p[0] + p[1] || !(p[2] > 0.0f) ? 1 : 2;
+}
+
+WalkStep GuidedWalk::firstStep(const Vec3f& origin, const Vec3f& wi, int channel) const {
+    return WalkStep{origin, Vec3f(0.0f), wi, true, WalkStrategy::Classic, channel};
 }
 
 void GuidedWalk::sawFarSide(const Vec3f& direction, float distance) {
@@ -66,15 +83,15 @@ double GuidedWalk::backwardFraction(const Vec3f& p, int channel) const {
     return 1.0 / (1.0 + std::exp((farDepth_ - 2.0 * x) / diffusionLength));
 }
 
-WalkStep GuidedWalk::sampleStep(const Vec3f& p, const Vec3f& wo, int hero, float uStrategy, Vec2f uDirection) const {
-    WalkStep step{p, wo, Vec3f(0.0f), false, WalkStrategy::Classic};
+WalkStep GuidedWalk::sampleStep(const Vec3f& p, const Vec3f& wo, int channel, float uStrategy, Vec2f uDirection) const {
+    WalkStep step{p, wo, Vec3f(0.0f), false, WalkStrategy::Classic, channel};
     if (uStrategy >= guidedFraction_) {
         step.wi = HenyeyGreenstein(medium_.g).sample(wo, uDirection).wi;
         return step;
     }
-    const bool away = uStrategy < guidedFraction_ * backwardFraction(p, hero);
+    const bool away = uStrategy < guidedFraction_ * backwardFraction(p, channel);
     step.strategy = away ? WalkStrategy::AwayFromEntry : WalkStrategy::TowardsEntry;
-    const double mu = sampleDwivediCosine(nu_[hero], uDirection.x);
+    const double mu = sampleDwivediCosine(nu_[channel], uDirection.x);
     const float sinTheta = static_cast<float>(std::sqrt(std::max(0.0, 1.0 - mu * mu)));
     const float phi = 2.0f * kPi * uDirection.y;
     step.wi = Frame::fromNormal(away ? -axis_ : axis_)
@@ -87,52 +104,58 @@ RGB GuidedWalk::stepPdf(const WalkStep& step, float t, bool collided) const {
     const double mu = dot(step.wi, axis_);
     const double phase = step.first ? 0.0 : HenyeyGreenstein(medium_.g).pdf(step.wo, step.wi);
     for (int c = 0; c < 3; ++c) {
-        const double sigma = sigmaT_[c], nu = nu_[c];
+        const double sigma = sigmaT_[c], nu = nu_[c], lnRatio = lnRatio_[c];
         const double classic = lengthPdf(sigma, t, collided);
         if (step.first) {
             pdf[c] = static_cast<float>(classic);
             continue;
         }
         const double b = backwardFraction(step.origin, c);
-        const double towards = guidedDirectionPdf(nu, mu) * lengthPdf(sigma * stretch(nu, mu), t, collided);
-        const double away = guidedDirectionPdf(nu, -mu) * lengthPdf(sigma * stretch(nu, -mu), t, collided);
+        const double towards = guidedDirectionPdf(nu, lnRatio, mu) * lengthPdf(sigma * stretch(nu, mu), t, collided);
+        const double away = guidedDirectionPdf(nu, lnRatio, -mu) * lengthPdf(sigma * stretch(nu, -mu), t, collided);
         pdf[c] = static_cast<float>((1.0 - guidedFraction_) * phase * classic +
                                     guidedFraction_ * ((1.0 - b) * towards + b * away));
     }
     return pdf;
 }
 
-FreeFlight GuidedWalk::fly(const WalkStep& step, float tBoundary, int hero, SampleStream& stream) const {
-    FreeFlight flight;
-    double rate = sigmaT_[hero];
+float GuidedWalk::sampleLength(const WalkStep& step, float u) const {
+    double rate = sigmaT_[step.channel];
     if (step.strategy != WalkStrategy::Classic) {
         const double mu = dot(step.wi, axis_);
-        rate *= stretch(nu_[hero], step.strategy == WalkStrategy::TowardsEntry ? mu : -mu);
+        rate *= stretch(nu_[step.channel], step.strategy == WalkStrategy::TowardsEntry ? mu : -mu);
     }
-    const double sampled = -std::log1p(-double(stream.next())) / rate;
-    const bool collided = sampled < tBoundary;
-    flight.t = collided ? static_cast<float>(sampled) : tBoundary;
+    return static_cast<float>(-std::log1p(-double(u)) / rate);
+}
+
+FreeFlight GuidedWalk::fly(const WalkStep& step, float length, float tBoundary, SampleStream& stream) {
+    FreeFlight flight;
+    const bool collided = length < tBoundary;
+    flight.t = collided ? length : tBoundary;
     const RGB pdf = stepPdf(step, flight.t, collided);
-    const float phase = step.first ? 1.0f : HenyeyGreenstein(medium_.g).p(step.wo, step.wi);
-    RGB value(0.0f);
-    for (int c = 0; c < 3; ++c)
-        value[c] = phase * (collided ? medium_.sigmaS[c] : 1.0f) * std::exp(-sigmaT_[c] * flight.t);
-    if (!(pdf[hero] > 0.0f) || !std::isfinite(pdf[hero])) {  // a length beyond float range: the walk is lost
+    const RGB probability = channelProbabilities();
+    const float mixture = probability[0] * pdf[0] + probability[1] * pdf[1] + probability[2] * pdf[2];
+    if (!(mixture > 0.0f) || !std::isfinite(mixture)) {  // a length beyond float range: the walk is lost
         flight.event = FlightEvent::Absorbed;
         flight.throughput = RGB(0.0f);
         return flight;
     }
-    flight.throughput = value / pdf[hero];
-    flight.pdfRatio = pdf / pdf[hero];
+    const float phase = step.first ? 1.0f : HenyeyGreenstein(medium_.g).p(step.wo, step.wi);
+    for (int c = 0; c < 3; ++c)
+        flight.throughput[c] = phase * (collided ? medium_.sigmaS[c] : 1.0f) * std::exp(-sigmaT_[c] * flight.t);
+    flight.throughput /= mixture;
+    throughput_ *= flight.throughput;
     if (!collided) return flight;  // Escaped: through the boundary
     flight.p = step.origin + step.wi * flight.t;
     flight.properties = medium_;
-    if (stream.next() >= survival_) {
+    const float survival = std::min(maxComponent(throughput_), 1.0f);
+    if (stream.next() >= survival) {
         flight.event = FlightEvent::Absorbed;
         return flight;
     }
     flight.event = FlightEvent::Scattered;
-    flight.throughput /= survival_;
+    flight.throughput /= survival;
+    throughput_ /= survival;
     return flight;
 }
 

@@ -23,21 +23,32 @@
 // near the entry, half the time half-way, mostly near the far side (the same weighting Cycles'
 // guided walk uses, from recorded path guiding). With no far side seen, b is 0.
 //
-// THE STEP AND ITS MIS. After a scattering a step is a direction and a length together; it is
-// drawn by one of three strategies: classic (Henyey-Greenstein direction, exponential at sigmaT),
-// guided towards the entry's surface, or guided away from it, chosen with probabilities 1 - f,
-// f (1 - b) and f b, f = kGuidedFraction (1 - |g|) (the guided directions ignore anisotropy, so
-// a forward-scattering medium relies on the classic ones). The step's density in channel c is the
-// mixture of the three, each with channel c's sigmaT and nu (the one-sample balance heuristic over
-// the strategies); stepPdf gives it per channel, and the path tracer's spectral MIS (media/
-// tracking.h, with the hero channel drawn once per path) combines the channels as it does for
-// classic flights. The step's value is p(wo, wi) sigmaS_c exp(-sigmaT_c t) at a collision, and
-// p(wo, wi) exp(-sigmaT_c t) when the step reaches the boundary at t. The first step, from the
-// entry along the direction the boundary refracted into, has no direction to choose: classic
-// distance sampling. A collision scatters, always: the walk plays Russian roulette instead,
-// surviving with probability max_c alpha_c and weighted by its inverse, which ends walks in a dark
-// medium as the classic walk's absorptions do. Unbiased for any medium of albedo <= 1: every
-// strategy has a positive density wherever the classic one has.
+// THE STEP AND ITS MIS. Each step is drawn with the coefficients of one channel c, chosen anew at
+// every step with probability P_c proportional to alpha_c T_c, T the walk's weight so far
+// (uniform when that is zero everywhere): the channels that still carry light guide the walk,
+// as Cycles' random walk chooses them. After a scattering a step is a direction and a length
+// together, drawn by one of three strategies: classic (Henyey-Greenstein direction, exponential
+// at sigmaT_c), guided towards the entry's surface, or guided away from it, chosen with
+// probabilities 1 - f, f (1 - b) and f b, f = kGuidedFraction (1 - |g|) (the guided directions
+// ignore anisotropy, so a forward-scattering medium relies on the classic ones). The step's
+// density under channel c is the mixture of the three with c's sigmaT and nu (stepPdf), and the
+// step's density as drawn is sum_c P_c stepPdf_c: the one-sample balance heuristic over the
+// nine (channel, strategy) pairs, which fly divides by. The step's value is
+// p(wo, wi) sigmaS_c exp(-sigmaT_c t) at a collision, and p(wo, wi) exp(-sigmaT_c t) when the
+// step reaches the boundary at t. The first step, from the entry along the direction the
+// boundary refracted into, has no direction to choose: classic distance sampling at the chosen
+// channel's rate. Nothing a step draws depends on the path's hero channel, so to the path
+// tracer's spectral MIS (media/tracking.h) the walk is one strategy shared by every hero: its
+// pdfRatio is 1. A collision scatters, always: the walk plays Russian roulette instead,
+// surviving with probability min(1, max_c T_c) and weighted by its inverse (the weight after
+// the MIS, so a walk whose every channel has faded ends, and its survivors keep weights near 1).
+// Unbiased for any medium of albedo <= 1: every strategy has a positive density wherever the
+// classic one has, and every chosen channel's classic strategy covers every length.
+//
+// THE COST OF A STEP. The length is drawn before the boundary is known (sampleLength), so the
+// path tracer traces each step's ray only that far: no surface is shaded unless the walk leaves,
+// and Embree culls what lies beyond. The entry's step is traced on to the far side, for backward
+// guiding.
 #pragma once
 
 #include "core/random.h"
@@ -65,6 +76,7 @@ struct WalkStep {
     Vec3f origin, wo, wi;  // wo: towards where the walk came from (unused on the first step)
     bool first = false;    // from the entry, along the refracted direction: classic distances only
     WalkStrategy strategy = WalkStrategy::Classic;
+    int channel = 0;  // whose coefficients drew it
 };
 
 class GuidedWalk {
@@ -77,18 +89,28 @@ public:
     // for backward guiding (the first such step, the entry's, sets it; later ones change nothing).
     void sawFarSide(const Vec3f& direction, float distance);
 
-    // The step after a scattering at p (the walk arrived from wo), drawn with channel `hero`'s
+    // The probabilities P_c of drawing a step with channel c's coefficients (see THE STEP AND ITS
+    // MIS), and the channel drawn from u in [0, 1).
+    RGB channelProbabilities() const;
+    int sampleChannel(float u) const;
+
+    // The entry's step from `origin` along wi, the direction the boundary refracted into.
+    WalkStep firstStep(const Vec3f& origin, const Vec3f& wi, int channel) const;
+    // The step after a scattering at p (the walk arrived from wo), drawn with channel `channel`'s
     // mixture of strategies, from three numbers in [0, 1).
-    WalkStep sampleStep(const Vec3f& p, const Vec3f& wo, int hero, float uStrategy, Vec2f uDirection) const;
+    WalkStep sampleStep(const Vec3f& p, const Vec3f& wo, int channel, float uStrategy, Vec2f uDirection) const;
+
+    // The step's length, were there no boundary, from u in [0, 1).
+    float sampleLength(const WalkStep& step, float u) const;
 
     // Per channel, the density of `step` having length t, ending at a collision or (not
     // `collided`) at the boundary: the mixture of the strategies (see THE STEP AND ITS MIS).
     RGB stepPdf(const WalkStep& step, float t, bool collided) const;
 
-    // The step's flight up to the boundary at tBoundary, in FreeFlight's terms (its throughput
-    // includes the direction's phase value and density; pdfRatio is channel c's density over
-    // the hero's), with the Russian roulette at a collision.
-    FreeFlight fly(const WalkStep& step, float tBoundary, int hero, SampleStream& stream) const;
+    // The step's flight of sampled `length` up to the boundary at tBoundary, in FreeFlight's terms
+    // (its throughput includes the direction's phase value and the mixture density; pdfRatio 1),
+    // with the Russian roulette at a collision; the walk's weight takes the flight's.
+    FreeFlight fly(const WalkStep& step, float length, float tBoundary, SampleStream& stream);
 
 private:
     // The probability of guiding a step from p away from the entry (see BACKWARD GUIDING).
@@ -96,9 +118,10 @@ private:
 
     Vec3f entry_, axis_;
     MediumProperties medium_;
-    RGB sigmaT_;
-    double nu_[3];
-    float guidedFraction_, survival_;
+    RGB sigmaT_, albedo_;
+    double nu_[3], lnRatio_[3];  // per channel: nu and ln((nu + 1) / (nu - 1))
+    float guidedFraction_;
+    RGB throughput_{1.0f};    // T, the walk's weight since the entry
     float farDepth_ = -1.0f;  // depth of the far side below the entry plane; < 0: not seen
 };
 

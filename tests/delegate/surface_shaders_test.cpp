@@ -175,7 +175,7 @@ TEST(SurfaceShaders, SubsurfaceMakesARandomWalkInteriorOrDiffusionByItsType) {
     };
     auto walk = shader("");
     const render::MaterialDesc& m = theMaterial(walk);
-    EXPECT_EQ(m.subsurfaceMethod, render::SubsurfaceMethod::RandomWalk) << "the fallback";
+    EXPECT_EQ(m.subsurfaceMethod, render::SubsurfaceMethod::RandomWalkGuided) << "the fallback";
     ASSERT_TRUE(m.interior.has_value());
     EXPECT_NEAR(m.interior->sigmaA.y + m.interior->sigmaS.y, 1.0f / (0.5f * 0.2f), 1e-3f) << "1 / (radius x scale)";
     EXPECT_TRUE(walk.warnings.empty());
@@ -185,8 +185,13 @@ TEST(SurfaceShaders, SubsurfaceMakesARandomWalkInteriorOrDiffusionByItsType) {
     auto guided = shader(R"(uniform token inputs:subsurface_type = "randomwalk_guided")");
     EXPECT_EQ(theMaterial(guided).subsurfaceMethod, render::SubsurfaceMethod::RandomWalkGuided);
     EXPECT_TRUE(guided.warnings.empty());
+    for (const char* classic : {"randomwalk", "randomwalk_v2"}) {
+        auto walked = shader(std::string(R"(uniform token inputs:subsurface_type = ")") + classic + "\"");
+        EXPECT_EQ(theMaterial(walked).subsurfaceMethod, render::SubsurfaceMethod::RandomWalk) << classic;
+        EXPECT_TRUE(walked.warnings.empty()) << classic;
+    }
     auto unknown = shader(R"(uniform token inputs:subsurface_type = "dipole")");
-    EXPECT_EQ(theMaterial(unknown).subsurfaceMethod, render::SubsurfaceMethod::RandomWalk);
+    EXPECT_EQ(theMaterial(unknown).subsurfaceMethod, render::SubsurfaceMethod::RandomWalkGuided);
     ASSERT_EQ(unknown.warnings.size(), 1u);
 }
 

@@ -1,7 +1,8 @@
 // Guided random-walk steps (media/guided_walk.h): the Dwivedi eigenvalue against its defining
 // equation, the guided cosines' mean, the directions each step draws against the density stepPdf says (chi-square over the
-// sphere), stepPdf's normalisation over directions and lengths, and the step's expected weight
-// against its closed form, which checks that fly() draws lengths with the density it divides by.
+// sphere), stepPdf's normalisation over directions and lengths, the channels drawn against their
+// probabilities (chi-square), and the step's expected weight against its closed form, which
+// checks that sampleLength draws lengths with the density fly divides by.
 #include "media/guided_walk.h"
 
 #include <gtest/gtest.h>
@@ -109,35 +110,70 @@ TEST(GuidedWalk, StepPdfIntegratesToOneOverDirectionsAndLengths) {
     }
 }
 
+// The thin walk after its entry's step reached a boundary 1 below it without a collision: its
+// weight exp(-sigmaT) over the step's density, chromatic, so its channels are drawn unevenly.
+GuidedWalk thinWalkWithChromaticWeight(const MediumProperties& m) {
+    GuidedWalk walk = thinWalk(m);
+    SampleStream unused(0, 0, 0);  // fly draws nothing for a step that reaches the boundary
+    walk.fly(walk.firstStep(kEntry, -kNormal, 0), 10.0f, 1.0f, unused);
+    return walk;
+}
+
+TEST(GuidedWalk, ChannelsAreDrawnWithTheirProbabilities) {
+    // P_c is proportional to alpha_c T_c; sampleChannel draws c with it (Pearson over 3 bins,
+    // 2 degrees of freedom: Q(1, x / 2) is the p-value). A fresh walk (T = 1) follows the albedos.
+    const MediumProperties m = chromaticMedium();
+    const GuidedWalk fresh = thinWalk(m), chromatic = thinWalkWithChromaticWeight(m);
+    const RGB albedo(0.3f, 0.8f, 0.99f);
+    for (int c = 0; c < 3; ++c) EXPECT_NEAR(fresh.channelProbabilities()[c], albedo[c] / 2.09f, 1e-6) << c;
+    for (const GuidedWalk* walk : {&fresh, &chromatic}) {
+        constexpr int kN = 100000;
+        const RGB p = walk->channelProbabilities();
+        std::array<int, 3> counts{};
+        SampleStream rng(23, 0, 0);
+        for (int n = 0; n < kN; ++n) ++counts[walk->sampleChannel(rng.next())];
+        double statistic = 0.0;
+        for (int c = 0; c < 3; ++c) statistic += std::pow(counts[c] - kN * p[c], 2) / (kN * p[c]);
+        const double pValue = test::upperIncompleteGammaQ(1.0, statistic / 2.0);
+        std::printf("[ measured ] P (%.4f, %.4f, %.4f), counts %d %d %d, p-value %.3f\n", p[0], p[1], p[2], counts[0],
+                    counts[1], counts[2], pValue);
+        EXPECT_GT(pValue, test::kChi2Alpha);
+    }
+}
+
 TEST(GuidedWalk, StepWeightsAverageTheirClosedForm) {
     // A step from p towards a boundary tB away in every direction, weighted as the path tracer
-    // weighs it (throughput / channelAverage(pdfRatio): the balance heuristic over channels), has
-    // the expected value of an isotropic step's value: per channel,
+    // weighs it (fly's throughput: the balance heuristic over channels and strategies, pdfRatio
+    // 1), has the expected value of an isotropic step's value: per channel,
     //   alpha (1 - exp(-sigmaT tB)) + exp(-sigmaT tB)
-    // (collisions, then reaching the boundary), Russian roulette included.
+    // (collisions, then reaching the boundary), Russian roulette included; from a fresh walk and
+    // from one whose channels are drawn unevenly. Tolerance: z standard errors of the mean, z
+    // for 2 x 3 checks at a family-wide 1%.
     constexpr float kBoundary = 0.7f;
     constexpr int kN = 400000;
     const MediumProperties m = chromaticMedium();
-    const GuidedWalk walk = thinWalk(m);
     const Vec3f p(0.1f, 0.0f, -0.4f);
-    std::array<test::MeanEstimate, 3> weights;
-    for (int n = 0; n < kN; ++n) {
-        SampleStream rng(11, 0, std::uint64_t(n));
-        const int hero = sampleHeroChannel(rng.next());
-        const float u = rng.next();
-        const WalkStep step = walk.sampleStep(p, kWo, hero, u, rng.next2D());
-        const FreeFlight flight = walk.fly(step, kBoundary, hero, rng);
-        const RGB weight =
-            flight.event == FlightEvent::Absorbed ? RGB(0.0f) : flight.throughput / channelAverage(flight.pdfRatio);
-        for (int c = 0; c < 3; ++c) weights[c].add(weight[c]);
-    }
-    const double z = test::normalQuantile(0.5 * test::sidakAlpha(3));
-    for (int c = 0; c < 3; ++c) {
-        const double sigmaT = m.sigmaA[c] + m.sigmaS[c], albedo = m.sigmaS[c] / sigmaT;
-        const double reach = std::exp(-sigmaT * kBoundary), expected = albedo * (1.0 - reach) + reach;
-        std::printf("[ measured ] channel %d: %.5f +- %.5f (exact %.5f)\n", c, weights[c].mean(),
-                    weights[c].standardError(), expected);
-        EXPECT_NEAR(weights[c].mean(), expected, z * weights[c].standardError()) << "channel " << c;
+    const double z = test::normalQuantile(0.5 * test::sidakAlpha(6));
+    for (const GuidedWalk& start : {thinWalk(m), thinWalkWithChromaticWeight(m)}) {
+        std::array<test::MeanEstimate, 3> weights;
+        for (int n = 0; n < kN; ++n) {
+            SampleStream rng(11, 0, std::uint64_t(n));
+            GuidedWalk walk = start;  // fly changes the walk's weight
+            const int channel = walk.sampleChannel(rng.next());
+            const float u = rng.next();
+            const WalkStep step = walk.sampleStep(p, kWo, channel, u, rng.next2D());
+            const FreeFlight flight = walk.fly(step, walk.sampleLength(step, rng.next()), kBoundary, rng);
+            ASSERT_EQ(flight.pdfRatio, RGB(1.0f));
+            const RGB weight = flight.event == FlightEvent::Absorbed ? RGB(0.0f) : flight.throughput;
+            for (int c = 0; c < 3; ++c) weights[c].add(weight[c]);
+        }
+        for (int c = 0; c < 3; ++c) {
+            const double sigmaT = m.sigmaA[c] + m.sigmaS[c], albedo = m.sigmaS[c] / sigmaT;
+            const double reach = std::exp(-sigmaT * kBoundary), expected = albedo * (1.0 - reach) + reach;
+            std::printf("[ measured ] channel %d: %.5f +- %.5f (exact %.5f)\n", c, weights[c].mean(),
+                        weights[c].standardError(), expected);
+            EXPECT_NEAR(weights[c].mean(), expected, z * weights[c].standardError()) << "channel " << c;
+        }
     }
 }
 
