@@ -93,9 +93,9 @@ bench: deps
 	$(BUILD_DIR)/bench/majorant_grid_bench
 	$(BUILD_DIR)/bench/volume_tracking_bench
 
-# Speed against accuracy (bench/run.py): every benchmark scene and method, and Cycles where blender is installed, error
-# against time; the stability suite. Writes bench/results/DATE-figures.*, docs/RESULTS.md, docs/STABILITY.md.
-# make figures FIGURES_ARGS=--quick (or --suite stability, --scenes cornell_box,smoke).
+# Speed against accuracy (bench/run.py): every benchmark scene and method, error against time; Fluence against Cycles
+# where blender is installed; the stability suite. Writes bench/results/DATE-*, docs/RESULTS.md, docs/STABILITY.md.
+# make figures FIGURES_ARGS=--quick (or --suite cycles, --suite stability, --scenes cornell_box,smoke).
 .PHONY: figures
 figures:
 	@bash scripts/install_dependencies.sh bench

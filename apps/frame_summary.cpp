@@ -59,8 +59,8 @@ void printFrameSummary(const RenderOptions& opt, const std::pair<int, int>& res,
     if (st.instances > 0)
         std::printf("  instancing   %s placing %s (stored once)\n", counted(st.instances, "instance").c_str(),
                     counted(st.instancedTriangles, "triangle").c_str());
-    std::printf("  time         parse %.3f s, build %.3f s, render %.3f s, write %.3f s, total %.3f s\n", times.parse,
-                times.build, stats.seconds, times.write, times.total);
+    std::printf("  time         parse %.3f s, build %.3f s, render %.3f s (%.3f s CPU), write %.3f s, total %.3f s\n",
+                times.parse, times.build, stats.seconds, stats.cpuSeconds, times.write, times.total);
     printThroughput(stats);
     if (const std::string& note = stats.methodSummary; !note.empty()) std::printf("  method       %s\n", note.c_str());
     for (const std::string& path : outputs.files) std::printf("  output       %s\n", path.c_str());
@@ -85,6 +85,7 @@ FrameSummary frameSummary(double time, const std::pair<int, int>& res, const Bui
     summary.nonFiniteSamples = stats.counters.nonFiniteSamples;
     summary.buildSeconds = times.build;
     summary.renderSeconds = stats.seconds;
+    summary.renderCpuSeconds = stats.cpuSeconds;
     summary.writeSeconds = times.write;
     summary.totalSeconds = times.total;
     return summary;

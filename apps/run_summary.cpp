@@ -27,7 +27,8 @@ std::string frameJson(const FrameSummary& f) {
            ", \"bounce\": " + std::to_string(f.bounceRays) + ", \"shadow\": " + std::to_string(f.shadowRays) +
            "}, \"nonFiniteSamples\": " + std::to_string(f.nonFiniteSamples) +
            ", \"seconds\": {\"build\": " + jsonNumber(f.buildSeconds) + ", \"render\": " + jsonNumber(f.renderSeconds) +
-           ", \"write\": " + jsonNumber(f.writeSeconds) + ", \"total\": " + jsonNumber(f.totalSeconds) + "}}";
+           ", \"renderCpu\": " + jsonNumber(f.renderCpuSeconds) + ", \"write\": " + jsonNumber(f.writeSeconds) +
+           ", \"total\": " + jsonNumber(f.totalSeconds) + "}}";
 }
 
 }  // namespace

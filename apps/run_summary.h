@@ -24,6 +24,7 @@ struct FrameSummary {
     int width = 0, height = 0, samplesPerPixel = 0;
     std::uint64_t samples = 0, cameraRays = 0, bounceRays = 0, shadowRays = 0, nonFiniteSamples = 0;
     double buildSeconds = 0.0, renderSeconds = 0.0, writeSeconds = 0.0, totalSeconds = 0.0;
+    double renderCpuSeconds = 0.0;  // the render's CPU time, every thread (integrators::RenderStats::cpuSeconds)
 };
 
 struct RunSummary {

@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <ctime>
 #include <stdexcept>
 #include <vector>
 
@@ -84,6 +85,7 @@ RenderStats render(const render::RenderScene& scene, const render::Camera& camer
                    const RenderSettings& settings, Film& film, RenderProgress* progress) {
     using Clock = std::chrono::steady_clock;
     const auto start = Clock::now();
+    const std::clock_t cpuStart = std::clock();  // the process's CPU time, every thread
     auto elapsed = [&] { return std::chrono::duration<double>(Clock::now() - start).count(); };
     const std::uint64_t pixels = std::uint64_t(film.width()) * std::uint64_t(film.height());
     if (progress) progress->pixelSamplesPlanned = pixels * std::uint64_t(std::max(settings.samplesPerPixel, 0));
@@ -137,6 +139,7 @@ RenderStats render(const render::RenderScene& scene, const render::Camera& camer
     if (progress) progress->pixelSamplesPlanned = stats.samples;
 
     stats.seconds = elapsed();
+    stats.cpuSeconds = double(std::clock() - cpuStart) / CLOCKS_PER_SEC;
     stats.samplesPerPixel = 0;
     for (int y = 0; y < film.height(); ++y)
         for (int x = 0; x < film.width(); ++x)

@@ -87,6 +87,10 @@ struct RenderProgress {
 
 struct RenderStats {
     double seconds = 0.0;
+    // The process's CPU time (user + system, every thread) over the same span as `seconds`: the
+    // render's own cost when it is the process's only work, as in `fluence render`; unlike the
+    // wall time, it does not grow when other processes share the cores.
+    double cpuSeconds = 0.0;
     int samplesPerPixel = 0;    // the most taken in any pixel (in every pixel without adaptive sampling)
     std::uint64_t samples = 0;  // taken over the whole image
     int passes = 0;

@@ -62,6 +62,19 @@ class Reference:
                 "bias_significant": bool(abs(bias) > BIAS_SIGMAS * bias_se),
                 "nonfinite_pixels": nonfinite, **self.noise()}
 
+    def agreement(self, other):
+        """How far this reference lies from OTHER (another renderer's reference of the same scene),
+        both references' own noise taken out: relMSE is the mean of [(R - O)^2 - Var(R) - Var(O)] /
+        (O^2 + eps), the squared difference the two scenes (not the noise) leave; `bias` per channel
+        is the relative difference of the image means, sum(R - O) / sum(O), and `bias_se` its
+        standard error from the two references' per-pixel variances."""
+        d = self.mean - other.mean
+        relmse = np.mean((d ** 2 - self.variance - other.variance) / (other.mean ** 2 + REL_EPS))
+        totals = other.mean.sum(axis=(0, 1))
+        bias = d.sum(axis=(0, 1)) / totals
+        bias_se = np.sqrt((self.variance + other.variance).sum(axis=(0, 1))) / totals
+        return {"relmse": float(relmse), "bias": [float(b) for b in bias], "bias_se": [float(s) for s in bias_se]}
+
 
 def fitted_slope(xs, ys):
     """Least-squares slope of log y against log x over the positive points (nan with fewer than 2)."""

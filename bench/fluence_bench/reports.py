@@ -19,8 +19,8 @@ def write_csv(rows, path):
             w.writerow({k: ("%.6g" % v if isinstance(v, float) else v) for k, v in row.items()})
 
 
-TEXT_FIELDS = {"suite", "scene", "method", "renderer", "res", "status", "misses"}
-INT_FIELDS = {"spp", "seed", "exit_code", "nonfinite_samples", "nonfinite_pixels", "ref_spp"}
+TEXT_FIELDS = {"suite", "scene", "method", "renderer", "res", "status", "misses", "channel_bias"}
+INT_FIELDS = {"spp", "seed", "repeat", "exit_code", "nonfinite_samples", "nonfinite_pixels", "ref_spp"}
 
 
 def read_csv(path):
@@ -80,8 +80,8 @@ def draw_figures(rows, figure_dir, stem):
 
 
 def figures_markdown(rows, slopes, chart_link):
-    """Per scene: its chart, a table per method at the top rung, and Fluence against Cycles."""
-    out, peers = [], []
+    """Per scene: its chart and a table per method at the top rung."""
+    out = []
     for scene in scenes.FIGURE_SCENES:
         scene_rows = [r for r in rows if r["scene"] == scene.name]
         if not scene_rows:
@@ -117,30 +117,6 @@ def figures_markdown(rows, slopes, chart_link):
         top_ref = ladders[scene.methods[0]][-1]
         out += ["", "Reference's own noise (subtracted above): relMSE %s, MARE %s." % (
             _fmt(top_ref.get("ref_relmse")), _fmt(top_ref.get("ref_mare"))), ""]
-        if "cycles" in ladders and "path" in ladders:
-            peers.append((scene.name, ladders["path"], ladders["cycles"]))
-    if peers:
-        out += ["### Fluence (`path`) against Cycles: time to equal error", "",
-                "Each renderer's time to the lower error both reach, its images measured against its own reference "
-                "(a small difference between the two scenes does not count as error) and, where the run kept it, "
-                "Fluence's against Cycles' reference too (the same yardstick for both). A ratio under 1 means "
-                "Fluence gets there first.", "",
-                "| scene | relMSE | Fluence s | Cycles s | Fluence / Cycles | Fluence s, Cycles' reference "
-                "| Fluence / Cycles, Cycles' reference |", "|---|---|---|---|---|---|---|"]
-        for name, ours, theirs in peers:
-            ours = [r for r in ours if r["status"] == "ok"]
-            theirs = [r for r in theirs if r["status"] == "ok"]
-            target = max(min(r["relmse"] for r in ours), min(r["relmse"] for r in theirs))
-            tf = metrics.time_to_error([r["render_s"] for r in ours], [r["relmse"] for r in ours], target)
-            tc = metrics.time_to_error([r["render_s"] for r in theirs], [r["relmse"] for r in theirs], target)
-            crossed = [r for r in ours if "relmse_vs_peer" in r]
-            tx = float("nan")
-            if crossed:
-                tx = metrics.time_to_error([r["render_s"] for r in crossed], [r["relmse_vs_peer"] for r in crossed],
-                                           target)
-            out.append("| %s | %s | %s | %s | %s | %s | %s |" % (name, _fmt(target), _fmt(tf), _fmt(tc),
-                                                                _fmt(tf / tc, "%.2f"), _fmt(tx), _fmt(tx / tc, "%.2f")))
-        out.append("")
     return "\n".join(out)
 
 

@@ -1,12 +1,12 @@
-"""The two suites: `figures` (methods and Cycles against time, per scene) and `stability`.
+"""Two of the suites: `figures` (Fluence's methods against time, per scene) and `stability`; the
+third, `cycles` (Fluence against Cycles), is peer_suite.py.
 
 Both render each scene's reference as two cached halves (bench/cache/, seeds 1 and 2; metrics.py
 says why), then climb a ladder, every method taking its turn at each rung so that the machine's
 load falls on all alike, and measure each image against the reference. The figures ladder is
 one of time budgets (fluence --time-limit; so every method costs the same and slow methods take
 fewer samples), the stability ladder one of sample counts (its slope is the variance trend per
-sample). Cycles has no time limit: its first rung takes CYCLES_FIRST_SPP samples and each later
-one the samples its last measured rate fits into the budget. A method that exits with code 3
+sample). A method that exits with code 3
 (the scene refused) is recorded as refused and left out of the later rungs, and so is one whose
 render outlasted the largest budget (a start-up cost such as radiosity's solve: its later rungs
 would only repeat it). Each render gives one
@@ -19,18 +19,20 @@ import sys
 
 from . import metrics, rendering, scenes
 
-ROW_FIELDS = ("suite", "scene", "method", "renderer", "res", "budget_s", "spp", "seed", "status", "exit_code", "wall_s", "render_s",
+ROW_FIELDS = ("suite", "scene", "method", "renderer", "res", "budget_s", "spp", "seed", "repeat", "status", "exit_code",
+              "wall_s", "render_s", "cpu_s", "process_cpu_s", "render_call_cpu_s",
               "msamples_per_s", "mrays_per_s", "peak_mib", "nonfinite_samples", "nonfinite_pixels", "relmse",
               "relmse_uncorrected", "mare", "ref_spp", "ref_relmse", "ref_mare", "bias", "bias_se", "bias_significant", "misses",
-              "relmse_vs_peer")
+              "channel_bias")
 
 
 class Context:
-    """What every render of a run shares: the binary, the cache folder, the two ladders, quick mode."""
+    """What every render of a run shares: the binary, the cache folder, the two ladders, quick mode,
+    whether Cycles renders and the Cycles peer's folder."""
 
-    def __init__(self, binary, cache, budgets, spp_rungs, quick, cycles):
+    def __init__(self, binary, cache, budgets, spp_rungs, quick, cycles, peer_source=rendering.PEER_SOURCE):
         self.binary, self.cache, self.quick, self.cycles = binary, cache, quick, cycles
-        self.budgets, self.spp_rungs = budgets, spp_rungs
+        self.budgets, self.spp_rungs, self.peer_source = budgets, spp_rungs, peer_source
 
     def res(self, res):
         return tuple(max(8, r // scenes.QUICK_RES_SCALE) for r in res) if self.quick else tuple(res)
@@ -55,11 +57,11 @@ def missed_classes(binary, scene_path):
     return misses
 
 
-def _log(text):
+def log(text):
     print(text, flush=True)
 
 
-def _reference(ctx, scene_name, spp, key_parts, render_half):
+def two_half_reference(ctx, scene_name, spp, key_parts, render_half):
     """Renders (or finds in the cache) the two halves of SPP in all; RENDER_HALF(seed, out) renders one."""
     key = hashlib.sha1(repr(key_parts).encode()).hexdigest()[:12]
     folder = ctx.cache / scene_name / ("ref-" + key)
@@ -70,39 +72,42 @@ def _reference(ctx, scene_name, spp, key_parts, render_half):
             result = render_half(seed, half)
             if result["exit_code"] != 0:
                 raise RuntimeError("reference %s failed (exit %d): see %s.log" % (half, result["exit_code"], half))
-            _log("  reference %s seed %d: %.1f s" % (scene_name, seed, result["render_s"]))
+            log("  reference %s seed %d: %.1f s" % (scene_name, seed, result["render_s"]))
     return metrics.Reference(*halves, spp)
 
 
-def _fluence_reference(ctx, name, path, method_name, spp, res, extra):
+def fluence_reference(ctx, name, path, method_name, spp, res, extra):
     scene_text = (scenes.ROOT / path).read_bytes()
     m = scenes.method(method_name)
     key = (hashlib.sha1(scene_text).hexdigest(), m, spp, res, extra)
-    return _reference(ctx, name, spp, key, lambda seed, out: rendering.fluence(
+    return two_half_reference(ctx, name, spp, key, lambda seed, out: rendering.fluence(
         ctx.binary, path, m, spp // 2, seed, res, out, extra))
 
 
 SPP_CAP = 1 << 16  # the spp of a time-limited render: never reached
-CYCLES_FIRST_SPP = 4
 
 
-def _row(suite, scene, method_name, result, reference, misses):
-    row = {"suite": suite, "scene": scene, "method": method_name, "seed": 0, "misses": misses, **result}
+def row(suite, scene, method_name, result, reference, misses):
+    """One render's CSV row: the renderer's RESULT (rendering.py) and its error against REFERENCE."""
+    r = {"suite": suite, "scene": scene, "method": method_name, "seed": 0, "misses": misses, **result}
     if result["exit_code"] == rendering.SCENE_REFUSED:
-        row["status"] = "refused"
+        r["status"] = "refused"
     elif result["exit_code"] != 0:
-        row["status"] = "failed"
+        r["status"] = "failed"
     else:
-        row["status"] = "ok"
-        row.update(reference.error(result["image"]))
-    return row
+        r["status"] = "ok"
+        r.update(reference.error(result["image"]))
+    return r
 
 
-def _ladder(ctx, suite, scene_name, rungs, runners, rows, peer_reference=None):
-    """RUNNERS maps a method name to (render(rung, out) -> result, reference, misses). With
-    PEER_REFERENCE (Cycles' own reference of the scene), every Fluence image's relMSE against it is
-    kept too (`relmse_vs_peer`), so that the two renderers can be timed to the same error against
-    the same reference."""
+def log_row(row):
+    log("  %-16s %-15s %6d spp  %-7s render %7.2f s  relMSE %s" % (
+        row["scene"], row["method"], row["spp"], row["status"], row["render_s"],
+        "%.4g" % row["relmse"] if "relmse" in row else "-"))
+
+
+def _ladder(ctx, suite, scene_name, rungs, runners, rows):
+    """RUNNERS maps a method name to (render(rung, out) -> result, reference, misses)."""
     work = ctx.cache / scene_name / "runs"
     work.mkdir(parents=True, exist_ok=True)
     stopped = set()
@@ -112,14 +117,11 @@ def _ladder(ctx, suite, scene_name, rungs, runners, rows, peer_reference=None):
                 continue
             out = work / ("%s_%s_rung%d.exr" % (suite, name.replace("+", "_"), i))
             result = dict(render(rung, out), image=out)
-            row = _row(suite, scene_name, name, result, reference, misses)
-            if peer_reference is not None and name != "cycles" and row["status"] == "ok":
-                row["relmse_vs_peer"] = peer_reference.error(out)["relmse"]
-            del row["image"]
-            rows.append(row)
-            _log("  %-16s %-15s %6d spp  %-7s render %7.2f s  relMSE %s" % (
-                scene_name, name, row["spp"], row["status"], row["render_s"], "%.4g" % row["relmse"] if "relmse" in row else "-"))
-            if row["status"] != "ok" or ("budget_s" in row and row["render_s"] > max(rungs)):
+            r = row(suite, scene_name, name, result, reference, misses)
+            del r["image"]
+            rows.append(r)
+            log_row(r)
+            if r["status"] != "ok" or ("budget_s" in r and r["render_s"] > max(rungs)):
                 stopped.add(name)
 
 
@@ -130,37 +132,18 @@ def _time_limited(ctx, scene, m, res):
     return render
 
 
-def _cycles_in_budget(peer, peer_scene, res, peer_args):
-    seconds_per_spp = []
-
-    def render(budget, out):
-        spp = max(1, round(budget / seconds_per_spp[-1])) if seconds_per_spp else CYCLES_FIRST_SPP
-        result = rendering.cycles(peer, peer_scene, spp, 0, res, out, peer_args)
-        if result["render_s"] > 0:
-            seconds_per_spp.append(result["render_s"] / spp)
-        return dict(result, budget_s=budget)
-    return render
-
-
 def figures(ctx, selected):
     rows = []
     for scene in scenes.FIGURE_SCENES:
         if selected and scene.name not in selected:
             continue
-        _log("figures: %s (%s)" % (scene.name, scene.path))
+        log("figures: %s (%s)" % (scene.name, scene.path))
         res, ref_spp = ctx.res(scene.res), ctx.reference_spp(scene.reference_spp)
-        reference = _fluence_reference(ctx, scene.name, scene.path, scene.reference, ref_spp, res, scene.extra)
+        reference = fluence_reference(ctx, scene.name, scene.path, scene.reference, ref_spp, res, scene.extra)
         misses = missed_classes(ctx.binary, scene.path)
         runners = {name: (_time_limited(ctx, scene, scenes.method(name), res), reference,
                           misses.get(scenes.method(name).integrator, "")) for name in scene.methods}
-        peer_ref = None
-        if scene.peer and ctx.cycles:
-            peer = rendering.peer_dir(ctx.cache)
-            peer_ref = _reference(ctx, scene.name, ref_spp, ("cycles", scene.peer, ref_spp, res, scene.peer_args),
-                                  lambda seed, out: rendering.cycles(peer, scene.peer, ref_spp // 2, seed, res, out,
-                                                                     scene.peer_args))
-            runners["cycles"] = (_cycles_in_budget(peer, scene.peer, res, scene.peer_args), peer_ref, "")
-        _ladder(ctx, "figures", scene.name, ctx.budgets, runners, rows, peer_ref)
+        _ladder(ctx, "figures", scene.name, ctx.budgets, runners, rows)
     return rows
 
 
@@ -172,14 +155,14 @@ def stability(ctx, selected, res=STABILITY_RES):
     rows = []
     found = scenes.stability_scenes()
     if not found:
-        _log("stability: no scenes in bench/stability/")
+        log("stability: no scenes in bench/stability/")
     for scene in found:
         if selected and scene.name not in selected:
             continue
-        _log("stability: %s (%s)" % (scene.name, scene.path))
+        log("stability: %s (%s)" % (scene.name, scene.path))
         r = ctx.res(res)
         try:
-            reference = _fluence_reference(ctx, scene.name, scene.path, scene.reference,
+            reference = fluence_reference(ctx, scene.name, scene.path, scene.reference,
                                            ctx.reference_spp(min(scene.reference_spp, STABILITY_REFERENCE_CAP)), r, ())
         except RuntimeError as e:
             print("stability: %s skipped: %s" % (scene.name, e), file=sys.stderr)

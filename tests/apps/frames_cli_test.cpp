@@ -101,6 +101,8 @@ TEST_F(FramesCli, SummaryRecordsEveryFrameAndTheExitCode) {
     EXPECT_NE(json.find("\"output\": \"" + tmp_.file("f.2.exr") + "\""), std::string::npos) << json;
     EXPECT_NE(json.find("\"samples\": 128"), std::string::npos) << json;  // 8 x 8 x 2 per frame
     EXPECT_NE(json.find("\"peakMemoryBytes\": "), std::string::npos) << json;
+    EXPECT_NE(json.find("\"renderCpu\": "), std::string::npos) << json;
+    EXPECT_NE(r.out.find(" s CPU), write "), std::string::npos) << r.out;  // beside the render's wall time
 
     r = run("render " + tmp_.file("missing.usda") + " --summary " + tmp_.file("failed.json"));
     EXPECT_EQ(r.exitCode, 4);

@@ -127,6 +127,14 @@ TEST(Renderer, ThousandsOfSamplesAllArrive) {
         for (int x = 0; x < 2; ++x) EXPECT_EQ(r.image.pixel(x, y)[r.image.channelIndex("sampleCount")], 5000.0f);
 }
 
+// The render's CPU time is measured over the render: more than nothing, and at most what its two
+// threads can spend in its wall time (the clock's tick of 1 microsecond aside).
+TEST(Renderer, MeasuresTheRendersCpuTime) {
+    Rendered r = renderScene(test::furnaceScene(0.5f), 32, 64, 2);
+    EXPECT_GT(r.stats.cpuSeconds, 0.0);
+    EXPECT_LE(r.stats.cpuSeconds, 2.0 * r.stats.seconds + 1e-6);
+}
+
 TEST(Renderer, DiscardsAndCountsNonFiniteSamples) {
     // An integrator that returns NaN for every third sample: the pixel keeps the finite samples'
     // sum (the NaN ones count as zero) and the render reports how many were discarded.

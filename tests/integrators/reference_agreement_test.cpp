@@ -5,7 +5,11 @@
 // their noise.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <string>
+#include <vector>
 
 #include "integrators/naive_path_tracer.h"
 #include "integrators/path_tracer.h"
@@ -13,6 +17,7 @@
 #include "tests/integrators/render_support.h"
 #include "tests/support/chi2.h"
 #include "tests/support/scenes.h"
+#include "tests/support/statistics.h"
 
 namespace fluence::integrators {
 namespace {
@@ -55,11 +60,13 @@ Image renderImage(const Integrator& integrator, const render::SceneDescription& 
     return test_support::renderWith(integrator, desc, size, spp, 0, seed).image;
 }
 
-// Two independent renders (seeds 1 and 2) of spp/2 samples each. Pixels differ in expected value,
-// so their spread is not noise; the difference of the two renders is: each pixel's noise
-// variance is estimated without bias by (a - b)^2 / 2.
-BlockEstimates blockMeans(const Integrator& integrator, const render::SceneDescription& desc, int size, int spp) {
-    Image a = renderImage(integrator, desc, size, spp / 2, 1), b = renderImage(integrator, desc, size, spp / 2, 2);
+// Two independent renders (seeds firstSeed and firstSeed + 1) of spp/2 samples each. Pixels differ
+// in expected value, so their spread is not noise; the difference of the two renders is: each
+// pixel's noise variance is estimated without bias by (a - b)^2 / 2.
+BlockEstimates blockMeans(const Integrator& integrator, const render::SceneDescription& desc, int size, int spp,
+                          std::uint64_t firstSeed) {
+    Image a = renderImage(integrator, desc, size, spp / 2, firstSeed),
+          b = renderImage(integrator, desc, size, spp / 2, firstSeed + 1);
     const int blocks = (size / kBlock) * (size / kBlock);
     BlockEstimates e{std::vector<double>(blocks * 3, 0.0), std::vector<double>(blocks * 3, 0.0)};
     const double n = kBlock * kBlock;
@@ -76,34 +83,60 @@ BlockEstimates blockMeans(const Integrator& integrator, const render::SceneDescr
     return e;
 }
 
+// `path` and `naive` on the same scene, block by block: the difference of each block mean and its
+// variance (0 for a block without noise in either render, one that sees only the dome).
+struct Agreement {
+    BlockEstimates path, naive;
+    std::vector<double> difference, variance;
+    double chi2 = 0.0;
+    int noisy = 0;  // the block means with noise: chi2's degrees of freedom
+    double pValue = 1.0;
+    std::string worst;  // the blocks with z^2 > 9
+};
+
 // Every 8x8 block and channel gives z = (path - naive) / sd; under agreement the sum of z^2 is
-// chi-square with as many degrees of freedom as there are noisy block means. A block without
-// noise in either render (one that sees only the dome) must agree to float rounding instead.
-void expectAgreement(const render::SceneDescription& scene, int pathSpp, int naiveSpp) {
+// chi-square with as many degrees of freedom as there are noisy block means. The variance of a
+// difference is the sum of the two variances only if the renders are independent: `path` renders
+// with seeds pathSeed and pathSeed + 1, `naive` with naiveSeed and naiveSeed + 1, which must be
+// two others (the same seeds give both the same camera jitter, and the statistic too little noise).
+Agreement measureAgreement(const render::SceneDescription& scene, int pathSpp, int naiveSpp, std::uint64_t pathSeed,
+                           std::uint64_t naiveSeed) {
     IntegratorSettings settings;
-    BlockEstimates path = blockMeans(PathTracer(settings), scene, 32, pathSpp);
-    BlockEstimates naive = blockMeans(NaivePathTracer(settings), scene, 32, naiveSpp);
-    double chi2 = 0.0, pathTotal = 0.0;
-    int noisy = 0;
-    std::string worst;
-    for (std::size_t i = 0; i < path.mean.size(); ++i) {
-        pathTotal += path.mean[i];
-        const double variance = path.variance[i] + naive.variance[i];
-        if (variance == 0.0) {
-            EXPECT_NEAR(path.mean[i], naive.mean[i], 1e-6 * naive.mean[i]) << "noiseless block " << i / 3;
-            continue;
-        }
-        double z2 = std::pow(path.mean[i] - naive.mean[i], 2) / variance;
-        chi2 += z2;
-        ++noisy;
+    Agreement a;
+    a.path = blockMeans(PathTracer(settings), scene, 32, pathSpp, pathSeed);
+    a.naive = blockMeans(NaivePathTracer(settings), scene, 32, naiveSpp, naiveSeed);
+    for (std::size_t i = 0; i < a.path.mean.size(); ++i) {
+        a.difference.push_back(a.path.mean[i] - a.naive.mean[i]);
+        a.variance.push_back(a.path.variance[i] + a.naive.variance[i]);
+        if (a.variance.back() == 0.0) continue;
+        double z2 = std::pow(a.difference.back(), 2) / a.variance.back();
+        a.chi2 += z2;
+        ++a.noisy;
         if (z2 > 9.0)
-            worst += " block " + std::to_string(i / 3) + " channel " + std::to_string(i % 3) + ": path " +
-                     std::to_string(path.mean[i]) + " naive " + std::to_string(naive.mean[i]) + ";";
+            a.worst += " block " + std::to_string(i / 3) + " channel " + std::to_string(i % 3) + ": path " +
+                       std::to_string(a.path.mean[i]) + " naive " + std::to_string(a.naive.mean[i]) + " (sd " +
+                       std::to_string(std::sqrt(a.path.variance[i])) + ", " +
+                       std::to_string(std::sqrt(a.naive.variance[i])) + ");";
     }
-    ASSERT_GT(noisy, 0);
-    double p = test::upperIncompleteGammaQ(0.5 * noisy, 0.5 * chi2);
-    EXPECT_GT(p, test::kChi2Alpha) << "chi2 " << chi2 << " over " << noisy << " block means;" << worst;
-    EXPECT_GT(pathTotal / double(path.mean.size()), 0.05) << "the scene is lit";
+    a.pValue = a.noisy > 0 ? test::upperIncompleteGammaQ(0.5 * a.noisy, 0.5 * a.chi2) : 1.0;
+    return a;
+}
+
+// The seeds of the tests: path 1 and 2, naive 3 and 4.
+constexpr std::uint64_t kPathSeed = 1, kNaiveSeed = 3;
+
+void expectAgreement(const render::SceneDescription& scene, int pathSpp, int naiveSpp) {
+    const Agreement a = measureAgreement(scene, pathSpp, naiveSpp, kPathSeed, kNaiveSeed);
+    double pathTotal = 0.0;
+    for (std::size_t i = 0; i < a.path.mean.size(); ++i) {
+        pathTotal += a.path.mean[i];
+        if (a.variance[i] == 0.0) {  // a block that sees only the dome agrees to float rounding
+            EXPECT_NEAR(a.path.mean[i], a.naive.mean[i], 1e-6 * a.naive.mean[i]) << "noiseless block " << i / 3;
+        }
+    }
+    ASSERT_GT(a.noisy, 0);
+    EXPECT_GT(a.pValue, test::kChi2Alpha) << "chi2 " << a.chi2 << " over " << a.noisy << " block means;" << a.worst;
+    EXPECT_GT(pathTotal / double(a.path.mean.size()), 0.05) << "the scene is lit";
 }
 
 TEST(ReferenceAgreement, PathTracerMatchesNaivePathTracerOnEveryLightType) {
@@ -160,6 +193,90 @@ render::SceneDescription transmissiveScene() {
 
 TEST(ReferenceAgreement, PathTracerMatchesNaiveThroughTransmissiveMaterials) {
     expectAgreement(transmissiveScene(), 96, 512);
+}
+
+// The calibration of the two tests above, a long check that is not run by default:
+//   integrators_tests --gtest_also_run_disabled_tests --gtest_filter='ReferenceAgreement.DISABLED_*'
+// Over `sets` independent sets of seeds (path 4k + 1 and 4k + 2, naive 4k + 3 and 4k + 4) the
+// p-values of the statistic must be uniform (Kolmogorov-Smirnov), and the block differences pooled
+// over all sets (z = sum of differences / sqrt(sum of variances): the sets' samples together) must
+// still agree, which a bias too small for one set to show would not. It prints the p-values of
+// the old design too, naive on path's seeds. As of 2026-12-05 the every-light case fails its
+// uniformity check (KS p 5e-5: 12 of 40 sets below alpha) while its pooled differences agree (p
+// 0.94): no bias, but a statistic whose tails are far heavier than chi-square's, from blocks of
+// almost no noise (bench/results/2026-12-05-reference-agreement.md).
+struct Calibration {
+    std::vector<double> pValues;
+    double pooledChi2 = 0.0;
+    int pooledDof = 0;
+    double pooledP = 1.0;
+    std::string pooledWorst;  // the block means whose pooled |z| > 3, with z
+    std::string failures;     // the sets that fail at kChi2Alpha, with their worst blocks
+};
+
+Calibration calibrate(const render::SceneDescription& scene, int pathSpp, int naiveSpp, int sets,
+                      bool naiveOnPathSeeds) {
+    Calibration c;
+    std::vector<double> difference, variance;
+    for (int k = 0; k < sets; ++k) {
+        const std::uint64_t pathSeed = 4 * k + 1, naiveSeed = naiveOnPathSeeds ? pathSeed : pathSeed + 2;
+        const Agreement a = measureAgreement(scene, pathSpp, naiveSpp, pathSeed, naiveSeed);
+        c.pValues.push_back(a.pValue);
+        if (a.pValue < test::kChi2Alpha)
+            c.failures += "\n  set " + std::to_string(k) + ": chi2 " + std::to_string(a.chi2) + " over " +
+                          std::to_string(a.noisy) + ";" + a.worst;
+        difference.resize(a.difference.size(), 0.0);
+        variance.resize(a.variance.size(), 0.0);
+        for (std::size_t i = 0; i < a.difference.size(); ++i) {
+            difference[i] += a.difference[i];
+            variance[i] += a.variance[i];
+        }
+    }
+    for (std::size_t i = 0; i < difference.size(); ++i)
+        if (variance[i] > 0.0) {
+            const double z = difference[i] / std::sqrt(variance[i]);
+            c.pooledChi2 += z * z;
+            ++c.pooledDof;
+            if (std::abs(z) > 3.0)
+                c.pooledWorst += " block " + std::to_string(i / 3) + " channel " + std::to_string(i % 3) + ": z " +
+                                 std::to_string(z) + ";";
+        }
+    c.pooledP = test::upperIncompleteGammaQ(0.5 * c.pooledDof, 0.5 * c.pooledChi2);
+    return c;
+}
+
+std::string describe(const Calibration& c) {
+    std::vector<double> sorted = c.pValues;
+    std::sort(sorted.begin(), sorted.end());
+    const auto below = [&](double level) {
+        return std::count_if(sorted.begin(), sorted.end(), [&](double p) { return p < level; });
+    };
+    std::string text = "KS p " + std::to_string(test::kolmogorovSmirnovUniformP(c.pValues)) +
+                       "; below 0.05: " + std::to_string(below(0.05)) + ", below 0.01: " + std::to_string(below(0.01)) +
+                       ", below alpha: " + std::to_string(below(test::kChi2Alpha)) + " of " +
+                       std::to_string(sorted.size()) + "; pooled chi2 " + std::to_string(c.pooledChi2) + " over " +
+                       std::to_string(c.pooledDof) + ", p " + std::to_string(c.pooledP) + c.pooledWorst +
+                       "\n  p-values by seed set (the first: path's seeds 1 and 2):";
+    for (double p : c.pValues) text += " " + std::to_string(p);
+    text += c.failures;
+    return text;
+}
+
+void expectCalibrated(const char* name, const render::SceneDescription& scene, int pathSpp, int naiveSpp, int sets) {
+    const Calibration independent = calibrate(scene, pathSpp, naiveSpp, sets, false);
+    const Calibration shared = calibrate(scene, pathSpp, naiveSpp, sets, true);
+    std::printf("%s, independent seeds: %s\n%s, naive on path's seeds: %s\n", name, describe(independent).c_str(), name,
+                describe(shared).c_str());
+    EXPECT_GT(test::kolmogorovSmirnovUniformP(independent.pValues), 0.01);
+    EXPECT_GT(independent.pooledP, test::kChi2Alpha);
+}
+
+TEST(ReferenceAgreement, DISABLED_EveryLightTypeStatisticIsCalibrated) {
+    expectCalibrated("every light type", everyLightScene(), 128, 1024, 40);
+}
+
+TEST(ReferenceAgreement, DISABLED_TransmissiveStatisticIsCalibrated) {
+    expectCalibrated("transmissive", transmissiveScene(), 96, 512, 20);
 }
 
 TEST(ReferenceAgreement, NaiveMissesDeltaLightsAsItsPathClassSays) {
