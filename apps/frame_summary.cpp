@@ -17,6 +17,9 @@ void printThroughput(const integrators::RenderStats& stats) {
                 double(stats.samples) / stats.seconds * 1e-6, double(c.rays()) / stats.seconds * 1e-6,
                 static_cast<unsigned long long>(c.rays()), static_cast<unsigned long long>(c.camera),
                 static_cast<unsigned long long>(c.bounce), static_cast<unsigned long long>(c.shadow));
+    if (c.mediumCollisions > 0)
+        std::printf("  media        %llu tentative collisions (medium lookups)\n",
+                    static_cast<unsigned long long>(c.mediumCollisions));
     if (c.nonFiniteSamples > 0)
         std::fprintf(stderr, "fluence: warning: %llu samples were NaN or infinite and were discarded (please report)\n",
                      static_cast<unsigned long long>(c.nonFiniteSamples));
@@ -45,11 +48,12 @@ void printFrameSummary(const RenderOptions& opt, const std::pair<int, int>& res,
                 counted(st.emissiveTriangles, "emissive triangle").c_str(),
                 counted(warnings.count(), "warning").c_str());
     if (integrators::AdaptiveSampling::enabled(rs))
-        std::printf("  adaptive     %s %g: %.1f spp on average (%d to %d per pixel)\n",
+        std::printf("  adaptive     %s %g: %.1f spp on average (%d to %d per pixel), the cost of %.1f uniform spp\n",
                     rs.targetError > 0.0 ? "target error" : "mean spp",
                     rs.targetError > 0.0 ? rs.targetError : rs.meanSamplesPerPixel,
                     double(stats.samples) / (double(res.first) * res.second),
-                    std::min(rs.minSamples, stats.samplesPerPixel), stats.samplesPerPixel);
+                    std::min(rs.minSamples, stats.samplesPerPixel), stats.samplesPerPixel,
+                    integrators::AdaptiveSampling::uniformSamplesOfTheSameCost(*frame.film));
     if (st.curves > 0)
         std::printf("  curves       %s, %s (Embree native curves)\n", counted(st.curves, "curve set").c_str(),
                     counted(st.curveSegments, "segment").c_str());

@@ -2,19 +2,22 @@
 """Adaptive against uniform sampling at equal CPU time, on the Cornell box, the smoke and the subsurface scene.
 
   bench/adaptive_compare.py FLUENCE OUT_DIR [--res N] [--ref-spp N] [--spp N ...] [--uniform-spp N ...] [--scenes A,B]
-                            [--sampler NAME] [--min-spp N] [--repeat N]
+                            [--sampler NAME] [--min-spp N] [--repeat N] [--peer-scenes DIR]
 
 For each scene: a reference made of two uniform renders of REF_SPP / 2 samples (seeds 1 and 2,
 kept in OUT_DIR if present), whose own noise is subtracted from every error (relMSE, eps 0.01, as
 bench/fluence_bench/metrics.py computes it); then, at each rung (seed 0), the uniform render
-(`--spp N`, at the UNIFORM_SPP rungs, default the SPP ones) and the adaptive one (`--mean-spp N`, at the SPP rungs: the same samples on average, spread by the
-budget rule of integrators/adaptive_sampling.h), alternating so that the machine's load falls on
+(`--spp N`, at the UNIFORM_SPP rungs, default the SPP ones) and the adaptive one (`--mean-spp N`, at the SPP rungs: the
+counted cost of N uniform samples per pixel, spread by the budget rule of integrators/adaptive_sampling.h; the
+summary's "the cost of X uniform spp" is kept as cost_spp), alternating so that the machine's load falls on
 both alike. Each render's CPU time (user + system of the fluence process, scene loading included)
 is taken from the kernel (RUSAGE_CHILDREN), the least of REPEAT renders (default 2, interleaved
 too: the image is the same each time, the load is not). The uniform relMSE at each adaptive render's CPU time
 is interpolated in log-log between the two uniform rungs around it (extrapolated from the nearest
 two, marked '*', outside them), and the ratio adaptive / uniform printed: below 1, adaptive wins at
 equal time. Writes OUT_DIR/series.csv (every render) and OUT_DIR/equal_time.csv (the table).
+PEER_SCENES (default bench/peer_scenes) is where cycles_smoke.usda and cycles_sss.usda are read from: a
+copy whose VDB path is absolute lets a checkout that is not beside ../shared (a worktree) render them.
 Needs oiiotool and numpy (the images are read as FITS through oiiotool).
 """
 import argparse
@@ -34,8 +37,8 @@ from fluence_bench import metrics  # noqa: E402
 ROOT = pathlib.Path(__file__).resolve().parent.parent
 SCENES = {
     "cornell": (ROOT / "usd_samples/cornell_box.usda", []),
-    "smoke": (ROOT / "bench/peer_scenes/cycles_smoke.usda", []),
-    "sss": (ROOT / "bench/peer_scenes/cycles_sss.usda", ["--subdiv-level", "4"]),  # Cycles' render level
+    "smoke": (pathlib.Path("cycles_smoke.usda"), []),  # under --peer-scenes
+    "sss": (pathlib.Path("cycles_sss.usda"), ["--subdiv-level", "4"]),  # Cycles' render level
 }
 
 
@@ -64,6 +67,7 @@ def read_rgb_through_oiiotool(path):
 def render(binary, scene, args, out, options):
     """Renders; returns the CPU seconds of the fluence process."""
     path, extra = SCENES[scene]
+    path = pathlib.Path(args.peer_scenes) / path  # an absolute path (cornell) stays itself
     before = resource.getrusage(resource.RUSAGE_CHILDREN)
     cmd = [binary, "render", str(path), *extra, "-r", str(args.res), str(args.res), "-j", "2", "-o", str(out),
            *(["--sampler", args.sampler] if args.sampler else []), *options]
@@ -73,11 +77,12 @@ def render(binary, scene, args, out, options):
     return (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)
 
 
-def mean_spp(out):
+def adaptive_spp(out):
+    """The adaptive render's mean spp and the uniform spp of the same counted cost, from its summary."""
     for line in open(str(out) + ".log"):
         if "adaptive" in line and "on average" in line:
-            return float(line.split(":")[1].split()[0])
-    return None
+            return float(line.split(":")[1].split()[0]), float(line.split("the cost of")[1].split()[0])
+    return None, None
 
 
 def uniform_at(cpu, uniform):
@@ -109,6 +114,8 @@ def main():
     p.add_argument("--sampler", default=None, help="--sampler for every render (default: fluence's)")
     p.add_argument("--min-spp", type=int, default=16)
     p.add_argument("--repeat", type=int, default=2, help="renders of each image, the least CPU time kept")
+    p.add_argument("--peer-scenes", default=str(ROOT / "bench/peer_scenes"),
+                   help="the folder of cycles_smoke.usda and cycles_sss.usda")
     args = p.parse_args()
     binary = str(pathlib.Path(args.fluence).resolve())
     out = pathlib.Path(args.out)
@@ -136,7 +143,8 @@ def main():
                     cpus[mode].append(render(binary, scene, args, images[mode], options[mode]))
             for mode in modes:
                 e = reference.error(images[mode])
-                row = {"scene": scene, "mode": mode, "spp": n, "mean_spp": mean_spp(images[mode]) or n,
+                spp, cost_spp = adaptive_spp(images[mode])
+                row = {"scene": scene, "mode": mode, "spp": n, "mean_spp": spp or n, "cost_spp": cost_spp or n,
                        "cpu_s": round(min(cpus[mode]), 2), "cpu_runs": " ".join("%.2f" % c for c in cpus[mode]),
                        "relmse": e["relmse"], "relmse_uncorrected": e["relmse_uncorrected"], "bias": e["bias"],
                        "bias_se": e["bias_se"]}

@@ -27,7 +27,7 @@ Film::Film(int width, int height, float farDepth, std::vector<std::string> light
     lightPathSums_.assign(pixels_.size() * lightPathLayers_.size() * 3, 0.0);
 }
 
-void Film::add(int x, int y, const FilmSample& s) {
+void Film::add(int x, int y, const FilmSample& s, double cost) {
     const std::size_t index = static_cast<std::size_t>(y) * width_ + x;
     Pixel& p = pixels_[index];
     for (int c = 0; c < 3; ++c) p.radiance[c] += s.radiance[c];
@@ -53,6 +53,7 @@ void Film::add(int x, int y, const FilmSample& s) {
         p.minDepth = p.anyHit ? std::min(p.minDepth, s.depth) : s.depth;
         p.anyHit = true;
     }
+    p.cost += cost;
     ++p.samples;
 }
 

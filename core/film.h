@@ -13,6 +13,9 @@
 //   Z            camera-space depth of the nearest first hit in the pixel (a "min" filter, as
 //                compositors expect); pixels that hit nothing read the camera's far clip
 //   sampleCount  number of samples taken in the pixel
+// Not resolved: each pixel's cost, the sum of its samples' costs as the render loop counts them
+// (integrators/sample_cost.h: rays and medium lookups, deterministic), which adaptive sampling's
+// budget rule weighs the pixels by (integrators/adaptive_sampling.h).
 //   NAME.R/G/B   one layer per light path expression AOV (integrators/light_path_tracker.h), in the
 //                order given to the constructor: the part of the beauty whose paths it matches
 //
@@ -77,7 +80,8 @@ public:
     int width() const { return width_; }
     int height() const { return height_; }
 
-    void add(int x, int y, const FilmSample& s);
+    // Adds a sample of pixel (x, y) that cost `cost` (integrators/sample_cost.h; 0: not counted).
+    void add(int x, int y, const FilmSample& s, double cost = 0.0);
 
     // The channel names resolve() produces, in order.
     std::vector<std::string> channelNames() const;
@@ -114,6 +118,8 @@ public:
 
     // The samples taken in pixel (x, y) so far.
     std::uint32_t samples(int x, int y) const { return pixel(x, y).samples; }
+    // The sum of the costs of pixel (x, y)'s samples so far (see the top of this file).
+    double cost(int x, int y) const { return pixel(x, y).cost; }
     // The relative standard error of the pixel's mean luminance: sqrt(variance / n) / (mean +
     // kRelativeErrorFloor), from its samples' luminance sums (infinite below two samples). The floor
     // keeps dark pixels, whose relative error means little, from sampling forever; it is in the
@@ -133,6 +139,7 @@ private:
         double albedo[3] = {0, 0, 0};
         double normal[3] = {0, 0, 0};
         double coverage = 0;
+        double cost = 0;  // the samples' costs, summed
         float minDepth = 0;
         bool anyHit = false;
         std::uint32_t samples = 0;

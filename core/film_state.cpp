@@ -21,6 +21,7 @@ void writePixel(std::ostream& out, const Pixel& p) {
     writeBinary(out, p.albedo, 3);
     writeBinary(out, p.normal, 3);
     writeBinary(out, p.coverage);
+    writeBinary(out, p.cost);
     writeBinary(out, p.minDepth);
     writeBinary(out, static_cast<std::uint8_t>(p.anyHit));
     writeBinary(out, p.samples);
@@ -34,6 +35,7 @@ void readPixel(std::istream& in, Pixel& p) {
     readBinary(in, p.albedo, 3);
     readBinary(in, p.normal, 3);
     readBinary(in, &p.coverage, 1);
+    readBinary(in, &p.cost, 1);
     readBinary(in, &p.minDepth, 1);
     p.anyHit = readBinary<std::uint8_t>(in) != 0;
     readBinary(in, &p.samples, 1);
@@ -44,7 +46,7 @@ void readPixel(std::istream& in, Pixel& p) {
 void writeFilmState(const Film& film, std::ostream& out) {
     // A field added to Film or Film::Pixel changes these sizes: save it here and in readFilmState,
     // bump kFilmStateVersion, and update the size.
-    static_assert(sizeof(Film::Pixel) == 112, "Film::Pixel changed: write and read the new field in film_state.cpp");
+    static_assert(sizeof(Film::Pixel) == 120, "Film::Pixel changed: write and read the new field in film_state.cpp");
     static_assert(sizeof(Film) == 120, "Film changed: write and read the new state in film_state.cpp");
     writeBinary(out, kFilmStateVersion);
     writeBinary(out, static_cast<std::int32_t>(film.width_));
@@ -69,7 +71,8 @@ void readFilmState(std::istream& in, Film& film) {
     try {
         if (const auto version = readBinary<std::uint32_t>(in); version != kFilmStateVersion)
             throw FilmStateError("film state version " + std::to_string(version) + " (this build reads version " +
-                                 std::to_string(kFilmStateVersion) + ")");
+                                 std::to_string(kFilmStateVersion) +
+                                 ": it was saved by another build of Fluence; render it again without resuming)");
         const auto width = readBinary<std::int32_t>(in), height = readBinary<std::int32_t>(in);
         if (width != film.width_ || height != film.height_)
             throw FilmStateError("the saved film is " + std::to_string(width) + "x" + std::to_string(height) +

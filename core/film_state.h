@@ -3,7 +3,7 @@
 //
 // Everything the Film keeps is written: its shape (width, height, far depth) and light path
 // layer names, then per pixel every running sum (radiance, luminance and its square, albedo,
-// normal, coverage), the nearest depth and whether anything was hit, the sample count, the
+// normal, coverage, cost (version 4 on)), the nearest depth and whether anything was hit, the sample count, the
 // light path layer sums, the splat film's fixed-point sums when there is one (light
 // tracing), and the denoiser's buffer sums when the film keeps them (version 3 on). Doubles are written as they are, so sums continue exactly. The bytes are in the
 // machine's byte order (core/binary_stream.h): the container records and checks it.
@@ -20,7 +20,7 @@
 
 namespace fluence {
 
-inline constexpr std::uint32_t kFilmStateVersion = 3;
+inline constexpr std::uint32_t kFilmStateVersion = 4;
 
 // The state read does not fit the film (another shape or other layers: the message says which),
 // or the data is damaged or ends early.

@@ -37,24 +37,55 @@ int blockEnd(int coordinate, int offset, int size) {
     return std::min(size, image - image % AdaptiveSampling::kBlockSize + AdaptiveSampling::kBlockSize - offset);
 }
 
-// The sample count each active pixel ends with when the budget rule's factor is t: sqrt(a) t,
-// between what it has and `most`.
-double budgetCount(double deviation, double t, int done, int most) {
-    return std::clamp(deviation * t, double(done), double(most));
+// The mean of `own` over each pixel's neighbourhood (see the header): its 3x3 neighbours within its
+// block that have at least `least` samples, the pixel itself left out; its own value when no
+// neighbour counts.
+std::vector<double> neighbourhoodMeans(const Film& film, int windowX, int windowY, const std::vector<double>& own,
+                                       std::uint32_t least) {
+    const int width = film.width(), height = film.height();
+    std::vector<double> filtered(own.size(), 0.0);
+    for (int y = 0; y < height; ++y) {
+        const int y0 = std::max(y - 1, blockStart(y, windowY)), y1 = std::min(y + 2, blockEnd(y, windowY, height));
+        for (int x = 0; x < width; ++x) {
+            const int x0 = std::max(x - 1, blockStart(x, windowX)), x1 = std::min(x + 2, blockEnd(x, windowX, width));
+            double sum = 0.0;
+            int counted = 0;
+            for (int v = y0; v < y1; ++v)
+                for (int u = x0; u < x1; ++u)
+                    if ((u != x || v != y) && film.samples(u, v) >= least) {
+                        sum += own[std::size_t(v) * width + u];
+                        ++counted;
+                    }
+            const std::size_t i = std::size_t(y) * width + x;
+            filtered[i] = counted > 0 ? sum / counted : own[i];
+        }
+    }
+    return filtered;
 }
 
-// The budget rule's factor t (counts sqrt(a) t) that spends `budget` samples over the film, given
-// the active pixels' deviations sqrt(a) and the samples already fixed (stopped pixels'); 0 when the
-// budget is spent, infinite when every active pixel may go to `most`.
-double budgetFactor(const std::vector<double>& deviations, double fixed, double budget, int done, int most) {
+// An active pixel of the budget rule: its deviation sqrt(a / c) and its cost per sample c.
+struct BudgetPixel {
+    double deviation, cost;
+};
+
+// The sample count an active pixel ends with when the budget rule's factor is t: sqrt(a / c) t,
+// between what it has and `most`.
+double budgetCount(const BudgetPixel& p, double t, int done, int most) {
+    return std::clamp(p.deviation * t, double(done), double(most));
+}
+
+// The budget rule's factor t (counts sqrt(a / c) t) that spends `budget` (a cost) over the film,
+// given the active pixels and the cost already fixed (stopped pixels'); 0 when the budget is spent,
+// infinite when every active pixel may go to `most`.
+double budgetFactor(const std::vector<BudgetPixel>& pixels, double fixed, double budget, int done, int most) {
     auto total = [&](double t) {
         double sum = fixed;
-        for (double d : deviations) sum += budgetCount(d, t, done, most);
+        for (const BudgetPixel& p : pixels) sum += p.cost * budgetCount(p, t, done, most);
         return sum;
     };
     double smallest = 0.0;
-    for (double d : deviations)
-        if (d > 0.0 && (smallest == 0.0 || d < smallest)) smallest = d;
+    for (const BudgetPixel& p : pixels)
+        if (p.deviation > 0.0 && (smallest == 0.0 || p.deviation < smallest)) smallest = p.deviation;
     if (smallest == 0.0 || total(0.0) >= budget) return 0.0;
     double hi = most / smallest;
     if (total(hi) <= budget) return INFINITY;
@@ -77,24 +108,34 @@ std::vector<double> AdaptiveSampling::neighbourhoodVariances(const Film& film, i
     std::vector<double> own(std::size_t(width) * std::size_t(height));
     for (int y = 0; y < height; ++y)
         for (int x = 0; x < width; ++x) own[std::size_t(y) * width + x] = pixelVariance(film, x, y);
-    std::vector<double> filtered(own.size(), 0.0);
-    for (int y = 0; y < height; ++y) {
-        const int y0 = std::max(y - 1, blockStart(y, windowY)), y1 = std::min(y + 2, blockEnd(y, windowY, height));
+    return neighbourhoodMeans(film, windowX, windowY, own, kMinSamplesForHalves);
+}
+
+std::vector<double> AdaptiveSampling::neighbourhoodCosts(const Film& film, int windowX, int windowY) {
+    const int width = film.width(), height = film.height();
+    std::vector<double> own(std::size_t(width) * std::size_t(height));
+    for (int y = 0; y < height; ++y)
         for (int x = 0; x < width; ++x) {
-            const int x0 = std::max(x - 1, blockStart(x, windowX)), x1 = std::min(x + 2, blockEnd(x, windowX, width));
-            double sum = 0.0;
-            int counted = 0;
-            for (int v = y0; v < y1; ++v)
-                for (int u = x0; u < x1; ++u)
-                    if ((u != x || v != y) && film.samples(u, v) >= std::uint32_t(kMinSamplesForHalves)) {
-                        sum += own[std::size_t(v) * width + u];
-                        ++counted;
-                    }
-            const std::size_t i = std::size_t(y) * width + x;
-            filtered[i] = counted > 0 ? sum / counted : own[i];
+            const std::uint32_t n = film.samples(x, y);
+            own[std::size_t(y) * width + x] = n > 0 ? film.cost(x, y) / n : 0.0;
         }
-    }
-    return filtered;
+    std::vector<double> costs = neighbourhoodMeans(film, windowX, windowY, own, 1);
+    for (double& c : costs)
+        if (!(c > 0.0)) c = 1.0;  // samples added uncounted: every sample alike
+    return costs;
+}
+
+double AdaptiveSampling::uniformSamplesOfTheSameCost(const Film& film) {
+    double total = 0.0, perSample = 0.0;
+    for (int y = 0; y < film.height(); ++y)
+        for (int x = 0; x < film.width(); ++x)
+            if (const std::uint32_t n = film.samples(x, y); n > 0) {
+                total += film.cost(x, y);
+                perSample += film.cost(x, y) / n;
+            }
+    if (perSample > 0.0) return total / perSample;
+    const double pixels = double(film.width()) * double(film.height());  // uncounted: every sample alike
+    return pixels > 0.0 ? double(film.totalSamples()) / pixels : 0.0;
 }
 
 std::vector<std::uint32_t> AdaptiveSampling::planPass(const Film& film, const RenderSettings& settings, int done,
@@ -114,22 +155,23 @@ std::vector<std::uint32_t> AdaptiveSampling::planPass(const Film& film, const Re
             plan[i] = active(i) && variances[i] / done > target ? std::uint32_t(count) : 0;
         return plan;
     }
-    std::vector<double> deviations;
-    double fixed = 0.0;
+    const std::vector<double> costs = neighbourhoodCosts(film, settings.windowX, settings.windowY);
+    std::vector<BudgetPixel> pixels;
+    double fixed = 0.0, budget = 0.0;
     for (std::size_t i = 0; i < plan.size(); ++i) {
+        budget += settings.meanSamplesPerPixel * costs[i];
         if (active(i))
-            deviations.push_back(std::sqrt(variances[i]));
+            pixels.push_back({std::sqrt(variances[i] / costs[i]), costs[i]});
         else
-            fixed += film.samples(int(i % width), int(i / width));
+            fixed += costs[i] * film.samples(int(i % width), int(i / width));
     }
-    const double budget = settings.meanSamplesPerPixel * double(plan.size());
     const int most = settings.samplesPerPixel;
-    const double t = budgetFactor(deviations, fixed, budget, done, most);
+    const double t = budgetFactor(pixels, fixed, budget, done, most);
     std::size_t next = 0;
     for (std::size_t i = 0; i < plan.size(); ++i) {
         if (!active(i)) continue;
-        const double deviation = deviations[next++];
-        const double wanted = std::isinf(t) ? most : std::round(budgetCount(deviation, t, done, most));
+        const BudgetPixel& p = pixels[next++];
+        const double wanted = std::isinf(t) ? most : std::round(budgetCount(p, t, done, most));
         plan[i] = std::uint32_t(std::clamp(wanted - done, 0.0, double(count)));
     }
     return plan;

@@ -21,10 +21,17 @@
 //  - Target (targetError E > 0): a pixel stops once e <= E. Every pixel ends near the same
 //    relative noise: an even-looking image.
 //  - Budget (meanSamplesPerPixel N > 0): the samples go where they lower the image's relative MSE
-//    most. For a sum of a_p / n_p over the pixels with sum n_p fixed, the best counts are
-//    n_p proportional to sqrt(a_p) (not to a_p, which equalising e gives, and which spends exactly
-//    as well as uniform sampling when every sample costs the same). Before each pass the factor is
-//    solved so that the counts add up to N per pixel over the image, with stopped pixels at their
+//    most for the CPU time. A pixel's samples do not all cost the same: where paths walk through
+//    media or subsurface interiors they cost several times what a background pixel's do. Each
+//    sample's cost is counted (rays traced and medium lookups, integrators/sample_cost.h: counted,
+//    not timed, so deterministic) and summed per pixel in the film; a pixel's cost per sample c is
+//    the mean of its neighbours' (as a is, and for the same reason). For a sum of a_p / n_p over the
+//    pixels with the total cost sum c_p n_p fixed, the best counts are n_p proportional to
+//    sqrt(a_p / c_p) (Lagrange; not to a_p, which equalising e gives, and which spends exactly as
+//    well as uniform sampling when every sample costs the same, and not to sqrt(a_p), which is
+//    best only when they do). The budget is the cost of N uniform samples per pixel,
+//    N sum_p c_p: `--mean-spp N` takes about the CPU time of `--spp N`. Before each pass the
+//    factor is solved so that the pixels' costs add up to the budget, with stopped pixels at their
 //    counts and the rest between what they have and samplesPerPixel; each pixel then takes the
 //    pass's samples up to its count.
 // Every pixel takes minSamples (at least kMinSamplesForHalves) before either rule applies. A pixel
@@ -57,6 +64,14 @@ public:
     // neighbourhood (see the top of this file); 0 below kMinSamplesForHalves samples. The film is
     // the window at (windowX, windowY) of the image, and must keep the half buffers.
     static std::vector<double> neighbourhoodVariances(const Film& film, int windowX, int windowY);
+    // Per pixel of the film, row by row: the cost per sample c (Film::cost over the samples),
+    // averaged over the same neighbourhood; 1 where no sample was counted.
+    static std::vector<double> neighbourhoodCosts(const Film& film, int windowX, int windowY);
+
+    // The samples per pixel of a uniform render that would cost what the film's samples cost, each
+    // pixel's cost per sample its own mean: sum_p cost_p / sum_p (cost_p / n_p); the mean count
+    // when no cost was counted.
+    static double uniformSamplesOfTheSameCost(const Film& film);
 
     // Per pixel of the film, row by row: how many of the pass's samples [done, done + count) it
     // takes. Without adaptive sampling, count everywhere (a pixel that stopped before takes none).

@@ -23,18 +23,22 @@
 
 namespace fluence::integrators {
 
-// What a render counted, for its summary: rays traced per kind, and samples discarded because
-// their value was not finite (NaN or infinity; each one is a bug to find, so it is reported).
+// What a render counted, for its summary: rays traced per kind, the tentative collisions drawn in
+// media (each a medium lookup; the path tracer counts them), and samples discarded because their
+// value was not finite (NaN or infinity; each one is a bug to find, so it is reported). The rays
+// and collisions are also each sample's cost for adaptive sampling (integrators/sample_cost.h).
 struct RenderCounters {
     std::uint64_t camera = 0;
     std::uint64_t bounce = 0;  // extension rays after the camera ray
     std::uint64_t shadow = 0;
+    std::uint64_t mediumCollisions = 0;
     std::uint64_t nonFiniteSamples = 0;
     std::uint64_t rays() const { return camera + bounce + shadow; }
     RenderCounters& operator+=(const RenderCounters& o) {
         camera += o.camera;
         bounce += o.bounce;
         shadow += o.shadow;
+        mediumCollisions += o.mediumCollisions;
         nonFiniteSamples += o.nonFiniteSamples;
         return *this;
     }

@@ -177,6 +177,7 @@ private:
         media::FreeFlight flight =
             guidedWalk_ ? guidedWalk_->fly(walkStep_, walkLength_, tBoundary, rng_)
                         : media::sampleFreeFlight(medium, {ray_.origin, ray_.direction, tBoundary}, hero_, rng_);
+        counters_.mediumCollisions += std::uint64_t(flight.collisions);
         throughput_ *= flight.throughput;
         mis_.rU *= flight.pdfRatio;
         mis_.rL *= flight.lightPdfRatio;
@@ -355,8 +356,10 @@ private:
             scene_.shadowTest(choice.light, shadowOrigin, ls->wi, ls->distance, ray_.time);
         if (shadow == render::ShadowTest::Blocked) return;
         media::TransmittanceEstimate tr;
-        if (kMedia && shadowMedium)
+        if (kMedia && shadowMedium) {
             tr = media::ratioTrackingTransmittance(*shadowMedium, {shadowOrigin, ls->wi, ls->distance}, hero_, rng_);
+            counters_.mediumCollisions += std::uint64_t(tr.collisions);
+        }
         // Light that passed surfaces (render/shadow_rays.cpp) no BSDF-sampled ray finds: weight 1.
         const bool onlyStrategy = ls->delta || shadow == render::ShadowTest::PassedThrough;
         const RGB contribution = throughput_ * f * ls->Li *

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "integrators/adaptive_sampling.h"
+#include "integrators/sample_cost.h"
 
 namespace fluence::integrators {
 
@@ -63,13 +64,14 @@ void renderPass(const render::RenderScene& scene, const render::Camera& camera, 
                             ++taken;
                             SampleStream rng(settings.seed, pixelIndex, std::uint64_t(s), settings.sampler);
                             const render::Ray ray = cameraSampleRay(camera, rng, imageX, imageY);
+                            const RenderCounters before = local;
                             FilmSample sample = integrator.sample(state, scene, camera, ray, rng, local);
                             if (!finite(sample, film.lightPathLayers().size())) {
                                 sample.radiance = RGB(0.0f);
                                 sample.clearLightPaths(film.lightPathLayers().size());
                                 ++local.nonFiniteSamples;
                             }
-                            film.add(x, y, sample);
+                            film.add(x, y, sample, sampleCost(before, local));
                             if (settings.cryptomatte) settings.cryptomatte->add(x, y, sample);
                         }
                     }

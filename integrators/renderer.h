@@ -11,7 +11,9 @@
 // Adaptive sampling (RenderSettings::targetError or meanSamplesPerPixel,
 // integrators/adaptive_sampling.h): before each pass, from the film's half buffers, each pixel is
 // told how many of the pass's samples it takes; one that takes fewer has stopped, for good, and is
-// skipped by later passes; the render ends when every pixel has. The decisions read the film between
+// skipped by later passes; the render ends when every pixel has. Every sample's cost (rays and medium
+// lookups counted, integrators/sample_cost.h) is added to its pixel in the film, for the budget
+// rule. The decisions read the film between
 // passes only, so they too are the same for any thread count. Stopping on an estimate of the error
 // biases a pixel slightly (the estimate and the mean are correlated), as in every adaptive sampler;
 // the neighbourhood filter and minSamples keep it small. Since a pixel's samples depend only on
@@ -46,8 +48,8 @@ struct RenderSettings {
     // Adaptive sampling (integrators/adaptive_sampling.h), one rule or neither (0: samplesPerPixel
     // everywhere). targetError > 0: each pixel stops once it has minSamples and the relative
     // standard error of its mean is at most targetError. meanSamplesPerPixel > 0: the image takes
-    // that many samples per pixel on average, each pixel's count chosen to lower the image's
-    // relative MSE most. The film then keeps the half buffers (Film::enableDenoiseBuffers; render()
+    // samples that cost (integrators/sample_cost.h) what that many uniform samples per pixel would,
+    // each pixel's count chosen to lower the image's relative MSE most for the cost. The film then keeps the half buffers (Film::enableDenoiseBuffers; render()
     // enables them on an empty film, a film to resume needs them before readFilmState).
     double targetError = 0.0;
     double meanSamplesPerPixel = 0.0;

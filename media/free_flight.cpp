@@ -26,6 +26,7 @@ FreeFlight sampleFreeFlight(const Medium& medium, const MediumRay& ray, int hero
     const MajorantTransmittance end =
         trackMajorants(medium, ray, TrackingRate::Majorant, hero, stream, [&](const TentativeCollision& c) {
             const MediumProperties& m = c.properties;
+            ++flight.collisions;
             const float u = stream.next() * std::max(c.sigmaMaj[hero], c.sigmaT()[hero]);
             const bool absorbed = u < m.sigmaA[hero];
             const bool scattered = !absorbed && u < m.sigmaA[hero] + m.sigmaS[hero];

@@ -10,7 +10,8 @@
 // catches such media in their tests.) The flight ends at the first absorption or scattering, or
 // escapes at ray.tMax. Through a gray medium whose majorant is exact (a homogeneous one), every
 // weight is exactly 1. Randomness: one number per exponential step and one per tentative
-// collision, from the stream passed in.
+// collision, from the stream passed in. The flight counts its tentative collisions (its medium
+// lookups), the work adaptive sampling weighs a sample's cost by (integrators/sample_cost.h).
 #pragma once
 
 #include "core/random.h"
@@ -33,6 +34,7 @@ struct FreeFlight {
     RGB pdfRatio{1.0f};           // p_c / p_h: delta tracking's density had channel c been the hero
     RGB lightPdfRatio{1.0f};      // Escaped only: ratio tracking's density of the same null points and
                                   // escape (the shadow-ray strategy) in channel c, over p_h
+    int collisions = 0;           // tentative collisions drawn (each one medium lookup): the work done
 };
 
 FreeFlight sampleFreeFlight(const Medium& medium, const MediumRay& ray, int hero, SampleStream& stream);

@@ -7,6 +7,7 @@ TransmittanceEstimate ratioTrackingTransmittance(const Medium& medium, const Med
     TransmittanceEstimate e;
     const MajorantTransmittance end =
         trackMajorants(medium, ray, TrackingRate::Residual, hero, stream, [&](const TentativeCollision& c) {
+            ++e.collisions;
             const RGB f = c.tMaj * c.sigmaN(), pdf = c.residualPdf();
             e.throughput *= f / pdf[hero];
             e.pdfRatio *= pdf / pdf[hero];

@@ -23,6 +23,7 @@ struct TransmittanceEstimate {
                            // the hero's density. It is also delta tracking's density of the same
                            // null points over p_h (delta tracking's pdf of a null point equals its f).
     RGB pdfRatio{1.0f};    // p_c / p_h: ratio tracking's density had channel c been the hero
+    int collisions = 0;    // tentative collisions drawn (each one medium lookup): the work done
 
     // The transmittance in each channel, unbiased when the hero was drawn uniformly for this
     // estimate alone (within a path, combine throughput and pdfRatio as media/tracking.h says).

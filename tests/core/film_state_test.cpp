@@ -1,12 +1,13 @@
 // Film state round trip (core/film_state.h): a film written and read back holds every sum, count,
-// depth, light path layer and splat exactly, goes on summing to the same bits as the original, and a state
-// of another shape, other layers, or cut short is refused with a message saying so.
+// cost, depth, light path layer and splat exactly, goes on summing to the same bits as the original, and a state
+// of another shape, other layers, another version, or cut short is refused with a message saying so.
 #include "core/film_state.h"
 
 #include <gtest/gtest.h>
 
 #include <cstring>
 #include <sstream>
+#include <string>
 
 #include "core/random.h"
 
@@ -36,7 +37,7 @@ void addSamples(Film& film, int first, int count) {
     for (int y = 0; y < kHeight; ++y)
         for (int x = 0; x < kWidth; ++x)
             for (int n = first; n < first + count; ++n)
-                if (x + y > 0 || n < 3) film.add(x, y, sampleFor(x, y, n));
+                if (x + y > 0 || n < 3) film.add(x, y, sampleFor(x, y, n), 1.0 + 0.37 * double(n + x));
 }
 
 Film makeFilm() { return Film(kWidth, kHeight, 500.0f, {"diffuse", "specular"}); }
@@ -51,6 +52,8 @@ void expectSameBits(const Film& a, const Film& b) {
             EXPECT_EQ(a.samples(x, y), b.samples(x, y));
             const double ea = a.relativeError(x, y), eb = b.relativeError(x, y);
             EXPECT_EQ(std::memcmp(&ea, &eb, sizeof ea), 0) << x << ", " << y;  // the luminance sums too
+            const double ca = a.cost(x, y), cb = b.cost(x, y);
+            EXPECT_EQ(std::memcmp(&ca, &cb, sizeof ca), 0) << x << ", " << y;  // adaptive sampling's costs
         }
 }
 
@@ -121,6 +124,22 @@ TEST(FilmState, RefusesAnotherShapeOtherLayersAndCutData) {
     Film fits = makeFilm();
     EXPECT_NE(readError(bytes.substr(0, bytes.size() - 1), fits).find("ends early"), std::string::npos);
     EXPECT_EQ(readError(bytes, fits), "");
+}
+
+TEST(FilmState, RefusesAStateOfAnotherVersionSayingWhichAndWhy) {
+    Film original = makeFilm();
+    std::ostringstream out;
+    writeFilmState(original, out);
+    std::string bytes = out.str();
+    const std::uint32_t older = kFilmStateVersion - 1;  // version 3 had no costs
+    std::memcpy(bytes.data(), &older, sizeof older);
+    Film film = makeFilm();
+    const std::string message = readError(bytes, film);
+    EXPECT_NE(message.find("film state version " + std::to_string(older) + " (this build reads version " +
+                           std::to_string(kFilmStateVersion)),
+              std::string::npos)
+        << message;
+    EXPECT_NE(message.find("render it again without resuming"), std::string::npos) << message;
 }
 
 }  // namespace

@@ -63,5 +63,19 @@ TEST(Film, RefusesMoreLightPathLayersThanItHolds) {
     EXPECT_THROW(Film(1, 1, 1.0f, std::vector<std::string>(kMaxLightPathLayers + 1, "x")), std::invalid_argument);
 }
 
+TEST(Film, SumsEachPixelsSampleCostsWithoutChangingItsImage) {
+    Film counted(2, 1, 1000.0f), uncounted(2, 1, 1000.0f);
+    FilmSample s;
+    s.radiance = RGB(0.5f);
+    counted.add(0, 0, s, 3.0);
+    counted.add(0, 0, s, 4.5);
+    counted.add(1, 0, s);
+    for (int i = 0; i < 2; ++i) uncounted.add(0, 0, s);
+    uncounted.add(1, 0, s);
+    EXPECT_EQ(counted.cost(0, 0), 7.5);
+    EXPECT_EQ(counted.cost(1, 0), 0.0) << "a sample added without a cost costs nothing";
+    EXPECT_EQ(counted.resolve().pixels, uncounted.resolve().pixels);
+}
+
 }  // namespace
 }  // namespace fluence

@@ -1,9 +1,9 @@
 // Adaptive sampling (RenderSettings::targetError and meanSamplesPerPixel, integrators/renderer.h,
 // integrators/adaptive_sampling.h) on a rendered scene: pixels that converge early stop early and
 // the noisy ones go on; a budget is spent as asked; the image is the same for any thread count and
-// for windows whose edges fall on block edges (tiles); its mean agrees with uniform sampling's
-// (stopping on an error estimate must not bias it visibly); without a rule every pixel takes every
-// sample.
+// for windows whose edges fall on block edges (tiles), costs included; its mean agrees with uniform
+// sampling's (stopping on an error estimate, or weighing by a cost, must not bias it visibly), on a
+// subsurface sphere whose samples' costs vary too; without a rule every pixel takes every sample.
 #include <gtest/gtest.h>
 
 #include <cstdio>
@@ -15,6 +15,7 @@
 #include "tests/integrators/render_support.h"
 #include "tests/support/scenes.h"
 #include "tests/support/statistics.h"
+#include "tests/support/subsurface_material.h"
 
 namespace fluence::integrators {
 namespace {
@@ -59,6 +60,9 @@ TEST(AdaptiveSampling, EasyPixelsStopEarlyAndNoisyOnesGoOn) {
     EXPECT_EQ(stats.samples, film.totalSamples());
 }
 
+// The budget is a cost (integrators/sample_cost.h): the samples taken cost what meanSpp uniform
+// samples per pixel would. The sphere's samples cost more than the sky's (a bounce and shadow rays
+// against one camera ray), and take most of them, so fewer samples than meanSpp per pixel are taken.
 TEST(AdaptiveSampling, ABudgetIsSpentAsAsked) {
     for (double meanSpp : {24.0, 64.0}) {
         const Film film = renderAdaptively(0.0, 0, SamplerKind::Independent, meanSpp).film;
@@ -69,8 +73,13 @@ TEST(AdaptiveSampling, ABudgetIsSpentAsAsked) {
                 most = std::max(most, film.samples(x, y));
             }
         const double mean = double(film.totalSamples()) / (kSize * kSize);
-        std::printf("[ measured ] budget %g: %.2f spp on average, %u to %u\n", meanSpp, mean, least, most);
-        EXPECT_NEAR(mean, meanSpp, 0.03 * meanSpp);
+        const double spent = AdaptiveSampling::uniformSamplesOfTheSameCost(film);
+        std::printf("[ measured ] budget %g: the cost of %.2f uniform spp, %.2f spp on average, %u to %u\n", meanSpp,
+                    spent, mean, least, most);
+        // The budget is solved with each pixel's cost per sample taken from its neighbours, the
+        // cost spent counted with its own: they differ at the sphere's outline, by a few percent.
+        EXPECT_NEAR(spent, meanSpp, 0.03 * meanSpp);
+        EXPECT_LT(mean, meanSpp) << "the costlier pixels took most samples";
         EXPECT_EQ(least, std::uint32_t(kMinSpp)) << "the sky";
         EXPECT_GT(most, 2 * meanSpp) << "the sphere's edge";
     }
@@ -80,11 +89,15 @@ TEST(AdaptiveSampling, IsTheSameForAnyThreadCount) {
     for (SamplerKind sampler : test_support::kSamplers)
         for (double meanSpp : {0.0, 48.0}) {
             const double target = meanSpp > 0.0 ? 0.0 : kTarget;
-            const Image one = renderAdaptively(target, 1, sampler, meanSpp).film.resolve();
-            const Image two = renderAdaptively(target, 2, sampler, meanSpp).film.resolve();
+            const Film filmOne = renderAdaptively(target, 1, sampler, meanSpp).film;
+            const Film filmTwo = renderAdaptively(target, 2, sampler, meanSpp).film;
+            const Image one = filmOne.resolve(), two = filmTwo.resolve();
             ASSERT_EQ(one.pixels.size(), two.pixels.size());
             EXPECT_EQ(0, std::memcmp(one.pixels.data(), two.pixels.data(), one.pixels.size() * sizeof(float)))
                 << "mean spp " << meanSpp;
+            for (int y = 0; y < kSize; ++y)
+                for (int x = 0; x < kSize; ++x)
+                    ASSERT_EQ(filmOne.cost(x, y), filmTwo.cost(x, y)) << "the costs the budget reads";
         }
 }
 
@@ -92,8 +105,8 @@ TEST(AdaptiveSampling, WindowsOnBlockEdgesAssembleIntoTheWholeImage) {
     static_assert(kSize % AdaptiveSampling::kBlockSize == 0);
     const render::SceneDescription desc = test::litSphereUnderASky();
     const RenderSettings settings = adaptiveSettings(kTarget, 0.0, 2, SamplerKind::Sobol);
-    const Image whole =
-        test_support::renderFilm(PathTracer(IntegratorSettings{}), desc, kSize, settings).film.resolve();
+    const Film wholeFilm = test_support::renderFilm(PathTracer(IntegratorSettings{}), desc, kSize, settings).film;
+    const Image whole = wholeFilm.resolve();
     render::RenderScene scene(desc);
     const render::Camera camera(*desc.camera, kSize, kSize);
     const int edge = AdaptiveSampling::kBlockSize;  // windows: [0, 8) and [8, 24) on each axis
@@ -108,45 +121,61 @@ TEST(AdaptiveSampling, WindowsOnBlockEdgesAssembleIntoTheWholeImage) {
             render(scene, camera, PathTracer(IntegratorSettings{}), window, film);
             const Image part = film.resolve();
             for (int y = 0; y < h; ++y)
-                for (int x = 0; x < w; ++x)
+                for (int x = 0; x < w; ++x) {
                     for (std::size_t c = 0; c < part.channelCount(); ++c)
                         ASSERT_EQ(part.pixel(x, y)[c], whole.pixel(wx + x, wy + y)[c])
                             << "pixel " << wx + x << ", " << wy + y << " channel " << c;
+                    ASSERT_EQ(film.cost(x, y), wholeFilm.cost(wx + x, wy + y)) << "pixel " << wx + x << ", " << wy + y;
+                }
         }
 }
 
-// The image's mean over seeds, adaptive against uniform at about the same samples: within Welch's
-// band at significance 1e-3. The scene's edge pixels are where stopping could bias most.
-TEST(AdaptiveSampling, TheImageMeanAgreesWithUniformSampling) {
-    constexpr int kSeeds = 24;
-    auto imageMean = [](const RenderSettings& settings) {
+// The image's mean over seeds, adaptive (`rule`: target error or budget) against uniform at about
+// the same samples: within Welch's band at significance 1e-3.
+void expectTheImageMeanAgreesWithUniformSampling(const render::SceneDescription& desc, double targetError,
+                                                 double meanSpp) {
+    constexpr int kSeeds = 24, kImage = 16;
+    auto imageMean = [&](const RenderSettings& settings) {
         const Image image =
-            test_support::renderFilm(PathTracer(IntegratorSettings{}), test::litSphereUnderASky(), 16, settings)
-                .film.resolve();
+            test_support::renderFilm(PathTracer(IntegratorSettings{}), desc, kImage, settings).film.resolve();
         double sum = 0.0;
-        for (int y = 0; y < 16; ++y)
-            for (int x = 0; x < 16; ++x)
+        for (int y = 0; y < kImage; ++y)
+            for (int x = 0; x < kImage; ++x)
                 for (int c = 0; c < 3; ++c) sum += image.pixel(x, y)[c];
-        return sum / (16 * 16 * 3);
+        return sum / (kImage * kImage * 3);
     };
-    for (double meanSpp : {0.0, 32.0}) {
-        test::MeanEstimate adaptive, uniform;
-        for (int seed = 0; seed < kSeeds; ++seed) {
-            RenderSettings a = adaptiveSettings(meanSpp > 0.0 ? 0.0 : 0.1, meanSpp, 0, SamplerKind::Independent);
-            a.seed = std::uint64_t(seed);
-            adaptive.add(imageMean(a));
-            RenderSettings u;
-            u.samplesPerPixel = 32;
-            u.seed = std::uint64_t(1000 + seed);
-            uniform.add(imageMean(u));
-        }
-        const double band = test::welchBand(adaptive, uniform, 1e-3);
-        std::printf("[ measured ] %s: adaptive %.5f +- %.5f, uniform %.5f +- %.5f, band %.5f\n",
-                    meanSpp > 0.0 ? "budget" : "target", adaptive.mean(), adaptive.unbiasedStandardError(),
-                    uniform.mean(), uniform.unbiasedStandardError(), band);
-        EXPECT_GT(band, 0.0);
-        EXPECT_NEAR(adaptive.mean(), uniform.mean(), band);
+    test::MeanEstimate adaptive, uniform;
+    for (int seed = 0; seed < kSeeds; ++seed) {
+        RenderSettings a = adaptiveSettings(targetError, meanSpp, 0, SamplerKind::Independent);
+        a.seed = std::uint64_t(seed);
+        adaptive.add(imageMean(a));
+        RenderSettings u;
+        u.samplesPerPixel = 32;
+        u.seed = std::uint64_t(1000 + seed);
+        uniform.add(imageMean(u));
     }
+    const double band = test::welchBand(adaptive, uniform, 1e-3);
+    std::printf("[ measured ] %s: adaptive %.5f +- %.5f, uniform %.5f +- %.5f, band %.5f\n",
+                meanSpp > 0.0 ? "budget" : "target", adaptive.mean(), adaptive.unbiasedStandardError(), uniform.mean(),
+                uniform.unbiasedStandardError(), band);
+    EXPECT_GT(band, 0.0);
+    EXPECT_NEAR(adaptive.mean(), uniform.mean(), band);
+}
+
+// The scene's edge pixels are where stopping could bias most.
+TEST(AdaptiveSampling, TheImageMeanAgreesWithUniformSampling) {
+    expectTheImageMeanAgreesWithUniformSampling(test::litSphereUnderASky(), 0.1, 0.0);
+    expectTheImageMeanAgreesWithUniformSampling(test::litSphereUnderASky(), 0.0, 32.0);
+}
+
+// The budget weighs pixels by their cost per sample: a subsurface sphere's random walks cost tens
+// of rays, and a walk's length goes with the light it brings back (long walks lose more), so a
+// pixel judged by its own costs would stop on its own samples. Judged by its neighbours', the
+// image mean stays unbiased.
+TEST(AdaptiveSampling, TheImageMeanAgreesWithUniformSamplingWhereCostsDiffer) {
+    render::SceneDescription desc = test::litSphereUnderASky();
+    desc.materials[0] = test::subsurfaceMaterial("/mat", RGB(0.8f, 0.6f, 0.4f), RGB(0.3f, 0.2f, 0.1f));
+    expectTheImageMeanAgreesWithUniformSampling(desc, 0.0, 32.0);
 }
 
 TEST(AdaptiveSampling, WithoutATargetEveryPixelTakesEverySample) {

@@ -3,7 +3,8 @@
 // the next pass read. A flat region stops and a noisy one goes on; a pixel whose own halves agree
 // by luck amid noisy neighbours goes on; the neighbours of a lone noisy pixel in a flat area go on
 // (it is judged by them, not by its own samples), up to the edge of its block; the budget rule gives the
-// noisier region more.
+// noisier region more, and of two regions alike but for their cost per sample, the cheaper one
+// more, as sqrt(1 / cost).
 #include <gtest/gtest.h>
 
 #include <cstdint>
@@ -28,16 +29,18 @@ float sampleValue(int x, int y, int i, float level, float spread) {
     return level + ((h & 1u) ? spread : -spread);
 }
 
-// A film of kDone samples per pixel, pixel (x, y) spreading its samples by spread(x, y) about 0.5.
-Film syntheticFilm(const std::function<float(int, int)>& spread) {
+// A film of kDone samples per pixel, pixel (x, y) spreading its samples by spread(x, y) about 0.5,
+// each sample costing cost(x, y); the values of pixel (x, y) are those of pixel (x % valuesRepeat, y).
+Film syntheticFilm(const std::function<float(int, int)>& spread, const std::function<double(int, int)>& cost = {},
+                   int valuesRepeat = kWidth) {
     Film film(kWidth, kHeight, 100.0f);
     film.enableDenoiseBuffers();
     for (int y = 0; y < kHeight; ++y)
         for (int x = 0; x < kWidth; ++x)
             for (int i = 0; i < kDone; ++i) {
                 FilmSample s{};
-                s.radiance = RGB(sampleValue(x, y, i, 0.5f, spread(x, y)));
-                film.add(x, y, s);
+                s.radiance = RGB(sampleValue(x % valuesRepeat, y, i, 0.5f, spread(x, y)));
+                film.add(x, y, s, cost ? cost(x, y) : 1.0);
             }
     return film;
 }
@@ -126,6 +129,39 @@ TEST(AdaptiveStoppingRule, ABudgetGoesToTheNoisierPixelsAndStopsTheFlatOnes) {
     EXPECT_NEAR(mean, settings.meanSamplesPerPixel, 1.0) << "the budget is spent, per pixel rounded";
     settings.meanSamplesPerPixel = kDone;
     for (std::uint32_t n : AdaptiveSampling::planPass(film, settings, kDone, kCount)) EXPECT_EQ(n, 0u) << "spent";
+}
+
+TEST(AdaptiveStoppingRule, ABudgetWeighsEachPixelByItsCostPerSample) {
+    // The right block's pixels have the left block's values (so the same variance estimates) but
+    // cost 4 per sample against 1: the best counts for the cost go as sqrt(a / c), half as many on
+    // the right. The budget is what kDone + 24 uniform samples would cost: about 66 samples on the
+    // left and 33 on the right, so that few counts reach a bound.
+    const Film film = syntheticFilm([](int, int) { return 0.4f; }, [](int x, int) { return x < 8 ? 1.0 : 4.0; }, 8);
+    const std::vector<double> costs = AdaptiveSampling::neighbourhoodCosts(film, 0, 0);
+    EXPECT_EQ(costs[3], 1.0);
+    EXPECT_EQ(costs[11], 4.0);
+    RenderSettings settings = targetSettings();
+    settings.targetError = 0.0;
+    settings.meanSamplesPerPixel = kDone + 24;
+    settings.samplesPerPixel = kDone + 128;
+    const std::vector<std::uint32_t> plan = AdaptiveSampling::planPass(film, settings, kDone, 128);
+    double spent = 0.0, budget = 0.0;
+    int pairs = 0;
+    for (int y = 0; y < kHeight; ++y)
+        for (int x = 0; x < kWidth; ++x) {
+            const double perSample = x < 8 ? 1.0 : 4.0;
+            spent += perSample * (kDone + planned(plan, x, y));
+            budget += perSample * settings.meanSamplesPerPixel;
+            if (x >= 8) continue;
+            const double left = kDone + planned(plan, x, y), right = kDone + planned(plan, x + 8, y);
+            if (right > kDone && left < kDone + 128) {  // neither at a bound (where the halves agree by
+                ++pairs;                                // luck, a pixel stops at once)
+                EXPECT_NEAR(left, 2.0 * right, 1.0) << x << ", " << y << ": each rounded to a whole sample";
+            }
+        }
+    EXPECT_GE(pairs, kWidth * kHeight / 4) << "at least half the pairs are compared";
+    // Each pixel's count is rounded: at most half a sample of its cost either way.
+    EXPECT_NEAR(spent, budget, 0.5 * 8 * (1.0 + 4.0) * kHeight);
 }
 
 }  // namespace

@@ -61,6 +61,9 @@ void expectResumedEqualsUninterruptedWith(const Integrator& integrator, RenderSe
     ASSERT_EQ(a.pixels.size(), b.pixels.size());
     EXPECT_EQ(std::memcmp(a.pixels.data(), b.pixels.data(), a.pixels.size() * sizeof(float)), 0);
     EXPECT_EQ(whole.film.totalSamples(), film.totalSamples());
+    for (int y = 0; y < kSize; ++y)
+        for (int x = 0; x < kSize; ++x)
+            ASSERT_EQ(whole.film.cost(x, y), film.cost(x, y)) << "the costs adaptive sampling's budget reads";
 }
 
 // The same, under each sampler.

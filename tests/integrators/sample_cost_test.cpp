@@ -1,0 +1,61 @@
+// Each sample's cost (integrators/sample_cost.h), as the render loop adds it to its pixel in the
+// film: over the image, the costs add up to what the render counted (its rays and its medium
+// lookups, at their weight); a scene without media draws no
+// medium lookups, and a subsurface interior's random walks draw them and make its pixels cost more.
+#include <gtest/gtest.h>
+
+#include <cstdio>
+
+#include "integrators/path_tracer.h"
+#include "integrators/renderer.h"
+#include "integrators/sample_cost.h"
+#include "tests/integrators/render_support.h"
+#include "tests/support/scenes.h"
+#include "tests/support/subsurface_material.h"
+
+namespace fluence::integrators {
+namespace {
+
+constexpr int kSize = 12;
+
+double filmCost(const Film& film) {
+    double sum = 0.0;
+    for (int y = 0; y < film.height(); ++y)
+        for (int x = 0; x < film.width(); ++x) sum += film.cost(x, y);
+    return sum;
+}
+
+test_support::RenderedFilm renderFourSamples(const render::SceneDescription& desc) {
+    RenderSettings settings;
+    settings.samplesPerPixel = 4;
+    return test_support::renderFilm(PathTracer(IntegratorSettings{}), desc, kSize, settings);
+}
+
+void expectCostsAddUpToTheCounters(const test_support::RenderedFilm& r) {
+    const RenderCounters& c = r.stats.counters;
+    const double counted = double(c.rays()) + kMediumCollisionCost * double(c.mediumCollisions);
+    EXPECT_NEAR(filmCost(r.film), counted, 1e-12 * counted);
+}
+
+TEST(Renderer, EachSamplesCostIsItsRaysOnSurfaces) {
+    const test_support::RenderedFilm r = renderFourSamples(test::litSphereUnderASky());
+    EXPECT_EQ(r.stats.counters.mediumCollisions, 0u);
+    expectCostsAddUpToTheCounters(r);
+    // A sky pixel's sample traces its camera ray only.
+    EXPECT_EQ(r.film.cost(0, 0), 4.0);
+}
+
+TEST(Renderer, EachSamplesCostCountsTheMediumLookupsOfASubsurfaceWalk) {
+    render::SceneDescription surface = test::litSphereUnderASky(), walk = surface;
+    walk.materials[0] = test::subsurfaceMaterial("/mat", RGB(0.8f, 0.6f, 0.4f), RGB(0.3f, 0.2f, 0.1f));
+    const test_support::RenderedFilm opaque = renderFourSamples(surface), translucent = renderFourSamples(walk);
+    EXPECT_GT(translucent.stats.counters.mediumCollisions, 0u);
+    expectCostsAddUpToTheCounters(translucent);
+    const int centre = kSize / 2;
+    std::printf("[ measured ] centre pixel's cost per sample: %.1f opaque, %.1f subsurface\n",
+                opaque.film.cost(centre, centre) / 4, translucent.film.cost(centre, centre) / 4);
+    EXPECT_GT(translucent.film.cost(centre, centre), opaque.film.cost(centre, centre));
+}
+
+}  // namespace
+}  // namespace fluence::integrators
