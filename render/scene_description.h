@@ -31,7 +31,8 @@ namespace fluence::render {
 // profile of a flat, semi-infinite medium, sampled with probe rays (fast, approximate:
 // integrators/diffusion_probe.h). RandomWalkGuided walks too, with steps guided towards the
 // surface and combined with the classic ones by MIS (media/guided_walk.h): the same image, with
-// less noise in dense, bright media.
+// less noise for its CPU time; the delegate gives it to every material that does not name a
+// method (a MaterialDesc built in C++ keeps the classic walk unless it asks).
 enum class SubsurfaceMethod { RandomWalk, Diffusion, RandomWalkGuided };
 
 // A surface material's parameters at one surface point: one layered "principled" parameter set
