@@ -46,9 +46,9 @@ render: configure
 # RealCorpusCli: every public layer through `fluence info` and `render` under the sanitizers, 566 s
 # wall on 2 cores), and leaves out, to keep .ci/run under 45 minutes on 2 cores, the tests whose time
 # goes into rendering rather than reading scenes (stability scenes, tiles, checkpoints, farm,
-# interrupts, products, Cryptomatte, light paths, path classes, frame ranges);
-# `make test-sanitized SANITIZE_APPS_EXCLUDE=` runs them all.
-SANITIZE_APPS_EXCLUDE ?= ^(BenchStability|StabilityScenes|CheckpointCli|TilesCli|Farm|Signals/InterruptCli|RenderProductsCli|CryptomatteCli|LightPathCli|PathClassCli|FramesCli)
+# interrupts, products, Cryptomatte, light paths, path classes, frame ranges, the denoiser on every
+# sample scene); `make test-sanitized SANITIZE_APPS_EXCLUDE=` runs them all.
+SANITIZE_APPS_EXCLUDE ?= ^(BenchStability|StabilityScenes|CheckpointCli|TilesCli|Farm|Signals/InterruptCli|RenderProductsCli|CryptomatteCli|LightPathCli|PathClassCli|FramesCli|DenoiseSamplesCli)
 SANITIZER_TESTS = SANITIZE_BUILD_DIR=$(BUILD_DIR)/asan JOBS=$(JOBS) WERROR=$(WERROR) \
 	SANITIZE_ARGS='$(if $(SANITIZE_APPS_EXCLUDE),-E $(SANITIZE_APPS_EXCLUDE))' bash scripts/sanitizer_tests.sh
 test: format-check build
