@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 #include <optional>
+#include <type_traits>
 
 #include "render/bsdfs/albedo_table.h"
 #include "render/bsdfs/coat_return.h"
@@ -87,34 +88,93 @@ Vec3f nodeDirection(int i) {
     return {std::sqrt(std::max(0.0f, 1.0f - mu * mu)), 0.0f, mu};
 }
 
+// Each thread's last four results of a pure function of `key` (one cache per call site: the
+// lambda's type makes the instance): neighbouring hits of one object share their parameters, so a
+// result worth tens of table reads per hit is computed once per object and thread. Pure functions
+// only, so the images do not depend on what a thread has seen.
+template <typename Key, typename Compute>
+const auto& remembered(const Key& key, Compute&& compute) {
+    using Value = std::invoke_result_t<Compute>;
+    struct Entry {
+        Key key;
+        Value value;
+    };
+    thread_local std::array<std::optional<Entry>, 4> entries;
+    thread_local std::size_t next = 0;
+    for (const std::optional<Entry>& e : entries)
+        if (e && e->key == key) return e->value;
+    std::optional<Entry>& slot = entries[next];
+    next = (next + 1) % entries.size();
+    slot.emplace(Entry{key, compute()});
+    return slot->value;
+}
+
 // The light the diffuse base lets through to the other side (subsurface), as the layers laid over
 // it see it (render/bsdfs/layered.h, DiffuseBase::reachingAverage): it leaves the base
 // diffusely, and each layer passes on, at each mu node, the share 1 - A(mu) it does not reflect.
 // Each layer sends back in T times its reflectance averaged over what reaches it, so that the
 // layers together send back T minus what they all let out, however many they are.
+//
+// The layers of a material are laid in one order (sheen, specular lobe, coat: sheenAndSpecular,
+// clearCoat), each a function of the material's parameters, so the n-th layer's average and what
+// passes it are a function of (those parameters, n): remembered by that key, as a table read at 32
+// nodes per layer is too much to redo at every hit.
 class LightFromBelow {
 public:
-    explicit LightFromBelow(const DiffuseBase& base) : base_(base) {}
+    LightFromBelow(const DiffuseBase& base, const MaterialParams& m) : base_(base), m_(m) {}
 
-    // The DiffuseBase of the layer `top` laid next; what it lets through reaches the next one.
+    // The DiffuseBase of the layer `top` laid next (the material's next layer, in the order above);
+    // what it lets through reaches the next one.
     template <typename Top>
     DiffuseBase under(const Top& top) {
         DiffuseBase layer = base_;
         if (isBlack(base_.transmitted)) return layer;
-        if (!reaching_) reaching_.emplace().fill(RGB(1.0f));  // made only over a transmitting base
-        std::array<RGB, albedo_table::kCosines> reflected;
-        for (int i = 0; i < albedo_table::kCosines; ++i) {
-            const RGB a = top.reflectance(nodeDirection(i));
-            reflected[i] = (*reaching_)[i] * a;
-            (*reaching_)[i] *= RGB(1.0f) - a;
-        }
-        layer.reachingAverage = albedo_table::rgbCosineWeightedAverage(reflected);
+        const std::array<float, 16> key = {float(layers_),
+                                           m_.sheen,
+                                           m_.sheenColor.x,
+                                           m_.sheenColor.y,
+                                           m_.sheenColor.z,
+                                           m_.sheenRoughness,
+                                           m_.ior,
+                                           m_.specular,
+                                           m_.specularColor.x,
+                                           m_.specularColor.y,
+                                           m_.specularColor.z,
+                                           float(m_.specularWorkflow),
+                                           m_.roughness,
+                                           m_.anisotropy,
+                                           m_.coatIor,
+                                           m_.coatRoughness};
+        const Passed& passed = remembered(key, [&] {
+            Passed p;
+            if (reaching_)
+                p.reaching = *reaching_;
+            else
+                p.reaching.fill(RGB(1.0f));  // what the base lets out reaches the first layer whole
+            std::array<RGB, albedo_table::kCosines> reflected;
+            for (int i = 0; i < albedo_table::kCosines; ++i) {
+                const RGB a = top.reflectance(nodeDirection(i));
+                reflected[i] = p.reaching[i] * a;
+                p.reaching[i] *= RGB(1.0f) - a;
+            }
+            p.average = albedo_table::rgbCosineWeightedAverage(reflected);
+            return p;
+        });
+        reaching_ = passed.reaching;
+        ++layers_;
+        layer.reachingAverage = passed.average;
         return layer;
     }
 
 private:
+    struct Passed {
+        RGB average;                                         // the layer's reachingAverage
+        std::array<RGB, albedo_table::kCosines> reaching{};  // what reaches the next layer, per node
+    };
     DiffuseBase base_;
-    std::optional<std::array<RGB, albedo_table::kCosines>> reaching_;
+    const MaterialParams& m_;
+    int layers_ = 0;                                                   // laid so far
+    std::optional<std::array<RGB, albedo_table::kCosines>> reaching_;  // set over a transmitting base
 };
 
 // The layers over the diffuse base, as far as the specular coating: the sheen, then the
@@ -249,10 +309,8 @@ std::optional<CoatReturn> coatReturn(const MaterialParams& m, const DielectricRe
     return coatReturn;
 }
 
-// coatReturn(m, coat), remembered: it costs some 30 microseconds (a few thousand table reads),
-// and neighbouring hits of one object share their parameters, so each thread keeps the last
-// four profiles by the parameters they depend on. A pure function of those: the images do not
-// depend on what a thread has seen.
+// coatReturn(m, coat), remembered by the parameters it depends on: it costs some 30 microseconds
+// (a few thousand table reads).
 const std::optional<CoatReturn>& rememberedCoatReturn(const MaterialParams& m, const DielectricReflectionBsdf& coat) {
     using Key = std::array<float, 25>;
     const Key key = {m.coatIor,
@@ -280,18 +338,7 @@ const std::optional<CoatReturn>& rememberedCoatReturn(const MaterialParams& m, c
                      m.transmissionColor.x,
                      m.transmissionColor.y,
                      m.transmissionColor.z};
-    struct Entry {
-        Key key;
-        std::optional<CoatReturn> value;
-    };
-    thread_local std::array<std::optional<Entry>, 4> entries;
-    thread_local std::size_t next = 0;
-    for (const std::optional<Entry>& e : entries)
-        if (e && e->key == key) return e->value;
-    std::optional<Entry>& slot = entries[next];
-    next = (next + 1) % entries.size();
-    slot.emplace(Entry{key, coatReturn(m, coat)});
-    return slot->value;
+    return remembered(key, [&] { return coatReturn(m, coat); });
 }
 
 // The clear coat over everything, by weight `coat`; `light` when what lies under it is the
@@ -325,7 +372,7 @@ const Bsdf& materialBsdf(const MaterialParams& m, BsdfArena& arena) {
         bsdf = &blend(*bsdf, arena.make<LambertianTransmissionBsdf>(transmittance), weight, arena);
         diffuse.transmitted = transmittance * weight;
     }
-    LightFromBelow light(diffuse);
+    LightFromBelow light(diffuse, m);
     bsdf = &sheenAndSpecular(*bsdf, light, m, arena);
     if (m.transmission > 0.0f) bsdf = &blend(*bsdf, transmissionBsdf(m, arena), m.transmission, arena);
     if (m.metallic > 0.0f)
@@ -336,7 +383,7 @@ const Bsdf& materialBsdf(const MaterialParams& m, BsdfArena& arena) {
 
 const Bsdf& subsurfaceExitBsdf(const MaterialParams& m, BsdfArena& arena) {
     const Bsdf& boundary = arena.make<LambertianTransmissionBsdf>(RGB(1.0f));
-    LightFromBelow light(DiffuseBase{RGB(1.0f)});
+    LightFromBelow light(DiffuseBase{RGB(1.0f)}, m);
     return clearCoat(sheenAndSpecular(boundary, light, m, arena), &light, m, arena);
 }
 
