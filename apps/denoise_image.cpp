@@ -12,16 +12,6 @@ std::vector<std::string> colourChannels(const std::string& layer) {
     return {layer + kRGB[0], layer + kRGB[1], layer + kRGB[2]};
 }
 
-// Channels `names` of every pixel, interleaved.
-std::vector<float> gather(const Image& image, const std::vector<std::string>& names) {
-    std::vector<int> index;
-    for (const std::string& name : names) index.push_back(image.channelIndex(name));
-    std::vector<float> out(std::size_t(image.width) * image.height * names.size());
-    for (std::size_t p = 0, o = 0; p < std::size_t(image.width) * image.height; ++p)
-        for (int i : index) out[o++] = image.pixels[p * image.channelCount() + std::size_t(i)];
-    return out;
-}
-
 // Sets channels `names` of `image` from `values`, interleaved.
 void scatter(Image& image, const std::vector<std::string>& names, const std::vector<float>& values) {
     for (std::size_t n = 0; n < names.size(); ++n) {
@@ -115,6 +105,15 @@ void denoiseImage(Image& image, const std::vector<std::string>& layers, int thre
         values.push_back(&denoised.layers[l]);
     }
     replaceColours(image, colours, values);
+}
+
+std::vector<float> gather(const Image& image, const std::vector<std::string>& names) {
+    std::vector<int> index;
+    for (const std::string& name : names) index.push_back(image.channelIndex(name));
+    std::vector<float> out(std::size_t(image.width) * image.height * names.size());
+    for (std::size_t p = 0, o = 0; p < std::size_t(image.width) * image.height; ++p)
+        for (int i : index) out[o++] = image.pixels[p * image.channelCount() + std::size_t(i)];
+    return out;
 }
 
 Image withChannels(const Image& image, const Image& extra) {

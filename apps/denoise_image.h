@@ -34,6 +34,9 @@ std::vector<std::string> lightPathLayersOf(const Image& image);
 // DenoiseInputError.
 void denoiseImage(Image& image, const std::vector<std::string>& layers, int threads);
 
+// Channels `names` of every pixel of `image` (each present), interleaved.
+std::vector<float> gather(const Image& image, const std::vector<std::string>& names);
+
 // `image` with the channels of `extra` (of the same size) after its own.
 Image withChannels(const Image& image, const Image& extra);
 

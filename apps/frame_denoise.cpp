@@ -22,11 +22,7 @@ Image missingFeatures(const Image& resolved, const Image& image) {
             std::find(buffers.begin(), buffers.end(), name) == buffers.end())
             names.push_back(name);
     Image features(image.width, image.height, names);
-    for (std::size_t c = 0; c < names.size(); ++c) {
-        const std::size_t from = std::size_t(resolved.channelIndex(names[c]));
-        for (std::size_t p = 0; p < std::size_t(image.width) * image.height; ++p)
-            features.pixels[p * names.size() + c] = resolved.pixels[p * resolved.channelCount() + from];
-    }
+    features.pixels = gather(resolved, names);
     return features;
 }
 
