@@ -1,7 +1,9 @@
 #include "media/guided_walk.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <cstddef>
 
 #include "core/frame.h"
 #include "core/sampling.h"
@@ -12,18 +14,39 @@ namespace {
 
 constexpr double kTwoPi = 2.0 * 3.14159265358979323846;
 
-// The density of a length t at rate sigma: a collision there, or (not collided) none before it.
-double lengthPdf(double sigma, double t, bool collided) {
-    const double transmittance = std::exp(-sigma * t);
-    return collided ? sigma * transmittance : transmittance;
+// ln((nu + 1) / (nu - 1)), the guided cosine's normalisation.
+double dwivediLnRatio(double nu) { return std::log1p(2.0 / (nu - 1.0)); }
+
+// The guided cosine drawn from u, given lnRatio = dwivediLnRatio(nu): F(mu) = ln((nu + 1) / (nu -
+// mu)) / lnRatio, so nu - mu = (nu + 1) e^(-u lnRatio); written with expm1 so that a large nu (mu
+// nearly uniform) does not cancel.
+double sampleCosine(double nu, double lnRatio, double u) {
+    const double uL = u * lnRatio;
+    return std::clamp(-nu * std::expm1(-uL) - std::exp(-uL), -1.0, 1.0);
 }
 
-// The density of the guided cosine mu in [-1, 1], given lnRatio = ln((nu + 1) / (nu - 1)) (which a
-// walk keeps per channel), and the guided direction's solid-angle density.
-double cosinePdf(double nu, double lnRatio, double mu) { return 1.0 / ((nu - mu) * lnRatio); }
-double guidedDirectionPdf(double nu, double lnRatio, double mu) { return cosinePdf(nu, lnRatio, mu) / kTwoPi; }
-// The stretch of the guided length's rate, for mu = dot(wi, axis).
-double stretch(double nu, double mu) { return 1.0 - mu / nu; }
+// Per channel, nu and lnRatio of a walk of single-scattering albedos `albedo`: a pure function of
+// them, remembered per thread (the last four), as the walks of one material share them and
+// dwivediNu's power costs more than the rest of a walk's set-up.
+struct DwivediConstants {
+    RGB albedo;
+    std::array<double, 3> nu, lnRatio;
+};
+const DwivediConstants& dwivediConstants(const RGB& albedo) {
+    thread_local std::array<DwivediConstants, 4> entries;
+    thread_local std::size_t used = 0, next = 0;
+    for (std::size_t i = 0; i < used; ++i)
+        if (entries[i].albedo == albedo) return entries[i];
+    DwivediConstants& e = entries[next];
+    e.albedo = albedo;
+    for (int c = 0; c < 3; ++c) {
+        e.nu[c] = dwivediNu(albedo[c]);
+        e.lnRatio[c] = dwivediLnRatio(e.nu[c]);
+    }
+    next = (next + 1) % entries.size();
+    used = std::max(used, next == 0 ? entries.size() : next);
+    return e;
+}
 
 }  // namespace
 
@@ -36,22 +59,20 @@ double dwivediNu(double albedo) {
 
 double dwivediCosinePdf(double nu, double mu) {
     if (mu < -1.0 || mu > 1.0) return 0.0;
-    return cosinePdf(nu, std::log1p(2.0 / (nu - 1.0)), mu);
+    return 1.0 / ((nu - mu) * dwivediLnRatio(nu));
 }
 
-double sampleDwivediCosine(double nu, double u) {
-    // F(mu) = ln((nu + 1) / (nu - mu)) / ln((nu + 1) / (nu - 1)), so nu - mu = (nu + 1) e^(-u L);
-    // written with expm1 so that a large nu (mu nearly uniform) does not cancel.
-    const double uL = u * std::log1p(2.0 / (nu - 1.0));
-    return std::clamp(-nu * std::expm1(-uL) - std::exp(-uL), -1.0, 1.0);
-}
+double sampleDwivediCosine(double nu, double u) { return sampleCosine(nu, dwivediLnRatio(nu), u); }
 
 GuidedWalk::GuidedWalk(const Vec3f& entry, const Vec3f& outwardNormal, const MediumProperties& m)
     : entry_(entry), axis_(outwardNormal), medium_(m), sigmaT_(m.sigmaA + m.sigmaS), albedo_(0.0f) {
+    for (int c = 0; c < 3; ++c) albedo_[c] = sigmaT_[c] > 0.0f ? std::min(m.sigmaS[c] / sigmaT_[c], 1.0f) : 0.0f;
+    const DwivediConstants& constants = dwivediConstants(albedo_);
     for (int c = 0; c < 3; ++c) {
-        albedo_[c] = sigmaT_[c] > 0.0f ? std::min(m.sigmaS[c] / sigmaT_[c], 1.0f) : 0.0f;
-        nu_[c] = dwivediNu(albedo_[c]);
-        lnRatio_[c] = std::log1p(2.0 / (nu_[c] - 1.0));
+        nu_[c] = constants.nu[c];
+        lnRatio_[c] = constants.lnRatio[c];
+        directionNorm_[c] = static_cast<float>(1.0 / (kTwoPi * lnRatio_[c]));
+        inverseDiffusionLength_[c] = static_cast<float>(sigmaT_[c] / nu_[c]);
     }
     guidedFraction_ = kGuidedFraction * (1.0f - std::abs(m.g));
 }
@@ -76,11 +97,13 @@ void GuidedWalk::sawFarSide(const Vec3f& direction, float distance) {
     if (farDepth_ < 0.0f && depth > 0.0f) farDepth_ = depth;
 }
 
-double GuidedWalk::backwardFraction(const Vec3f& p, int channel) const {
-    if (farDepth_ < 0.0f) return 0.0;
-    const double x = std::clamp(double(dot(entry_ - p, axis_)), 0.0, double(farDepth_));
-    const double diffusionLength = nu_[channel] / sigmaT_[channel];
-    return 1.0 / (1.0 + std::exp((farDepth_ - 2.0 * x) / diffusionLength));
+float GuidedWalk::backwardDepth(const Vec3f& p) const {
+    return farDepth_ < 0.0f ? 0.0f : std::clamp(dot(entry_ - p, axis_), 0.0f, farDepth_);
+}
+
+float GuidedWalk::backwardFraction(float depth, int channel) const {
+    if (farDepth_ < 0.0f) return 0.0f;
+    return 1.0f / (1.0f + std::exp((farDepth_ - 2.0f * depth) * inverseDiffusionLength_[channel]));
 }
 
 WalkStep GuidedWalk::sampleStep(const Vec3f& p, const Vec3f& wo, int channel, float uStrategy, Vec2f uDirection) const {
@@ -89,9 +112,9 @@ WalkStep GuidedWalk::sampleStep(const Vec3f& p, const Vec3f& wo, int channel, fl
         step.wi = HenyeyGreenstein(medium_.g).sample(wo, uDirection).wi;
         return step;
     }
-    const bool away = uStrategy < guidedFraction_ * backwardFraction(p, channel);
+    const bool away = uStrategy < guidedFraction_ * backwardFraction(backwardDepth(p), channel);
     step.strategy = away ? WalkStrategy::AwayFromEntry : WalkStrategy::TowardsEntry;
-    const double mu = sampleDwivediCosine(nu_[channel], uDirection.x);
+    const double mu = sampleCosine(nu_[channel], lnRatio_[channel], uDirection.x);
     const float sinTheta = static_cast<float>(std::sqrt(std::max(0.0, 1.0 - mu * mu)));
     const float phi = 2.0f * kPi * uDirection.y;
     step.wi = Frame::fromNormal(away ? -axis_ : axis_)
@@ -99,31 +122,50 @@ WalkStep GuidedWalk::sampleStep(const Vec3f& p, const Vec3f& wo, int channel, fl
     return step;
 }
 
-RGB GuidedWalk::stepPdf(const WalkStep& step, float t, bool collided) const {
-    RGB pdf(0.0f);
-    const double mu = dot(step.wi, axis_);
-    const double phase = step.first ? 0.0 : HenyeyGreenstein(medium_.g).pdf(step.wo, step.wi);
+GuidedWalk::Density GuidedWalk::density(const WalkStep& step, float t, bool collided) const {
+    Density d;
     for (int c = 0; c < 3; ++c) {
-        const double sigma = sigmaT_[c], nu = nu_[c], lnRatio = lnRatio_[c];
-        const double classic = lengthPdf(sigma, t, collided);
-        if (step.first) {
-            pdf[c] = static_cast<float>(classic);
-            continue;
-        }
-        const double b = backwardFraction(step.origin, c);
-        const double towards = guidedDirectionPdf(nu, lnRatio, mu) * lengthPdf(sigma * stretch(nu, mu), t, collided);
-        const double away = guidedDirectionPdf(nu, lnRatio, -mu) * lengthPdf(sigma * stretch(nu, -mu), t, collided);
-        pdf[c] = static_cast<float>((1.0 - guidedFraction_) * phase * classic +
-                                    guidedFraction_ * ((1.0 - b) * towards + b * away));
+        d.transmittance[c] = std::exp(-sigmaT_[c] * t);
+        d.pdf[c] = collided ? sigmaT_[c] * d.transmittance[c] : d.transmittance[c];  // the classic length's
     }
-    return pdf;
+    if (step.first) return d;
+    d.phase = HenyeyGreenstein(medium_.g).p(step.wo, step.wi);
+    const float mu = dot(step.wi, axis_), depth = backwardDepth(step.origin);
+    for (int c = 0; c < 3; ++c) {
+        // The guided lengths' rates are sigmaT (1 - r) towards the entry and sigmaT (1 + r) away,
+        // r = mu / nu (in double, as sampleLength draws them); their transmittances T / q and T q,
+        // q = exp(-sigmaT t |r|), in the order of r's sign (see THE COST OF A STEP).
+        const double r = double(mu) / nu_[c];
+        const float exponent = sigmaT_[c] * t, stretched = static_cast<float>(exponent * std::abs(r));
+        float nearer, farther;  // exp(-exponent + stretched), exp(-exponent - stretched)
+        if (exponent <= kFactoredExponentLimit) {
+            const float q = std::exp(-stretched);
+            nearer = d.transmittance[c] / q;
+            farther = d.transmittance[c] * q;
+        } else {
+            nearer = std::exp(stretched - exponent);
+            farther = std::exp(-exponent - stretched);
+        }
+        const float towardsTransmittance = r >= 0.0 ? nearer : farther;
+        const float awayTransmittance = r >= 0.0 ? farther : nearer;
+        const float b = backwardFraction(depth, c), norm = directionNorm_[c];
+        float guided = (1.0f - b) * norm / static_cast<float>(nu_[c] - mu) * towardsTransmittance *
+                       (collided ? static_cast<float>(sigmaT_[c] * (1.0 - r)) : 1.0f);
+        if (b > 0.0f)
+            guided += b * norm / static_cast<float>(nu_[c] + mu) * awayTransmittance *
+                      (collided ? static_cast<float>(sigmaT_[c] * (1.0 + r)) : 1.0f);
+        d.pdf[c] = (1.0f - guidedFraction_) * d.phase * d.pdf[c] + guidedFraction_ * guided;
+    }
+    return d;
 }
+
+RGB GuidedWalk::stepPdf(const WalkStep& step, float t, bool collided) const { return density(step, t, collided).pdf; }
 
 float GuidedWalk::sampleLength(const WalkStep& step, float u) const {
     double rate = sigmaT_[step.channel];
     if (step.strategy != WalkStrategy::Classic) {
-        const double mu = dot(step.wi, axis_);
-        rate *= stretch(nu_[step.channel], step.strategy == WalkStrategy::TowardsEntry ? mu : -mu);
+        const double r = double(dot(step.wi, axis_)) / nu_[step.channel];
+        rate *= step.strategy == WalkStrategy::TowardsEntry ? 1.0 - r : 1.0 + r;
     }
     return static_cast<float>(-std::log1p(-double(u)) / rate);
 }
@@ -132,18 +174,15 @@ FreeFlight GuidedWalk::fly(const WalkStep& step, float length, float tBoundary, 
     FreeFlight flight;
     const bool collided = length < tBoundary;
     flight.t = collided ? length : tBoundary;
-    const RGB pdf = stepPdf(step, flight.t, collided);
+    const Density d = density(step, flight.t, collided);
     const RGB probability = channelProbabilities();
-    const float mixture = probability[0] * pdf[0] + probability[1] * pdf[1] + probability[2] * pdf[2];
+    const float mixture = probability[0] * d.pdf[0] + probability[1] * d.pdf[1] + probability[2] * d.pdf[2];
     if (!(mixture > 0.0f) || !std::isfinite(mixture)) {  // a length beyond float range: the walk is lost
         flight.event = FlightEvent::Absorbed;
         flight.throughput = RGB(0.0f);
         return flight;
     }
-    const float phase = step.first ? 1.0f : HenyeyGreenstein(medium_.g).p(step.wo, step.wi);
-    for (int c = 0; c < 3; ++c)
-        flight.throughput[c] = phase * (collided ? medium_.sigmaS[c] : 1.0f) * std::exp(-sigmaT_[c] * flight.t);
-    flight.throughput /= mixture;
+    flight.throughput = d.transmittance * (collided ? medium_.sigmaS : RGB(1.0f)) * (d.phase / mixture);
     throughput_ *= flight.throughput;
     if (!collided) return flight;  // Escaped: through the boundary
     flight.p = step.origin + step.wi * flight.t;

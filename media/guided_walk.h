@@ -48,7 +48,13 @@
 // THE COST OF A STEP. The length is drawn before the boundary is known (sampleLength), so the
 // path tracer traces each step's ray only that far: no surface is shaded unless the walk leaves,
 // and Embree culls what lies beyond. The entry's step is traced on to the far side, for backward
-// guiding.
+// guiding. The nine densities of a step take three exponentials per channel in float (density):
+// the channel's transmittance T = exp(-sigmaT t), which the step's value shares, the factor
+// q = exp(-sigmaT t |mu| / nu) between it and the two guided lengths' transmittances
+// (exp(-sigmaT t (1 -+ mu / nu)) = T / q and T q, in the order of mu's sign), and the backward
+// fraction's; where T is below float's normal range (sigmaT t > kFactoredExponentLimit), T / q
+// would be 0 / 0, and the guided ones are taken directly. A walk's Dwivedi eigenvalues are a
+// pure function of its albedos, remembered per thread (dwivediConstants).
 #pragma once
 
 #include "core/random.h"
@@ -61,6 +67,9 @@ namespace fluence::media {
 
 inline constexpr float kGuidedFraction = 0.5f;  // of the steps guided, in an isotropic medium
 inline constexpr double kMinNu = 1.0001, kMaxNu = 1e4;
+// Above this exponent exp(-x) (< 1.8e-35) is too near float's smallest normal number (1.2e-38)
+// for the guided transmittances to be taken as quotients of it (see THE COST OF A STEP).
+inline constexpr float kFactoredExponentLimit = 80.0f;
 
 // The Dwivedi eigenvalue nu of single-scattering albedo `albedo` (see THE IDEA), clamped.
 double dwivediNu(double albedo);
@@ -113,13 +122,26 @@ public:
     FreeFlight fly(const WalkStep& step, float length, float tBoundary, SampleStream& stream);
 
 private:
-    // The probability of guiding a step from p away from the entry (see BACKWARD GUIDING).
-    double backwardFraction(const Vec3f& p, int channel) const;
+    // A step's densities (stepPdf) with what the step's value shares with them: per channel, the
+    // transmittance exp(-sigmaT t), and the phase function's value (1 for the entry's step).
+    struct Density {
+        RGB pdf, transmittance;
+        float phase = 1.0f;
+    };
+    Density density(const WalkStep& step, float t, bool collided) const;
+
+    // The depth of p below the entry plane, clamped to the far side's (0 when it is not seen),
+    // and the probability, at that depth, of guiding channel c's step away from the entry (see
+    // BACKWARD GUIDING).
+    float backwardDepth(const Vec3f& p) const;
+    float backwardFraction(float depth, int channel) const;
 
     Vec3f entry_, axis_;
     MediumProperties medium_;
     RGB sigmaT_, albedo_;
-    double nu_[3], lnRatio_[3];  // per channel: nu and ln((nu + 1) / (nu - 1))
+    double nu_[3], lnRatio_[3];        // per channel: nu and ln((nu + 1) / (nu - 1)),
+    float directionNorm_[3];           // 1 / (2 pi lnRatio), the guided directions' constant,
+    float inverseDiffusionLength_[3];  // and sigmaT / nu
     float guidedFraction_;
     RGB throughput_{1.0f};    // T, the walk's weight since the entry
     float farDepth_ = -1.0f;  // depth of the far side below the entry plane; < 0: not seen

@@ -1,6 +1,6 @@
 // Guided random-walk steps (media/guided_walk.h): the Dwivedi eigenvalue against its defining
 // equation, the guided cosines' mean, the directions each step draws against the density stepPdf says (chi-square over the
-// sphere), stepPdf's normalisation over directions and lengths, the channels drawn against their
+// sphere), stepPdf's normalisation over directions and lengths and its closed form on long steps, the channels drawn against their
 // probabilities (chi-square), and the step's expected weight against its closed form, which
 // checks that sampleLength draws lengths with the density fly divides by.
 #include "media/guided_walk.h"
@@ -108,6 +108,43 @@ TEST(GuidedWalk, StepPdfIntegratesToOneOverDirectionsAndLengths) {
         std::printf("[ measured ] channel %d: integral %.7f +- %.1e\n", c, total.value, total.error);
         EXPECT_NEAR(total.value, 1.0, total.error + 2e-4) << "channel " << c;
     }
+}
+
+TEST(GuidedWalk, StepPdfHoldsItsClosedFormHundredsOfMeanFreePathsLong) {
+    // A guided step nearly along the entry's normal, from halfway down the thin walk (both guiding
+    // directions in play), at lengths of 0.5 to 1600 mean free paths: stepPdf, in float, against
+    // the closed form of THE STEP AND ITS MIS in long double. Short steps take the guided lengths'
+    // transmittances as quotients of the classic one; long ones, where that one is below float's
+    // normal range, directly (kFactoredExponentLimit): as quotients they would read 0 where the
+    // guided length towards the nearer side still has most of its density. Tolerance: the float
+    // rounding of exponents up to 1600 (relative 6e-8 each, so 1e-4 of the value) plus the
+    // smallest normal float, below which a density is 0 to a float.
+    const MediumProperties m = chromaticMedium();
+    const GuidedWalk walk = thinWalk(m);
+    const Vec3f p(0.1f, 0.0f, -0.75f);
+    const long double farDepth = 1.5L, depth = 0.75L, f = kGuidedFraction,
+                      phase = 1.0L / (4.0L * 3.14159265358979323846L);
+    for (float mu : {0.999f, -0.999f})
+        for (float t : {0.5f, 30.0f, 120.0f, 400.0f})
+            for (bool collided : {true, false}) {
+                const Vec3f wi(std::sqrt(1.0f - mu * mu), 0.0f, mu);
+                const WalkStep step{p, kWo, wi, false, WalkStrategy::Classic};
+                const RGB pdf = walk.stepPdf(step, t, collided);
+                for (int c = 0; c < 3; ++c) {
+                    const long double sigmaT = m.sigmaA[c] + m.sigmaS[c], nu = dwivediNu(m.sigmaS[c] / sigmaT);
+                    const long double lnRatio = std::log((nu + 1.0L) / (nu - 1.0L)), cosine = dot(wi, kNormal);
+                    auto length = [&](long double rate) { return (collided ? rate : 1.0L) * std::exp(-rate * t); };
+                    const long double b = 1.0L / (1.0L + std::exp((farDepth - 2.0L * depth) * sigmaT / nu));
+                    const long double towards = length(sigmaT * (1.0L - cosine / nu)) /
+                                                ((nu - cosine) * lnRatio * 2.0L * 3.14159265358979323846L);
+                    const long double away = length(sigmaT * (1.0L + cosine / nu)) /
+                                             ((nu + cosine) * lnRatio * 2.0L * 3.14159265358979323846L);
+                    const long double expected =
+                        (1.0L - f) * phase * length(sigmaT) + f * ((1.0L - b) * towards + b * away);
+                    EXPECT_NEAR(pdf[c], double(expected), 1e-4 * double(expected) + 1.2e-38)
+                        << "mu " << mu << ", t " << t << ", collided " << collided << ", channel " << c;
+                }
+            }
 }
 
 // The thin walk after its entry's step reached a boundary 1 below it without a collision: its
