@@ -30,24 +30,36 @@ using render::SurfaceHit;
 namespace {
 
 // The multiple-importance weights of a path, in the two forms the path tracer uses: Veach's power
-// heuristic on scalar densities where the scene has no medium, and, with one, the balance
-// heuristic in the spectral-MIS form of media/tracking.h (rU, rL: the path's densities under its
-// own sampling and under light sampling of its last segment, over the hero channel's density).
+// heuristic on scalar densities, and the balance heuristic in the spectral-MIS form of
+// media/tracking.h (rU, rL: the path's densities under its own sampling and under light sampling
+// of its last segment, over the hero channel's density). The spectral form is needed where the
+// densities differ by channel: a scene with media (`spectral`), on a path that has met an event
+// drawn by its hero channel (rU not 1 in every channel: a classic walk's or a volume's flight) or
+// whose last segment crosses a medium. Elsewhere, in particular on the paths of a scene whose
+// only media are guided subsurface walks (whose steps do not depend on the hero, pdfRatio 1),
+// both strategies of a connection see the same scalar densities and take the power heuristic, as
+// in a scene without media: the condition is the same from the light sample's side (rU at the
+// vertex, the shadow ray's medium) and from the BSDF-sampled ray's (rU unchanged over a segment
+// without a medium), so the two weights still add up to 1.
 struct MisState {
     const bool spectral;
     RGB rU{1.0f}, rL{1.0f};
-    float bsdfPdf = 0.0f;  // scalar form: the density of the direction that produced the ray
+    float bsdfPdf = 0.0f;          // scalar form: the density of the direction that produced the ray
+    bool segmentInMedium = false;  // the ray's segment crosses a medium (set per segment by the path)
 
+    // Whether a connection whose segment crosses a medium or not (`inMedium`) takes the scalar form.
+    bool scalar(bool inMedium) const { return !spectral || (!inMedium && rU == RGB(1.0f)); }
     // The weight of emission Le reached by the ray, whose light strategy had density lightPdf;
     // `unique`: no light strategy could have produced it (camera ray, delta lobe).
     float emitter(float lightPdf, bool unique) const {
-        if (!spectral) return unique ? 1.0f : powerHeuristic(bsdfPdf, lightPdf);
+        if (scalar(segmentInMedium)) return unique ? 1.0f : powerHeuristic(bsdfPdf, lightPdf);
         return 1.0f / media::channelAverage(unique ? rU : rU + rL * lightPdf);
     }
     // The weight of a light sample of density lightPdf whose direction the BSDF or phase function
-    // would have drawn with scatterPdf (0 for a delta light), through transmittance `tr`.
-    RGB lightSample(float lightPdf, float scatterPdf, const media::TransmittanceEstimate& tr) const {
-        if (!spectral)
+    // would have drawn with scatterPdf (0 for a delta light), through transmittance `tr` of a
+    // shadow ray that crosses a medium or not (`inMedium`).
+    RGB lightSample(float lightPdf, float scatterPdf, const media::TransmittanceEstimate& tr, bool inMedium) const {
+        if (scalar(inMedium))
             return RGB(scatterPdf > 0.0f ? powerHeuristic(lightPdf, scatterPdf) / lightPdf : 1.0f / lightPdf);
         return tr.throughput / media::channelAverage(rU * (tr.pdfRatio * lightPdf + tr.throughput * scatterPdf));
     }
@@ -152,7 +164,9 @@ public:
             if (kMedia && guidedWalk_ && !exiting) startWalkStep();
             std::optional<SurfaceHit> hit =
                 exiting ? std::exchange(diffusionExit_, std::nullopt) : scene_.intersect(ray_);
-            if (const media::Medium* medium = !kMedia || exiting ? nullptr : inside_.medium()) {
+            const media::Medium* medium = !kMedia || exiting ? nullptr : inside_.medium();
+            mis_.segmentInMedium = medium != nullptr;
+            if (medium) {
                 const Step step = throughMedium(*medium, hit, depth);
                 if (step == Step::End) break;
                 if (step == Step::Next) continue;
@@ -363,7 +377,8 @@ private:
         // Light that passed surfaces (render/shadow_rays.cpp) no BSDF-sampled ray finds: weight 1.
         const bool onlyStrategy = ls->delta || shadow == render::ShadowTest::PassedThrough;
         const RGB contribution = throughput_ * f * ls->Li *
-                                 mis_.lightSample(choice.probability * ls->pdf, onlyStrategy ? 0.0f : scatterPdf, tr);
+                                 mis_.lightSample(choice.probability * ls->pdf, onlyStrategy ? 0.0f : scatterPdf, tr,
+                                                  kMedia && shadowMedium);
         radiance_ += contribution;
         if (lightPaths_.active())
             lightPaths_.connect(vertexEvents(ls->wi), lightEvents_[choice.light], contribution, out_);

@@ -6,6 +6,7 @@
 #include <cstring>
 
 #include "integrators/renderer.h"
+#include "media/subsurface_medium.h"
 #include "tests/integrators/render_support.h"
 #include "tests/support/scenes.h"
 
@@ -105,6 +106,45 @@ TEST(PathTracer, WithoutMediaTheSurfaceOnlyTracerGivesTheSameSamples) {
         const RGB withMedia = tracer.trace<true>(LightEvents(), scene, camera, ray, rngA, a).radiance;
         const RGB without = tracer.trace<false>(LightEvents(), scene, camera, ray, rngB, b).radiance;
         ASSERT_EQ(0, std::memcmp(&withMedia, &without, sizeof(RGB))) << "sample " << i;
+    }
+    EXPECT_EQ(a.rays(), b.rays());
+}
+
+// A scene whose only medium is a guided subsurface walk's (its steps do not depend on the path's
+// hero channel, media/guided_walk.h) weighs the paths that meet no medium as a scene without
+// media does, by the power heuristic: a glossy wall under a sphere light, with a guided
+// subsurface ball hidden behind it, gives the same samples, bit for bit, as the wall alone (whose
+// stream is one number on: the hero channel the tracer with media draws first).
+TEST(PathTracer, PathsThatMeetNoHeroDependentMediumTakeThePowerHeuristic) {
+    render::SceneDescription alone;
+    alone.camera = test::lookAtOriginCamera(4.0f);
+    alone.materials.push_back(test::metalMaterial("/metal", RGB(0.9f, 0.6f, 0.3f), 0.3f));
+    alone.meshes.push_back(test::quadMesh("/wall",
+                                          {Vec3f(-10.0f, 0.0f, -10.0f), Vec3f(10.0f, 0.0f, -10.0f),
+                                           Vec3f(10.0f, 0.0f, 10.0f), Vec3f(-10.0f, 0.0f, 10.0f)},
+                                          0));
+    alone.lights.push_back(test::sphereLight("/bulb", 0.3f, RGB(20.0f), Vec3d(0.5, -1.5, 1.0)));
+    render::SceneDescription withBall = alone;
+    render::MaterialDesc skin;
+    skin.name = "/skin";
+    skin.subsurface = 1.0f;
+    skin.subsurfaceMethod = render::SubsurfaceMethod::RandomWalkGuided;
+    skin.interior = media::subsurfaceMedium(RGB(0.8f, 0.5f, 0.3f), RGB(0.2f), 0.0f);
+    withBall.materials.push_back(skin);
+    withBall.meshes.push_back(test::roundSphereMesh(0.5f, 32, 16, 1, Vec3f(0.0f, 3.0f, 0.0f)));
+    const render::RenderScene sceneWithBall(withBall), sceneAlone(alone);
+    ASSERT_TRUE(sceneWithBall.hasMedia());
+    ASSERT_FALSE(sceneAlone.hasMedia());
+    const render::Camera camera(*alone.camera, 32, 32);
+    const PathTracer tracer{IntegratorSettings{}};
+    RenderCounters a, b;
+    for (int i = 0; i < 32 * 32 * 4; ++i) {
+        const render::Ray ray = camera.generateRay(float(i % 32) + 0.5f, float((i / 32) % 32) + 0.5f);
+        SampleStream rngA(5, std::uint64_t(i), 0), rngB(5, std::uint64_t(i), 0);
+        rngB.next();
+        const RGB ball = tracer.trace<true>(LightEvents(), sceneWithBall, camera, ray, rngA, a).radiance;
+        const RGB wall = tracer.trace<false>(LightEvents(), sceneAlone, camera, ray, rngB, b).radiance;
+        ASSERT_EQ(0, std::memcmp(&ball, &wall, sizeof(RGB))) << "sample " << i;
     }
     EXPECT_EQ(a.rays(), b.rays());
 }
