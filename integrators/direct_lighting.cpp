@@ -11,7 +11,7 @@
 #include "integrators/medium_stack.h"
 #include "integrators/russian_roulette.h"
 #include "integrators/surface_frame.h"
-#include "media/ratio_tracking.h"
+#include "media/transmittance.h"
 #include "render/bsdf_arena.h"
 #include "render/material_bsdf.h"
 
@@ -24,12 +24,15 @@ using render::SurfaceHit;
 namespace {
 
 // An unbiased estimate of the transmittance over `distance` from `origin` along `direction`
-// through `medium` (1 where there is none): ratio tracking with a hero channel of its own.
+// through `medium` (1 where there is none): unbiased ray marching, with a hero channel of its own
+// for a ray it cannot march (media/ray_marching_transmittance.h).
 RGB transmittance(const media::Medium* medium, const Vec3f& origin, const Vec3f& direction, float distance,
                   SampleStream& rng) {
     if (!medium) return RGB(1.0f);
     const int hero = media::sampleHeroChannel(rng.next());
-    return media::ratioTrackingTransmittance(*medium, {origin, direction, distance}, hero, rng).estimate();
+    return media::estimateTransmittance(media::TransmittanceMethod::RayMarching, *medium, {origin, direction, distance},
+                                        hero, rng)
+        .estimate();
 }
 
 }  // namespace

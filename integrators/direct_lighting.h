@@ -21,9 +21,9 @@
 //
 // MEDIA. Where the scene has media (volumes, or material interiors such as Standard Surface's
 // transmission_depth, integrators/medium_stack.h), every segment of a path (the camera ray, the
-// BSDF-sampled ray, each shadow ray) is attenuated by an estimate of its transmittance: residual
-// ratio tracking (media/ratio_tracking.h) with a hero channel drawn for that estimate alone, so
-// each is unbiased and independent of the others (the MIS weights are those of the directions
+// BSDF-sampled ray, each shadow ray) is attenuated by an estimate of its transmittance: unbiased
+// ray marching (media/ray_marching_transmittance.h; a hero channel drawn for that estimate alone
+// where it falls back on ratio tracking), so each is unbiased and independent of the others (the MIS weights are those of the directions
 // alone, and still sum to 1). Media neither scatter nor emit here: in-scattering and volume
 // emission (V events, and the first-volume-event AOVs) are missed, so volumes only darken what is
 // behind them.

@@ -17,7 +17,7 @@
 #include "media/free_flight.h"
 #include "media/guided_walk.h"
 #include "media/phase.h"
-#include "media/ratio_tracking.h"
+#include "media/transmittance.h"
 #include "render/bsdf_arena.h"
 #include "render/material_bsdf.h"
 
@@ -369,13 +369,17 @@ private:
         const render::ShadowTest shadow =
             scene_.shadowTest(choice.light, shadowOrigin, ls->wi, ls->distance, ray_.time);
         if (shadow == render::ShadowTest::Blocked) return;
-        media::TransmittanceEstimate tr;
-        if (kMedia && shadowMedium) {
-            tr = media::ratioTrackingTransmittance(*shadowMedium, {shadowOrigin, ls->wi, ls->distance}, hero_, rng_);
-            counters_.mediumCollisions += std::uint64_t(tr.collisions);
-        }
         // Light that passed surfaces (render/shadow_rays.cpp) no BSDF-sampled ray finds: weight 1.
         const bool onlyStrategy = ls->delta || shadow == render::ShadowTest::PassedThrough;
+        media::TransmittanceEstimate tr;
+        if (kMedia && shadowMedium) {
+            // Ray marching where no strategy is weighted against this one (media/transmittance.h);
+            // else ratio tracking, whose null points the MIS weight needs.
+            tr = media::estimateTransmittance(
+                onlyStrategy ? media::TransmittanceMethod::RayMarching : media::TransmittanceMethod::RatioTracking,
+                *shadowMedium, {shadowOrigin, ls->wi, ls->distance}, hero_, rng_);
+            counters_.mediumCollisions += std::uint64_t(tr.collisions);
+        }
         const RGB contribution = throughput_ * f * ls->Li *
                                  mis_.lightSample(choice.probability * ls->pdf, onlyStrategy ? 0.0f : scatterPdf, tr,
                                                   kMedia && shadowMedium);

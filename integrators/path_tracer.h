@@ -40,7 +40,8 @@ public:
     FilmSample sample(const RenderState& state, const render::RenderScene& scene, const render::Camera& camera,
                       const render::Ray& ray, SampleStream& rng, RenderCounters& counters) const override;
     // The path tracer with (kMedia) or without the machinery of volumes and subsurface scattering:
-    // free flights, ratio-tracked shadow rays, the medium stack, spectral MIS, diffusion probes. A
+    // free flights, ratio-tracked shadow rays (ray-marched where no strategy is weighted against
+    // them: delta lights), the medium stack, spectral MIS, diffusion probes. A
     // scene without media pays for none of it; on such a scene both give the same image, bit for
     // bit (tests/integrators/path_tracer_test.cpp), and bench/media_overhead_bench.cpp times them.
     // `lightEvents`: the scene's (integrators/path_events.h) where there are light path expression

@@ -5,7 +5,7 @@
 // The cost is in units of one ray: the rays the sample traced (camera, bounce and shadow rays: a
 // random-walk step through a subsurface interior is a bounce ray), plus the tentative collisions
 // its free flights and transmittance estimates drew in media (each a medium lookup:
-// media/free_flight.h, media/ratio_tracking.h) at kMediumCollisionCost rays each. The weight was
+// media/free_flight.h, media/transmittance.h) at kMediumCollisionCost rays each. The weight was
 // measured once (bench/sample_cost_calibration.py, bench/results/2026-12-05-adaptive-2.md): the
 // CPU time of 128 extra uniform samples per pixel of the Cornell box (rays only), the smoke (rays
 // and lookups in a VDB grid) and the subsurface scene, fitted by least squares as

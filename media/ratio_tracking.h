@@ -15,20 +15,9 @@
 #include "core/rgb.h"
 #include "media/medium.h"
 #include "media/tracking.h"
+#include "media/transmittance_estimate.h"
 
 namespace fluence::media {
-
-struct TransmittanceEstimate {
-    RGB throughput{1.0f};  // f_c / p_h: the null points' Tmaj sigmaN and the last stretch's Tmaj, over
-                           // the hero's density. It is also delta tracking's density of the same
-                           // null points over p_h (delta tracking's pdf of a null point equals its f).
-    RGB pdfRatio{1.0f};    // p_c / p_h: ratio tracking's density had channel c been the hero
-    int collisions = 0;    // tentative collisions drawn (each one medium lookup): the work done
-
-    // The transmittance in each channel, unbiased when the hero was drawn uniformly for this
-    // estimate alone (within a path, combine throughput and pdfRatio as media/tracking.h says).
-    RGB estimate() const { return throughput / channelAverage(pdfRatio); }
-};
 
 // The transmittance of ray.origin -> ray.at(ray.tMax) through `medium`, drawn with hero channel `hero`.
 TransmittanceEstimate ratioTrackingTransmittance(const Medium& medium, const MediumRay& ray, int hero,

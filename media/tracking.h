@@ -62,6 +62,11 @@
 //     sigmaS_h, sigmaN_h over sigmaMaj_h; a null collision goes on. A point of kind k has
 //     f_c = Tmaj_c sigma_k,c (times Le or the phase function, which the caller applies) and
 //     p_c = Tmaj_c sigmaMaj_c sigma_k,c / sigmaMaj_c = f_c; escaping, f_c = p_c = Tmaj_c.
+//   Unbiased ray marching (rayMarchingTransmittance, media/ray_marching_transmittance.h; Kettunen
+//     et al. 2021) is the one transmittance estimator not built on trackMajorants(): it walks the
+//     same majorant segments with evenly spaced combs of points and samples no channel and no null
+//     point (pdfRatio 1), so it serves only where no strategy is weighted against it by null-point
+//     densities (below). media/transmittance.h chooses between it and ratio tracking.
 //   Emission is scored where a flight is absorbed (an absorption estimator: F = throughput Le
 //   / channelAverage(pdfRatio)); pbrt-v4's collision estimator, which scores sigmaA Le / sigmaMaj
 //   at every tentative collision, has less variance in thin emitting media and would be built on
@@ -81,7 +86,8 @@
 //         L += beta * HG.p(wo, wi) * tr.throughput * Le
 //              / channelAverage(rU * (lightPdf * tr.pdfRatio + HG.pdf(wo, wi) * tr.throughput));
 //         (tr.throughput is also delta tracking's density ratio for the same null points; drop
-//         the second term for a delta light, which phase sampling cannot hit);
+//         the second term for a delta light, which phase sampling cannot hit: then any unbiased
+//         estimate with pdfRatio 1 serves as tr, and `path` ray-marches those shadow rays);
 //       phase sampling: s = HG.sample(wo, u); beta *= s.p / s.pdf (= 1); rL = rU / s.pdf;
 //       the path goes on along s.wi.
 //     Escaped: the path reaches the surface at tHit. If it is an emitter reached after a

@@ -115,7 +115,7 @@ TEST(VolumePath, PathAgreesWithTheNaiveReferenceInChromaticSmoke) {
 }
 
 // A delta sun's light scattered once (maxDepth 1) in chromatic smoke, which only next-event
-// estimation at the free flights' scatterings reaches (ratio-tracked shadow rays), against
+// estimation at the free flights' scatterings reaches (ray-marched shadow rays), against
 //     L_c = integral T_c(0, t) sigmaS_c(t) E_c / (4 pi) T_c(t -> sun) dt,
 // both transmittances and the integral by the midpoint rule on the medium's own coefficients.
 // The tolerance is 4 standard errors of the mean plus the quadrature's error, estimated as the

@@ -80,30 +80,9 @@ TEST(RatioTracking, IsUnbiasedPerChannelWithLooseBounds) {
 }
 
 TEST(RatioTracking, MatchesTheClosedFormThroughALinearRamp) {
-    // sigmaT(x) = a + b x over 0 <= x < 3, from x = 0 to x = d along a ray whose direction has x
-    // component cos: T = exp(-(a d + b d^2 / 2) / cos).
-    const float d = 2.0f;
-    struct Case {
-        const char* name;
-        RGB a, b;
-        int segments;
-        bool minorants, oblique;
-    };
-    const Case cases[] = {
-        {"gray ramp, 1 segment", RGB(0.2f), RGB(0.8f), 1, false, false},
-        {"gray ramp, 6 segments", RGB(0.2f), RGB(0.8f), 6, false, false},
-        {"gray ramp, 6 segments with minorants, oblique", RGB(0.2f), RGB(0.8f), 6, true, true},
-        {"chromatic ramp, 4 segments with minorants", RGB(0.1f, 1.0f, 2.0f), RGB(1.5f, 0.0f, -0.6f), 4, true, false},
-        {"chromatic ramp with an empty channel", RGB(0.0f, 0.5f, 3.0f), RGB(0.0f, 1.0f, 0.2f), 3, false, true},
-    };
-    for (const Case& k : cases) {
-        test::RampMedium ramp(k.a, k.b, 3.0f, k.segments, k.minorants);
-        const Vec3f direction = k.oblique ? normalize(Vec3f(1.0f, 0.7f, -0.4f)) : Vec3f(1.0f, 0.0f, 0.0f);
-        const MediumRay ray{Vec3f(0.0f), direction, d / direction.x};
-        RGB expected;
-        for (int c = 0; c < 3; ++c) expected[c] = std::exp(-(k.a[c] * d + k.b[c] * d * d / 2.0f) / direction.x);
-        expectTransmittance(estimateTransmittance(ramp, ray, 20'000, 43), expected, k.name);
-    }
+    // sigmaT(x) = a + b x against its closed form (test::RampCase).
+    for (const test::RampCase& k : test::kRampCases)
+        expectTransmittance(estimateTransmittance(k.medium(), k.ray(), 20'000, 43), k.transmittance(), k.name);
 }
 
 }  // namespace

@@ -10,6 +10,7 @@
 #include "media/free_flight.h"
 #include "media/medium.h"
 #include "media/phase.h"
+#include "media/tracking.h"
 
 namespace fluence::test {
 
@@ -60,6 +61,38 @@ private:
     bool minorants_;
     RGB albedo_;
     float g_;
+};
+
+// A configuration of RampMedium and a ray through it from x = 0 to x = 2, as the transmittance
+// tests take them: gray and chromatic, one or several segments, with and without minorants, along
+// the x axis or obliquely.
+struct RampCase {
+    const char* name;
+    RGB a, b;
+    int segments;
+    bool minorants, oblique;
+
+    RampMedium medium() const { return RampMedium(a, b, 3.0f, segments, minorants); }
+    media::MediumRay ray() const {
+        const Vec3f direction = oblique ? normalize(Vec3f(1.0f, 0.7f, -0.4f)) : Vec3f(1.0f, 0.0f, 0.0f);
+        return {Vec3f(0.0f), direction, kLength / direction.x};
+    }
+    // T = exp(-(a d + b d^2 / 2) / cos), d = 2 and cos the direction's x component.
+    RGB transmittance() const {
+        const float cos = ray().direction.x;
+        RGB t;
+        for (int c = 0; c < 3; ++c) t[c] = std::exp(-(a[c] * kLength + b[c] * kLength * kLength / 2.0f) / cos);
+        return t;
+    }
+    static constexpr float kLength = 2.0f;
+};
+
+inline const RampCase kRampCases[] = {
+    {"gray ramp, 1 segment", RGB(0.2f), RGB(0.8f), 1, false, false},
+    {"gray ramp, 6 segments", RGB(0.2f), RGB(0.8f), 6, false, false},
+    {"gray ramp, 6 segments with minorants, oblique", RGB(0.2f), RGB(0.8f), 6, true, true},
+    {"chromatic ramp, 4 segments with minorants", RGB(0.1f, 1.0f, 2.0f), RGB(1.5f, 0.0f, -0.6f), 4, true, false},
+    {"chromatic ramp with an empty channel", RGB(0.0f, 0.5f, 3.0f), RGB(0.0f, 1.0f, 0.2f), 3, false, true},
 };
 
 // Another medium with its majorants scaled by `majorantScale` and its minorants by

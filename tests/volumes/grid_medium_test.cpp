@@ -14,7 +14,7 @@
 #include "core/blackbody.h"
 #include "core/random.h"
 #include "media/majorant_check.h"
-#include "media/ratio_tracking.h"
+#include "media/transmittance.h"
 #include "tests/support/statistics.h"
 #include "tests/support/temp_dir.h"
 #include "tests/volumes/vdb_test_files.h"
@@ -249,12 +249,12 @@ TEST_F(GridMediumTest, PassesTheMediaMajorantCheck) {
     EXPECT_GT(withMinorant, 5);
 }
 
-// The one tracking routine of media/ (ratio tracking, media/ratio_tracking.h) over GridMedium's
-// majorants estimates the transmittance; a gap in the segments where the density is not 0, or a
-// majorant below sigmaT (or a minorant above it), would bias it. The reference is exp(-optical depth) per channel, the depth
+// Each transmittance estimator of media/ (media/transmittance.h: ratio tracking, unbiased ray
+// marching) over GridMedium's majorants estimates the transmittance; a gap in the segments where
+// the density is not 0, or a majorant below sigmaT (or a minorant above it), would bias it. The reference is exp(-optical depth) per channel, the depth
 // integrated by the midpoint rule on 20000 steps (its error is far below the estimate's); the
 // medium is coloured, so the three channels differ.
-TEST_F(GridMediumTest, RatioTrackingOverTheMajorantsGivesTheTransmittance) {
+TEST_F(GridMediumTest, EachTransmittanceEstimatorOverTheMajorantsGivesTheTransmittance) {
     GridMediumParams p;
     p.densityScale = 1.5f;
     p.albedo = RGB(0.9f, 0.6f, 0.3f);
@@ -270,17 +270,20 @@ TEST_F(GridMediumTest, RatioTrackingOverTheMajorantsGivesTheTransmittance) {
             media::MediumProperties m = medium.at(r.at(60.0f * (k + 0.5f) / 20000.0f));
             depth += Vec3d(m.sigmaA + m.sigmaS) * (60.0 / 20000.0);
         }
-        test::MeanEstimate estimate[3];
-        for (int n = 0; n < 4000; ++n) {
-            SampleStream stream(9, std::uint64_t(ray), std::uint64_t(n));
-            int hero = std::min(int(stream.next() * 3.0f), 2);
-            RGB t = media::ratioTrackingTransmittance(medium, r, hero, stream).estimate();
-            for (int c = 0; c < 3; ++c) estimate[c].add(t[c]);
-        }
         EXPECT_GT(depth.x, 0.5) << "ray " << ray;
-        for (int c = 0; c < 3; ++c)
-            EXPECT_NEAR(estimate[c].mean(), std::exp(-depth[c]), 4.0 * estimate[c].standardError() + 1e-4)
-                << "ray " << ray << ", channel " << c << ", depth " << depth[c];
+        for (media::TransmittanceMethod method :
+             {media::TransmittanceMethod::RatioTracking, media::TransmittanceMethod::RayMarching}) {
+            test::MeanEstimate estimate[3];
+            for (int n = 0; n < 4000; ++n) {
+                SampleStream stream(9, std::uint64_t(ray), std::uint64_t(n));
+                int hero = std::min(int(stream.next() * 3.0f), 2);
+                RGB t = media::estimateTransmittance(method, medium, r, hero, stream).estimate();
+                for (int c = 0; c < 3; ++c) estimate[c].add(t[c]);
+            }
+            for (int c = 0; c < 3; ++c)
+                EXPECT_NEAR(estimate[c].mean(), std::exp(-depth[c]), 4.0 * estimate[c].standardError() + 1e-4)
+                    << "ray " << ray << ", channel " << c << ", depth " << depth[c] << ", method " << int(method);
+        }
     }
 }
 
