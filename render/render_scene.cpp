@@ -14,6 +14,7 @@
 #include "media/medium_union.h"
 #include "render/embree_ray.h"
 #include "render/light_shape.h"
+#include "render/material_tables.h"
 #include "render/lights/light_registry.h"
 #include "render/lights/swept_light.h"
 #include "render/lights/triangle_light.h"
@@ -236,6 +237,7 @@ struct RenderScene::EmbreeState {
 RenderScene::RenderScene(const SceneDescription& scene, std::shared_ptr<texture::TextureSystem> textures)
     : embree_(std::make_unique<EmbreeState>()), materials_(scene.materials), textures_(std::move(textures)) {
     addMaterialShaders();
+    buildMaterialTables(materials_);
     checkLinkGroups(scene);
     embree_->device = rtcNewDevice(nullptr);
     if (!embree_->device) throw std::runtime_error("cannot create the Embree device");
