@@ -2,7 +2,7 @@
 // Embree's raw ray-casting rate on the same scene, on this machine.
 //
 //   embree_throughput_bench [--spp N] [--threads N] [--repeat N] [--scale S] [--sampler NAME] [--minimal]
-//                           [SCENE.usda ...]
+//                           [--streams] [SCENE.usda ...]
 //
 // Each scene is loaded as `fluence render` loads it (stage, delegate, colour management,
 // render::RenderScene, the camera at the scene's resolution times --scale). Then:
@@ -30,6 +30,9 @@
 //     what share of the raw rate any such path tracer keeps once it shades its hits. Its image's
 //     mean luminance is printed beside the renderer's (seed 0), with their difference in standard
 //     errors (from each pixel's sample variance), to show it renders the same image.
+//   streams (--streams): the same stored rays through rtcIntersect1M / rtcOccluded1M in blocks of
+//     64 (camera rays flagged coherent), and the ratio the renderer would reach with its own cost
+//     per ray unchanged and Embree's time at those rates: for shadow rays alone, and for all rays.
 // Rates are rays per CPU-second of the process (all threads; CLOCK_PROCESS_CPUTIME_ID), so that a
 // shared, loaded machine slows both sides alike; the renderer's wall-clock rate is printed too.
 // Every figure is the best of --repeat runs (default 3); --scale defaults to 0.5. With no scenes
@@ -76,6 +79,7 @@ struct Options {
     int spp = 16, threads = 2, repeat = 3;
     double scale = 0.5;
     bool minimal = false;  // also run bench/minimal_path_tracer.h
+    bool streams = false;  // also replay the rays in streams (rtcIntersect1M / rtcOccluded1M)
     SamplerKind sampler = integrators::RenderSettings{}.sampler;
     std::vector<std::string> scenes;
 };
@@ -177,6 +181,40 @@ double trace(tbb::task_arena& arena, RTCScene scene, const std::vector<StoredRay
                                   }
                               }
                           });
+    });
+    return cpuSeconds() - start;
+}
+
+// CPU seconds to trace `rays` through Embree's stream queries (rtcIntersect1M, rtcOccluded1M) in
+// blocks of kStream consecutive rays (stored order: a tile's rays of one kind, as a renderer that
+// queued them would pass them), `coherent` telling Embree that neighbours start and point alike.
+constexpr std::size_t kStream = 64;
+double traceStreams(tbb::task_arena& arena, RTCScene scene, const std::vector<StoredRay>& rays, bool anyHit,
+                    bool coherent) {
+    const double start = cpuSeconds();
+    arena.execute([&] {
+        tbb::parallel_for(
+            tbb::blocked_range<std::size_t>(0, rays.size(), kGrain), [&](const tbb::blocked_range<std::size_t>& r) {
+                RTCIntersectContext context;
+                rtcInitIntersectContext(&context);
+                context.flags = coherent ? RTC_INTERSECT_CONTEXT_FLAG_COHERENT : RTC_INTERSECT_CONTEXT_FLAG_INCOHERENT;
+                RTCRayHit hits[kStream];
+                RTCRay shadows[kStream];
+                for (std::size_t b = r.begin(); b < r.end(); b += kStream) {
+                    const std::size_t n = std::min(kStream, r.end() - b);
+                    for (std::size_t i = 0; i < n; ++i) {
+                        const StoredRay& s = rays[b + i];
+                        if (anyHit)
+                            render::storeRay(shadows[i], s.origin, s.direction, 0.0f, s.tFar);
+                        else
+                            render::storeRayHit(hits[i], s.origin, s.direction, 0.0f, s.tFar);
+                    }
+                    if (anyHit)
+                        rtcOccluded1M(scene, &context, shadows, unsigned(n), sizeof(RTCRay));
+                    else
+                        rtcIntersect1M(scene, &context, hits, unsigned(n), sizeof(RTCRayHit));
+                }
+            });
     });
     return cpuSeconds() - start;
 }
@@ -290,6 +328,24 @@ void measure(const std::string& path, const Options& opt, color::ColorManagement
         "  Mrays per CPU-s: raw at the renderer's mix %.2f  renderer %.2f  ratio %.3f   (renderer wall-clock %.2f "
         "Mrays/s)\n  renderer's own cost: %s; Embree %.1f ns per ray\n\n",
         raw, renderer, renderer / raw, rendererWall, ownCost(renderer, raw, n, double(c.camera)).c_str(), 1e3 / raw);
+    if (opt.streams) {
+        // What streams would give the renderer: its time per ray outside Embree kept, Embree's
+        // part at the stream rates (camera rays coherent, bounce and shadow rays not).
+        auto streamRate = [&](const std::vector<StoredRay>& set, bool anyHit, bool coherent) {
+            return set.size() / best(opt.repeat, [&] { return traceStreams(arena, embree, set, anyHit, coherent); }) *
+                   1e-6;
+        };
+        const double sCamera = streamRate(rays.camera, false, true), sBounce = streamRate(rays.bounce, false, false),
+                     sShadow = streamRate(rays.shadow, true, false);
+        const double own = 1.0 / renderer - 1.0 / raw;  // microseconds per ray
+        const double shadowOnly = own + c.camera / n / rCamera + c.bounce / n / rBounce + c.shadow / n / sShadow;
+        const double all = own + c.camera / n / sCamera + c.bounce / n / sBounce + c.shadow / n / sShadow;
+        std::printf(
+            "  streams of %zu, Mrays per CPU-s: camera (coherent) %.2f  bounce %.2f  shadow (occluded) %.2f\n"
+            "  projected ratio with the renderer's own cost kept: shadow rays streamed %.3f, all rays streamed "
+            "%.3f\n\n",
+            kStream, sCamera, sBounce, sShadow, 1.0 / shadowOnly / raw, 1.0 / all / raw);
+    }
     if (opt.minimal) measureMinimal(scene, camera, width, height, opt, arena, raw, renderer, rendererMean, c);
 }
 
@@ -310,6 +366,8 @@ int main(int argc, char** argv) {
             opt.scale = std::max(0.01, number());
         else if (arg == "--minimal")
             opt.minimal = true;
+        else if (arg == "--streams")
+            opt.streams = true;
         else if (arg == "--sampler" && i + 1 < argc && samplerNamed(argv[i + 1]))
             opt.sampler = *samplerNamed(argv[++i]);
         else if (!arg.empty() && arg[0] != '-')
@@ -317,7 +375,7 @@ int main(int argc, char** argv) {
         else {
             std::fprintf(stderr,
                          "usage: embree_throughput_bench [--spp N] [--threads N] [--repeat N] [--scale S] "
-                         "[--sampler sobol|independent] [--minimal] [SCENE.usda ...]\n");
+                         "[--sampler sobol|independent] [--minimal] [--streams] [SCENE.usda ...]\n");
             return 2;
         }
     }

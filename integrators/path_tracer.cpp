@@ -104,6 +104,7 @@ struct SurfaceVertex {
     const SurfaceHit& hit;
     Vec3f wo;
     const render::Bsdf& bsdf;
+    unsigned flags;  // bsdf.flags(), asked once (a virtual call)
     bool transmissive, connectable;
     SurfaceFrame surface;  // the shading frame, and the geometric normal on its side
     Vec3f woLocal;
@@ -116,13 +117,15 @@ struct SurfaceVertex {
 };
 
 SurfaceVertex surfaceVertex(const SurfaceHit& hit, const Vec3f& wo, const render::Bsdf& bsdf) {
-    const bool transmissive = (bsdf.flags() & render::kBsdfTransmission) != 0;
-    const bool connectable = (bsdf.flags() & (render::kBsdfDiffuse | render::kBsdfGlossy)) != 0;
+    const unsigned flags = bsdf.flags();
+    const bool transmissive = (flags & render::kBsdfTransmission) != 0;
+    const bool connectable = (flags & (render::kBsdfDiffuse | render::kBsdfGlossy)) != 0;
     const SurfaceFrame surface = shadingFrame(hit, wo, transmissive);
     const Vec3f& ng = surface.geometricNormal;
     return {hit,
             wo,
             bsdf,
+            flags,
             transmissive,
             connectable,
             surface,
@@ -300,7 +303,7 @@ private:
     // Continues the path by sampling the BSDF (a plain Lambertian has one lobe: no lobe number drawn).
     Step continueFrom(const SurfaceVertex& v, int depth) {
         const Vec3f& ng = v.surface.geometricNormal;
-        const float uLobe = v.bsdf.flags() == (render::kBsdfReflection | render::kBsdfDiffuse) ? 0.0f : rng_.next();
+        const float uLobe = v.flags == (render::kBsdfReflection | render::kBsdfDiffuse) ? 0.0f : rng_.next();
         std::optional<render::BsdfSample> bs = v.bsdf.sample(v.woLocal, uLobe, rng_.next2D());
         if (!bs) return Step::End;
         Vec3f wi = v.surface.frame.toWorld(bs->wi);

@@ -38,6 +38,11 @@ constexpr float kMinIndexContrast = 1e-4f;
 RGB clamp01(const RGB& c) {
     return {std::clamp(c.x, 0.0f, 1.0f), std::clamp(c.y, 0.0f, 1.0f), std::clamp(c.z, 0.0f, 1.0f)};
 }
+
+// The sheen's colour (sheen x sheenColor, clamped): black when the sheen layer is off.
+RGB sheenTint(const MaterialParams& m) { return clamp01(m.sheenColor * m.sheen); }
+// Whether the clear coat is laid over the rest (weight above 0, and an interface that reflects).
+bool coatOn(const MaterialParams& m) { return m.coat > 0.0f && m.coatIor > 1.0f + kMinIndexContrast; }
 RGB sqrtOf(const RGB& c) { return {std::sqrt(c.x), std::sqrt(c.y), std::sqrt(c.z)}; }
 
 // `weight` of `b` blended over `a`: a alone at 0, b alone at 1.
@@ -181,7 +186,7 @@ private:
 // dielectric lobe, each conserving energy over it (render/bsdfs/layered.h).
 const Bsdf& sheenAndSpecular(const Bsdf& base, LightFromBelow& light, const MaterialParams& m, BsdfArena& arena) {
     const Bsdf* bsdf = &base;
-    const RGB sheen = clamp01(m.sheenColor * m.sheen);
+    const RGB sheen = sheenTint(m);
     if (!isBlack(sheen)) {
         const CharlieSheenBsdf top(sheen, m.sheenRoughness);
         bsdf = &arena.make<LayeredBsdf<CharlieSheenBsdf>>(top, *bsdf, RGB(1.0f), light.under(top));
@@ -210,7 +215,7 @@ void nodeAlbedos(const Lobe& lobe, CoatReturn::NodeValues& albedo, CoatReturn::N
 void addLayeredDiffusePart(CoatReturn& coatReturn, float weight, const MaterialParams& m, float alpha) {
     const RGB reflected = clamp01(m.diffuse) * (1.0f - std::min(m.subsurface, 1.0f));
     const SpecularLobe specular = specularLobe(m);
-    const RGB sheen = clamp01(m.sheenColor * m.sheen);
+    const RGB sheen = sheenTint(m);
     CoatReturn::NodeValues lobe, complement;
     if (specular.reflects()) {
         const DielectricFresnel fresnel(specular.eta, specular.tint);
@@ -293,7 +298,7 @@ void addMetalPart(CoatReturn& coatReturn, float weight, const MaterialParams& m,
 // layer, a sheen, a metal, solid glass or a thin-walled sheet; render/bsdfs/coat_return.h), or
 // nothing when the base is diffuse (the layer's normalisation returns it).
 std::optional<CoatReturn> coatReturn(const MaterialParams& m, const DielectricReflectionBsdf& coat) {
-    const bool layer = specularLobe(m).reflects() || !isBlack(clamp01(m.sheenColor * m.sheen));
+    const bool layer = specularLobe(m).reflects() || !isBlack(sheenTint(m));
     const float metallic = std::min(m.metallic, 1.0f), transmission = std::min(m.transmission, 1.0f);
     if (!layer && !(metallic > 0.0f) && !(transmission > 0.0f)) return std::nullopt;
     std::array<float, albedo_table::kCosines> coatAlbedo;
@@ -345,7 +350,7 @@ const std::optional<CoatReturn>& rememberedCoatReturn(const MaterialParams& m, c
 // diffuse base and its layers alone (no metal, no glass). Over a glossy base (a specular layer, a
 // sheen, a metal, glass) the light the coat returns is added back (render/bsdfs/coat_return.h).
 const Bsdf& clearCoat(const Bsdf& under, LightFromBelow* light, const MaterialParams& m, BsdfArena& arena) {
-    if (!(m.coat > 0.0f && m.coatIor > 1.0f + kMinIndexContrast)) return under;
+    if (!coatOn(m)) return under;
     const GgxDistribution ggx = GgxDistribution::fromRoughness(m.coatRoughness);
     const RGB filter = clamp01(m.coatColor);
     const DielectricReflectionBsdf coat(RGB(m.coatIor), ggx);
@@ -358,6 +363,15 @@ const Bsdf& clearCoat(const Bsdf& under, LightFromBelow* light, const MaterialPa
     return blend(under, returned ? returned->compensate(coated, filter, arena) : coated, m.coat, arena);
 }
 
+// Whether every lobe over the diffuse base is off (no subsurface, sheen, specular lobe, glass,
+// metal or coat): the material is its diffuse base alone, and materialBsdf() returns that base
+// without laying the (empty) layers over it. A plain Lambertian wall is the common case, and
+// the layers' bookkeeping cost it more than the BSDF itself (bench/results/2026-12-05-throughput-2.md).
+bool diffuseBaseOnly(const MaterialParams& m) {
+    return !(m.subsurface > 0.0f) && !(m.transmission > 0.0f) && !(m.metallic > 0.0f) && !coatOn(m) &&
+           isBlack(sheenTint(m)) && !specularLobe(m).reflects();
+}
+
 }  // namespace
 
 const Bsdf& materialBsdf(const MaterialParams& m, BsdfArena& arena) {
@@ -365,6 +379,7 @@ const Bsdf& materialBsdf(const MaterialParams& m, BsdfArena& arena) {
     const Bsdf* bsdf = m.diffuseRoughness > 0.0f
                            ? static_cast<const Bsdf*>(&arena.make<OrenNayarBsdf>(m.diffuse, m.diffuseRoughness))
                            : &arena.make<LambertianBsdf>(m.diffuse);
+    if (diffuseBaseOnly(m)) return *bsdf;
     DiffuseBase diffuse;
     if (m.subsurface > 0.0f) {  // a solid's walk inside gives the colour; a thin wall is tinted once
         const RGB transmittance = m.thinWalled ? clamp01(m.subsurfaceColor) : RGB(1.0f);

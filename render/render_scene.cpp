@@ -14,6 +14,7 @@
 #include "media/medium_union.h"
 #include "render/embree_ray.h"
 #include "render/light_shape.h"
+#include "render/material_tables.h"
 #include "render/lights/light_registry.h"
 #include "render/lights/swept_light.h"
 #include "render/lights/triangle_light.h"
@@ -236,6 +237,7 @@ struct RenderScene::EmbreeState {
 RenderScene::RenderScene(const SceneDescription& scene, std::shared_ptr<texture::TextureSystem> textures)
     : embree_(std::make_unique<EmbreeState>()), materials_(scene.materials), textures_(std::move(textures)) {
     addMaterialShaders();
+    buildMaterialTables(materials_);
     checkLinkGroups(scene);
     embree_->device = rtcNewDevice(nullptr);
     if (!embree_->device) throw std::runtime_error("cannot create the Embree device");
@@ -760,73 +762,78 @@ std::optional<SurfaceHit> RenderScene::shadeInstancedCurve(const CurveGeometry& 
     return hit;
 }
 
+// The hit's record and a moving instance's placement are never default-constructed std::optionals:
+// libstdc++ 12's default constructor zeroes the whole storage (a union's padding), and the two it
+// zeroed per hit, the record's 332 bytes and the placement's 312, took a third of this function's
+// time in perf. The placement is made only for instanced hits.
 std::optional<SurfaceHit> RenderScene::shadeMesh(int meshIndex, unsigned primID, float u, float v, float t,
                                                  int instanceIndex, float time) const {
-    const Mesh& mesh = meshes_[meshIndex];
-    std::size_t c = 3 * std::size_t(primID);
-    const Triangle corners = triangleAt(mesh, primID, time);
-    const Vec3f &p0 = corners.p0, &p1 = corners.p1, &p2 = corners.p2;
-    float w = 1.0f - u - v;
+    const auto shade = [&](const Instance* instance) {
+        const Mesh& mesh = meshes_[meshIndex];
+        std::size_t c = 3 * std::size_t(primID);
+        const Triangle corners = triangleAt(mesh, primID, time);
+        const Vec3f &p0 = corners.p0, &p1 = corners.p1, &p2 = corners.p2;
+        float w = 1.0f - u - v;
+        // Returned as is (no copy of the large hit record), the material's parameters copied into it
+        // once: each arm of the conditional initialises `result` itself.
+        std::optional<SurfaceHit> result =
+            mesh.material >= 0 ? std::optional<SurfaceHit>(std::in_place, materials_[std::size_t(mesh.material)])
+                               : std::optional<SurfaceHit>(std::in_place, lambertianParams(mesh.diffuse));
+        SurfaceHit& hit = *result;
+        hit.t = t;
+        hit.time = time;
+        hit.mesh = meshIndex;
+        hit.instance = instanceIndex;
+        hit.linkGroup = instance && instance->linkGroup != 0 ? instance->linkGroup : mesh.linkGroup;
+        hit.triangle = primID;
+        hit.b1 = u;
+        hit.b2 = v;
+        hit.point = p0 * w + p1 * u + p2 * v;
+        Vec3f e1 = p1 - p0, e2 = p2 - p0;
+        Vec3f ng = cross(e1, e2);
+        hit.geometricNormal = lengthSquared(ng) > 0.0f ? normalize(ng) : Vec3f(0, 0, 1);
+        hit.shadingNormal = hit.geometricNormal;
+        if (!mesh.cornerNormals.empty()) {
+            Vec3f n = mesh.cornerNormals[c] * w + mesh.cornerNormals[c + 1] * u + mesh.cornerNormals[c + 2] * v;
+            if (lengthSquared(n) > 0.0f) hit.shadingNormal = normalize(n);
+        }
+        if (instance) {  // shaded in prototype space, moved to world space
+            auto normalToWorld = [&](const Vec3f& n) {
+                Vec3f world(instance->normalToWorld.transformVector(Vec3d(n)));
+                return lengthSquared(world) > 0.0f ? normalize(world) : n;
+            };
+            hit.point = Vec3f(instance->toWorld.transformPoint(Vec3d(hit.point)));
+            hit.geometricNormal = normalToWorld(hit.geometricNormal);
+            hit.shadingNormal = normalToWorld(hit.shadingNormal);
+            e1 = Vec3f(instance->toWorld.transformVector(Vec3d(e1)));
+            e2 = Vec3f(instance->toWorld.transformVector(Vec3d(e2)));
+        }
+
+        if (!mesh.cornerColors.empty())
+            hit.material.diffuse =
+                mesh.cornerColors[c] * w + mesh.cornerColors[c + 1] * u + mesh.cornerColors[c + 2] * v;
+        if (mesh.material >= 0 && shaders_[mesh.material].hasBindings()) {
+            ShadingPatch patch{c, w, u, v, e1, e2, {}};
+            if (filterCamera_)
+                patch.footprint = pixelFootprint(hit.point, hit.geometricNormal, filterCamera_->position(),
+                                                 filterCamera_->pixelsPerUnitAt(hit.point));
+            Vec3f mapped = hit.shadingNormal;
+            shaders_[mesh.material].evaluate(patch, mesh.slots.data(), hit.material, mapped, hit.tangent);
+            // A normal map may not tip the shading normal across the surface.
+            if (dot(mapped, hit.geometricNormal) * dot(hit.shadingNormal, hit.geometricNormal) > 0.0f)
+                hit.shadingNormal = mapped;
+        }
+        if (dot(hit.shadingNormal, hit.geometricNormal) < 0.0f) hit.geometricNormal = -hit.geometricNormal;
+        hit.emission = mesh.texturedEmission ? mesh.texturedEmission->at(primID, u, v) : mesh.emission;
+        hit.interior = mesh.material >= 0 ? materialInterior_[static_cast<std::size_t>(mesh.material)] : -1;
+        hit.light = mesh.firstLight >= 0 ? mesh.firstLight + static_cast<int>(primID) : -1;
+        hit.objectName = instance ? instance->objectName : mesh.objectName;
+        hit.materialName = mesh.materialName;
+        return result;
+    };
+    if (instanceIndex < 0) return shade(nullptr);
     std::optional<Instance> moved;
-    const Instance* instance = instanceAt(instanceIndex, time, moved);
-
-    // Returned as is (no copy of the large hit record); the material's parameters are copied into
-    // it once (not a conditional expression, which would copy them twice).
-    std::optional<SurfaceHit> result;
-    if (mesh.material >= 0)
-        result.emplace(materials_[static_cast<std::size_t>(mesh.material)]);
-    else
-        result.emplace(lambertianParams(mesh.diffuse));
-    SurfaceHit& hit = *result;
-    hit.t = t;
-    hit.time = time;
-    hit.mesh = meshIndex;
-    hit.instance = instanceIndex;
-    hit.linkGroup = instance && instance->linkGroup != 0 ? instance->linkGroup : mesh.linkGroup;
-    hit.triangle = primID;
-    hit.b1 = u;
-    hit.b2 = v;
-    hit.point = p0 * w + p1 * u + p2 * v;
-    Vec3f e1 = p1 - p0, e2 = p2 - p0;
-    Vec3f ng = cross(e1, e2);
-    hit.geometricNormal = lengthSquared(ng) > 0.0f ? normalize(ng) : Vec3f(0, 0, 1);
-    hit.shadingNormal = hit.geometricNormal;
-    if (!mesh.cornerNormals.empty()) {
-        Vec3f n = mesh.cornerNormals[c] * w + mesh.cornerNormals[c + 1] * u + mesh.cornerNormals[c + 2] * v;
-        if (lengthSquared(n) > 0.0f) hit.shadingNormal = normalize(n);
-    }
-    if (instance) {  // shaded in prototype space, moved to world space
-        auto normalToWorld = [&](const Vec3f& n) {
-            Vec3f world(instance->normalToWorld.transformVector(Vec3d(n)));
-            return lengthSquared(world) > 0.0f ? normalize(world) : n;
-        };
-        hit.point = Vec3f(instance->toWorld.transformPoint(Vec3d(hit.point)));
-        hit.geometricNormal = normalToWorld(hit.geometricNormal);
-        hit.shadingNormal = normalToWorld(hit.shadingNormal);
-        e1 = Vec3f(instance->toWorld.transformVector(Vec3d(e1)));
-        e2 = Vec3f(instance->toWorld.transformVector(Vec3d(e2)));
-    }
-
-    if (!mesh.cornerColors.empty())
-        hit.material.diffuse = mesh.cornerColors[c] * w + mesh.cornerColors[c + 1] * u + mesh.cornerColors[c + 2] * v;
-    if (mesh.material >= 0 && shaders_[mesh.material].hasBindings()) {
-        ShadingPatch patch{c, w, u, v, e1, e2, {}};
-        if (filterCamera_)
-            patch.footprint = pixelFootprint(hit.point, hit.geometricNormal, filterCamera_->position(),
-                                             filterCamera_->pixelsPerUnitAt(hit.point));
-        Vec3f mapped = hit.shadingNormal;
-        shaders_[mesh.material].evaluate(patch, mesh.slots.data(), hit.material, mapped, hit.tangent);
-        // A normal map may not tip the shading normal across the surface.
-        if (dot(mapped, hit.geometricNormal) * dot(hit.shadingNormal, hit.geometricNormal) > 0.0f)
-            hit.shadingNormal = mapped;
-    }
-    if (dot(hit.shadingNormal, hit.geometricNormal) < 0.0f) hit.geometricNormal = -hit.geometricNormal;
-    hit.emission = mesh.texturedEmission ? mesh.texturedEmission->at(primID, u, v) : mesh.emission;
-    hit.interior = mesh.material >= 0 ? materialInterior_[static_cast<std::size_t>(mesh.material)] : -1;
-    hit.light = mesh.firstLight >= 0 ? mesh.firstLight + static_cast<int>(primID) : -1;
-    hit.objectName = instance ? instance->objectName : mesh.objectName;
-    hit.materialName = mesh.materialName;
-    return result;
+    return shade(instanceAt(instanceIndex, time, moved));
 }
 
 int RenderScene::primvarAt(const SurfaceHit& hit, const std::string& name, float out[4]) const {

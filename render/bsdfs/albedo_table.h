@@ -5,7 +5,8 @@
 // The table holds 32 values of mu in [0, 1] (mu = 0 as seen at 1e-4) by 32 values of
 // sqrt(alpha) (a material's roughness) in [0, 1] by 33 values of sqrt(f0) in [0, 1], all evenly
 // spaced. A slice of one f0 is computed on first use by `Albedo(ggx, mu, f0)` at each of its
-// (mu, alpha) nodes, and the table is interpolated linearly in each of the three. Eavg is
+// (mu, alpha) nodes (its widths in parallel; render/material_tables.h builds a scene's slices
+// before its render starts), and the table is interpolated linearly in each of the three. Eavg is
 // integrated exactly from the same piecewise-linear E, so that a lobe weighted by 1 - E(mu) has
 // exactly the cosine-weighted average 1 - Eavg whatever the table's own error against the true
 // albedo. Widths above 1 are clamped to 1.
@@ -22,6 +23,9 @@
 #include <cmath>
 #include <memory>
 #include <mutex>
+
+#include <oneapi/tbb/parallel_for.h>
+#include <oneapi/tbb/task_arena.h>
 
 #include "core/rgb.h"
 #include "render/bsdfs/ggx.h"
@@ -144,14 +148,20 @@ private:
         std::array<float, albedo_table::kWidths * albedo_table::kCosines> albedo;
         std::array<float, albedo_table::kWidths> average;
 
+        // The widths in parallel: each node is a pure function of its parameters, so the values do
+        // not depend on the split. Isolated, so that a thread waiting for them takes no other task
+        // (a render's tile that would ask for this slice again from inside its std::call_once).
         explicit Slice(float f0) {
             using namespace albedo_table;
-            for (int j = 0; j < kWidths; ++j) {
-                const float r = float(j) / (kWidths - 1);
-                const GgxDistribution ggx(std::max(r * r, kGgxSmoothAlpha));
-                for (int i = 0; i < kCosines; ++i) albedo[std::size_t(j) * kCosines + i] = Albedo(ggx, cosineAt(i), f0);
-                average[j] = averageOf(j);
-            }
+            tbb::this_task_arena::isolate([&] {
+                tbb::parallel_for(0, kWidths, [&](int j) {
+                    const float r = float(j) / (kWidths - 1);
+                    const GgxDistribution ggx(std::max(r * r, kGgxSmoothAlpha));
+                    for (int i = 0; i < kCosines; ++i)
+                        albedo[std::size_t(j) * kCosines + i] = Albedo(ggx, cosineAt(i), f0);
+                    average[j] = averageOf(j);
+                });
+            });
         }
         float at(int i, int j) const { return albedo[std::size_t(j) * albedo_table::kCosines + i]; }
 

@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <utility>
 #include <vector>
 
 #include "render/bsdfs/coated.h"
@@ -137,6 +138,28 @@ TEST(MaterialBsdf, TransmissionSheenAndThinWallsAddTheirLobes) {
     cloth.sheen = 1.0f;
     arena.reset();
     EXPECT_EQ(bsdfOf(cloth, RGB(0.5f), arena).flags(), unsigned(kBsdfReflection | kBsdfDiffuse | kBsdfGlossy));
+}
+
+// Each lobe alone over the plain diffuse base is laid over it: materialBsdf returns the bare base
+// only when every one is off (its shortcut for plain walls, render/material_bsdf.cpp).
+TEST(MaterialBsdf, EachLobeAloneOverThePlainBaseIsLaid) {
+    const auto with = [](void (*set)(MaterialParams&)) {
+        MaterialParams m = lambertOnly();
+        set(m);
+        return m;
+    };
+    const std::pair<const char*, MaterialParams> lobes[] = {
+        {"subsurface", with([](MaterialParams& m) { m.subsurface = 0.5f; })},
+        {"sheen", with([](MaterialParams& m) { m.sheen = 0.5f; })},
+        {"specular", with([](MaterialParams& m) { m.specular = 0.5f; })},
+        {"transmission", with([](MaterialParams& m) { m.transmission = 0.5f; })},
+        {"metallic", with([](MaterialParams& m) { m.metallic = 0.5f; })},
+        {"coat", with([](MaterialParams& m) { m.coat = 0.5f; })},
+    };
+    for (const auto& [name, m] : lobes) {
+        BsdfArena arena;
+        EXPECT_NE(materialBsdf(m, arena).flags(), unsigned(kBsdfReflection | kBsdfDiffuse)) << name;
+    }
 }
 
 // Direction pairs on both sides, reflected and transmitted, off every axis.

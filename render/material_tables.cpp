@@ -1,0 +1,40 @@
+#include "render/material_tables.h"
+
+#include <cmath>
+
+#include <oneapi/tbb/parallel_for.h>
+
+#include "render/bsdf_arena.h"
+#include "render/material_bsdf.h"
+
+namespace fluence::render {
+
+namespace {
+
+// Evaluates, samples and asks the density of `bsdf` from above and below the surface.
+void exercise(const Bsdf& bsdf) {
+    const float s = std::sqrt(0.5f);
+    const Vec3f directions[] = {{s, 0.0f, s}, {0.0f, s, -s}};
+    for (const Vec3f& wo : directions) {
+        for (const Vec3f& wi : directions) {
+            (void)bsdf.f(wo, wi);
+            (void)bsdf.pdf(wo, wi);
+        }
+        for (float uLobe : {0.1f, 0.5f, 0.9f}) (void)bsdf.sample(wo, uLobe, Vec2f(0.3f, 0.6f));
+    }
+}
+
+}  // namespace
+
+void buildMaterialTables(const std::vector<MaterialDesc>& materials) {
+    tbb::parallel_for(std::size_t(0), materials.size(), [&](std::size_t i) {
+        const MaterialParams& m = materials[i];
+        BsdfArena arena;
+        exercise(materialBsdf(m, arena));
+        if (!(m.subsurface > 0.0f)) return;
+        arena.reset();
+        exercise(subsurfaceExitBsdf(m, arena));
+    });
+}
+
+}  // namespace fluence::render
