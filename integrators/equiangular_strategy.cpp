@@ -4,14 +4,16 @@ namespace fluence::integrators {
 
 std::optional<MediumSegment> mediumSegment(const media::Medium& medium, const Vec3f& origin, const Vec3f& direction,
                                            float tBoundary) {
-    MediumSegment s{origin, direction, tBoundary, 0.0f};
+    MediumSegment s{origin, direction, tBoundary, tBoundary};
+    bool found = false;
     medium.majorants(origin, direction, 0.0f, tBoundary, [&](const media::MajorantSegment& m) {
         if (maxComponent(m.sigmaMaj) > 0.0f) {
-            s.tMin = std::min(s.tMin, std::max(m.tMin, 0.0f));
-            s.tMax = std::max(s.tMax, std::min(m.tMax, tBoundary));
+            s.tMin = std::max(m.tMin, 0.0f);
+            found = true;
         }
-        return true;
+        return !found;
     });
+    if (!found) return std::nullopt;
     if (!(s.tMin < s.tMax)) return std::nullopt;
     return s;
 }

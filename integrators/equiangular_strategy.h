@@ -3,8 +3,9 @@
 //
 // THE STRATEGY. For each stretch of a ray through the scene's volumes (not inside a material's
 // interior), before its free flight: the stretch's medium segment (mediumSegment: from where the
-// medium's majorants begin along the ray to where they end, within the surface the ray hits); a
-// light chosen by the light tree from the ray's origin (no normal), and kept if it has a position
+// medium's first non-zero majorant begins along the ray to the surface the ray hits, unbounded if
+// none; finding where the medium ends would walk the whole majorant grid, which cost more than the
+// points drawn beyond it, rejected by one lookup); a light chosen by the light tree from the ray's origin (no normal), and kept if it has a position
 // (bounds: point, sphere, spot, rect, disk, cylinder lights and emissive triangles; a light at
 // infinity gives the stretch no sample); a distance t on the segment drawn equiangularly about
 // the centre of the light's bounds (media/equiangular.h); the transmittance to x(t) by ratio
@@ -43,8 +44,8 @@ struct MediumSegment {
     float tMin = 0.0f, tMax = 0.0f;
 };
 
-// The part of the ray origin + t direction, t in [0, tBoundary), where `medium` has a non-zero
-// majorant: from the first such majorant segment's start to the last one's end. nullopt if none.
+// The stretch of the ray origin + t direction, t in [0, tBoundary), from the start of the first
+// majorant segment of `medium` that is non-zero to tBoundary (may be infinite); nullopt if none.
 std::optional<MediumSegment> mediumSegment(const media::Medium& medium, const Vec3f& origin, const Vec3f& direction,
                                            float tBoundary);
 

@@ -239,12 +239,14 @@ private:
         const float t = choice->distance.sample(uDistance);
         const float distancePdf = choice->probability * choice->distance.pdf(t);
         if (!(distancePdf > 0.0f)) return;
-        const media::TransmittanceEstimate toPoint =
-            media::ratioTrackingTransmittance(medium, {segment.origin, segment.direction, t}, hero_, rng_);
         const Vec3f p = segment.origin + segment.direction * t;
         const media::MediumProperties m = medium.at(p);
-        counters_.mediumCollisions += std::uint64_t(toPoint.collisions) + 1;
-        if (isBlack(toPoint.throughput * m.sigmaS)) return;
+        ++counters_.mediumCollisions;
+        if (isBlack(m.sigmaS)) return;  // empty space within the segment: no transmittance to estimate
+        const media::TransmittanceEstimate toPoint =
+            media::ratioTrackingTransmittance(medium, {segment.origin, segment.direction, t}, hero_, rng_);
+        counters_.mediumCollisions += std::uint64_t(toPoint.collisions);
+        if (isBlack(toPoint.throughput)) return;
         std::optional<render::LightSample> ls = scene_.lightAt(choice->light, ray_.time).sample(p, uPoint);
         if (!ls || ls->pdf <= 0.0f || isBlack(ls->Li)) return;
         const Vec3f wo = -segment.direction;
