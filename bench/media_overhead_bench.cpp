@@ -30,7 +30,9 @@ class TracerVariant final : public integrators::Integrator {
 public:
     FilmSample sample(const integrators::RenderState&, const render::RenderScene& scene, const render::Camera& camera,
                       const render::Ray& ray, SampleStream& rng, integrators::RenderCounters& counters) const override {
-        return tracer_.trace<kMedia>(integrators::LightEvents(), scene, camera, ray, rng, counters);
+        // Surface-only scenes: no medium for the equiangular strategy to sample.
+        return tracer_.trace<kMedia>(integrators::LightEvents(), integrators::EquiangularLights(), scene, camera, ray,
+                                     rng, counters);
     }
 
 private:

@@ -9,6 +9,7 @@
 #include "core/frame.h"
 #include "integrators/diffusion_probe.h"
 #include "integrators/emission.h"
+#include "integrators/equiangular_strategy.h"
 #include "integrators/first_hit.h"
 #include "integrators/light_path_tracker.h"
 #include "integrators/medium_stack.h"
@@ -32,47 +33,64 @@ namespace {
 // The multiple-importance weights of a path, in the two forms the path tracer uses: Veach's power
 // heuristic on scalar densities, and the balance heuristic in the spectral-MIS form of
 // media/tracking.h (rU, rL: the path's densities under its own sampling and under light sampling
-// of its last segment, over the hero channel's density). The spectral form is needed where the
+// of its last segment, over the hero channel's density; rE: under equiangular sampling of its last
+// medium vertex, integrators/equiangular_strategy.h). The spectral form is needed where the
 // densities differ by channel: a scene with media (`spectral`), on a path that has met an event
-// drawn by its hero channel (rU not 1 in every channel: a classic walk's or a volume's flight) or
-// whose last segment crosses a medium. Elsewhere, in particular on the paths of a scene whose
-// only media are guided subsurface walks (whose steps do not depend on the hero, pdfRatio 1),
-// both strategies of a connection see the same scalar densities and take the power heuristic, as
-// in a scene without media: the condition is the same from the light sample's side (rU at the
-// vertex, the shadow ray's medium) and from the BSDF-sampled ray's (rU unchanged over a segment
-// without a medium), so the two weights still add up to 1.
+// drawn by its hero channel (rU not 1 in every channel: a classic walk's or a volume's flight),
+// whose last segment crosses a medium, or where the equiangular strategy competes. Elsewhere, in
+// particular on the paths of a scene whose only media are guided subsurface walks (whose steps do
+// not depend on the hero, pdfRatio 1), both strategies of a connection see the same scalar
+// densities and take the power heuristic, as in a scene without media: the condition is the same
+// from the light sample's side (rU at the vertex, the shadow ray's medium) and from the
+// BSDF-sampled ray's (rU unchanged over a segment without a medium), so the two weights still add
+// up to 1.
 struct MisState {
     const bool spectral;
-    RGB rU{1.0f}, rL{1.0f};
+    RGB rU{1.0f}, rL{1.0f}, rE{0.0f};
     float bsdfPdf = 0.0f;          // scalar form: the density of the direction that produced the ray
     bool segmentInMedium = false;  // the ray's segment crosses a medium (set per segment by the path)
 
-    // Whether a connection whose segment crosses a medium or not (`inMedium`) takes the scalar form.
-    bool scalar(bool inMedium) const { return !spectral || (!inMedium && rU == RGB(1.0f)); }
-    // The weight of emission Le reached by the ray, whose light strategy had density lightPdf;
+    // Whether a connection whose segment crosses a medium or not (`inMedium`), with equiangular
+    // density equiangularPdf, takes the scalar form.
+    bool scalar(bool inMedium, float equiangularPdf) const {
+        return !spectral || (!inMedium && equiangularPdf == 0.0f && rU == RGB(1.0f));
+    }
+    // The weight of emission Le reached by the ray, whose light strategy had density lightPdf and
+    // the equiangular strategy equiangularPdf (its distance's times the light's);
     // `unique`: no light strategy could have produced it (camera ray, delta lobe).
-    float emitter(float lightPdf, bool unique) const {
-        if (scalar(segmentInMedium)) return unique ? 1.0f : powerHeuristic(bsdfPdf, lightPdf);
-        return 1.0f / media::channelAverage(unique ? rU : rU + rL * lightPdf);
+    float emitter(float lightPdf, float equiangularPdf, bool unique) const {
+        if (scalar(segmentInMedium, equiangularPdf)) return unique ? 1.0f : powerHeuristic(bsdfPdf, lightPdf);
+        return 1.0f / media::channelAverage(unique ? rU : rU + rL * lightPdf + rE * equiangularPdf);
     }
     // The weight of a light sample of density lightPdf whose direction the BSDF or phase function
     // would have drawn with scatterPdf (0 for a delta light), through transmittance `tr` of a
-    // shadow ray that crosses a medium or not (`inMedium`).
-    RGB lightSample(float lightPdf, float scatterPdf, const media::TransmittanceEstimate& tr, bool inMedium) const {
-        if (scalar(inMedium))
+    // shadow ray that crosses a medium or not (`inMedium`); the equiangular strategy would have
+    // drawn the vertex and the light's point with equiangularPdf.
+    RGB lightSample(float lightPdf, float scatterPdf, const media::TransmittanceEstimate& tr, bool inMedium,
+                    float equiangularPdf) const {
+        if (scalar(inMedium, equiangularPdf))
             return RGB(scatterPdf > 0.0f ? powerHeuristic(lightPdf, scatterPdf) / lightPdf : 1.0f / lightPdf);
-        return tr.throughput / media::channelAverage(rU * (tr.pdfRatio * lightPdf + tr.throughput * scatterPdf));
+        return tr.throughput / media::channelAverage(rU * (tr.pdfRatio * lightPdf + tr.throughput * scatterPdf) +
+                                                     rE * tr.pdfRatio * equiangularPdf);
     }
     // The ray continues in a direction drawn with density pdf (a delta lobe's: its lobe probability).
     void scattered(float pdf) {
         bsdfPdf = pdf;
         rL = rU / pdf;
+        rE = rE / pdf;
     }
+};
+
+// A medium vertex drawn on `segment` at distance t, where the equiangular strategy applies.
+struct EquiangularVertex {
+    MediumSegment segment;
+    float t = 0.0f;
 };
 
 // The per-render state (integrators/integrator.h).
 struct PathTracerState final : RenderState {
     LightEvents lightEvents;
+    EquiangularLights equiangularLights;  // in scenes with media
 };
 
 }  // namespace
@@ -81,14 +99,15 @@ std::unique_ptr<RenderState> PathTracer::prepare(const render::RenderScene& scen
                                                  SplatFilm*) const {
     auto state = std::make_unique<PathTracerState>();
     if (aovs_ && !aovs_->empty()) state->lightEvents = LightEvents(scene);
+    if (scene.hasMedia()) state->equiangularLights = EquiangularLights(scene);
     return state;
 }
 
 FilmSample PathTracer::sample(const RenderState& state, const render::RenderScene& scene, const render::Camera& camera,
                               const Ray& cameraRay, SampleStream& rng, RenderCounters& counters) const {
-    const LightEvents& lightEvents = static_cast<const PathTracerState&>(state).lightEvents;
-    return scene.hasMedia() ? trace<true>(lightEvents, scene, camera, cameraRay, rng, counters)
-                            : trace<false>(lightEvents, scene, camera, cameraRay, rng, counters);
+    const auto& s = static_cast<const PathTracerState&>(state);
+    return scene.hasMedia() ? trace<true>(s.lightEvents, s.equiangularLights, scene, camera, cameraRay, rng, counters)
+                            : trace<false>(s.lightEvents, s.equiangularLights, scene, camera, cameraRay, rng, counters);
 }
 
 namespace {
@@ -139,10 +158,11 @@ SurfaceVertex surfaceVertex(const SurfaceHit& hit, const Vec3f& wo, const render
 template <bool kMedia>
 class PathWalk {
 public:
-    PathWalk(const LightEvents& lightEvents, std::span<const LightPathAov> aovs, int maxDepth,
-             const render::RenderScene& scene, const render::Camera& camera, const Ray& cameraRay, SampleStream& rng,
-             RenderCounters& counters)
+    PathWalk(const LightEvents& lightEvents, const EquiangularLights& equiangularLights,
+             std::span<const LightPathAov> aovs, int maxDepth, const render::RenderScene& scene,
+             const render::Camera& camera, const Ray& cameraRay, SampleStream& rng, RenderCounters& counters)
         : lightEvents_(lightEvents),
+          equiangularLights_(equiangularLights),
           maxDepth_(maxDepth),
           scene_(scene),
           camera_(camera),
@@ -191,6 +211,10 @@ private:
     Step throughMedium(const media::Medium& medium, const std::optional<SurfaceHit>& hit, int& depth) {
         const float tBoundary = hit ? hit->t : std::numeric_limits<float>::infinity();
         if (guidedWalk_ && walkStep_.first && hit) guidedWalk_->sawFarSide(ray_.direction, hit->t);
+        const RGB rUBefore = mis_.rU;
+        const std::optional<MediumSegment> segment =
+            equiangularApplies(depth) ? mediumSegment(medium, ray_.origin, ray_.direction, tBoundary) : std::nullopt;
+        if (segment) sampleEquiangular(medium, *segment);
         media::FreeFlight flight =
             guidedWalk_ ? guidedWalk_->fly(walkStep_, walkLength_, tBoundary, rng_)
                         : media::sampleFreeFlight(medium, {ray_.origin, ray_.direction, tBoundary}, hero_, rng_);
@@ -198,6 +222,11 @@ private:
         throughput_ *= flight.throughput;
         mis_.rU *= flight.pdfRatio;
         mis_.rL *= flight.lightPdfRatio;
+        mis_.rE *= flight.lightPdfRatio;
+        if (flight.event != media::FlightEvent::Escaped) {  // a new medium vertex (or the path's end)
+            mis_.rE = segment ? rUBefore * flight.ratioTrackedPdfRatio : RGB(0.0f);
+            equiangularVertex_ = segment ? std::optional(EquiangularVertex{*segment, flight.t}) : std::nullopt;
+        }
         if (depth == 0 && flight.event != media::FlightEvent::Escaped)
             recordFirstVolumeEvent(out_, flight.p, flight.properties.sigmaS,
                                    flight.properties.sigmaA + flight.properties.sigmaS, camera_);
@@ -209,6 +238,69 @@ private:
         }
         if (flight.event == media::FlightEvent::Scattered) return scatterInMedium(flight, medium, depth);
         return Step::Reached;
+    }
+
+    // Whether the equiangular strategy samples the stretch of the ray through the medium the path
+    // is in: in the scene's volumes (not a material's interior), where a scattering would still
+    // sample a light (depth below maxDepth), in a scene with a light that has a position.
+    bool equiangularApplies(int depth) const {
+        return kMedia && equiangularLights_.any() && haveLights_ && !guidedWalk_ && inside_.depth() == 0 &&
+               depth < maxDepth_;
+    }
+
+    // The equiangular strategy on `segment` (integrators/equiangular_strategy.h): a light, a
+    // distance drawn about it, the transmittance to that point by ratio tracking, and next-event
+    // estimation of the light from there, weighted against the free flight's two strategies.
+    // Draws four numbers, then those of its ratio tracking.
+    void sampleEquiangular(const media::Medium& medium, const MediumSegment& segment) {
+        const float uLight = rng_.next(), uDistance = rng_.next();
+        const Vec2f uPoint = rng_.next2D();
+        const std::optional<EquiangularChoice> choice = equiangularLights_.choose(scene_, segment, uLight);
+        if (!choice || !scene_.lightReaches(choice->light, 0)) return;
+        const float t = choice->distance.sample(uDistance);
+        const float distancePdf = choice->probability * choice->distance.pdf(t);
+        if (!(distancePdf > 0.0f)) return;
+        const Vec3f p = segment.origin + segment.direction * t;
+        const media::MediumProperties m = medium.at(p);
+        ++counters_.mediumCollisions;
+        if (isBlack(m.sigmaS)) return;  // empty space within the segment: no transmittance to estimate
+        const media::TransmittanceEstimate toPoint =
+            media::ratioTrackingTransmittance(medium, {segment.origin, segment.direction, t}, hero_, rng_);
+        counters_.mediumCollisions += std::uint64_t(toPoint.collisions);
+        if (isBlack(toPoint.throughput)) return;
+        std::optional<render::LightSample> ls = scene_.lightAt(choice->light, ray_.time).sample(p, uPoint);
+        if (!ls || ls->pdf <= 0.0f || isBlack(ls->Li)) return;
+        const Vec3f wo = -segment.direction;
+        const float phase = media::HenyeyGreenstein(m.g).p(wo, ls->wi);
+        ++counters_.shadow;
+        const render::ShadowTest shadow = scene_.shadowTest(choice->light, p, ls->wi, ls->distance, ray_.time);
+        if (shadow == render::ShadowTest::Blocked) return;
+        // The same estimator as the free flight's light sample of the same connection (below), so
+        // that both strategies' weights read the same shadow-ray densities.
+        const bool onlyStrategy = ls->delta || shadow == render::ShadowTest::PassedThrough;
+        const media::TransmittanceEstimate toLight = media::estimateTransmittance(
+            onlyStrategy ? media::TransmittanceMethod::RayMarching : media::TransmittanceMethod::RatioTracking, medium,
+            {p, ls->wi, ls->distance}, hero_, rng_);
+        counters_.mediumCollisions += std::uint64_t(toLight.collisions);
+        // Densities over the hero's density of this strategy, per channel (equiangular_strategy.h).
+        const RGB freeFlightPdf = mis_.rU * toPoint.throughput * m.sigmaS;
+        const RGB equiangularPdf = mis_.rU * toPoint.pdfRatio * distancePdf;
+        const float treePdf = scene_.lightProbability(p, Vec3f(0.0f), choice->light);
+        const RGB lightStrategies = toLight.pdfRatio * ls->pdf * (equiangularPdf + freeFlightPdf * treePdf);
+        const RGB phaseStrategy = onlyStrategy ? RGB(0.0f) : freeFlightPdf * phase * toLight.throughput;
+        const RGB contribution = throughput_ * toPoint.throughput * m.sigmaS * (phase * ls->Li) * toLight.throughput /
+                                 media::channelAverage(lightStrategies + phaseStrategy);
+        radiance_ += contribution;
+        if (lightPaths_.active())
+            lightPaths_.connect(VertexEvents(volumeEvent(false)), lightEvents_[choice->light], contribution, out_);
+    }
+
+    // The equiangular strategy's density of light `index` and of the medium vertex the path is at
+    // (or left last), per unit length (times the light's own density of its point, it is the
+    // strategy's equiangularPdf of MisState); 0 where the strategy does not apply.
+    float equiangularDistancePdf(int index) const {
+        if (!kMedia || !equiangularVertex_) return 0.0f;
+        return equiangularLights_.pdf(scene_, equiangularVertex_->segment, index, equiangularVertex_->t);
     }
 
     // A guided walk's step draws its length first, and its ray is traced only that far: no surface
@@ -270,6 +362,8 @@ private:
             const RGB le = emittedAtHit(scene_, hit, wo);
             if (!isBlack(le)) addEmitted(le, hit.light, LightHit{hit.point, hit.geometricNormal}, depth);
         }
+        equiangularVertex_.reset();  // a surface vertex: the strategy of a medium's does not apply
+        mis_.rE = RGB(0.0f);
         if (hit.lightShape || depth >= maxDepth_) return Step::End;
         arena_.reset();
         const SurfaceVertex v = surfaceVertex(
@@ -385,7 +479,8 @@ private:
         }
         const RGB contribution = throughput_ * f * ls->Li *
                                  mis_.lightSample(choice.probability * ls->pdf, onlyStrategy ? 0.0f : scatterPdf, tr,
-                                                  kMedia && shadowMedium);
+                                                  kMedia && shadowMedium,
+                                                  equiangularDistancePdf(choice.light) * ls->pdf);
         radiance_ += contribution;
         if (lightPaths_.active())
             lightPaths_.connect(vertexEvents(ls->wi), lightEvents_[choice.light], contribution, out_);
@@ -396,15 +491,21 @@ private:
     void addEmitted(const RGB& le, int index, const LightHit& lh, int depth) {
         if (!scene_.lightReaches(index, previousLinkGroup_)) return;  // group 0 for camera rays: every light
         const bool unique = depth == 0 || specularBounce_;
+        const float equiangularPdf =
+            unique ? 0.0f : equiangularDistancePdf(index);  // 0 unless the path left a medium vertex
         float weight = mis_.emitter(
             unique ? 0.0f
                    : lightStrategyPdf(scene_, index, previousPoint_, previousNormal_, ray_.direction, lh, ray_.time),
+            equiangularPdf > 0.0f
+                ? equiangularPdf * scene_.lightAt(index, ray_.time).pdf(previousPoint_, ray_.direction, lh)
+                : 0.0f,
             unique);
         radiance_ += throughput_ * le * weight;
         if (lightPaths_.active()) lightPaths_.reach(lightEvents_[index], throughput_ * le * weight, out_);
     }
 
     const LightEvents& lightEvents_;
+    const EquiangularLights& equiangularLights_;
     const int maxDepth_;
     const render::RenderScene& scene_;
     const render::Camera& camera_;
@@ -424,26 +525,28 @@ private:
     const bool haveLights_;
     LightPathTracker lightPaths_;
     int interiorScatterings_ = 0;
-    std::optional<SurfaceHit> diffusionExit_;      // where diffusion subsurface scattering brings the path out
-    std::optional<media::GuidedWalk> guidedWalk_;  // in a guided subsurface interior (followGuidedWalk)
-    media::WalkStep walkStep_;                     // its next step
-    float walkLength_ = 0.0f;                      // and that step's length (startWalkStep)
+    std::optional<SurfaceHit> diffusionExit_;             // where diffusion subsurface scattering brings the path out
+    std::optional<media::GuidedWalk> guidedWalk_;         // in a guided subsurface interior (followGuidedWalk)
+    std::optional<EquiangularVertex> equiangularVertex_;  // the medium vertex last drawn, where the strategy applies
+    media::WalkStep walkStep_;                            // its next step
+    float walkLength_ = 0.0f;                             // and that step's length (startWalkStep)
 };
 
 }  // namespace
 
 template <bool kMedia>
-FilmSample PathTracer::trace(const LightEvents& lightEvents, const render::RenderScene& scene,
-                             const render::Camera& camera, const Ray& cameraRay, SampleStream& rng,
-                             RenderCounters& counters) const {
+FilmSample PathTracer::trace(const LightEvents& lightEvents, const EquiangularLights& equiangularLights,
+                             const render::RenderScene& scene, const render::Camera& camera, const Ray& cameraRay,
+                             SampleStream& rng, RenderCounters& counters) const {
     const std::span<const LightPathAov> aovs =
         aovs_ ? std::span<const LightPathAov>(*aovs_) : std::span<const LightPathAov>();
-    return PathWalk<kMedia>(lightEvents, aovs, maxDepth_, scene, camera, cameraRay, rng, counters).run();
+    return PathWalk<kMedia>(lightEvents, equiangularLights, aovs, maxDepth_, scene, camera, cameraRay, rng, counters)
+        .run();
 }
 
-template FilmSample PathTracer::trace<true>(const LightEvents&, const render::RenderScene&, const render::Camera&,
-                                            const Ray&, SampleStream&, RenderCounters&) const;
-template FilmSample PathTracer::trace<false>(const LightEvents&, const render::RenderScene&, const render::Camera&,
-                                             const Ray&, SampleStream&, RenderCounters&) const;
+template FilmSample PathTracer::trace<true>(const LightEvents&, const EquiangularLights&, const render::RenderScene&,
+                                            const render::Camera&, const Ray&, SampleStream&, RenderCounters&) const;
+template FilmSample PathTracer::trace<false>(const LightEvents&, const EquiangularLights&, const render::RenderScene&,
+                                             const render::Camera&, const Ray&, SampleStream&, RenderCounters&) const;
 
 }  // namespace fluence::integrators

@@ -22,6 +22,7 @@
 #include <string>
 #include <vector>
 
+#include "integrators/equiangular_strategy.h"
 #include "integrators/integrator.h"
 #include "integrators/light_path_tracker.h"
 #include "integrators/path_events.h"
@@ -45,10 +46,12 @@ public:
     // scene without media pays for none of it; on such a scene both give the same image, bit for
     // bit (tests/integrators/path_tracer_test.cpp), and bench/media_overhead_bench.cpp times them.
     // `lightEvents`: the scene's (integrators/path_events.h) where there are light path expression
-    // AOVs; unused without.
+    // AOVs; unused without. `equiangularLights`: the scene's (integrators/equiangular_strategy.h),
+    // used with kMedia.
     template <bool kMedia>
-    FilmSample trace(const LightEvents& lightEvents, const render::RenderScene& scene, const render::Camera& camera,
-                     const render::Ray& ray, SampleStream& rng, RenderCounters& counters) const;
+    FilmSample trace(const LightEvents& lightEvents, const EquiangularLights& equiangularLights,
+                     const render::RenderScene& scene, const render::Camera& camera, const render::Ray& ray,
+                     SampleStream& rng, RenderCounters& counters) const;
 
 private:
     int maxDepth_;

@@ -38,6 +38,7 @@ FreeFlight sampleFreeFlight(const Medium& medium, const MediumRay& ray, int hero
                 flight.lightPdfRatio *= c.residualPdf() / pdf[hero];
                 return true;
             }
+            flight.ratioTrackedPdfRatio = flight.lightPdfRatio * c.tResidual / pdf[hero];
             flight.event = absorbed ? FlightEvent::Absorbed : FlightEvent::Scattered;
             flight.t = c.t;
             flight.p = c.p;

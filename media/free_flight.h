@@ -25,16 +25,20 @@ enum class FlightEvent { Escaped, Absorbed, Scattered };
 
 struct FreeFlight {
     FlightEvent event = FlightEvent::Escaped;
-    float t = 0.0f;               // the real collision's distance, or ray.tMax on escape
-    Vec3f p;                      // ray.at(t) at a real collision
-    MediumProperties properties;  // the coefficients there (emission for Absorbed, g for Scattered)
-    RGB throughput{1.0f};         // f_c / p_h: Tmaj sigmaN per null point, then Tmaj sigmaA (Absorbed;
-                                  // the caller multiplies by Le), Tmaj sigmaS (Scattered; the caller
-                                  // multiplies by the phase function) or Tmaj to tMax (Escaped)
-    RGB pdfRatio{1.0f};           // p_c / p_h: delta tracking's density had channel c been the hero
-    RGB lightPdfRatio{1.0f};      // Escaped only: ratio tracking's density of the same null points and
-                                  // escape (the shadow-ray strategy) in channel c, over p_h
-    int collisions = 0;           // tentative collisions drawn (each one medium lookup): the work done
+    float t = 0.0f;                  // the real collision's distance, or ray.tMax on escape
+    Vec3f p;                         // ray.at(t) at a real collision
+    MediumProperties properties;     // the coefficients there (emission for Absorbed, g for Scattered)
+    RGB throughput{1.0f};            // f_c / p_h: Tmaj sigmaN per null point, then Tmaj sigmaA (Absorbed;
+                                     // the caller multiplies by Le), Tmaj sigmaS (Scattered; the caller
+                                     // multiplies by the phase function) or Tmaj to tMax (Escaped)
+    RGB pdfRatio{1.0f};              // p_c / p_h: delta tracking's density had channel c been the hero
+    RGB lightPdfRatio{1.0f};         // Escaped only: ratio tracking's density of the same null points and
+                                     // escape (the shadow-ray strategy) in channel c, over p_h
+    RGB ratioTrackedPdfRatio{0.0f};  // Scattered or Absorbed: ratio tracking's density of the same null
+                                     // points and of no further point before t, in channel c, over p_h
+                                     // (how a strategy that picks t itself, as equiangular sampling
+                                     // does, reaches the same collision: integrators/equiangular_strategy.h)
+    int collisions = 0;              // tentative collisions drawn (each one medium lookup): the work done
 };
 
 FreeFlight sampleFreeFlight(const Medium& medium, const MediumRay& ray, int hero, SampleStream& stream);

@@ -103,8 +103,10 @@ TEST(PathTracer, WithoutMediaTheSurfaceOnlyTracerGivesTheSameSamples) {
     for (int i = 0; i < 32 * 32 * 4; ++i) {
         const render::Ray ray = camera.generateRay(float(i % 32) + 0.5f, float((i / 32) % 32) + 0.5f);
         SampleStream rngA(5, std::uint64_t(i), 0), rngB(5, std::uint64_t(i), 0);
-        const RGB withMedia = tracer.trace<true>(LightEvents(), scene, camera, ray, rngA, a).radiance;
-        const RGB without = tracer.trace<false>(LightEvents(), scene, camera, ray, rngB, b).radiance;
+        const RGB withMedia =
+            tracer.trace<true>(LightEvents(), EquiangularLights(), scene, camera, ray, rngA, a).radiance;
+        const RGB without =
+            tracer.trace<false>(LightEvents(), EquiangularLights(), scene, camera, ray, rngB, b).radiance;
         ASSERT_EQ(0, std::memcmp(&withMedia, &without, sizeof(RGB))) << "sample " << i;
     }
     EXPECT_EQ(a.rays(), b.rays());

@@ -2,9 +2,9 @@
 // pbrt-v4's tests): draw N directions, histogram them over the whole sphere in equal-area cells
 // (cos theta x phi), integrate the claimed pdf over each cell, pool cells with an expected count
 // below 5, and compute the p-value of Pearson's statistic. A sampler whose samples follow its
-// pdf fails at rate `alpha` by chance; seeds are fixed, so a passing test keeps passing. Also
-// here: adaptive integration of a density over the sphere, and the significance levels the
-// statistical tests use.
+// pdf fails at rate `alpha` by chance; seeds are fixed, so a passing test keeps passing. The same
+// test for distance samplers over an interval (chi2IntervalTest). Also here: adaptive integration
+// of a density over the sphere, and the significance levels the statistical tests use.
 #pragma once
 
 #include <algorithm>
@@ -227,34 +227,11 @@ inline SphereIntegral integrateOverSphere(const DirectionPdf& pdf, double relati
     return total;
 }
 
-// Draws options.sampleCount directions (sample n from the stream (seed, 0, n)), histograms them
-// in equal-area cells (cos theta x phi) over the whole sphere, integrates the pdf over each cell,
-// pools cells with an expected count below 5, and returns the p-value of Pearson's statistic.
-// Samples that are rejected count towards no cell but the expected counts still integrate the
-// pdf, so a sampler that silently drops mass fails. Each cell's integral is refined adaptively
-// until its error is below 1% of the count's standard deviation sqrt(expected), and along
-// support edges to the finest level, so peaked lobes and the edges of cones are integrated
-// accurately without a fine grid everywhere.
-inline Chi2Result chi2SphereTest(const DirectionSampler& sample, const DirectionPdf& pdf,
-                                 const Chi2Options& options = {}) {
-    const int thetaBins = options.thetaBins, phiBins = options.phiBins, sampleCount = options.sampleCount;
-    std::vector<double> observed(std::size_t(thetaBins) * phiBins, 0.0), expected(observed.size(), 0.0);
-    auto cellOf = [&](const Vec3f& w) {
-        double z = std::clamp(double(w.z), -1.0, 1.0);
-        int i = std::min(thetaBins - 1, int((z + 1.0) * 0.5 * thetaBins));
-        double phi = std::atan2(double(w.y), double(w.x));
-        if (phi < 0) phi += detail::kTwoPi;
-        int j = std::min(phiBins - 1, int(phi / detail::kTwoPi * phiBins));
-        return std::size_t(i) * phiBins + j;
-    };
-    for (int n = 0; n < sampleCount; ++n) {
-        SampleStream rng(options.seed, 0, std::uint64_t(n));
-        if (auto w = sample(rng)) observed[cellOf(*w)] += 1.0;
-    }
-    std::vector<detail::CellIntegral> integrals = detail::integrateGrid(pdf, thetaBins, phiBins, [&](double coarse) {
-        return 0.01 * std::sqrt(std::max(1.0, coarse * sampleCount)) / sampleCount;
-    });
-    for (std::size_t c = 0; c < expected.size(); ++c) expected[c] = sampleCount * integrals[c].value;
+namespace detail {
+
+// Pearson's statistic of observed against expected counts, cells with an expected count below 5
+// pooled into one, and its p-value (degrees of freedom: the cells used, less one).
+inline Chi2Result pearson(const std::vector<double>& observed, const std::vector<double>& expected) {
     // Pool low-expectation cells into one.
     Chi2Result result;
     double pooledObserved = 0.0, pooledExpected = 0.0;
@@ -289,12 +266,90 @@ inline Chi2Result chi2SphereTest(const DirectionSampler& sample, const Direction
     return result;
 }
 
+}  // namespace detail
+
+// Draws options.sampleCount directions (sample n from the stream (seed, 0, n)), histograms them
+// in equal-area cells (cos theta x phi) over the whole sphere, integrates the pdf over each cell,
+// pools cells with an expected count below 5, and returns the p-value of Pearson's statistic.
+// Samples that are rejected count towards no cell but the expected counts still integrate the
+// pdf, so a sampler that silently drops mass fails. Each cell's integral is refined adaptively
+// until its error is below 1% of the count's standard deviation sqrt(expected), and along
+// support edges to the finest level, so peaked lobes and the edges of cones are integrated
+// accurately without a fine grid everywhere.
+inline Chi2Result chi2SphereTest(const DirectionSampler& sample, const DirectionPdf& pdf,
+                                 const Chi2Options& options = {}) {
+    const int thetaBins = options.thetaBins, phiBins = options.phiBins, sampleCount = options.sampleCount;
+    std::vector<double> observed(std::size_t(thetaBins) * phiBins, 0.0), expected(observed.size(), 0.0);
+    auto cellOf = [&](const Vec3f& w) {
+        double z = std::clamp(double(w.z), -1.0, 1.0);
+        int i = std::min(thetaBins - 1, int((z + 1.0) * 0.5 * thetaBins));
+        double phi = std::atan2(double(w.y), double(w.x));
+        if (phi < 0) phi += detail::kTwoPi;
+        int j = std::min(phiBins - 1, int(phi / detail::kTwoPi * phiBins));
+        return std::size_t(i) * phiBins + j;
+    };
+    for (int n = 0; n < sampleCount; ++n) {
+        SampleStream rng(options.seed, 0, std::uint64_t(n));
+        if (auto w = sample(rng)) observed[cellOf(*w)] += 1.0;
+    }
+    std::vector<detail::CellIntegral> integrals = detail::integrateGrid(pdf, thetaBins, phiBins, [&](double coarse) {
+        return 0.01 * std::sqrt(std::max(1.0, coarse * sampleCount)) / sampleCount;
+    });
+    for (std::size_t c = 0; c < expected.size(); ++c) expected[c] = sampleCount * integrals[c].value;
+    return detail::pearson(observed, expected);
+}
+
 // The same test for a sampler of two uniform numbers (the first two of each sample's stream).
 inline Chi2Result chi2SphereTest(const std::function<std::optional<Vec3f>(Vec2f)>& sample, const DirectionPdf& pdf,
                                  int sampleCount = 1'000'000, int thetaBins = 31, int phiBins = 61,
                                  std::uint64_t seed = 7) {
     return chi2SphereTest([&](SampleStream& rng) { return sample(rng.next2D()); }, pdf,
                           Chi2Options{sampleCount, thetaBins, phiBins, seed});
+}
+
+// A distance sampler draws t in [t0, t1] (t1 finite) from its stream, or nullopt for a rejected
+// sample; an IntervalPdf is its density per unit length.
+using DistanceSampler = std::function<std::optional<double>(SampleStream&)>;
+using IntervalPdf = std::function<double(double)>;
+
+// The chi-square test of a sampler over the interval [t0, t1]: `bins` equal cells, each cell's
+// expected count the pdf integrated over it by adaptive Simpson quadrature (to 1% of the count's
+// standard deviation, so peaked densities are integrated as accurately as flat ones), pooled and
+// tested as chi2SphereTest's. Sample n is drawn from the stream (seed, 0, n).
+inline Chi2Result chi2IntervalTest(const DistanceSampler& sample, const IntervalPdf& pdf, double t0, double t1,
+                                   int bins = 101, int sampleCount = 1'000'000, std::uint64_t seed = 7) {
+    std::vector<double> observed(std::size_t(bins), 0.0), expected(std::size_t(bins), 0.0);
+    const double width = (t1 - t0) / bins;
+    for (int n = 0; n < sampleCount; ++n) {
+        SampleStream rng(seed, 0, std::uint64_t(n));
+        if (const std::optional<double> t = sample(rng); t && *t >= t0 && *t <= t1)
+            observed[std::size_t(std::clamp(int((*t - t0) / width), 0, bins - 1))] += 1.0;
+    }
+    // Simpson's rule on [a, b] refined where halving it changes the value by more than `tolerance`.
+    std::function<double(double, double, double, double, double, double, int)> simpson =
+        [&](double a, double b, double fa, double fm, double fb, double tolerance, int depth) {
+            const double m = 0.5 * (a + b), lm = 0.5 * (a + m), rm = 0.5 * (m + b);
+            const double flm = pdf(lm), frm = pdf(rm);
+            const double whole = (b - a) * (fa + 4.0 * fm + fb) / 6.0;
+            const double left = (m - a) * (fa + 4.0 * flm + fm) / 6.0, right = (b - m) * (fm + 4.0 * frm + fb) / 6.0;
+            if (depth >= 40 || std::abs(left + right - whole) <= 15.0 * tolerance)
+                return left + right + (left + right - whole) / 15.0;
+            return simpson(a, m, fa, flm, fm, 0.5 * tolerance, depth + 1) +
+                   simpson(m, b, fm, frm, fb, 0.5 * tolerance, depth + 1);
+        };
+    for (int b = 0; b < bins; ++b) {
+        const double a = t0 + b * width;
+        // Start from 16 panels, so that a narrow peak is seen by some quadrature point.
+        double integral = 0.0;
+        for (int i = 0; i < 16; ++i) {
+            const double pa = a + width * i / 16.0, pb = a + width * (i + 1) / 16.0;
+            const double coarse = (pb - pa) * pdf(0.5 * (pa + pb));
+            const double tolerance = 0.01 * std::sqrt(std::max(1.0, coarse * sampleCount)) / sampleCount / 16.0;
+            integral += simpson(pa, pb, pdf(pa), pdf(0.5 * (pa + pb)), pdf(pb), tolerance, 0);
+        }
+        expected[std::size_t(b)] = sampleCount * integral;
+    }
+    return detail::pearson(observed, expected);
 }
 
 // The level at which each of `familySize` independent tests must be run for a family-wide
