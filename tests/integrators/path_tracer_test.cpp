@@ -144,8 +144,11 @@ TEST(PathTracer, PathsThatMeetNoHeroDependentMediumTakeThePowerHeuristic) {
         const render::Ray ray = camera.generateRay(float(i % 32) + 0.5f, float((i / 32) % 32) + 0.5f);
         SampleStream rngA(5, std::uint64_t(i), 0), rngB(5, std::uint64_t(i), 0);
         rngB.next();
-        const RGB ball = tracer.trace<true>(LightEvents(), sceneWithBall, camera, ray, rngA, a).radiance;
-        const RGB wall = tracer.trace<false>(LightEvents(), sceneAlone, camera, ray, rngB, b).radiance;
+        const RGB ball =
+            tracer.trace<true>(LightEvents(), EquiangularLights(sceneWithBall), sceneWithBall, camera, ray, rngA, a)
+                .radiance;
+        const RGB wall =
+            tracer.trace<false>(LightEvents(), EquiangularLights(), sceneAlone, camera, ray, rngB, b).radiance;
         ASSERT_EQ(0, std::memcmp(&ball, &wall, sizeof(RGB))) << "sample " << i;
     }
     EXPECT_EQ(a.rays(), b.rays());
