@@ -102,5 +102,27 @@ TEST(RussianRoulette, RadianceScaledByRefractionIsNoReasonToEndAPath) {
     EXPECT_TRUE(continuePath(early, 1.0f, 0, rng)) << "no roulette in the first bounces";
 }
 
+TEST(RussianRoulette, SurvivalIsTheSquareRootOfTheThroughputFromTheFifthVertex) {
+    // A throughput of 0.25 survives with probability sqrt(0.25) = 0.5 and is reweighted to 0.5.
+    const int kPaths = 20'000;
+    int survived = 0;
+    for (int n = 0; n < kPaths; ++n) {
+        SampleStream rng(12, 0, n);
+        RGB throughput(0.25f, 0.1f, 0.05f);
+        if (continuePath(throughput, 1.0f, 3, rng)) {
+            ++survived;
+            EXPECT_NEAR(throughput.x, 0.5f, 1e-6f);
+        }
+    }
+    // Binomial, at 5 standard errors: sqrt(0.5 * 0.5 / 20000) = 0.0035.
+    EXPECT_NEAR(double(survived) / kPaths, 0.5, 5 * 0.0035);
+    for (int depth = 0; depth < 3; ++depth) {
+        RGB dim(1e-3f);
+        SampleStream rng(12, 0, 0);
+        EXPECT_TRUE(continuePath(dim, 1.0f, depth, rng)) << "the first four vertices are always shaded: " << depth;
+        EXPECT_EQ(dim.x, 1e-3f);
+    }
+}
+
 }  // namespace
 }  // namespace fluence::integrators
