@@ -91,8 +91,7 @@ int renderFrames(const RenderOptions& opt, WarningLog& warnings, RunSummary& sum
     // Parse and compose, once for every frame.
     const Stopwatch parsing;
     std::unique_ptr<usd::Stage> stage;
-    const MissingAssets missing = opt.allowMissing ? MissingAssets::Warn : MissingAssets::Fail;
-    if (int code = openStage(opt.scene, {opt.variants, opt.loadRules}, warnings, stage, missing); code != kExitOk)
+    if (int code = composeStage(opt.scene, {opt.variants, opt.loadRules}, warnings, stage); code != kExitOk)
         return code;
     try {
         applyAttributeOverrides(*stage, opt.overrides);
@@ -103,7 +102,6 @@ int renderFrames(const RenderOptions& opt, WarningLog& warnings, RunSummary& sum
         printError(e.what());
         return kExitScene;
     }
-    const double parseSeconds = summary.parseSeconds = parsing.seconds();
 
     // The frames: --frame (else the stage's startTimeCode, else none: the delegate reads each
     // attribute's earliest time sample, delegate/prim_reader.h) and the
@@ -114,8 +112,16 @@ int renderFrames(const RenderOptions& opt, WarningLog& warnings, RunSummary& sum
                    " needs a first frame: give --frame or a startTimeCode");
         return kExitUsage;
     }
+    std::vector<double> frames;
+    for (int k = 0; k < opt.frameCount; ++k) frames.push_back(first + k * opt.frameIncrement);
+    // The assets those frames read (after the overrides, which may replace some).
+    if (int code = checkAssets(*stage, warnings, opt.allowMissing ? MissingAssets::Warn : MissingAssets::Fail, frames);
+        code != kExitOk)
+        return code;
+    const double parseSeconds = summary.parseSeconds = parsing.seconds();
+
     for (int k = 0; k < opt.frameCount; ++k) {
-        const double time = first + k * opt.frameIncrement;
+        const double time = frames[k];
         if (StopSignals::flag()) {
             printError("interrupted by a signal before frame " + std::to_string(time) + "; nothing more written");
             return kExitInterrupted;

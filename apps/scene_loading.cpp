@@ -1,5 +1,7 @@
 #include "apps/scene_loading.h"
 
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <map>
@@ -32,6 +34,36 @@ bool isFieldFile(const usd::Stage& stage, const usd::AssetReference& a) {
     return prim && delegate::isFieldAssetType(prim->typeName);
 }
 
+// Whether `value` (an asset, an asset array, or a list or dictionary holding them) names the
+// resolved asset path `resolved` (composition anchors asset values in place: scene/prim_composer).
+bool namesAsset(const usd::Value& value, const std::string& resolved) {
+    switch (value.kind) {
+        case usd::ValueKind::Asset:
+            return std::find(value.strings.begin(), value.strings.end(), resolved) != value.strings.end();
+        case usd::ValueKind::List:
+            return std::any_of(value.items.begin(), value.items.end(),
+                               [&](const usd::Value& item) { return namesAsset(item, resolved); });
+        case usd::ValueKind::Dictionary:
+            return value.dictionary &&
+                   std::any_of(value.dictionary->begin(), value.dictionary->end(),
+                               [&](const auto& entry) { return namesAsset(entry.second, resolved); });
+        default: return false;
+    }
+}
+
+// Whether an asset-valued attribute's asset `a` is read at one of `frames` (see checkAssets).
+bool readAtFrames(const usd::Stage& stage, const usd::AssetReference& a, const std::vector<double>& frames) {
+    if (frames.empty()) return true;
+    const usd::PrimSpec* prim = stage.prim(a.primPath);
+    const usd::AttributeSpec* attribute = prim ? prim->attribute(a.property) : nullptr;
+    if (!attribute) return true;  // not an attribute of a composed prim: counted as read
+    return std::any_of(frames.begin(), frames.end(), [&](double frame) {
+        const std::optional<usd::Value> value =
+            usd::Stage::resolve(*attribute, std::isnan(frame) ? usd::kEarliestTime : frame);
+        return value && namesAsset(*value, a.resolved);
+    });
+}
+
 // What is wrong with an asset file the stage cannot use: an entry of a USDZ package that is there
 // but cannot be read (compressed, encrypted) says so, naming the package and the entry; any other
 // is `missing` followed by the file.
@@ -40,11 +72,14 @@ std::string assetProblem(const std::string& file, const std::string& missing) {
     return missing + file;
 }
 
+}  // namespace
+
 // Missing assets (textures, VDBs) are named, once per file with the number of references to it;
 // arcs and clips that could not be followed were warned by composition (once per layer, with the
 // number of prims naming it), and are errors too when missing assets are. An arc to a layer in a
 // format that needs a plugin Fluence does not have (usd::missingFormatPlugin) is a scene error then.
-int checkAssets(const usd::Stage& stage, WarningLog& warnings, MissingAssets missing) {
+int checkAssets(const usd::Stage& stage, WarningLog& warnings, MissingAssets missing,
+                const std::vector<double>& frames) {
     std::vector<std::string> files;  // in the order first met
     std::map<std::string, AssetUse> uses;
     const std::vector<usd::AssetReference> references = stage.assetReferences();
@@ -60,10 +95,11 @@ int checkAssets(const usd::Stage& stage, WarningLog& warnings, MissingAssets mis
         ++use.count;
         use.arc = use.arc || arc;
         use.needsPlugin = use.needsPlugin || needsPlugin;
-        // What the render reads: layers, shader and light inputs (textures), volume field files.
-        // Other asset-valued attributes (model:cardTexture*, a SpatialAudio's filePath,
-        // documentation) only warn.
-        use.rendered = use.rendered || arc || a.property.starts_with("inputs:") || isFieldFile(stage, a);
+        // What the render reads: layers, shader and light inputs (textures), volume field files,
+        // at the frames rendered. Other asset-valued attributes (model:cardTexture*, a
+        // SpatialAudio's filePath, documentation) only warn.
+        use.rendered = use.rendered || arc ||
+                       ((a.property.starts_with("inputs:") || isFieldFile(stage, a)) && readAtFrames(stage, a, frames));
     }
     std::size_t missingCount = 0, unsupportedCount = 0;
     for (const std::string& file : files) {
@@ -99,10 +135,8 @@ int checkAssets(const usd::Stage& stage, WarningLog& warnings, MissingAssets mis
     return kExitOk;
 }
 
-}  // namespace
-
-int openStage(const std::string& path, const usd::StageOptions& options, WarningLog& warnings,
-              std::unique_ptr<usd::Stage>& stage, MissingAssets missing) {
+int composeStage(const std::string& path, const usd::StageOptions& options, WarningLog& warnings,
+                 std::unique_ptr<usd::Stage>& stage) {
     if (!(usd::splitPackagePath(path) ? usd::packagedEntryExists(path) : std::filesystem::exists(path))) {
         printError("scene file not found: " + path);
         return kExitMissingInput;
@@ -123,7 +157,13 @@ int openStage(const std::string& path, const usd::StageOptions& options, Warning
         warnings(
             w.location.file.empty() ? w.primPath : w.location.str() + (w.primPath.empty() ? "" : ": " + w.primPath),
             w.message);
-    return checkAssets(*stage, warnings, missing);
+    return kExitOk;
+}
+
+int openStage(const std::string& path, const usd::StageOptions& options, WarningLog& warnings,
+              std::unique_ptr<usd::Stage>& stage) {
+    if (int code = composeStage(path, options, warnings, stage); code != kExitOk) return code;
+    return checkAssets(*stage, warnings, MissingAssets::Warn);
 }
 
 }  // namespace fluence::app

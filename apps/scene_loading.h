@@ -34,7 +34,21 @@ enum class MissingAssets {
 // Opens and composes the stage (variant selections and payload load rules in `options`);
 // composition warnings go to `warnings`. On failure prints the error and returns a non-zero exit
 // code (missing file: kExitMissingInput; syntax: kExitScene).
+int composeStage(const std::string& path, const usd::StageOptions& options, WarningLog& warnings,
+                 std::unique_ptr<usd::Stage>& stage);
+
+// The stage's asset paths that cannot be used: missing files, and arcs to layers in a format that
+// needs a plugin Fluence does not have. `frames`: the time codes rendered (usd::kDefaultTime: no
+// frame, each attribute read at its earliest sample as the delegate reads it); an asset-valued
+// attribute's asset is read when the value the attribute gives at one of them names it (its
+// default, or the time sample held there), and one only other time samples name is not. Empty:
+// every asset authored is read. With MissingAssets::Fail a missing asset the render reads is an
+// error naming it (kExitMissingInput); the others are warnings.
+int checkAssets(const usd::Stage& stage, WarningLog& warnings, MissingAssets missing,
+                const std::vector<double>& frames = {});
+
+// composeStage, then checkAssets with MissingAssets::Warn: every missing asset a warning.
 int openStage(const std::string& path, const usd::StageOptions& options, WarningLog& warnings,
-              std::unique_ptr<usd::Stage>& stage, MissingAssets missing = MissingAssets::Warn);
+              std::unique_ptr<usd::Stage>& stage);
 
 }  // namespace fluence::app

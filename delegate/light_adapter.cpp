@@ -9,15 +9,15 @@
 
 namespace fluence::delegate {
 
-namespace {
-
-using Warn = std::function<void(const std::string&)>;
-
 bool appliesSchema(const usd::PrimSpec& prim, const std::string& schema) {
     const usd::MetadataEntry* e = usd::findMetadata(prim.metadata, "apiSchemas");
     return e && e->op != usd::ListOpKind::Delete &&
            std::find(e->value.strings.begin(), e->value.strings.end(), schema) != e->value.strings.end();
 }
+
+namespace {
+
+using Warn = std::function<void(const std::string&)>;
 
 bool authorsShaping(const usd::PrimSpec& prim) {
     return std::any_of(prim.attributes.begin(), prim.attributes.end(), [](const usd::AttributeSpec& a) {

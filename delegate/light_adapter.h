@@ -58,6 +58,8 @@
 namespace fluence::delegate {
 
 bool isLightType(const std::string& typeName);
+// Whether the prim's composed apiSchemas apply `schema` ("ShapingAPI", "MeshLightAPI").
+bool appliesSchema(const usd::PrimSpec& prim, const std::string& schema);
 
 // `stageUpAxis` ('Y' or 'Z') orients a DomeLight_1 whose poleAxis is "scene".
 std::optional<render::LightDesc> lightFromPrim(const PrimReader& prim, const Matrix4& toWorld, char stageUpAxis,

@@ -118,6 +118,7 @@ SceneDelegate::SceneDelegate(usd::Stage& stage, DelegateOptions options) : stage
 
 void SceneDelegate::populate(const std::string& root) {
     std::map<std::string, std::pair<std::size_t, std::string>> unsupported;  // type -> (count, first prim)
+    std::pair<std::size_t, std::string> meshLights;  // gprims applying MeshLightAPI: (count, first prim)
     std::string instanceRoot;  // the instance whose proxies are being visited, "" outside instances
     std::erase_if(walkMalformed_, [&](const auto& entry) { return isAtOrBelow(entry.first, root); });
     const SyncContext sync = context();
@@ -146,6 +147,7 @@ void SceneDelegate::populate(const std::string& root) {
             options_.warn(prim.path, deinstancedWarning(*posed));
         }
         if (isGeometryType(type) || type == "PointInstancer") {
+            if (appliesSchema(prim, "MeshLightAPI") && meshLights.first++ == 0) meshLights.second = prim.path;
             // In an instance, the prototype holds them; a point instancer's prototypes, lights
             // included, render only through it, so nothing below it is a prim of its own.
             if (!instanceRoot.empty()) return type != "PointInstancer";
@@ -177,6 +179,11 @@ void SceneDelegate::populate(const std::string& root) {
     for (const auto& [type, entry] : unsupported)
         options_.warn(entry.second, "prim type '" + type + "' is not supported yet; skipped " +
                                         std::to_string(entry.first) + (entry.first == 1 ? " prim" : " prims"));
+    if (meshLights.first > 0)
+        options_.warn(meshLights.second, "UsdLux MeshLightAPI is not supported yet; " +
+                                             std::to_string(meshLights.first) +
+                                             (meshLights.first == 1 ? " prim renders" : " prims render") +
+                                             " as a plain surface, emitting nothing");
     reconcilePrototypes();
 }
 

@@ -174,6 +174,17 @@ void frontSideFilter(const RTCFilterFunctionNArguments* args) {
     if (!meetsFront(direction, *static_cast<const Vec3f*>(args->geometryUserPtr))) args->valid[0] = 0;
 }
 
+// Embree filter function of a sphere light: it emits outwards only (SphereLight::sample, power and
+// sampleEmission), so a ray from inside meets the back of its surface and passes through it (THE
+// BACK OF A LIGHT). Embree's geometric normal of a sphere points outwards.
+void outerSideFilter(const RTCFilterFunctionNArguments* args) {
+    if (args->N != 1 || !args->valid[0]) return;  // the scenes are only traced one ray at a time
+    const Vec3f direction(RTCRayN_dir_x(args->ray, 1, 0), RTCRayN_dir_y(args->ray, 1, 0),
+                          RTCRayN_dir_z(args->ray, 1, 0));
+    const Vec3f outwards(RTCHitN_Ng_x(args->hit, 1, 0), RTCHitN_Ng_y(args->hit, 1, 0), RTCHitN_Ng_z(args->hit, 1, 0));
+    if (!meetsFront(direction, outwards)) args->valid[0] = 0;
+}
+
 // Embree filter function of a mesh whose material may have holes: rejects the candidate hit
 // where the surface is absent (see render_scene.h).
 void presenceFilter(const RTCFilterFunctionNArguments* args) {
@@ -675,6 +686,10 @@ void RenderScene::addLight(const LightDesc& desc) {
     if (surface.kind == LightSurface::Kind::Quad && !motion) {
         rtcSetGeometryUserData(shape, &quadLightFronts_.emplace_back(surface.front));
         rtcSetGeometryIntersectFilterFunction(shape, frontSideFilter);
+        rtcCommitGeometry(shape);
+    }
+    if (surface.kind == LightSurface::Kind::Sphere && !motion) {
+        rtcSetGeometryIntersectFilterFunction(shape, outerSideFilter);
         rtcCommitGeometry(shape);
     }
     rtcAttachGeometryByID(embree_->lightShapes, shape, static_cast<unsigned>(lightShapeToLight_.size()));

@@ -1,6 +1,7 @@
 // Production files that used to fail a render: a malformed prim (skipped with a warning, an
 // error under --strict), attributes with only time samples read without a frame (the earliest
-// sample, as Hydra), and missing assets the renderer never reads (audio, card textures).
+// sample, as Hydra), and missing assets the renderer never reads (audio, card textures, time
+// samples of other frames).
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -98,6 +99,30 @@ TEST_F(ProductionScenesCli, MissingAssetsTheRenderNeverReadsDoNotFailIt) {
                                                                   << r.err;
     EXPECT_EQ(r.err.find("no_such_dependency.png"), std::string::npos) << r.err;
     EXPECT_TRUE(fs::exists(tmp_.file("a.exr")));
+}
+
+// The dome's texture is time-sampled: none at 1 and 9, a missing file at 5 (as arnold-usd's
+// test_2477 names a missing IES profile at frames other than its reference frame). Only the
+// frames rendered decide: each reads the sample held at its time (the earliest without a frame).
+TEST_F(ProductionScenesCli, AMissingAssetOnlyOtherFramesReadDoesNotFailTheRender) {
+    std::string usda = test::furnaceUsda(0.5);
+    const std::string dome = "float inputs:intensity = 1\n";
+    ASSERT_NE(usda.find(dome), std::string::npos);
+    usda.insert(usda.find(dome) + dome.size(),
+                "        asset inputs:texture:file.timeSamples = { 1: @@, 5: @./no_such_sky.exr@, 9: @@ }\n");
+    const std::string scene = write("sky_sequence.usda", usda);
+    for (const std::string frames : {"", "-f 3", "-f 9", "-f 2 -n 3"}) {
+        RunResult r = render(scene, "sky.%04d.exr", frames);
+        EXPECT_EQ(r.exitCode, 0) << frames << ":\n" << r.err;
+        EXPECT_NE(r.err.find("/World/Dome.inputs:texture:file: asset not found"), std::string::npos) << r.err;
+    }
+    for (const std::string frames : {"-f 5", "-f 6", "-f 3 -n 3"}) {
+        RunResult r = render(scene, "sky.%04d.exr", frames);
+        EXPECT_EQ(r.exitCode, 4) << frames << ":\n" << r.err;
+        EXPECT_NE(r.err.find("/World/Dome.inputs:texture:file: missing asset"), std::string::npos) << r.err;
+        EXPECT_NE(r.err.find("no_such_sky.exr"), std::string::npos) << r.err;
+    }
+    EXPECT_FALSE(fs::exists(tmp_.file("sky.0005.exr")));
 }
 
 }  // namespace

@@ -280,6 +280,28 @@ over "NotDefined"
         << p.warnings[0];
 }
 
+// UsdLux MeshLightAPI (arnold-usd test_2390, test_2439.13, test_2477.5) is not read: the meshes
+// render as surfaces, and one warning says so instead of nothing.
+TEST(SceneDelegate, MeshLightApiIsNamedAsNotSupported) {
+    const std::string tri = R"( (
+    prepend apiSchemas = ["MeshLightAPI"]
+)
+{
+    uniform token subdivisionScheme = "none"
+    int[] faceVertexCounts = [3]
+    int[] faceVertexIndices = [0, 1, 2]
+    point3f[] points = [(0, 0, 0), (1, 0, 0), (0, 1, 0)]
+}
+)";
+    auto p = populate("#usda 1.0\n" + kCamera + "def Mesh \"A\"" + tri + "def Mesh \"B\"" + tri);
+    EXPECT_EQ(p.result.scene.meshes.size(), 2u);
+    ASSERT_EQ(p.warnings.size(), 1u);
+    EXPECT_NE(p.warnings[0].find("/A"), std::string::npos) << p.warnings[0];
+    EXPECT_NE(p.warnings[0].find("MeshLightAPI is not supported yet; 2 prims render as a plain surface"),
+              std::string::npos)
+        << p.warnings[0];
+}
+
 TEST(SceneDelegate, AuthoredColoursGoThroughTheColourConverterWithTheirColourSpace) {
     auto stage = std::make_unique<usd::Stage>(usd::parseUsdaString(R"(#usda 1.0
 def Camera "Cam"

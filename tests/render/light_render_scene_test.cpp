@@ -89,6 +89,33 @@ TEST(LightRenderScene, RaysPassThroughTheBackOfRectAndDiskLights) {
     }
 }
 
+// A sphere light emits outwards only (its samples, power and emission): a ray from inside it meets
+// the back of its surface and passes through, finding what lies inside (a floor at y = -1) or
+// nothing; from outside it sees the light. arnold-usd test_1776's camera, inside a SphereLight of
+// radius 10, used to see only the light's inside, white.
+TEST(LightRenderScene, RaysFromInsideASphereLightPassThroughItsSurface) {
+    SceneDescription desc;
+    LightDesc sphere;
+    sphere.name = "/sphere";
+    sphere.type = LightType::Sphere;
+    sphere.radius = 2.0f;
+    desc.lights.push_back(sphere);
+    desc.materials.push_back(test::diffuseMaterial("/grey", RGB(0.5f)));
+    desc.meshes.push_back(test::quadMesh("/floor", {{{-1, -1, -1}, {1, -1, -1}, {1, -1, 1}, {-1, -1, 1}}}, 0));
+    RenderScene scene(desc);
+    constexpr float kInf = std::numeric_limits<float>::infinity();
+    auto down = scene.intersect(Ray{Vec3f(0.1f, 0.0f, 0.1f), Vec3f(0, -1, 0), 0.0f, kInf});
+    ASSERT_TRUE(down);
+    EXPECT_FALSE(down->lightShape);
+    EXPECT_NEAR(down->t, 1.0f, 1e-5f);
+    EXPECT_FALSE(scene.intersect(Ray{Vec3f(0.1f, 0.0f, 0.1f), Vec3f(0, 1, 0), 0.0f, kInf}))
+        << "the inside of the sphere light stopped the ray";
+    auto outside = scene.intersect(Ray{Vec3f(0.0f, 5.0f, 0.0f), Vec3f(0, -1, 0), 0.0f, kInf});
+    ASSERT_TRUE(outside);
+    EXPECT_TRUE(outside->lightShape);
+    EXPECT_NEAR(outside->t, 3.0f, 1e-5f);
+}
+
 // A segment through the disk's front (light 0) meets another light's shape for every light but the
 // disk, and for "any light" (-1, bdpt's joins); with the disk the only light that has a shape, the
 // disk's own query skips the search (render_scene.cpp) and the others still find it.
