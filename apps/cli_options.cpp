@@ -485,7 +485,7 @@ std::string usageText() {
            "                          (default: each material's subsurface_type, else randomwalk_guided)\n"
            "      --time-limit SECS   stop starting new sample passes after SECS seconds (0: no limit)\n"
            "      --target-error E    adaptive sampling to a noise level: each pixel stops once the relative\n"
-           "                          standard error of its mean (estimated from its even and odd samples over\n"
+           "                          standard error of its mean (estimated from the halves of its samples over\n"
            "                          its 3x3 neighbourhood) is at most E (e.g. 0.02), after --min-spp and at\n"
            "                          most --spp samples; tiles then have edges on multiples of 8 pixels\n"
            "      --mean-spp N        adaptive sampling to a budget: the cost of N uniform samples per pixel\n"

@@ -2,11 +2,11 @@
 """Adaptive against uniform sampling at equal CPU time, on the Cornell box, the smoke and the subsurface scene.
 
   bench/adaptive_compare.py FLUENCE OUT_DIR [--res N] [--ref-spp N] [--spp N ...] [--uniform-spp N ...] [--scenes A,B]
-                            [--sampler NAME] [--min-spp N] [--repeat N] [--peer-scenes DIR]
+                            [--sampler NAME] [--min-spp N] [--repeat N] [--seed S] [--peer-scenes DIR]
 
 For each scene: a reference made of two uniform renders of REF_SPP / 2 samples (seeds 1 and 2,
 kept in OUT_DIR if present), whose own noise is subtracted from every error (relMSE, eps 0.01, as
-bench/fluence_bench/metrics.py computes it); then, at each rung (seed 0), the uniform render
+bench/fluence_bench/metrics.py computes it); then, at each rung (seed SEED, default 0), the uniform render
 (`--spp N`, at the UNIFORM_SPP rungs, default the SPP ones) and the adaptive one (`--mean-spp N`, at the SPP rungs: the
 counted cost of N uniform samples per pixel, spread by the budget rule of integrators/adaptive_sampling.h; the
 summary's "the cost of X uniform spp" is kept as cost_spp), alternating so that the machine's load falls on
@@ -114,6 +114,7 @@ def main():
     p.add_argument("--sampler", default=None, help="--sampler for every render (default: fluence's)")
     p.add_argument("--min-spp", type=int, default=16)
     p.add_argument("--repeat", type=int, default=2, help="renders of each image, the least CPU time kept")
+    p.add_argument("--seed", type=int, default=0, help="the rungs' seed (the references take 1 and 2)")
     p.add_argument("--peer-scenes", default=str(ROOT / "bench/peer_scenes"),
                    help="the folder of cycles_smoke.usda and cycles_sss.usda")
     args = p.parse_args()
@@ -135,8 +136,9 @@ def main():
         for n in rungs:
             modes = [m for m, spps in (("uniform", args.uniform_spp or args.spp), ("adaptive", args.spp)) if n in spps]
             images = {mode: out / ("%s_%s_%d.exr" % (scene, mode, n)) for mode in modes}
-            options = {"uniform": ["--spp", str(n), "--seed", "0"],
-                       "adaptive": ["--mean-spp", str(n), "--min-spp", str(min(args.min_spp, n)), "--seed", "0"]}
+            seeded = ["--seed", str(args.seed)]
+            options = {"uniform": ["--spp", str(n)] + seeded,
+                       "adaptive": ["--mean-spp", str(n), "--min-spp", str(min(args.min_spp, n))] + seeded}
             cpus = {mode: [] for mode in modes}
             for _ in range(args.repeat):  # the same image each time: the least CPU time is the least disturbed
                 for mode in modes:

@@ -8,14 +8,15 @@
 // relMSE = mean over pixels and channels of (x - ref)² / (ref² + 0.01). The reference's noise adds
 // its variance Vref to each pixel's expected (x - ref)²: the column ref_noise is the mean of
 // Vref / (ref² + 0.01), Vref from the reference's variance channel (rendered with
-// --denoise-buffers). It is not taken off: that channel is the samples' variance over their count,
-// which over-states the error of the mean under the default (Owen-scrambled Sobol) sampler, so the
-// difference would not estimate the error against the true image.
+// --denoise-buffers). It is not taken off: that channel, from the difference of the halves (each a
+// Sobol net), still over-states the error of the whole net under the default (Owen-scrambled Sobol)
+// sampler (by up to about 8 where the integrand is smooth: tests/core/film_half_buffers_test.cpp),
+// so the difference would not estimate the error against the true image.
 //
 // Bias: (mean of x - mean of ref) / mean of ref, means over pixels and R G B. Its standard error:
 // the pixels are independent, so the variance of a mean of n values is the sum of their variances
 // over n²; the noisy image's pixel variance is its variance channel, the reference's its own (both
-// over-stated under Sobol, so the error is a generous one). The denoised image is given the noisy
+// over-stated under Sobol, less since the halves split nets, so the error is a generous one). The denoised image is given the noisy
 // one's: each of its pixels is a weighted mean, with weights summing to one, of the noisy pixels
 // around it, so over the whole image it sums nearly the same noise (an approximation: it
 // underestimates where the weights pile onto a few pixels).

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <bit>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
@@ -30,17 +31,19 @@ Film::Film(int width, int height, float farDepth, std::vector<std::string> light
 void Film::add(int x, int y, const FilmSample& s, double cost) {
     const std::size_t index = static_cast<std::size_t>(y) * width_ + x;
     Pixel& p = pixels_[index];
+    if (!denoiseSums_.empty() && std::has_single_bit(p.samples)) {
+        // The sample's index is a power of two 2^M: [0, 2^M) is the new upper prefix, the old one
+        // the lower (see the top of film.h).
+        double* prefixes = denoiseSums_.data() + index * kDenoiseSumsPerPixel;
+        for (int c = 0; c < 3; ++c) {
+            prefixes[c] = prefixes[3 + c];
+            prefixes[3 + c] = p.radiance[c];
+        }
+    }
     for (int c = 0; c < 3; ++c) p.radiance[c] += s.radiance[c];
     double* layers = lightPathSums_.data() + index * lightPathLayers_.size() * 3;
     for (std::size_t l = 0; l < lightPathLayers_.size(); ++l)
         for (std::size_t c = 0; c < 3; ++c) layers[3 * l + c] += s.lightPaths[3 * l + c];
-    if (!denoiseSums_.empty()) {
-        double* sums = denoiseSums_.data() + index * kDenoiseSumsPerPixel;
-        for (int c = 0; c < 3; ++c) {
-            if (p.samples % 2 == 0) sums[c] += s.radiance[c];
-            sums[3 + c] += double(s.radiance[c]) * s.radiance[c];
-        }
-    }
     const double brightness = luminance(s.radiance);
     p.luminance += brightness;
     p.luminanceSquared += brightness * brightness;
@@ -87,20 +90,14 @@ Image Film::resolveDenoiseBuffers() const {
     const double perLightPath = samples > 0 ? double(width_) * double(height_) / double(samples) : 0.0;
     for (int y = 0; y < height_; ++y)
         for (int x = 0; x < width_; ++x) {
-            const std::size_t index = static_cast<std::size_t>(y) * width_ + x;
-            const Pixel& p = pixels_[index];
-            const double* sums = denoiseSums_.data() + index * kDenoiseSumsPerPixel;
-            const double n = p.samples;
             const std::array<double, 3> splat = splats_ ? splats_->sum(x, y) : std::array<double, 3>{};
             const HalfMeans halves = halfMeans(x, y);
             float* out = image.pixel(x, y);
-            for (int c = 0; c < 3; ++c) {
-                const double added = splat[std::size_t(c)] * perLightPath;
-                const double mean = n > 0 ? p.radiance[c] / n : 0.0;
-                out[c] = static_cast<float>(halves.even[std::size_t(c)] + added);
-                out[3 + c] = static_cast<float>(halves.odd[std::size_t(c)] + added);
-                const double variance = n > 1 ? std::max(0.0, (sums[3 + c] - n * mean * mean) / (n - 1.0)) / n : 0.0;
-                out[6 + c] = static_cast<float>(variance);
+            for (std::size_t c = 0; c < 3; ++c) {
+                const double added = splat[c] * perLightPath;
+                out[c] = static_cast<float>(halves.first[c] + added);
+                out[3 + c] = static_cast<float>(halves.second[c] + added);
+                out[6 + c] = static_cast<float>(halves.meanVariance(c));
             }
         }
     return image;
@@ -110,14 +107,31 @@ Film::HalfMeans Film::halfMeans(int x, int y) const {
     if (denoiseSums_.empty()) throw std::logic_error("Film::halfMeans: the denoiser's buffers are not enabled");
     const std::size_t index = static_cast<std::size_t>(y) * width_ + x;
     const Pixel& p = pixels_[index];
-    const double* evenSums = denoiseSums_.data() + index * kDenoiseSumsPerPixel;
-    const double even = (p.samples + 1) / 2, odd = p.samples / 2;
     HalfMeans h{};
+    const std::uint32_t n = p.samples;
+    if (n == 0) return h;
+    if (n == 1) {
+        for (std::size_t c = 0; c < 3; ++c) h.first[c] = h.second[c] = p.radiance[c];
+        h.firstCount = 1;
+        return h;
+    }
+    // n = 2^M + k, 1 <= k <= 2^M: the first half is [0, 2^(M-1)) when k < 2^(M-1), else [0, 2^M).
+    const std::uint32_t upper = std::bit_floor(n - 1), lower = upper / 2;
+    const bool lowerSplit = n - upper < lower;
+    const double* prefix = denoiseSums_.data() + index * kDenoiseSumsPerPixel + (lowerSplit ? 0 : 3);
+    h.firstCount = lowerSplit ? lower : upper;
+    h.secondCount = n - h.firstCount;
     for (std::size_t c = 0; c < 3; ++c) {
-        h.even[c] = even > 0 ? evenSums[c] / even : 0.0;
-        h.odd[c] = odd > 0 ? (p.radiance[c] - evenSums[c]) / odd : h.even[c];
+        h.first[c] = prefix[c] / h.firstCount;
+        h.second[c] = (p.radiance[c] - prefix[c]) / h.secondCount;
     }
     return h;
+}
+
+double Film::HalfMeans::meanVariance(std::size_t c) const {
+    if (firstCount == 0 || secondCount == 0) return 0.0;
+    const double difference = first[c] - second[c], n = double(firstCount) + double(secondCount);
+    return difference * difference * double(firstCount) * double(secondCount) / (n * n);
 }
 
 Image Film::resolve() const {

@@ -21,11 +21,25 @@
 //
 // The denoiser's buffers (denoise/), kept once enableDenoiseBuffers() is called and resolved apart
 // by resolveDenoiseBuffers():
-//   half0.R/G/B     the mean of the pixel's even-indexed samples, half1.R/G/B of its odd ones:
-//                   two independent estimates of the beauty (a sample's index is the count of
-//                   samples before it in its pixel, so the split is the same at any thread count,
-//                   tile division or checkpoint)
-//   variance.R/G/B  the variance of the beauty's mean (the samples' variance over their count)
+//   half0.R/G/B     the mean of the first half of the pixel's samples, half1.R/G/B of the second:
+//                   two estimates of the beauty whose difference measures the error the Sobol
+//                   sampler actually makes (below)
+//   variance.R/G/B  the variance of the beauty's mean, from the halves: (half0 - half1)² n0 n1 / n²
+//                   for halves of n0 and n1 of the n samples (unbiased when the samples are
+//                   independent: E (half0 - half1)² = sigma² (1/n0 + 1/n1)); one degree of freedom
+//                   per pixel, which the denoiser and adaptive sampling average over neighbours
+// The halves are split by sample index (a sample's index is the count of samples before it in its
+// pixel), so the split is the same at any thread count, tile division or checkpoint. Under the
+// Owen-scrambled Sobol sampler (core/owen_sobol.h) every aligned block of 2^m indices is a
+// (0,m,2)-net, so for n = 2^m the halves are samples [0, 2^(m-1)) and [2^(m-1), 2^m): each a net,
+// and their difference measures the error of nets. Splitting a net by even and odd index (as
+// before) makes two random halves of one net whose errors cancel in the whole: their difference
+// measured the error of independent samples, up to thousands of times the net's on a smooth
+// integrand (tests/core/film_half_buffers_test.cpp). For n = 2^M + k (1 <= k <= 2^M), the first
+// half is [0, 2^M) when k >= 2^(M-1) and [0, 2^(M-1)) otherwise, so the halves' counts are
+// within a factor of 2 of each other at any n (a one-sample pixel: both halves read its sample).
+// The film keeps the sums of the samples [0, 2^M) and [0, 2^(M-1)) for that, updated when the
+// index reaches a power of two.
 // Light tracing's splats (enableSplats) are added to both halves alike and not to the variance.
 #pragma once
 
@@ -108,11 +122,15 @@ public:
     static std::vector<std::string> denoiseBufferChannelNames();
     // The half images and variance, in denoiseBufferChannelNames() order. Requires the buffers.
     Image resolveDenoiseBuffers() const;
-    // The means of pixel (x, y)'s even- and odd-indexed samples, R G B, without light tracing's
-    // splats (0 for a half with no sample; the odd half of a one-sample pixel reads the even one's).
-    // Requires the buffers. Adaptive sampling's error estimate (integrators/adaptive_sampling.h).
+    // The means of pixel (x, y)'s first and second halves of samples (see the top of this file),
+    // R G B, without light tracing's splats, and how many samples each holds (a one-sample pixel:
+    // both read its sample, counts 1 and 0; no sample: 0). Requires the buffers. Adaptive
+    // sampling's error estimate (integrators/adaptive_sampling.h).
     struct HalfMeans {
-        std::array<double, 3> even, odd;
+        std::array<double, 3> first, second;
+        std::uint32_t firstCount = 0, secondCount = 0;
+        // The halves' estimate of the variance of the pixel's mean in channel c (0 below 2 samples).
+        double meanVariance(std::size_t c) const;
     };
     HalfMeans halfMeans(int x, int y) const;
 
@@ -151,8 +169,9 @@ private:
     std::vector<Pixel> pixels_;
     std::vector<std::string> lightPathLayers_;
     std::vector<double> lightPathSums_;  // per pixel, per layer, R G B
-    // With the denoiser's buffers, per pixel: the even-indexed samples' radiance sums R G B, then
-    // every sample's squared radiance sums R G B; empty without them.
+    // With the denoiser's buffers, per pixel: the radiance sums R G B of the samples [0, 2^(M-1)),
+    // then of [0, 2^M), 2^M the largest power of two below the pixel's count (see the top of this
+    // file); empty without them.
     std::vector<double> denoiseSums_;
     std::unique_ptr<SplatFilm> splats_;
 };

@@ -62,7 +62,7 @@ void writeFilmState(const Film& film, std::ostream& out) {
         const std::vector<std::int64_t> sums = film.splats_->fixedSums();
         writeBinary(out, sums.data(), sums.size());
     }
-    // The denoiser's buffers (version 3), when the render keeps them.
+    // The denoiser's buffers (version 3; their prefix sums from version 5), when the render keeps them.
     writeBinary(out, static_cast<std::uint8_t>(film.hasDenoiseBuffers()));
     writeBinary(out, film.denoiseSums_.data(), film.denoiseSums_.size());
 }

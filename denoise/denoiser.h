@@ -2,8 +2,8 @@
 // al. 2016, "Nonlinearly Weighted First-order Regression for Denoising Monte Carlo Renderings"),
 // with the NL-means colour weights of Rousselle et al. 2013.
 //
-// Input: the render's two half images (the means of its even- and odd-indexed samples: two
-// independent estimates of the beauty), the variance of the beauty's mean, and the first-hit
+// Input: the render's two half images (the means of the first and second halves of its samples:
+// two estimates of the beauty), the variance of the beauty's mean (from their difference), and the first-hit
 // features: albedo, shading normal and depth (core/film.h).
 //
 // The fit (denoise/local_fit.h): around a centre pixel i, over the (2 radius + 1)² window of
@@ -53,7 +53,7 @@ namespace fluence::denoise {
 // Per-pixel buffers, row-major, row 0 at the top; colours and vectors interleaved (3 floats).
 struct DenoiseBuffers {
     int width = 0, height = 0;
-    std::vector<float> halves[2];            // R G B: the even and the odd samples' means
+    std::vector<float> halves[2];            // R G B: the first and second halves' means
     std::vector<float> variance;             // R G B: the variance of the beauty's mean
     std::vector<float> albedo;               // R G B
     std::vector<float> normal;               // X Y Z

@@ -17,11 +17,10 @@ double pixelVariance(const Film& film, int x, int y) {
     const std::uint32_t n = film.samples(x, y);
     if (n < std::uint32_t(kMinSamplesForHalves)) return 0.0;
     const Film::HalfMeans h = film.halfMeans(x, y);
-    const double evenCount = (n + 1) / 2, oddCount = n / 2;
     double sum = 0.0;
     for (std::size_t c = 0; c < 3; ++c) {
-        const double mean = (evenCount * h.even[c] + oddCount * h.odd[c]) / n, difference = h.even[c] - h.odd[c];
-        sum += difference * difference * evenCount * oddCount / n / (mean * mean + AdaptiveSampling::kRelativeFloor);
+        const double mean = (h.firstCount * h.first[c] + h.secondCount * h.second[c]) / n;
+        sum += h.meanVariance(c) * n / (mean * mean + AdaptiveSampling::kRelativeFloor);
     }
     return sum / 3.0;
 }

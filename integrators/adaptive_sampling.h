@@ -2,11 +2,12 @@
 // pass of the render loop (integrators/renderer.h), how many of the pass's samples each pixel takes.
 //
 // The error estimate. A pixel's relative variance per sample, a = mean over R G B of
-// sigma_c^2 / (mean_c^2 + kRelativeFloor), where sigma_c^2 is estimated from the difference of the
-// means of its even- and odd-indexed samples (the film's half buffers, core/film.h):
-// (even_c - odd_c)^2 n_even n_odd / n. The halves are two independent estimates of the pixel, so
-// their difference measures the error the pixel's mean actually has, under the Sobol sampler's
-// stratification too (where the samples' own spread overstates it). One difference is a noisy
+// sigma_c^2 / (mean_c^2 + kRelativeFloor), where sigma_c^2 / n, the variance of the pixel's mean, is
+// estimated from the difference of the means of the first and second halves of its samples (the
+// film's half buffers, core/film.h): (first_c - second_c)^2 n_first n_second / n^2. Under the Sobol
+// sampler each half of a power-of-two count is a net, so their difference measures the error
+// Sobol's stratification leaves (the samples' own spread, or even- against odd-indexed halves,
+// overstate it most where it is smallest: edges, direct light). One difference is a noisy
 // estimate, so a is averaged over the pixel's 3x3 neighbourhood, the pixel itself left out: a pixel
 // whose own halves agree by luck amid noisy neighbours does not stop, the neighbours of a lone noisy
 // pixel go on, and a pixel's decisions do not read its own samples, so a heavy-tailed pixel that

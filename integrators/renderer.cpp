@@ -71,7 +71,7 @@ void renderPass(const render::RenderScene& scene, const render::Camera& camera, 
                                 sample.clearLightPaths(film.lightPathLayers().size());
                                 ++local.nonFiniteSamples;
                             }
-                            film.add(x, y, sample, sampleCost(before, local));
+                            film.add(x, y, sample, sampleCost(before, local, sample.hit));
                             if (settings.cryptomatte) settings.cryptomatte->add(x, y, sample);
                         }
                     }

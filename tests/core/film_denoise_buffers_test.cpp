@@ -1,7 +1,10 @@
-// The film's denoiser buffers (core/film.h): the half images split by sample index, the variance
-// of the mean, and their place in the film state (core/film_state.h).
+// The film's denoiser buffers (core/film.h): the half images split by sample index into the halves
+// of power-of-two prefixes, the variance of the mean from them, and their place in the film state
+// (core/film_state.h). Their statistics: tests/core/film_half_buffers_test.cpp.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <iterator>
 #include <sstream>
 
 #include "core/film.h"
@@ -16,18 +19,39 @@ FilmSample sampleOf(float value) {
     return s;
 }
 
-TEST(FilmDenoiseBuffers, HalvesSplitEvenAndOddSamplesAndVarianceIsTheMeans) {
+TEST(FilmDenoiseBuffers, HalvesSplitThePowerOfTwoCountAndVarianceIsTheirDifferences) {
     Film film(1, 1, 100.0f);
     film.enableDenoiseBuffers();
     for (float v : {1.0f, 2.0f, 3.0f, 4.0f}) film.add(0, 0, sampleOf(v));
     const Image buffers = film.resolveDenoiseBuffers();
     const float* p = buffers.pixel(0, 0);
-    EXPECT_FLOAT_EQ(p[buffers.channelIndex("half0.R")], 2.0f);  // samples 0 and 2
-    EXPECT_FLOAT_EQ(p[buffers.channelIndex("half1.R")], 3.0f);  // samples 1 and 3
-    EXPECT_FLOAT_EQ(p[buffers.channelIndex("half1.G")], 6.0f);
-    // The samples' variance (1, 2, 3, 4: 5/3) over their count.
-    EXPECT_FLOAT_EQ(p[buffers.channelIndex("variance.R")], 5.0f / 3.0f / 4.0f);
+    EXPECT_FLOAT_EQ(p[buffers.channelIndex("half0.R")], 1.5f);  // samples 0 and 1
+    EXPECT_FLOAT_EQ(p[buffers.channelIndex("half1.R")], 3.5f);  // samples 2 and 3
+    EXPECT_FLOAT_EQ(p[buffers.channelIndex("half1.G")], 7.0f);
+    // (half0 - half1)² n0 n1 / n²: 4 x 2 x 2 / 16.
+    EXPECT_FLOAT_EQ(p[buffers.channelIndex("variance.R")], 1.0f);
+    EXPECT_FLOAT_EQ(p[buffers.channelIndex("variance.G")], 4.0f);
     EXPECT_FLOAT_EQ(p[buffers.channelIndex("variance.B")], 0.0f);
+}
+
+// For n = 2^M + k samples (1 <= k <= 2^M) the first half is [0, 2^M) when k >= 2^(M-1), else
+// [0, 2^(M-1)); one sample is in both halves.
+TEST(FilmDenoiseBuffers, FirstHalfIsThePowerOfTwoPrefixThatKeepsTheCountsWithinTwice) {
+    const std::uint32_t firstCounts[] = {1, 1, 2, 2, 2, 4, 4, 4, 4, 4, 4, 8, 8, 8, 8, 8, 8, 8, 8, 8, 8, 8, 8, 16};
+    Film film(1, 1, 100.0f);
+    film.enableDenoiseBuffers();
+    for (std::uint32_t n = 1; n <= std::size(firstCounts); ++n) {
+        film.add(0, 0, sampleOf(float(n)));  // sample n - 1 has the value n
+        const Film::HalfMeans h = film.halfMeans(0, 0);
+        const std::uint32_t first = firstCounts[n - 1], second = n == 1 ? 0 : n - first;
+        EXPECT_EQ(h.firstCount, first) << n;
+        EXPECT_EQ(h.secondCount, second) << n;
+        EXPECT_DOUBLE_EQ(h.first[0], (1.0 + first) / 2.0) << n;  // the mean of 1 .. first
+        if (n > 1) {
+            EXPECT_DOUBLE_EQ(h.second[0], (first + 1.0 + n) / 2.0) << n;  // the mean of first + 1 .. n
+            EXPECT_LE(std::max(first, second), 2 * std::min(first, second)) << n;
+        }
+    }
 }
 
 TEST(FilmDenoiseBuffers, WithoutThemResolvingIsAnError) {
@@ -39,7 +63,7 @@ TEST(FilmDenoiseBuffers, WithoutThemResolvingIsAnError) {
 TEST(FilmDenoiseBuffers, CheckpointStateKeepsThemAndRefusesAFilmWithout) {
     Film film(2, 1, 100.0f);
     film.enableDenoiseBuffers();
-    for (float v : {1.0f, 5.0f, 2.0f}) film.add(1, 0, sampleOf(v));
+    for (float v : {1.0f, 5.0f, 2.0f, 3.0f}) film.add(1, 0, sampleOf(v));
     std::stringstream state;
     writeFilmState(film, state);
 
@@ -47,8 +71,10 @@ TEST(FilmDenoiseBuffers, CheckpointStateKeepsThemAndRefusesAFilmWithout) {
     resumed.enableDenoiseBuffers();
     std::stringstream copy(state.str());
     readFilmState(copy, resumed);
-    resumed.add(1, 0, sampleOf(7.0f));  // the fourth sample: odd, so into half 1
-    film.add(1, 0, sampleOf(7.0f));
+    for (float v : {7.0f, 0.5f}) {  // sample 4 moves the prefixes on: they must have been saved
+        resumed.add(1, 0, sampleOf(v));
+        film.add(1, 0, sampleOf(v));
+    }
     EXPECT_EQ(resumed.resolveDenoiseBuffers().pixels, film.resolveDenoiseBuffers().pixels);
 
     Film without(2, 1, 100.0f);

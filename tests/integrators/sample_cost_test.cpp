@@ -4,6 +4,7 @@
 // medium lookups, and a subsurface interior's random walks draw them and make its pixels cost more.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstdio>
 
 #include "integrators/path_tracer.h"
@@ -31,9 +32,20 @@ test_support::RenderedFilm renderFourSamples(const render::SceneDescription& des
     return test_support::renderFilm(PathTracer(IntegratorSettings{}), desc, kSize, settings);
 }
 
+// The samples whose camera ray hit nothing: in these scenes (no media) each traced that ray only.
+double missedSamples(const Film& film) {
+    const Image image = film.resolve();
+    double sum = 0.0;
+    for (int y = 0; y < film.height(); ++y)
+        for (int x = 0; x < film.width(); ++x)
+            sum += film.samples(x, y) * (1.0 - image.pixel(x, y)[image.channelIndex("A")]);
+    return std::round(sum);
+}
+
 void expectCostsAddUpToTheCounters(const test_support::RenderedFilm& r) {
     const RenderCounters& c = r.stats.counters;
-    const double counted = double(c.rays()) + kMediumCollisionCost * double(c.mediumCollisions);
+    const double counted = double(c.rays()) + kMediumCollisionCost * double(c.mediumCollisions) -
+                           (1.0 - kMissedCameraRayCost) * missedSamples(r.film);
     EXPECT_NEAR(filmCost(r.film), counted, 1e-12 * counted);
 }
 
@@ -41,8 +53,8 @@ TEST(Renderer, EachSamplesCostIsItsRaysOnSurfaces) {
     const test_support::RenderedFilm r = renderFourSamples(test::litSphereUnderASky());
     EXPECT_EQ(r.stats.counters.mediumCollisions, 0u);
     expectCostsAddUpToTheCounters(r);
-    // A sky pixel's sample traces its camera ray only.
-    EXPECT_EQ(r.film.cost(0, 0), 4.0);
+    // A sky pixel's sample traces its camera ray only, which meets nothing.
+    EXPECT_EQ(r.film.cost(0, 0), 4.0 * kMissedCameraRayCost);
 }
 
 TEST(Renderer, EachSamplesCostCountsTheMediumLookupsOfASubsurfaceWalk) {
