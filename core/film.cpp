@@ -12,7 +12,15 @@ namespace fluence {
 
 namespace {
 
-constexpr std::size_t kDenoiseSumsPerPixel = 6;
+constexpr std::size_t kDenoiseSumsPerPixel = 12;
+constexpr std::size_t kFeatureSquares = 6;  // the squared albedo and normal sums' offset
+
+// The variance of the mean of n samples from their sum and their squares' sum (0 below 2 samples).
+double varianceOfMean(double sum, double squares, double n) {
+    if (n < 2) return 0.0;
+    const double mean = sum / n;
+    return std::max(0.0, (squares - n * mean * mean) / (n - 1.0)) / n;
+}
 
 }  // namespace
 
@@ -40,6 +48,11 @@ void Film::add(int x, int y, const FilmSample& s, double cost) {
             if (p.samples % 2 == 0) sums[c] += s.radiance[c];
             sums[3 + c] += double(s.radiance[c]) * s.radiance[c];
         }
+        if (s.hit)
+            for (int c = 0; c < 3; ++c) {
+                sums[kFeatureSquares + c] += double(s.albedo[c]) * s.albedo[c];
+                sums[kFeatureSquares + 3 + c] += double(s.normal[c]) * s.normal[c];
+            }
     }
     const double brightness = luminance(s.radiance);
     p.luminance += brightness;
@@ -77,7 +90,9 @@ void Film::enableDenoiseBuffers() {
 }
 
 std::vector<std::string> Film::denoiseBufferChannelNames() {
-    return {"half0.R", "half0.G", "half0.B", "half1.R", "half1.G", "half1.B", "variance.R", "variance.G", "variance.B"};
+    return {"half0.R",          "half0.G",          "half0.B",     "half1.R",     "half1.G",
+            "half1.B",          "variance.R",       "variance.G",  "variance.B",  "albedoVariance.R",
+            "albedoVariance.G", "albedoVariance.B", "NVariance.X", "NVariance.Y", "NVariance.Z"};
 }
 
 Image Film::resolveDenoiseBuffers() const {
@@ -96,11 +111,11 @@ Image Film::resolveDenoiseBuffers() const {
             float* out = image.pixel(x, y);
             for (int c = 0; c < 3; ++c) {
                 const double added = splat[std::size_t(c)] * perLightPath;
-                const double mean = n > 0 ? p.radiance[c] / n : 0.0;
                 out[c] = static_cast<float>(halves.even[std::size_t(c)] + added);
                 out[3 + c] = static_cast<float>(halves.odd[std::size_t(c)] + added);
-                const double variance = n > 1 ? std::max(0.0, (sums[3 + c] - n * mean * mean) / (n - 1.0)) / n : 0.0;
-                out[6 + c] = static_cast<float>(variance);
+                out[6 + c] = static_cast<float>(varianceOfMean(p.radiance[c], sums[3 + c], n));
+                out[9 + c] = static_cast<float>(varianceOfMean(p.albedo[c], sums[kFeatureSquares + c], n));
+                out[12 + c] = static_cast<float>(varianceOfMean(p.normal[c], sums[kFeatureSquares + 3 + c], n));
             }
         }
     return image;

@@ -26,6 +26,10 @@
 //                   samples before it in its pixel, so the split is the same at any thread count,
 //                   tile division or checkpoint)
 //   variance.R/G/B  the variance of the beauty's mean (the samples' variance over their count)
+//   albedoVariance.R/G/B, NVariance.X/Y/Z
+//                   the variance of the albedo's and the normal's means, as the beauty's (a sample
+//                   that hits nothing counts as 0, as in albedo and N): large where the first hits
+//                   differ from sample to sample (depth of field, motion blur, hair)
 // Light tracing's splats (enableSplats) are added to both halves alike and not to the variance.
 #pragma once
 
@@ -152,7 +156,8 @@ private:
     std::vector<std::string> lightPathLayers_;
     std::vector<double> lightPathSums_;  // per pixel, per layer, R G B
     // With the denoiser's buffers, per pixel: the even-indexed samples' radiance sums R G B, then
-    // every sample's squared radiance sums R G B; empty without them.
+    // every sample's squared radiance sums R G B, then its squared albedo R G B and normal X Y Z
+    // sums; empty without them.
     std::vector<double> denoiseSums_;
     std::unique_ptr<SplatFilm> splats_;
 };
