@@ -64,7 +64,8 @@ std::vector<std::string> denoiseInputChannels(const std::vector<std::string>& la
 }
 
 std::vector<std::string> lightPathLayersOf(const Image& image) {
-    static const std::vector<std::string> kBuffers{"albedo", "half0", "half1", "variance", "noisy", "N"};
+    static const std::vector<std::string> kBuffers{"albedo",   "albedoVariance", "half0", "half1",
+                                                   "variance", "noisy",          "N"};
     std::vector<std::string> layers;
     for (const std::string& channel : image.channels) {
         if (!channel.ends_with(".R")) continue;
@@ -94,6 +95,18 @@ void denoiseImage(Image& image, const std::vector<std::string>& layers, int thre
     buffers.albedo = gather(image, colourChannels("albedo"));
     buffers.normal = gather(image, {"N.X", "N.Y", "N.Z"});
     buffers.depth = gather(image, {"Z"});
+    // The features' variance, when the render kept it (images rendered before it was, denoise
+    // without it: their features are taken as noise-free).
+    const std::vector<std::string> albedoVariance = colourChannels("albedoVariance"),
+                                   normalVariance{"NVariance.X", "NVariance.Y", "NVariance.Z"};
+    auto present = [&](const std::vector<std::string>& names) {
+        return std::all_of(names.begin(), names.end(),
+                           [&](const std::string& n) { return image.channelIndex(n) >= 0; });
+    };
+    if (present(albedoVariance) && present(normalVariance)) {
+        buffers.albedoVariance = gather(image, albedoVariance);
+        buffers.normalVariance = gather(image, normalVariance);
+    }
     for (const std::string& layer : layers) buffers.layers.push_back(gather(image, colourChannels(layer)));
     denoise::DenoiseSettings settings;
     settings.threads = threads;

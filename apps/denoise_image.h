@@ -2,7 +2,8 @@
 // and `fluence denoise` share.
 //
 // The buffers are read from these channels (core/film.h): half0.R/G/B, half1.R/G/B (the two half
-// images), variance.R/G/B, albedo.R/G/B, N.X/Y/Z and Z; light path layers from NAME.R/G/B.
+// images), variance.R/G/B, albedo.R/G/B, N.X/Y/Z and Z, and albedoVariance.R/G/B and NVariance.X/Y/Z
+// when the image has them; light path layers from NAME.R/G/B.
 // Written back: R G B become the denoised beauty and the noisy one is kept as noisy.R/G/B (left as
 // it is when the image already has it: denoising a denoised image starts again from the halves);
 // a denoised layer NAME.R/G/B likewise keeps its noisy colour as NAME_noisy.R/G/B.

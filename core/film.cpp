@@ -13,7 +13,15 @@ namespace fluence {
 
 namespace {
 
-constexpr std::size_t kDenoiseSumsPerPixel = 6;
+constexpr std::size_t kDenoiseSumsPerPixel = 12;
+constexpr std::size_t kFeatureSquares = 6;  // the squared albedo and normal sums' offset
+
+// The variance of the mean of n samples from their sum and their squares' sum (0 below 2 samples).
+double varianceOfMean(double sum, double squares, double n) {
+    if (n < 2) return 0.0;
+    const double mean = sum / n;
+    return std::max(0.0, (squares - n * mean * mean) / (n - 1.0)) / n;
+}
 
 }  // namespace
 
@@ -44,6 +52,13 @@ void Film::add(int x, int y, const FilmSample& s, double cost) {
     double* layers = lightPathSums_.data() + index * lightPathLayers_.size() * 3;
     for (std::size_t l = 0; l < lightPathLayers_.size(); ++l)
         for (std::size_t c = 0; c < 3; ++c) layers[3 * l + c] += s.lightPaths[3 * l + c];
+    if (!denoiseSums_.empty() && s.hit) {
+        double* squares = denoiseSums_.data() + index * kDenoiseSumsPerPixel + kFeatureSquares;
+        for (int c = 0; c < 3; ++c) {
+            squares[c] += double(s.albedo[c]) * s.albedo[c];
+            squares[3 + c] += double(s.normal[c]) * s.normal[c];
+        }
+    }
     const double brightness = luminance(s.radiance);
     p.luminance += brightness;
     p.luminanceSquared += brightness * brightness;
@@ -80,7 +95,9 @@ void Film::enableDenoiseBuffers() {
 }
 
 std::vector<std::string> Film::denoiseBufferChannelNames() {
-    return {"half0.R", "half0.G", "half0.B", "half1.R", "half1.G", "half1.B", "variance.R", "variance.G", "variance.B"};
+    return {"half0.R",          "half0.G",          "half0.B",     "half1.R",     "half1.G",
+            "half1.B",          "variance.R",       "variance.G",  "variance.B",  "albedoVariance.R",
+            "albedoVariance.G", "albedoVariance.B", "NVariance.X", "NVariance.Y", "NVariance.Z"};
 }
 
 Image Film::resolveDenoiseBuffers() const {
@@ -90,6 +107,10 @@ Image Film::resolveDenoiseBuffers() const {
     const double perLightPath = samples > 0 ? double(width_) * double(height_) / double(samples) : 0.0;
     for (int y = 0; y < height_; ++y)
         for (int x = 0; x < width_; ++x) {
+            const std::size_t index = static_cast<std::size_t>(y) * width_ + x;
+            const Pixel& p = pixels_[index];
+            const double* squares = denoiseSums_.data() + index * kDenoiseSumsPerPixel + kFeatureSquares;
+            const double n = p.samples;
             const std::array<double, 3> splat = splats_ ? splats_->sum(x, y) : std::array<double, 3>{};
             const HalfMeans halves = halfMeans(x, y);
             float* out = image.pixel(x, y);
@@ -98,6 +119,8 @@ Image Film::resolveDenoiseBuffers() const {
                 out[c] = static_cast<float>(halves.first[c] + added);
                 out[3 + c] = static_cast<float>(halves.second[c] + added);
                 out[6 + c] = static_cast<float>(halves.meanVariance(c));
+                out[9 + c] = static_cast<float>(varianceOfMean(p.albedo[c], squares[c], n));
+                out[12 + c] = static_cast<float>(varianceOfMean(p.normal[c], squares[3 + c], n));
             }
         }
     return image;

@@ -28,6 +28,10 @@
 //                   for halves of n0 and n1 of the n samples (unbiased when the samples are
 //                   independent: E (half0 - half1)² = sigma² (1/n0 + 1/n1)); one degree of freedom
 //                   per pixel, which the denoiser and adaptive sampling average over neighbours
+//   albedoVariance.R/G/B, NVariance.X/Y/Z
+//                   the variance of the albedo's and the normal's means, from the samples' squares
+//                   (a sample that hits nothing counts as 0, as in albedo and N): large where the
+//                   first hits differ from sample to sample (depth of field, motion blur, hair)
 // The halves are split by sample index (a sample's index is the count of samples before it in its
 // pixel), so the split is the same at any thread count, tile division or checkpoint. Under the
 // Owen-scrambled Sobol sampler (core/owen_sobol.h) every aligned block of 2^m indices is a
@@ -171,7 +175,7 @@ private:
     std::vector<double> lightPathSums_;  // per pixel, per layer, R G B
     // With the denoiser's buffers, per pixel: the radiance sums R G B of the samples [0, 2^(M-1)),
     // then of [0, 2^M), 2^M the largest power of two below the pixel's count (see the top of this
-    // file); empty without them.
+    // file), then the squared albedo R G B and normal X Y Z sums; empty without them.
     std::vector<double> denoiseSums_;
     std::unique_ptr<SplatFilm> splats_;
 };

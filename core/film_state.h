@@ -6,8 +6,9 @@
 // normal, coverage, cost (version 4 on)), the nearest depth and whether anything was hit, the sample count, the
 // light path layer sums, the splat film's fixed-point sums when there is one (light
 // tracing), and the denoiser's buffer sums when the film keeps them (version 3 on; version 5 on, the
-// sums of the power-of-two prefixes that split the halves, core/film.h: version 4's were even-indexed
-// samples' and squared sums, which this build refuses). Doubles are written as they are, so sums continue exactly. The bytes are in the
+// sums of the power-of-two prefixes that split the halves, core/film.h, and the features' squares:
+// version 4's were even-indexed samples' and squared sums, which this build refuses). Doubles are
+// written as they are, so sums continue exactly. The bytes are in the
 // machine's byte order (core/binary_stream.h): the container records and checks it.
 //
 // Whoever adds a field to Film or Film::Pixel must write and read it here and bump

@@ -15,6 +15,8 @@ std::vector<float> plane(const std::vector<float>& image, int stride, int channe
     return out;
 }
 
+}  // namespace
+
 // The mean of `image` over the (2 radius + 1)² box around each pixel (at the borders, over the
 // pixels inside the image), by a horizontal then a vertical pass.
 std::vector<float> boxMean(const std::vector<float>& image, int width, int height, int radius) {
@@ -36,8 +38,6 @@ std::vector<float> boxMean(const std::vector<float>& image, int width, int heigh
     }
     return out;
 }
-
-}  // namespace
 
 DenoisePlanes makePlanes(const DenoiseBuffers& in, int windowRadius) {
     DenoisePlanes planes;

@@ -20,7 +20,8 @@ struct DenoisePlanes {
     // The mean over R G B of the pixel's variance, and of that over the fit window around it
     // (what a pixel's variance is compared with to tell a firefly).
     std::vector<float> pixelVariance, windowVariance;
-    // albedo R G B, normal X Y Z, depth: the regression's features.
+    // albedo R G B, normal X Y Z, depth: the regression's features (albedo and normal prefiltered
+    // where they are noisy: denoise/feature_prefilter.h).
     std::array<std::vector<float>, 7> features;
     // The values fitted, per half: the half's R G B, then each layer's R G B (the layers' planes
     // are shared by both halves).
@@ -31,6 +32,10 @@ struct DenoisePlanes {
 
     int outputs() const { return int(values[0].size()); }
 };
+
+// The mean of `image` (a plane of width x height) over the (2 radius + 1)² box around each pixel
+// (at the borders, over the pixels inside the image).
+std::vector<float> boxMean(const std::vector<float>& image, int width, int height, int radius);
 
 DenoisePlanes makePlanes(const DenoiseBuffers& buffers, int windowRadius);
 

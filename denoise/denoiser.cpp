@@ -10,6 +10,7 @@
 #include <string>
 
 #include "denoise/denoise_planes.h"
+#include "denoise/feature_prefilter.h"
 #include "denoise/local_fit.h"
 
 namespace fluence::denoise {
@@ -33,12 +34,17 @@ void checkInput(const DenoiseBuffers& in, const DenoiseSettings& settings) {
     checkSize(in.albedo, 3 * pixels, "albedo");
     checkSize(in.normal, 3 * pixels, "normal");
     checkSize(in.depth, pixels, "depth");
+    if (!in.albedoVariance.empty() || !in.normalVariance.empty()) {
+        checkSize(in.albedoVariance, 3 * pixels, "albedo variance");
+        checkSize(in.normalVariance, 3 * pixels, "normal variance");
+    }
     for (const std::vector<float>& layer : in.layers) checkSize(layer, 3 * pixels, "layer");
     if (3 * (in.layers.size() + 1) > std::size_t(kMaxOutputs))
         throw DenoiseError("denoise: at most " + std::to_string(kMaxOutputs / 3 - 1) + " layers");
     if (settings.radius < 0 || settings.radius > kMaxRadius || settings.fitStride < 1 || !(settings.k > 0.0f) ||
         !(settings.ridge >= 0.0f) || !(settings.fireflyRatio > 0.0f) || !(settings.minSupport >= 0.0f) ||
-        !(settings.keepThreshold >= 0.0f))
+        !(settings.keepThreshold >= 0.0f) || settings.featureRadius < 0 || settings.featureRadius > kMaxRadius ||
+        !(settings.featureK > 0.0f))
         throw DenoiseError("denoise: settings out of range");
 }
 
@@ -139,12 +145,13 @@ void keepWhatTheFitLost(const DenoisePlanes& planes, const DenoiseSettings& sett
 
 Denoised denoise(const DenoiseBuffers& in, const DenoiseSettings& settings) {
     checkInput(in, settings);
-    const DenoisePlanes planes = makePlanes(in, settings.radius);
+    DenoisePlanes planes = makePlanes(in, settings.radius);
     const std::size_t pixels = std::size_t(in.width) * std::size_t(in.height);
     const int outputs = planes.outputs(), bandRows = kBandCentreRows * settings.fitStride;
     std::vector<float> result(pixels * std::size_t(outputs));
     tbb::task_arena arena(settings.threads > 0 ? settings.threads : tbb::task_arena::automatic);
     arena.execute([&] {
+        prefilterFeatures(in, settings, planes);
         const int bands = (in.height + bandRows - 1) / bandRows;
         tbb::parallel_for(tbb::blocked_range<int>(0, bands, 1), [&](const tbb::blocked_range<int>& range) {
             for (int band = range.begin(); band < range.end(); ++band) {

@@ -20,6 +20,10 @@
 // The window's variance level is the mean of its pixels' variances each clamped to their mean
 // (so one firefly hardly raises it).
 //
+// Noisy features (depth of field, motion blur, hair) are first smoothed with their own variance,
+// when the buffers have it (denoise/feature_prefilter.h), so the fit does not give back the noise
+// it shares with the colour.
+//
 // Cross-filtering: half 0 is fitted with the weights of half 1's colour and half 1 with half 0's,
 // so the noise of the weights is independent of the noise they average; the result is the mean of
 // the two. Extra layers (light path expression AOVs) are fitted with the same weights, each on its
@@ -53,11 +57,14 @@ namespace fluence::denoise {
 // Per-pixel buffers, row-major, row 0 at the top; colours and vectors interleaved (3 floats).
 struct DenoiseBuffers {
     int width = 0, height = 0;
-    std::vector<float> halves[2];            // R G B: the first and second halves' means
-    std::vector<float> variance;             // R G B: the variance of the beauty's mean
-    std::vector<float> albedo;               // R G B
-    std::vector<float> normal;               // X Y Z
-    std::vector<float> depth;                // one per pixel (camera-space, > 0)
+    std::vector<float> halves[2];  // R G B: the first and second halves' means
+    std::vector<float> variance;   // R G B: the variance of the beauty's mean
+    std::vector<float> albedo;     // R G B
+    std::vector<float> normal;     // X Y Z
+    std::vector<float> depth;      // one per pixel (camera-space, > 0)
+    // The variance of the albedo's and the normal's means, R G B and X Y Z (core/film.h); both
+    // empty: the features are taken as noise-free (not prefiltered, denoise/feature_prefilter.h).
+    std::vector<float> albedoVariance, normalVariance;
     std::vector<std::vector<float>> layers;  // R G B each: extra images fitted with the beauty's weights
 };
 
@@ -69,6 +76,8 @@ struct DenoiseSettings {
     float fireflyRatio = 8.0f;    // a neighbour's variance above this times its window's is cut
     float minSupport = 0.25f;     // below this share of the tent's weight, a pixel is fitted alone
     float keepThreshold = 16.0f;  // (denoised - noisy)² above this times the variance is bias
+    int featureRadius = 4;        // the feature prefilter's window spans (2 featureRadius + 1)² (at most 8)
+    float featureK = 2.0f;        // its NL-means sensitivity (denoise/feature_prefilter.h): larger blurs more
     int threads = 0;              // 0: oneTBB's default
 };
 

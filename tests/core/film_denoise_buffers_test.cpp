@@ -54,6 +54,27 @@ TEST(FilmDenoiseBuffers, FirstHalfIsThePowerOfTwoPrefixThatKeepsTheCountsWithinT
     }
 }
 
+TEST(FilmDenoiseBuffers, FeatureVarianceIsThatOfTheFeaturesMeansAMissCountingAsZero) {
+    Film film(1, 1, 100.0f);
+    film.enableDenoiseBuffers();
+    for (float albedo : {0.2f, 0.8f, 0.2f}) {
+        FilmSample s = sampleOf(1.0f);
+        s.hit = true;
+        s.albedo = RGB(albedo, 0.5f, 0.0f);
+        s.normal = Vec3f(0.0f, 0.0f, 1.0f);
+        film.add(0, 0, s);
+    }
+    film.add(0, 0, sampleOf(1.0f));  // a miss: albedo and normal 0
+    const Image buffers = film.resolveDenoiseBuffers();
+    const float* p = buffers.pixel(0, 0);
+    // albedo.R's samples 0.2, 0.8, 0.2, 0: mean 0.3, squares' sum 0.72; (0.72 - 4 0.09) / 3 / 4.
+    EXPECT_NEAR(p[buffers.channelIndex("albedoVariance.R")], 0.03f, 1e-7f);
+    // albedo.G's 0.5, 0.5, 0.5, 0 and N.Z's 1, 1, 1, 0: v, v, v, 0 have the variance v² / 4.
+    EXPECT_NEAR(p[buffers.channelIndex("albedoVariance.G")], 0.25f / 4.0f / 4.0f, 1e-7f);
+    EXPECT_NEAR(p[buffers.channelIndex("NVariance.Z")], 1.0f / 4.0f / 4.0f, 1e-7f);
+    EXPECT_FLOAT_EQ(p[buffers.channelIndex("NVariance.X")], 0.0f);
+}
+
 TEST(FilmDenoiseBuffers, WithoutThemResolvingIsAnError) {
     Film film(2, 2, 100.0f);
     EXPECT_FALSE(film.hasDenoiseBuffers());

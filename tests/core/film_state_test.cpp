@@ -131,7 +131,7 @@ TEST(FilmState, RefusesAStateOfAnotherVersionSayingWhichAndWhy) {
     std::ostringstream out;
     writeFilmState(original, out);
     std::string bytes = out.str();
-    const std::uint32_t older = kFilmStateVersion - 1;  // version 4 split the halves by even and odd index
+    const std::uint32_t older = kFilmStateVersion - 1;  // version 4: even/odd halves, no feature squares
     std::memcpy(bytes.data(), &older, sizeof older);
     Film film = makeFilm();
     const std::string message = readError(bytes, film);

@@ -2,6 +2,8 @@
 // seed, so each test sees the same noise on every run; tolerances are set from the noise's variance.
 #include "denoise/denoiser.h"
 
+#include "tests/denoise/flat_floor_buffers.h"
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -26,14 +28,7 @@ struct Field {
 // `samples` samples per pixel of standard deviation `sigma` around the field's colour, split
 // into the two halves as the film splits them; the variance is the samples' over their count.
 DenoiseBuffers render(const Field& field, int samples, float sigma, unsigned seed) {
-    DenoiseBuffers b;
-    b.width = b.height = kSize;
-    const std::size_t n = std::size_t(kSize) * kSize;
-    for (auto& half : b.halves) half.resize(3 * n);
-    b.variance.resize(3 * n);
-    b.albedo.resize(3 * n);
-    b.normal.resize(3 * n);
-    b.depth.assign(n, 2.0f);
+    DenoiseBuffers b = flatFloorBuffers(kSize);
     std::mt19937 rng(seed);
     std::normal_distribution<float> noise(0.0f, sigma);
     for (int y = 0; y < kSize; ++y)
@@ -53,7 +48,6 @@ DenoiseBuffers render(const Field& field, int samples, float sigma, unsigned see
                 b.variance[3 * p + c] = float((squares - samples * mean * mean) / (samples - 1) / samples);
                 b.albedo[3 * p + c] = field.albedo(x, y);
             }
-            b.normal[3 * p + 2] = 1.0f;
         }
     return b;
 }
