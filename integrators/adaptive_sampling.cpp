@@ -1,7 +1,6 @@
 #include "integrators/adaptive_sampling.h"
 
 #include <algorithm>
-#include <bit>
 #include <cmath>
 
 #include "integrators/renderer.h"
@@ -11,10 +10,7 @@ namespace fluence::integrators {
 namespace {
 
 // The samples every pixel takes before a rule applies.
-// (a power of two: where a step ends).
-std::uint32_t leastSamples(const RenderSettings& settings) {
-    return std::bit_ceil(std::uint32_t(std::max(settings.minSamples, kMinSamplesForHalves)));
-}
+int leastSamples(const RenderSettings& settings) { return std::max(settings.minSamples, kMinSamplesForHalves); }
 
 // Pixel (x, y)'s own relative variance per sample (see the header); 0 below kMinSamplesForHalves.
 double pixelVariance(const Film& film, int x, int y) {
@@ -66,16 +62,39 @@ std::vector<double> neighbourhoodMeans(const Film& film, int windowX, int window
     return filtered;
 }
 
-// The count a pixel that goes on from `n` samples ends its step at: the next power of two, at most
-// `most` (see the header).
-std::uint32_t stepEnd(std::uint32_t n, int most) { return std::min(std::bit_ceil(n + 1), std::uint32_t(most)); }
-
-// One step the budget rule may give a pixel: from `from` samples to stepEnd(from), lowering the
-// pixel's relative MSE a (1 / from - 1 / to) for the cost c (to - from); `gain` is the ratio.
-struct BudgetStep {
-    double gain;
-    std::uint32_t pixel, from, to;
+// An active pixel of the budget rule: its deviation sqrt(a / c) and its cost per sample c.
+struct BudgetPixel {
+    double deviation, cost;
 };
+
+// The sample count an active pixel ends with when the budget rule's factor is t: sqrt(a / c) t,
+// between what it has and `most`.
+double budgetCount(const BudgetPixel& p, double t, int done, int most) {
+    return std::clamp(p.deviation * t, double(done), double(most));
+}
+
+// The budget rule's factor t (counts sqrt(a / c) t) that spends `budget` (a cost) over the film,
+// given the active pixels and the cost already fixed (stopped pixels'); 0 when the budget is spent,
+// infinite when every active pixel may go to `most`.
+double budgetFactor(const std::vector<BudgetPixel>& pixels, double fixed, double budget, int done, int most) {
+    auto total = [&](double t) {
+        double sum = fixed;
+        for (const BudgetPixel& p : pixels) sum += p.cost * budgetCount(p, t, done, most);
+        return sum;
+    };
+    double smallest = 0.0;
+    for (const BudgetPixel& p : pixels)
+        if (p.deviation > 0.0 && (smallest == 0.0 || p.deviation < smallest)) smallest = p.deviation;
+    if (smallest == 0.0 || total(0.0) >= budget) return 0.0;
+    double hi = most / smallest;
+    if (total(hi) <= budget) return INFINITY;
+    double lo = hi * 1e-12;
+    for (int i = 0; i < 48; ++i) {  // bisection in the logarithm: the same steps on any machine
+        const double mid = std::sqrt(lo * hi);
+        (total(mid) > budget ? hi : lo) = mid;
+    }
+    return lo;
+}
 
 }  // namespace
 
@@ -118,61 +137,42 @@ double AdaptiveSampling::uniformSamplesOfTheSameCost(const Film& film) {
     return pixels > 0.0 ? double(film.totalSamples()) / pixels : 0.0;
 }
 
-std::vector<std::uint32_t> AdaptiveSampling::budgetCounts(const Film& film, const RenderSettings& settings, int done) {
-    const int width = film.width(), most = settings.samplesPerPixel;
-    const std::vector<double> variances = neighbourhoodVariances(film, settings.windowX, settings.windowY);
-    const std::vector<double> costs = neighbourhoodCosts(film, settings.windowX, settings.windowY);
-    std::vector<std::uint32_t> counts(variances.size());
-    std::vector<BudgetStep> steps;
-    double left = 0.0;  // the budget, less what the pixels' samples cost
-    for (std::size_t i = 0; i < counts.size(); ++i) {
-        counts[i] = film.samples(int(i % width), int(i / width));
-        left += costs[i] * (settings.meanSamplesPerPixel - counts[i]);
-        if (counts[i] != std::uint32_t(done)) continue;  // stopped
-        for (std::uint32_t from = counts[i], to; from < std::uint32_t(most); from = to) {
-            to = stepEnd(from, most);
-            steps.push_back(
-                {variances[i] * (1.0 / from - 1.0 / to) / (costs[i] * (to - from)), std::uint32_t(i), from, to});
-        }
-    }
-    // The best gains first; a pixel's steps are in its order (each gains less than the one before).
-    std::sort(steps.begin(), steps.end(), [](const BudgetStep& a, const BudgetStep& b) {
-        return a.gain != b.gain ? a.gain > b.gain : a.pixel != b.pixel ? a.pixel < b.pixel : a.from < b.from;
-    });
-    for (const BudgetStep& step : steps) {
-        const double cost = costs[step.pixel] * (step.to - step.from);
-        if (counts[step.pixel] != step.from || cost > left) continue;  // a step before it was not taken, or too dear
-        counts[step.pixel] = step.to;
-        left -= cost;
-    }
-    return counts;
-}
-
 std::vector<std::uint32_t> AdaptiveSampling::planPass(const Film& film, const RenderSettings& settings, int done,
                                                       int count) {
     const int width = film.width(), height = film.height();
     std::vector<std::uint32_t> plan(std::size_t(width) * std::size_t(height), 0);
     auto active = [&](std::size_t i) { return film.samples(int(i % width), int(i / width)) == std::uint32_t(done); };
-    const bool ruled = enabled(settings) && std::uint32_t(done) >= leastSamples(settings);
+    const bool ruled = enabled(settings) && done >= leastSamples(settings);
     if (!ruled) {
         for (std::size_t i = 0; i < plan.size(); ++i) plan[i] = active(i) ? std::uint32_t(count) : 0;
         return plan;
     }
-    // A pixel that goes on takes the pass's samples up to the end of its step.
-    const std::uint32_t step =
-        std::min(std::uint32_t(count), stepEnd(std::uint32_t(done), settings.samplesPerPixel) - done);
-    if (!std::has_single_bit(std::uint32_t(done))) {  // within a step: the pixels still going finish it
-        for (std::size_t i = 0; i < plan.size(); ++i) plan[i] = active(i) ? step : 0;
-        return plan;
-    }
+    const std::vector<double> variances = neighbourhoodVariances(film, settings.windowX, settings.windowY);
     if (settings.targetError > 0.0) {
-        const std::vector<double> variances = neighbourhoodVariances(film, settings.windowX, settings.windowY);
         const double target = settings.targetError * settings.targetError;
-        for (std::size_t i = 0; i < plan.size(); ++i) plan[i] = active(i) && variances[i] / done > target ? step : 0;
+        for (std::size_t i = 0; i < plan.size(); ++i)
+            plan[i] = active(i) && variances[i] / done > target ? std::uint32_t(count) : 0;
         return plan;
     }
-    const std::vector<std::uint32_t> ends = budgetCounts(film, settings, done);
-    for (std::size_t i = 0; i < plan.size(); ++i) plan[i] = active(i) && ends[i] > std::uint32_t(done) ? step : 0;
+    const std::vector<double> costs = neighbourhoodCosts(film, settings.windowX, settings.windowY);
+    std::vector<BudgetPixel> pixels;
+    double fixed = 0.0, budget = 0.0;
+    for (std::size_t i = 0; i < plan.size(); ++i) {
+        budget += settings.meanSamplesPerPixel * costs[i];
+        if (active(i))
+            pixels.push_back({std::sqrt(variances[i] / costs[i]), costs[i]});
+        else
+            fixed += costs[i] * film.samples(int(i % width), int(i / width));
+    }
+    const int most = settings.samplesPerPixel;
+    const double t = budgetFactor(pixels, fixed, budget, done, most);
+    std::size_t next = 0;
+    for (std::size_t i = 0; i < plan.size(); ++i) {
+        if (!active(i)) continue;
+        const BudgetPixel& p = pixels[next++];
+        const double wanted = std::isinf(t) ? most : std::round(budgetCount(p, t, done, most));
+        plan[i] = std::uint32_t(std::clamp(wanted - done, 0.0, double(count)));
+    }
     return plan;
 }
 

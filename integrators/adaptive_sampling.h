@@ -18,31 +18,24 @@
 // whose edges fall on block edges (apps/frame_outputs.cpp) assemble into the one-piece render.
 // The floor (in the relMSE metric too, bench/) keeps near-black pixels from sampling forever.
 //
-// The steps. Under the Owen-scrambled Sobol sampler every aligned block of 2^m samples is a net, and
-// a pixel's error at a count between powers of two is far above a / n (on a smooth integrand 20x at
-// 63 samples what it is at 64): so a pixel's count is always a power of two. A pixel that goes on
-// doubles its samples (one step: the render loop ends every pass at a power of two, a step above
-// 128 samples spanning several passes of 64), or stops at most at samplesPerPixel.
-//
 // The rules. A pixel's relative standard error is e = sqrt(a / n) after n samples.
-//  - Target (targetError E > 0): a pixel doubles while e > E. Every pixel ends near the same
+//  - Target (targetError E > 0): a pixel stops once e <= E. Every pixel ends near the same
 //    relative noise: an even-looking image.
-//  - Budget (meanSamplesPerPixel N > 0): the steps go where they lower the image's relative MSE
+//  - Budget (meanSamplesPerPixel N > 0): the samples go where they lower the image's relative MSE
 //    most for the CPU time. A pixel's samples do not all cost the same: where paths walk through
 //    media or subsurface interiors they cost several times what a background pixel's do. Each
 //    sample's cost is counted (rays traced and medium lookups, integrators/sample_cost.h: counted,
 //    not timed, so deterministic) and summed per pixel in the film; a pixel's cost per sample c is
-//    the mean of its neighbours' (as a is, and for the same reason). A step from n to m samples
-//    lowers the pixel's a / n by a (1/n - 1/m) for the cost c (m - n); the gain per cost,
-//    a / (c n m), falls 4x with each step, so taking the steps of all the pixels in the order of
-//    their gain, each while it fits in what is left of the budget, is the best allocation of
-//    powers of two (up to the last step) for the sum of a_p / n_p; it puts counts near
-//    sqrt(a_p / c_p), the continuous optimum (Lagrange). The budget is the cost of N uniform
-//    samples per pixel, N sum_p c_p: `--mean-spp N` takes about the CPU time of `--spp N`. At each
-//    power of two the allocation is made again over the pixels still going (the others at their
-//    counts), and those whose allocation goes past it double.
-// Every pixel takes minSamples (at least kMinSamplesForHalves, rounded up to a power of two) before
-// either rule applies. A pixel
+//    the mean of its neighbours' (as a is, and for the same reason). For a sum of a_p / n_p over the
+//    pixels with the total cost sum c_p n_p fixed, the best counts are n_p proportional to
+//    sqrt(a_p / c_p) (Lagrange; not to a_p, which equalising e gives, and which spends exactly as
+//    well as uniform sampling when every sample costs the same, and not to sqrt(a_p), which is
+//    best only when they do). The budget is the cost of N uniform samples per pixel,
+//    N sum_p c_p: `--mean-spp N` takes about the CPU time of `--spp N`. Before each pass the
+//    factor is solved so that the pixels' costs add up to the budget, with stopped pixels at their
+//    counts and the rest between what they have and samplesPerPixel; each pixel then takes the
+//    pass's samples up to its count.
+// Every pixel takes minSamples (at least kMinSamplesForHalves) before either rule applies. A pixel
 // that takes fewer samples than the pass offers has stopped, for good. The decisions read the film
 // between passes only, so they are the same at any thread count, and a render resumed from a pass
 // boundary's film decides as the uninterrupted one did.
@@ -80,11 +73,6 @@ public:
     // pixel's cost per sample its own mean: sum_p cost_p / sum_p (cost_p / n_p); the mean count
     // when no cost was counted.
     static double uniformSamplesOfTheSameCost(const Film& film);
-
-    // Per pixel of the film, row by row: the count the budget rule allocates it before the pass
-    // starting at `done` (a power of two), a pixel that has stopped keeping its samples (see the
-    // top of this file).
-    static std::vector<std::uint32_t> budgetCounts(const Film& film, const RenderSettings& settings, int done);
 
     // Per pixel of the film, row by row: how many of the pass's samples [done, done + count) it
     // takes. Without adaptive sampling, count everywhere (a pixel that stopped before takes none).

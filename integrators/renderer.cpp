@@ -6,7 +6,6 @@
 #include <tbb/task_arena.h>
 
 #include <algorithm>
-#include <bit>
 #include <chrono>
 #include <ctime>
 #include <stdexcept>
@@ -113,13 +112,12 @@ RenderStats render(const render::RenderScene& scene, const render::Camera& camer
     }
     // Each pass doubles the samples of the pixels still going (1, 2, 4, ...; at most
     // kMaxPassSamples), so a resumed render's passes go on as the uninterrupted render's would have.
-    // Adaptive sampling ends every pass at a power of two, where its rules decide which pixels
-    // double their samples (integrators/adaptive_sampling.h).
+    // Adaptive sampling ends a pass at minSamples, where its rules start.
     int done = settings.firstSample;
     double secondsPerSample = 0.0;  // per sample per pixel over the whole image, measured
     while (done < settings.samplesPerPixel && !stopped(settings)) {
         int count = std::min(std::clamp(done + 1, 1, kMaxPassSamples), settings.samplesPerPixel - done);
-        if (adaptive) count = std::min(count, int(std::bit_ceil(unsigned(done) + 1u)) - done);
+        if (adaptive && done < settings.minSamples) count = std::min(count, settings.minSamples - done);
         if (settings.timeLimitSeconds > 0.0 && stats.passes > 0) {
             double left = settings.timeLimitSeconds - elapsed();
             int fits = secondsPerSample > 0.0 ? static_cast<int>(left / secondsPerSample) : count;
