@@ -18,8 +18,8 @@ bool volumeEmits(const render::VolumeDesc& v) {
 bool emitsLight(const render::SceneDescription& scene) {
     if (!scene.lights.empty() || std::any_of(scene.volumes.begin(), scene.volumes.end(), volumeEmits)) return true;
     auto meshEmits = [&](const render::MeshDesc& mesh) {
-        return mesh.material >= 0 && mesh.material < static_cast<int>(scene.materials.size()) &&
-               render::mayEmit(scene.materials[static_cast<std::size_t>(mesh.material)]);
+        return mesh.light || (mesh.material >= 0 && mesh.material < static_cast<int>(scene.materials.size()) &&
+                              render::mayEmit(scene.materials[static_cast<std::size_t>(mesh.material)]));
     };
     if (std::any_of(scene.meshes.begin(), scene.meshes.end(), meshEmits)) return true;
     return std::any_of(scene.prototypes.begin(), scene.prototypes.end(), [&](const render::PrototypeDesc& p) {

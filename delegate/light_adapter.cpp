@@ -129,6 +129,26 @@ Matrix4 poleRotation(const PrimReader& prim, char stageUpAxis, const Warn& warn)
 
 }  // namespace
 
+bool authorsShapingInputs(const usd::PrimSpec& prim) { return authorsShaping(prim); }
+
+RGB lightApiRadiance(const PrimReader& prim, double fallbackIntensity, const Warn& warn) {
+    warnConnectedInputs(prim.prim(), warn);
+    double intensity = prim.number({"inputs:intensity", "intensity"}, fallbackIntensity);
+    double exposure = prim.number({"inputs:exposure", "exposure"}, 0.0);
+    Vec3d color = prim.vec3({"inputs:color", "color"}, {1.0, 1.0, 1.0});
+    RGB radiance(color * (intensity * std::exp2(exposure)));
+    if (prim.boolean({"inputs:enableColorTemperature", "enableColorTemperature"}, false)) {
+        double kelvin = prim.number({"inputs:colorTemperature", "colorTemperature"}, 6500.0);
+        if (!(kelvin >= 1000.0 && kelvin <= 10000.0)) {
+            warn("colorTemperature " + std::to_string(kelvin) + " K is outside UsdLux's 1000-10000 K; clamped");
+            kelvin = std::clamp(std::isnan(kelvin) ? 6500.0 : kelvin, 1000.0, 10000.0);
+        }
+        radiance *= colorTemperatureTint(kelvin);
+    }
+    warnUnsupportedMultipliers(prim, warn);
+    return radiance;
+}
+
 bool isLightType(const std::string& t) {
     return t == "RectLight" || t == "DiskLight" || t == "SphereLight" || t == "CylinderLight" || t == "DistantLight" ||
            t == "DomeLight" || t == "DomeLight_1";
@@ -140,23 +160,9 @@ std::optional<render::LightDesc> lightFromPrim(const PrimReader& prim, const Mat
     render::LightDesc light;
     light.name = prim.path();
     light.transform = toWorld;
-    warnConnectedInputs(prim.prim(), warn);
-
-    double intensity = prim.number({"inputs:intensity", "intensity"}, type == "DistantLight" ? 50000.0 : 1.0);
-    double exposure = prim.number({"inputs:exposure", "exposure"}, 0.0);
-    Vec3d color = prim.vec3({"inputs:color", "color"}, {1.0, 1.0, 1.0});
-    light.radiance = RGB(color * (intensity * std::exp2(exposure)));
+    light.radiance = lightApiRadiance(prim, type == "DistantLight" ? 50000.0 : 1.0, warn);
     light.normalize = prim.boolean({"inputs:normalize", "normalize"}, false);
     light.castsShadows = prim.boolean({"inputs:shadow:enable", "shadow:enable"}, true);  // UsdLux ShadowAPI
-    if (prim.boolean({"inputs:enableColorTemperature", "enableColorTemperature"}, false)) {
-        double kelvin = prim.number({"inputs:colorTemperature", "colorTemperature"}, 6500.0);
-        if (!(kelvin >= 1000.0 && kelvin <= 10000.0)) {
-            warn("colorTemperature " + std::to_string(kelvin) + " K is outside UsdLux's 1000-10000 K; clamped");
-            kelvin = std::clamp(std::isnan(kelvin) ? 6500.0 : kelvin, 1000.0, 10000.0);
-        }
-        light.radiance *= colorTemperatureTint(kelvin);
-    }
-    warnUnsupportedMultipliers(prim, warn);
     bool shaped = appliesSchema(prim.prim(), "ShapingAPI") || authorsShaping(prim.prim());
 
     if (type == "RectLight") {

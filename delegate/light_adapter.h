@@ -61,6 +61,15 @@ bool isLightType(const std::string& typeName);
 // Whether the prim's composed apiSchemas apply `schema` ("ShapingAPI", "MeshLightAPI").
 bool appliesSchema(const usd::PrimSpec& prim, const std::string& schema);
 
+// Whether the prim authors any shaping input (inputs:shaping:*, or shaping:* before USD 21.05).
+bool authorsShapingInputs(const usd::PrimSpec& prim);
+
+// UsdLuxLightAPI's radiance, as every light reads it: intensity (fallback `fallbackIntensity`) *
+// 2^exposure * color, times the colour temperature's tint when enabled. Warns about connected
+// inputs and diffuse or specular multipliers other than 1 (neither is applied).
+RGB lightApiRadiance(const PrimReader& prim, double fallbackIntensity,
+                     const std::function<void(const std::string&)>& warn);
+
 // `stageUpAxis` ('Y' or 'Z') orients a DomeLight_1 whose poleAxis is "scene".
 std::optional<render::LightDesc> lightFromPrim(const PrimReader& prim, const Matrix4& toWorld, char stageUpAxis,
                                                const std::function<void(const std::string&)>& warn);

@@ -100,6 +100,7 @@ void MeshRprim::syncData(const SyncContext& context, const usd::PrimSpec* spec, 
     const usd::PrimSpec& prim = source.prim(*spec);
     ++dataReads_;
     auto warn = [&](const std::string& message) { context.warn(prim.path, message); };
+    meshLight_ = meshLightOf(PrimReader(*spec, context.time), warn);
     if ((bits & ~std::uint32_t(kDirtyTransform | kDirtyPoints)) == 0 && subdivided_.size() == 1) {
         // Only the points moved: the subdivision topology stays.
         subdivided_[0].mesh = subdivided_[0].mesh->withPoints(prim, context.time);

@@ -38,6 +38,7 @@
 
 #include "delegate/instancing.h"
 #include "delegate/material_adapter.h"
+#include "delegate/mesh_light.h"
 #include "delegate/volume_adapter.h"
 #include "delegate/prim_reader.h"
 #include "delegate/subdivision_mesh.h"
@@ -153,10 +154,13 @@ public:
     explicit MeshRprim(std::string path) : SurfaceRprim(Kind::Mesh, std::move(path)) {}
     // The parts in world space (a subdivision surface diced for the camera).
     std::vector<Part> worldParts(const DicingContext& dicing) const;
+    // Its UsdLux MeshLightAPI (delegate/mesh_light.h), when it applies it.
+    const std::optional<MeshLight>& meshLight() const { return meshLight_; }
 
 private:
     void syncData(const SyncContext& context, const usd::PrimSpec* prim, std::uint32_t bits) override;
     bool readsAnimatedData(const usd::PrimSpec& source) const override;
+    std::optional<MeshLight> meshLight_;
     bool skinned_ = false, skinAnimated_ = false;  // posed by UsdSkel (delegate/skel_binding.h); the pose is animated
 };
 

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <map>
 #include <set>
+#include <span>
 
 #include "delegate/camera_adapter.h"
 #include "delegate/curves_adapter.h"
@@ -17,6 +18,7 @@
 #include "delegate/instancing.h"
 #include "delegate/light_adapter.h"
 #include "delegate/material_binding.h"
+#include "delegate/mesh_light.h"
 #include "delegate/points_rprim.h"
 #include "delegate/polygon_dicing.h"
 #include "delegate/skinned_instances.h"
@@ -118,7 +120,8 @@ SceneDelegate::SceneDelegate(usd::Stage& stage, DelegateOptions options) : stage
 
 void SceneDelegate::populate(const std::string& root) {
     std::map<std::string, std::pair<std::size_t, std::string>> unsupported;  // type -> (count, first prim)
-    std::pair<std::size_t, std::string> meshLights;  // gprims applying MeshLightAPI: (count, first prim)
+    // Mesh lights in native instances or point instancer prototypes, not read: (count, first prim).
+    std::pair<std::size_t, std::string> instancedMeshLights;
     std::string instanceRoot;  // the instance whose proxies are being visited, "" outside instances
     std::erase_if(walkMalformed_, [&](const auto& entry) { return isAtOrBelow(entry.first, root); });
     const SyncContext sync = context();
@@ -147,10 +150,13 @@ void SceneDelegate::populate(const std::string& root) {
             options_.warn(prim.path, deinstancedWarning(*posed));
         }
         if (isGeometryType(type) || type == "PointInstancer") {
-            if (appliesSchema(prim, "MeshLightAPI") && meshLights.first++ == 0) meshLights.second = prim.path;
             // In an instance, the prototype holds them; a point instancer's prototypes, lights
             // included, render only through it, so nothing below it is a prim of its own.
-            if (!instanceRoot.empty()) return type != "PointInstancer";
+            if (!instanceRoot.empty()) {
+                if (appliesSchema(prim, "MeshLightAPI") && instancedMeshLights.first++ == 0)
+                    instancedMeshLights.second = prim.path;
+                return type != "PointInstancer";
+            }
             if (type == "PointInstancer") {
                 index_.insert(std::make_unique<PointInstancerRprim>(prim.path));
                 return false;  // what lies below renders only through the instancer
@@ -179,11 +185,12 @@ void SceneDelegate::populate(const std::string& root) {
     for (const auto& [type, entry] : unsupported)
         options_.warn(entry.second, "prim type '" + type + "' is not supported yet; skipped " +
                                         std::to_string(entry.first) + (entry.first == 1 ? " prim" : " prims"));
-    if (meshLights.first > 0)
-        options_.warn(meshLights.second, "UsdLux MeshLightAPI is not supported yet; " +
-                                             std::to_string(meshLights.first) +
-                                             (meshLights.first == 1 ? " prim renders" : " prims render") +
-                                             " as a plain surface, emitting nothing");
+    if (instancedMeshLights.first > 0)
+        options_.warn(instancedMeshLights.second,
+                      "UsdLux MeshLightAPI inside a native instance is not read; " +
+                          std::to_string(instancedMeshLights.first) +
+                          (instancedMeshLights.first == 1 ? " prim renders" : " prims render") +
+                          " as a plain surface, emitting nothing");
     reconcilePrototypes();
 }
 
@@ -413,6 +420,8 @@ render::SceneDescription SceneDelegate::describe(const render::Camera& camera, c
                 for (MeshRprim::Part& part : mesh.worldParts(dicing))
                     appendPart(std::move(part), scene.meshes, materialFor, scene.materials, options_.aovPrimvars);
                 if (!mesh.subdivided().empty()) countSubdivided(scene.meshes, first);
+                if (mesh.meshLight())
+                    applyMeshLight(*mesh.meshLight(), std::span(scene.meshes).subspan(first), scene.materials);
                 break;
             }
             case RenderPrim::Kind::Instance:

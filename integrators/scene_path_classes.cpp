@@ -106,8 +106,12 @@ std::vector<Surface> surfacesOf(const render::SceneDescription& scene) {
     const SurfaceLobes lambertian = lobesOf(plain);
     std::vector<Surface> surfaces;
     auto place = [&](const render::MeshDesc& mesh) {
-        surfaces.push_back(
-            {&mesh, mesh.material >= 0 ? lobesOf(scene.materials[std::size_t(mesh.material)]) : lambertian});
+        SurfaceLobes lobes = mesh.material >= 0 ? lobesOf(scene.materials[std::size_t(mesh.material)]) : lambertian;
+        if (mesh.light) {  // a UsdLux mesh light emits; with noMaterialResponse it reflects nothing
+            if (!mesh.light->materialResponse) lobes = {};
+            lobes.emits = true;
+        }
+        surfaces.push_back({&mesh, lobes});
     };
     for (const render::MeshDesc& mesh : scene.meshes) place(mesh);
     for (const render::InstanceDesc& instance : scene.instances)

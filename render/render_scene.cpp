@@ -96,8 +96,8 @@ RTCGeometry lightSurfaceGeometry(RTCDevice device, const LightSurface& surface) 
 }
 
 bool emits(const MeshDesc& mesh, const std::vector<MaterialDesc>& materials) {
-    return mesh.material >= 0 && mesh.material < static_cast<int>(materials.size()) &&
-           mayEmit(materials[mesh.material]);
+    return mesh.light || (mesh.material >= 0 && mesh.material < static_cast<int>(materials.size()) &&
+                          mayEmit(materials[mesh.material]));
 }
 
 // Whether the segment [tMin, tMax] of the ray from o along d meets the box [lo, hi]. Conservative:
@@ -143,7 +143,11 @@ struct RenderScene::Mesh {
     RGB diffuse;
     RGB emission;
     std::unique_ptr<TexturedEmission> texturedEmission;  // where a node drives the emission, else null
-    int material = -1;                                   // into materials_, -1 = the default (Lambertian) material
+    // A UsdLux mesh light (MeshDesc::light): `emission` is the light's, from the front only; with
+    // noMaterialResponse the surface is black.
+    EmittingSides emittingSides = EmittingSides::Both;
+    bool reflects = true;
+    int material = -1;  // into materials_, -1 = the default (Lambertian) material
     int firstLight = -1;
     std::uint32_t objectName = kNoName, materialName = kNoName;  // objectNames_, materialNames_
     int linkGroup = 0;                                           // MeshDesc::linkGroup
@@ -465,6 +469,11 @@ int RenderScene::storeMesh(const MeshDesc& desc, const std::vector<MaterialDesc>
     mesh.materialName = desc.material >= 0 ? materialNames_.add(material.name) : kNoName;
     mesh.diffuse = material.diffuse;
     mesh.emission = material.emission;
+    if (desc.light) {
+        mesh.emission = desc.light->radiance;
+        mesh.emittingSides = EmittingSides::Front;
+        mesh.reflects = desc.light->materialResponse;
+    }
     mesh.linkGroup = desc.linkGroup;
     stats_.meshes += 1;
     stats_.triangles += triangles;
@@ -488,7 +497,7 @@ void RenderScene::addMesh(const MeshDesc& desc, const std::vector<MaterialDesc>&
     int index = storeMesh(desc, materials, objectName);
     Mesh& mesh = meshes_[index];
     orientSolid(mesh);
-    if (mesh.material >= 0 && shaders_[mesh.material].drives(MaterialInput::Emission))
+    if (!desc.light && mesh.material >= 0 && shaders_[mesh.material].drives(MaterialInput::Emission))
         mesh.texturedEmission = std::make_unique<TexturedEmission>(shaders_[mesh.material], mesh.positions,
                                                                    mesh.indices, mesh.slots.data(), filterCamera_);
     if (!isBlack(mesh.emission) || mesh.texturedEmission) {
@@ -725,12 +734,12 @@ std::optional<SurfaceHit> RenderScene::intersect(const Ray& ray) const {
                              Vec3f(surface.hit.Ng_x, surface.hit.Ng_y, surface.hit.Ng_z));
     if (surface.hit.instID[0] == RTC_INVALID_GEOMETRY_ID && surfacePoints_[surface.hit.geomID] >= 0) {
         std::optional<SurfaceHit> hit =
-            shadeMesh(surfacePoints_[surface.hit.geomID], surface.hit.primID, 0.0f, 0.0f, t, -1, ray.time);
+            shadeMesh(surfacePoints_[surface.hit.geomID], surface.hit.primID, 0.0f, 0.0f, t, -1, ray);
         placeOnPoint(*hit, ray, t, Vec3f(surface.hit.Ng_x, surface.hit.Ng_y, surface.hit.Ng_z));
         return hit;
     }
     if (surface.hit.instID[0] == RTC_INVALID_GEOMETRY_ID)
-        return shadeMesh(surfaceMeshes_[surface.hit.geomID], surface.hit.primID, u, v, t, -1, ray.time);
+        return shadeMesh(surfaceMeshes_[surface.hit.geomID], surface.hit.primID, u, v, t, -1, ray);
     const int instance = surfaceInstances_[surface.hit.instID[0]];
     const Prototype& proto = prototypes_[instances_[instance].prototype];
     // Embree gives an instanced geometry's normal in the prototype's space.
@@ -738,13 +747,13 @@ std::optional<SurfaceHit> RenderScene::intersect(const Ray& ray) const {
     if (proto.curves->contains(surface.hit.geomID))
         return shadeInstancedCurve(*proto.curves, instance, surface.hit.geomID, surface.hit.primID, u, ray, t, ng);
     if (const int points = proto.points[surface.hit.geomID]; points >= 0) {
-        std::optional<SurfaceHit> hit = shadeMesh(points, surface.hit.primID, 0.0f, 0.0f, t, instance, ray.time);
+        std::optional<SurfaceHit> hit = shadeMesh(points, surface.hit.primID, 0.0f, 0.0f, t, instance, ray);
         std::optional<Instance> moved;
         placeOnPoint(*hit, ray, t,
                      Vec3f(instanceAt(instance, ray.time, moved)->normalToWorld.transformVector(Vec3d(ng))));
         return hit;
     }
-    return shadeMesh(proto.meshes[surface.hit.geomID], surface.hit.primID, u, v, t, instance, ray.time);
+    return shadeMesh(proto.meshes[surface.hit.geomID], surface.hit.primID, u, v, t, instance, ray);
 }
 
 std::optional<SurfaceHit> RenderScene::shadeInstancedCurve(const CurveGeometry& curves, int instanceIndex,
@@ -782,7 +791,9 @@ std::optional<SurfaceHit> RenderScene::shadeInstancedCurve(const CurveGeometry& 
 // zeroed per hit, the record's 332 bytes and the placement's 312, took a third of this function's
 // time in perf. The placement is made only for instanced hits.
 std::optional<SurfaceHit> RenderScene::shadeMesh(int meshIndex, unsigned primID, float u, float v, float t,
-                                                 int instanceIndex, float time) const {
+                                                 int instanceIndex, const Ray& ray) const {
+    const float time = ray.time;
+    const Vec3f& direction = ray.direction;
     const auto shade = [&](const Instance* instance) {
         const Mesh& mesh = meshes_[meshIndex];
         std::size_t c = 3 * std::size_t(primID);
@@ -792,8 +803,9 @@ std::optional<SurfaceHit> RenderScene::shadeMesh(int meshIndex, unsigned primID,
         // Returned as is (no copy of the large hit record), the material's parameters copied into it
         // once: each arm of the conditional initialises `result` itself.
         std::optional<SurfaceHit> result =
-            mesh.material >= 0 ? std::optional<SurfaceHit>(std::in_place, materials_[std::size_t(mesh.material)])
-                               : std::optional<SurfaceHit>(std::in_place, lambertianParams(mesh.diffuse));
+            !mesh.reflects       ? std::optional<SurfaceHit>(std::in_place, lambertianParams(RGB(0.0f)))
+            : mesh.material >= 0 ? std::optional<SurfaceHit>(std::in_place, materials_[std::size_t(mesh.material)])
+                                 : std::optional<SurfaceHit>(std::in_place, lambertianParams(mesh.diffuse));
         SurfaceHit& hit = *result;
         hit.t = t;
         hit.time = time;
@@ -824,10 +836,10 @@ std::optional<SurfaceHit> RenderScene::shadeMesh(int meshIndex, unsigned primID,
             e2 = Vec3f(instance->toWorld.transformVector(Vec3d(e2)));
         }
 
-        if (!mesh.cornerColors.empty())
+        if (mesh.reflects && !mesh.cornerColors.empty())
             hit.material.diffuse =
                 mesh.cornerColors[c] * w + mesh.cornerColors[c + 1] * u + mesh.cornerColors[c + 2] * v;
-        if (mesh.material >= 0 && shaders_[mesh.material].hasBindings()) {
+        if (mesh.reflects && mesh.material >= 0 && shaders_[mesh.material].hasBindings()) {
             ShadingPatch patch{c, w, u, v, e1, e2, {}};
             if (filterCamera_)
                 patch.footprint = pixelFootprint(hit.point, hit.geometricNormal, filterCamera_->position(),
@@ -838,9 +850,15 @@ std::optional<SurfaceHit> RenderScene::shadeMesh(int meshIndex, unsigned primID,
             if (dot(mapped, hit.geometricNormal) * dot(hit.shadingNormal, hit.geometricNormal) > 0.0f)
                 hit.shadingNormal = mapped;
         }
+        // A mesh light's front is its triangles' own side (emissive meshes are never instanced:
+        // ng is in world space).
+        const bool seesEmission = mesh.emittingSides == EmittingSides::Both || meetsFront(direction, ng);
         if (dot(hit.shadingNormal, hit.geometricNormal) < 0.0f) hit.geometricNormal = -hit.geometricNormal;
-        hit.emission = mesh.texturedEmission ? mesh.texturedEmission->at(primID, u, v) : mesh.emission;
-        hit.interior = mesh.material >= 0 ? materialInterior_[static_cast<std::size_t>(mesh.material)] : -1;
+        hit.emission = !seesEmission           ? RGB(0.0f)
+                       : mesh.texturedEmission ? mesh.texturedEmission->at(primID, u, v)
+                                               : mesh.emission;
+        hit.interior =
+            mesh.reflects && mesh.material >= 0 ? materialInterior_[static_cast<std::size_t>(mesh.material)] : -1;
         hit.light = mesh.firstLight >= 0 ? mesh.firstLight + static_cast<int>(primID) : -1;
         hit.objectName = instance ? instance->objectName : mesh.objectName;
         hit.materialName = mesh.materialName;
@@ -927,7 +945,7 @@ std::unique_ptr<TriangleLight> RenderScene::triangleLight(const Mesh& mesh, cons
     const Vec3f &p0 = positions[corner[0]], &p1 = positions[corner[1]], &p2 = positions[corner[2]];
     if (mesh.texturedEmission)
         return std::make_unique<TriangleLight>(mesh.name, p0, p1, p2, *mesh.texturedEmission, triangle);
-    return std::make_unique<TriangleLight>(mesh.name, p0, p1, p2, mesh.emission);
+    return std::make_unique<TriangleLight>(mesh.name, p0, p1, p2, mesh.emission, mesh.emittingSides);
 }
 
 LightAtTime RenderScene::lightAt(std::size_t i, float time) const {
@@ -941,7 +959,7 @@ LightAtTime RenderScene::lightAt(std::size_t i, float time) const {
     const Triangle c = triangleAt(mesh, triangle, time);
     if (mesh.texturedEmission)
         return LightAtTime(TriangleLight({}, c.p0, c.p1, c.p2, *mesh.texturedEmission, triangle));
-    return LightAtTime(TriangleLight({}, c.p0, c.p1, c.p2, mesh.emission));
+    return LightAtTime(TriangleLight({}, c.p0, c.p1, c.p2, mesh.emission, mesh.emittingSides));
 }
 
 const RenderScene::Instance* RenderScene::instanceAt(int index, float time, std::optional<Instance>& moved) const {

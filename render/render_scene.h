@@ -281,9 +281,10 @@ private:
     // The hit on triangle primID of mesh `mesh` at barycentrics (u, v), in world space
     // (`instance` places a prototype mesh).
     // (Both return the optional intersect() returns, built in place.)
-    // `instance`: into instances_, -1 for a world mesh; `time`: the ray's (render::Ray::time).
+    // `instance`: into instances_, -1 for a world mesh; `ray`: the ray that met it (its time, and
+    // its direction for the side a mesh light is seen from).
     std::optional<SurfaceHit> shadeMesh(int mesh, unsigned primID, float u, float v, float t, int instance,
-                                        float time) const;
+                                        const Ray& ray) const;
     // A triangle's corners, and an instance's placement, at a ray's time (render/motion_geometry.h).
     struct Triangle {
         Vec3f p0, p1, p2;

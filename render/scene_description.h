@@ -208,6 +208,19 @@ struct CornerPrimvar {
     std::vector<float> values;  // triangles * 3 * components
 };
 
+// UsdLuxMeshLightAPI on a mesh (delegate/mesh_light.h): the mesh is an area light that emits
+// `radiance` from the front of each triangle (the side cross(p1 - p0, p2 - p0) points to), as a
+// RectLight emits from its front, in place of its material's emission; sampled like any emissive
+// mesh, triangle by triangle, by the light tree. The radiance already holds UsdLux's intensity,
+// exposure, colour, colour temperature, the material's glow tint (materialSyncMode) and, when
+// normalized, the division by the world area of the whole prim (which may be split into several
+// MeshDescs by its subsets, so the delegate divides).
+struct MeshLightDesc {
+    RGB radiance{1.0f};
+    // materialSyncMode noMaterialResponse: false, the surface reflects and transmits nothing.
+    bool materialResponse = true;
+};
+
 struct MeshDesc {
     std::string name;                     // prim path, for messages
     std::vector<Vec3f> positions;         // world space (prototype space in a PrototypeDesc)
@@ -220,7 +233,8 @@ struct MeshDesc {
     // opening and the last at its close (render/motion_geometry.h), each indexed like `positions`;
     // empty: the mesh does not move while the shutter is open. `positions` stays the frame's.
     std::vector<std::vector<Vec3f>> motionPositions{};
-    int linkGroup = 0;  // its light and shadow links (render/light_links.h); 0: every light
+    int linkGroup = 0;                     // its light and shadow links (render/light_links.h); 0: every light
+    std::optional<MeshLightDesc> light{};  // a UsdLux mesh light; none: it emits its material's emission
 };
 
 enum class LightType { Rect, Disk, Sphere, Cylinder, Distant, Dome };

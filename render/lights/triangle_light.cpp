@@ -7,8 +7,13 @@
 namespace fluence::render {
 
 TriangleLight::TriangleLight(std::string meshName, const Vec3f& p0, const Vec3f& p1, const Vec3f& p2,
-                             const RGB& radiance)
-    : Light(std::move(meshName)), p0_(p0), p1_(p1), p2_(p2), radiance_(radiance) {
+                             const RGB& radiance, EmittingSides sides)
+    : Light(std::move(meshName)),
+      p0_(p0),
+      p1_(p1),
+      p2_(p2),
+      radiance_(radiance),
+      frontOnly_(sides == EmittingSides::Front) {
     Vec3f n = cross(p1 - p0, p2 - p0);
     area_ = 0.5f * length(n);
     normal_ = area_ > 0.0f ? normalize(n) : Vec3f(0, 0, 1);
@@ -25,7 +30,8 @@ RGB TriangleLight::radianceAt(Vec2f b) const {
     return textured_ ? textured_->at(triangle_, b.y, 1.0f - b.x - b.y) : radiance_;
 }
 
-RGB TriangleLight::emitted(const LightHit& hit, const Vec3f&) const {
+RGB TriangleLight::emitted(const LightHit& hit, const Vec3f& wo) const {
+    if (!emitsTowards(wo)) return RGB(0.0f);
     if (!textured_ || area_ == 0.0f) return radiance_;
     // The hit's barycentric weights of p0 and p1: sub-triangle areas over the whole.
     const Vec3f twiceArea = normal_ * (2.0f * area_);
@@ -43,17 +49,21 @@ std::optional<LightSample> TriangleLight::sample(const Vec3f& p, Vec2f u) const 
     if (dist2 == 0.0f) return std::nullopt;
     float dist = std::sqrt(dist2);
     Vec3f wi = d / dist;
+    if (!emitsTowards(-wi)) return std::nullopt;
     float pdf = areaToSolidAngle(1.0f / area_, dist2, std::abs(dot(normal_, wi)));
     if (pdf == 0.0f) return std::nullopt;
     return surfaceSample(radianceAt(b), wi, dist, pdf);
 }
 
 float TriangleLight::pdf(const Vec3f& p, const Vec3f& wi, const LightHit& hit) const {
-    return area_ > 0.0f ? areaToSolidAngle(1.0f / area_, lengthSquared(hit.point - p), std::abs(dot(normal_, wi)))
-                        : 0.0f;
+    return area_ > 0.0f && emitsTowards(-wi)
+               ? areaToSolidAngle(1.0f / area_, lengthSquared(hit.point - p), std::abs(dot(normal_, wi)))
+               : 0.0f;
 }
 
-float TriangleLight::power(const SceneBounds&) const { return luminance(radiance_) * area_ * 2.0f * kPi; }
+float TriangleLight::power(const SceneBounds&) const {
+    return luminance(radiance_) * area_ * (frontOnly_ ? kPi : 2.0f * kPi);
+}
 
 std::optional<LightBounds> TriangleLight::bounds() const {
     LightBounds b;
@@ -62,7 +72,7 @@ std::optional<LightBounds> TriangleLight::bounds() const {
     b.phi = power({});
     b.axis = normal_;
     b.cosThetaO = 1.0f;
-    b.twoSided = true;
+    b.twoSided = !frontOnly_;
     return b;
 }
 
@@ -70,19 +80,20 @@ std::optional<EmissionSample> TriangleLight::sampleEmission(Vec2f uPosition, Vec
                                                             const SceneBounds&) const {
     if (area_ == 0.0f) return std::nullopt;
     Vec2f b = sampleUniformTriangle(uPosition);
-    const bool back = uDirection.x < 0.5f;  // the side, and uDirection.x rescaled to [0, 1) again
-    uDirection.x = back ? 2.0f * uDirection.x : 2.0f * uDirection.x - 1.0f;
+    // The side (the front alone, or either with probability 1/2, uDirection.x rescaled to [0, 1) again).
+    const bool back = !frontOnly_ && uDirection.x < 0.5f;
+    if (!frontOnly_) uDirection.x = back ? 2.0f * uDirection.x : 2.0f * uDirection.x - 1.0f;
     EmissionSample e = fromSurface(p0_ * b.x + p1_ * b.y + p2_ * (1.0f - b.x - b.y), back ? -normal_ : normal_,
                                    1.0f / area_, uDirection);
-    e.density.direction *= 0.5f;
+    if (!frontOnly_) e.density.direction *= 0.5f;
     e.Le = radianceAt(b);
     return e;
 }
 
 EmissionDensity TriangleLight::emissionDensity(const Vec3f&, const Vec3f& direction, const SceneBounds&) const {
-    if (area_ == 0.0f) return {};
+    if (area_ == 0.0f || !emitsTowards(direction)) return {};
     float cosine = std::abs(dot(normal_, direction));
-    return {1.0f / area_, 0.5f * cosineHemispherePdf(cosine), cosine};
+    return {1.0f / area_, (frontOnly_ ? 1.0f : 0.5f) * cosineHemispherePdf(cosine), cosine};
 }
 
 }  // namespace fluence::render

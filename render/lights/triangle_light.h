@@ -8,6 +8,9 @@
 // emits that function's radiance at each point, and its power is that of its mean radiance, so
 // light selection and the light tree choose it by its textured power; within it, points are still
 // drawn uniformly by area.
+// A triangle of a UsdLux mesh light (MeshDesc::light) emits from its front only, the side of
+// cross(p1 - p0, p2 - p0), as a RectLight does: half the power, directions drawn with density
+// cos / pi on that side, nothing behind it.
 #pragma once
 
 #include <optional>
@@ -18,9 +21,13 @@
 
 namespace fluence::render {
 
+// Which sides of a triangle emit.
+enum class EmittingSides { Both, Front };
+
 class TriangleLight final : public Light {
 public:
-    TriangleLight(std::string meshName, const Vec3f& p0, const Vec3f& p1, const Vec3f& p2, const RGB& radiance);
+    TriangleLight(std::string meshName, const Vec3f& p0, const Vec3f& p1, const Vec3f& p2, const RGB& radiance,
+                  EmittingSides sides = EmittingSides::Both);
     // Triangle `triangle` of a mesh with textured emission (kept by reference).
     TriangleLight(std::string meshName, const Vec3f& p0, const Vec3f& p1, const Vec3f& p2,
                   const TexturedEmission& emission, unsigned triangle);
@@ -40,12 +47,15 @@ public:
 private:
     // The radiance at the point with barycentric weights b of p0 and p1 (sampleUniformTriangle's).
     RGB radianceAt(Vec2f b) const;
+    // Whether light leaves towards `direction` (a unit vector away from the triangle).
+    bool emitsTowards(const Vec3f& direction) const { return !frontOnly_ || dot(normal_, direction) > 0.0f; }
 
     Vec3f p0_, p1_, p2_, normal_;
     float area_;
     RGB radiance_;  // constant, or the textured emission's mean over the triangle
     const TexturedEmission* textured_ = nullptr;
     unsigned triangle_ = 0;
+    bool frontOnly_ = false;
 };
 
 }  // namespace fluence::render

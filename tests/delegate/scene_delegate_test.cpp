@@ -280,9 +280,9 @@ over "NotDefined"
         << p.warnings[0];
 }
 
-// UsdLux MeshLightAPI (arnold-usd test_2390, test_2439.13, test_2477.5) is not read: the meshes
-// render as surfaces, and one warning says so instead of nothing.
-TEST(SceneDelegate, MeshLightApiIsNamedAsNotSupported) {
+// UsdLux MeshLightAPI (delegate/mesh_light.h) is read on a mesh of its own; inside a native
+// instance it is not, and one warning names the first such prim.
+TEST(SceneDelegate, MeshLightApiInsideAnInstanceIsNamedAsNotRead) {
     const std::string tri = R"( (
     prepend apiSchemas = ["MeshLightAPI"]
 )
@@ -293,11 +293,13 @@ TEST(SceneDelegate, MeshLightApiIsNamedAsNotSupported) {
     point3f[] points = [(0, 0, 0), (1, 0, 0), (0, 1, 0)]
 }
 )";
-    auto p = populate("#usda 1.0\n" + kCamera + "def Mesh \"A\"" + tri + "def Mesh \"B\"" + tri);
-    EXPECT_EQ(p.result.scene.meshes.size(), 2u);
+    auto p = populate("#usda 1.0\n" + kCamera + "def Mesh \"A\"" + tri + "def Xform \"P\"\n{\ndef Mesh \"B\"" + tri +
+                      "}\ndef Xform \"I\" (\n    instanceable = true\n    references = </P>\n)\n{\n}\n");
+    ASSERT_TRUE(p.mesh("/A") && p.mesh("/P/B"));
+    EXPECT_TRUE(p.mesh("/A")->light && p.mesh("/P/B")->light);
     ASSERT_EQ(p.warnings.size(), 1u);
-    EXPECT_NE(p.warnings[0].find("/A"), std::string::npos) << p.warnings[0];
-    EXPECT_NE(p.warnings[0].find("MeshLightAPI is not supported yet; 2 prims render as a plain surface"),
+    EXPECT_NE(p.warnings[0].find("/I/B"), std::string::npos) << p.warnings[0];
+    EXPECT_NE(p.warnings[0].find("MeshLightAPI inside a native instance is not read; 1 prim renders"),
               std::string::npos)
         << p.warnings[0];
 }

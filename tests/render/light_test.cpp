@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "core/random.h"
 #include "render/lights/distant_light.h"
 #include "render/lights/dome_light.h"
 #include "render/lights/rect_light.h"
@@ -160,6 +161,39 @@ TEST(TriangleLight, SamplingMatchesPdfFromEitherSide) {
         });
         EXPECT_GT(r.pValue, test::kChi2Alpha) << r.report;
     }
+}
+
+// A mesh light's triangle (EmittingSides::Front) emits from the side cross(b - a, c - a) points
+// to: sampled as the two-sided triangle in front, nothing behind, half the power, and emission
+// directions on its front with density cos / pi.
+TEST(TriangleLight, AFrontOnlyTriangleEmitsFromItsFrontAlone) {
+    Vec3f a(-1, 1, -1), b(1, 1, -1), c(0, 1, 1);  // front: cross(b - a, c - a) along -Y
+    TriangleLight both("/tri", a, b, c, RGB(1.0f)), front("/tri", a, b, c, RGB(1.0f), EmittingSides::Front);
+    const Vec3f below(0.1f, 0, 0.2f), above(0.1f, 2, 0.2f);
+    for (int i = 0; i < 64; ++i) {
+        const Vec2f u = SampleStream(3, 0, std::uint64_t(i)).next2D();
+        auto s = front.sample(below, u), t = both.sample(below, u);
+        ASSERT_TRUE(s && t);
+        EXPECT_EQ(s->wi, t->wi);
+        EXPECT_EQ(s->pdf, t->pdf);
+        EXPECT_EQ(s->Li, RGB(1.0f));
+        EXPECT_FALSE(front.sample(above, u));
+        const LightHit hit{s->wi * s->distance + below, Vec3f(0, -1, 0)};
+        EXPECT_NEAR(front.pdf(below, s->wi, hit), s->pdf, 1e-4f * s->pdf);  // the hit point rounded
+        EXPECT_EQ(front.pdf(above, -s->wi, hit), 0.0f);
+        EXPECT_EQ(front.emitted(hit, -s->wi), RGB(1.0f));
+        EXPECT_EQ(front.emitted(hit, s->wi), RGB(0.0f));
+        auto e = front.sampleEmission(u, SampleStream(3, 1, std::uint64_t(i)).next2D(), {});
+        ASSERT_TRUE(e);
+        EXPECT_LT(e->direction.y, 0.0f);
+        const float cosine = -e->direction.y;
+        EXPECT_NEAR(e->density.direction, cosine / float(kPiD), 1e-5f);
+        EXPECT_EQ(front.emissionDensity(e->point, e->direction, {}).direction, e->density.direction);
+        EXPECT_EQ(front.emissionDensity(e->point, -e->direction, {}).direction, 0.0f);
+    }
+    EXPECT_FLOAT_EQ(front.power({}), 0.5f * both.power({}));
+    EXPECT_FALSE(front.bounds()->twoSided);
+    EXPECT_EQ(front.bounds()->axis, Vec3f(0, -1, 0));
 }
 
 }  // namespace

@@ -1,0 +1,55 @@
+// UsdLuxMeshLightAPI: a Mesh (or another gprim rendered as one) that is an area light, read into
+// the render::MeshLightDesc of each part the prim renders as (render/scene_description.h).
+//
+// | attribute                                   | fallback               | rule                                    |
+// |---------------------------------------------|------------------------|-----------------------------------------|
+// | intensity, exposure, color,                 | 1, 0, (1,1,1),         | L = intensity * 2^exposure * color (*   |
+// | enableColorTemperature, colorTemperature    | false, 6500            | the temperature's tint), as every light |
+// | normalize                                   | false                  | L divided by the world-space area of    |
+// |                                             |                        | every triangle the prim renders as (its |
+// |                                             |                        | subsets and diced subdivision included) |
+// | light:materialSyncMode                      | materialGlowTintsLight | below                                   |
+//
+// The mesh emits L from the front of its surface (the side its normals face by its orientation),
+// as a RectLight emits along its -Z, in place of its material's emission: Fluence draws one
+// emission per surface, so what the camera sees and what lights the scene agree. Of the modes:
+// - materialGlowTintsLight: L is multiplied by the glow of the part's bound material (its
+//   constant emission colour) when it has one that is not black; a part without a material, or
+//   whose material does not glow, emits L untinted. The material reflects light as usual.
+// - independent: L alone; the material reflects light as usual.
+// - noMaterialResponse: L alone, and the surface reflects and transmits nothing (black).
+// Another token warns and is read as the fallback.
+// Not read, each named in one warning: shaping inputs (ShapingAPI), light:filters, light
+// linking (collection:lightLink, collection:shadowLink: the mesh light lights and shadows
+// everything). A mesh light inside a native instance or a point instancer's prototype is not read
+// (delegate/scene_delegate.cpp names it).
+#pragma once
+
+#include <functional>
+#include <optional>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "delegate/prim_reader.h"
+#include "render/scene_description.h"
+
+namespace fluence::delegate {
+
+enum class MaterialSyncMode { MaterialGlowTintsLight, Independent, NoMaterialResponse };
+
+struct MeshLight {
+    RGB radiance{1.0f};  // intensity * 2^exposure * color (* colour temperature tint)
+    bool normalize = false;
+    MaterialSyncMode sync = MaterialSyncMode::MaterialGlowTintsLight;
+};
+
+// The prim's mesh light, or nullopt when it does not apply MeshLightAPI. `warn` gets the message
+// for each attribute left unread.
+std::optional<MeshLight> meshLightOf(const PrimReader& prim, const std::function<void(const std::string&)>& warn);
+
+// Gives each part of one mesh light prim (world space) its render::MeshLightDesc.
+void applyMeshLight(const MeshLight& light, std::span<render::MeshDesc> parts,
+                    const std::vector<render::MaterialDesc>& materials);
+
+}  // namespace fluence::delegate
