@@ -86,6 +86,25 @@ TEST(PathTracer, ImagesAreBitIdenticalAcrossThreadCounts) {
                              sobol.image.pixels.size() * sizeof(float)));
 }
 
+// Four samples per pixel of a 32 x 32 camera: the tracer with media's in `withMedia` (with the
+// equiangular strategy's `lights`) and the tracer without's in `without`, whose stream starts
+// `offset` numbers on, give the same radiance, bit for bit, from the same number of rays.
+void expectTheSameSamples(const render::RenderScene& withMedia, const EquiangularLights& lights,
+                          const render::RenderScene& without, const render::Camera& camera, int offset) {
+    const PathTracer tracer{IntegratorSettings{}};
+    RenderCounters a, b;
+    for (int i = 0; i < 32 * 32 * 4; ++i) {
+        const render::Ray ray = camera.generateRay(float(i % 32) + 0.5f, float((i / 32) % 32) + 0.5f);
+        SampleStream rngA(5, std::uint64_t(i), 0), rngB(5, std::uint64_t(i), 0);
+        for (int k = 0; k < offset; ++k) rngB.next();
+        const RGB with = tracer.trace<true>(LightEvents(), lights, withMedia, camera, ray, rngA, a).radiance;
+        const RGB plain =
+            tracer.trace<false>(LightEvents(), EquiangularLights(), without, camera, ray, rngB, b).radiance;
+        ASSERT_EQ(0, std::memcmp(&with, &plain, sizeof(RGB))) << "sample " << i;
+    }
+    EXPECT_EQ(a.rays(), b.rays());
+}
+
 // A scene without media pays for none of their machinery: the tracer without it gives the same
 // samples, bit for bit, as the one with it, through glass, metal and diffuse surfaces.
 TEST(PathTracer, WithoutMediaTheSurfaceOnlyTracerGivesTheSameSamples) {
@@ -97,19 +116,7 @@ TEST(PathTracer, WithoutMediaTheSurfaceOnlyTracerGivesTheSameSamples) {
     s.lights.push_back(test::sphereLight("/bulb", 0.3f, RGB(20.0f), Vec3d(0.0, -1.5, 2.0)));
     const render::RenderScene scene(s);
     ASSERT_FALSE(scene.hasMedia());
-    const render::Camera camera(*s.camera, 32, 32);
-    const PathTracer tracer{IntegratorSettings{}};
-    RenderCounters a, b;
-    for (int i = 0; i < 32 * 32 * 4; ++i) {
-        const render::Ray ray = camera.generateRay(float(i % 32) + 0.5f, float((i / 32) % 32) + 0.5f);
-        SampleStream rngA(5, std::uint64_t(i), 0), rngB(5, std::uint64_t(i), 0);
-        const RGB withMedia =
-            tracer.trace<true>(LightEvents(), EquiangularLights(), scene, camera, ray, rngA, a).radiance;
-        const RGB without =
-            tracer.trace<false>(LightEvents(), EquiangularLights(), scene, camera, ray, rngB, b).radiance;
-        ASSERT_EQ(0, std::memcmp(&withMedia, &without, sizeof(RGB))) << "sample " << i;
-    }
-    EXPECT_EQ(a.rays(), b.rays());
+    expectTheSameSamples(scene, EquiangularLights(), scene, render::Camera(*s.camera, 32, 32), 0);
 }
 
 // A scene whose only medium is a guided subsurface walk's (its steps do not depend on the path's
@@ -137,21 +144,8 @@ TEST(PathTracer, PathsThatMeetNoHeroDependentMediumTakeThePowerHeuristic) {
     const render::RenderScene sceneWithBall(withBall), sceneAlone(alone);
     ASSERT_TRUE(sceneWithBall.hasMedia());
     ASSERT_FALSE(sceneAlone.hasMedia());
-    const render::Camera camera(*alone.camera, 32, 32);
-    const PathTracer tracer{IntegratorSettings{}};
-    RenderCounters a, b;
-    for (int i = 0; i < 32 * 32 * 4; ++i) {
-        const render::Ray ray = camera.generateRay(float(i % 32) + 0.5f, float((i / 32) % 32) + 0.5f);
-        SampleStream rngA(5, std::uint64_t(i), 0), rngB(5, std::uint64_t(i), 0);
-        rngB.next();
-        const RGB ball =
-            tracer.trace<true>(LightEvents(), EquiangularLights(sceneWithBall), sceneWithBall, camera, ray, rngA, a)
-                .radiance;
-        const RGB wall =
-            tracer.trace<false>(LightEvents(), EquiangularLights(), sceneAlone, camera, ray, rngB, b).radiance;
-        ASSERT_EQ(0, std::memcmp(&ball, &wall, sizeof(RGB))) << "sample " << i;
-    }
-    EXPECT_EQ(a.rays(), b.rays());
+    expectTheSameSamples(sceneWithBall, EquiangularLights(sceneWithBall), sceneAlone,
+                         render::Camera(*alone.camera, 32, 32), 1);
 }
 
 TEST(PathTracer, CountsRaysAndSamples) {
