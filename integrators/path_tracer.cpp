@@ -477,10 +477,10 @@ private:
                 *shadowMedium, {shadowOrigin, ls->wi, ls->distance}, hero_, rng_);
             counters_.mediumCollisions += std::uint64_t(tr.collisions);
         }
-        const RGB contribution = throughput_ * f * ls->Li *
-                                 mis_.lightSample(choice.probability * ls->pdf, onlyStrategy ? 0.0f : scatterPdf, tr,
-                                                  kMedia && shadowMedium,
-                                                  equiangularDistancePdf(choice.light) * ls->pdf);
+        const RGB contribution =
+            throughput_ * f * ls->Li *
+            mis_.lightSample(choice.probability * ls->pdf, onlyStrategy ? 0.0f : scatterPdf, tr, kMedia && shadowMedium,
+                             equiangularDistancePdf(choice.light) * ls->pdf);
         radiance_ += contribution;
         if (lightPaths_.active())
             lightPaths_.connect(vertexEvents(ls->wi), lightEvents_[choice.light], contribution, out_);
