@@ -275,13 +275,9 @@ private:
         ++counters_.shadow;
         const render::ShadowTest shadow = scene_.shadowTest(choice->light, p, ls->wi, ls->distance, ray_.time);
         if (shadow == render::ShadowTest::Blocked) return;
-        // The same estimator as the free flight's light sample of the same connection (below), so
-        // that both strategies' weights read the same shadow-ray densities.
         const bool onlyStrategy = ls->delta || shadow == render::ShadowTest::PassedThrough;
-        const media::TransmittanceEstimate toLight = media::estimateTransmittance(
-            onlyStrategy ? media::TransmittanceMethod::RayMarching : media::TransmittanceMethod::RatioTracking, medium,
-            {p, ls->wi, ls->distance}, hero_, rng_);
-        counters_.mediumCollisions += std::uint64_t(toLight.collisions);
+        const media::TransmittanceEstimate toLight =
+            shadowTransmittance(medium, {p, ls->wi, ls->distance}, onlyStrategy);
         // Densities over the hero's density of this strategy, per channel (equiangular_strategy.h).
         const RGB freeFlightPdf = mis_.rU * toPoint.throughput * m.sigmaS;
         const RGB equiangularPdf = mis_.rU * toPoint.pdfRatio * distancePdf;
@@ -293,6 +289,20 @@ private:
         radiance_ += contribution;
         if (lightPaths_.active())
             lightPaths_.connect(VertexEvents(volumeEvent(false)), lightEvents_[choice->light], contribution, out_);
+    }
+
+    // The transmittance of a shadow ray through `medium`, its lookups counted: ray marching where no
+    // strategy is weighted against the connection (`onlyStrategy`: a delta light, light that passed
+    // surfaces), else ratio tracking, whose null points the MIS weight needs (media/transmittance.h).
+    // The free flight's and the equiangular strategy's light samples both take it, so the two
+    // strategies' weights read the same shadow-ray densities.
+    media::TransmittanceEstimate shadowTransmittance(const media::Medium& medium, const media::MediumRay& ray,
+                                                     bool onlyStrategy) {
+        const media::TransmittanceEstimate tr = media::estimateTransmittance(
+            onlyStrategy ? media::TransmittanceMethod::RayMarching : media::TransmittanceMethod::RatioTracking, medium,
+            ray, hero_, rng_);
+        counters_.mediumCollisions += std::uint64_t(tr.collisions);
+        return tr;
     }
 
     // The equiangular strategy's density of light `index` and of the medium vertex the path is at
@@ -470,12 +480,7 @@ private:
         const bool onlyStrategy = ls->delta || shadow == render::ShadowTest::PassedThrough;
         media::TransmittanceEstimate tr;
         if (kMedia && shadowMedium) {
-            // Ray marching where no strategy is weighted against this one (media/transmittance.h);
-            // else ratio tracking, whose null points the MIS weight needs.
-            tr = media::estimateTransmittance(
-                onlyStrategy ? media::TransmittanceMethod::RayMarching : media::TransmittanceMethod::RatioTracking,
-                *shadowMedium, {shadowOrigin, ls->wi, ls->distance}, hero_, rng_);
-            counters_.mediumCollisions += std::uint64_t(tr.collisions);
+            tr = shadowTransmittance(*shadowMedium, {shadowOrigin, ls->wi, ls->distance}, onlyStrategy);
         }
         const RGB contribution =
             throughput_ * f * ls->Li *
@@ -491,15 +496,16 @@ private:
     void addEmitted(const RGB& le, int index, const LightHit& lh, int depth) {
         if (!scene_.lightReaches(index, previousLinkGroup_)) return;  // group 0 for camera rays: every light
         const bool unique = depth == 0 || specularBounce_;
-        const float equiangularPdf =
-            unique ? 0.0f : equiangularDistancePdf(index);  // 0 unless the path left a medium vertex
-        float weight = mis_.emitter(
-            unique ? 0.0f
-                   : lightStrategyPdf(scene_, index, previousPoint_, previousNormal_, ray_.direction, lh, ray_.time),
-            equiangularPdf > 0.0f
-                ? equiangularPdf * scene_.lightAt(index, ray_.time).pdf(previousPoint_, ray_.direction, lh)
-                : 0.0f,
-            unique);
+        // The light strategy's density of the point, and the equiangular strategy's (0 unless the
+        // path left a medium vertex), both with the light's own density of its point.
+        float lightPdf = 0.0f, equiangularPdf = 0.0f;
+        if (!unique) {
+            const float pointPdf = scene_.lightAt(index, ray_.time).pdf(previousPoint_, ray_.direction, lh);
+            lightPdf = scene_.lightProbability(previousPoint_, previousNormal_, index) * pointPdf;
+            const float distancePdf = equiangularDistancePdf(index);
+            if (distancePdf > 0.0f) equiangularPdf = distancePdf * pointPdf;
+        }
+        float weight = mis_.emitter(lightPdf, equiangularPdf, unique);
         radiance_ += throughput_ * le * weight;
         if (lightPaths_.active()) lightPaths_.reach(lightEvents_[index], throughput_ * le * weight, out_);
     }

@@ -51,9 +51,10 @@ RGB comb(const Medium& medium, const MediumRay& ray, const RayProfile& profile, 
     int j = 0;
     for (const MarchSegment& s : profile.segments) {
         const float uEnd = uStart + s.w * (s.tMax - s.tMin);
+        const bool last = &s == &profile.segments.back();  // rounding: the last segment takes the rest
         for (; j < points; ++j) {
             const float u = (static_cast<float>(j) + xi) * du;
-            if (u >= uEnd && &s != &profile.segments.back()) break;  // rounding: the last segment takes the rest
+            if (u >= uEnd && !last) break;
             const float t = std::min(s.tMin + (u - uStart) / s.w, s.tMax);
             const MediumProperties m = medium.at(ray.at(t));
             sum += (m.sigmaA + m.sigmaS - s.sigmaMin) / s.w;
