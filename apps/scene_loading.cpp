@@ -1,7 +1,6 @@
 #include "apps/scene_loading.h"
 
 #include <algorithm>
-#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <map>
@@ -58,8 +57,7 @@ bool readAtFrames(const usd::Stage& stage, const usd::AssetReference& a, const s
     const usd::AttributeSpec* attribute = prim ? prim->attribute(a.property) : nullptr;
     if (!attribute) return true;  // not an attribute of a composed prim: counted as read
     return std::any_of(frames.begin(), frames.end(), [&](double frame) {
-        const std::optional<usd::Value> value =
-            usd::Stage::resolve(*attribute, std::isnan(frame) ? usd::kEarliestTime : frame);
+        const std::optional<usd::Value> value = usd::Stage::resolve(*attribute, usd::renderReadTime(frame));
         return value && namesAsset(*value, a.resolved);
     });
 }

@@ -190,8 +190,7 @@ double Film::relativeError(int x, int y) const {
     const Pixel& p = pixel(x, y);
     if (p.samples < 2) return std::numeric_limits<double>::infinity();
     const double n = p.samples, mean = p.luminance / n;
-    const double variance = std::max(0.0, (p.luminanceSquared - n * mean * mean) / (n - 1.0));
-    return std::sqrt(variance / n) / (std::abs(mean) + kRelativeErrorFloor);
+    return std::sqrt(varianceOfMean(p.luminance, p.luminanceSquared, n)) / (std::abs(mean) + kRelativeErrorFloor);
 }
 
 std::uint64_t Film::totalSamples() const {

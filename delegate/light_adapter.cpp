@@ -19,12 +19,6 @@ namespace {
 
 using Warn = std::function<void(const std::string&)>;
 
-bool authorsShaping(const usd::PrimSpec& prim) {
-    return std::any_of(prim.attributes.begin(), prim.attributes.end(), [](const usd::AttributeSpec& a) {
-        return a.name.starts_with("inputs:shaping:") || a.name.starts_with("shaping:");
-    });
-}
-
 // The IES profile inputs:shaping:ies:file names, read into `shaping`; a file that cannot be read
 // (missing, or not LM-63 as texture/ies_file.h reads it) warns, naming it, and is left out.
 void readIesProfile(const PrimReader& prim, render::LightShapingDesc& shaping, const Warn& warn) {
@@ -129,7 +123,11 @@ Matrix4 poleRotation(const PrimReader& prim, char stageUpAxis, const Warn& warn)
 
 }  // namespace
 
-bool authorsShapingInputs(const usd::PrimSpec& prim) { return authorsShaping(prim); }
+bool authorsShaping(const usd::PrimSpec& prim) {
+    return std::any_of(prim.attributes.begin(), prim.attributes.end(), [](const usd::AttributeSpec& a) {
+        return a.name.starts_with("inputs:shaping:") || a.name.starts_with("shaping:");
+    });
+}
 
 RGB lightApiRadiance(const PrimReader& prim, double fallbackIntensity, const Warn& warn) {
     warnConnectedInputs(prim.prim(), warn);

@@ -62,7 +62,7 @@ bool isLightType(const std::string& typeName);
 bool appliesSchema(const usd::PrimSpec& prim, const std::string& schema);
 
 // Whether the prim authors any shaping input (inputs:shaping:*, or shaping:* before USD 21.05).
-bool authorsShapingInputs(const usd::PrimSpec& prim);
+bool authorsShaping(const usd::PrimSpec& prim);
 
 // UsdLuxLightAPI's radiance, as every light reads it: intensity (fallback `fallbackIntensity`) *
 // 2^exposure * color, times the colour temperature's tint when enabled. Warns about connected

@@ -19,7 +19,7 @@ MaterialSyncMode syncModeOf(const PrimReader& prim, const std::function<void(con
 
 // Names each authored attribute or relationship a mesh light does not read.
 void warnUnread(const usd::PrimSpec& prim, const std::function<void(const std::string&)>& warn) {
-    if (authorsShapingInputs(prim))
+    if (authorsShaping(prim))
         warn("shaping inputs (ShapingAPI) are not applied to a mesh light; it emits as an unshaped area light");
     for (const usd::RelationshipSpec& r : prim.relationships)
         if (r.name == "light:filters")

@@ -38,8 +38,7 @@ public:
 
 class PrimReader {
 public:
-    PrimReader(const usd::PrimSpec& prim, double time)
-        : prim_(prim), time_(std::isnan(time) ? usd::kEarliestTime : time) {}
+    PrimReader(const usd::PrimSpec& prim, double time) : prim_(prim), time_(usd::renderReadTime(time)) {}
 
     const usd::PrimSpec& prim() const { return prim_; }
     const std::string& path() const { return prim_.path; }

@@ -37,6 +37,9 @@ inline constexpr double kDefaultTime = std::numeric_limits<double>::quiet_NaN();
 // its first sample and an attribute without samples its default value. Hydra renders a stage at
 // this time when no frame is asked for (UsdImagingGLRenderParams::frame, the stage scene index).
 inline constexpr double kEarliestTime = std::numeric_limits<double>::lowest();
+// The time a render reads a frame at: the frame, or kEarliestTime where none is given (NaN), as
+// Hydra does. The delegate's readers and the missing-asset check both use it.
+inline double renderReadTime(double frame) { return std::isnan(frame) ? kEarliestTime : frame; }
 
 class Stage {
 public:
