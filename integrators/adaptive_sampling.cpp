@@ -36,17 +36,19 @@ int blockEnd(int coordinate, int offset, int size) {
     return std::min(size, image - image % AdaptiveSampling::kBlockSize + AdaptiveSampling::kBlockSize - offset);
 }
 
-// The mean of `own` over each pixel's neighbourhood (see the header): its 3x3 neighbours within its
-// block that have at least `least` samples, the pixel itself left out; its own value when no
-// neighbour counts.
+// The mean of `own` over each pixel's neighbourhood (see the header): its neighbours within
+// kNeighbourhoodRadius and within its block that have at least `least` samples, the pixel itself
+// left out; its own value when no neighbour counts.
 std::vector<double> neighbourhoodMeans(const Film& film, int windowX, int windowY, const std::vector<double>& own,
                                        std::uint32_t least) {
     const int width = film.width(), height = film.height();
     std::vector<double> filtered(own.size(), 0.0);
     for (int y = 0; y < height; ++y) {
-        const int y0 = std::max(y - 1, blockStart(y, windowY)), y1 = std::min(y + 2, blockEnd(y, windowY, height));
+        constexpr int r = AdaptiveSampling::kNeighbourhoodRadius;
+        const int y0 = std::max(y - r, blockStart(y, windowY)), y1 = std::min(y + r + 1, blockEnd(y, windowY, height));
         for (int x = 0; x < width; ++x) {
-            const int x0 = std::max(x - 1, blockStart(x, windowX)), x1 = std::min(x + 2, blockEnd(x, windowX, width));
+            const int x0 = std::max(x - r, blockStart(x, windowX)),
+                      x1 = std::min(x + r + 1, blockEnd(x, windowX, width));
             double sum = 0.0;
             int counted = 0;
             for (int v = y0; v < y1; ++v)

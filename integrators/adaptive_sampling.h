@@ -8,7 +8,9 @@
 // sampler each half of a power-of-two count is a net, so their difference measures the error
 // Sobol's stratification leaves (the samples' own spread, or even- against odd-indexed halves,
 // overstate it most where it is smallest: edges, direct light). One difference is a noisy
-// estimate, so a is averaged over the pixel's 3x3 neighbourhood, the pixel itself left out: a pixel
+// estimate, so a is averaged over the pixel's 5x5 neighbourhood (kNeighbourhoodRadius 2; 3x3
+// before: an allocation from 8 neighbours' one degree of freedom each spends up to 10% worse than
+// from 24, bench/results/2026-12-06-adaptive-5.md), the pixel itself left out: a pixel
 // whose own halves agree by luck amid noisy neighbours does not stop, the neighbours of a lone noisy
 // pixel go on, and a pixel's decisions do not read its own samples, so a heavy-tailed pixel that
 // has not yet drawn its rare bright samples (a low mean and a low spread together) is not stopped
@@ -56,6 +58,8 @@ inline constexpr int kMinSamplesForHalves = 4;
 class AdaptiveSampling {
 public:
     static constexpr int kBlockSize = 8;
+    // The neighbourhood a pixel's a and c are averaged over: the (2 r + 1)^2 square (see the top).
+    static constexpr int kNeighbourhoodRadius = 2;
     static constexpr double kRelativeFloor = 0.01;
 
     // Whether `settings` asks for adaptive sampling (either rule).

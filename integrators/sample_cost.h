@@ -3,7 +3,7 @@
 // any machine, under any load, at any thread count and after a resumed checkpoint.
 //
 // The cost is in units of one ray: the rays the sample traced (camera, bounce and shadow rays: a
-// random-walk step through a subsurface interior is a bounce ray), plus the tentative collisions
+// random-walk step through a subsurface interior is a bounce ray, and costs more below), plus the tentative collisions
 // its free flights and transmittance estimates drew in media (each a medium lookup:
 // media/free_flight.h, media/transmittance.h) at kMediumCollisionCost rays each. The weight was
 // measured once (bench/sample_cost_calibration.py, bench/results/2026-12-05-adaptive-2.md): the
@@ -18,6 +18,14 @@
 // box's per ray, three interleaved rounds: 0.080 us a missed sample, 0.185 us a ray, 0.41-0.45 ray.
 // Counted as a whole ray, the background pixels adaptive sampling stops early were credited with
 // more CPU than they free, and its renders of the subsurface scene overspent their budget.
+// A step of a random walk through a material's interior (a free flight inside a subsurface
+// medium: RenderCounters::walkSteps) costs kWalkStepCost rays on top of its ray: the walk's free
+// flight, phase sampling and guiding. Measured (bench/results/2026-12-06-adaptive-5.md): the CPU
+// time of each of 4 x 4 tiles of the subsurface scene, 128 spp, one thread, the least of two
+// rounds, fitted as a (rays + w walk steps): w = 3.17, each tile within 6% (the whole-scene fit
+// above cannot see it: a scene's rays and steps come together). Without it the blob's tiles took
+// 1.8x the CPU their counted cost said, and adaptive renders of that scene, which give the blob
+// more samples, 1.13-1.29x the CPU of the uniform render of the same counted cost (now 1.00-1.03).
 // An integrator counts what it counts (RenderCounters): one that counts nothing costs 0 per
 // sample, which adaptive sampling reads as every sample alike.
 #pragma once
@@ -30,14 +38,16 @@ namespace fluence::integrators {
 
 inline constexpr double kMediumCollisionCost = 1.3;
 inline constexpr double kMissedCameraRayCost = 0.43;
+inline constexpr double kWalkStepCost = 3.2;
 
 // The cost of the sample whose counting took the counters from `before` to `after`; `hit`: whether
 // its camera ray hit something (FilmSample::hit).
 inline double sampleCost(const RenderCounters& before, const RenderCounters& after, bool hit) {
     const std::uint64_t rays = after.rays() - before.rays(),
-                        collisions = after.mediumCollisions - before.mediumCollisions;
+                        collisions = after.mediumCollisions - before.mediumCollisions,
+                        steps = after.walkSteps - before.walkSteps;
     if (!hit && rays == 1 && collisions == 0) return kMissedCameraRayCost;
-    return double(rays) + kMediumCollisionCost * double(collisions);
+    return double(rays) + kMediumCollisionCost * double(collisions) + kWalkStepCost * double(steps);
 }
 
 }  // namespace fluence::integrators

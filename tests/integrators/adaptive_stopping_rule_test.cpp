@@ -1,8 +1,8 @@
 // Adaptive sampling's decisions on synthetic films (integrators/adaptive_sampling.h): samples added
 // by hand, flat (every sample the same) or noisy (two values in a hashed order), then the plan of
 // the next pass read. A flat region stops and a noisy one goes on; a pixel whose own halves agree
-// by luck amid noisy neighbours goes on; the neighbours of a lone noisy pixel in a flat area go on
-// (it is judged by them, not by its own samples), up to the edge of its block; the budget rule gives the
+// by luck amid noisy neighbours goes on; the pixels within 2 of a lone noisy pixel in a flat area
+// go on (it is judged by them, not by its own samples), up to the edge of its block; the budget rule gives the
 // noisier region more, and of two regions alike but for their cost per sample, the cheaper one
 // more, as sqrt(1 / cost).
 #include <gtest/gtest.h>
@@ -85,20 +85,23 @@ TEST(AdaptiveStoppingRule, ALoneNoisyPixelKeepsItsNeighbourhoodGoingWithinItsBlo
     const Film film =
         syntheticFilm([](int x, int y) { return (x == 3 && y == 3) || (x == 7 && y == 5) ? 0.4f : 0.0f; });
     // Their halves' sums of signs are -2 and 0 (3, 3) and 2 and 0 (7, 5): the halves differ by 0.1,
-    // their own a is 0.19 and 0.13 (see adaptive_sampling.h). A neighbour averages that with 7 flat
-    // pixels: a = 0.024 or 0.016, a relative error of 0.038 or 0.032 at 16 samples, which the
-    // target must be below for the neighbours to go on.
+    // their own a is 0.19 and 0.13 (see adaptive_sampling.h). A pixel within 2 of them averages that
+    // with at most 23 flat pixels (fewer at the block's edges): a >= 0.19 / 24 = 0.0079 or
+    // 0.13 / 19 = 0.0068, a relative error of at least 0.022 or 0.021 at 16 samples, which the
+    // target must be below for the neighbours to go on. With the 3x3 neighbourhood the pixels 2
+    // away from them stopped.
     RenderSettings settings = targetSettings();
     settings.targetError = 0.02;
     const std::vector<std::uint32_t> plan = AdaptiveSampling::planPass(film, settings, kDone, kCount);
-    for (int y = 2; y <= 4; ++y)
-        for (int x = 2; x <= 4; ++x)
+    for (int y = 1; y <= 5; ++y)
+        for (int x = 1; x <= 5; ++x)
             if (x != 3 || y != 3) {
                 EXPECT_EQ(planned(plan, x, y), std::uint32_t(kCount)) << x << ", " << y;
             }
     EXPECT_EQ(planned(plan, 3, 3), 0u) << "its own decision reads its neighbours only (no bias from its own mean)";
     EXPECT_EQ(planned(plan, 0, 0), 0u) << "away from it, the flat image stops";
     EXPECT_EQ(planned(plan, 6, 5), std::uint32_t(kCount));
+    EXPECT_EQ(planned(plan, 5, 7), std::uint32_t(kCount));
     EXPECT_EQ(planned(plan, 8, 5), 0u) << "the next block decides on its own pixels";
     // Seen as a window of the image starting 1 pixel further right, the blocks move: (7, 5) is then
     // image pixel 8, the first of its block, and (6, 5) is in the block before it.

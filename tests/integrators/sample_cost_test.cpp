@@ -1,7 +1,7 @@
 // Each sample's cost (integrators/sample_cost.h), as the render loop adds it to its pixel in the
-// film: over the image, the costs add up to what the render counted (its rays and its medium
-// lookups, at their weight); a scene without media draws no
-// medium lookups, and a subsurface interior's random walks draw them and make its pixels cost more.
+// film: over the image, the costs add up to what the render counted (its rays, its medium lookups
+// and its random-walk steps, at their weights); a scene without media draws no medium lookups and
+// takes no walk steps, and a subsurface interior's random walks do both and make its pixels cost more.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -44,8 +44,8 @@ double missedSamples(const Film& film) {
 
 void expectCostsAddUpToTheCounters(const test_support::RenderedFilm& r) {
     const RenderCounters& c = r.stats.counters;
-    const double counted = double(c.rays()) + kMediumCollisionCost * double(c.mediumCollisions) -
-                           (1.0 - kMissedCameraRayCost) * missedSamples(r.film);
+    const double counted = double(c.rays()) + kMediumCollisionCost * double(c.mediumCollisions) +
+                           kWalkStepCost * double(c.walkSteps) - (1.0 - kMissedCameraRayCost) * missedSamples(r.film);
     EXPECT_NEAR(filmCost(r.film), counted, 1e-12 * counted);
 }
 
@@ -57,11 +57,13 @@ TEST(Renderer, EachSamplesCostIsItsRaysOnSurfaces) {
     EXPECT_EQ(r.film.cost(0, 0), 4.0 * kMissedCameraRayCost);
 }
 
-TEST(Renderer, EachSamplesCostCountsTheMediumLookupsOfASubsurfaceWalk) {
+TEST(Renderer, EachSamplesCostCountsTheStepsAndMediumLookupsOfASubsurfaceWalk) {
     render::SceneDescription surface = test::litSphereUnderASky(), walk = surface;
     walk.materials[0] = test::subsurfaceMaterial("/mat", RGB(0.8f, 0.6f, 0.4f), RGB(0.3f, 0.2f, 0.1f));
     const test_support::RenderedFilm opaque = renderFourSamples(surface), translucent = renderFourSamples(walk);
     EXPECT_GT(translucent.stats.counters.mediumCollisions, 0u);
+    EXPECT_GT(translucent.stats.counters.walkSteps, 0u);
+    EXPECT_EQ(opaque.stats.counters.walkSteps, 0u);
     expectCostsAddUpToTheCounters(translucent);
     const int centre = kSize / 2;
     std::printf("[ measured ] centre pixel's cost per sample: %.1f opaque, %.1f subsurface\n",
