@@ -223,18 +223,19 @@ void addLayeredDiffusePart(CoatReturn& coatReturn, float weight, const MaterialP
         nodeAlbedos(layer, lobe, complement);
         coatReturn.addPart(
             weight, [&](int i) { return ggxReflectionSpread(i, alpha, fresnel.f0.x); }, lobe, complement,
-            reflected / (RGB(1.0f) - layer.averageReflectance()));
+            reflected / (RGB(1.0f) - layer.averageReflectance()), CoatReturn::ShapedLobe::Diffuse);
     } else if (!isBlack(sheen)) {
         const CharlieSheenBsdf layer(sheen, m.sheenRoughness);
         nodeAlbedos(layer, lobe, complement);
         coatReturn.addPart(
             weight, [&](int i) { return sheenReflectionSpread(i, m.sheenRoughness); }, lobe, complement,
-            reflected / (RGB(1.0f) - layer.averageReflectance()));
+            reflected / (RGB(1.0f) - layer.averageReflectance()), CoatReturn::ShapedLobe::Diffuse);
     } else {
         lobe.fill(RGB(0.0f));
         complement.fill(RGB(1.0f));
         coatReturn.addPart(
-            weight, [](int) { return ElevationWeights{}; }, lobe, complement, reflected);
+            weight, [](int) { return ElevationWeights{}; }, lobe, complement, reflected,
+            CoatReturn::ShapedLobe::Diffuse);
     }
 }
 
@@ -253,7 +254,8 @@ void addGlassPart(CoatReturn& coatReturn, float weight, const MaterialParams& m,
             complement[i] = RGB(1.0f - ggxDielectricAlbedo(albedo_table::cosineAt(i), alpha, m.ior));
     }
     coatReturn.addPart(
-        weight, [&](int i) { return ggxReflectionSpread(i, alpha, fresnel.f0.x); }, lobe, complement, scale);
+        weight, [&](int i) { return ggxReflectionSpread(i, alpha, fresnel.f0.x); }, lobe, complement, scale,
+        CoatReturn::ShapedLobe::Glossy);
 }
 
 // A thin-walled sheet's part: its reflection, single-scattering and, rough, the reflected part of
@@ -291,7 +293,7 @@ void addMetalPart(CoatReturn& coatReturn, float weight, const MaterialParams& m,
     const float eAvg = ggxReflectionAverageAlbedo(alpha, 1.0f);
     coatReturn.addPart(
         weight, [&](int i) { return ggxReflectionSpread(i, alpha, 1.0f); }, lobe, complement,
-        smooth ? RGB(0.0f) : multipleScatteringAlbedo(f0, eAvg) / (1.0f - eAvg));
+        smooth ? RGB(0.0f) : multipleScatteringAlbedo(f0, eAvg) / (1.0f - eAvg), CoatReturn::ShapedLobe::Glossy);
 }
 
 // What the clear coat's underside returns to a base with a glossy part (a plastic's specular
