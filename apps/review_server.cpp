@@ -1,6 +1,7 @@
 #include "apps/review_server.h"
 
 #include <httplib.h>
+#include <sys/socket.h>
 
 #include <fstream>
 #include <sstream>
@@ -32,6 +33,14 @@ ReviewServer::ReviewServer(std::shared_ptr<const ReviewApi> api) : impl_(std::ma
     impl_->api = std::move(api);
     httplib::Server& server = impl_->server;
     const ReviewApi* reviewApi = impl_->api.get();
+    // SO_REUSEADDR alone: a restart binds the port at once, though the connections the last server
+    // closed still wait in TIME_WAIT on it; cpp-httplib's default (0.11) sets SO_REUSEPORT instead
+    // on Linux, which lets a second server bind the port while the first listens, and share its
+    // requests.
+    server.set_socket_options([](socket_t socket) {
+        const int yes = 1;
+        setsockopt(socket, SOL_SOCKET, SO_REUSEADDR, &yes, sizeof yes);
+    });
     server.set_pre_routing_handler([](const httplib::Request& req, httplib::Response& res) {
         if (req.target.empty() || req.target.front() != '/') {
             refuse(res, 400, "only paths are served, not absolute URLs");

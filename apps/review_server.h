@@ -20,7 +20,8 @@ public:
     ReviewServer(const ReviewServer&) = delete;
     ReviewServer& operator=(const ReviewServer&) = delete;
 
-    // Binds `address`:`port` (port 0: a free port). Returns the port, or -1 when binding failed.
+    // Binds `address`:`port` (port 0: a free port). Returns the port, or -1 when binding failed
+    // (another server listens there); a port a stopped server released binds again at once.
     int bind(const std::string& address, int port);
     // Serves until stop() (from another thread or a signal handler's thread).
     void serve();

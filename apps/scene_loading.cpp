@@ -4,9 +4,13 @@
 #include <cstdio>
 #include <filesystem>
 #include <map>
+#include <optional>
+#include <set>
+#include <utility>
 #include <vector>
 
 #include "delegate/render_index.h"
+#include "scene/asset_values.h"
 #include "scene/layer_file.h"
 #include "scene/usda_parser.h"
 #include "scene/usdz_package.h"
@@ -33,34 +37,44 @@ bool isFieldFile(const usd::Stage& stage, const usd::AssetReference& a) {
     return prim && delegate::isFieldAssetType(prim->typeName);
 }
 
-// Whether `value` (an asset, an asset array, or a list or dictionary holding them) names the
-// resolved asset path `resolved` (composition anchors asset values in place: scene/prim_composer).
-bool namesAsset(const usd::Value& value, const std::string& resolved) {
-    switch (value.kind) {
-        case usd::ValueKind::Asset:
-            return std::find(value.strings.begin(), value.strings.end(), resolved) != value.strings.end();
-        case usd::ValueKind::List:
-            return std::any_of(value.items.begin(), value.items.end(),
-                               [&](const usd::Value& item) { return namesAsset(item, resolved); });
-        case usd::ValueKind::Dictionary:
-            return value.dictionary &&
-                   std::any_of(value.dictionary->begin(), value.dictionary->end(),
-                               [&](const auto& entry) { return namesAsset(entry.second, resolved); });
-        default: return false;
-    }
-}
+// Whether asset-valued attributes read their assets at the frames rendered (see checkAssets): each
+// attribute is resolved at the frames once, however many of the stage's asset references name it.
+class AssetsReadAtFrames {
+public:
+    AssetsReadAtFrames(const usd::Stage& stage, const std::vector<double>& frames) : stage_(stage), frames_(frames) {}
 
-// Whether an asset-valued attribute's asset `a` is read at one of `frames` (see checkAssets).
-bool readAtFrames(const usd::Stage& stage, const usd::AssetReference& a, const std::vector<double>& frames) {
-    if (frames.empty()) return true;
-    const usd::PrimSpec* prim = stage.prim(a.primPath);
-    const usd::AttributeSpec* attribute = prim ? prim->attribute(a.property) : nullptr;
-    if (!attribute) return true;  // not an attribute of a composed prim: counted as read
-    return std::any_of(frames.begin(), frames.end(), [&](double frame) {
-        const std::optional<usd::Value> value = usd::Stage::resolve(*attribute, usd::renderReadTime(frame));
-        return value && namesAsset(*value, a.resolved);
-    });
-}
+    // Whether the attribute of reference `a` names its asset at one of the frames; true when there
+    // are no frames, or `a` is not an attribute of a composed prim.
+    bool reads(const usd::AssetReference& a) {
+        if (frames_.empty()) return true;
+        auto [it, inserted] = read_.try_emplace({a.primPath, a.property});
+        if (inserted) it->second = readAssets(a);
+        return !it->second || it->second->contains(a.resolved);
+    }
+
+private:
+    // The resolved asset paths the attribute names at the frames; nullopt: not an attribute.
+    std::optional<std::set<std::string>> readAssets(const usd::AssetReference& a) const {
+        const usd::PrimSpec* prim = stage_.prim(a.primPath);
+        const usd::AttributeSpec* attribute = prim ? prim->attribute(a.property) : nullptr;
+        if (!attribute) return std::nullopt;
+        std::set<std::string> read;
+        for (double frame : frames_) {
+            const std::optional<usd::Value> value = usd::Stage::resolve(*attribute, usd::renderReadTime(frame));
+            // Composition anchors asset values in place (scene/prim_composer): they hold resolved paths.
+            if (value)
+                usd::anyAssetValue(*value, [&](const usd::Value& asset) {
+                    read.insert(asset.strings.begin(), asset.strings.end());
+                    return false;
+                });
+        }
+        return read;
+    }
+
+    const usd::Stage& stage_;
+    const std::vector<double>& frames_;
+    std::map<std::pair<std::string, std::string>, std::optional<std::set<std::string>>> read_;
+};
 
 // What is wrong with an asset file the stage cannot use: an entry of a USDZ package that is there
 // but cannot be read (compressed, encrypted) says so, naming the package and the entry; any other
@@ -81,6 +95,7 @@ int checkAssets(const usd::Stage& stage, WarningLog& warnings, MissingAssets mis
     std::vector<std::string> files;  // in the order first met
     std::map<std::string, AssetUse> uses;
     const std::vector<usd::AssetReference> references = stage.assetReferences();
+    AssetsReadAtFrames readAtFrames(stage, frames);
     for (const usd::AssetReference& a : references) {
         const bool arc =
             a.property == "subLayers" || a.property == "references" || a.property == "payload" || a.property == "clips";
@@ -97,7 +112,7 @@ int checkAssets(const usd::Stage& stage, WarningLog& warnings, MissingAssets mis
         // at the frames rendered. Other asset-valued attributes (model:cardTexture*, a
         // SpatialAudio's filePath, documentation) only warn.
         use.rendered = use.rendered || arc ||
-                       ((a.property.starts_with("inputs:") || isFieldFile(stage, a)) && readAtFrames(stage, a, frames));
+                       ((a.property.starts_with("inputs:") || isFieldFile(stage, a)) && readAtFrames.reads(a));
     }
     std::size_t missingCount = 0, unsupportedCount = 0;
     for (const std::string& file : files) {

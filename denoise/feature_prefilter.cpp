@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
+#include <utility>
 
 namespace fluence::denoise {
 
@@ -49,8 +50,8 @@ std::vector<float> noiseLevel(const std::vector<float>& variance, const std::vec
     return level;
 }
 
-// One feature group's planes `in` filtered into `out` (which holds them already: a pixel of noise
-// level 0 keeps them), for the rows [rowBegin, rowEnd).
+// One feature group's planes `in` filtered into `out` (planes of their size; a pixel of noise
+// level 0 keeps its features), for the rows [rowBegin, rowEnd).
 struct GroupFilter {
     const std::vector<float>* in;
     const std::vector<float>& level;
@@ -63,7 +64,10 @@ struct GroupFilter {
             for (int x = 0; x < width; ++x) {
                 const std::size_t i = std::size_t(y) * width + x;
                 const float vi = level[i];
-                if (!(vi > 0.0f)) continue;
+                if (!(vi > 0.0f)) {
+                    for (int c = 0; c < 3; ++c) out[c][i] = in[c][i];
+                    continue;
+                }
                 float sums[3] = {0.0f, 0.0f, 0.0f}, weightSum = 0.0f;
                 for (int yy = std::max(0, y - radius); yy <= std::min(height - 1, y + radius); ++yy)
                     for (int xx = std::max(0, x - radius); xx <= std::min(width - 1, x + radius); ++xx) {
@@ -86,18 +90,21 @@ void prefilterFeatures(const DenoiseBuffers& buffers, const DenoiseSettings& set
     if (buffers.albedoVariance.empty()) return;
     const std::vector<float>* groups[2] = {&buffers.albedoVariance, &buffers.normalVariance};
     for (std::size_t g = 0; g < 2; ++g) {
-        const std::vector<float> in[3] = {planes.features[3 * g], planes.features[3 * g + 1],
-                                          planes.features[3 * g + 2]};
-        const std::vector<float> level = noiseLevel(*groups[g], in, planes.width, planes.height);
-        const GroupFilter filter{in,
+        std::vector<float>* group = &planes.features[3 * g];  // read while the filter writes `out`
+        const std::vector<float> level = noiseLevel(*groups[g], group, planes.width, planes.height);
+        if (std::none_of(level.begin(), level.end(), [](float v) { return v > 0.0f; })) continue;
+        std::vector<float> out[3];
+        for (std::vector<float>& plane : out) plane.resize(level.size());
+        const GroupFilter filter{group,
                                  level,
-                                 &planes.features[3 * g],
+                                 out,
                                  planes.width,
                                  planes.height,
                                  settings.featureRadius,
                                  settings.featureK * settings.featureK};
         tbb::parallel_for(tbb::blocked_range<int>(0, planes.height),
                           [&](const tbb::blocked_range<int>& rows) { filter(rows.begin(), rows.end()); });
+        for (int c = 0; c < 3; ++c) group[c] = std::move(out[c]);
     }
 }
 

@@ -126,7 +126,25 @@ const auto& remembered(const Key& key, Compute&& compute) {
 // nodes per layer is too much to redo at every hit.
 class LightFromBelow {
 public:
-    LightFromBelow(const DiffuseBase& base, const MaterialParams& m) : base_(base), m_(m) {}
+    LightFromBelow(const DiffuseBase& base, const MaterialParams& m) : base_(base) {
+        if (isBlack(base_.transmitted)) return;  // nothing reaches the layers from below: no key needed
+        key_ = {0.0f,
+                m.sheen,
+                m.sheenColor.x,
+                m.sheenColor.y,
+                m.sheenColor.z,
+                m.sheenRoughness,
+                m.ior,
+                m.specular,
+                m.specularColor.x,
+                m.specularColor.y,
+                m.specularColor.z,
+                float(m.specularWorkflow),
+                m.roughness,
+                m.anisotropy,
+                m.coatIor,
+                m.coatRoughness};
+    }
 
     // The DiffuseBase of the layer `top` laid next (the material's next layer, in the order above);
     // what it lets through reaches the next one.
@@ -134,23 +152,8 @@ public:
     DiffuseBase under(const Top& top) {
         DiffuseBase layer = base_;
         if (isBlack(base_.transmitted)) return layer;
-        const std::array<float, 16> key = {float(layers_),
-                                           m_.sheen,
-                                           m_.sheenColor.x,
-                                           m_.sheenColor.y,
-                                           m_.sheenColor.z,
-                                           m_.sheenRoughness,
-                                           m_.ior,
-                                           m_.specular,
-                                           m_.specularColor.x,
-                                           m_.specularColor.y,
-                                           m_.specularColor.z,
-                                           float(m_.specularWorkflow),
-                                           m_.roughness,
-                                           m_.anisotropy,
-                                           m_.coatIor,
-                                           m_.coatRoughness};
-        const Passed& passed = remembered(key, [&] {
+        key_[0] = float(layers_);
+        const Passed& passed = remembered(key_, [&] {
             Passed p;
             if (reaching_)
                 p.reaching = *reaching_;
@@ -165,7 +168,9 @@ public:
             p.average = albedo_table::rgbCosineWeightedAverage(reflected);
             return p;
         });
-        reaching_ = passed.reaching;
+        // The remembered entry is read by the next layer's computation only, before remembered()
+        // replaces any entry with that layer's: it outlives the read.
+        reaching_ = &passed.reaching;
         ++layers_;
         layer.reachingAverage = passed.average;
         return layer;
@@ -177,9 +182,10 @@ private:
         std::array<RGB, albedo_table::kCosines> reaching{};  // what reaches the next layer, per node
     };
     DiffuseBase base_;
-    const MaterialParams& m_;
-    int layers_ = 0;                                                   // laid so far
-    std::optional<std::array<RGB, albedo_table::kCosines>> reaching_;  // set over a transmitting base
+    // The number of layers laid so far, then the parameters every layer's Passed depends on.
+    std::array<float, 16> key_{};
+    int layers_ = 0;
+    const std::array<RGB, albedo_table::kCosines>* reaching_ = nullptr;  // what passed the last layer laid
 };
 
 // The layers over the diffuse base, as far as the specular coating: the sheen, then the
@@ -223,18 +229,19 @@ void addLayeredDiffusePart(CoatReturn& coatReturn, float weight, const MaterialP
         nodeAlbedos(layer, lobe, complement);
         coatReturn.addPart(
             weight, [&](int i) { return ggxReflectionSpread(i, alpha, fresnel.f0.x); }, lobe, complement,
-            reflected / (RGB(1.0f) - layer.averageReflectance()));
+            reflected / (RGB(1.0f) - layer.averageReflectance()), CoatReturn::ShapedLobe::Diffuse);
     } else if (!isBlack(sheen)) {
         const CharlieSheenBsdf layer(sheen, m.sheenRoughness);
         nodeAlbedos(layer, lobe, complement);
         coatReturn.addPart(
             weight, [&](int i) { return sheenReflectionSpread(i, m.sheenRoughness); }, lobe, complement,
-            reflected / (RGB(1.0f) - layer.averageReflectance()));
+            reflected / (RGB(1.0f) - layer.averageReflectance()), CoatReturn::ShapedLobe::Diffuse);
     } else {
         lobe.fill(RGB(0.0f));
         complement.fill(RGB(1.0f));
         coatReturn.addPart(
-            weight, [](int) { return ElevationWeights{}; }, lobe, complement, reflected);
+            weight, [](int) { return ElevationWeights{}; }, lobe, complement, reflected,
+            CoatReturn::ShapedLobe::Diffuse);
     }
 }
 
@@ -253,7 +260,8 @@ void addGlassPart(CoatReturn& coatReturn, float weight, const MaterialParams& m,
             complement[i] = RGB(1.0f - ggxDielectricAlbedo(albedo_table::cosineAt(i), alpha, m.ior));
     }
     coatReturn.addPart(
-        weight, [&](int i) { return ggxReflectionSpread(i, alpha, fresnel.f0.x); }, lobe, complement, scale);
+        weight, [&](int i) { return ggxReflectionSpread(i, alpha, fresnel.f0.x); }, lobe, complement, scale,
+        CoatReturn::ShapedLobe::Glossy);
 }
 
 // A thin-walled sheet's part: its reflection, single-scattering and, rough, the reflected part of
@@ -291,7 +299,7 @@ void addMetalPart(CoatReturn& coatReturn, float weight, const MaterialParams& m,
     const float eAvg = ggxReflectionAverageAlbedo(alpha, 1.0f);
     coatReturn.addPart(
         weight, [&](int i) { return ggxReflectionSpread(i, alpha, 1.0f); }, lobe, complement,
-        smooth ? RGB(0.0f) : multipleScatteringAlbedo(f0, eAvg) / (1.0f - eAvg));
+        smooth ? RGB(0.0f) : multipleScatteringAlbedo(f0, eAvg) / (1.0f - eAvg), CoatReturn::ShapedLobe::Glossy);
 }
 
 // What the clear coat's underside returns to a base with a glossy part (a plastic's specular

@@ -28,17 +28,17 @@ std::optional<float> triangleDistance(const Vec3f& o, const Vec3f& d, const Vec3
     return t;
 }
 
-// The nearest distance along o + t d to the sphere, t in (tMin, tMax).
-std::optional<float> sphereDistance(const Vec3f& o, const Vec3f& d, const Vec3f& centre, float radius, float tMin,
-                                    float tMax) {
+// The distance along o + t d at which the ray enters the sphere, t in (tMin, tMax): the only
+// root where it can meet the sphere's outside (the other is where it leaves).
+std::optional<float> sphereEntry(const Vec3f& o, const Vec3f& d, const Vec3f& centre, float radius, float tMin,
+                                 float tMax) {
     const Vec3f oc = o - centre;
     const float a = dot(d, d), b = dot(oc, d), c = dot(oc, oc) - radius * radius;
     const float discriminant = b * b - a * c;
     if (!(discriminant >= 0.0f) || a == 0.0f) return std::nullopt;
-    const float root = std::sqrt(discriminant);
-    for (float t : {(-b - root) / a, (-b + root) / a})
-        if (t > tMin && t < tMax) return t;
-    return std::nullopt;
+    const float t = (-b - std::sqrt(discriminant)) / a;
+    if (!(t > tMin && t < tMax)) return std::nullopt;
+    return t;
 }
 
 void boundsOfShape(const RTCBoundsFunctionArguments* args) {
@@ -91,9 +91,13 @@ std::optional<ShapeHit> MovingLightShape::intersectFrame(const Vec3f& o, const V
             return ShapeHit{*t, normalize(frame_.front)};
         }
         case LightSurface::Kind::Sphere: {
-            const std::optional<float> t = sphereDistance(o, d, frame_.centre, frame_.radius, tMin, tMax);
+            // It emits outwards only: a ray from inside passes through it, as through a still
+            // sphere light (render_scene.cpp's filter; render/light_shape.h, THE BACK OF A LIGHT).
+            const std::optional<float> t = sphereEntry(o, d, frame_.centre, frame_.radius, tMin, tMax);
             if (!t) return std::nullopt;
-            return ShapeHit{*t, normalize(o + d * *t - frame_.centre)};
+            const Vec3f outwards = normalize(o + d * *t - frame_.centre);
+            if (!meetsFront(d, outwards)) return std::nullopt;
+            return ShapeHit{*t, outwards};
         }
         case LightSurface::Kind::Analytic: return frame_.shape->intersect(o, d, tMin, tMax);
         case LightSurface::Kind::None: break;

@@ -2,7 +2,8 @@
 // Embree user geometry whose box holds the light's surface over the whole shutter, and whose
 // intersection takes the ray into the frame's light by the inverse of the light's motion at the
 // ray's time and meets the frame's surface exactly there (the rect's quad with its one-sided rule,
-// render/light_shape.h; the sphere; the disk's and cylinder's exact shapes). So a ray sees the
+// render/light_shape.h; the sphere's outside, as a still sphere light's; the disk's and
+// cylinder's exact shapes). So a ray sees the
 // light where sampling puts it at the same time, the shape and the samples never disagree.
 #pragma once
 

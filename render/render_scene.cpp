@@ -168,25 +168,28 @@ float hashOfHit(const float (&ray)[6], unsigned geomID, unsigned primID, unsigne
     return toUnitFloat(h);
 }
 
-// Embree filter function of a quad light's triangles (user data: its emitting direction, a Vec3f):
-// a ray that meets the back of the light passes through it (render/light_shape.h, THE BACK OF A
-// LIGHT).
-void frontSideFilter(const RTCFilterFunctionNArguments* args) {
-    if (args->N != 1 || !args->valid[0]) return;  // the scenes are only traced one ray at a time
+// Rejects the candidate hit of a filter function (called for one ray) where the ray meets the back
+// of a light shape whose emitting side faces `front` (render/light_shape.h, THE BACK OF A LIGHT):
+// the ray passes through it.
+void passThroughBack(const RTCFilterFunctionNArguments* args, const Vec3f& front) {
     const Vec3f direction(RTCRayN_dir_x(args->ray, 1, 0), RTCRayN_dir_y(args->ray, 1, 0),
                           RTCRayN_dir_z(args->ray, 1, 0));
-    if (!meetsFront(direction, *static_cast<const Vec3f*>(args->geometryUserPtr))) args->valid[0] = 0;
+    if (!meetsFront(direction, front)) args->valid[0] = 0;
+}
+
+// Embree filter function of a quad light's triangles (user data: its emitting direction, a Vec3f).
+void frontSideFilter(const RTCFilterFunctionNArguments* args) {
+    if (args->N != 1 || !args->valid[0]) return;  // the scenes are only traced one ray at a time
+    passThroughBack(args, *static_cast<const Vec3f*>(args->geometryUserPtr));
 }
 
 // Embree filter function of a sphere light: it emits outwards only (SphereLight::sample, power and
-// sampleEmission), so a ray from inside meets the back of its surface and passes through it (THE
-// BACK OF A LIGHT). Embree's geometric normal of a sphere points outwards.
+// sampleEmission), so a ray from inside passes through its surface. Embree's geometric normal of
+// a sphere points outwards.
 void outerSideFilter(const RTCFilterFunctionNArguments* args) {
     if (args->N != 1 || !args->valid[0]) return;  // the scenes are only traced one ray at a time
-    const Vec3f direction(RTCRayN_dir_x(args->ray, 1, 0), RTCRayN_dir_y(args->ray, 1, 0),
-                          RTCRayN_dir_z(args->ray, 1, 0));
-    const Vec3f outwards(RTCHitN_Ng_x(args->hit, 1, 0), RTCHitN_Ng_y(args->hit, 1, 0), RTCHitN_Ng_z(args->hit, 1, 0));
-    if (!meetsFront(direction, outwards)) args->valid[0] = 0;
+    passThroughBack(args,
+                    Vec3f(RTCHitN_Ng_x(args->hit, 1, 0), RTCHitN_Ng_y(args->hit, 1, 0), RTCHitN_Ng_z(args->hit, 1, 0)));
 }
 
 // Embree filter function of a mesh whose material may have holes: rejects the candidate hit

@@ -9,6 +9,7 @@
 #include <unordered_set>
 
 #include "scene/asset_path.h"
+#include "scene/asset_values.h"
 #include "scene/list_op.h"
 #include "scene/namespace_remap.h"
 
@@ -24,19 +25,8 @@ const std::unordered_set<std::string> kCompositionFields = {"references",  "payl
                                                             "specializes", "variantSets", "variants", "nameChildren",
                                                             "properties",  "relocates",   "clips",    "clipSets"};
 
-bool holdsAsset(const Value& value) {
-    switch (value.kind) {
-        case ValueKind::Asset: return true;
-        case ValueKind::List: return std::any_of(value.items.begin(), value.items.end(), holdsAsset);
-        case ValueKind::Dictionary:
-            return value.dictionary && std::any_of(value.dictionary->begin(), value.dictionary->end(),
-                                                   [](const auto& entry) { return holdsAsset(entry.second); });
-        default: return false;
-    }
-}
-
 void anchorInPlace(Value& value, const Layer& layer, Found* found) {
-    if (!holdsAsset(value)) return;
+    if (!anyAssetValue(value, [](const Value&) { return true; })) return;
     switch (value.kind) {
         case ValueKind::Asset:
             for (std::string& path : value.strings) {

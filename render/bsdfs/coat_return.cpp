@@ -21,11 +21,15 @@ public:
     ReturnedLightBsdf(const Bsdf& stack, const CoatReturn::Lobes& lobes)
         : stack_(&stack), lobes_(lobes), twoSided_(!(stack.flags() & kBsdfTransmission)) {}
 
-    unsigned flags() const override { return stack_->flags() | kBsdfReflection | kBsdfDiffuse; }
+    unsigned flags() const override { return stack_->flags() | kBsdfReflection | lobes_.kinds; }
     RGB f(const Vec3f& wo, const Vec3f& wi) const override { return stack_->f(wo, wi) + returned(wo, wi); }
     LobeSplit fByKind(const Vec3f& wo, const Vec3f& wi) const override {
         LobeSplit split = stack_->fByKind(wo, wi);
-        split.diffuse += returned(wo, wi);
+        const RGB light = returned(wo, wi);
+        if (isBlack(light)) return split;
+        const RGB diffuse = light * diffuseShare(wo, wi);
+        split.diffuse += diffuse;
+        split.glossy += light - diffuse;
         return split;
     }
     float pdf(const Vec3f& wo, const Vec3f& wi) const override {
@@ -70,6 +74,11 @@ private:
         return (sameSide ? lobes_.same[side] : lobes_.crossed) * lossAt(side, std::abs(wo.z)) *
                lossAt(exit, std::abs(wi.z));
     }
+    // The share of the returned light between wo and wi labelled diffuse (coat_return.h, LABELS).
+    RGB diffuseShare(const Vec3f& wo, const Vec3f& wi) const {
+        const int side = sideOf(wo), exit = wo.z * wi.z > 0.0f ? side : 1 - side;
+        return side == exit ? lobes_.diffuseShare[side] : (lobes_.diffuseShare[0] + lobes_.diffuseShare[1]) * 0.5f;
+    }
     float returnProbability(const Vec3f& wo) const { return lobeProbability(lossAt(sideOf(wo), std::abs(wo.z))); }
     std::optional<BsdfSample> whole(const Vec3f& wo, const Vec3f& wi, float eta) const {
         const float density = pdf(wo, wi);
@@ -86,8 +95,9 @@ private:
 
 CoatReturn::CoatReturn(const std::array<float, kCosines>& coatAlbedo) : coatAlbedo_(coatAlbedo) {}
 
-void CoatReturn::addMeetingCoat(NodeValues& into, float weight, FunctionRef<ElevationWeights(int)> spreadFrom,
-                                const NodeValues& lobe, const NodeValues& g, const RGB& scale) const {
+void CoatReturn::addMeetingCoat(NodeValues& into, NodeValues* shapedInto, float weight,
+                                FunctionRef<ElevationWeights(int)> spreadFrom, const NodeValues& lobe,
+                                const NodeValues& g, const RGB& scale) const {
     NodeValues coatTimesG;
     for (int i = 0; i < kCosines; ++i) coatTimesG[i] = g[i] * coatAlbedo_[i];
     const RGB diffuseShare = scale * rgbCosineWeightedAverage(coatTimesG);
@@ -96,12 +106,14 @@ void CoatReturn::addMeetingCoat(NodeValues& into, float weight, FunctionRef<Elev
         float meetsCoat = 0.0f;
         for (int k = 0; k < kCosines; ++k) meetsCoat += spread[k] * coatAlbedo_[k];
         into[i] += (lobe[i] * meetsCoat + g[i] * diffuseShare) * weight;
+        if (shapedInto) (*shapedInto)[i] += g[i] * diffuseShare * weight;
     }
 }
 
 void CoatReturn::addPart(float weight, FunctionRef<ElevationWeights(int)> spreadFrom, const NodeValues& lobe,
-                         const NodeValues& g, const RGB& scale) {
-    addMeetingCoat(returned_, weight, spreadFrom, lobe, g, scale);
+                         const NodeValues& g, const RGB& scale, ShapedLobe shaped) {
+    addMeetingCoat(returned_, shaped == ShapedLobe::Diffuse ? &returnedDiffuse_ : nullptr, weight, spreadFrom, lobe, g,
+                   scale);
     const RGB gAverage = rgbCosineWeightedAverage(g);
     for (int i = 0; i < kCosines; ++i) reflectance_[i] += (lobe[i] + scale * g[i] * gAverage) * weight;
     updateLobes();
@@ -110,13 +122,13 @@ void CoatReturn::addPart(float weight, FunctionRef<ElevationWeights(int)> spread
 void CoatReturn::addSheetPart(float weight, FunctionRef<ElevationWeights(int)> spreadFrom, const NodeValues& reflected,
                               const NodeValues& straight, const NodeValues& g, const RGB& reflectedScale,
                               const RGB& transmittedScale) {
-    addPart(weight, spreadFrom, reflected, g, reflectedScale);
+    addPart(weight, spreadFrom, reflected, g, reflectedScale, ShapedLobe::Glossy);
     const auto atItsOwnElevation = [](int i) {
         ElevationWeights spread{};
         spread[i] = 1.0f;
         return spread;
     };
-    addMeetingCoat(returnedBelow_, weight, atItsOwnElevation, straight, g, transmittedScale);
+    addMeetingCoat(returnedBelow_, nullptr, weight, atItsOwnElevation, straight, g, transmittedScale);
     const RGB gAverage = rgbCosineWeightedAverage(g);
     for (int i = 0; i < kCosines; ++i) transmittance_[i] += (straight[i] + transmittedScale * g[i] * gAverage) * weight;
     updateLobes();
@@ -136,6 +148,12 @@ void CoatReturn::updateLobes() {
     // c_same = (1 - X / L) / L and c_crossed = X / (L L').
     lobes_.same = {(RGB(1.0f) - exchanged / l0) / l0, (RGB(1.0f) - exchanged / l1) / l1};
     lobes_.crossed = exchanged / (l0 * l1);
+    NodeValues diffuseLoss;
+    for (int i = 0; i < kCosines; ++i) diffuseLoss[i] = returnedDiffuse_[i] * (1.0f - coatAlbedo_[i]);
+    const RGB share = vmin(rgbCosineWeightedAverage(diffuseLoss) / l0, RGB(1.0f));
+    lobes_.diffuseShare = {share, RGB(0.0f)};
+    const bool allDiffuse = share.x == 1.0f && share.y == 1.0f && share.z == 1.0f && isBlack(back);
+    lobes_.kinds = (isBlack(share) ? 0u : kBsdfDiffuse) | (allDiffuse ? 0u : kBsdfGlossy);
     lobes_.crossingProbability = {std::clamp(lobeProbability(exchanged / l0), 0.0f, 1.0f),
                                   std::clamp(lobeProbability(exchanged / l1), 0.0f, 1.0f)};
 }

@@ -76,6 +76,15 @@
 // index 1.5 under a coat of 1.5, where the series puts 0.682: the loss lies at grazing angles,
 // where the sheet reflects most).
 //
+// LABELS (light path expressions, render/bsdf.h THE LOBE SPLIT): the returned light is credited
+// to the kind of lobe of the base it comes from, as the layer's normalisation over a diffuse base
+// credits its light to that base: the diffuse-shaped lobe of a diffuse base (a plastic's or a
+// sheen's base, the diffuse base alone) is diffuse; the glossy lobes, and the diffuse-shaped lobes
+// that stand for a glossy lobe's multiple scattering (a metal's, glass's, a sheet's), are glossy.
+// A side's diffuse share is that of its cosine-weighted loss (0 on a sheet's uncoated side,
+// which only glossy lobes reach); a lobe between the sides takes the mean of the two sides'
+// shares, so the split stays symmetric in wo and wi.
+//
 // Approximations: the base is isotropic (an anisotropic lobe spreads as its geometric-mean
 // width), a coloured specular layer spreads as the one of its first channel's index, a coloured
 // metal as its bare lobe, a sheet's reflection as the interface's of its faces (R_s spreads as F);
@@ -104,11 +113,15 @@ public:
     // coatAlbedo: the coat's directional albedo A at each mu node (cosineAt(i)).
     explicit CoatReturn(const std::array<float, albedo_table::kCosines>& coatAlbedo);
 
+    // The kind of lobe a part's diffuse-shaped lobe is (LABELS above): a diffuse base seen through
+    // the part's glossy lobe, or the glossy lobe's own multiple scattering.
+    enum class ShapedLobe { Diffuse, Glossy };
+
     // A part of the base of mix weight `weight`: a lobe of albedo lobe[i] at the mu nodes that
     // spreads the light arriving at node i as spreadFrom(i) does (render/bsdfs/ggx_redistribution.h,
-    // sheen_redistribution.h), and the diffuse-shaped lobe scale g(wo) g(wi) / pi.
+    // sheen_redistribution.h), and the diffuse-shaped lobe scale g(wo) g(wi) / pi, of kind `shaped`.
     void addPart(float weight, FunctionRef<ElevationWeights(int)> spreadFrom, const NodeValues& lobe,
-                 const NodeValues& g, const RGB& scale);
+                 const NodeValues& g, const RGB& scale, ShapedLobe shaped);
     // A thin sheet of mix weight `weight`: on the coated side a part as addPart's (reflected, g,
     // reflectedScale); from the other side the share straight[i] that crosses it straight and the
     // transmitted lobe transmittedScale g(wo) g(wi) / pi.
@@ -127,17 +140,22 @@ public:
         std::array<RGB, 2> same{};
         RGB crossed{0.0f};
         std::array<float, 2> crossingProbability{};  // the share of the returned light that changes side
+        std::array<RGB, 2> diffuseShare{};           // per side, the share of its loss labelled diffuse
+        unsigned kinds = 0;                          // BsdfFlags: the kinds of lobe the light returns by
     };
 
 private:
-    // Adds the light a part sends into the coat, per unit of the light it receives, to into[i].
-    void addMeetingCoat(NodeValues& into, float weight, FunctionRef<ElevationWeights(int)> spreadFrom,
-                        const NodeValues& lobe, const NodeValues& g, const RGB& scale) const;
+    // Adds the light a part sends into the coat, per unit of the light it receives, to into[i], and
+    // what of it its diffuse-shaped lobe sends to shapedInto[i] (when not null).
+    void addMeetingCoat(NodeValues& into, NodeValues* shapedInto, float weight,
+                        FunctionRef<ElevationWeights(int)> spreadFrom, const NodeValues& lobe, const NodeValues& g,
+                        const RGB& scale) const;
     // The lobes from the parts added so far.
     void updateLobes();
 
     std::array<float, albedo_table::kCosines> coatAlbedo_;
     NodeValues returned_{};                       // B at the mu nodes
+    NodeValues returnedDiffuse_{};                // the part of B from diffuse lobes (LABELS)
     NodeValues returnedBelow_{};                  // what the sheet lets through into the coat from its other side
     NodeValues reflectance_{}, transmittance_{};  // the base's r(mu) and the sheets' t(mu)
     Lobes lobes_;

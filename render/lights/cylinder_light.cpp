@@ -89,9 +89,9 @@ RGB CylinderLight::emitted(const LightHit& hit, const Vec3f& wo) const {
     return dot(hit.normal, wo) > 0.0f ? radiance_ * shaping_.factor(wo) : RGB(0.0f);
 }
 
-float CylinderLight::power(const SceneBounds&) const {
-    return luminance(radiance_) * 2.0f * kPi * radius_ * length_ * kPi * shaping_.powerFraction(false);
-}
+float CylinderLight::unshapedPower() const { return luminance(radiance_) * 2.0f * kPi * radius_ * length_ * kPi; }
+
+float CylinderLight::power(const SceneBounds&) const { return unshapedPower() * shaping_.powerFraction(false); }
 
 void CylinderLight::shapeBounds(Vec3f& lo, Vec3f& hi) const {
     segmentBounds(centre_, frame_.n, length_, radius_, lo, hi);
@@ -100,7 +100,7 @@ void CylinderLight::shapeBounds(Vec3f& lo, Vec3f& hi) const {
 std::optional<LightBounds> CylinderLight::bounds() const {
     LightBounds b;
     shapeBounds(b.lo, b.hi);
-    b.phi = luminance(radiance_) * 2.0f * kPi * radius_ * length_ * kPi;
+    b.phi = unshapedPower();
     return shaping_.narrow(b, false);
 }
 

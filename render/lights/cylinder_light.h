@@ -68,6 +68,8 @@ public:
     float length() const { return length_; }
 
 private:
+    // The power it emits without its shaping (UsdLux ShapingAPI), which power() scales and bounds() bounds.
+    float unshapedPower() const;
     // Half the angle the cross-section subtends at p, across the axis (0 when p is within the
     // radius of the axis: only the open ends are in view).
     float halfAngleAcross(const Vec3f& p) const;

@@ -40,9 +40,9 @@ RGB DiskLight::emitted(const LightHit&, const Vec3f& wo) const {
     return dot(frame_.n, wo) > 0.0f ? radiance_ * shaping_.factor(wo) : RGB(0.0f);
 }
 
-float DiskLight::power(const SceneBounds&) const {
-    return luminance(radiance_) * area_ * kPi * shaping_.powerFraction(true);
-}
+float DiskLight::unshapedPower() const { return luminance(radiance_) * area_ * kPi; }
+
+float DiskLight::power(const SceneBounds&) const { return unshapedPower() * shaping_.powerFraction(true); }
 
 void DiskLight::shapeBounds(Vec3f& lo, Vec3f& hi) const {
     // A disk reaches r * sqrt(1 - n_i^2) from its centre along axis i.
@@ -57,7 +57,7 @@ void DiskLight::shapeBounds(Vec3f& lo, Vec3f& hi) const {
 std::optional<LightBounds> DiskLight::bounds() const {
     LightBounds b;
     shapeBounds(b.lo, b.hi);
-    b.phi = luminance(radiance_) * area_ * kPi;
+    b.phi = unshapedPower();
     b.axis = frame_.n;
     b.cosThetaO = 1.0f;
     return shaping_.narrow(b, true);

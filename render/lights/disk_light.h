@@ -46,6 +46,8 @@ public:
     float radius() const { return radius_; }
 
 private:
+    // The power it emits without its shaping (UsdLux ShapingAPI), which power() scales and bounds() bounds.
+    float unshapedPower() const;
     Vec3f centre_;
     Frame frame_;  // n: emitting direction
     float radius_, area_;

@@ -34,14 +34,14 @@ std::optional<LightSample> LineLight::sample(const Vec3f& p, Vec2f u) const {
     return LightSample{linearIntensity_ * shaping_.factor(-wi) * ((phi1 - phi0) / dist), wi, dist, 1.0f, true};
 }
 
-float LineLight::power(const SceneBounds&) const {
-    return luminance(linearIntensity_) * kPi * kPi * length_ * shaping_.powerFraction(false);
-}
+float LineLight::unshapedPower() const { return luminance(linearIntensity_) * kPi * kPi * length_; }
+
+float LineLight::power(const SceneBounds&) const { return unshapedPower() * shaping_.powerFraction(false); }
 
 std::optional<LightBounds> LineLight::bounds() const {
     LightBounds b;
     segmentBounds(start_ + axis_ * (0.5f * length_), axis_, length_, 0.0f, b.lo, b.hi);
-    b.phi = luminance(linearIntensity_) * kPi * kPi * length_;
+    b.phi = unshapedPower();
     return shaping_.narrow(b, false);
 }
 

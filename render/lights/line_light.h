@@ -23,6 +23,8 @@ public:
     const RGB& linearIntensity() const { return linearIntensity_; }
 
 private:
+    // The power it emits without its shaping (UsdLux ShapingAPI), which power() scales and bounds() bounds.
+    float unshapedPower() const;
     Vec3f start_, axis_;  // the line runs from start_ along unit axis_ for length_
     float length_;
     RGB linearIntensity_;

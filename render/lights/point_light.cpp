@@ -22,14 +22,14 @@ std::optional<LightSample> PointLight::sample(const Vec3f& p, Vec2f) const {
     return LightSample{intensity_ * shaping_.factor(-wi) / dist2, wi, dist, 1.0f, true};
 }
 
-float PointLight::power(const SceneBounds&) const {
-    return luminance(intensity_) * 4.0f * kPi * shaping_.powerFraction(false);
-}
+float PointLight::unshapedPower() const { return luminance(intensity_) * 4.0f * kPi; }
+
+float PointLight::power(const SceneBounds&) const { return unshapedPower() * shaping_.powerFraction(false); }
 
 std::optional<LightBounds> PointLight::bounds() const {
     LightBounds b;
     b.lo = b.hi = position_;
-    b.phi = luminance(intensity_) * 4.0f * kPi;
+    b.phi = unshapedPower();
     return shaping_.narrow(b, false);
 }
 

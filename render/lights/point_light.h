@@ -27,6 +27,8 @@ public:
     const RGB& intensity() const { return intensity_; }
 
 private:
+    // The power it emits without its shaping (UsdLux ShapingAPI), which power() scales and bounds() bounds.
+    float unshapedPower() const;
     Vec3f position_;
     RGB intensity_;
     LightShaping shaping_;

@@ -86,7 +86,9 @@ RGB RectLight::emitted(const LightHit& hit, const Vec3f& wo) const {
     return dot(normal_, wo) > 0.0f ? radianceAt(textureCoordinates(hit.point), wo) : RGB(0.0f);
 }
 
-float RectLight::power(const SceneBounds&) const { return meanLuminance_ * area_ * kPi * shaping_.powerFraction(true); }
+float RectLight::unshapedPower() const { return meanLuminance_ * area_ * kPi; }
+
+float RectLight::power(const SceneBounds&) const { return unshapedPower() * shaping_.powerFraction(true); }
 
 std::optional<LightBounds> RectLight::bounds() const {
     LightBounds b;
@@ -95,7 +97,7 @@ std::optional<LightBounds> RectLight::bounds() const {
         b.lo = vmin(b.lo, c);
         b.hi = vmax(b.hi, c);
     }
-    b.phi = meanLuminance_ * area_ * kPi;
+    b.phi = unshapedPower();
     b.axis = normal_;
     b.cosThetaO = 1.0f;
     return shaping_.narrow(b, true);

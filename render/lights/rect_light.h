@@ -50,6 +50,8 @@ public:
     float area() const { return area_; }
 
 private:
+    // The power it emits without its shaping (UsdLux ShapingAPI), which power() scales and bounds() bounds.
+    float unshapedPower() const;
     // Texture coordinates (u from the texture's left edge, v from its top, both in [0, 1]) of a
     // point on the rect, and the point at texture coordinates uv.
     Vec2f textureCoordinates(const Vec3f& point) const;

@@ -71,15 +71,15 @@ float SphereLight::pdf(const Vec3f& p, const Vec3f&, const LightHit&) const {
 
 RGB SphereLight::emitted(const LightHit&, const Vec3f& wo) const { return radiance_ * shaping_.factor(wo); }
 
-float SphereLight::power(const SceneBounds&) const {
-    return luminance(radiance_) * 4.0f * kPi * radius_ * radius_ * kPi * shaping_.powerFraction(false);
-}
+float SphereLight::unshapedPower() const { return luminance(radiance_) * 4.0f * kPi * radius_ * radius_ * kPi; }
+
+float SphereLight::power(const SceneBounds&) const { return unshapedPower() * shaping_.powerFraction(false); }
 
 std::optional<LightBounds> SphereLight::bounds() const {
     LightBounds b;
     b.lo = centre_ - Vec3f(radius_);
     b.hi = centre_ + Vec3f(radius_);
-    b.phi = luminance(radiance_) * 4.0f * kPi * radius_ * radius_ * kPi;
+    b.phi = unshapedPower();
     return shaping_.narrow(b, false);
 }
 

@@ -51,6 +51,8 @@ public:
     float radius() const { return radius_; }
 
 private:
+    // The power it emits without its shaping (UsdLux ShapingAPI), which power() scales and bounds() bounds.
+    float unshapedPower() const;
     Vec3f centre_;
     float radius_;
     RGB radiance_;

@@ -71,6 +71,29 @@ TEST(LightMotion, ALightWithSeveralStepsFollowsEachSegment) {
                 1e-3 * coneDensity(std::sqrt(10.0)));
 }
 
+// A moving sphere light emits outwards only, as a still one does
+// (LightRenderScene.RaysFromInsideASphereLightPassThroughItsSurface): at any time of the shutter a
+// ray from inside it passes through its surface, and one from outside meets it.
+TEST(LightMotion, ARayFromInsideAMovingSphereLightPassesThroughItAsThroughAStillOne) {
+    SceneDescription moving = outAndBack(), still = outAndBack();
+    still.lights[0].motionTransforms.clear();
+    for (const SceneDescription& s : {moving, still}) {
+        const RenderScene scene(s);
+        const float x = s.lights[0].motionTransforms.empty() ? 0.0f : 0.5f;  // its centre at time 0.25
+        for (const Vec3f& d : {Vec3f(0.0f, 0.0f, 1.0f), Vec3f(0.0f, -1.0f, 0.0f), normalize(Vec3f(1.0f, 1.0f, 1.0f))}) {
+            Ray fromInside{Vec3f(x, 0.0f, 0.0f), d, 0.0f, 100.0f};
+            fromInside.time = 0.25f;
+            EXPECT_FALSE(scene.intersect(fromInside)) << "moving " << !s.lights[0].motionTransforms.empty();
+            Ray fromOutside{Vec3f(x, 0.0f, 0.0f) - d * 2.0f, d, 0.0f, 100.0f};
+            fromOutside.time = 0.25f;
+            const std::optional<SurfaceHit> hit = scene.intersect(fromOutside);
+            ASSERT_TRUE(hit);
+            EXPECT_TRUE(hit->lightShape);
+            EXPECT_NEAR(hit->t, 1.9f, 1e-4f);
+        }
+    }
+}
+
 TEST(LightMotion, ItsBoundsHoldItOverTheWholeShutter) {
     const RenderScene scene(outAndBack());
     const std::optional<LightBounds> b = scene.light(0).bounds();

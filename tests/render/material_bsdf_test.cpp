@@ -274,6 +274,41 @@ TEST(MaterialBsdf, CompensatedMetalsMultipleScatteringIsGlossy) {
     EXPECT_GT(f.x, single.f(wo, wi).x) << "the multiple-scattering lobe adds to the single-scattering one";
 }
 
+// The light a clear coat returns to the base (render/bsdfs/coat_return.h, LABELS) is labelled by
+// the base's lobe it comes from: over a metal, whose lobes are all glossy, none of it is diffuse
+// (a light path expression's C<RD> must not catch a coated metal); over a plastic part of it comes
+// from the diffuse base and part from the specular lobe. Either way the parts sum to f.
+TEST(MaterialBsdf, CoatReturnedLightIsLabelledByTheBaseLobeItComesFrom) {
+    MaterialParams coatedMetal = lambertOnly();
+    coatedMetal.metallic = 1.0f;
+    coatedMetal.roughness = 0.4f;
+    coatedMetal.coat = 1.0f;
+    coatedMetal.coatRoughness = 0.3f;
+    MaterialParams coatedPlastic = lambertOnly();
+    coatedPlastic.specular = 1.0f;
+    coatedPlastic.roughness = 0.4f;
+    coatedPlastic.coat = 1.0f;
+    coatedPlastic.coatRoughness = 0.3f;
+    BsdfArena metalArena, plasticArena;
+    const Bsdf& metal = bsdfOf(coatedMetal, RGB(0.9f, 0.6f, 0.3f), metalArena);
+    EXPECT_EQ(metal.flags() & kBsdfDiffuse, 0u);
+    const Bsdf& plastic = bsdfOf(coatedPlastic, RGB(0.8f), plasticArena);
+    RGB plasticDiffuse(0.0f), plasticGlossy(0.0f);
+    for (const auto& [wo, wi] : directionPairs()) {
+        const LobeSplit metalSplit = metal.fByKind(wo, wi), plasticSplit = plastic.fByKind(wo, wi);
+        const RGB metalF = metal.f(wo, wi), plasticF = plastic.f(wo, wi);
+        EXPECT_TRUE(isBlack(metalSplit.diffuse)) << "wo.z " << wo.z << ", wi.z " << wi.z;
+        for (int c = 0; c < 3; ++c) {
+            EXPECT_NEAR(metalSplit.glossy[c], metalF[c], 1e-6f * metalF[c]);
+            EXPECT_NEAR(plasticSplit.diffuse[c] + plasticSplit.glossy[c], plasticF[c], 1e-6f * plasticF[c]);
+        }
+        plasticDiffuse += plasticSplit.diffuse;
+        plasticGlossy += plasticSplit.glossy;
+    }
+    EXPECT_GT(plasticDiffuse.x, 0.0f);
+    EXPECT_GT(plasticGlossy.x, 0.0f);
+}
+
 // Glass (thin or solid), metal, sheen, a tinted anisotropic specular lobe and a coloured coat at
 // once: it fits in the arena, its samples follow its pdf (chi-square, from outside for the sheet
 // and from inside for the solid) and agree with f and pdf.

@@ -148,6 +148,39 @@ TEST_F(ReviewServerTest, ServesTheGivenFilesOnlyAndRefusesTraversal) {
     EXPECT_TRUE(fs::exists(dir.file("out/a.exr")));
 }
 
+// Sends a request that asks the server to close the connection, and reads until it has: the
+// server's side then waits in TIME_WAIT on its port. Returns the bytes read.
+std::size_t requestClosedByTheServer(int port, const std::string& path) {
+    const int fd = ::socket(AF_INET, SOCK_STREAM, 0);
+    sockaddr_in address{};
+    address.sin_family = AF_INET;
+    address.sin_port = htons(static_cast<std::uint16_t>(port));
+    address.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+    if (::connect(fd, reinterpret_cast<sockaddr*>(&address), sizeof address) != 0) return 0;
+    const std::string request = "GET " + path + " HTTP/1.1\r\nHost: x\r\nConnection: close\r\n\r\n";
+    ::send(fd, request.data(), request.size(), 0);
+    std::size_t total = 0;
+    char buffer[4096];
+    for (ssize_t n; (n = ::recv(fd, buffer, sizeof buffer, 0)) > 0;) total += std::size_t(n);
+    ::close(fd);
+    return total;
+}
+
+// A review server stopped right after it served (its side of the connection in TIME_WAIT) starts
+// again on the same port at once (SO_REUSEADDR), and while one listens a second cannot take its
+// port (as SO_REUSEPORT, cpp-httplib's default socket option on Linux, let it).
+TEST_F(ReviewServerTest, ListensAgainOnItsPortRightAfterAStopButNeverSharesIt) {
+    EXPECT_GT(requestClosedByTheServer(port, "/api/files"), 0u);
+    ReviewServer second(std::make_shared<ReviewApi>(expandReviewPaths({dir.file("out")})));
+    EXPECT_EQ(second.bind("127.0.0.1", port), -1) << "a second server bound the port of one listening";
+    server->stop();
+    thread.join();
+    server = std::make_unique<ReviewServer>(std::make_shared<ReviewApi>(expandReviewPaths({dir.file("out")})));
+    ASSERT_EQ(server->bind("127.0.0.1", port), port) << "the port just released could not be bound again";
+    thread = std::thread([this] { server->serve(); });
+    EXPECT_EQ(get("/api/files")->status, 200);
+}
+
 // `fluence review` itself: 127.0.0.1 and a free port by default, the URL printed, SIGTERM stops it.
 TEST(ReviewCommand, ListensOnLocalhostAtAFreePortAndPrintsTheUrl) {
     test::TempDir dir;
