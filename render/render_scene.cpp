@@ -789,87 +789,90 @@ std::optional<SurfaceHit> RenderScene::shadeInstancedCurve(const CurveGeometry& 
     return hit;
 }
 
-// The hit's record and a moving instance's placement are never default-constructed std::optionals:
-// libstdc++ 12's default constructor zeroes the whole storage (a union's padding), and the two it
-// zeroed per hit, the record's 332 bytes and the placement's 312, took a third of this function's
-// time in perf. The placement is made only for instanced hits.
+// The hit's record is never a default-constructed std::optional: libstdc++ 12's default
+// constructor zeroes the whole storage (a union's padding), 332 bytes per hit, which took a third
+// of this function's time in perf. Each arm of newMeshHit's conditional initialises it in place,
+// and it is returned as it is (no copy of the large record).
 std::optional<SurfaceHit> RenderScene::shadeMesh(int meshIndex, unsigned primID, float u, float v, float t,
                                                  int instanceIndex, const Ray& ray) const {
-    const float time = ray.time;
-    const Vec3f& direction = ray.direction;
-    const auto shade = [&](const Instance* instance) {
-        const Mesh& mesh = meshes_[meshIndex];
-        std::size_t c = 3 * std::size_t(primID);
-        const Triangle corners = triangleAt(mesh, primID, time);
-        const Vec3f &p0 = corners.p0, &p1 = corners.p1, &p2 = corners.p2;
-        float w = 1.0f - u - v;
-        // Returned as is (no copy of the large hit record), the material's parameters copied into it
-        // once: each arm of the conditional initialises `result` itself.
-        std::optional<SurfaceHit> result =
-            !mesh.reflects       ? std::optional<SurfaceHit>(std::in_place, lambertianParams(RGB(0.0f)))
-            : mesh.material >= 0 ? std::optional<SurfaceHit>(std::in_place, materials_[std::size_t(mesh.material)])
-                                 : std::optional<SurfaceHit>(std::in_place, lambertianParams(mesh.diffuse));
-        SurfaceHit& hit = *result;
-        hit.t = t;
-        hit.time = time;
-        hit.mesh = meshIndex;
-        hit.instance = instanceIndex;
-        hit.linkGroup = instance && instance->linkGroup != 0 ? instance->linkGroup : mesh.linkGroup;
-        hit.triangle = primID;
-        hit.b1 = u;
-        hit.b2 = v;
-        hit.point = p0 * w + p1 * u + p2 * v;
-        Vec3f e1 = p1 - p0, e2 = p2 - p0;
-        Vec3f ng = cross(e1, e2);
-        hit.geometricNormal = lengthSquared(ng) > 0.0f ? normalize(ng) : Vec3f(0, 0, 1);
-        hit.shadingNormal = hit.geometricNormal;
-        if (!mesh.cornerNormals.empty()) {
-            Vec3f n = mesh.cornerNormals[c] * w + mesh.cornerNormals[c + 1] * u + mesh.cornerNormals[c + 2] * v;
-            if (lengthSquared(n) > 0.0f) hit.shadingNormal = normalize(n);
-        }
-        if (instance) {  // shaded in prototype space, moved to world space
-            auto normalToWorld = [&](const Vec3f& n) {
-                Vec3f world(instance->normalToWorld.transformVector(Vec3d(n)));
-                return lengthSquared(world) > 0.0f ? normalize(world) : n;
-            };
-            hit.point = Vec3f(instance->toWorld.transformPoint(Vec3d(hit.point)));
-            hit.geometricNormal = normalToWorld(hit.geometricNormal);
-            hit.shadingNormal = normalToWorld(hit.shadingNormal);
-            e1 = Vec3f(instance->toWorld.transformVector(Vec3d(e1)));
-            e2 = Vec3f(instance->toWorld.transformVector(Vec3d(e2)));
-        }
+    const Mesh& mesh = meshes_[meshIndex];
+    const std::size_t corner = 3 * std::size_t(primID);
+    const Triangle corners = triangleAt(mesh, primID, ray.time);
+    const float w = 1.0f - u - v;
+    std::optional<SurfaceHit> result = newMeshHit(mesh);
+    SurfaceHit& hit = *result;
+    hit.t = t;
+    hit.time = ray.time;
+    hit.mesh = meshIndex;
+    hit.instance = instanceIndex;
+    hit.linkGroup = mesh.linkGroup;
+    hit.triangle = primID;
+    hit.b1 = u;
+    hit.b2 = v;
+    hit.point = corners.p0 * w + corners.p1 * u + corners.p2 * v;
+    Vec3f e1 = corners.p1 - corners.p0, e2 = corners.p2 - corners.p0;
+    const Vec3f ng = cross(e1, e2);
+    hit.geometricNormal = lengthSquared(ng) > 0.0f ? normalize(ng) : Vec3f(0, 0, 1);
+    hit.shadingNormal = hit.geometricNormal;
+    if (!mesh.cornerNormals.empty()) {
+        const Vec3f n =
+            mesh.cornerNormals[corner] * w + mesh.cornerNormals[corner + 1] * u + mesh.cornerNormals[corner + 2] * v;
+        if (lengthSquared(n) > 0.0f) hit.shadingNormal = normalize(n);
+    }
+    hit.objectName = mesh.objectName;
+    if (instanceIndex >= 0) placeInWorld(hit, instanceIndex, e1, e2);
+    if (mesh.reflects) shadeMaterial(mesh, hit, corner, w, u, v, e1, e2);
+    // A mesh light's front is its triangles' own side (emissive meshes are never instanced: ng is
+    // in world space).
+    const bool seesEmission = mesh.emittingSides == EmittingSides::Both || meetsFront(ray.direction, ng);
+    if (dot(hit.shadingNormal, hit.geometricNormal) < 0.0f) hit.geometricNormal = -hit.geometricNormal;
+    hit.emission = !seesEmission           ? RGB(0.0f)
+                   : mesh.texturedEmission ? mesh.texturedEmission->at(primID, u, v)
+                                           : mesh.emission;
+    hit.interior =
+        mesh.reflects && mesh.material >= 0 ? materialInterior_[static_cast<std::size_t>(mesh.material)] : -1;
+    hit.light = mesh.firstLight >= 0 ? mesh.firstLight + static_cast<int>(primID) : -1;
+    hit.materialName = mesh.materialName;
+    return result;
+}
 
-        if (mesh.reflects && !mesh.cornerColors.empty())
-            hit.material.diffuse =
-                mesh.cornerColors[c] * w + mesh.cornerColors[c + 1] * u + mesh.cornerColors[c + 2] * v;
-        if (mesh.reflects && mesh.material >= 0 && shaders_[mesh.material].hasBindings()) {
-            ShadingPatch patch{c, w, u, v, e1, e2, {}};
-            if (filterCamera_)
-                patch.footprint = pixelFootprint(hit.point, hit.geometricNormal, filterCamera_->position(),
-                                                 filterCamera_->pixelsPerUnitAt(hit.point));
-            Vec3f mapped = hit.shadingNormal;
-            shaders_[mesh.material].evaluate(patch, mesh.slots.data(), hit.material, mapped, hit.tangent);
-            // A normal map may not tip the shading normal across the surface.
-            if (dot(mapped, hit.geometricNormal) * dot(hit.shadingNormal, hit.geometricNormal) > 0.0f)
-                hit.shadingNormal = mapped;
-        }
-        // A mesh light's front is its triangles' own side (emissive meshes are never instanced:
-        // ng is in world space).
-        const bool seesEmission = mesh.emittingSides == EmittingSides::Both || meetsFront(direction, ng);
-        if (dot(hit.shadingNormal, hit.geometricNormal) < 0.0f) hit.geometricNormal = -hit.geometricNormal;
-        hit.emission = !seesEmission           ? RGB(0.0f)
-                       : mesh.texturedEmission ? mesh.texturedEmission->at(primID, u, v)
-                                               : mesh.emission;
-        hit.interior =
-            mesh.reflects && mesh.material >= 0 ? materialInterior_[static_cast<std::size_t>(mesh.material)] : -1;
-        hit.light = mesh.firstLight >= 0 ? mesh.firstLight + static_cast<int>(primID) : -1;
-        hit.objectName = instance ? instance->objectName : mesh.objectName;
-        hit.materialName = mesh.materialName;
-        return result;
+std::optional<SurfaceHit> RenderScene::newMeshHit(const Mesh& mesh) const {
+    return !mesh.reflects       ? std::optional<SurfaceHit>(std::in_place, lambertianParams(RGB(0.0f)))
+           : mesh.material >= 0 ? std::optional<SurfaceHit>(std::in_place, materials_[std::size_t(mesh.material)])
+                                : std::optional<SurfaceHit>(std::in_place, lambertianParams(mesh.diffuse));
+}
+
+void RenderScene::placeInWorld(SurfaceHit& hit, int instanceIndex, Vec3f& e1, Vec3f& e2) const {
+    std::optional<Instance> moved;  // only made for a moving instance (instanceAt)
+    const Instance& instance = *instanceAt(instanceIndex, hit.time, moved);
+    auto normalToWorld = [&](const Vec3f& n) {
+        Vec3f world(instance.normalToWorld.transformVector(Vec3d(n)));
+        return lengthSquared(world) > 0.0f ? normalize(world) : n;
     };
-    if (instanceIndex < 0) return shade(nullptr);
-    std::optional<Instance> moved;
-    return shade(instanceAt(instanceIndex, time, moved));
+    hit.point = Vec3f(instance.toWorld.transformPoint(Vec3d(hit.point)));
+    hit.geometricNormal = normalToWorld(hit.geometricNormal);
+    hit.shadingNormal = normalToWorld(hit.shadingNormal);
+    e1 = Vec3f(instance.toWorld.transformVector(Vec3d(e1)));
+    e2 = Vec3f(instance.toWorld.transformVector(Vec3d(e2)));
+    if (instance.linkGroup != 0) hit.linkGroup = instance.linkGroup;
+    hit.objectName = instance.objectName;
+}
+
+void RenderScene::shadeMaterial(const Mesh& mesh, SurfaceHit& hit, std::size_t corner, float w, float u, float v,
+                                const Vec3f& e1, const Vec3f& e2) const {
+    if (!mesh.cornerColors.empty())
+        hit.material.diffuse =
+            mesh.cornerColors[corner] * w + mesh.cornerColors[corner + 1] * u + mesh.cornerColors[corner + 2] * v;
+    if (mesh.material < 0 || !shaders_[mesh.material].hasBindings()) return;
+    ShadingPatch patch{corner, w, u, v, e1, e2, {}};
+    if (filterCamera_)
+        patch.footprint = pixelFootprint(hit.point, hit.geometricNormal, filterCamera_->position(),
+                                         filterCamera_->pixelsPerUnitAt(hit.point));
+    Vec3f mapped = hit.shadingNormal;
+    shaders_[mesh.material].evaluate(patch, mesh.slots.data(), hit.material, mapped, hit.tangent);
+    // A normal map may not tip the shading normal across the surface.
+    if (dot(mapped, hit.geometricNormal) * dot(hit.shadingNormal, hit.geometricNormal) > 0.0f)
+        hit.shadingNormal = mapped;
 }
 
 int RenderScene::primvarAt(const SurfaceHit& hit, const std::string& name, float out[4]) const {

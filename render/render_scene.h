@@ -285,6 +285,14 @@ private:
     // its direction for the side a mesh light is seen from).
     std::optional<SurfaceHit> shadeMesh(int mesh, unsigned primID, float u, float v, float t, int instance,
                                         const Ray& ray) const;
+    // shadeMesh's steps: the record started from the parameters of the material `mesh` shows; the
+    // hit moved to world space by instance `instance` (its triangle's edges e1, e2 too); the
+    // material evaluated at the hit (corner colours, shader), `corner` the triangle's first corner
+    // and (w, u, v) the hit's barycentric weights.
+    std::optional<SurfaceHit> newMeshHit(const Mesh& mesh) const;
+    void placeInWorld(SurfaceHit& hit, int instance, Vec3f& e1, Vec3f& e2) const;
+    void shadeMaterial(const Mesh& mesh, SurfaceHit& hit, std::size_t corner, float w, float u, float v,
+                       const Vec3f& e1, const Vec3f& e2) const;
     // A triangle's corners, and an instance's placement, at a ray's time (render/motion_geometry.h).
     struct Triangle {
         Vec3f p0, p1, p2;
