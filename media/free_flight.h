@@ -10,8 +10,9 @@
 // catches such media in their tests.) The flight ends at the first absorption or scattering, or
 // escapes at ray.tMax. Through a gray medium whose majorant is exact (a homogeneous one), every
 // weight is exactly 1. Randomness: one number per exponential step and one per tentative
-// collision, from the stream passed in (or, in the second form, one number given for the events). The flight counts its tentative collisions (its medium
-// lookups), the work adaptive sampling weighs a sample's cost by (integrators/sample_cost.h).
+// collision, from the stream passed in (or, in the second form, one number given for all the
+// events). The flight counts its tentative collisions (its medium lookups), the work adaptive
+// sampling weighs a sample's cost by (integrators/sample_cost.h).
 #pragma once
 
 #include "core/random.h"
