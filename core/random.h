@@ -8,7 +8,9 @@
 // stratify every 1D and 2D decision that lands in the same slot, different pixels and slots are
 // decorrelated. The integrators draw in a fixed order, so the slots follow the path: the pixel
 // position, the hero wavelength, then per bounce the light choice and light point, the BSDF lobe
-// and direction, Russian roulette and the medium events (docs/USER_GUIDE.md, "Sampling").
+// and direction, Russian roulette and the medium events (docs/USER_GUIDE.md, "Sampling"). Walks
+// that draw a varying number of values (majorant tracking) draw them from independentStream(),
+// so the slots after them stay the same in every sample of a pixel.
 //
 // Nothing is carried between pixels or threads, so an image is bit-identical at any thread count
 // and any tile can be re-rendered alone (farm splits, checkpoints). The hash is SplitMix64's
@@ -62,6 +64,19 @@ public:
         return {a, next()};
     }
     constexpr std::uint32_t dimension() const { return dimension_; }
+    // A stream of hashed independent values for a walk inside the sample that draws a varying
+    // number of them (majorant tracking's exponential steps, a shadow ray's transmittance): drawn
+    // from it, they take no slot of this stream, so the decisions after the walk keep the same
+    // slots in every sample of the pixel (and their stratification). Each call gives another
+    // stream, a pure function of (seed, pixel, sample, the calls before it).
+    constexpr SampleStream independentStream() {
+        SampleStream s = *this;
+        s.kind_ = SamplerKind::Independent;
+        s.key_ = mix64(key_ ^ (0xd1b54a32d192ed03ull * ++independentStreams_));
+        s.dimension_ = 0;
+        s.independentStreams_ = 0;
+        return s;
+    }
     // The point of the camera's aperture (render/thin_lens.h): two values of their own, outside the
     // sequence next() walks, so depth of field changes no other dimension of a sample (a pinhole
     // camera's images stay as they were) and a tile draws the same lens point on any thread.
@@ -95,6 +110,7 @@ private:
     std::uint32_t reversedSobolIndex_;  // the Sobol index (the sample index's low 32 bits), bits reversed
     SamplerKind kind_;
     std::uint32_t dimension_ = 0;
+    std::uint64_t independentStreams_ = 0;  // streams handed out by independentStream()
 };
 
 }  // namespace fluence

@@ -216,9 +216,8 @@ private:
         const std::optional<MediumSegment> segment =
             equiangularApplies(depth) ? mediumSegment(medium, ray_.origin, ray_.direction, tBoundary) : std::nullopt;
         if (segment) sampleEquiangular(medium, *segment);
-        media::FreeFlight flight =
-            guidedWalk_ ? guidedWalk_->fly(walkStep_, walkLength_, tBoundary, rng_)
-                        : media::sampleFreeFlight(medium, {ray_.origin, ray_.direction, tBoundary}, hero_, rng_);
+        media::FreeFlight flight = guidedWalk_ ? guidedWalk_->fly(walkStep_, walkLength_, tBoundary, rng_)
+                                               : freeFlight(medium, {ray_.origin, ray_.direction, tBoundary});
         counters_.mediumCollisions += std::uint64_t(flight.collisions);
         throughput_ *= flight.throughput;
         mis_.rU *= flight.pdfRatio;
@@ -239,6 +238,18 @@ private:
         }
         if (flight.event == media::FlightEvent::Scattered) return scatterInMedium(flight, medium, depth);
         return Step::Reached;
+    }
+
+    // A free flight whose events take one dimension of the sample (stratified under Sobol) and whose
+    // exponential steps draw from an independent stream, so that the decisions after it keep their
+    // dimensions whatever the number of tentative collisions (media/free_flight.h). Without it the
+    // slots after the first medium segment differed between a pixel's samples, and Sobol sampling
+    // rendered the Cycles peer's smoke with 0.92 of independent sampling's error per sample
+    // (bench/results/2026-12-06-smoke-variance.md).
+    media::FreeFlight freeFlight(const media::Medium& medium, const media::MediumRay& ray) {
+        const float uEvent = rng_.next();
+        SampleStream steps = rng_.independentStream();
+        return media::sampleFreeFlight(medium, ray, hero_, uEvent, steps);
     }
 
     // Whether the equiangular strategy samples the stretch of the ray through the medium the path
@@ -265,8 +276,9 @@ private:
         const media::MediumProperties m = medium.at(p);
         ++counters_.mediumCollisions;
         if (isBlack(m.sigmaS)) return;  // empty space within the segment: no transmittance to estimate
+        SampleStream tracking = rng_.independentStream();
         const media::TransmittanceEstimate toPoint =
-            media::ratioTrackingTransmittance(medium, {segment.origin, segment.direction, t}, hero_, rng_);
+            media::ratioTrackingTransmittance(medium, {segment.origin, segment.direction, t}, hero_, tracking);
         counters_.mediumCollisions += std::uint64_t(toPoint.collisions);
         if (isBlack(toPoint.throughput)) return;
         std::optional<render::LightSample> ls = scene_.lightAt(choice->light, ray_.time).sample(p, uPoint);
@@ -295,13 +307,15 @@ private:
     // The transmittance of a shadow ray through `medium`, its lookups counted: ray marching where no
     // strategy is weighted against the connection (`onlyStrategy`: a delta light, light that passed
     // surfaces), else ratio tracking, whose null points the MIS weight needs (media/transmittance.h).
+    // Its numbers come from an independent stream, as the free flight's steps do (freeFlight).
     // The free flight's and the equiangular strategy's light samples both take it, so the two
     // strategies' weights read the same shadow-ray densities.
     media::TransmittanceEstimate shadowTransmittance(const media::Medium& medium, const media::MediumRay& ray,
                                                      bool onlyStrategy) {
+        SampleStream tracking = rng_.independentStream();
         const media::TransmittanceEstimate tr = media::estimateTransmittance(
             onlyStrategy ? media::TransmittanceMethod::RayMarching : media::TransmittanceMethod::RatioTracking, medium,
-            ray, hero_, rng_);
+            ray, hero_, tracking);
         counters_.mediumCollisions += std::uint64_t(tr.collisions);
         return tr;
     }

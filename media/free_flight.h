@@ -10,8 +10,9 @@
 // catches such media in their tests.) The flight ends at the first absorption or scattering, or
 // escapes at ray.tMax. Through a gray medium whose majorant is exact (a homogeneous one), every
 // weight is exactly 1. Randomness: one number per exponential step and one per tentative
-// collision, from the stream passed in. The flight counts its tentative collisions (its medium
-// lookups), the work adaptive sampling weighs a sample's cost by (integrators/sample_cost.h).
+// collision, from the stream passed in (or, in the second form, one number given for all the
+// events). The flight counts its tentative collisions (its medium lookups), the work adaptive
+// sampling weighs a sample's cost by (integrators/sample_cost.h).
 #pragma once
 
 #include "core/random.h"
@@ -42,5 +43,15 @@ struct FreeFlight {
 };
 
 FreeFlight sampleFreeFlight(const Medium& medium, const MediumRay& ray, int hero, SampleStream& stream);
+
+// The same flight, with the events at its tentative collisions chosen by the one number uEvent in
+// [0, 1), remapped after each null collision (and fresh numbers from `steps` once the remapped
+// number has lost half its bits): where the flight stops is then an inverse-CDF function of
+// uEvent given the tentative collisions, so a stratified uEvent (a Sobol dimension of the sample)
+// stratifies the flight's distance and its escape over a pixel's samples. `steps` gives the
+// exponential steps; pass a stream whose draws do not shift the sample's other dimensions
+// (SampleStream::independentStream). Unbiased as the other form: each choice keeps its
+// probability given the choices before it.
+FreeFlight sampleFreeFlight(const Medium& medium, const MediumRay& ray, int hero, float uEvent, SampleStream& steps);
 
 }  // namespace fluence::media

@@ -21,6 +21,28 @@ TEST(SampleStream, DifferentCountersGiveDifferentStreams) {
     EXPECT_EQ(firsts.size(), 18u);
 }
 
+TEST(SampleStream, IndependentStreamsTakeNoSlotOfTheSample) {
+    // Under Sobol, the values after a walk drawn from independent streams are those of the same
+    // slots without the walk, whatever the walk drew; the streams are pure functions of the
+    // sample's counters and of how many were handed out before, and differ from each other.
+    SampleStream plain(4, 5, 6, SamplerKind::Sobol), walked(4, 5, 6, SamplerKind::Sobol);
+    EXPECT_EQ(plain.next(), walked.next());
+    SampleStream first = walked.independentStream(), second = walked.independentStream();
+    SampleStream again(4, 5, 6, SamplerKind::Sobol);
+    again.next();
+    SampleStream firstAgain = again.independentStream();
+    std::set<float> values;
+    for (int i = 0; i < 37; ++i) {
+        const float a = first.next(), b = second.next();
+        EXPECT_EQ(a, firstAgain.next());
+        values.insert(a);
+        values.insert(b);
+    }
+    EXPECT_EQ(values.size(), 74u);
+    EXPECT_EQ(walked.dimension(), plain.dimension());
+    for (int i = 0; i < 3; ++i) EXPECT_EQ(plain.next(), walked.next());
+}
+
 TEST(SampleStream, ValuesAreInTheUnitIntervalWithUniformMoments) {
     constexpr int kN = 1 << 20;
     double sum = 0, sum2 = 0, lag = 0;

@@ -1,9 +1,11 @@
-// Free-flight sampling by delta tracking (media/free_flight.h): real-collision distances follow
-// the exponential in a homogeneous medium and 1 - exp(-(a t + b t^2 / 2)) in a linear ramp
-// (chi-square), with exact and loose majorants; absorption and scattering in proportion to
-// sigmaA and sigmaS; the escape probability of a slab is exp(-sigmaT d) (binomial error); and in
-// chromatic media the spectral MIS estimates of transmittance and of emission are unbiased per
-// channel.
+// Free-flight sampling by delta tracking (media/free_flight.h), in both forms (a number from the
+// stream at each tentative collision, or one event number remapped from collision to collision):
+// real-collision distances follow the exponential in a homogeneous medium and
+// 1 - exp(-(a t + b t^2 / 2)) in a linear ramp (chi-square), with exact and loose majorants;
+// absorption and scattering in proportion to sigmaA and sigmaS; the escape probability of a slab
+// is exp(-sigmaT d) (binomial error); in chromatic media the spectral MIS estimates of
+// transmittance and of emission are unbiased per channel; and with one event number, the event
+// is an inverse-CDF function of it over the tentative collisions.
 #include "media/free_flight.h"
 
 #include <gtest/gtest.h>
@@ -23,24 +25,37 @@
 namespace fluence::media {
 namespace {
 
-// Normal-theory checks in this file: 2 absorption fractions + 2 escape probabilities + 3 x 4
-// chromatic channels, each at z standard errors, for a family-wide false-failure rate of 1%.
-const double kZ = test::normalQuantile(0.5 * test::sidakAlpha(16));
-// Chi-square tests: 3, at the level that keeps the same family-wide rate.
-const double kChi2Level = test::sidakAlpha(3);
+// Normal-theory checks in this file, per form: 2 absorption fractions + 2 escape probabilities +
+// 3 x 4 chromatic channels, each at z standard errors, for a family-wide false-failure rate of 1%.
+constexpr int kForms = 2;
+const double kZ = test::normalQuantile(0.5 * test::sidakAlpha(16 * kForms));
+// Chi-square tests: 3 per form, at the level that keeps the same family-wide rate.
+const double kChi2Level = test::sidakAlpha(3 * kForms);
 constexpr double kRounding = 1e-6;
+
+// The two forms of sampleFreeFlight (media/free_flight.h).
+enum class Form { PerCollision, OneEventNumber };
+constexpr Form kBothForms[kForms] = {Form::PerCollision, Form::OneEventNumber};
+const char* name(Form form) { return form == Form::PerCollision ? "per collision" : "one event number"; }
+
+FreeFlight fly(Form form, const Medium& medium, const MediumRay& ray, int hero, SampleStream& rng) {
+    if (form == Form::PerCollision) return sampleFreeFlight(medium, ray, hero, rng);
+    const float uEvent = rng.next();
+    SampleStream steps = rng.independentStream();
+    return sampleFreeFlight(medium, ray, hero, uEvent, steps);
+}
 
 // Pearson's chi-square of flights' outcomes against a distribution over [0, length) given by its
 // CDF, in kBins equal-probability bins, plus one bin for escapes (probability 1 - cdf(length)).
 // Returns the p-value.
-double chi2OfFlights(const Medium& medium, const MediumRay& ray, const std::function<double(double)>& cdf,
+double chi2OfFlights(Form form, const Medium& medium, const MediumRay& ray, const std::function<double(double)>& cdf,
                      std::uint64_t seed, const std::string& what) {
     constexpr int kBins = 31, kFlights = 100'000;
     const double total = std::isinf(ray.tMax) ? 1.0 : cdf(ray.tMax);
     std::vector<double> observed(kBins + 1, 0.0);
     for (int n = 0; n < kFlights; ++n) {
         SampleStream rng(seed, 0, n);
-        FreeFlight flight = sampleFreeFlight(medium, ray, 0, rng);
+        FreeFlight flight = fly(form, medium, ray, 0, rng);
         if (flight.event == FlightEvent::Escaped) {
             observed[kBins] += 1.0;
             continue;
@@ -58,7 +73,8 @@ double chi2OfFlights(const Medium& medium, const MediumRay& ray, const std::func
         ++cells;
     }
     double p = test::upperIncompleteGammaQ(0.5 * (cells - 1), 0.5 * statistic);
-    std::printf("[ measured ] %s: chi2 %.1f over %d cells, p = %.3f\n", what.c_str(), statistic, cells, p);
+    std::printf("[ measured ] %s, %s: chi2 %.1f over %d cells, p = %.3f\n", what.c_str(), name(form), statistic, cells,
+                p);
     return p;
 }
 
@@ -68,15 +84,19 @@ TEST(FreeFlight, CollisionDistancesAreExponentialInAHomogeneousMedium) {
     test::RescaledBoundsMedium loose(exact, 2.5f, 0.0f);  // 60% of tentative collisions null
     const MediumRay ray{Vec3f(0.0f), normalize(Vec3f(-1.0f, 2.0f, 0.5f))};
     auto cdf = [&](double t) { return 1.0 - std::exp(-sigmaT * t); };
-    EXPECT_GT(chi2OfFlights(exact, ray, cdf, 51, "homogeneous, exact majorant"), kChi2Level);
-    EXPECT_GT(chi2OfFlights(loose, ray, cdf, 52, "homogeneous, majorant 2.5 sigmaT"), kChi2Level);
+    for (Form form : kBothForms) {
+        EXPECT_GT(chi2OfFlights(form, exact, ray, cdf, 51, "homogeneous, exact majorant"), kChi2Level);
+        EXPECT_GT(chi2OfFlights(form, loose, ray, cdf, 52, "homogeneous, majorant 2.5 sigmaT"), kChi2Level);
+    }
 }
 
 TEST(FreeFlight, CollisionDistancesFollowALinearRamp) {
     // sigmaT(x) = 0.2 + 0.8 x over 0 <= x < 3, five segments bounded at their larger end.
     test::RampMedium ramp(RGB(0.2f), RGB(0.8f), 3.0f, 5, true, RGB(0.5f));
     auto cdf = [](double t) { return 1.0 - std::exp(-(0.2 * t + 0.4 * t * t)); };
-    EXPECT_GT(chi2OfFlights(ramp, {Vec3f(0.0f), Vec3f(1.0f, 0.0f, 0.0f), 2.5f}, cdf, 53, "linear ramp"), kChi2Level);
+    for (Form form : kBothForms)
+        EXPECT_GT(chi2OfFlights(form, ramp, {Vec3f(0.0f), Vec3f(1.0f, 0.0f, 0.0f), 2.5f}, cdf, 53, "linear ramp"),
+                  kChi2Level);
 }
 
 TEST(FreeFlight, AbsorbsAndScattersInProportion) {
@@ -85,18 +105,19 @@ TEST(FreeFlight, AbsorbsAndScattersInProportion) {
     const float sigmaT = 1.3f;
     HomogeneousMedium exact({RGB(0.4f * sigmaT), RGB(0.6f * sigmaT)});
     test::RescaledBoundsMedium loose(exact, 2.5f, 0.0f);
-    for (const Medium* medium : {static_cast<const Medium*>(&exact), static_cast<const Medium*>(&loose)}) {
-        test::MeanEstimate scattered;
-        for (int n = 0; n < kFlights; ++n) {
-            SampleStream rng(54, 0, n);
-            FreeFlight flight = sampleFreeFlight(*medium, {Vec3f(0.0f), Vec3f(0.0f, 1.0f, 0.0f)}, 1, rng);
-            ASSERT_NE(flight.event, FlightEvent::Escaped);  // an unbounded medium
-            scattered.add(flight.event == FlightEvent::Scattered ? 1.0 : 0.0);
+    for (Form form : kBothForms)
+        for (const Medium* medium : {static_cast<const Medium*>(&exact), static_cast<const Medium*>(&loose)}) {
+            test::MeanEstimate scattered;
+            for (int n = 0; n < kFlights; ++n) {
+                SampleStream rng(54, 0, n);
+                FreeFlight flight = fly(form, *medium, {Vec3f(0.0f), Vec3f(0.0f, 1.0f, 0.0f)}, 1, rng);
+                ASSERT_NE(flight.event, FlightEvent::Escaped);  // an unbounded medium
+                scattered.add(flight.event == FlightEvent::Scattered ? 1.0 : 0.0);
+            }
+            const double sd = std::sqrt(0.6 * 0.4 / kFlights);
+            std::printf("[ measured ] scattered fraction %.5f +- %.5f (exact 0.6)\n", scattered.mean(), sd);
+            EXPECT_NEAR(scattered.mean(), 0.6, kZ * sd);
         }
-        const double sd = std::sqrt(0.6 * 0.4 / kFlights);
-        std::printf("[ measured ] scattered fraction %.5f +- %.5f (exact 0.6)\n", scattered.mean(), sd);
-        EXPECT_NEAR(scattered.mean(), 0.6, kZ * sd);
-    }
 }
 
 TEST(FreeFlight, EscapesASlabWithProbabilityExpMinusSigmaTD) {
@@ -105,20 +126,21 @@ TEST(FreeFlight, EscapesASlabWithProbabilityExpMinusSigmaTD) {
     const double exact = std::exp(-double(sigmaT) * d), sd = std::sqrt(exact * (1.0 - exact) / kFlights);
     HomogeneousMedium slab({RGB(0.5f * sigmaT), RGB(0.5f * sigmaT)});
     test::RescaledBoundsMedium loose(slab, 3.0f, 0.0f);
-    for (const Medium* medium : {static_cast<const Medium*>(&slab), static_cast<const Medium*>(&loose)}) {
-        test::MeanEstimate escaped;
-        for (int n = 0; n < kFlights; ++n) {
-            SampleStream rng(55, 0, n);
-            FreeFlight flight = sampleFreeFlight(*medium, {Vec3f(0.0f), Vec3f(0.0f, 0.0f, 1.0f), d}, 2, rng);
-            if (flight.event == FlightEvent::Escaped) {
-                ASSERT_EQ(flight.t, d);
-                ASSERT_EQ(flight.throughput, RGB(1.0f));
+    for (Form form : kBothForms)
+        for (const Medium* medium : {static_cast<const Medium*>(&slab), static_cast<const Medium*>(&loose)}) {
+            test::MeanEstimate escaped;
+            for (int n = 0; n < kFlights; ++n) {
+                SampleStream rng(55, 0, n);
+                FreeFlight flight = fly(form, *medium, {Vec3f(0.0f), Vec3f(0.0f, 0.0f, 1.0f), d}, 2, rng);
+                if (flight.event == FlightEvent::Escaped) {
+                    ASSERT_EQ(flight.t, d);
+                    ASSERT_EQ(flight.throughput, RGB(1.0f));
+                }
+                escaped.add(flight.event == FlightEvent::Escaped ? 1.0 : 0.0);
             }
-            escaped.add(flight.event == FlightEvent::Escaped ? 1.0 : 0.0);
+            std::printf("[ measured ] slab escape %.5f +- %.5f (exact %.5f)\n", escaped.mean(), sd, exact);
+            EXPECT_NEAR(escaped.mean(), exact, kZ * sd);
         }
-        std::printf("[ measured ] slab escape %.5f +- %.5f (exact %.5f)\n", escaped.mean(), sd, exact);
-        EXPECT_NEAR(escaped.mean(), exact, kZ * sd);
-    }
 }
 
 // Per channel, the mean of a score of sampleFreeFlight()'s result over flights with a uniform hero.
@@ -126,18 +148,20 @@ void expectChromaticMeans(const Medium& medium, const MediumRay& ray,
                           const std::function<RGB(const FreeFlight&)>& score, const RGB& expected, std::uint64_t seed,
                           const std::string& what) {
     constexpr int kFlights = 40'000;
-    test::MeanEstimate means[3];
-    for (int n = 0; n < kFlights; ++n) {
-        SampleStream rng(seed, 0, n);
-        const int hero = sampleHeroChannel(rng.next());
-        const RGB s = score(sampleFreeFlight(medium, ray, hero, rng));
-        for (int c = 0; c < 3; ++c) means[c].add(s[c]);
-    }
-    for (int c = 0; c < 3; ++c) {
-        std::printf("[ measured ] %s, channel %d: %.5f +- %.5f (exact %.5f)\n", what.c_str(), c, means[c].mean(),
-                    means[c].standardError(), expected[c]);
-        EXPECT_NEAR(means[c].mean(), expected[c], kZ * means[c].standardError() + kRounding)
-            << what << ", channel " << c;
+    for (Form form : kBothForms) {
+        test::MeanEstimate means[3];
+        for (int n = 0; n < kFlights; ++n) {
+            SampleStream rng(seed, 0, n);
+            const int hero = sampleHeroChannel(rng.next());
+            const RGB s = score(fly(form, medium, ray, hero, rng));
+            for (int c = 0; c < 3; ++c) means[c].add(s[c]);
+        }
+        for (int c = 0; c < 3; ++c) {
+            std::printf("[ measured ] %s, %s, channel %d: %.5f +- %.5f (exact %.5f)\n", what.c_str(), name(form), c,
+                        means[c].mean(), means[c].standardError(), expected[c]);
+            EXPECT_NEAR(means[c].mean(), expected[c], kZ * means[c].standardError() + kRounding)
+                << what << ", " << name(form) << ", channel " << c;
+        }
     }
 }
 
@@ -176,6 +200,58 @@ TEST(FreeFlight, EmissionIsUnbiasedPerChannelInChromaticMedia) {
     const MediumRay ray{Vec3f(0.0f), Vec3f(1.0f, 0.0f, 0.0f), d};
     expectChromaticMeans(slab, ray, emissionScore, expected, 58, "emitting slab");
     expectChromaticMeans(loose, ray, emissionScore, expected, 59, "emitting slab, loose bounds");
+}
+
+TEST(FreeFlight, OneEventNumberIsAnInverseCdfOverTheTentativeCollisions) {
+    // The same tentative collisions (one steps stream) for every event number u on a grid of
+    // kGrid midpoints: the flight must stop at a later collision (or escape) as u grows, and the
+    // share of the grid that stops at the k-th tentative collision must be its probability,
+    // prod_{j<k} (1 - pStop) times pAbsorb or pScatter, to the grid's resolution (a count of grid
+    // midpoints within an interval is its length times kGrid, +-1; the boundaries' float rounding,
+    // amplified by the remaps, moves them by far less than a cell here). Homogeneous, majorant
+    // 3 sigmaT: pStop = 1/3 at every point (pAbsorb 0.4/3, pScatter 0.6/3).
+    constexpr int kGrid = 1 << 14;
+    const float sigmaT = 0.5f;
+    HomogeneousMedium exact({RGB(0.4f * sigmaT), RGB(0.6f * sigmaT)});
+    test::RescaledBoundsMedium loose(exact, 3.0f, 0.0f);
+    const MediumRay ray{Vec3f(0.0f), Vec3f(0.0f, 0.0f, 1.0f), 4.0f};
+    for (std::uint64_t seed = 60; seed < 64; ++seed) {
+        std::vector<float> points;  // the tentative collisions' distances, in order
+        std::vector<int> absorbed, scattered;
+        int escaped = 0, tentative = 0;  // tentative: the escaping flights' count of collisions
+        float lastT = 0.0f;
+        for (int i = 0; i < kGrid; ++i) {
+            SampleStream steps(seed, 0, 0);
+            const FreeFlight flight = sampleFreeFlight(loose, ray, 0, (i + 0.5f) / kGrid, steps);
+            ASSERT_GE(flight.t, lastT) << "u " << (i + 0.5f) / kGrid;  // monotone in u
+            lastT = flight.t;
+            if (flight.event == FlightEvent::Escaped) {
+                ++escaped;
+                tentative = flight.collisions;
+                continue;
+            }
+            const int k = flight.collisions - 1;  // the flight stopped at its last tentative collision
+            if (k >= int(points.size())) {
+                points.resize(k + 1, -1.0f);
+                absorbed.resize(k + 1, 0);
+                scattered.resize(k + 1, 0);
+            }
+            if (points[k] < 0.0f) points[k] = flight.t;
+            ASSERT_EQ(points[k], flight.t);  // the same tentative collisions for every u
+            ++(flight.event == FlightEvent::Absorbed ? absorbed : scattered)[k];
+        }
+        ASSERT_EQ(int(points.size()), tentative) << "seed " << seed;  // every collision stops some u
+        double reach = 1.0;  // the probability of passing the collisions before the k-th
+        for (std::size_t k = 0; k < points.size(); ++k) {
+            EXPECT_NEAR(absorbed[k], kGrid * reach * 0.4 / 3.0, 1.5) << "seed " << seed << ", collision " << k;
+            EXPECT_NEAR(scattered[k], kGrid * reach * 0.6 / 3.0, 1.5) << "seed " << seed << ", collision " << k;
+            reach *= 2.0 / 3.0;
+        }
+        std::printf(
+            "[ measured ] seed %d: %d tentative collisions (the first at %.4f), escapes %d of %d (exact %.1f)\n",
+            int(seed), tentative, points.empty() ? 0.0 : points[0], escaped, kGrid, kGrid * reach);
+        EXPECT_NEAR(escaped, kGrid * reach, 1.5);
+    }
 }
 
 }  // namespace
