@@ -26,8 +26,12 @@
 // (delegate/light_adapter.h, render/light_shaping.h): cone, focus and IES profile, each triangle's
 // emission shaped about its front normal (a RectLight's primary axis, its -Z, is its front normal
 // too), the profile's azimuth from the prim's local X and Y.
-// Not read, named in one warning: light:filters. A mesh light inside a native instance or a point instancer's prototype is not read
-// (delegate/scene_delegate.cpp names it).
+// Not read, named in one warning: light:filters.
+// A mesh light inside a native instance or a point instancer's prototype is read with the
+// prototype (delegate/instancing.h, finishMeshLights below): each instance is an emitter of its own,
+// and a normalized one divides by its own placed area (render/render_scene.cpp).
+// Not done: a camera ray sees the light's radiance on the surface, where Arnold, hdPrman and Storm
+// show the mesh as its material shades it (bench/results/2026-12-06-mesh-lights.md).
 #pragma once
 
 #include <functional>
