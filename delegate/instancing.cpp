@@ -150,6 +150,11 @@ bool addToPrototype(const SyncContext& context, const usd::PrimSpec& prim, const
     const MeshSource source = meshSource(stage, prim, time, context.warn);
     contents.posedByAnimation = contents.posedByAnimation || (source.pose && source.pose->animated);
     const usd::PrimSpec& mesh = source.prim(prim);
+    // A mesh light: each instance of the prototype is an emitter of its own (render/scene_description.h).
+    const std::size_t firstPart = parts.size();
+    if (std::optional<MeshLight> light =
+            isGeometryType(prim.typeName) ? meshLightOf(PrimReader(prim, time), warnHere) : std::nullopt)
+        contents.meshLights.emplace(prim.path, std::move(*light));
     if (mesh.typeName == "Mesh" && SubdivisionMesh::isSubdivided(mesh, time)) {
         contents.subdivided.push_back(
             {std::make_shared<const SubdivisionMesh>(stage, mesh, time, context.convertColor, warnHere), space});
@@ -207,9 +212,13 @@ bool addToPrototype(const SyncContext& context, const usd::PrimSpec& prim, const
                 light.transform = placement * light.transform;
                 contents.lights.push_back(std::move(light));
             }
+            contents.meshLights.insert(inner.meshLights.begin(), inner.meshLights.end());
         }
         return false;
     }
+    if (contents.meshLights.contains(prim.path))
+        for (std::size_t i = firstPart; i < parts.size(); ++i)
+            parts[i].mesh.light = render::MeshLightDesc{.prim = prim.path, .lightToWorld = space};
     return true;
 }
 

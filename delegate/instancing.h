@@ -38,6 +38,7 @@
 // delegate/motion_steps.h.
 #pragma once
 
+#include <map>
 #include <memory>
 #include <string>
 #include <vector>
@@ -45,6 +46,7 @@
 #include "delegate/geom_subset.h"
 #include "delegate/imageable.h"
 #include "delegate/material_adapter.h"
+#include "delegate/mesh_light.h"
 #include "delegate/prim_reader.h"
 #include "delegate/subdivision_mesh.h"
 #include "delegate/sync_context.h"
@@ -88,7 +90,7 @@ struct PointInstances {
 PointInstances pointInstancesFromPrim(const PrimReader& instancer, const std::function<void(const std::string&)>& warn,
                                       const SyncContext* motion = nullptr);
 
-// Every mesh, implicit surface, curve set, point set and UsdLux light at or below `root` (defined, active and imaged),
+// Every mesh, implicit surface (mesh lights among them), curve set, point set and UsdLux light at or below `root` (defined, active and imaged),
 // in the root's space; with `includeRootTransform`, the root's own local transform applies too.
 // Subdivision meshes are kept unTessellated, with their placement in the root's space: they are
 // diced for the camera when the scene is described. Lights are placed once per instance (a
@@ -106,8 +108,12 @@ struct PrototypeContents {
     std::vector<PrototypeCurves> curves;
     std::vector<PrototypePoints> points;
     std::vector<render::LightDesc> lights;  // transform: light space -> prototype root space
-    std::vector<MalformedPrim> malformed;   // left out, each with one warning (an error when strict)
-    bool posedByAnimation = false;          // a skinned prim's pose changes over time (its animation may lie outside)
+    // The UsdLux mesh lights among them (delegate/mesh_light.h), by prim path: their parts carry a
+    // MeshDesc::light naming the prim, with lightToWorld its space in the prototype, which
+    // finishMeshLights completes once the parts' materials are known.
+    std::map<std::string, MeshLight> meshLights;
+    std::vector<MalformedPrim> malformed;  // left out, each with one warning (an error when strict)
+    bool posedByAnimation = false;         // a skinned prim's pose changes over time (its animation may lie outside)
 };
 PrototypeContents prototypeContents(const SyncContext& context, const std::string& root, bool includeRootTransform,
                                     int nesting = 0);

@@ -35,6 +35,8 @@ void readIesProfile(const PrimReader& prim, render::LightShapingDesc& shaping, c
     shaping.iesNormalize = prim.boolean({"inputs:shaping:ies:normalize", "shaping:ies:normalize"}, false);
 }
 
+}  // namespace
+
 render::LightShapingDesc shapingOf(const PrimReader& prim, const Warn& warn) {
     render::LightShapingDesc s;
     readIesProfile(prim, s, warn);
@@ -44,6 +46,8 @@ render::LightShapingDesc shapingOf(const PrimReader& prim, const Warn& warn) {
     s.focusTint = RGB(prim.vec3({"inputs:shaping:focusTint", "shaping:focusTint"}, {0.0, 0.0, 0.0}));
     return s;
 }
+
+namespace {
 
 // UsdLux's colour temperature tint (OpenUSD PR 3182): the blackbody colour divided by that of
 // 6500 K, so the default temperature is exactly white, then scaled to luminance 1.

@@ -64,6 +64,10 @@ bool appliesSchema(const usd::PrimSpec& prim, const std::string& schema);
 // Whether the prim authors any shaping input (inputs:shaping:*, or shaping:* before USD 21.05).
 bool authorsShaping(const usd::PrimSpec& prim);
 
+// The prim's ShapingAPI inputs (cone, focus, IES profile: a profile that cannot be read warns and
+// is left out), as every shaped light reads them.
+render::LightShapingDesc shapingOf(const PrimReader& prim, const std::function<void(const std::string&)>& warn);
+
 // UsdLuxLightAPI's radiance, as every light reads it: intensity (fallback `fallbackIntensity`) *
 // 2^exposure * color, times the colour temperature's tint when enabled. Warns about connected
 // inputs and diffuse or specular multipliers other than 1 (neither is applied).

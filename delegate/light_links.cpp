@@ -16,7 +16,7 @@ bool isAncestorOrSelf(const std::string& ancestor, const std::string& path) {
     return path.starts_with(ancestor) && (path.size() == ancestor.size() || path[ancestor.size()] == '/');
 }
 
-// A light whose collections do not hold everything: its index in SceneDescription::lights.
+// A light whose collections do not hold everything: its emitter number (render/light_links.h).
 struct LinkedLight {
     int index;
     CollectionMembership light, shadow;
@@ -86,17 +86,48 @@ int instanceGroup(const std::vector<LinkedLight>& lights, const render::Instance
     return groups.of(*shared);
 }
 
+// The light at `path` as emitter `emitter`, when its collections do not hold everything.
+std::optional<LinkedLight> linkedLight(const usd::Stage& stage, const std::string& path, int emitter, double time,
+                                       const Warn& warn) {
+    const usd::PrimSpec* prim = stage.prim(path);
+    if (!prim) return std::nullopt;  // the default lights
+    LinkedLight l{emitter, CollectionMembership::read(stage, *prim, "lightLink", true, time, warn),
+                  CollectionMembership::read(stage, *prim, "shadowLink", true, time, warn)};
+    if (l.light.holdsEverything() && l.shadow.holdsEverything()) return std::nullopt;
+    return l;
+}
+
+// Numbers the mesh lights whose collections do not hold everything (MeshLightDesc::linkId), each
+// prim once however many parts and prototypes hold it, and adds them to `lights`.
+void linkMeshLights(const usd::Stage& stage, double time, render::SceneDescription& scene,
+                    std::vector<LinkedLight>& lights, const Warn& warn) {
+    std::map<std::string, int> ids;  // MeshLightAPI prim -> its linkId, or -1
+    int linked = 0;
+    auto number = [&](std::vector<render::MeshDesc>& meshes) {
+        for (render::MeshDesc& mesh : meshes) {
+            if (!mesh.light) continue;
+            auto [it, added] = ids.try_emplace(mesh.light->prim, -1);
+            if (added)
+                if (std::optional<LinkedLight> l =
+                        linkedLight(stage, mesh.light->prim, int(scene.lights.size()) + linked, time, warn)) {
+                    it->second = linked++;
+                    lights.push_back(std::move(*l));
+                }
+            mesh.light->linkId = it->second;
+        }
+    };
+    number(scene.meshes);
+    for (render::PrototypeDesc& p : scene.prototypes) number(p.meshes);
+}
+
 }  // namespace
 
 void resolveLightLinks(const usd::Stage& stage, double time, render::SceneDescription& scene, const Warn& warn) {
     std::vector<LinkedLight> lights;
-    for (std::size_t i = 0; i < scene.lights.size(); ++i) {
-        const usd::PrimSpec* prim = stage.prim(scene.lights[i].name);
-        if (!prim) continue;  // the default lights
-        LinkedLight l{int(i), CollectionMembership::read(stage, *prim, "lightLink", true, time, warn),
-                      CollectionMembership::read(stage, *prim, "shadowLink", true, time, warn)};
-        if (!l.light.holdsEverything() || !l.shadow.holdsEverything()) lights.push_back(std::move(l));
-    }
+    for (std::size_t i = 0; i < scene.lights.size(); ++i)
+        if (std::optional<LinkedLight> l = linkedLight(stage, scene.lights[i].name, int(i), time, warn))
+            lights.push_back(std::move(*l));
+    linkMeshLights(stage, time, scene, lights, warn);
     if (lights.empty()) return;
     Groups groups(lights, scene);
     for (render::MeshDesc& m : scene.meshes) m.linkGroup = groups.of(membershipOf(lights, m.name));

@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "delegate/light_adapter.h"
+#include "render/mesh_transform.h"
 
 namespace fluence::delegate {
 
@@ -17,25 +18,11 @@ MaterialSyncMode syncModeOf(const PrimReader& prim, const std::function<void(con
     return MaterialSyncMode::MaterialGlowTintsLight;
 }
 
-// Names each authored attribute or relationship a mesh light does not read.
+// Names each authored relationship a mesh light does not read.
 void warnUnread(const usd::PrimSpec& prim, const std::function<void(const std::string&)>& warn) {
-    if (authorsShaping(prim))
-        warn("shaping inputs (ShapingAPI) are not applied to a mesh light; it emits as an unshaped area light");
     for (const usd::RelationshipSpec& r : prim.relationships)
         if (r.name == "light:filters")
             warn("light:filters is not read (Fluence has no light filters); the mesh light is unfiltered");
-        else if (r.name.starts_with("collection:lightLink:") || r.name.starts_with("collection:shadowLink:"))
-            warn(r.name + " is not applied to a mesh light: it lights and shadows every prim");
-}
-
-float worldArea(const render::MeshDesc& mesh) {
-    float area = 0.0f;
-    for (std::size_t c = 0; c + 2 < mesh.indices.size(); c += 3) {
-        const Vec3f& p0 = mesh.positions[mesh.indices[c]];
-        area +=
-            0.5f * length(cross(mesh.positions[mesh.indices[c + 1]] - p0, mesh.positions[mesh.indices[c + 2]] - p0));
-    }
-    return area;
 }
 
 }  // namespace
@@ -43,25 +30,46 @@ float worldArea(const render::MeshDesc& mesh) {
 std::optional<MeshLight> meshLightOf(const PrimReader& prim, const std::function<void(const std::string&)>& warn) {
     if (!appliesSchema(prim.prim(), "MeshLightAPI")) return std::nullopt;
     MeshLight light;
+    light.prim = prim.prim().path;
     light.radiance = lightApiRadiance(prim, 1.0, warn);
     light.normalize = prim.boolean({"inputs:normalize", "normalize"}, false);
     light.sync = syncModeOf(prim, warn);
+    if (appliesSchema(prim.prim(), "ShapingAPI") || authorsShaping(prim.prim())) light.shaping = shapingOf(prim, warn);
     warnUnread(prim.prim(), warn);
     return light;
 }
 
 void applyMeshLight(const MeshLight& light, std::span<render::MeshDesc> parts,
-                    const std::vector<render::MaterialDesc>& materials) {
+                    const std::vector<render::MaterialDesc>& materials, const Matrix4& lightToWorld) {
     float area = 0.0f;
-    for (const render::MeshDesc& part : parts) area += worldArea(part);
+    for (const render::MeshDesc& part : parts) area += render::surfaceArea(part);
     const RGB radiance = light.normalize ? (area > 0.0f ? light.radiance / area : RGB(0.0f)) : light.radiance;
     for (render::MeshDesc& part : parts) {
-        render::MeshLightDesc desc{radiance, light.sync != MaterialSyncMode::NoMaterialResponse};
+        render::MeshLightDesc desc{radiance,       light.sync != MaterialSyncMode::NoMaterialResponse,
+                                   light.prim,     -1,
+                                   light.shaping,  lightToWorld,
+                                   light.normalize};
         if (light.sync == MaterialSyncMode::MaterialGlowTintsLight && part.material >= 0) {
             const RGB& glow = materials[static_cast<std::size_t>(part.material)].emission;
             if (!isBlack(glow)) desc.radiance *= glow;
         }
         part.light = desc;
+    }
+}
+
+void finishMeshLights(std::span<render::MeshDesc> parts, const std::map<std::string, MeshLight>& lights,
+                      const std::vector<render::MaterialDesc>& materials) {
+    for (std::size_t first = 0; first < parts.size();) {
+        const std::optional<render::MeshLightDesc>& light = parts[first].light;
+        std::size_t end = first + 1;
+        if (light)
+            while (end < parts.size() && parts[end].light && parts[end].light->prim == light->prim &&
+                   parts[end].light->lightToWorld == light->lightToWorld)
+                ++end;
+        if (light)
+            if (auto found = lights.find(light->prim); found != lights.end())
+                applyMeshLight(found->second, parts.subspan(first, end - first), materials, light->lightToWorld);
+        first = end;
     }
 }
 

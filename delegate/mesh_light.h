@@ -19,13 +19,23 @@
 // - independent: L alone; the material reflects light as usual.
 // - noMaterialResponse: L alone, and the surface reflects and transmits nothing (black).
 // Another token warns and is read as the fallback.
-// Not read, each named in one warning: shaping inputs (ShapingAPI), light:filters, light
-// linking (collection:lightLink, collection:shadowLink: the mesh light lights and shadows
-// everything). A mesh light inside a native instance or a point instancer's prototype is not read
-// (delegate/scene_delegate.cpp names it).
+// Light and shadow linking (collection:lightLink, collection:shadowLink) as every light's
+// (delegate/light_links.h): the collections on the mesh's prim, applied to every triangle of every
+// part the prim renders as.
+// Shaping (ShapingAPI applied, or any shaping input authored) as every area light's
+// (delegate/light_adapter.h, render/light_shaping.h): cone, focus and IES profile, each triangle's
+// emission shaped about its front normal (a RectLight's primary axis, its -Z, is its front normal
+// too), the profile's azimuth from the prim's local X and Y.
+// Not read, named in one warning: light:filters.
+// A mesh light inside a native instance or a point instancer's prototype is read with the
+// prototype (delegate/instancing.h, finishMeshLights below): each instance is an emitter of its own,
+// and a normalized one divides by its own placed area (render/render_scene.cpp).
+// Not done: a camera ray sees the light's radiance on the surface, where Arnold, hdPrman and Storm
+// show the mesh as its material shades it (bench/results/2026-12-06-mesh-lights.md).
 #pragma once
 
 #include <functional>
+#include <map>
 #include <optional>
 #include <span>
 #include <string>
@@ -39,17 +49,27 @@ namespace fluence::delegate {
 enum class MaterialSyncMode { MaterialGlowTintsLight, Independent, NoMaterialResponse };
 
 struct MeshLight {
+    std::string prim;    // its path: where its light and shadow links are read (delegate/light_links.h)
     RGB radiance{1.0f};  // intensity * 2^exposure * color (* colour temperature tint)
     bool normalize = false;
     MaterialSyncMode sync = MaterialSyncMode::MaterialGlowTintsLight;
+    std::optional<render::LightShapingDesc> shaping;
 };
 
 // The prim's mesh light, or nullopt when it does not apply MeshLightAPI. `warn` gets the message
 // for each attribute left unread.
 std::optional<MeshLight> meshLightOf(const PrimReader& prim, const std::function<void(const std::string&)>& warn);
 
-// Gives each part of one mesh light prim (world space) its render::MeshLightDesc.
+// Gives each part of one mesh light prim its render::MeshLightDesc: the parts in world space, or
+// in a prototype's space; `lightToWorld`: the prim's own local-to-world (or -to-prototype) transform.
 void applyMeshLight(const MeshLight& light, std::span<render::MeshDesc> parts,
-                    const std::vector<render::MaterialDesc>& materials);
+                    const std::vector<render::MaterialDesc>& materials, const Matrix4& lightToWorld);
+
+// Completes the parts of a prototype's mesh lights (delegate/instancing.h: each part of such a
+// prim carries a MeshDesc::light naming it, with lightToWorld its space), once their materials are
+// known: each run of consecutive parts of one prim in one place is one mesh light, given its
+// render::MeshLightDesc by applyMeshLight from `lights` (by prim path).
+void finishMeshLights(std::span<render::MeshDesc> parts, const std::map<std::string, MeshLight>& lights,
+                      const std::vector<render::MaterialDesc>& materials);
 
 }  // namespace fluence::delegate

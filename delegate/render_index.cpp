@@ -165,6 +165,7 @@ void PrototypeRprim::syncData(const SyncContext& context, const usd::PrimSpec*, 
     curves_ = std::move(contents.curves);
     points_ = std::move(contents.points);
     lights_ = std::move(contents.lights);
+    meshLights_ = std::move(contents.meshLights);
     malformed_ = std::move(contents.malformed);
     posedByAnimation_ = contents.posedByAnimation;
 }

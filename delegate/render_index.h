@@ -176,6 +176,8 @@ public:
     bool includesSourceTransform() const { return includeSourceTransform_; }
     // The lights below the source, in the source's space: each instance places a copy.
     const std::vector<render::LightDesc>& lights() const { return lights_; }
+    // The mesh lights among its parts (PrototypeContents::meshLights), by prim path.
+    const std::map<std::string, MeshLight>& meshLights() const { return meshLights_; }
     // The malformed prims below the source the last sync left out.
     const std::vector<MalformedPrim>& malformed() const { return malformed_; }
     // Reads from another source prim from the next sync on.
@@ -191,6 +193,7 @@ private:
     std::string source_;
     bool includeSourceTransform_;
     std::vector<render::LightDesc> lights_;
+    std::map<std::string, MeshLight> meshLights_;
     std::vector<MalformedPrim> malformed_;
     bool posedByAnimation_ = false;  // PrototypeContents::posedByAnimation
 };

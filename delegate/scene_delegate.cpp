@@ -120,8 +120,6 @@ SceneDelegate::SceneDelegate(usd::Stage& stage, DelegateOptions options) : stage
 
 void SceneDelegate::populate(const std::string& root) {
     std::map<std::string, std::pair<std::size_t, std::string>> unsupported;  // type -> (count, first prim)
-    // Mesh lights in native instances or point instancer prototypes, not read: (count, first prim).
-    std::pair<std::size_t, std::string> instancedMeshLights;
     std::string instanceRoot;  // the instance whose proxies are being visited, "" outside instances
     std::erase_if(walkMalformed_, [&](const auto& entry) { return isAtOrBelow(entry.first, root); });
     const SyncContext sync = context();
@@ -152,11 +150,7 @@ void SceneDelegate::populate(const std::string& root) {
         if (isGeometryType(type) || type == "PointInstancer") {
             // In an instance, the prototype holds them; a point instancer's prototypes, lights
             // included, render only through it, so nothing below it is a prim of its own.
-            if (!instanceRoot.empty()) {
-                if (appliesSchema(prim, "MeshLightAPI") && instancedMeshLights.first++ == 0)
-                    instancedMeshLights.second = prim.path;
-                return type != "PointInstancer";
-            }
+            if (!instanceRoot.empty()) return type != "PointInstancer";
             if (type == "PointInstancer") {
                 index_.insert(std::make_unique<PointInstancerRprim>(prim.path));
                 return false;  // what lies below renders only through the instancer
@@ -185,12 +179,6 @@ void SceneDelegate::populate(const std::string& root) {
     for (const auto& [type, entry] : unsupported)
         options_.warn(entry.second, "prim type '" + type + "' is not supported yet; skipped " +
                                         std::to_string(entry.first) + (entry.first == 1 ? " prim" : " prims"));
-    if (instancedMeshLights.first > 0)
-        options_.warn(instancedMeshLights.second,
-                      "UsdLux MeshLightAPI inside a native instance is not read; " +
-                          std::to_string(instancedMeshLights.first) +
-                          (instancedMeshLights.first == 1 ? " prim renders" : " prims render") +
-                          " as a plain surface, emitting nothing");
     reconcilePrototypes();
 }
 
@@ -421,7 +409,8 @@ render::SceneDescription SceneDelegate::describe(const render::Camera& camera, c
                     appendPart(std::move(part), scene.meshes, materialFor, scene.materials, options_.aovPrimvars);
                 if (!mesh.subdivided().empty()) countSubdivided(scene.meshes, first);
                 if (mesh.meshLight())
-                    applyMeshLight(*mesh.meshLight(), std::span(scene.meshes).subspan(first), scene.materials);
+                    applyMeshLight(*mesh.meshLight(), std::span(scene.meshes).subspan(first), scene.materials,
+                                   mesh.world());
                 break;
             }
             case RenderPrim::Kind::Instance:
@@ -487,11 +476,15 @@ render::SceneDescription SceneDelegate::describe(const render::Camera& camera, c
             for (const Matrix4& instance : placements[static_cast<std::size_t>(index)])
                 where.push_back(instance * sub.placement);
             std::size_t first = meshes.size();
-            for (MeshPart& part : sub.mesh->tessellate(where, dicing))
+            const bool light = prototype.meshLights().contains(sub.mesh->path());
+            for (MeshPart& part : sub.mesh->tessellate(where, dicing)) {
+                if (light) part.mesh.light = render::MeshLightDesc{.prim = sub.mesh->path()};
                 appendPart({render::transformMesh(part.mesh, sub.placement), std::move(part.materialPath)}, meshes,
                            materialFor, scene.materials, options_.aovPrimvars);
+            }
             countSubdivided(meshes, first);
         }
+        finishMeshLights(meshes, prototype.meshLights(), scene.materials);
     }
     return scene;
 }

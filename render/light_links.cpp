@@ -1,5 +1,6 @@
 #include "render/light_links.h"
 
+#include <algorithm>
 #include <stdexcept>
 #include <string>
 
@@ -17,6 +18,17 @@ void checkGroup(const std::string& name, int group, std::size_t groups) {
 
 }  // namespace
 
+std::size_t linkEmitterCount(const SceneDescription& scene) {
+    int meshLights = 0;
+    auto count = [&](const std::vector<MeshDesc>& meshes) {
+        for (const MeshDesc& m : meshes)
+            if (m.light) meshLights = std::max(meshLights, m.light->linkId + 1);
+    };
+    count(scene.meshes);
+    for (const PrototypeDesc& p : scene.prototypes) count(p.meshes);
+    return scene.lights.size() + std::size_t(meshLights);
+}
+
 void checkLinkGroups(const SceneDescription& scene) {
     const std::size_t groups = scene.lightLinkGroups.size();
     for (const MeshDesc& m : scene.meshes) checkGroup(m.name, m.linkGroup, groups);
@@ -25,31 +37,33 @@ void checkLinkGroups(const SceneDescription& scene) {
     for (const InstanceDesc& i : scene.instances) checkGroup(i.name, i.linkGroup, groups);
     for (const PrototypeDesc& p : scene.prototypes)
         for (const MeshDesc& m : p.meshes) checkGroup(m.name, m.linkGroup, groups);
+    const std::size_t emitters = linkEmitterCount(scene);
     for (const LightLinkGroup& g : scene.lightLinkGroups)
         for (const std::vector<int>* lights : {&g.unlit, &g.unshadowed})
             for (int light : *lights)
-                if (light < 0 || std::size_t(light) >= scene.lights.size())
-                    throw std::invalid_argument("light link group names light " + std::to_string(light) + " of " +
-                                                std::to_string(scene.lights.size()));
+                if (light < 0 || std::size_t(light) >= emitters)
+                    throw std::invalid_argument("light link group names emitter " + std::to_string(light) + " of " +
+                                                std::to_string(emitters));
 }
 
-LightLinkTable::LightLinkTable(const std::vector<LightLinkGroup>& groups, const std::vector<int>& lightOfDesc,
-                               std::size_t lightCount) {
+LightLinkTable::LightLinkTable(const std::vector<LightLinkGroup>& groups,
+                               const std::vector<std::vector<int>>& lightsOfEmitter, std::size_t lightCount) {
     if (groups.empty()) return;
     lightCount_ = lightCount;
     unlit_.assign(groups.size() * lightCount, false);
     unshadowed_.assign(groups.size() * lightCount, false);
     passes_.assign(lightCount, false);
     for (std::size_t g = 0; g < groups.size(); ++g) {
-        for (int desc : groups[g].unlit) {
-            unlit_[g * lightCount + std::size_t(lightOfDesc[std::size_t(desc)])] = true;
-            excludes_ = true;
-        }
-        for (int desc : groups[g].unshadowed) {
-            const std::size_t light = std::size_t(lightOfDesc[std::size_t(desc)]);
-            unshadowed_[g * lightCount + light] = true;
-            passes_[light] = true;
-        }
+        for (int emitter : groups[g].unlit)
+            for (int light : lightsOfEmitter[std::size_t(emitter)]) {
+                unlit_[g * lightCount + std::size_t(light)] = true;
+                excludes_ = true;
+            }
+        for (int emitter : groups[g].unshadowed)
+            for (int light : lightsOfEmitter[std::size_t(emitter)]) {
+                unshadowed_[g * lightCount + std::size_t(light)] = true;
+                passes_[std::size_t(light)] = true;
+            }
     }
 }
 

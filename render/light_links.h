@@ -2,8 +2,11 @@
 // render core takes them: no prim paths, only numbers. Each piece of geometry (MeshDesc, CurvesDesc,
 // PointsDesc, InstanceDesc) carries a link group; group 0, the default, is lit by every light and
 // casts every light's shadows. Group g > 0 is SceneDescription::lightLinkGroups[g - 1]: the lights
-// (indices into SceneDescription::lights) that do not light its geometry, and those whose shadow
-// rays pass through it. The delegate (delegate/light_links.h) resolves the collections into groups.
+// that do not light its geometry, and those whose shadow rays pass through it. A group names a
+// light by its emitter number: i < SceneDescription::lights.size() is lights[i], and
+// lights.size() + k is the UsdLux mesh light whose MeshLightDesc::linkId is k (every triangle of
+// every part and instance of it). The delegate (delegate/light_links.h) resolves the collections
+// into groups.
 //
 // What "lit by" means, the same in every integrator: light leaving light L along a path's first
 // segment counts only where that segment ends on geometry L lights (next-event estimation at the
@@ -20,20 +23,25 @@ namespace fluence::render {
 struct SceneDescription;
 
 struct LightLinkGroup {
-    std::vector<int> unlit;       // lights that do not light the group's geometry
-    std::vector<int> unshadowed;  // lights whose shadow rays the group's geometry does not block
+    std::vector<int> unlit;       // emitters that do not light the group's geometry
+    std::vector<int> unshadowed;  // emitters whose shadow rays the group's geometry does not block
 };
 
+// The number of emitters a group may name: the LightDescs, then the linked mesh lights (one more
+// than the largest MeshLightDesc::linkId of the meshes and the prototypes' meshes).
+std::size_t linkEmitterCount(const SceneDescription& scene);
+
 // Throws std::invalid_argument naming the geometry whose link group is not one of `scene`'s, or the
-// group that names a light `scene` does not have.
+// group that names an emitter `scene` does not have.
 void checkLinkGroups(const SceneDescription& scene);
 
 // The groups of a scene against its lights in the render core's numbering (RenderScene's light
-// indices): built from the groups and, for each LightDesc, its light index.
+// indices): built from the groups and, for each emitter, its light indices (a mesh light's: all
+// its triangles).
 class LightLinkTable {
 public:
     LightLinkTable() = default;
-    LightLinkTable(const std::vector<LightLinkGroup>& groups, const std::vector<int>& lightOfDesc,
+    LightLinkTable(const std::vector<LightLinkGroup>& groups, const std::vector<std::vector<int>>& lightsOfEmitter,
                    std::size_t lightCount);
 
     bool empty() const { return lightCount_ == 0; }

@@ -21,6 +21,12 @@ Vec3f orthogonalTo(Vec3f v, const Vec3f& a, const Vec3f& b, const Vec3f& fallbac
 
 }  // namespace
 
+ShapingFrame::ShapingFrame(const Vec3f& axisIn, const Matrix4& lightToWorld) : axis(axisIn) {
+    x = orthogonalTo(Vec3f(lightToWorld.transformVector({1.0, 0.0, 0.0})), axis, Vec3f(0.0f),
+                     Frame::fromNormal(axis).s);
+    y = orthogonalTo(Vec3f(lightToWorld.transformVector({0.0, 1.0, 0.0})), axis, x, cross(x, axis));
+}
+
 LightShaping::LightShaping(const LightShapingDesc& desc, const Vec3f& axis, const Matrix4& lightToWorld)
     : active_(true), axis_(axis), focus_(std::max(0.0f, desc.focus)), focusTint_(desc.focusTint) {
     cutoff_ = std::clamp(desc.coneAngleDegrees, 0.0f, 180.0f) * kPi / 180.0f;
@@ -30,9 +36,9 @@ LightShaping::LightShaping(const LightShapingDesc& desc, const Vec3f& axis, cons
     // reached on the axis or towards the cone's edge; luminance is linear, so this bounds it.
     if (focus_ > 0.0f) peak_ = std::max(1.0f, luminance(focusTint_));
     if (!desc.ies) return;
-    Frame frame = Frame::fromNormal(axis_);
-    xAxis_ = orthogonalTo(Vec3f(lightToWorld.transformVector({1.0, 0.0, 0.0})), axis_, Vec3f(0.0f), frame.s);
-    yAxis_ = orthogonalTo(Vec3f(lightToWorld.transformVector({0.0, 1.0, 0.0})), axis_, xAxis_, cross(xAxis_, axis_));
+    const ShapingFrame frame(axis_, lightToWorld);
+    xAxis_ = frame.x;
+    yAxis_ = frame.y;
     ies_ = std::make_shared<IesProfile>(*desc.ies, desc.iesAngleScale, desc.iesNormalize);
     buildDirections();
 }

@@ -1,5 +1,6 @@
 // UsdLuxShapingAPI: narrowing the emission of rect, disk, sphere and cylinder lights (and of the
-// point and line lights they become) around the light's primary axis, its local -Z.
+// point and line lights they become) around the light's primary axis, its local -Z, and of a
+// UsdLux mesh light's triangles, each around its own front normal (render/lights/triangle_light.h).
 //
 // With θ the angle between the axis and the direction ω light leaves in (UsdLux's
 // θ_offAxis = acos(lightAxis · emissionDir)), the emitted radiance is multiplied by
@@ -42,6 +43,17 @@
 #include "render/scene_description.h"
 
 namespace fluence::render {
+
+// The frame a shaping is evaluated in: its axis, and the X and Y axes that orient an IES profile
+// about it (the light's local X and Y, made perpendicular to the axis).
+struct ShapingFrame {
+    Vec3f x{1.0f, 0.0f, 0.0f}, y{0.0f, 1.0f, 0.0f}, axis{0.0f, 0.0f, 1.0f};
+    ShapingFrame() = default;
+    ShapingFrame(const Vec3f& axis, const Matrix4& lightToWorld);
+    // `d` in this frame's coordinates: what a shaping built about the default frame takes (one
+    // shaping shared by emitters that each have their own frame, as a mesh light's triangles do).
+    Vec3f toLocal(const Vec3f& d) const { return {dot(d, x), dot(d, y), dot(d, axis)}; }
+};
 
 class LightShaping {
 public:

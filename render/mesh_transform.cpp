@@ -7,6 +7,7 @@ namespace fluence::render {
 
 MeshDesc transformMesh(const MeshDesc& mesh, const Matrix4& transform) {
     MeshDesc out = mesh;
+    if (out.light) out.light->lightToWorld = transform * out.light->lightToWorld;
     for (Vec3f& p : out.positions) p = Vec3f(transform.transformPoint(Vec3d(p)));
     for (Vec3f& n : out.cornerNormals) {
         Vec3d t = transform.transformNormal(Vec3d(n));
@@ -20,6 +21,16 @@ MeshDesc transformMesh(const MeshDesc& mesh, const Matrix4& transform) {
             if (!out.cornerColors.empty()) std::swap(out.cornerColors[c + 1], out.cornerColors[c + 2]);
         }
     return out;
+}
+
+float surfaceArea(const MeshDesc& mesh) {
+    float area = 0.0f;
+    for (std::size_t c = 0; c + 2 < mesh.indices.size(); c += 3) {
+        const Vec3f& p0 = mesh.positions[mesh.indices[c]];
+        area +=
+            0.5f * length(cross(mesh.positions[mesh.indices[c + 1]] - p0, mesh.positions[mesh.indices[c + 2]] - p0));
+    }
+    return area;
 }
 
 void transformPrimitives(std::vector<Vec3f>& points, std::vector<float>& radii, std::vector<Vec3f>& normals,

@@ -149,6 +149,11 @@ struct RenderScene::Mesh {
     bool reflects = true;
     int material = -1;  // into materials_, -1 = the default (Lambertian) material
     int firstLight = -1;
+    int linkId = -1;  // MeshLightDesc::linkId
+    // A mesh light's shaping (MeshLightDesc::shaping), about the default frame (each triangle
+    // evaluates it in its own), and the prim's axes that orient an IES profile; null: unshaped.
+    std::unique_ptr<LightShaping> shaping;
+    Matrix4 shapingToWorld = Matrix4::identity();
     std::uint32_t objectName = kNoName, materialName = kNoName;  // objectNames_, materialNames_
     int linkGroup = 0;                                           // MeshDesc::linkGroup
 };
@@ -270,12 +275,18 @@ RenderScene::RenderScene(const SceneDescription& scene, std::shared_ptr<texture:
     for (const CurvesDesc& curves : scene.curves) addCurves(curves, scene.materials);
     for (const PointsDesc& points : scene.points) addPoints(points, scene.materials);
     addPrototypes(scene);
-    std::vector<int> lightOfDesc;
+    // The render lights of each emitter a link group names (render/light_links.h).
+    std::vector<std::vector<int>> lightsOfEmitter;
     for (const LightDesc& light : scene.lights) {
-        lightOfDesc.push_back(static_cast<int>(lights_.size()));
+        lightsOfEmitter.push_back({static_cast<int>(lights_.size())});
         addLight(light);
     }
-    links_ = LightLinkTable(scene.lightLinkGroups, lightOfDesc, lights_.size());
+    lightsOfEmitter.resize(linkEmitterCount(scene));
+    for (const Mesh& mesh : meshes_)
+        if (mesh.linkId >= 0 && mesh.firstLight >= 0)
+            for (std::size_t t = 0; t < mesh.indices.size() / 3; ++t)
+                lightsOfEmitter[scene.lights.size() + std::size_t(mesh.linkId)].push_back(mesh.firstLight + int(t));
+    links_ = LightLinkTable(scene.lightLinkGroups, lightsOfEmitter, lights_.size());
     lightGroups_ = scene.lightGroups;
     addVolumes(scene.volumes);
     addInteriors();
@@ -476,6 +487,12 @@ int RenderScene::storeMesh(const MeshDesc& desc, const std::vector<MaterialDesc>
         mesh.emission = desc.light->radiance;
         mesh.emittingSides = EmittingSides::Front;
         mesh.reflects = desc.light->materialResponse;
+        mesh.linkId = desc.light->linkId;
+        if (desc.light->shaping) {
+            mesh.shaping =
+                std::make_unique<LightShaping>(*desc.light->shaping, ShapingFrame().axis, Matrix4::identity());
+            mesh.shapingToWorld = desc.light->lightToWorld;
+        }
     }
     mesh.linkGroup = desc.linkGroup;
     stats_.meshes += 1;
@@ -646,6 +663,9 @@ void RenderScene::addPrototypes(const SceneDescription& scene) {
             for (const Matrix4& step : desc.motionTransforms)  // a moving instance: its copy moves with it
                 placed.motionPositions.push_back(transformMesh(local, step).positions);
             if (desc.linkGroup != 0) placed.linkGroup = desc.linkGroup;
+            if (placed.light && placed.light->normalized)  // per unit of its placed area
+                if (const float area = surfaceArea(placed); area > 0.0f)
+                    placed.light->radiance *= surfaceArea(local) / area;
             addMesh(placed, scene.materials, objectName);
         }
         if (proto.meshes.empty()) continue;
@@ -945,13 +965,19 @@ RenderScene::Triangle RenderScene::triangleAt(const Mesh& mesh, unsigned triangl
             positionAt(mesh.motionPositions, corner[2], time)};
 }
 
+TriangleLight RenderScene::triangleLight(const Mesh& mesh, std::string name, const Triangle& c, unsigned triangle) {
+    TriangleLight light = mesh.texturedEmission
+                              ? TriangleLight(std::move(name), c.p0, c.p1, c.p2, *mesh.texturedEmission, triangle)
+                              : TriangleLight(std::move(name), c.p0, c.p1, c.p2, mesh.emission, mesh.emittingSides);
+    if (mesh.shaping) light.shape(*mesh.shaping, mesh.shapingToWorld);
+    return light;
+}
+
 std::unique_ptr<TriangleLight> RenderScene::triangleLight(const Mesh& mesh, const std::vector<Vec3f>& positions,
                                                           unsigned triangle) const {
     const std::uint32_t* corner = &mesh.indices[3 * std::size_t(triangle)];
-    const Vec3f &p0 = positions[corner[0]], &p1 = positions[corner[1]], &p2 = positions[corner[2]];
-    if (mesh.texturedEmission)
-        return std::make_unique<TriangleLight>(mesh.name, p0, p1, p2, *mesh.texturedEmission, triangle);
-    return std::make_unique<TriangleLight>(mesh.name, p0, p1, p2, mesh.emission, mesh.emittingSides);
+    return std::make_unique<TriangleLight>(
+        triangleLight(mesh, mesh.name, {positions[corner[0]], positions[corner[1]], positions[corner[2]]}, triangle));
 }
 
 LightAtTime RenderScene::lightAt(std::size_t i, float time) const {
@@ -962,10 +988,7 @@ LightAtTime RenderScene::lightAt(std::size_t i, float time) const {
     // The triangle where its mesh is at `time`, made for the call (unnamed: the scene's light(i) has the name).
     const Mesh& mesh = meshes_[static_cast<std::size_t>(moving.mesh)];
     const auto triangle = static_cast<unsigned>(static_cast<int>(i) - mesh.firstLight);
-    const Triangle c = triangleAt(mesh, triangle, time);
-    if (mesh.texturedEmission)
-        return LightAtTime(TriangleLight({}, c.p0, c.p1, c.p2, *mesh.texturedEmission, triangle));
-    return LightAtTime(TriangleLight({}, c.p0, c.p1, c.p2, mesh.emission, mesh.emittingSides));
+    return LightAtTime(triangleLight(mesh, {}, triangleAt(mesh, triangle, time), triangle));
 }
 
 const RenderScene::Instance* RenderScene::instanceAt(int index, float time, std::optional<Instance>& moved) const {

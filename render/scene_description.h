@@ -208,6 +208,19 @@ struct CornerPrimvar {
     std::vector<float> values;  // triangles * 3 * components
 };
 
+// UsdLuxShapingAPI: the emission narrowed around the light's local -Z axis (render/light_shaping.h).
+struct LightShapingDesc {
+    float coneAngleDegrees = 90.0f;  // no light leaves further than this from the axis
+    float coneSoftness = 0.0f;       // 0: hard edge; 1: fades from the axis to the cone's edge
+    float focus = 0.0f;              // off-axis cosine power
+    RGB focusTint{0.0f};             // what the focus fades towards off the axis
+    // inputs:shaping:ies:file read by texture::readIesFile (null: none), and how it is applied
+    // (render/ies_profile.h).
+    std::shared_ptr<const texture::IesTable> ies;
+    float iesAngleScale = 0.0f;
+    bool iesNormalize = false;
+};
+
 // UsdLuxMeshLightAPI on a mesh (delegate/mesh_light.h): the mesh is an area light that emits
 // `radiance` from the front of each triangle (the side cross(p1 - p0, p2 - p0) points to), as a
 // RectLight emits from its front, in place of its material's emission; sampled like any emissive
@@ -219,6 +232,20 @@ struct MeshLightDesc {
     RGB radiance{1.0f};
     // materialSyncMode noMaterialResponse: false, the surface reflects and transmits nothing.
     bool materialResponse = true;
+    // The prim that applies MeshLightAPI (a part of one GeomSubset is named by the subset): what
+    // the delegate reads its light and shadow links from. The render core does not read it.
+    std::string prim{};
+    // Its number among the scene's linked mesh lights (render/light_links.h), shared by every part
+    // and instance of the prim; -1: its links hold everything.
+    int linkId = -1;
+    // UsdLuxShapingAPI on the prim: each triangle's emission shaped about its front normal
+    // (render/lights/triangle_light.h), an IES profile's azimuth from `lightToWorld`'s X and Y (the
+    // prim's local axes, in the mesh's space: transformMesh moves them with it).
+    std::optional<LightShapingDesc> shaping{};
+    Matrix4 lightToWorld = Matrix4::identity();
+    // `radiance` is divided by its prim's area (inputs:normalize) in the mesh's own space: a copy
+    // that an instance places is divided by its placed area instead (RenderScene), part by part.
+    bool normalized = false;
 };
 
 struct MeshDesc {
@@ -245,19 +272,6 @@ struct RgbImage {
     std::vector<RGB> texels;
 
     const RGB& at(int x, int y) const { return texels[std::size_t(y) * width + x]; }
-};
-
-// UsdLuxShapingAPI: the emission narrowed around the light's local -Z axis (render/light_shaping.h).
-struct LightShapingDesc {
-    float coneAngleDegrees = 90.0f;  // no light leaves further than this from the axis
-    float coneSoftness = 0.0f;       // 0: hard edge; 1: fades from the axis to the cone's edge
-    float focus = 0.0f;              // off-axis cosine power
-    RGB focusTint{0.0f};             // what the focus fades towards off the axis
-    // inputs:shaping:ies:file read by texture::readIesFile (null: none), and how it is applied
-    // (render/ies_profile.h).
-    std::shared_ptr<const texture::IesTable> ies;
-    float iesAngleScale = 0.0f;
-    bool iesNormalize = false;
 };
 
 struct LightDesc {

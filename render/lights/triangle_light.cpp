@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "core/check.h"
 #include "render/lights/surface_sampling.h"
 
 namespace fluence::render {
@@ -26,18 +27,24 @@ TriangleLight::TriangleLight(std::string meshName, const Vec3f& p0, const Vec3f&
     triangle_ = triangle;
 }
 
+void TriangleLight::shape(const LightShaping& shaping, const Matrix4& lightToWorld) {
+    FLUENCE_DCHECK(frontOnly_);
+    shaping_ = &shaping;
+    shapingFrame_ = ShapingFrame(normal_, lightToWorld);
+}
+
 RGB TriangleLight::radianceAt(Vec2f b) const {
     return textured_ ? textured_->at(triangle_, b.y, 1.0f - b.x - b.y) : radiance_;
 }
 
 RGB TriangleLight::emitted(const LightHit& hit, const Vec3f& wo) const {
     if (!emitsTowards(wo)) return RGB(0.0f);
-    if (!textured_ || area_ == 0.0f) return radiance_;
+    if (!textured_ || area_ == 0.0f) return radiance_ * shapingFactor(wo);
     // The hit's barycentric weights of p0 and p1: sub-triangle areas over the whole.
     const Vec3f twiceArea = normal_ * (2.0f * area_);
     const float b0 = dot(cross(p1_ - hit.point, p2_ - hit.point), twiceArea) / lengthSquared(twiceArea);
     const float b1 = dot(cross(p2_ - hit.point, p0_ - hit.point), twiceArea) / lengthSquared(twiceArea);
-    return radianceAt({b0, b1});
+    return radianceAt({b0, b1}) * shapingFactor(wo);
 }
 
 std::optional<LightSample> TriangleLight::sample(const Vec3f& p, Vec2f u) const {
@@ -52,7 +59,7 @@ std::optional<LightSample> TriangleLight::sample(const Vec3f& p, Vec2f u) const 
     if (!emitsTowards(-wi)) return std::nullopt;
     float pdf = areaToSolidAngle(1.0f / area_, dist2, std::abs(dot(normal_, wi)));
     if (pdf == 0.0f) return std::nullopt;
-    return surfaceSample(radianceAt(b), wi, dist, pdf);
+    return surfaceSample(radianceAt(b) * shapingFactor(-wi), wi, dist, pdf);
 }
 
 float TriangleLight::pdf(const Vec3f& p, const Vec3f& wi, const LightHit& hit) const {
@@ -61,19 +68,21 @@ float TriangleLight::pdf(const Vec3f& p, const Vec3f& wi, const LightHit& hit) c
                : 0.0f;
 }
 
+float TriangleLight::unshapedPower() const { return luminance(radiance_) * area_ * (frontOnly_ ? kPi : 2.0f * kPi); }
+
 float TriangleLight::power(const SceneBounds&) const {
-    return luminance(radiance_) * area_ * (frontOnly_ ? kPi : 2.0f * kPi);
+    return unshapedPower() * (shaping_ ? shaping_->powerFraction(true) : 1.0f);
 }
 
 std::optional<LightBounds> TriangleLight::bounds() const {
     LightBounds b;
     b.lo = vmin(p0_, vmin(p1_, p2_));
     b.hi = vmax(p0_, vmax(p1_, p2_));
-    b.phi = power({});
+    b.phi = unshapedPower();  // the shaping's narrowing scales it by its peak, as a RectLight's
     b.axis = normal_;
     b.cosThetaO = 1.0f;
     b.twoSided = !frontOnly_;
-    return b;
+    return shaping_ ? shaping_->narrow(b, true) : b;
 }
 
 std::optional<EmissionSample> TriangleLight::sampleEmission(Vec2f uPosition, Vec2f uDirection,
@@ -86,7 +95,7 @@ std::optional<EmissionSample> TriangleLight::sampleEmission(Vec2f uPosition, Vec
     EmissionSample e = fromSurface(p0_ * b.x + p1_ * b.y + p2_ * (1.0f - b.x - b.y), back ? -normal_ : normal_,
                                    1.0f / area_, uDirection);
     if (!frontOnly_) e.density.direction *= 0.5f;
-    e.Le = radianceAt(b);
+    e.Le = radianceAt(b) * shapingFactor(e.direction);
     return e;
 }
 

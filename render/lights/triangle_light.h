@@ -10,13 +10,17 @@
 // drawn uniformly by area.
 // A triangle of a UsdLux mesh light (MeshDesc::light) emits from its front only, the side of
 // cross(p1 - p0, p2 - p0), as a RectLight does: half the power, directions drawn with density
-// cos / pi on that side, nothing behind it.
+// cos / pi on that side, nothing behind it. Its UsdLux shaping (shape()) narrows that emission as
+// a RectLight's: cone, focus and IES profile about the triangle's front normal, the profile's
+// azimuth from the mesh light's local X and Y (render/light_shaping.h); the power, the light
+// tree's bounds and the emitted radiance take it, the sampling densities do not change.
 #pragma once
 
 #include <optional>
 #include <string>
 
 #include "render/light.h"
+#include "render/light_shaping.h"
 #include "render/textured_emission.h"
 
 namespace fluence::render {
@@ -31,6 +35,10 @@ public:
     // Triangle `triangle` of a mesh with textured emission (kept by reference).
     TriangleLight(std::string meshName, const Vec3f& p0, const Vec3f& p1, const Vec3f& p2,
                   const TexturedEmission& emission, unsigned triangle);
+
+    // Shapes a front-only triangle's emission by `shaping` (built about the default ShapingFrame,
+    // kept by reference), about its front normal, an IES profile oriented by `lightToWorld`'s X and Y.
+    void shape(const LightShaping& shaping, const Matrix4& lightToWorld);
 
     std::optional<LightSample> sample(const Vec3f& p, Vec2f u) const override;
     float pdf(const Vec3f& p, const Vec3f& wi, const LightHit& hit) const override;
@@ -49,6 +57,11 @@ private:
     RGB radianceAt(Vec2f b) const;
     // Whether light leaves towards `direction` (a unit vector away from the triangle).
     bool emitsTowards(const Vec3f& direction) const { return !frontOnly_ || dot(normal_, direction) > 0.0f; }
+    float unshapedPower() const;
+    // The shaping's factor on light leaving in unit `direction` (1 unshaped).
+    RGB shapingFactor(const Vec3f& direction) const {
+        return shaping_ ? shaping_->factor(shapingFrame_.toLocal(direction)) : RGB(1.0f);
+    }
 
     Vec3f p0_, p1_, p2_, normal_;
     float area_;
@@ -56,6 +69,8 @@ private:
     const TexturedEmission* textured_ = nullptr;
     unsigned triangle_ = 0;
     bool frontOnly_ = false;
+    const LightShaping* shaping_ = nullptr;
+    ShapingFrame shapingFrame_;
 };
 
 }  // namespace fluence::render

@@ -282,7 +282,7 @@ over "NotDefined"
 
 // UsdLux MeshLightAPI (delegate/mesh_light.h) is read on a mesh of its own; inside a native
 // instance it is not, and one warning names the first such prim.
-TEST(SceneDelegate, MeshLightApiInsideAnInstanceIsNamedAsNotRead) {
+TEST(SceneDelegate, MeshLightApiInsideAnInstanceIsReadIntoThePrototype) {
     const std::string tri = R"( (
     prepend apiSchemas = ["MeshLightAPI"]
 )
@@ -297,11 +297,12 @@ TEST(SceneDelegate, MeshLightApiInsideAnInstanceIsNamedAsNotRead) {
                       "}\ndef Xform \"I\" (\n    instanceable = true\n    references = </P>\n)\n{\n}\n");
     ASSERT_TRUE(p.mesh("/A") && p.mesh("/P/B"));
     EXPECT_TRUE(p.mesh("/A")->light && p.mesh("/P/B")->light);
-    ASSERT_EQ(p.warnings.size(), 1u);
-    EXPECT_NE(p.warnings[0].find("/I/B"), std::string::npos) << p.warnings[0];
-    EXPECT_NE(p.warnings[0].find("MeshLightAPI inside a native instance is not read; 1 prim renders"),
-              std::string::npos)
-        << p.warnings[0];
+    EXPECT_TRUE(p.warnings.empty()) << p.warnings.front();
+    ASSERT_EQ(p.result.scene.prototypes.size(), 1u);
+    ASSERT_EQ(p.result.scene.prototypes[0].meshes.size(), 1u);
+    const render::MeshDesc& instanced = p.result.scene.prototypes[0].meshes[0];
+    ASSERT_TRUE(instanced.light) << "the instance's mesh emits (UsdLuxMeshLight.* check its light)";
+    EXPECT_EQ(instanced.light->prim, "/I/B");
 }
 
 TEST(SceneDelegate, AuthoredColoursGoThroughTheColourConverterWithTheirColourSpace) {
