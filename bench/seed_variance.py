@@ -13,16 +13,14 @@ is the figure's spread), the median CPU seconds of a render (user + sys, as `ren
 and the ratios of relMSE, CPU and relMSE x CPU to the first configuration.
 """
 import argparse
-import os
 import pathlib
-import re
-import subprocess
 import sys
 
 import numpy as np
 
 sys.path.insert(0, str(pathlib.Path(__file__).resolve().parent))
 from fluence_bench.metrics import REL_EPS, read_rgb  # noqa: E402
+from fluence_bench.seeded import interleaved, parse_configs, render_cpu  # noqa: E402
 
 
 def rel_variance(images, mean):
@@ -40,26 +38,14 @@ def main():
     a = p.parse_args()
     if a.seeds < 4:
         p.error("SEEDS must be at least 4 (two halves of two)")
-    configs = []
-    for c in a.configs:
-        name, rest = c.split("=", 1)
-        binary, _, flags = rest.partition(":")
-        configs.append((name, binary, flags.split()))
+    configs = parse_configs(a.configs)
     a.out.mkdir(parents=True, exist_ok=True)
     images = {name: [] for name, _, _ in configs}
     cpus = {name: [] for name, _, _ in configs}
-    for i in range(a.seeds):
-        seed = 200 + i
-        for name, binary, flags in configs[i % len(configs):] + configs[:i % len(configs)]:
-            out = a.out / ("%s_%d.exr" % (name, seed))
-            cmd = [binary, "render", a.scene, "--spp", str(a.spp), "--seed", str(seed), "-r", str(a.res), str(a.res),
-                   "-j", "2", "-o", str(out), *flags]
-            r = subprocess.run(cmd, capture_output=True, text=True, env=dict(os.environ))
-            m = re.search(r"render [0-9.]+ s \(([0-9.]+) s CPU\)", r.stdout + r.stderr)
-            if r.returncode != 0 or not m:
-                sys.exit("%s failed:\n%s%s" % (" ".join(cmd), r.stdout, r.stderr))
-            cpus[name].append(float(m.group(1)))
-            images[name].append(read_rgb(out))
+    for seed, name, binary, flags in interleaved(configs, a.seeds):
+        out = a.out / ("%s_%d.exr" % (name, seed))
+        cpus[name].append(render_cpu(binary, a.scene, a.spp, seed, a.res, out, flags))
+        images[name].append(read_rgb(out))
     first = None
     for name, _, _ in configs:
         x = np.array(images[name])

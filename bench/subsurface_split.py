@@ -24,16 +24,14 @@ whole, skin and rest relMSE over the same pixels.
 """
 import argparse
 import glob
-import os
 import pathlib
-import re
-import subprocess
 import sys
 
 import numpy as np
 
 sys.path.insert(0, str(pathlib.Path(__file__).resolve().parent))
 from fluence_bench.metrics import REL_EPS  # noqa: E402
+from fluence_bench.seeded import interleaved, parse_configs, render_cpu  # noqa: E402
 
 LPES = {"surface": "C[^T'subsurface']*[LO]", "exit_direct": "C<T>'subsurface'*<T>[LO]",
         "reentry": "C<T>'subsurface'*<R>.*[LO]", "after_exit": "C<T>'subsurface'*<T>.+[LO]"}
@@ -51,15 +49,8 @@ def read_layers(path, layers):
 
 
 def render(binary, flags, args, seed, out):
-    cmd = [binary, "render", args.scene, "--spp", str(args.spp), "--seed", str(seed), "-r", str(args.res),
-           str(args.res), "-j", "2", "-o", str(out), *flags]
-    for name, expression in LPES.items():
-        cmd += ["--lpe", "%s=%s" % (name, expression)]
-    r = subprocess.run(cmd, capture_output=True, text=True, env=dict(os.environ))
-    m = re.search(r"render [0-9.]+ s \(([0-9.]+) s CPU\)", r.stdout + r.stderr)
-    if r.returncode != 0 or not m:
-        sys.exit("%s failed:\n%s%s" % (" ".join(cmd), r.stdout, r.stderr))
-    return float(m.group(1))
+    lpes = [arg for name, expression in LPES.items() for arg in ("--lpe", "%s=%s" % (name, expression))]
+    return render_cpu(binary, args.scene, args.spp, seed, args.res, out, [*flags, *lpes])
 
 
 def rel_variance(stack, denominator):
@@ -78,21 +69,15 @@ def main():
     a = p.parse_args()
     if a.seeds < 4:
         p.error("SEEDS must be at least 4")
-    configs = []
-    for c in a.configs:
-        name, rest = c.split("=", 1)
-        binary, _, flags = rest.partition(":")
-        configs.append((name, binary, flags.split()))
+    configs = parse_configs(a.configs)
     a.out.mkdir(parents=True, exist_ok=True)
     layers = {"beauty": "", **{name: name + "." for name in LPES}}
     images = {name: [] for name, _, _ in configs}
     cpus = {name: [] for name, _, _ in configs}
-    for i in range(a.seeds):
-        seed = 200 + i
-        for name, binary, flags in configs[i % len(configs):] + configs[:i % len(configs)]:
-            out = a.out / ("%s_%d.exr" % (name, seed))
-            cpus[name].append(render(binary, flags, a, seed, out))
-            images[name].append(read_layers(out, layers))
+    for seed, name, binary, flags in interleaved(configs, a.seeds):
+        out = a.out / ("%s_%d.exr" % (name, seed))
+        cpus[name].append(render(binary, flags, a, seed, out))
+        images[name].append(read_layers(out, layers))
 
     first = np.array([d["beauty"] for d in images[configs[0][0]]]).mean(axis=0)
     without_walk = np.array([d["surface"] for d in images[configs[0][0]]]).mean(axis=0)
