@@ -20,7 +20,7 @@ import numpy as np
 
 sys.path.insert(0, str(pathlib.Path(__file__).resolve().parent))
 from fluence_bench.metrics import REL_EPS, read_rgb  # noqa: E402
-from fluence_bench.seeded import interleaved, parse_configs, render_cpu  # noqa: E402
+from fluence_bench.seeded import add_arguments, interleaved, parse_configs, render_cpu  # noqa: E402
 
 
 def rel_variance(images, mean):
@@ -29,12 +29,7 @@ def rel_variance(images, mean):
 
 def main():
     p = argparse.ArgumentParser(description=__doc__.split("\n")[0])
-    p.add_argument("scene")
-    p.add_argument("spp", type=int)
-    p.add_argument("seeds", type=int)
-    p.add_argument("out", type=pathlib.Path)
-    p.add_argument("configs", nargs="+", help="NAME=FLUENCE[:FLAGS]")
-    p.add_argument("--res", type=int, default=128)
+    add_arguments(p)
     a = p.parse_args()
     if a.seeds < 4:
         p.error("SEEDS must be at least 4 (two halves of two)")

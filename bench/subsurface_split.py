@@ -31,7 +31,7 @@ import numpy as np
 
 sys.path.insert(0, str(pathlib.Path(__file__).resolve().parent))
 from fluence_bench.metrics import REL_EPS  # noqa: E402
-from fluence_bench.seeded import interleaved, parse_configs, render_cpu  # noqa: E402
+from fluence_bench.seeded import add_arguments, interleaved, parse_configs, render_cpu  # noqa: E402
 
 LPES = {"surface": "C[^T'subsurface']*[LO]", "exit_direct": "C<T>'subsurface'*<T>[LO]",
         "reentry": "C<T>'subsurface'*<R>.*[LO]", "after_exit": "C<T>'subsurface'*<T>.+[LO]"}
@@ -59,12 +59,7 @@ def rel_variance(stack, denominator):
 
 def main():
     p = argparse.ArgumentParser(description=__doc__.split("\n")[0])
-    p.add_argument("scene")
-    p.add_argument("spp", type=int)
-    p.add_argument("seeds", type=int)
-    p.add_argument("out", type=pathlib.Path)
-    p.add_argument("configs", nargs="+", help="NAME=FLUENCE[:FLAGS]")
-    p.add_argument("--res", type=int, default=128)
+    add_arguments(p)
     p.add_argument("--cycles", help="glob of Cycles renders (one seed each) of the same scene")
     a = p.parse_args()
     if a.seeds < 4:

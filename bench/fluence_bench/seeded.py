@@ -7,6 +7,7 @@ the machine's load falls on all alike; each render's CPU is the user + sys time 
 summary reports.
 """
 import os
+import pathlib
 import re
 import subprocess
 import sys
@@ -41,3 +42,13 @@ def render_cpu(binary, scene, spp, seed, res, out, args):
     if r.returncode != 0 or not m:
         sys.exit("%s failed:\n%s%s" % (" ".join(cmd), r.stdout, r.stderr))
     return float(m.group(1))
+
+
+def add_arguments(parser):
+    """The arguments both tools take: SCENE SPP SEEDS OUT_DIR NAME=FLUENCE[:FLAGS] ... [--res N]."""
+    parser.add_argument("scene")
+    parser.add_argument("spp", type=int)
+    parser.add_argument("seeds", type=int)
+    parser.add_argument("out", type=pathlib.Path)
+    parser.add_argument("configs", nargs="+", help="NAME=FLUENCE[:FLAGS]")
+    parser.add_argument("--res", type=int, default=128)
