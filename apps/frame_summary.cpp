@@ -21,7 +21,7 @@ void printThroughput(const integrators::RenderStats& stats) {
         std::printf("  media        %llu tentative collisions (medium lookups)\n",
                     static_cast<unsigned long long>(c.mediumCollisions));
     if (c.walkSteps > 0)
-        std::printf("  interiors    %llu random-walk steps\n", static_cast<unsigned long long>(c.walkSteps));
+        std::printf("  interiors    %llu guided random-walk steps\n", static_cast<unsigned long long>(c.walkSteps));
     if (c.nonFiniteSamples > 0)
         std::fprintf(stderr, "fluence: warning: %llu samples were NaN or infinite and were discarded (please report)\n",
                      static_cast<unsigned long long>(c.nonFiniteSamples));

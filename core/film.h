@@ -14,7 +14,7 @@
 //                compositors expect); pixels that hit nothing read the camera's far clip
 //   sampleCount  number of samples taken in the pixel
 // Not resolved: each pixel's cost, the sum of its samples' costs as the render loop counts them
-// (integrators/sample_cost.h: rays and medium lookups, deterministic), which adaptive sampling's
+// (integrators/sample_cost.h: rays, medium lookups and guided walk steps, deterministic), which adaptive sampling's
 // budget rule weighs the pixels by (integrators/adaptive_sampling.h).
 //   NAME.R/G/B   one layer per light path expression AOV (integrators/light_path_tracker.h), in the
 //                order given to the constructor: the part of the beauty whose paths it matches

@@ -126,6 +126,7 @@ DicedTriangles diceTriangles(const render::MeshDesc& mesh, const TriangleEdges& 
     DicedTriangles out;
     render::MeshDesc& diced = out.mesh;
     diced.name = mesh.name;
+    diced.light = mesh.light;  // a mesh light displaced inside a prototype stays a light
     diced.material = mesh.material;
     for (const render::CornerPrimvar& pv : mesh.primvars) diced.primvars.push_back({pv.name, pv.components, {}});
     diced.motionPositions.resize(mesh.motionPositions.size());

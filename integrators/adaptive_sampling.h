@@ -9,8 +9,8 @@
 // Sobol's stratification leaves (the samples' own spread, or even- against odd-indexed halves,
 // overstate it most where it is smallest: edges, direct light). One difference is a noisy
 // estimate, so a is averaged over the pixel's 5x5 neighbourhood (kNeighbourhoodRadius 2; 3x3
-// before: an allocation from 8 neighbours' one degree of freedom each spends up to 10% worse than
-// from 24, bench/results/2026-12-06-adaptive-5.md), the pixel itself left out: a pixel
+// before: an allocation from 8 neighbours' one degree of freedom each came out up to 17% worse
+// than from 24, bench/results/2026-12-06-adaptive-5.md), the pixel itself left out: a pixel
 // whose own halves agree by luck amid noisy neighbours does not stop, the neighbours of a lone noisy
 // pixel go on, and a pixel's decisions do not read its own samples, so a heavy-tailed pixel that
 // has not yet drawn its rare bright samples (a low mean and a low spread together) is not stopped
@@ -26,7 +26,7 @@
 //  - Budget (meanSamplesPerPixel N > 0): the samples go where they lower the image's relative MSE
 //    most for the CPU time. A pixel's samples do not all cost the same: where paths walk through
 //    media or subsurface interiors they cost several times what a background pixel's do. Each
-//    sample's cost is counted (rays traced and medium lookups, integrators/sample_cost.h: counted,
+//    sample's cost is counted (rays traced, medium lookups and guided walk steps, integrators/sample_cost.h: counted,
 //    not timed, so deterministic) and summed per pixel in the film; a pixel's cost per sample c is
 //    the mean of its neighbours' (as a is, and for the same reason). For a sum of a_p / n_p over the
 //    pixels with the total cost sum c_p n_p fixed, the best counts are n_p proportional to

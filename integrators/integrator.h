@@ -32,7 +32,7 @@ struct RenderCounters {
     std::uint64_t bounce = 0;  // extension rays after the camera ray
     std::uint64_t shadow = 0;
     std::uint64_t mediumCollisions = 0;
-    std::uint64_t walkSteps = 0;  // free flights inside a material's interior (subsurface random walks)
+    std::uint64_t walkSteps = 0;  // steps of guided subsurface random walks (their free flights)
     std::uint64_t nonFiniteSamples = 0;
     std::uint64_t rays() const { return camera + bounce + shadow; }
     RenderCounters& operator+=(const RenderCounters& o) {

@@ -212,7 +212,7 @@ private:
         const float tBoundary = hit ? hit->t : std::numeric_limits<float>::infinity();
         if (guidedWalk_ && walkStep_.first && hit) guidedWalk_->sawFarSide(ray_.direction, hit->t);
         const RGB rUBefore = mis_.rU;
-        if (inside_.depth() > 0) ++counters_.walkSteps;  // a step of a walk through an interior
+        if (guidedWalk_) ++counters_.walkSteps;  // a guided subsurface walk's step (integrators/sample_cost.h)
         const std::optional<MediumSegment> segment =
             equiangularApplies(depth) ? mediumSegment(medium, ray_.origin, ray_.direction, tBoundary) : std::nullopt;
         if (segment) sampleEquiangular(medium, *segment);

@@ -18,14 +18,16 @@
 // box's per ray, three interleaved rounds: 0.080 us a missed sample, 0.185 us a ray, 0.41-0.45 ray.
 // Counted as a whole ray, the background pixels adaptive sampling stops early were credited with
 // more CPU than they free, and its renders of the subsurface scene overspent their budget.
-// A step of a random walk through a material's interior (a free flight inside a subsurface
-// medium: RenderCounters::walkSteps) costs kWalkStepCost rays on top of its ray: the walk's free
-// flight, phase sampling and guiding. Measured (bench/results/2026-12-06-adaptive-5.md): the CPU
-// time of each of 4 x 4 tiles of the subsurface scene, 128 spp, one thread, the least of two
-// rounds, fitted as a (rays + w walk steps): w = 3.17, each tile within 6% (the whole-scene fit
-// above cannot see it: a scene's rays and steps come together). Without it the blob's tiles took
-// 1.8x the CPU their counted cost said, and adaptive renders of that scene, which give the blob
-// more samples, 1.13-1.29x the CPU of the uniform render of the same counted cost (now 1.00-1.03).
+// A step of a guided subsurface random walk (a free flight inside a randomwalk_guided interior:
+// RenderCounters::walkSteps) costs kWalkStepCost rays on top of its ray: the walk's free flight,
+// phase sampling and guiding; the classic walk's steps are charged by their medium collisions (as
+// any medium's, tinted glass included) and are not counted here: the fit below is the guided
+// walk's. Measured (bench/results/2026-12-06-adaptive-5.md): the CPU time of each of 4 x 4 tiles
+// of the subsurface scene, 128 spp, one thread, the least of two rounds, fitted as
+// a (rays + w walk steps): w = 3.17, each tile within 6% (the whole-scene fit above cannot see it:
+// a scene's rays and steps come together). Without it the blob's tiles took 1.8x the CPU their
+// counted cost said, and adaptive renders of that scene, which give the blob more samples,
+// 1.13-1.29x the CPU of the uniform render of the same counted cost (now 1.00-1.03).
 // An integrator counts what it counts (RenderCounters): one that counts nothing costs 0 per
 // sample, which adaptive sampling reads as every sample alike.
 #pragma once

@@ -40,7 +40,7 @@ public:
     void passedNull(double pStop) {
         if (!reused_) return;
         reach_ *= 1.0 - pStop;
-        if (reach_ < kMinReach) {
+        if (!(reach_ >= kMinReach)) {  // a NaN pStop, too, hands over to fresh numbers
             reused_ = false;
             return;
         }

@@ -849,6 +849,11 @@ std::optional<SurfaceHit> RenderScene::shadeMesh(int meshIndex, unsigned primID,
     hit.emission = !seesEmission           ? RGB(0.0f)
                    : mesh.texturedEmission ? mesh.texturedEmission->at(primID, u, v)
                                            : mesh.emission;
+    // A shaped mesh light's surface is seen shaped, as its triangles' light samples are
+    // (TriangleLight::shapingFactor): each triangle about its own front normal.
+    if (mesh.shaping && seesEmission && lengthSquared(ng) > 0.0f)
+        hit.emission = hit.emission *
+                       mesh.shaping->factor(ShapingFrame(normalize(ng), mesh.shapingToWorld).toLocal(-ray.direction));
     hit.interior =
         mesh.reflects && mesh.material >= 0 ? materialInterior_[static_cast<std::size_t>(mesh.material)] : -1;
     hit.light = mesh.firstLight >= 0 ? mesh.firstLight + static_cast<int>(primID) : -1;

@@ -298,9 +298,9 @@ private:
         Vec3f p0, p1, p2;
     };
     Triangle triangleAt(const Mesh& mesh, unsigned triangle, float time) const;
-    // The light of triangle `triangle` of an emissive mesh, its corners taken from `positions`.
     // Triangle `triangle` of an emissive mesh with corners `c`, named `name`.
     static TriangleLight triangleLight(const Mesh& mesh, std::string name, const Triangle& c, unsigned triangle);
+    // The light of triangle `triangle` of an emissive mesh, its corners taken from `positions`.
     std::unique_ptr<TriangleLight> triangleLight(const Mesh& mesh, const std::vector<Vec3f>& positions,
                                                  unsigned triangle) const;
     // The instance at `index` (nullptr for -1), or, when it moves, its copy placed at `time` in `moved`.

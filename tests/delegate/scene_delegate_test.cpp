@@ -280,8 +280,8 @@ over "NotDefined"
         << p.warnings[0];
 }
 
-// UsdLux MeshLightAPI (delegate/mesh_light.h) is read on a mesh of its own; inside a native
-// instance it is not, and one warning names the first such prim.
+// UsdLux MeshLightAPI (delegate/mesh_light.h) is read on a mesh of its own and, inside a native
+// instance, into the prototype's mesh, named by the instance's path, with no warning.
 TEST(SceneDelegate, MeshLightApiInsideAnInstanceIsReadIntoThePrototype) {
     const std::string tri = R"( (
     prepend apiSchemas = ["MeshLightAPI"]

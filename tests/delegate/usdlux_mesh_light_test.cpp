@@ -173,6 +173,32 @@ TEST(UsdLuxMeshLight, AConeLimitsItsLightToTheCone) {
     expectIrradiance(quadMeshLight(kLit + cone), Vec3f(3, 0, 0), kUp, RGB(0.0f));
 }
 
+// A ray that meets a shaped mesh light sees the radiance its light samples carry in that direction
+// (the BSDF strategy and light sampling must weigh the same emission, or MIS is biased): from under
+// the quad's centre, inside the 30-degree cone, and from (3, 0, 0), outside it, where the surface
+// must look black.
+TEST(UsdLuxMeshLight, ARayThatMeetsAShapedMeshLightSeesWhatItsLightSamplesCarry) {
+    auto populated = populate("#usda 1.0\n" + testing::kCamera +
+                              quadMeshLight(kLit + "\n    float inputs:shaping:cone:angle = 30", "(1, 1, 1)",
+                                            "\"MeshLightAPI\", \"ShapingAPI\""));
+    render::RenderScene scene(populated.result.scene);
+    int outsideTheCone = 0;
+    for (const Vec3f& p : {kOrigin, Vec3f(3, 0, 0)})
+        for (std::size_t l = 0; l < scene.lightCount(); ++l)
+            for (int i = 0; i < 64; ++i) {
+                auto s = scene.light(l).sample(p, SampleStream(11, l, std::uint64_t(i)).next2D());
+                ASSERT_TRUE(s && s->pdf > 0.0f);
+                auto hit = scene.intersect({p, s->wi});
+                ASSERT_TRUE(hit);
+                for (int c = 0; c < 3; ++c) EXPECT_NEAR(hit->emission[c], s->Li[c], 1e-4f * (1.0f + s->Li[c]));
+                if (p.x > 0.0f) {
+                    EXPECT_EQ(hit->emission, RGB(0.0f));
+                    ++outsideTheCone;
+                }
+            }
+    EXPECT_EQ(outsideTheCone, 128);
+}
+
 // A quad mesh light and the RectLight of the same size, place and shaping (cone, softness, focus
 // with a tint, an IES profile that varies with azimuth) light points around them alike: each
 // triangle shapes its emission about its front normal, which is the RectLight's axis, with the

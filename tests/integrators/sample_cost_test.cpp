@@ -1,6 +1,6 @@
 // Each sample's cost (integrators/sample_cost.h), as the render loop adds it to its pixel in the
 // film: over the image, the costs add up to what the render counted (its rays, its medium lookups
-// and its random-walk steps, at their weights); a scene without media draws no medium lookups and
+// and its guided random-walk steps, at their weights); a scene without media draws no medium lookups and
 // takes no walk steps, and a subsurface interior's random walks do both and make its pixels cost more.
 #include <gtest/gtest.h>
 
@@ -57,11 +57,11 @@ TEST(Renderer, EachSamplesCostIsItsRaysOnSurfaces) {
     EXPECT_EQ(r.film.cost(0, 0), 4.0 * kMissedCameraRayCost);
 }
 
-TEST(Renderer, EachSamplesCostCountsTheStepsAndMediumLookupsOfASubsurfaceWalk) {
+TEST(Renderer, EachSamplesCostCountsTheStepsOfAGuidedSubsurfaceWalk) {
     render::SceneDescription surface = test::litSphereUnderASky(), walk = surface;
     walk.materials[0] = test::subsurfaceMaterial("/mat", RGB(0.8f, 0.6f, 0.4f), RGB(0.3f, 0.2f, 0.1f));
+    walk.materials[0].subsurfaceMethod = render::SubsurfaceMethod::RandomWalkGuided;
     const test_support::RenderedFilm opaque = renderFourSamples(surface), translucent = renderFourSamples(walk);
-    EXPECT_GT(translucent.stats.counters.mediumCollisions, 0u);
     EXPECT_GT(translucent.stats.counters.walkSteps, 0u);
     EXPECT_EQ(opaque.stats.counters.walkSteps, 0u);
     expectCostsAddUpToTheCounters(translucent);
@@ -69,6 +69,18 @@ TEST(Renderer, EachSamplesCostCountsTheStepsAndMediumLookupsOfASubsurfaceWalk) {
     std::printf("[ measured ] centre pixel's cost per sample: %.1f opaque, %.1f subsurface\n",
                 opaque.film.cost(centre, centre) / 4, translucent.film.cost(centre, centre) / 4);
     EXPECT_GT(translucent.film.cost(centre, centre), opaque.film.cost(centre, centre));
+}
+
+// kWalkStepCost was fitted on the guided walk only: the classic walk's steps (and any other
+// interior medium's, such as tinted glass) are charged by their medium collisions alone.
+TEST(Renderer, AClassicSubsurfaceWalkIsChargedByItsMediumLookupsOnly) {
+    render::SceneDescription walk = test::litSphereUnderASky();
+    walk.materials[0] = test::subsurfaceMaterial("/mat", RGB(0.8f, 0.6f, 0.4f), RGB(0.3f, 0.2f, 0.1f));
+    walk.materials[0].subsurfaceMethod = render::SubsurfaceMethod::RandomWalk;
+    const test_support::RenderedFilm translucent = renderFourSamples(walk);
+    EXPECT_GT(translucent.stats.counters.mediumCollisions, 0u);
+    EXPECT_EQ(translucent.stats.counters.walkSteps, 0u);
+    expectCostsAddUpToTheCounters(translucent);
 }
 
 }  // namespace

@@ -254,5 +254,37 @@ TEST(FreeFlight, OneEventNumberIsAnInverseCdfOverTheTentativeCollisions) {
     }
 }
 
+TEST(FreeFlight, OneEventNumberHandsOverToFreshNumbersWithoutBias) {
+    // Once the null collisions passed leave less than 2^-12 of the event number's range, fresh
+    // numbers from the steps stream decide. Here (majorant 50 sigmaT, so pStop = 1/50 per tentative
+    // collision, optical depth tau = 12 ln 2 over about 416 tentative collisions) escapes happen
+    // after that hand-over (the escaping event numbers are the top exp(-tau) = 2^-12 of [0, 1),
+    // where the remaps run out; a flight with so few collisions that its escapes reach below the
+    // top 2^-10 is 3.6 standard deviations of their Poisson count away), so the escape fraction of
+    // event numbers drawn evenly from the top 2^-10 is exp(-tau) 2^10 = 0.25 only if the fresh
+    // numbers keep delta tracking's probabilities. Each seed (its own tentative collisions) gives
+    // one fraction over kGrid event numbers; the seeds are independent, so the mean's standard
+    // error comes from their spread: within 4 of them.
+    constexpr int kGrid = 256, kSeeds = 400;
+    const double tau = 12.0 * std::log(2.0), top = std::ldexp(1.0, -10);
+    HomogeneousMedium exact({RGB(0.0f), RGB(0.5f)});
+    test::RescaledBoundsMedium loose(exact, 50.0f, 0.0f);
+    const MediumRay ray{Vec3f(0.0f), Vec3f(0.0f, 0.0f, 1.0f), float(tau / 0.5)};
+    test::MeanEstimate fraction;
+    for (int seed = 0; seed < kSeeds; ++seed) {
+        int escaped = 0;
+        for (int i = 0; i < kGrid; ++i) {
+            SampleStream steps(std::uint64_t(700 + seed), 0, 0);
+            const float u = float(1.0 - top * (i + 0.5) / kGrid);
+            escaped += sampleFreeFlight(loose, ray, 0, u, steps).event == FlightEvent::Escaped;
+        }
+        fraction.add(double(escaped) / kGrid);
+    }
+    const double expected = std::exp(-tau) / top;
+    std::printf("[ measured ] escape fraction of the top 2^-10: %.4f +- %.4f (exact %.4f)\n", fraction.mean(),
+                fraction.standardError(), expected);
+    EXPECT_NEAR(fraction.mean(), expected, 4.0 * fraction.standardError());
+}
+
 }  // namespace
 }  // namespace fluence::media
