@@ -59,17 +59,14 @@ void applyMeshLight(const MeshLight& light, std::span<render::MeshDesc> parts,
 
 void finishMeshLights(std::span<render::MeshDesc> parts, const std::map<std::string, MeshLight>& lights,
                       const std::vector<render::MaterialDesc>& materials) {
-    for (std::size_t first = 0; first < parts.size();) {
+    for (std::size_t first = 0, end = 1; first < parts.size(); first = end, end = first + 1) {
         const std::optional<render::MeshLightDesc>& light = parts[first].light;
-        std::size_t end = first + 1;
-        if (light)
-            while (end < parts.size() && parts[end].light && parts[end].light->prim == light->prim &&
-                   parts[end].light->lightToWorld == light->lightToWorld)
-                ++end;
-        if (light)
-            if (auto found = lights.find(light->prim); found != lights.end())
-                applyMeshLight(found->second, parts.subspan(first, end - first), materials, light->lightToWorld);
-        first = end;
+        if (!light) continue;
+        while (end < parts.size() && parts[end].light && parts[end].light->prim == light->prim &&
+               parts[end].light->lightToWorld == light->lightToWorld)
+            ++end;
+        if (auto found = lights.find(light->prim); found != lights.end())
+            applyMeshLight(found->second, parts.subspan(first, end - first), materials, light->lightToWorld);
     }
 }
 
