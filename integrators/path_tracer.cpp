@@ -159,14 +159,16 @@ template <bool kMedia>
 class PathWalk {
 public:
     PathWalk(const LightEvents& lightEvents, const EquiangularLights& equiangularLights,
-             std::span<const LightPathAov> aovs, int maxDepth, const render::RenderScene& scene,
+             std::span<const LightPathAov> aovs, int maxDepth, int walksPerEntry, const render::RenderScene& scene,
              const render::Camera& camera, const Ray& cameraRay, SampleStream& rng, RenderCounters& counters)
         : lightEvents_(lightEvents),
           equiangularLights_(equiangularLights),
           maxDepth_(maxDepth),
+          walksPerEntry_(walksPerEntry),
+          lightPathLayers_(aovs.size()),
           scene_(scene),
           camera_(camera),
-          rng_(rng),
+          rng_(&rng),
           counters_(counters),
           ray_(cameraRay),
           inside_(scene),
@@ -178,8 +180,9 @@ public:
         if (lightPaths_.active()) out_.clearLightPaths(aovs.size());
     }
 
-    FilmSample run() {
-        for (int depth = 0;; ++depth) {
+    // The path from its vertex `firstDepth` on (0: the camera ray's hit; a split walk starts deeper).
+    FilmSample run(int firstDepth = 0) {
+        for (int depth = firstDepth;; ++depth) {
             // The next vertex: where the ray hits, or, after a diffusion entry, its exit (no ray traced).
             // (Initialised in place from either: a SurfaceHit is large, and copying it showed in profiles.)
             const bool exiting = kMedia && diffusionExit_.has_value();
@@ -216,7 +219,7 @@ private:
         const std::optional<MediumSegment> segment =
             equiangularApplies(depth) ? mediumSegment(medium, ray_.origin, ray_.direction, tBoundary) : std::nullopt;
         if (segment) sampleEquiangular(medium, *segment);
-        media::FreeFlight flight = guidedWalk_ ? guidedWalk_->fly(walkStep_, walkLength_, tBoundary, rng_)
+        media::FreeFlight flight = guidedWalk_ ? guidedWalk_->fly(walkStep_, walkLength_, tBoundary, *rng_)
                                                : freeFlight(medium, {ray_.origin, ray_.direction, tBoundary});
         counters_.mediumCollisions += std::uint64_t(flight.collisions);
         throughput_ *= flight.throughput;
@@ -247,8 +250,8 @@ private:
     // rendered the Cycles peer's smoke with 0.92 of independent sampling's error per sample
     // (bench/results/2026-12-06-smoke-variance.md).
     media::FreeFlight freeFlight(const media::Medium& medium, const media::MediumRay& ray) {
-        const float uEvent = rng_.next();
-        SampleStream steps = rng_.independentStream();
+        const float uEvent = rng_->next();
+        SampleStream steps = rng_->independentStream();
         return media::sampleFreeFlight(medium, ray, hero_, uEvent, steps);
     }
 
@@ -265,8 +268,8 @@ private:
     // estimation of the light from there, weighted against the free flight's two strategies.
     // Draws four numbers, then those of its ratio tracking.
     void sampleEquiangular(const media::Medium& medium, const MediumSegment& segment) {
-        const float uLight = rng_.next(), uDistance = rng_.next();
-        const Vec2f uPoint = rng_.next2D();
+        const float uLight = rng_->next(), uDistance = rng_->next();
+        const Vec2f uPoint = rng_->next2D();
         const std::optional<EquiangularChoice> choice = equiangularLights_.choose(scene_, segment, uLight);
         if (!choice || !scene_.lightReaches(choice->light, 0)) return;
         const float t = choice->distance.sample(uDistance);
@@ -276,7 +279,7 @@ private:
         const media::MediumProperties m = medium.at(p);
         ++counters_.mediumCollisions;
         if (isBlack(m.sigmaS)) return;  // empty space within the segment: no transmittance to estimate
-        SampleStream tracking = rng_.independentStream();
+        SampleStream tracking = rng_->independentStream();
         const media::TransmittanceEstimate toPoint =
             media::ratioTrackingTransmittance(medium, {segment.origin, segment.direction, t}, hero_, tracking);
         counters_.mediumCollisions += std::uint64_t(toPoint.collisions);
@@ -312,7 +315,7 @@ private:
     // strategies' weights read the same shadow-ray densities.
     media::TransmittanceEstimate shadowTransmittance(const media::Medium& medium, const media::MediumRay& ray,
                                                      bool onlyStrategy) {
-        SampleStream tracking = rng_.independentStream();
+        SampleStream tracking = rng_->independentStream();
         const media::TransmittanceEstimate tr = media::estimateTransmittance(
             onlyStrategy ? media::TransmittanceMethod::RayMarching : media::TransmittanceMethod::RatioTracking, medium,
             ray, hero_, tracking);
@@ -332,7 +335,7 @@ private:
     // is shaded unless the walk leaves (media/guided_walk.h, THE COST OF A STEP). The entry's step
     // is traced on to the far side, for backward guiding.
     void startWalkStep() {
-        walkLength_ = guidedWalk_->sampleLength(walkStep_, rng_.next());
+        walkLength_ = guidedWalk_->sampleLength(walkStep_, rng_->next());
         if (!walkStep_.first) ray_.tMax = walkLength_;
     }
 
@@ -356,16 +359,16 @@ private:
             [&](const Vec3f&) { return event; });
         media::PhaseSample ps;
         if (guidedWalk_) {  // the step's phase value and density weigh its flight (media/guided_walk.h)
-            const int channel = guidedWalk_->sampleChannel(rng_.next());
-            const float uStrategy = rng_.next();
-            walkStep_ = guidedWalk_->sampleStep(flight.p, wo, channel, uStrategy, rng_.next2D());
+            const int channel = guidedWalk_->sampleChannel(rng_->next());
+            const float uStrategy = rng_->next();
+            walkStep_ = guidedWalk_->sampleStep(flight.p, wo, channel, uStrategy, rng_->next2D());
             ps = {walkStep_.wi, 1.0f, 1.0f};
         } else {
-            ps = phase.sample(wo, rng_.next2D());
+            ps = phase.sample(wo, rng_->next2D());
         }
         if (ps.pdf <= 0.0f) return Step::End;
         throughput_ *= ps.p / ps.pdf;
-        if (!continueInMedium(throughput_, etaScale_, depth, walking, rng_)) return Step::End;
+        if (!continueInMedium(throughput_, etaScale_, depth, walking, *rng_)) return Step::End;
         lightPaths_.scatter(event);
         mis_.scattered(ps.pdf);
         specularBounce_ = walking;  // no light strategy at this vertex
@@ -378,10 +381,14 @@ private:
     }
 
     // A surface vertex (or, `exiting`, the exit of a diffusion step): its emission, then
-    // next-event estimation and BSDF sampling.
+    // next-event estimation and BSDF sampling. At the exit of a walk split N ways (splitWalk), what
+    // every walk of the entry estimates there, the emission its ray reaches and the light sample,
+    // takes this walk's share 1/N; what follows the exit is this walk's alone, at full weight.
     Step atSurface(const SurfaceHit& hit, bool exiting, int depth) {
         const Vec3f wo = exiting ? -hit.shadingNormal : -ray_.direction;  // an exit is seen from inside
         if (depth == 0) recordFirstHit(out_, hit, wo, camera_);
+        const RGB throughputOnward = throughput_;
+        throughput_ *= std::exchange(exitShare_, 1.0f);
         // Emission reached by this ray: light shapes and emissive surfaces.
         if (!exiting && hit.light >= 0) {
             const RGB le = emittedAtHit(scene_, hit, wo);
@@ -395,6 +402,8 @@ private:
             hit, wo,
             exiting ? render::subsurfaceExitBsdf(hit.material, arena_) : render::materialBsdf(hit.material, arena_));
         sampleLightAt(v);
+        throughput_ = throughputOnward;
+        if (endsAtExit_) return Step::End;
         return continueFrom(v, depth);
     }
 
@@ -422,21 +431,22 @@ private:
     // Continues the path by sampling the BSDF (a plain Lambertian has one lobe: no lobe number drawn).
     Step continueFrom(const SurfaceVertex& v, int depth) {
         const Vec3f& ng = v.surface.geometricNormal;
-        const float uLobe = v.flags == (render::kBsdfReflection | render::kBsdfDiffuse) ? 0.0f : rng_.next();
-        std::optional<render::BsdfSample> bs = v.bsdf.sample(v.woLocal, uLobe, rng_.next2D());
+        bool entered = false;  // a guided walk starts
+        const float uLobe = v.flags == (render::kBsdfReflection | render::kBsdfDiffuse) ? 0.0f : rng_->next();
+        std::optional<render::BsdfSample> bs = v.bsdf.sample(v.woLocal, uLobe, rng_->next2D());
         if (!bs) return Step::End;
         Vec3f wi = v.surface.frame.toWorld(bs->wi);
         if (!sidesAgree(v.wo, wi, ng, v.woLocal.z, bs->wi.z))
             return Step::End;  // the shading frame disagrees with the surface
         throughput_ *= bs->f * (std::abs(bs->wi.z) / bs->pdf);
         etaScale_ *= bs->eta * bs->eta;
-        if (!continuePath(throughput_, etaScale_, depth, rng_)) return Step::End;
+        if (!continuePath(throughput_, etaScale_, depth, *rng_)) return Step::End;
         if (lightPaths_.active()) lightPaths_.scatter(sampledEvents(v.bsdf, v.woLocal, *bs));
 
         mis_.scattered(bs->pdf);
         if constexpr (kMedia) {
             const DiffusionStep step =
-                stepThroughDiffusion(scene_, v.hit, v.wo, wi, throughput_, diffusionExit_, rng_, counters_);
+                stepThroughDiffusion(scene_, v.hit, v.wo, wi, throughput_, diffusionExit_, *rng_, counters_);
             if (step == DiffusionStep::Lost) return Step::End;
             if (step == DiffusionStep::Exited) {
                 lightPaths_.scatter(VertexEvents(volumeEvent(true)));
@@ -444,26 +454,54 @@ private:
             }
             const int depthBefore = inside_.depth();
             inside_ = inside_.after(v.hit, v.wo, wi);
-            followGuidedWalk(v.hit, depthBefore, spawnOrigin(v.hit.point, ng, wi), wi);
+            entered = followGuidedWalk(v.hit, depthBefore, spawnOrigin(v.hit.point, ng, wi), wi);
         }
         specularBounce_ = bs->specular;
         previousPoint_ = v.lightFrom;
         previousNormal_ = v.lightNormal;
         previousLinkGroup_ = v.hit.linkGroup;
         ray_ = Ray{spawnOrigin(v.hit.point, ng, wi), wi, 0.0f, std::numeric_limits<float>::infinity(), ray_.time};
+        if (entered && walksPerEntry_ > 1 && !endsAtExit_) splitWalk(depth);
         return Step::Next;
+    }
+
+    // The other N - 1 walks of an entry into a guided interior (PathTracer::subsurfaceWalks_ = N):
+    // each a copy of this path from the entry, its throughput times 1/N, drawing from an
+    // independent stream (this walk's Sobol slots stay those of an unsplit path), that ends at its
+    // exit after the light sample there. The walk decides where the light leaves, the variance that
+    // dominates a translucent object (bench/results/2026-12-06-subsurface-4-s18.md); only this walk
+    // goes on past its exit, so the path stays one path.
+    void splitWalk(int depth) {
+        const float share = 1.0f / float(walksPerEntry_);
+        for (int i = 1; i < walksPerEntry_; ++i) {
+            PathWalk other(*this);
+            SampleStream stream = rng_->independentStream();
+            other.rng_ = &stream;
+            other.throughput_ *= share;
+            other.radiance_ = RGB(0.0f);
+            other.out_.clearLightPaths(lightPathLayers_);
+            other.endsAtExit_ = true;
+            other.walkStep_ =
+                guidedWalk_->firstStep(ray_.origin, ray_.direction, guidedWalk_->sampleChannel(stream.next()));
+            const FilmSample split = other.run(depth + 1);
+            radiance_ += split.radiance;
+            for (std::size_t layer = 0; layer < lightPathLayers_; ++layer)
+                out_.addLightPath(layer, split.lightPath(layer));
+        }
+        exitShare_ = share;
     }
 
     // After a surface sent the path from `origin` along wi (the medium stack was `depthBefore`
     // deep): a guided walk starts when the path entered a guided subsurface interior and no
     // volume shares it, ends when the path left or went deeper, and otherwise (a reflection back
-    // inside) goes on from there with a step whose direction the surface chose.
-    void followGuidedWalk(const SurfaceHit& hit, int depthBefore, const Vec3f& origin, const Vec3f& wi) {
+    // inside) goes on from there with a step whose direction the surface chose. Whether one started.
+    bool followGuidedWalk(const SurfaceHit& hit, int depthBefore, const Vec3f& origin, const Vec3f& wi) {
         if (inside_.depth() != depthBefore) guidedWalk_.reset();
-        if (inside_.depth() > depthBefore && inside_.inSubsurface() && !scene_.medium() &&
-            hit.material.subsurfaceMethod == render::SubsurfaceMethod::RandomWalkGuided)
-            guidedWalk_.emplace(hit.point, hit.geometricNormal, inside_.medium()->at(hit.point));
-        if (guidedWalk_) walkStep_ = guidedWalk_->firstStep(origin, wi, guidedWalk_->sampleChannel(rng_.next()));
+        const bool starts = inside_.depth() > depthBefore && inside_.inSubsurface() && !scene_.medium() &&
+                            hit.material.subsurfaceMethod == render::SubsurfaceMethod::RandomWalkGuided;
+        if (starts) guidedWalk_.emplace(hit.point, hit.geometricNormal, inside_.medium()->at(hit.point));
+        if (guidedWalk_) walkStep_ = guidedWalk_->firstStep(origin, wi, guidedWalk_->sampleChannel(rng_->next()));
+        return starts;
     }
 
     // Next-event estimation from `from` (with `fromNormal` for the light tree), on geometry of link
@@ -476,8 +514,8 @@ private:
     template <class ShadowFrom, class Scatter, class Events>
     void sampleLight(bool enabled, const Vec3f& from, const Vec3f& fromNormal, int linkGroup, ShadowFrom&& shadowFrom,
                      Scatter&& scatter, Events&& vertexEvents) {
-        float uLight = rng_.next();
-        Vec2f uPoint = rng_.next2D();
+        float uLight = rng_->next();
+        Vec2f uPoint = rng_->next2D();
         if (!enabled) return;
         render::LightChoice choice = scene_.chooseLight(from, fromNormal, uLight);
         if (choice.light < 0 || choice.probability <= 0.0f) return;
@@ -528,9 +566,11 @@ private:
     const LightEvents& lightEvents_;
     const EquiangularLights& equiangularLights_;
     const int maxDepth_;
+    const int walksPerEntry_;            // guided walks per entry (splitWalk)
+    const std::size_t lightPathLayers_;  // the light path expression AOVs' count
     const render::RenderScene& scene_;
     const render::Camera& camera_;
-    SampleStream& rng_;
+    SampleStream* rng_;  // the sample's stream (a split walk's own, splitWalk)
     RenderCounters& counters_;
     FilmSample out_;
     RGB radiance_{0.0f}, throughput_{1.0f};
@@ -540,14 +580,21 @@ private:
     const int hero_;
     bool specularBounce_ = false;  // `ray_` left a delta lobe: no light strategy could have found it
     float etaScale_ = 1.0f;        // product of eta^2 over the refractions so far (Russian roulette)
-    render::BsdfArena arena_;
+    // A copy of the path (splitWalk) starts with an empty arena: a vertex's BSDF lives only there.
+    struct PathArena : render::BsdfArena {
+        PathArena() = default;
+        PathArena(const PathArena&) : render::BsdfArena() {}
+    };
+    PathArena arena_;
     Vec3f previousPoint_, previousNormal_{0.0f};
     int previousLinkGroup_ = 0;  // of the geometry the ray left (render/light_links.h); 0: lit by every light
     const bool haveLights_;
     LightPathTracker lightPaths_;
     int interiorScatterings_ = 0;
-    std::optional<SurfaceHit> diffusionExit_;             // where diffusion subsurface scattering brings the path out
-    std::optional<media::GuidedWalk> guidedWalk_;         // in a guided subsurface interior (followGuidedWalk)
+    float exitShare_ = 1.0f;                       // this walk's share of the light at its exit (atSurface, splitWalk)
+    bool endsAtExit_ = false;                      // one of a split entry's other walks (splitWalk)
+    std::optional<SurfaceHit> diffusionExit_;      // where diffusion subsurface scattering brings the path out
+    std::optional<media::GuidedWalk> guidedWalk_;  // in a guided subsurface interior (followGuidedWalk)
     std::optional<EquiangularVertex> equiangularVertex_;  // the medium vertex last drawn, where the strategy applies
     media::WalkStep walkStep_;                            // its next step
     float walkLength_ = 0.0f;                             // and that step's length (startWalkStep)
@@ -561,7 +608,8 @@ FilmSample PathTracer::trace(const LightEvents& lightEvents, const EquiangularLi
                              SampleStream& rng, RenderCounters& counters) const {
     const std::span<const LightPathAov> aovs =
         aovs_ ? std::span<const LightPathAov>(*aovs_) : std::span<const LightPathAov>();
-    return PathWalk<kMedia>(lightEvents, equiangularLights, aovs, maxDepth_, scene, camera, cameraRay, rng, counters)
+    return PathWalk<kMedia>(lightEvents, equiangularLights, aovs, maxDepth_, subsurfaceWalks_, scene, camera, cameraRay,
+                            rng, counters)
         .run();
 }
 

@@ -20,7 +20,10 @@ const std::vector<IntegratorInfo>& integratorRegistry() {
          "unidirectional path tracing with next-event estimation, MIS and Russian roulette",
          [](const IntegratorSettings& s) { return std::make_unique<PathTracer>(s); },
          true,
-         {}},
+         {{"subsurface-walks", "fluence:path:subsurfaceWalks",
+           "random walks from each entry into a guided subsurface interior, each lighting its exit with weight 1/N "
+           "(default 2)",
+           true, 64}}},
         {"direct",
          "L(D|S)?E",
          kEmitterSeen | kDirect | kDeltaLights,

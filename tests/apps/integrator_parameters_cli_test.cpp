@@ -18,6 +18,7 @@ namespace fluence {
 namespace {
 
 const std::string kCornellBox = FLUENCE_SOURCE_DIR "/usd_samples/cornell_box.usda";
+const std::string kSubsurface = FLUENCE_SOURCE_DIR "/usd_samples/subsurface/subsurface.usda";
 
 class IntegratorParametersCli : public ::testing::Test {
 protected:
@@ -63,6 +64,22 @@ TEST_F(IntegratorParametersCli, SppmPhotonsAndRadiusReachTheIntegrator) {
     EXPECT_NE(r.out.find("radius 0.0625 ->"), std::string::npos) << r.out;
 }
 
+// The step count of the summary's "interiors N guided random-walk steps" line, -1 when there is none.
+long walkSteps(const std::string& out) {
+    std::smatch m;
+    return std::regex_search(out, m, std::regex("interiors +(\\d+) guided random-walk steps")) ? std::stol(m[1]) : -1;
+}
+
+TEST_F(IntegratorParametersCli, SubsurfaceWalksReachThePathTracer) {
+    // Three walks from each entry take about three times the steps of one (measured 599 and 217).
+    const test::RunResult one = render(kSubsurface, "--subsurface-walks 1");
+    ASSERT_EQ(one.exitCode, 0) << one.err;
+    const test::RunResult three = render(kSubsurface, "--subsurface-walks 3");
+    ASSERT_EQ(three.exitCode, 0) << three.err;
+    EXPECT_GT(walkSteps(one.out), 0) << one.out;
+    EXPECT_GT(walkSteps(three.out), 2 * walkSteps(one.out)) << three.out;
+}
+
 TEST_F(IntegratorParametersCli, RenderSettingsAttributesReachTheIntegratorAndTheOptionWins) {
     const std::string scene = tunedScene(
         "        int fluence:sppm:photons = 2345\n        float fluence:sppm:radius = 0.125\n"
@@ -81,7 +98,8 @@ TEST_F(IntegratorParametersCli, RenderSettingsAttributesReachTheIntegratorAndThe
 
 TEST_F(IntegratorParametersCli, BadOptionValuesAreUsageErrors) {
     for (const char* args : {"--sppm-photons 0", "--sppm-photons 2.5", "--sppm-photons 100000000", "--sppm-radius -1",
-                             "--radiosity-patch-size 0", "--radiosity-patch-size nan", "--sppm-radius wide"}) {
+                             "--radiosity-patch-size 0", "--radiosity-patch-size nan", "--sppm-radius wide",
+                             "--subsurface-walks 0", "--subsurface-walks 1.5", "--subsurface-walks 65"}) {
         SCOPED_TRACE(args);
         const test::RunResult r = render(kCornellBox, std::string("--integrator sppm ") + args);
         EXPECT_EQ(r.exitCode, 2) << r.err;
@@ -102,7 +120,8 @@ TEST_F(IntegratorParametersCli, HelpListsTheParameters) {
     const test::RunResult r = test::runFluence("--help", dir_.path());
     ASSERT_EQ(r.exitCode, 0);
     for (const char* text : {"--sppm-photons N", "fluence:sppm:photons", "--sppm-radius X", "fluence:sppm:radius",
-                             "--radiosity-patch-size X", "fluence:radiosity:patchSize"})
+                             "--radiosity-patch-size X", "fluence:radiosity:patchSize", "--subsurface-walks N",
+                             "fluence:path:subsurfaceWalks"})
         EXPECT_NE(r.out.find(text), std::string::npos) << text;
 }
 

@@ -1,7 +1,8 @@
 // Random-walk subsurface scattering through the path tracer (render/material_bsdf.h's diffuse
 // boundary, media/subsurface_medium.h's interior, integrators/medium_stack.h): a deep slab under a
 // white sky reads the subsurface colour asked for, and white (albedo-1) objects behind a lossless
-// boundary, round or thin, neither lose nor gain light.
+// boundary, round or thin, neither lose nor gain light; guided walks so with one walk per entry
+// and split four ways (PathTracer's subsurface-walks), bit for bit at any thread count.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -16,16 +17,26 @@
 namespace fluence::integrators {
 namespace {
 
-// 3 methods x 3 channels (slab) + 2 methods x 3 objects x 3 channels (furnaces) + the
+// (3 walks + diffusion) x 3 channels (slab) + 3 walks x 3 objects x 3 channels (furnaces) + the
 // specular-layer furnace, family-wide 1%.
-const double kZ = test::normalQuantile(0.5 * test::sidakAlpha(28));
+const double kZ = test::normalQuantile(0.5 * test::sidakAlpha(40));
 // Guided against classic walks: 2 slabs x 3 channels, family-wide 1%.
 const double kWelchAlpha = test::sidakAlpha(6);
 
-constexpr render::SubsurfaceMethod kWalks[] = {render::SubsurfaceMethod::RandomWalk,
-                                               render::SubsurfaceMethod::RandomWalkGuided};
-const char* walkName(render::SubsurfaceMethod m) {
-    return m == render::SubsurfaceMethod::RandomWalk ? "classic" : "guided";
+// A walk method, and for guided walks how many leave from each entry (a classic walk is never split).
+struct Walk {
+    render::SubsurfaceMethod method;
+    int perEntry;
+    const char* name;
+};
+constexpr render::SubsurfaceMethod kClassic = render::SubsurfaceMethod::RandomWalk;
+constexpr render::SubsurfaceMethod kGuided = render::SubsurfaceMethod::RandomWalkGuided;
+constexpr Walk kWalks[] = {{kClassic, 1, "classic"}, {kGuided, 1, "guided"}, {kGuided, 4, "guided x4"}};
+
+PathTracer pathTracer(int walksPerEntry) {
+    IntegratorSettings settings;
+    settings.parameters["subsurface-walks"] = walksPerEntry;
+    return PathTracer(settings);
 }
 
 // Standard Surface subsurface = 1 with no specular layer: the boundary is index-matched and
@@ -51,8 +62,9 @@ render::SceneDescription underAWhiteSky(render::MeshDesc mesh, render::MaterialD
 }
 
 // Per channel, the mean over the pixels that see the object.
-std::array<test::MeanEstimate, 3> objectMeans(const render::SceneDescription& scene, int size, int spp) {
-    test_support::Rendered r = test_support::renderWith(PathTracer(IntegratorSettings{}), scene, size, spp);
+std::array<test::MeanEstimate, 3> objectMeans(const render::SceneDescription& scene, int size, int spp,
+                                              int walksPerEntry = PathTracer::kDefaultSubsurfaceWalks) {
+    test_support::Rendered r = test_support::renderWith(pathTracer(walksPerEntry), scene, size, spp);
     const int alpha = r.image.channelIndex("A");
     std::array<test::MeanEstimate, 3> means;
     for (int c = 0; c < 3; ++c)
@@ -69,16 +81,16 @@ TEST(Subsurface, DeepSlabUnderAWhiteSkyShowsItsSubsurfaceColour) {
     constexpr double kFitError = 0.0020;
     const RGB colour(0.8f, 0.5f, 0.2f);
     render::MeshDesc slab = test::boxMesh(Vec3f(20.0f, 10.0f, 20.0f), 0);
-    for (render::SubsurfaceMethod walk : kWalks) {
+    for (const Walk& walk : kWalks) {
         render::SceneDescription scene =
-            underAWhiteSky(slab, subsurfaceMaterial(colour, RGB(0.1f), walk), Vec3f(0.0f, -15.0f, 0.0f));
-        std::array<test::MeanEstimate, 3> means = objectMeans(scene, 24, 512);
+            underAWhiteSky(slab, subsurfaceMaterial(colour, RGB(0.1f), walk.method), Vec3f(0.0f, -15.0f, 0.0f));
+        std::array<test::MeanEstimate, 3> means = objectMeans(scene, 24, 512, walk.perEntry);
         for (int c = 0; c < 3; ++c) {
-            std::printf("[ measured ] %s slab, channel %d: %.5f +- %.5f (colour %.2f)\n", walkName(walk), c,
-                        means[c].mean(), means[c].standardError(), colour[c]);
+            std::printf("[ measured ] %s slab, channel %d: %.5f +- %.5f (colour %.2f)\n", walk.name, c, means[c].mean(),
+                        means[c].standardError(), colour[c]);
             ASSERT_EQ(means[c].count(), 24 * 24) << "the slab fills the frame";
             EXPECT_NEAR(means[c].mean(), colour[c], kFitError + kZ * means[c].standardError())
-                << walkName(walk) << ", channel " << c;
+                << walk.name << ", channel " << c;
         }
     }
 }
@@ -102,7 +114,7 @@ TEST(Subsurface, GuidedAndClassicWalksAgreeOnDeepAndThinSlabs) {
         std::array<std::array<test::MeanEstimate, 3>, 2> means;
         for (int w = 0; w < 2; ++w) {
             render::MaterialDesc walked = material;
-            walked.subsurfaceMethod = kWalks[w];
+            walked.subsurfaceMethod = kWalks[w].method;
             means[w] = objectMeans(underAWhiteSky(slab.mesh, walked, slab.eye), slab.size, 256);
         }
         for (int c = 0; c < 3; ++c) {
@@ -160,19 +172,19 @@ TEST(Subsurface, WhiteObjectsBehindALosslessBoundaryNeitherLoseNorGainLight) {
         render::MeshDesc mesh;
         RGB meanFreePath;
     };
-    for (render::SubsurfaceMethod walk : kWalks)
+    for (const Walk& walk : kWalks)
         for (const Case& object : {Case{"sphere", sphere, RGB(0.1f, 0.3f, 1.0f)},
                                    Case{"thin tile", test::boxMesh(Vec3f(1.0f, 0.02f, 1.0f), 0), RGB(0.4f)},
                                    Case{"torus", test::torusMesh(0.8f, 0.3f, 128, 64, 0), RGB(0.05f, 0.2f, 0.6f)}}) {
             render::SceneDescription scene = underAWhiteSky(
-                object.mesh, subsurfaceMaterial(RGB(1.0f), object.meanFreePath, walk), Vec3f(0.0f, -4.0f, 0.0f));
-            std::array<test::MeanEstimate, 3> means = objectMeans(scene, 48, 128);
+                object.mesh, subsurfaceMaterial(RGB(1.0f), object.meanFreePath, walk.method), Vec3f(0.0f, -4.0f, 0.0f));
+            std::array<test::MeanEstimate, 3> means = objectMeans(scene, 48, 128, walk.perEntry);
             for (int c = 0; c < 3; ++c) {
-                std::printf("[ measured ] %s %s, channel %d: %.5f +- %.5f over %d pixels\n", walkName(walk),
-                            object.name, c, means[c].mean(), means[c].standardError(), means[c].count());
+                std::printf("[ measured ] %s %s, channel %d: %.5f +- %.5f over %d pixels\n", walk.name, object.name, c,
+                            means[c].mean(), means[c].standardError(), means[c].count());
                 ASSERT_GT(means[c].count(), 100) << object.name;
                 EXPECT_NEAR(means[c].mean(), 1.0, kZ * means[c].standardError())
-                    << walkName(walk) << " " << object.name << ", channel " << c;
+                    << walk.name << " " << object.name << ", channel " << c;
             }
         }
 }
@@ -192,6 +204,17 @@ TEST(Subsurface, WhiteSphereUnderASpecularLayerReflectsAllTheLight) {
                 green.standardError(), green.count());
     ASSERT_GT(green.count(), 100);
     EXPECT_NEAR(green.mean(), 1.0, 0.01 + kZ * green.standardError());
+}
+
+TEST(Subsurface, SplitGuidedWalksAreBitIdenticalAtAnyThreadCount) {
+    // Three walks per entry into a sphere under a sky and a rect light: the split walks draw from
+    // streams that are functions of the sample alone, so threads and tiles change no pixel.
+    render::SceneDescription scene = underAWhiteSky(
+        test::roundSphereMesh(1.0f, 48, 24, 0),
+        subsurfaceMaterial(RGB(0.8f, 0.5f, 0.3f), RGB(0.5f, 0.1f, 0.05f), kGuided), Vec3f(0.0f, -4.0f, 0.0f));
+    scene.lights.push_back(test::rectLight("/key", 1.0f, 1.0f, RGB(8.0f), Matrix4::translate({1.0, -1.0, 2.0})));
+    for (SamplerKind sampler : test_support::kSamplers)
+        test_support::expectBitIdenticalAcrossThreadCountsAndTiles(pathTracer(3), scene, 48, sampler);
 }
 
 }  // namespace
