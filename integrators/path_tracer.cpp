@@ -431,7 +431,7 @@ private:
     // Continues the path by sampling the BSDF (a plain Lambertian has one lobe: no lobe number drawn).
     Step continueFrom(const SurfaceVertex& v, int depth) {
         const Vec3f& ng = v.surface.geometricNormal;
-        bool entered = false;  // a guided walk starts
+        bool entered = false;  // a guided walk starts here
         const float uLobe = v.flags == (render::kBsdfReflection | render::kBsdfDiffuse) ? 0.0f : rng_->next();
         std::optional<render::BsdfSample> bs = v.bsdf.sample(v.woLocal, uLobe, rng_->next2D());
         if (!bs) return Step::End;
@@ -461,16 +461,17 @@ private:
         previousNormal_ = v.lightNormal;
         previousLinkGroup_ = v.hit.linkGroup;
         ray_ = Ray{spawnOrigin(v.hit.point, ng, wi), wi, 0.0f, std::numeric_limits<float>::infinity(), ray_.time};
-        if (entered && walksPerEntry_ > 1 && !endsAtExit_) splitWalk(depth);
+        if (entered && depth == 0 && walksPerEntry_ > 1) splitWalk(depth);
         return Step::Next;
     }
 
-    // The other N - 1 walks of an entry into a guided interior (PathTracer::subsurfaceWalks_ = N):
-    // each a copy of this path from the entry, its throughput times 1/N, drawing from an
-    // independent stream (this walk's Sobol slots stay those of an unsplit path), that ends at its
-    // exit after the light sample there. The walk decides where the light leaves, the variance that
-    // dominates a translucent object (bench/results/2026-12-06-subsurface-4-s18.md); only this walk
-    // goes on past its exit, so the path stays one path.
+    // The other N - 1 walks of an entry the camera ray made into a guided interior
+    // (PathTracer::subsurfaceWalks_ = N): each a copy of this path from the entry, its throughput
+    // times 1/N, drawing from an independent stream (this walk's Sobol slots stay those of an
+    // unsplit path), that ends at its exit after the light sample there. Only this walk goes on past
+    // its exit, so the path stays one path. Entries deeper in the path are not split: they cost as
+    // much and their light is already averaged over the vertices before them
+    // (bench/results/2026-12-06-subsurface-4-s18.md).
     void splitWalk(int depth) {
         const float share = 1.0f / float(walksPerEntry_);
         for (int i = 1; i < walksPerEntry_; ++i) {
@@ -566,7 +567,7 @@ private:
     const LightEvents& lightEvents_;
     const EquiangularLights& equiangularLights_;
     const int maxDepth_;
-    const int walksPerEntry_;            // guided walks per entry (splitWalk)
+    const int walksPerEntry_;            // guided walks per entry of the camera ray (splitWalk)
     const std::size_t lightPathLayers_;  // the light path expression AOVs' count
     const render::RenderScene& scene_;
     const render::Camera& camera_;

@@ -13,12 +13,12 @@
 // largest component, discounting the 1/eta^2 radiance scaling of refraction, capped at 0.95) —
 // roulette keeps the estimator unbiased.
 //
-// SUBSURFACE. Where a path enters a guided random-walk interior (render::SubsurfaceMethod::
-// RandomWalkGuided, media/guided_walk.h), N walks leave from the entry (N = subsurfaceWalks, the
-// parameter "subsurface-walks"): each samples a light at its exit with weight 1/N, and the path goes
-// on past the first walk's exit only. Where the walk leaves (lit or in shadow) is most of a
-// translucent object's variance, and a walk costs less than the path that leads to it; N = 2 cut
-// the Cycles subsurface peer's relMSE x CPU by about 10% (bench/results/2026-12-06-subsurface-4-s18.md).
+// SUBSURFACE. Where the camera ray enters a guided random-walk interior (render::SubsurfaceMethod::
+// RandomWalkGuided, media/guided_walk.h), N walks leave from the entry (N = subsurfaceWalks_, the
+// parameter "subsurface-walks", default 1): each samples a light at its exit with weight 1/N, and
+// the path goes on past the first walk's exit only. Where a walk leaves (lit or in shadow) can be
+// most of a translucent object's variance: N = 2 took the Cycles subsurface peer's relMSE x CPU to
+// 0.90x, but the subsurface sample's to 1.07x (bench/results/2026-12-06-subsurface-4-s18.md).
 //
 // Light path expression AOVs (IntegratorSettings::lightPathAovs): each camera sample follows its
 // path's events through the expressions (integrators/light_path_tracker.h) and adds the light
@@ -40,7 +40,7 @@ class PathTracer final : public Integrator {
 public:
     // Guided random walks per entry into a subsurface interior, unless the settings' parameter
     // "subsurface-walks" says otherwise (SUBSURFACE above).
-    static constexpr int kDefaultSubsurfaceWalks = 2;
+    static constexpr int kDefaultSubsurfaceWalks = 1;
 
     explicit PathTracer(const IntegratorSettings& settings)
         : maxDepth_(settings.maxDepth),

@@ -21,8 +21,8 @@ const std::vector<IntegratorInfo>& integratorRegistry() {
          [](const IntegratorSettings& s) { return std::make_unique<PathTracer>(s); },
          true,
          {{"subsurface-walks", "fluence:path:subsurfaceWalks",
-           "random walks from each entry into a guided subsurface interior, each lighting its exit with weight 1/N "
-           "(default 2)",
+           "random walks from each entry of a camera ray into a guided subsurface interior, each lighting its exit "
+           "with weight 1/N (default 1)",
            true, 64}}},
         {"direct",
          "L(D|S)?E",

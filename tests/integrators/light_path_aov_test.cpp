@@ -42,10 +42,12 @@ TEST(LightPathAovs, SubsurfaceEventsAreLabelled) {
     render::SceneDescription diffusion = walk;
     diffusion.materials[3].subsurfaceMethod = render::SubsurfaceMethod::Diffusion;
     expectLayersSumToBeauty(renderLayers<PathTracer>(diffusion, bySubsurface, 24, 16), bySubsurface);
-    // Guided walks, split at each entry (PathTracer's subsurface-walks): the other walks' light counts.
+    // Guided walks, three from each entry (PathTracer's subsurface-walks): the other walks' light counts.
     render::SceneDescription guided = walk;
     guided.materials[3].subsurfaceMethod = render::SubsurfaceMethod::RandomWalkGuided;
-    expectLayersSumToBeauty(renderLayers<PathTracer>(guided, bySubsurface, 24, 16), bySubsurface);
+    IntegratorSettings split = withLayers(bySubsurface);
+    split.parameters["subsurface-walks"] = 3;
+    expectLayersSumToBeauty(renderLayersBy(PathTracer(split), guided, bySubsurface, 24, 16), bySubsurface);
 }
 
 // On Lambertian surfaces (one lobe kind), the light that arrives after one diffuse reflection is

@@ -38,21 +38,26 @@ inline std::vector<std::string> namesOf(const Layers& layers) {
     return names;
 }
 
-// A size x size render of `desc` by Method (constructed from the settings and `extra`) with the
-// layers, resolved; `threads` and `seed` as RenderSettings's.
-template <class Method, class... Extra>
-Image renderLayers(const render::SceneDescription& desc, const Layers& layers, int size, int spp, int maxDepth = 64,
-                   int threads = 0, std::uint64_t seed = 0, const Extra&... extra) {
+// A size x size render of `desc` by `integrator` (made with withLayers(layers)) with the layers,
+// resolved; `threads` and `seed` as RenderSettings's.
+inline Image renderLayersBy(const Integrator& integrator, const render::SceneDescription& desc, const Layers& layers,
+                            int size, int spp, int threads = 0, std::uint64_t seed = 0) {
     render::RenderScene scene(desc);
     render::Camera camera(*desc.camera, size, size);
     Film film(size, size, camera.farClip(), namesOf(layers));
-    Method integrator(withLayers(layers, maxDepth), extra...);
     RenderSettings settings;
     settings.samplesPerPixel = spp;
     settings.threads = threads;
     settings.seed = seed;
     render(scene, camera, integrator, settings, film);
     return film.resolve();
+}
+
+// The same by Method, constructed from withLayers(layers, maxDepth) and `extra`.
+template <class Method, class... Extra>
+Image renderLayers(const render::SceneDescription& desc, const Layers& layers, int size, int spp, int maxDepth = 64,
+                   int threads = 0, std::uint64_t seed = 0, const Extra&... extra) {
+    return renderLayersBy(Method(withLayers(layers, maxDepth), extra...), desc, layers, size, spp, threads, seed);
 }
 
 inline render::MaterialDesc plastic(std::string name, const RGB& colour, float roughness) {
