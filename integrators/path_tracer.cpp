@@ -198,6 +198,7 @@ public:
                 if (step == Step::Next) continue;
             }
             if (!hit) {
+                throughput_ *= std::exchange(exitShare_, 1.0f);  // a split walk's end (splitWalk)
                 forEachLightAtInfinity(scene_, ray_.direction, ray_.time, depth == 0,
                                        [&](int index, const RGB& le) { addEmitted(le, index, LightHit{}, depth); });
                 break;
@@ -234,6 +235,7 @@ private:
             recordFirstVolumeEvent(out_, flight.p, flight.properties.sigmaS,
                                    flight.properties.sigmaA + flight.properties.sigmaS, camera_);
         if (flight.event == media::FlightEvent::Absorbed) {
+            throughput_ *= std::exchange(exitShare_, 1.0f);  // a split walk's end (splitWalk)
             const RGB emitted = throughput_ * flight.properties.emission / media::channelAverage(mis_.rU);
             radiance_ += emitted;
             if (lightPaths_.active()) lightPaths_.reach(PathEvent{EventType::Object}, emitted, out_);
@@ -483,7 +485,7 @@ private:
             other.out_.clearLightPaths(lightPathLayers_);
             other.endsAtExit_ = true;
             other.walkStep_ =
-                guidedWalk_->firstStep(ray_.origin, ray_.direction, guidedWalk_->sampleChannel(stream.next()));
+                other.guidedWalk_->firstStep(ray_.origin, ray_.direction, guidedWalk_->sampleChannel(stream.next()));
             const FilmSample split = other.run(depth + 1);
             radiance_ += split.radiance;
             for (std::size_t layer = 0; layer < lightPathLayers_; ++layer)

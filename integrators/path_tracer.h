@@ -26,6 +26,7 @@
 #pragma once
 
 #include <memory>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -44,7 +45,7 @@ public:
 
     explicit PathTracer(const IntegratorSettings& settings)
         : maxDepth_(settings.maxDepth),
-          subsurfaceWalks_(static_cast<int>(settings.parameter("subsurface-walks", kDefaultSubsurfaceWalks))),
+          subsurfaceWalks_(walksPerEntry(settings.parameter("subsurface-walks", kDefaultSubsurfaceWalks))),
           aovs_(settings.lightPathAovs) {}
 
     // The per-render state: the lights' events for the light path expression AOVs (none without).
@@ -67,6 +68,13 @@ public:
                      SampleStream& rng, RenderCounters& counters) const;
 
 private:
+    // The parameter "subsurface-walks" as a count; the CLI and the RenderSettings reader check it,
+    // a program that builds IntegratorSettings itself gets this error instead of a cast of NaN.
+    static int walksPerEntry(double value) {
+        if (!(value >= 1.0 && value <= 64.0) || value != double(int(value)))
+            throw std::invalid_argument("path: subsurface-walks must be a whole number from 1 to 64");
+        return int(value);
+    }
     int maxDepth_;
     int subsurfaceWalks_;
     std::shared_ptr<const std::vector<LightPathAov>> aovs_;  // null: none
