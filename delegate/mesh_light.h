@@ -67,8 +67,9 @@ void applyMeshLight(const MeshLight& light, std::span<render::MeshDesc> parts,
 
 // Completes the parts of a prototype's mesh lights (delegate/instancing.h: each part of such a
 // prim carries a MeshDesc::light naming it, with lightToWorld its space), once their materials are
-// known: each run of consecutive parts of one prim in one place is one mesh light, given its
-// render::MeshLightDesc by applyMeshLight from `lights` (by prim path).
+// known: each run of consecutive parts of one copy of one prim (MeshLightDesc::copy: two copies in
+// one place are two emitters) is one mesh light, given its render::MeshLightDesc by applyMeshLight
+// from `lights` (by prim path).
 void finishMeshLights(std::span<render::MeshDesc> parts, const std::map<std::string, MeshLight>& lights,
                       const std::vector<render::MaterialDesc>& materials);
 
