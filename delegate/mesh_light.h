@@ -30,8 +30,8 @@
 // A mesh light inside a native instance or a point instancer's prototype is read with the
 // prototype (delegate/instancing.h, finishMeshLights below): each instance is an emitter of its own,
 // and a normalized one divides by its own placed area (render/render_scene.cpp).
-// Not done: a camera ray sees the light's radiance on the surface, where Arnold, hdPrman and Storm
-// show the mesh as its material shades it (bench/results/2026-12-06-mesh-lights.md).
+// A camera ray sees the surface as its material shades it, not the light, as UsdLux's
+// materialSyncMode and Arnold, hdPrman and Storm have it (render::Ray::fromCamera, docs/USDLUX.md).
 #pragma once
 
 #include <functional>

@@ -147,7 +147,8 @@ struct RenderScene::Mesh {
     // noMaterialResponse the surface is black.
     EmittingSides emittingSides = EmittingSides::Both;
     bool reflects = true;
-    int material = -1;  // into materials_, -1 = the default (Lambertian) material
+    bool meshLight = false;  // a UsdLux mesh light: a camera ray sees its surface, not its light
+    int material = -1;       // into materials_, -1 = the default (Lambertian) material
     int firstLight = -1;
     int linkId = -1;  // MeshLightDesc::linkId
     // A mesh light's shaping (MeshLightDesc::shaping), about the default frame (each triangle
@@ -497,6 +498,7 @@ int RenderScene::storeMesh(const MeshDesc& desc, const std::vector<MaterialDesc>
         mesh.emission = desc.light->radiance;
         mesh.emittingSides = EmittingSides::Front;
         mesh.reflects = desc.light->materialResponse;
+        mesh.meshLight = true;
         mesh.linkId = desc.light->linkId;
         if (desc.light->shaping) {
             mesh.shaping = shaping ? std::move(shaping)
@@ -855,8 +857,10 @@ std::optional<SurfaceHit> RenderScene::shadeMesh(int meshIndex, unsigned primID,
     if (instanceIndex >= 0) placeInWorld(hit, instanceIndex, e1, e2);
     if (mesh.reflects) shadeMaterial(mesh, hit, corner, w, u, v, e1, e2);
     // A mesh light's front is its triangles' own side (emissive meshes are never instanced: ng is
-    // in world space).
-    const bool seesEmission = mesh.emittingSides == EmittingSides::Both || meetsFront(ray.direction, ng);
+    // in world space). A camera ray sees a mesh light's surface as its material shades it, as
+    // Arnold's light_visible off, hdPrman and Storm show it (docs/USDLUX.md): no emission, no light.
+    const bool lightSeen = !(mesh.meshLight && ray.fromCamera);
+    const bool seesEmission = lightSeen && (mesh.emittingSides == EmittingSides::Both || meetsFront(ray.direction, ng));
     if (dot(hit.shadingNormal, hit.geometricNormal) < 0.0f) hit.geometricNormal = -hit.geometricNormal;
     hit.emission = !seesEmission           ? RGB(0.0f)
                    : mesh.texturedEmission ? mesh.texturedEmission->at(primID, u, v)
@@ -868,7 +872,7 @@ std::optional<SurfaceHit> RenderScene::shadeMesh(int meshIndex, unsigned primID,
                            .emitted({hit.point, hit.geometricNormal}, -ray.direction);
     hit.interior =
         mesh.reflects && mesh.material >= 0 ? materialInterior_[static_cast<std::size_t>(mesh.material)] : -1;
-    hit.light = mesh.firstLight >= 0 ? mesh.firstLight + static_cast<int>(primID) : -1;
+    hit.light = mesh.firstLight >= 0 && lightSeen ? mesh.firstLight + static_cast<int>(primID) : -1;
     hit.materialName = mesh.materialName;
     return result;
 }
