@@ -31,7 +31,7 @@ std::string attribute(const ReviewImage& image, const std::string& name) {
 
 ReviewAnswer json(std::string body) { return {200, "application/json", std::move(body)}; }
 ReviewAnswer failure(int status, const std::string& message) {
-    return {status, "application/json", "{\"error\":" + jsonQuoted(message) + "}"};
+    return {status, "application/json", "{\"error\":" + jsonQuoted(message) + "}", message};
 }
 
 }  // namespace

@@ -24,6 +24,7 @@ struct ReviewAnswer {
     int status = 200;
     std::string contentType;
     std::string body;
+    std::string error{};  // a failure's message, as its JSON body holds it (status != 200)
 };
 
 class ReviewApi {

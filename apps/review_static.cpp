@@ -34,11 +34,12 @@ void writeFile(const std::filesystem::path& path, const std::string& text) {
     });
 }
 
-// Appends `"key":value` for the answer to `request` with `args`; throws when it is an error.
+// Appends `"key":value` for the answer to `request` with `args`; throws ReviewInputError with the
+// failure's message (which names the file) when it is an error.
 void addAnswer(std::string& data, const ReviewApi& api, const std::string& request,
                const std::vector<std::string>& args) {
     const ReviewAnswer answer = api.answer(request, args);
-    if (answer.status != 200) throw ReviewInputError(answer.body);
+    if (answer.status != 200) throw ReviewInputError(answer.error);
     std::string key = request;
     for (const std::string& a : args) key += "|" + a;
     data += (data.size() > 1 ? ",\n" : "") + jsonQuoted(key) + ":" +

@@ -200,8 +200,11 @@ bool addToPrototype(const SyncContext& context, const usd::PrimSpec& prim, const
         for (const PointInstances::Instance& instance : nested.instances) {
             const PrototypeContents& inner = nestedContents[instance.prototype];
             Matrix4 placement = space * instance.transform;
-            for (const MeshPart& part : inner.parts)
+            for (const MeshPart& part : inner.parts) {
                 parts.push_back({render::transformMesh(part.mesh, placement), part.materialPath});
+                if (parts.back().mesh.light) parts.back().mesh.light->copy += contents.meshLightCopies;
+            }
+            contents.meshLightCopies += inner.meshLightCopies;
             for (const PrototypeContents::Subdivided& sub : inner.subdivided)
                 contents.subdivided.push_back({sub.mesh, placement * sub.placement});
             for (const PrototypeCurves& c : inner.curves)
@@ -216,9 +219,12 @@ bool addToPrototype(const SyncContext& context, const usd::PrimSpec& prim, const
         }
         return false;
     }
-    if (contents.meshLights.contains(prim.path))
+    if (contents.meshLights.contains(prim.path)) {
         for (std::size_t i = firstPart; i < parts.size(); ++i)
-            parts[i].mesh.light = render::MeshLightDesc{.prim = prim.path, .lightToWorld = space};
+            parts[i].mesh.light =
+                render::MeshLightDesc{.prim = prim.path, .lightToWorld = space, .copy = contents.meshLightCopies};
+        contents.meshLightCopies += 1;
+    }
     return true;
 }
 

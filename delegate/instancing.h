@@ -112,6 +112,7 @@ struct PrototypeContents {
     // MeshDesc::light naming the prim, with lightToWorld its space in the prototype, which
     // finishMeshLights completes once the parts' materials are known.
     std::map<std::string, MeshLight> meshLights;
+    int meshLightCopies = 0;               // the MeshLightDesc::copy numbers its parts use: 0 to this, exclusive
     std::vector<MalformedPrim> malformed;  // left out, each with one warning (an error when strict)
     bool posedByAnimation = false;         // a skinned prim's pose changes over time (its animation may lie outside)
 };

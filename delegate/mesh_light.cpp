@@ -63,7 +63,7 @@ void finishMeshLights(std::span<render::MeshDesc> parts, const std::map<std::str
         const std::optional<render::MeshLightDesc>& light = parts[first].light;
         if (!light) continue;
         while (end < parts.size() && parts[end].light && parts[end].light->prim == light->prim &&
-               parts[end].light->lightToWorld == light->lightToWorld)
+               parts[end].light->copy == light->copy)
             ++end;
         if (auto found = lights.find(light->prim); found != lights.end())
             applyMeshLight(found->second, parts.subspan(first, end - first), materials, light->lightToWorld);

@@ -30,8 +30,8 @@
 // A mesh light inside a native instance or a point instancer's prototype is read with the
 // prototype (delegate/instancing.h, finishMeshLights below): each instance is an emitter of its own,
 // and a normalized one divides by its own placed area (render/render_scene.cpp).
-// Not done: a camera ray sees the light's radiance on the surface, where Arnold, hdPrman and Storm
-// show the mesh as its material shades it (bench/results/2026-12-06-mesh-lights.md).
+// A camera ray sees the surface as its material shades it, not the light, as UsdLux's
+// materialSyncMode and Arnold, hdPrman and Storm have it (render::Ray::fromCamera, docs/USDLUX.md).
 #pragma once
 
 #include <functional>
@@ -67,8 +67,9 @@ void applyMeshLight(const MeshLight& light, std::span<render::MeshDesc> parts,
 
 // Completes the parts of a prototype's mesh lights (delegate/instancing.h: each part of such a
 // prim carries a MeshDesc::light naming it, with lightToWorld its space), once their materials are
-// known: each run of consecutive parts of one prim in one place is one mesh light, given its
-// render::MeshLightDesc by applyMeshLight from `lights` (by prim path).
+// known: each run of consecutive parts of one copy of one prim (MeshLightDesc::copy: two copies in
+// one place are two emitters) is one mesh light, given its render::MeshLightDesc by applyMeshLight
+// from `lights` (by prim path).
 void finishMeshLights(std::span<render::MeshDesc> parts, const std::map<std::string, MeshLight>& lights,
                       const std::vector<render::MaterialDesc>& materials);
 

@@ -471,6 +471,7 @@ render::SceneDescription SceneDelegate::describe(const render::Camera& camera, c
             appendPart(displaced ? SurfaceRprim::Part{std::move(*displaced), part.materialPath} : part, meshes,
                        materialFor, scene.materials, options_.aovPrimvars);
         }
+        int subdividedCopy = 0;  // each entry is a copy of its prim (MeshLightDesc::copy)
         for (const SurfaceRprim::Subdivided& sub : prototype.subdivided()) {
             std::vector<Matrix4> where;
             for (const Matrix4& instance : placements[static_cast<std::size_t>(index)])
@@ -478,11 +479,12 @@ render::SceneDescription SceneDelegate::describe(const render::Camera& camera, c
             std::size_t first = meshes.size();
             const bool light = prototype.meshLights().contains(sub.mesh->path());
             for (MeshPart& part : sub.mesh->tessellate(where, dicing)) {
-                if (light) part.mesh.light = render::MeshLightDesc{.prim = sub.mesh->path()};
+                if (light) part.mesh.light = render::MeshLightDesc{.prim = sub.mesh->path(), .copy = subdividedCopy};
                 appendPart({render::transformMesh(part.mesh, sub.placement), std::move(part.materialPath)}, meshes,
                            materialFor, scene.materials, options_.aovPrimvars);
             }
             countSubdivided(meshes, first);
+            subdividedCopy += 1;
         }
         finishMeshLights(meshes, prototype.meshLights(), scene.materials);
     }

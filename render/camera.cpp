@@ -110,6 +110,7 @@ Ray Camera::generateRay(float x, float y, Vec2f lens, float time) const {
     float sy = 1.0f - 2.0f * y / static_cast<float>(height_);  // 1 top .. -1 bottom
     float wx = centreX_ + sx * halfWidth_, wy = centreY_ + sy * halfHeight_;
     Ray ray;
+    ray.fromCamera = true;
     if (projection_ == Projection::Perspective) {
         Vec3f dir = normalize(axisX_ * wx + axisY_ * wy - axisZ_);
         ray.origin = position_;

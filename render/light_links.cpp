@@ -53,18 +53,20 @@ LightLinkTable::LightLinkTable(const std::vector<LightLinkGroup>& groups,
     unlit_.assign(groups.size() * lightCount, false);
     unshadowed_.assign(groups.size() * lightCount, false);
     passes_.assign(lightCount, false);
+    // Marks every light of `emitters` in group g's row of `table`, and in `anyGroup` when given.
+    auto mark = [&](const std::vector<int>& emitters, std::size_t g, std::vector<bool>& table,
+                    std::vector<bool>* anyGroup) {
+        for (int emitter : emitters)
+            for (int light : lightsOfEmitter[std::size_t(emitter)]) {
+                table[g * lightCount + std::size_t(light)] = true;
+                if (anyGroup) (*anyGroup)[std::size_t(light)] = true;
+            }
+    };
     for (std::size_t g = 0; g < groups.size(); ++g) {
-        for (int emitter : groups[g].unlit)
-            for (int light : lightsOfEmitter[std::size_t(emitter)]) {
-                unlit_[g * lightCount + std::size_t(light)] = true;
-                excludes_ = true;
-            }
-        for (int emitter : groups[g].unshadowed)
-            for (int light : lightsOfEmitter[std::size_t(emitter)]) {
-                unshadowed_[g * lightCount + std::size_t(light)] = true;
-                passes_[std::size_t(light)] = true;
-            }
+        mark(groups[g].unlit, g, unlit_, nullptr);
+        mark(groups[g].unshadowed, g, unshadowed_, &passes_);
     }
+    excludes_ = std::find(unlit_.begin(), unlit_.end(), true) != unlit_.end();
 }
 
 }  // namespace fluence::render

@@ -18,6 +18,9 @@ struct Ray {
     // When in the shutter interval the ray travels: 0 at its opening, 1 at its close (moving
     // geometry is met where it is then). A camera ray draws it; every ray of its path keeps it.
     float time = 0.0f;
+    // Whether it is a camera ray (Camera::generateRay): it sees a UsdLux mesh light's surface as
+    // its material shades it, not the light (RenderScene::intersect). Rays made from a hit are not.
+    bool fromCamera = false;
 };
 
 // Moves a surface point off its surface along the geometric normal by a few ULPs of its

@@ -147,12 +147,14 @@ struct RenderScene::Mesh {
     // noMaterialResponse the surface is black.
     EmittingSides emittingSides = EmittingSides::Both;
     bool reflects = true;
-    int material = -1;  // into materials_, -1 = the default (Lambertian) material
+    bool meshLight = false;  // a UsdLux mesh light: a camera ray sees its surface, not its light
+    int material = -1;       // into materials_, -1 = the default (Lambertian) material
     int firstLight = -1;
     int linkId = -1;  // MeshLightDesc::linkId
     // A mesh light's shaping (MeshLightDesc::shaping), about the default frame (each triangle
-    // evaluates it in its own), and the prim's axes that orient an IES profile; null: unshaped.
-    std::unique_ptr<LightShaping> shaping;
+    // evaluates it in its own), shared by the copies an instanced prototype's mesh places, and
+    // the prim's axes that orient an IES profile; null: unshaped.
+    std::shared_ptr<const LightShaping> shaping;
     Matrix4 shapingToWorld = Matrix4::identity();
     std::uint32_t objectName = kNoName, materialName = kNoName;  // objectNames_, materialNames_
     int linkGroup = 0;                                           // MeshDesc::linkGroup
@@ -224,7 +226,15 @@ struct RenderScene::Prototype {
     std::vector<int> meshes;  // Embree geometry id in the prototype's scene -> mesh, or -1
     std::vector<int> points;  // Embree geometry id in the prototype's scene -> a point set's shading mesh, or -1
     std::unique_ptr<CurveGeometry> curves = std::make_unique<CurveGeometry>();  // its curve geometries
-    std::vector<int> emissiveMeshes;  // into SceneDescription::prototypes[i].meshes: copied per instance
+    // Its emissive meshes, copied per instance: each one's index into SceneDescription::prototypes[i].meshes,
+    // its area in the prototype's space (a normalized mesh light's copy divides by its placed area
+    // instead), and its mesh light's shaping, made for the first copy and shared by the rest.
+    struct EmissiveMesh {
+        int mesh = -1;
+        float area = 0.0f;
+        std::shared_ptr<const LightShaping> shaping;
+    };
+    std::vector<EmissiveMesh> emissiveMeshes;
     Vec3f lo{std::numeric_limits<float>::max()}, hi{-std::numeric_limits<float>::max()};  // bounds
 };
 
@@ -446,7 +456,8 @@ void RenderScene::addPresenceFilter(RTCGeometryTy* geometry, int meshIndex) {
     rtcCommitGeometry(geometry);
 }
 
-int RenderScene::storeMesh(const MeshDesc& desc, const std::vector<MaterialDesc>& materials, std::uint32_t objectName) {
+int RenderScene::storeMesh(const MeshDesc& desc, const std::vector<MaterialDesc>& materials, std::uint32_t objectName,
+                           std::shared_ptr<const LightShaping> shaping) {
     if (desc.indices.size() % 3 != 0)
         throw std::invalid_argument(desc.name + ": triangle index count is not a multiple of 3");
     for (std::uint32_t i : desc.indices)
@@ -487,10 +498,12 @@ int RenderScene::storeMesh(const MeshDesc& desc, const std::vector<MaterialDesc>
         mesh.emission = desc.light->radiance;
         mesh.emittingSides = EmittingSides::Front;
         mesh.reflects = desc.light->materialResponse;
+        mesh.meshLight = true;
         mesh.linkId = desc.light->linkId;
         if (desc.light->shaping) {
-            mesh.shaping =
-                std::make_unique<LightShaping>(*desc.light->shaping, ShapingFrame().axis, Matrix4::identity());
+            mesh.shaping = shaping ? std::move(shaping)
+                                   : std::make_shared<const LightShaping>(*desc.light->shaping, ShapingFrame().axis,
+                                                                          Matrix4::identity());
             mesh.shapingToWorld = desc.light->lightToWorld;
         }
     }
@@ -513,8 +526,9 @@ void RenderScene::orientSolid(Mesh& mesh) {
                              "scatter in, so walks leave through its open edges"});
 }
 
-void RenderScene::addMesh(const MeshDesc& desc, const std::vector<MaterialDesc>& materials, std::uint32_t objectName) {
-    int index = storeMesh(desc, materials, objectName);
+void RenderScene::addMesh(const MeshDesc& desc, const std::vector<MaterialDesc>& materials, std::uint32_t objectName,
+                          std::shared_ptr<const LightShaping> shaping) {
+    int index = storeMesh(desc, materials, objectName, std::move(shaping));
     Mesh& mesh = meshes_[index];
     orientSolid(mesh);
     if (!desc.light && mesh.material >= 0 && shaders_[mesh.material].drives(MaterialInput::Emission))
@@ -600,7 +614,7 @@ void RenderScene::addPrototypes(const SceneDescription& scene) {
         for (std::size_t i = 0; i < desc.meshes.size(); ++i) {
             const MeshDesc& meshDesc = desc.meshes[i];
             if (emits(meshDesc, scene.materials)) {
-                proto.emissiveMeshes.push_back(static_cast<int>(i));
+                proto.emissiveMeshes.push_back({static_cast<int>(i), surfaceArea(meshDesc), nullptr});
                 continue;
             }
             int index = storeMesh(meshDesc, scene.materials, kNoName);  // hits are named by their instance
@@ -655,18 +669,18 @@ void RenderScene::addPrototypes(const SceneDescription& scene) {
         if (desc.prototype < 0 || desc.prototype >= static_cast<int>(prototypes_.size()))
             throw std::invalid_argument("instance of prototype " + std::to_string(desc.prototype) +
                                         ": index out of range");
-        const Prototype& proto = prototypes_[desc.prototype];
+        Prototype& proto = prototypes_[desc.prototype];
         const std::uint32_t objectName = desc.name.empty() ? kNoName : objectNames_.add(desc.name);
-        for (int m : proto.emissiveMeshes) {
-            const MeshDesc& local = scene.prototypes[desc.prototype].meshes[m];
+        for (Prototype::EmissiveMesh& emissive : proto.emissiveMeshes) {
+            const MeshDesc& local = scene.prototypes[desc.prototype].meshes[emissive.mesh];
             MeshDesc placed = transformMesh(local, desc.transform);
             for (const Matrix4& step : desc.motionTransforms)  // a moving instance: its copy moves with it
                 placed.motionPositions.push_back(transformMesh(local, step).positions);
             if (desc.linkGroup != 0) placed.linkGroup = desc.linkGroup;
             if (placed.light && placed.light->normalized)  // per unit of its placed area
-                if (const float area = surfaceArea(placed); area > 0.0f)
-                    placed.light->radiance *= surfaceArea(local) / area;
-            addMesh(placed, scene.materials, objectName);
+                if (const float area = surfaceArea(placed); area > 0.0f) placed.light->radiance *= emissive.area / area;
+            addMesh(placed, scene.materials, objectName, emissive.shaping);
+            emissive.shaping = meshes_.back().shaping;
         }
         if (proto.meshes.empty()) continue;
         RTCGeometry geom = rtcNewGeometry(embree_->device, RTC_GEOMETRY_TYPE_INSTANCE);
@@ -843,20 +857,22 @@ std::optional<SurfaceHit> RenderScene::shadeMesh(int meshIndex, unsigned primID,
     if (instanceIndex >= 0) placeInWorld(hit, instanceIndex, e1, e2);
     if (mesh.reflects) shadeMaterial(mesh, hit, corner, w, u, v, e1, e2);
     // A mesh light's front is its triangles' own side (emissive meshes are never instanced: ng is
-    // in world space).
-    const bool seesEmission = mesh.emittingSides == EmittingSides::Both || meetsFront(ray.direction, ng);
+    // in world space). A camera ray sees a mesh light's surface as its material shades it, as
+    // Arnold's light_visible off, hdPrman and Storm show it (docs/USDLUX.md): no emission, no light.
+    const bool lightSeen = !(mesh.meshLight && ray.fromCamera);
+    const bool seesEmission = lightSeen && (mesh.emittingSides == EmittingSides::Both || meetsFront(ray.direction, ng));
     if (dot(hit.shadingNormal, hit.geometricNormal) < 0.0f) hit.geometricNormal = -hit.geometricNormal;
     hit.emission = !seesEmission           ? RGB(0.0f)
                    : mesh.texturedEmission ? mesh.texturedEmission->at(primID, u, v)
                                            : mesh.emission;
-    // A shaped mesh light's surface is seen shaped, as its triangles' light samples are
-    // (TriangleLight::shapingFactor): each triangle about its own front normal.
+    // A shaped mesh light's surface is seen shaped, as its triangles' light samples are: its
+    // triangle's light gives the emission, in the shaping frame it holds (where it is at the ray's time).
     if (mesh.shaping && seesEmission && lengthSquared(ng) > 0.0f)
-        hit.emission = hit.emission *
-                       mesh.shaping->factor(ShapingFrame(normalize(ng), mesh.shapingToWorld).toLocal(-ray.direction));
+        hit.emission = lightAt(std::size_t(mesh.firstLight) + primID, ray.time)
+                           .emitted({hit.point, hit.geometricNormal}, -ray.direction);
     hit.interior =
         mesh.reflects && mesh.material >= 0 ? materialInterior_[static_cast<std::size_t>(mesh.material)] : -1;
-    hit.light = mesh.firstLight >= 0 ? mesh.firstLight + static_cast<int>(primID) : -1;
+    hit.light = mesh.firstLight >= 0 && lightSeen ? mesh.firstLight + static_cast<int>(primID) : -1;
     hit.materialName = mesh.materialName;
     return result;
 }

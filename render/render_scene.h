@@ -256,12 +256,15 @@ private:
     struct Mesh;
     struct Prototype;
     struct Instance;
-    // Validates `desc`, stores it and returns its index in meshes_ (`objectName`: its hits' name).
-    int storeMesh(const MeshDesc& desc, const std::vector<MaterialDesc>& materials, std::uint32_t objectName);
+    // Validates `desc`, stores it and returns its index in meshes_ (`objectName`: its hits' name;
+    // `shaping`: its mesh light's shaping when another copy of it has made one, else null).
+    int storeMesh(const MeshDesc& desc, const std::vector<MaterialDesc>& materials, std::uint32_t objectName,
+                  std::shared_ptr<const LightShaping> shaping = nullptr);
     // Turns a closed mesh of a solid material outward (render/solid_orientation.h); warns when a
     // subsurface mesh is not closed.
     void orientSolid(Mesh& mesh);
-    void addMesh(const MeshDesc& mesh, const std::vector<MaterialDesc>& materials, std::uint32_t objectName);
+    void addMesh(const MeshDesc& mesh, const std::vector<MaterialDesc>& materials, std::uint32_t objectName,
+                 std::shared_ptr<const LightShaping> shaping = nullptr);
     void addCurves(const CurvesDesc& curves, const std::vector<MaterialDesc>& materials);
     // Adds `curves` to `geometry` and attaches them to `scene` (the surfaces' or a prototype's) as `geomID`.
     void storeCurves(CurveGeometry& geometry, const CurvesDesc& curves, const std::vector<MaterialDesc>& materials,

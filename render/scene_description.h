@@ -246,6 +246,9 @@ struct MeshLightDesc {
     // `radiance` is divided by its prim's area (inputs:normalize) in the mesh's own space: a copy
     // that an instance places is divided by its placed area instead (RenderScene), part by part.
     bool normalized = false;
+    // Which copy of the prim a prototype's part belongs to (nested point instancers place a prim
+    // several times, possibly in one place): the delegate's, as `prim`; the render core does not read it.
+    int copy = 0;
 };
 
 struct MeshDesc {

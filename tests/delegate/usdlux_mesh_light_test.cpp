@@ -246,9 +246,21 @@ std::string pointInstancesOf(const std::string& body, const std::string& scale) 
            scale + "]\n    def Xform \"P\"\n    {\n" + body + "    }\n}\n";
 }
 
+// `body` (the quad light /L) in the prototype /PI/P/Inner/Q of a point instancer nested in the
+// prototype of another: the inner one places Q twice in one place, the outer one its prototype once.
+std::string nestedPointInstancesOf(const std::string& body) {
+    return "def PointInstancer \"PI\"\n{\n    rel prototypes = [</PI/P>]\n    int[] protoIndices = [0]\n"
+           "    point3f[] positions = [(0, 0, 0)]\n    def Xform \"P\"\n    {\n"
+           "    def PointInstancer \"Inner\"\n    {\n    rel prototypes = [</PI/P/Inner/Q>]\n"
+           "    int[] protoIndices = [0, 0]\n    point3f[] positions = [(0, 0, 0), (0, 0, 0)]\n"
+           "    def Xform \"Q\"\n    {\n" +
+           body + "    }\n    }\n    }\n}\n";
+}
+
 // Each instance of a mesh light is an emitter of its own: two instances in one place light a
 // point twice as one does, with twice its power; a normalized one scaled 2x keeps its power and
-// spreads it over its placed area (4 x 2 at height 4: L / 8 over rectOnAxis(2, 1, 4)).
+// spreads it over its placed area (4 x 2 at height 4: L / 8 over rectOnAxis(2, 1, 4)); two
+// normalized copies in one place each divide by their own area.
 TEST(UsdLuxMeshLight, EachInstanceIsAnEmitterOfItsOwn) {
     auto measure = [](const std::string& usda, const Vec3f& p, const RGB& expected, std::size_t triangles) {
         auto populated = populate("#usda 1.0\n" + testing::kCamera + usda);
@@ -266,6 +278,9 @@ TEST(UsdLuxMeshLight, EachInstanceIsAnEmitterOfItsOwn) {
     const std::string normalized = kLit + "\n    bool inputs:normalize = 1";
     measure(pointInstancesOf(quadMeshLight(normalized), "(2, 2, 2)"), kOrigin,
             kL / 2.0f * float(rectOnAxis(1.0, 0.5, 2.0)) + kL / 8.0f * float(rectOnAxis(2.0, 1.0, 4.0)), 4);
+    // Two copies that a nested instancer places in one place are two emitters too, each normalized
+    // by its own area (2): twice L / 2, not the two as one light of area 4.
+    measure(nestedPointInstancesOf(quadMeshLight(normalized)), kOrigin, one, 4);
 }
 
 // The quad light over two cubes of UsdGeomCube's fallback size 2 (tops at y = 1): /Near under it

@@ -29,8 +29,9 @@ namespace {
 // 3 x 4 chromatic channels, each at z standard errors, for a family-wide false-failure rate of 1%.
 constexpr int kForms = 2;
 const double kZ = test::normalQuantile(0.5 * test::sidakAlpha(16 * kForms));
-// Chi-square tests: 3 per form, at the level that keeps the same family-wide rate.
-const double kChi2Level = test::sidakAlpha(3 * kForms);
+// Chi-square tests: 3 per form, and 3 of the one-number form under the Sobol sampler, at the level
+// that keeps the same family-wide rate.
+const double kChi2Level = test::sidakAlpha(3 * kForms + 3);
 constexpr double kRounding = 1e-6;
 
 // The two forms of sampleFreeFlight (media/free_flight.h).
@@ -47,14 +48,14 @@ FreeFlight fly(Form form, const Medium& medium, const MediumRay& ray, int hero, 
 
 // Pearson's chi-square of flights' outcomes against a distribution over [0, length) given by its
 // CDF, in kBins equal-probability bins, plus one bin for escapes (probability 1 - cdf(length)).
-// Returns the p-value.
+// The flights are the samples 0, 1, ... of one pixel drawn by `sampler`. Returns the p-value.
 double chi2OfFlights(Form form, const Medium& medium, const MediumRay& ray, const std::function<double(double)>& cdf,
-                     std::uint64_t seed, const std::string& what) {
+                     std::uint64_t seed, const std::string& what, SamplerKind sampler = SamplerKind::Independent) {
     constexpr int kBins = 31, kFlights = 100'000;
     const double total = std::isinf(ray.tMax) ? 1.0 : cdf(ray.tMax);
     std::vector<double> observed(kBins + 1, 0.0);
     for (int n = 0; n < kFlights; ++n) {
-        SampleStream rng(seed, 0, n);
+        SampleStream rng(seed, 0, n, sampler);
         FreeFlight flight = fly(form, medium, ray, 0, rng);
         if (flight.event == FlightEvent::Escaped) {
             observed[kBins] += 1.0;
@@ -97,6 +98,29 @@ TEST(FreeFlight, CollisionDistancesFollowALinearRamp) {
     for (Form form : kBothForms)
         EXPECT_GT(chi2OfFlights(form, ramp, {Vec3f(0.0f), Vec3f(1.0f, 0.0f, 0.0f), 2.5f}, cdf, 53, "linear ramp"),
                   kChi2Level);
+}
+
+// Under the Sobol sampler the one event number is a stratified dimension of the pixel's samples
+// (as the path tracer draws it), the exponential steps independent numbers beside it: each flight
+// still follows the distance law, with exact and loose majorants and in the ramp. (Stratified
+// numbers make the counts closer to their expectations than independent ones: Pearson's test stays
+// valid, conservative; a flight whose steps reused the event number fails it.)
+TEST(FreeFlight, OneEventNumberKeepsTheDistanceLawUnderTheSobolSampler) {
+    const float sigmaT = 1.3f;
+    HomogeneousMedium exact({RGB(0.4f * sigmaT), RGB(0.6f * sigmaT)});
+    test::RescaledBoundsMedium loose(exact, 2.5f, 0.0f);
+    const MediumRay ray{Vec3f(0.0f), normalize(Vec3f(-1.0f, 2.0f, 0.5f))};
+    auto cdf = [&](double t) { return 1.0 - std::exp(-sigmaT * t); };
+    const Form form = Form::OneEventNumber;
+    EXPECT_GT(chi2OfFlights(form, exact, ray, cdf, 61, "homogeneous, exact majorant, Sobol", SamplerKind::Sobol),
+              kChi2Level);
+    EXPECT_GT(chi2OfFlights(form, loose, ray, cdf, 62, "homogeneous, majorant 2.5 sigmaT, Sobol", SamplerKind::Sobol),
+              kChi2Level);
+    test::RampMedium ramp(RGB(0.2f), RGB(0.8f), 3.0f, 5, true, RGB(0.5f));
+    auto rampCdf = [](double t) { return 1.0 - std::exp(-(0.2 * t + 0.4 * t * t)); };
+    EXPECT_GT(chi2OfFlights(form, ramp, {Vec3f(0.0f), Vec3f(1.0f, 0.0f, 0.0f), 2.5f}, rampCdf, 63, "linear ramp, Sobol",
+                            SamplerKind::Sobol),
+              kChi2Level);
 }
 
 TEST(FreeFlight, AbsorbsAndScattersInProportion) {

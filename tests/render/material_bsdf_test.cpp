@@ -277,7 +277,9 @@ TEST(MaterialBsdf, CompensatedMetalsMultipleScatteringIsGlossy) {
 // The light a clear coat returns to the base (render/bsdfs/coat_return.h, LABELS) is labelled by
 // the base's lobe it comes from: over a metal, whose lobes are all glossy, none of it is diffuse
 // (a light path expression's C<RD> must not catch a coated metal); over a plastic part of it comes
-// from the diffuse base and part from the specular lobe. Either way the parts sum to f.
+// from the diffuse base and part from the specular lobe: the returned light (the material less
+// the same layers built by hand, which return nothing) has a diffuse and a glossy part. Either
+// way the parts sum to f.
 TEST(MaterialBsdf, CoatReturnedLightIsLabelledByTheBaseLobeItComesFrom) {
     MaterialParams coatedMetal = lambertOnly();
     coatedMetal.metallic = 1.0f;
@@ -293,20 +295,28 @@ TEST(MaterialBsdf, CoatReturnedLightIsLabelledByTheBaseLobeItComesFrom) {
     const Bsdf& metal = bsdfOf(coatedMetal, RGB(0.9f, 0.6f, 0.3f), metalArena);
     EXPECT_EQ(metal.flags() & kBsdfDiffuse, 0u);
     const Bsdf& plastic = bsdfOf(coatedPlastic, RGB(0.8f), plasticArena);
-    RGB plasticDiffuse(0.0f), plasticGlossy(0.0f);
+    const Bsdf& specularLayer =
+        plasticArena.make<CoatedBsdf>(plasticArena.make<LambertianBsdf>(RGB(0.8f)), RGB(1.5f),
+                                      GgxDistribution::fromRoughness(0.4f, 0.0f), RGB(1.0f), RGB(1.0f), DiffuseBase{});
+    const Bsdf& plasticByHand =
+        plasticArena.make<CoatedBsdf>(specularLayer, RGB(1.5f), GgxDistribution(0.09f), RGB(1.0f), RGB(1.0f));
+    RGB returnedDiffuse(0.0f), returnedGlossy(0.0f);
     for (const auto& [wo, wi] : directionPairs()) {
         const LobeSplit metalSplit = metal.fByKind(wo, wi), plasticSplit = plastic.fByKind(wo, wi);
+        const LobeSplit byHandSplit = plasticByHand.fByKind(wo, wi);
         const RGB metalF = metal.f(wo, wi), plasticF = plastic.f(wo, wi);
         EXPECT_TRUE(isBlack(metalSplit.diffuse)) << "wo.z " << wo.z << ", wi.z " << wi.z;
         for (int c = 0; c < 3; ++c) {
             EXPECT_NEAR(metalSplit.glossy[c], metalF[c], 1e-6f * metalF[c]);
             EXPECT_NEAR(plasticSplit.diffuse[c] + plasticSplit.glossy[c], plasticF[c], 1e-6f * plasticF[c]);
         }
-        plasticDiffuse += plasticSplit.diffuse;
-        plasticGlossy += plasticSplit.glossy;
+        if (wo.z * wi.z <= 0.0f) continue;
+        EXPECT_GT(plastic.f(wo, wi).x, plasticByHand.f(wo, wi).x) << "the coat returns light";
+        returnedDiffuse += plasticSplit.diffuse - byHandSplit.diffuse;
+        returnedGlossy += plasticSplit.glossy - byHandSplit.glossy;
     }
-    EXPECT_GT(plasticDiffuse.x, 0.0f);
-    EXPECT_GT(plasticGlossy.x, 0.0f);
+    EXPECT_GT(returnedDiffuse.x, 0.0f);
+    EXPECT_GT(returnedGlossy.x, 0.0f);
 }
 
 // Glass (thin or solid), metal, sheen, a tinted anisotropic specular lobe and a coloured coat at
