@@ -32,9 +32,9 @@ RectLight::RectLight(const LightDesc& d) : Light(d.name), radiance_(d.radiance),
     // Solid angle sampling: for a rectangle (a sheared transform leaves a parallelogram; float
     // rounding of a rotation leaves edges orthogonal to about 1e-7) of uniform area density.
     const Vec3d u(edgeU_), v(edgeV_);
+    rectangular_ = !distribution_ && area_ > 0.0f && std::abs(dot(u, v)) <= 1e-5 * length(u) * length(v);
     lengthU_ = length(u);
     lengthV_ = length(v);
-    rectangular_ = !distribution_ && area_ > 0.0f && std::abs(dot(u, v)) <= 1e-5 * lengthU_ * lengthV_;
     if (rectangular_) {
         axisU_ = u / lengthU_;
         axisV_ = normalize(v - axisU_ * dot(v, axisU_));

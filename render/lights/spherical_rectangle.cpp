@@ -34,26 +34,28 @@ std::optional<SphericalRectangle> SphericalRectangle::seenFrom(const Vec3d& p, c
     if (!(r.solidAngle_ > 0.0)) return std::nullopt;
     r.b0_ = -r.y0_ / std::sqrt(r.y0_ * r.y0_ + z2);
     r.b1_ = r.y1_ / std::sqrt(r.y1_ * r.y1_ + z2);
+    r.oneLessB0Squared_ = z2 / (r.y0_ * r.y0_ + z2);
     return r;
 }
 
 Vec2f SphericalRectangle::sample(Vec2f u) const {
-    // The column: the sub-rectangle [x0, xu] x [y0, y1] has solid angle u.x S. With the paper's
-    // au = 2 pi - g2 - g3 + u.x S = pi - t, t = u.x S - phi23, its
-    // fu = (cos au b0 - b1) / sin au = (b0 cos t + b1) / sin t is cot of the angle the plane through
-    // p and the column makes, and xu = -cu z0 / sqrt(1 - cu^2) with cu = sign(fu) / sqrt(fu^2 + b0^2).
+    // The column: the sub-rectangle [x0, xu] x [y0, y1] has solid angle u.x S. The paper's
+    // au = 2 pi - g2 - g3 + u.x S is pi - t, t = u.x S - phi23, so its
+    // fu = (cos au b0 - b1) / sin au = n / sin t, n = b0 cos t + b1, and its
+    // xu = -cu z0 / sqrt(1 - cu^2), cu = sign(fu) / sqrt(fu^2 + b0^2), simplify to
+    // xu = -z0 sign(n) sin t / sqrt(n^2 - (1 - b0^2) sin^2 t): one square root and one division
+    // (1 - b0^2 = z0^2 / (y0^2 + z0^2), kept exact in oneLessB0Squared_).
     const double t = double(u.x) * solidAngle_ - phi23_;
-    const double fu = (b0_ * std::cos(t) + b1_) / std::sin(t);
-    const double cu = std::clamp(std::copysign(1.0 / std::sqrt(fu * fu + b0_ * b0_), fu), -1.0, 1.0);
-    double xu = -cu * z0_ / std::sqrt(std::max(0.0, 1.0 - cu * cu));
-    xu = std::isnan(xu) ? 0.5 * (x0_ + x1_) : std::clamp(xu, x0_, x1_);  // 0/0: sin t and its numerator both 0
-    // The row: uniform in h = y / |(xu, y, z0)| between the column's ends.
+    const double sinT = std::sin(t), n = b0_ * std::cos(t) + b1_;
+    double xu = -z0_ * sinT * std::copysign(1.0, n) / std::sqrt(std::max(0.0, n * n - oneLessB0Squared_ * sinT * sinT));
+    xu = std::isnan(xu) ? 0.5 * (x0_ + x1_) : std::clamp(xu, x0_, x1_);  // 0/0: n and sin t both 0
+    // The row: uniform in h = y / |(xu, y, z0)| between the column's ends; y = h sqrt(dd^2 / (1 - h^2)).
     const double dd2 = xu * xu + z0_ * z0_;
     const double h0 = y0_ / std::sqrt(dd2 + y0_ * y0_), h1 = y1_ / std::sqrt(dd2 + y1_ * y1_);
     const double hv = h0 + double(u.y) * (h1 - h0);
-    const double yv = std::clamp(hv * std::sqrt(dd2) / std::sqrt(std::max(0.0, 1.0 - hv * hv)), y0_, y1_);
-    const double width = x1_ - x0_, height = y1_ - y0_;
-    return {float(std::clamp((xu - x0_) / width, 0.0, 1.0)), float(std::clamp((yv - y0_) / height, 0.0, 1.0))};
+    const double yv = std::clamp(hv * std::sqrt(dd2 / std::max(0.0, 1.0 - hv * hv)), y0_, y1_);
+    return {float(std::clamp((xu - x0_) / (x1_ - x0_), 0.0, 1.0)),
+            float(std::clamp((yv - y0_) / (y1_ - y0_), 0.0, 1.0))};
 }
 
 }  // namespace fluence::render

@@ -40,6 +40,7 @@ public:
 private:
     double x0_, x1_, y0_, y1_, z0_;  // the rectangle in the local frame, z0_ < 0
     double b0_, b1_;                 // z of the unit normals of the planes through p and the y0, y1 edges
+    double oneLessB0Squared_;        // 1 - b0_^2, without the cancellation
     double phi23_;                   // g2 + g3 - pi
     double solidAngle_;
 };
