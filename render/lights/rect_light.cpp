@@ -29,18 +29,6 @@ RectLight::RectLight(const LightDesc& d) : Light(d.name), radiance_(d.radiance),
     }
     if (d.shaping) shaping_ = LightShaping(*d.shaping, normal_, d.transform);
     uniformRadiance_ = !texture_ && !shaping_.active();
-    // Solid angle sampling: for a rectangle (a sheared transform leaves a parallelogram; float
-    // rounding of a rotation leaves edges orthogonal to about 1e-7) of uniform area density.
-    const Vec3d u(edgeU_), v(edgeV_);
-    rectangular_ = !distribution_ && area_ > 0.0f && std::abs(dot(u, v)) <= 1e-5 * length(u) * length(v);
-    lengthU_ = length(u);
-    lengthV_ = length(v);
-    if (rectangular_) {
-        axisU_ = u / lengthU_;
-        axisV_ = normalize(v - axisU_ * dot(v, axisU_));
-    }
-    centre_ = corner_ + (edgeU_ + edgeV_) * 0.5f;
-    boundingRadius2_ = 0.25f * lengthSquared(edgeU_ + edgeV_);
 }
 
 std::array<Vec3f, 4> RectLight::corners() const {
@@ -74,25 +62,8 @@ RectLight::PointSample RectLight::samplePoint(Vec2f u) const {
     return {s.uv, s.pdf / area_};
 }
 
-std::optional<SphericalRectangle> RectLight::solidAngleView(const Vec3f& p) const {
-    if (!rectangular_) return std::nullopt;
-    const float height = dot(p - centre_, normal_);  // above the emitting side
-    if (!(height > 0.0f) || height * height > kAreaSamplingHeight * kAreaSamplingHeight * boundingRadius2_)
-        return std::nullopt;
-    return SphericalRectangle::seenFrom(Vec3d(p), Vec3d(corner_), axisU_, axisV_, lengthU_, lengthV_);
-}
-
 std::optional<LightSample> RectLight::sample(const Vec3f& p, Vec2f u) const {
     if (area_ == 0.0f) return std::nullopt;
-    if (const std::optional<SphericalRectangle> view = solidAngleView(p)) {
-        const Vec2f a = view->sample(u);
-        Vec3f d = corner_ + edgeU_ * a.x + edgeV_ * a.y - p;
-        float dist = length(d);
-        Vec3f wi = d / dist;
-        if (!(-dot(normal_, wi) > 0.0f)) return std::nullopt;  // rounding at a grazing edge
-        return surfaceSample(uniformRadiance_ ? radiance_ : radianceAt({1.0f - a.x, 1.0f - a.y}, -wi), wi, dist,
-                             float(1.0 / view->solidAngle()));
-    }
     const auto [uv, areaPdf] = samplePoint(u);
     Vec3f d = pointAt(uv) - p;
     float dist2 = lengthSquared(d);
@@ -107,8 +78,6 @@ std::optional<LightSample> RectLight::sample(const Vec3f& p, Vec2f u) const {
 
 float RectLight::pdf(const Vec3f& p, const Vec3f& wi, const LightHit& hit) const {
     if (area_ == 0.0f) return 0.0f;
-    if (const std::optional<SphericalRectangle> view = solidAngleView(p))
-        return -dot(normal_, wi) > 0.0f ? float(1.0 / view->solidAngle()) : 0.0f;
     float areaPdf = distribution_ ? distribution_->pdf(textureCoordinates(hit.point)) / area_ : inverseArea_;
     return areaToSolidAngle(areaPdf, lengthSquared(hit.point - p), -dot(normal_, wi));
 }

@@ -31,21 +31,6 @@ TEST(LightIrradiance, RectMatchesLambertsPolygonFormula) {
     expectIrradiance(light, p, n, test::polygonIrradiance(light.corners(), p, n, 3.0));
 }
 
-// Near the rect, at grazing angles and beside it the samples are drawn by solid angle; far away
-// by area (RectLight::kAreaSamplingHeight): each against Lambert's formula.
-TEST(LightIrradiance, RectFromNearGrazingAndFarPointsMatchesLambertsFormula) {
-    RectLight light(test::tiltedRectDesc());
-    auto c = light.corners();
-    Vec3f centre = (c[0] + c[2]) * 0.5f, front = -normalize(cross(c[1] - c[0], c[3] - c[0]));
-    Vec3f along = normalize(c[1] - c[0]);
-    for (const auto& [p, n] : {std::pair{centre + front * 0.02f, -front},
-                               std::pair{centre + front * 0.05f + along * 1.3f, normalize(-front - along)},
-                               std::pair{centre + front * 0.2f + along * 2.0f, -along},
-                               std::pair{centre + front * 40.0f + along * 5.0f, -front}}) {
-        expectIrradiance(light, p, n, test::polygonIrradiance(light.corners(), p, n, 3.0));
-    }
-}
-
 // A textured rect is a grid of uniform rects, one per texel, so the sum of Lambert's formula over
 // them is its exact irradiance. The window texture's 1500:1 contrast puts most of it in a few
 // texels, which the importance sampler must find: under the window and off to its side.

@@ -63,8 +63,7 @@ inline double polygonIrradiance(const std::array<Vec3f, 4>& corners, const Vec3f
     return 0.5 * radiance * std::abs(sum);
 }
 
-// Where the ray p + t wi meets the rect light (a parallelogram under a sheared transform), if it
-// does: the point and the rect's normal.
+// Where the ray p + t wi meets the rect light, if it does: the point and the rect's normal.
 inline std::optional<LightHit> hitRect(const render::RectLight& light, const Vec3f& p, const Vec3f& wi) {
     auto c = light.corners();
     Vec3f e1 = c[1] - c[0], e2 = c[3] - c[0];
@@ -74,10 +73,7 @@ inline std::optional<LightHit> hitRect(const render::RectLight& light, const Vec
     float t = dot(c[0] - p, n) / denom;
     if (t <= 0.0f) return std::nullopt;
     Vec3f q = p + wi * t;
-    // q - c0 = a e1 + b e2, solved by the normal equations.
-    float e11 = dot(e1, e1), e12 = dot(e1, e2), e22 = dot(e2, e2), q1 = dot(q - c[0], e1), q2 = dot(q - c[0], e2);
-    float det = e11 * e22 - e12 * e12;
-    float a = (q1 * e22 - q2 * e12) / det, b = (q2 * e11 - q1 * e12) / det;
+    float a = dot(q - c[0], e1) / dot(e1, e1), b = dot(q - c[0], e2) / dot(e2, e2);
     if (a < 0 || a > 1 || b < 0 || b > 1) return std::nullopt;
     return LightHit{q, n};
 }
