@@ -6,7 +6,6 @@
 #include <tbb/task_arena.h>
 
 #include <algorithm>
-#include <bit>
 #include <chrono>
 #include <ctime>
 #include <stdexcept>
@@ -35,17 +34,6 @@ bool finite(const FilmSample& sample, std::size_t layers) {
     bool all = isFinite(sample.radiance);
     for (std::size_t l = 0; l < layers; ++l) all = all && isFinite(sample.lightPath(l));
     return all;
-}
-
-// The samples per pixel of the pass that starts with sample `done`, a function of `done` alone, so
-// that a resumed render's passes go on as the uninterrupted render's would have (see renderer.h).
-int passSamples(const RenderSettings& settings, int done) {
-    const int left = settings.samplesPerPixel - done, doubling = std::clamp(done + 1, 1, kMaxPassSamples);
-    if (AdaptiveSampling::enabled(settings) && done < settings.minSamples)
-        return std::min({doubling, settings.minSamples - done, left});
-    if (settings.meanSamplesPerPixel > 0.0)  // the budget rule decides at powers of two (renderer.h)
-        return std::min(int(std::bit_ceil(unsigned(done) + 1u)) - done, left);
-    return std::min(doubling, left);
 }
 
 void renderPass(const render::RenderScene& scene, const render::Camera& camera, const Integrator& integrator,
@@ -123,13 +111,13 @@ RenderStats render(const render::RenderScene& scene, const render::Camera& camer
         film.enableDenoiseBuffers();
     }
     // Each pass doubles the samples of the pixels still going (1, 2, 4, ...; at most
-    // kMaxPassSamples but under the budget rule), so a resumed render's passes go on as the
-    // uninterrupted render's would have. Adaptive sampling ends a pass at minSamples, where its
-    // rules start; the budget rule's passes then end at powers of two (passSamples).
+    // kMaxPassSamples), so a resumed render's passes go on as the uninterrupted render's would have.
+    // Adaptive sampling ends a pass at minSamples, where its rules start.
     int done = settings.firstSample;
     double secondsPerSample = 0.0;  // per sample per pixel over the whole image, measured
     while (done < settings.samplesPerPixel && !stopped(settings)) {
-        int count = passSamples(settings, done);
+        int count = std::min(std::clamp(done + 1, 1, kMaxPassSamples), settings.samplesPerPixel - done);
+        if (adaptive && done < settings.minSamples) count = std::min(count, settings.minSamples - done);
         if (settings.timeLimitSeconds > 0.0 && stats.passes > 0) {
             double left = settings.timeLimitSeconds - elapsed();
             int fits = secondsPerSample > 0.0 ? static_cast<int>(left / secondsPerSample) : count;

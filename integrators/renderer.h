@@ -1,11 +1,7 @@
 // The render loop: drives an integrator over the film, in passes of tiles on oneTBB.
 //
 // The image is rendered in passes of 1, 2, 4, ... (at most 64) samples per pixel; within a pass
-// 32x32 tiles are shaded in parallel. Under adaptive sampling's budget rule the passes after
-// minSamples are not capped: they end at powers of two (16, 32, 64, ... for minSamples 16), so its
-// decisions read halves that are each a Sobol net (core/film.h), and there are half as many of them
-// (each scans the film: 1.0-1.2% of the Cornell box's CPU in 18 passes, 0.7-0.8% in 11;
-// bench/results/2026-12-06-adaptive-6-s18.md). Sample n of pixel (x, y) always draws from the stream
+// 32x32 tiles are shaded in parallel. Sample n of pixel (x, y) always draws from the stream
 // (seed, y*width+x, n), and each pixel adds its samples in index order, so the image is
 // bit-identical for any thread count and any pass division. A time limit is honoured between
 // passes (the last pass is shrunk to fit the time left), so every pixel has the same sample

@@ -3,13 +3,11 @@
 // the noisy ones go on; a budget is spent as asked; the image is the same for any thread count and
 // for windows whose edges fall on block edges (tiles), costs included; its mean agrees with uniform
 // sampling's (stopping on an error estimate, or weighing by a cost, must not bias it visibly), on a
-// subsurface sphere whose samples' costs vary too; without a rule every pixel takes every sample;
-// the budget rule decides at powers of two.
+// subsurface sphere whose samples' costs vary too; without a rule every pixel takes every sample.
 #include <gtest/gtest.h>
 
 #include <cstdio>
 #include <cstring>
-#include <vector>
 
 #include "integrators/adaptive_sampling.h"
 #include "integrators/path_tracer.h"
@@ -162,24 +160,6 @@ void expectTheImageMeanAgreesWithUniformSampling(const render::SceneDescription&
                 uniform.unbiasedStandardError(), band);
     EXPECT_GT(band, 0.0);
     EXPECT_NEAR(adaptive.mean(), uniform.mean(), band);
-}
-
-// The budget rule decides at powers of two once its pixels have minSamples (the passes end at 16,
-// 32, 64, ...), where each half of a pixel's samples is a Sobol net (core/film.h) and half as many
-// decisions are made as in passes of 64 (bench/results/2026-12-06-adaptive-6-s18.md).
-TEST(AdaptiveSampling, ABudgetDecidesAtPowersOfTwo) {
-    RenderSettings settings = adaptiveSettings(0.0, 48.0, 0, SamplerKind::Sobol);
-    std::vector<int> ends;
-    settings.onPass = [&](int samplesDone) { ends.push_back(samplesDone); };
-    const render::SceneDescription desc = test::litSphereUnderASky();
-    const Film film = test_support::renderFilm(PathTracer(IntegratorSettings{}), desc, kSize, settings).film;
-    std::uint32_t most = 0;
-    for (int y = 0; y < kSize; ++y)
-        for (int x = 0; x < kSize; ++x) most = std::max(most, film.samples(x, y));
-    ASSERT_GT(most, std::uint32_t(4 * kMinSpp)) << "the sphere's edge goes on past two decisions";
-    std::vector<int> expected = {1, 3, 7, kMinSpp};
-    for (int end = 2 * kMinSpp; end / 2 < int(most); end *= 2) expected.push_back(end);
-    EXPECT_EQ(ends, expected);
 }
 
 // The scene's edge pixels are where stopping could bias most.
