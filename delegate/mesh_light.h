@@ -30,8 +30,9 @@
 // A mesh light inside a native instance or a point instancer's prototype is read with the
 // prototype (delegate/instancing.h, finishMeshLights below): each instance is an emitter of its own,
 // and a normalized one divides by its own placed area (render/render_scene.cpp).
-// A camera ray sees the surface as its material shades it, not the light, as UsdLux's
-// materialSyncMode and Arnold, hdPrman and Storm have it (render::Ray::fromCamera, docs/USDLUX.md).
+// A camera ray sees the surface as its material shades it, not the light (unless the sync mode is
+// noMaterialResponse), as Arnold, hdPrman and Storm show it; rays from surfaces still see the light
+// (render::Ray::fromCamera; docs/USDLUX.md says where this departs from UsdLux's wording and why).
 #pragma once
 
 #include <functional>

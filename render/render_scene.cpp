@@ -857,17 +857,21 @@ std::optional<SurfaceHit> RenderScene::shadeMesh(int meshIndex, unsigned primID,
     if (instanceIndex >= 0) placeInWorld(hit, instanceIndex, e1, e2);
     if (mesh.reflects) shadeMaterial(mesh, hit, corner, w, u, v, e1, e2);
     // A mesh light's front is its triangles' own side (emissive meshes are never instanced: ng is
-    // in world space). A camera ray sees a mesh light's surface as its material shades it, as
-    // Arnold's light_visible off, hdPrman and Storm show it (docs/USDLUX.md): no emission, no light.
-    const bool lightSeen = !(mesh.meshLight && ray.fromCamera);
+    // in world space). A camera ray sees a mesh light whose material responds (materialSyncMode
+    // other than noMaterialResponse) as its material shades it, as Arnold's light_visible off,
+    // hdPrman and Storm show it (docs/USDLUX.md): no emission, no light. Under noMaterialResponse
+    // there is no material to see, and the camera sees the light itself, as it sees a canonical light.
+    const bool lightSeen = !(mesh.meshLight && mesh.reflects && ray.fromCamera);
     const bool seesEmission = lightSeen && (mesh.emittingSides == EmittingSides::Both || meetsFront(ray.direction, ng));
     if (dot(hit.shadingNormal, hit.geometricNormal) < 0.0f) hit.geometricNormal = -hit.geometricNormal;
     hit.emission = !seesEmission           ? RGB(0.0f)
                    : mesh.texturedEmission ? mesh.texturedEmission->at(primID, u, v)
                                            : mesh.emission;
     // A shaped mesh light's surface is seen shaped, as its triangles' light samples are: its
-    // triangle's light gives the emission, in the shaping frame it holds (where it is at the ray's time).
-    if (mesh.shaping && seesEmission && lengthSquared(ng) > 0.0f)
+    // triangle's light gives the emission, in the shaping frame it holds (where it is at the ray's
+    // time; a moving mesh's lightAt builds that light, frame included, per call). A mesh whose
+    // emission is black has no triangle lights (firstLight -1) and stays black.
+    if (mesh.shaping && seesEmission && mesh.firstLight >= 0 && lengthSquared(ng) > 0.0f)
         hit.emission = lightAt(std::size_t(mesh.firstLight) + primID, ray.time)
                            .emitted({hit.point, hit.geometricNormal}, -ray.direction);
     hit.interior =

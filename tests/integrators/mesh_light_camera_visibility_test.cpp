@@ -67,5 +67,43 @@ TEST(MeshLightCameraVisibility, TheCameraSeesTheSurfaceAsItsMaterialShadesIt) {
     }
 }
 
+// Covered pixels, and whether each of them reads `expected` exactly in every channel.
+void expectCoveredPixelsRead(const Image& image, const RGB& expected, const char* name) {
+    const int a = image.channelIndex("A");
+    int covered = 0;
+    for (std::size_t p = 0; p < image.pixels.size(); p += image.channels.size()) {
+        if (image.pixels[p + std::size_t(a)] != 1.0f) continue;
+        ++covered;
+        for (int c : {0, 1, 2})
+            EXPECT_EQ(image.pixels[p + std::size_t(c)], expected[c])
+                << name << " at pixel " << p / image.channels.size();
+    }
+    EXPECT_GT(covered, 50) << name;
+}
+
+// Under materialSyncMode noMaterialResponse there is no material to see: the camera sees the
+// light's radiance itself, as it sees a canonical light, with every integrator.
+TEST(MeshLightCameraVisibility, WithoutAMaterialResponseTheCameraSeesTheLight) {
+    render::SceneDescription desc = meshLightFacingTheCamera();
+    desc.meshes.back().light->materialResponse = false;
+    for (const IntegratorInfo& info : integratorRegistry()) {
+        const std::unique_ptr<Integrator> integrator = info.create(IntegratorSettings{});
+        expectCoveredPixelsRead(test_support::renderWith(*integrator, desc, 24, 4).image, kRadiance, info.name.c_str());
+    }
+}
+
+// A shaped mesh light of radiance 0 (an intensity faded to 0) has no triangle lights: where a ray
+// sees its emission it reads black, not another light's (or no light's: index -1) emission.
+TEST(MeshLightCameraVisibility, ABlackShapedMeshLightSeenByARayIsBlack) {
+    render::SceneDescription desc = meshLightFacingTheCamera();
+    desc.meshes.back().light->materialResponse = false;
+    desc.meshes.back().light->radiance = RGB(0.0f);
+    render::LightShapingDesc cone;
+    cone.coneAngleDegrees = 60.0f;
+    desc.meshes.back().light->shaping = cone;
+    const std::unique_ptr<Integrator> path = findIntegrator("path")->create(IntegratorSettings{});
+    expectCoveredPixelsRead(test_support::renderWith(*path, desc, 24, 4).image, RGB(0.0f), "path");
+}
+
 }  // namespace
 }  // namespace fluence::integrators

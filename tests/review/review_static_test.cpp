@@ -10,6 +10,7 @@
 #include "apps/review_api.h"
 #include "apps/review_command.h"
 #include "apps/review_files.h"
+#include "apps/scene_loading.h"
 #include "tests/support/temp_dir.h"
 
 namespace fluence::app {
@@ -32,7 +33,7 @@ TEST(ReviewStatic, AnUnreadableImageIsAnErrorNamingItNotAJsonBody) {
     ReviewOptions options;
     options.paths = {bad.string()};
     options.staticDir = (dir.path() / "page").string();
-    EXPECT_NE(runReview(options), 0);
+    EXPECT_EQ(runReview(options), kExitMissingInput);
 }
 
 }  // namespace
