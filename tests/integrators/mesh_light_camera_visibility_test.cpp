@@ -29,23 +29,27 @@ render::SceneDescription meshLightFacingTheCamera() {
     return s;
 }
 
+// Covered pixels, and whether each of them reads `expected` exactly in every channel.
+void expectCoveredPixelsRead(const Image& image, const RGB& expected, const char* name) {
+    const int a = image.channelIndex("A");
+    int covered = 0;
+    for (std::size_t p = 0; p < image.pixels.size(); p += image.channels.size()) {
+        if (image.pixels[p + std::size_t(a)] != 1.0f) continue;
+        ++covered;
+        for (int c : {0, 1, 2})
+            EXPECT_EQ(image.pixels[p + std::size_t(c)], expected[c])
+                << name << " at pixel " << p / image.channels.size();
+    }
+    EXPECT_GT(covered, 50) << name;
+}
+
 // Alone in the scene, nothing lights the quad (its light leaves its front, away from itself): every
 // integrator shows it black where it covers a pixel whole, exactly; it showed kRadiance there before.
 TEST(MeshLightCameraVisibility, EveryIntegratorShowsTheSurfaceNotTheLight) {
     const render::SceneDescription desc = meshLightFacingTheCamera();
     for (const IntegratorInfo& info : integratorRegistry()) {
         const std::unique_ptr<Integrator> integrator = info.create(IntegratorSettings{});
-        const Image image = test_support::renderWith(*integrator, desc, 24, 4).image;
-        const int a = image.channelIndex("A");
-        int covered = 0;
-        for (std::size_t p = 0; p < image.pixels.size(); p += image.channels.size()) {
-            if (image.pixels[p + std::size_t(a)] != 1.0f) continue;
-            ++covered;
-            for (int c : {0, 1, 2})
-                EXPECT_EQ(image.pixels[p + std::size_t(c)], 0.0f)
-                    << info.name << " at pixel " << p / image.channels.size();
-        }
-        EXPECT_GT(covered, 50) << info.name;
+        expectCoveredPixelsRead(test_support::renderWith(*integrator, desc, 24, 4).image, RGB(0.0f), info.name.c_str());
     }
 }
 
@@ -65,20 +69,6 @@ TEST(MeshLightCameraVisibility, TheCameraSeesTheSurfaceAsItsMaterialShadesIt) {
         ASSERT_GT(seen.count(), 50);
         EXPECT_NEAR(seen.mean(), kAlbedo, 5.0 * seen.standardError() + 1e-6) << "channel " << c;
     }
-}
-
-// Covered pixels, and whether each of them reads `expected` exactly in every channel.
-void expectCoveredPixelsRead(const Image& image, const RGB& expected, const char* name) {
-    const int a = image.channelIndex("A");
-    int covered = 0;
-    for (std::size_t p = 0; p < image.pixels.size(); p += image.channels.size()) {
-        if (image.pixels[p + std::size_t(a)] != 1.0f) continue;
-        ++covered;
-        for (int c : {0, 1, 2})
-            EXPECT_EQ(image.pixels[p + std::size_t(c)], expected[c])
-                << name << " at pixel " << p / image.channels.size();
-    }
-    EXPECT_GT(covered, 50) << name;
 }
 
 // Under materialSyncMode noMaterialResponse there is no material to see: the camera sees the
