@@ -88,9 +88,9 @@ def main():
     x, *_ = np.linalg.lstsq(counts[:, :2], times, rcond=None)
     free, *_ = np.linalg.lstsq(counts, times, rcond=None)
     print("\nwalk steps charged at kWalkStepCost = %g rays (integrators/sample_cost.h)" % w)
-    print("\nscene    dT (s)  rays+w steps  walk steps  collisions  samples   predicted dT  rays/sample  collisions/sample")
+    print("\nscene    dT (s)  rays+w steps  walk steps  collisions  samples   predicted dT  (rays+w steps)/sample  collisions/sample")
     for s, r, n, t in zip(scenes, counts, steps, times):
-        print("%-8s %6.2f  %-12d  %-10d  %-10d  %-8d  %6.2f        %6.2f       %6.2f" %
+        print("%-8s %6.2f  %-12d  %-10d  %-10d  %-8d  %6.2f        %6.2f                 %6.2f" %
               (s, t, r[0], n, r[1], r[2], float(np.dot(x, r[:2])), r[0] / r[2], r[1] / r[2]))
     print("\nper ray %.3g s; kMediumCollisionCost = %.3f rays" % (x[0], x[1] / x[0]))
     print("with a per-sample term: collisions %.3f rays, per sample %.3f rays" % (free[1] / free[0], free[2] / free[0]))
