@@ -95,5 +95,26 @@ TEST(MeshLightCameraVisibility, ABlackShapedMeshLightSeenByARayIsBlack) {
     expectCoveredPixelsRead(test_support::renderWith(*path, desc, 24, 4).image, RGB(0.0f), "path");
 }
 
+// Only the camera ray is hidden from a mesh light: a mirror facing the camera (metal of colour 1,
+// roughness 0: a delta lobe, no light sample competes) shows a large mesh light behind the camera
+// at its full radiance, exactly, in every covered pixel (the light's own material is black, so
+// nothing bounces between the two). A bounce ray that kept the camera ray's flag would show it black.
+TEST(MeshLightCameraVisibility, AMirrorShowsTheMeshLightBehindTheCamera) {
+    render::SceneDescription s;
+    s.materials.push_back(test::diffuseMaterial("/black", RGB(0.0f)));  // no light between mirror and light
+    s.materials.push_back(test::metalMaterial("/mirror", RGB(1.0f), 0.0f));
+    s.meshes.push_back(
+        test::quadMesh("/Mirror", {Vec3f(-1, 0, -1), Vec3f(1, 0, -1), Vec3f(1, 0, 1), Vec3f(-1, 0, 1)}, 1));
+    render::MeshDesc light = test::quadMesh(
+        "/L", {Vec3f(-10, -6, -10), Vec3f(-10, -6, 10), Vec3f(10, -6, 10), Vec3f(10, -6, -10)}, 0);  // front +Y
+    light.light = render::MeshLightDesc{.radiance = kRadiance, .prim = "/L"};
+    s.meshes.push_back(std::move(light));
+    s.camera = test::lookAtOriginCamera(4.0f);
+    for (const char* name : {"path", "bdpt"}) {
+        const std::unique_ptr<Integrator> integrator = findIntegrator(name)->create(IntegratorSettings{});
+        expectCoveredPixelsRead(test_support::renderWith(*integrator, s, 24, 4).image, kRadiance, name);
+    }
+}
+
 }  // namespace
 }  // namespace fluence::integrators
