@@ -101,6 +101,7 @@ public:
     explicit LightPathTracker(std::span<const LightPathAov> aovs);
 
     bool active() const { return !aovs_.empty(); }
+    std::size_t layers() const { return aovs_.size(); }  // the AOVs' count: a FilmSample's light path layers
     // The path scatters at `vertex` and goes on.
     void scatter(const VertexEvents& vertex);
     // The path reaches `light` (emission reached by a ray), contributing `radiance` to the beauty.

@@ -165,7 +165,6 @@ public:
           equiangularLights_(equiangularLights),
           maxDepth_(maxDepth),
           walksPerEntry_(walksPerEntry),
-          lightPathLayers_(aovs.size()),
           scene_(scene),
           camera_(camera),
           rng_(&rng),
@@ -482,13 +481,13 @@ private:
             other.rng_ = &stream;
             other.throughput_ *= share;
             other.radiance_ = RGB(0.0f);
-            other.out_.clearLightPaths(lightPathLayers_);
+            other.out_.clearLightPaths(lightPaths_.layers());
             other.endsAtExit_ = true;
             other.walkStep_ =
                 other.guidedWalk_->firstStep(ray_.origin, ray_.direction, guidedWalk_->sampleChannel(stream.next()));
             const FilmSample split = other.run(depth + 1);
             radiance_ += split.radiance;
-            for (std::size_t layer = 0; layer < lightPathLayers_; ++layer)
+            for (std::size_t layer = 0; layer < lightPaths_.layers(); ++layer)
                 out_.addLightPath(layer, split.lightPath(layer));
         }
         exitShare_ = share;
@@ -569,8 +568,7 @@ private:
     const LightEvents& lightEvents_;
     const EquiangularLights& equiangularLights_;
     const int maxDepth_;
-    const int walksPerEntry_;            // guided walks per entry of the camera ray (splitWalk)
-    const std::size_t lightPathLayers_;  // the light path expression AOVs' count
+    const int walksPerEntry_;  // guided walks per entry of the camera ray (splitWalk)
     const render::RenderScene& scene_;
     const render::Camera& camera_;
     SampleStream* rng_;  // the sample's stream (a split walk's own, splitWalk)

@@ -42,6 +42,7 @@ public:
     // Guided random walks per entry into a subsurface interior, unless the settings' parameter
     // "subsurface-walks" says otherwise (SUBSURFACE above).
     static constexpr int kDefaultSubsurfaceWalks = 1;
+    static constexpr int kMaxSubsurfaceWalks = 64;  // the parameter's bound (integrators/registry.cpp)
 
     explicit PathTracer(const IntegratorSettings& settings)
         : maxDepth_(settings.maxDepth),
@@ -71,8 +72,9 @@ private:
     // The parameter "subsurface-walks" as a count; the CLI and the RenderSettings reader check it,
     // a program that builds IntegratorSettings itself gets this error instead of a cast of NaN.
     static int walksPerEntry(double value) {
-        if (!(value >= 1.0 && value <= 64.0) || value != double(int(value)))
-            throw std::invalid_argument("path: subsurface-walks must be a whole number from 1 to 64");
+        if (!(value >= 1.0 && value <= kMaxSubsurfaceWalks) || value != double(int(value)))
+            throw std::invalid_argument("path: subsurface-walks must be a whole number from 1 to " +
+                                        std::to_string(kMaxSubsurfaceWalks));
         return int(value);
     }
     int maxDepth_;

@@ -23,7 +23,7 @@ const std::vector<IntegratorInfo>& integratorRegistry() {
          {{"subsurface-walks", "fluence:path:subsurfaceWalks",
            "random walks from each entry of a camera ray into a guided subsurface interior, each lighting its exit "
            "with weight 1/N (default 1)",
-           true, 64}}},
+           true, PathTracer::kMaxSubsurfaceWalks}}},
         {"direct",
          "L(D|S)?E",
          kEmitterSeen | kDirect | kDeltaLights,
