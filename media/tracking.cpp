@@ -6,11 +6,12 @@ namespace fluence::media {
 namespace {
 
 // exp(-sigma * length) per channel, and exactly 1 where sigma is 0, so that an unbounded stretch
-// of empty space is transparent (not exp(-0 * inf) = NaN).
+// of empty space is transparent (not exp(-0 * inf) = NaN). A channel whose sigma equals the one
+// before's takes its value instead of computing it again (a grey medium: one exp, not three).
 RGB transmittance(const RGB& sigma, float length) {
     RGB t(1.0f);
     for (int c = 0; c < 3; ++c)
-        if (sigma[c] > 0.0f) t[c] = std::exp(-sigma[c] * length);
+        if (sigma[c] > 0.0f) t[c] = c > 0 && sigma[c] == sigma[c - 1] ? t[c - 1] : std::exp(-sigma[c] * length);
     return t;
 }
 

@@ -139,7 +139,18 @@ MajorantDda::MajorantDda(const MajorantGrid& grid, const Vec3f& origin, const Ve
     tEnd_ = t1;
     for (int axis = 0; axis < 3; ++axis)
         cell_[axis] = int(std::clamp(std::floor(origin_[axis] + d[axis] * t0), 0.0, n[axis] - 1.0));
+    cellIndex_ = std::int64_t(grid.index(cell_));
+    const std::int64_t stride[3] = {1, n.x, std::int64_t(n.x) * n.y};
+    for (int axis = 0; axis < 3; ++axis) {
+        indexStep_[axis] = step_[axis] * stride[axis];
+        if (step_[axis] != 0) crossing_[axis] = crossing(axis);
+    }
     done_ = false;
+}
+
+double MajorantDda::crossing(int axis) const {
+    const double plane = cell_[axis] + (step_[axis] > 0 ? 1.0 : 0.0);
+    return (plane - origin_[axis]) * invDirection_[axis];
 }
 
 std::optional<media::MajorantSegment> MajorantDda::next() {
@@ -148,26 +159,28 @@ std::optional<media::MajorantSegment> MajorantDda::next() {
         ++cellsVisited_;
         double exit = tEnd_;
         int exitAxis = -1;
-        for (int axis = 0; axis < 3; ++axis) {
-            if (step_[axis] == 0) continue;
-            double plane = cell_[axis] + (step_[axis] > 0 ? 1.0 : 0.0);
-            double t = (plane - origin_[axis]) * invDirection_[axis];
-            if (t < exit) {
-                exit = t;
+        for (int axis = 0; axis < 3; ++axis)
+            if (step_[axis] != 0 && crossing_[axis] < exit) {
+                exit = crossing_[axis];
                 exitAxis = axis;
             }
-        }
         exit = std::max(exit, t_);
-        float value = grid_->cell(cell_);
-        media::MajorantSegment segment{float(t_), float(exit), scale_ * value, minorantScale_ * grid_->minorant(cell_)};
+        const std::size_t index = std::size_t(cellIndex_);
+        const double entry = t_;
         t_ = exit;
         if (exitAxis < 0) {
             done_ = true;
         } else {
             cell_[exitAxis] += step_[exitAxis];
             done_ = cell_[exitAxis] < 0 || cell_[exitAxis] >= n[exitAxis];
+            crossing_[exitAxis] = crossing(exitAxis);
+            cellIndex_ += indexStep_[exitAxis];
         }
-        if (value > 0.0f && segment.tMax > segment.tMin && !isBlack(segment.sigmaMaj)) return segment;
+        const float value = grid_->cells_[index];
+        if (!(value > 0.0f)) continue;
+        media::MajorantSegment segment{float(entry), float(exit), scale_ * value,
+                                       minorantScale_ * grid_->minorants_[index]};
+        if (segment.tMax > segment.tMin && !isBlack(segment.sigmaMaj)) return segment;
     }
     return std::nullopt;
 }

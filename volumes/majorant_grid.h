@@ -40,6 +40,7 @@
 // majorant is 0 are stepped over and reported as gaps, as media/medium.h allows.
 #pragma once
 
+#include <cstdint>
 #include <optional>
 #include <vector>
 
@@ -69,6 +70,7 @@ public:
     const Matrix4& worldToCell() const { return worldToCell_; }
 
 private:
+    friend class MajorantDda;  // walks the cells by their index
     std::size_t index(const Vec3i& c) const {
         return (std::size_t(c.z) * std::size_t(resolution_.y) + std::size_t(c.y)) * std::size_t(resolution_.x) +
                std::size_t(c.x);
@@ -94,11 +96,18 @@ public:
     int cellsVisited() const { return cellsVisited_; }
 
 private:
+    // Where the ray crosses the plane through which it leaves cell_ along `axis` (only that axis's
+    // crossing changes when the walk steps along it).
+    double crossing(int axis) const;
+
     const MajorantGrid* grid_;
     RGB scale_, minorantScale_;
     Vec3d origin_, invDirection_;  // in cell coordinates
     Vec3i cell_{0}, step_{0};
-    double t_ = 0.0, tEnd_ = 0.0;  // the walk is at t_ in cell_ and stops at tEnd_
+    Vec3d crossing_{0.0};             // crossing(axis), per axis that the ray moves along
+    std::int64_t cellIndex_ = 0;      // cell_'s index in the grid's arrays
+    std::int64_t indexStep_[3] = {};  // how the index changes on a step along each axis
+    double t_ = 0.0, tEnd_ = 0.0;     // the walk is at t_ in cell_ and stops at tEnd_
     bool done_ = true;
     int cellsVisited_ = 0;
 };
