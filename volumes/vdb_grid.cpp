@@ -61,8 +61,8 @@ Matrix4 gridIndexToObject(const openvdb::math::Transform& transform) {
 // boxes sitting side by side in one array; an OpenVDB accessor instead walks the tree from the root
 // (a std::map) whenever the lookup is not in the boxes of its previous one, which along the
 // scattered points of volume tracking is most of the time. The table is built only when it is small
-// beside the grid itself: at most kEntriesPerLeaf entries per leaf node (a 16-byte entry against a
-// leaf's 2 KB of floats), or kEntriesAlways.
+// beside the grid itself: at most kEntriesPerLeaf entries per leaf node (an entry is a pointer and a
+// value, a leaf 512 values), or kEntriesAlways.
 template <typename Tree>
 class LeafTable {
 public:
@@ -72,13 +72,14 @@ public:
     LeafTable() = default;  // not built
     // Over the lattice points lo..hi (both included), if that is small enough (see above).
     LeafTable(const Tree& tree, const openvdb::Coord& lo, const openvdb::Coord& hi) {
-        std::int64_t entries = 1;
+        const std::int64_t most = kEntriesPerLeaf * std::int64_t(tree.leafCount()) + kEntriesAlways;
+        std::int64_t entries = 1;  // at most `most`, so the product cannot overflow
         for (int axis = 0; axis < 3; ++axis) {
             first_[axis] = lo[axis] >> Leaf::LOG2DIM;
             count_[axis] = (hi[axis] >> Leaf::LOG2DIM) - first_[axis] + 1;
+            if (count_[axis] > most / entries) return;
             entries *= count_[axis];
         }
-        if (entries > kEntriesPerLeaf * std::int64_t(tree.leafCount()) + kEntriesAlways) return;
         entries_.reserve(std::size_t(entries));
         openvdb::tree::ValueAccessor<const Tree, false> accessor(tree);
         for (int x = 0; x < count_[0]; ++x)

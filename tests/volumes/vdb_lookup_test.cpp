@@ -90,21 +90,28 @@ TEST(VdbLookup, Vec3GridMatchesOpenVdbsBoxSamplerToTheBit) {
     expectSameAsBoxSampler(grid, *reference, 50000);
 }
 
-// Two voxels 4000 apart on every axis: a table over the box between them would hold 500^3 entries
-// for two leaves, so the grid looks up without one.
-TEST(VdbLookup, SparseGridWithoutATableMatchesToo) {
-    test::TempDir dir("volumes_vdb_lookup");
-    auto sparse = makeGrid<openvdb::FloatGrid>("density", 1.0, {0.0, 0.0, 0.0}, 0.125f);
-    sparse->tree().setValue(openvdb::Coord(-3, 5, 0), 1.5f);
-    sparse->tree().setValue(openvdb::Coord(3997, 4005, 4000), 0.75f);
-    writeGrids(dir.file("sparse.vdb"), {sparse});
-    FloatVdbGrid grid(dir.file("sparse.vdb"), "density");
-    auto reference = openvdb::GridBase::constGrid<openvdb::FloatGrid>(readVdbGrid(dir.file("sparse.vdb"), "density"));
-    for (const Vec3f& p : {Vec3f(-3.5f, 4.25f, 0.75f), Vec3f(-2.125f, 5.5f, -0.5f), Vec3f(3996.5f, 4004.75f, 4000.25f),
-                           Vec3f(2000.5f, 2000.5f, 2000.5f)}) {
-        const float expected = openvdb::tools::BoxSampler::sample(reference->tree(), openvdb::Vec3R(p.x, p.y, p.z));
-        const float got = grid.sample(p);
-        EXPECT_EQ(std::memcmp(&got, &expected, sizeof got), 0) << to_string(p) << ": " << got << " vs " << expected;
+// Two voxels far apart on every axis: a table over the box between them would hold 500^3 entries
+// (4000 voxels apart) or (2^22)^3 = 2^66 (2^25 - 18 apart), a count that wraps to 0 in an int64,
+// for two leaves, so the grid looks up without one. Between 2^24 and 2^25 the floats are the even
+// numbers: the points near the far voxel are.
+TEST(VdbLookup, SparseGridsWithoutATableMatchToo) {
+    for (const int far : {4000, (1 << 25) - 18}) {
+        test::TempDir dir("volumes_vdb_lookup");
+        auto sparse = makeGrid<openvdb::FloatGrid>("density", 1.0, {0.0, 0.0, 0.0}, 0.125f);
+        sparse->tree().setValue(openvdb::Coord(-3, 5, 0), 1.5f);
+        sparse->tree().setValue(openvdb::Coord(far, far, far), 0.75f);
+        writeGrids(dir.file("sparse.vdb"), {sparse});
+        FloatVdbGrid grid(dir.file("sparse.vdb"), "density");
+        auto reference =
+            openvdb::GridBase::constGrid<openvdb::FloatGrid>(readVdbGrid(dir.file("sparse.vdb"), "density"));
+        const float f = float(far);
+        for (const Vec3f& p : {Vec3f(-3.5f, 4.25f, 0.75f), Vec3f(-2.125f, 5.5f, -0.5f), Vec3f(f, f, f),
+                               Vec3f(f - 2.0f, f, f - 2.0f), Vec3f(f / 2.0f, f / 2.0f, f / 2.0f)}) {
+            const float expected = openvdb::tools::BoxSampler::sample(reference->tree(), openvdb::Vec3R(p.x, p.y, p.z));
+            const float got = grid.sample(p);
+            EXPECT_EQ(std::memcmp(&got, &expected, sizeof got), 0)
+                << far << ", " << to_string(p) << ": " << got << " vs " << expected;
+        }
     }
 }
 
