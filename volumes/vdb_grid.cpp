@@ -61,8 +61,9 @@ Matrix4 gridIndexToObject(const openvdb::math::Transform& transform) {
 // boxes sitting side by side in one array; an OpenVDB accessor instead walks the tree from the root
 // (a std::map) whenever the lookup is not in the boxes of its previous one, which along the
 // scattered points of volume tracking is most of the time. The table is built only when it is small
-// beside the grid itself: at most kEntriesPerLeaf entries per leaf node (an entry is a pointer and a
-// value, a leaf 512 values), or kEntriesAlways.
+// beside the grid's leaves: at most kEntriesPerLeaf entries per leaf node (an entry is a pointer and a
+// value, 16 bytes; a float leaf is 512 values, 2 KiB: at most an eighth of that), or kEntriesAlways
+// (1 MiB) for any grid. Each VdbGrid builds its own (one per prim and field placing a grid).
 template <typename Tree>
 class LeafTable {
 public:
@@ -125,7 +126,7 @@ public:
     }
 
 private:
-    static constexpr std::int64_t kEntriesPerLeaf = 64, kEntriesAlways = 1 << 16;
+    static constexpr std::int64_t kEntriesPerLeaf = 16, kEntriesAlways = 1 << 16;
     struct Entry {
         const Value* values;  // the leaf's, or null
         Value fill;           // without a leaf

@@ -6,7 +6,7 @@
 // grids (density, temperature, flame) are read as FloatVdbGrid, vec3s grids (Cd, color, vel) as
 // Vec3VdbGrid. Files are opened once per process and shared between grids and prims
 // (volumes/vdb_file_cache.h); the grid's data is shared too, so several prims placing one grid
-// cost one copy.
+// cost one copy of its voxels (and each its own lookup table, volumes/vdb_grid.cpp).
 //
 // PLACEMENT. world = objectToWorld * gridTransform * index, where gridTransform is the grid's own
 // index-to-object transform (voxel size, offset, rotation; only linear ones: frustum maps are

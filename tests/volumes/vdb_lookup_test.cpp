@@ -23,12 +23,15 @@ namespace {
 using test::makeGrid;
 using test::writeGrids;
 
-constexpr int kLo = -21, kHi = 18;  // the voxels set, on each axis (across leaf boxes and the origin)
+// The voxels set, on each axis (across leaf boxes and the origin). kLo is a leaf box's first voxel and
+// kHi its seventh, so the table's outer lattice points, kLo - 1 and kHi + 2, lie in other boxes than
+// kLo and kHi + 1: a table one box short at either end would read outside itself.
+constexpr int kLo = -24, kHi = 22;
 
 float valueAt(SampleStream& random) { return 4.0f * random.next() - 1.0f; }
 openvdb::Vec3s valueAt3(SampleStream& random) { return {valueAt(random), valueAt(random), valueAt(random)}; }
 
-// A third of the voxels of [kLo, kHi]^3 set (some inactive), an active tile of one leaf's box, and
+// A third of the voxels of [kLo, kHi]^3 set (some inactive), an active tile of one leaf's box inside, and
 // background `background`.
 template <typename GridT, typename MakeValue>
 typename GridT::Ptr mixedGrid(const std::string& name, typename GridT::ValueType background, MakeValue make) {
@@ -42,7 +45,7 @@ typename GridT::Ptr mixedGrid(const std::string& name, typename GridT::ValueType
                 if (u < 0.25f) accessor.setValue({i, j, k}, make(random));
                 if (u >= 0.25f && u < 0.33f) accessor.setValueOff({i, j, k}, make(random));
             }
-    grid->tree().addTile(1, openvdb::Coord(24, 0, -8), make(random), true);
+    grid->tree().addTile(1, openvdb::Coord(0, 8, -16), make(random), true);  // replaces a leaf, inside
     return grid;
 }
 
@@ -52,6 +55,29 @@ template <typename T, typename GridT>
 void expectSameAsBoxSampler(const VdbGrid<T>& grid, const GridT& reference, int lookups) {
     ASSERT_TRUE(grid.activeVoxels());
     const IndexBox& box = *grid.activeVoxels();
+    const auto expectSame = [&](const Vec3f& p) {
+        const auto expected = openvdb::tools::BoxSampler::sample(reference.tree(), openvdb::Vec3R(p.x, p.y, p.z));
+        const T got = grid.sample(p);
+        if constexpr (std::is_same_v<T, float>) {
+            ASSERT_EQ(std::memcmp(&got, &expected, sizeof got), 0) << to_string(p) << ": " << got << " vs " << expected;
+        } else {
+            const float want[3] = {expected.x(), expected.y(), expected.z()};
+            ASSERT_EQ(std::memcmp(&got, want, sizeof want), 0) << to_string(p) << ": " << to_string(got);
+        }
+    };
+    // The support's faces, edges and corners exactly (lo - 1 and hi + 1 on an axis; hi + 1 reads the
+    // lattice points hi + 2), each other axis at its ends or at a point inside.
+    for (int corner = 0; corner < 27; ++corner) {
+        Vec3f p;
+        for (int axis = 0, code = corner; axis < 3; ++axis, code /= 3) {
+            const int choice = code % 3;
+            p[axis] = choice == 0   ? float(box.lo[axis] - 1)
+                      : choice == 1 ? float(box.hi[axis] + 1)
+                                    : 0.5f * float(box.lo[axis] + box.hi[axis]) + 0.25f;
+        }
+        expectSame(p);
+        if (::testing::Test::HasFatalFailure()) return;
+    }
     SampleStream random(11, 0, 0);
     for (int n = 0; n < lookups; ++n) {
         Vec3f p;
@@ -62,14 +88,8 @@ void expectSameAsBoxSampler(const VdbGrid<T>& grid, const GridT& reference, int 
             if (random.next() < 0.5f) i = std::min((i | 7), hi - 1);
             p[axis] = float(i) + random.next();
         }
-        const auto expected = openvdb::tools::BoxSampler::sample(reference.tree(), openvdb::Vec3R(p.x, p.y, p.z));
-        const T got = grid.sample(p);
-        if constexpr (std::is_same_v<T, float>) {
-            ASSERT_EQ(std::memcmp(&got, &expected, sizeof got), 0) << to_string(p) << ": " << got << " vs " << expected;
-        } else {
-            const float want[3] = {expected.x(), expected.y(), expected.z()};
-            ASSERT_EQ(std::memcmp(&got, want, sizeof want), 0) << to_string(p) << ": " << to_string(got);
-        }
+        expectSame(p);
+        if (::testing::Test::HasFatalFailure()) return;
     }
 }
 
@@ -94,7 +114,7 @@ TEST(VdbLookup, Vec3GridMatchesOpenVdbsBoxSamplerToTheBit) {
 // (4000 voxels apart) or (2^22)^3 = 2^66 (2^25 - 18 apart), a count that wraps to 0 in an int64,
 // for two leaves, so the grid looks up without one. Between 2^24 and 2^25 the floats are the even
 // numbers: the points near the far voxel are.
-TEST(VdbLookup, SparseGridsWithoutATableMatchToo) {
+TEST(VdbLookup, SparseGridsLookUpWithoutATableWhoseSizeWouldOverflow) {
     for (const int far : {4000, (1 << 25) - 18}) {
         test::TempDir dir("volumes_vdb_lookup");
         auto sparse = makeGrid<openvdb::FloatGrid>("density", 1.0, {0.0, 0.0, 0.0}, 0.125f);
