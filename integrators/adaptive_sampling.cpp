@@ -139,41 +139,53 @@ double AdaptiveSampling::uniformSamplesOfTheSameCost(const Film& film) {
     return pixels > 0.0 ? double(film.totalSamples()) / pixels : 0.0;
 }
 
-std::vector<std::uint32_t> AdaptiveSampling::planPass(const Film& film, const RenderSettings& settings, int done,
+AdaptiveSampling::PassPlan AdaptiveSampling::planPass(const Film& film, const RenderSettings& settings, int done,
                                                       int count) {
     const int width = film.width(), height = film.height();
-    std::vector<std::uint32_t> plan(std::size_t(width) * std::size_t(height), 0);
-    auto active = [&](std::size_t i) { return film.samples(int(i % width), int(i / width)) == std::uint32_t(done); };
-    const bool ruled = enabled(settings) && done >= leastSamples(settings);
-    if (!ruled) {
-        for (std::size_t i = 0; i < plan.size(); ++i) plan[i] = active(i) ? std::uint32_t(count) : 0;
+    PassPlan plan;
+    plan.samples.assign(std::size_t(width) * std::size_t(height), 0);
+    auto samples = [&](std::size_t i) { return film.samples(int(i % width), int(i / width)); };
+    auto active = [&](std::size_t i) { return samples(i) == std::uint32_t(done); };
+    const int most = settings.samplesPerPixel;
+    // Sets pixel i's samples of the pass, and adds the count it ends with, `goal` if it is active.
+    auto decide = [&](std::size_t i, std::uint32_t taken, double goal) {
+        plan.samples[i] = taken;
+        plan.expectedTotal += active(i) ? std::uint64_t(std::max(goal, double(done + taken))) : samples(i);
+    };
+    const bool budgeted = enabled(settings) && settings.targetError <= 0.0;
+    if (!enabled(settings) || done < leastSamples(settings)) {
+        // Before the rules apply, a budget render's pixels are expected to end near its mean.
+        const double goal =
+            budgeted ? std::clamp(std::ceil(settings.meanSamplesPerPixel), double(leastSamples(settings)), double(most))
+                     : double(most);
+        for (std::size_t i = 0; i < plan.samples.size(); ++i) decide(i, active(i) ? std::uint32_t(count) : 0, goal);
         return plan;
     }
     const std::vector<double> variances = neighbourhoodVariances(film, settings.windowX, settings.windowY);
-    if (settings.targetError > 0.0) {
+    if (!budgeted) {
         const double target = settings.targetError * settings.targetError;
-        for (std::size_t i = 0; i < plan.size(); ++i)
-            plan[i] = active(i) && variances[i] / done > target ? std::uint32_t(count) : 0;
+        for (std::size_t i = 0; i < plan.samples.size(); ++i)
+            decide(i, active(i) && variances[i] / done > target ? std::uint32_t(count) : 0, most);
         return plan;
     }
     const std::vector<double> costs = neighbourhoodCosts(film, settings.windowX, settings.windowY);
     std::vector<BudgetPixel> pixels;
     double fixed = 0.0, budget = 0.0;
-    for (std::size_t i = 0; i < plan.size(); ++i) {
+    for (std::size_t i = 0; i < plan.samples.size(); ++i) {
         budget += settings.meanSamplesPerPixel * costs[i];
         if (active(i))
             pixels.push_back({std::sqrt(variances[i] / costs[i]), costs[i]});
         else
-            fixed += costs[i] * film.samples(int(i % width), int(i / width));
+            fixed += costs[i] * samples(i);
     }
-    const int most = settings.samplesPerPixel;
     const double t = budgetFactor(pixels, fixed, budget, done, most);
     std::size_t next = 0;
-    for (std::size_t i = 0; i < plan.size(); ++i) {
-        if (!active(i)) continue;
-        const BudgetPixel& p = pixels[next++];
-        const double wanted = std::isinf(t) ? most : std::round(budgetCount(p, t, done, most));
-        plan[i] = std::uint32_t(std::clamp(wanted - done, 0.0, double(count)));
+    for (std::size_t i = 0; i < plan.samples.size(); ++i) {
+        const double wanted = !active(i)      ? 0.0
+                              : std::isinf(t) ? most
+                                              : std::round(budgetCount(pixels[next], t, done, most));
+        if (active(i)) ++next;
+        decide(i, std::uint32_t(std::clamp(wanted - done, 0.0, double(count))), wanted);
     }
     return plan;
 }

@@ -78,9 +78,18 @@ public:
     // when no cost was counted.
     static double uniformSamplesOfTheSameCost(const Film& film);
 
-    // Per pixel of the film, row by row: how many of the pass's samples [done, done + count) it
-    // takes. Without adaptive sampling, count everywhere (a pixel that stopped before takes none).
-    static std::vector<std::uint32_t> planPass(const Film& film, const RenderSettings& settings, int done, int count);
+    // A pass's plan (planPass).
+    struct PassPlan {
+        // Per pixel of the film, row by row: how many of the pass's samples [done, done + count) it
+        // takes. Without adaptive sampling, count everywhere (a pixel that stopped before takes none).
+        std::vector<std::uint32_t> samples;
+        // The samples the film is expected to hold when the render ends, as the rules see it now (for
+        // progress reports): a stopped pixel's count; an active pixel's goal: under the budget rule
+        // the count it is to end with (before the rule applies, the mean the budget buys, N), else
+        // samplesPerPixel.
+        std::uint64_t expectedTotal = 0;
+    };
+    static PassPlan planPass(const Film& film, const RenderSettings& settings, int done, int count);
 };
 
 }  // namespace fluence::integrators

@@ -59,7 +59,7 @@ std::uint32_t planned(const std::vector<std::uint32_t>& plan, int x, int y) {
 
 TEST(AdaptiveStoppingRule, AFlatRegionStopsAndANoisyOneGoesOn) {
     const Film film = syntheticFilm([](int x, int) { return x < 8 ? 0.0f : 0.4f; });
-    const std::vector<std::uint32_t> plan = AdaptiveSampling::planPass(film, targetSettings(), kDone, kCount);
+    const std::vector<std::uint32_t> plan = AdaptiveSampling::planPass(film, targetSettings(), kDone, kCount).samples;
     for (int y = 0; y < kHeight; ++y)
         for (int x = 0; x < kWidth; ++x)
             EXPECT_EQ(planned(plan, x, y), x < 8 ? 0u : std::uint32_t(kCount)) << x << ", " << y;
@@ -69,14 +69,14 @@ TEST(AdaptiveStoppingRule, BeforeMinSamplesEveryPixelGoesOn) {
     const Film film = syntheticFilm([](int, int) { return 0.0f; });
     RenderSettings settings = targetSettings();
     settings.minSamples = 32;
-    for (std::uint32_t n : AdaptiveSampling::planPass(film, settings, kDone, kCount))
+    for (std::uint32_t n : AdaptiveSampling::planPass(film, settings, kDone, kCount).samples)
         EXPECT_EQ(n, std::uint32_t(kCount));
 }
 
 TEST(AdaptiveStoppingRule, APixelWhoseHalvesAgreeByLuckAmidNoiseGoesOn) {
     const Film film = syntheticFilm([](int x, int y) { return x == 11 && y == 3 ? 0.0f : 0.4f; });
     EXPECT_EQ(AdaptiveSampling::neighbourhoodVariances(film, 0, 0).size(), std::size_t(kWidth * kHeight));
-    const std::vector<std::uint32_t> plan = AdaptiveSampling::planPass(film, targetSettings(), kDone, kCount);
+    const std::vector<std::uint32_t> plan = AdaptiveSampling::planPass(film, targetSettings(), kDone, kCount).samples;
     EXPECT_EQ(planned(plan, 11, 3), std::uint32_t(kCount));
 }
 
@@ -92,7 +92,7 @@ TEST(AdaptiveStoppingRule, ALoneNoisyPixelKeepsItsNeighbourhoodGoingWithinItsBlo
     // away from them stopped.
     RenderSettings settings = targetSettings();
     settings.targetError = 0.02;
-    const std::vector<std::uint32_t> plan = AdaptiveSampling::planPass(film, settings, kDone, kCount);
+    const std::vector<std::uint32_t> plan = AdaptiveSampling::planPass(film, settings, kDone, kCount).samples;
     for (int y = 1; y <= 5; ++y)
         for (int x = 1; x <= 5; ++x)
             if (x != 3 || y != 3) {
@@ -108,7 +108,7 @@ TEST(AdaptiveStoppingRule, ALoneNoisyPixelKeepsItsNeighbourhoodGoingWithinItsBlo
     RenderSettings window = settings;
     window.windowX = 1;
     window.imageWidth = kWidth + 1;
-    const std::vector<std::uint32_t> moved = AdaptiveSampling::planPass(film, window, kDone, kCount);
+    const std::vector<std::uint32_t> moved = AdaptiveSampling::planPass(film, window, kDone, kCount).samples;
     EXPECT_EQ(planned(moved, 6, 5), 0u);
     EXPECT_EQ(planned(moved, 8, 5), std::uint32_t(kCount));
 }
@@ -121,7 +121,7 @@ TEST(AdaptiveStoppingRule, ABudgetGoesToTheNoisierPixelsAndStopsTheFlatOnes) {
     settings.targetError = 0.0;
     settings.meanSamplesPerPixel = 24.0;
     settings.samplesPerPixel = kDone + kCount;  // so that this pass can spend the whole budget
-    const std::vector<std::uint32_t> plan = AdaptiveSampling::planPass(film, settings, kDone, kCount);
+    const std::vector<std::uint32_t> plan = AdaptiveSampling::planPass(film, settings, kDone, kCount).samples;
     std::uint64_t total = 0;
     for (int y = 0; y < kHeight; ++y)
         for (int x = 0; x < kWidth; ++x) {
@@ -137,7 +137,8 @@ TEST(AdaptiveStoppingRule, ABudgetGoesToTheNoisierPixelsAndStopsTheFlatOnes) {
     const double mean = double(total) / (kWidth * kHeight);
     EXPECT_NEAR(mean, settings.meanSamplesPerPixel, 1.0) << "the budget is spent, per pixel rounded";
     settings.meanSamplesPerPixel = kDone;
-    for (std::uint32_t n : AdaptiveSampling::planPass(film, settings, kDone, kCount)) EXPECT_EQ(n, 0u) << "spent";
+    for (std::uint32_t n : AdaptiveSampling::planPass(film, settings, kDone, kCount).samples)
+        EXPECT_EQ(n, 0u) << "spent";
 }
 
 TEST(AdaptiveStoppingRule, ABudgetWeighsEachPixelByItsCostPerSample) {
@@ -153,7 +154,7 @@ TEST(AdaptiveStoppingRule, ABudgetWeighsEachPixelByItsCostPerSample) {
     settings.targetError = 0.0;
     settings.meanSamplesPerPixel = kDone + 24;
     settings.samplesPerPixel = kDone + 128;
-    const std::vector<std::uint32_t> plan = AdaptiveSampling::planPass(film, settings, kDone, 128);
+    const std::vector<std::uint32_t> plan = AdaptiveSampling::planPass(film, settings, kDone, 128).samples;
     double spent = 0.0, budget = 0.0;
     int pairs = 0;
     for (int y = 0; y < kHeight; ++y)
