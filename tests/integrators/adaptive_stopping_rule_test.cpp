@@ -4,7 +4,7 @@
 // by luck amid noisy neighbours goes on; the pixels within 2 of a lone noisy pixel in a flat area
 // go on (it is judged by them, not by its own samples), up to the edge of its block; the budget rule gives the
 // noisier region more, and of two regions alike but for their cost per sample, the cheaper one
-// more, as sqrt(1 / cost).
+// more, as sqrt(1 / cost); the budget rule floors a pixel's estimate by its block's mean.
 #include <gtest/gtest.h>
 
 #include <cstdint>
@@ -111,6 +111,30 @@ TEST(AdaptiveStoppingRule, ALoneNoisyPixelKeepsItsNeighbourhoodGoingWithinItsBlo
     const std::vector<std::uint32_t> moved = AdaptiveSampling::planPass(film, window, kDone, kCount).samples;
     EXPECT_EQ(planned(moved, 6, 5), 0u);
     EXPECT_EQ(planned(moved, 8, 5), std::uint32_t(kCount));
+}
+
+// Heavy tails: a rare bright sample seen in one pixel of a block is a sign of the block's error,
+// but the 5x5 neighbourhood of a pixel 3 or more away does not hold it. The budget rule floors a
+// pixel's a by its block's mean (the pixel itself left out): a lone noisy pixel at (1, 1) gives
+// (6, 6), beyond its 5x5 neighbourhood, 1/63 of its a, which its 24 neighbours within 2 average
+// as 1/24; the pixel itself reads its flat neighbours and stops; the next block is flat and stops.
+TEST(AdaptiveStoppingRule, ABudgetFloorsAPixelsVarianceByItsBlocksMean) {
+    const Film film = syntheticFilm([](int x, int y) { return x == 1 && y == 1 ? 0.4f : 0.0f; });
+    const std::vector<double> local = AdaptiveSampling::neighbourhoodVariances(film, 0, 0);
+    const std::vector<double> floored = AdaptiveSampling::budgetVariances(film, 0, 0);
+    const std::size_t far = 6 * kWidth + 6, near = 2 * kWidth + 2;
+    ASSERT_GT(local[near], 0.0);
+    EXPECT_EQ(local[far], 0.0);
+    EXPECT_NEAR(floored[far], local[near] * 24.0 / 63.0, 1e-12 * local[near]);
+    EXPECT_EQ(floored[near], local[near]) << "the larger of the two";
+    RenderSettings settings = targetSettings();
+    settings.targetError = 0.0;
+    settings.meanSamplesPerPixel = 24.0;
+    settings.samplesPerPixel = kDone + kCount;
+    const std::vector<std::uint32_t> plan = AdaptiveSampling::planPass(film, settings, kDone, kCount).samples;
+    EXPECT_GT(planned(plan, 6, 6), 0u);
+    EXPECT_EQ(planned(plan, 1, 1), 0u) << "its own decision reads its neighbours only";
+    EXPECT_EQ(planned(plan, 12, 4), 0u) << "the next block";
 }
 
 TEST(AdaptiveStoppingRule, ABudgetGoesToTheNoisierPixelsAndStopsTheFlatOnes) {
