@@ -25,6 +25,14 @@ double pixelVariance(const Film& film, int x, int y) {
     return sum / 3.0;
 }
 
+// pixelVariance of every pixel of the film, row by row.
+std::vector<double> pixelVariances(const Film& film) {
+    std::vector<double> own(std::size_t(film.width()) * std::size_t(film.height()));
+    for (int y = 0; y < film.height(); ++y)
+        for (int x = 0; x < film.width(); ++x) own[std::size_t(y) * film.width() + x] = pixelVariance(film, x, y);
+    return own;
+}
+
 // The first coordinate of the film's range [first, last) on an axis that shares a block with
 // `coordinate`, and the last; image coordinate = film coordinate + offset.
 int blockStart(int coordinate, int offset) {
@@ -37,18 +45,18 @@ int blockEnd(int coordinate, int offset, int size) {
 }
 
 // The mean of `own` over each pixel's neighbourhood (see the header): its neighbours within
-// kNeighbourhoodRadius and within its block that have at least `least` samples, the pixel itself
-// left out; its own value when no neighbour counts.
+// `radius` (kBlockSize - 1: its whole block) and within its block that have at least `least`
+// samples, the pixel itself left out; its own value when no neighbour counts.
 std::vector<double> neighbourhoodMeans(const Film& film, int windowX, int windowY, const std::vector<double>& own,
-                                       std::uint32_t least) {
+                                       std::uint32_t least, int radius = AdaptiveSampling::kNeighbourhoodRadius) {
     const int width = film.width(), height = film.height();
     std::vector<double> filtered(own.size(), 0.0);
     for (int y = 0; y < height; ++y) {
-        constexpr int r = AdaptiveSampling::kNeighbourhoodRadius;
-        const int y0 = std::max(y - r, blockStart(y, windowY)), y1 = std::min(y + r + 1, blockEnd(y, windowY, height));
+        const int y0 = std::max(y - radius, blockStart(y, windowY)),
+                  y1 = std::min(y + radius + 1, blockEnd(y, windowY, height));
         for (int x = 0; x < width; ++x) {
-            const int x0 = std::max(x - r, blockStart(x, windowX)),
-                      x1 = std::min(x + r + 1, blockEnd(x, windowX, width));
+            const int x0 = std::max(x - radius, blockStart(x, windowX)),
+                      x1 = std::min(x + radius + 1, blockEnd(x, windowX, width));
             double sum = 0.0;
             int counted = 0;
             for (int v = y0; v < y1; ++v)
@@ -105,11 +113,16 @@ bool AdaptiveSampling::enabled(const RenderSettings& settings) {
 }
 
 std::vector<double> AdaptiveSampling::neighbourhoodVariances(const Film& film, int windowX, int windowY) {
-    const int width = film.width(), height = film.height();
-    std::vector<double> own(std::size_t(width) * std::size_t(height));
-    for (int y = 0; y < height; ++y)
-        for (int x = 0; x < width; ++x) own[std::size_t(y) * width + x] = pixelVariance(film, x, y);
-    return neighbourhoodMeans(film, windowX, windowY, own, kMinSamplesForHalves);
+    return neighbourhoodMeans(film, windowX, windowY, pixelVariances(film), kMinSamplesForHalves);
+}
+
+std::vector<double> AdaptiveSampling::budgetVariances(const Film& film, int windowX, int windowY) {
+    const std::vector<double> own = pixelVariances(film);
+    std::vector<double> variances = neighbourhoodMeans(film, windowX, windowY, own, kMinSamplesForHalves);
+    const std::vector<double> block =
+        neighbourhoodMeans(film, windowX, windowY, own, kMinSamplesForHalves, kBlockSize - 1);
+    for (std::size_t i = 0; i < variances.size(); ++i) variances[i] = std::max(variances[i], block[i]);
+    return variances;
 }
 
 std::vector<double> AdaptiveSampling::neighbourhoodCosts(const Film& film, int windowX, int windowY) {
@@ -139,41 +152,54 @@ double AdaptiveSampling::uniformSamplesOfTheSameCost(const Film& film) {
     return pixels > 0.0 ? double(film.totalSamples()) / pixels : 0.0;
 }
 
-std::vector<std::uint32_t> AdaptiveSampling::planPass(const Film& film, const RenderSettings& settings, int done,
+AdaptiveSampling::PassPlan AdaptiveSampling::planPass(const Film& film, const RenderSettings& settings, int done,
                                                       int count) {
     const int width = film.width(), height = film.height();
-    std::vector<std::uint32_t> plan(std::size_t(width) * std::size_t(height), 0);
-    auto active = [&](std::size_t i) { return film.samples(int(i % width), int(i / width)) == std::uint32_t(done); };
-    const bool ruled = enabled(settings) && done >= leastSamples(settings);
-    if (!ruled) {
-        for (std::size_t i = 0; i < plan.size(); ++i) plan[i] = active(i) ? std::uint32_t(count) : 0;
+    PassPlan plan;
+    plan.samples.assign(std::size_t(width) * std::size_t(height), 0);
+    auto samples = [&](std::size_t i) { return film.samples(int(i % width), int(i / width)); };
+    auto active = [&](std::size_t i) { return samples(i) == std::uint32_t(done); };
+    const int most = settings.samplesPerPixel;
+    // Sets pixel i's samples of the pass, and adds the count it ends with, `goal` if it is active.
+    auto decide = [&](std::size_t i, std::uint32_t taken, double goal) {
+        plan.samples[i] = taken;
+        plan.expectedTotal += active(i) ? std::uint64_t(std::max(goal, double(done + taken))) : samples(i);
+    };
+    const bool budgeted = enabled(settings) && settings.targetError <= 0.0;
+    if (!enabled(settings) || done < leastSamples(settings)) {
+        // Before the rules apply, a budget render's pixels are expected to end near its mean.
+        const double goal =
+            budgeted ? std::clamp(std::ceil(settings.meanSamplesPerPixel), double(leastSamples(settings)), double(most))
+                     : double(most);
+        for (std::size_t i = 0; i < plan.samples.size(); ++i) decide(i, active(i) ? std::uint32_t(count) : 0, goal);
         return plan;
     }
-    const std::vector<double> variances = neighbourhoodVariances(film, settings.windowX, settings.windowY);
-    if (settings.targetError > 0.0) {
+    if (!budgeted) {
+        const std::vector<double> variances = neighbourhoodVariances(film, settings.windowX, settings.windowY);
         const double target = settings.targetError * settings.targetError;
-        for (std::size_t i = 0; i < plan.size(); ++i)
-            plan[i] = active(i) && variances[i] / done > target ? std::uint32_t(count) : 0;
+        for (std::size_t i = 0; i < plan.samples.size(); ++i)
+            decide(i, active(i) && variances[i] / done > target ? std::uint32_t(count) : 0, most);
         return plan;
     }
+    const std::vector<double> variances = budgetVariances(film, settings.windowX, settings.windowY);
     const std::vector<double> costs = neighbourhoodCosts(film, settings.windowX, settings.windowY);
     std::vector<BudgetPixel> pixels;
     double fixed = 0.0, budget = 0.0;
-    for (std::size_t i = 0; i < plan.size(); ++i) {
+    for (std::size_t i = 0; i < plan.samples.size(); ++i) {
         budget += settings.meanSamplesPerPixel * costs[i];
         if (active(i))
             pixels.push_back({std::sqrt(variances[i] / costs[i]), costs[i]});
         else
-            fixed += costs[i] * film.samples(int(i % width), int(i / width));
+            fixed += costs[i] * samples(i);
     }
-    const int most = settings.samplesPerPixel;
     const double t = budgetFactor(pixels, fixed, budget, done, most);
     std::size_t next = 0;
-    for (std::size_t i = 0; i < plan.size(); ++i) {
-        if (!active(i)) continue;
-        const BudgetPixel& p = pixels[next++];
-        const double wanted = std::isinf(t) ? most : std::round(budgetCount(p, t, done, most));
-        plan[i] = std::uint32_t(std::clamp(wanted - done, 0.0, double(count)));
+    for (std::size_t i = 0; i < plan.samples.size(); ++i) {
+        const double wanted = !active(i)      ? 0.0
+                              : std::isinf(t) ? most
+                                              : std::round(budgetCount(pixels[next], t, done, most));
+        if (active(i)) ++next;
+        decide(i, std::uint32_t(std::clamp(wanted - done, 0.0, double(count))), wanted);
     }
     return plan;
 }

@@ -89,8 +89,6 @@ RenderStats render(const render::RenderScene& scene, const render::Camera& camer
     const auto start = Clock::now();
     const std::clock_t cpuStart = std::clock();  // the process's CPU time, every thread
     auto elapsed = [&] { return std::chrono::duration<double>(Clock::now() - start).count(); };
-    const std::uint64_t pixels = std::uint64_t(film.width()) * std::uint64_t(film.height());
-    if (progress) progress->pixelSamplesPlanned = pixels * std::uint64_t(std::max(settings.samplesPerPixel, 0));
     if (progress) progress->pixelSamplesDone = film.totalSamples();  // resumed: those already in the film
 
     int concurrency = settings.threads > 0 ? settings.threads : tbb::this_task_arena::max_concurrency();
@@ -125,11 +123,13 @@ RenderStats render(const render::RenderScene& scene, const render::Camera& camer
             if (count <= 0) break;
         }
         double passStart = elapsed();
-        const std::vector<std::uint32_t> plan = AdaptiveSampling::planPass(film, settings, done, count);
-        if (std::all_of(plan.begin(), plan.end(), [](std::uint32_t n) { return n == 0; })) break;
+        const AdaptiveSampling::PassPlan plan = AdaptiveSampling::planPass(film, settings, done, count);
+        if (progress) progress->pixelSamplesPlanned = plan.expectedTotal;
+        if (std::all_of(plan.samples.begin(), plan.samples.end(), [](std::uint32_t n) { return n == 0; })) break;
         arena.execute([&] {
             integrator.beginSamples(*state, scene, camera, settings.seed, done, count);
-            renderPass(scene, camera, integrator, *state, settings, film, {done, count}, plan, counters, progress);
+            renderPass(scene, camera, integrator, *state, settings, film, {done, count}, plan.samples, counters,
+                       progress);
         });
         secondsPerSample = (elapsed() - passStart) / count;
         done += count;

@@ -4,7 +4,7 @@
 // by luck amid noisy neighbours goes on; the pixels within 2 of a lone noisy pixel in a flat area
 // go on (it is judged by them, not by its own samples), up to the edge of its block; the budget rule gives the
 // noisier region more, and of two regions alike but for their cost per sample, the cheaper one
-// more, as sqrt(1 / cost).
+// more, as sqrt(1 / cost); the budget rule floors a pixel's estimate by its block's mean.
 #include <gtest/gtest.h>
 
 #include <cstdint>
@@ -59,7 +59,7 @@ std::uint32_t planned(const std::vector<std::uint32_t>& plan, int x, int y) {
 
 TEST(AdaptiveStoppingRule, AFlatRegionStopsAndANoisyOneGoesOn) {
     const Film film = syntheticFilm([](int x, int) { return x < 8 ? 0.0f : 0.4f; });
-    const std::vector<std::uint32_t> plan = AdaptiveSampling::planPass(film, targetSettings(), kDone, kCount);
+    const std::vector<std::uint32_t> plan = AdaptiveSampling::planPass(film, targetSettings(), kDone, kCount).samples;
     for (int y = 0; y < kHeight; ++y)
         for (int x = 0; x < kWidth; ++x)
             EXPECT_EQ(planned(plan, x, y), x < 8 ? 0u : std::uint32_t(kCount)) << x << ", " << y;
@@ -69,14 +69,14 @@ TEST(AdaptiveStoppingRule, BeforeMinSamplesEveryPixelGoesOn) {
     const Film film = syntheticFilm([](int, int) { return 0.0f; });
     RenderSettings settings = targetSettings();
     settings.minSamples = 32;
-    for (std::uint32_t n : AdaptiveSampling::planPass(film, settings, kDone, kCount))
+    for (std::uint32_t n : AdaptiveSampling::planPass(film, settings, kDone, kCount).samples)
         EXPECT_EQ(n, std::uint32_t(kCount));
 }
 
 TEST(AdaptiveStoppingRule, APixelWhoseHalvesAgreeByLuckAmidNoiseGoesOn) {
     const Film film = syntheticFilm([](int x, int y) { return x == 11 && y == 3 ? 0.0f : 0.4f; });
     EXPECT_EQ(AdaptiveSampling::neighbourhoodVariances(film, 0, 0).size(), std::size_t(kWidth * kHeight));
-    const std::vector<std::uint32_t> plan = AdaptiveSampling::planPass(film, targetSettings(), kDone, kCount);
+    const std::vector<std::uint32_t> plan = AdaptiveSampling::planPass(film, targetSettings(), kDone, kCount).samples;
     EXPECT_EQ(planned(plan, 11, 3), std::uint32_t(kCount));
 }
 
@@ -92,7 +92,7 @@ TEST(AdaptiveStoppingRule, ALoneNoisyPixelKeepsItsNeighbourhoodGoingWithinItsBlo
     // away from them stopped.
     RenderSettings settings = targetSettings();
     settings.targetError = 0.02;
-    const std::vector<std::uint32_t> plan = AdaptiveSampling::planPass(film, settings, kDone, kCount);
+    const std::vector<std::uint32_t> plan = AdaptiveSampling::planPass(film, settings, kDone, kCount).samples;
     for (int y = 1; y <= 5; ++y)
         for (int x = 1; x <= 5; ++x)
             if (x != 3 || y != 3) {
@@ -108,9 +108,33 @@ TEST(AdaptiveStoppingRule, ALoneNoisyPixelKeepsItsNeighbourhoodGoingWithinItsBlo
     RenderSettings window = settings;
     window.windowX = 1;
     window.imageWidth = kWidth + 1;
-    const std::vector<std::uint32_t> moved = AdaptiveSampling::planPass(film, window, kDone, kCount);
+    const std::vector<std::uint32_t> moved = AdaptiveSampling::planPass(film, window, kDone, kCount).samples;
     EXPECT_EQ(planned(moved, 6, 5), 0u);
     EXPECT_EQ(planned(moved, 8, 5), std::uint32_t(kCount));
+}
+
+// Heavy tails: a rare bright sample seen in one pixel of a block is a sign of the block's error,
+// but the 5x5 neighbourhood of a pixel 3 or more away does not hold it. The budget rule floors a
+// pixel's a by its block's mean (the pixel itself left out): a lone noisy pixel at (1, 1) gives
+// (6, 6), beyond its 5x5 neighbourhood, 1/63 of its a, which its 24 neighbours within 2 average
+// as 1/24; the pixel itself reads its flat neighbours and stops; the next block is flat and stops.
+TEST(AdaptiveStoppingRule, ABudgetFloorsAPixelsVarianceByItsBlocksMean) {
+    const Film film = syntheticFilm([](int x, int y) { return x == 1 && y == 1 ? 0.4f : 0.0f; });
+    const std::vector<double> local = AdaptiveSampling::neighbourhoodVariances(film, 0, 0);
+    const std::vector<double> floored = AdaptiveSampling::budgetVariances(film, 0, 0);
+    const std::size_t far = 6 * kWidth + 6, near = 2 * kWidth + 2;
+    ASSERT_GT(local[near], 0.0);
+    EXPECT_EQ(local[far], 0.0);
+    EXPECT_NEAR(floored[far], local[near] * 24.0 / 63.0, 1e-12 * local[near]);
+    EXPECT_EQ(floored[near], local[near]) << "the larger of the two";
+    RenderSettings settings = targetSettings();
+    settings.targetError = 0.0;
+    settings.meanSamplesPerPixel = 24.0;
+    settings.samplesPerPixel = kDone + kCount;
+    const std::vector<std::uint32_t> plan = AdaptiveSampling::planPass(film, settings, kDone, kCount).samples;
+    EXPECT_GT(planned(plan, 6, 6), 0u);
+    EXPECT_EQ(planned(plan, 1, 1), 0u) << "its own decision reads its neighbours only";
+    EXPECT_EQ(planned(plan, 12, 4), 0u) << "the next block";
 }
 
 TEST(AdaptiveStoppingRule, ABudgetGoesToTheNoisierPixelsAndStopsTheFlatOnes) {
@@ -121,7 +145,7 @@ TEST(AdaptiveStoppingRule, ABudgetGoesToTheNoisierPixelsAndStopsTheFlatOnes) {
     settings.targetError = 0.0;
     settings.meanSamplesPerPixel = 24.0;
     settings.samplesPerPixel = kDone + kCount;  // so that this pass can spend the whole budget
-    const std::vector<std::uint32_t> plan = AdaptiveSampling::planPass(film, settings, kDone, kCount);
+    const std::vector<std::uint32_t> plan = AdaptiveSampling::planPass(film, settings, kDone, kCount).samples;
     std::uint64_t total = 0;
     for (int y = 0; y < kHeight; ++y)
         for (int x = 0; x < kWidth; ++x) {
@@ -137,7 +161,8 @@ TEST(AdaptiveStoppingRule, ABudgetGoesToTheNoisierPixelsAndStopsTheFlatOnes) {
     const double mean = double(total) / (kWidth * kHeight);
     EXPECT_NEAR(mean, settings.meanSamplesPerPixel, 1.0) << "the budget is spent, per pixel rounded";
     settings.meanSamplesPerPixel = kDone;
-    for (std::uint32_t n : AdaptiveSampling::planPass(film, settings, kDone, kCount)) EXPECT_EQ(n, 0u) << "spent";
+    for (std::uint32_t n : AdaptiveSampling::planPass(film, settings, kDone, kCount).samples)
+        EXPECT_EQ(n, 0u) << "spent";
 }
 
 TEST(AdaptiveStoppingRule, ABudgetWeighsEachPixelByItsCostPerSample) {
@@ -153,7 +178,7 @@ TEST(AdaptiveStoppingRule, ABudgetWeighsEachPixelByItsCostPerSample) {
     settings.targetError = 0.0;
     settings.meanSamplesPerPixel = kDone + 24;
     settings.samplesPerPixel = kDone + 128;
-    const std::vector<std::uint32_t> plan = AdaptiveSampling::planPass(film, settings, kDone, 128);
+    const std::vector<std::uint32_t> plan = AdaptiveSampling::planPass(film, settings, kDone, 128).samples;
     double spent = 0.0, budget = 0.0;
     int pairs = 0;
     for (int y = 0; y < kHeight; ++y)
