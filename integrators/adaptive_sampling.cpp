@@ -167,9 +167,12 @@ AdaptiveSampling::PassPlan AdaptiveSampling::planPass(const Film& film, const Re
     };
     const bool budgeted = enabled(settings) && settings.targetError <= 0.0;
     if (!enabled(settings) || done < leastSamples(settings)) {
-        // Before the rules apply, a budget render's pixels are expected to end near its mean.
+        // Before the rules apply, a budget render's pixels are expected to end near its mean (an
+        // upper estimate: where samples cost unevenly, the mean count ends below it). Not
+        // std::clamp: --min-spp may exceed --spp (--mean-spp 1 caps at 8), and the cap wins.
         const double goal =
-            budgeted ? std::clamp(std::ceil(settings.meanSamplesPerPixel), double(leastSamples(settings)), double(most))
+            budgeted ? std::min(std::max(std::ceil(settings.meanSamplesPerPixel), double(leastSamples(settings))),
+                                double(most))
                      : double(most);
         for (std::size_t i = 0; i < plan.samples.size(); ++i) decide(i, active(i) ? std::uint32_t(count) : 0, goal);
         return plan;
