@@ -422,9 +422,9 @@ private:
             haveLights_ && v.connectable, v.lightFrom, v.lightNormal, v.hit.linkGroup, shadowFrom,
             [&](const Vec3f& wi) {
                 Vec3f wiLocal = frame.toLocal(wi);
-                bool agree = sidesAgree(v.wo, wi, ng, v.woLocal.z, wiLocal.z);
-                return std::pair(agree ? v.bsdf.f(v.woLocal, wiLocal) * std::abs(wiLocal.z) : RGB(0.0f),
-                                 agree ? v.bsdf.pdf(v.woLocal, wiLocal) : 0.0f);
+                if (!sidesAgree(v.wo, wi, ng, v.woLocal.z, wiLocal.z)) return std::pair(RGB(0.0f), 0.0f);
+                const auto [f, pdf] = v.bsdf.fAndPdf(v.woLocal, wiLocal);
+                return std::pair(f * std::abs(wiLocal.z), pdf);
             },
             [&](const Vec3f& wi) { return joinedEvents(v.bsdf, v.woLocal, frame.toLocal(wi)); });
     }

@@ -20,6 +20,7 @@
 
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <cmath>
 #include <memory>
 #include <mutex>
@@ -49,14 +50,21 @@ template <typename Slice, int N>
 struct SliceStore {
     static inline std::array<std::once_flag, N> made;
     static inline std::array<std::unique_ptr<Slice>, N> slices;
+    static inline std::array<std::atomic<const Slice*>, N> built{};  // slices[k] once it is complete
 };
 
 // Slice k of a table of N, built as Slice(args...) on first use, once, by whichever thread asks
-// first; later calls return it without taking a lock.
+// first; later calls return it without taking a lock, and without std::call_once (which sets up
+// its callable in thread-local storage and calls pthread_once on every call, twice per lookup of
+// a table that every glossy hit reads several times): one acquire load of the published slice.
 template <typename Slice, int N, typename... Args>
 const Slice& sliceBuiltOnce(int k, const Args&... args) {
     using Store = SliceStore<Slice, N>;
-    std::call_once(Store::made[k], [&] { Store::slices[k] = std::make_unique<Slice>(args...); });
+    if (const Slice* slice = Store::built[k].load(std::memory_order_acquire)) return *slice;
+    std::call_once(Store::made[k], [&] {
+        Store::slices[k] = std::make_unique<Slice>(args...);
+        Store::built[k].store(Store::slices[k].get(), std::memory_order_release);
+    });
     return *Store::slices[k];
 }
 

@@ -111,17 +111,21 @@ public:
     RGB f(const Vec3f& wo, const Vec3f& wi) const override {
         if (wo.z == 0.0f) return RGB(0.0f);
         if (mirrors(wo)) return f(mirrorZ(wo), mirrorZ(wi));
-        RGB value = base_->f(wo, wi) * baseWeight(wo, wi);
-        if (wo.z > 0.0f && wi.z > 0.0f) value += top_.f(wo, wi);
-        if (wo.z < 0.0f && wi.z < 0.0f) value += innerReflection_ * kInvPi;
-        return value;
+        return f(outgoing(wo), wi);
+    }
+
+    std::pair<RGB, float> fAndPdf(const Vec3f& wo, const Vec3f& wi) const override {
+        if (wo.z == 0.0f) return {RGB(0.0f), 0.0f};
+        if (mirrors(wo)) return fAndPdf(mirrorZ(wo), mirrorZ(wi));
+        const Outgoing o = outgoing(wo);
+        return {f(o, wi), pdf(o, wi)};
     }
 
     LobeSplit fByKind(const Vec3f& wo, const Vec3f& wi) const override {
         if (wo.z == 0.0f) return {RGB(0.0f), RGB(0.0f)};
         if (mirrors(wo)) return fByKind(mirrorZ(wo), mirrorZ(wi));
         LobeSplit split = base_->fByKind(wo, wi);
-        const RGB weight = baseWeight(wo, wi);
+        const RGB weight = baseWeight(outgoing(wo), wi);
         split.diffuse *= weight;
         split.glossy *= weight;
         if (wo.z > 0.0f && wi.z > 0.0f) {
@@ -136,11 +140,7 @@ public:
     float pdf(const Vec3f& wo, const Vec3f& wi) const override {
         if (wo.z == 0.0f) return 0.0f;
         if (mirrors(wo)) return pdf(mirrorZ(wo), mirrorZ(wi));
-        const float pOwn = ownProbability(wo);
-        float p = (1.0f - pOwn) * base_->pdf(wo, wi);
-        if (pOwn > 0.0f && wo.z > 0.0f && wi.z > 0.0f) p += pOwn * top_.pdf(wo, wi);
-        if (pOwn > 0.0f && wo.z < 0.0f && wi.z < 0.0f) p += pOwn * cosineHemispherePdf(-wi.z);
-        return p;
+        return pdf(outgoing(wo), wi);
     }
 
     std::optional<BsdfSample> sample(const Vec3f& wo, float uLobe, Vec2f u) const override {
@@ -150,7 +150,8 @@ public:
             if (s) s->wi = mirrorZ(s->wi);
             return s;
         }
-        const float pOwn = ownProbability(wo);
+        const Outgoing o = outgoing(wo);
+        const float pOwn = ownProbability(o);
         const bool pickOwn = uLobe < pOwn;
         // The chosen part's own lobe number: uLobe rescaled to [0, 1) within the choice.
         const float uPart = std::min(pickOwn ? uLobe / pOwn : (uLobe - pOwn) / (1.0f - pOwn), 0x1.fffffep-1f);
@@ -159,13 +160,13 @@ public:
                                                     : innerSample(u);
         if (!s) return std::nullopt;
         if (s->specular) {
-            if (!pickOwn) s->f *= baseWeight(wo, s->wi);
+            if (!pickOwn) s->f *= baseWeight(o, s->wi);
             s->pdf *= pickOwn ? pOwn : 1.0f - pOwn;
             return s;
         }
-        s->pdf = pdf(wo, s->wi);
+        s->pdf = pdf(o, s->wi);
         if (!(s->pdf > 0.0f)) return std::nullopt;
-        s->f = f(wo, s->wi);
+        s->f = f(o, s->wi);
         return s;
     }
 
@@ -176,21 +177,46 @@ private:
     static constexpr float kMaxAverage = 0.999f;
 
     bool mirrors(const Vec3f& wo) const { return twoSided_ && wo.z < 0.0f; }
-    // The share of the light crossing the layer at w that is neither reflected by the top nor
-    // absorbed by the filter; 1 on the side without the layer.
-    RGB throughput(const Vec3f& w) const {
-        return w.z > 0.0f ? (RGB(1.0f) - top_.reflectance(w)) * sqrtFilter_ : RGB(1.0f);
+    // wo (not 0, not mirrored) with the top's reflectance there, 0 below the layer (read only
+    // above it): f, pdf and sample all read it, so sample() computes it once for its own choice,
+    // the pdf and the f of the direction it samples, and fAndPdf() once for both (a table lookup
+    // per channel).
+    struct Outgoing {
+        Vec3f w;
+        RGB reflectance;
+    };
+    Outgoing outgoing(const Vec3f& wo) const { return {wo, wo.z > 0.0f ? top_.reflectance(wo) : RGB(0.0f)}; }
+    RGB f(const Outgoing& o, const Vec3f& wi) const {
+        const Vec3f& wo = o.w;
+        RGB value = base_->f(wo, wi) * baseWeight(o, wi);
+        if (wo.z > 0.0f && wi.z > 0.0f) value += top_.f(wo, wi);
+        if (wo.z < 0.0f && wi.z < 0.0f) value += innerReflection_ * kInvPi;
+        return value;
+    }
+    float pdf(const Outgoing& o, const Vec3f& wi) const {
+        const Vec3f& wo = o.w;
+        const float pOwn = ownProbability(o);
+        float p = (1.0f - pOwn) * base_->pdf(wo, wi);
+        if (pOwn > 0.0f && wo.z > 0.0f && wi.z > 0.0f) p += pOwn * top_.pdf(wo, wi);
+        if (pOwn > 0.0f && wo.z < 0.0f && wi.z < 0.0f) p += pOwn * cosineHemispherePdf(-wi.z);
+        return p;
+    }
+    // The share of the light crossing the layer at w, whose top reflectance is `reflectance`,
+    // that is neither reflected by the top nor absorbed by the filter; 1 on the side without the
+    // layer.
+    RGB throughput(const Vec3f& w, const RGB& reflectance) const {
+        return w.z > 0.0f ? (RGB(1.0f) - reflectance) * sqrtFilter_ : RGB(1.0f);
     }
     // The factor on the base's f: the throughputs both ways, and the normalisation of a diffuse
     // base's reflection on the layer's side.
-    RGB baseWeight(const Vec3f& wo, const Vec3f& wi) const {
-        const RGB through = throughput(wo) * throughput(wi);
-        return wo.z > 0.0f && wi.z > 0.0f ? through * reflectionScale_ : through;
+    RGB baseWeight(const Outgoing& o, const Vec3f& wi) const {
+        const RGB through = throughput(o.w, o.reflectance) * throughput(wi, outgoing(wi).reflectance);
+        return o.w.z > 0.0f && wi.z > 0.0f ? through * reflectionScale_ : through;
     }
     // The probability of sampling the layer's own lobe: the top on its side, the inner
     // reflection on the other.
-    float ownProbability(const Vec3f& wo) const {
-        return lobeProbability(wo.z > 0.0f ? top_.reflectance(wo) : innerReflection_);
+    float ownProbability(const Outgoing& o) const {
+        return lobeProbability(o.w.z > 0.0f ? o.reflectance : innerReflection_);
     }
     std::optional<BsdfSample> innerSample(Vec2f u) const {
         const Vec3f wi = mirrorZ(sampleCosineHemisphere(u));

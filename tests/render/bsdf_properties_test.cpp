@@ -3,6 +3,8 @@
 //   - sample() draws directions with the density pdf() (chi-square over the whole sphere);
 //   - the f and pdf sample() returns are f(wo, wi) and pdf(wo, wi); delta samples only from
 //     BSDFs that have a delta lobe, transmitted ones only from transmissive BSDFs;
+//   - fAndPdf(wo, wi) is {f(wo, wi), pdf(wo, wi)} bit for bit (the layered models compute it
+//     with one lookup of the top's reflectance at wo);
 //   - pdf integrates to the fraction of samples that are not delta (so to at most 1);
 //   - reciprocity (generalised with n^2 across a refracting interface);
 //   - the importance transport mode is the adjoint: f(wi, wo), and the same samples as radiance's
@@ -355,6 +357,22 @@ TEST_P(BsdfProperties, LobeSplitSumsToF) {
             if (!(flags & kBsdfGlossy)) {
                 EXPECT_TRUE(isBlack(split.glossy));
             }
+        }
+}
+
+// Next-event estimation asks fAndPdf() for both values at once; they must be f's and pdf's exactly,
+// so that images do not depend on which a method asks for.
+TEST_P(BsdfProperties, FAndPdfAreFAndPdfBitForBit) {
+    const Bsdf& b = bsdf();
+    for (const Vec3f& wo : incidentDirections())
+        for (int n = 0; n < 500; ++n) {
+            SampleStream rng(5, 0, n);
+            const Vec3f wi = sampleUniformSphere(rng.next2D());
+            const auto [f, pdf] = b.fAndPdf(wo, wi);
+            const RGB fAlone = b.f(wo, wi);
+            SCOPED_TRACE("wo " + describe(wo) + " wi " + describe(wi));
+            for (int c = 0; c < 3; ++c) EXPECT_EQ(f[c], fAlone[c]) << "channel " << c;
+            EXPECT_EQ(pdf, b.pdf(wo, wi));
         }
 }
 
