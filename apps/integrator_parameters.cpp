@@ -34,8 +34,9 @@ const integrators::IntegratorParameter* findIntegratorParameter(const std::strin
 }
 
 std::string parameterProblem(const integrators::IntegratorParameter& parameter, double value) {
-    if (parameter.count && !(value >= 1.0 && value <= parameter.maximum && value == std::floor(value)))
-        return "must be a whole number from 1 to " + number(parameter.maximum) + ", got " + number(value);
+    if (parameter.count && !(value >= parameter.minimum && value <= parameter.maximum && value == std::floor(value)))
+        return "must be a whole number from " + number(parameter.minimum) + " to " + number(parameter.maximum) +
+               ", got " + number(value);
     if (!parameter.count && !(value > 0.0 && value <= parameter.maximum))
         return "must be a number > 0 (scene units), got " + number(value);
     return "";

@@ -113,6 +113,7 @@ struct IntegratorParameter {
     std::string meaning;    // for --help: what it sets and its default
     bool count = false;     // a whole number
     double maximum = 1e30;  // a count's bounds its memory (photon maps)
+    double minimum = 1.0;   // a count's lowest value (0 for a level that can be off)
 };
 
 struct IntegratorInfo {

@@ -15,6 +15,7 @@
 #include "integrators/medium_stack.h"
 #include "integrators/russian_roulette.h"
 #include "integrators/surface_frame.h"
+#include "media/exact_tracking.h"
 #include "media/free_flight.h"
 #include "media/guided_walk.h"
 #include "media/phase.h"
@@ -159,12 +160,15 @@ template <bool kMedia>
 class PathWalk {
 public:
     PathWalk(const LightEvents& lightEvents, const EquiangularLights& equiangularLights,
-             std::span<const LightPathAov> aovs, int maxDepth, int walksPerEntry, const render::RenderScene& scene,
-             const render::Camera& camera, const Ray& cameraRay, SampleStream& rng, RenderCounters& counters)
+             std::span<const LightPathAov> aovs, int maxDepth, int walksPerEntry, int exactFlights,
+             const render::RenderScene& scene, const render::Camera& camera, const Ray& cameraRay, SampleStream& rng,
+             RenderCounters& counters)
         : lightEvents_(lightEvents),
           equiangularLights_(equiangularLights),
           maxDepth_(maxDepth),
           walksPerEntry_(walksPerEntry),
+          exactFlights_(exactFlights),
+          exactEverywhere_(exactFlights >= 2 && !equiangularLights.any()),
           scene_(scene),
           camera_(camera),
           rng_(&rng),
@@ -214,13 +218,16 @@ private:
     Step throughMedium(const media::Medium& medium, const std::optional<SurfaceHit>& hit, int& depth) {
         const float tBoundary = hit ? hit->t : std::numeric_limits<float>::infinity();
         if (guidedWalk_ && walkStep_.first && hit) guidedWalk_->sawFarSide(ray_.direction, hit->t);
-        const RGB rUBefore = mis_.rU;
+        const RGB rUBefore = mis_.rU, throughputBefore = throughput_;
         if (guidedWalk_) ++counters_.walkSteps;  // a guided subsurface walk's step (integrators/sample_cost.h)
         const std::optional<MediumSegment> segment =
             equiangularApplies(depth) ? mediumSegment(medium, ray_.origin, ray_.direction, tBoundary) : std::nullopt;
         if (segment) sampleEquiangular(medium, *segment);
+        const media::MediumRay ray{ray_.origin, ray_.direction, tBoundary};
         media::FreeFlight flight = guidedWalk_ ? guidedWalk_->fly(walkStep_, walkLength_, tBoundary, *rng_)
-                                               : freeFlight(medium, {ray_.origin, ray_.direction, tBoundary});
+                                   : exactFlight(medium, depth, segment.has_value())
+                                       ? media::sampleExactFlight(medium, ray, hero_, rng_->next())
+                                       : freeFlight(medium, ray);
         counters_.mediumCollisions += std::uint64_t(flight.collisions);
         throughput_ *= flight.throughput;
         mis_.rU *= flight.pdfRatio;
@@ -235,11 +242,13 @@ private:
                                    flight.properties.sigmaA + flight.properties.sigmaS, camera_);
         if (flight.event == media::FlightEvent::Absorbed) {
             throughput_ *= std::exchange(exitShare_, 1.0f);  // a split walk's end (splitWalk)
-            const RGB emitted = throughput_ * flight.properties.emission / media::channelAverage(mis_.rU);
-            radiance_ += emitted;
-            if (lightPaths_.active()) lightPaths_.reach(PathEvent{EventType::Object}, emitted, out_);
+            addMediumEmission(throughput_ * flight.properties.emission);
             return Step::End;
         }
+        // An exact flight's point also scores absorption's emission (media/exact_tracking.h).
+        if (flight.event == media::FlightEvent::Scattered && !isBlack(flight.absorbedThroughput) &&
+            !isBlack(flight.properties.emission))
+            addMediumEmission(throughputBefore * flight.absorbedThroughput * flight.properties.emission);
         if (flight.event == media::FlightEvent::Scattered) return scatterInMedium(flight, medium, depth);
         return Step::Reached;
     }
@@ -254,6 +263,44 @@ private:
         const float uEvent = rng_->next();
         SampleStream steps = rng_->independentStream();
         return media::sampleFreeFlight(medium, ray, hero_, uEvent, steps);
+    }
+
+    // Emission of the medium, f / p_h of the path that ends absorbed at a medium point: no other
+    // strategy finds such a path, so it takes the spectral weight of its own density alone.
+    void addMediumEmission(const RGB& weighted) {
+        const RGB emitted = weighted / media::channelAverage(mis_.rU);
+        radiance_ += emitted;
+        if (lightPaths_.active()) lightPaths_.reach(PathEvent{EventType::Object}, emitted, out_);
+    }
+
+    // EXACT FLIGHTS (integrators/path_tracer.h): whether the flight through `medium` at `depth` is
+    // drawn by regular tracking (media/exact_tracking.h). Only in the scene's volume with exact
+    // extinction, outside interiors and guided walks, where the equiangular strategy (whose
+    // weights read ratio-tracked densities) does not sample the stretch.
+    //   Why the weights still sum to one. Where every flight and the competing shadow rays are
+    // exact (exactEverywhere_), a path's densities are classical: an escaped flight has density
+    // P_c = T_c (no null points), the light strategy draws the same path with the prefix's density
+    // times lightPdf (its shadow ray's T_c is in its contribution, not its density). With the
+    // prefix's ratios rU, phase sampling's contribution beta phase/pdf (T_c/T_h) Le is weighted by
+    // 1 / avg(rU T_c/T_h + (rU / pdf)(1 / T_h) lightPdf) (rL = rU / pdf times the flight's
+    // lightPdfRatio 1/T_h), i.e. it scores beta phase T_c Le / avg(rU (pdf T_c + lightPdf)); the
+    // light sample scores beta phase T_c Le / avg(rU (lightPdf + T_c pdf)) (MisState::lightSample
+    // with tr = (T_c, 1)). The two share one denominator, the sum over both strategies of their
+    // densities of the path, so their weights are the balance heuristic's and add up to one in
+    // every channel. Where only the camera ray's flight is exact (level 1), no strategy competes
+    // with it (a camera ray's emitter is unique), and the vertices after it are tracked as before.
+    bool exactFlight(const media::Medium& medium, int depth, bool equiangular) const {
+        if (!kMedia || exactFlights_ == 0 || guidedWalk_ || inside_.depth() > 0 || equiangular) return false;
+        if (&medium != scene_.medium() || !medium.hasExactExtinction()) return false;
+        return depth == 0 || exactEverywhere_;
+    }
+
+    // Whether the shadow ray through `medium` takes exact transmittance (EXACT FLIGHTS): where the
+    // flights through it are exact and phase or BSDF sampling competes with it, or, at level 3, to
+    // delta lights too.
+    bool exactShadow(const media::Medium& medium, bool onlyStrategy) const {
+        return kMedia && exactEverywhere_ && (!onlyStrategy || exactFlights_ >= 3) && &medium == scene_.medium() &&
+               medium.hasExactExtinction();
     }
 
     // Whether the equiangular strategy samples the stretch of the ray through the medium the path
@@ -316,6 +363,11 @@ private:
     // strategies' weights read the same shadow-ray densities.
     media::TransmittanceEstimate shadowTransmittance(const media::Medium& medium, const media::MediumRay& ray,
                                                      bool onlyStrategy) {
+        if (exactShadow(medium, onlyStrategy)) {
+            const media::TransmittanceEstimate exact = media::exactTransmittance(medium, ray);
+            counters_.mediumCollisions += std::uint64_t(exact.collisions);
+            return exact;
+        }
         SampleStream tracking = rng_->independentStream();
         const media::TransmittanceEstimate tr = media::estimateTransmittance(
             onlyStrategy ? media::TransmittanceMethod::RayMarching : media::TransmittanceMethod::RatioTracking, medium,
@@ -568,7 +620,9 @@ private:
     const LightEvents& lightEvents_;
     const EquiangularLights& equiangularLights_;
     const int maxDepth_;
-    const int walksPerEntry_;  // guided walks per entry of the camera ray (splitWalk)
+    const int walksPerEntry_;     // guided walks per entry of the camera ray (splitWalk)
+    const int exactFlights_;      // the "exact-flights" level (EXACT FLIGHTS)
+    const bool exactEverywhere_;  // level 2 or 3 in a scene where the equiangular strategy samples no light
     const render::RenderScene& scene_;
     const render::Camera& camera_;
     SampleStream* rng_;  // the sample's stream (a split walk's own, splitWalk)
@@ -609,8 +663,8 @@ FilmSample PathTracer::trace(const LightEvents& lightEvents, const EquiangularLi
                              SampleStream& rng, RenderCounters& counters) const {
     const std::span<const LightPathAov> aovs =
         aovs_ ? std::span<const LightPathAov>(*aovs_) : std::span<const LightPathAov>();
-    return PathWalk<kMedia>(lightEvents, equiangularLights, aovs, maxDepth_, subsurfaceWalks_, scene, camera, cameraRay,
-                            rng, counters)
+    return PathWalk<kMedia>(lightEvents, equiangularLights, aovs, maxDepth_, subsurfaceWalks_, exactFlights_, scene,
+                            camera, cameraRay, rng, counters)
         .run();
 }
 

@@ -23,7 +23,12 @@ const std::vector<IntegratorInfo>& integratorRegistry() {
          {{"subsurface-walks", "fluence:path:subsurfaceWalks",
            "random walks from each entry of a camera ray into a guided subsurface interior, each lighting its exit "
            "with weight 1/N (default 1)",
-           true, PathTracer::kMaxSubsurfaceWalks}}},
+           true, PathTracer::kMaxSubsurfaceWalks},
+          {"exact-flights", "fluence:path:exactFlights",
+           "regular tracking of the scene volume's free flights where its extinction is exact: 1 the camera ray's, 2 "
+           "every flight with exact shadow transmittance where phase sampling competes, 3 also to delta lights "
+           "(default 1; 0: delta tracking)",
+           true, PathTracer::kMaxExactFlights, 0.0}}},
         {"direct",
          "L(D|S)?E",
          kEmitterSeen | kDirect | kDeltaLights,

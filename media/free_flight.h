@@ -39,6 +39,9 @@ struct FreeFlight {
                                      // points and of no further point before t, in channel c, over p_h
                                      // (how a strategy that picks t itself, as equiangular sampling
                                      // does, reaches the same collision: integrators/equiangular_strategy.h)
+    RGB absorbedThroughput{0.0f};    // an exact flight's (media/exact_tracking.h), Scattered: the weight
+                                     // T sigmaA / p_h of absorption at the same point, whose emission
+                                     // the caller scores there; the flight itself goes on scattering
     int collisions = 0;              // tentative collisions drawn (each one medium lookup): the work done
 };
 

@@ -5,7 +5,8 @@
 // Its majorants are one segment over the whole requested range with sigmaMaj = sigmaMin = sigmaT:
 // the bounds are exact, so delta tracking never meets a null collision and ratio tracking draws
 // no tentative collision at all (its transmittance is exactly exp(-sigmaT t)). The range may be
-// unbounded (tMax = infinity): an infinite medium.
+// unbounded (tMax = infinity): an infinite medium. Its exact extinction (media/medium.h) is one
+// constant piece over the range.
 #pragma once
 
 #include "media/medium.h"
@@ -19,6 +20,9 @@ public:
     MediumProperties at(const Vec3f&) const override { return properties_; }
     void majorants(const Vec3f& origin, const Vec3f& direction, float tMin, float tMax,
                    FunctionRef<bool(const MajorantSegment&)> visit) const override;
+    bool hasExactExtinction() const override { return true; }
+    void extinctionPieces(const Vec3f& origin, const Vec3f& direction, float tMin, float tMax,
+                          FunctionRef<bool(const ExtinctionPiece&)> visit) const override;
 
 private:
     MediumProperties properties_;

@@ -20,6 +20,14 @@
 // collisions only at the rate sigmaMaj - sigmaMin, so a medium that knows its density is constant
 // over a segment (sigmaMin == sigmaT == sigmaMaj) gets its transmittance exactly, with no lookup.
 //
+// EXACT EXTINCTION. A medium may also describe sigmaT along a ray exactly: consecutive pieces
+// [tMin, tMax), in increasing t, over each of which sigmaT is a cubic polynomial in s = t - tMin
+// times a constant per channel, and 0 in the gaps between them (a grid's trilinear density in each cell between
+// voxel centres, volumes/trilinear_cells.h; a constant). Optical depth is then a piecewise quartic
+// in closed form, and media/exact_tracking.h samples distances and transmittances from it with no
+// tentative collision. A medium that cannot describe itself so (the default) says so by
+// hasExactExtinction() and is only tracked.
+//
 // DIRECTIONS. Ray directions are unit vectors in world space; t is distance along them.
 #pragma once
 
@@ -43,6 +51,14 @@ struct MajorantSegment {
     RGB sigmaMin{0.0f};
 };
 
+// A stretch of a ray over which sigmaT_c(t) = scale_c * sum_k polynomial[k] (t - tMin)^k (see EXACT
+// EXTINCTION): one cubic, scaled per channel (a grid's density times its extinction factor).
+struct ExtinctionPiece {
+    double tMin = 0.0, tMax = 0.0;
+    double polynomial[4] = {0.0, 0.0, 0.0, 0.0};
+    Vec3d scale{0.0};
+};
+
 class Medium {
 public:
     virtual ~Medium() = default;
@@ -54,6 +70,13 @@ public:
     // [tMin, tMax), in increasing t, until it returns false or the range is covered.
     virtual void majorants(const Vec3f& origin, const Vec3f& direction, float tMin, float tMax,
                            FunctionRef<bool(const MajorantSegment&)> visit) const = 0;
+
+    // Whether extinctionPieces() describes this medium (see EXACT EXTINCTION).
+    virtual bool hasExactExtinction() const { return false; }
+    // Calls `visit` with the pieces of the ray origin + t direction within [tMin, tMax), in
+    // increasing t, until it returns false or the range is covered; only where hasExactExtinction().
+    virtual void extinctionPieces(const Vec3f& /*origin*/, const Vec3f& /*direction*/, float /*tMin*/, float /*tMax*/,
+                                  FunctionRef<bool(const ExtinctionPiece&)> /*visit*/) const {}
 };
 
 }  // namespace fluence::media

@@ -8,6 +8,8 @@
 // majorants(): with one medium, its own segments; with several, each medium's segments over the
 // range are gathered and cut at every segment end, and each piece carries the sum of the bounds
 // of the segments covering it (pieces that no segment covers are left out, as gaps).
+// Exact extinction (media/medium.h) is offered by a union of one medium that offers it (its own
+// pieces); a union of several is tracked only.
 // A union either owns its media (a scene's volumes) or borrows them (the interior of a closed
 // surface together with those volumes, render/render_scene.h): borrowed media must outlive it.
 #pragma once
@@ -27,6 +29,11 @@ public:
     MediumProperties at(const Vec3f& p) const override;
     void majorants(const Vec3f& origin, const Vec3f& direction, float tMin, float tMax,
                    FunctionRef<bool(const MajorantSegment&)> visit) const override;
+    bool hasExactExtinction() const override { return media_.size() == 1 && media_[0]->hasExactExtinction(); }
+    void extinctionPieces(const Vec3f& origin, const Vec3f& direction, float tMin, float tMax,
+                          FunctionRef<bool(const ExtinctionPiece&)> visit) const override {
+        if (hasExactExtinction()) media_[0]->extinctionPieces(origin, direction, tMin, tMax, visit);
+    }
 
     std::size_t size() const { return media_.size(); }
 

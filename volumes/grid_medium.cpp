@@ -1,5 +1,6 @@
 #include "volumes/grid_medium.h"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -49,6 +50,10 @@ GridMedium::GridMedium(FloatVdbGrid density, const GridMediumParams& params, std
     majorantScale_ = extinctionFactor(largestColour, params_.absorptionColor) * params_.densityScale;
     RGB smallestColour = color_ ? RGB(0.0f) : params_.albedo;
     minorantScale_ = extinctionFactor(smallestColour, params_.absorptionColor) * params_.densityScale;
+    if (!color_) {
+        cells_ = TrilinearCells(density_);
+        if (!(cells_.minValue() >= 0.0f)) cells_ = TrilinearCells();
+    }
 }
 
 media::MediumProperties GridMedium::at(const Vec3f& p) const {
@@ -74,6 +79,34 @@ void GridMedium::majorants(const Vec3f& origin, const Vec3f& direction, float tM
     MajorantDda dda(majorantGrid_, origin, direction, tMin, tMax, majorantScale_, minorantScale_);
     while (std::optional<media::MajorantSegment> segment = dda.next())
         if (!visit(*segment)) return;
+}
+
+void GridMedium::extinctionPieces(const Vec3f& origin, const Vec3f& direction, float tMin, float tMax,
+                                  FunctionRef<bool(const media::ExtinctionPiece&)> visit) const {
+    // Without a colour grid the majorant scale is the constant extinction factor (MAJORANTS).
+    media::ExtinctionPiece piece;
+    piece.scale = Vec3d(majorantScale_.x, majorantScale_.y, majorantScale_.z);
+    const auto walk = [&](double t0, double t1) {
+        return cells_.walk(origin, direction, t0, t1, [&](double a, double b, const double* c) {
+            piece.tMin = a;
+            piece.tMax = b;
+            std::copy(c, c + 4, piece.polynomial);
+            return visit(piece);
+        });
+    };
+    // The dual cells are walked over each run of consecutive non-empty majorant segments (which
+    // share their ends exactly), so the walk starts once per run, not once per majorant cell.
+    double runStart = 0.0, runEnd = -1.0;
+    bool going = true;
+    majorants(origin, direction, tMin, tMax, [&](const media::MajorantSegment& segment) {
+        if (segment.tMin != runEnd) {
+            if (runEnd > runStart && !(going = walk(runStart, runEnd))) return false;
+            runStart = segment.tMin;
+        }
+        runEnd = segment.tMax;
+        return true;
+    });
+    if (going && runEnd > runStart) walk(runStart, runEnd);
 }
 
 }  // namespace fluence::volumes

@@ -39,6 +39,13 @@
 // grows with c, so its largest value is at the colour grid's maximum. The grid's minorants are
 // scaled by densityScale times the smallest factor: the albedo's without a colour grid, 1 - a (that
 // of c = 0) with one.
+//
+// EXACT EXTINCTION (media/medium.h). Without a colour grid, sigmaT = densityScale * d(p) * the
+// extinction factor of the albedo, a constant per channel; where no stored value (nor the
+// background) is negative, d = the trilinear reconstruction itself, whose pieces along a ray are
+// the cubics of volumes/trilinear_cells.h. Such a medium offers them (hasExactExtinction), walking
+// the dual cells only inside the majorant grid's non-empty segments; a colour grid, a negative
+// value or a grid too large for the dense copy leaves it tracked only.
 #pragma once
 
 #include <optional>
@@ -46,6 +53,7 @@
 #include "media/medium.h"
 #include "volumes/grid_medium_params.h"
 #include "volumes/majorant_grid.h"
+#include "volumes/trilinear_cells.h"
 #include "volumes/vdb_grid.h"
 
 namespace fluence::volumes {
@@ -58,6 +66,9 @@ public:
     media::MediumProperties at(const Vec3f& p) const override;
     void majorants(const Vec3f& origin, const Vec3f& direction, float tMin, float tMax,
                    FunctionRef<bool(const media::MajorantSegment&)> visit) const override;
+    bool hasExactExtinction() const override { return cells_.available(); }
+    void extinctionPieces(const Vec3f& origin, const Vec3f& direction, float tMin, float tMax,
+                          FunctionRef<bool(const media::ExtinctionPiece&)> visit) const override;
 
     // The world-space box outside which the medium is empty.
     WorldBounds bounds() const { return density_.worldBounds(); }
@@ -74,6 +85,7 @@ private:
     GridMediumParams params_;
     MajorantGrid majorantGrid_;
     RGB majorantScale_, minorantScale_;
+    TrilinearCells cells_;  // unavailable unless the medium has exact extinction (EXACT EXTINCTION)
 };
 
 }  // namespace fluence::volumes

@@ -1,0 +1,64 @@
+#include "volumes/trilinear_cells.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace fluence::volumes {
+
+TrilinearCells::TrilinearCells(const FloatVdbGrid& grid) : worldToIndex_(grid.worldToIndex()) {
+    minValue_ = std::numeric_limits<float>::infinity();
+    const std::optional<IndexBox>& active = grid.activeVoxels();
+    if (!active) return;
+    lo_ = active->lo - Vec3i(1);
+    const Vec3i hi = active->hi + Vec3i(1);
+    size_ = hi - lo_ + Vec3i(1);
+    const std::size_t count = std::size_t(size_.x) * std::size_t(size_.y) * std::size_t(size_.z);
+    if (count > kMaxVoxels) return;
+    values_.assign(count, grid.background());
+    minValue_ = grid.background();
+    grid.forEachValue([&](const IndexBox& box, const float& value) {
+        const Vec3i a = vmax(box.lo, lo_), b = vmin(box.hi, hi);
+        if (a.x > b.x || a.y > b.y || a.z > b.z) return;  // outside what the support reads
+        minValue_ = std::min(minValue_, value);
+        for (int z = a.z; z <= b.z; ++z)
+            for (int y = a.y; y <= b.y; ++y)
+                for (int x = a.x; x <= b.x; ++x)
+                    values_[(std::size_t(z - lo_.z) * std::size_t(size_.y) + std::size_t(y - lo_.y)) *
+                                std::size_t(size_.x) +
+                            std::size_t(x - lo_.x)] = value;
+    });
+}
+
+bool TrilinearCells::clip(const Vec3d& o, const Vec3d& d, double& t0, double& t1) const {
+    for (int axis = 0; axis < 3; ++axis) {
+        const double boxLo = lo_[axis], boxHi = lo_[axis] + size_[axis] - 1;
+        if (d[axis] == 0.0) {
+            if (!(o[axis] >= boxLo && o[axis] <= boxHi)) return false;
+            continue;
+        }
+        double ta = (boxLo - o[axis]) / d[axis], tb = (boxHi - o[axis]) / d[axis];
+        if (ta > tb) std::swap(ta, tb);
+        t0 = std::max(t0, ta);
+        t1 = std::min(t1, tb);
+    }
+    return t0 < t1;
+}
+
+void TrilinearCells::cubic(const Vec3i& cell, const Vec3d& o, const Vec3d& d, double t, double c[4]) const {
+    // Corners v[zyx] (bit 0: x + 1, bit 1: y + 1, bit 2: z + 1) and the monomial coefficients.
+    const std::size_t base = offset(cell), dy = std::size_t(size_.x), dz = dy * std::size_t(size_.y);
+    const float* p = values_.data() + base;
+    const double v0 = p[0], v1 = p[1], v2 = p[dy], v3 = p[dy + 1], v4 = p[dz], v5 = p[dz + 1], v6 = p[dz + dy],
+                 v7 = p[dz + dy + 1];
+    const double cx = v1 - v0, cy = v2 - v0, cz = v4 - v0;
+    const double cxy = v3 - v1 - v2 + v0, cxz = v5 - v1 - v4 + v0, cyz = v6 - v2 - v4 + v0;
+    const double cxyz = v7 - v3 - v5 - v6 + v1 + v2 + v4 - v0;
+    const double x = o.x + t * d.x - cell.x, y = o.y + t * d.y - cell.y, z = o.z + t * d.z - cell.z;
+    c[0] = v0 + cx * x + cy * y + cz * z + cxy * x * y + cxz * x * z + cyz * y * z + cxyz * x * y * z;
+    c[1] = cx * d.x + cy * d.y + cz * d.z + cxy * (x * d.y + d.x * y) + cxz * (x * d.z + d.x * z) +
+           cyz * (y * d.z + d.y * z) + cxyz * (d.x * y * z + x * d.y * z + x * y * d.z);
+    c[2] = cxy * d.x * d.y + cxz * d.x * d.z + cyz * d.y * d.z + cxyz * (d.x * d.y * z + d.x * y * d.z + x * d.y * d.z);
+    c[3] = cxyz * d.x * d.y * d.z;
+}
+
+}  // namespace fluence::volumes
