@@ -113,8 +113,8 @@ public:
     virtual float pdf(const Vec3f& wo, const Vec3f& wi) const = 0;
     virtual std::optional<BsdfSample> sample(const Vec3f& wo, float uLobe, Vec2f u) const = 0;
     virtual unsigned flags() const = 0;
-    // f(wo, wi) and pdf(wo, wi) together, as next-event estimation asks for them: the same values;
-    // a model whose two compute the same thing of wo overrides it to compute it once.
+    // Exactly {f(wo, wi), pdf(wo, wi)}, as next-event estimation asks: a model whose two compute the
+    // same thing of wo overrides it to do so once (wrappers need not forward: the default is exact).
     virtual std::pair<RGB, float> fAndPdf(const Vec3f& wo, const Vec3f& wi) const { return {f(wo, wi), pdf(wo, wi)}; }
     // f(wo, wi) as its diffuse and glossy parts; by default all of it is the model's one kind:
     // glossy if it has a glossy lobe, else diffuse.

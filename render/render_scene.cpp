@@ -103,7 +103,7 @@ bool emits(const MeshDesc& mesh, const std::vector<MaterialDesc>& materials) {
 
 // Whether the segment [tMin, tMax] of the ray from o along d meets the box [lo, hi]. Conservative:
 // a slab whose bound is NaN (0 x infinity, the ray parallel to a face and on its plane) excludes
-// nothing. Every ray traced asks it, so the three slabs are computed side by side in SSE lanes (one
+// nothing. Every ray traced in a scene with light shapes asks it, so the three slabs are computed side by side in SSE lanes (one
 // division for the three inverses instead of three), each lane doing the scalar code's IEEE
 // operations; the swap when tNear > tFar is min_ps(tFar, tNear) and max_ps(tNear, tFar), whose
 // operand order keeps the scalar outcome when a bound is NaN (an unordered comparison swaps nothing).

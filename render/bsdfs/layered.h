@@ -108,13 +108,13 @@ public:
         if (!twoSided_) innerReflection_ = diffuse->transmitted * diffuse->reachingAverage.value_or(average);
     }
 
-    RGB f(const Vec3f& wo, const Vec3f& wi) const override {
+    RGB f(const Vec3f& wo, const Vec3f& wi) const final {
         if (wo.z == 0.0f) return RGB(0.0f);
         if (mirrors(wo)) return f(mirrorZ(wo), mirrorZ(wi));
         return f(outgoing(wo), wi);
     }
 
-    std::pair<RGB, float> fAndPdf(const Vec3f& wo, const Vec3f& wi) const override {
+    std::pair<RGB, float> fAndPdf(const Vec3f& wo, const Vec3f& wi) const final {
         if (wo.z == 0.0f) return {RGB(0.0f), 0.0f};
         if (mirrors(wo)) return fAndPdf(mirrorZ(wo), mirrorZ(wi));
         const Outgoing o = outgoing(wo);
@@ -137,7 +137,7 @@ public:
         return split;
     }
 
-    float pdf(const Vec3f& wo, const Vec3f& wi) const override {
+    float pdf(const Vec3f& wo, const Vec3f& wi) const final {
         if (wo.z == 0.0f) return 0.0f;
         if (mirrors(wo)) return pdf(mirrorZ(wo), mirrorZ(wi));
         return pdf(outgoing(wo), wi);
