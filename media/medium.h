@@ -59,6 +59,21 @@ struct ExtinctionPiece {
     Vec3d scale{0.0};
 };
 
+// The optical depth tau_c over a ray's pieces, and how many pieces were summed.
+struct OpticalDepth {
+    Vec3d tau{0.0};
+    int pieces = 0;
+};
+
+// Where the hero channel's optical depth along a ray first reaches a target: tStop (< 0 if it never
+// does within the range), tau_c and sigmaT_c there (tau_c over the whole range if it never does),
+// and how many pieces were visited.
+struct DepthCrossing {
+    Vec3d tau{0.0}, sigmaT{0.0};
+    double tStop = -1.0;
+    int pieces = 0;
+};
+
 class Medium {
 public:
     virtual ~Medium() = default;
@@ -77,6 +92,12 @@ public:
     // increasing t, until it returns false or the range is covered; only where hasExactExtinction().
     virtual void extinctionPieces(const Vec3f& /*origin*/, const Vec3f& /*direction*/, float /*tMin*/, float /*tMax*/,
                                   FunctionRef<bool(const ExtinctionPiece&)> /*visit*/) const {}
+    // The sums media/exact_tracking.h takes from the pieces within [tMin, tMax) (media/exact_depth.h):
+    // by default through extinctionPieces(); a medium may override them with the same visitors
+    // inlined into its own walk (same figures, no call per piece).
+    virtual OpticalDepth exactOpticalDepth(const Vec3f& origin, const Vec3f& direction, float tMin, float tMax) const;
+    virtual DepthCrossing exactDepthCrossing(const Vec3f& origin, const Vec3f& direction, float tMin, float tMax,
+                                             int hero, double target) const;
 };
 
 }  // namespace fluence::media

@@ -34,6 +34,14 @@ public:
                           FunctionRef<bool(const ExtinctionPiece&)> visit) const override {
         if (hasExactExtinction()) media_[0]->extinctionPieces(origin, direction, tMin, tMax, visit);
     }
+    OpticalDepth exactOpticalDepth(const Vec3f& origin, const Vec3f& direction, float tMin, float tMax) const override {
+        return hasExactExtinction() ? media_[0]->exactOpticalDepth(origin, direction, tMin, tMax) : OpticalDepth{};
+    }
+    DepthCrossing exactDepthCrossing(const Vec3f& origin, const Vec3f& direction, float tMin, float tMax, int hero,
+                                     double target) const override {
+        return hasExactExtinction() ? media_[0]->exactDepthCrossing(origin, direction, tMin, tMax, hero, target)
+                                    : DepthCrossing{};
+    }
 
     std::size_t size() const { return media_.size(); }
 

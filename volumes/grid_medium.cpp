@@ -6,6 +6,7 @@
 #include <string>
 #include <utility>
 
+#include "media/exact_depth.h"
 #include "volumes/blackbody_radiance.h"
 
 namespace fluence::volumes {
@@ -81,8 +82,8 @@ void GridMedium::majorants(const Vec3f& origin, const Vec3f& direction, float tM
         if (!visit(*segment)) return;
 }
 
-void GridMedium::extinctionPieces(const Vec3f& origin, const Vec3f& direction, float tMin, float tMax,
-                                  FunctionRef<bool(const media::ExtinctionPiece&)> visit) const {
+template <class Visit>
+void GridMedium::forEachPiece(const Vec3f& origin, const Vec3f& direction, float tMin, float tMax, Visit& visit) const {
     // Without a colour grid the majorant scale is the constant extinction factor (MAJORANTS).
     media::ExtinctionPiece piece;
     piece.scale = Vec3d(majorantScale_.x, majorantScale_.y, majorantScale_.z);
@@ -97,16 +98,34 @@ void GridMedium::extinctionPieces(const Vec3f& origin, const Vec3f& direction, f
     // The dual cells are walked over each run of consecutive non-empty majorant segments (which
     // share their ends exactly), so the walk starts once per run, not once per majorant cell.
     double runStart = 0.0, runEnd = -1.0;
-    bool going = true;
-    majorants(origin, direction, tMin, tMax, [&](const media::MajorantSegment& segment) {
-        if (segment.tMin != runEnd) {
-            if (runEnd > runStart && !(going = walk(runStart, runEnd))) return false;
-            runStart = segment.tMin;
+    MajorantDda dda(majorantGrid_, origin, direction, tMin, tMax, majorantScale_, minorantScale_);
+    while (std::optional<media::MajorantSegment> segment = dda.next()) {
+        if (segment->tMin != runEnd) {
+            if (runEnd > runStart && !walk(runStart, runEnd)) return;
+            runStart = segment->tMin;
         }
-        runEnd = segment.tMax;
-        return true;
-    });
-    if (going && runEnd > runStart) walk(runStart, runEnd);
+        runEnd = segment->tMax;
+    }
+    if (runEnd > runStart) walk(runStart, runEnd);
+}
+
+void GridMedium::extinctionPieces(const Vec3f& origin, const Vec3f& direction, float tMin, float tMax,
+                                  FunctionRef<bool(const media::ExtinctionPiece&)> visit) const {
+    forEachPiece(origin, direction, tMin, tMax, visit);
+}
+
+media::OpticalDepth GridMedium::exactOpticalDepth(const Vec3f& origin, const Vec3f& direction, float tMin,
+                                                  float tMax) const {
+    media::OpticalDepthSum sum;
+    forEachPiece(origin, direction, tMin, tMax, sum);
+    return sum.depth;
+}
+
+media::DepthCrossing GridMedium::exactDepthCrossing(const Vec3f& origin, const Vec3f& direction, float tMin, float tMax,
+                                                    int hero, double target) const {
+    media::DepthCrossingSearch search{hero, target, {}};
+    forEachPiece(origin, direction, tMin, tMax, search);
+    return search.crossing;
 }
 
 }  // namespace fluence::volumes

@@ -69,6 +69,10 @@ public:
     bool hasExactExtinction() const override { return cells_.available(); }
     void extinctionPieces(const Vec3f& origin, const Vec3f& direction, float tMin, float tMax,
                           FunctionRef<bool(const media::ExtinctionPiece&)> visit) const override;
+    media::OpticalDepth exactOpticalDepth(const Vec3f& origin, const Vec3f& direction, float tMin,
+                                          float tMax) const override;
+    media::DepthCrossing exactDepthCrossing(const Vec3f& origin, const Vec3f& direction, float tMin, float tMax,
+                                            int hero, double target) const override;
 
     // The world-space box outside which the medium is empty.
     WorldBounds bounds() const { return density_.worldBounds(); }
@@ -79,6 +83,10 @@ public:
     const RGB& minorantScale() const { return minorantScale_; }
 
 private:
+    // extinctionPieces() with the visitor a template argument, inlined into the cells' walk.
+    template <class Visit>
+    void forEachPiece(const Vec3f& origin, const Vec3f& direction, float tMin, float tMax, Visit& visit) const;
+
     FloatVdbGrid density_;
     std::optional<FloatVdbGrid> temperature_;
     std::optional<Vec3VdbGrid> color_;

@@ -44,10 +44,13 @@ bool TrilinearCells::clip(const Vec3d& o, const Vec3d& d, double& t0, double& t1
     return t0 < t1;
 }
 
-void TrilinearCells::cubic(const Vec3i& cell, const Vec3d& o, const Vec3d& d, double t, double c[4]) const {
+bool TrilinearCells::cubic(const Vec3i& cell, const Vec3d& o, const Vec3d& d, double t, double c[4]) const {
     // Corners v[zyx] (bit 0: x + 1, bit 1: y + 1, bit 2: z + 1) and the monomial coefficients.
     const std::size_t base = offset(cell), dy = std::size_t(size_.x), dz = dy * std::size_t(size_.y);
     const float* p = values_.data() + base;
+    if (p[0] == 0.0f && p[1] == 0.0f && p[dy] == 0.0f && p[dy + 1] == 0.0f && p[dz] == 0.0f && p[dz + 1] == 0.0f &&
+        p[dz + dy] == 0.0f && p[dz + dy + 1] == 0.0f)
+        return false;
     const double v0 = p[0], v1 = p[1], v2 = p[dy], v3 = p[dy + 1], v4 = p[dz], v5 = p[dz + 1], v6 = p[dz + dy],
                  v7 = p[dz + dy + 1];
     const double cx = v1 - v0, cy = v2 - v0, cz = v4 - v0;
@@ -59,6 +62,7 @@ void TrilinearCells::cubic(const Vec3i& cell, const Vec3d& o, const Vec3d& d, do
            cyz * (y * d.z + d.y * z) + cxyz * (d.x * y * z + x * d.y * z + x * y * d.z);
     c[2] = cxy * d.x * d.y + cxz * d.x * d.z + cyz * d.y * d.z + cxyz * (d.x * d.y * z + d.x * y * d.z + x * d.y * d.z);
     c[3] = cxyz * d.x * d.y * d.z;
+    return true;
 }
 
 }  // namespace fluence::volumes

@@ -47,7 +47,8 @@ public:
     // For the world ray origin + t direction within [tMin, tMax): calls visit(t0, t1, c) for each
     // dual cell the ray crosses inside the support, in increasing t, where the density over [t0, t1)
     // is c[0] + c[1] s + c[2] s^2 + c[3] s^3 with s = t - t0, until visit returns false (then walk
-    // returns false). A template, so the visitor is inlined into the DDA's loop.
+    // returns false). Cells whose eight corners are all 0 (empty space inside the support) are
+    // skipped: the density is 0 over them, and a piece that adds 0 to every sum changes none. A template, so the visitor is inlined into the DDA's loop.
     template <class Visit>
     bool walk(const Vec3f& origin, const Vec3f& direction, double tMin, double tMax, Visit&& visit) const;
 
@@ -58,8 +59,9 @@ private:
     }
     // The ray's stretch [t0, t1) inside the support box, or false.
     bool clip(const Vec3d& o, const Vec3d& d, double& t0, double& t1) const;
-    // The cubic of cell `cell` along the index-space ray o + t d, about t (WHY CUBIC).
-    void cubic(const Vec3i& cell, const Vec3d& o, const Vec3d& d, double t, double c[4]) const;
+    // The cubic of cell `cell` along the index-space ray o + t d, about t (WHY CUBIC); false (and c
+    // not written) where the cell's eight corners are all 0, so the density is 0 over all of it.
+    bool cubic(const Vec3i& cell, const Vec3d& o, const Vec3d& d, double t, double c[4]) const;
 
     Vec3i lo_{0}, size_{0};  // the dense box's first voxel and extent (the support's lattice)
     std::vector<float> values_;
@@ -88,8 +90,7 @@ bool TrilinearCells::walk(const Vec3f& origin, const Vec3f& direction, double tM
         const double t1 = std::min(tNext[axis], tEnd);
         if (t1 > t) {
             double c[4];
-            cubic(cell, o, d, t, c);
-            if (!visit(t, t1, c)) return false;
+            if (cubic(cell, o, d, t, c) && !visit(t, t1, c)) return false;
         }
         t = t1;
         cell[axis] += step[axis];

@@ -1,11 +1,13 @@
 // TrilinearCells and GridMedium's exact extinction: the cubic of each dual cell against the grid's
 // own trilinear samples (VdbGrid::sample, OpenVDB's BoxSampler) along rays through a tilted, scaled
 // grid; the exact transmittance against quadrature and against the mean of many ratio-tracking
-// estimates; which grids may offer it (no colour grid, no negative value).
+// estimates; which grids may offer it (no colour grid, no negative value); the walk's skipping of
+// empty cells; GridMedium's inlined sums against the pieces'.
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <optional>
+#include <utility>
 #include <vector>
 
 #include "core/random.h"
@@ -136,6 +138,72 @@ TEST_F(TrilinearCellsTest, ExactTransmittanceIsRatioTrackingsMean) {
         for (int c = 0; c < 3; ++c)
             EXPECT_NEAR(exact[c], estimate[c].mean(), 4.0 * estimate[c].standardError() + 1e-6) << "channel " << c;
     }
+}
+
+// Two blocks of voxels 4 apart along x: the dual cells between them have eight 0 corners, and the
+// walk skips them (they would add 0 to every sum), leaving a gap of exactly those cells where the
+// grid samples 0. Without the skip the walk covers the whole support and has no gap.
+TEST_F(TrilinearCellsTest, TheWalkSkipsCellsWhoseCornersAreAllZero) {
+    const std::string path = dir_.file("two_blocks.vdb");
+    auto density = makeGrid<openvdb::FloatGrid>("density", 1.0, {0.0, 0.0, 0.0});
+    auto d = density->getAccessor();
+    SampleStream r(7, 0, 0);
+    for (int i : {0, 1, 2, 3, 8, 9, 10, 11})
+        for (int j = 0; j < 4; ++j)
+            for (int k = 0; k < 4; ++k) d.setValue({i, j, k}, 0.5f + r.next());
+    test::writeGrids(path, {density});
+    const FloatVdbGrid grid(path, "density", 0, Matrix4::identity());
+    const TrilinearCells cells(grid);
+    ASSERT_TRUE(cells.available());
+    const media::MediumRay ray{Vec3f(-5.0f, 1.5f, 1.5f), Vec3f(1.0f, 0.0f, 0.0f), 30.0f};
+    std::vector<std::pair<double, double>> gaps;
+    double previousEnd = -1.0;
+    cells.walk(ray.origin, ray.direction, 0.0, double(ray.tMax), [&](double t0, double t1, const double*) {
+        if (previousEnd >= 0.0 && t0 > previousEnd) gaps.emplace_back(previousEnd, t0);
+        previousEnd = t1;
+        return true;
+    });
+    ASSERT_EQ(gaps.size(), 1u);
+    EXPECT_DOUBLE_EQ(gaps[0].first, 9.0);  // x = 4: the cells of lower corner 4, 5, 6 are empty
+    EXPECT_DOUBLE_EQ(gaps[0].second, 12.0);
+    for (double f : {0.01, 0.3, 0.7, 0.99}) EXPECT_EQ(grid.sample(ray.at(float(9.0 + 3.0 * f))), 0.0f);
+}
+
+// GridMedium's own exactOpticalDepth / exactDepthCrossing (the visitors inlined into its walk) give
+// bit for bit what Medium's defaults give through extinctionPieces() and a FunctionRef.
+TEST_F(TrilinearCellsTest, InlinedSumsAreThoseOfThePieces) {
+    write(false);
+    GridMediumParams p;
+    p.densityScale = 1.7f;
+    p.albedo = RGB(0.9f, 0.6f, 0.3f);
+    p.absorptionColor = RGB(0.0f, 0.5f, 0.8f);
+    const GridMedium medium(density(), p);
+    const media::Medium& base = medium;
+    int crossed = 0;
+    for (const media::MediumRay& ray : rays()) {
+        const media::OpticalDepth inlined = medium.exactOpticalDepth(ray.origin, ray.direction, 0.0f, ray.tMax);
+        const media::OpticalDepth pieces = base.Medium::exactOpticalDepth(ray.origin, ray.direction, 0.0f, ray.tMax);
+        EXPECT_EQ(inlined.pieces, pieces.pieces);
+        for (int c = 0; c < 3; ++c) EXPECT_EQ(inlined.tau[c], pieces.tau[c]);
+        for (int hero = 0; hero < 3; ++hero)
+            for (double target : {0.05, 0.5, 2.0}) {
+                const media::DepthCrossing a =
+                    medium.exactDepthCrossing(ray.origin, ray.direction, 0.0f, ray.tMax, hero, target);
+                const media::DepthCrossing b =
+                    base.Medium::exactDepthCrossing(ray.origin, ray.direction, 0.0f, ray.tMax, hero, target);
+                EXPECT_EQ(a.tStop, b.tStop);
+                EXPECT_EQ(a.pieces, b.pieces);
+                for (int c = 0; c < 3; ++c) {
+                    EXPECT_EQ(a.tau[c], b.tau[c]);
+                    EXPECT_EQ(a.sigmaT[c], b.sigmaT[c]);
+                }
+                if (a.tStop >= 0.0) {
+                    ++crossed;
+                    EXPECT_NEAR(a.tau[hero], target, 1e-9 * target);  // the crossing is where tau_h = target
+                }
+            }
+    }
+    EXPECT_GT(crossed, 20);
 }
 
 TEST_F(TrilinearCellsTest, OnlyGridsWhoseExtinctionIsTheReconstructionOfferIt) {

@@ -1,0 +1,71 @@
+// The per-piece arithmetic of regular tracking (media/exact_tracking.h): the running optical depth
+// over a ray's exact-extinction pieces (media/medium.h, EXACT EXTINCTION), and the search for the
+// piece where the hero channel's depth reaches a target. Two visitor classes, so that a medium that
+// walks its own pieces (volumes/grid_medium.cpp) can take them as a template argument and inline
+// them into its walk: no indirect call per piece (the walk visits ~8 cells per delta-tracking
+// lookup, and a FunctionRef per cell cost as much as the cell's cubic). Medium's default
+// exactOpticalDepth() / exactDepthCrossing() run the same visitors through extinctionPieces(), so
+// every medium computes the same sums in the same order, bit for bit.
+#pragma once
+
+#include <algorithm>
+#include <cmath>
+
+#include "media/medium.h"
+
+namespace fluence::media {
+
+// The cubic and its integral over [0, s] (OPTICAL DEPTH of media/exact_tracking.h), before the
+// channel's scale.
+inline double polynomialAt(const ExtinctionPiece& piece, double s) {
+    const double* k = piece.polynomial;
+    return ((k[3] * s + k[2]) * s + k[1]) * s + k[0];
+}
+inline double integralAt(const ExtinctionPiece& piece, double s) {
+    const double* k = piece.polynomial;
+    return (((k[3] * 0.25 * s + k[2] * (1.0 / 3.0)) * s + k[1] * 0.5) * s + k[0]) * s;
+}
+
+// The s in [0, length] where the piece's integral reaches `remaining` (0 < remaining <= its
+// integral `total` over the piece): Newton's method on the monotone integral, kept inside a
+// shrinking bracket by bisection, to double precision.
+double invertIntegral(const ExtinctionPiece& piece, double length, double total, double remaining);
+
+// Sums tau_c over every piece it is given (exactOpticalDepth()).
+struct OpticalDepthSum {
+    OpticalDepth depth;
+    bool operator()(const ExtinctionPiece& piece) {
+        ++depth.pieces;
+        depth.tau += piece.scale * integralAt(piece, piece.tMax - piece.tMin);
+        return true;
+    }
+};
+
+// Runs tau_c piece by piece until the hero's reaches `target`, then stops there (exactDepthCrossing()):
+// the crossing's t, its tau_c and sigmaT_c; tStop < 0 if the pieces end first.
+struct DepthCrossingSearch {
+    int hero = 0;
+    double target = 0.0;
+    DepthCrossing crossing;
+    bool operator()(const ExtinctionPiece& piece) {
+        ++crossing.pieces;
+        Vec3d& tau = crossing.tau;
+        const double length = piece.tMax - piece.tMin, scale = piece.scale[hero];
+        // An unbounded piece (an infinite homogeneous medium) is constant.
+        const double total = std::isfinite(length) ? integralAt(piece, length) : INFINITY;
+        if (!(scale > 0.0) || !(total > 0.0) || tau[hero] + scale * total < target) {
+            for (int c = 0; c < 3; ++c)  // an unbounded piece absorbs all of the channels it has
+                tau[c] += std::isfinite(length) ? piece.scale[c] * total : (piece.scale[c] > 0.0 ? INFINITY : 0.0);
+            return true;
+        }
+        const double remaining = (target - tau[hero]) / scale;
+        const double s =
+            std::isfinite(length) ? invertIntegral(piece, length, total, remaining) : remaining / piece.polynomial[0];
+        tau += piece.scale * integralAt(piece, s);
+        crossing.sigmaT = piece.scale * std::max(polynomialAt(piece, s), 0.0);
+        crossing.tStop = piece.tMin + s;
+        return false;
+    }
+};
+
+}  // namespace fluence::media
