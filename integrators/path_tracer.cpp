@@ -224,11 +224,11 @@ private:
             equiangularApplies(depth) ? mediumSegment(medium, ray_.origin, ray_.direction, tBoundary) : std::nullopt;
         if (segment) sampleEquiangular(medium, *segment);
         const media::MediumRay ray{ray_.origin, ray_.direction, tBoundary};
+        const bool exact = !guidedWalk_ && exactFlight(medium, depth, segment.has_value());
         media::FreeFlight flight = guidedWalk_ ? guidedWalk_->fly(walkStep_, walkLength_, tBoundary, *rng_)
-                                   : exactFlight(medium, depth, segment.has_value())
-                                       ? media::sampleExactFlight(medium, ray, hero_, rng_->next())
-                                       : freeFlight(medium, ray);
-        counters_.mediumCollisions += std::uint64_t(flight.collisions);
+                                   : exact     ? media::sampleExactFlight(medium, ray, hero_, rng_->next())
+                                               : freeFlight(medium, ray);
+        (exact ? counters_.exactCells : counters_.mediumCollisions) += std::uint64_t(flight.collisions);
         throughput_ *= flight.throughput;
         mis_.rU *= flight.pdfRatio;
         mis_.rL *= flight.lightPdfRatio;
@@ -365,7 +365,7 @@ private:
                                                      bool onlyStrategy) {
         if (exactShadow(medium, onlyStrategy)) {
             const media::TransmittanceEstimate exact = media::exactTransmittance(medium, ray);
-            counters_.mediumCollisions += std::uint64_t(exact.collisions);
+            counters_.exactCells += std::uint64_t(exact.collisions);
             return exact;
         }
         SampleStream tracking = rng_->independentStream();

@@ -36,7 +36,12 @@ struct OpticalDepthSum {
     OpticalDepth depth;
     bool operator()(const ExtinctionPiece& piece) {
         ++depth.pieces;
-        depth.tau += piece.scale * integralAt(piece, piece.tMax - piece.tMin);
+        const double length = piece.tMax - piece.tMin;
+        if (std::isfinite(length)) {
+            depth.tau += piece.scale * integralAt(piece, length);
+        } else {  // unbounded (a homogeneous medium's): constant, so all or nothing
+            for (int c = 0; c < 3; ++c) depth.tau[c] += piece.scale[c] * piece.polynomial[0] > 0.0 ? INFINITY : 0.0;
+        }
         return true;
     }
 };

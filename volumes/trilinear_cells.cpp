@@ -18,8 +18,8 @@ TrilinearCells::TrilinearCells(const FloatVdbGrid& grid) : worldToIndex_(grid.wo
     minValue_ = grid.background();
     grid.forEachValue([&](const IndexBox& box, const float& value) {
         const Vec3i a = vmax(box.lo, lo_), b = vmin(box.hi, hi);
-        if (a.x > b.x || a.y > b.y || a.z > b.z) return;  // outside what the support reads
-        minValue_ = std::min(minValue_, value);
+        if (a.x > b.x || a.y > b.y || a.z > b.z) return;                // outside what the support reads
+        if (std::isnan(value) || value < minValue_) minValue_ = value;  // a NaN stays: not >= 0, not walked
         for (int z = a.z; z <= b.z; ++z)
             for (int y = a.y; y <= b.y; ++y)
                 for (int x = a.x; x <= b.x; ++x)

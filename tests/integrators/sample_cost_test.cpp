@@ -11,6 +11,7 @@
 #include "integrators/renderer.h"
 #include "integrators/sample_cost.h"
 #include "tests/integrators/render_support.h"
+#include "tests/integrators/smoke_cube.h"
 #include "tests/support/scenes.h"
 #include "tests/support/subsurface_material.h"
 
@@ -45,7 +46,8 @@ double missedSamples(const Film& film) {
 void expectCostsAddUpToTheCounters(const test_support::RenderedFilm& r) {
     const RenderCounters& c = r.stats.counters;
     const double counted = double(c.rays()) + kMediumCollisionCost * double(c.mediumCollisions) +
-                           kWalkStepCost * double(c.walkSteps) - (1.0 - kMissedCameraRayCost) * missedSamples(r.film);
+                           kWalkStepCost * double(c.walkSteps) + kExactCellCost * double(c.exactCells) -
+                           (1.0 - kMissedCameraRayCost) * missedSamples(r.film);
     EXPECT_NEAR(filmCost(r.film), counted, 1e-12 * counted);
 }
 
@@ -81,6 +83,39 @@ TEST(Renderer, AClassicSubsurfaceWalkIsChargedByItsMediumLookupsOnly) {
     EXPECT_GT(translucent.stats.counters.mediumCollisions, 0u);
     EXPECT_EQ(translucent.stats.counters.walkSteps, 0u);
     expectCostsAddUpToTheCounters(translucent);
+}
+
+// Exact flights (--exact-flights, default 1: the camera ray's) walk grid cells, charged at
+// kExactCellCost each, not as medium lookups; the flights after the first stay tracked and are
+// charged by their lookups. At level 0 no cell is walked. (In a medium, a camera ray that leaves
+// without scattering may count as missing the scene, alpha below 1, so the missed samples are not
+// read from the alpha channel as above: the film's cost is the counters' sum less a whole number of
+// missed samples' saving, 1 - kMissedCameraRayCost each.)
+void expectCostsAddUpToTheCountersWithSomeMissed(const test_support::RenderedFilm& r) {
+    const RenderCounters& c = r.stats.counters;
+    const double counted = double(c.rays()) + kMediumCollisionCost * double(c.mediumCollisions) +
+                           kWalkStepCost * double(c.walkSteps) + kExactCellCost * double(c.exactCells);
+    const double missed = (counted - filmCost(r.film)) / (1.0 - kMissedCameraRayCost);
+    EXPECT_NEAR(missed, std::round(missed), 1e-6) << counted << " counted, " << filmCost(r.film) << " on the film";
+    EXPECT_GE(std::round(missed), 0.0);
+    EXPECT_LE(std::round(missed), double(c.camera));
+}
+
+TEST(Renderer, EachSamplesCostChargesTheCellsOfExactFlightsAsCells) {
+    test::TempDir dir("sample_cost_exact");
+    render::SceneDescription smoke = test::smokeUnderAWhiteSky(test::writeSmokeCube(dir), 2.0f, RGB(0.9f));
+    smoke.camera->transform = Matrix4::translate(Vec3d(1.0, 1.0, 5.0));  // looking down -z through the cube
+    const test_support::RenderedFilm exact = renderFourSamples(smoke);
+    EXPECT_GT(exact.stats.counters.exactCells, 0u);
+    EXPECT_GT(exact.stats.counters.mediumCollisions, 0u);
+    expectCostsAddUpToTheCountersWithSomeMissed(exact);
+    RenderSettings settings;
+    settings.samplesPerPixel = 4;
+    IntegratorSettings tracked;
+    tracked.parameters["exact-flights"] = 0;
+    const test_support::RenderedFilm tracking = test_support::renderFilm(PathTracer(tracked), smoke, kSize, settings);
+    EXPECT_EQ(tracking.stats.counters.exactCells, 0u);
+    expectCostsAddUpToTheCountersWithSomeMissed(tracking);
 }
 
 }  // namespace

@@ -168,6 +168,13 @@ TEST(ExactTracking, HomogeneousMediumIsOneConstantPiece) {
         ASSERT_EQ(f.event, FlightEvent::Scattered);
         EXPECT_NEAR(f.t, -std::log1p(-double(u)) / 1.1, 1e-5 * (1.0 + f.t));
     }
+    // Through all of an infinite medium nothing is transmitted (0, not the NaN of 0 x infinity), and
+    // through a medium that does not attenuate one channel, everything in it.
+    const TransmittanceEstimate all = exactTransmittance(medium, {Vec3f(0.0f), Vec3f(0.0f, 1.0f, 0.0f)});
+    EXPECT_EQ(all.throughput, RGB(0.0f));
+    HomogeneousMedium clearInGreen({RGB(0.2f, 0.0f, 0.1f), RGB(0.6f, 0.0f, 1.0f)});
+    EXPECT_EQ(exactTransmittance(clearInGreen, {Vec3f(0.0f), Vec3f(0.0f, 1.0f, 0.0f)}).throughput,
+              RGB(0.0f, 1.0f, 0.0f));
 }
 
 }  // namespace
