@@ -45,6 +45,14 @@ protected:
         test::writeGrids(path_, {density, colour});
     }
     FloatVdbGrid density() const { return FloatVdbGrid(path_, "density", 0, test::tiltedObjectToWorld()); }
+    // The written grid (without its colour grid) as a chromatic medium.
+    GridMedium chromaticMedium(float densityScale, const RGB& albedo, const RGB& absorptionColor) const {
+        GridMediumParams p;
+        p.densityScale = densityScale;
+        p.albedo = albedo;
+        p.absorptionColor = absorptionColor;
+        return GridMedium(density(), p);
+    }
 
     // Rays through the grid's box, from outside it, in assorted directions.
     std::vector<media::MediumRay> rays() const {
@@ -121,11 +129,7 @@ TEST_F(TrilinearCellsTest, ExactTransmittanceIsExpOfTheQuadratureDepth) {
 // accident, 36 comparisons).
 TEST_F(TrilinearCellsTest, ExactTransmittanceIsRatioTrackingsMean) {
     write(false);
-    GridMediumParams p;
-    p.densityScale = 2.0f;
-    p.albedo = RGB(0.8f, 0.7f, 0.2f);
-    p.absorptionColor = RGB(0.1f, 0.4f, 0.9f);
-    const GridMedium medium(density(), p);
+    const GridMedium medium = chromaticMedium(2.0f, RGB(0.8f, 0.7f, 0.2f), RGB(0.1f, 0.4f, 0.9f));
     for (const media::MediumRay& ray : rays()) {
         const RGB exact = media::exactTransmittance(medium, ray).throughput;
         test::MeanEstimate estimate[3];
@@ -173,11 +177,7 @@ TEST_F(TrilinearCellsTest, TheWalkSkipsCellsWhoseCornersAreAllZero) {
 // bit for bit what Medium's defaults give through extinctionPieces() and a FunctionRef.
 TEST_F(TrilinearCellsTest, InlinedSumsAreThoseOfThePieces) {
     write(false);
-    GridMediumParams p;
-    p.densityScale = 1.7f;
-    p.albedo = RGB(0.9f, 0.6f, 0.3f);
-    p.absorptionColor = RGB(0.0f, 0.5f, 0.8f);
-    const GridMedium medium(density(), p);
+    const GridMedium medium = chromaticMedium(1.7f, RGB(0.9f, 0.6f, 0.3f), RGB(0.0f, 0.5f, 0.8f));
     const media::Medium& base = medium;
     int crossed = 0;
     for (const media::MediumRay& ray : rays()) {
