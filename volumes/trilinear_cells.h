@@ -24,6 +24,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
+#include <limits>
 #include <vector>
 
 #include "core/vec.h"
@@ -65,7 +66,7 @@ private:
 
     Vec3i lo_{0}, size_{0};  // the dense box's first voxel and extent (the support's lattice)
     std::vector<float> values_;
-    float minValue_ = 0.0f;
+    float minValue_ = std::numeric_limits<float>::infinity();
     Matrix4 worldToIndex_ = Matrix4::identity();
 };
 
