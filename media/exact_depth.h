@@ -26,6 +26,22 @@ inline double integralAt(const ExtinctionPiece& piece, double s) {
     return (((k[3] * 0.25 * s + k[2] * (1.0 / 3.0)) * s + k[1] * 0.5) * s + k[0]) * s;
 }
 
+// The integral over all of the piece, before the channel's scale: infinite for an unbounded piece
+// (an infinite homogeneous medium's, constant).
+inline double wholePieceIntegral(const ExtinctionPiece& piece) {
+    const double length = piece.tMax - piece.tMin;
+    return std::isfinite(length) ? integralAt(piece, length) : INFINITY;
+}
+
+// tau_c over all of the piece, given `total`, its wholePieceIntegral: an unbounded piece is
+// infinitely deep in every channel it attenuates and transparent in the others.
+inline Vec3d wholePieceDepth(const ExtinctionPiece& piece, double total) {
+    if (std::isfinite(total)) return piece.scale * total;
+    Vec3d tau;
+    for (int c = 0; c < 3; ++c) tau[c] = piece.scale[c] * piece.polynomial[0] > 0.0 ? INFINITY : 0.0;
+    return tau;
+}
+
 // The s in [0, length] where the piece's integral reaches `remaining` (0 < remaining <= its
 // integral `total` over the piece): Newton's method on the monotone integral, kept inside a
 // shrinking bracket by bisection, to double precision.
@@ -36,12 +52,7 @@ struct OpticalDepthSum {
     OpticalDepth depth;
     bool operator()(const ExtinctionPiece& piece) {
         ++depth.pieces;
-        const double length = piece.tMax - piece.tMin;
-        if (std::isfinite(length)) {
-            depth.tau += piece.scale * integralAt(piece, length);
-        } else {  // unbounded (a homogeneous medium's): constant, so all or nothing
-            for (int c = 0; c < 3; ++c) depth.tau[c] += piece.scale[c] * piece.polynomial[0] > 0.0 ? INFINITY : 0.0;
-        }
+        depth.tau += wholePieceDepth(piece, wholePieceIntegral(piece));
         return true;
     }
 };
@@ -56,11 +67,9 @@ struct DepthCrossingSearch {
         ++crossing.pieces;
         Vec3d& tau = crossing.tau;
         const double length = piece.tMax - piece.tMin, scale = piece.scale[hero];
-        // An unbounded piece (an infinite homogeneous medium) is constant.
-        const double total = std::isfinite(length) ? integralAt(piece, length) : INFINITY;
+        const double total = wholePieceIntegral(piece);
         if (!(scale > 0.0) || !(total > 0.0) || tau[hero] + scale * total < target) {
-            for (int c = 0; c < 3; ++c)  // an unbounded piece absorbs all of the channels it has
-                tau[c] += std::isfinite(length) ? piece.scale[c] * total : (piece.scale[c] > 0.0 ? INFINITY : 0.0);
+            tau += wholePieceDepth(piece, total);
             return true;
         }
         const double remaining = (target - tau[hero]) / scale;
