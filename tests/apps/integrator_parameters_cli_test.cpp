@@ -38,6 +38,15 @@ protected:
                             << attributes << "\n    }\n}\n";
         return path.string();
     }
+    // Renders `scene` with `args`, which must succeed, and sets `count` to what `read` finds in its
+    // summary, which must be a count (> 0). Call through ASSERT_NO_FATAL_FAILURE.
+    void renderCounting(const std::string& scene, const std::string& args, long (*read)(const std::string&),
+                        long& count) {
+        const test::RunResult r = render(scene, args);
+        ASSERT_EQ(r.exitCode, 0) << r.err;
+        count = read(r.out);
+        EXPECT_GT(count, 0) << r.out;
+    }
 };
 
 // The count the render summary's line matching `line` (one group, the count) reports, -1 when there
@@ -50,14 +59,11 @@ long patches(const std::string& out) { return summaryCount(out, "radiosity: (\\d
 long walkSteps(const std::string& out) { return summaryCount(out, "interiors +(\\d+) guided random-walk steps"); }
 
 TEST_F(IntegratorParametersCli, RadiosityPatchSizeSetsThePatches) {
-    const test::RunResult byDefault = render(kCornellBox, "--integrator radiosity");
-    ASSERT_EQ(byDefault.exitCode, 0) << byDefault.err;
-    const test::RunResult coarse = render(kCornellBox, "--integrator radiosity --radiosity-patch-size 1000000");
-    ASSERT_EQ(coarse.exitCode, 0) << coarse.err;
-    EXPECT_GT(patches(byDefault.out), 0) << byDefault.out;
-    EXPECT_GT(patches(coarse.out), 0) << coarse.out;
-    EXPECT_LT(patches(coarse.out), patches(byDefault.out))
-        << "one patch per triangle when no edge is longer than the size";
+    long byDefault = 0, coarse = 0;
+    ASSERT_NO_FATAL_FAILURE(renderCounting(kCornellBox, "--integrator radiosity", patches, byDefault));
+    ASSERT_NO_FATAL_FAILURE(
+        renderCounting(kCornellBox, "--integrator radiosity --radiosity-patch-size 1000000", patches, coarse));
+    EXPECT_LT(coarse, byDefault) << "one patch per triangle when no edge is longer than the size";
 }
 
 TEST_F(IntegratorParametersCli, SppmPhotonsAndRadiusReachTheIntegrator) {
@@ -70,12 +76,10 @@ TEST_F(IntegratorParametersCli, SppmPhotonsAndRadiusReachTheIntegrator) {
 TEST_F(IntegratorParametersCli, SubsurfaceWalksReachThePathTracer) {
     // Three walks from each entry the camera sees take more than twice the steps of one (measured
     // 560 and 217: the entries of later bounces are not split).
-    const test::RunResult one = render(kSubsurface, "--subsurface-walks 1");
-    ASSERT_EQ(one.exitCode, 0) << one.err;
-    const test::RunResult three = render(kSubsurface, "--subsurface-walks 3");
-    ASSERT_EQ(three.exitCode, 0) << three.err;
-    EXPECT_GT(walkSteps(one.out), 0) << one.out;
-    EXPECT_GT(walkSteps(three.out), 2 * walkSteps(one.out)) << three.out;
+    long one = 0, three = 0;
+    ASSERT_NO_FATAL_FAILURE(renderCounting(kSubsurface, "--subsurface-walks 1", walkSteps, one));
+    ASSERT_NO_FATAL_FAILURE(renderCounting(kSubsurface, "--subsurface-walks 3", walkSteps, three));
+    EXPECT_GT(three, 2 * one);
 }
 
 TEST_F(IntegratorParametersCli, RenderSettingsAttributesReachTheIntegratorAndTheOptionWins) {
