@@ -291,16 +291,19 @@ private:
     // with it (a camera ray's emitter is unique), and the vertices after it are tracked as before.
     bool exactFlight(const media::Medium& medium, int depth, bool equiangular) const {
         if (!kMedia || exactFlights_ == 0 || guidedWalk_ || inside_.depth() > 0 || equiangular) return false;
-        if (&medium != scene_.medium() || !medium.hasExactExtinction()) return false;
-        return depth == 0 || exactEverywhere_;
+        return exactSceneVolume(medium) && (depth == 0 || exactEverywhere_);
+    }
+
+    // Whether `medium` is the scene's volume and its extinction is exact (exactFlight, exactShadow).
+    bool exactSceneVolume(const media::Medium& medium) const {
+        return &medium == scene_.medium() && medium.hasExactExtinction();
     }
 
     // Whether the shadow ray through `medium` takes exact transmittance (EXACT FLIGHTS): where the
     // flights through it are exact and phase or BSDF sampling competes with it, or, at level 3, to
     // delta lights too.
     bool exactShadow(const media::Medium& medium, bool onlyStrategy) const {
-        return kMedia && exactEverywhere_ && (!onlyStrategy || exactFlights_ >= 3) && &medium == scene_.medium() &&
-               medium.hasExactExtinction();
+        return kMedia && exactEverywhere_ && (!onlyStrategy || exactFlights_ >= 3) && exactSceneVolume(medium);
     }
 
     // Whether the equiangular strategy samples the stretch of the ray through the medium the path
