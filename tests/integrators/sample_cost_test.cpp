@@ -1,7 +1,8 @@
 // Each sample's cost (integrators/sample_cost.h), as the render loop adds it to its pixel in the
-// film: over the image, the costs add up to what the render counted (its rays, its medium lookups
-// and its guided random-walk steps, at their weights); a scene without media draws no medium lookups and
-// takes no walk steps, and a subsurface interior's random walks do both and make its pixels cost more.
+// film: over the image, the costs add up to what the render counted (its rays by kind, its medium
+// lookups and its guided random-walk steps, at their weights); a scene without media draws no medium
+// lookups and takes no walk steps, and a subsurface interior's random walks do both and make its
+// pixels cost more. A bounce ray costs more than a shadow ray.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -33,6 +34,12 @@ test_support::RenderedFilm renderFourSamples(const render::SceneDescription& des
     return test_support::renderFilm(PathTracer(IntegratorSettings{}), desc, kSize, settings);
 }
 
+// The film's cost less the counters' at their weights: each missed sample is charged
+// kMissedCameraRayCost instead of its camera ray's kCameraRayCost.
+double missedSamplesCharge(const test_support::RenderedFilm& r) {
+    return filmCost(r.film) - countedCost(r.stats.counters);
+}
+
 // The samples whose camera ray hit nothing: in these scenes (no media) each traced that ray only.
 double missedSamples(const Film& film) {
     const Image image = film.resolve();
@@ -44,11 +51,35 @@ double missedSamples(const Film& film) {
 }
 
 void expectCostsAddUpToTheCounters(const test_support::RenderedFilm& r) {
-    const RenderCounters& c = r.stats.counters;
-    const double counted = double(c.rays()) + kMediumCollisionCost * double(c.mediumCollisions) +
-                           kWalkStepCost * double(c.walkSteps) + kExactCellCost * double(c.exactCells) -
-                           (1.0 - kMissedCameraRayCost) * missedSamples(r.film);
-    EXPECT_NEAR(filmCost(r.film), counted, 1e-12 * counted);
+    const double counted = countedCost(r.stats.counters);
+    EXPECT_NEAR(missedSamplesCharge(r), (kMissedCameraRayCost - kCameraRayCost) * missedSamples(r.film),
+                1e-12 * counted);
+}
+
+// The ray kinds cost what they do (sample_cost.h's fit): a bounce ray leads to a shading point, a
+// shadow ray only tests occlusion, so two samples that trace as many rays cost differently when
+// their kinds differ; weighting every ray 1 charged the Cornell box's corners (more bounces) less
+// than their CPU.
+TEST(SampleCost, ABounceRayCostsMoreThanAShadowRay) {
+    const RenderCounters before;
+    RenderCounters bouncing = before, shadowing = before;
+    bouncing.camera = shadowing.camera = 1;
+    bouncing.bounce = 3;
+    shadowing.shadow = 3;
+    EXPECT_EQ(bouncing.rays(), shadowing.rays());
+    const double bounce = sampleCost(before, bouncing, true), shadow = sampleCost(before, shadowing, true);
+    EXPECT_DOUBLE_EQ(bounce - shadow, 3.0 * (kBounceRayCost - kShadowRayCost));
+    EXPECT_GT(bounce, 2.0 * shadow);
+}
+
+// A sample that is its camera ray, meeting nothing, is charged kMissedCameraRayCost; the same ray
+// hitting a surface that ends the path (nothing further traced) costs a camera ray.
+TEST(SampleCost, AMissedSampleIsChargedAsMissed) {
+    const RenderCounters before;
+    RenderCounters one = before;
+    one.camera = 1;
+    EXPECT_EQ(sampleCost(before, one, false), kMissedCameraRayCost);
+    EXPECT_EQ(sampleCost(before, one, true), kCameraRayCost);
 }
 
 TEST(Renderer, EachSamplesCostIsItsRaysOnSurfaces) {
@@ -89,16 +120,14 @@ TEST(Renderer, AClassicSubsurfaceWalkIsChargedByItsMediumLookupsOnly) {
 // kExactCellCost each, not as medium lookups; the flights after the first stay tracked and are
 // charged by their lookups. At level 0 no cell is walked. (In a medium, a camera ray that leaves
 // without scattering may count as missing the scene, alpha below 1, so the missed samples are not
-// read from the alpha channel as above: the film's cost is the counters' sum less a whole number of
-// missed samples' saving, 1 - kMissedCameraRayCost each.)
+// read from the alpha channel as above: the film's cost is the counters' sum plus a whole number of
+// missed samples' difference, kMissedCameraRayCost - kCameraRayCost each.)
 void expectCostsAddUpToTheCountersWithSomeMissed(const test_support::RenderedFilm& r) {
-    const RenderCounters& c = r.stats.counters;
-    const double counted = double(c.rays()) + kMediumCollisionCost * double(c.mediumCollisions) +
-                           kWalkStepCost * double(c.walkSteps) + kExactCellCost * double(c.exactCells);
-    const double missed = (counted - filmCost(r.film)) / (1.0 - kMissedCameraRayCost);
-    EXPECT_NEAR(missed, std::round(missed), 1e-6) << counted << " counted, " << filmCost(r.film) << " on the film";
+    const double missed = missedSamplesCharge(r) / (kMissedCameraRayCost - kCameraRayCost);
+    EXPECT_NEAR(missed, std::round(missed), 1e-6)
+        << countedCost(r.stats.counters) << " counted, " << filmCost(r.film) << " on the film";
     EXPECT_GE(std::round(missed), 0.0);
-    EXPECT_LE(std::round(missed), double(c.camera));
+    EXPECT_LE(std::round(missed), double(r.stats.counters.camera));
 }
 
 TEST(Renderer, EachSamplesCostChargesTheCellsOfExactFlightsAsCells) {
