@@ -3,6 +3,7 @@
 
   bench/adaptive_compare.py FLUENCE OUT_DIR [--res N] [--ref-spp N] [--spp N ...] [--uniform-spp N ...] [--scenes A,B]
                             [--sampler NAME] [--min-spp N] [--repeat N] [--seed S] [--peer-scenes DIR]
+                            [--baseline FLUENCE]
 
 For each scene: a reference made of two uniform renders of REF_SPP / 2 samples (seeds 1 and 2,
 kept in OUT_DIR if present), whose own noise is subtracted from every error (relMSE, eps 0.01, as
@@ -18,6 +19,9 @@ two, marked '*', outside them), and the ratio adaptive / uniform printed: below 
 equal time. Writes OUT_DIR/series.csv (every render) and OUT_DIR/equal_time.csv (the table).
 PEER_SCENES (default bench/peer_scenes) is where cycles_smoke.usda and cycles_sss.usda are read from: a
 copy whose VDB path is absolute lets a checkout that is not beside ../shared (a worktree) render them.
+With --baseline, another binary's adaptive renders (`--mean-spp N` with the same options: another
+budget rule or cost model) are rendered too, interleaved with the others, and compared the same way
+(mode "baseline" in series.csv, baseline_ratio in the table).
 Needs oiiotool and numpy (the images are read as FITS through oiiotool).
 """
 import argparse
@@ -117,8 +121,12 @@ def main():
     p.add_argument("--seed", type=int, default=0, help="the rungs' seed (the references take 1 and 2)")
     p.add_argument("--peer-scenes", default=str(ROOT / "bench/peer_scenes"),
                    help="the folder of cycles_smoke.usda and cycles_sss.usda")
+    p.add_argument("--baseline", default=None, help="another fluence whose adaptive renders are compared too")
     args = p.parse_args()
     binary = str(pathlib.Path(args.fluence).resolve())
+    binaries = {"uniform": binary, "adaptive": binary}
+    if args.baseline:
+        binaries["baseline"] = str(pathlib.Path(args.baseline).resolve())
     out = pathlib.Path(args.out)
     out.mkdir(parents=True, exist_ok=True)
     metrics.read_rgb = read_rgb_through_oiiotool
@@ -134,15 +142,17 @@ def main():
         rows = []
         rungs = sorted(set(args.spp) | set(args.uniform_spp or args.spp))
         for n in rungs:
-            modes = [m for m, spps in (("uniform", args.uniform_spp or args.spp), ("adaptive", args.spp)) if n in spps]
+            modes = [m for m, spps in (("uniform", args.uniform_spp or args.spp), ("adaptive", args.spp),
+                                       ("baseline", args.spp if args.baseline else [])) if n in spps]
             images = {mode: out / ("%s_%s_%d.exr" % (scene, mode, n)) for mode in modes}
             seeded = ["--seed", str(args.seed)]
             options = {"uniform": ["--spp", str(n)] + seeded,
                        "adaptive": ["--mean-spp", str(n), "--min-spp", str(min(args.min_spp, n))] + seeded}
+            options["baseline"] = options["adaptive"]
             cpus = {mode: [] for mode in modes}
             for _ in range(args.repeat):  # the same image each time: the least CPU time is the least disturbed
                 for mode in modes:
-                    cpus[mode].append(render(binary, scene, args, images[mode], options[mode]))
+                    cpus[mode].append(render(binaries[mode], scene, args, images[mode], options[mode]))
             for mode in modes:
                 e = reference.error(images[mode])
                 spp, cost_spp = adaptive_spp(images[mode])
@@ -154,11 +164,17 @@ def main():
                 rows.append(row)
         series += rows
         uniform = [r for r in rows if r["mode"] == "uniform"]
+        baseline = {r["spp"]: r for r in rows if r["mode"] == "baseline"}
         for a in (r for r in rows if r["mode"] == "adaptive"):
             u, outside = uniform_at(a["cpu_s"], uniform)
-            table.append({"scene": scene, "mean_spp": a["spp"], "cpu_s": a["cpu_s"], "adaptive_relmse": a["relmse"],
-                          "uniform_relmse_same_cpu": u, "ratio": a["relmse"] / u,
-                          "extrapolated": "*" if outside else ""})
+            row = {"scene": scene, "mean_spp": a["spp"], "cpu_s": a["cpu_s"], "adaptive_relmse": a["relmse"],
+                   "uniform_relmse_same_cpu": u, "ratio": a["relmse"] / u, "extrapolated": "*" if outside else ""}
+            if a["spp"] in baseline:
+                b = baseline[a["spp"]]
+                bu, b_outside = uniform_at(b["cpu_s"], uniform)
+                row.update({"baseline_cpu_s": b["cpu_s"], "baseline_relmse": b["relmse"],
+                            "baseline_ratio": b["relmse"] / bu, "baseline_extrapolated": "*" if b_outside else ""})
+            table.append(row)
     for name, rows in (("series.csv", series), ("equal_time.csv", table)):
         with open(out / name, "w", newline="") as f:
             w = csv.DictWriter(f, fieldnames=list(rows[0].keys()))
@@ -167,7 +183,8 @@ def main():
     print("\nscene    mean spp  CPU s   adaptive relMSE  uniform relMSE (same CPU)  ratio")
     for t in table:
         print("%-8s %8d %7.1f %16.5g %16.5g%-1s %18.3f" % (t["scene"], t["mean_spp"], t["cpu_s"], t["adaptive_relmse"],
-                                                          t["uniform_relmse_same_cpu"], t["extrapolated"], t["ratio"]))
+                                                          t["uniform_relmse_same_cpu"], t["extrapolated"], t["ratio"]) +
+              ("   baseline %.3f%s" % (t["baseline_ratio"], t["baseline_extrapolated"]) if "baseline_ratio" in t else ""))
 
 
 if __name__ == "__main__":
