@@ -45,10 +45,11 @@ int blockEnd(int coordinate, int offset, int size) {
 }
 
 // The mean of `own` over each pixel's neighbourhood (see the header): its neighbours within
-// `radius` (kBlockSize - 1: its whole block) and within its block that have at least `least`
-// samples, the pixel itself left out; its own value when no neighbour counts.
+// kNeighbourhoodRadius and within its block that have at least `least` samples, the pixel itself
+// left out; its own value when no neighbour counts.
 std::vector<double> neighbourhoodMeans(const Film& film, int windowX, int windowY, const std::vector<double>& own,
-                                       std::uint32_t least, int radius = AdaptiveSampling::kNeighbourhoodRadius) {
+                                       std::uint32_t least) {
+    constexpr int radius = AdaptiveSampling::kNeighbourhoodRadius;
     const int width = film.width(), height = film.height();
     std::vector<double> filtered(own.size(), 0.0);
     for (int y = 0; y < height; ++y) {
@@ -70,6 +71,35 @@ std::vector<double> neighbourhoodMeans(const Film& film, int windowX, int window
         }
     }
     return filtered;
+}
+
+// The mean of `own` over each pixel's whole block (see the header), the pixel itself left out, over
+// the pixels with at least `least` samples; its own value when no other counts. Each block is summed
+// once and the pixel's own value taken back out (a read per pixel, not the block's 63).
+std::vector<double> blockMeans(const Film& film, int windowX, int windowY, const std::vector<double>& own,
+                               std::uint32_t least) {
+    const int width = film.width(), height = film.height();
+    std::vector<double> means(own.size(), 0.0);
+    for (int by = 0; by < height; by = blockEnd(by, windowY, height))
+        for (int bx = 0; bx < width; bx = blockEnd(bx, windowX, width)) {
+            const int x1 = blockEnd(bx, windowX, width), y1 = blockEnd(by, windowY, height);
+            double sum = 0.0;
+            int counted = 0;
+            for (int v = by; v < y1; ++v)
+                for (int u = bx; u < x1; ++u)
+                    if (film.samples(u, v) >= least) {
+                        sum += own[std::size_t(v) * width + u];
+                        ++counted;
+                    }
+            for (int v = by; v < y1; ++v)
+                for (int u = bx; u < x1; ++u) {
+                    const std::size_t i = std::size_t(v) * width + u;
+                    const bool counts = film.samples(u, v) >= least;
+                    const int others = counted - (counts ? 1 : 0);
+                    means[i] = others > 0 ? (sum - (counts ? own[i] : 0.0)) / others : own[i];
+                }
+        }
+    return means;
 }
 
 // An active pixel of the budget rule: its deviation sqrt(a / c) and its cost per sample c.
@@ -119,8 +149,7 @@ std::vector<double> AdaptiveSampling::neighbourhoodVariances(const Film& film, i
 std::vector<double> AdaptiveSampling::budgetVariances(const Film& film, int windowX, int windowY) {
     const std::vector<double> own = pixelVariances(film);
     std::vector<double> variances = neighbourhoodMeans(film, windowX, windowY, own, kMinSamplesForHalves);
-    const std::vector<double> block =
-        neighbourhoodMeans(film, windowX, windowY, own, kMinSamplesForHalves, kBlockSize - 1);
+    const std::vector<double> block = blockMeans(film, windowX, windowY, own, kMinSamplesForHalves);
     for (std::size_t i = 0; i < variances.size(); ++i) variances[i] = std::max(variances[i], block[i]);
     return variances;
 }
