@@ -44,30 +44,56 @@ int blockEnd(int coordinate, int offset, int size) {
     return std::min(size, image - image % AdaptiveSampling::kBlockSize + AdaptiveSampling::kBlockSize - offset);
 }
 
+// Per pixel of the film, row by row: whether it has at least `least` samples (counts in its
+// neighbours' means).
+std::vector<char> countingPixels(const Film& film, std::uint32_t least) {
+    std::vector<char> counts(std::size_t(film.width()) * std::size_t(film.height()));
+    for (int y = 0; y < film.height(); ++y)
+        for (int x = 0; x < film.width(); ++x) counts[std::size_t(y) * film.width() + x] = film.samples(x, y) >= least;
+    return counts;
+}
+
+// The mean over the others of a `sum` of `counted` values that includes pixel i's own when it counts.
+double meanOfOthers(double sum, int counted, std::size_t i, const std::vector<double>& own,
+                    const std::vector<char>& counts) {
+    const int others = counted - (counts[i] ? 1 : 0);
+    return others > 0 ? (sum - (counts[i] ? own[i] : 0.0)) / others : own[i];
+}
+
 // The mean of `own` over each pixel's neighbourhood (see the header): its neighbours within
 // kNeighbourhoodRadius and within its block that have at least `least` samples, the pixel itself
-// left out; its own value when no neighbour counts.
+// left out; its own value when no neighbour counts. Summed by rows, then the rows' sums by columns
+// (2 (2 r + 1) reads a pixel, not (2 r + 1)^2).
 std::vector<double> neighbourhoodMeans(const Film& film, int windowX, int windowY, const std::vector<double>& own,
                                        std::uint32_t least) {
     constexpr int radius = AdaptiveSampling::kNeighbourhoodRadius;
     const int width = film.width(), height = film.height();
+    const std::vector<char> counts = countingPixels(film, least);
+    std::vector<double> rowSums(own.size(), 0.0);
+    std::vector<int> rowCounts(own.size(), 0);
+    for (int y = 0; y < height; ++y)
+        for (int x = 0; x < width; ++x) {
+            const std::size_t i = std::size_t(y) * width + x, row = std::size_t(y) * width;
+            const int x1 = std::min(x + radius + 1, blockEnd(x, windowX, width));
+            for (int u = std::max(x - radius, blockStart(x, windowX)); u < x1; ++u)
+                if (counts[row + u]) {
+                    rowSums[i] += own[row + u];
+                    ++rowCounts[i];
+                }
+        }
     std::vector<double> filtered(own.size(), 0.0);
     for (int y = 0; y < height; ++y) {
         const int y0 = std::max(y - radius, blockStart(y, windowY)),
                   y1 = std::min(y + radius + 1, blockEnd(y, windowY, height));
         for (int x = 0; x < width; ++x) {
-            const int x0 = std::max(x - radius, blockStart(x, windowX)),
-                      x1 = std::min(x + radius + 1, blockEnd(x, windowX, width));
             double sum = 0.0;
             int counted = 0;
-            for (int v = y0; v < y1; ++v)
-                for (int u = x0; u < x1; ++u)
-                    if ((u != x || v != y) && film.samples(u, v) >= least) {
-                        sum += own[std::size_t(v) * width + u];
-                        ++counted;
-                    }
+            for (int v = y0; v < y1; ++v) {
+                sum += rowSums[std::size_t(v) * width + x];
+                counted += rowCounts[std::size_t(v) * width + x];
+            }
             const std::size_t i = std::size_t(y) * width + x;
-            filtered[i] = counted > 0 ? sum / counted : own[i];
+            filtered[i] = meanOfOthers(sum, counted, i, own, counts);
         }
     }
     return filtered;
@@ -79,6 +105,7 @@ std::vector<double> neighbourhoodMeans(const Film& film, int windowX, int window
 std::vector<double> blockMeans(const Film& film, int windowX, int windowY, const std::vector<double>& own,
                                std::uint32_t least) {
     const int width = film.width(), height = film.height();
+    const std::vector<char> counts = countingPixels(film, least);
     std::vector<double> means(own.size(), 0.0);
     for (int by = 0; by < height; by = blockEnd(by, windowY, height))
         for (int bx = 0; bx < width; bx = blockEnd(bx, windowX, width)) {
@@ -87,16 +114,14 @@ std::vector<double> blockMeans(const Film& film, int windowX, int windowY, const
             int counted = 0;
             for (int v = by; v < y1; ++v)
                 for (int u = bx; u < x1; ++u)
-                    if (film.samples(u, v) >= least) {
-                        sum += own[std::size_t(v) * width + u];
+                    if (const std::size_t i = std::size_t(v) * width + u; counts[i]) {
+                        sum += own[i];
                         ++counted;
                     }
             for (int v = by; v < y1; ++v)
                 for (int u = bx; u < x1; ++u) {
                     const std::size_t i = std::size_t(v) * width + u;
-                    const bool counts = film.samples(u, v) >= least;
-                    const int others = counted - (counts ? 1 : 0);
-                    means[i] = others > 0 ? (sum - (counts ? own[i] : 0.0)) / others : own[i];
+                    means[i] = meanOfOthers(sum, counted, i, own, counts);
                 }
         }
     return means;
