@@ -36,7 +36,8 @@ cannot be told apart), then each other scene's own kinds with those fixed. A mis
 is the geometric mean over the scenes whose tiles include missed samples only. Printed: the
 seconds per item and the weights in shadow rays (integrators/sample_cost.h's unit), and per scene
 the tiles' CPU over the prediction of a free fit of its kinds, of the staged fit and of
-sample_cost.h's weights (rms: how far one set of weights fits).
+sample_cost.h's weights, the last two over their mean in the scene (adaptive sampling compares a
+scene's pixels with each other only); rms: how far one set of weights fits.
 """
 import argparse
 import csv
@@ -213,7 +214,7 @@ def calibrate_tiles(rows):
         _, free = fit_tiles(tiles[s], has[s])
         staged = seconds / np.array([sum(weights.get(k, 0.0) * t[1][k] for k in KINDS) for t in tiles[s]])
         model = seconds / np.array([sum(header[k] * t[1][k] for k in KINDS) for t in tiles[s]])
-        for name, ratio in (("free", free), ("staged", staged), ("header", model / np.mean(model))):
+        for name, ratio in (("free", free), ("staged", staged / np.mean(staged)), ("header", model / np.mean(model))):
             print("%-8s %-7s %s (rms %.3f)" % (s, name, " ".join("%.2f" % r for r in ratio), rms(ratio)))
 
 

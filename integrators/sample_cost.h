@@ -20,18 +20,19 @@
 // tiles see the kinds in different proportions (the Cornell box's corners bounce more, the smoke's
 // and the subsurface scene's background tiles are all missed samples), which whole-scene fits
 // cannot separate. Fitted by non-negative least squares on each tile's relative error: the ray
-// kinds on the Cornell box (rays only): 46 ns a camera sample, 304 ns a bounce ray, 47 ns a
-// shadow ray (tiles within 6%, rms 3.6%, against 4.7% with every ray weighted 1); then, with
-// those fixed, the smoke's collisions 103 ns and cells 70 ns (rms 5.7%, against 52% before: its
-// volume tiles were charged 2-3x what they took against its background's) and the subsurface
-// scene's walk steps 229 ns (rms 4.8%, against 26%). In the smoke and the subsurface scene
-// bounce and shadow rays come together, so they cannot fix the ray weights themselves.
-// A missed sample took 92 ns in the subsurface scene (black background) and 175 ns in the smoke
-// (its dome light is evaluated): kMissedCameraRayCost is their geometric mean, off by 1.4x either
-// way on the background alone (a few % of either budget). Before (every ray 1, collisions 1.3,
-// steps 3.2 and cells 0.4 rays, a missed sample 0.43) the Cornell box's adaptive renders took
-// 1.01-1.08x the CPU of the uniform render of the same counted cost: the pixels adaptive
-// favours bounce more.
+// kinds on the Cornell box (rays only): 46 ns a camera sample, 304 ns a bounce ray, 47 ns a shadow
+// ray; then, with those fixed, the smoke's collisions 103 ns and cells 70 ns and the subsurface
+// scene's walk steps 225 ns (4.8 shadow rays; 4.9 is from a first pass of the fit, 229 ns, and
+// was the one measured: within the fit's spread) (in the smoke and the subsurface scene bounce and shadow rays come
+// together, so they cannot fix the ray weights themselves). A missed sample took 92 ns in the
+// subsurface scene and 175 ns in the smoke (not its dome light's doing: a background tile took
+// 0.17 s of CPU with the dome as without), which no counter tells apart: kMissedCameraRayCost is
+// their geometric mean, 1.4x too dear in the one and too cheap in the other. The tiles' CPU over
+// these weights' prediction (each scene's over their mean: allocation compares a scene's pixels
+// with each other only), rms: Cornell box 3.7% (4.7% with every ray 1, collisions 1.3, walk steps
+// 3.2, cells 0.4, a missed sample 0.43: the weights before), smoke 16% (52%: its volume tiles were
+// charged 2-3x what they took against its background's), subsurface scene 13% (26%); most of what
+// is left is the missed samples' two costs.
 // An integrator counts what it counts (RenderCounters): one that counts nothing costs 0 per
 // sample, which adaptive sampling reads as every sample alike.
 #pragma once
