@@ -22,9 +22,10 @@
 // cannot separate. Fitted by non-negative least squares on each tile's relative error: the ray
 // kinds on the Cornell box (rays only): 46 ns a camera sample, 304 ns a bounce ray, 47 ns a shadow
 // ray; then, with those fixed, the smoke's collisions 103 ns and cells 70 ns and the subsurface
-// scene's walk steps 225 ns (4.8 shadow rays; 4.9 is from a first pass of the fit, 229 ns, and
-// was the one measured: within the fit's spread) (in the smoke and the subsurface scene bounce and shadow rays come
-// together, so they cannot fix the ray weights themselves). A missed sample took 92 ns in the
+// scene's walk steps 225 ns (4.8 shadow rays; the 4.9 below is a first pass of the fit's, 229 ns,
+// and is what was measured with: within the fit's spread). In the smoke and the subsurface scene
+// bounce and shadow rays come together, so they cannot fix the ray weights themselves. A missed
+// sample took 92 ns in the
 // subsurface scene and 175 ns in the smoke (not its dome light's doing: a background tile took
 // 0.17 s of CPU with the dome as without), which no counter tells apart: kMissedCameraRayCost is
 // their geometric mean, 1.4x too dear in the one and too cheap in the other. The tiles' CPU over
