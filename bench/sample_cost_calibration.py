@@ -2,7 +2,7 @@
 """The weights of integrators/sample_cost.h, from the CPU time of uniform renders.
 
   bench/sample_cost_calibration.py FLUENCE OUT_DIR [--res N] [--spp LO HI] [--scenes A,B] [--repeat N]
-                                   [--peer-scenes DIR] [--tiles K [--tile-spp N]]
+                                   [--peer-scenes DIR] [--tiles K [--tile-spp N] [--refit]]
 
 Renders each scene of bench/adaptive_compare.py uniformly at LO and HI spp (default 16 and 144),
 the scenes and the two counts alternating, REPEAT times (default 2); the least CPU time (user +
@@ -16,8 +16,8 @@ as well (dT = a (rays + w steps) + b collisions + c samples).
 
 The walk steps' weight w is not fitted here but read from integrators/sample_cost.h
 (kWalkStepCost): a whole scene's rays and walk steps grow together (only the subsurface scene has
-steps, in proportion to its rays), so the scenes cannot tell them apart; w was fitted over the
-subsurface scene's tiles instead (bench/results/2026-12-06-adaptive-5.md). Charging the steps at w
+steps, in proportion to its rays), so the scenes cannot tell them apart; w is fitted over the
+subsurface scene's tiles instead (--tiles, below). Charging the steps at w
 keeps their time out of a and m.
 
 With --tiles K: the kinds apart. Each scene is rendered as K x K tiles (`--tile-count K K`), one
@@ -27,16 +27,16 @@ loading left out) and what it counted: camera, bounce and shadow rays, medium co
 steps, exact-flight cells and missed samples (the camera rays times 1 - the tile's mean alpha: a
 sample whose camera ray met nothing; "camera" counts the others). Written to OUT_DIR/tiles.csv;
 --refit fits that file again without rendering. A scene's tiles see the kinds in different
-proportions (the Cornell box's corners bounce more, the peers' background tiles are all missed
-samples), which the whole-scene differences cannot. Fitted by non-negative least squares, each
-tile's equation divided by its CPU (each tile weighs alike), CPU = sum of (seconds per item) x
-(items) over the kinds, in two stages: the ray kinds (camera, bounce, shadow) over the scenes
-that trace rays only (the Cornell box: in the others bounce and shadow rays come together and
-cannot be told apart), then each other scene's own kinds with those fixed. A missed sample's cost
-is the geometric mean over the scenes whose tiles include missed samples only. Printed: the
-seconds per item and the weights in shadow rays (integrators/sample_cost.h's unit), and per scene
-the tiles' CPU over the prediction of a free fit of its kinds, of the staged fit and of
-sample_cost.h's weights, the last two over their mean in the scene (adaptive sampling compares a
+proportions (the Cornell box's tiles trace 1.5-3.0 bounce rays a sample, the peers' background
+tiles are all missed samples), which the whole-scene differences cannot. Fitted by non-negative
+least squares, each tile's equation divided by its CPU (each tile weighs alike), CPU = sum of
+(seconds per item) x (items) over the kinds, in two stages: the ray kinds (camera, bounce, shadow)
+over the scenes that trace rays only (the Cornell box: in the others bounce and shadow rays come
+together and cannot be told apart), then each other scene's own kinds with those fixed. A missed
+sample's cost is the geometric mean over the scenes whose tiles include missed samples only.
+Printed: the seconds per item and the weights in shadow rays (integrators/sample_cost.h's unit),
+and per scene the tiles' CPU over the prediction of a free fit of its kinds, of the staged fit and
+of sample_cost.h's weights, the last two over their mean in the scene (adaptive sampling compares a
 scene's pixels with each other only); rms: how far one set of weights fits.
 """
 import argparse

@@ -17,22 +17,22 @@
 // Measured (bench/sample_cost_calibration.py --tiles 4 --tile-spp 1024 --repeat 2,
 // bench/results/2026-12-06-adaptive-8-s20.md): the render CPU of each of 4 x 4 tiles of the Cornell
 // box, the smoke and the subsurface scene, 128 x 128, one thread, the least of two rounds; a
-// scene's tiles see the kinds in different proportions (the Cornell box's corners bounce more, the
-// smoke's and the subsurface scene's background tiles are all missed samples), which whole-scene
-// fits cannot separate. Fitted by non-negative least squares on each tile's relative error: the ray
-// kinds on the Cornell box (rays only): 46 ns a camera sample, 304 ns a bounce ray, 47 ns a shadow
-// ray; then, with those fixed, the smoke's collisions 103 ns and cells 70 ns and the subsurface
-// scene's walk steps 225 ns (4.8 shadow rays; the 4.9 below is a first pass of the fit's, 229 ns,
-// and is what was measured with: within the fit's spread). In the smoke and the subsurface scene
-// bounce and shadow rays come together, so they cannot fix the ray weights themselves. A missed
-// sample took 92 ns in the subsurface scene and 175 ns in the smoke (not its dome light's doing: a
-// background tile took 0.17 s of CPU with the dome as without), which no counter tells apart:
-// kMissedCameraRayCost is their geometric mean, 1.4x too dear in the one and too cheap in the
-// other. The tiles' CPU over these weights' prediction (each scene's over their mean: allocation
-// compares a scene's pixels with each other only), rms: Cornell box 3.7% (4.7% with every ray 1,
-// collisions 1.3, walk steps 3.2, cells 0.4, a missed sample 0.43: the weights before), smoke 16%
-// (52%: its volume tiles were charged 2-3x what they took against its background's), subsurface
-// scene 13% (26%); most of what is left is the missed samples' two costs.
+// scene's tiles see the kinds in different proportions (the Cornell box's tiles trace 1.5-3.0
+// bounce rays a sample, the smoke's and the subsurface scene's background tiles are all missed
+// samples), which whole-scene fits cannot separate. Fitted by non-negative least squares on each
+// tile's relative error: the ray kinds on the Cornell box (rays only): 46 ns a camera sample, 304
+// ns a bounce ray, 47 ns a shadow ray; then, with those fixed, the smoke's collisions 103 ns and
+// cells 70 ns and the subsurface scene's walk steps 225 ns (4.8 shadow rays; the 4.9 below is a
+// first pass of the fit's, 229 ns, and is what was measured with: within the fit's spread). In the
+// smoke and the subsurface scene bounce and shadow rays come together, so they cannot fix the ray
+// weights themselves. A missed sample took 92 ns in the subsurface scene and 175 ns in the smoke
+// (not its dome light's doing: a background tile took 0.17 s of CPU with the dome as without),
+// which no counter tells apart: kMissedCameraRayCost is their geometric mean, 1.4x too dear in the
+// one and too cheap in the other. The tiles' CPU over these weights' prediction (each scene's over
+// their mean: allocation compares a scene's pixels with each other only), rms: Cornell box 3.7%
+// (4.7% with every ray 1, collisions 1.3, walk steps 3.2, cells 0.4, a missed sample 0.43: the
+// weights before), smoke 16% (52%: its volume tiles were charged 2-3x what they took against its
+// background's), subsurface scene 13% (26%); most of what is left is the missed samples' two costs.
 // An integrator counts what it counts (RenderCounters): one that counts nothing costs 0 per
 // sample, which adaptive sampling reads as every sample alike.
 #pragma once
