@@ -12,7 +12,8 @@ rays, medium collisions, guided random-walk steps and samples: deterministic). T
 dT = a (rays + w steps + m collisions), the cost of integrators/sample_cost.h, is solved by least
 squares over the scenes and kMediumCollisionCost = m printed, with each scene's time as the fit
 predicts it (how far one weight fits every scene); and, as a check, the fit with a per-sample term
-as well (dT = a (rays + w steps) + b collisions + c samples).
+as well (dT = a (rays + w steps) + b collisions + c samples). This was the weights' fit up to
+session 19 (every ray 1); the header's weights now come from --tiles, which fits each kind.
 
 The walk steps' weight w is not fitted here but read from integrators/sample_cost.h
 (kWalkStepCost): a whole scene's rays and walk steps grow together (only the subsurface scene has
