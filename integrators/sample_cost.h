@@ -26,12 +26,13 @@
 // first pass of the fit's, 229 ns, and is what was measured with: within the fit's spread). In the
 // smoke and the subsurface scene bounce and shadow rays come together, so they cannot fix the ray
 // weights themselves. A missed sample took 92 ns in the subsurface scene and 175 ns in the smoke
-// (not its dome light's doing: a background tile took 0.17 s of CPU with the dome as without),
-// which no counter tells apart: kMissedCameraRayCost is their geometric mean, 1.4x too dear in the
-// one and too cheap in the other. The tiles' CPU over these weights' prediction (each scene's over
-// their mean: allocation compares a scene's pixels with each other only), rms: Cornell box 3.7%
-// (4.7% with every ray 1, collisions 1.3, walk steps 3.2, cells 0.4, a missed sample 0.43: the
-// weights before), smoke 16% (52%: its volume tiles were charged 2-3x what they took against its
+// (its camera rays start an exact flight through the volume's bounds and walk no cell; its dome is
+// not it: a background tile took 0.17 s of CPU with the dome as without), which no counter tells
+// apart: kMissedCameraRayCost is their geometric mean, 1.4x too dear in the one and too cheap in
+// the other. The tiles' CPU over these weights' prediction (each scene's over their mean:
+// allocation compares a scene's pixels with each other only), rms: Cornell box 3.7% (4.7% with
+// every ray 1, collisions 1.3, walk steps 3.2, cells 0.4, a missed sample 0.43: the weights
+// before), smoke 16% (52%: its volume tiles were charged 2-3x what they took against its
 // background's), subsurface scene 13% (26%); most of what is left is the missed samples' two costs.
 // An integrator counts what it counts (RenderCounters): one that counts nothing costs 0 per
 // sample, which adaptive sampling reads as every sample alike.
