@@ -44,25 +44,32 @@ bool TrilinearCells::clip(const Vec3d& o, const Vec3d& d, double& t0, double& t1
     return t0 < t1;
 }
 
-bool TrilinearCells::cubic(const Vec3i& cell, const Vec3d& o, const Vec3d& d, double t, double c[4]) const {
-    // Corners v[zyx] (bit 0: x + 1, bit 1: y + 1, bit 2: z + 1) and the monomial coefficients.
-    const std::size_t base = offset(cell), dy = std::size_t(size_.x), dz = dy * std::size_t(size_.y);
-    const float* p = values_.data() + base;
+bool TrilinearCells::corners(const Vec3i& cell, CellStretch& stretch) const {
+    const std::size_t dy = std::size_t(size_.x), dz = dy * std::size_t(size_.y);
+    const float* p = values_.data() + offset(cell);
     if (p[0] == 0.0f && p[1] == 0.0f && p[dy] == 0.0f && p[dy + 1] == 0.0f && p[dz] == 0.0f && p[dz + 1] == 0.0f &&
         p[dz + dy] == 0.0f && p[dz + dy + 1] == 0.0f)
         return false;
-    const double v0 = p[0], v1 = p[1], v2 = p[dy], v3 = p[dy + 1], v4 = p[dz], v5 = p[dz + 1], v6 = p[dz + dy],
-                 v7 = p[dz + dy + 1];
+    double* v = stretch.corner_;
+    v[0] = p[0], v[1] = p[1], v[2] = p[dy], v[3] = p[dy + 1];
+    v[4] = p[dz], v[5] = p[dz + 1], v[6] = p[dz + dy], v[7] = p[dz + dy + 1];
+    return true;
+}
+
+void CellStretch::cubic(double c[4]) const {
+    // The monomial coefficients of the corners, then the product of the three linear coordinates.
+    const double* v = corner_;
+    const double v0 = v[0], v1 = v[1], v2 = v[2], v3 = v[3], v4 = v[4], v5 = v[5], v6 = v[6], v7 = v[7];
     const double cx = v1 - v0, cy = v2 - v0, cz = v4 - v0;
     const double cxy = v3 - v1 - v2 + v0, cxz = v5 - v1 - v4 + v0, cyz = v6 - v2 - v4 + v0;
     const double cxyz = v7 - v3 - v5 - v6 + v1 + v2 + v4 - v0;
-    const double x = o.x + t * d.x - cell.x, y = o.y + t * d.y - cell.y, z = o.z + t * d.z - cell.z;
+    const double x = entry_.x, y = entry_.y, z = entry_.z;
+    const Vec3d& d = direction_;
     c[0] = v0 + cx * x + cy * y + cz * z + cxy * x * y + cxz * x * z + cyz * y * z + cxyz * x * y * z;
     c[1] = cx * d.x + cy * d.y + cz * d.z + cxy * (x * d.y + d.x * y) + cxz * (x * d.z + d.x * z) +
            cyz * (y * d.z + d.y * z) + cxyz * (d.x * y * z + x * d.y * z + x * y * d.z);
     c[2] = cxy * d.x * d.y + cxz * d.x * d.z + cyz * d.y * d.z + cxyz * (d.x * d.y * z + d.x * y * d.z + x * d.y * d.z);
     c[3] = cxyz * d.x * d.y * d.z;
-    return true;
 }
 
 }  // namespace fluence::volumes

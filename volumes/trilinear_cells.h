@@ -19,6 +19,14 @@
 // DDA. Amanatides & Woo's traversal in index space over the dual cells, as volumes/majorant_grid.h
 // walks its cells: each crossing is computed from the ray in double precision, not accumulated, so
 // consecutive pieces share their ends exactly.
+//
+// INTEGRAL. A stretch's integral is what the sums of media/exact_depth.h take from every cell the
+// ray passes; the cubic is needed only where a flight stops in it. Simpson's rule is exact for a
+// cubic: the integral over [t0, t1) is (t1 - t0) / 6 (f(t0) + 4 f(tm) + f(t1)), tm the midpoint,
+// each f a trilinear interpolation of the cell's corners. f(t1), on the face the ray leaves the
+// cell by, is f(t0) of the next cell (the same point of the shared face; 0 exactly after an empty
+// cell), so a cell costs two interpolations, and its cubic is computed only when asked
+// (CellStretch::cubic). Equal to the cubic's integral in real arithmetic, not bit for bit.
 #pragma once
 
 #include <algorithm>
@@ -31,6 +39,22 @@
 #include "volumes/vdb_grid.h"
 
 namespace fluence::volumes {
+
+// One dual cell's stretch [tMin, tMax) of a ray, as TrilinearCells::walk hands it to its visitor.
+class CellStretch {
+public:
+    double tMin = 0.0, tMax = 0.0;
+    double integral = 0.0;  // of the density over [tMin, tMax) (INTEGRAL)
+
+    // The density over the stretch as c[0] + c[1] s + c[2] s^2 + c[3] s^3, s = t - tMin (WHY CUBIC).
+    void cubic(double c[4]) const;
+
+private:
+    friend class TrilinearCells;
+    double corner_[8] = {};  // v[zyx] (bit 0: x + 1, bit 1: y + 1, bit 2: z + 1)
+    Vec3d entry_{0.0};       // the ray at tMin in the cell's local coordinates, [0, 1]^3
+    Vec3d direction_{0.0};   // the ray's index-space direction
+};
 
 class TrilinearCells {
 public:
@@ -45,11 +69,11 @@ public:
     // >= 0 wherever it is non-zero iff this is >= 0. +infinity for an unavailable grid.
     float minValue() const { return minValue_; }
 
-    // For the world ray origin + t direction within [tMin, tMax): calls visit(t0, t1, c) for each
-    // dual cell the ray crosses inside the support, in increasing t, where the density over [t0, t1)
-    // is c[0] + c[1] s + c[2] s^2 + c[3] s^3 with s = t - t0, until visit returns false (then walk
-    // returns false). Cells whose eight corners are all 0 (empty space inside the support) are
-    // skipped: the density is 0 over them, and a piece that adds 0 to every sum changes none. A template, so the visitor is inlined into the DDA's loop.
+    // For the world ray origin + t direction within [tMin, tMax): calls visit(stretch), a
+    // CellStretch, for each dual cell the ray crosses inside the support, in increasing t, until
+    // visit returns false (then walk returns false). Cells whose eight corners are all 0 (empty space
+    // inside the support) are skipped: the density is 0 over them, and a piece that adds 0 to every
+    // sum changes none. A template, so the visitor is inlined into the DDA's loop.
     template <class Visit>
     bool walk(const Vec3f& origin, const Vec3f& direction, double tMin, double tMax, Visit&& visit) const;
 
@@ -60,15 +84,23 @@ private:
     }
     // The ray's stretch [t0, t1) inside the support box, or false.
     bool clip(const Vec3d& o, const Vec3d& d, double& t0, double& t1) const;
-    // The cubic of cell `cell` along the index-space ray o + t d, about t (WHY CUBIC); false (and c
-    // not written) where the cell's eight corners are all 0, so the density is 0 over all of it.
-    bool cubic(const Vec3i& cell, const Vec3d& o, const Vec3d& d, double t, double c[4]) const;
+    // Reads cell `cell`'s eight corners into `stretch`; false (nothing read) where they are all 0, so
+    // the density is 0 over all of the cell.
+    bool corners(const Vec3i& cell, CellStretch& stretch) const;
 
     Vec3i lo_{0}, size_{0};  // the dense box's first voxel and extent (the support's lattice)
     std::vector<float> values_;
     float minValue_ = std::numeric_limits<float>::infinity();
     Matrix4 worldToIndex_ = Matrix4::identity();
 };
+
+// The trilinear interpolation of corners v[zyx] at local coordinates q.
+inline double interpolate(const double v[8], const Vec3d& q) {
+    const double a0 = v[0] + q.x * (v[1] - v[0]), a1 = v[2] + q.x * (v[3] - v[2]);
+    const double a2 = v[4] + q.x * (v[5] - v[4]), a3 = v[6] + q.x * (v[7] - v[6]);
+    const double b0 = a0 + q.y * (a1 - a0), b1 = a2 + q.y * (a3 - a2);
+    return b0 + q.z * (b1 - b0);
+}
 
 template <class Visit>
 bool TrilinearCells::walk(const Vec3f& origin, const Vec3f& direction, double tMin, double tMax, Visit&& visit) const {
@@ -86,12 +118,31 @@ bool TrilinearCells::walk(const Vec3f& origin, const Vec3f& direction, double tM
         inverse[axis] = 1.0 / d[axis];
         tNext[axis] = step[axis] == 0 ? INFINITY : (cell[axis] + (step[axis] > 0 ? 1 : 0) - o[axis]) * inverse[axis];
     }
+    CellStretch stretch;
+    stretch.direction_ = d;
+    // The density where the ray enters the current cell, once known (INTEGRAL).
+    double entryDensity = 0.0;
+    bool entryKnown = false;
     while (t < tEnd) {
         const int axis = tNext.x <= tNext.y ? (tNext.x <= tNext.z ? 0 : 2) : (tNext.y <= tNext.z ? 1 : 2);
         const double t1 = std::min(tNext[axis], tEnd);
         if (t1 > t) {
-            double c[4];
-            if (cubic(cell, o, d, t, c) && !visit(t, t1, c)) return false;
+            if (corners(cell, stretch)) {
+                const Vec3d corner(cell);
+                stretch.tMin = t;
+                stretch.tMax = t1;
+                stretch.entry_ = o + d * t - corner;
+                const double* v = stretch.corner_;
+                if (!entryKnown) entryDensity = interpolate(v, stretch.entry_);
+                const double exitDensity = interpolate(v, o + d * t1 - corner);
+                const double middle = interpolate(v, o + d * (0.5 * (t + t1)) - corner);
+                stretch.integral = (t1 - t) * (1.0 / 6.0) * (entryDensity + 4.0 * middle + exitDensity);
+                entryDensity = exitDensity;
+                if (!visit(stretch)) return false;
+            } else {
+                entryDensity = 0.0;
+            }
+            entryKnown = true;
         }
         t = t1;
         cell[axis] += step[axis];
