@@ -106,8 +106,9 @@ template <class Visit>
 void GridMedium::forEachPiece(const Vec3f& origin, const Vec3f& direction, float tMin, float tMax, Visit& visit) const {
     // Without a colour grid the majorant scale is the constant extinction factor (MAJORANTS).
     const Vec3d scale(majorantScale_.x, majorantScale_.y, majorantScale_.z);
+    const CellRay ray = cells_.prepare(origin, direction);
     const auto walk = [&](double t0, double t1) {
-        return cells_.walk(origin, direction, t0, t1, [&](const CellStretch& stretch) {
+        return cells_.walk(ray, t0, t1, [&](const CellStretch& stretch) {
             return visit(ScaledStretch{stretch, scale});
         });
     };

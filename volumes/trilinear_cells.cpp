@@ -27,13 +27,32 @@ TrilinearCells::TrilinearCells(const FloatVdbGrid& grid) : worldToIndex_(grid.wo
                                 std::size_t(size_.x) +
                             std::size_t(x - lo_.x)] = value;
     });
+    occupied_.assign((count + 63) / 64, 0);
+    const std::size_t dy = std::size_t(size_.x), dz = dy * std::size_t(size_.y);
+    for (int z = 0; z + 1 < size_.z; ++z)
+        for (int y = 0; y + 1 < size_.y; ++y)
+            for (int x = 0; x + 1 < size_.x; ++x) {
+                const std::size_t i = std::size_t(z) * dz + std::size_t(y) * dy + std::size_t(x);
+                const float* p = values_.data() + i;
+                if (p[0] != 0.0f || p[1] != 0.0f || p[dy] != 0.0f || p[dy + 1] != 0.0f || p[dz] != 0.0f ||
+                    p[dz + 1] != 0.0f || p[dz + dy] != 0.0f || p[dz + dy + 1] != 0.0f)
+                    occupied_[i >> 6] |= std::uint64_t(1) << (i & 63);
+            }
 }
 
-bool TrilinearCells::clip(const Vec3d& o, const Vec3d& d, double& t0, double& t1) const {
+CellRay TrilinearCells::prepare(const Vec3f& origin, const Vec3f& direction) const {
+    CellRay ray;
+    if (!available()) return ray;
+    const Vec3d o = worldToIndex_.transformPoint(Vec3d(origin)), d = worldToIndex_.transformVector(Vec3d(direction));
+    ray.origin = o;
+    ray.direction = d;
+    double t0 = -INFINITY, t1 = INFINITY;  // the stretch inside the support box
     for (int axis = 0; axis < 3; ++axis) {
+        ray.step[axis] = d[axis] > 0.0 ? 1 : (d[axis] < 0.0 ? -1 : 0);
+        ray.inverse[axis] = 1.0 / d[axis];
         const double boxLo = lo_[axis], boxHi = lo_[axis] + size_[axis] - 1;
         if (d[axis] == 0.0) {
-            if (!(o[axis] >= boxLo && o[axis] <= boxHi)) return false;
+            if (!(o[axis] >= boxLo && o[axis] <= boxHi)) return ray;  // misses: tIn > tOut
             continue;
         }
         double ta = (boxLo - o[axis]) / d[axis], tb = (boxHi - o[axis]) / d[axis];
@@ -41,19 +60,9 @@ bool TrilinearCells::clip(const Vec3d& o, const Vec3d& d, double& t0, double& t1
         t0 = std::max(t0, ta);
         t1 = std::min(t1, tb);
     }
-    return t0 < t1;
-}
-
-bool TrilinearCells::corners(const Vec3i& cell, CellStretch& stretch) const {
-    const std::size_t dy = std::size_t(size_.x), dz = dy * std::size_t(size_.y);
-    const float* p = values_.data() + offset(cell);
-    if (p[0] == 0.0f && p[1] == 0.0f && p[dy] == 0.0f && p[dy + 1] == 0.0f && p[dz] == 0.0f && p[dz + 1] == 0.0f &&
-        p[dz + dy] == 0.0f && p[dz + dy + 1] == 0.0f)
-        return false;
-    double* v = stretch.corner_;
-    v[0] = p[0], v[1] = p[1], v[2] = p[dy], v[3] = p[dy + 1];
-    v[4] = p[dz], v[5] = p[dz + 1], v[6] = p[dz + dy], v[7] = p[dz + dy + 1];
-    return true;
+    ray.tIn = t0;
+    ray.tOut = t1;
+    return ray;
 }
 
 void CellStretch::cubic(double c[4]) const {

@@ -14,7 +14,9 @@
 // STORAGE. The voxels the support reads, lo - 1 .. hi + 1 on each axis, are copied into a dense
 // array once (stored voxels and tiles from VdbGrid::forEachValue, the background elsewhere), so a
 // cell's eight corners are eight array reads. The copy is refused (available() false) above
-// kMaxVoxels voxels (256 MiB of floats): such a grid is tracked, not walked.
+// kMaxVoxels voxels (256 MiB of floats): such a grid is tracked, not walked. Beside it, a bit per
+// cell says whether any of its eight corners is non-zero (1/32 of the copy's size, so it stays in
+// cache where the copy does not): the walk steps over an empty cell without reading its corners.
 //
 // DDA. Amanatides & Woo's traversal in index space over the dual cells, as volumes/majorant_grid.h
 // walks its cells: each crossing is computed from the ray in double precision, not accumulated, so
@@ -32,6 +34,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
+#include <cstdint>
 #include <limits>
 #include <vector>
 
@@ -56,6 +59,15 @@ private:
     Vec3d direction_{0.0};   // the ray's index-space direction
 };
 
+// A world ray in a grid's index space, prepared once (TrilinearCells::prepare) for walks over
+// several stretches of it: the transforms, the clip to the support box and the divisions are the
+// same for every stretch.
+struct CellRay {
+    Vec3d origin{0.0}, direction{0.0}, inverse{0.0};  // in index space; inverse = 1 / direction
+    Vec3i step{0};                                    // the sign of each direction component
+    double tIn = 0.0, tOut = -1.0;                    // the ray's stretch inside the support box
+};
+
 class TrilinearCells {
 public:
     static constexpr std::size_t kMaxVoxels = std::size_t(64) << 20;
@@ -75,49 +87,74 @@ public:
     // inside the support) are skipped: the density is 0 over them, and a piece that adds 0 to every
     // sum changes none. A template, so the visitor is inlined into the DDA's loop.
     template <class Visit>
-    bool walk(const Vec3f& origin, const Vec3f& direction, double tMin, double tMax, Visit&& visit) const;
+    bool walk(const Vec3f& origin, const Vec3f& direction, double tMin, double tMax, Visit&& visit) const {
+        return walk(prepare(origin, direction), tMin, tMax, visit);
+    }
+    // The same, for a ray prepared once and walked over several stretches.
+    CellRay prepare(const Vec3f& origin, const Vec3f& direction) const;
+    template <class Visit>
+    bool walk(const CellRay& ray, double tMin, double tMax, Visit&& visit) const;
 
 private:
     std::size_t offset(const Vec3i& v) const {
         return (std::size_t(v.z - lo_.z) * std::size_t(size_.y) + std::size_t(v.y - lo_.y)) * std::size_t(size_.x) +
                std::size_t(v.x - lo_.x);
     }
-    // The ray's stretch [t0, t1) inside the support box, or false.
-    bool clip(const Vec3d& o, const Vec3d& d, double& t0, double& t1) const;
-    // Reads cell `cell`'s eight corners into `stretch`; false (nothing read) where they are all 0, so
-    // the density is 0 over all of the cell.
-    bool corners(const Vec3i& cell, CellStretch& stretch) const;
+    // Reads the eight corners of the cell whose first corner is at `index` in the array into
+    // `stretch`, dy and dz the array's strides along y and z; false (nothing read) where they are all
+    // 0, so the density is 0 over all of the cell.
+    bool corners(std::size_t index, std::size_t dy, std::size_t dz, CellStretch& stretch) const;
 
     Vec3i lo_{0}, size_{0};  // the dense box's first voxel and extent (the support's lattice)
     std::vector<float> values_;
+    std::vector<std::uint64_t> occupied_;  // bit i: a corner of the cell whose first corner is values_[i] is non-zero
     float minValue_ = std::numeric_limits<float>::infinity();
     Matrix4 worldToIndex_ = Matrix4::identity();
 };
 
-// The trilinear interpolation of corners v[zyx] at local coordinates q.
-inline double interpolate(const double v[8], const Vec3d& q) {
-    const double a0 = v[0] + q.x * (v[1] - v[0]), a1 = v[2] + q.x * (v[3] - v[2]);
-    const double a2 = v[4] + q.x * (v[5] - v[4]), a3 = v[6] + q.x * (v[7] - v[6]);
-    const double b0 = a0 + q.y * (a1 - a0), b1 = a2 + q.y * (a3 - a2);
-    return b0 + q.z * (b1 - b0);
+// Two doubles in one SSE register (GCC's vector extension): the walk interpolates a cell at two
+// points at once, lane by lane the same arithmetic as one at a time.
+using DoublePair = double __attribute__((vector_size(2 * sizeof(double))));
+
+// The trilinear interpolation of corners v[zyx] at two points, lane i at local coordinates
+// (x[i], y[i], z[i]).
+inline DoublePair interpolate(const double v[8], DoublePair x, DoublePair y, DoublePair z) {
+    const DoublePair a0 = v[0] + x * (v[1] - v[0]), a1 = v[2] + x * (v[3] - v[2]);
+    const DoublePair a2 = v[4] + x * (v[5] - v[4]), a3 = v[6] + x * (v[7] - v[6]);
+    const DoublePair b0 = a0 + y * (a1 - a0), b1 = a2 + y * (a3 - a2);
+    return b0 + z * (b1 - b0);
+}
+
+inline bool TrilinearCells::corners(std::size_t index, std::size_t dy, std::size_t dz, CellStretch& stretch) const {
+    if (!(occupied_[index >> 6] >> (index & 63) & 1)) return false;
+    const float* p = values_.data() + index;
+    double* v = stretch.corner_;
+    v[0] = p[0], v[1] = p[1], v[2] = p[dy], v[3] = p[dy + 1];
+    v[4] = p[dz], v[5] = p[dz + 1], v[6] = p[dz + dy], v[7] = p[dz + dy + 1];
+    return true;
 }
 
 template <class Visit>
-bool TrilinearCells::walk(const Vec3f& origin, const Vec3f& direction, double tMin, double tMax, Visit&& visit) const {
+bool TrilinearCells::walk(const CellRay& ray, double tMin, double tMax, Visit&& visit) const {
     if (!available()) return true;
-    const Vec3d o = worldToIndex_.transformPoint(Vec3d(origin)), d = worldToIndex_.transformVector(Vec3d(direction));
-    double t = tMin, tEnd = tMax;
-    if (!clip(o, d, t, tEnd)) return true;
+    const Vec3d &o = ray.origin, &d = ray.direction, &inverse = ray.inverse;
+    const Vec3i& step = ray.step;
+    double t = std::max(tMin, ray.tIn);
+    const double tEnd = std::min(tMax, ray.tOut);
+    if (!(t < tEnd)) return true;
     // Cells are indexed by their lower corner, lo - 1 .. hi: the box's lattice less its last plane.
     const Vec3i last = lo_ + size_ - Vec3i(2);
-    Vec3i cell, step;
-    Vec3d tNext, inverse;
+    Vec3i cell;
+    Vec3d corner, tNext;  // corner: the cell's lower corner, in doubles (exact integers)
     for (int axis = 0; axis < 3; ++axis) {
         cell[axis] = std::clamp(int(std::floor(o[axis] + t * d[axis])), lo_[axis], last[axis]);
-        step[axis] = d[axis] > 0.0 ? 1 : (d[axis] < 0.0 ? -1 : 0);
-        inverse[axis] = 1.0 / d[axis];
+        corner[axis] = cell[axis];
         tNext[axis] = step[axis] == 0 ? INFINITY : (cell[axis] + (step[axis] > 0 ? 1 : 0) - o[axis]) * inverse[axis];
     }
+    // The cell's first corner in the array, and how it moves on a step along each axis.
+    const std::size_t dy = std::size_t(size_.x), dz = dy * std::size_t(size_.y);
+    auto first = std::ptrdiff_t(offset(cell));
+    const std::ptrdiff_t move[3] = {step.x, step.y * std::ptrdiff_t(dy), step.z * std::ptrdiff_t(dz)};
     CellStretch stretch;
     stretch.direction_ = d;
     // The density where the ray enters the current cell, once known (INTEGRAL).
@@ -127,17 +164,20 @@ bool TrilinearCells::walk(const Vec3f& origin, const Vec3f& direction, double tM
         const int axis = tNext.x <= tNext.y ? (tNext.x <= tNext.z ? 0 : 2) : (tNext.y <= tNext.z ? 1 : 2);
         const double t1 = std::min(tNext[axis], tEnd);
         if (t1 > t) {
-            if (corners(cell, stretch)) {
-                const Vec3d corner(cell);
+            if (corners(std::size_t(first), dy, dz, stretch)) {
                 stretch.tMin = t;
                 stretch.tMax = t1;
                 stretch.entry_ = o + d * t - corner;
                 const double* v = stretch.corner_;
-                if (!entryKnown) entryDensity = interpolate(v, stretch.entry_);
-                const double exitDensity = interpolate(v, o + d * t1 - corner);
-                const double middle = interpolate(v, o + d * (0.5 * (t + t1)) - corner);
-                stretch.integral = (t1 - t) * (1.0 / 6.0) * (entryDensity + 4.0 * middle + exitDensity);
-                entryDensity = exitDensity;
+                if (!entryKnown) {
+                    const Vec3d& q = stretch.entry_;
+                    entryDensity = interpolate(v, DoublePair{q.x, q.x}, DoublePair{q.y, q.y}, DoublePair{q.z, q.z})[0];
+                }
+                const DoublePair at = {t1, 0.5 * (t + t1)};  // the exit and the middle
+                const DoublePair f =
+                    interpolate(v, o.x + d.x * at - corner.x, o.y + d.y * at - corner.y, o.z + d.z * at - corner.z);
+                stretch.integral = (t1 - t) * (1.0 / 6.0) * (entryDensity + 4.0 * f[1] + f[0]);
+                entryDensity = f[0];
                 if (!visit(stretch)) return false;
             } else {
                 entryDensity = 0.0;
@@ -147,7 +187,9 @@ bool TrilinearCells::walk(const Vec3f& origin, const Vec3f& direction, double tM
         t = t1;
         cell[axis] += step[axis];
         if (cell[axis] < lo_[axis] || cell[axis] > last[axis]) break;
-        tNext[axis] = (cell[axis] + (step[axis] > 0 ? 1 : 0) - o[axis]) * inverse[axis];
+        corner[axis] += step[axis];
+        first += move[axis];
+        tNext[axis] = (corner[axis] + (step[axis] > 0 ? 1.0 : 0.0) - o[axis]) * inverse[axis];
     }
     return true;
 }
