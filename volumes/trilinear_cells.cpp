@@ -67,13 +67,15 @@ CellRay TrilinearCells::prepare(const Vec3f& origin, const Vec3f& direction) con
 
 void CellStretch::cubic(double c[4]) const {
     // The monomial coefficients of the corners, then the product of the three linear coordinates.
-    const double* v = corner_;
+    double v[8];
+    readCorners(first_, dy_, dz_, v);
     const double v0 = v[0], v1 = v[1], v2 = v[2], v3 = v[3], v4 = v[4], v5 = v[5], v6 = v[6], v7 = v[7];
     const double cx = v1 - v0, cy = v2 - v0, cz = v4 - v0;
     const double cxy = v3 - v1 - v2 + v0, cxz = v5 - v1 - v4 + v0, cyz = v6 - v2 - v4 + v0;
     const double cxyz = v7 - v3 - v5 - v6 + v1 + v2 + v4 - v0;
-    const double x = entry_.x, y = entry_.y, z = entry_.z;
-    const Vec3d& d = direction_;
+    const Vec3d& d = ray_->direction;
+    const Vec3d entry = ray_->origin + d * tMin - corner_;  // the walk's own expression for the point
+    const double x = entry.x, y = entry.y, z = entry.z;
     c[0] = v0 + cx * x + cy * y + cz * z + cxy * x * y + cxz * x * z + cyz * y * z + cxyz * x * y * z;
     c[1] = cx * d.x + cy * d.y + cz * d.z + cxy * (x * d.y + d.x * y) + cxz * (x * d.z + d.x * z) +
            cyz * (y * d.z + d.y * z) + cxyz * (d.x * y * z + x * d.y * z + x * y * d.z);

@@ -43,6 +43,15 @@
 
 namespace fluence::volumes {
 
+// A world ray in a grid's index space, prepared once (TrilinearCells::prepare) for walks over
+// several stretches of it: the transforms, the clip to the support box and the divisions are the
+// same for every stretch.
+struct CellRay {
+    Vec3d origin{0.0}, direction{0.0}, inverse{0.0};  // in index space; inverse = 1 / direction
+    Vec3i step{0};                                     // the sign of each direction component
+    double tIn = 0.0, tOut = -1.0;                     // the ray's stretch inside the support box
+};
+
 // One dual cell's stretch [tMin, tMax) of a ray, as TrilinearCells::walk hands it to its visitor.
 class CellStretch {
 public:
@@ -54,18 +63,12 @@ public:
 
 private:
     friend class TrilinearCells;
-    double corner_[8] = {};  // v[zyx] (bit 0: x + 1, bit 1: y + 1, bit 2: z + 1)
-    Vec3d entry_{0.0};       // the ray at tMin in the cell's local coordinates, [0, 1]^3
-    Vec3d direction_{0.0};   // the ray's index-space direction
-};
-
-// A world ray in a grid's index space, prepared once (TrilinearCells::prepare) for walks over
-// several stretches of it: the transforms, the clip to the support box and the divisions are the
-// same for every stretch.
-struct CellRay {
-    Vec3d origin{0.0}, direction{0.0}, inverse{0.0};  // in index space; inverse = 1 / direction
-    Vec3i step{0};                                    // the sign of each direction component
-    double tIn = 0.0, tOut = -1.0;                    // the ray's stretch inside the support box
+    // What the cubic is computed from, when asked: the cell's corners in the dense copy (its first
+    // corner, and the strides along y and z), its lower corner in index space, and the ray.
+    const float* first_ = nullptr;
+    std::size_t dy_ = 0, dz_ = 0;
+    Vec3d corner_{0.0};
+    const CellRay* ray_ = nullptr;
 };
 
 class TrilinearCells {
@@ -100,10 +103,9 @@ private:
         return (std::size_t(v.z - lo_.z) * std::size_t(size_.y) + std::size_t(v.y - lo_.y)) * std::size_t(size_.x) +
                std::size_t(v.x - lo_.x);
     }
-    // Reads the eight corners of the cell whose first corner is at `index` in the array into
-    // `stretch`, dy and dz the array's strides along y and z; false (nothing read) where they are all
-    // 0, so the density is 0 over all of the cell.
-    bool corners(std::size_t index, std::size_t dy, std::size_t dz, CellStretch& stretch) const;
+    // Whether any of the eight corners of the cell whose first corner is at `index` in the array is
+    // non-zero (else the density is 0 over all of the cell).
+    bool occupied(std::size_t index) const { return occupied_[index >> 6] >> (index & 63) & 1; }
 
     Vec3i lo_{0}, size_{0};  // the dense box's first voxel and extent (the support's lattice)
     std::vector<float> values_;
@@ -125,13 +127,11 @@ inline DoublePair interpolate(const double v[8], DoublePair x, DoublePair y, Dou
     return b0 + z * (b1 - b0);
 }
 
-inline bool TrilinearCells::corners(std::size_t index, std::size_t dy, std::size_t dz, CellStretch& stretch) const {
-    if (!(occupied_[index >> 6] >> (index & 63) & 1)) return false;
-    const float* p = values_.data() + index;
-    double* v = stretch.corner_;
+// Corners v[zyx] (bit 0: x + 1, bit 1: y + 1, bit 2: z + 1) of the cell whose first corner is p in
+// an array of strides dy and dz along y and z.
+inline void readCorners(const float* p, std::size_t dy, std::size_t dz, double v[8]) {
     v[0] = p[0], v[1] = p[1], v[2] = p[dy], v[3] = p[dy + 1];
     v[4] = p[dz], v[5] = p[dz + 1], v[6] = p[dz + dy], v[7] = p[dz + dy + 1];
-    return true;
 }
 
 template <class Visit>
@@ -156,7 +156,9 @@ bool TrilinearCells::walk(const CellRay& ray, double tMin, double tMax, Visit&& 
     auto first = std::ptrdiff_t(offset(cell));
     const std::ptrdiff_t move[3] = {step.x, step.y * std::ptrdiff_t(dy), step.z * std::ptrdiff_t(dz)};
     CellStretch stretch;
-    stretch.direction_ = d;
+    stretch.dy_ = dy;
+    stretch.dz_ = dz;
+    stretch.ray_ = &ray;
     // The density where the ray enters the current cell, once known (INTEGRAL).
     double entryDensity = 0.0;
     bool entryKnown = false;
@@ -164,13 +166,15 @@ bool TrilinearCells::walk(const CellRay& ray, double tMin, double tMax, Visit&& 
         const int axis = tNext.x <= tNext.y ? (tNext.x <= tNext.z ? 0 : 2) : (tNext.y <= tNext.z ? 1 : 2);
         const double t1 = std::min(tNext[axis], tEnd);
         if (t1 > t) {
-            if (corners(std::size_t(first), dy, dz, stretch)) {
+            if (occupied(std::size_t(first))) {
                 stretch.tMin = t;
                 stretch.tMax = t1;
-                stretch.entry_ = o + d * t - corner;
-                const double* v = stretch.corner_;
+                stretch.first_ = values_.data() + first;
+                stretch.corner_ = corner;
+                double v[8];
+                readCorners(stretch.first_, dy, dz, v);
                 if (!entryKnown) {
-                    const Vec3d& q = stretch.entry_;
+                    const Vec3d q = o + d * t - corner;
                     entryDensity = interpolate(v, DoublePair{q.x, q.x}, DoublePair{q.y, q.y}, DoublePair{q.z, q.z})[0];
                 }
                 const DoublePair at = {t1, 0.5 * (t + t1)};  // the exit and the middle
