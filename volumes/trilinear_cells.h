@@ -48,8 +48,8 @@ namespace fluence::volumes {
 // same for every stretch.
 struct CellRay {
     Vec3d origin{0.0}, direction{0.0}, inverse{0.0};  // in index space; inverse = 1 / direction
-    Vec3i step{0};                                     // the sign of each direction component
-    double tIn = 0.0, tOut = -1.0;                     // the ray's stretch inside the support box
+    Vec3i step{0};                                    // the sign of each direction component
+    double tIn = 0.0, tOut = -1.0;                    // the ray's stretch inside the support box
 };
 
 // One dual cell's stretch [tMin, tMax) of a ray, as TrilinearCells::walk hands it to its visitor.
@@ -114,17 +114,12 @@ private:
     Matrix4 worldToIndex_ = Matrix4::identity();
 };
 
-// Two doubles in one SSE register (GCC's vector extension): the walk interpolates a cell at two
-// points at once, lane by lane the same arithmetic as one at a time.
-using DoublePair = double __attribute__((vector_size(2 * sizeof(double))));
-
-// The trilinear interpolation of corners v[zyx] at two points, lane i at local coordinates
-// (x[i], y[i], z[i]).
-inline DoublePair interpolate(const double v[8], DoublePair x, DoublePair y, DoublePair z) {
-    const DoublePair a0 = v[0] + x * (v[1] - v[0]), a1 = v[2] + x * (v[3] - v[2]);
-    const DoublePair a2 = v[4] + x * (v[5] - v[4]), a3 = v[6] + x * (v[7] - v[6]);
-    const DoublePair b0 = a0 + y * (a1 - a0), b1 = a2 + y * (a3 - a2);
-    return b0 + z * (b1 - b0);
+// The trilinear interpolation of corners v[zyx] at local coordinates q.
+inline double interpolate(const double v[8], const Vec3d& q) {
+    const double a0 = v[0] + q.x * (v[1] - v[0]), a1 = v[2] + q.x * (v[3] - v[2]);
+    const double a2 = v[4] + q.x * (v[5] - v[4]), a3 = v[6] + q.x * (v[7] - v[6]);
+    const double b0 = a0 + q.y * (a1 - a0), b1 = a2 + q.y * (a3 - a2);
+    return b0 + q.z * (b1 - b0);
 }
 
 // Corners v[zyx] (bit 0: x + 1, bit 1: y + 1, bit 2: z + 1) of the cell whose first corner is p in
@@ -173,15 +168,11 @@ bool TrilinearCells::walk(const CellRay& ray, double tMin, double tMax, Visit&& 
                 stretch.corner_ = corner;
                 double v[8];
                 readCorners(stretch.first_, dy, dz, v);
-                if (!entryKnown) {
-                    const Vec3d q = o + d * t - corner;
-                    entryDensity = interpolate(v, DoublePair{q.x, q.x}, DoublePair{q.y, q.y}, DoublePair{q.z, q.z})[0];
-                }
-                const DoublePair at = {t1, 0.5 * (t + t1)};  // the exit and the middle
-                const DoublePair f =
-                    interpolate(v, o.x + d.x * at - corner.x, o.y + d.y * at - corner.y, o.z + d.z * at - corner.z);
-                stretch.integral = (t1 - t) * (1.0 / 6.0) * (entryDensity + 4.0 * f[1] + f[0]);
-                entryDensity = f[0];
+                if (!entryKnown) entryDensity = interpolate(v, o + d * t - corner);
+                const double exitDensity = interpolate(v, o + d * t1 - corner);
+                const double middle = interpolate(v, o + d * (0.5 * (t + t1)) - corner);
+                stretch.integral = (t1 - t) * (1.0 / 6.0) * (entryDensity + 4.0 * middle + exitDensity);
+                entryDensity = exitDensity;
                 if (!visit(stretch)) return false;
             } else {
                 entryDensity = 0.0;
