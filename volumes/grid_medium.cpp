@@ -114,16 +114,9 @@ void GridMedium::forEachPiece(const Vec3f& origin, const Vec3f& direction, float
     };
     // The dual cells are walked over each run of consecutive non-empty majorant segments (which
     // share their ends exactly), so the walk starts once per run, not once per majorant cell.
-    double runStart = 0.0, runEnd = -1.0;
     MajorantDda dda(majorantGrid_, origin, direction, tMin, tMax, majorantScale_, minorantScale_);
-    while (std::optional<media::MajorantSegment> segment = dda.next()) {
-        if (segment->tMin != runEnd) {
-            if (runEnd > runStart && !walk(runStart, runEnd)) return;
-            runStart = segment->tMin;
-        }
-        runEnd = segment->tMax;
-    }
-    if (runEnd > runStart) walk(runStart, runEnd);
+    while (std::optional<MajorantRun> run = dda.nextRun())
+        if (!walk(run->tMin, run->tMax)) return;
 }
 
 void GridMedium::extinctionPieces(const Vec3f& origin, const Vec3f& direction, float tMin, float tMax,
