@@ -5,7 +5,13 @@
 // them into its walk: no indirect call per piece (the walk visits ~8 cells per delta-tracking
 // lookup, and a FunctionRef per cell cost as much as the cell's cubic). Medium's default
 // exactOpticalDepth() / exactDepthCrossing() run the same visitors through extinctionPieces(), so
-// every medium computes the same sums in the same order, bit for bit.
+// every medium computes the same sums in the same order.
+//
+// PIECES. The visitors take any piece type P with members scale (Vec3d) and free functions found
+// by argument-dependent lookup: wholePieceIntegral(p), the cubic's integral over all of the piece,
+// and cubicPiece(p), the piece as an ExtinctionPiece (its cubic). ExtinctionPiece is one; a medium
+// may hand its own, whose integral it knows without the cubic and whose cubic it computes only when
+// asked (volumes/grid_medium.cpp): the search asks only at the piece where the flight stops.
 #pragma once
 
 #include <algorithm>
@@ -32,14 +38,16 @@ inline double wholePieceIntegral(const ExtinctionPiece& piece) {
     const double length = piece.tMax - piece.tMin;
     return std::isfinite(length) ? integralAt(piece, length) : INFINITY;
 }
+inline const ExtinctionPiece& cubicPiece(const ExtinctionPiece& piece) { return piece; }
 
-// tau_c over all of the piece, given `total`, its wholePieceIntegral: an unbounded piece is
-// infinitely deep in every channel it attenuates and transparent in the others.
-inline Vec3d wholePieceDepth(const ExtinctionPiece& piece, double total) {
-    if (std::isfinite(total)) return piece.scale * total;
-    Vec3d tau;
-    for (int c = 0; c < 3; ++c) tau[c] = piece.scale[c] * piece.polynomial[0] > 0.0 ? INFINITY : 0.0;
-    return tau;
+// tau_c over all of an unbounded piece: infinitely deep in every channel it attenuates and
+// transparent in the others.
+Vec3d unboundedPieceDepth(const ExtinctionPiece& piece);
+
+// tau_c over all of the piece, given `total`, its wholePieceIntegral.
+template <class Piece>
+Vec3d wholePieceDepth(const Piece& piece, double total) {
+    return std::isfinite(total) ? piece.scale * total : unboundedPieceDepth(cubicPiece(piece));
 }
 
 // The s in [0, length] where the piece's integral reaches `remaining` (0 < remaining <= its
@@ -50,7 +58,8 @@ double invertIntegral(const ExtinctionPiece& piece, double length, double total,
 // Sums tau_c over every piece it is given (exactOpticalDepth()).
 struct OpticalDepthSum {
     OpticalDepth depth;
-    bool operator()(const ExtinctionPiece& piece) {
+    template <class Piece>
+    bool operator()(const Piece& piece) {
         ++depth.pieces;
         depth.tau += wholePieceDepth(piece, wholePieceIntegral(piece));
         return true;
@@ -63,23 +72,19 @@ struct DepthCrossingSearch {
     int hero = 0;
     double target = 0.0;
     DepthCrossing crossing;
-    bool operator()(const ExtinctionPiece& piece) {
+    template <class Piece>
+    bool operator()(const Piece& piece) {
         ++crossing.pieces;
-        Vec3d& tau = crossing.tau;
-        const double length = piece.tMax - piece.tMin, scale = piece.scale[hero];
-        const double total = wholePieceIntegral(piece);
-        if (!(scale > 0.0) || !(total > 0.0) || tau[hero] + scale * total < target) {
-            tau += wholePieceDepth(piece, total);
+        const double scale = piece.scale[hero], total = wholePieceIntegral(piece);
+        if (!(scale > 0.0) || !(total > 0.0) || crossing.tau[hero] + scale * total < target) {
+            crossing.tau += wholePieceDepth(piece, total);
             return true;
         }
-        const double remaining = (target - tau[hero]) / scale;
-        const double s =
-            std::isfinite(length) ? invertIntegral(piece, length, total, remaining) : remaining / piece.polynomial[0];
-        tau += piece.scale * integralAt(piece, s);
-        crossing.sigmaT = piece.scale * std::max(polynomialAt(piece, s), 0.0);
-        crossing.tStop = piece.tMin + s;
+        stop(cubicPiece(piece), total);
         return false;
     }
+    // The crossing inside `piece`, whose integral `total` takes the hero's depth to the target.
+    void stop(const ExtinctionPiece& piece, double total);
 };
 
 }  // namespace fluence::media

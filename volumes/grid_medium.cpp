@@ -82,36 +82,47 @@ void GridMedium::majorants(const Vec3f& origin, const Vec3f& direction, float tM
         if (!visit(*segment)) return;
 }
 
+namespace {
+
+// A dual cell's stretch times the medium's constant extinction factor: a piece for media/exact_depth.h's
+// visitors (PIECES), its integral the walk's and its cubic computed only when asked.
+struct ScaledStretch {
+    const CellStretch& stretch;
+    Vec3d scale;
+};
+double wholePieceIntegral(const ScaledStretch& piece) { return piece.stretch.integral; }
+media::ExtinctionPiece cubicPiece(const ScaledStretch& piece) {
+    media::ExtinctionPiece cubic;
+    cubic.tMin = piece.stretch.tMin;
+    cubic.tMax = piece.stretch.tMax;
+    cubic.scale = piece.scale;
+    piece.stretch.cubic(cubic.polynomial);
+    return cubic;
+}
+
+}  // namespace
+
 template <class Visit>
 void GridMedium::forEachPiece(const Vec3f& origin, const Vec3f& direction, float tMin, float tMax, Visit& visit) const {
     // Without a colour grid the majorant scale is the constant extinction factor (MAJORANTS).
-    media::ExtinctionPiece piece;
-    piece.scale = Vec3d(majorantScale_.x, majorantScale_.y, majorantScale_.z);
+    const Vec3d scale(majorantScale_.x, majorantScale_.y, majorantScale_.z);
+    const CellRay ray = cells_.prepare(origin, direction);
     const auto walk = [&](double t0, double t1) {
-        return cells_.walk(origin, direction, t0, t1, [&](double a, double b, const double* c) {
-            piece.tMin = a;
-            piece.tMax = b;
-            std::copy(c, c + 4, piece.polynomial);
-            return visit(piece);
+        return cells_.walk(ray, t0, t1, [&](const CellStretch& stretch) {
+            return visit(ScaledStretch{stretch, scale});
         });
     };
     // The dual cells are walked over each run of consecutive non-empty majorant segments (which
     // share their ends exactly), so the walk starts once per run, not once per majorant cell.
-    double runStart = 0.0, runEnd = -1.0;
     MajorantDda dda(majorantGrid_, origin, direction, tMin, tMax, majorantScale_, minorantScale_);
-    while (std::optional<media::MajorantSegment> segment = dda.next()) {
-        if (segment->tMin != runEnd) {
-            if (runEnd > runStart && !walk(runStart, runEnd)) return;
-            runStart = segment->tMin;
-        }
-        runEnd = segment->tMax;
-    }
-    if (runEnd > runStart) walk(runStart, runEnd);
+    while (std::optional<MajorantRun> run = dda.nextRun())
+        if (!walk(run->tMin, run->tMax)) return;
 }
 
 void GridMedium::extinctionPieces(const Vec3f& origin, const Vec3f& direction, float tMin, float tMax,
                                   FunctionRef<bool(const media::ExtinctionPiece&)> visit) const {
-    forEachPiece(origin, direction, tMin, tMax, visit);
+    const auto cubicVisit = [&](const ScaledStretch& piece) { return visit(cubicPiece(piece)); };
+    forEachPiece(origin, direction, tMin, tMax, cubicVisit);
 }
 
 media::OpticalDepth GridMedium::exactOpticalDepth(const Vec3f& origin, const Vec3f& direction, float tMin,

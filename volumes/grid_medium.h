@@ -83,7 +83,8 @@ public:
     const RGB& minorantScale() const { return minorantScale_; }
 
 private:
-    // extinctionPieces() with the visitor a template argument, inlined into the cells' walk.
+    // Hands `visit` (a template argument, inlined into the cells' walk) each cell's stretch as a
+    // piece of media/exact_depth.h (PIECES): its integral, and its cubic only when asked.
     template <class Visit>
     void forEachPiece(const Vec3f& origin, const Vec3f& direction, float tMin, float tMax, Visit& visit) const;
 

@@ -153,29 +153,36 @@ double MajorantDda::crossing(int axis) const {
     return (plane - origin_[axis]) * invDirection_[axis];
 }
 
-std::optional<media::MajorantSegment> MajorantDda::next() {
+bool MajorantDda::step(double& entry, double& exit, std::size_t& index) {
+    if (done_) return false;
     const Vec3i& n = grid_->resolution();
-    while (!done_) {
-        ++cellsVisited_;
-        double exit = tEnd_;
-        int exitAxis = -1;
-        for (int axis = 0; axis < 3; ++axis)
-            if (step_[axis] != 0 && crossing_[axis] < exit) {
-                exit = crossing_[axis];
-                exitAxis = axis;
-            }
-        exit = std::max(exit, t_);
-        const std::size_t index = std::size_t(cellIndex_);
-        const double entry = t_;
-        t_ = exit;
-        if (exitAxis < 0) {
-            done_ = true;
-        } else {
-            cell_[exitAxis] += step_[exitAxis];
-            done_ = cell_[exitAxis] < 0 || cell_[exitAxis] >= n[exitAxis];
-            crossing_[exitAxis] = crossing(exitAxis);
-            cellIndex_ += indexStep_[exitAxis];
+    ++cellsVisited_;
+    exit = tEnd_;
+    int exitAxis = -1;
+    for (int axis = 0; axis < 3; ++axis)
+        if (step_[axis] != 0 && crossing_[axis] < exit) {
+            exit = crossing_[axis];
+            exitAxis = axis;
         }
+    exit = std::max(exit, t_);
+    index = std::size_t(cellIndex_);
+    entry = t_;
+    t_ = exit;
+    if (exitAxis < 0) {
+        done_ = true;
+    } else {
+        cell_[exitAxis] += step_[exitAxis];
+        done_ = cell_[exitAxis] < 0 || cell_[exitAxis] >= n[exitAxis];
+        crossing_[exitAxis] = crossing(exitAxis);
+        cellIndex_ += indexStep_[exitAxis];
+    }
+    return true;
+}
+
+std::optional<media::MajorantSegment> MajorantDda::next() {
+    double entry, exit;
+    std::size_t index;
+    while (step(entry, exit, index)) {
         const float value = grid_->cells_[index];
         if (!(value > 0.0f)) continue;
         media::MajorantSegment segment{float(entry), float(exit), scale_ * value,
@@ -183,6 +190,38 @@ std::optional<media::MajorantSegment> MajorantDda::next() {
         if (segment.tMax > segment.tMin && !isBlack(segment.sigmaMaj)) return segment;
     }
     return std::nullopt;
+}
+
+bool MajorantDda::nextSpan(float& tMin, float& tMax) {
+    double entry, exit;
+    std::size_t index;
+    while (step(entry, exit, index)) {
+        const float value = grid_->cells_[index];
+        if (!(value > 0.0f)) continue;
+        tMin = float(entry);
+        tMax = float(exit);
+        if (tMax > tMin && !isBlack(scale_ * value)) return true;
+    }
+    return false;
+}
+
+std::optional<MajorantRun> MajorantDda::nextRun() {
+    MajorantRun run;
+    if (pending_) {
+        run = *pending_;
+        pending_.reset();
+    } else if (!nextSpan(run.tMin, run.tMax)) {
+        return std::nullopt;
+    }
+    MajorantRun span;
+    while (nextSpan(span.tMin, span.tMax)) {
+        if (span.tMin != run.tMax) {
+            pending_ = span;
+            break;
+        }
+        run.tMax = span.tMax;
+    }
+    return run;
 }
 
 }  // namespace fluence::volumes

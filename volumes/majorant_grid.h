@@ -81,6 +81,11 @@ private:
     Matrix4 worldToCell_ = Matrix4::identity();
 };
 
+// A stretch of a ray over which MajorantDda::next() would give segments end to end.
+struct MajorantRun {
+    float tMin = 0.0f, tMax = 0.0f;
+};
+
 // The cells of a MajorantGrid that the ray origin + t direction crosses within [tMin, tMax), in
 // order, as majorant segments with sigmaMaj = cell value * scale and sigmaMin = cell minorant *
 // minorantScale (0 by default: no control). Cells of value 0 are skipped. The grid must outlive
@@ -92,10 +97,19 @@ public:
 
     // The next segment with a non-zero majorant; nullopt once the ray has left the grid or tMax.
     std::optional<media::MajorantSegment> next();
+    // The next run of the segments next() would give, each starting where the one before ends, as
+    // one stretch with the same float ends, without computing their coefficients (a walk of its
+    // own below the majorants, such as volumes/trilinear_cells.h's, needs only where they are).
+    // nullopt once they are exhausted. One walk uses next() or nextRun(), not both.
+    std::optional<MajorantRun> nextRun();
     // How many cells the walk has stepped through so far (empty ones included): its cost.
     int cellsVisited() const { return cellsVisited_; }
 
 private:
+    // Steps into the next cell: its [entry, exit) and index; false once the walk is over.
+    bool step(double& entry, double& exit, std::size_t& index);
+    // The next segment's ends, as next() would give them; false once there is none.
+    bool nextSpan(float& tMin, float& tMax);
     // Where the ray crosses the plane through which it leaves cell_ along `axis` (only that axis's
     // crossing changes when the walk steps along it).
     double crossing(int axis) const;
@@ -110,6 +124,7 @@ private:
     double t_ = 0.0, tEnd_ = 0.0;     // the walk is at t_ in cell_ and stops at tEnd_
     bool done_ = true;
     int cellsVisited_ = 0;
+    std::optional<MajorantRun> pending_;  // the first segment of the run after the one nextRun() gave
 };
 
 }  // namespace fluence::volumes

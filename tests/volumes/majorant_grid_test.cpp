@@ -3,11 +3,13 @@
 // sampled, lies between its segment's minorant and majorant, and every point outside the segments
 // has density 0); minorants tight inside a block of constant density and 0 at its border;
 // segments ordered and non-overlapping; on a grid with no empty cell, contiguous and covering
-// exactly the ray's overlap with the support; resolution by voxelsPerCell and maxCellsPerAxis.
+// exactly the ray's overlap with the support; runs of segments end to end (nextRun); resolution by
+// voxelsPerCell and maxCellsPerAxis.
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <vector>
 
 #include "core/random.h"
@@ -299,6 +301,34 @@ TEST(MajorantGrid, SegmentsCoverTheOverlapWithTheSupportExactly) {
         for (const media::MajorantSegment& s : segments) EXPECT_EQ(s.sigmaMaj, RGB(1.0f));
     }
     EXPECT_GT(crossing, 200);
+}
+
+// nextRun() gives next()'s segments merged wherever one starts where the one before ends, with the
+// same float ends, on rays through a sparse grid (whose empty cells split the runs).
+TEST(MajorantGrid, RunsAreTheSegmentsMergedEndToEnd) {
+    test::TempDir dir("volumes_majorant_runs");
+    FloatVdbGrid grid(writeSparseGrid(dir), "density", 0, tiltedObjectToWorld());
+    MajorantGrid majorants(grid, {3.0, 64});
+    int split = 0;
+    for (const Ray& ray : randomRays(grid.worldBounds(), 200, 17)) {
+        std::vector<MajorantRun> expected;
+        for (const media::MajorantSegment& s : segmentsOf(majorants, ray)) {
+            if (!expected.empty() && expected.back().tMax == s.tMin)
+                expected.back().tMax = s.tMax;
+            else
+                expected.push_back({s.tMin, s.tMax});
+        }
+        MajorantDda dda(majorants, ray.origin, ray.direction, ray.tMin, ray.tMax, RGB(1.0f), RGB(1.0f));
+        std::vector<MajorantRun> runs;
+        while (std::optional<MajorantRun> run = dda.nextRun()) runs.push_back(*run);
+        ASSERT_EQ(runs.size(), expected.size());
+        for (std::size_t i = 0; i < runs.size(); ++i) {
+            EXPECT_EQ(runs[i].tMin, expected[i].tMin);
+            EXPECT_EQ(runs[i].tMax, expected[i].tMax);
+        }
+        if (runs.size() > 1) ++split;
+    }
+    EXPECT_GT(split, 0);  // some ray has several runs: the segment that ends one run starts the next
 }
 
 TEST(MajorantGrid, ResolutionFollowsTheOptions) {
