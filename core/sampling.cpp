@@ -27,16 +27,21 @@ SinCos sinCosQuarterTurn(float a) {
 
 // Shirley and Chiu's concentric mapping: the square's point at (ox, oy) goes to radius r = the
 // larger coordinate and angle theta = pi/4 * (the smaller / the larger) from that coordinate's axis.
+// Which coordinate is larger is a coin flip per call, which no branch predictor learns, and a
+// mispredicted branch here throws away the next-event estimation the processor runs beside a BSDF
+// sample (integrators/path_tracer.cpp). So both cases are one computation on operands picked by
+// index, which compiles to no branch (GCC turns `?:` selects back into one; measured in
+// bench/results/2026-12-06-cornell-cpu-s20.md).
 Vec2f sampleUniformDisk(Vec2f u) {
-    float ox = 2.0f * u.x - 1.0f, oy = 2.0f * u.y - 1.0f;
-    if (ox == 0.0f && oy == 0.0f) return {0.0f, 0.0f};
-    if (std::abs(ox) > std::abs(oy)) {  // theta = pi/4 * oy/ox
-        const SinCos t = sinCosQuarterTurn((kPi / 4.0f) * (oy / ox));
-        return {ox * t.cos, ox * t.sin};
-    }
-    // theta = pi/2 - a with a = pi/4 * ox/oy: cos theta = sin a, sin theta = cos a
-    const SinCos t = sinCosQuarterTurn((kPi / 4.0f) * (ox / oy));
-    return {oy * t.sin, oy * t.cos};
+    const float o[2] = {2.0f * u.x - 1.0f, 2.0f * u.y - 1.0f};
+    if (o[0] == 0.0f && o[1] == 0.0f) return {0.0f, 0.0f};
+    // larger == 0: theta = pi/4 * oy/ox. larger == 1: theta = pi/2 - a with a = pi/4 * ox/oy, so
+    // cos theta = sin a and sin theta = cos a.
+    const int larger = std::abs(o[0]) > std::abs(o[1]) ? 0 : 1;
+    const float r = o[larger];
+    const SinCos t = sinCosQuarterTurn((kPi / 4.0f) * (o[1 - larger] / r));
+    const float cosSin[2] = {t.cos, t.sin};
+    return {r * cosSin[larger], r * cosSin[1 - larger]};
 }
 
 Vec3f sampleCosineHemisphere(Vec2f u) {

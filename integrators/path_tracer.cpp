@@ -405,8 +405,10 @@ private:
         // Inside a material's interior no light is sampled: the closed surface around the
         // point blocks every shadow ray but those to lights inside it, which phase sampling
         // still finds, then weighted as the only strategy (as after a delta lobe).
+        const float uLight = rng_->next();
+        const Vec2f uPoint = rng_->next2D();
         sampleLight(
-            haveLights_ && !walking, flight.p, Vec3f(0.0f), 0,
+            haveLights_ && !walking, uLight, uPoint, flight.p, Vec3f(0.0f), 0,
             [&](const Vec3f&) { return std::pair(flight.p, &medium); },
             [&](const Vec3f& wi) {
                 float p = phase.p(wo, wi);
@@ -457,16 +459,25 @@ private:
         const SurfaceVertex v = surfaceVertex(
             hit, wo,
             exiting ? render::subsurfaceExitBsdf(hit.material, arena_) : render::materialBsdf(hit.material, arena_));
-        sampleLightAt(v);
+        // Both samples' numbers are drawn in the stream's order (the light's, then the BSDF's), and
+        // the BSDF is sampled before the light's shadow ray is traced: the two are independent, so
+        // the BSDF sample's chain of divisions and square roots overlaps next-event estimation in
+        // the processor's out-of-order window instead of waiting for it to end
+        // (bench/results/2026-12-06-cornell-cpu-s20.md).
+        const float uLight = rng_->next();
+        const Vec2f uPoint = rng_->next2D();
+        const float uLobe = v.flags == (render::kBsdfReflection | render::kBsdfDiffuse) ? 0.0f : rng_->next();
+        const std::optional<render::BsdfSample> bs = v.bsdf.sample(v.woLocal, uLobe, rng_->next2D());
+        sampleLightAt(v, uLight, uPoint);
         throughput_ = throughputOnward;
         if (endsAtExit_) return Step::End;
-        return continueFrom(v, depth);
+        return continueFrom(v, bs, depth);
     }
 
     // Next-event estimation at a surface: one light, chosen by the light tree for the vertex's
     // point and normal; the shadow ray leaves a transmissive surface on the light's side, in the
     // medium on that side.
-    void sampleLightAt(const SurfaceVertex& v) {
+    void sampleLightAt(const SurfaceVertex& v, float uLight, Vec2f uPoint) {
         const Frame& frame = v.surface.frame;
         const Vec3f& ng = v.surface.geometricNormal;
         auto shadowFrom = [&](const Vec3f& wi) {
@@ -474,7 +485,7 @@ private:
                              kMedia ? inside_.after(v.hit, v.wo, wi).medium() : nullptr);
         };
         sampleLight(
-            haveLights_ && v.connectable, v.lightFrom, v.lightNormal, v.hit.linkGroup, shadowFrom,
+            haveLights_ && v.connectable, uLight, uPoint, v.lightFrom, v.lightNormal, v.hit.linkGroup, shadowFrom,
             [&](const Vec3f& wi) {
                 Vec3f wiLocal = frame.toLocal(wi);
                 if (!sidesAgree(v.wo, wi, ng, v.woLocal.z, wiLocal.z)) return std::pair(RGB(0.0f), 0.0f);
@@ -484,12 +495,11 @@ private:
             [&](const Vec3f& wi) { return joinedEvents(v.bsdf, v.woLocal, frame.toLocal(wi)); });
     }
 
-    // Continues the path by sampling the BSDF (a plain Lambertian has one lobe: no lobe number drawn).
-    Step continueFrom(const SurfaceVertex& v, int depth) {
+    // Continues the path along `bs`, the BSDF's sample at v (a plain Lambertian has one lobe: no
+    // lobe number drawn for it).
+    Step continueFrom(const SurfaceVertex& v, const std::optional<render::BsdfSample>& bs, int depth) {
         const Vec3f& ng = v.surface.geometricNormal;
         bool entered = false;  // a guided walk starts here
-        const float uLobe = v.flags == (render::kBsdfReflection | render::kBsdfDiffuse) ? 0.0f : rng_->next();
-        std::optional<render::BsdfSample> bs = v.bsdf.sample(v.woLocal, uLobe, rng_->next2D());
         if (!bs) return Step::End;
         Vec3f wi = v.surface.frame.toWorld(bs->wi);
         if (!sidesAgree(v.wo, wi, ng, v.woLocal.z, bs->wi.z))
@@ -567,12 +577,11 @@ private:
     // surfaces and the medium, weighted against the
     // scattering strategy; scatter(wi) gives the BSDF or phase value (cosine included) and its density,
     // and vertexEvents(wi) the vertex's events for the light path expressions.
-    // Its random numbers are drawn even when it is not `enabled`, so that every vertex uses as many.
+    // Its random numbers, uLight (the light's choice) and uPoint (its point), are drawn by the caller
+    // even when it is not `enabled`, so that every vertex uses as many.
     template <class ShadowFrom, class Scatter, class Events>
-    void sampleLight(bool enabled, const Vec3f& from, const Vec3f& fromNormal, int linkGroup, ShadowFrom&& shadowFrom,
-                     Scatter&& scatter, Events&& vertexEvents) {
-        float uLight = rng_->next();
-        Vec2f uPoint = rng_->next2D();
+    void sampleLight(bool enabled, float uLight, Vec2f uPoint, const Vec3f& from, const Vec3f& fromNormal,
+                     int linkGroup, ShadowFrom&& shadowFrom, Scatter&& scatter, Events&& vertexEvents) {
         if (!enabled) return;
         render::LightChoice choice = scene_.chooseLight(from, fromNormal, uLight);
         if (choice.light < 0 || choice.probability <= 0.0f) return;
