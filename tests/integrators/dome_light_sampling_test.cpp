@@ -124,7 +124,7 @@ TEST(DomeLightSampling, AutoAndAlwaysAgreeInChromaticSmokeUnderASkyAndASun) {
             SampleStream a(11, 0, std::uint64_t(i)), b(11, 0, std::uint64_t(i));
             const RGB la = tracer.sample(*stateAuto, automatic, camera, ray, a, counters).radiance;
             const RGB lb = tracer.sample(*stateAlways, always, camera, ray, b, counters).radiance;
-            difference.add((la.x + la.y + la.z - lb.x - lb.y - lb.z) / 3.0);
+            difference.add((double(la.x + la.y + la.z) - double(lb.x + lb.y + lb.z)) / 3.0);
             alwaysMean.add((lb.x + lb.y + lb.z) / 3.0);
         }
         std::printf("[ measured ] level %d: always %.5f, auto - always %+.6f +- %.6f\n", level, alwaysMean.mean(),
