@@ -283,6 +283,12 @@ RenderOptions parseRenderOptions(const std::vector<std::string>& args) {
             o.subsurface = cur.value(arg);
             if (!render::subsurfaceMethodNamed(o.subsurface))
                 throw UsageError("--subsurface must be " + std::string(render::kSubsurfaceMethodNames));
+        } else if (arg == "--dome-sampling") {
+            const std::string name = cur.value(arg);
+            o.domeSampling = render::domeLightSamplingNamed(name);
+            if (!o.domeSampling)
+                throw UsageError("--dome-sampling must be " + std::string(render::kDomeLightSamplingNames) + ", not '" +
+                                 name + "'");
         } else if (arg == "-f" || arg == "--frame") {
             o.frame = parseNumber<double>(arg, cur.value(arg));
             if (!std::isfinite(*o.frame)) throw UsageError(arg + " must be a finite time code");
@@ -483,6 +489,10 @@ std::string usageText() {
            "      --subsurface METHOD subsurface scattering of every material: randomwalk, randomwalk_guided\n"
            "                          (steps guided to the surface: less noise for the time) or diffusion\n"
            "                          (default: each material's subsurface_type, else randomwalk_guided)\n"
+           "      --dome-sampling P   auto: next-event estimation leaves a dome light without texture (constant\n"
+           "                          radiance) to BSDF and phase sampling, as Cycles does; always: it samples\n"
+           "                          it as any light (default: the render settings' fluence:domeLightSampling,\n"
+           "                          else auto)\n"
            "      --time-limit SECS   stop starting new sample passes after SECS seconds (0: no limit)\n"
            "      --target-error E    adaptive sampling to a noise level: each pixel stops once the relative\n"
            "                          standard error of its mean (estimated from the halves of its samples over\n"

@@ -14,6 +14,7 @@
 #include "apps/light_path_aovs.h"
 #include "apps/progress_reporter.h"
 #include "core/random.h"
+#include "render/dome_light_sampling.h"
 #include "scene/stage.h"
 
 namespace fluence::app {
@@ -43,6 +44,8 @@ struct RenderOptions {
     double dicingRate = 1.0;         // --dicing-rate PIXELS: micro-edge length of subdivision surfaces
     std::optional<int> subdivLevel;  // --subdiv-level N: uniform refinement instead of dicing
     std::string subsurface;          // --subsurface randomwalk|diffusion: every material's method ("" keeps theirs)
+    std::optional<render::DomeLightSampling>
+        domeSampling;  // --dome-sampling auto|always (else fluence:domeLightSampling)
     std::optional<double>
         frame;  // -f/--frame F (default: the stage's startTimeCode, else none: each attribute's earliest sample)
     int frameCount = 1;           // -n/--frame-count N: frames to render from --frame on

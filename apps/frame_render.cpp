@@ -208,6 +208,8 @@ int renderFrameImage(const RenderOptions& opt, const usd::Stage& stage, const co
     const std::string& cameraPath = built.populated->cameraPath;
     frame.header = frameHeader(opt, colors, *frame.camera, window, res, cameraPath, built.integrator->name, time);
     frame.header.strings.push_back({"fluence/sampler", std::string(samplerName(built.sampler))});
+    frame.header.strings.push_back({"fluence/domeLightSampling", std::string(render::domeLightSamplingName(
+                                                                     built.populated->scene.domeLightSampling))});
     const ResolvedRender resolved{cameraPath,
                                   res.first,
                                   res.second,

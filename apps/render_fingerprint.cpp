@@ -112,6 +112,8 @@ CheckpointFingerprint renderFingerprint(const RenderOptions& o, const usd::Stage
         {"purpose", o.purposes ? joined(*o.purposes, [](const std::string& p) { return p; }) : "(render settings)"},
         {"render settings", o.settings},
         {"subsurface", o.subsurface},
+        {"dome sampling",
+         o.domeSampling ? std::string(render::domeLightSamplingName(*o.domeSampling)) : "(render settings)"},
         {"default light", o.defaultLight ? "on" : "off"},
         {"motion blur", o.motionBlur ? "on" : "off"},
         {"dicing rate", exact(o.dicingRate)},

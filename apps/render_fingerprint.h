@@ -7,7 +7,7 @@
 // a UDIM set's tiles are not listed); the camera, image resolution, window (tile) and frame; seed, integrator,
 // samples per pixel, adaptive sampling's target error and minimum, maximum depth, the light path
 // expression layers; and the options that change the scene: variants, --set, --purpose, render
-// settings prim, subsurface method, dicing. Whoever adds an option that changes what a sample
+// settings prim, subsurface method, dome light sampling, dicing. Whoever adds an option that changes what a sample
 // sees must add it here. Not in it, because they do not change the samples: threads, time limit,
 // output and preview paths, summary, checkpoint and snapshot intervals.
 #pragma once

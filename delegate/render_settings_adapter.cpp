@@ -124,6 +124,7 @@ std::optional<RenderSettingsDesc> renderSettingsFromStage(
     s.integrator = reader.token({"fluence:integrator"}, "");
     s.sampler = reader.token({"fluence:sampler"}, "");
     s.defaultLight = reader.boolean({"fluence:defaultLight"}, true);
+    s.domeLightSampling = reader.token({"fluence:domeLightSampling"}, "");
     s.disableMotionBlur = reader.boolean({"disableMotionBlur", "instantaneousShutter"}, false);
     for (const usd::AttributeSpec& attribute : prim->attributes)
         if (attribute.name.starts_with("fluence:") &&

@@ -10,6 +10,8 @@
 // |                | ("expandAperture"), rel camera, rel products, includedPurposes,              |
 // |                | uniform token fluence:integrator ("": --integrator, else path),              |
 // |                | bool fluence:defaultLight (true: a scene with no light gets the default ones)|
+// |                | uniform token fluence:domeLightSampling ("": --dome-sampling, else auto;    |
+// |                | render/dome_light_sampling.h, checked by the render command)                 |
 // |                | fluence:<method>:<parameter> numbers (the integrators' parameters, e.g.     |
 // |                | fluence:sppm:photons: the render command checks them, apps/integrator_parameters.h)|
 // | RenderProduct  | productName (""), productType ("raster"), and the RenderSettingsBase         |
@@ -67,9 +69,10 @@ struct RenderSettingsDesc {
     std::string cameraPath;
     render::ImageFraming framing;
     std::vector<std::string> includedPurposes{"default", "render"};
-    std::string integrator;    // fluence:integrator, "" when not authored
-    std::string sampler;       // fluence:sampler, "" when not authored
-    bool defaultLight = true;  // fluence:defaultLight (delegate/default_lights.h)
+    std::string integrator;         // fluence:integrator, "" when not authored
+    std::string sampler;            // fluence:sampler, "" when not authored
+    bool defaultLight = true;       // fluence:defaultLight (delegate/default_lights.h)
+    std::string domeLightSampling;  // fluence:domeLightSampling, "" when not authored
     // UsdRenderSettingsBase disableMotionBlur (or its deprecated instantaneousShutter): every
     // camera's shutter is closed to an instant (husk reads it so too).
     bool disableMotionBlur = false;

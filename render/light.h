@@ -18,6 +18,10 @@
 //   bounds()           where and in which directions a light not at infinity emits, for the
 //                      light tree (render/light_tree.h); nullopt for lights at infinity.
 //   name()             the light's prim path, given to the base's constructor.
+//   constantRadiance() whether the light is at infinity and sends the same radiance from every
+//                      direction (a dome without texture): BSDF and phase sampling are then its
+//                      ideal importance samplers, and next-event estimation may leave it to them
+//                      (render/dome_light_sampling.h).
 // Lights at infinity (distant, dome) derive from InfiniteLight (render/lights/infinite_light.h),
 // which answers atInfinity(), bounds() and hasEmissionSampling() for them.
 //   surface()          the surface camera and BSDF rays can hit, which RenderScene puts in the
@@ -134,6 +138,7 @@ public:
     virtual RGB emitted(const LightHit& hit, const Vec3f& wo) const { return RGB(0.0f); }
     virtual bool atInfinity() const { return false; }
     virtual RGB escaped(const Vec3f& direction) const { return RGB(0.0f); }
+    virtual bool constantRadiance() const { return false; }
     virtual float power(const SceneBounds& bounds) const = 0;
     virtual std::optional<LightBounds> bounds() const = 0;
     // The light's prim path (an emissive triangle's: its mesh's), for warnings and light path expressions.

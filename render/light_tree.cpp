@@ -165,10 +165,12 @@ struct LightTree::Item {
     Vec3f centroid;
 };
 
-LightTree::LightTree(const std::vector<std::unique_ptr<Light>>& lights, const SceneBounds& scene) {
+LightTree::LightTree(const std::vector<std::unique_ptr<Light>>& lights, const SceneBounds& scene,
+                     const std::vector<bool>& chosen) {
     leafOf_.assign(lights.size(), -1);
     std::vector<Item> items;
     for (std::size_t i = 0; i < lights.size(); ++i) {
+        if (!chosen.empty() && !chosen[i]) continue;
         if (std::optional<LightBounds> b = lights[i]->bounds()) {
             items.push_back({*b, static_cast<int>(i), (b->lo + b->hi) * 0.5f});
         } else {
@@ -322,15 +324,14 @@ LightChoice LightTree::choose(const Vec3f& p, const Vec3f& n, float u) const {
 
 float LightTree::probability(const Vec3f& p, const Vec3f& n, int light) const {
     if (light < 0 || light >= static_cast<int>(leafOf_.size())) return 0.0f;
+    int node = leafOf_[light];
+    const auto infinite = node < 0 ? std::find(infinite_.begin(), infinite_.end(), light) : infinite_.end();
+    if (node < 0 && infinite == infinite_.end()) return 0.0f;          // never chosen
     if (oneLightOnly()) return nodes_[0].reaches(p, n) ? 1.0f : 0.0f;  // `light` is the leaf's (the only one)
     float total;
     float treeWeight = rootWeight(p, n, total);
     if (!(total > 0.0f)) return 0.0f;
-    int node = leafOf_[light];
-    if (node < 0) {
-        auto it = std::find(infinite_.begin(), infinite_.end(), light);
-        return infiniteWeights_[it - infinite_.begin()] / total;
-    }
+    if (node < 0) return infiniteWeights_[infinite - infinite_.begin()] / total;
     float probability = treeWeight / total;
     for (; node != 0 && probability > 0.0f; node = nodes_[node].parent) {
         const Node& parent = nodes_[nodes_[node].parent];

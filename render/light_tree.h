@@ -25,6 +25,10 @@
 // by the children's powers, so that the probabilities of all lights always sum to 1 (pbrt-v4
 // returns no light there instead); the light so chosen cannot reach p and its sample is empty.
 //
+// Only the lights next-event estimation may choose are in it (the constructor's `chosen`): the others
+// (RenderScene leaves a constant dome to BSDF and phase sampling, render/dome_light_sampling.h) are
+// never chosen, and their probability is 0.
+//
 // Lights at infinity are not in the tree. Each has the constant weight power / R^2 (R the scene's
 // bounding radius: pi times the irradiance its power spreads over the scene's cross-section, in
 // the units of the importance), and the tree as a whole weighs its root's importance at p; the
@@ -65,7 +69,9 @@ struct LightChoice {
 class LightTree {
 public:
     LightTree() = default;
-    LightTree(const std::vector<std::unique_ptr<Light>>& lights, const SceneBounds& scene);
+    // `chosen[i]`: whether light i may be chosen (empty: every light).
+    LightTree(const std::vector<std::unique_ptr<Light>>& lights, const SceneBounds& scene,
+              const std::vector<bool>& chosen = {});
 
     // Chooses a light for a point p with unit normal n (zero: none) from u in [0, 1).
     LightChoice choose(const Vec3f& p, const Vec3f& n, float u) const;
@@ -102,7 +108,7 @@ private:
     bool oneLightOnly() const { return nodes_.size() == 1 && infinite_.empty(); }
 
     std::vector<Node> nodes_;  // root first
-    std::vector<int> leafOf_;  // light -> its leaf, -1 for lights at infinity
+    std::vector<int> leafOf_;  // light -> its leaf, -1 for lights at infinity and those never chosen
     std::vector<int> infinite_;
     std::vector<float> infiniteWeights_;
     float infiniteTotal_ = 0.0f;

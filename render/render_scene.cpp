@@ -369,7 +369,12 @@ RenderScene::RenderScene(const SceneDescription& scene, std::shared_ptr<texture:
     std::vector<double> powers;
     for (const auto& l : lights_) powers.push_back(std::max(0.0f, l->power(bounds_)));
     lightSelection_ = DiscreteDistribution(powers);
-    lightTree_ = LightTree(lights_, bounds_);
+    // Next-event estimation leaves a constant dome to BSDF and phase sampling unless told to sample
+    // it (render/dome_light_sampling.h); the power-based selection keeps every light.
+    std::vector<bool> chosenByNextEvent(lights_.size(), true);
+    if (scene.domeLightSampling == DomeLightSampling::Auto)
+        for (std::size_t i = 0; i < lights_.size(); ++i) chosenByNextEvent[i] = !lights_[i]->constantRadiance();
+    lightTree_ = LightTree(lights_, bounds_, chosenByNextEvent);
     stats_.lights = lights_.size();
 }
 

@@ -15,7 +15,12 @@
 // most light, in O(log N) per choice; lightProbability(p, n, light) is the probability of that
 // same choice, for the MIS weight of emission reached by BSDF sampling. The path tracer uses these;
 // lightSelection(), the older choice proportional to power alone, remains as the baseline the
-// many-lights benchmark compares the tree against.
+// many-lights benchmark compares the tree against, and chooses the lights sppm's photons leave.
+// Under SceneDescription::domeLightSampling auto (the default) chooseLight never returns a light
+// of constant radiance (Light::constantRadiance: an untextured dome) and lightProbability gives it
+// 0, so every method that weighs BSDF-sampled light against next-event estimation through them
+// gathers it by BSDF and phase sampling alone (render/dome_light_sampling.h); lightSelection()
+// keeps every light.
 //
 // Instancing: each prototype is one Embree scene (its meshes, curves and points), built once, and
 // each instance an Embree instance of it (one level), so N instances of a mesh cost its triangles

@@ -17,6 +17,7 @@
 #include "core/matrix.h"
 #include "core/rgb.h"
 #include "render/curves_description.h"
+#include "render/dome_light_sampling.h"
 #include "render/light_links.h"
 #include "media/medium.h"
 #include "render/points_description.h"
@@ -406,6 +407,8 @@ struct SceneDescription {
     // Light groups (delegate/light_groups.h): the prim path of a light or emissive mesh -> the label
     // its event carries in light path expressions instead of its prim's name.
     std::map<std::string, std::string> lightGroups;
+    // Whether next-event estimation samples a dome of constant radiance (render/dome_light_sampling.h).
+    DomeLightSampling domeLightSampling = DomeLightSampling::Auto;
 };
 
 }  // namespace fluence::render

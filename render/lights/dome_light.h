@@ -22,7 +22,10 @@
 // A textured dome is importance-sampled: a piecewise-constant distribution over the texels with
 // weights luminance x sin(theta) at each row's centre (the sin(theta) is the area a texel row
 // covers on the sphere), so the density in solid angle is p(u, v) / (2 pi^2 sin theta). Without a
-// texture the dome is sampled uniformly over the sphere.
+// texture the dome is sampled uniformly over the sphere; its radiance is then the same from every
+// direction (constantRadiance), and by default next-event estimation does not sample it at all:
+// the BSDF- and phase-sampled rays that leave the scene gather it at MIS weight 1, as Cycles
+// gathers a constant world (render/dome_light_sampling.h; `--dome-sampling always` samples it).
 // Emission sampling: a direction by sample() (reversed), and a point on the disk of the scene's
 // bounding radius facing it (emission_at_infinity.h).
 #pragma once
@@ -43,6 +46,7 @@ public:
     std::optional<LightSample> sample(const Vec3f& p, Vec2f u) const override;
     float pdf(const Vec3f& p, const Vec3f& wi, const LightHit& hit) const override;
     RGB escaped(const Vec3f& direction) const override;
+    bool constantRadiance() const override { return !texture_; }
     float power(const SceneBounds& bounds) const override;
     std::optional<EmissionSample> sampleEmission(Vec2f uPosition, Vec2f uDirection,
                                                  const SceneBounds& scene) const override;

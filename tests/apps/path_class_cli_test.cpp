@@ -1,6 +1,7 @@
 // End-to-end: the classes of light paths a scene can produce, as `fluence info` lists them and
 // `fluence render` warns of those its integrator misses; and the integrator a scene's
-// RenderSettings choose (fluence:integrator), and the sampler (fluence:sampler, --sampler).
+// RenderSettings choose (fluence:integrator), the sampler (fluence:sampler, --sampler) and the dome
+// light sampling (fluence:domeLightSampling, --dome-sampling).
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -107,6 +108,29 @@ TEST_F(PathClassCli, RenderSettingsChooseTheSamplerUnlessTheCommandLineDoes) {
     r = render(kCornellBox, "--sampler halton");
     EXPECT_EQ(r.exitCode, 2);
     EXPECT_NE(r.err.find("unknown sampler 'halton' (available: sobol, independent)"), std::string::npos) << r.err;
+}
+
+TEST_F(PathClassCli, RenderSettingsChooseTheDomeLightSamplingUnlessTheCommandLineDoes) {
+    const auto policy = [&](const std::string& scene, const std::string& extra) {
+        const RunResult r = render(scene, extra);
+        EXPECT_EQ(r.exitCode, 0) << r.err;
+        return test::readExr(tmp_.file("out.exr")).spec.get_string_attribute("fluence/domeLightSampling");
+    };
+    const std::string always = sceneWithSettings("uniform token fluence:domeLightSampling = \"always\"");
+    EXPECT_EQ(policy(always, ""), "always");
+    EXPECT_EQ(policy(always, "--dome-sampling auto"), "auto");
+    EXPECT_EQ(policy(sceneWithSettings(""), ""), "auto") << "the default";
+    EXPECT_EQ(policy(kCornellBox, "--dome-sampling always"), "always");
+
+    RunResult r = render(sceneWithSettings("uniform token fluence:domeLightSampling = \"never\""));
+    EXPECT_EQ(r.exitCode, 3);
+    EXPECT_NE(r.err.find("/Render/Settings: fluence:domeLightSampling 'never' is not a dome light sampling (available: "
+                         "auto or always)"),
+              std::string::npos)
+        << r.err;
+    r = render(kCornellBox, "--dome-sampling sometimes");
+    EXPECT_EQ(r.exitCode, 2);
+    EXPECT_NE(r.err.find("--dome-sampling must be auto or always, not 'sometimes'"), std::string::npos) << r.err;
 }
 
 TEST_F(PathClassCli, AnUnknownIntegratorInRenderSettingsIsASceneError) {

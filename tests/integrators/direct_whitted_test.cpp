@@ -29,16 +29,7 @@ constexpr double kChecks = 23;
 const double kTwoSidedZ = test::normalQuantile(0.5 * test::sidakAlpha(kChecks));
 const double kOneSidedZ = test::normalQuantile(test::sidakAlpha(kChecks));
 
-// Over the pixels where `select` holds, the mean of channel c's difference a - b with its standard
-// error. Where both images estimate the same values, each difference has mean 0 (pixels differ in
-// expected value, their differences do not), so the spread of the differences is their noise.
-test::MeanEstimate meanDifference(const Image& a, const Image& b, int c, const std::function<bool(int, int)>& select) {
-    test::MeanEstimate e;
-    for (int y = 0; y < a.height; ++y)
-        for (int x = 0; x < a.width; ++x)
-            if (select(x, y)) e.add(double(a.pixel(x, y)[c]) - double(b.pixel(x, y)[c]));
-    return e;
-}
+using test_support::meanDifference;
 bool everyPixel(int, int) { return true; }
 
 // A sphere of radius r at c with smooth shading normals.

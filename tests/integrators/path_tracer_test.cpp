@@ -149,11 +149,16 @@ TEST(PathTracer, PathsThatMeetNoHeroDependentMediumTakeThePowerHeuristic) {
 }
 
 TEST(PathTracer, CountsRaysAndSamples) {
-    Rendered r = renderScene(test::furnaceScene(0.5f), 16, 3);
+    render::SceneDescription furnace = test::furnaceScene(0.5f);
+    furnace.domeLightSampling = render::DomeLightSampling::Always;
+    Rendered r = renderScene(furnace, 16, 3);
     EXPECT_EQ(r.stats.samplesPerPixel, 3);
     EXPECT_EQ(r.stats.counters.camera, 16u * 16u * 3u);
     EXPECT_GT(r.stats.counters.shadow, 0u);
     EXPECT_EQ(r.stats.passes, 2);  // passes of 1 then 2 samples
+    // By default its constant dome is left to BSDF sampling (render/dome_light_sampling.h): no shadow rays.
+    furnace.domeLightSampling = render::DomeLightSampling::Auto;
+    EXPECT_EQ(renderScene(furnace, 16, 3).stats.counters.shadow, 0u);
 }
 
 TEST(Renderer, ThousandsOfSamplesAllArrive) {

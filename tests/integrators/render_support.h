@@ -1,5 +1,5 @@
 // Shared by the integrator tests: render a SceneDescription with an integrator into an Image, and
-// average a channel over selected pixels with its standard error.
+// average a channel (or the difference of two images) over selected pixels with its standard error.
 #pragma once
 
 #include <gtest/gtest.h>
@@ -37,6 +37,18 @@ inline RenderedFilm renderFilm(const Integrator& integrator, const render::Scene
     Film film(size, size, camera.farClip());
     RenderStats stats = render(scene, camera, integrator, settings, film);
     return {std::move(film), stats};
+}
+
+// Over the pixels where `select` holds, the mean of channel c's difference a - b with its standard
+// error. Where both images estimate the same values, each difference has mean 0 (pixels differ in
+// expected value, their differences do not), so the spread of the differences is their noise.
+inline test::MeanEstimate meanDifference(const Image& a, const Image& b, int c,
+                                         const std::function<bool(int, int)>& select) {
+    test::MeanEstimate e;
+    for (int y = 0; y < a.height; ++y)
+        for (int x = 0; x < a.width; ++x)
+            if (select(x, y)) e.add(double(a.pixel(x, y)[c]) - double(b.pixel(x, y)[c]));
+    return e;
 }
 
 // The samplers (core/random.h), for tests that hold for each.

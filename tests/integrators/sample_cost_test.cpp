@@ -28,10 +28,11 @@ double filmCost(const Film& film) {
     return sum;
 }
 
-test_support::RenderedFilm renderFourSamples(const render::SceneDescription& desc) {
+test_support::RenderedFilm renderFourSamples(const render::SceneDescription& desc,
+                                             const IntegratorSettings& integrator = {}) {
     RenderSettings settings;
     settings.samplesPerPixel = 4;
-    return test_support::renderFilm(PathTracer(IntegratorSettings{}), desc, kSize, settings);
+    return test_support::renderFilm(PathTracer(integrator), desc, kSize, settings);
 }
 
 // The film's cost less the counters' at their weights: each missed sample is charged
@@ -116,7 +117,7 @@ TEST(Renderer, AClassicSubsurfaceWalkIsChargedByItsMediumLookupsOnly) {
     expectCostsAddUpToTheCounters(translucent);
 }
 
-// Exact flights (--exact-flights, default 1: the camera ray's) walk grid cells, charged at
+// Exact flights (--exact-flights 1: the camera ray's) walk grid cells, charged at
 // kExactCellCost each, not as medium lookups; the flights after the first stay tracked and are
 // charged by their lookups. At level 0 no cell is walked. (In a medium, a camera ray that leaves
 // without scattering may count as missing the scene, alpha below 1, so the missed samples are not
@@ -134,15 +135,15 @@ TEST(Renderer, EachSamplesCostChargesTheCellsOfExactFlightsAsCells) {
     test::TempDir dir("sample_cost_exact");
     render::SceneDescription smoke = test::smokeUnderAWhiteSky(test::writeSmokeCube(dir), 2.0f, RGB(0.9f));
     smoke.camera->transform = Matrix4::translate(Vec3d(1.0, 1.0, 5.0));  // looking down -z through the cube
-    const test_support::RenderedFilm exact = renderFourSamples(smoke);
+    IntegratorSettings cameraRayOnly;
+    cameraRayOnly.parameters["exact-flights"] = 1;
+    const test_support::RenderedFilm exact = renderFourSamples(smoke, cameraRayOnly);
     EXPECT_GT(exact.stats.counters.exactCells, 0u);
     EXPECT_GT(exact.stats.counters.mediumCollisions, 0u);
     expectCostsAddUpToTheCountersWithSomeMissed(exact);
-    RenderSettings settings;
-    settings.samplesPerPixel = 4;
     IntegratorSettings tracked;
     tracked.parameters["exact-flights"] = 0;
-    const test_support::RenderedFilm tracking = test_support::renderFilm(PathTracer(tracked), smoke, kSize, settings);
+    const test_support::RenderedFilm tracking = renderFourSamples(smoke, tracked);
     EXPECT_EQ(tracking.stats.counters.exactCells, 0u);
     expectCostsAddUpToTheCountersWithSomeMissed(tracking);
 }

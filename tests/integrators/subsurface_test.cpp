@@ -183,7 +183,9 @@ TEST(Subsurface, WhiteObjectsBehindALosslessBoundaryNeitherLoseNorGainLight) {
                 std::printf("[ measured ] %s %s, channel %d: %.5f +- %.5f over %d pixels\n", walk.name, object.name, c,
                             means[c].mean(), means[c].standardError(), means[c].count());
                 ASSERT_GT(means[c].count(), 100) << object.name;
-                EXPECT_NEAR(means[c].mean(), 1.0, kZ * means[c].standardError())
+                // + 1e-6: the float rounding of the sums where the estimate has no variance (a thin
+                // tile's walks under a constant dome that BSDF sampling alone finds read exactly 1).
+                EXPECT_NEAR(means[c].mean(), 1.0, kZ * means[c].standardError() + 1e-6)
                     << walk.name << " " << object.name << ", channel " << c;
             }
         }
