@@ -20,7 +20,7 @@
 // most of a translucent object's variance: N = 2 took the Cycles subsurface peer's relMSE x CPU to
 // 0.90x, but the subsurface sample's to 1.07x (bench/results/2026-12-06-subsurface-4-s18.md).
 //
-// EXACT FLIGHTS (the parameter "exact-flights", default 2). Where the scene's volume has exact
+// EXACT FLIGHTS (the parameter "exact-flights", default 3). Where the scene's volume has exact
 // extinction (media/medium.h: grids without a colour grid or negative values, homogeneous media),
 // free flights can be drawn by regular tracking instead of delta tracking (media/exact_tracking.h):
 // 1, the camera ray's flight; 2, every flight through the scene's volume, with exact transmittance
@@ -28,11 +28,13 @@
 // then both in classical path space: integrators/path_tracer.cpp, EXACT FLIGHTS); 3, also on the
 // shadow rays to delta lights (ray-marched otherwise). Guided walks and interiors are tracked; in a
 // scene with lights the equiangular strategy samples (local lights), a flight it is weighted
-// against is tracked, and 2 and 3 act as 1. 0 is delta tracking everywhere. The default, 2, wins at
-// equal CPU once a constant sky is left to phase sampling (render/dome_light_sampling.h, auto): on
-// the Cycles peer's smoke relMSE x CPU 0.84-0.90 of level 1's (level 3 0.95, level 0 1.28), on
-// usd_samples/smoke 0.86 (bench/results/2026-12-06-dome-sampling-s20.md). When the sky was sampled,
-// 1 had won (bench/results/2026-12-06-exact-tracking-s19.md).
+// against is tracked, and 2 and 3 act as 1. 0 is delta tracking everywhere. The default, 3, wins at
+// equal CPU once a constant sky is left to phase sampling (render/dome_light_sampling.h, auto) and
+// the cell walk takes Simpson's rule (volumes/trilinear_cells.h): on the Cycles peer's smoke, two
+// interleaved runs of 8 and 6 seeds, level 3 has 0.97x level 2's relMSE (both runs) for 0.93-0.97x its
+// CPU (relMSE x CPU 0.91-0.95x), level 1 1.25x level 2's (bench/results/2026-12-06-lead-s20.md;
+// bench/results/2026-12-06-dome-sampling-s20.md for levels 0-3 before the cheaper walk, when 2 won). When the sky was sampled, 1 had won
+// (bench/results/2026-12-06-exact-tracking-s19.md).
 //
 // Light path expression AOVs (IntegratorSettings::lightPathAovs): each camera sample follows its
 // path's events through the expressions (integrators/light_path_tracker.h) and adds the light
@@ -57,7 +59,7 @@ public:
     // "subsurface-walks" says otherwise (SUBSURFACE above).
     static constexpr int kDefaultSubsurfaceWalks = 1;
     static constexpr int kMaxSubsurfaceWalks = 64;  // the parameter's bound (integrators/registry.cpp)
-    static constexpr int kDefaultExactFlights = 2;
+    static constexpr int kDefaultExactFlights = 3;
     static constexpr int kMaxExactFlights = 3;  // the "exact-flights" levels (EXACT FLIGHTS above)
 
     explicit PathTracer(const IntegratorSettings& settings)

@@ -27,7 +27,7 @@ const std::vector<IntegratorInfo>& integratorRegistry() {
           {"exact-flights", "fluence:path:exactFlights",
            "regular tracking of the scene volume's free flights where its extinction is exact: 1 the camera ray's, 2 "
            "every flight with exact shadow transmittance where phase sampling competes, 3 also to delta lights "
-           "(default 2; 0: delta tracking)",
+           "(default 3; 0: delta tracking)",
            true, PathTracer::kMaxExactFlights, 0.0}}},
         {"direct",
          "L(D|S)?E",
