@@ -7,7 +7,10 @@
 //         (RenderScene::lightProbability), so the BSDF- and phase-sampled rays that leave the scene
 //         gather it at MIS weight 1. For a constant sky those samplers are its ideal importance
 //         samplers (up to visibility), and the ray is traced anyway; the light samples next-event
-//         estimation would have spent on it go to the other lights. This is Cycles' rule (3.4,
+//         estimation would have spent on it go to the other lights. A constant dome whose light
+//         passes surfaces (shadows off, or shadow-linked away from some geometry:
+//         RenderScene::lightPassesSurfaces) is still sampled: only next-event estimation finds
+//         that light (render/shadow_rays.cpp). This is Cycles' rule (3.4,
 //         scene/light.cpp, LightManager::test_enabled_lights: the background light is disabled,
 //         "Background MIS has been disabled", unless the world shader varies over directions or a
 //         portal exists).

@@ -370,10 +370,13 @@ RenderScene::RenderScene(const SceneDescription& scene, std::shared_ptr<texture:
     for (const auto& l : lights_) powers.push_back(std::max(0.0f, l->power(bounds_)));
     lightSelection_ = DiscreteDistribution(powers);
     // Next-event estimation leaves a constant dome to BSDF and phase sampling unless told to sample
-    // it (render/dome_light_sampling.h); the power-based selection keeps every light.
+    // it (render/dome_light_sampling.h), or unless its light passes surfaces (shadows off, shadow
+    // links), which only next-event estimation finds (render/shadow_rays.cpp); the power-based
+    // selection keeps every light.
     std::vector<bool> chosenByNextEvent(lights_.size(), true);
     if (scene.domeLightSampling == DomeLightSampling::Auto)
-        for (std::size_t i = 0; i < lights_.size(); ++i) chosenByNextEvent[i] = !lights_[i]->constantRadiance();
+        for (std::size_t i = 0; i < lights_.size(); ++i)
+            chosenByNextEvent[i] = !lights_[i]->constantRadiance() || lightPassesSurfaces(int(i));
     lightTree_ = LightTree(lights_, bounds_, chosenByNextEvent);
     stats_.lights = lights_.size();
 }

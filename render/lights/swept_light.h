@@ -24,6 +24,7 @@ public:
     RGB emitted(const LightHit& hit, const Vec3f& wo) const override { return frame_->emitted(hit, wo); }
     bool atInfinity() const override { return frame_->atInfinity(); }
     RGB escaped(const Vec3f& direction) const override { return frame_->escaped(direction); }
+    bool constantRadiance() const override { return frame_->constantRadiance(); }
     float power(const SceneBounds& bounds) const override { return frame_->power(bounds); }
     std::optional<LightBounds> bounds() const override {
         return frame_->atInfinity() ? std::nullopt : std::optional<LightBounds>(swept_);

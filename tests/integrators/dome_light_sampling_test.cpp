@@ -28,8 +28,9 @@ using render::DomeLightSampling;
 using test_support::meanDifference;
 
 // The statistical checks below, for a family-wide false-failure rate of 1%, two-sided: the furnace
-// (3 methods x 3 channels), auto against always on surfaces (3 x 3) and in smoke (2 levels).
-const double kZ = test::normalQuantile(0.5 * test::sidakAlpha(20));
+// (3 methods x 3 channels), auto against always on surfaces (3 x 3), under a shadowless dome (3
+// channels) and in smoke (2 levels).
+const double kZ = test::normalQuantile(0.5 * test::sidakAlpha(23));
 
 struct Method {
     const char* name;
@@ -92,6 +93,27 @@ TEST(DomeLightSampling, AutoAndAlwaysRenderTheSameImageOfASphereOnAFloorUnderASk
             EXPECT_GT(d.standardError(), 0.0) << "the two images differ in their noise";
             EXPECT_NEAR(d.mean(), 0.0, kZ * d.standardError()) << method.name << ", channel " << c;
         }
+    }
+}
+
+// A constant dome that casts no shadows lights the floor under the sphere through it, light only
+// next-event estimation finds (a BSDF-sampled ray stops at the sphere: render/shadow_rays.cpp), so
+// `auto` must keep sampling it: left out of the light tree, the floor under the sphere loses the
+// dome's light and the two images differ by far more than their noise.
+TEST(DomeLightSampling, AShadowlessConstantDomeIsStillSampledUnderAuto) {
+    auto scene = [](DomeLightSampling policy) {
+        render::SceneDescription s = sphereOnAFloor(policy);
+        s.lights[0].castsShadows = false;
+        return s;
+    };
+    const PathTracer path{IntegratorSettings{}};
+    const Image automatic = test_support::renderWith(path, scene(DomeLightSampling::Auto), 32, 64).image;
+    const Image always = test_support::renderWith(path, scene(DomeLightSampling::Always), 32, 64).image;
+    for (int c = 0; c < 3; ++c) {
+        const test::MeanEstimate d = meanDifference(automatic, always, c, [](int, int) { return true; });
+        std::printf("[ measured ] shadowless dome, channel %d: auto - always %+.6f +- %.6f\n", c, d.mean(),
+                    d.standardError());
+        EXPECT_NEAR(d.mean(), 0.0, kZ * d.standardError()) << "channel " << c;
     }
 }
 
