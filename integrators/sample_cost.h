@@ -34,6 +34,12 @@
 // every ray 1, collisions 1.3, walk steps 3.2, cells 0.4, a missed sample 0.43: the weights
 // before), smoke 16% (52%: its volume tiles were charged 2-3x what they took against its
 // background's), subsurface scene 13% (26%); most of what is left is the missed samples' two costs.
+// Refitted after the cell walk took Simpson's rule (volumes/trilinear_cells.h) and path's default
+// became --exact-flights 3 (session 20, bench/results/2026-12-06-lead-s20.md): the smoke's 16 tiles
+// rendered again at the new default, fitted with the Cornell box's and the subsurface scene's tiles
+// above (their code paths unchanged but for a few % of CPU): a cell 30 ns (0.63 shadow rays, was
+// 1.5), a missed sample 209 ns in the smoke (its background rays now set up an exact flight at every
+// level), geometric mean 138 ns (2.9); smoke rms 19% (52% with the weights before the refit).
 // An integrator counts what it counts (RenderCounters): one that counts nothing costs 0 per
 // sample, which adaptive sampling reads as every sample alike.
 #pragma once
@@ -49,8 +55,8 @@ inline constexpr double kBounceRayCost = 6.4;
 inline constexpr double kShadowRayCost = 1.0;
 inline constexpr double kMediumCollisionCost = 2.2;
 inline constexpr double kWalkStepCost = 4.9;
-inline constexpr double kExactCellCost = 1.5;
-inline constexpr double kMissedCameraRayCost = 2.7;
+inline constexpr double kExactCellCost = 0.63;
+inline constexpr double kMissedCameraRayCost = 2.9;
 
 // The cost of the work `c` counts at the weights above (a missed sample is charged kMissedCameraRayCost instead).
 inline double countedCost(const RenderCounters& c) {
