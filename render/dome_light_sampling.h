@@ -20,8 +20,11 @@
 // is untouched, so every method still starts light from the dome.
 #pragma once
 
+#include <array>
 #include <optional>
 #include <string_view>
+
+#include "core/enum_names.h"
 
 namespace fluence::render {
 
@@ -29,15 +32,16 @@ enum class DomeLightSampling { Auto, Always };
 
 inline constexpr std::string_view kDomeLightSamplingNames = "auto or always";
 
+inline constexpr std::array<EnumName<DomeLightSampling>, 2> kDomeLightSamplingTable{
+    {{DomeLightSampling::Auto, "auto"}, {DomeLightSampling::Always, "always"}}};
+
 constexpr std::string_view domeLightSamplingName(DomeLightSampling policy) {
-    return policy == DomeLightSampling::Auto ? "auto" : "always";
+    return nameIn(kDomeLightSamplingTable, policy);
 }
 
 // The policy called `name`, nullopt for none.
 constexpr std::optional<DomeLightSampling> domeLightSamplingNamed(std::string_view name) {
-    for (DomeLightSampling policy : {DomeLightSampling::Auto, DomeLightSampling::Always})
-        if (domeLightSamplingName(policy) == name) return policy;
-    return std::nullopt;
+    return valueNamed(kDomeLightSamplingTable, name);
 }
 
 }  // namespace fluence::render

@@ -29,6 +29,15 @@ std::string lineStarting(const std::string& text, const std::string& start) {
     return text.substr(begin, text.find('\n', begin) - begin);
 }
 
+// A token of the render settings that a command-line option overrides, as the EXR header names
+// what was used: `attribute` = `setting` is read, `option override` wins over it, a scene without it
+// takes `fallback`, the option alone is read; a bad setting is a scene error naming the prim (exit
+// 3), a bad option value a usage error (exit 2).
+struct OverriddenSetting {
+    std::string attribute, option, header, setting, override, fallback, badSetting, settingError, badOption,
+        optionError;
+};
+
 class PathClassCli : public ::testing::Test {
 protected:
     test::TempDir tmp_{"fluence_path_class_cli"};
@@ -46,6 +55,7 @@ protected:
                             << attributes << "\n    }\n}\n";
         return path + " -s /Render/Settings";
     }
+    void expectTheOptionOverridesTheSetting(const OverriddenSetting& s);
 };
 
 TEST_F(PathClassCli, InfoListsTheScenesClassesAndWhatEachIntegratorMisses) {
@@ -88,49 +98,39 @@ TEST_F(PathClassCli, RenderSettingsChooseTheIntegratorUnlessTheCommandLineDoes) 
     EXPECT_NE(r.out.find("integrator path,"), std::string::npos) << "the default: " << r.out;
 }
 
-TEST_F(PathClassCli, RenderSettingsChooseTheSamplerUnlessTheCommandLineDoes) {
-    const auto sampler = [&](const std::string& scene, const std::string& extra) {
-        const RunResult r = render(scene, "--spp 4 " + extra);
+void PathClassCli::expectTheOptionOverridesTheSetting(const OverriddenSetting& s) {
+    const auto used = [&](const std::string& scene, const std::string& extra) {
+        const RunResult r = render(scene, extra);
         EXPECT_EQ(r.exitCode, 0) << r.err;
-        return test::readExr(tmp_.file("out.exr")).spec.get_string_attribute("fluence/sampler");
+        return test::readExr(tmp_.file("out.exr")).spec.get_string_attribute(s.header);
     };
-    const std::string independent = sceneWithSettings("uniform token fluence:sampler = \"independent\"");
-    EXPECT_EQ(sampler(independent, ""), "independent");
-    EXPECT_EQ(sampler(independent, "--sampler sobol"), "sobol");
-    EXPECT_EQ(sampler(sceneWithSettings(""), ""), "sobol") << "the default";
-    EXPECT_EQ(sampler(kCornellBox, "--sampler independent"), "independent");
+    const std::string withSetting = sceneWithSettings("uniform token " + s.attribute + " = \"" + s.setting + "\"");
+    EXPECT_EQ(used(withSetting, ""), s.setting);
+    EXPECT_EQ(used(withSetting, s.option + " " + s.override), s.override);
+    EXPECT_EQ(used(sceneWithSettings(""), ""), s.fallback) << "the default";
+    EXPECT_EQ(used(kCornellBox, s.option + " " + s.setting), s.setting);
 
-    RunResult r = render(sceneWithSettings("uniform token fluence:sampler = \"halton\""));
+    RunResult r = render(sceneWithSettings("uniform token " + s.attribute + " = \"" + s.badSetting + "\""));
     EXPECT_EQ(r.exitCode, 3);
-    EXPECT_NE(r.err.find("/Render/Settings: fluence:sampler 'halton' is not a sampler (available: sobol, independent)"),
-              std::string::npos)
-        << r.err;
-    r = render(kCornellBox, "--sampler halton");
+    EXPECT_NE(r.err.find(s.settingError), std::string::npos) << r.err;
+    r = render(kCornellBox, s.option + " " + s.badOption);
     EXPECT_EQ(r.exitCode, 2);
-    EXPECT_NE(r.err.find("unknown sampler 'halton' (available: sobol, independent)"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find(s.optionError), std::string::npos) << r.err;
+}
+
+TEST_F(PathClassCli, RenderSettingsChooseTheSamplerUnlessTheCommandLineDoes) {
+    expectTheOptionOverridesTheSetting(
+        {"fluence:sampler", "--sampler", "fluence/sampler", "independent", "sobol", "sobol", "halton",
+         "/Render/Settings: fluence:sampler 'halton' is not a sampler (available: sobol, independent)", "halton",
+         "unknown sampler 'halton' (available: sobol, independent)"});
 }
 
 TEST_F(PathClassCli, RenderSettingsChooseTheDomeLightSamplingUnlessTheCommandLineDoes) {
-    const auto policy = [&](const std::string& scene, const std::string& extra) {
-        const RunResult r = render(scene, extra);
-        EXPECT_EQ(r.exitCode, 0) << r.err;
-        return test::readExr(tmp_.file("out.exr")).spec.get_string_attribute("fluence/domeLightSampling");
-    };
-    const std::string always = sceneWithSettings("uniform token fluence:domeLightSampling = \"always\"");
-    EXPECT_EQ(policy(always, ""), "always");
-    EXPECT_EQ(policy(always, "--dome-sampling auto"), "auto");
-    EXPECT_EQ(policy(sceneWithSettings(""), ""), "auto") << "the default";
-    EXPECT_EQ(policy(kCornellBox, "--dome-sampling always"), "always");
-
-    RunResult r = render(sceneWithSettings("uniform token fluence:domeLightSampling = \"never\""));
-    EXPECT_EQ(r.exitCode, 3);
-    EXPECT_NE(r.err.find("/Render/Settings: fluence:domeLightSampling 'never' is not a dome light sampling (available: "
-                         "auto or always)"),
-              std::string::npos)
-        << r.err;
-    r = render(kCornellBox, "--dome-sampling sometimes");
-    EXPECT_EQ(r.exitCode, 2);
-    EXPECT_NE(r.err.find("--dome-sampling must be auto or always, not 'sometimes'"), std::string::npos) << r.err;
+    expectTheOptionOverridesTheSetting({"fluence:domeLightSampling", "--dome-sampling", "fluence/domeLightSampling",
+                                        "always", "auto", "auto", "never",
+                                        "/Render/Settings: fluence:domeLightSampling 'never' is not a dome light "
+                                        "sampling (available: auto or always)",
+                                        "sometimes", "--dome-sampling must be auto or always, not 'sometimes'"});
 }
 
 TEST_F(PathClassCli, AnUnknownIntegratorInRenderSettingsIsASceneError) {
