@@ -64,19 +64,6 @@ void overrideSubsurface(const std::string& method, render::SceneDescription& sce
     for (render::MaterialDesc& m : scene.materials) m.subsurfaceMethod = chosen;
 }
 
-// Whether next-event estimation samples a constant dome: --dome-sampling, else the render
-// settings' fluence:domeLightSampling, else auto. Throws SceneError naming the settings prim
-// when the attribute names no policy.
-render::DomeLightSampling chosenDomeLightSampling(const RenderOptions& opt, const delegate::DelegateResult& populated) {
-    if (opt.domeSampling) return *opt.domeSampling;
-    const auto& settings = populated.renderSettings;
-    if (!settings || settings->domeLightSampling.empty()) return render::DomeLightSampling::Auto;
-    if (const auto policy = render::domeLightSamplingNamed(settings->domeLightSampling)) return *policy;
-    throw delegate::SceneError(
-        "render settings " + settings->path + ": fluence:domeLightSampling '" + settings->domeLightSampling +
-        "' is not a dome light sampling (available: " + std::string(render::kDomeLightSamplingNames) + ")");
-}
-
 // The delegate's and the render scene's work; returns the light paths the scene can produce.
 unsigned populate(const RenderOptions& opt, usd::Stage& stage, const color::ColorManagement& colors,
                   const delegate::DelegateOptions& dopt, WarningLog& warnings, BuiltFrame& built) {
@@ -87,7 +74,7 @@ unsigned populate(const RenderOptions& opt, usd::Stage& stage, const color::Colo
     built.parameters =
         integratorParameters(opt.integratorParameters, built.populated->renderSettings, *built.integrator, warnings);
     overrideSubsurface(opt.subsurface, built.populated->scene);
-    built.populated->scene.domeLightSampling = chosenDomeLightSampling(opt, *built.populated);
+    built.populated->scene.domeLightSampling = chosenDomeLightSampling(opt, built.populated->renderSettings);
     built.scene =
         std::make_unique<render::RenderScene>(built.populated->scene, std::make_shared<texture::TextureSystem>(colors));
     for (const render::Warning& w : built.scene->warnings()) warnings(w.where, w.message);
