@@ -46,6 +46,17 @@ struct RenderCounters {
         nonFiniteSamples += o.nonFiniteSamples;
         return *this;
     }
+    // The counts of `o` taken back out: what was counted between `o` and this reading.
+    RenderCounters& operator-=(const RenderCounters& o) {
+        camera -= o.camera;
+        bounce -= o.bounce;
+        shadow -= o.shadow;
+        mediumCollisions -= o.mediumCollisions;
+        walkSteps -= o.walkSteps;
+        exactCells -= o.exactCells;
+        nonFiniteSamples -= o.nonFiniteSamples;
+        return *this;
+    }
 };
 
 struct LightPathAov;        // integrators/light_path_tracker.h

@@ -68,13 +68,8 @@ inline double countedCost(const RenderCounters& c) {
 // The cost of the sample whose counting took the counters from `before` to `after`; `hit`: whether
 // its camera ray hit something (FilmSample::hit).
 inline double sampleCost(const RenderCounters& before, const RenderCounters& after, bool hit) {
-    RenderCounters sample;
-    sample.camera = after.camera - before.camera;
-    sample.bounce = after.bounce - before.bounce;
-    sample.shadow = after.shadow - before.shadow;
-    sample.mediumCollisions = after.mediumCollisions - before.mediumCollisions;
-    sample.walkSteps = after.walkSteps - before.walkSteps;
-    sample.exactCells = after.exactCells - before.exactCells;
+    RenderCounters sample = after;
+    sample -= before;
     if (!hit && sample.rays() == 1 && sample.mediumCollisions == 0 && sample.exactCells == 0)
         return kMissedCameraRayCost;
     return countedCost(sample);
