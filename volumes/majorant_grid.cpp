@@ -180,21 +180,14 @@ bool MajorantDda::step(double& entry, double& exit, std::size_t& index) {
 }
 
 std::optional<media::MajorantSegment> MajorantDda::next() {
-    double entry, exit;
+    float tMin, tMax;
     std::size_t index;
-    while (step(entry, exit, index)) {
-        const float value = grid_->cells_[index];
-        if (!(value > 0.0f)) continue;
-        media::MajorantSegment segment{float(entry), float(exit), scale_ * value,
-                                       minorantScale_ * grid_->minorants_[index]};
-        if (segment.tMax > segment.tMin && !isBlack(segment.sigmaMaj)) return segment;
-    }
-    return std::nullopt;
+    if (!nextSpan(tMin, tMax, index)) return std::nullopt;
+    return media::MajorantSegment{tMin, tMax, scale_ * grid_->cells_[index], minorantScale_ * grid_->minorants_[index]};
 }
 
-bool MajorantDda::nextSpan(float& tMin, float& tMax) {
+bool MajorantDda::nextSpan(float& tMin, float& tMax, std::size_t& index) {
     double entry, exit;
-    std::size_t index;
     while (step(entry, exit, index)) {
         const float value = grid_->cells_[index];
         if (!(value > 0.0f)) continue;
@@ -207,14 +200,15 @@ bool MajorantDda::nextSpan(float& tMin, float& tMax) {
 
 std::optional<MajorantRun> MajorantDda::nextRun() {
     MajorantRun run;
+    std::size_t index;  // unused: a run needs only where its segments are
     if (pending_) {
         run = *pending_;
         pending_.reset();
-    } else if (!nextSpan(run.tMin, run.tMax)) {
+    } else if (!nextSpan(run.tMin, run.tMax, index)) {
         return std::nullopt;
     }
     MajorantRun span;
-    while (nextSpan(span.tMin, span.tMax)) {
+    while (nextSpan(span.tMin, span.tMax, index)) {
         if (span.tMin != run.tMax) {
             pending_ = span;
             break;

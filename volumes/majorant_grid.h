@@ -108,8 +108,8 @@ public:
 private:
     // Steps into the next cell: its [entry, exit) and index; false once the walk is over.
     bool step(double& entry, double& exit, std::size_t& index);
-    // The next segment's ends, as next() would give them; false once there is none.
-    bool nextSpan(float& tMin, float& tMax);
+    // The next segment's ends, as next() gives them, and its cell's index; false once there is none.
+    bool nextSpan(float& tMin, float& tMax, std::size_t& index);
     // Where the ray crosses the plane through which it leaves cell_ along `axis` (only that axis's
     // crossing changes when the walk steps along it).
     double crossing(int axis) const;
