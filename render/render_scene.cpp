@@ -103,10 +103,11 @@ bool emits(const MeshDesc& mesh, const std::vector<MaterialDesc>& materials) {
 
 // Whether the segment [tMin, tMax] of the ray from o along d meets the box [lo, hi]. Conservative:
 // a slab whose bound is NaN (0 x infinity, the ray parallel to a face and on its plane) excludes
-// nothing. Every ray traced in a scene with light shapes asks it, so the three slabs are computed side by side in SSE lanes (one
-// division for the three inverses instead of three), each lane doing the scalar code's IEEE
-// operations; the swap when tNear > tFar is min_ps(tFar, tNear) and max_ps(tNear, tFar), whose
-// operand order keeps the scalar outcome when a bound is NaN (an unordered comparison swaps nothing).
+// nothing. Every ray traced in a scene with light shapes asks it, so the three slabs are computed
+// side by side in SSE lanes (one division for the three inverses instead of three), each lane doing
+// the scalar code's IEEE operations; the swap when tNear > tFar is min_ps(tFar, tNear) and
+// max_ps(tNear, tFar), whose operand order keeps the scalar outcome when a bound is NaN (an
+// unordered comparison swaps nothing).
 bool segmentMeetsBox(const Vec3f& o, const Vec3f& d, float tMin, float tMax, const Vec3f& lo, const Vec3f& hi) {
     const __m128 origin = _mm_setr_ps(o.x, o.y, o.z, 0.0f);
     const __m128 inverse = _mm_div_ps(_mm_set1_ps(1.0f), _mm_setr_ps(d.x, d.y, d.z, 1.0f));

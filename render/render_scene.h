@@ -17,8 +17,8 @@
 // lightSelection(), the older choice proportional to power alone, remains as the baseline the
 // many-lights benchmark compares the tree against, and chooses the lights sppm's photons leave.
 // Under SceneDescription::domeLightSampling auto (the default) chooseLight never returns a light
-// of constant radiance (Light::constantRadiance: an untextured dome) and lightProbability gives it
-// 0, so every method that weighs BSDF-sampled light against next-event estimation through them
+// of constant radiance (Light::constantRadiance: an untextured dome) whose light passes no surface
+// (lightPassesSurfaces) and lightProbability gives it 0, so every method that weighs BSDF-sampled light against next-event estimation through them
 // gathers it by BSDF and phase sampling alone (render/dome_light_sampling.h); lightSelection()
 // keeps every light.
 //
