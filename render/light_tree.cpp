@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <stdexcept>
+#include <string>
 
 #include "core/sampling.h"
 
@@ -167,6 +169,9 @@ struct LightTree::Item {
 
 LightTree::LightTree(const std::vector<std::unique_ptr<Light>>& lights, const SceneBounds& scene,
                      const std::vector<bool>& chosen) {
+    if (!chosen.empty() && chosen.size() != lights.size())
+        throw std::invalid_argument("LightTree: a choice mask of " + std::to_string(chosen.size()) + " entries for " +
+                                    std::to_string(lights.size()) + " lights");
     leafOf_.assign(lights.size(), -1);
     std::vector<Item> items;
     for (std::size_t i = 0; i < lights.size(); ++i) {

@@ -69,7 +69,8 @@ struct LightChoice {
 class LightTree {
 public:
     LightTree() = default;
-    // `chosen[i]`: whether light i may be chosen (empty: every light).
+    // `chosen[i]`: whether light i may be chosen (empty: every light; a mask of another size than
+    // `lights` throws std::invalid_argument).
     LightTree(const std::vector<std::unique_ptr<Light>>& lights, const SceneBounds& scene,
               const std::vector<bool>& chosen = {});
 

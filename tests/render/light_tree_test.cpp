@@ -6,6 +6,7 @@
 #include <functional>
 #include <limits>
 #include <memory>
+#include <stdexcept>
 #include <vector>
 
 #include "core/frame.h"
@@ -284,6 +285,13 @@ TEST(LightTree, LightsAtInfinityAloneAreChosenByPower) {
     float sun = lights[0]->power(kScene), dome = lights[1]->power(kScene);
     EXPECT_NEAR(tree.probability(Vec3f(1, 2, 3), Vec3f(0, 1, 0), 0), sun / (sun + dome), 1e-6f);
     EXPECT_EQ(tree.choose(Vec3f(1, 2, 3), Vec3f(0, 1, 0), 0.999f).light, 1);
+}
+
+TEST(LightTree, AChoiceMaskOfAnotherSizeIsRefused) {
+    auto lights = mixedLights(3);
+    EXPECT_THROW(LightTree(lights, kScene, std::vector<bool>(lights.size() - 1, true)), std::invalid_argument);
+    EXPECT_THROW(LightTree(lights, kScene, std::vector<bool>(lights.size() + 1, true)), std::invalid_argument);
+    EXPECT_NO_THROW(LightTree(lights, kScene, std::vector<bool>(lights.size(), true)));
 }
 
 TEST(LightTree, ManyLightsGiveAShallowTree) {
