@@ -50,6 +50,7 @@
 #include "integrators/integrator.h"
 #include "integrators/light_path_tracker.h"
 #include "integrators/path_events.h"
+#include "media/guided_walk.h"
 
 namespace fluence::integrators {
 
@@ -65,6 +66,7 @@ public:
     explicit PathTracer(const IntegratorSettings& settings)
         : maxDepth_(settings.maxDepth),
           subsurfaceWalks_(walksPerEntry(settings.parameter("subsurface-walks", kDefaultSubsurfaceWalks))),
+          walkChannels_(walkChannelsOf(settings.parameter("walk-hero", 0))),
           exactFlights_(exactFlightLevel(settings.parameter("exact-flights", kDefaultExactFlights))),
           aovs_(settings.lightPathAovs) {}
 
@@ -101,8 +103,14 @@ private:
             throw std::invalid_argument("path: exact-flights must be 0, 1, 2 or 3");
         return int(value);
     }
+    static media::WalkChannels walkChannelsOf(double value) {
+        if (!(value >= 0.0 && value <= 3.0) || value != double(int(value)))
+            throw std::invalid_argument("path: walk-hero must be 0, 1, 2 or 3");
+        return media::WalkChannels(int(value));
+    }
     int maxDepth_;
     int subsurfaceWalks_;
+    media::WalkChannels walkChannels_;
     int exactFlights_;
     std::shared_ptr<const std::vector<LightPathAov>> aovs_;  // null: none
 };

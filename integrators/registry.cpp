@@ -24,6 +24,9 @@ const std::vector<IntegratorInfo>& integratorRegistry() {
            "random walks from each entry of a camera ray into a guided subsurface interior, each lighting its exit "
            "with weight 1/N (default 1)",
            true, PathTracer::kMaxSubsurfaceWalks},
+          {"walk-hero", "fluence:path:walkHero",
+           "guided walks' channels: 0 per step, 1-3 a hero per walk (uniform, by albedo, by mean free path)", true, 3,
+           0.0},
           {"exact-flights", "fluence:path:exactFlights",
            "regular tracking of the scene volume's free flights where its extinction is exact: 1 the camera ray's, 2 "
            "every flight with exact shadow transmittance where phase sampling competes, 3 also to delta lights "

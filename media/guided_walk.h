@@ -80,6 +80,14 @@ double sampleDwivediCosine(double nu, double u);
 
 enum class WalkStrategy { Classic, TowardsEntry, AwayFromEntry };
 
+// How a walk chooses the channel whose coefficients draw its steps (THE STEP AND ITS MIS).
+enum class WalkChannels {
+    PerStep,           // anew at every step, P_c proportional to alpha_c T_c: MIS per step
+    HeroUniform,       // once per walk, its hero, P_h = 1/3: MIS over whole walks
+    HeroAlbedo,        // the hero with P_h proportional to alpha_h
+    HeroMeanFreePath,  // the hero with P_h proportional to 1 / sigmaT_h
+};
+
 // A step of the walk, as the scattering that started it drew it.
 struct WalkStep {
     Vec3f origin, wo, wi;  // wo: towards where the walk came from (unused on the first step)
@@ -92,7 +100,9 @@ class GuidedWalk {
 public:
     // A walk that entered a medium of coefficients `m` at `entry`, through a surface of outward
     // geometric normal `outwardNormal`.
-    GuidedWalk(const Vec3f& entry, const Vec3f& outwardNormal, const MediumProperties& m);
+    // `channels`: how its steps choose their channel; with a hero, uHero in [0, 1) draws it.
+    GuidedWalk(const Vec3f& entry, const Vec3f& outwardNormal, const MediumProperties& m,
+               WalkChannels channels = WalkChannels::PerStep, float uHero = 0.0f);
 
     // A step from the surface reached the boundary `distance` along `direction`: the far side,
     // for backward guiding (the first such step, the entry's, sets it; later ones change nothing).
@@ -102,6 +112,12 @@ public:
     // MIS), and the channel drawn from u in [0, 1).
     RGB channelProbabilities() const;
     int sampleChannel(float u) const;
+    // The channel of the next step: drawn from u (per step), or the walk's hero (u unused).
+    int stepChannel(float u) const;
+    // A walk with a hero draws it again from u, before its first step (another walk of the same
+    // entry); the u that drew the hero (0 per step).
+    void chooseHero(float u);
+    float heroSample() const { return heroSample_; }
 
     // The entry's step from `origin` along wi, the direction the boundary refracted into.
     WalkStep firstStep(const Vec3f& origin, const Vec3f& wi, int channel) const;
@@ -129,6 +145,9 @@ private:
         float phase = 1.0f;
     };
     Density density(const WalkStep& step, float t, bool collided) const;
+    // What fly divides a step's value by, given its densities per channel (THE STEP AND ITS MIS);
+    // with a hero it updates the walk's density ratios.
+    float stepDivisor(const RGB& pdf);
 
     // The depth of p below the entry plane, clamped to the far side's (0 when it is not seen),
     // and the probability, at that depth, of guiding channel c's step away from the entry (see
@@ -143,6 +162,11 @@ private:
     float directionNorm_[3];           // 1 / (2 pi lnRatio), the guided directions' constant,
     float inverseDiffusionLength_[3];  // and sigmaT / nu
     float guidedFraction_;
+    WalkChannels channels_;
+    RGB heroProbabilities_{1.0f / 3.0f};  // P_h (with a hero)
+    int hero_ = -1;                       // -1: a channel per step
+    float heroSample_ = 0.0f;
+    RGB densityRatio_{1.0f};  // with a hero, per channel the walk's density over the hero's
     RGB throughput_{1.0f};    // T, the walk's weight since the entry
     float farDepth_ = -1.0f;  // depth of the far side below the entry plane; < 0: not seen
 };
