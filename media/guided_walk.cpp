@@ -91,11 +91,9 @@ GuidedWalk::GuidedWalk(const Vec3f& entry, const Vec3f& outwardNormal, const Med
     }
     guidedFraction_ = kGuidedFraction * (1.0f - std::abs(m.g));
     if (channels_ == WalkChannels::PerStep) return;
-    RGB weight(1.0f);
-    if (channels_ == WalkChannels::HeroAlbedo) weight = albedo_;
-    if (channels_ == WalkChannels::HeroMeanFreePath)
-        for (int c = 0; c < 3; ++c) weight[c] = sigmaT_[c] > 0.0f ? 1.0f / sigmaT_[c] : 0.0f;
-    heroProbabilities_ = normalisedOrUniform(weight);
+    RGB meanFreePath(0.0f);
+    for (int c = 0; c < 3; ++c) meanFreePath[c] = sigmaT_[c] > 0.0f ? 1.0f / sigmaT_[c] : 0.0f;
+    heroProbabilities_ = normalisedOrUniform(meanFreePath);
     chooseHero(uHero);
 }
 
