@@ -19,6 +19,7 @@ light (and the pixel is not black). relMSE = mean over pixels and channels of Va
 denominator, so that the classes add up to the whole but for their covariance. Seeds 200, 201, ...
 render every configuration in turn, the order rotated per seed; CPU is the median of the render
 CPU the summary reports (the light path expressions' bookkeeping included, alike for all).
+Under each configuration's line, its whole image's relMSE per channel (R, G, B: they average to whole).
 With --cycles (a glob of Cycles renders of the same scene at the same spp, one seed each), their
 whole, skin and rest relMSE over the same pixels.
 """
@@ -91,6 +92,8 @@ def main():
         cells = ["%.3e" % rel_variance(stacks[c], denominator)[mask].mean() for mask in masks.values() for c in CLASSES]
         print("%-12s %8.3f %10.4e %6.2f  %s" % (name, np.median(cpus[name]), whole.mean(),
                                              whole[skin].sum() / whole.sum(), " ".join(cells)))
+        channels = (stacks["all"].var(axis=0, ddof=1) / denominator).mean(axis=(0, 1))
+        print("%-12s per channel, whole image: R %.3e G %.3e B %.3e" % ("", *channels))
     if a.cycles:
         stack = np.array([read_layers(f, {"beauty": ""})["beauty"] for f in sorted(glob.glob(a.cycles))])
         whole = rel_variance(stack, stack.mean(axis=0) ** 2 + REL_EPS)

@@ -1,6 +1,7 @@
 #include "integrators/path_tracer.h"
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
 #include <optional>
 #include <span>
@@ -160,13 +161,14 @@ template <bool kMedia>
 class PathWalk {
 public:
     PathWalk(const LightEvents& lightEvents, const EquiangularLights& equiangularLights,
-             std::span<const LightPathAov> aovs, int maxDepth, int walksPerEntry, int exactFlights,
-             const render::RenderScene& scene, const render::Camera& camera, const Ray& cameraRay, SampleStream& rng,
-             RenderCounters& counters)
+             std::span<const LightPathAov> aovs, int maxDepth, int walksPerEntry, media::WalkChannels walkChannels,
+             int exactFlights, const render::RenderScene& scene, const render::Camera& camera, const Ray& cameraRay,
+             SampleStream& rng, RenderCounters& counters)
         : lightEvents_(lightEvents),
           equiangularLights_(equiangularLights),
           maxDepth_(maxDepth),
           walksPerEntry_(walksPerEntry),
+          walkChannels_(walkChannels),
           exactFlights_(exactFlights),
           exactEverywhere_(exactFlights >= 2 && !equiangularLights.any()),
           scene_(scene),
@@ -417,7 +419,7 @@ private:
             [&](const Vec3f&) { return event; });
         media::PhaseSample ps;
         if (guidedWalk_) {  // the step's phase value and density weigh its flight (media/guided_walk.h)
-            const int channel = guidedWalk_->sampleChannel(rng_->next());
+            const int channel = guidedWalk_->stepChannel(rng_->next());
             const float uStrategy = rng_->next();
             walkStep_ = guidedWalk_->sampleStep(flight.p, wo, channel, uStrategy, rng_->next2D());
             ps = {walkStep_.wi, 1.0f, 1.0f};
@@ -548,8 +550,11 @@ private:
             other.radiance_ = RGB(0.0f);
             other.out_.clearLightPaths(lightPaths_.layers());
             other.endsAtExit_ = true;
-            other.walkStep_ =
-                other.guidedWalk_->firstStep(ray_.origin, ray_.direction, guidedWalk_->sampleChannel(stream.next()));
+            // With a hero, the entry's walks take stratified heroes: u, u + 1/N, ... (mod 1).
+            const double uHero = guidedWalk_->heroSample() + double(i) / walksPerEntry_;
+            other.guidedWalk_->chooseHero(float(uHero - std::floor(uHero)));
+            other.walkStep_ = other.guidedWalk_->firstStep(ray_.origin, ray_.direction,
+                                                           other.guidedWalk_->stepChannel(stream.next()));
             const FilmSample split = other.run(depth + 1);
             radiance_ += split.radiance;
             for (std::size_t layer = 0; layer < lightPaths_.layers(); ++layer)
@@ -566,8 +571,12 @@ private:
         if (inside_.depth() != depthBefore) guidedWalk_.reset();
         const bool starts = inside_.depth() > depthBefore && inside_.inSubsurface() && !scene_.medium() &&
                             hit.material.subsurfaceMethod == render::SubsurfaceMethod::RandomWalkGuided;
-        if (starts) guidedWalk_.emplace(hit.point, hit.geometricNormal, inside_.medium()->at(hit.point));
-        if (guidedWalk_) walkStep_ = guidedWalk_->firstStep(origin, wi, guidedWalk_->sampleChannel(rng_->next()));
+        if (!guidedWalk_ && !starts) return false;
+        const float uChannel = rng_->next();  // with a hero, it draws the hero when the walk starts
+        if (starts)
+            guidedWalk_.emplace(hit.point, hit.geometricNormal, inside_.medium()->at(hit.point), walkChannels_,
+                                uChannel);
+        walkStep_ = guidedWalk_->firstStep(origin, wi, guidedWalk_->stepChannel(uChannel));
         return starts;
     }
 
@@ -632,9 +641,10 @@ private:
     const LightEvents& lightEvents_;
     const EquiangularLights& equiangularLights_;
     const int maxDepth_;
-    const int walksPerEntry_;     // guided walks per entry of the camera ray (splitWalk)
-    const int exactFlights_;      // the "exact-flights" level (EXACT FLIGHTS)
-    const bool exactEverywhere_;  // level 2 or 3 in a scene where the equiangular strategy samples no light
+    const int walksPerEntry_;                 // guided walks per entry of the camera ray (splitWalk)
+    const media::WalkChannels walkChannels_;  // how a guided walk's steps choose their channel
+    const int exactFlights_;                  // the "exact-flights" level (EXACT FLIGHTS)
+    const bool exactEverywhere_;              // level 2 or 3 in a scene where the equiangular strategy samples no light
     const render::RenderScene& scene_;
     const render::Camera& camera_;
     SampleStream* rng_;  // the sample's stream (a split walk's own, splitWalk)
@@ -675,8 +685,8 @@ FilmSample PathTracer::trace(const LightEvents& lightEvents, const EquiangularLi
                              SampleStream& rng, RenderCounters& counters) const {
     const std::span<const LightPathAov> aovs =
         aovs_ ? std::span<const LightPathAov>(*aovs_) : std::span<const LightPathAov>();
-    return PathWalk<kMedia>(lightEvents, equiangularLights, aovs, maxDepth_, subsurfaceWalks_, exactFlights_, scene,
-                            camera, cameraRay, rng, counters)
+    return PathWalk<kMedia>(lightEvents, equiangularLights, aovs, maxDepth_, subsurfaceWalks_, walkChannels_,
+                            exactFlights_, scene, camera, cameraRay, rng, counters)
         .run();
 }
 

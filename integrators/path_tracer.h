@@ -19,6 +19,9 @@
 // the path goes on past the first walk's exit only. Where a walk leaves (lit or in shadow) can be
 // most of a translucent object's variance: N = 2 took the Cycles subsurface peer's relMSE x CPU to
 // 0.90x, but the subsurface sample's to 1.07x (bench/results/2026-12-06-subsurface-4-s18.md).
+// A walk draws its steps with one hero channel's coefficients and is weighted by MIS over whole
+// walks (the parameter "walk-hero", default 1; 0: a channel per step; media/guided_walk.h, THE
+// STEP AND ITS MIS); the N walks of an entry take stratified heroes.
 //
 // EXACT FLIGHTS (the parameter "exact-flights", default 3). Where the scene's volume has exact
 // extinction (media/medium.h: grids without a colour grid or negative values, homogeneous media),
@@ -50,6 +53,7 @@
 #include "integrators/integrator.h"
 #include "integrators/light_path_tracker.h"
 #include "integrators/path_events.h"
+#include "media/guided_walk.h"
 
 namespace fluence::integrators {
 
@@ -59,12 +63,16 @@ public:
     // "subsurface-walks" says otherwise (SUBSURFACE above).
     static constexpr int kDefaultSubsurfaceWalks = 1;
     static constexpr int kMaxSubsurfaceWalks = 64;  // the parameter's bound (integrators/registry.cpp)
+    // Guided walks' channels unless the parameter "walk-hero" says otherwise: 1 a hero per walk,
+    // 0 a channel per step (SUBSURFACE above).
+    static constexpr int kDefaultWalkHero = 1;
     static constexpr int kDefaultExactFlights = 3;
     static constexpr int kMaxExactFlights = 3;  // the "exact-flights" levels (EXACT FLIGHTS above)
 
     explicit PathTracer(const IntegratorSettings& settings)
         : maxDepth_(settings.maxDepth),
           subsurfaceWalks_(walksPerEntry(settings.parameter("subsurface-walks", kDefaultSubsurfaceWalks))),
+          walkChannels_(walkChannelsOf(settings.parameter("walk-hero", kDefaultWalkHero))),
           exactFlights_(exactFlightLevel(settings.parameter("exact-flights", kDefaultExactFlights))),
           aovs_(settings.lightPathAovs) {}
 
@@ -101,8 +109,13 @@ private:
             throw std::invalid_argument("path: exact-flights must be 0, 1, 2 or 3");
         return int(value);
     }
+    static media::WalkChannels walkChannelsOf(double value) {
+        if (value != 0.0 && value != 1.0) throw std::invalid_argument("path: walk-hero must be 0 or 1");
+        return value == 1.0 ? media::WalkChannels::Hero : media::WalkChannels::PerStep;
+    }
     int maxDepth_;
     int subsurfaceWalks_;
+    media::WalkChannels walkChannels_;
     int exactFlights_;
     std::shared_ptr<const std::vector<LightPathAov>> aovs_;  // null: none
 };

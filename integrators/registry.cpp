@@ -24,6 +24,10 @@ const std::vector<IntegratorInfo>& integratorRegistry() {
            "random walks from each entry of a camera ray into a guided subsurface interior, each lighting its exit "
            "with weight 1/N (default 1)",
            true, PathTracer::kMaxSubsurfaceWalks},
+          {"walk-hero", "fluence:path:walkHero",
+           "guided walks' channels: 1 a hero per walk, drawn by mean free path, the walk weighted by MIS over whole "
+           "walks; 0 a channel drawn at every step, MIS per step (default 1)",
+           true, 1, 0.0},
           {"exact-flights", "fluence:path:exactFlights",
            "regular tracking of the scene volume's free flights where its extinction is exact: 1 the camera ray's, 2 "
            "every flight with exact shadow transmittance where phase sampling competes, 3 also to delta lights "

@@ -48,6 +48,15 @@ const DwivediConstants& dwivediConstants(const RGB& albedo) {
     return e;
 }
 
+// weight / its sum, or uniform where that sum is 0 or not finite.
+RGB normalisedOrUniform(const RGB& weight) {
+    const float total = weight[0] + weight[1] + weight[2];
+    return total > 0.0f && std::isfinite(total) ? weight / total : RGB(1.0f / 3.0f);
+}
+
+// The channel drawn from u in [0, 1) with probabilities p.
+int channelFrom(const RGB& p, float u) { return u < p[0] ? 0 : u < p[0] + p[1] || !(p[2] > 0.0f) ? 1 : 2; }
+
 }  // namespace
 
 double dwivediNu(double albedo) {
@@ -64,8 +73,14 @@ double dwivediCosinePdf(double nu, double mu) {
 
 double sampleDwivediCosine(double nu, double u) { return sampleCosine(nu, dwivediLnRatio(nu), u); }
 
-GuidedWalk::GuidedWalk(const Vec3f& entry, const Vec3f& outwardNormal, const MediumProperties& m)
-    : entry_(entry), axis_(outwardNormal), medium_(m), sigmaT_(m.sigmaA + m.sigmaS), albedo_(0.0f) {
+GuidedWalk::GuidedWalk(const Vec3f& entry, const Vec3f& outwardNormal, const MediumProperties& m, WalkChannels channels,
+                       float uHero)
+    : entry_(entry),
+      axis_(outwardNormal),
+      medium_(m),
+      sigmaT_(m.sigmaA + m.sigmaS),
+      albedo_(0.0f),
+      channels_(channels) {
     for (int c = 0; c < 3; ++c) albedo_[c] = sigmaT_[c] > 0.0f ? std::min(m.sigmaS[c] / sigmaT_[c], 1.0f) : 0.0f;
     const DwivediConstants& constants = dwivediConstants(albedo_);
     for (int c = 0; c < 3; ++c) {
@@ -75,18 +90,26 @@ GuidedWalk::GuidedWalk(const Vec3f& entry, const Vec3f& outwardNormal, const Med
         inverseDiffusionLength_[c] = static_cast<float>(sigmaT_[c] / nu_[c]);
     }
     guidedFraction_ = kGuidedFraction * (1.0f - std::abs(m.g));
+    if (channels_ == WalkChannels::PerStep) return;
+    RGB meanFreePath(0.0f);
+    for (int c = 0; c < 3; ++c) meanFreePath[c] = sigmaT_[c] > 0.0f ? 1.0f / sigmaT_[c] : 0.0f;
+    heroProbabilities_ = normalisedOrUniform(meanFreePath);
+    chooseHero(uHero);
 }
 
 RGB GuidedWalk::channelProbabilities() const {
-    const RGB weight = albedo_ * throughput_;
-    const float total = weight[0] + weight[1] + weight[2];
-    return total > 0.0f && std::isfinite(total) ? weight / total : RGB(1.0f / 3.0f);
+    return hero_ < 0 ? normalisedOrUniform(albedo_ * throughput_) : heroProbabilities_;
 }
 
-int GuidedWalk::sampleChannel(float u) const {
-    const RGB p = channelProbabilities();
-    return u < p[0] ? 0 : u < p[0] + p[1] || !(p[2] > 0.0f) ? 1 : 2;
+int GuidedWalk::stepChannel(float u) const { return hero_ < 0 ? sampleChannel(u) : hero_; }
+
+void GuidedWalk::chooseHero(float u) {
+    if (channels_ == WalkChannels::PerStep) return;
+    hero_ = channelFrom(heroProbabilities_, u);
+    heroSample_ = u;
 }
+
+int GuidedWalk::sampleChannel(float u) const { return channelFrom(channelProbabilities(), u); }
 
 WalkStep GuidedWalk::firstStep(const Vec3f& origin, const Vec3f& wi, int channel) const {
     return WalkStep{origin, Vec3f(0.0f), wi, true, WalkStrategy::Classic, channel};
@@ -159,6 +182,19 @@ GuidedWalk::Density GuidedWalk::density(const WalkStep& step, float t, bool coll
     return d;
 }
 
+float GuidedWalk::stepDivisor(const RGB& pdf) {
+    const RGB probability = channelProbabilities();
+    auto mixture = [&](const RGB& q) { return probability[0] * q[0] + probability[1] * q[1] + probability[2] * q[2]; };
+    if (hero_ < 0) return mixture(pdf);
+    // With a hero h: the step's density under h times the change of sum_k P_k r_k, r_k the walk's
+    // density under k over h's, so that the divisors of a walk's steps multiply to the balance
+    // heuristic's sum_k P_k prod_steps p_k (THE STEP AND ITS MIS).
+    if (!(pdf[hero_] > 0.0f)) return 0.0f;
+    const float before = mixture(densityRatio_);
+    densityRatio_ *= pdf / pdf[hero_];
+    return pdf[hero_] * (mixture(densityRatio_) / before);
+}
+
 RGB GuidedWalk::stepPdf(const WalkStep& step, float t, bool collided) const { return density(step, t, collided).pdf; }
 
 float GuidedWalk::sampleLength(const WalkStep& step, float u) const {
@@ -175,8 +211,7 @@ FreeFlight GuidedWalk::fly(const WalkStep& step, float length, float tBoundary, 
     const bool collided = length < tBoundary;
     flight.t = collided ? length : tBoundary;
     const Density d = density(step, flight.t, collided);
-    const RGB probability = channelProbabilities();
-    const float mixture = probability[0] * d.pdf[0] + probability[1] * d.pdf[1] + probability[2] * d.pdf[2];
+    const float mixture = stepDivisor(d.pdf);
     if (!(mixture > 0.0f) || !std::isfinite(mixture)) {  // a length beyond float range: the walk is lost
         flight.event = FlightEvent::Absorbed;
         flight.throughput = RGB(0.0f);

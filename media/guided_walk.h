@@ -23,27 +23,45 @@
 // near the entry, half the time half-way, mostly near the far side (the same weighting Cycles'
 // guided walk uses, from recorded path guiding). With no far side seen, b is 0.
 //
-// THE STEP AND ITS MIS. Each step is drawn with the coefficients of one channel c, chosen anew at
-// every step with probability P_c proportional to alpha_c T_c, T the walk's weight so far
-// (uniform when that is zero everywhere): the channels that still carry light guide the walk,
-// as Cycles' random walk chooses them. After a scattering a step is a direction and a length
+// THE STEP AND ITS MIS. Each step is drawn with the coefficients of one channel, in one of two
+// ways (WalkChannels). A HERO PER WALK (the default): the walk draws its hero h once, with
+// probability P_h proportional to h's mean free path 1 / sigmaT_h, and draws every step with h's
+// coefficients; as in hero-wavelength spectral sampling (Wilkie et al. 2014; pbrt-v4 keeps such
+// ratios along its volumetric paths) the walk's value f_c in channel c is weighted by the balance
+// heuristic over whole walks, f_c / sum_k P_k prod_steps p_k(step), p_k the step's density under
+// channel k (below). A red walk stays red, and its red estimate is not diluted by steps drawn
+// with green or blue coefficients. The products are kept as ratios to the hero's, r_k = prod p_k /
+// prod p_h (r_h = 1), and each step divides its value by p_h times the change of sum_k P_k r_k,
+// so that the steps' divisors multiply to the sum and every exit sees the weight of the walk so
+// far. The walks of an entry split N ways (integrators/path_tracer.h) take stratified heroes
+// (u, u + 1/N, ... mod 1). Where a red mean free path five and ten times the green and blue ones
+// made red 78% of the error, the hero walk took the Cycles peer's relMSE to 0.75x at 0.95x the CPU;
+// P_h uniform or by albedo did worse than per step (bench/results/2026-12-06-walk-hero-s21.md).
+// A CHANNEL PER STEP: c chosen anew at every step with probability P_c proportional to alpha_c T_c,
+// T the walk's weight so far (uniform when that is zero everywhere), as Cycles' random walk
+// chooses them, and each step weighted by the balance heuristic over its own densities, the
+// mixture sum_c P_c p_c(step). After a scattering a step is a direction and a length
 // together, drawn by one of three strategies: classic (Henyey-Greenstein direction, exponential
 // at sigmaT_c), guided towards the entry's surface, or guided away from it, chosen with
 // probabilities 1 - f, f (1 - b) and f b, f = kGuidedFraction (1 - |g|) (the guided directions
 // ignore anisotropy, so a forward-scattering medium relies on the classic ones). The step's
-// density under channel c is the mixture of the three with c's sigmaT and nu (stepPdf), and the
-// step's density as drawn is sum_c P_c stepPdf_c: the one-sample balance heuristic over the
-// nine (channel, strategy) pairs, which fly divides by. The step's value is
+// density under channel c, p_c, is the mixture of the three with c's sigmaT and nu (stepPdf);
+// per step, the step's density as drawn is sum_c P_c p_c: the one-sample balance heuristic over
+// the nine (channel, strategy) pairs, which fly divides by. The step's value is
 // p(wo, wi) sigmaS_c exp(-sigmaT_c t) at a collision, and p(wo, wi) exp(-sigmaT_c t) when the
 // step reaches the boundary at t. The first step, from the entry along the direction the
 // boundary refracted into, has no direction to choose: classic distance sampling at the chosen
-// channel's rate. Nothing a step draws depends on the path's hero channel, so to the path
-// tracer's spectral MIS (media/tracking.h) the walk is one strategy shared by every hero: its
-// pdfRatio is 1. A collision scatters, always: the walk plays Russian roulette instead,
-// surviving with probability min(1, max_c T_c) and weighted by its inverse (the weight after
-// the MIS, so a walk whose every channel has faded ends, and its survivors keep weights near 1).
-// Unbiased for any medium of albedo <= 1: every strategy has a positive density wherever the
-// classic one has, and every chosen channel's classic strategy covers every length.
+// channel's rate. Nothing a step draws depends on the path's hero channel (a walk's hero is its
+// own), and the walk's density either way is the same in every channel, so to the path tracer's
+// spectral MIS (media/tracking.h) the walk is one strategy shared by every hero: its pdfRatio is
+// 1. A collision scatters, always: the walk plays Russian roulette instead, surviving with
+// probability min(1, max_c T_c) and weighted by its inverse (the weight after the MIS, so a walk
+// whose every channel has faded ends, and its survivors keep weights near 1; with a hero, that
+// weight is a function of the walk alone, not of which hero drew it). Unbiased for any medium of
+// albedo <= 1: every strategy has a positive density wherever the classic one has, and every
+// chosen channel's classic strategy covers every length (with a hero, P_h > 0 for every channel
+// with sigmaT_h > 0; one of sigmaT 0 scatters nothing, and the walks that bring its light, which
+// leave without a collision, the other heroes draw too).
 //
 // THE COST OF A STEP. The length is drawn before the boundary is known (sampleLength), so the
 // path tracer traces each step's ray only that far: no surface is shaded unless the walk leaves,
@@ -80,6 +98,12 @@ double sampleDwivediCosine(double nu, double u);
 
 enum class WalkStrategy { Classic, TowardsEntry, AwayFromEntry };
 
+// How a walk chooses the channel whose coefficients draw its steps (THE STEP AND ITS MIS).
+enum class WalkChannels {
+    PerStep,  // anew at every step, P_c proportional to alpha_c T_c: MIS per step
+    Hero,     // once per walk, its hero, P_h proportional to the mean free path: MIS over whole walks
+};
+
 // A step of the walk, as the scattering that started it drew it.
 struct WalkStep {
     Vec3f origin, wo, wi;  // wo: towards where the walk came from (unused on the first step)
@@ -92,7 +116,9 @@ class GuidedWalk {
 public:
     // A walk that entered a medium of coefficients `m` at `entry`, through a surface of outward
     // geometric normal `outwardNormal`.
-    GuidedWalk(const Vec3f& entry, const Vec3f& outwardNormal, const MediumProperties& m);
+    // `channels`: how its steps choose their channel; with a hero, uHero in [0, 1) draws it.
+    GuidedWalk(const Vec3f& entry, const Vec3f& outwardNormal, const MediumProperties& m,
+               WalkChannels channels = WalkChannels::PerStep, float uHero = 0.0f);
 
     // A step from the surface reached the boundary `distance` along `direction`: the far side,
     // for backward guiding (the first such step, the entry's, sets it; later ones change nothing).
@@ -102,6 +128,12 @@ public:
     // MIS), and the channel drawn from u in [0, 1).
     RGB channelProbabilities() const;
     int sampleChannel(float u) const;
+    // The channel of the next step: drawn from u (per step), or the walk's hero (u unused).
+    int stepChannel(float u) const;
+    // A walk with a hero draws it again from u, before its first step (another walk of the same
+    // entry); the u that drew the hero (0 per step).
+    void chooseHero(float u);
+    float heroSample() const { return heroSample_; }
 
     // The entry's step from `origin` along wi, the direction the boundary refracted into.
     WalkStep firstStep(const Vec3f& origin, const Vec3f& wi, int channel) const;
@@ -129,6 +161,9 @@ private:
         float phase = 1.0f;
     };
     Density density(const WalkStep& step, float t, bool collided) const;
+    // What fly divides a step's value by, given its densities per channel (THE STEP AND ITS MIS);
+    // with a hero it updates the walk's density ratios.
+    float stepDivisor(const RGB& pdf);
 
     // The depth of p below the entry plane, clamped to the far side's (0 when it is not seen),
     // and the probability, at that depth, of guiding channel c's step away from the entry (see
@@ -143,6 +178,11 @@ private:
     float directionNorm_[3];           // 1 / (2 pi lnRatio), the guided directions' constant,
     float inverseDiffusionLength_[3];  // and sigmaT / nu
     float guidedFraction_;
+    WalkChannels channels_;
+    RGB heroProbabilities_{1.0f / 3.0f};  // P_h (with a hero)
+    int hero_ = -1;                       // -1: a channel per step
+    float heroSample_ = 0.0f;
+    RGB densityRatio_{1.0f};  // with a hero, per channel the walk's density over the hero's
     RGB throughput_{1.0f};    // T, the walk's weight since the entry
     float farDepth_ = -1.0f;  // depth of the far side below the entry plane; < 0: not seen
 };

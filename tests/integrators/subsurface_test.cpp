@@ -2,7 +2,8 @@
 // boundary, media/subsurface_medium.h's interior, integrators/medium_stack.h): a deep slab under a
 // white sky reads the subsurface colour asked for, and white (albedo-1) objects behind a lossless
 // boundary, round or thin, neither lose nor gain light; guided walks so with one walk per entry
-// and split four ways (PathTracer's subsurface-walks), bit for bit at any thread count.
+// and split four ways (PathTracer's subsurface-walks), with a channel per step or a hero per walk
+// (walk-hero), bit for bit at any thread count.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -17,25 +18,32 @@
 namespace fluence::integrators {
 namespace {
 
-// (3 walks + diffusion) x 3 channels (slab) + 3 walks x 3 objects x 3 channels (furnaces) + the
+// (5 walks + diffusion) x 3 channels (slab) + 5 walks x 3 objects x 3 channels (furnaces) + the
 // specular-layer furnace under 2 walks, family-wide 1%.
-const double kZ = test::normalQuantile(0.5 * test::sidakAlpha(41));
+const double kZ = test::normalQuantile(0.5 * test::sidakAlpha(65));
 // Guided against classic walks: 2 slabs x 3 channels, family-wide 1%.
 const double kWelchAlpha = test::sidakAlpha(6);
 
-// A walk method, and for guided walks how many leave from each entry (a classic walk is never split).
+// A walk method, and for guided walks how many leave from each entry (a classic walk is never split)
+// and how their steps choose their channels (PathTracer's walk-hero, media/guided_walk.h).
 struct Walk {
     render::SubsurfaceMethod method;
     int perEntry;
     const char* name;
+    int hero = PathTracer::kDefaultWalkHero;
 };
 constexpr render::SubsurfaceMethod kClassic = render::SubsurfaceMethod::RandomWalk;
 constexpr render::SubsurfaceMethod kGuided = render::SubsurfaceMethod::RandomWalkGuided;
-constexpr Walk kWalks[] = {{kClassic, 1, "classic"}, {kGuided, 1, "guided"}, {kGuided, 4, "guided x4"}};
+constexpr Walk kWalks[] = {{kClassic, 1, "classic"},
+                           {kGuided, 1, "guided"},
+                           {kGuided, 4, "guided x4"},
+                           {kGuided, 1, "guided per step", 0},
+                           {kGuided, 3, "guided per step x3", 0}};
 
-PathTracer pathTracer(int walksPerEntry) {
+PathTracer pathTracer(int walksPerEntry, int walkHero = PathTracer::kDefaultWalkHero) {
     IntegratorSettings settings;
     settings.parameters["subsurface-walks"] = walksPerEntry;
+    settings.parameters["walk-hero"] = walkHero;
     return PathTracer(settings);
 }
 
@@ -63,8 +71,9 @@ render::SceneDescription underAWhiteSky(render::MeshDesc mesh, render::MaterialD
 
 // Per channel, the mean over the pixels that see the object.
 std::array<test::MeanEstimate, 3> objectMeans(const render::SceneDescription& scene, int size, int spp,
-                                              int walksPerEntry = PathTracer::kDefaultSubsurfaceWalks) {
-    test_support::Rendered r = test_support::renderWith(pathTracer(walksPerEntry), scene, size, spp);
+                                              int walksPerEntry = PathTracer::kDefaultSubsurfaceWalks,
+                                              int walkHero = PathTracer::kDefaultWalkHero) {
+    test_support::Rendered r = test_support::renderWith(pathTracer(walksPerEntry, walkHero), scene, size, spp);
     const int alpha = r.image.channelIndex("A");
     std::array<test::MeanEstimate, 3> means;
     for (int c = 0; c < 3; ++c)
@@ -84,7 +93,7 @@ TEST(Subsurface, DeepSlabUnderAWhiteSkyShowsItsSubsurfaceColour) {
     for (const Walk& walk : kWalks) {
         render::SceneDescription scene =
             underAWhiteSky(slab, subsurfaceMaterial(colour, RGB(0.1f), walk.method), Vec3f(0.0f, -15.0f, 0.0f));
-        std::array<test::MeanEstimate, 3> means = objectMeans(scene, 24, 512, walk.perEntry);
+        std::array<test::MeanEstimate, 3> means = objectMeans(scene, 24, 512, walk.perEntry, walk.hero);
         for (int c = 0; c < 3; ++c) {
             std::printf("[ measured ] %s slab, channel %d: %.5f +- %.5f (colour %.2f)\n", walk.name, c, means[c].mean(),
                         means[c].standardError(), colour[c]);
@@ -178,7 +187,7 @@ TEST(Subsurface, WhiteObjectsBehindALosslessBoundaryNeitherLoseNorGainLight) {
                                    Case{"torus", test::torusMesh(0.8f, 0.3f, 128, 64, 0), RGB(0.05f, 0.2f, 0.6f)}}) {
             render::SceneDescription scene = underAWhiteSky(
                 object.mesh, subsurfaceMaterial(RGB(1.0f), object.meanFreePath, walk.method), Vec3f(0.0f, -4.0f, 0.0f));
-            std::array<test::MeanEstimate, 3> means = objectMeans(scene, 48, 128, walk.perEntry);
+            std::array<test::MeanEstimate, 3> means = objectMeans(scene, 48, 128, walk.perEntry, walk.hero);
             for (int c = 0; c < 3; ++c) {
                 std::printf("[ measured ] %s %s, channel %d: %.5f +- %.5f over %d pixels\n", walk.name, object.name, c,
                             means[c].mean(), means[c].standardError(), means[c].count());
@@ -212,6 +221,40 @@ TEST(Subsurface, WhiteSphereUnderASpecularLayerReflectsAllTheLight) {
     }
 }
 
+TEST(Subsurface, HeroAndPerStepWalksAgreeOnAChromaticSphereUnderALight) {
+    // A sphere of the Cycles peer's chromatic mean free paths (0.5, 0.1, 0.05 on a radius of 0.7)
+    // under a rect light and a dim sky: walks with a channel per step and walks with a hero (one
+    // walk per entry, and three with stratified heroes) render the
+    // same image. Pixel by pixel the difference of two independent renders has mean 0, so the mean
+    // of the differences over the sphere's pixels lies within z of its standard error (both
+    // renders' variances: test_support::meanDifference), z for 2 x 3 checks at a family-wide 1%.
+    // With the hero's probability left out of the weights (as if it were uniform, where it is by
+    // mean free path), red reads twice the light, green and blue two thirds and half.
+    render::SceneDescription scene = underAWhiteSky(
+        test::roundSphereMesh(0.7f, 48, 24, 0),
+        subsurfaceMaterial(RGB(0.9f, 0.6f, 0.5f), RGB(0.5f, 0.1f, 0.05f), kGuided), Vec3f(0.0f, -3.0f, 0.0f));
+    scene.lights[0].radiance = RGB(0.1f);
+    scene.lights.push_back(test::rectLight("/key", 1.0f, 1.0f, RGB(8.0f), Matrix4::translate({1.0, -1.0, 2.0})));
+    constexpr int kSize = 32, kSpp = 64;
+    const double z = test::normalQuantile(0.5 * test::sidakAlpha(6));
+    const test_support::Rendered perStep = test_support::renderWith(pathTracer(1, 0), scene, kSize, kSpp, 0, 1);
+    const int alpha = perStep.image.channelIndex("A");
+    for (const auto& [walks, hero] : {std::pair(1, 1), std::pair(3, 1)}) {
+        const test_support::Rendered heroed =
+            test_support::renderWith(pathTracer(walks, hero), scene, kSize, kSpp, 0, 2);
+        for (int c = 0; c < 3; ++c) {
+            const test::MeanEstimate d = test_support::meanDifference(
+                heroed.image, perStep.image, c, [&](int x, int y) { return perStep.image.pixel(x, y)[alpha] == 1.0f; });
+            const test::MeanEstimate base =
+                test_support::channelMean(perStep.image, c, [&](const float* p) { return p[alpha] == 1.0f; });
+            std::printf("[ measured ] hero %d x%d, channel %d: per step %.5f, hero - per step %.5f +- %.5f\n", hero,
+                        walks, c, base.mean(), d.mean(), d.standardError());
+            ASSERT_GT(d.count(), 100);
+            EXPECT_NEAR(d.mean(), 0.0, z * d.standardError()) << "hero " << hero << " x" << walks << ", channel " << c;
+        }
+    }
+}
+
 TEST(Subsurface, SplitGuidedWalksAreBitIdenticalAtAnyThreadCount) {
     // Three walks per entry into a sphere under a sky and a rect light: the split walks draw from
     // streams that are functions of the sample alone, so threads and tiles change no pixel.
@@ -220,7 +263,8 @@ TEST(Subsurface, SplitGuidedWalksAreBitIdenticalAtAnyThreadCount) {
         subsurfaceMaterial(RGB(0.8f, 0.5f, 0.3f), RGB(0.5f, 0.1f, 0.05f), kGuided), Vec3f(0.0f, -4.0f, 0.0f));
     scene.lights.push_back(test::rectLight("/key", 1.0f, 1.0f, RGB(8.0f), Matrix4::translate({1.0, -1.0, 2.0})));
     for (SamplerKind sampler : test_support::kSamplers)
-        test_support::expectBitIdenticalAcrossThreadCountsAndTiles(pathTracer(3), scene, 48, sampler);
+        for (int hero : {0, 1})
+            test_support::expectBitIdenticalAcrossThreadCountsAndTiles(pathTracer(3, hero), scene, 48, sampler);
 }
 
 }  // namespace
