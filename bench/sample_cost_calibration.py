@@ -196,6 +196,10 @@ def calibrate_tiles(rows):
     has = {s: [k for k in KINDS if any(t[1][k] > 0 for t in tiles[s])] for s in scenes}
     rays = ("camera", "bounce", "shadow")
     rays_only = [s for s in scenes if not set(has[s]) - set(rays) - {"missed"}]
+    if not rays_only:
+        print("\nno scene traces rays only (the Cornell box): the ray kinds cannot be fitted; fit these tiles "
+              "with such a scene's (tiles.csv rows together, --refit)")
+        return
     weights, _ = fit_tiles([t for s in rays_only for t in tiles[s]], [k for k in rays + ("missed",)
                                                                       if any(k in has[s] for s in rays_only)])
     weights = {k: weights[k] for k in rays}
