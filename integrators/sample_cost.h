@@ -29,9 +29,9 @@
 // smoke and the subsurface scene bounce and shadow rays come together, so they cannot fix the ray
 // weights themselves. A missed sample took 92 ns in the subsurface scene and 175 ns in the smoke
 // (its camera rays start an exact flight through the volume's bounds and walk no cell; its dome is
-// not it: a background tile took 0.17 s of CPU with the dome as without), which no counter tells
-// apart: kMissedCameraRayCost is their geometric mean, 1.4x too dear in the one and too cheap in
-// the other. The tiles' CPU over these weights' prediction (each scene's over their mean:
+// not it: a background tile took 0.17 s of CPU with the dome as without), which no counter then told
+// apart: kMissedCameraRayCost was their geometric mean, 1.4x too dear in the one and too cheap in
+// the other (until the flights were counted, below). The tiles' CPU over these weights' prediction (each scene's over their mean:
 // allocation compares a scene's pixels with each other only), rms: Cornell box 3.7% (4.7% with
 // every ray 1, collisions 1.3, walk steps 3.2, cells 0.4, a missed sample 0.43: the weights
 // before), smoke 16% (52%: its volume tiles were charged 2-3x what they took against its
