@@ -20,9 +20,9 @@ void printThroughput(const integrators::RenderStats& stats) {
     if (c.mediumCollisions > 0)
         std::printf("  media        %llu tentative collisions (medium lookups)\n",
                     static_cast<unsigned long long>(c.mediumCollisions));
-    if (c.exactCells > 0)
-        std::printf("  exact        %llu grid cells walked by exact flights\n",
-                    static_cast<unsigned long long>(c.exactCells));
+    if (c.exactFlights > 0)
+        std::printf("  exact        %llu grid cells walked by %llu exact flights\n",
+                    static_cast<unsigned long long>(c.exactCells), static_cast<unsigned long long>(c.exactFlights));
     if (c.walkSteps > 0)
         std::printf("  interiors    %llu guided random-walk steps\n", static_cast<unsigned long long>(c.walkSteps));
     if (c.nonFiniteSamples > 0)

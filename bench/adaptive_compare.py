@@ -157,7 +157,7 @@ def main():
                 e = reference.error(images[mode])
                 spp, cost_spp = adaptive_spp(images[mode])
                 row = {"scene": scene, "mode": mode, "spp": n, "mean_spp": spp or n, "cost_spp": cost_spp or n,
-                       "cpu_s": round(min(cpus[mode]), 2), "cpu_runs": " ".join("%.2f" % c for c in cpus[mode]),
+                       "cpu_s": round(min(cpus[mode]), 3), "cpu_runs": " ".join("%.3f" % c for c in cpus[mode]),
                        "relmse": e["relmse"], "relmse_uncorrected": e["relmse_uncorrected"], "bias": e["bias"],
                        "bias_se": e["bias_se"]}
                 print(",".join(str(v) for v in row.values()), flush=True)

@@ -25,7 +25,7 @@ With --tiles K: the kinds apart. Each scene is rendered as K x K tiles (`--tile-
 thread, TILE_SPP samples per pixel (default 1024), REPEAT rounds, the tiles and scenes interleaved;
 of each tile the least of the render's own CPU time (the summary's "render ... (X s CPU)", scene
 loading left out) and what it counted: camera, bounce and shadow rays, medium collisions, walk
-steps, exact-flight cells and missed samples (the camera rays times 1 - the tile's mean alpha: a
+steps, exact-flight cells and flights, and missed samples (the camera rays times 1 - the tile's mean alpha: a
 sample whose camera ray met nothing; "camera" counts the others). Written to OUT_DIR/tiles.csv;
 --refit fits that file again without rendering. A scene's tiles see the kinds in different
 proportions (the Cornell box's tiles trace 1.5-3.0 bounce rays a sample, the peers' background
@@ -33,8 +33,10 @@ tiles are all missed samples), which the whole-scene differences cannot. Fitted 
 least squares, each tile's equation divided by its CPU (each tile weighs alike), CPU = sum of
 (seconds per item) x (items) over the kinds, in two stages: the ray kinds (camera, bounce, shadow)
 over the scenes that trace rays only (the Cornell box: in the others bounce and shadow rays come
-together and cannot be told apart), then each other scene's own kinds with those fixed. A missed
-sample's cost is the geometric mean over the scenes whose tiles include missed samples only.
+together and cannot be told apart), then each other scene's own kinds with those fixed: first the
+scenes that start no exact flight, whose missed samples (the geometric mean over the scenes with
+tiles of missed samples only) are a missed sample's own cost, then, with that fixed too, the scenes
+with flights (a missed sample there is its camera ray and an exact flight that walks no cell).
 Printed: the seconds per item and the weights in shadow rays (integrators/sample_cost.h's unit),
 and per scene the tiles' CPU over the prediction of a free fit of its kinds, of the staged fit and
 of sample_cost.h's weights, the last two over their mean in the scene (adaptive sampling compares a
@@ -70,7 +72,7 @@ def header_weights():
     """integrators/sample_cost.h's weights by KINDS (a kind it does not weigh costs 1 ray)."""
     names = {"camera": "kCameraRayCost", "bounce": "kBounceRayCost", "shadow": "kShadowRayCost",
              "collisions": "kMediumCollisionCost", "steps": "kWalkStepCost", "cells": "kExactCellCost",
-             "missed": "kMissedCameraRayCost"}
+             "flights": "kExactFlightCost", "missed": "kMissedCameraRayCost"}
     return {kind: header_weight(name, 1.0) for kind, name in names.items()}
 
 
@@ -90,7 +92,7 @@ def counted(out):
     return rays, collisions, samples, steps
 
 
-KINDS = ("camera", "bounce", "shadow", "collisions", "steps", "cells", "missed")
+KINDS = ("camera", "bounce", "shadow", "collisions", "steps", "cells", "flights", "missed")
 
 
 def tile_counts(image, spp):
@@ -109,6 +111,8 @@ def tile_counts(image, spp):
             counts["steps"] = float(line.split()[1])
         elif line.strip().startswith("exact") and "grid cells" in line:
             counts["cells"] = float(line.split()[1])
+            flights = re.search(r"walked by (\d+) exact flights", line)
+            counts["flights"] = float(flights.group(1)) if flights else 0.0
     alpha = subprocess.run(["oiiotool", str(image), "--ch", "A", "--printstats"], capture_output=True, text=True,
                            check=True).stdout
     mean = float(re.search(r"Stats Avg: ([0-9.eE+-]+)", alpha).group(1))
@@ -187,22 +191,30 @@ def render_tiles(binary, args, out, scenes):
 def calibrate_tiles(rows):
     """The staged fit of the tiles' rows (see the module's doc), printed."""
     scenes = list(dict.fromkeys(r["scene"] for r in rows))
-    tiles = {s: [(float(r["cpu_s"]), {k: float(r[k]) for k in KINDS}) for r in rows if r["scene"] == s]
+    tiles = {s: [(float(r["cpu_s"]), {k: float(r.get(k) or 0.0) for k in KINDS}) for r in rows if r["scene"] == s]
              for s in scenes}
     has = {s: [k for k in KINDS if any(t[1][k] > 0 for t in tiles[s])] for s in scenes}
     rays = ("camera", "bounce", "shadow")
     rays_only = [s for s in scenes if not set(has[s]) - set(rays) - {"missed"}]
+    if not rays_only:
+        print("\nno scene traces rays only (the Cornell box): the ray kinds cannot be fitted; fit these tiles "
+              "with such a scene's (tiles.csv rows together, --refit)")
+        return
     weights, _ = fit_tiles([t for s in rays_only for t in tiles[s]], [k for k in rays + ("missed",)
                                                                       if any(k in has[s] for s in rays_only)])
     weights = {k: weights[k] for k in rays}
     missed = {}
-    for s in scenes:
-        if s in rays_only:
-            continue
-        fitted, _ = fit_tiles(tiles[s], [k for k in has[s] if k not in rays], {k: weights[k] for k in rays})
+    # Scenes whose missed samples start no exact flight first: their background tiles give a missed
+    # sample's own cost, which the scenes with flights then keep (their missed samples' flights are
+    # the flights' weight, not the missed sample's).
+    for s in sorted((s for s in scenes if s not in rays_only), key=lambda s: "flights" in has[s]):
+        fixed = {k: weights[k] for k in rays}
+        if missed and "flights" in has[s]:
+            fixed["missed"] = float(np.exp(np.mean(np.log(list(missed.values())))))
+        fitted, _ = fit_tiles(tiles[s], [k for k in has[s] if k not in fixed], fixed)
         weights.update({k: v for k, v in fitted.items() if k not in rays and k != "missed"})
-        if any(t[1]["camera"] == 0 and t[1]["missed"] > 0 for t in tiles[s]):  # background tiles
-            missed[s] = fitted["missed"]
+        if "missed" not in fixed and any(t[1]["camera"] == 0 and t[1]["missed"] > 0 for t in tiles[s]):
+            missed[s] = fitted["missed"]  # background tiles
     weights["missed"] = float(np.exp(np.mean(np.log(list(missed.values()))))) if missed else 0.0
     print("\nthe ray kinds from %s; a missed sample: %s" %
           (", ".join(rays_only), ", ".join("%.1f ns in %s" % (v * 1e9, s) for s, v in missed.items())))

@@ -32,8 +32,9 @@ struct RenderCounters {
     std::uint64_t bounce = 0;  // extension rays after the camera ray
     std::uint64_t shadow = 0;
     std::uint64_t mediumCollisions = 0;
-    std::uint64_t walkSteps = 0;   // steps of guided subsurface random walks (their free flights)
-    std::uint64_t exactCells = 0;  // grid cells walked by exact flights and transmittances (--exact-flights)
+    std::uint64_t walkSteps = 0;     // steps of guided subsurface random walks (their free flights)
+    std::uint64_t exactCells = 0;    // grid cells walked by exact flights and transmittances (--exact-flights)
+    std::uint64_t exactFlights = 0;  // exact flights and transmittances started (each sets up its walk)
     std::uint64_t nonFiniteSamples = 0;
     std::uint64_t rays() const { return camera + bounce + shadow; }
     RenderCounters& operator+=(const RenderCounters& o) {
@@ -43,6 +44,7 @@ struct RenderCounters {
         mediumCollisions += o.mediumCollisions;
         walkSteps += o.walkSteps;
         exactCells += o.exactCells;
+        exactFlights += o.exactFlights;
         nonFiniteSamples += o.nonFiniteSamples;
         return *this;
     }
@@ -54,6 +56,7 @@ struct RenderCounters {
         mediumCollisions -= o.mediumCollisions;
         walkSteps -= o.walkSteps;
         exactCells -= o.exactCells;
+        exactFlights -= o.exactFlights;
         nonFiniteSamples -= o.nonFiniteSamples;
         return *this;
     }

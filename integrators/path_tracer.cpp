@@ -231,6 +231,7 @@ private:
                                    : exact     ? media::sampleExactFlight(medium, ray, hero_, rng_->next())
                                                : freeFlight(medium, ray);
         (exact ? counters_.exactCells : counters_.mediumCollisions) += std::uint64_t(flight.collisions);
+        counters_.exactFlights += exact ? 1 : 0;
         throughput_ *= flight.throughput;
         mis_.rU *= flight.pdfRatio;
         mis_.rL *= flight.lightPdfRatio;
@@ -371,6 +372,7 @@ private:
         if (exactShadow(medium, onlyStrategy)) {
             const media::TransmittanceEstimate exact = media::exactTransmittance(medium, ray);
             counters_.exactCells += std::uint64_t(exact.collisions);
+            ++counters_.exactFlights;
             return exact;
         }
         SampleStream tracking = rng_->independentStream();

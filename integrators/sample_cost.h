@@ -11,9 +11,11 @@
 // phase sampling and guiding, on top of its bounce ray; the classic walk's steps are charged by
 // their medium collisions, as any medium's, tinted glass included) and the grid cells its exact
 // flights and transmittances walked (path --exact-flights: RenderCounters::exactCells;
-// media/exact_tracking.h: eight array reads and a cubic). A sample that is one camera ray meeting
-// nothing (no surface, light or medium) costs kMissedCameraRayCost instead: it traces the cheapest
-// ray there is and shades nothing.
+// media/exact_tracking.h: eight array reads and a cubic) and the exact flights and transmittances
+// it started (RenderCounters::exactFlights: each prepares its walks over the majorant and the
+// density grids, whether it walks a cell or not). A sample that is one camera ray meeting nothing
+// (no surface, light or medium collision) is charged kMissedCameraRayCost for it instead: it traces
+// the cheapest ray there is and shades nothing (plus the exact flight it started, if any).
 // Measured (bench/sample_cost_calibration.py --tiles 4 --tile-spp 1024 --repeat 2,
 // bench/results/2026-12-06-adaptive-8-s20.md): the render CPU of each of 4 x 4 tiles of the Cornell
 // box, the smoke and the subsurface scene, 128 x 128, one thread, the least of two rounds; a
@@ -27,9 +29,9 @@
 // smoke and the subsurface scene bounce and shadow rays come together, so they cannot fix the ray
 // weights themselves. A missed sample took 92 ns in the subsurface scene and 175 ns in the smoke
 // (its camera rays start an exact flight through the volume's bounds and walk no cell; its dome is
-// not it: a background tile took 0.17 s of CPU with the dome as without), which no counter tells
-// apart: kMissedCameraRayCost is their geometric mean, 1.4x too dear in the one and too cheap in
-// the other. The tiles' CPU over these weights' prediction (each scene's over their mean:
+// not it: a background tile took 0.17 s of CPU with the dome as without), which no counter then told
+// apart: kMissedCameraRayCost was their geometric mean, 1.4x too dear in the one and too cheap in
+// the other (until the flights were counted, below). The tiles' CPU over these weights' prediction (each scene's over their mean:
 // allocation compares a scene's pixels with each other only), rms: Cornell box 3.7% (4.7% with
 // every ray 1, collisions 1.3, walk steps 3.2, cells 0.4, a missed sample 0.43: the weights
 // before), smoke 16% (52%: its volume tiles were charged 2-3x what they took against its
@@ -40,6 +42,11 @@
 // above (their code paths unchanged but for a few % of CPU): a cell 30 ns (0.63 shadow rays, was
 // 1.5), a missed sample 209 ns in the smoke (its background rays now set up an exact flight at every
 // level), geometric mean 138 ns (2.9); smoke rms 19% (52% with the weights before the refit).
+// The flights counted apart (session 21, bench/results/2026-12-06-adaptive-9-s21.md): the smoke's
+// 16 tiles rendered again with the counter, fitted after the subsurface scene's, whose missed
+// samples start no flight and so give a missed sample's own cost, 92 ns (1.94), kept for the
+// smoke's: a flight 109 ns (2.3), a cell 28 ns (0.58). Tiles' rms: smoke 7.3% (19%), subsurface
+// scene 5.4% (16%: its background was charged 1.5x its CPU); the Cornell box's 3.7% unchanged.
 // An integrator counts what it counts (RenderCounters): one that counts nothing costs 0 per
 // sample, which adaptive sampling reads as every sample alike.
 #pragma once
@@ -55,14 +62,16 @@ inline constexpr double kBounceRayCost = 6.4;
 inline constexpr double kShadowRayCost = 1.0;
 inline constexpr double kMediumCollisionCost = 2.2;
 inline constexpr double kWalkStepCost = 4.9;
-inline constexpr double kExactCellCost = 0.63;
-inline constexpr double kMissedCameraRayCost = 2.9;
+inline constexpr double kExactCellCost = 0.58;
+inline constexpr double kExactFlightCost = 2.3;
+inline constexpr double kMissedCameraRayCost = 1.94;
 
-// The cost of the work `c` counts at the weights above (a missed sample is charged kMissedCameraRayCost instead).
+// The cost of the work `c` counts at the weights above (a missed sample's camera ray is charged
+// kMissedCameraRayCost instead).
 inline double countedCost(const RenderCounters& c) {
     return kCameraRayCost * double(c.camera) + kBounceRayCost * double(c.bounce) + kShadowRayCost * double(c.shadow) +
            kMediumCollisionCost * double(c.mediumCollisions) + kWalkStepCost * double(c.walkSteps) +
-           kExactCellCost * double(c.exactCells);
+           kExactCellCost * double(c.exactCells) + kExactFlightCost * double(c.exactFlights);
 }
 
 // The cost of the sample whose counting took the counters from `before` to `after`; `hit`: whether
@@ -71,7 +80,7 @@ inline double sampleCost(const RenderCounters& before, const RenderCounters& aft
     RenderCounters sample = after;
     sample -= before;
     if (!hit && sample.rays() == 1 && sample.mediumCollisions == 0 && sample.exactCells == 0)
-        return kMissedCameraRayCost;
+        return kMissedCameraRayCost + kExactFlightCost * double(sample.exactFlights);
     return countedCost(sample);
 }
 

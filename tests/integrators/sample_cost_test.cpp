@@ -2,7 +2,8 @@
 // film: over the image, the costs add up to what the render counted (its rays by kind, its medium
 // lookups and its guided random-walk steps, at their weights); a scene without media draws no medium
 // lookups and takes no walk steps, and a subsurface interior's random walks do both and make its
-// pixels cost more. A bounce ray costs more than a shadow ray.
+// pixels cost more. A bounce ray costs more than a shadow ray; an exact flight's start is charged,
+// even where it walks no cell.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -83,6 +84,19 @@ TEST(SampleCost, AMissedSampleIsChargedAsMissed) {
     EXPECT_EQ(sampleCost(before, one, true), kCameraRayCost);
 }
 
+// A missed sample whose camera ray started an exact flight (through a grid volume's bounds,
+// walking no cell) is charged the flight too: the smoke's background samples took 209 ns against
+// the subsurface scene's 92 ns (sample_cost.h), which no other counter told apart.
+TEST(SampleCost, AMissedSampleIsChargedTheExactFlightsItStarted) {
+    const RenderCounters before;
+    RenderCounters plain = before;
+    plain.camera = 1;
+    RenderCounters throughAVolume = plain;
+    throughAVolume.exactFlights = 1;
+    EXPECT_DOUBLE_EQ(sampleCost(before, throughAVolume, false), kMissedCameraRayCost + kExactFlightCost);
+    EXPECT_GT(sampleCost(before, throughAVolume, false), 1.5 * sampleCost(before, plain, false));
+}
+
 TEST(Renderer, EachSamplesCostIsItsRaysOnSurfaces) {
     const test_support::RenderedFilm r = renderFourSamples(test::litSphereUnderASky());
     EXPECT_EQ(r.stats.counters.mediumCollisions, 0u);
@@ -141,11 +155,30 @@ TEST(Renderer, EachSamplesCostChargesTheCellsOfExactFlightsAsCells) {
     EXPECT_GT(exact.stats.counters.exactCells, 0u);
     EXPECT_GT(exact.stats.counters.mediumCollisions, 0u);
     expectCostsAddUpToTheCountersWithSomeMissed(exact);
+    EXPECT_EQ(exact.stats.counters.exactFlights, exact.stats.counters.camera);  // level 1: the camera rays'
     IntegratorSettings tracked;
     tracked.parameters["exact-flights"] = 0;
     const test_support::RenderedFilm tracking = renderFourSamples(smoke, tracked);
     EXPECT_EQ(tracking.stats.counters.exactCells, 0u);
+    EXPECT_EQ(tracking.stats.counters.exactFlights, 0u);
     expectCostsAddUpToTheCountersWithSomeMissed(tracking);
+}
+
+// A camera looking away from the smoke cube: each camera ray starts an exact flight through the
+// scene's volume and walks no cell (the smoke peer's background), so each sample is charged as a
+// missed sample and its flight, above a missed sample of a scene without a volume.
+TEST(Renderer, EachSamplesCostChargesAnExactFlightThatWalksNoCell) {
+    test::TempDir dir("sample_cost_flight");
+    render::SceneDescription smoke = test::smokeUnderAWhiteSky(test::writeSmokeCube(dir), 2.0f, RGB(0.9f));
+    smoke.camera->transform = Matrix4::translate(Vec3d(1.0, 1.0, -5.0));  // looking down -z, the cube behind
+    IntegratorSettings cameraRayOnly;
+    cameraRayOnly.parameters["exact-flights"] = 1;
+    const test_support::RenderedFilm away = renderFourSamples(smoke, cameraRayOnly);
+    EXPECT_EQ(away.stats.counters.exactCells, 0u);
+    EXPECT_EQ(away.stats.counters.exactFlights, away.stats.counters.camera);
+    EXPECT_EQ(away.stats.counters.rays(), away.stats.counters.camera);
+    EXPECT_DOUBLE_EQ(away.film.cost(0, 0), 4.0 * (kMissedCameraRayCost + kExactFlightCost));
+    EXPECT_GT(away.film.cost(0, 0), renderFourSamples(test::litSphereUnderASky()).film.cost(0, 0));
 }
 
 }  // namespace
