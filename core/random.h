@@ -63,7 +63,8 @@ constexpr std::uint64_t slotScrambleX(std::uint64_t pixelKey, std::uint32_t slot
 // hashed when a sample first asks for it. For one thread at a time: the samples of a pixel, in turn.
 class PixelSlotScrambles {
 public:
-    static constexpr std::uint32_t kCachedSlots = 64;
+    // Enough for nearly every path: a subsurface walk's steps take seven slots each.
+    static constexpr std::uint32_t kCachedSlots = 256;
     PixelSlotScrambles(std::uint64_t seed, std::uint64_t pixelIndex) : pixelKey_(pixelStreamKey(seed, pixelIndex)) {}
     PixelSlotScrambles(const PixelSlotScrambles&) = delete;
     PixelSlotScrambles& operator=(const PixelSlotScrambles&) = delete;
@@ -71,19 +72,20 @@ public:
     std::uint64_t pixelKey() const { return pixelKey_; }
     // Slot `slot` < kCachedSlots.
     const SlotScramble& at(std::uint32_t slot) {
-        const std::uint64_t bit = std::uint64_t(1) << slot;
-        if (!(hashed_ & bit)) {
+        std::uint64_t& word = hashed_[slot / 64];
+        const std::uint64_t bit = std::uint64_t(1) << (slot % 64);
+        if (!(word & bit)) {
             const std::uint64_t x = slotScrambleX(pixelKey_, slot);
             scrambles_[slot] = {x, mix64(x)};
-            hashed_ |= bit;
+            word |= bit;
         }
         return scrambles_[slot];
     }
 
 private:
     std::uint64_t pixelKey_;
-    std::uint64_t hashed_ = 0;              // bit k: scrambles_[k] is hashed
-    SlotScramble scrambles_[kCachedSlots];  // left uninitialised until hashed
+    std::uint64_t hashed_[kCachedSlots / 64] = {};  // bit k % 64 of word k / 64: scrambles_[k] is hashed
+    SlotScramble scrambles_[kCachedSlots];          // left uninitialised until hashed
 };
 
 // The random stream of one camera sample. Dimensions are consumed in order; the same
@@ -115,6 +117,11 @@ public:
         float a = next();
         return {a, next()};
     }
+    // Take the dimensions of next() and of next2D() without computing their values: the numbers of
+    // a decision a vertex does not take, which it still draws so that the later ones keep their
+    // dimensions (the values after a skip are those after the draw, bit for bit).
+    constexpr void skip() { ++dimension_; }
+    constexpr void skip2D() { dimension_ += kind_ == SamplerKind::Sobol ? 1 : 2; }
     constexpr std::uint32_t dimension() const { return dimension_; }
     // A stream of hashed independent values for a walk inside the sample that draws a varying
     // number of them (majorant tracking's exponential steps, a shadow ray's transmittance): drawn

@@ -74,6 +74,23 @@ TEST(SampleStream, APixelsSlotScramblesGiveTheSameValuesAsItsStreamsAlone) {
     }
 }
 
+TEST(SampleStream, SkippedDrawsLeaveTheLaterValuesAsDrawnOnes) {
+    for (SamplerKind kind : {SamplerKind::Sobol, SamplerKind::Independent}) {
+        SampleStream drawn(3, 9, 11, kind), skipped(3, 9, 11, kind);
+        for (int i = 0; i < 20; ++i) {
+            (void)drawn.next();
+            (void)drawn.next2D();
+            skipped.skip();
+            skipped.skip2D();
+            EXPECT_EQ(drawn.dimension(), skipped.dimension());
+            const Vec2f a = drawn.next2D(), b = skipped.next2D();
+            EXPECT_EQ(a.x, b.x);
+            EXPECT_EQ(a.y, b.y);
+            EXPECT_EQ(drawn.next(), skipped.next());
+        }
+    }
+}
+
 TEST(SampleStream, ValuesAreInTheUnitIntervalWithUniformMoments) {
     constexpr int kN = 1 << 20;
     double sum = 0, sum2 = 0, lag = 0;
