@@ -863,8 +863,11 @@ std::optional<SurfaceHit> RenderScene::shadeMesh(int meshIndex, unsigned primID,
     hit.point = corners.p0 * w + corners.p1 * u + corners.p2 * v;
     Vec3f e1 = corners.p1 - corners.p0, e2 = corners.p2 - corners.p0;
     const Vec3f ng = cross(e1, e2);
-    hit.geometricNormal = lengthSquared(ng) > 0.0f ? normalize(ng) : Vec3f(0, 0, 1);
-    hit.shadingNormal = hit.geometricNormal;
+    // Stored from a local into both: copying the one member into the other read back 8 bytes of two
+    // 4-byte stores in flight, which the processor cannot forward (a stall on every hit).
+    const Vec3f unitNormal = lengthSquared(ng) > 0.0f ? normalize(ng) : Vec3f(0, 0, 1);
+    hit.geometricNormal = unitNormal;
+    hit.shadingNormal = unitNormal;
     if (!mesh.cornerNormals.empty()) {
         const Vec3f n =
             mesh.cornerNormals[corner] * w + mesh.cornerNormals[corner + 1] * u + mesh.cornerNormals[corner + 2] * v;
