@@ -208,8 +208,12 @@ public:
             }
             if (atSurface(*hit, exiting, depth) == Step::End) break;
         }
-        out_.radiance = radiance_;
-        return out_;
+        // The radiance stored into the returned copy, not into out_ before copying it: the copy's
+        // 16-byte loads of out_ would read a store still in flight, which the processor cannot
+        // forward (a stall per sample).
+        FilmSample sample = out_;
+        sample.radiance = radiance_;
+        return sample;
     }
 
 private:
