@@ -210,8 +210,12 @@ public:
             }
             if (atSurface(*hit, exiting, depth) == Step::End) break;
         }
-        out_.radiance = radiance_;
-        return out_;
+        // The radiance stored into the returned copy, not into out_ before copying it: the copy's
+        // 16-byte loads of out_ would read a store still in flight, which the processor cannot
+        // forward (a stall per sample).
+        FilmSample sample = out_;
+        sample.radiance = radiance_;
+        return sample;
     }
 
 private:
@@ -409,10 +413,10 @@ private:
         // Inside a material's interior no light is sampled: the closed surface around the
         // point blocks every shadow ray but those to lights inside it, which phase sampling
         // still finds, then weighted as the only strategy (as after a delta lobe).
-        const float uLight = rng_->next();
-        const Vec2f uPoint = rng_->next2D();
+        const bool lightSampled = haveLights_ && !walking;
+        const LightNumbers u = lightNumbers(lightSampled);
         sampleLight(
-            haveLights_ && !walking, uLight, uPoint, flight.p, Vec3f(0.0f), 0,
+            lightSampled, u.light, u.point, flight.p, Vec3f(0.0f), 0,
             [&](const Vec3f&) { return std::pair(flight.p, &medium); },
             [&](const Vec3f& wi) {
                 float p = phase.p(wo, wi);
@@ -468,11 +472,10 @@ private:
         // the BSDF sample's chain of divisions and square roots overlaps next-event estimation in
         // the processor's out-of-order window instead of waiting for it to end
         // (bench/results/2026-12-06-cornell-cpu-s20.md).
-        const float uLight = rng_->next();
-        const Vec2f uPoint = rng_->next2D();
+        const LightNumbers u = lightNumbers(haveLights_ && v.connectable);
         const float uLobe = v.flags == (render::kBsdfReflection | render::kBsdfDiffuse) ? 0.0f : rng_->next();
         const std::optional<render::BsdfSample> bs = v.bsdf.sample(v.woLocal, uLobe, rng_->next2D());
-        sampleLightAt(v, uLight, uPoint);
+        sampleLightAt(v, u.light, u.point);
         throughput_ = throughputOnward;
         if (endsAtExit_) return Step::End;
         return continueFrom(v, bs, depth);
@@ -582,14 +585,34 @@ private:
         return starts;
     }
 
+    // The numbers of sampleLight (the light's choice, its point), in the stream's order: computed
+    // when it samples a light (`used`), else only their dimensions taken (SampleStream::skip), as at
+    // every step of a guided walk.
+    struct LightNumbers {
+        float light = 0.0f;
+        Vec2f point{0.0f};
+    };
+    LightNumbers lightNumbers(bool used) {
+        LightNumbers u;
+        if (used) {
+            u.light = rng_->next();
+            u.point = rng_->next2D();
+        } else {
+            rng_->skip();
+            rng_->skip2D();
+        }
+        return u;
+    }
+
     // Next-event estimation from `from` (with `fromNormal` for the light tree), on geometry of link
     // group `linkGroup` (render/light_links.h; 0 in a medium): one light, its
     // shadow ray (from shadowFrom(wi), a point and the medium the ray starts in) through the
     // surfaces and the medium, weighted against the
     // scattering strategy; scatter(wi) gives the BSDF or phase value (cosine included) and its density,
     // and vertexEvents(wi) the vertex's events for the light path expressions.
-    // Its random numbers, uLight (the light's choice) and uPoint (its point), are drawn by the caller
-    // even when it is not `enabled`, so that every vertex uses as many.
+    // Its random numbers, uLight (the light's choice) and uPoint (its point), are the caller's
+    // lightNumbers(enabled): their dimensions are taken even when it is not `enabled`, so that every
+    // vertex uses as many.
     template <class ShadowFrom, class Scatter, class Events>
     void sampleLight(bool enabled, float uLight, Vec2f uPoint, const Vec3f& from, const Vec3f& fromNormal,
                      int linkGroup, ShadowFrom&& shadowFrom, Scatter&& scatter, Events&& vertexEvents) {

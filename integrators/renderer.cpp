@@ -60,9 +60,10 @@ void renderPass(const render::RenderScene& scene, const render::Camera& camera, 
                                 std::uint64_t(settings.imageWidth > 0 ? settings.imageWidth : width) +
                             std::uint64_t(imageX);
                         const int last = pass.first + int(plan[std::size_t(y) * std::size_t(width) + std::size_t(x)]);
+                        PixelSlotScrambles scrambles(settings.seed, pixelIndex);  // the pixel's samples share them
                         for (int s = pass.first; s < last; ++s) {
                             ++taken;
-                            SampleStream rng(settings.seed, pixelIndex, std::uint64_t(s), settings.sampler);
+                            SampleStream rng(scrambles, std::uint64_t(s), settings.sampler);
                             const render::Ray ray = cameraSampleRay(camera, rng, imageX, imageY);
                             const RenderCounters before = local;
                             FilmSample sample = integrator.sample(state, scene, camera, ray, rng, local);

@@ -146,6 +146,10 @@ struct RenderScene::Mesh {
     std::vector<RGB> cornerColors;
     std::vector<CornerPrimvar> primvars;
     std::vector<std::vector<Vec3f>> motionPositions;  // MeshDesc::motionPositions
+    // Per triangle, its unit geometric normal (unitTriangleNormal), for a world mesh that does not
+    // move (empty otherwise: shadeMesh computes it per hit): a square root and three divisions per
+    // hit saved, the values the same bit for bit.
+    std::vector<Vec3f> unitNormals;
     // For each primvar slot of the material's shader, the mesh's primvar (nullptr: none). Points
     // into `primvars`' buffer, which moving a Mesh does not move.
     std::vector<const CornerPrimvar*> slots;
@@ -176,6 +180,10 @@ struct MeshPresence {
 };
 
 namespace {
+
+// The unit geometric normal of a triangle whose edges' cross product is `ng` ((0, 0, 1) for a
+// degenerate one): shadeMesh's, per hit or stored per triangle (Mesh::unitNormals).
+Vec3f unitTriangleNormal(const Vec3f& ng) { return lengthSquared(ng) > 0.0f ? normalize(ng) : Vec3f(0, 0, 1); }
 
 // A uniform number in [0, 1) that is a pure function of the ray and the triangle it meets.
 float hashOfHit(const float (&ray)[6], unsigned geomID, unsigned primID, unsigned instID) {
@@ -548,6 +556,13 @@ void RenderScene::addMesh(const MeshDesc& desc, const std::vector<MaterialDesc>&
     int index = storeMesh(desc, materials, objectName, std::move(shaping));
     Mesh& mesh = meshes_[index];
     orientSolid(mesh);
+    if (mesh.motionPositions.empty()) {
+        mesh.unitNormals.resize(mesh.indices.size() / 3);
+        for (std::size_t t = 0; t < mesh.unitNormals.size(); ++t) {
+            const Triangle c = triangleAt(mesh, static_cast<unsigned>(t), 0.0f);
+            mesh.unitNormals[t] = unitTriangleNormal(cross(c.p1 - c.p0, c.p2 - c.p0));
+        }
+    }
     if (!desc.light && mesh.material >= 0 && shaders_[mesh.material].drives(MaterialInput::Emission))
         mesh.texturedEmission = std::make_unique<TexturedEmission>(shaders_[mesh.material], mesh.positions,
                                                                    mesh.indices, mesh.slots.data(), filterCamera_);
@@ -863,8 +878,11 @@ std::optional<SurfaceHit> RenderScene::shadeMesh(int meshIndex, unsigned primID,
     hit.point = corners.p0 * w + corners.p1 * u + corners.p2 * v;
     Vec3f e1 = corners.p1 - corners.p0, e2 = corners.p2 - corners.p0;
     const Vec3f ng = cross(e1, e2);
-    hit.geometricNormal = lengthSquared(ng) > 0.0f ? normalize(ng) : Vec3f(0, 0, 1);
-    hit.shadingNormal = hit.geometricNormal;
+    // Stored from a local into both: copying the one member into the other read back 8 bytes of two
+    // 4-byte stores in flight, which the processor cannot forward (a stall on every hit).
+    const Vec3f unitNormal = mesh.unitNormals.empty() ? unitTriangleNormal(ng) : mesh.unitNormals[primID];
+    hit.geometricNormal = unitNormal;
+    hit.shadingNormal = unitNormal;
     if (!mesh.cornerNormals.empty()) {
         const Vec3f n =
             mesh.cornerNormals[corner] * w + mesh.cornerNormals[corner + 1] * u + mesh.cornerNormals[corner + 2] * v;

@@ -43,6 +43,54 @@ TEST(SampleStream, IndependentStreamsTakeNoSlotOfTheSample) {
     for (int i = 0; i < 3; ++i) EXPECT_EQ(plain.next(), walked.next());
 }
 
+TEST(SampleStream, APixelsSlotScramblesGiveTheSameValuesAsItsStreamsAlone) {
+    // The samples of one pixel share a PixelSlotScrambles (as integrators/renderer.cpp's do), drawn
+    // in varying orders of 1D and 2D draws, past the cached slots, with the shutter time and lens
+    // asked between the draws and independent streams handed out: every value equals a plain
+    // stream's of the same counters, bit for bit, under either sampler.
+    for (SamplerKind kind : {SamplerKind::Sobol, SamplerKind::Independent}) {
+        PixelSlotScrambles pixel(7, 1234);
+        for (std::uint64_t sample : {5u, 0u, 1u, 77u, 2u}) {
+            SampleStream plain(7, 1234, sample, kind), shared(pixel, sample, kind);
+            EXPECT_EQ(plain.shutterTime(), shared.shutterTime());
+            const int draws = 2 * int(PixelSlotScrambles::kCachedSlots) + 10 + int(sample % 3);
+            for (int i = 0; i < draws; ++i) {
+                if ((i + int(sample)) % 3 == 0) {
+                    EXPECT_EQ(plain.next(), shared.next()) << "sample " << sample << " draw " << i;
+                } else {
+                    const Vec2f a = plain.next2D(), b = shared.next2D();
+                    EXPECT_EQ(a.x, b.x) << "sample " << sample << " draw " << i;
+                    EXPECT_EQ(a.y, b.y) << "sample " << sample << " draw " << i;
+                }
+                if (i == 40) {
+                    EXPECT_EQ(plain.lens().x, shared.lens().x);
+                    EXPECT_EQ(plain.lens().y, shared.lens().y);
+                    SampleStream a = plain.independentStream(), b = shared.independentStream();
+                    EXPECT_EQ(a.next(), b.next());
+                }
+            }
+            EXPECT_EQ(plain.dimension(), shared.dimension());
+        }
+    }
+}
+
+TEST(SampleStream, SkippedDrawsLeaveTheLaterValuesAsDrawnOnes) {
+    for (SamplerKind kind : {SamplerKind::Sobol, SamplerKind::Independent}) {
+        SampleStream drawn(3, 9, 11, kind), skipped(3, 9, 11, kind);
+        for (int i = 0; i < 20; ++i) {
+            (void)drawn.next();
+            (void)drawn.next2D();
+            skipped.skip();
+            skipped.skip2D();
+            EXPECT_EQ(drawn.dimension(), skipped.dimension());
+            const Vec2f a = drawn.next2D(), b = skipped.next2D();
+            EXPECT_EQ(a.x, b.x);
+            EXPECT_EQ(a.y, b.y);
+            EXPECT_EQ(drawn.next(), skipped.next());
+        }
+    }
+}
+
 TEST(SampleStream, ValuesAreInTheUnitIntervalWithUniformMoments) {
     constexpr int kN = 1 << 20;
     double sum = 0, sum2 = 0, lag = 0;
