@@ -103,9 +103,7 @@ public:
 
     constexpr float next() {
         ++dimension_;
-        if (kind_ == SamplerKind::Sobol)
-            return owenSobol1D(reversedSobolIndex_,
-                               cached(dimension_) ? pixel_->at(dimension_).x : slotSeed(dimension_));
+        if (kind_ == SamplerKind::Sobol) return owenSobol1D(reversedSobolIndex_, firstScramble(dimension_));
         return toUnitFloat(mix64(key_ + 0x632be59bd9b4e019ull * dimension_));
     }
     constexpr Vec2f next2D() {
@@ -151,8 +149,7 @@ public:
     // next() never draws), so drawing it or not changes no other value of the stream; under Sobol
     // stratified over the pixel's samples.
     constexpr float shutterTime() const {
-        if (kind_ == SamplerKind::Sobol)
-            return owenSobol1D(reversedSobolIndex_, cached(0) ? pixel_->at(0).x : slotSeed(0));
+        if (kind_ == SamplerKind::Sobol) return owenSobol1D(reversedSobolIndex_, firstScramble(0));
         return toUnitFloat(mix64(key_));
     }
     // The sample index the stream was made for: methods that keep per-sample-index state (the
@@ -174,6 +171,10 @@ private:
     constexpr std::uint64_t slotSeed(std::uint32_t slot) const { return slotScrambleX(pixelKey_, slot); }
     constexpr bool cached(std::uint32_t slot) const {
         return pixel_ != nullptr && slot < PixelSlotScrambles::kCachedSlots;
+    }
+    // A 1D slot's scramble: slotScramble(slot).x, without hashing the y it does not use.
+    constexpr std::uint64_t firstScramble(std::uint32_t slot) const {
+        return cached(slot) ? pixel_->at(slot).x : slotSeed(slot);
     }
     constexpr SlotScramble slotScramble(std::uint32_t slot) const {
         if (cached(slot)) return pixel_->at(slot);
