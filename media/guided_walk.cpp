@@ -91,9 +91,13 @@ GuidedWalk::GuidedWalk(const Vec3f& entry, const Vec3f& outwardNormal, const Med
     }
     guidedFraction_ = kGuidedFraction * (1.0f - std::abs(m.g));
     if (channels_ == WalkChannels::PerStep) return;
-    RGB meanFreePath(0.0f);
-    for (int c = 0; c < 3; ++c) meanFreePath[c] = sigmaT_[c] > 0.0f ? 1.0f / sigmaT_[c] : 0.0f;
-    heroProbabilities_ = normalisedOrUniform(meanFreePath);
+    RGB meanFreePath(0.0f), scatters(0.0f);
+    for (int c = 0; c < 3; ++c) {
+        meanFreePath[c] = sigmaT_[c] > 0.0f ? 1.0f / sigmaT_[c] : 0.0f;
+        scatters[c] = sigmaT_[c] > 0.0f ? 1.0f : 0.0f;
+    }
+    heroProbabilities_ =
+        (1.0f - kHeroFloor) * normalisedOrUniform(meanFreePath) + kHeroFloor * normalisedOrUniform(scatters);
     chooseHero(uHero);
 }
 

@@ -25,7 +25,10 @@
 //
 // THE STEP AND ITS MIS. Each step is drawn with the coefficients of one channel, in one of two
 // ways (WalkChannels). A HERO PER WALK (the default): the walk draws its hero h once, with
-// probability P_h proportional to h's mean free path 1 / sigmaT_h, and draws every step with h's
+// probability P_h proportional to h's mean free path 1 / sigmaT_h, mixed with a uniform choice
+// (kHeroFloor; 0.99 and 1.00 of the pure one's relMSE x CPU on the peer and the sample, within
+// noise, bench/results/2026-12-06-hero-exponent-s21.md: a floor against channels left to a
+// thousandth of the walks by a mean free path a thousand times shorter), and draws every step with h's
 // coefficients; as in hero-wavelength spectral sampling (Wilkie et al. 2014; pbrt-v4 keeps such
 // ratios along its volumetric paths) the walk's value f_c in channel c is weighted by the balance
 // heuristic over whole walks, f_c / sum_k P_k prod_steps p_k(step), p_k the step's density under
@@ -84,6 +87,10 @@
 namespace fluence::media {
 
 inline constexpr float kGuidedFraction = 0.5f;  // of the steps guided, in an isotropic medium
+// The share of a hero walk's channel choice that is uniform over the channels with sigmaT > 0 (the
+// rest by mean free path): a floor, so that a channel of a far shorter mean free path than another
+// is still a hero often enough (THE STEP AND ITS MIS).
+inline constexpr float kHeroFloor = 0.1f;
 inline constexpr double kMinNu = 1.0001, kMaxNu = 1e4;
 // Above this exponent exp(-x) (< 1.8e-35) is too near float's smallest normal number (1.2e-38)
 // for the guided transmittances to be taken as quotients of it (see THE COST OF A STEP).
@@ -101,7 +108,7 @@ enum class WalkStrategy { Classic, TowardsEntry, AwayFromEntry };
 // How a walk chooses the channel whose coefficients draw its steps (THE STEP AND ITS MIS).
 enum class WalkChannels {
     PerStep,  // anew at every step, P_c proportional to alpha_c T_c: MIS per step
-    Hero,     // once per walk, its hero, P_h proportional to the mean free path: MIS over whole walks
+    Hero,     // once per walk, its hero, P_h by the mean free path (and kHeroFloor): MIS over whole walks
 };
 
 // A step of the walk, as the scattering that started it drew it.

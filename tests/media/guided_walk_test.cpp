@@ -215,6 +215,23 @@ TEST(GuidedWalk, StepWeightsAverageTheirClosedForm) {
     }
 }
 
+TEST(GuidedWalk, EveryScatteringChannelIsAHeroAtLeastAtTheFloorsShare) {
+    // Mean free paths 10, 0.01 and 0.01: by mean free path alone green and blue would be heroes of
+    // one walk in a thousand; the floor keeps each at least kHeroFloor / 3. A channel that does not
+    // scatter (sigmaT 0) is never a hero.
+    MediumProperties m;
+    m.sigmaS = RGB(0.09f, 90.0f, 0.0f);
+    m.sigmaA = RGB(0.01f, 10.0f, 0.0f);
+    const RGB p = GuidedWalk(kEntry, kNormal, m, WalkChannels::Hero, 0.5f).channelProbabilities();
+    EXPECT_GE(p[1], kHeroFloor / 2.0f - 1e-6f);
+    EXPECT_EQ(p[2], 0.0f);
+    EXPECT_NEAR(p[0] + p[1] + p[2], 1.0f, 1e-6f);
+    m.sigmaS[2] = 90.0f;
+    m.sigmaA[2] = 10.0f;
+    const RGB q = GuidedWalk(kEntry, kNormal, m, WalkChannels::Hero, 0.5f).channelProbabilities();
+    for (int c = 0; c < 3; ++c) EXPECT_GE(q[c], kHeroFloor / 3.0f - 1e-6f) << "channel " << c;
+}
+
 TEST(GuidedWalk, WalksOfThreeCollisionsAverageAlbedoCubed) {
     // A walk from the entry straight down into an unbounded medium, weighted as the path tracer
     // weighs it (the product of fly's throughputs), after its entry's step and two scatterings
