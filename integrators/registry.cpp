@@ -25,7 +25,8 @@ const std::vector<IntegratorInfo>& integratorRegistry() {
            "with weight 1/N (default 1)",
            true, PathTracer::kMaxSubsurfaceWalks},
           {"walk-hero", "fluence:path:walkHero",
-           "guided walks' channels: 1 a hero per walk, drawn by mean free path, the walk weighted by MIS over whole "
+           "guided walks' channels: 1 a hero per walk, drawn mostly by mean free path, the walk weighted by MIS over "
+           "whole "
            "walks; 0 a channel drawn at every step, MIS per step (default 1)",
            true, 1, 0.0},
           {"exact-flights", "fluence:path:exactFlights",

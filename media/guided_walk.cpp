@@ -105,15 +105,13 @@ RGB GuidedWalk::channelProbabilities() const {
     return hero_ < 0 ? normalisedOrUniform(albedo_ * throughput_) : heroProbabilities_;
 }
 
-int GuidedWalk::stepChannel(float u) const { return hero_ < 0 ? sampleChannel(u) : hero_; }
+int GuidedWalk::stepChannel(float u) const { return hero_ < 0 ? channelFrom(channelProbabilities(), u) : hero_; }
 
 void GuidedWalk::chooseHero(float u) {
     if (channels_ == WalkChannels::PerStep) return;
     hero_ = channelFrom(heroProbabilities_, u);
     heroSample_ = u;
 }
-
-int GuidedWalk::sampleChannel(float u) const { return channelFrom(channelProbabilities(), u); }
 
 WalkStep GuidedWalk::firstStep(const Vec3f& origin, const Vec3f& wi, int channel) const {
     return WalkStep{origin, Vec3f(0.0f), wi, true, WalkStrategy::Classic, channel};

@@ -132,10 +132,10 @@ public:
     void sawFarSide(const Vec3f& direction, float distance);
 
     // The probabilities P_c of drawing a step with channel c's coefficients (see THE STEP AND ITS
-    // MIS), and the channel drawn from u in [0, 1).
+    // MIS; with a hero, those of drawing the hero).
     RGB channelProbabilities() const;
-    int sampleChannel(float u) const;
-    // The channel of the next step: drawn from u (per step), or the walk's hero (u unused).
+    // The channel of the next step: drawn from u in [0, 1) with channelProbabilities() (per step),
+    // or the walk's hero (u unused).
     int stepChannel(float u) const;
     // A walk with a hero draws it again from u, before its first step (another walk of the same
     // entry); the u that drew the hero (0 per step).

@@ -158,7 +158,7 @@ GuidedWalk thinWalkWithChromaticWeight(const MediumProperties& m) {
 }
 
 TEST(GuidedWalk, ChannelsAreDrawnWithTheirProbabilities) {
-    // P_c is proportional to alpha_c T_c; sampleChannel draws c with it (Pearson over 3 bins,
+    // P_c is proportional to alpha_c T_c; stepChannel draws c with it (a channel per step) (Pearson over 3 bins,
     // 2 degrees of freedom: Q(1, x / 2) is the p-value). A fresh walk (T = 1) follows the albedos.
     const MediumProperties m = chromaticMedium();
     const GuidedWalk fresh = thinWalk(m), chromatic = thinWalkWithChromaticWeight(m);
@@ -169,7 +169,7 @@ TEST(GuidedWalk, ChannelsAreDrawnWithTheirProbabilities) {
         const RGB p = walk->channelProbabilities();
         std::array<int, 3> counts{};
         SampleStream rng(23, 0, 0);
-        for (int n = 0; n < kN; ++n) ++counts[walk->sampleChannel(rng.next())];
+        for (int n = 0; n < kN; ++n) ++counts[walk->stepChannel(rng.next())];
         double statistic = 0.0;
         for (int c = 0; c < 3; ++c) statistic += std::pow(counts[c] - kN * p[c], 2) / (kN * p[c]);
         const double pValue = test::upperIncompleteGammaQ(1.0, statistic / 2.0);
@@ -197,7 +197,7 @@ TEST(GuidedWalk, StepWeightsAverageTheirClosedForm) {
         for (int n = 0; n < kN; ++n) {
             SampleStream rng(11, 0, std::uint64_t(n));
             GuidedWalk walk = start;  // fly changes the walk's weight
-            const int channel = walk.sampleChannel(rng.next());
+            const int channel = walk.stepChannel(rng.next());
             const float u = rng.next();
             const WalkStep step = walk.sampleStep(p, kWo, channel, u, rng.next2D());
             const FreeFlight flight = walk.fly(step, walk.sampleLength(step, rng.next()), kBoundary, rng);
