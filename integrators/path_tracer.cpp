@@ -193,8 +193,9 @@ public:
             const bool exiting = kMedia && diffusionExit_.has_value();
             if (!exiting) ++(depth == 0 ? counters_.camera : counters_.bounce);
             if (kMedia && guidedWalk_ && !exiting) startWalkStep();
-            std::optional<SurfaceHit> hit =
-                exiting ? std::exchange(diffusionExit_, std::nullopt) : scene_.intersect(ray_);
+            std::optional<SurfaceHit> hit = exiting ? std::exchange(diffusionExit_, std::nullopt)
+                                            : kMedia && guidedWalk_ && walkStep_.first ? entryStepHit()
+                                                                                       : scene_.intersect(ray_);
             const media::Medium* medium = !kMedia || exiting ? nullptr : inside_.medium();
             mis_.segmentInMedium = medium != nullptr;
             if (medium) {
@@ -223,7 +224,6 @@ private:
     // (Reached), is absorbed (its emission; End), or scatters (scatterInMedium).
     Step throughMedium(const media::Medium& medium, const std::optional<SurfaceHit>& hit, int& depth) {
         const float tBoundary = hit ? hit->t : std::numeric_limits<float>::infinity();
-        if (guidedWalk_ && walkStep_.first && hit) guidedWalk_->sawFarSide(ray_.direction, hit->t);
         const RGB rUBefore = mis_.rU, throughputBefore = throughput_;
         if (guidedWalk_) ++counters_.walkSteps;  // a guided subsurface walk's step (integrators/sample_cost.h)
         const std::optional<MediumSegment> segment =
@@ -403,6 +403,17 @@ private:
         if (!walkStep_.first) ray_.tMax = walkLength_;
     }
 
+    // The hit of a guided walk's entry step (startWalkStep), traced on to the far side, whose
+    // distance guides the walk backwards (media/guided_walk.h): shaded only when the step reaches it.
+    // A step that collides before it needs no hit (its flight then has no boundary within its
+    // length, which is all the flight reads of it), and the far side's shading showed in profiles.
+    std::optional<SurfaceHit> entryStepHit() {
+        const render::TracedHit far = scene_.trace(ray_);
+        if (far.met()) guidedWalk_->sawFarSide(ray_.direction, far.t);
+        if (walkLength_ < far.t) return std::nullopt;
+        return scene_.shade(far, ray_);
+    }
+
     // A scattering in a medium: next-event estimation, then phase sampling.
     Step scatterInMedium(const media::FreeFlight& flight, const media::Medium& medium, int& depth) {
         const bool walking = inside_.depth() > 0;  // inside a material's interior (russian_roulette.h)
@@ -425,7 +436,13 @@ private:
             [&](const Vec3f&) { return event; });
         media::PhaseSample ps;
         if (guidedWalk_) {  // the step's phase value and density weigh its flight (media/guided_walk.h)
-            const int channel = guidedWalk_->stepChannel(rng_->next());
+            // Under a hero the step's channel is the walk's: its number's dimension is taken, not computed.
+            float uChannel = 0.0f;
+            if (guidedWalk_->hasHero())
+                rng_->skip();
+            else
+                uChannel = rng_->next();
+            const int channel = guidedWalk_->stepChannel(uChannel);
             const float uStrategy = rng_->next();
             walkStep_ = guidedWalk_->sampleStep(flight.p, wo, channel, uStrategy, rng_->next2D());
             ps = {walkStep_.wi, 1.0f, 1.0f};
@@ -464,9 +481,10 @@ private:
         mis_.rE = RGB(0.0f);
         if (hit.lightShape || depth >= maxDepth_) return Step::End;
         arena_.reset();
-        const SurfaceVertex v = surfaceVertex(
-            hit, wo,
-            exiting ? render::subsurfaceExitBsdf(hit.material, arena_) : render::materialBsdf(hit.material, arena_));
+        const SurfaceVertex v = surfaceVertex(hit, wo,
+                                              exiting    ? render::subsurfaceExitBsdf(hit.material, arena_)
+                                              : hit.bsdf ? *hit.bsdf  // made with the scene (render/material_tables.h)
+                                                         : render::materialBsdf(hit.material, arena_));
         // Both samples' numbers are drawn in the stream's order (the light's, then the BSDF's), and
         // the BSDF is sampled before the light's shadow ray is traced: the two are independent, so
         // the BSDF sample's chain of divisions and square roots overlaps next-event estimation in

@@ -141,6 +141,8 @@ public:
     // entry); the u that drew the hero (0 per step).
     void chooseHero(float u);
     float heroSample() const { return heroSample_; }
+    // Whether the walk draws its steps with a hero (stepChannel then reads no number).
+    bool hasHero() const { return hero_ >= 0; }
 
     // The entry's step from `origin` along wi, the direction the boundary refracted into.
     WalkStep firstStep(const Vec3f& origin, const Vec3f& wi, int channel) const;

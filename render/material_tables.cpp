@@ -26,15 +26,20 @@ void exercise(const Bsdf& bsdf) {
 
 }  // namespace
 
-void buildMaterialTables(const std::vector<MaterialDesc>& materials) {
+MaterialBsdfs buildMaterialTables(const std::vector<MaterialDesc>& materials) {
+    MaterialBsdfs made;
+    made.arenas_.resize(materials.size());
+    made.bsdfs_.resize(materials.size());
     tbb::parallel_for(std::size_t(0), materials.size(), [&](std::size_t i) {
         const MaterialParams& m = materials[i];
-        BsdfArena arena;
-        exercise(materialBsdf(m, arena));
+        made.arenas_[i] = std::make_unique<BsdfArena>();
+        made.bsdfs_[i] = &materialBsdf(m, *made.arenas_[i]);
+        exercise(*made.bsdfs_[i]);
         if (!(m.subsurface > 0.0f)) return;
-        arena.reset();
+        BsdfArena arena;
         exercise(subsurfaceExitBsdf(m, arena));
     });
+    return made;
 }
 
 }  // namespace fluence::render

@@ -8,14 +8,40 @@
 // builds every table those parameters read; the materials are taken in parallel. The tables are
 // pure functions of their parameters, built once whichever thread asks first, so building them
 // earlier changes no value. Parameters that textures drive build theirs on first use, as before.
+//
+// The BSDF made at the authored parameters is kept (MaterialBsdfs): a hit whose parameters are
+// those (RenderScene::shadeMesh: no texture and no vertex colour drives them) carries it, and the
+// path tracer shades it with that BSDF instead of making its own (materialBsdf). materialBsdf is a
+// pure function of the parameters, so the kept BSDF is the one the hit would have made, value for
+// value; a made BSDF is immutable (const methods, no state of their own), so every thread of the
+// render shares it. The skin of the Cycles subsurface peer made its layered BSDF (the specular
+// layer's albedo tables and remembered passes) at every hit, 4% of the render's CPU in perf.
 #pragma once
 
+#include <cstddef>
+#include <memory>
 #include <vector>
 
+#include "render/bsdf_arena.h"
 #include "render/scene_description.h"
 
 namespace fluence::render {
 
-void buildMaterialTables(const std::vector<MaterialDesc>& materials);
+class Bsdf;
+
+// Each material's BSDF at its authored parameters, made once (buildMaterialTables).
+class MaterialBsdfs {
+public:
+    const Bsdf& operator[](std::size_t material) const { return *bsdfs_[material]; }
+    std::size_t size() const { return bsdfs_.size(); }
+
+private:
+    friend MaterialBsdfs buildMaterialTables(const std::vector<MaterialDesc>& materials);
+    std::vector<std::unique_ptr<BsdfArena>> arenas_;  // each material's BSDF lives in its own
+    std::vector<const Bsdf*> bsdfs_;
+};
+
+// Builds the tables of every material's parameters and returns the BSDFs made at them.
+MaterialBsdfs buildMaterialTables(const std::vector<MaterialDesc>& materials);
 
 }  // namespace fluence::render

@@ -287,7 +287,7 @@ struct RenderScene::EmbreeState {
 RenderScene::RenderScene(const SceneDescription& scene, std::shared_ptr<texture::TextureSystem> textures)
     : embree_(std::make_unique<EmbreeState>()), materials_(scene.materials), textures_(std::move(textures)) {
     addMaterialShaders();
-    buildMaterialTables(materials_);
+    materialBsdfs_ = buildMaterialTables(materials_);
     checkLinkGroups(scene);
     embree_->device = rtcNewDevice(nullptr);
     if (!embree_->device) throw std::runtime_error("cannot create the Embree device");
@@ -777,7 +777,9 @@ void RenderScene::addLight(const LightDesc& desc) {
     throwOnEmbreeError(embree_->device, ("adding light " + desc.name).c_str());
 }
 
-std::optional<SurfaceHit> RenderScene::intersect(const Ray& ray) const {
+std::optional<SurfaceHit> RenderScene::intersect(const Ray& ray) const { return shade(trace(ray), ray); }
+
+TracedHit RenderScene::trace(const Ray& ray) const {
     RTCIntersectContext context;
     rtcInitIntersectContext(&context);
     RTCRayHit surface, shape;
@@ -793,36 +795,46 @@ std::optional<SurfaceHit> RenderScene::intersect(const Ray& ray) const {
         rtcIntersect1(embree_->lightShapes, &context, &shape);
     }
 
-    if (shape.hit.geomID != RTC_INVALID_GEOMETRY_ID)
-        return shadeLightShape(shape.hit.geomID, ray, shape.ray.tfar,
-                               Vec3f(shape.hit.Ng_x, shape.hit.Ng_y, shape.hit.Ng_z));
-    if (surface.hit.geomID == RTC_INVALID_GEOMETRY_ID) return std::nullopt;
-    const float u = surface.hit.u, v = surface.hit.v, t = surface.ray.tfar;
-    if (surface.hit.instID[0] == RTC_INVALID_GEOMETRY_ID && curves_.contains(surface.hit.geomID))
-        return curves_.shade(surface.hit.geomID, surface.hit.primID, u, ray, t,
-                             Vec3f(surface.hit.Ng_x, surface.hit.Ng_y, surface.hit.Ng_z));
-    if (surface.hit.instID[0] == RTC_INVALID_GEOMETRY_ID && surfacePoints_[surface.hit.geomID] >= 0) {
-        std::optional<SurfaceHit> hit =
-            shadeMesh(surfacePoints_[surface.hit.geomID], surface.hit.primID, 0.0f, 0.0f, t, -1, ray);
-        placeOnPoint(*hit, ray, t, Vec3f(surface.hit.Ng_x, surface.hit.Ng_y, surface.hit.Ng_z));
+    TracedHit traced;
+    traced.lightShape = shape.hit.geomID != RTC_INVALID_GEOMETRY_ID;
+    const RTCRayHit& met = traced.lightShape ? shape : surface;
+    if (met.hit.geomID == RTC_INVALID_GEOMETRY_ID) return traced;
+    traced.geomID = met.hit.geomID;
+    traced.primID = met.hit.primID;
+    traced.instID = met.hit.instID[0];
+    traced.u = met.hit.u;
+    traced.v = met.hit.v;
+    traced.t = met.ray.tfar;
+    traced.ng = Vec3f(met.hit.Ng_x, met.hit.Ng_y, met.hit.Ng_z);
+    return traced;
+}
+
+std::optional<SurfaceHit> RenderScene::shade(const TracedHit& traced, const Ray& ray) const {
+    if (!traced.met()) return std::nullopt;
+    if (traced.lightShape) return shadeLightShape(traced.geomID, ray, traced.t, traced.ng);
+    const float u = traced.u, v = traced.v, t = traced.t;
+    const unsigned geomID = traced.geomID, primID = traced.primID;
+    if (traced.instID == TracedHit::kNone && curves_.contains(geomID))
+        return curves_.shade(geomID, primID, u, ray, t, traced.ng);
+    if (traced.instID == TracedHit::kNone && surfacePoints_[geomID] >= 0) {
+        std::optional<SurfaceHit> hit = shadeMesh(surfacePoints_[geomID], primID, 0.0f, 0.0f, t, -1, ray);
+        placeOnPoint(*hit, ray, t, traced.ng);
         return hit;
     }
-    if (surface.hit.instID[0] == RTC_INVALID_GEOMETRY_ID)
-        return shadeMesh(surfaceMeshes_[surface.hit.geomID], surface.hit.primID, u, v, t, -1, ray);
-    const int instance = surfaceInstances_[surface.hit.instID[0]];
+    if (traced.instID == TracedHit::kNone) return shadeMesh(surfaceMeshes_[geomID], primID, u, v, t, -1, ray);
+    const int instance = surfaceInstances_[traced.instID];
     const Prototype& proto = prototypes_[instances_[instance].prototype];
-    // Embree gives an instanced geometry's normal in the prototype's space.
-    const Vec3f ng(surface.hit.Ng_x, surface.hit.Ng_y, surface.hit.Ng_z);
-    if (proto.curves->contains(surface.hit.geomID))
-        return shadeInstancedCurve(*proto.curves, instance, surface.hit.geomID, surface.hit.primID, u, ray, t, ng);
-    if (const int points = proto.points[surface.hit.geomID]; points >= 0) {
-        std::optional<SurfaceHit> hit = shadeMesh(points, surface.hit.primID, 0.0f, 0.0f, t, instance, ray);
+    const Vec3f& ng = traced.ng;  // Embree gives an instanced geometry's normal in the prototype's space
+    if (proto.curves->contains(geomID))
+        return shadeInstancedCurve(*proto.curves, instance, geomID, primID, u, ray, t, ng);
+    if (const int points = proto.points[geomID]; points >= 0) {
+        std::optional<SurfaceHit> hit = shadeMesh(points, primID, 0.0f, 0.0f, t, instance, ray);
         std::optional<Instance> moved;
         placeOnPoint(*hit, ray, t,
                      Vec3f(instanceAt(instance, ray.time, moved)->normalToWorld.transformVector(Vec3d(ng))));
         return hit;
     }
-    return shadeMesh(proto.meshes[surface.hit.geomID], surface.hit.primID, u, v, t, instance, ray);
+    return shadeMesh(proto.meshes[geomID], primID, u, v, t, instance, ray);
 }
 
 std::optional<SurfaceHit> RenderScene::shadeInstancedCurve(const CurveGeometry& curves, int instanceIndex,
@@ -891,6 +903,8 @@ std::optional<SurfaceHit> RenderScene::shadeMesh(int meshIndex, unsigned primID,
     hit.objectName = mesh.objectName;
     if (instanceIndex >= 0) placeInWorld(hit, instanceIndex, e1, e2);
     if (mesh.reflects) shadeMaterial(mesh, hit, corner, w, u, v, e1, e2);
+    if (mesh.reflects && mesh.material >= 0 && mesh.cornerColors.empty() && !shaders_[mesh.material].hasBindings())
+        hit.bsdf = &materialBsdfs_[std::size_t(mesh.material)];  // the authored parameters' (material_tables.h)
     // A mesh light's front is its triangles' own side (emissive meshes are never instanced: ng is
     // in world space). A camera ray sees a mesh light whose material responds (materialSyncMode
     // other than noMaterialResponse) as its material shades it, as Arnold's light_visible off,

@@ -53,6 +53,7 @@
 #pragma once
 
 #include <deque>
+#include <limits>
 #include <map>
 #include <memory>
 #include <optional>
@@ -69,6 +70,7 @@
 #include "render/light_links.h"
 #include "render/light_tree.h"
 #include "render/material_shader.h"
+#include "render/material_tables.h"
 #include "render/moving_light_shape.h"
 #include "render/ray.h"
 #include "media/medium.h"
@@ -111,6 +113,9 @@ struct SurfaceHit {
     // The material's parameters at this point (a mesh without a material: Lambertian, its
     // displayColor or 18% grey; light shapes: black). material.diffuse is the albedo AOV.
     MaterialParams material = lambertianParams(RGB(0.0f));
+    // The BSDF of `material` made with the scene, when no texture or vertex colour drives the hit's
+    // parameters (render/material_tables.h); null: the integrator makes the hit's BSDF itself.
+    const Bsdf* bsdf = nullptr;
     RGB emission;             // emitted radiance of an emissive surface (both sides)
     int light = -1;           // index of the light this surface belongs to, or -1
     bool lightShape = false;  // a light's own shape (rect, disk, sphere, cylinder): emits, does not reflect
@@ -120,6 +125,18 @@ struct SurfaceHit {
     // Its names for Cryptomatte (RenderScene::objectNames, materialNames), kNoName where none.
     std::uint32_t objectName = kNoName, materialName = kNoName;
     int linkGroup = 0;  // the hit geometry's light and shadow links (render/light_links.h)
+};
+
+// What a ray met, before it is shaded (RenderScene::trace): Embree's ids, barycentrics, distance
+// and unnormalised geometric normal of the nearest surface or light shape.
+struct TracedHit {
+    static constexpr unsigned kNone = ~0u;  // Embree's invalid geometry id
+    unsigned geomID = kNone, primID = 0, instID = kNone;
+    float u = 0.0f, v = 0.0f;
+    float t = std::numeric_limits<float>::infinity();  // infinite when nothing was met
+    Vec3f ng{0.0f};
+    bool lightShape = false;  // in the light shapes' scene
+    bool met() const { return geomID != kNone; }
 };
 
 // What a shadow ray towards a light meets (RenderScene::shadowTest).
@@ -147,7 +164,13 @@ public:
     RenderScene(const RenderScene&) = delete;
     RenderScene& operator=(const RenderScene&) = delete;
 
+    // The nearest surface or light shape the ray meets, shaded: shade(trace(ray), ray).
     std::optional<SurfaceHit> intersect(const Ray& ray) const;
+    // The nearest surface or light shape the ray meets, not shaded yet: a caller that needs only
+    // its distance at first (a guided walk's entry step, integrators/path_tracer.cpp) shades it
+    // (shade, with the same ray) only if it turns out to need the hit.
+    TracedHit trace(const Ray& ray) const;
+    std::optional<SurfaceHit> shade(const TracedHit& traced, const Ray& ray) const;
     // True when a surface blocks the segment from `origin` along unit `direction` for `distance`,
     // at `time` in the shutter interval (render::Ray::time).
     bool occluded(const Vec3f& origin, const Vec3f& direction, float distance, float time = 0.0f) const;
@@ -326,6 +349,7 @@ private:
     std::vector<MaterialDesc> materials_;
     std::shared_ptr<texture::TextureSystem> textures_;
     std::vector<MaterialShader> shaders_;                       // one per material
+    MaterialBsdfs materialBsdfs_;                               // one per material, at its authored parameters
     std::vector<std::unique_ptr<MeshPresence>> presenceTests_;  // user data of the filter functions
     std::optional<Camera> filterCamera_;
     std::unique_ptr<media::Medium> medium_;
