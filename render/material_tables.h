@@ -33,7 +33,6 @@ class Bsdf;
 class MaterialBsdfs {
 public:
     const Bsdf& operator[](std::size_t material) const { return *bsdfs_[material]; }
-    std::size_t size() const { return bsdfs_.size(); }
 
 private:
     friend MaterialBsdfs buildMaterialTables(const std::vector<MaterialDesc>& materials);
