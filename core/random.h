@@ -134,6 +134,24 @@ public:
         s.independentStreams_ = 0;
         return s;
     }
+    // A stream of its own for a walk inside the sample that draws a varying number of values which
+    // should stay stratified step by step over the pixel's samples (a guided subsurface walk,
+    // integrators/path_tracer.cpp): its values take no slot of this stream, so the decisions after
+    // the walk keep the same slots in every sample; under Sobol it is a Sobol stream from its first
+    // slot, whose slots' scrambles are hashed from this stream's pixel key and dimension (the same
+    // in every sample of the pixel that forks at that dimension), so its k-th value is stratified
+    // over the samples that fork there. Two forks of one stream at different dimensions, and forks
+    // of different streams, are decorrelated. Its scrambles are not cached (PixelSlotScrambles).
+    constexpr SampleStream fork() const {
+        SampleStream s = *this;
+        const std::uint64_t at = std::uint64_t(dimension_) + 1;
+        s.pixelKey_ = mix64(pixelKey_ ^ (0x2545f4914f6cdd1dull * at));
+        s.key_ = mix64(key_ ^ (0x9e6c63d0676a9a99ull * at));
+        s.dimension_ = 0;
+        s.independentStreams_ = 0;
+        s.pixel_ = nullptr;
+        return s;
+    }
     // The point of the camera's aperture (render/thin_lens.h): two values of their own, outside the
     // sequence next() walks, so depth of field changes no other dimension of a sample (a pinhole
     // camera's images stay as they were) and a tile draws the same lens point on any thread.
