@@ -10,7 +10,8 @@
 // position, the hero wavelength, then per bounce the light choice and light point, the BSDF lobe
 // and direction, Russian roulette and the medium events (docs/USER_GUIDE.md, "Sampling"). Walks
 // that draw a varying number of values (majorant tracking) draw them from independentStream(),
-// so the slots after them stay the same in every sample of a pixel.
+// or, where their steps should stay stratified (a guided subsurface walk), from fork(), so the
+// slots after them stay the same in every sample of a pixel.
 //
 // Nothing is carried between pixels or threads, so an image is bit-identical at any thread count
 // and any tile can be re-rendered alone (farm splits, checkpoints). The hash is SplitMix64's
