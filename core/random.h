@@ -10,7 +10,8 @@
 // position, the hero wavelength, then per bounce the light choice and light point, the BSDF lobe
 // and direction, Russian roulette and the medium events (docs/USER_GUIDE.md, "Sampling"). Walks
 // that draw a varying number of values (majorant tracking) draw them from independentStream(),
-// so the slots after them stay the same in every sample of a pixel.
+// or, where their steps should stay stratified (a guided subsurface walk), from fork(), so the
+// slots after them stay the same in every sample of a pixel.
 //
 // Nothing is carried between pixels or threads, so an image is bit-identical at any thread count
 // and any tile can be re-rendered alone (farm splits, checkpoints). The hash is SplitMix64's
@@ -132,6 +133,24 @@ public:
         s.key_ = mix64(key_ ^ (0xd1b54a32d192ed03ull * ++independentStreams_));
         s.dimension_ = 0;
         s.independentStreams_ = 0;
+        return s;
+    }
+    // A stream of its own for a walk inside the sample that draws a varying number of values which
+    // should stay stratified step by step over the pixel's samples (a guided subsurface walk,
+    // integrators/path_tracer.cpp): its values take no slot of this stream, so the decisions after
+    // the walk keep the same slots in every sample; under Sobol it is a Sobol stream from its first
+    // slot, whose slots' scrambles are hashed from this stream's pixel key and dimension (the same
+    // in every sample of the pixel that forks at that dimension), so its k-th value is stratified
+    // over the samples that fork there. Two forks of one stream at different dimensions, and forks
+    // of different streams, are decorrelated. Its scrambles are not cached (PixelSlotScrambles).
+    constexpr SampleStream fork() const {
+        SampleStream s = *this;
+        const std::uint64_t at = std::uint64_t(dimension_) + 1;
+        s.pixelKey_ = mix64(pixelKey_ ^ (0x2545f4914f6cdd1dull * at));
+        s.key_ = mix64(key_ ^ (0x9e6c63d0676a9a99ull * at));
+        s.dimension_ = 0;
+        s.independentStreams_ = 0;
+        s.pixel_ = nullptr;
         return s;
     }
     // The point of the camera's aperture (render/thin_lens.h): two values of their own, outside the

@@ -174,6 +174,8 @@ public:
           scene_(scene),
           camera_(camera),
           rng_(&rng),
+          pathRng_(&rng),
+          walkRng_(rng),
           counters_(counters),
           ray_(cameraRay),
           inside_(scene),
@@ -257,6 +259,7 @@ private:
             !isBlack(flight.properties.emission))
             addMediumEmission(throughputBefore * flight.absorbedThroughput * flight.properties.emission);
         if (flight.event == media::FlightEvent::Scattered) return scatterInMedium(flight, medium, depth);
+        if (guidedWalk_) rng_ = pathRng_;  // the walk reached its boundary: the path's slots again
         return Step::Reached;
     }
 
@@ -567,8 +570,10 @@ private:
         const float share = 1.0f / float(walksPerEntry_);
         for (int i = 1; i < walksPerEntry_; ++i) {
             PathWalk other(*this);
-            SampleStream stream = rng_->independentStream();
-            other.rng_ = &stream;
+            SampleStream stream = pathRng_->independentStream();
+            other.pathRng_ = &stream;
+            other.walkRng_ = stream.fork();
+            other.rng_ = &other.walkRng_;
             other.throughput_ *= share;
             other.radiance_ = RGB(0.0f);
             other.out_.clearLightPaths(lightPaths_.layers());
@@ -577,7 +582,7 @@ private:
             const double uHero = guidedWalk_->heroSample() + double(i) / walksPerEntry_;
             other.guidedWalk_->chooseHero(float(uHero - std::floor(uHero)));
             other.walkStep_ = other.guidedWalk_->firstStep(ray_.origin, ray_.direction,
-                                                           other.guidedWalk_->stepChannel(stream.next()));
+                                                           other.guidedWalk_->stepChannel(other.rng_->next()));
             const FilmSample split = other.run(depth + 1);
             radiance_ += split.radiance;
             for (std::size_t layer = 0; layer < lightPaths_.layers(); ++layer)
@@ -590,6 +595,15 @@ private:
     // deep): a guided walk starts when the path entered a guided subsurface interior and no
     // volume shares it, ends when the path left or went deeper, and otherwise (a reflection back
     // inside) goes on from there with a step whose direction the surface chose. Whether one started.
+    // SLOTS OF A WALK: a walk draws from its own stream, forked from the path's where it starts
+    // (SampleStream::fork), and the path's stream takes the numbers again when a step reaches the
+    // boundary; so the exit's light sample and BSDF sample and every bounce after them keep the same
+    // Sobol slots in every sample of a pixel, whatever the walk's length (before, each step took
+    // seven slots of the path's: the decisions after a walk landed on slots that depended on its
+    // length, stratified only among the samples whose walks had as many steps), while the walk's
+    // k-th step still takes the same slots of its fork in every sample that forks at the same
+    // dimension (a camera ray's entry). As Cycles' walk draws from its own decorrelated state.
+    // Measured: bench/results/2026-12-06-walk-slots-s22.md.
     bool followGuidedWalk(const SurfaceHit& hit, int depthBefore, const Vec3f& origin, const Vec3f& wi) {
         if (inside_.depth() != depthBefore) guidedWalk_.reset();
         const bool starts = inside_.depth() > depthBefore && inside_.inSubsurface() && !scene_.medium() &&
@@ -600,6 +614,8 @@ private:
             guidedWalk_.emplace(hit.point, hit.geometricNormal, inside_.medium()->at(hit.point), walkChannels_,
                                 uChannel);
         walkStep_ = guidedWalk_->firstStep(origin, wi, guidedWalk_->stepChannel(uChannel));
+        if (starts) walkRng_ = pathRng_->fork();
+        rng_ = &walkRng_;
         return starts;
     }
 
@@ -690,7 +706,9 @@ private:
     const bool exactEverywhere_;              // level 2 or 3 in a scene where the equiangular strategy samples no light
     const render::RenderScene& scene_;
     const render::Camera& camera_;
-    SampleStream* rng_;  // the sample's stream (a split walk's own, splitWalk)
+    SampleStream* rng_;      // the stream drawn from: the path's, or in a guided walk the walk's
+    SampleStream* pathRng_;  // the path's own: rng_ when not in a guided walk
+    SampleStream walkRng_;   // the guided walk's (SLOTS OF A WALK, followGuidedWalk)
     RenderCounters& counters_;
     FilmSample out_;
     RGB radiance_{0.0f}, throughput_{1.0f};

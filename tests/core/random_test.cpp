@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <set>
+#include <vector>
 
 namespace fluence {
 namespace {
@@ -41,6 +42,51 @@ TEST(SampleStream, IndependentStreamsTakeNoSlotOfTheSample) {
     EXPECT_EQ(values.size(), 74u);
     EXPECT_EQ(walked.dimension(), plain.dimension());
     for (int i = 0; i < 3; ++i) EXPECT_EQ(plain.next(), walked.next());
+}
+
+TEST(SampleStream, AForkIsStratifiedOverAPixelsSamplesAndTakesNoSlotOfTheSample) {
+    // The 64 samples of a pixel fork after the same draws: a fork's k-th value over them puts one
+    // value in each interval [i/64, (i+1)/64) (a stratified Sobol slot, not an independent value),
+    // for any k. The forked stream's later values are a plain stream's of the same slots, and forks
+    // at another dimension, of another pixel and of an independent stream are other values. A
+    // fork made through a pixel's cached scrambles equals one made without them.
+    constexpr int kSamples = 64, kDraws = 40;
+    PixelSlotScrambles pixel(8, 321);
+    std::set<float> firstValues;
+    std::vector<std::vector<int>> strata(kDraws, std::vector<int>(kSamples, 0));
+    for (int sample = 0; sample < kSamples; ++sample) {
+        SampleStream parent(pixel, sample, SamplerKind::Sobol), plain(8, 321, sample, SamplerKind::Sobol),
+            other(8, 322, sample, SamplerKind::Sobol);
+        for (SampleStream* s : {&parent, &plain, &other}) {
+            (void)s->next();
+            (void)s->next2D();
+        }
+        SampleStream fork = parent.fork(), plainFork = plain.fork(), otherFork = other.fork();
+        (void)parent.next();
+        SampleStream later = parent.fork(), independentFork = plain.independentStream().fork();
+        for (int k = 0; k < kDraws; ++k) {
+            const float u = fork.next();
+            EXPECT_EQ(u, plainFork.next());
+            const int stratum = int(u * kSamples);
+            ASSERT_LT(stratum, kSamples);
+            ++strata[k][stratum];
+            if (sample == 0) {
+                firstValues.insert(u);
+                firstValues.insert(later.next());
+                firstValues.insert(otherFork.next());
+                firstValues.insert(independentFork.next());
+            }
+        }
+        SampleStream neverForked(8, 321, sample, SamplerKind::Sobol);
+        (void)neverForked.next();
+        (void)neverForked.next2D();
+        (void)neverForked.next();
+        EXPECT_EQ(parent.dimension(), neverForked.dimension());
+        for (int i = 0; i < 3; ++i) EXPECT_EQ(parent.next(), neverForked.next());
+    }
+    for (int k = 0; k < kDraws; ++k)
+        for (int i = 0; i < kSamples; ++i) EXPECT_EQ(strata[k][i], 1) << "draw " << k << ", stratum " << i;
+    EXPECT_EQ(firstValues.size(), std::size_t(4 * kDraws));
 }
 
 TEST(SampleStream, APixelsSlotScramblesGiveTheSameValuesAsItsStreamsAlone) {

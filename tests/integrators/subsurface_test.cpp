@@ -3,11 +3,14 @@
 // white sky reads the subsurface colour asked for, and white (albedo-1) objects behind a lossless
 // boundary, round or thin, neither lose nor gain light; guided walks so with one walk per entry
 // and split four ways (PathTracer's subsurface-walks), with a channel per step or a hero per walk
-// (walk-hero), bit for bit at any thread count.
+// (walk-hero), bit for bit at any thread count; and under Sobol the light sampled at a guided
+// walk's exit is stratified over a pixel's samples, whatever the walks' lengths.
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <cstdio>
+#include <vector>
 
 #include "integrators/path_tracer.h"
 #include "media/subsurface_medium.h"
@@ -253,6 +256,52 @@ TEST(Subsurface, HeroAndPerStepWalksAgreeOnAChromaticSphereUnderALight) {
             EXPECT_NEAR(d.mean(), 0.0, z * d.standardError()) << "hero " << hero << " x" << walks << ", channel " << c;
         }
     }
+}
+
+TEST(Subsurface, SobolStratifiesTheLightSampledAtAGuidedWalksExit) {
+    // A white sphere (walks of weight 1: albedo 1 makes the guided steps the classic ones) of a
+    // mean free path a tenth of a pixel's footprint, lit by a near rect light alone: a walk leaves
+    // close to where it entered, after a number of steps that varies from sample to sample, and a
+    // pixel's variance is mostly that of the light sample at the exit. A walk draws from its own
+    // stream (SLOTS OF A WALK in integrators/path_tracer.cpp), so under Sobol the exit's light
+    // sample takes the same slots in every sample of the pixel and is stratified: the pixels'
+    // variance over seeds is well below the independent sampler's. When the walk's steps took the
+    // path's slots, the exit's slot depended on the walk's length and Sobol did little better than
+    // independent numbers.
+    render::SceneDescription scene =
+        underAWhiteSky(test::roundSphereMesh(0.7f, 48, 24, 0), subsurfaceMaterial(RGB(1.0f), RGB(0.01f), kGuided),
+                       Vec3f(0.0f, -3.0f, 0.0f));
+    scene.lights[0].radiance = RGB(0.0f);
+    scene.lights.push_back(test::rectLight("/key", 2.0f, 2.0f, RGB(4.0f), Matrix4::translate({0.8, -1.0, 1.2})));
+    constexpr int kSize = 16, kSpp = 16, kSeeds = 6;
+    std::array<double, 2> variance{};
+    for (int k = 0; k < 2; ++k) {
+        std::vector<test_support::Rendered> renders;
+        for (int seed = 0; seed < kSeeds; ++seed)
+            renders.push_back(
+                test_support::renderWith(pathTracer(1), scene, kSize, kSpp, 0, 100 + seed, test_support::kSamplers[k]));
+        const Image& first = renders[0].image;
+        const int alpha = first.channelIndex("A");
+        int pixels = 0;
+        for (int y = 0; y < kSize; ++y)
+            for (int x = 0; x < kSize; ++x) {
+                if (first.pixel(x, y)[alpha] != 1.0f) continue;
+                double sum = 0.0, sum2 = 0.0;
+                for (const test_support::Rendered& r : renders) {
+                    const float* p = r.image.pixel(x, y);
+                    const double v = (double(p[0]) + p[1] + p[2]) / 3.0;
+                    sum += v;
+                    sum2 += v * v;
+                }
+                variance[k] += (sum2 - sum * sum / kSeeds) / (kSeeds - 1);
+                ++pixels;
+            }
+        ASSERT_GT(pixels, 50);
+        variance[k] /= pixels;
+    }
+    std::printf("[ measured ] pixel variance over seeds: Sobol %.4g, independent %.4g, ratio %.3f\n", variance[0],
+                variance[1], variance[0] / variance[1]);
+    EXPECT_LT(variance[0], 0.5 * variance[1]);
 }
 
 TEST(Subsurface, SplitGuidedWalksAreBitIdenticalAtAnyThreadCount) {
