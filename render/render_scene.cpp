@@ -903,8 +903,6 @@ std::optional<SurfaceHit> RenderScene::shadeMesh(int meshIndex, unsigned primID,
     hit.objectName = mesh.objectName;
     if (instanceIndex >= 0) placeInWorld(hit, instanceIndex, e1, e2);
     if (mesh.reflects) shadeMaterial(mesh, hit, corner, w, u, v, e1, e2);
-    if (mesh.reflects && mesh.material >= 0 && mesh.cornerColors.empty() && !shaders_[mesh.material].hasBindings())
-        hit.bsdf = &materialBsdfs_[std::size_t(mesh.material)];  // the authored parameters' (material_tables.h)
     // A mesh light's front is its triangles' own side (emissive meshes are never instanced: ng is
     // in world space). A camera ray sees a mesh light whose material responds (materialSyncMode
     // other than noMaterialResponse) as its material shades it, as Arnold's light_visible off,
@@ -957,7 +955,13 @@ void RenderScene::shadeMaterial(const Mesh& mesh, SurfaceHit& hit, std::size_t c
     if (!mesh.cornerColors.empty())
         hit.material.diffuse =
             mesh.cornerColors[corner] * w + mesh.cornerColors[corner + 1] * u + mesh.cornerColors[corner + 2] * v;
-    if (mesh.material < 0 || !shaders_[mesh.material].hasBindings()) return;
+    if (mesh.material < 0) return;
+    if (!shaders_[mesh.material].hasBindings()) {
+        // The authored parameters, unless vertex colours changed them: the BSDF made with the scene
+        // is the hit's (render/material_tables.h).
+        if (mesh.cornerColors.empty()) hit.bsdf = &materialBsdfs_[std::size_t(mesh.material)];
+        return;
+    }
     ShadingPatch patch{corner, w, u, v, e1, e2, {}};
     if (filterCamera_)
         patch.footprint = pixelFootprint(hit.point, hit.geometricNormal, filterCamera_->position(),

@@ -318,8 +318,9 @@ private:
                                         const Ray& ray) const;
     // shadeMesh's steps: the record started from the parameters of the material `mesh` shows; the
     // hit moved to world space by instance `instance` (its triangle's edges e1, e2 too); the
-    // material evaluated at the hit (corner colours, shader), `corner` the triangle's first corner
-    // and (w, u, v) the hit's barycentric weights.
+    // material evaluated at the hit (corner colours, shader; where neither drives it, the hit
+    // carries the material's BSDF made with the scene), `corner` the triangle's first corner and
+    // (w, u, v) the hit's barycentric weights.
     std::optional<SurfaceHit> newMeshHit(const Mesh& mesh) const;
     void placeInWorld(SurfaceHit& hit, int instance, Vec3f& e1, Vec3f& e2) const;
     void shadeMaterial(const Mesh& mesh, SurfaceHit& hit, std::size_t corner, float w, float u, float v,
