@@ -20,6 +20,8 @@ bench/results/DATE-figures.csv, DATE-figures-stability.csv, DATE-cycles-ratio.cs
 (machine load, commit, command: DATE-figures.md, or DATE-cycles-ratio.md for `--suite cycles`
 alone), the charts in bench/results/figures/, and the generated sections of docs/RESULTS.md
 (`figures`, `cycles`) and docs/STABILITY.md (`stability`) of the suites it ran, and no others.
+The documents are rewritten only by a run of every scene whose --record is in bench/results/; a trial
+run (--scenes, or a record elsewhere) writes its record, CSV and charts and leaves docs/ alone.
 --scenes limits the suites to the named scenes; the outputs then hold only those. --from-csv
 renders nothing and rewrites the charts and generated sections of the --suite selection from
 the CSVs already written (name an earlier run's with --csv, --stability-csv, --cycles-csv and
@@ -78,27 +80,38 @@ def csv_files(args):
     return {s: f for s, f in files.items() if args.suite in (s, "all")}
 
 
-def publish(args, figure_rows, stability_rows, cycles_rows):
-    """Charts, and the generated sections of the run record, docs/RESULTS.md and docs/STABILITY.md."""
+def updates_docs(args, selected):
+    """Whether the run's tables go into docs/RESULTS.md and docs/STABILITY.md: only a run of every scene
+    whose record is kept in bench/results; a trial run (a scene subset, or a record elsewhere) writes its
+    record alone and leaves the documents as they are."""
+    return not selected and args.record.resolve().parent == (ROOT / "bench" / "results").resolve()
+
+
+def publish(args, figure_rows, stability_rows, cycles_rows, docs):
+    """Charts, and the generated sections of the run record and, if DOCS, of docs/RESULTS.md and
+    docs/STABILITY.md."""
     record_link = "Run record: [%s](../bench/results/%s).\n\n" % (args.record.name, args.record.name)
     if cycles_rows:
         stem = args.cycles_csv.stem
         peer_report.draw(cycles_rows, args.figure_dir, stem)
         reports.replace_generated(args.record, "cycles", "## Fluence against Cycles\n\n" + peer_report.markdown(
             cycles_rows, lambda s: "figures/%s-%s.png" % (stem, s)))
-        reports.replace_generated(ROOT / "docs" / "RESULTS.md", "cycles", record_link + peer_report.markdown(
-            cycles_rows, lambda s: "../bench/results/figures/%s-%s.png" % (stem, s)))
+        if docs:
+            reports.replace_generated(ROOT / "docs" / "RESULTS.md", "cycles", record_link + peer_report.markdown(
+                cycles_rows, lambda s: "../bench/results/figures/%s-%s.png" % (stem, s)))
     if figure_rows:
         stem = args.csv.stem
         slopes = reports.draw_figures(figure_rows, args.figure_dir, stem)
         reports.replace_generated(args.record, "figures", "## Figures\n\n" + reports.figures_markdown(
             figure_rows, slopes, lambda s: "figures/%s-%s.png" % (stem, s)))
-        reports.replace_generated(ROOT / "docs" / "RESULTS.md", "figures", record_link + reports.figures_markdown(
-            figure_rows, slopes, lambda s: "../bench/results/figures/%s-%s.png" % (stem, s)))
+        if docs:
+            reports.replace_generated(ROOT / "docs" / "RESULTS.md", "figures", record_link + reports.figures_markdown(
+                figure_rows, slopes, lambda s: "../bench/results/figures/%s-%s.png" % (stem, s)))
     if stability_rows:
         markdown = reports.stability_markdown(stability_rows, scenes.stability_scenes())
         reports.replace_generated(args.record, "stability", "## Stability\n\n" + markdown)
-        reports.replace_generated(ROOT / "docs" / "STABILITY.md", "stability", record_link + markdown)
+        if docs:
+            reports.replace_generated(ROOT / "docs" / "STABILITY.md", "stability", record_link + markdown)
 
 
 def main():
@@ -134,7 +147,7 @@ def main():
     if args.from_csv:
         files = csv_files(args)
         return publish(args, *(reports.read_csv(files[s]) if s in files and files[s].exists() else []
-                               for s in ("figures", "stability", "cycles")))
+                               for s in ("figures", "stability", "cycles")), updates_docs(args, set()))
 
     binary = os.path.abspath(args.fluence)
     if not os.access(binary, os.X_OK):
@@ -162,8 +175,10 @@ def main():
     if stability_rows:
         reports.write_csv(stability_rows, args.stability_csv)
     write_run_record(args, started, load_before, time.monotonic() - t0)
-    publish(args, figure_rows, stability_rows, cycles_rows)
-    print("bench/run.py: done in %.0f s; wrote %s" % (time.monotonic() - t0, args.record), flush=True)
+    docs = updates_docs(args, selected)
+    publish(args, figure_rows, stability_rows, cycles_rows, docs)
+    print("bench/run.py: done in %.0f s; wrote %s%s" % (time.monotonic() - t0, args.record,
+          " and the tables of docs/" if docs else " (docs/ left as they are: a trial run)"), flush=True)
 
 
 if __name__ == "__main__":
