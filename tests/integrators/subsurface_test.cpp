@@ -17,6 +17,7 @@
 #include "tests/integrators/render_support.h"
 #include "tests/support/chi2.h"
 #include "tests/support/scenes.h"
+#include "tests/support/statistics.h"
 
 namespace fluence::integrators {
 namespace {
@@ -286,14 +287,13 @@ TEST(Subsurface, SobolStratifiesTheLightSampledAtAGuidedWalksExit) {
         for (int y = 0; y < kSize; ++y)
             for (int x = 0; x < kSize; ++x) {
                 if (first.pixel(x, y)[alpha] != 1.0f) continue;
-                double sum = 0.0, sum2 = 0.0;
+                test::MeanEstimate overSeeds;
                 for (const test_support::Rendered& r : renders) {
                     const float* p = r.image.pixel(x, y);
-                    const double v = (double(p[0]) + p[1] + p[2]) / 3.0;
-                    sum += v;
-                    sum2 += v * v;
+                    overSeeds.add((double(p[0]) + p[1] + p[2]) / 3.0);
                 }
-                variance[k] += (sum2 - sum * sum / kSeeds) / (kSeeds - 1);
+                const double standardError = overSeeds.unbiasedStandardError();
+                variance[k] += standardError * standardError * kSeeds;  // the sample variance, divisor n - 1
                 ++pixels;
             }
         ASSERT_GT(pixels, 50);
