@@ -546,6 +546,10 @@ private:
         etaScale_ *= bs->eta * bs->eta;
         if (!continuePath(throughput_, etaScale_, depth, *rng_)) return Step::End;
         if (lightPaths_.active()) lightPaths_.scatter(sampledEvents(v.bsdf, v.woLocal, *bs));
+        // Where the next ray leaves: spawnOrigin(point, ng, wi), which for a reflection off a surface
+        // that is not transmissive (wi on ng's side, wo's) is the point lights are sampled from,
+        // offsetRayOrigin(point, ng), already computed (surfaceVertex).
+        const Vec3f origin = !v.transmissive && dot(wi, ng) > 0.0f ? v.lightFrom : spawnOrigin(v.hit.point, ng, wi);
 
         mis_.scattered(bs->pdf);
         if constexpr (kMedia) {
@@ -558,13 +562,13 @@ private:
             }
             const int depthBefore = inside_.depth();
             inside_ = inside_.after(v.hit, v.wo, wi);
-            entered = followGuidedWalk(v.hit, depthBefore, spawnOrigin(v.hit.point, ng, wi), wi);
+            entered = followGuidedWalk(v.hit, depthBefore, origin, wi);
         }
         specularBounce_ = bs->specular;
         previousPoint_ = v.lightFrom;
         previousNormal_ = v.lightNormal;
         previousLinkGroup_ = v.hit.linkGroup;
-        continueRay(spawnOrigin(v.hit.point, ng, wi), wi);
+        continueRay(origin, wi);
         if (entered && depth == 0 && walksPerEntry_ > 1) splitWalk(depth);
         return Step::Next;
     }
