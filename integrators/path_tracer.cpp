@@ -221,7 +221,7 @@ public:
         // The radiance stored into the returned copy, not into out_ before copying it: the copy's
         // 16-byte loads of out_ would read a store still in flight, which the processor cannot
         // forward (a stall per sample).
-        FilmSample sample = out_;
+        FilmSample sample = out_.withLightPaths(lightPaths_.layers());
         sample.radiance = radiance_;
         return sample;
     }
@@ -561,7 +561,7 @@ private:
                 return Step::Next;
             }
             const int depthBefore = inside_.depth();
-            inside_ = inside_.after(v.hit, v.wo, wi);
+            inside_.cross(v.hit, v.wo, wi);
             entered = followGuidedWalk(v.hit, depthBefore, origin, wi);
         }
         specularBounce_ = bs->specular;
