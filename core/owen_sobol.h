@@ -31,14 +31,22 @@ constexpr std::uint32_t reverseBits32(std::uint32_t x) {
     return ((x & 0x55555555u) << 1) | ((x & 0xaaaaaaaau) >> 1);
 }
 
-// A bijection of 32-bit words in which bit k depends only on bits 0..k of x (and the seed).
-constexpr std::uint32_t laineKarrasPermutation(std::uint32_t x, std::uint32_t seed) {
-    x ^= x * 0x3d20adeau;
+// The first step of laineKarrasPermutation, which reads x alone: a sample's draws take it once for
+// the index they all shuffle (SobolIndex).
+constexpr std::uint32_t laineKarrasPremix(std::uint32_t x) { return x ^ x * 0x3d20adeau; }
+
+// laineKarrasPermutation of x after its first step, given laineKarrasPremix(x).
+constexpr std::uint32_t laineKarrasFromPremix(std::uint32_t x, std::uint32_t seed) {
     x += seed;
     x *= (seed >> 16) | 1u;
     x ^= x * 0x05526c56u;
     x ^= x * 0x53a22864u;
     return x;
+}
+
+// A bijection of 32-bit words in which bit k depends only on bits 0..k of x (and the seed).
+constexpr std::uint32_t laineKarrasPermutation(std::uint32_t x, std::uint32_t seed) {
+    return laineKarrasFromPremix(laineKarrasPremix(x), seed);
 }
 
 // Owen's nested uniform scramble of a binary fraction (bit 31 its first digit).
@@ -69,33 +77,37 @@ constexpr std::uint32_t sobolDimension1(std::uint32_t index) { return reverseBit
 // up to 2^-24 keeps its points.
 constexpr float fractionToFloat(std::uint32_t bits) { return static_cast<float>(bits >> 8) * 0x1p-24f; }
 
-// The draws below take the sample index with its bits reversed (reverseBits32(index)), which a
-// sample's stream computes once for all its draws. Each scramble is written as
+// The draws below take the sample index with its bits reversed and the seedless first step of its
+// shuffle's permutation taken (SobolIndex), which a sample's stream computes once for all its draws. Each scramble is written as
 // nestedUniformScramble(x) = reverse(LK(reverse(x))) with the reversals that cancel left out:
 // dimension 0 is reverse(shuffled), so its scrambled value is reverse(LK(shuffled)), and dimension
 // 1's is reverse(LK(sobolDimension1Reversed(shuffled))). The values are those of the definition
 // bit for bit (tests/core/owen_sobol_test.cpp).
 
-// The index's Owen shuffle (Burley §4), from the reversed index.
-constexpr std::uint32_t shuffledSobolIndex(std::uint32_t reversedIndex, std::uint32_t seed) {
-    return reverseBits32(laineKarrasPermutation(reversedIndex, seed));
+// A Sobol index as the draws take it: laineKarrasPremix(reverseBits32(index)).
+struct SobolIndex {
+    constexpr explicit SobolIndex(std::uint32_t index) : premixedReversed(laineKarrasPremix(reverseBits32(index))) {}
+    std::uint32_t premixedReversed;
+};
+
+// The index's Owen shuffle (Burley §4).
+constexpr std::uint32_t shuffledSobolIndex(SobolIndex index, std::uint32_t seed) {
+    return reverseBits32(laineKarrasFromPremix(index.premixedReversed, seed));
 }
 
-// Point `index` (given as reverseBits32(index)) of a 2D Owen-scrambled Sobol sequence. The
-// scramble is chosen by two 64-bit hashes: `seed`'s low half shuffles the index and its high half
-// scrambles x; `ySeed`'s low half scrambles y.
-constexpr Vec2f owenSobol2D(std::uint32_t reversedIndex, std::uint64_t seed, std::uint64_t ySeed) {
-    const std::uint32_t shuffled = shuffledSobolIndex(reversedIndex, static_cast<std::uint32_t>(seed));
+// Point `index` of a 2D Owen-scrambled Sobol sequence. The scramble is chosen by two 64-bit hashes:
+// `seed`'s low half shuffles the index and its high half scrambles x; `ySeed`'s low half scrambles y.
+constexpr Vec2f owenSobol2D(SobolIndex index, std::uint64_t seed, std::uint64_t ySeed) {
+    const std::uint32_t shuffled = shuffledSobolIndex(index, static_cast<std::uint32_t>(seed));
     return {fractionToFloat(reverseBits32(laineKarrasPermutation(shuffled, static_cast<std::uint32_t>(seed >> 32)))),
             fractionToFloat(reverseBits32(
                 laineKarrasPermutation(sobolDimension1Reversed(shuffled), static_cast<std::uint32_t>(ySeed))))};
 }
 
-// Point `index` (given reversed, as above) of a 1D Owen-scrambled van der Corput sequence
-// (stratified for any power-of-two prefix, as above); `seed`'s halves shuffle the index and
-// scramble the value.
-constexpr float owenSobol1D(std::uint32_t reversedIndex, std::uint64_t seed) {
-    const std::uint32_t shuffled = shuffledSobolIndex(reversedIndex, static_cast<std::uint32_t>(seed));
+// Point `index` of a 1D Owen-scrambled van der Corput sequence (stratified for any power-of-two
+// prefix, as above); `seed`'s halves shuffle the index and scramble the value.
+constexpr float owenSobol1D(SobolIndex index, std::uint64_t seed) {
+    const std::uint32_t shuffled = shuffledSobolIndex(index, static_cast<std::uint32_t>(seed));
     return fractionToFloat(reverseBits32(laineKarrasPermutation(shuffled, static_cast<std::uint32_t>(seed >> 32))));
 }
 

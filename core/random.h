@@ -104,14 +104,14 @@ public:
 
     constexpr float next() {
         ++dimension_;
-        if (kind_ == SamplerKind::Sobol) return owenSobol1D(reversedSobolIndex_, firstScramble(dimension_));
+        if (kind_ == SamplerKind::Sobol) return owenSobol1D(sobolIndex_, firstScramble(dimension_));
         return toUnitFloat(mix64(key_ + 0x632be59bd9b4e019ull * dimension_));
     }
     constexpr Vec2f next2D() {
         if (kind_ == SamplerKind::Sobol) {
             ++dimension_;
             const SlotScramble s = slotScramble(dimension_);
-            return owenSobol2D(reversedSobolIndex_, s.x, s.y);
+            return owenSobol2D(sobolIndex_, s.x, s.y);
         }
         float a = next();
         return {a, next()};
@@ -160,7 +160,7 @@ public:
     constexpr Vec2f lens() const {
         if (kind_ == SamplerKind::Sobol) {
             const SlotScramble s = slotScramble(kLensSlot);
-            return owenSobol2D(reversedSobolIndex_, s.x, s.y);
+            return owenSobol2D(sobolIndex_, s.x, s.y);
         }
         return {toUnitFloat(mix64(key_ ^ 0xa0761d6478bd642full)), toUnitFloat(mix64(key_ ^ 0xe7037ed1a0b428dbull))};
     }
@@ -168,7 +168,7 @@ public:
     // next() never draws), so drawing it or not changes no other value of the stream; under Sobol
     // stratified over the pixel's samples.
     constexpr float shutterTime() const {
-        if (kind_ == SamplerKind::Sobol) return owenSobol1D(reversedSobolIndex_, firstScramble(0));
+        if (kind_ == SamplerKind::Sobol) return owenSobol1D(sobolIndex_, firstScramble(0));
         return toUnitFloat(mix64(key_));
     }
     // The sample index the stream was made for: methods that keep per-sample-index state (the
@@ -181,7 +181,7 @@ private:
         : pixelKey_(pixelKey),
           key_(pixelKey_ ^ mix64(sampleIndex + 0x14057b7ef767814full)),
           sampleIndex_(sampleIndex),
-          reversedSobolIndex_(reverseBits32(static_cast<std::uint32_t>(sampleIndex))),
+          sobolIndex_(static_cast<std::uint32_t>(sampleIndex)),
           kind_(kind),
           pixel_(pixel) {}
 
@@ -203,7 +203,7 @@ private:
     std::uint64_t pixelKey_;  // (seed, pixel)
     std::uint64_t key_;       // (seed, pixel, sample index)
     std::uint64_t sampleIndex_;
-    std::uint32_t reversedSobolIndex_;  // the Sobol index (the sample index's low 32 bits), bits reversed
+    SobolIndex sobolIndex_;  // the Sobol index (the sample index's low 32 bits), as the draws take it
     SamplerKind kind_;
     std::uint32_t dimension_ = 0;
     std::uint64_t independentStreams_ = 0;  // streams handed out by independentStream()

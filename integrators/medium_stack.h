@@ -36,25 +36,29 @@ public:
     // The stack of the ray leaving `hit` along wi, for the path that arrived along -wo.
     MediumStack after(const render::SurfaceHit& hit, const Vec3f& wo, const Vec3f& wi) const {
         MediumStack next = *this;
+        next.cross(hit, wo, wi);
+        return next;
+    }
+    // This stack made after(hit, wo, wi), in place (no copy of the stack).
+    void cross(const render::SurfaceHit& hit, const Vec3f& wo, const Vec3f& wi) {
         const float in = dot(wo, hit.geometricNormal), out = dot(wi, hit.geometricNormal);
-        if (hit.interior < 0 || in * out >= 0.0f) return next;  // a reflection: still on the same side
+        if (hit.interior < 0 || in * out >= 0.0f) return;  // a reflection: still on the same side
         if (out < 0.0f) {
-            if (next.size_ < kDepth) {
-                next.subsurface_[next.size_] = hit.material.subsurface > 0.0f;
-                next.interiors_[next.size_++] = hit.interior;
+            if (size_ < kDepth) {
+                subsurface_[size_] = hit.material.subsurface > 0.0f;
+                interiors_[size_++] = hit.interior;
             }
-            return next;
+            return;
         }
-        for (int i = next.size_ - 1; i >= 0; --i)
-            if (next.interiors_[i] == hit.interior) {
-                for (int j = i; j + 1 < next.size_; ++j) {
-                    next.interiors_[j] = next.interiors_[j + 1];
-                    next.subsurface_[j] = next.subsurface_[j + 1];
+        for (int i = size_ - 1; i >= 0; --i)
+            if (interiors_[i] == hit.interior) {
+                for (int j = i; j + 1 < size_; ++j) {
+                    interiors_[j] = interiors_[j + 1];
+                    subsurface_[j] = subsurface_[j + 1];
                 }
-                --next.size_;
+                --size_;
                 break;
             }
-        return next;
     }
 
     int depth() const { return size_; }

@@ -81,6 +81,11 @@ struct MisState {
         rL = rU / pdf;
         rE = rE / pdf;
     }
+    // scattered(1.0f) without its divisions by 1 (exact: the same values, bit for bit).
+    void scatteredWithDensityOne() {
+        bsdfPdf = 1.0f;
+        rL = rU;
+    }
 };
 
 // A medium vertex drawn on `segment` at distance t, where the equiangular strategy applies.
@@ -216,7 +221,7 @@ public:
         // The radiance stored into the returned copy, not into out_ before copying it: the copy's
         // 16-byte loads of out_ would read a store still in flight, which the processor cannot
         // forward (a stall per sample).
-        FilmSample sample = out_;
+        FilmSample sample = out_.withLightPaths(lightPaths_.layers());
         sample.radiance = radiance_;
         return sample;
     }
@@ -453,15 +458,20 @@ private:
             ps = phase.sample(wo, rng_->next2D());
         }
         if (ps.pdf <= 0.0f) return Step::End;
-        throughput_ *= ps.p / ps.pdf;
+        // A guided step's value and density are its flight's (ps.p = ps.pdf = 1): the throughput and
+        // the MIS ratios would be multiplied and divided by 1, which leaves them as they are, bit for bit.
+        if (!guidedWalk_) throughput_ *= ps.p / ps.pdf;
         if (!continueInMedium(throughput_, etaScale_, depth, walking, *rng_)) return Step::End;
         lightPaths_.scatter(event);
-        mis_.scattered(ps.pdf);
+        if (guidedWalk_)
+            mis_.scatteredWithDensityOne();
+        else
+            mis_.scattered(ps.pdf);
         specularBounce_ = walking;  // no light strategy at this vertex
         previousPoint_ = flight.p;
         previousNormal_ = Vec3f(0.0f);
         previousLinkGroup_ = 0;
-        ray_ = Ray{flight.p, ps.wi, 0.0f, std::numeric_limits<float>::infinity(), ray_.time};
+        continueRay(flight.p, ps.wi);
         depth -= walking;  // not a bounce
         return Step::Next;
     }
@@ -536,6 +546,10 @@ private:
         etaScale_ *= bs->eta * bs->eta;
         if (!continuePath(throughput_, etaScale_, depth, *rng_)) return Step::End;
         if (lightPaths_.active()) lightPaths_.scatter(sampledEvents(v.bsdf, v.woLocal, *bs));
+        // Where the next ray leaves: spawnOrigin(point, ng, wi), which for a reflection off a surface
+        // that is not transmissive (wi on ng's side, wo's) is the point lights are sampled from,
+        // offsetRayOrigin(point, ng), already computed (surfaceVertex).
+        const Vec3f origin = !v.transmissive && dot(wi, ng) > 0.0f ? v.lightFrom : spawnOrigin(v.hit.point, ng, wi);
 
         mis_.scattered(bs->pdf);
         if constexpr (kMedia) {
@@ -547,16 +561,27 @@ private:
                 return Step::Next;
             }
             const int depthBefore = inside_.depth();
-            inside_ = inside_.after(v.hit, v.wo, wi);
-            entered = followGuidedWalk(v.hit, depthBefore, spawnOrigin(v.hit.point, ng, wi), wi);
+            inside_.cross(v.hit, v.wo, wi);
+            entered = followGuidedWalk(v.hit, depthBefore, origin, wi);
         }
         specularBounce_ = bs->specular;
         previousPoint_ = v.lightFrom;
         previousNormal_ = v.lightNormal;
         previousLinkGroup_ = v.hit.linkGroup;
-        ray_ = Ray{spawnOrigin(v.hit.point, ng, wi), wi, 0.0f, std::numeric_limits<float>::infinity(), ray_.time};
+        continueRay(origin, wi);
         if (entered && depth == 0 && walksPerEntry_ > 1) splitWalk(depth);
         return Step::Next;
+    }
+
+    // The path's next ray, from `origin` along `direction`, at the same time in the shutter: set
+    // member by member, not made whole and copied in (whose 16-byte loads of a record just
+    // written in 4- and 8-byte stores wait for the stores to retire).
+    void continueRay(const Vec3f& origin, const Vec3f& direction) {
+        ray_.origin = origin;
+        ray_.direction = direction;
+        ray_.tMin = 0.0f;
+        ray_.tMax = std::numeric_limits<float>::infinity();
+        ray_.fromCamera = false;
     }
 
     // The other N - 1 walks of an entry the camera ray made into a guided interior

@@ -225,7 +225,9 @@ FreeFlight GuidedWalk::fly(const WalkStep& step, float length, float tBoundary, 
     flight.p = step.origin + step.wi * flight.t;
     flight.properties = medium_;
     const float survival = std::min(maxComponent(throughput_), 1.0f);
-    if (stream.next() >= survival) {
+    // A number in [0, 1) never ends a walk that survives with probability 1: its dimension is taken,
+    // its value not computed (SampleStream::skip).
+    if (survival < 1.0f ? stream.next() >= survival : (stream.skip(), false)) {
         flight.event = FlightEvent::Absorbed;
         return flight;
     }

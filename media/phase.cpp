@@ -9,6 +9,9 @@
 namespace fluence::media {
 
 float henyeyGreenstein(float cosTheta, float g) {
+    // Isotropic: the expression below at g = 0 (its denominator exactly 1), without its square root
+    // and division; bit for bit the same value for any cos theta but NaN.
+    if (g == 0.0f && !std::isnan(cosTheta)) return 1.0f / (4.0f * kPi * 1.0f * 1.0f);
     // 1 + g^2 - 2 g cos theta, written without its cancellation near the peak (cos theta -> 1,
     // where it falls to (1 - g)^2 and sharp lobes need it to full relative precision).
     float denominator = (1.0f - g) * (1.0f - g) + 2.0f * g * (1.0f - cosTheta);

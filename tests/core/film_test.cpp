@@ -5,6 +5,31 @@
 namespace fluence {
 namespace {
 
+TEST(FilmSample, ACopyWithSomeLightPathLayersHasEveryOtherFieldAndThoseLayers) {
+    // withLightPaths(n) copies the fields before the layers as they are and the first n layers.
+    FilmSample s;
+    s.radiance = RGB(1, 2, 3);
+    s.hit = true;
+    s.albedo = RGB(0.5f, 0.25f, 0.125f);
+    s.normal = Vec3f(0, 0.6f, 0.8f);
+    s.depth = 7.0f;
+    s.objectName = 11;
+    s.materialName = 13;
+    constexpr auto kLayers = std::size_t(kMaxLightPathLayers);
+    for (std::size_t i = 0; i < 3 * kLayers; ++i) s.lightPaths[i] = float(i) + 0.5f;
+    for (std::size_t layers : {std::size_t(0), std::size_t(2), kLayers}) {
+        const FilmSample c = s.withLightPaths(layers);
+        EXPECT_EQ(c.radiance, s.radiance);
+        EXPECT_EQ(c.hit, s.hit);
+        EXPECT_EQ(c.albedo, s.albedo);
+        EXPECT_EQ(c.normal, s.normal);
+        EXPECT_EQ(c.depth, s.depth);
+        EXPECT_EQ(c.objectName, s.objectName);
+        EXPECT_EQ(c.materialName, s.materialName);
+        for (std::size_t i = 0; i < 3 * layers; ++i) EXPECT_EQ(c.lightPaths[i], s.lightPaths[i]) << i;
+    }
+}
+
 TEST(Film, ResolvesMeansCoverageMinDepthAndCounts) {
     Film film(2, 1, 1000.0f);
     auto hitSample = [](RGB radiance, RGB albedo, Vec3f normal, float depth) {

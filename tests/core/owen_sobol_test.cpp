@@ -87,10 +87,10 @@ TEST(OwenSobol, DrawsAreTheNestedScramblesOfTheShuffledIndexBitForBit) {
         const float x = fractionToFloat(nestedUniformScramble(sobolDimension0(shuffled), std::uint32_t(seed >> 32)));
         const float y = fractionToFloat(
             nestedUniformScramble(sobolDimension1ByDirectionNumbers(shuffled), static_cast<std::uint32_t>(ySeed)));
-        const Vec2f p = owenSobol2D(reverseBits32(index), seed, ySeed);
+        const Vec2f p = owenSobol2D(SobolIndex(index), seed, ySeed);
         ASSERT_EQ(p.x, x) << index;
         ASSERT_EQ(p.y, y) << index;
-        ASSERT_EQ(owenSobol1D(reverseBits32(index), seed), x) << index;
+        ASSERT_EQ(owenSobol1D(SobolIndex(index), seed), x) << index;
     }
 }
 

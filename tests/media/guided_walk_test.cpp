@@ -157,6 +157,27 @@ GuidedWalk thinWalkWithChromaticWeight(const MediumProperties& m) {
     return walk;
 }
 
+TEST(GuidedWalk, ACollisionThatSurvivesForSureTakesTheRouletteDimensionUndrawn) {
+    // fly plays Russian roulette at a collision with one number of the stream. A walk whose weight
+    // has a channel at 1 or more survives for sure: the number's dimension is still taken (the
+    // numbers after it keep theirs). The chromatic medium's entry step, colliding at once, weighs
+    // its blue channel sigmaS_b / sum_c P_c sigmaT_c = 3.96 / 2.80 > 1; a grey medium of albedo 0.5
+    // weighs every channel 0.5 and draws the number.
+    MediumProperties grey;
+    grey.sigmaS = RGB(1.0f);
+    grey.sigmaA = RGB(1.0f);
+    for (bool chromatic : {true, false}) {
+        GuidedWalk walk = thinWalk(chromatic ? chromaticMedium() : grey);
+        SampleStream stream(5, 0, 0, SamplerKind::Sobol);
+        const FreeFlight flight = walk.fly(walk.firstStep(kEntry, -kNormal, 0), 0.01f, 1.0f, stream);
+        EXPECT_EQ(stream.dimension(), 1u) << chromatic;
+        if (chromatic) {
+            EXPECT_EQ(flight.event, FlightEvent::Scattered);
+            EXPECT_GT(flight.throughput[2], 1.0f);
+        }
+    }
+}
+
 TEST(GuidedWalk, ChannelsAreDrawnWithTheirProbabilities) {
     // P_c is proportional to alpha_c T_c; stepChannel draws c with it (a channel per step) (Pearson over 3 bins,
     // 2 degrees of freedom: Q(1, x / 2) is the p-value). A fresh walk (T = 1) follows the albedos.

@@ -76,6 +76,19 @@ TEST(HenyeyGreenstein, SampleRecordIsConsistentAndReciprocal) {
     }
 }
 
+TEST(HenyeyGreenstein, IsotropicValueIsTheGeneralExpressionsBitForBit) {
+    // henyeyGreenstein(cos, 0) skips the square root and the division: its value must be what the
+    // general expression gives at g = 0 (and -0), bit for bit, for every cosine; NaN stays NaN.
+    for (float g : {0.0f, -0.0f})
+        for (int i = -1200; i <= 1200; ++i) {
+            const float cosTheta = float(i) / 1000.0f;  // past +-1 too: rounding puts dot products there
+            const float d = (1.0f - g) * (1.0f - g) + 2.0f * g * (1.0f - cosTheta);
+            const float general = (1.0f - g * g) / (4.0f * kPi * d * std::sqrt(d));
+            EXPECT_EQ(henyeyGreenstein(cosTheta, g), general) << cosTheta;
+        }
+    EXPECT_TRUE(std::isnan(henyeyGreenstein(std::nanf(""), 0.0f)));
+}
+
 TEST(HenyeyGreenstein, ClampsGBelowOne) {
     EXPECT_EQ(HenyeyGreenstein(1.0f).g(), HenyeyGreenstein::kMaxG);
     EXPECT_EQ(HenyeyGreenstein(-2.0f).g(), -HenyeyGreenstein::kMaxG);
