@@ -32,6 +32,17 @@ using render::SurfaceHit;
 
 namespace {
 
+// A subsurface material as the path tracer shades it where "walks-after-diffuse" is 0 and the path
+// has bounced diffusely before (WALKS AFTER DIFFUSE in path_tracer.h): its subsurface share
+// becomes diffuse reflection of the subsurface colour, the other lobes unchanged.
+render::MaterialParams diffuseInstead(const render::MaterialParams& m) {
+    render::MaterialParams d = m;
+    const float w = std::min(m.subsurface, 1.0f);
+    d.diffuse = m.diffuse * (1.0f - w) + m.subsurfaceColor * w;
+    d.subsurface = 0.0f;
+    return d;
+}
+
 // The multiple-importance weights of a path, in the two forms the path tracer uses: Veach's power
 // heuristic on scalar densities, and the balance heuristic in the spectral-MIS form of
 // media/tracking.h (rU, rL: the path's densities under its own sampling and under light sampling
@@ -167,13 +178,14 @@ class PathWalk {
 public:
     PathWalk(const LightEvents& lightEvents, const EquiangularLights& equiangularLights,
              std::span<const LightPathAov> aovs, int maxDepth, int walksPerEntry, media::WalkChannels walkChannels,
-             int exactFlights, const render::RenderScene& scene, const render::Camera& camera, const Ray& cameraRay,
-             SampleStream& rng, RenderCounters& counters)
+             bool walksAfterDiffuse, int exactFlights, const render::RenderScene& scene, const render::Camera& camera,
+             const Ray& cameraRay, SampleStream& rng, RenderCounters& counters)
         : lightEvents_(lightEvents),
           equiangularLights_(equiangularLights),
           maxDepth_(maxDepth),
           walksPerEntry_(walksPerEntry),
           walkChannels_(walkChannels),
+          walksAfterDiffuse_(walksAfterDiffuse),
           exactFlights_(exactFlights),
           exactEverywhere_(exactFlights >= 2 && !equiangularLights.any()),
           scene_(scene),
@@ -494,10 +506,13 @@ private:
         mis_.rE = RGB(0.0f);
         if (hit.lightShape || depth >= maxDepth_) return Step::End;
         arena_.reset();
+        const bool asDiffuse = !walksAfterDiffuse_ && diffuseAncestor_ && !exiting && hit.material.subsurface > 0.0f &&
+                               (!kMedia || inside_.depth() == 0);
         const SurfaceVertex v = surfaceVertex(hit, wo,
-                                              exiting    ? render::subsurfaceExitBsdf(hit.material, arena_)
-                                              : hit.bsdf ? *hit.bsdf  // made with the scene (render/material_tables.h)
-                                                         : render::materialBsdf(hit.material, arena_));
+                                              exiting     ? render::subsurfaceExitBsdf(hit.material, arena_)
+                                              : asDiffuse ? render::materialBsdf(diffuseInstead(hit.material), arena_)
+                                              : hit.bsdf  ? *hit.bsdf  // made with the scene (render/material_tables.h)
+                                                          : render::materialBsdf(hit.material, arena_));
         // Both samples' numbers are drawn in the stream's order (the light's, then the BSDF's), and
         // the BSDF is sampled before the light's shadow ray is traced: the two are independent, so
         // the BSDF sample's chain of divisions and square roots overlaps next-event estimation in
@@ -544,6 +559,10 @@ private:
             return Step::End;  // the shading frame disagrees with the surface
         throughput_ *= bs->f * (std::abs(bs->wi.z) / bs->pdf);
         etaScale_ *= bs->eta * bs->eta;
+        const bool diffuseSample = !walksAfterDiffuse_ && !bs->specular && !diffuseAncestor_ && [&] {
+            const render::LobeSplit k = v.bsdf.fByKind(v.woLocal, bs->wi);
+            return maxComponent(k.diffuse) > maxComponent(k.glossy);
+        }();
         if (!continuePath(throughput_, etaScale_, depth, *rng_)) return Step::End;
         if (lightPaths_.active()) lightPaths_.scatter(sampledEvents(v.bsdf, v.woLocal, *bs));
         // Where the next ray leaves: spawnOrigin(point, ng, wi), which for a reflection off a surface
@@ -564,6 +583,8 @@ private:
             inside_.cross(v.hit, v.wo, wi);
             entered = followGuidedWalk(v.hit, depthBefore, origin, wi);
         }
+        // A diffuse bounce that leaves the path outside every interior (not a walk's entry).
+        if (diffuseSample && (!kMedia || inside_.depth() == 0)) diffuseAncestor_ = true;
         specularBounce_ = bs->specular;
         previousPoint_ = v.lightFrom;
         previousNormal_ = v.lightNormal;
@@ -727,6 +748,7 @@ private:
     const int maxDepth_;
     const int walksPerEntry_;                 // guided walks per entry of the camera ray (splitWalk)
     const media::WalkChannels walkChannels_;  // how a guided walk's steps choose their channel
+    const bool walksAfterDiffuse_;            // false: subsurface after a diffuse bounce is diffuse (diffuseInstead)
     const int exactFlights_;                  // the "exact-flights" level (EXACT FLIGHTS)
     const bool exactEverywhere_;              // level 2 or 3 in a scene where the equiangular strategy samples no light
     const render::RenderScene& scene_;
@@ -741,8 +763,9 @@ private:
     MediumStack inside_;  // the media the path is in
     MisState mis_;        // spectral: trace<true> renders media-less scenes as trace<false> does
     const int hero_;
-    bool specularBounce_ = false;  // `ray_` left a delta lobe: no light strategy could have found it
-    float etaScale_ = 1.0f;        // product of eta^2 over the refractions so far (Russian roulette)
+    bool specularBounce_ = false;   // `ray_` left a delta lobe: no light strategy could have found it
+    bool diffuseAncestor_ = false;  // a diffuse bounce earlier on the path (only tracked without walksAfterDiffuse_)
+    float etaScale_ = 1.0f;         // product of eta^2 over the refractions so far (Russian roulette)
     // A copy of the path (splitWalk) starts with an empty arena: a vertex's BSDF lives only there.
     struct PathArena : render::BsdfArena {
         PathArena() = default;
@@ -772,7 +795,7 @@ FilmSample PathTracer::trace(const LightEvents& lightEvents, const EquiangularLi
     const std::span<const LightPathAov> aovs =
         aovs_ ? std::span<const LightPathAov>(*aovs_) : std::span<const LightPathAov>();
     return PathWalk<kMedia>(lightEvents, equiangularLights, aovs, maxDepth_, subsurfaceWalks_, walkChannels_,
-                            exactFlights_, scene, camera, cameraRay, rng, counters)
+                            walksAfterDiffuse_, exactFlights_, scene, camera, cameraRay, rng, counters)
         .run();
 }
 

@@ -23,6 +23,16 @@
 // walks (the parameter "walk-hero", default 1; 0: a channel per step; media/guided_walk.h, THE
 // STEP AND ITS MIS); the N walks of an entry take stratified heroes.
 //
+// WALKS AFTER DIFFUSE (the parameter "walks-after-diffuse", default 1). With 0, a path that has
+// scattered diffusely (a sample where the BSDF's diffuse part outweighs its glossy part, outside
+// any interior; a walk's exit is one) no longer walks: a subsurface material it meets reflects its
+// subsurface share as diffuse reflection of its subsurface colour, its other lobes unchanged. This
+// is what Cycles' Principled BSDF does on paths with a diffuse ancestor: biased (the walk's albedo
+// and spread are not a diffuse lobe's; -2% in red on the Cycles subsurface peer), but the light a
+// subsurface object sends to other surfaces then costs no walk and has several times less variance
+// (bench/results/2026-12-06-floor-variance-s23.md). Camera rays and paths after glossy or specular
+// bounces still walk.
+//
 // EXACT FLIGHTS (the parameter "exact-flights", default 3). Where the scene's volume has exact
 // extinction (media/medium.h: grids without a colour grid or negative values, homogeneous media),
 // free flights can be drawn by regular tracking instead of delta tracking (media/exact_tracking.h):
@@ -66,6 +76,7 @@ public:
     // Guided walks' channels unless the parameter "walk-hero" says otherwise: 1 a hero per walk,
     // 0 a channel per step (SUBSURFACE above).
     static constexpr int kDefaultWalkHero = 1;
+    static constexpr int kDefaultWalksAfterDiffuse = 1;  // WALKS AFTER DIFFUSE above
     static constexpr int kDefaultExactFlights = 3;
     static constexpr int kMaxExactFlights = 3;  // the "exact-flights" levels (EXACT FLIGHTS above)
 
@@ -73,6 +84,7 @@ public:
         : maxDepth_(settings.maxDepth),
           subsurfaceWalks_(walksPerEntry(settings.parameter("subsurface-walks", kDefaultSubsurfaceWalks))),
           walkChannels_(walkChannelsOf(settings.parameter("walk-hero", kDefaultWalkHero))),
+          walksAfterDiffuse_(walksAfterDiffuseOf(settings.parameter("walks-after-diffuse", kDefaultWalksAfterDiffuse))),
           exactFlights_(exactFlightLevel(settings.parameter("exact-flights", kDefaultExactFlights))),
           aovs_(settings.lightPathAovs) {}
 
@@ -109,6 +121,10 @@ private:
             throw std::invalid_argument("path: exact-flights must be 0, 1, 2 or 3");
         return int(value);
     }
+    static bool walksAfterDiffuseOf(double value) {
+        if (value != 0.0 && value != 1.0) throw std::invalid_argument("path: walks-after-diffuse must be 0 or 1");
+        return value == 1.0;
+    }
     static media::WalkChannels walkChannelsOf(double value) {
         if (value != 0.0 && value != 1.0) throw std::invalid_argument("path: walk-hero must be 0 or 1");
         return value == 1.0 ? media::WalkChannels::Hero : media::WalkChannels::PerStep;
@@ -116,6 +132,7 @@ private:
     int maxDepth_;
     int subsurfaceWalks_;
     media::WalkChannels walkChannels_;
+    bool walksAfterDiffuse_;
     int exactFlights_;
     std::shared_ptr<const std::vector<LightPathAov>> aovs_;  // null: none
 };

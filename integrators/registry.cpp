@@ -29,6 +29,12 @@ const std::vector<IntegratorInfo>& integratorRegistry() {
            "whole "
            "walks; 0 a channel drawn at every step, MIS per step (default 1)",
            true, 1, 0.0},
+          {"walks-after-diffuse", "fluence:path:walksAfterDiffuse",
+           "1: a random walk at every entry into a subsurface interior (default, unbiased); 0: on a path that has "
+           "bounced diffusely, a subsurface material reflects its subsurface share diffusely in its subsurface colour "
+           "instead of walking, as Cycles' Principled BSDF does (biased: far less noise in the light it sends to other "
+           "surfaces, a few percent darker)",
+           true, 1, 0.0},
           {"exact-flights", "fluence:path:exactFlights",
            "regular tracking of the scene volume's free flights where its extinction is exact: 1 the camera ray's, 2 "
            "every flight with exact shadow transmittance where phase sampling competes, 3 also to delta lights "

@@ -99,10 +99,10 @@ TEST_F(IntegratorParametersCli, RenderSettingsAttributesReachTheIntegratorAndThe
 }
 
 TEST_F(IntegratorParametersCli, BadOptionValuesAreUsageErrors) {
-    for (const char* args :
-         {"--sppm-photons 0", "--sppm-photons 2.5", "--sppm-photons 100000000", "--sppm-radius -1",
-          "--radiosity-patch-size 0", "--radiosity-patch-size nan", "--sppm-radius wide", "--subsurface-walks 0",
-          "--subsurface-walks 1.5", "--subsurface-walks 65", "--walk-hero 2", "--walk-hero 0.5"}) {
+    for (const char* args : {"--sppm-photons 0", "--sppm-photons 2.5", "--sppm-photons 100000000", "--sppm-radius -1",
+                             "--radiosity-patch-size 0", "--radiosity-patch-size nan", "--sppm-radius wide",
+                             "--subsurface-walks 0", "--subsurface-walks 1.5", "--subsurface-walks 65", "--walk-hero 2",
+                             "--walk-hero 0.5", "--walks-after-diffuse 2", "--walks-after-diffuse 0.5"}) {
         SCOPED_TRACE(args);
         const test::RunResult r = render(kCornellBox, std::string("--integrator sppm ") + args);
         EXPECT_EQ(r.exitCode, 2) << r.err;
@@ -124,7 +124,8 @@ TEST_F(IntegratorParametersCli, HelpListsTheParameters) {
     ASSERT_EQ(r.exitCode, 0);
     for (const char* text : {"--sppm-photons N", "fluence:sppm:photons", "--sppm-radius X", "fluence:sppm:radius",
                              "--radiosity-patch-size X", "fluence:radiosity:patchSize", "--subsurface-walks N",
-                             "fluence:path:subsurfaceWalks", "--walk-hero N", "fluence:path:walkHero"})
+                             "fluence:path:subsurfaceWalks", "--walk-hero N", "fluence:path:walkHero",
+                             "--walks-after-diffuse N", "fluence:path:walksAfterDiffuse"})
         EXPECT_NE(r.out.find(text), std::string::npos) << text;
 }
 

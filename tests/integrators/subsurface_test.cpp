@@ -304,6 +304,56 @@ TEST(Subsurface, SobolStratifiesTheLightSampledAtAGuidedWalksExit) {
     EXPECT_LT(variance[0], 0.5 * variance[1]);
 }
 
+// A white wall under a white sky, the camera 3 units before it and seeing nothing else, and behind
+// the camera a subsurface sphere of subsurface colour (0.9, 0.6, 0.3) (base colour 0.1) that the wall
+// sees: every path reaching the sphere has bounced off the wall. With "walks-after-diffuse" 0
+// (path_tracer.h, WALKS AFTER DIFFUSE) no path walks and the wall's image has the mean of the same
+// scene with a diffuse sphere of the subsurface colour; with 1 they walk; a camera ray into the
+// sphere walks with either.
+TEST(Subsurface, WithoutWalksAfterDiffuseASubsurfaceObjectSeenAfterADiffuseBounceIsADiffuseOneOfItsColour) {
+    const RGB colour(0.9f, 0.6f, 0.3f);
+    render::MaterialDesc skin = subsurfaceMaterial(colour, RGB(0.3f, 0.1f, 0.05f), kGuided);
+    skin.diffuse = RGB(0.1f);  // the base colour, which the subsurface share replaces
+    auto scene = [&](render::MaterialDesc sphereMaterial, float lookX) {
+        render::SceneDescription s = test::furnaceScene(0.8f);
+        s.materials.push_back(std::move(sphereMaterial));
+        s.meshes[0] = test::quadMesh("/wall", {Vec3f(-4, 3, -4), Vec3f(4, 3, -4), Vec3f(4, 3, 4), Vec3f(-4, 3, 4)}, 0);
+        s.meshes.push_back(test::roundSphereMesh(1.0f, 48, 24, 1, Vec3f(0.0f, -2.0f, 0.0f)));
+        s.camera->transform = Matrix4::rotateX(lookX);  // 90: along +Y (the wall); -90: along -Y (the sphere)
+        return s;
+    };
+    auto tracer = [](int walksAfterDiffuse) {
+        IntegratorSettings settings;
+        settings.parameters["walks-after-diffuse"] = walksAfterDiffuse;
+        return PathTracer(settings);
+    };
+    constexpr int kSize = 16, kSpp = 32, kSeeds = 8;
+    const render::SceneDescription wallWithSkin = scene(skin, 90.0f);
+    const render::SceneDescription wallWithTwin = scene(test::diffuseMaterial("/Twin", colour), 90.0f);
+    std::array<std::array<test::MeanEstimate, 3>, 2> means;
+    for (int seed = 0; seed < kSeeds; ++seed) {
+        const test_support::Rendered withSkin = test_support::renderWith(tracer(0), wallWithSkin, kSize, kSpp, 0, seed);
+        const test_support::Rendered withTwin = test_support::renderWith(tracer(0), wallWithTwin, kSize, kSpp, 0, seed);
+        ASSERT_EQ(withSkin.stats.counters.walkSteps, 0u) << "a path that bounced off the wall walked";
+        for (int c = 0; c < 3; ++c) {
+            auto everyPixel = [](const float*) { return true; };
+            means[0][c].add(test_support::channelMean(withSkin.image, c, everyPixel).mean());
+            means[1][c].add(test_support::channelMean(withTwin.image, c, everyPixel).mean());
+        }
+    }
+    for (int c = 0; c < 3; ++c) {
+        const double band = test::welchBand(means[0][c], means[1][c], test::sidakAlpha(3));
+        std::printf(
+            "[ measured ] wall, channel %d: subsurface sphere %.5f +- %.5f, diffuse twin %.5f +- %.5f (band %.5f)\n", c,
+            means[0][c].mean(), means[0][c].standardError(), means[1][c].mean(), means[1][c].standardError(), band);
+        EXPECT_NEAR(means[0][c].mean(), means[1][c].mean(), band) << "channel " << c;
+    }
+    EXPECT_GT(test_support::renderWith(tracer(1), wallWithSkin, kSize, kSpp).stats.counters.walkSteps, 0u)
+        << "with walks after diffuse bounces, the light the wall gets from the sphere walks";
+    EXPECT_GT(test_support::renderWith(tracer(0), scene(skin, -90.0f), kSize, kSpp).stats.counters.walkSteps, 0u)
+        << "camera rays into the sphere walk whatever the parameter";
+}
+
 TEST(Subsurface, SplitGuidedWalksAreBitIdenticalAtAnyThreadCount) {
     // Three walks per entry into a sphere under a sky and a rect light: the split walks draw from
     // streams that are functions of the sample alone, so threads and tiles change no pixel.
