@@ -32,17 +32,6 @@ using render::SurfaceHit;
 
 namespace {
 
-// A subsurface material as the path tracer shades it where "walks-after-diffuse" is 0 and the path
-// has bounced diffusely before (WALKS AFTER DIFFUSE in path_tracer.h): its subsurface share
-// becomes diffuse reflection of the subsurface colour, the other lobes unchanged.
-render::MaterialParams diffuseInstead(const render::MaterialParams& m) {
-    render::MaterialParams d = m;
-    const float w = std::min(m.subsurface, 1.0f);
-    d.diffuse = m.diffuse * (1.0f - w) + m.subsurfaceColor * w;
-    d.subsurface = 0.0f;
-    return d;
-}
-
 // The multiple-importance weights of a path, in the two forms the path tracer uses: Veach's power
 // heuristic on scalar densities, and the balance heuristic in the spectral-MIS form of
 // media/tracking.h (rU, rL: the path's densities under its own sampling and under light sampling
@@ -506,13 +495,15 @@ private:
         mis_.rE = RGB(0.0f);
         if (hit.lightShape || depth >= maxDepth_) return Step::End;
         arena_.reset();
-        const bool asDiffuse = !walksAfterDiffuse_ && diffuseAncestor_ && !exiting && hit.material.subsurface > 0.0f &&
-                               (!kMedia || inside_.depth() == 0);
-        const SurfaceVertex v = surfaceVertex(hit, wo,
-                                              exiting     ? render::subsurfaceExitBsdf(hit.material, arena_)
-                                              : asDiffuse ? render::materialBsdf(diffuseInstead(hit.material), arena_)
-                                              : hit.bsdf  ? *hit.bsdf  // made with the scene (render/material_tables.h)
-                                                          : render::materialBsdf(hit.material, arena_));
+        // WALKS AFTER DIFFUSE (path_tracer.h): diffuseAncestor_ is only ever set without walksAfterDiffuse_.
+        const bool asDiffuse =
+            diffuseAncestor_ && !exiting && hit.material.subsurface > 0.0f && (!kMedia || inside_.depth() == 0);
+        const SurfaceVertex v =
+            surfaceVertex(hit, wo,
+                          exiting     ? render::subsurfaceExitBsdf(hit.material, arena_)
+                          : asDiffuse ? render::materialBsdf(hit.material, arena_, render::SubsurfaceShare::Diffuse)
+                          : hit.bsdf  ? *hit.bsdf  // made with the scene (render/material_tables.h)
+                                      : render::materialBsdf(hit.material, arena_));
         // Both samples' numbers are drawn in the stream's order (the light's, then the BSDF's), and
         // the BSDF is sampled before the light's shadow ray is traced: the two are independent, so
         // the BSDF sample's chain of divisions and square roots overlaps next-event estimation in
@@ -748,7 +739,7 @@ private:
     const int maxDepth_;
     const int walksPerEntry_;                 // guided walks per entry of the camera ray (splitWalk)
     const media::WalkChannels walkChannels_;  // how a guided walk's steps choose their channel
-    const bool walksAfterDiffuse_;            // false: subsurface after a diffuse bounce is diffuse (diffuseInstead)
+    const bool walksAfterDiffuse_;            // false: subsurface after a diffuse bounce is diffuse (SubsurfaceShare)
     const int exactFlights_;                  // the "exact-flights" level (EXACT FLIGHTS)
     const bool exactEverywhere_;              // level 2 or 3 in a scene where the equiangular strategy samples no light
     const render::RenderScene& scene_;

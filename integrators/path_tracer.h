@@ -26,7 +26,8 @@
 // WALKS AFTER DIFFUSE (the parameter "walks-after-diffuse", default 1). With 0, a path that has
 // scattered diffusely (a sample where the BSDF's diffuse part outweighs its glossy part, outside
 // any interior; a walk's exit is one) no longer walks: a subsurface material it meets reflects its
-// subsurface share as diffuse reflection of its subsurface colour, its other lobes unchanged. This
+// subsurface share as diffuse reflection of its subsurface colour, its other lobes unchanged
+// (render::SubsurfaceShare::Diffuse; a thin wall, which no walk enters, is as before). This
 // is what Cycles' Principled BSDF does on paths with a diffuse ancestor: biased (the walk's albedo
 // and spread are not a diffuse lobe's; -2% in red on the Cycles subsurface peer), but the light a
 // subsurface object sends to other surfaces then costs no walk and has several times less variance

@@ -382,7 +382,7 @@ bool diffuseBaseOnly(const MaterialParams& m) {
 
 }  // namespace
 
-const Bsdf& materialBsdf(const MaterialParams& m, BsdfArena& arena) {
+const Bsdf& materialBsdf(const MaterialParams& m, BsdfArena& arena, SubsurfaceShare subsurface) {
     if (m.hair) return arena.make<HairBsdf>(*m.hair);
     const Bsdf* bsdf = m.diffuseRoughness > 0.0f
                            ? static_cast<const Bsdf*>(&arena.make<OrenNayarBsdf>(m.diffuse, m.diffuseRoughness))
@@ -390,10 +390,14 @@ const Bsdf& materialBsdf(const MaterialParams& m, BsdfArena& arena) {
     if (diffuseBaseOnly(m)) return *bsdf;
     DiffuseBase diffuse;
     if (m.subsurface > 0.0f) {  // a solid's walk inside gives the colour; a thin wall is tinted once
-        const RGB transmittance = m.thinWalled ? clamp01(m.subsurfaceColor) : RGB(1.0f);
         const float weight = std::min(m.subsurface, 1.0f);
-        bsdf = &blend(*bsdf, arena.make<LambertianTransmissionBsdf>(transmittance), weight, arena);
-        diffuse.transmitted = transmittance * weight;
+        if (subsurface == SubsurfaceShare::Diffuse && !m.thinWalled) {
+            bsdf = &blend(*bsdf, arena.make<LambertianBsdf>(clamp01(m.subsurfaceColor)), weight, arena);
+        } else {
+            const RGB transmittance = m.thinWalled ? clamp01(m.subsurfaceColor) : RGB(1.0f);
+            bsdf = &blend(*bsdf, arena.make<LambertianTransmissionBsdf>(transmittance), weight, arena);
+            diffuse.transmitted = transmittance * weight;
+        }
     }
     LightFromBelow light(diffuse, m);
     bsdf = &sheenAndSpecular(*bsdf, light, m, arena);

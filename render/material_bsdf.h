@@ -69,7 +69,14 @@
 
 namespace fluence::render {
 
-const Bsdf& materialBsdf(const MaterialParams& material, BsdfArena& arena);
+// What the subsurface share of a solid becomes: the light that enters it for a walk inside (Walk,
+// LambertianTransmission above), or diffuse reflection of its subsurface colour where the caller
+// walks no more (Diffuse: `path` with walks-after-diffuse 0, integrators/path_tracer.h), every
+// other lobe as it is. A thin wall, which no walk enters, transmits the same either way.
+enum class SubsurfaceShare { Walk, Diffuse };
+
+const Bsdf& materialBsdf(const MaterialParams& material, BsdfArena& arena,
+                         SubsurfaceShare subsurface = SubsurfaceShare::Walk);
 
 // Where diffusion subsurface scattering brings light back out (integrators/diffusion_probe.h):
 // the subsurface lobe's boundary, LambertianTransmission(1), under the same sheen, specular lobe

@@ -57,6 +57,38 @@ TEST(MaterialBsdf, LayersFollowTheMaterial) {
     EXPECT_EQ(bsdfOf(mirror, RGB(0.9f), arena).flags() & kBsdfDiffuse, 0u) << "a pure metal has no diffuse lobe";
 }
 
+// SubsurfaceShare::Diffuse turns a solid's subsurface share into diffuse reflection of the
+// subsurface colour and leaves the other lobes alone: half metal (F0 = the base colour, 0.2) and
+// half subsurface of colour (0.9, 0.6, 0.3) reflects half the metal's f plus half that colour / pi.
+// A thin wall transmits as it did.
+TEST(MaterialBsdf, ASubsurfaceShareMadeDiffuseReflectsItsColourAndLeavesTheOtherLobes) {
+    BsdfArena arena;
+    MaterialParams m = lambertianParams(RGB(0.2f));
+    m.subsurface = 1.0f;
+    m.subsurfaceColor = RGB(0.9f, 0.6f, 0.3f);
+    m.metallic = 0.5f;
+    m.roughness = 0.4f;
+    MaterialParams metal = m;
+    metal.metallic = 1.0f;
+    const Bsdf& share = materialBsdf(m, arena, SubsurfaceShare::Diffuse);
+    const Bsdf& pure = materialBsdf(metal, arena);
+    const Vec3f wo = test::incidentDirection(30.0f);
+    for (float theta : {5.0f, 40.0f, 75.0f}) {
+        const Vec3f wi = test::incidentDirection(theta);
+        const RGB expected = pure.f(wo, wi) * 0.5f + m.subsurfaceColor * (0.5f * kInvPi);
+        for (int c = 0; c < 3; ++c)
+            EXPECT_NEAR(share.f(wo, wi)[c], expected[c], 1e-5f * expected[c]) << "theta " << theta << ", channel " << c;
+        EXPECT_TRUE(isBlack(share.f(wo, -wi))) << "a solid's share made diffuse transmits nothing";
+    }
+    m.metallic = 0.0f;
+    m.thinWalled = true;
+    const Bsdf& wall = materialBsdf(m, arena, SubsurfaceShare::Diffuse);
+    const Bsdf& walked = materialBsdf(m, arena);
+    const Vec3f through = -test::incidentDirection(20.0f);
+    EXPECT_EQ(wall.f(wo, through), walked.f(wo, through)) << "a thin wall transmits as it did";
+    EXPECT_FALSE(isBlack(wall.f(wo, through)));
+}
+
 TEST(MaterialBsdf, AHalfMetalReflectsTheMeanOfItsParts) {
     BsdfArena arena;
     MaterialParams half = lambertOnly();
