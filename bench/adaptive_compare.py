@@ -17,8 +17,9 @@ too: the image is the same each time, the load is not). The uniform relMSE at ea
 is interpolated in log-log between the two uniform rungs around it (extrapolated from the nearest
 two, marked '*', outside them), and the ratio adaptive / uniform printed: below 1, adaptive wins at
 equal time. Writes OUT_DIR/series.csv (every render) and OUT_DIR/equal_time.csv (the table).
-PEER_SCENES (default bench/peer_scenes) is where cycles_smoke.usda and cycles_sss.usda are read from: a
-copy whose VDB path is absolute lets a checkout that is not beside ../shared (a worktree) render them.
+`--scenes sample` renders the subsurface sample (usd_samples/subsurface), a second scene with guided
+random walks. PEER_SCENES (default bench/peer_scenes) is where cycles_smoke.usda and cycles_sss.usda
+are read from: a copy whose VDB path is absolute lets a checkout that is not beside ../shared (a worktree) render them.
 With --baseline, another binary's adaptive renders (`--mean-spp N` with the same options: another
 budget rule or cost model) are rendered too, interleaved with the others, and compared the same way
 (mode "baseline" in series.csv, baseline_ratio in the table).
@@ -43,6 +44,7 @@ SCENES = {
     "cornell": (ROOT / "usd_samples/cornell_box.usda", []),
     "smoke": (pathlib.Path("cycles_smoke.usda"), []),  # under --peer-scenes
     "sss": (pathlib.Path("cycles_sss.usda"), ["--subdiv-level", "4"]),  # Cycles' render level
+    "sample": (ROOT / "usd_samples/subsurface/subsurface.usda", []),  # guided walks; not a default
 }
 
 
