@@ -68,50 +68,49 @@ struct Motion {
     std::function<void(render::SceneDescription&)> add;
 };
 
+// Motion steps for a mesh, a curve and a point set: their positions twice, the mesh's first corner moved.
+void deform(render::MeshDesc& m) {
+    m.motionPositions = {m.positions, m.positions};
+    m.motionPositions.back()[0].z += 0.1f;
+}
+void addMovingCurve(std::vector<render::CurvesDesc>& curves) {
+    curves.push_back(curve());
+    curves.back().motionPoints = {curves.back().points, curves.back().points};
+}
+void addMovingPoint(std::vector<render::PointsDesc>& points) {
+    points.push_back(point());
+    points.back().motionPositions = {points.back().positions, points.back().positions};
+}
+
 std::vector<Motion> everyKindOfMotion() {
-    const auto deform = [](render::MeshDesc& m) {
-        m.motionPositions = {m.positions, m.positions};
-        m.motionPositions.back()[0].z += 0.1f;
-    };
+    using Scene = render::SceneDescription;
     return {
-        {"deforming mesh", [&](render::SceneDescription& s) { deform(s.meshes.front()); }},
+        {"deforming mesh", [](Scene& s) { deform(s.meshes.front()); }},
         {"moving light",
-         [](render::SceneDescription& s) {
+         [](Scene& s) {
              s.lights.front().motionTransforms = {kNudge, kNudge};
          }},
-        {"moving curves",
-         [](render::SceneDescription& s) {
-             s.curves.push_back(curve());
-             s.curves.back().motionPoints = {s.curves.back().points, s.curves.back().points};
-         }},
-        {"moving points",
-         [](render::SceneDescription& s) {
-             s.points.push_back(point());
-             s.points.back().motionPositions = {s.points.back().positions, s.points.back().positions};
-         }},
+        {"moving curves", [](Scene& s) { addMovingCurve(s.curves); }},
+        {"moving points", [](Scene& s) { addMovingPoint(s.points); }},
         {"moving instance",
-         [](render::SceneDescription& s) {
+         [](Scene& s) {
              s = instancedFloor();
              s.instances.front().motionTransforms = {Matrix4::identity(), kNudge};
          }},
         {"deforming prototype mesh",
-         [&](render::SceneDescription& s) {
+         [](Scene& s) {
              s = instancedFloor();
              deform(s.prototypes.front().meshes.front());
          }},
         {"moving prototype curves",
-         [](render::SceneDescription& s) {
+         [](Scene& s) {
              s = instancedFloor();
-             s.prototypes.front().curves.push_back(curve());
-             render::CurvesDesc& c = s.prototypes.front().curves.back();
-             c.motionPoints = {c.points, c.points};
+             addMovingCurve(s.prototypes.front().curves);
          }},
         {"moving prototype points",
-         [](render::SceneDescription& s) {
+         [](Scene& s) {
              s = instancedFloor();
-             s.prototypes.front().points.push_back(point());
-             render::PointsDesc& p = s.prototypes.front().points.back();
-             p.motionPositions = {p.positions, p.positions};
+             addMovingPoint(s.prototypes.front().points);
          }},
     };
 }
