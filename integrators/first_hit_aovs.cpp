@@ -126,7 +126,7 @@ Image renderFirstHitAovs(const render::RenderScene& scene, const render::Camera&
                     const std::uint32_t samples = film.samples(x, y);
                     for (std::uint32_t s = 0; s < samples; ++s) {
                         SampleStream rng(settings.seed, pixelIndex, std::uint64_t(s), settings.sampler);
-                        const render::Ray ray = cameraSampleRay(camera, rng, imageX, imageY);  // the renderer's
+                        const render::Ray ray = cameraSampleRay(scene, camera, rng, imageX, imageY);  // the renderer's
                         const std::optional<render::SurfaceHit> hit = scene.intersect(ray);
                         const float depth = hit ? camera.viewDepth(hit->point) : camera.farClip();
                         for (std::size_t a = 0; a < aovs.size(); ++a)

@@ -64,7 +64,7 @@ void renderPass(const render::RenderScene& scene, const render::Camera& camera, 
                         for (int s = pass.first; s < last; ++s) {
                             ++taken;
                             SampleStream rng(scrambles, std::uint64_t(s), settings.sampler);
-                            const render::Ray ray = cameraSampleRay(camera, rng, imageX, imageY);
+                            const render::Ray ray = cameraSampleRay(scene, camera, rng, imageX, imageY);
                             const RenderCounters before = local;
                             FilmSample sample = integrator.sample(state, scene, camera, ray, rng, local);
                             if (!finite(sample, film.lightPathLayers().size())) {

@@ -105,10 +105,13 @@ struct RenderStats {
 // in the pixel (a box filter), its own lens values (SampleStream::lens) the point of the aperture,
 // and its own shutter dimension (SampleStream::shutterTime) its time, so that depth of field and
 // motion blur change no other random number of the sample. A still pinhole camera reads no lens
-// values, so none are drawn for it (drawing them changes nothing else either).
-inline render::Ray cameraSampleRay(const render::Camera& camera, SampleStream& rng, int imageX, int imageY) {
+// values, so none are drawn for it; and where neither the camera nor the scene moves
+// (RenderScene::moves), no ray's time changes anything, so none is drawn and the time is 0
+// (drawing either changes nothing else).
+inline render::Ray cameraSampleRay(const render::RenderScene& scene, const render::Camera& camera, SampleStream& rng,
+                                   int imageX, int imageY) {
     const Vec2f jitter = rng.next2D();
-    const float time = rng.shutterTime();
+    const float time = camera.moves() || scene.moves() ? rng.shutterTime() : 0.0f;
     const Vec2f lens = camera.moves() || !camera.lens().isPinhole() ? rng.lens() : Vec2f(0.5f);
     render::Ray ray = camera.generateRay(float(imageX) + jitter.x, float(imageY) + jitter.y, lens, time);
     ray.time = time;

@@ -101,6 +101,23 @@ bool emits(const MeshDesc& mesh, const std::vector<MaterialDesc>& materials) {
                           mayEmit(materials[mesh.material]));
 }
 
+// Whether anything `scene` holds has motion steps or motion transforms (RenderScene::moves).
+bool describesMotion(const SceneDescription& scene) {
+    const auto deforms = [](const MeshDesc& m) { return !m.motionPositions.empty(); };
+    // (Motion radii come only with motion positions: checkMotionRadii.)
+    const auto sways = [](const CurvesDesc& c) { return !c.motionPoints.empty(); };
+    const auto drifts = [](const PointsDesc& p) { return !p.motionPositions.empty(); };
+    const auto anyMoves = [&](const auto& meshes, const auto& curves, const auto& points) {
+        return std::ranges::any_of(meshes, deforms) || std::ranges::any_of(curves, sways) ||
+               std::ranges::any_of(points, drifts);
+    };
+    const auto travels = [](const auto& placed) { return !placed.motionTransforms.empty(); };
+    return anyMoves(scene.meshes, scene.curves, scene.points) ||
+           std::ranges::any_of(scene.prototypes,
+                               [&](const PrototypeDesc& p) { return anyMoves(p.meshes, p.curves, p.points); }) ||
+           std::ranges::any_of(scene.instances, travels) || std::ranges::any_of(scene.lights, travels);
+}
+
 // Whether the segment [tMin, tMax] of the ray from o along d meets the box [lo, hi]. Conservative:
 // a slab whose bound is NaN (0 x infinity, the ray parallel to a face and on its plane) excludes
 // nothing. Every ray traced in a scene with light shapes asks it, so the three slabs are computed
@@ -289,6 +306,7 @@ RenderScene::RenderScene(const SceneDescription& scene, std::shared_ptr<texture:
     addMaterialShaders();
     materialBsdfs_ = buildMaterialTables(materials_);
     checkLinkGroups(scene);
+    moves_ = describesMotion(scene);
     embree_->device = rtcNewDevice(nullptr);
     if (!embree_->device) throw std::runtime_error("cannot create the Embree device");
     embree_->surfaces = rtcNewScene(embree_->device);

@@ -256,6 +256,10 @@ public:
     }
     // Whether any ray can travel through a medium: volumes or material interiors.
     bool hasMedia() const { return medium_ || !interiors_.empty(); }
+    // Whether anything moves while the shutter is open: a mesh, curves or points with motion steps
+    // (in the world or in a prototype), an instance or a light with motion transforms.
+    // When nothing does, no ray's time changes what it meets, emits or lights.
+    bool moves() const { return moves_; }
 
     // The names hits carry (SurfaceHit::objectName, materialName), for the Cryptomatte layers: the
     // prim path of the hit gprim (MeshDesc::name), of the instance for geometry placed by instancing
@@ -358,6 +362,7 @@ private:
     std::vector<std::unique_ptr<media::Medium>> interiors_;      // each with the volumes (mediumInside)
     std::vector<int> materialInterior_;                          // material -> interior, or -1
     std::vector<Warning> warnings_;
+    bool moves_ = false;                 // moves()
     std::vector<int> surfaceMeshes_;     // Embree geometry id in the surface scene -> mesh, or -1
     std::vector<int> surfaceInstances_;  // Embree geometry id in the surface scene -> instance, or -1
     std::vector<int> surfacePoints_;     // Embree geometry id in the surface scene -> a point set's shading mesh, or -1
