@@ -13,13 +13,6 @@
 namespace fluence::integrators {
 namespace {
 
-render::CameraDesc cameraLookingDownZ() {
-    render::CameraDesc c;
-    c.name = "/camera";
-    c.transform = Matrix4::translate({0.0, 0.0, 5.0});
-    return c;
-}
-
 // A grey quad under a rect light, nothing moving.
 render::SceneDescription stillScene() {
     render::SceneDescription s;
@@ -28,7 +21,7 @@ render::SceneDescription stillScene() {
         "/floor",
         {Vec3f(-1.0f, -1.0f, 0.0f), Vec3f(1.0f, -1.0f, 0.0f), Vec3f(1.0f, 1.0f, 0.0f), Vec3f(-1.0f, 1.0f, 0.0f)}, 0));
     s.lights.push_back(test::rectLight("/light", 1.0f, 1.0f, RGB(2.0f), Matrix4::translate({0.0, 0.0, 3.0})));
-    s.camera = cameraLookingDownZ();
+    s.camera = test::lookAtOriginCamera(5.0f);
     return s;
 }
 
